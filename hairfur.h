@@ -98,7 +98,11 @@
 
 #ifndef HFDEF
 #ifdef HAIRFUR_STATIC
+#if defined(__GNUC__) || defined(__clang__)
+#define HFDEF static __attribute__((unused)) /* idle functions: no warning */
+#else
 #define HFDEF static
+#endif
 #else
 #define HFDEF extern
 #endif
@@ -214,16 +218,18 @@ typedef enum hf_map_wrap {
     HF_WRAP_CLAMP = 1   /* u and v clamp to the edge texels */
 } hf_map_wrap;
 
-/* A view of an image the caller owns: nothing is copied. Texel (x, y) starts
+/* A view of an image the caller owns: nothing is copied. Enum-valued fields
+   are plain ints so that any value a caller stores is defined behaviour and
+   gets a result code, in C and C++ alike. Texel (x, y) starts
    at byte y * row_stride + x * channels * element_size of `data`; row 0 is
    v = 0. Texel centres sit at ((x + 0.5) / width, (y + 0.5) / height). */
 typedef struct hf_map {
     const void *data;
     int width, height;
     int channels;         /* 1 to 4 */
-    hf_map_format format; /* 0 = HF_MAP_U8 */
+    int format;           /* hf_map_format; 0 = HF_MAP_U8 */
     int row_stride;       /* bytes between rows; 0 = width*channels*size */
-    hf_map_wrap wrap;     /* 0 = HF_WRAP_REPEAT */
+    int wrap;             /* hf_map_wrap; 0 = HF_WRAP_REPEAT */
 } hf_map;
 
 /* Check a map view: data not NULL, width and height >= 1 and at most
@@ -537,7 +543,7 @@ HFDEF uint32_t hf_rng_below(hf_rng *rng, uint32_t bound)
 
 /* ---- 3. maps ------------------------------------------------------------ */
 
-HF__PRIVATE int hf__map_elem_size(hf_map_format f)
+HF__PRIVATE int hf__map_elem_size(int f)
 {
     return f == HF_MAP_F32 ? 4 : 1;
 }
@@ -611,7 +617,7 @@ HFDEF hf_result hf_map_validate(const hf_map *map, hf_diag *diag)
 }
 
 /* Texel coordinate i of an axis of n texels, with the map's wrap. */
-HF__PRIVATE int hf__wrap_index(int i, int n, hf_map_wrap wrap)
+HF__PRIVATE int hf__wrap_index(int i, int n, int wrap)
 {
     if (wrap == HF_WRAP_CLAMP) return i < 0 ? 0 : (i >= n ? n - 1 : i);
     i %= n;
@@ -635,7 +641,7 @@ HF__PRIVATE void hf__map_texel(const hf_map *m, int x, int y, float *out)
 /* Map a finite coordinate to a texel index and fraction. Far-out
    coordinates are reduced first so the float-to-int conversion cannot
    overflow (repeat: modulo one period; clamp: pinned to the edge). */
-HF__PRIVATE void hf__axis(float t, int n, hf_map_wrap wrap, int *i0, int *i1,
+HF__PRIVATE void hf__axis(float t, int n, int wrap, int *i0, int *i1,
                           float *f)
 {
     float x, fl;
@@ -688,7 +694,7 @@ HFDEF hf_result hf_map_sample(const hf_map *map, float u, float v,
    floats apart in `data`, through `tmp` (n * channels floats). */
 HF__PRIVATE void hf__blur_line(float *data, size_t step, int n, int channels,
                                const float *kernel, int radius,
-                               hf_map_wrap wrap, float *tmp)
+                               int wrap, float *tmp)
 {
     int i, k, c;
     for (i = 0; i < n; ++i)

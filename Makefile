@@ -1,0 +1,85 @@
+# hairfur.h - build, test, examples.
+#
+#   make test      the unit tests: C99 and C++11, -O2 and ASan+UBSan,
+#                  with gcc and (where installed) clang; strict warnings
+#   make demo      the most complete end-to-end program, writes into out/
+#   make examples  build every example into build/
+#   make deps      install the Debian packages the examples need (as root),
+#                  or print the apt-get line
+#   make clean
+
+BUILD  := build
+OUT    := out
+WARN   := -Wall -Wextra -Wpedantic -Werror
+SAN    := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined \
+          -fno-sanitize-recover=all
+HDR    := hairfur.h
+TEST   := tests/test_hairfur.c
+
+# Debian packages for the examples (the library itself needs none).
+DEPS_PKGS := build-essential clang libstb-dev
+
+CLANG   := $(shell command -v clang 2>/dev/null)
+CLANGXX := $(shell command -v clang++ 2>/dev/null)
+
+# name: compiler and flags. Each builds tests/test_hairfur.c and runs it.
+TEST_gcc_c99      := gcc -std=c99 -O2
+TEST_gcc_cxx11    := g++ -std=c++11 -x c++ -O2
+TEST_gcc_c99_san  := gcc -std=c99 $(SAN)
+TEST_gcc_cxx11_san:= g++ -std=c++11 -x c++ $(SAN)
+TEST_NAMES := gcc_c99 gcc_cxx11 gcc_c99_san gcc_cxx11_san
+ifneq ($(CLANG),)
+TEST_clang_c99      := clang -std=c99 -O2
+TEST_clang_c99_san  := clang -std=c99 $(SAN)
+TEST_NAMES += clang_c99 clang_c99_san
+endif
+ifneq ($(CLANGXX),)
+TEST_clang_cxx11     := clang++ -std=c++11 -x c++ -O2
+TEST_clang_cxx11_san := clang++ -std=c++11 -x c++ $(SAN)
+TEST_NAMES += clang_cxx11 clang_cxx11_san
+endif
+
+TEST_BINS := $(addprefix $(BUILD)/test_,$(TEST_NAMES))
+
+.PHONY: all test check-build demo examples deps clean
+
+all: test
+
+$(BUILD) $(OUT):
+	mkdir -p $@
+
+$(BUILD)/test_%: $(TEST) $(HDR) | $(BUILD)
+	$(TEST_$*) $(WARN) $(TEST) -o $@ -lm
+
+# The implementation as C++ with every override macro set; and a C
+# implementation called from C++.
+$(BUILD)/cpp_compile: tests/test_cpp_compile.cpp $(HDR) | $(BUILD)
+	g++ -std=c++11 -O1 $(WARN) $< -o $@
+$(BUILD)/link_impl.o: tests/link_impl.c $(HDR) | $(BUILD)
+	gcc -std=c99 -O1 $(WARN) -c $< -o $@
+$(BUILD)/link_check: tests/link_main.cpp $(BUILD)/link_impl.o $(HDR) | $(BUILD)
+	g++ -std=c++11 -O1 $(WARN) $< $(BUILD)/link_impl.o -o $@ -lm
+
+check-build: $(TEST_BINS) $(BUILD)/cpp_compile $(BUILD)/link_check
+
+test: check-build
+	@$(BUILD)/cpp_compile
+	@$(BUILD)/link_check
+	@fail=0; for t in $(TEST_BINS); do \
+	  printf '%-28s ' "$$(basename $$t):"; \
+	  $$t > $$t.log 2>&1; rc=$$?; tail -n 1 $$t.log; \
+	  if [ $$rc -ne 0 ]; then fail=1; grep -v ' passed, ' $$t.log | head -n 40; fi; \
+	done; \
+	if [ $$fail -ne 0 ]; then echo "make test: FAILED"; exit 1; fi; \
+	echo "make test: all builds passed"
+
+deps:
+	@if [ "$$(id -u)" = 0 ]; then \
+	  apt-get update && apt-get install -y $(DEPS_PKGS); \
+	else \
+	  echo "Run as root, or install by hand:"; \
+	  echo "  sudo apt-get install -y $(DEPS_PKGS)"; \
+	fi
+
+clean:
+	rm -rf $(BUILD) $(OUT)
