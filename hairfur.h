@@ -52,8 +52,8 @@
                             also takes an optional runtime hf_allocator.
        HF_ASSERT(x)         the library's own invariants (default: assert).
                             Never used on caller input: that gets a result.
-       HF_SQRTF, HF_SQRT, HF_EXP, HF_SIN, HF_COS, HF_ASIN, HF_ACOS, HF_FABS,
-       HF_FLOORF, HF_CBRT, HF_MEMCPY, HF_MEMSET
+       HF_SQRTF, HF_SQRT, HF_EXP, HF_POW, HF_SIN, HF_COS, HF_ASIN, HF_ACOS,
+       HF_FABS, HF_FLOORF, HF_CBRT, HF_MEMCPY, HF_MEMSET
                             replace the libm / libc functions used.
 
    CONVENTIONS
@@ -306,6 +306,167 @@ HFDEF hf_result hf_mesh_compute_normals(const hf_mesh *mesh,
 HFDEF float hf_triangle_area(const float a[3], const float b[3],
                              const float c[3]);
 
+/* ======================================================================== */
+/* 9. Interpolation and LOD                                                 */
+/* ======================================================================== */
+
+/* Every strand and every guide has the same number of points P, 2 <= P <=
+   HF_MAX_POINTS, stored as packed x, y, z: point j of strand s is at floats
+   (s * P + j) * 3. (The cap lets per-frame kernels keep per-point scratch on
+   the stack instead of allocating.) */
+#define HF_MAX_POINTS 256
+
+/* How one strand follows three guides: indices into the guide array, the
+   barycentric weights of its root in the guide triangle (summing to 1), and
+   the ratio of the strand's own length to the weighted guide length. Made
+   once at growth; 28 bytes. */
+typedef struct hf_strand_binding {
+    uint32_t guide[3];
+    float weight[3];
+    float length_scale; /* 0 means 1 */
+} hf_strand_binding;
+
+typedef struct hf_interp_params {
+    int points_per_strand; /* P, >= 2 (required) */
+    /* Clumping toward the guide of largest weight (the look of TressFX's
+       follow hairs): point j moves by clump * j / (P - 1) of the way to
+       that guide's point, so roots stay and tips gather. 0 = none, 1 =
+       tips on the guide. */
+    float clump;
+} hf_interp_params;
+
+/* Interpolate strands [first, first + count) from guide points. Point j of
+   strand s is
+       root + scale * (sum_k w_k g_k[j] - root),   root = sum_k w_k g_k[0]
+   so the strand keeps its own root on the guide triangle (the surface) and
+   its own length (scale), and equals guide k exactly when w_k = 1 and
+   scale = 1; then clumping. Writes P * 3 floats per strand at
+   out_points + s * P * 3 and nothing else, so ranges can run on separate
+   threads. Use the same call for LOD guides that are not simulated: their
+   bindings name pure guides, and out_points may be the guide array itself
+   (the LOD guides' part of it) as long as no binding names a guide inside
+   the written range. No allocation. Errors: NULL pointers, P < 2, count <
+   0, first < 0, a guide index >= guide_count (HF_ERROR_INDEX_OUT_OF_RANGE),
+   non-finite weights, scale or clump (HF_ERROR_NON_FINITE), clump outside
+   [0, 1] (HF_ERROR_BAD_PARAMETER); nothing written then. The caller sizes
+   out_points for strand first + count - 1. */
+HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
+                               const hf_strand_binding *bindings, int first,
+                               int count, const hf_interp_params *params,
+                               float *out_points);
+
+/* Level of detail. `lod` in [0, 1] draws a prefix of the strands (they are
+   stored in LOD order): round(lod * total), at least 1 when lod > 0 and
+   total > 0; 0 for lod <= 0 or NaN; total for lod >= 1. */
+HFDEF int hf_lod_strand_count(int total, float lod);
+/* Ribbon width multiplier that keeps coverage constant: sqrt(total / drawn);
+   1 when drawn <= 0 or drawn >= total. */
+HFDEF float hf_lod_width_scale(int total, int drawn);
+/* Camera distance to a LOD value: 1 up to full_detail_distance, then
+   (full_detail_distance / distance)^2 (strands per projected area stay
+   constant), and 0 from cull_distance on. Non-finite or negative input
+   gives 1 (draw everything rather than nothing). */
+HFDEF float hf_lod_from_distance(float distance, float full_detail_distance,
+                                 float cull_distance);
+
+/* ======================================================================== */
+/* 10. Ribbons                                                              */
+/* ======================================================================== */
+
+/* One output attribute: `data` points at the attribute of vertex 0, `stride`
+   is the byte step between vertices (0 = packed). data = NULL skips the
+   attribute. Interleaved vertices: every stream points into one buffer
+   with the vertex size as stride. Separate buffers: one per stream. */
+typedef struct hf_stream {
+    void *data;
+    int stride;
+} hf_stream;
+
+/* Where ribbon vertices go. Strand s, point j, side k (0 = -side, 1 = +side)
+   is vertex (s * P + j) * 2 + k. */
+typedef struct hf_ribbon_output {
+    hf_stream position; /* float x, y, z */
+    hf_stream tangent;  /* float x, y, z: unit, root to tip */
+    hf_stream texcoord; /* float u, v, t: root UV of the strand, and t =
+                           j / (P - 1) along it (0 root, 1 tip) */
+    hf_stream color;    /* float r, g, b, a: strand colour (1, 1, 1 when
+                           none is given) and alpha faded root to tip */
+    hf_stream color3d;  /* float x, y: the "3D colour" coordinates: x = the
+                           strand's value in the grayscale index map, y = t */
+} hf_ribbon_output;
+
+/* Per-strand inputs, all optional (NULL = the default in brackets). Index s
+   is the absolute strand index, as for points. */
+typedef struct hf_ribbon_strands {
+    const float *points;     /* P * 3 floats per strand (required) */
+    const float *root_uv;    /* 2 per strand [0, 0] */
+    const float *color;      /* 3 per strand, r g b [1, 1, 1] */
+    const float *color3d_x;  /* 1 per strand [0] */
+} hf_ribbon_strands;
+
+typedef struct hf_ribbon_params {
+    int points_per_strand; /* P, >= 2 (required) */
+    /* Camera: by default perspective from `eye`; orthographic != 0 uses the
+       direction the camera looks, `view_dir` (need not be unit). */
+    float eye[3];
+    int orthographic;
+    float view_dir[3];
+    /* Full ribbon width at root and tip, in world units, and the taper
+       curve width(t) = root + (tip - root) * t^taper_power. Widths must be
+       finite and >= 0; taper_power 0 means 1 (linear). */
+    float root_width, tip_width;
+    float taper_power;
+    float width_scale; /* multiplier, e.g. hf_lod_width_scale; 0 means 1 */
+    /* alpha at root and tip, linear in t; both 0 means 1 and 1 (opaque) */
+    float alpha_root, alpha_tip;
+} hf_ribbon_params;
+
+/* Camera-facing ribbons for strands [first, first + count). For point j
+   with unit tangent t_j (central difference, one-sided at the ends) and
+   view vector v_j (eye - p_j, or -view_dir), the side is
+   s_j = normalize(cross(t_j, v_j)) and the vertices are p_j -/+ s_j * w_j / 2.
+   Never NaN: a zero-length segment reuses the previous tangent (a strand
+   with no length uses (0, 1, 0)); where t_j is parallel to v_j or the eye
+   sits on p_j, the side of the nearest point of the strand that has one is
+   reused (before any: along the strand; a strand with none uses a fixed
+   perpendicular of its tangent). Writes exactly 2 * P vertices per strand
+   into each non-NULL stream; no allocation. Errors: NULL params, points
+   or out, P < 2, first < 0, count < 0, negative or non-finite widths,
+   non-finite eye, view_dir, scale or alpha, a zero view_dir in
+   orthographic mode, a negative stride; nothing written then. */
+HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
+                           int count, const hf_ribbon_params *params,
+                           const hf_ribbon_output *out);
+
+/* The GPU-expansion path: instead of 2 * P vertices, write each point once
+   as (x, y, z, half width) in 4 floats, a third of the bytes of a minimal
+   ribbon; examples/ribbon_expand.glsl builds the same ribbons in a vertex
+   shader. Point j of strand s goes to out4 + (s * P + j) * 4. Same
+   parameters and errors as hf_ribbons (the camera fields are unused). */
+HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
+                                 int count, const hf_ribbon_params *params,
+                                 float *out4);
+
+typedef enum hf_topology {
+    HF_TRIANGLES = 0,     /* 6 (P - 1) indices per strand */
+    HF_STRIP_RESTART = 1  /* 2 P indices and one 0xFFFFFFFF per strand:
+                             draw with primitive restart on */
+} hf_topology;
+
+/* The number of indices for `strand_count` strands of P points, or -1 if
+   it does not fit in an int (or P < 2, strand_count < 0, bad topology). */
+HFDEF long long hf_ribbon_index_count(int strand_count, int points_per_strand,
+                                      int topology /* hf_topology */);
+/* Index buffer for strands [0, strand_count), matching the vertex numbering
+   of hf_ribbons, counter-clockwise seen from the side the +side vector and
+   the tangent span towards the camera. The topology does not change per
+   frame: call once. `capacity` is the size of out in indices; too small
+   gives HF_ERROR_BUFFER_TOO_SMALL. Vertex numbers must fit in 32 bits
+   (HF_ERROR_OVERFLOW otherwise). */
+HFDEF hf_result hf_ribbon_indices(int strand_count, int points_per_strand,
+                                  int topology /* hf_topology */,
+                                  uint32_t *out, long long capacity);
+
 #ifdef __cplusplus
 }
 #endif
@@ -366,6 +527,9 @@ HFDEF float hf_triangle_area(const float a[3], const float b[3],
 #endif
 #ifndef HF_FLOORF
 #define HF_FLOORF(x) floorf(x)
+#endif
+#ifndef HF_POW
+#define HF_POW(x, y) pow(x, y)
 #endif
 #ifndef HF_CBRT
 #define HF_CBRT(x) cbrt(x)
@@ -462,6 +626,12 @@ HF__PRIVATE void hf__free(const hf_allocator *a, void *ptr)
         return;
     }
     HF_FREE(ptr, a ? a->user : NULL);
+}
+
+/* first >= 0, count >= 0 and first + count representable */
+HF__PRIVATE int hf__range_ok(int first, int count)
+{
+    return first >= 0 && count >= 0 && count <= 0x7fffffff - first;
 }
 
 /* a * b without wrap-around: returns 0 and leaves *out alone on overflow. */
@@ -930,6 +1100,379 @@ HFDEF hf_result hf_mesh_compute_normals(const hf_mesh *mesh,
             o[0] = 0.0f;
             o[1] = 0.0f;
             o[2] = 1.0f;
+        }
+    }
+    return HF_OK;
+}
+
+/* ---- 9. interpolation and LOD ------------------------------------------- */
+
+HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
+                               const hf_strand_binding *bindings, int first,
+                               int count, const hf_interp_params *params,
+                               float *out_points)
+{
+    int s, j, k, P;
+    float clump;
+    if (!guide_points || !bindings || !params || !out_points)
+        return HF_ERROR_NULL_POINTER;
+    P = params->points_per_strand;
+    if (P < 2 || P > HF_MAX_POINTS || guide_count < 1)
+        return HF_ERROR_BAD_COUNT;
+    if (!hf__range_ok(first, count)) return HF_ERROR_BAD_RANGE;
+    clump = params->clump;
+    if (!hf__finitef(clump)) return HF_ERROR_NON_FINITE;
+    if (clump < 0.0f || clump > 1.0f) return HF_ERROR_BAD_PARAMETER;
+    /* validate the whole range before writing anything */
+    for (s = first; s < first + count; ++s) {
+        const hf_strand_binding *b = &bindings[s];
+        for (k = 0; k < 3; ++k) {
+            if (b->guide[k] >= (uint32_t)guide_count)
+                return HF_ERROR_INDEX_OUT_OF_RANGE;
+            if (!hf__finitef(b->weight[k])) return HF_ERROR_NON_FINITE;
+        }
+        if (!hf__finitef(b->length_scale)) return HF_ERROR_NON_FINITE;
+    }
+    for (s = first; s < first + count; ++s) {
+        const hf_strand_binding *b = &bindings[s];
+        const float *g0 = guide_points + (size_t)b->guide[0] * (size_t)P * 3u;
+        const float *g1 = guide_points + (size_t)b->guide[1] * (size_t)P * 3u;
+        const float *g2 = guide_points + (size_t)b->guide[2] * (size_t)P * 3u;
+        const float w0 = b->weight[0], w1 = b->weight[1], w2 = b->weight[2];
+        const float sc = b->length_scale != 0.0f ? b->length_scale : 1.0f;
+        /* the guide of largest weight is the one the strand clumps to */
+        const float *gn = (w0 >= w1 && w0 >= w2) ? g0 : (w1 >= w2 ? g1 : g2);
+        float *o = out_points + (size_t)s * (size_t)P * 3u;
+        float root[3];
+        const float dt = clump / (float)(P - 1);
+        for (k = 0; k < 3; ++k) root[k] = w0 * g0[k] + w1 * g1[k] + w2 * g2[k];
+        for (j = 0; j < P; ++j) {
+            const float c = dt * (float)j;
+            for (k = 0; k < 3; ++k) {
+                const int i = j * 3 + k;
+                float p = w0 * g0[i] + w1 * g1[i] + w2 * g2[i];
+                /* scale 1 skips the round trip through root, so a strand on
+                   a guide equals it bit for bit */
+                if (sc != 1.0f) p = root[k] + sc * (p - root[k]);
+                o[i] = p + c * (gn[i] - p);
+            }
+        }
+    }
+    return HF_OK;
+}
+
+HFDEF int hf_lod_strand_count(int total, float lod)
+{
+    float n;
+    int drawn;
+    if (total <= 0 || !(lod > 0.0f)) return 0;
+    if (lod >= 1.0f) return total;
+    n = lod * (float)total + 0.5f;
+    drawn = n >= (float)total ? total : (int)n;
+    return drawn < 1 ? 1 : drawn;
+}
+
+HFDEF float hf_lod_width_scale(int total, int drawn)
+{
+    if (drawn <= 0 || drawn >= total) return 1.0f;
+    return (float)HF_SQRT((double)total / (double)drawn);
+}
+
+HFDEF float hf_lod_from_distance(float distance, float full_detail_distance,
+                                 float cull_distance)
+{
+    float r;
+    if (!hf__finitef(distance) || !hf__finitef(full_detail_distance) ||
+        !hf__finitef(cull_distance) || distance < 0.0f ||
+        full_detail_distance < 0.0f)
+        return 1.0f;
+    if (distance <= full_detail_distance) return 1.0f;
+    if (distance >= cull_distance) return 0.0f;
+    r = full_detail_distance / distance;
+    return r * r;
+}
+
+/* ---- 10. ribbons -------------------------------------------------------- */
+
+/* Validate everything hf_ribbons and hf_ribbon_points share. */
+HF__PRIVATE hf_result hf__ribbon_check(const hf_ribbon_strands *strands,
+                                       int first, int count,
+                                       const hf_ribbon_params *p)
+{
+    int k;
+    if (!strands || !p || !strands->points) return HF_ERROR_NULL_POINTER;
+    if (p->points_per_strand < 2 || p->points_per_strand > HF_MAX_POINTS)
+        return HF_ERROR_BAD_COUNT;
+    if (!hf__range_ok(first, count)) return HF_ERROR_BAD_RANGE;
+    for (k = 0; k < 3; ++k)
+        if (!hf__finitef(p->eye[k]) || !hf__finitef(p->view_dir[k]))
+            return HF_ERROR_NON_FINITE;
+    if (!hf__finitef(p->root_width) || !hf__finitef(p->tip_width) ||
+        !hf__finitef(p->taper_power) || !hf__finitef(p->width_scale) ||
+        !hf__finitef(p->alpha_root) || !hf__finitef(p->alpha_tip))
+        return HF_ERROR_NON_FINITE;
+    if (p->root_width < 0.0f || p->tip_width < 0.0f ||
+        p->taper_power < 0.0f || p->width_scale < 0.0f)
+        return HF_ERROR_BAD_PARAMETER;
+    if (p->orthographic && hf__dot3(p->view_dir, p->view_dir) == 0.0f)
+        return HF_ERROR_DEGENERATE;
+    return HF_OK;
+}
+
+/* Half width at t = j / (P - 1), with the taper curve. */
+HF__PRIVATE void hf__half_widths(const hf_ribbon_params *p, float *hw)
+{
+    const int P = p->points_per_strand;
+    const float scale = p->width_scale != 0.0f ? p->width_scale : 1.0f;
+    const float power = p->taper_power != 0.0f ? p->taper_power : 1.0f;
+    int j;
+    for (j = 0; j < P; ++j) {
+        float t = (float)j / (float)(P - 1);
+        float f = power == 1.0f ? t : (float)HF_POW((double)t, (double)power);
+        if (j == P - 1) f = 1.0f; /* exact tip width whatever pow rounds */
+        /* this form gives root and tip widths exactly at f = 0 and 1 */
+        hw[j] = 0.5f * scale * ((1.0f - f) * p->root_width + f * p->tip_width);
+    }
+}
+
+HF__PRIVATE float *hf__stream_at(const hf_stream *st, int packed, size_t v)
+{
+    return (float *)((unsigned char *)st->data +
+                     v * (size_t)(st->stride ? st->stride : packed));
+}
+
+/* A unit vector perpendicular to unit t, chosen deterministically. */
+HF__PRIVATE void hf__any_perp(const float *t, float *o)
+{
+    float a[3] = {0.0f, 0.0f, 0.0f}, l;
+    /* cross with the axis least aligned with t */
+    float ax = HF_FABS(t[0]), ay = HF_FABS(t[1]), az = HF_FABS(t[2]);
+    a[(ax <= ay && ax <= az) ? 0 : (ay <= az ? 1 : 2)] = 1.0f;
+    hf__cross3(o, t, a);
+    l = HF_SQRTF(hf__dot3(o, o));
+    o[0] /= l;
+    o[1] /= l;
+    o[2] /= l;
+}
+
+HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
+                           int count, const hf_ribbon_params *params,
+                           const hf_ribbon_output *out)
+{
+    float hw[HF_MAX_POINTS], tan[HF_MAX_POINTS * 3], side[HF_MAX_POINTS * 3];
+    unsigned char ok[HF_MAX_POINTS];
+    const hf_stream *streams[5];
+    float alpha_root, alpha_tip;
+    int s, j, k, P, ortho;
+    hf_result r = hf__ribbon_check(strands, first, count, params);
+    if (r != HF_OK) return r;
+    if (!out) return HF_ERROR_NULL_POINTER;
+    streams[0] = &out->position;
+    streams[1] = &out->tangent;
+    streams[2] = &out->texcoord;
+    streams[3] = &out->color;
+    streams[4] = &out->color3d;
+    for (k = 0; k < 5; ++k)
+        if (streams[k]->stride < 0) return HF_ERROR_BAD_STRIDE;
+    P = params->points_per_strand;
+    ortho = params->orthographic != 0;
+    alpha_root = params->alpha_root;
+    alpha_tip = params->alpha_tip;
+    if (alpha_root == 0.0f && alpha_tip == 0.0f) alpha_root = alpha_tip = 1.0f;
+    hf__half_widths(params, hw);
+
+    for (s = first; s < first + count; ++s) {
+        const float *pts = strands->points + (size_t)s * (size_t)P * 3u;
+        const size_t v0 = (size_t)s * (size_t)P * 2u;
+        int first_ok = -1;
+        float last_t[3] = {0.0f, 1.0f, 0.0f};
+        /* tangents: central differences, one-sided at the ends */
+        for (j = 0; j < P; ++j) {
+            const float *a = pts + 3 * (j > 0 ? j - 1 : 0);
+            const float *b = pts + 3 * (j < P - 1 ? j + 1 : P - 1);
+            float d[3], l2;
+            hf__sub3(d, b, a);
+            l2 = hf__dot3(d, d);
+            if (l2 > 1e-30f && hf__finitef(l2)) {
+                float inv = 1.0f / HF_SQRTF(l2);
+                last_t[0] = d[0] * inv;
+                last_t[1] = d[1] * inv;
+                last_t[2] = d[2] * inv;
+            }
+            tan[3 * j] = last_t[0];
+            tan[3 * j + 1] = last_t[1];
+            tan[3 * j + 2] = last_t[2];
+        }
+        /* a strand whose first points have no length takes the tangent of
+           its first point that has one */
+        for (j = P - 2; j >= 0; --j) {
+            const float *a = pts + 3 * j, *b = pts + 3 * (j + 1);
+            if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
+                HF_MEMCPY(tan + 3 * j, tan + 3 * (j + 1), 3 * sizeof(float));
+            else
+                break;
+        }
+        /* sides: cross(t, v); parallel or eye-on-point borrows a neighbour */
+        for (j = 0; j < P; ++j) {
+            const float *p = pts + 3 * j;
+            float v[3], c[3], l2, lt;
+            if (ortho) {
+                v[0] = -params->view_dir[0];
+                v[1] = -params->view_dir[1];
+                v[2] = -params->view_dir[2];
+            } else {
+                hf__sub3(v, params->eye, p);
+            }
+            hf__cross3(c, tan + 3 * j, v);
+            l2 = hf__dot3(c, c);
+            lt = hf__dot3(v, v); /* |t| = 1: |c|^2 = |v|^2 sin^2 */
+            ok[j] = (unsigned char)(l2 > 1e-12f * lt && l2 > 1e-30f &&
+                                    hf__finitef(l2));
+            if (ok[j]) {
+                float inv = 1.0f / HF_SQRTF(l2);
+                side[3 * j] = c[0] * inv;
+                side[3 * j + 1] = c[1] * inv;
+                side[3 * j + 2] = c[2] * inv;
+                if (first_ok < 0) first_ok = j;
+            }
+        }
+        if (first_ok < 0) {
+            hf__any_perp(tan, side);
+            first_ok = 0;
+            ok[0] = 1;
+        }
+        for (j = first_ok - 1; j >= 0; --j)
+            HF_MEMCPY(side + 3 * j, side + 3 * (j + 1), 3 * sizeof(float));
+        for (j = first_ok + 1; j < P; ++j)
+            if (!ok[j])
+                HF_MEMCPY(side + 3 * j, side + 3 * (j - 1), 3 * sizeof(float));
+
+        /* write: every stream, both sides, in vertex order */
+        for (j = 0; j < P; ++j) {
+            const float *p = pts + 3 * j;
+            const float *sd = side + 3 * j;
+            const float t = (float)j / (float)(P - 1);
+            const size_t v = v0 + 2u * (size_t)j;
+            if (out->position.data) {
+                float *a = hf__stream_at(&out->position, 12, v);
+                float *b = hf__stream_at(&out->position, 12, v + 1);
+                for (k = 0; k < 3; ++k) {
+                    a[k] = p[k] - sd[k] * hw[j];
+                    b[k] = p[k] + sd[k] * hw[j];
+                }
+            }
+            if (out->tangent.data) {
+                HF_MEMCPY(hf__stream_at(&out->tangent, 12, v), tan + 3 * j, 12);
+                HF_MEMCPY(hf__stream_at(&out->tangent, 12, v + 1), tan + 3 * j,
+                          12);
+            }
+            if (out->texcoord.data) {
+                float tc[3];
+                tc[0] = strands->root_uv ? strands->root_uv[2 * (size_t)s] : 0.0f;
+                tc[1] = strands->root_uv ? strands->root_uv[2 * (size_t)s + 1]
+                                         : 0.0f;
+                tc[2] = t;
+                HF_MEMCPY(hf__stream_at(&out->texcoord, 12, v), tc, 12);
+                HF_MEMCPY(hf__stream_at(&out->texcoord, 12, v + 1), tc, 12);
+            }
+            if (out->color.data) {
+                float c4[4];
+                const float *rgb = strands->color ? strands->color + 3 * (size_t)s
+                                                  : NULL;
+                c4[0] = rgb ? rgb[0] : 1.0f;
+                c4[1] = rgb ? rgb[1] : 1.0f;
+                c4[2] = rgb ? rgb[2] : 1.0f;
+                c4[3] = alpha_root + (alpha_tip - alpha_root) * t;
+                HF_MEMCPY(hf__stream_at(&out->color, 16, v), c4, 16);
+                HF_MEMCPY(hf__stream_at(&out->color, 16, v + 1), c4, 16);
+            }
+            if (out->color3d.data) {
+                float c2[2];
+                c2[0] = strands->color3d_x ? strands->color3d_x[s] : 0.0f;
+                c2[1] = t;
+                HF_MEMCPY(hf__stream_at(&out->color3d, 8, v), c2, 8);
+                HF_MEMCPY(hf__stream_at(&out->color3d, 8, v + 1), c2, 8);
+            }
+        }
+    }
+    return HF_OK;
+}
+
+HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
+                                 int count, const hf_ribbon_params *params,
+                                 float *out4)
+{
+    float hw[HF_MAX_POINTS];
+    int s, j, P;
+    hf_result r = hf__ribbon_check(strands, first, count, params);
+    if (r != HF_OK) return r;
+    if (!out4) return HF_ERROR_NULL_POINTER;
+    P = params->points_per_strand;
+    hf__half_widths(params, hw);
+    for (s = first; s < first + count; ++s) {
+        const float *p = strands->points + (size_t)s * (size_t)P * 3u;
+        float *o = out4 + (size_t)s * (size_t)P * 4u;
+        for (j = 0; j < P; ++j) {
+            o[4 * j] = p[3 * j];
+            o[4 * j + 1] = p[3 * j + 1];
+            o[4 * j + 2] = p[3 * j + 2];
+            o[4 * j + 3] = hw[j];
+        }
+    }
+    return HF_OK;
+}
+
+HFDEF long long hf_ribbon_index_count(int strand_count, int points_per_strand,
+                                      int topology)
+{
+    long long per, n;
+    if (strand_count < 0 || points_per_strand < 2) return -1;
+    if (topology == HF_TRIANGLES)
+        per = 6LL * (points_per_strand - 1);
+    else if (topology == HF_STRIP_RESTART)
+        per = 2LL * points_per_strand + 1;
+    else
+        return -1;
+    n = per * strand_count; /* both factors < 2^33: no overflow */
+    return n > 0x7fffffffLL ? -1 : n;
+}
+
+HFDEF hf_result hf_ribbon_indices(int strand_count, int points_per_strand,
+                                  int topology, uint32_t *out,
+                                  long long capacity)
+{
+    long long n = hf_ribbon_index_count(strand_count, points_per_strand,
+                                        topology);
+    const int P = points_per_strand;
+    int s, j;
+    if (!out) return HF_ERROR_NULL_POINTER;
+    if (n < 0) {
+        if (strand_count < 0 || P < 2) return HF_ERROR_BAD_COUNT;
+        if (topology != HF_TRIANGLES && topology != HF_STRIP_RESTART)
+            return HF_ERROR_BAD_PARAMETER;
+        return HF_ERROR_OVERFLOW;
+    }
+    if (capacity < n) return HF_ERROR_BUFFER_TOO_SMALL;
+    /* the last vertex number, 2 P strand_count - 1, must fit in 32 bits and
+       stay below the restart index */
+    if (2LL * P * strand_count > 0xffffffffLL) return HF_ERROR_OVERFLOW;
+    for (s = 0; s < strand_count; ++s) {
+        const uint32_t base = (uint32_t)s * (uint32_t)P * 2u;
+        if (topology == HF_TRIANGLES) {
+            for (j = 0; j < P - 1; ++j) {
+                const uint32_t a = base + 2u * (uint32_t)j;
+                /* (a, a+1, a+2) and (a+2, a+1, a+3): counter-clockwise
+                   seen from the camera, since side x tangent faces it */
+                *out++ = a;
+                *out++ = a + 1;
+                *out++ = a + 2;
+                *out++ = a + 2;
+                *out++ = a + 1;
+                *out++ = a + 3;
+            }
+        } else {
+            for (j = 0; j < 2 * P; ++j) *out++ = base + (uint32_t)j;
+            *out++ = 0xffffffffu;
         }
     }
     return HF_OK;

@@ -553,6 +553,451 @@ static void test_mesh_normals_degenerate_fallback(void)
 }
 
 /* ======================================================================== */
+/* 9. interpolation and LOD                                                 */
+/* ======================================================================== */
+
+enum { TP = 8 }; /* points per strand in these tests */
+
+/* three bent guides with distinct shapes */
+static void t_make_guides(float *g, int n)
+{
+    int i, j;
+    for (i = 0; i < n; ++i)
+        for (j = 0; j < TP; ++j) {
+            float *p = g + (i * TP + j) * 3;
+            p[0] = (float)i + 0.05f * (float)j * (float)j * (float)(i + 1);
+            p[1] = 0.1f * (float)j;
+            p[2] = (float)(i * i) * 0.3f - 0.02f * (float)j;
+        }
+}
+
+static void test_interp_on_guide_equals_guide(void)
+{
+    float g[3 * TP * 3], out[3 * TP * 3];
+    hf_strand_binding b[3];
+    hf_interp_params ip;
+    int k;
+    t_make_guides(g, 3);
+    memset(b, 0, sizeof b);
+    memset(&ip, 0, sizeof ip);
+    ip.points_per_strand = TP;
+    for (k = 0; k < 3; ++k) {
+        b[k].guide[0] = 0; b[k].guide[1] = 1; b[k].guide[2] = 2;
+        b[k].weight[k] = 1.0f;
+    }
+    CHECK_EQ_INT(hf_interpolate(g, 3, b, 0, 3, &ip, out), HF_OK);
+    CHECK(memcmp(out, g, sizeof g) == 0);
+    /* clumping does not move a strand that sits on its guide */
+    ip.clump = 0.7f;
+    CHECK_EQ_INT(hf_interpolate(g, 3, b, 0, 3, &ip, out), HF_OK);
+    CHECK(memcmp(out, g, sizeof g) == 0);
+}
+
+static void test_interp_linear_in_barycentrics(void)
+{
+    float g[3 * TP * 3], out[3 * TP * 3];
+    hf_strand_binding b[3];
+    hf_interp_params ip;
+    static const float w1[3] = {0.2f, 0.3f, 0.5f}, w2[3] = {0.6f, 0.1f, 0.3f};
+    int k, i;
+    t_make_guides(g, 3);
+    memset(b, 0, sizeof b);
+    memset(&ip, 0, sizeof ip);
+    ip.points_per_strand = TP;
+    for (k = 0; k < 3; ++k) {
+        b[0].guide[k] = b[1].guide[k] = b[2].guide[k] = (uint32_t)k;
+        b[0].weight[k] = w1[k];
+        b[1].weight[k] = w2[k];
+        b[2].weight[k] = 0.25f * w1[k] + 0.75f * w2[k];
+    }
+    CHECK_EQ_INT(hf_interpolate(g, 3, b, 0, 3, &ip, out), HF_OK);
+    for (i = 0; i < TP * 3; ++i) {
+        double direct = w1[0] * g[i] + w1[1] * g[TP * 3 + i] +
+                        w1[2] * g[2 * TP * 3 + i];
+        CHECK_NEAR(out[i], direct, 1e-5);
+        CHECK_NEAR(out[2 * TP * 3 + i],
+                   0.25 * out[i] + 0.75 * out[TP * 3 + i], 1e-5);
+    }
+}
+
+static void test_interp_length_scale_and_clump(void)
+{
+    float g[3 * TP * 3], out[2 * TP * 3];
+    hf_strand_binding b[2];
+    hf_interp_params ip;
+    int k, j;
+    t_make_guides(g, 3);
+    memset(b, 0, sizeof b);
+    memset(&ip, 0, sizeof ip);
+    ip.points_per_strand = TP;
+    for (k = 0; k < 3; ++k) b[0].guide[k] = b[1].guide[k] = (uint32_t)k;
+    b[0].weight[0] = 0.5f; b[0].weight[1] = 0.25f; b[0].weight[2] = 0.25f;
+    b[1] = b[0];
+    b[1].length_scale = 0.5f;
+    CHECK_EQ_INT(hf_interpolate(g, 3, b, 0, 2, &ip, out), HF_OK);
+    /* same root; half the offset from it at every point */
+    for (j = 0; j < TP; ++j)
+        for (k = 0; k < 3; ++k)
+            CHECK_NEAR(out[TP * 3 + j * 3 + k] - out[k],
+                       0.5 * (out[j * 3 + k] - out[k]), 1e-5);
+    /* full clump: the tip is on the heaviest guide's tip, the root stays */
+    ip.clump = 1.0f;
+    CHECK_EQ_INT(hf_interpolate(g, 3, b, 0, 1, &ip, out + TP * 3), HF_OK);
+    for (k = 0; k < 3; ++k) {
+        CHECK_NEAR(out[TP * 3 + (TP - 1) * 3 + k], g[(TP - 1) * 3 + k], 1e-5);
+        CHECK(out[TP * 3 + k] == out[k]);
+    }
+}
+
+static void test_interp_errors_write_nothing(void)
+{
+    float g[3 * TP * 3], out[TP * 3], keep[TP * 3];
+    hf_strand_binding b;
+    hf_interp_params ip;
+    t_make_guides(g, 3);
+    memset(&b, 0, sizeof b);
+    memset(&ip, 0, sizeof ip);
+    memset(out, 0x5a, sizeof out);
+    memcpy(keep, out, sizeof out);
+    ip.points_per_strand = TP;
+    b.weight[0] = 1.0f;
+    b.guide[2] = 3;
+    CHECK_EQ_INT(hf_interpolate(g, 3, &b, 0, 1, &ip, out),
+                 HF_ERROR_INDEX_OUT_OF_RANGE);
+    b.guide[2] = 2;
+    b.weight[1] = (float)NAN;
+    CHECK_EQ_INT(hf_interpolate(g, 3, &b, 0, 1, &ip, out), HF_ERROR_NON_FINITE);
+    b.weight[1] = 0.0f;
+    ip.clump = 1.5f;
+    CHECK_EQ_INT(hf_interpolate(g, 3, &b, 0, 1, &ip, out),
+                 HF_ERROR_BAD_PARAMETER);
+    ip.clump = 0.0f;
+    ip.points_per_strand = 1;
+    CHECK_EQ_INT(hf_interpolate(g, 3, &b, 0, 1, &ip, out), HF_ERROR_BAD_COUNT);
+    ip.points_per_strand = TP;
+    CHECK_EQ_INT(hf_interpolate(g, 3, &b, -1, 1, &ip, out), HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_interpolate(g, 3, &b, 5, 0x7fffffff, &ip, out),
+                 HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_interpolate(NULL, 3, &b, 0, 1, &ip, out),
+                 HF_ERROR_NULL_POINTER);
+    CHECK(memcmp(out, keep, sizeof out) == 0);
+    /* an empty range is fine and writes nothing */
+    CHECK_EQ_INT(hf_interpolate(g, 3, &b, 0, 0, &ip, out), HF_OK);
+    CHECK(memcmp(out, keep, sizeof out) == 0);
+}
+
+static void test_lod_counts_and_widths_exact(void)
+{
+    CHECK_EQ_INT(hf_lod_strand_count(100, 1.0f), 100);
+    CHECK_EQ_INT(hf_lod_strand_count(100, 0.25f), 25);
+    CHECK_EQ_INT(hf_lod_strand_count(3670, 0.1f), 367);
+    CHECK_EQ_INT(hf_lod_strand_count(100, 0.0f), 0);
+    CHECK_EQ_INT(hf_lod_strand_count(100, -1.0f), 0);
+    CHECK_EQ_INT(hf_lod_strand_count(100, (float)NAN), 0);
+    CHECK_EQ_INT(hf_lod_strand_count(100, 1e-9f), 1);
+    CHECK_EQ_INT(hf_lod_strand_count(100, 7.0f), 100);
+    CHECK_EQ_INT(hf_lod_strand_count(0, 0.5f), 0);
+    CHECK(hf_lod_width_scale(100, 25) == 2.0f);
+    CHECK(hf_lod_width_scale(3670, 367) == (float)sqrt(3670.0 / 367.0));
+    CHECK(hf_lod_width_scale(100, 100) == 1.0f);
+    CHECK(hf_lod_width_scale(100, 0) == 1.0f);
+    CHECK(hf_lod_from_distance(1.0f, 2.0f, 50.0f) == 1.0f);
+    CHECK(hf_lod_from_distance(4.0f, 2.0f, 50.0f) == 0.25f);
+    CHECK(hf_lod_from_distance(50.0f, 2.0f, 50.0f) == 0.0f);
+    CHECK(hf_lod_from_distance((float)NAN, 2.0f, 50.0f) == 1.0f);
+}
+
+/* ======================================================================== */
+/* 10. ribbons                                                              */
+/* ======================================================================== */
+
+typedef struct t_rvert {
+    float pos[3], tan[3], tc[3], col[4], c3[2];
+} t_rvert;
+
+static hf_ribbon_output t_interleaved(t_rvert *v)
+{
+    hf_ribbon_output o;
+    o.position.data = v[0].pos;
+    o.tangent.data = v[0].tan;
+    o.texcoord.data = v[0].tc;
+    o.color.data = v[0].col;
+    o.color3d.data = v[0].c3;
+    o.position.stride = o.tangent.stride = o.texcoord.stride =
+        o.color.stride = o.color3d.stride = (int)sizeof(t_rvert);
+    return o;
+}
+
+static hf_ribbon_params t_rparams(void)
+{
+    hf_ribbon_params p;
+    memset(&p, 0, sizeof p);
+    p.points_per_strand = TP;
+    p.eye[0] = 0.3f; p.eye[1] = 1.0f; p.eye[2] = 5.0f;
+    /* wide enough that the side recovered from the float vertices is exact
+       to 1e-6 relative: the tests measure the library, not float rounding */
+    p.root_width = 0.4f;
+    p.tip_width = 0.1f;
+    return p;
+}
+
+static float t_len3(const float *a) { return sqrtf(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
+
+/* Side vectors perpendicular to tangent and view; widths exact at the ends;
+   every value finite. Returns the number of failed properties. */
+static void t_check_ribbon(const t_rvert *v, const float *pts, int strands,
+                           const hf_ribbon_params *p, int check_perp)
+{
+    int s, j, k;
+    for (s = 0; s < strands; ++s)
+        for (j = 0; j < TP; ++j) {
+            const t_rvert *a = &v[(s * TP + j) * 2], *b = a + 1;
+            const float *pt = pts + (s * TP + j) * 3;
+            float side[3], view[3], w, sl, vl;
+            for (k = 0; k < 3; ++k) {
+                side[k] = b->pos[k] - a->pos[k];
+                view[k] = p->orthographic ? -p->view_dir[k] : p->eye[k] - pt[k];
+            }
+            for (k = 0; k < 15; ++k) CHECK(t_is_finite((&a->pos[0])[k]));
+            w = t_len3(side);
+            sl = w > 0 ? w : 1;
+            vl = t_len3(view);
+            CHECK_NEAR(t_len3(a->tan), 1.0f, 1e-6);
+            if (check_perp) {
+                CHECK(fabs((side[0] * a->tan[0] + side[1] * a->tan[1] + side[2] * a->tan[2]) / sl) < 1e-5);
+                if (vl > 0)
+                    CHECK(fabs((side[0] * view[0] + side[1] * view[1] + side[2] * view[2]) / (sl * vl)) < 1e-5);
+            }
+            /* exact up to the rounding of the two float vertex positions */
+            if (j == 0) CHECK_NEAR(w, p->root_width, 3e-7 * (1.0 + t_len3(pt)));
+            if (j == TP - 1) CHECK_NEAR(w, p->tip_width, 3e-7 * (1.0 + t_len3(pt)));
+            /* the vertices straddle the point */
+            for (k = 0; k < 3; ++k) CHECK_NEAR(0.5f * (a->pos[k] + b->pos[k]), pt[k], 1e-6);
+        }
+}
+
+static void test_ribbons_perpendicular_and_widths(void)
+{
+    float g[3 * TP * 3];
+    t_rvert v[3 * TP * 2];
+    hf_ribbon_strands st;
+    hf_ribbon_params p = t_rparams();
+    hf_ribbon_output o = t_interleaved(v);
+    static const float uv[6] = {0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f};
+    static const float col[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    static const float c3[3] = {0.25f, 0.5f, 0.75f};
+    t_make_guides(g, 3);
+    memset(&st, 0, sizeof st);
+    st.points = g;
+    st.root_uv = uv;
+    st.color = col;
+    st.color3d_x = c3;
+    p.alpha_root = 1.0f;
+    p.alpha_tip = 0.25f;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 3, &p, &o), HF_OK);
+    t_check_ribbon(v, g, 3, &p, 1);
+    /* per-vertex attributes */
+    CHECK(v[(1 * TP + 3) * 2 + 1].tc[0] == 0.3f && v[(1 * TP + 3) * 2].tc[1] == 0.4f);
+    CHECK(v[(1 * TP + 7) * 2].tc[2] == 1.0f && v[(1 * TP) * 2].tc[2] == 0.0f);
+    CHECK(v[(2 * TP + 2) * 2].col[2] == 1.0f && v[(2 * TP + 2) * 2].col[0] == 0.0f);
+    CHECK(v[(2 * TP) * 2].col[3] == 1.0f && v[(2 * TP + 7) * 2 + 1].col[3] == 0.25f);
+    CHECK(v[(2 * TP + 7) * 2].c3[0] == 0.75f && v[(2 * TP + 7) * 2].c3[1] == 1.0f);
+    /* LOD width scale multiplies both ends */
+    p.width_scale = 2.0f;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 3, &p, &o), HF_OK);
+    p.root_width *= 2.0f;
+    p.tip_width *= 2.0f;
+    p.width_scale = 1.0f;
+    t_check_ribbon(v, g, 3, &p, 1);
+    /* orthographic */
+    p.orthographic = 1;
+    p.view_dir[0] = 0.2f; p.view_dir[1] = -0.3f; p.view_dir[2] = -1.0f;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 3, &p, &o), HF_OK);
+    t_check_ribbon(v, g, 3, &p, 1);
+}
+
+static void test_ribbons_degenerate_never_nan(void)
+{
+    /* strand 0: eye exactly on point 3; strand 1: duplicate points (zero-
+       length segments) including the root; strand 2: points straight at
+       the eye (tangent parallel to view); strand 3: all points equal */
+    float pts[4 * TP * 3];
+    t_rvert v[4 * TP * 2];
+    hf_ribbon_strands st;
+    hf_ribbon_params p = t_rparams();
+    hf_ribbon_output o = t_interleaved(v);
+    int j, s;
+    for (j = 0; j < TP; ++j) {
+        float *a = pts + j * 3, *b = pts + (TP + j) * 3;
+        float *c = pts + (2 * TP + j) * 3, *d = pts + (3 * TP + j) * 3;
+        a[0] = 0.01f * j; a[1] = 0.1f * j; a[2] = 0.0f;
+        b[0] = 1.0f; b[1] = 0.1f * (float)(j / 3); b[2] = 0.0f;
+        c[0] = 0.3f; c[1] = 1.0f; c[2] = 5.0f - 0.1f * (float)(TP - j);
+        d[0] = 2.0f; d[1] = 2.0f; d[2] = 2.0f;
+    }
+    p.eye[0] = pts[9]; p.eye[1] = pts[10]; p.eye[2] = pts[11];
+    memset(&st, 0, sizeof st);
+    st.points = pts;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 4, &p, &o), HF_OK);
+    t_check_ribbon(v, pts, 4, &p, 0);
+    /* away from the degenerate points the usual properties still hold */
+    for (s = 0; s < 4; ++s)
+        for (j = 0; j < TP * 2; ++j) {
+            int k;
+            for (k = 0; k < 15; ++k) CHECK(t_is_finite((&v[s * TP * 2 + j].pos[0])[k]));
+        }
+    /* strand 3 has no length: tangent (0, 1, 0), a fixed perpendicular side */
+    CHECK(v[3 * TP * 2].tan[1] == 1.0f);
+    /* strand 1's leading duplicate points share the tangent that follows */
+    CHECK(memcmp(v[TP * 2].tan, v[(TP + 2) * 2].tan, 12) == 0);
+}
+
+static void test_ribbons_ranges_byte_identical(void)
+{
+    enum { N = 23 };
+    float *pts = (float *)malloc(sizeof(float) * N * TP * 3);
+    t_rvert *a = (t_rvert *)calloc(N * TP * 2, sizeof(t_rvert));
+    t_rvert *b = (t_rvert *)calloc(N * TP * 2, sizeof(t_rvert));
+    float *pa = (float *)calloc(N * TP * 4, sizeof(float));
+    float *pb = (float *)calloc(N * TP * 4, sizeof(float));
+    hf_ribbon_strands st;
+    hf_ribbon_params p = t_rparams();
+    hf_ribbon_output oa = t_interleaved(a), ob = t_interleaved(b);
+    hf_rng r;
+    int i, splits[3] = {1, 2, 7}, k;
+    hf_rng_seed(&r, 9u, 0u);
+    for (i = 0; i < N * TP * 3; ++i) pts[i] = hf_rng_float(&r) - 0.5f;
+    memset(&st, 0, sizeof st);
+    st.points = pts;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, N, &p, &oa), HF_OK);
+    CHECK_EQ_INT(hf_ribbon_points(&st, 0, N, &p, pa), HF_OK);
+    for (k = 0; k < 3; ++k) {
+        int n = splits[k], first = 0;
+        memset(b, 0, sizeof(t_rvert) * N * TP * 2);
+        memset(pb, 0, sizeof(float) * N * TP * 4);
+        for (i = 0; i < n; ++i) {
+            int cnt = N * (i + 1) / n - first;
+            CHECK_EQ_INT(hf_ribbons(&st, first, cnt, &p, &ob), HF_OK);
+            CHECK_EQ_INT(hf_ribbon_points(&st, first, cnt, &p, pb), HF_OK);
+            first += cnt;
+        }
+        CHECK(memcmp(a, b, sizeof(t_rvert) * N * TP * 2) == 0);
+        CHECK(memcmp(pa, pb, sizeof(float) * N * TP * 4) == 0);
+    }
+    /* points: xyz copied, w = half width, exact at the ends */
+    CHECK(pa[0] == pts[0] && pa[4 * (TP + 1) + 2] == pts[3 * (TP + 1) + 2]);
+    CHECK(pa[3] == 0.2f && pa[4 * (TP - 1) + 3] == 0.05f);
+    free(pts); free(a); free(b); free(pa); free(pb);
+}
+
+static void test_ribbons_separate_streams_and_skips(void)
+{
+    float g[TP * 3], pos[TP * 2 * 3], tanb[TP * 2 * 4];
+    hf_ribbon_strands st;
+    hf_ribbon_params p = t_rparams();
+    hf_ribbon_output o;
+    t_rvert v[TP * 2];
+    hf_ribbon_output oi = t_interleaved(v);
+    int i;
+    t_make_guides(g, 1);
+    memset(&st, 0, sizeof st);
+    st.points = g;
+    memset(&o, 0, sizeof o);
+    o.position.data = pos;              /* packed */
+    o.tangent.data = tanb;
+    o.tangent.stride = 16;              /* padded */
+    for (i = 0; i < TP * 2 * 4; ++i) tanb[i] = -7.0f;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &p, &o), HF_OK);
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &p, &oi), HF_OK);
+    for (i = 0; i < TP * 2; ++i) {
+        CHECK(memcmp(pos + 3 * i, v[i].pos, 12) == 0);
+        CHECK(memcmp(tanb + 4 * i, v[i].tan, 12) == 0);
+        CHECK(tanb[4 * i + 3] == -7.0f); /* padding untouched */
+    }
+}
+
+static void test_ribbons_errors_write_nothing(void)
+{
+    float g[TP * 3];
+    t_rvert v[TP * 2], keep[TP * 2];
+    hf_ribbon_strands st;
+    hf_ribbon_params p = t_rparams(), b;
+    hf_ribbon_output o = t_interleaved(v);
+    t_make_guides(g, 1);
+    memset(&st, 0, sizeof st);
+    st.points = g;
+    memset(v, 0x3c, sizeof v);
+    memcpy(keep, v, sizeof v);
+    b = p; b.eye[1] = (float)NAN;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &b, &o), HF_ERROR_NON_FINITE);
+    b = p; b.root_width = -1.0f;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &b, &o), HF_ERROR_BAD_PARAMETER);
+    b = p; b.tip_width = (float)INFINITY;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &b, &o), HF_ERROR_NON_FINITE);
+    b = p; b.orthographic = 1;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &b, &o), HF_ERROR_DEGENERATE);
+    b = p; b.points_per_strand = HF_MAX_POINTS + 1;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &b, &o), HF_ERROR_BAD_COUNT);
+    CHECK_EQ_INT(hf_ribbons(&st, -2, 1, &p, &o), HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &p, NULL), HF_ERROR_NULL_POINTER);
+    o.color.stride = -16;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &p, &o), HF_ERROR_BAD_STRIDE);
+    st.points = NULL;
+    CHECK_EQ_INT(hf_ribbon_points(&st, 0, 1, &p, &v[0].pos[0]),
+                 HF_ERROR_NULL_POINTER);
+    CHECK(memcmp(v, keep, sizeof v) == 0);
+}
+
+static void test_ribbon_indices(void)
+{
+    uint32_t idx[64];
+    CHECK_EQ_INT(hf_ribbon_index_count(2, 3, HF_TRIANGLES), 24);
+    CHECK_EQ_INT(hf_ribbon_index_count(2, 3, HF_STRIP_RESTART), 14);
+    CHECK_EQ_INT(hf_ribbon_index_count(0x7fffffff, 16, HF_TRIANGLES), -1);
+    CHECK_EQ_INT(hf_ribbon_index_count(2, 1, HF_TRIANGLES), -1);
+    CHECK_EQ_INT(hf_ribbon_indices(2, 3, HF_TRIANGLES, idx, 23),
+                 HF_ERROR_BUFFER_TOO_SMALL);
+    CHECK_EQ_INT(hf_ribbon_indices(2, 3, HF_TRIANGLES, idx, 64), HF_OK);
+    /* strand 1 starts at vertex 6; its second quad is 8, 9, 10 / 10, 9, 11 */
+    CHECK_EQ_INT(idx[0], 0); CHECK_EQ_INT(idx[1], 1); CHECK_EQ_INT(idx[2], 2);
+    CHECK_EQ_INT(idx[3], 2); CHECK_EQ_INT(idx[4], 1); CHECK_EQ_INT(idx[5], 3);
+    CHECK_EQ_INT(idx[18], 8); CHECK_EQ_INT(idx[19], 9); CHECK_EQ_INT(idx[20], 10);
+    CHECK_EQ_INT(idx[21], 10); CHECK_EQ_INT(idx[22], 9); CHECK_EQ_INT(idx[23], 11);
+    CHECK_EQ_INT(hf_ribbon_indices(2, 3, HF_STRIP_RESTART, idx, 64), HF_OK);
+    CHECK_EQ_INT(idx[5], 5); CHECK(idx[6] == 0xffffffffu);
+    CHECK_EQ_INT(idx[7], 6); CHECK_EQ_INT(idx[12], 11); CHECK(idx[13] == 0xffffffffu);
+    CHECK_EQ_INT(hf_ribbon_indices(2, 3, 5, idx, 64),
+                 HF_ERROR_BAD_PARAMETER);
+}
+
+static void test_ribbon_winding_faces_camera(void)
+{
+    /* the first triangle's normal (b - a) x (c - a) points at the eye */
+    float g[TP * 3];
+    t_rvert v[TP * 2];
+    hf_ribbon_strands st;
+    hf_ribbon_params p = t_rparams();
+    hf_ribbon_output o = t_interleaved(v);
+    uint32_t idx[6 * (TP - 1)];
+    float e1[3], e2[3], n[3], view[3];
+    int k;
+    t_make_guides(g, 1);
+    memset(&st, 0, sizeof st);
+    st.points = g;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &p, &o), HF_OK);
+    CHECK_EQ_INT(hf_ribbon_indices(1, TP, HF_TRIANGLES, idx, 6 * (TP - 1)), HF_OK);
+    for (k = 0; k < 3; ++k) {
+        e1[k] = v[idx[1]].pos[k] - v[idx[0]].pos[k];
+        e2[k] = v[idx[2]].pos[k] - v[idx[0]].pos[k];
+        view[k] = p.eye[k] - v[idx[0]].pos[k];
+    }
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    CHECK(n[0] * view[0] + n[1] * view[1] + n[2] * view[2] > 0.0f);
+}
+
+/* ======================================================================== */
 
 int main(void)
 {
@@ -573,6 +1018,18 @@ int main(void)
     RUN(test_triangle_area_exact);
     RUN(test_mesh_normals_area_weighted);
     RUN(test_mesh_normals_degenerate_fallback);
+    RUN(test_interp_on_guide_equals_guide);
+    RUN(test_interp_linear_in_barycentrics);
+    RUN(test_interp_length_scale_and_clump);
+    RUN(test_interp_errors_write_nothing);
+    RUN(test_lod_counts_and_widths_exact);
+    RUN(test_ribbons_perpendicular_and_widths);
+    RUN(test_ribbons_degenerate_never_nan);
+    RUN(test_ribbons_ranges_byte_identical);
+    RUN(test_ribbons_separate_streams_and_skips);
+    RUN(test_ribbons_errors_write_nothing);
+    RUN(test_ribbon_indices);
+    RUN(test_ribbon_winding_faces_camera);
     printf("%d passed, %d failed\n", t_passed, t_failed);
     return t_failed ? 1 : 0;
 }
