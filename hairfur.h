@@ -389,8 +389,9 @@ typedef struct hf_ribbon_output {
     hf_stream tangent;  /* float x, y, z: unit, root to tip */
     hf_stream texcoord; /* float u, v, t: root UV of the strand, and t =
                            j / (P - 1) along it (0 root, 1 tip) */
-    hf_stream color;    /* float r, g, b, a: strand colour (1, 1, 1 when
-                           none is given) and alpha faded root to tip */
+    hf_stream color;    /* float r, g, b, a: strand colour (white when
+                           none is given), alpha = the strand's alpha times
+                           the root-to-tip fade */
     hf_stream color3d;  /* float x, y: the "3D colour" coordinates: x = the
                            strand's value in the grayscale index map, y = t */
 } hf_ribbon_output;
@@ -400,7 +401,8 @@ typedef struct hf_ribbon_output {
 typedef struct hf_ribbon_strands {
     const float *points;     /* P * 3 floats per strand (required) */
     const float *root_uv;    /* 2 per strand [0, 0] */
-    const float *color;      /* 3 per strand, r g b [1, 1, 1] */
+    const float *color;      /* 4 per strand, r g b a [1, 1, 1, 1] (the
+                                layout hf_strand_colors writes) */
     const float *color3d_x;  /* 1 per strand [0] */
 } hf_ribbon_strands;
 
@@ -1377,12 +1379,13 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
             }
             if (out->color.data) {
                 float c4[4];
-                const float *rgb = strands->color ? strands->color + 3 * (size_t)s
-                                                  : NULL;
-                c4[0] = rgb ? rgb[0] : 1.0f;
-                c4[1] = rgb ? rgb[1] : 1.0f;
-                c4[2] = rgb ? rgb[2] : 1.0f;
-                c4[3] = alpha_root + (alpha_tip - alpha_root) * t;
+                const float *rgba =
+                    strands->color ? strands->color + 4 * (size_t)s : NULL;
+                c4[0] = rgba ? rgba[0] : 1.0f;
+                c4[1] = rgba ? rgba[1] : 1.0f;
+                c4[2] = rgba ? rgba[2] : 1.0f;
+                c4[3] = (rgba ? rgba[3] : 1.0f) *
+                        (alpha_root + (alpha_tip - alpha_root) * t);
                 HF_MEMCPY(hf__stream_at(&out->color, 16, v), c4, 16);
                 HF_MEMCPY(hf__stream_at(&out->color, 16, v + 1), c4, 16);
             }

@@ -784,7 +784,7 @@ static void test_ribbons_perpendicular_and_widths(void)
     hf_ribbon_params p = t_rparams();
     hf_ribbon_output o = t_interleaved(v);
     static const float uv[6] = {0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f};
-    static const float col[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    static const float col[12] = {1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 0.5f};
     static const float c3[3] = {0.25f, 0.5f, 0.75f};
     t_make_guides(g, 3);
     memset(&st, 0, sizeof st);
@@ -800,7 +800,8 @@ static void test_ribbons_perpendicular_and_widths(void)
     CHECK(v[(1 * TP + 3) * 2 + 1].tc[0] == 0.3f && v[(1 * TP + 3) * 2].tc[1] == 0.4f);
     CHECK(v[(1 * TP + 7) * 2].tc[2] == 1.0f && v[(1 * TP) * 2].tc[2] == 0.0f);
     CHECK(v[(2 * TP + 2) * 2].col[2] == 1.0f && v[(2 * TP + 2) * 2].col[0] == 0.0f);
-    CHECK(v[(2 * TP) * 2].col[3] == 1.0f && v[(2 * TP + 7) * 2 + 1].col[3] == 0.25f);
+    CHECK(v[(1 * TP) * 2].col[3] == 1.0f && v[(1 * TP + 7) * 2 + 1].col[3] == 0.25f);
+    CHECK(v[(2 * TP) * 2].col[3] == 0.5f && v[(2 * TP + 7) * 2 + 1].col[3] == 0.125f);
     CHECK(v[(2 * TP + 7) * 2].c3[0] == 0.75f && v[(2 * TP + 7) * 2].c3[1] == 1.0f);
     /* LOD width scale multiplies both ends */
     p.width_scale = 2.0f;
