@@ -41,6 +41,9 @@ endif
 
 TEST_BINS := $(addprefix $(BUILD)/test_,$(TEST_NAMES))
 
+EX_CFLAGS := -std=c99 -O2 -Wall -Wextra -Wpedantic
+EXAMPLES  := $(BUILD)/bake_luts
+
 .PHONY: all test check-build demo examples deps clean
 
 all: test
@@ -72,6 +75,21 @@ test: check-build
 	done; \
 	if [ $$fail -ne 0 ]; then echo "make test: FAILED"; exit 1; fi; \
 	echo "make test: all builds passed"
+
+# stb_image_write.h comes from Debian's libstb-dev (/usr/include/stb).
+STB_H := /usr/include/stb/stb_image_write.h
+$(STB_H):
+	@echo "missing $@: run 'make deps' (Debian package libstb-dev)"; exit 1
+
+$(BUILD)/%: examples/%.c $(HDR) $(STB_H) | $(BUILD)
+	gcc $(EX_CFLAGS) $< -o $@ -lm
+
+examples: $(EXAMPLES)
+
+# The main job: the most complete end-to-end program so far.
+demo: $(EXAMPLES) | $(OUT)
+	$(BUILD)/bake_luts --out $(OUT)
+	@echo "demo: wrote $(OUT)/marschner_m.png, $(OUT)/marschner_n.png and $(OUT)/marschner_scales.txt"
 
 deps:
 	@if [ "$$(id -u)" = 0 ]; then \

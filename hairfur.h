@@ -469,6 +469,140 @@ HFDEF hf_result hf_ribbon_indices(int strand_count, int points_per_strand,
                                   int topology /* hf_topology */,
                                   uint32_t *out, long long capacity);
 
+/* ======================================================================== */
+/* 11. LUT baking                                                           */
+/* ======================================================================== */
+/* Marschner M and N lookup textures. */
+
+/* Bakes, on the CPU, the two lookup textures of the Marschner hair shader
+   (Marschner et al. 2003, in the two-texture layout of the Nalu demo):
+
+     M (n x n RGBA float), indexed by u = sin(theta_i) * 0.5 + 0.5,
+       v = sin(theta_r) * 0.5 + 0.5:  R = M_R, G = M_TT, B = M_TRT (Gaussian
+       densities per radian of theta_h), A = cos(theta_d).
+     N (n x n RGBA float), indexed by u = cos(theta_d) * 0.5 + 0.5,
+       v = cos(phi) * 0.5 + 0.5:  R = N_R, G = N_TT, B = N_TRT, A = 1.
+
+   The shader then computes
+       S = (M.r * N.r + M.g * N.g + M.b * N.b) / max(M.a * M.a, cos2Min)
+   with uv(N) = (M.a, cosPhi) * 0.5 + 0.5 (docs/luts.md has the GLSL).
+
+   Layout: texel (i, j) is column i (u), row j (v), and samples the texel
+   centre ((i + 0.5) / n, (j + 0.5) / n). Float c of texel (i, j) is at
+   index 4 * (j * n + i) + c; row 0 (v = 0) comes first, as glTexImage2D
+   expects it. Sample with linear filtering and clamp-to-edge. Every value
+   is computed in double precision and rounded to float once. The exact
+   model (the "contract": roots, Fresnel terms, absorption, clamps) is
+   docs/marschner-spec.md; the TRT lobe is the simplified one (no caustic fade or
+   glints), with its caustic spike bounded by clamping 2|dPhi/dh| >= 0.02.
+
+   The bake functions take a row range (first_row, row_count) and write only
+   those rows of the full texture, so several threads can fill one buffer;
+   the bytes do not depend on how the rows are split. They allocate
+   nothing. Cost: about n^2 texels at a few dozen transcendental calls each
+   (docs/luts.md has timings); per call there is also O(n) setup, so pass
+   large row ranges rather than one row at a time. */
+
+/* How the azimuthal exit angle Phi(p, gamma) is computed. */
+typedef enum hf_lut_variant {
+    HF_LUT_CUBIC = 0, /* the paper's cubic approximation of gamma_t (default) */
+    HF_LUT_EXACT = 1  /* the exact Phi, roots refined to 1e-12 rad */
+} hf_lut_variant;
+
+#define HF_LUT_MAX_SIZE 4096 /* largest accepted texture size n */
+
+/* Parameters of the bake. Zero is a meaningful value for alpha_r_deg and
+   sigma_a, so a zeroed struct is NOT the defaults: start from
+   hf_lut_params_init(). Angles are in degrees, as in the paper's Table 1;
+   the TT and TRT shifts and widths are derived (alpha_TT = -alpha_R / 2,
+   alpha_TRT = -3 alpha_R / 2, beta_TT = beta_R / 2, beta_TRT = 2 beta_R).
+   The fields are double because the bake is computed in double: 1.55f is
+   1.5499999523, which moves some N values by up to 8e-7 relative. */
+typedef struct hf_lut_params {
+    double eta;            /* index of refraction, 1.2 .. 3 (default 1.55) */
+    double alpha_r_deg;    /* longitudinal shift of R, any finite (-7.5) */
+    double beta_r_deg;     /* longitudinal width of R, > 0 (7.5) */
+    double sigma_a;        /* absorption per fibre radius, >= 0 (0.2) */
+    double sigma_a_rgb[3]; /* per-channel absorption, only for
+                              hf_lut_bake_n_rgb, each >= 0 (sigma_a each) */
+    int variant; /* hf_lut_variant: HF_LUT_CUBIC (default) or HF_LUT_EXACT */
+    int size;             /* n, both textures n x n, 1 .. 4096 (256) */
+} hf_lut_params;
+
+/* Fill `p` with the defaults above (eta 1.55, alpha_R -7.5, beta_R 7.5,
+   sigma_a 0.2, sigma_a_rgb 0.2 each, cubic, size 256). NULL is ignored. */
+HFDEF void hf_lut_params_init(hf_lut_params *p);
+
+/* Check a parameter block. Returns HF_OK, or: HF_ERROR_NULL_POINTER (p is
+   NULL), HF_ERROR_NON_FINITE (a float field is NaN or infinite),
+   HF_ERROR_BAD_PARAMETER (eta outside [1.2, 3], beta_r_deg <= 0, sigma_a or
+   a sigma_a_rgb component < 0, unknown variant), HF_ERROR_BAD_COUNT (size
+   outside [1, HF_LUT_MAX_SIZE]). `diag` (may be NULL) names the field. */
+HFDEF hf_result hf_lut_validate(const hf_lut_params *p, hf_diag *diag);
+
+/* Bake rows [first_row, first_row + row_count) of the M texture into
+   `out`, which is the caller's FULL texture of 4 * size * size floats;
+   other rows are not touched. row_count 0 is a valid empty range. Errors
+   (nothing written): as hf_lut_validate, HF_ERROR_NULL_POINTER for a NULL
+   out, HF_ERROR_BAD_RANGE for first_row < 0, row_count < 0 or
+   first_row + row_count > size. M is symmetric: texel (i, j) == (j, i).
+   A density that would exceed FLT_MAX (only for beta_r_deg below about
+   1e-37) is stored as FLT_MAX. */
+HFDEF hf_result hf_lut_bake_m(const hf_lut_params *p, int first_row,
+                              int row_count, float *out);
+
+/* The same for the N texture (R = N_R, G = N_TT, B = N_TRT, A = 1),
+   absorption sigma_a. Same buffer size, range rules and errors. */
+HFDEF hf_result hf_lut_bake_n(const hf_lut_params *p, int first_row,
+                              int row_count, float *out);
+
+/* Per-RGB absorption (for coloured hair): rows of two extra textures with
+   the layout and texel positions of N,
+       out_tt_rgb  = (N_TT(sr),  N_TT(sg),  N_TT(sb),  N_R)
+       out_trt_rgb = (N_TRT(sr), N_TRT(sg), N_TRT(sb), N_R)
+   where (sr, sg, sb) = p->sigma_a_rgb and N_x(s) is bit for bit the
+   channel hf_lut_bake_n writes with sigma_a = s. Shader:
+       S_rgb = (M.r * NTT.a + M.g * NTT.rgb + M.b * NTRT.rgb)
+               / max(M.a * M.a, cos2Min).
+   Both outputs are full textures of 4 * size * size floats each and must
+   not overlap. Errors as hf_lut_bake_n (either output NULL). */
+HFDEF hf_result hf_lut_bake_n_rgb(const hf_lut_params *p, int first_row,
+                                  int row_count, float *out_tt_rgb,
+                                  float *out_trt_rgb);
+
+/* Quantise an n x n RGBA float texture to 8-bit unorm for hosts without
+   float textures. Per channel c, scale_c = scales_in[c] if scales_in is
+   given (each must be finite and > 0; values above it clip), else the
+   channel's maximum over all texels (1 if that maximum is not > 0); then
+       q = floor(255 * clamp(x / scale_c, 0, 1) + 0.5)
+   and the shader multiplies the sampled unorm value by scale_c. M.a and
+   N.a always get scale 1 (their maximum is 1). Writes 4 * n * n bytes to
+   out_rgba8 and, if scales_out is not NULL, the four scales used.
+   Errors (nothing written): HF_ERROR_NULL_POINTER (rgba or out_rgba8),
+   HF_ERROR_BAD_COUNT (n outside [1, HF_LUT_MAX_SIZE]),
+   HF_ERROR_NON_FINITE (a texel value), HF_ERROR_BAD_PARAMETER (a given
+   scale not finite or not > 0). Note: N_TRT's maximum comes from a rare
+   caustic texel, so most of that channel uses only the low codes; prefer
+   float or half-float textures where available. */
+HFDEF hf_result hf_lut_to_u8(const float *rgba, int n,
+                             const float *scales_in,
+                             unsigned char *out_rgba8, float scales_out[4]);
+
+/* Evaluate the model at one point, in double precision, exactly as the
+   bake does (p->size is ignored). hf_lut_eval_m writes M_R, M_TT, M_TRT at
+   half angle theta_h (radians, any finite value). hf_lut_eval_n writes
+   N_R, N_TT, N_TRT (absorption sigma_a) at cos(theta_d) = cos_theta_d
+   (in [-1, 1]; its absolute value is used, clamped below at 1e-4 as in the
+   texture) and relative azimuth phi (radians, in [0, pi]). For tests,
+   reference values and CPU renderers. Errors (out untouched): as
+   hf_lut_validate except that size is not checked, HF_ERROR_NULL_POINTER
+   for out, HF_ERROR_NON_FINITE / HF_ERROR_BAD_PARAMETER for an input that
+   is NaN, infinite or outside its range. */
+HFDEF hf_result hf_lut_eval_m(const hf_lut_params *p, double theta_h,
+                              double out[3]);
+HFDEF hf_result hf_lut_eval_n(const hf_lut_params *p, double cos_theta_d,
+                              double phi, double out[3]);
+
 #ifdef __cplusplus
 }
 #endif
@@ -1478,6 +1612,611 @@ HFDEF hf_result hf_ribbon_indices(int strand_count, int points_per_strand,
             *out++ = 0xffffffffu;
         }
     }
+    return HF_OK;
+}
+
+/* ---- 11. LUT baking ----------------------------------------------------- */
+/* Marschner M and N lookup textures; the contract is docs/marschner-spec.md. Every
+   quantity is double; each texel is rounded to float once. */
+
+#define HF__LUT_PI 3.14159265358979323846
+#define HF__LUT_HALF_PI (0.5 * HF__LUT_PI)
+#define HF__LUT_COS_TD_MIN 1e-4 /* lower clamp of |cos theta_d| in N */
+#define HF__LUT_J_MIN 0.02      /* lower clamp of 2 |dPhi/dh| in N */
+#define HF__LUT_FLT_MAX 3.40282346638528859812e+38
+#define HF__LUT_BLOCK 32 /* columns whose setup is computed together */
+
+HFDEF void hf_lut_params_init(hf_lut_params *p)
+{
+    if (!p) return;
+    p->eta = 1.55;
+    p->alpha_r_deg = -7.5;
+    p->beta_r_deg = 7.5;
+    p->sigma_a = 0.2;
+    p->sigma_a_rgb[0] = p->sigma_a_rgb[1] = p->sigma_a_rgb[2] = 0.2;
+    p->variant = HF_LUT_CUBIC;
+    p->size = 256;
+}
+
+/* Finite test on the bits, so it survives -ffast-math. */
+HF__PRIVATE int hf__lut_finite(double x)
+{
+    uint64_t u;
+    HF_MEMCPY(&u, &x, sizeof u);
+    return (u & 0x7ff0000000000000ull) != 0x7ff0000000000000ull;
+}
+
+HF__PRIVATE hf_result hf__lut_check(const hf_lut_params *p, hf_diag *diag,
+                                    int check_size)
+{
+    static const char *const rgb_name[3] = {"sigma_a_rgb[0]",
+                                            "sigma_a_rgb[1]",
+                                            "sigma_a_rgb[2]"};
+    int k;
+    if (!p)
+        return hf__fail(diag, HF_ERROR_NULL_POINTER, "params", -1,
+                        "LUT params is NULL");
+    if (!hf__lut_finite(p->eta))
+        return hf__fail(diag, HF_ERROR_NON_FINITE, "eta", -1,
+                        "eta is NaN or infinite");
+    if (!hf__lut_finite(p->alpha_r_deg))
+        return hf__fail(diag, HF_ERROR_NON_FINITE, "alpha_r_deg", -1,
+                        "alpha_r_deg is NaN or infinite");
+    if (!hf__lut_finite(p->beta_r_deg))
+        return hf__fail(diag, HF_ERROR_NON_FINITE, "beta_r_deg", -1,
+                        "beta_r_deg is NaN or infinite");
+    if (!hf__lut_finite(p->sigma_a))
+        return hf__fail(diag, HF_ERROR_NON_FINITE, "sigma_a", -1,
+                        "sigma_a is NaN or infinite");
+    for (k = 0; k < 3; ++k)
+        if (!hf__lut_finite(p->sigma_a_rgb[k]))
+            return hf__fail(diag, HF_ERROR_NON_FINITE, rgb_name[k], k,
+                            "%s is NaN or infinite", rgb_name[k]);
+    /* section 6.3 relies on eta in [1.2, 3]: then one wrapped target finds
+       every root */
+    if (!(p->eta >= 1.2 && p->eta <= 3.0))
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "eta", -1,
+                        "eta %g is outside [1.2, 3]", p->eta);
+    if (!(p->beta_r_deg > 0.0))
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "beta_r_deg", -1,
+                        "beta_r_deg %g is not > 0", p->beta_r_deg);
+    if (p->sigma_a < 0.0)
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "sigma_a", -1,
+                        "sigma_a %g is negative", p->sigma_a);
+    for (k = 0; k < 3; ++k)
+        if (p->sigma_a_rgb[k] < 0.0)
+            return hf__fail(diag, HF_ERROR_BAD_PARAMETER, rgb_name[k], k,
+                            "%s %g is negative", rgb_name[k],
+                            p->sigma_a_rgb[k]);
+    if (p->variant != HF_LUT_CUBIC && p->variant != HF_LUT_EXACT)
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "variant", -1,
+                        "variant %d is neither HF_LUT_CUBIC nor "
+                        "HF_LUT_EXACT",
+                        p->variant);
+    if (check_size && (p->size < 1 || p->size > HF_LUT_MAX_SIZE))
+        return hf__fail(diag, HF_ERROR_BAD_COUNT, "size", -1,
+                        "size %d is outside [1, %d]", p->size,
+                        HF_LUT_MAX_SIZE);
+    hf__ok(diag);
+    return HF_OK;
+}
+
+HFDEF hf_result hf_lut_validate(const hf_lut_params *p, hf_diag *diag)
+{
+    return hf__lut_check(p, diag, 1);
+}
+
+/* Params, output pointers and row range, in that order, before anything
+   is written. */
+HF__PRIVATE hf_result hf__lut_check_bake(const hf_lut_params *p,
+                                         int first_row, int row_count,
+                                         const float *out0,
+                                         const float *out1)
+{
+    hf_result r = hf__lut_check(p, NULL, 1);
+    if (r != HF_OK) return r;
+    if (!out0 || !out1) return HF_ERROR_NULL_POINTER;
+    if (first_row < 0 || row_count < 0 || first_row > p->size ||
+        row_count > p->size - first_row)
+        return HF_ERROR_BAD_RANGE;
+    return HF_OK;
+}
+
+/* 2 u - 1 at the centre of texel i of n: (2i + 1 - n) / n, one rounding. */
+HF__PRIVATE double hf__lut_axis(int i, int n)
+{
+    return (double)(2 * i + 1 - n) / (double)n;
+}
+
+/* Round to float once; only a degenerate beta can exceed the float range,
+   and it is stored as FLT_MAX rather than inf. Values are never negative. */
+HF__PRIVATE float hf__lut_f(double x)
+{
+    return x > HF__LUT_FLT_MAX ? (float)HF__LUT_FLT_MAX : (float)x;
+}
+
+/* ---- M: three Gaussians in theta_h ---- */
+
+typedef struct hf__lut_m {
+    double alpha[3]; /* shift per lobe, radians */
+    double beta[3];  /* width per lobe, radians */
+    double den[3];   /* beta sqrt(2 pi): unit area */
+} hf__lut_m;
+
+HF__PRIVATE void hf__lut_m_setup(const hf_lut_params *p, hf__lut_m *m)
+{
+    const double d2r = HF__LUT_PI / 180.0;
+    double a = p->alpha_r_deg * d2r, b = p->beta_r_deg * d2r;
+    int k;
+    /* A width below 1e-150 rad gives the same floats as the true one (0
+       off the peak, above FLT_MAX on it) but keeps every step finite,
+       even for a subnormal beta_r_deg. */
+    if (b < 1e-150) b = 1e-150;
+    m->alpha[0] = a;
+    m->alpha[1] = -a / 2.0;
+    m->alpha[2] = -3.0 * a / 2.0;
+    m->beta[0] = b;
+    m->beta[1] = b / 2.0;
+    m->beta[2] = 2.0 * b;
+    for (k = 0; k < 3; ++k)
+        m->den[k] = m->beta[k] * HF_SQRT(2.0 * HF__LUT_PI);
+}
+
+/* g(beta, theta_h - alpha) of section 4; an underflowed exponential
+   divides to 0, never to NaN. */
+HF__PRIVATE double hf__lut_gauss(const hf__lut_m *m, int k, double theta_h)
+{
+    double q = (theta_h - m->alpha[k]) / m->beta[k];
+    return HF_EXP(-0.5 * q * q) / m->den[k];
+}
+
+HFDEF hf_result hf_lut_eval_m(const hf_lut_params *p, double theta_h,
+                              double out[3])
+{
+    hf__lut_m m;
+    int k;
+    hf_result r = hf__lut_check(p, NULL, 0);
+    if (r != HF_OK) return r;
+    if (!out) return HF_ERROR_NULL_POINTER;
+    if (!hf__lut_finite(theta_h)) return HF_ERROR_NON_FINITE;
+    hf__lut_m_setup(p, &m);
+    for (k = 0; k < 3; ++k) out[k] = hf__lut_gauss(&m, k, theta_h);
+    return HF_OK;
+}
+
+HFDEF hf_result hf_lut_bake_m(const hf_lut_params *p, int first_row,
+                              int row_count, float *out)
+{
+    hf__lut_m m;
+    double theta_i[HF__LUT_BLOCK];
+    int n, i0, i, j;
+    hf_result r = hf__lut_check_bake(p, first_row, row_count, out, out);
+    if (r != HF_OK) return r;
+    n = p->size;
+    hf__lut_m_setup(p, &m);
+    for (i0 = 0; i0 < n; i0 += HF__LUT_BLOCK) {
+        int i1 = n - i0 < HF__LUT_BLOCK ? n : i0 + HF__LUT_BLOCK;
+        for (i = i0; i < i1; ++i) theta_i[i - i0] = HF_ASIN(hf__lut_axis(i, n));
+        for (j = first_row; j < first_row + row_count; ++j) {
+            double theta_r = HF_ASIN(hf__lut_axis(j, n));
+            float *o = out + 4 * ((size_t)j * (size_t)n + (size_t)i0);
+            for (i = i0; i < i1; ++i, o += 4) {
+                double ti = theta_i[i - i0];
+                /* both written so that (i, j) and (j, i) round alike */
+                double th = 0.5 * (ti + theta_r);
+                double td = 0.5 * HF_FABS(theta_r - ti);
+                o[0] = hf__lut_f(hf__lut_gauss(&m, 0, th));
+                o[1] = hf__lut_f(hf__lut_gauss(&m, 1, th));
+                o[2] = hf__lut_f(hf__lut_gauss(&m, 2, th));
+                o[3] = (float)HF_COS(td);
+            }
+        }
+    }
+    return HF_OK;
+}
+
+/* ---- N: roots of Phi(p, gamma) = phi, Fresnel, absorption ---- */
+
+/* Everything that depends only on theta_d (one texture column). */
+typedef struct hf__lut_col {
+    double eta1, eta2;  /* Bravais indices eta', eta'' */
+    double inv_cos_tt;  /* 1 / cos(theta_t); sigma_a' = sigma_a * this */
+    double a[3], b[3];  /* cubic: Phi(p, g) - p pi = a g^3 + b g */
+    double f_end[3];    /* exact: Phi(p, pi/2) - p pi (the function is odd) */
+    double g_c, f_c;    /* exact TRT fold gamma_c > 0 and its Phi - 2 pi;
+                           g_c < 0 when eta' >= 2 (no fold) */
+} hf__lut_col;
+
+/* Exact Phi(p, g) - p pi and its derivative (section 6.5). */
+HF__PRIVATE double hf__lut_phi_exact(double eta1, int p, double g)
+{
+    return 2.0 * p * HF_ASIN(HF_SIN(g) / eta1) - 2.0 * g;
+}
+
+HF__PRIVATE double hf__lut_dphi_exact(double eta1, int p, double g)
+{
+    double s = HF_SIN(g);
+    return 2.0 * p * HF_COS(g) / HF_SQRT(eta1 * eta1 - s * s) - 2.0;
+}
+
+HF__PRIVATE void hf__lut_col_setup(hf__lut_col *col, double eta, double cd,
+                                   int exact)
+{
+    const double pi3 = HF__LUT_PI * HF__LUT_PI * HF__LUT_PI;
+    double s2 = 1.0 - cd * cd;
+    double root = HF_SQRT(eta * eta - s2); /* eta cos(theta_t) */
+    double c;
+    int p;
+    col->eta1 = root / cd;
+    col->eta2 = eta * eta / col->eta1;
+    col->inv_cos_tt = eta / root;
+    c = HF_ASIN(1.0 / col->eta1);
+    for (p = 0; p < 3; ++p) {
+        col->a[p] = -8.0 * p * c / pi3;
+        col->b[p] = 6.0 * p * c / HF__LUT_PI - 2.0;
+        col->f_end[p] = 0.0;
+    }
+    col->g_c = -1.0;
+    col->f_c = 0.0;
+    if (exact) {
+        for (p = 1; p < 3; ++p)
+            col->f_end[p] = hf__lut_phi_exact(col->eta1, p, HF__LUT_HALF_PI);
+        if (col->eta1 < 2.0) {
+            col->g_c = HF_ASIN(
+                HF_SQRT((4.0 - col->eta1 * col->eta1) / 3.0));
+            col->f_c = hf__lut_phi_exact(col->eta1, 2, col->g_c);
+        }
+    }
+}
+
+/* Real roots of a g^3 + b g = t (section 6.3), each polished by up to two
+   Newton steps that do not increase the residual. Returns the count. */
+HF__PRIVATE int hf__lut_cubic_roots(double a, double b, double t,
+                                    double g[3])
+{
+    int n, k, it;
+    if (a == 0.0) { /* R: b = -2 */
+        g[0] = t / b;
+        return 1;
+    }
+    {
+        double P = b / a, Q = -t / a;
+        double disc = 0.25 * Q * Q + P * P * P / 27.0;
+        if (disc > 0.0) {
+            /* one real root; the sign avoids cancellation in -Q/2 +- sqrt */
+            double hq = -0.5 * Q, sq = HF_SQRT(disc);
+            double A = HF_CBRT(hq >= 0.0 ? hq + sq : hq - sq);
+            g[0] = A - P / (3.0 * A);
+            n = 1;
+        } else if (P < 0.0) {
+            double m = 2.0 * HF_SQRT(-P / 3.0);
+            double x = 3.0 * Q / (P * m), th;
+            x = x < -1.0 ? -1.0 : (x > 1.0 ? 1.0 : x);
+            th = HF_ACOS(x) / 3.0;
+            for (k = 0; k < 3; ++k)
+                g[k] = m * HF_COS(th - 2.0 * HF__LUT_PI * k / 3.0);
+            n = 3;
+        } else { /* disc <= 0 with P >= 0 only when P = Q = 0 */
+            g[0] = 0.0;
+            n = 1;
+        }
+    }
+    for (k = 0; k < n; ++k) {
+        double x = g[k], fx = (a * x * x + b) * x - t;
+        for (it = 0; it < 2; ++it) {
+            double d = 3.0 * a * x * x + b, y, fy;
+            if (d == 0.0) break;
+            y = x - fx / d;
+            fy = (a * y * y + b) * y - t;
+            if (!(HF_FABS(fy) <= HF_FABS(fx))) break;
+            x = y;
+            fx = fy;
+        }
+        g[k] = x;
+    }
+    return n;
+}
+
+/* The root of the exact Phi - p pi = t in a monotonic piece whose end
+   residuals r_lo, r_hi do not have the same sign: Newton, falling back to
+   bisection whenever a step leaves the bracket, to 1e-12 rad. */
+HF__PRIVATE double hf__lut_refine(double eta1, int p, double t, double lo,
+                                  double hi, double r_lo, double r_hi)
+{
+    double neg, pos, x;
+    int it;
+    if (r_lo == 0.0) return lo;
+    if (r_hi == 0.0) return hi;
+    neg = r_lo < 0.0 ? lo : hi; /* residual < 0 at neg, > 0 at pos */
+    pos = r_lo < 0.0 ? hi : lo;
+    x = 0.5 * (lo + hi);
+    for (it = 0; it < 200; ++it) {
+        double fx = hf__lut_phi_exact(eta1, p, x) - t, d, xn;
+        if (fx == 0.0) return x;
+        if (fx < 0.0)
+            neg = x;
+        else
+            pos = x;
+        d = hf__lut_dphi_exact(eta1, p, x);
+        xn = d != 0.0 ? x - fx / d : x;
+        if (d == 0.0 || !((xn - neg) * (xn - pos) < 0.0))
+            xn = 0.5 * (neg + pos);
+        if (HF_FABS(xn - x) <= 1e-13 || HF_FABS(pos - neg) <= 1e-12)
+            return xn;
+        x = xn;
+    }
+    return x;
+}
+
+/* Roots of the exact Phi(p, g) - p pi = t in [-pi/2, pi/2] (section 6.5):
+   refine each monotonic piece whose end values straddle t. */
+HF__PRIVATE int hf__lut_exact_roots(const hf__lut_col *col, int p, double t,
+                                    double g[3])
+{
+    double e[4], f[4];
+    int pieces, k, n = 0;
+    if (p == 0) {
+        g[0] = -0.5 * t;
+        return 1;
+    }
+    e[0] = -HF__LUT_HALF_PI;
+    f[0] = -col->f_end[p];
+    if (p == 2 && col->g_c >= 0.0) {
+        e[1] = -col->g_c;
+        f[1] = -col->f_c;
+        e[2] = col->g_c;
+        f[2] = col->f_c;
+        e[3] = HF__LUT_HALF_PI;
+        f[3] = col->f_end[p];
+        pieces = 3;
+    } else {
+        e[1] = HF__LUT_HALF_PI;
+        f[1] = col->f_end[p];
+        pieces = 1;
+    }
+    for (k = 0; k < pieces; ++k) {
+        double r0 = f[k] - t, r1 = f[k + 1] - t;
+        if ((r0 <= 0.0 && r1 >= 0.0) || (r0 >= 0.0 && r1 <= 0.0))
+            g[n++] = hf__lut_refine(col->eta1, p, t, e[k], e[k + 1], r0, r1);
+    }
+    return n;
+}
+
+/* Fresnel reflectance for relative index n, given s = sin(x) / n and
+   ci = |cos x| (section 6.4); total internal reflection gives 1. */
+HF__PRIVATE double hf__lut_rs(double n, double s, double ci)
+{
+    double ct, r;
+    if (s * s >= 1.0) return 1.0;
+    ct = HF_SQRT(1.0 - s * s);
+    r = (ci - n * ct) / (ci + n * ct);
+    return r * r;
+}
+
+HF__PRIVATE double hf__lut_rp(double n, double s, double ci)
+{
+    double ct, r;
+    if (s * s >= 1.0) return 1.0;
+    ct = HF_SQRT(1.0 - s * s);
+    r = (n * ci - ct) / (n * ci + ct);
+    return r * r;
+}
+
+/* A(p, h) without the absorption: F_ext for p = 0, else
+   (1 - F_ext)^2 F_int^(p-1). Also returns cos^2(gamma_t), from which
+   T = exp(-2 sigma' (1 + cos 2 gamma_t)) = exp(-4 sigma' cos^2 gamma_t). */
+HF__PRIVATE double hf__lut_fresnel_part(const hf__lut_col *col, int p,
+                                        double h, double cg, double *ct2)
+{
+    double e1 = col->eta1, e2 = col->eta2;
+    double f_ext = 0.5 * (hf__lut_rs(e1, h / e1, cg) +
+                          hf__lut_rp(e2, h / e2, cg));
+    double st = h / e1, base;
+    *ct2 = 1.0 - st * st;
+    if (p == 0) return f_ext;
+    base = (1.0 - f_ext) * (1.0 - f_ext);
+    if (p == 2) {
+        /* inside: relative indices 1/eta', 1/eta'' at gamma_t; s is
+           sin(gamma_t) eta' = h and sin(gamma_t) eta'' */
+        double ci = HF_SQRT(*ct2);
+        base *= 0.5 * (hf__lut_rs(1.0 / e1, h, ci) +
+                       hf__lut_rp(1.0 / e2, st * e2, ci));
+    }
+    return base;
+}
+
+/* N_p at wrapped target t (section 6.1) for nsig absorptions, sig4[k] =
+   4 sigma_k' (p = 0 ignores them and writes out[0] only). j_min is the
+   Jacobian clamp (HF__LUT_J_MIN; tests pass 0 to see the bare model). */
+HF__PRIVATE void hf__lut_lobe(const hf__lut_col *col, int p, double t,
+                              int exact, double j_min, const double *sig4,
+                              int nsig, double *out)
+{
+    double g[3];
+    int n, r, k;
+    n = exact ? hf__lut_exact_roots(col, p, t, g)
+              : hf__lut_cubic_roots(col->a[p], col->b[p], t, g);
+    for (k = 0; k < nsig; ++k) out[k] = 0.0;
+    for (r = 0; r < n; ++r) {
+        double x = g[r], h, cg, dphi, jac, w, base, ct2;
+        if (!(HF_FABS(x) <= HF__LUT_HALF_PI)) continue;
+        h = HF_SIN(x);
+        cg = HF_COS(x);
+        dphi = exact ? hf__lut_dphi_exact(col->eta1, p, x)
+                     : 3.0 * col->a[p] * x * x + col->b[p];
+        jac = 2.0 * HF_FABS(dphi);
+        if (jac < j_min * cg) jac = j_min * cg;
+        if (!(jac > 0.0)) continue; /* only j_min = 0 exactly on the fold */
+        w = cg / jac; /* = 1 / max(2 |dPhi/dh|, J_MIN) */
+        base = hf__lut_fresnel_part(col, p, h, cg, &ct2);
+        if (p == 0) {
+            out[0] += base * w;
+            continue;
+        }
+        for (k = 0; k < nsig; ++k) {
+            double T = HF_EXP(-sig4[k] * ct2);
+            out[k] += (p == 2 ? base * T * T : base * T) * w;
+        }
+    }
+}
+
+/* One texel of N at azimuth phi in [0, pi]: targets wrap(phi - p pi). */
+HF__PRIVATE void hf__lut_n_texel(const hf__lut_col *col, double phi,
+                                 int exact, double j_min, const double *sig4,
+                                 int nsig, double *n_r, double *n_tt,
+                                 double *n_trt)
+{
+    double t02 = phi < HF__LUT_PI ? phi : phi - 2.0 * HF__LUT_PI;
+    hf__lut_lobe(col, 0, t02, exact, j_min, sig4, 1, n_r);
+    hf__lut_lobe(col, 1, phi - HF__LUT_PI, exact, j_min, sig4, nsig, n_tt);
+    hf__lut_lobe(col, 2, t02, exact, j_min, sig4, nsig, n_trt);
+}
+
+HF__PRIVATE double hf__lut_cd(double x)
+{
+    x = HF_FABS(x);
+    return x > HF__LUT_COS_TD_MIN ? x : HF__LUT_COS_TD_MIN;
+}
+
+/* hf_lut_eval_n with the Jacobian clamp as a parameter (tests). */
+HF__PRIVATE void hf__lut_eval_n_clamp(const hf_lut_params *p, double cd,
+                                      double phi, double j_min,
+                                      double out[3])
+{
+    hf__lut_col col;
+    double sig4;
+    hf__lut_col_setup(&col, p->eta, hf__lut_cd(cd),
+                      p->variant == HF_LUT_EXACT);
+    sig4 = 4.0 * p->sigma_a * col.inv_cos_tt;
+    hf__lut_n_texel(&col, phi, p->variant == HF_LUT_EXACT, j_min, &sig4, 1,
+                    &out[0], &out[1], &out[2]);
+}
+
+HFDEF hf_result hf_lut_eval_n(const hf_lut_params *p, double cos_theta_d,
+                              double phi, double out[3])
+{
+    hf_result r = hf__lut_check(p, NULL, 0);
+    if (r != HF_OK) return r;
+    if (!out) return HF_ERROR_NULL_POINTER;
+    if (!hf__lut_finite(cos_theta_d) || !hf__lut_finite(phi))
+        return HF_ERROR_NON_FINITE;
+    if (!(cos_theta_d >= -1.0 && cos_theta_d <= 1.0) ||
+        !(phi >= 0.0 && phi <= HF__LUT_PI))
+        return HF_ERROR_BAD_PARAMETER;
+    hf__lut_eval_n_clamp(p, cos_theta_d, phi, HF__LUT_J_MIN, out);
+    return HF_OK;
+}
+
+/* N (out_trt NULL: RGBA = N_R, N_TT, N_TRT, 1) or the two per-RGB
+   textures. Columns i and n-1-i hold the same |cos theta_d|, so only the
+   right half is computed and mirrored. */
+HF__PRIVATE hf_result hf__lut_bake_n_any(const hf_lut_params *p,
+                                         int first_row, int row_count,
+                                         float *out, float *out_trt)
+{
+    hf__lut_col col[HF__LUT_BLOCK];
+    double sig4[HF__LUT_BLOCK][3];
+    int n, i0, i, j, k, exact, rgb = out_trt != NULL, nsig;
+    hf_result r = hf__lut_check_bake(p, first_row, row_count, out,
+                                     rgb ? out_trt : out);
+    if (r != HF_OK) return r;
+    n = p->size;
+    exact = p->variant == HF_LUT_EXACT;
+    nsig = rgb ? 3 : 1;
+    for (i0 = n / 2; i0 < n; i0 += HF__LUT_BLOCK) {
+        int i1 = n - i0 < HF__LUT_BLOCK ? n : i0 + HF__LUT_BLOCK;
+        for (i = i0; i < i1; ++i) {
+            hf__lut_col *c = &col[i - i0];
+            hf__lut_col_setup(c, p->eta, hf__lut_cd(hf__lut_axis(i, n)),
+                              exact);
+            for (k = 0; k < nsig; ++k)
+                sig4[i - i0][k] =
+                    4.0 * (double)(rgb ? p->sigma_a_rgb[k] : p->sigma_a) *
+                    c->inv_cos_tt;
+        }
+        for (j = first_row; j < first_row + row_count; ++j) {
+            double phi = HF_ACOS(hf__lut_axis(j, n));
+            size_t row = (size_t)j * (size_t)n;
+            for (i = i0; i < i1; ++i) {
+                double nr, ntt[3], ntrt[3];
+                float v[8];
+                float *o0, *o1;
+                hf__lut_n_texel(&col[i - i0], phi, exact, HF__LUT_J_MIN,
+                                sig4[i - i0], nsig, &nr, ntt, ntrt);
+                if (rgb) {
+                    for (k = 0; k < 3; ++k) {
+                        v[k] = hf__lut_f(ntt[k]);
+                        v[4 + k] = hf__lut_f(ntrt[k]);
+                    }
+                    v[3] = v[7] = hf__lut_f(nr);
+                } else {
+                    v[0] = hf__lut_f(nr);
+                    v[1] = hf__lut_f(ntt[0]);
+                    v[2] = hf__lut_f(ntrt[0]);
+                    v[3] = 1.0f;
+                }
+                o0 = out + 4 * (row + (size_t)i);
+                o1 = out + 4 * (row + (size_t)(n - 1 - i));
+                HF_MEMCPY(o0, v, 4 * sizeof(float));
+                HF_MEMCPY(o1, v, 4 * sizeof(float));
+                if (rgb) {
+                    o0 = out_trt + 4 * (row + (size_t)i);
+                    o1 = out_trt + 4 * (row + (size_t)(n - 1 - i));
+                    HF_MEMCPY(o0, v + 4, 4 * sizeof(float));
+                    HF_MEMCPY(o1, v + 4, 4 * sizeof(float));
+                }
+            }
+        }
+    }
+    return HF_OK;
+}
+
+HFDEF hf_result hf_lut_bake_n(const hf_lut_params *p, int first_row,
+                              int row_count, float *out)
+{
+    return hf__lut_bake_n_any(p, first_row, row_count, out, NULL);
+}
+
+HFDEF hf_result hf_lut_bake_n_rgb(const hf_lut_params *p, int first_row,
+                                  int row_count, float *out_tt_rgb,
+                                  float *out_trt_rgb)
+{
+    if (!out_trt_rgb) return HF_ERROR_NULL_POINTER;
+    return hf__lut_bake_n_any(p, first_row, row_count, out_tt_rgb,
+                              out_trt_rgb);
+}
+
+/* ---- 8-bit conversion (section 9) ---- */
+
+HFDEF hf_result hf_lut_to_u8(const float *rgba, int n,
+                             const float *scales_in,
+                             unsigned char *out_rgba8, float scales_out[4])
+{
+    float mx[4] = {0.0f, 0.0f, 0.0f, 0.0f}, sc[4];
+    size_t count, i;
+    int c;
+    if (!rgba || !out_rgba8) return HF_ERROR_NULL_POINTER;
+    if (n < 1 || n > HF_LUT_MAX_SIZE) return HF_ERROR_BAD_COUNT;
+    count = 4u * (size_t)n * (size_t)n; /* <= 2^26: no overflow */
+    if (scales_in)
+        for (c = 0; c < 4; ++c)
+            if (!hf__finitef(scales_in[c]) || !(scales_in[c] > 0.0f))
+                return HF_ERROR_BAD_PARAMETER;
+    for (i = 0; i < count; ++i) {
+        float x = rgba[i];
+        if (!hf__finitef(x)) return HF_ERROR_NON_FINITE;
+        if (x > mx[i & 3]) mx[i & 3] = x;
+    }
+    for (c = 0; c < 4; ++c)
+        sc[c] = scales_in ? scales_in[c] : (mx[c] > 0.0f ? mx[c] : 1.0f);
+    for (i = 0; i < count; ++i) {
+        double y = (double)rgba[i] / (double)sc[i & 3];
+        y = y < 0.0 ? 0.0 : (y > 1.0 ? 1.0 : y);
+        /* floor(255 y + 0.5); the argument is >= 0, so truncation floors */
+        out_rgba8[i] = (unsigned char)(255.0 * y + 0.5);
+    }
+    if (scales_out)
+        for (c = 0; c < 4; ++c) scales_out[c] = sc[c];
     return HF_OK;
 }
 

@@ -999,6 +999,990 @@ static void test_ribbon_winding_faces_camera(void)
 }
 
 /* ======================================================================== */
+/* 11. LUT baking (Marschner M and N textures; docs/marschner-spec.md)               */
+/* ======================================================================== */
+
+/* Expected numbers are the spot values, texel table and channel sums of
+   docs/marschner-spec.md section 11, and closed forms / integrals written here
+   independently of the library from the formulas of sections 4-6. */
+
+#define T_PI 3.14159265358979323846
+#define T_DEG (T_PI / 180.0)
+
+static hf_lut_params t_lut_defaults(int size, hf_lut_variant v)
+{
+    hf_lut_params p;
+    hf_lut_params_init(&p);
+    p.size = size;
+    p.variant = v;
+    return p;
+}
+
+static float *t_lut_alloc(int n)
+{
+    return (float *)malloc(sizeof(float) * 4u * (size_t)n * (size_t)n);
+}
+
+/* |x - r| <= tol * |r| */
+#define CHECK_REL(x, r, tol) CHECK_NEAR((x), (r), (tol) * fabs((double)(r)))
+
+/* ---- independent model pieces, straight from docs/marschner-spec.md ---- */
+
+static double t_rs(double n, double x)
+{
+    double s = sin(x) / n, ci, ct, r;
+    if (s * s >= 1.0) return 1.0;
+    ci = fabs(cos(x));
+    ct = sqrt(1.0 - s * s);
+    r = (ci - n * ct) / (ci + n * ct);
+    return r * r;
+}
+
+static double t_rp(double n, double x)
+{
+    double s = sin(x) / n, ci, ct, r;
+    if (s * s >= 1.0) return 1.0;
+    ci = fabs(cos(x));
+    ct = sqrt(1.0 - s * s);
+    r = (n * ci - ct) / (n * ci + ct);
+    return r * r;
+}
+
+typedef struct t_col {
+    double eta1, eta2, sigma1, c;
+} t_col;
+
+static t_col t_column(double eta, double cd, double sigma)
+{
+    t_col k;
+    double s2 = 1.0 - cd * cd, cos_tt;
+    k.eta1 = sqrt(eta * eta - s2) / cd;
+    k.eta2 = eta * eta / k.eta1;
+    cos_tt = sqrt(eta * eta - s2) / eta;
+    k.sigma1 = sigma / cos_tt;
+    k.c = asin(1.0 / k.eta1);
+    return k;
+}
+
+/* A(p, h) of section 6.4 */
+static double t_atten(const t_col *k, int p, double h)
+{
+    double g = asin(h), gt = asin(h / k->eta1);
+    double f_ext = 0.5 * (t_rs(k->eta1, g) + t_rp(k->eta2, g));
+    double f_int = 0.5 * (t_rs(1.0 / k->eta1, gt) + t_rp(1.0 / k->eta2, gt));
+    double T = exp(-2.0 * k->sigma1 * (1.0 + cos(2.0 * gt)));
+    if (p == 0) return f_ext;
+    return (1.0 - f_ext) * (1.0 - f_ext) * pow(f_int, p - 1) * pow(T, p);
+}
+
+/* Phi(p, g) - p pi and its derivative, cubic (6.2) or exact (6.5) */
+static double t_phi(const t_col *k, int p, double g, int exact)
+{
+    if (exact) return 2.0 * p * asin(sin(g) / k->eta1) - 2.0 * g;
+    return (6.0 * p * k->c / T_PI - 2.0) * g -
+           8.0 * p * k->c / (T_PI * T_PI * T_PI) * g * g * g;
+}
+
+static double t_dphi(const t_col *k, int p, double g, int exact)
+{
+    if (exact)
+        return 2.0 * p * cos(g) / sqrt(k->eta1 * k->eta1 - sin(g) * sin(g)) -
+               2.0;
+    return (6.0 * p * k->c / T_PI - 2.0) -
+           24.0 * p * k->c / (T_PI * T_PI * T_PI) * g * g;
+}
+
+/* Reference N(p): brute-force root search (a fine grid split at the fold,
+   bisection to 1e-14) and the sum of section 6.1 with clamp j_min. */
+static double t_ref_n(int p, double eta, double cd, double phi, double sigma,
+                      int exact, double j_min)
+{
+    t_col k = t_column(eta, cd < 1e-4 ? 1e-4 : cd, sigma);
+    double t = phi - p * T_PI, brk[4], sum = 0.0;
+    int nb = 0, b, s;
+    const int steps = 512;
+    while (t >= T_PI) t -= 2.0 * T_PI;
+    while (t < -T_PI) t += 2.0 * T_PI;
+    brk[nb++] = -T_PI / 2;
+    if (p == 2 && k.eta1 < 2.0) {
+        double gc = exact ? asin(sqrt((4.0 - k.eta1 * k.eta1) / 3.0))
+                          : sqrt((6.0 * 2 * k.c / T_PI - 2.0) /
+                                 (3.0 * 16.0 * k.c / (T_PI * T_PI * T_PI)));
+        brk[nb++] = -gc;
+        brk[nb++] = gc;
+    }
+    brk[nb++] = T_PI / 2;
+    for (b = 0; b + 1 < nb; ++b)
+        for (s = 0; s < steps; ++s) {
+            double x0 = brk[b] + (brk[b + 1] - brk[b]) * s / steps;
+            double x1 = brk[b] + (brk[b + 1] - brk[b]) * (s + 1) / steps;
+            double f0 = t_phi(&k, p, x0, exact) - t;
+            double f1 = t_phi(&k, p, x1, exact) - t, x, jac;
+            int it;
+            if (!(f0 < 0.0 && f1 >= 0.0) && !(f0 > 0.0 && f1 <= 0.0)) continue;
+            for (it = 0; it < 200 && x1 - x0 > 1e-14; ++it) {
+                double xm = 0.5 * (x0 + x1), fm = t_phi(&k, p, xm, exact) - t;
+                if ((fm < 0.0) == (f0 < 0.0)) {
+                    x0 = xm;
+                    f0 = fm;
+                } else {
+                    x1 = xm;
+                }
+            }
+            x = 0.5 * (x0 + x1);
+            jac = 2.0 * fabs(t_dphi(&k, p, x, exact)) / cos(x);
+            if (jac < j_min) jac = j_min;
+            sum += t_atten(&k, p, sin(x)) / jac;
+        }
+    return sum;
+}
+
+/* ---- tests ---- */
+
+static void test_lut_params_init_defaults(void)
+{
+    hf_lut_params p;
+    memset(&p, 0xff, sizeof p);
+    hf_lut_params_init(&p);
+    CHECK(p.eta == 1.55);
+    CHECK(p.alpha_r_deg == -7.5);
+    CHECK(p.beta_r_deg == 7.5);
+    CHECK(p.sigma_a == 0.2);
+    CHECK(p.sigma_a_rgb[0] == 0.2 && p.sigma_a_rgb[1] == 0.2 &&
+          p.sigma_a_rgb[2] == 0.2);
+    CHECK_EQ_INT(p.variant, HF_LUT_CUBIC);
+    CHECK_EQ_INT(p.size, 256);
+    CHECK_EQ_INT(hf_lut_validate(&p, NULL), HF_OK);
+    hf_lut_params_init(NULL); /* ignored, no crash */
+}
+
+static void test_lut_validate_codes(void)
+{
+    hf_lut_params p;
+    hf_diag d;
+    double nan = strtod("nan", NULL), inf = HUGE_VAL;
+    p = t_lut_defaults(64, HF_LUT_CUBIC);
+    CHECK_EQ_INT(hf_lut_validate(NULL, &d), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(d.result, HF_ERROR_NULL_POINTER);
+#define T_BAD(member, value, code, name)                                        \
+    do {                                                                       \
+        p = t_lut_defaults(64, HF_LUT_CUBIC);                                  \
+        p.member = value;                                                      \
+        CHECK_EQ_INT(hf_lut_validate(&p, &d), code);                           \
+        CHECK(strcmp(d.field, name) == 0);                                     \
+    } while (0)
+    T_BAD(eta, nan, HF_ERROR_NON_FINITE, "eta");
+    T_BAD(eta, inf, HF_ERROR_NON_FINITE, "eta");
+    T_BAD(alpha_r_deg, -inf, HF_ERROR_NON_FINITE, "alpha_r_deg");
+    T_BAD(beta_r_deg, nan, HF_ERROR_NON_FINITE, "beta_r_deg");
+    T_BAD(sigma_a, inf, HF_ERROR_NON_FINITE, "sigma_a");
+    T_BAD(sigma_a_rgb[2], nan, HF_ERROR_NON_FINITE, "sigma_a_rgb[2]");
+    T_BAD(eta, 1.19, HF_ERROR_BAD_PARAMETER, "eta");
+    T_BAD(eta, 3.0001, HF_ERROR_BAD_PARAMETER, "eta");
+    T_BAD(beta_r_deg, 0.0, HF_ERROR_BAD_PARAMETER, "beta_r_deg");
+    T_BAD(beta_r_deg, -1.0, HF_ERROR_BAD_PARAMETER, "beta_r_deg");
+    T_BAD(sigma_a, -1e-9, HF_ERROR_BAD_PARAMETER, "sigma_a");
+    T_BAD(sigma_a_rgb[1], -0.5, HF_ERROR_BAD_PARAMETER, "sigma_a_rgb[1]");
+    T_BAD(variant, (hf_lut_variant)2, HF_ERROR_BAD_PARAMETER, "variant");
+    T_BAD(size, 0, HF_ERROR_BAD_COUNT, "size");
+    T_BAD(size, -3, HF_ERROR_BAD_COUNT, "size");
+    T_BAD(size, HF_LUT_MAX_SIZE + 1, HF_ERROR_BAD_COUNT, "size");
+#undef T_BAD
+    /* the ends of every range are accepted; zero alpha and sigma mean zero */
+    p = t_lut_defaults(1, HF_LUT_EXACT);
+    p.eta = 1.2;
+    p.alpha_r_deg = 0.0;
+    p.beta_r_deg = 4.9e-324; /* the smallest positive double */
+    p.sigma_a = 0.0;
+    p.sigma_a_rgb[0] = 0.0;
+    CHECK_EQ_INT(hf_lut_validate(&p, &d), HF_OK);
+    CHECK_EQ_INT(d.result, HF_OK);
+    p.eta = 3.0;
+    p.size = HF_LUT_MAX_SIZE;
+    p.sigma_a = 1e308;
+    CHECK_EQ_INT(hf_lut_validate(&p, NULL), HF_OK);
+}
+
+/* docs/marschner-spec.md section 11, spot values of N (relative 1e-6). */
+static void test_lut_n_spot_values(void)
+{
+    static const double tab[9][7] = {
+        /* theta_d, phi, N_R, N_TT, N_TRT, N_TT exact, N_TRT exact */
+        {0, 0, 0.0116301423, 0, 0.0146400229, 0, 0.0159208016},
+        {0, 10, 0.0115861399, 0, 0.0162159349, 0, 0.0183590316},
+        {0, 90, 0.0101271203, 0.00215181849, 0, 0.002155831, 0},
+        {0, 150, 0.0169424516, 0.191360086, 0, 0.198805406, 0},
+        {0, 180, 0, 0.309119078, 0, 0.287803512, 0},
+        {30, 0, 0.0120349806, 0, 0.0261347193, 0, 0.0282730792},
+        {30, 120, 0.0151205258, 0.0728765391, 0, 0.0741551627, 0},
+        {60, 45, 0.0252658074, 0, 0.00460915656, 0, 0.00439109368},
+        {60, 150, 0.0532672193, 0.109243772, 0, 0.109835742, 0},
+    };
+    int k, c;
+    for (k = 0; k < 9; ++k) {
+        hf_lut_params p = t_lut_defaults(64, HF_LUT_CUBIC);
+        double cub[3], ex[3], want[5];
+        double cd = cos(tab[k][0] * T_DEG), phi = tab[k][1] * T_DEG;
+        CHECK_EQ_INT(hf_lut_eval_n(&p, cd, phi, cub), HF_OK);
+        p.variant = HF_LUT_EXACT;
+        CHECK_EQ_INT(hf_lut_eval_n(&p, cd, phi, ex), HF_OK);
+        want[0] = tab[k][2];
+        want[1] = tab[k][3];
+        want[2] = tab[k][4];
+        want[3] = tab[k][5];
+        want[4] = tab[k][6];
+        for (c = 0; c < 5; ++c) {
+            double got = c < 3 ? cub[c] : ex[c - 2];
+            if (want[c] == 0.0)
+                CHECK(got >= 0.0 && got < 1e-16);
+            else
+                CHECK_REL(got, want[c], 1e-6);
+        }
+        CHECK(ex[0] == cub[0]); /* p = 0 is exact in both variants */
+    }
+}
+
+/* The closed forms of section 11, computed here from eta alone. */
+static void test_lut_n_closed_forms(void)
+{
+    hf_lut_params p = t_lut_defaults(64, HF_LUT_CUBIC);
+    double eta = 1.55, f0 = (eta - 1) * (eta - 1) / ((eta + 1) * (eta + 1));
+    double o[3], c = asin(1.0 / eta), cd = cos(45.0 * T_DEG);
+    double s2 = 1.0 - cd * cd, e1 = sqrt(eta * eta - s2) / cd,
+           e2 = eta * eta / e1;
+    CHECK_EQ_INT(hf_lut_eval_n(&p, 1.0, 0.0, o), HF_OK);
+    CHECK_REL(o[0], f0 / 4.0, 1e-12);
+    CHECK_EQ_INT(hf_lut_eval_n(&p, cd, 0.0, o), HF_OK);
+    CHECK_REL(o[0],
+              (((1 - e1) / (1 + e1)) * ((1 - e1) / (1 + e1)) +
+               ((e2 - 1) / (e2 + 1)) * ((e2 - 1) / (e2 + 1))) /
+                  8.0,
+              1e-12);
+    CHECK_EQ_INT(hf_lut_eval_n(&p, 1.0, T_PI, o), HF_OK);
+    CHECK_REL(o[1],
+              (1 - f0) * (1 - f0) * exp(-4 * 0.2) /
+                  (2 * fabs(6 * c / T_PI - 2)),
+              1e-12);
+    p.variant = HF_LUT_EXACT;
+    CHECK_EQ_INT(hf_lut_eval_n(&p, 1.0, T_PI, o), HF_OK);
+    CHECK_REL(o[1], (1 - f0) * (1 - f0) * exp(-4 * 0.2) / (2 * fabs(2 / eta - 2)),
+              1e-12);
+    /* negative cos(theta_d) reads as its absolute value */
+    {
+        double a[3], b[3];
+        p.variant = HF_LUT_CUBIC;
+        hf_lut_eval_n(&p, -0.3, 1.0, a);
+        hf_lut_eval_n(&p, 0.3, 1.0, b);
+        CHECK(a[0] == b[0] && a[1] == b[1] && a[2] == b[2]);
+    }
+}
+
+/* M_p table of section 11. */
+static void test_lut_m_spot_values(void)
+{
+    static const double tab[4][4] = {
+        {-7.5, 3.04769452, 0.0677136559, 0.697668115},
+        {0, 1.84852017, 3.69704034, 1.15026026},
+        {3.75, 0.989441547, 6.09538905, 1.34479049},
+        {11.25, 0.133906352, 0.824921203, 1.52384726},
+    };
+    hf_lut_params p = t_lut_defaults(64, HF_LUT_CUBIC);
+    int k, c;
+    for (k = 0; k < 4; ++k) {
+        double o[3];
+        CHECK_EQ_INT(hf_lut_eval_m(&p, tab[k][0] * T_DEG, o), HF_OK);
+        for (c = 0; c < 3; ++c) CHECK_REL(o[c], tab[k][1 + c], 1e-6);
+    }
+}
+
+/* n = 64 texel table of section 11 (texel (i, j) = column i, row j). */
+static void test_lut_texels_n64(void)
+{
+    static const double tm[2][6] = {
+        {10, 40, 2.23569326, 0.000174263232, 0.394765236, 0.876239249},
+        {50, 20, 0.454858505, 4.06208962, 1.46739609, 0.88138348},
+    };
+    static const double tn[5][6] = {
+        {63, 0, 0.0136095099, 0.282123539, 0, 1},
+        {63, 63, 0.0115929779, 0, 0.0170660254, 1},
+        {40, 5, 0.0648186586, 0.0613788117, 0, 1},
+        {50, 60, 0.0194998832, 0, 0.0069082188, 1},
+        {20, 10, 0.0816353301, 0.0699912053, 0, 1},
+    };
+    hf_lut_params p = t_lut_defaults(64, HF_LUT_CUBIC);
+    float *m = t_lut_alloc(64), *n = t_lut_alloc(64);
+    int k, c;
+    CHECK_EQ_INT(hf_lut_bake_m(&p, 0, 64, m), HF_OK);
+    CHECK_EQ_INT(hf_lut_bake_n(&p, 0, 64, n), HF_OK);
+    for (k = 0; k < 2; ++k) {
+        const float *t = m + 4 * ((int)tm[k][1] * 64 + (int)tm[k][0]);
+        for (c = 0; c < 4; ++c) CHECK_REL(t[c], tm[k][2 + c], 1e-6);
+    }
+    for (k = 0; k < 5; ++k) {
+        const float *t = n + 4 * ((int)tn[k][1] * 64 + (int)tn[k][0]);
+        for (c = 0; c < 4; ++c) {
+            if (tn[k][2 + c] == 0.0)
+                CHECK(t[c] == 0.0f);
+            else
+                CHECK_REL(t[c], tn[k][2 + c], 1e-6);
+        }
+    }
+    free(m);
+    free(n);
+}
+
+static void t_lut_sums(const float *tex, int n, double s[4])
+{
+    size_t i;
+    s[0] = s[1] = s[2] = s[3] = 0.0;
+    for (i = 0; i < 4u * (size_t)n * (size_t)n; ++i) s[i & 3] += tex[i];
+}
+
+/* Channel sums of section 11 at n = 64 (relative 1e-4). */
+static void test_lut_channel_sums_n64(void)
+{
+    static const double want[4][4] = {
+        {3029.294099, 3167.915798, 2719.564272, 3642.132394}, /* M */
+        {239.6066785, 117.5968426, 2.975681226, 4096},        /* N */
+        {239.6066785, 266.8080906, 17.71475517, 4096},        /* sigma 0 */
+        {239.6066785, 117.7537789, 2.919141302, 4096},        /* exact */
+    };
+    float *t = t_lut_alloc(64);
+    double s[4];
+    int k, c;
+    for (k = 0; k < 4; ++k) {
+        hf_lut_params p = t_lut_defaults(64, k == 3 ? HF_LUT_EXACT
+                                                    : HF_LUT_CUBIC);
+        if (k == 2) p.sigma_a = 0.0;
+        CHECK_EQ_INT(k == 0 ? hf_lut_bake_m(&p, 0, 64, t)
+                            : hf_lut_bake_n(&p, 0, 64, t),
+                     HF_OK);
+        t_lut_sums(t, 64, s);
+        for (c = 0; c < 4; ++c) CHECK_REL(s[c], want[k][c], 1e-4);
+    }
+    free(t);
+}
+
+/* M is symmetric bit for bit, also for odd n; its alpha is cos(theta_d)
+   with 1 on the diagonal. */
+static void test_lut_m_symmetric(void)
+{
+    static const int sizes[3] = {64, 37, 1};
+    int s;
+    for (s = 0; s < 3; ++s) {
+        int n = sizes[s], i, j;
+        hf_lut_params p = t_lut_defaults(n, HF_LUT_CUBIC);
+        float *m = t_lut_alloc(n);
+        CHECK_EQ_INT(hf_lut_bake_m(&p, 0, n, m), HF_OK);
+        for (j = 0; j < n; ++j)
+            for (i = 0; i < n; ++i) {
+                CHECK(memcmp(m + 4 * (j * n + i), m + 4 * (i * n + j),
+                             4 * sizeof(float)) == 0);
+                if (i == j) CHECK(m[4 * (j * n + i) + 3] == 1.0f);
+            }
+        free(m);
+    }
+}
+
+/* Each M_p integrates over theta_h in [-pi/2, pi/2] to the truncated
+   Gaussian area of section 4 (Simpson's rule, 20000 intervals). */
+static void test_lut_m_unit_area(void)
+{
+    static const double ab[3][2] = {{-7.5, 7.5}, {-10, 5}, {-5, 10}};
+    int k, c, i;
+    const int steps = 20000;
+    for (k = 0; k < 3; ++k) {
+        hf_lut_params p = t_lut_defaults(64, HF_LUT_CUBIC);
+        double sum[3] = {0, 0, 0}, alpha[3], beta[3];
+        double hstep = T_PI / steps;
+        p.alpha_r_deg = ab[k][0];
+        p.beta_r_deg = ab[k][1];
+        alpha[0] = ab[k][0] * T_DEG;
+        alpha[1] = -alpha[0] / 2;
+        alpha[2] = -3 * alpha[0] / 2;
+        beta[0] = ab[k][1] * T_DEG;
+        beta[1] = beta[0] / 2;
+        beta[2] = 2 * beta[0];
+        for (i = 0; i <= steps; ++i) {
+            double o[3], w = (i == 0 || i == steps) ? 1 : (i & 1 ? 4 : 2);
+            hf_lut_eval_m(&p, -T_PI / 2 + i * hstep, o);
+            for (c = 0; c < 3; ++c) sum[c] += w * o[c];
+        }
+        for (c = 0; c < 3; ++c) {
+            double area = 0.5 * (erf((T_PI / 2 - alpha[c]) / (beta[c] * sqrt(2.0))) -
+                                 erf((-T_PI / 2 - alpha[c]) /
+                                     (beta[c] * sqrt(2.0))));
+            CHECK_NEAR(sum[c] * hstep / 3, area, 1e-9);
+            CHECK(area >= 0.99991);
+        }
+    }
+}
+
+/* 2 * integral over [0, pi] of N_p(phi) without the Jacobian clamp, and
+   1/2 * integral over [-1, 1] of A(p, h) (midpoint rules). N_TRT has an
+   integrable 1/sqrt spike at the caustic azimuth phi_c; the substitution
+   phi = phi_c -+ s^2 on either side of it makes every integrand smooth. */
+static void t_lut_energies(const hf_lut_params *p, double cd, int steps,
+                           double n_int[3], double a_int[3])
+{
+    t_col k = t_column(p->eta, cd, p->sigma_a);
+    double phi_c = T_PI / 2;
+    int i, c, side;
+    if (k.eta1 < 2.0) { /* the TRT fold exists: Phi(2, g_c) - 2 pi */
+        int exact = p->variant == HF_LUT_EXACT;
+        double gc = exact ? asin(sqrt((4.0 - k.eta1 * k.eta1) / 3.0))
+                          : sqrt((12.0 * k.c / T_PI - 2.0) /
+                                 (48.0 * k.c / (T_PI * T_PI * T_PI)));
+        phi_c = fabs(t_phi(&k, 2, gc, exact));
+    }
+    for (c = 0; c < 3; ++c) n_int[c] = a_int[c] = 0.0;
+    for (side = 0; side < 2; ++side) {
+        double smax = sqrt(side ? T_PI - phi_c : phi_c), ds = smax / steps;
+        for (i = 0; i < steps; ++i) {
+            double o[3], sv = (i + 0.5) * ds;
+            double phi = side ? phi_c + sv * sv : phi_c - sv * sv;
+            hf__lut_eval_n_clamp(p, cd, phi, 0.0, o);
+            for (c = 0; c < 3; ++c) n_int[c] += 2.0 * o[c] * 2.0 * sv * ds;
+        }
+    }
+    for (i = 0; i < 2 * steps; ++i) {
+        double h = -1.0 + (i + 0.5) / steps;
+        for (c = 0; c < 3; ++c)
+            a_int[c] += 0.5 * t_atten(&k, c, h) / steps;
+    }
+}
+
+/* Section 11: for every theta_d, the integral of N_p over phi equals half
+   the integral of A(p, h) over h (any smooth Phi; both variants). */
+static void test_lut_n_energy_identity(void)
+{
+    static const double td_deg[4] = {0, 30, 60, 80};
+    int v, k, c;
+    for (v = 0; v < 2; ++v)
+        for (k = 0; k < 4; ++k) {
+            hf_lut_params p = t_lut_defaults(64, (hf_lut_variant)v);
+            double ni[3], ai[3];
+            t_lut_energies(&p, cos(td_deg[k] * T_DEG), 20000, ni, ai);
+            for (c = 0; c < 3; ++c) {
+                CHECK_NEAR(ni[c], ai[c], 1e-5 * ai[c]);
+                CHECK(ai[c] > 0.0);
+            }
+        }
+}
+
+/* sigma_a = 0, theta_d = 0: lobe energies 0.074955, 0.861791, 0.055672;
+   TT below the constant-Fresnel estimate (1 - F0)^2 = 0.909123. */
+static void test_lut_n_energy_no_absorption(void)
+{
+    static const double want[3] = {0.074955, 0.861791, 0.055672};
+    int v, c;
+    for (v = 0; v < 2; ++v) {
+        hf_lut_params p = t_lut_defaults(64, (hf_lut_variant)v);
+        double ni[3], ai[3];
+        p.sigma_a = 0.0;
+        t_lut_energies(&p, 1.0, 20000, ni, ai);
+        for (c = 0; c < 3; ++c) {
+            CHECK_NEAR(ai[c], want[c], 1e-6);
+            CHECK_NEAR(ni[c], want[c], 1e-6);
+        }
+        CHECK(ni[1] < 0.909123);
+    }
+}
+
+/* Section 6.6: next to the TRT fold the two merging roots are both kept
+   and each contributes A / J_MIN (2 |dPhi/dh| is far below 0.02 there).
+   Just beyond the fold (theta_d = 0) the cubic has no root left; the exact
+   Phi keeps one near-grazing root (Phi(2, -pi/2) - 2 pi = 19.29 deg lies
+   above its fold at 18.62 deg) whose contribution is tiny. */
+static void test_lut_n_caustic_clamp(void)
+{
+    int v;
+    for (v = 0; v < 2; ++v) {
+        hf_lut_params p = t_lut_defaults(64, (hf_lut_variant)v);
+        t_col k = t_column(p.eta, 1.0, p.sigma_a);
+        double gc = v ? asin(sqrt((4.0 - k.eta1 * k.eta1) / 3.0))
+                      : sqrt((12.0 * k.c / T_PI - 2.0) /
+                             (48.0 * k.c / (T_PI * T_PI * T_PI)));
+        double phi_c = t_phi(&k, 2, gc, v), o[3];
+        double peak = 2.0 * t_atten(&k, 2, sin(gc)) / 0.02;
+        CHECK(phi_c > (v ? 18.5 : 20.4) * T_DEG &&
+              phi_c < (v ? 18.7 : 20.6) * T_DEG); /* section 13 */
+        CHECK_EQ_INT(hf_lut_eval_n(&p, 1.0, phi_c - 1e-9, o), HF_OK);
+        CHECK(o[2] >= peak * 0.999 && o[2] <= peak * 1.001 + 0.05);
+        CHECK_EQ_INT(hf_lut_eval_n(&p, 1.0, phi_c + 1e-6, o), HF_OK);
+        CHECK(v ? (o[2] > 0.0 && o[2] < 1e-5) : o[2] == 0.0);
+    }
+}
+
+/* Every texel of a bake against the brute-force reference, with the
+   conformance rule of section 11 (including its 3 x 3 neighbourhood for
+   texels next to the TRT fold or the total-reflection edge). */
+static void test_lut_n_conformance(void)
+{
+    const int n = 24;
+    int v;
+    for (v = 0; v < 2; ++v) {
+        hf_lut_params p = t_lut_defaults(n, (hf_lut_variant)v);
+        float *t = t_lut_alloc(n);
+        double *ref = (double *)malloc(sizeof(double) * 3 * n * n), mx[3];
+        int i, j, c, bad = 0;
+        CHECK_EQ_INT(hf_lut_bake_n(&p, 0, n, t), HF_OK);
+        for (j = 0; j < n; ++j)
+            for (i = 0; i < n; ++i)
+                for (c = 0; c < 3; ++c)
+                    ref[3 * (j * n + i) + c] = t_ref_n(
+                        c, p.eta, fabs((2.0 * i + 1 - n) / n),
+                        acos((2.0 * j + 1 - n) / n), p.sigma_a, v, 0.02);
+        for (c = 0; c < 3; ++c) { /* max stands in for the 99.9th pct */
+            mx[c] = 0.0;
+            for (i = 0; i < n * n; ++i)
+                if (ref[3 * i + c] > mx[c]) mx[c] = ref[3 * i + c];
+        }
+        for (j = 0; j < n; ++j)
+            for (i = 0; i < n; ++i)
+                for (c = 0; c < 3; ++c) {
+                    double x = t[4 * (j * n + i) + c], r = ref[3 * (j * n + i) + c];
+                    double tol = 1e-5 * mx[c] + 1e-3 * fabs(r);
+                    CHECK(t_is_finite((float)x));
+                    if (fabs(x - r) > tol) {
+                        double lo = 1e300, hi = -1e300, d = 2e-6;
+                        int a, b;
+                        for (a = -1; a <= 1; ++a)
+                            for (b = -1; b <= 1; ++b) {
+                                double u = (i + 0.5) / n + a * d;
+                                double w = (j + 0.5) / n + b * d;
+                                double cv = 2 * w - 1;
+                                double y;
+                                cv = cv < -1 ? -1 : (cv > 1 ? 1 : cv);
+                                y = t_ref_n(c, p.eta, fabs(2 * u - 1), acos(cv),
+                                            p.sigma_a, v, 0.02);
+                                if (y < lo) lo = y;
+                                if (y > hi) hi = y;
+                            }
+                        if (x < lo - tol || x > hi + tol) ++bad;
+                    }
+                }
+        CHECK_EQ_INT(bad, 0);
+        free(t);
+        free(ref);
+    }
+}
+
+static int t_lut_all_ok(const float *t, int n, int alpha_le_1)
+{
+    size_t i;
+    for (i = 0; i < 4u * (size_t)n * (size_t)n; ++i) {
+        if (!t_is_finite(t[i]) || t[i] < 0.0f) return 0;
+        if (alpha_le_1 && (i & 3) == 3 && t[i] > 1.0f) return 0;
+    }
+    return 1;
+}
+
+/* No NaN, inf or negative value anywhere over the ends of every range. */
+static void test_lut_extremes_finite(void)
+{
+    static const double etas[2] = {1.2, 3.0};
+    static const double sigmas[4] = {0.0, 1e-3, 1e30, 1e308};
+    static const double betas[6] = {5, 10, 1e-3, 1e-40, 4.9e-324, 1e308};
+    static const double alphas[5] = {-10, -5, 0, 1e5, -1e308};
+    static const int sizes[6] = {1, 2, 3, 5, 17, 64};
+    float *a = t_lut_alloc(64), *b = t_lut_alloc(64);
+    int e, s, z, v, k, fails = 0;
+    for (z = 0; z < 6; ++z)
+        for (v = 0; v < 2; ++v)
+            for (e = 0; e < 2; ++e)
+                for (s = 0; s < 4; ++s) {
+                    int n = sizes[z];
+                    hf_lut_params p = t_lut_defaults(n, (hf_lut_variant)v);
+                    p.eta = etas[e];
+                    p.sigma_a = sigmas[s];
+                    p.sigma_a_rgb[0] = sigmas[s];
+                    p.sigma_a_rgb[1] = 0.0;
+                    p.sigma_a_rgb[2] = sigmas[3 - s];
+                    CHECK_EQ_INT(hf_lut_bake_n(&p, 0, n, a), HF_OK);
+                    if (!t_lut_all_ok(a, n, 1)) ++fails;
+                    for (k = 0; k < n * n; ++k)
+                        if (a[4 * k + 3] != 1.0f) ++fails;
+                    CHECK_EQ_INT(hf_lut_bake_n_rgb(&p, 0, n, a, b), HF_OK);
+                    if (!t_lut_all_ok(a, n, 0) || !t_lut_all_ok(b, n, 0))
+                        ++fails;
+                }
+    for (z = 0; z < 6; ++z)
+        for (s = 0; s < 6; ++s)
+            for (e = 0; e < 5; ++e) {
+                int n = sizes[z];
+                hf_lut_params p = t_lut_defaults(n, HF_LUT_CUBIC);
+                p.beta_r_deg = betas[s];
+                p.alpha_r_deg = alphas[e];
+                CHECK_EQ_INT(hf_lut_bake_m(&p, 0, n, a), HF_OK);
+                if (!t_lut_all_ok(a, n, 1)) ++fails;
+            }
+    /* a width too narrow for float stores FLT_MAX on the exact peak */
+    {
+        hf_lut_params p = t_lut_defaults(3, HF_LUT_CUBIC);
+        p.alpha_r_deg = 0.0;
+        p.beta_r_deg = 1e-300;
+        CHECK_EQ_INT(hf_lut_bake_m(&p, 0, 3, a), HF_OK);
+        CHECK(a[4 * (1 * 3 + 1) + 0] == FLT_MAX); /* theta_h = 0 */
+        CHECK(a[4 * (0 * 3 + 0) + 0] == 0.0f);
+    }
+    CHECK_EQ_INT(fails, 0);
+    free(a);
+    free(b);
+}
+
+/* N at full size for the extreme indices: finite, non-negative, and the
+   caustic clamp bounds each root's TRT contribution by A / J_MIN <= 50. */
+static void test_lut_extremes_full_size(void)
+{
+    static const double etas[2] = {1.2, 3.0};
+    float *a = t_lut_alloc(256);
+    int e, v;
+    size_t i;
+    for (e = 0; e < 2; ++e)
+        for (v = 0; v < 2; ++v) {
+            hf_lut_params p = t_lut_defaults(256, (hf_lut_variant)v);
+            p.eta = etas[e];
+            p.sigma_a = 0.0;
+            CHECK_EQ_INT(hf_lut_bake_n(&p, 0, 256, a), HF_OK);
+            CHECK(t_lut_all_ok(a, 256, 1));
+            for (i = 0; i < 4u * 256 * 256; i += 4) CHECK(a[i + 2] <= 150.0f);
+        }
+    free(a);
+}
+
+/* Every refused call leaves the output bytes as they were. */
+static void test_lut_invalid_writes_nothing(void)
+{
+    const int n = 16;
+    size_t bytes = sizeof(float) * 4u * n * n;
+    float *a = t_lut_alloc(n), *b = t_lut_alloc(n);
+    unsigned char *keep = (unsigned char *)malloc(bytes);
+    hf_lut_params p;
+    double nan = strtod("nan", NULL);
+    int k;
+    memset(keep, 0xab, bytes);
+    memset(a, 0xab, bytes);
+    memset(b, 0xab, bytes);
+    for (k = 0; k < 9; ++k) {
+        hf_result want = HF_ERROR_BAD_PARAMETER;
+        p = t_lut_defaults(n, HF_LUT_CUBIC);
+        switch (k) {
+        case 0: p.eta = nan; want = HF_ERROR_NON_FINITE; break;
+        case 1: p.eta = 1.0; break;
+        case 2: p.beta_r_deg = 0.0; break;
+        case 3: p.sigma_a = -1.0; break;
+        case 4: p.sigma_a_rgb[0] = -1.0; break;
+        case 5: p.size = 0; want = HF_ERROR_BAD_COUNT; break;
+        case 6: p.variant = (hf_lut_variant)5; break;
+        case 7: p.alpha_r_deg = HUGE_VAL; want = HF_ERROR_NON_FINITE; break;
+        default: p.size = 5000; want = HF_ERROR_BAD_COUNT; break;
+        }
+        CHECK_EQ_INT(hf_lut_bake_m(&p, 0, 1, a), want);
+        CHECK_EQ_INT(hf_lut_bake_n(&p, 0, 1, a), want);
+        CHECK_EQ_INT(hf_lut_bake_n_rgb(&p, 0, 1, a, b), want);
+    }
+    p = t_lut_defaults(n, HF_LUT_CUBIC);
+    CHECK_EQ_INT(hf_lut_bake_m(NULL, 0, n, a), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_lut_bake_m(&p, 0, n, NULL), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_lut_bake_n(&p, 0, n, NULL), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_lut_bake_n_rgb(&p, 0, n, a, NULL), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_lut_bake_n_rgb(&p, 0, n, NULL, b), HF_ERROR_NULL_POINTER);
+    /* bad ranges, including one whose end overflows int */
+    CHECK_EQ_INT(hf_lut_bake_m(&p, -1, 2, a), HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_lut_bake_m(&p, 0, -1, a), HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_lut_bake_m(&p, 0, n + 1, a), HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_lut_bake_n(&p, n - 2, 3, a), HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_lut_bake_n(&p, n + 1, 0, a), HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_lut_bake_n_rgb(&p, 1, 0x7fffffff, a, b),
+                 HF_ERROR_BAD_RANGE);
+    /* empty ranges are valid and write nothing */
+    CHECK_EQ_INT(hf_lut_bake_m(&p, n, 0, a), HF_OK);
+    CHECK_EQ_INT(hf_lut_bake_n(&p, 3, 0, a), HF_OK);
+    CHECK(memcmp(a, keep, bytes) == 0);
+    CHECK(memcmp(b, keep, bytes) == 0);
+    /* a valid range writes exactly its rows */
+    CHECK_EQ_INT(hf_lut_bake_n(&p, 3, 2, a), HF_OK);
+    CHECK(memcmp(a, keep, sizeof(float) * 4u * 3 * n) == 0);
+    CHECK(memcmp((unsigned char *)a + sizeof(float) * 4u * 5 * n,
+                 keep + sizeof(float) * 4u * 5 * n,
+                 bytes - sizeof(float) * 4u * 5 * n) == 0);
+    CHECK(memcmp((unsigned char *)a + sizeof(float) * 4u * 3 * n, keep,
+                 sizeof(float) * 4u * 2 * n) != 0);
+    free(a);
+    free(b);
+    free(keep);
+}
+
+/* Splitting the rows over calls (as threads would) changes no byte. */
+static void test_lut_row_splits_identical(void)
+{
+    static const int sizes[3] = {37, 64, 1};
+    int s, v, w;
+    hf_rng rng;
+    hf_rng_seed(&rng, 12345u, 7u);
+    for (s = 0; s < 3; ++s)
+        for (v = 0; v < 2; ++v) {
+            int n = sizes[s];
+            size_t bytes = sizeof(float) * 4u * n * n;
+            hf_lut_params p = t_lut_defaults(n, (hf_lut_variant)v);
+            float *whole[4], *part[4];
+            for (w = 0; w < 4; ++w) {
+                whole[w] = t_lut_alloc(n);
+                part[w] = t_lut_alloc(n);
+                memset(part[w], 0x5a, bytes);
+            }
+            p.sigma_a_rgb[0] = 0.05;
+            p.sigma_a_rgb[2] = 1.5;
+            hf_lut_bake_m(&p, 0, n, whole[0]);
+            hf_lut_bake_n(&p, 0, n, whole[1]);
+            hf_lut_bake_n_rgb(&p, 0, n, whole[2], whole[3]);
+            {
+                int first = 0;
+                while (first < n) {
+                    int count = 1 + (int)hf_rng_below(&rng, 9u);
+                    if (count > n - first) count = n - first;
+                    CHECK_EQ_INT(hf_lut_bake_n(&p, first, count, part[1]), HF_OK);
+                    CHECK_EQ_INT(hf_lut_bake_n_rgb(&p, first, count, part[2],
+                                                   part[3]),
+                                 HF_OK);
+                    first += count;
+                }
+                /* M in reverse single rows */
+                for (first = n - 1; first >= 0; --first)
+                    CHECK_EQ_INT(hf_lut_bake_m(&p, first, 1, part[0]), HF_OK);
+            }
+            for (w = 0; w < 4; ++w) {
+                CHECK(memcmp(whole[w], part[w], bytes) == 0);
+                free(whole[w]);
+                free(part[w]);
+            }
+        }
+}
+
+/* Section 8: each per-RGB channel is bit for bit the scalar bake with that
+   sigma_a; alpha holds N_R. */
+static void test_lut_rgb_matches_scalar(void)
+{
+    const int n = 33;
+    int v, k, i;
+    for (v = 0; v < 2; ++v) {
+        hf_lut_params p = t_lut_defaults(n, (hf_lut_variant)v);
+        float *tt = t_lut_alloc(n), *trt = t_lut_alloc(n), *s = t_lut_alloc(n);
+        int diff = 0;
+        p.sigma_a_rgb[0] = 0.0;
+        p.sigma_a_rgb[1] = 0.37;
+        p.sigma_a_rgb[2] = 2.5;
+        CHECK_EQ_INT(hf_lut_bake_n_rgb(&p, 0, n, tt, trt), HF_OK);
+        for (k = 0; k < 3; ++k) {
+            p.sigma_a = p.sigma_a_rgb[k];
+            CHECK_EQ_INT(hf_lut_bake_n(&p, 0, n, s), HF_OK);
+            for (i = 0; i < n * n; ++i) {
+                diff += memcmp(&tt[4 * i + k], &s[4 * i + 1], 4) != 0;
+                diff += memcmp(&trt[4 * i + k], &s[4 * i + 2], 4) != 0;
+                diff += memcmp(&tt[4 * i + 3], &s[4 * i + 0], 4) != 0;
+                diff += memcmp(&trt[4 * i + 3], &s[4 * i + 0], 4) != 0;
+            }
+        }
+        CHECK_EQ_INT(diff, 0);
+        /* absorption dims TT where it exists (row 0: phi near pi) */
+        CHECK(tt[4 * (n - 1) + 0] > tt[4 * (n - 1) + 1]);
+        CHECK(tt[4 * (n - 1) + 1] > tt[4 * (n - 1) + 2]);
+        CHECK(tt[4 * (n - 1) + 2] > 0.0f);
+        free(tt);
+        free(trt);
+        free(s);
+    }
+}
+
+/* N: columns i and n-1-i hold |cos theta_d| alike; alpha is 1. */
+static void test_lut_n_mirror_columns(void)
+{
+    const int n = 40;
+    hf_lut_params p = t_lut_defaults(n, HF_LUT_CUBIC);
+    float *t = t_lut_alloc(n);
+    int i, j, diff = 0;
+    CHECK_EQ_INT(hf_lut_bake_n(&p, 0, n, t), HF_OK);
+    for (j = 0; j < n; ++j)
+        for (i = 0; i < n; ++i) {
+            diff += memcmp(t + 4 * (j * n + i), t + 4 * (j * n + n - 1 - i),
+                           4 * sizeof(float)) != 0;
+            diff += t[4 * (j * n + i) + 3] != 1.0f;
+        }
+    CHECK_EQ_INT(diff, 0);
+    free(t);
+}
+
+/* Section 9: scales are the channel maxima (1 for an all-zero channel,
+   exactly 1 for M.a and N.a), q = floor(255 clamp(x / s, 0, 1) + 0.5). */
+static void test_lut_to_u8(void)
+{
+    const int n = 32;
+    size_t count = 4u * n * n, i;
+    hf_lut_params p = t_lut_defaults(n, HF_LUT_CUBIC);
+    float *m = t_lut_alloc(n), *nn = t_lut_alloc(n), sc[4], mx[4];
+    unsigned char *q = (unsigned char *)malloc(count), *q2 =
+        (unsigned char *)malloc(count);
+    int k, c, wrong = 0;
+    hf_lut_bake_m(&p, 0, n, m);
+    hf_lut_bake_n(&p, 0, n, nn);
+    for (k = 0; k < 2; ++k) {
+        const float *t = k ? nn : m;
+        CHECK_EQ_INT(hf_lut_to_u8(t, n, NULL, q, sc), HF_OK);
+        for (c = 0; c < 4; ++c) mx[c] = 0.0f;
+        for (i = 0; i < count; ++i)
+            if (t[i] > mx[i & 3]) mx[i & 3] = t[i];
+        for (c = 0; c < 4; ++c) CHECK(sc[c] == mx[c]);
+        CHECK(sc[3] == 1.0f);
+        for (i = 0; i < count; ++i) {
+            double y = t[i] / (double)sc[i & 3];
+            int want = (int)floor(255.0 * (y > 1 ? 1 : y) + 0.5);
+            wrong += q[i] != want;
+        }
+        CHECK_EQ_INT(wrong, 0);
+        /* the maximum texel of each channel maps to 255 */
+        for (c = 0; c < 4; ++c) {
+            int seen = 0;
+            for (i = (size_t)c; i < count; i += 4) seen |= q[i] == 255;
+            CHECK(seen);
+        }
+    }
+    /* given scales: values above clip; scales_out may be NULL */
+    {
+        float given[4] = {0.5f, 1.0f, 2.0f, 4.0f};
+        CHECK_EQ_INT(hf_lut_to_u8(m, n, given, q, NULL), HF_OK);
+        for (i = 0; i < count; ++i) {
+            double y = m[i] / (double)given[i & 3];
+            int want = (int)floor(255.0 * (y > 1 ? 1 : y) + 0.5);
+            wrong += q[i] != want;
+        }
+        CHECK_EQ_INT(wrong, 0);
+    }
+    /* rounding at the half-way points, an all-zero channel, negatives */
+    {
+        float t[4 * 4], s4[4];
+        unsigned char o[16];
+        for (i = 0; i < 16; ++i) t[i] = 0.0f;
+        t[0] = 1.0f;                /* R max */
+        t[4] = 0.5f / 255.0f;       /* exactly between 0 and 1: rounds up */
+        t[8] = 0.49f / 255.0f;      /* below: 0 */
+        t[12] = 127.5f / 255.0f;    /* 127.5 -> 128 */
+        t[5] = -1.0f;               /* G: only a negative -> scale 1, code 0 */
+        t[7] = 0.25f;               /* A max 0.25 */
+        CHECK_EQ_INT(hf_lut_to_u8(t, 2, NULL, o, s4), HF_OK);
+        CHECK(s4[0] == 1.0f && s4[1] == 1.0f && s4[2] == 1.0f &&
+              s4[3] == 0.25f);
+        CHECK_EQ_INT(o[0], 255);
+        CHECK_EQ_INT(o[4], 1);
+        CHECK_EQ_INT(o[8], 0);
+        CHECK_EQ_INT(o[12], 128);
+        CHECK_EQ_INT(o[5], 0);
+        CHECK_EQ_INT(o[7], 255);
+    }
+    /* errors write nothing */
+    {
+        float bad_scale[4] = {1.0f, 0.0f, 1.0f, 1.0f};
+        float sc_keep[4] = {-7.0f, -7.0f, -7.0f, -7.0f};
+        memset(q, 0xcd, count);
+        memcpy(q2, q, count);
+        memcpy(sc, sc_keep, sizeof sc);
+        CHECK_EQ_INT(hf_lut_to_u8(NULL, n, NULL, q, sc), HF_ERROR_NULL_POINTER);
+        CHECK_EQ_INT(hf_lut_to_u8(m, n, NULL, NULL, sc), HF_ERROR_NULL_POINTER);
+        CHECK_EQ_INT(hf_lut_to_u8(m, 0, NULL, q, sc), HF_ERROR_BAD_COUNT);
+        CHECK_EQ_INT(hf_lut_to_u8(m, HF_LUT_MAX_SIZE + 1, NULL, q, sc),
+                     HF_ERROR_BAD_COUNT);
+        CHECK_EQ_INT(hf_lut_to_u8(m, n, bad_scale, q, sc),
+                     HF_ERROR_BAD_PARAMETER);
+        bad_scale[1] = strtof("nan", NULL);
+        CHECK_EQ_INT(hf_lut_to_u8(m, n, bad_scale, q, sc),
+                     HF_ERROR_BAD_PARAMETER);
+        m[count - 2] = strtof("inf", NULL); /* the very last texel */
+        CHECK_EQ_INT(hf_lut_to_u8(m, n, NULL, q, sc), HF_ERROR_NON_FINITE);
+        CHECK(memcmp(q, q2, count) == 0);
+        CHECK(memcmp(sc, sc_keep, sizeof sc) == 0);
+    }
+    free(m);
+    free(nn);
+    free(q);
+    free(q2);
+}
+
+static void test_lut_eval_errors(void)
+{
+    hf_lut_params p = t_lut_defaults(64, HF_LUT_CUBIC);
+    double o[3] = {-1, -1, -1}, nan = strtod("nan", NULL);
+    CHECK_EQ_INT(hf_lut_eval_n(&p, 1.5, 1.0, o), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_lut_eval_n(&p, 0.5, -0.01, o), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_lut_eval_n(&p, 0.5, 3.2, o), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_lut_eval_n(&p, nan, 1.0, o), HF_ERROR_NON_FINITE);
+    CHECK_EQ_INT(hf_lut_eval_n(&p, 0.5, HUGE_VAL, o), HF_ERROR_NON_FINITE);
+    CHECK_EQ_INT(hf_lut_eval_n(&p, 0.5, 1.0, NULL), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_lut_eval_m(&p, nan, o), HF_ERROR_NON_FINITE);
+    CHECK_EQ_INT(hf_lut_eval_m(NULL, 0.0, o), HF_ERROR_NULL_POINTER);
+    p.eta = 5.0;
+    CHECK_EQ_INT(hf_lut_eval_n(&p, 0.5, 1.0, o), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_lut_eval_m(&p, 0.0, o), HF_ERROR_BAD_PARAMETER);
+    CHECK(o[0] == -1 && o[1] == -1 && o[2] == -1);
+    /* size is not checked by the evaluators */
+    p = t_lut_defaults(0, HF_LUT_CUBIC);
+    CHECK_EQ_INT(hf_lut_eval_n(&p, 0.5, 1.0, o), HF_OK);
+    CHECK_EQ_INT(hf_lut_eval_n(&p, 0.0, T_PI, o), HF_OK); /* both ends */
+    CHECK(o[0] >= 0.0 && o[1] >= 0.0 && o[2] >= 0.0);
+}
+
+/* The texture samples texel centres: texel (i, j) of the bake equals the
+   evaluators at u_i = (i + 0.5) / n, v_j = (j + 0.5) / n. */
+static void test_lut_texel_centres(void)
+{
+    const int n = 8;
+    hf_lut_params p = t_lut_defaults(n, HF_LUT_CUBIC);
+    float *m = t_lut_alloc(n), *t = t_lut_alloc(n);
+    int i, j, c;
+    hf_lut_bake_m(&p, 0, n, m);
+    hf_lut_bake_n(&p, 0, n, t);
+    for (j = 0; j < n; ++j)
+        for (i = 0; i < n; ++i) {
+            double u = (i + 0.5) / n, v = (j + 0.5) / n, o[3];
+            double ti = asin(2 * u - 1), tr = asin(2 * v - 1);
+            hf_lut_eval_m(&p, 0.5 * (ti + tr), o);
+            for (c = 0; c < 3; ++c)
+                CHECK_NEAR(m[4 * (j * n + i) + c], o[c], 1e-6 * o[c] + 1e-30);
+            CHECK_NEAR(m[4 * (j * n + i) + 3], cos(0.5 * (tr - ti)), 1e-7);
+            hf_lut_eval_n(&p, 2 * u - 1, acos(2 * v - 1), o);
+            for (c = 0; c < 3; ++c)
+                CHECK_NEAR(t[4 * (j * n + i) + c], o[c], 1e-6 * o[c] + 1e-30);
+        }
+    free(m);
+    free(t);
+}
+
+static void run_lut_tests(void)
+{
+    RUN(test_lut_params_init_defaults);
+    RUN(test_lut_validate_codes);
+    RUN(test_lut_n_spot_values);
+    RUN(test_lut_n_closed_forms);
+    RUN(test_lut_m_spot_values);
+    RUN(test_lut_texels_n64);
+    RUN(test_lut_channel_sums_n64);
+    RUN(test_lut_m_symmetric);
+    RUN(test_lut_m_unit_area);
+    RUN(test_lut_n_energy_identity);
+    RUN(test_lut_n_energy_no_absorption);
+    RUN(test_lut_n_caustic_clamp);
+    RUN(test_lut_n_conformance);
+    RUN(test_lut_extremes_finite);
+    RUN(test_lut_extremes_full_size);
+    RUN(test_lut_invalid_writes_nothing);
+    RUN(test_lut_row_splits_identical);
+    RUN(test_lut_rgb_matches_scalar);
+    RUN(test_lut_n_mirror_columns);
+    RUN(test_lut_to_u8);
+    RUN(test_lut_eval_errors);
+    RUN(test_lut_texel_centres);
+}
+
+/* ======================================================================== */
 
 int main(void)
 {
@@ -1031,6 +2015,7 @@ int main(void)
     RUN(test_ribbons_errors_write_nothing);
     RUN(test_ribbon_indices);
     RUN(test_ribbon_winding_faces_camera);
+    run_lut_tests();
     printf("%d passed, %d failed\n", t_passed, t_failed);
     return t_failed ? 1 : 0;
 }
