@@ -42,7 +42,7 @@ endif
 TEST_BINS := $(addprefix $(BUILD)/test_,$(TEST_NAMES))
 
 EX_CFLAGS := -std=c99 -O2 -Wall -Wextra -Wpedantic
-EXAMPLES  := $(BUILD)/bake_luts
+EXAMPLES  := $(BUILD)/bake_luts $(BUILD)/grow_pictures
 
 .PHONY: all test check-build demo examples deps clean
 
@@ -89,7 +89,8 @@ examples: $(EXAMPLES)
 # The main job: the most complete end-to-end program so far.
 demo: $(EXAMPLES) | $(OUT)
 	$(BUILD)/bake_luts --out $(OUT)
-	@echo "demo: wrote $(OUT)/marschner_m.png, $(OUT)/marschner_n.png and $(OUT)/marschner_scales.txt"
+	$(BUILD)/grow_pictures $(OUT)
+	@echo "demo: wrote $(OUT)/marschner_m.png, $(OUT)/marschner_n.png, $(OUT)/marschner_scales.txt and the grow_*.png pictures"
 
 deps:
 	@if [ "$$(id -u)" = 0 ]; then \

@@ -307,6 +307,417 @@ HFDEF float hf_triangle_area(const float a[3], const float b[3],
                              const float c[3]);
 
 /* ======================================================================== */
+/* 5. Grow: density tessellation, guides, strand placement, maps on strands */
+/* ======================================================================== */
+
+/* The growing stages run once, when a fur is created (or its maps change):
+
+       base mesh + density map --hf_tessellate--> guide triangles
+                                                  (+ added vertices, each a
+                                                  base triangle + barycentric)
+       guide triangles --hf_guides_rest--> pure guides (welded base vertices)
+                                           + LOD guides (added vertices)
+       guide triangles + density map --hf_place_strands--> strand records in
+                                                           LOD order
+       strand records + length / colour maps --> per-strand length, colour
+
+   Every function fills arrays the caller owns. Those whose output size is
+   not known in advance follow the two-call pattern: call once with NULL
+   output arrays to get the exact counts, allocate, call again. On any error
+   nothing is written, counts included. The maps are sampled on channel 0
+   (density, length, 3D-colour index); density and length values below 0
+   read as 0. A NULL density map means density 1 everywhere; a NULL length
+   map means length 1 (times max_length) everywhere. */
+
+/* ---- 5.1 density of a UV triangle --------------------------------------- */
+
+/* How the density D of a triangle is read from the density map (enum
+   values; the fields and arguments that hold them are int, as everywhere
+   in hairfur.h). All three
+   see the map as its texels (bilinear for CORNERS, texel values for the
+   other two) and give the same value on a constant map. */
+typedef enum hf_density_estimator {
+    /* mean of the bilinear samples at the three corner UVs: fast; right for
+       small triangles on a smooth (blurred) map, blind to a feature that
+       lies inside a big triangle */
+    HF_DENSITY_CORNERS = 0,
+    /* mean of the texels that Bresenham lines visit along the three edges in
+       texel space (texel of a UV: floor(u * width), floor(v * height)); each
+       texel on the outline counts once per visit */
+    HF_DENSITY_EDGES = 1,
+    /* exact mean over the UV triangle: every texel it touches weighted by
+       the area of the triangle inside that texel (a coverage rasteriser).
+       A triangle with zero UV area falls back to CORNERS. */
+    HF_DENSITY_AREA = 2
+} hf_density_estimator;
+
+/* EDGES and AREA visit every texel under the triangle, so its UVs are
+   bounded: with HF_WRAP_REPEAT the triangle (moved by whole periods) may
+   span at most this many map periods along u and along v; with
+   HF_WRAP_CLAMP every u and v must lie in [-SPAN, 1 + SPAN]. */
+#define HF_DENSITY_MAX_UV_SPAN 16
+
+/* Density of the UV triangle (uv0, uv1, uv2) by `estimator`, >= 0, written
+   to *out_density (1 when `density` is NULL). Errors: HF_ERROR_NULL_POINTER
+   (a uv or out NULL), the map's validation error, HF_ERROR_NON_FINITE (a uv
+   component), HF_ERROR_BAD_PARAMETER (unknown estimator), HF_ERROR_BAD_RANGE
+   (UVs beyond HF_DENSITY_MAX_UV_SPAN for EDGES or AREA). Validates the map
+   on every call (an HF_MAP_F32 map is scanned): for many triangles use the
+   stages below, which validate once. */
+HFDEF hf_result hf_uv_triangle_density(const hf_map *density,
+                                       const float uv0[2], const float uv1[2],
+                                       const float uv2[2],
+                                       int estimator, float *out_density);
+
+/* ---- 5.2 density tessellation ------------------------------------------- */
+
+typedef enum hf_split_point {
+    /* split at the centroid: deterministic, each child gets exactly 1/3 of
+       the area */
+    HF_SPLIT_CENTROID = 0,
+    /* split at a seeded random point, uniform over the middle triangle (the
+       triangle shrunk by 1/2 about its centroid): every child keeps at least
+       1/6 of the area, so no sliver is born (the 2010 plugin drew over the
+       whole triangle, which made needle-thin children) */
+    HF_SPLIT_RANDOM = 1
+} hf_split_point;
+
+#define HF_TESS_DEFAULT_MAX_DEPTH 12
+#define HF_TESS_MAX_DEPTH 32
+#define HF_TESS_DEFAULT_MAX_TRIANGLES (1 << 22)
+#define HF_TESS_MAX_TRIANGLES (1 << 28)
+
+/* Zero-initialise, then set `factor`. Every other zero field is a default. */
+typedef struct hf_tess_params {
+    float factor; /* required, > 0 and finite (0, negative, NaN, infinite:
+                     HF_ERROR_BAD_PARAMETER). A triangle of world area A and
+                     density D is split while D * A * factor > 1, so 1 /
+                     factor is the area a triangle of density 1 ends with
+                     at most. */
+    int estimator; /* hf_density_estimator; 0 = HF_DENSITY_CORNERS */
+    int split;     /* hf_split_point; 0 = HF_SPLIT_CENTROID */
+    uint64_t seed;                  /* for HF_SPLIT_RANDOM */
+    int max_depth;     /* splits of one base triangle in a row; 0 = 12, at
+                          most HF_TESS_MAX_DEPTH */
+    int max_triangles; /* output triangles; 0 = 1 << 22, at most 1 << 28 */
+    int refuse_degenerate; /* 0: a zero-area base triangle is kept as is
+                              (never split; it grows no strands);
+                              1: HF_ERROR_DEGENERATE instead */
+} hf_tess_params;
+
+/* A vertex that tessellation added: the base-mesh triangle it lies in and
+   its barycentric weights of that triangle's corners (indices[3t+0..2]).
+   16 bytes. hf_tess_evaluate turns it into a position on the (skinned)
+   base mesh. */
+typedef struct hf_tess_vertex {
+    uint32_t triangle;
+    float bary[3];
+} hf_tess_vertex;
+
+/* Output of hf_tessellate. The caller sets the array pointers (each may be
+   NULL: that stream is skipped; all NULL: only count) and their
+   capacities; the call sets the four counts. The tessellated mesh's vertex
+   list is the base vertices 0 .. V-1 followed by the added vertices V ..
+   V + added_count - 1 (V = mesh->vertex_count). */
+typedef struct hf_tess_output {
+    uint32_t *indices;       /* 3 * triangle_count, into the vertex list */
+    uint32_t *triangle_base; /* triangle_count: base triangle of each */
+    hf_tess_vertex *added;   /* added_count */
+    float *positions;        /* 3 * vertex_count (base copied, added
+                                evaluated as hf_tess_evaluate does) */
+    float *uvs;              /* 2 * vertex_count; the mesh needs UVs */
+    int triangle_capacity;   /* entries indices / triangle_base hold */
+    int added_capacity;      /* entries added holds */
+    int vertex_capacity;     /* vertices positions / uvs hold */
+    /* written on success: */
+    int triangle_count;
+    int added_count;
+    int vertex_count; /* V + added_count */
+    int depth;        /* deepest split level of any output triangle */
+} hf_tess_output;
+
+/* Density tessellation (stage 1): each base triangle is split, recursively,
+   at its centroid or a random point into three (a, b, Y), (b, c, Y),
+   (c, a, Y) until D * A * factor <= 1 for every triangle, where A is the
+   world area of the triangle's positions (hf_triangle_area) and D its
+   density (params->estimator) on its UV triangle. Children keep the
+   winding; output triangles come base triangle by base triangle.
+
+   Two calls: with every array of `out` NULL, sets the counts; then with
+   arrays of at least those sizes, fills them. `density` may be NULL
+   (density 1 everywhere); with a map the mesh needs UVs. Allocates nothing.
+   Deterministic: same input and seed, same bytes. Zero-area triangles: see
+   refuse_degenerate; a mesh whose triangles all have zero area is refused.
+
+   Errors (nothing written): HF_ERROR_NULL_POINTER (mesh, params, out, or
+   mesh UVs with a density map or uvs output), the mesh's or map's
+   validation error, HF_ERROR_BAD_PARAMETER (factor, estimator, split, a
+   cap out of range), HF_ERROR_NON_FINITE (a triangle whose area overflows
+   float), HF_ERROR_DEGENERATE, HF_ERROR_BAD_RANGE (see
+   HF_DENSITY_MAX_UV_SPAN), HF_ERROR_DEPTH_CAP (a triangle still too big at
+   max_depth), HF_ERROR_TRIANGLE_CAP (more than max_triangles),
+   HF_ERROR_OVERFLOW (vertex count beyond INT_MAX), HF_ERROR_BUFFER_TOO_SMALL
+   (a capacity below its count). The cap errors come from the counting pass,
+   so a factor that would make billions of triangles fails fast. */
+HFDEF hf_result hf_tessellate(const hf_mesh *mesh, const hf_map *density,
+                              const hf_tess_params *params,
+                              hf_tess_output *out);
+
+/* Re-evaluate added vertices first .. first + count - 1 of the array
+   `added` (added_count entries) on `mesh` (e.g. skinned this frame):
+   position = b0 * P0 + b1 * P1 + b2 * P2 of the base triangle, with the
+   exact arithmetic hf_tessellate used, so the rest mesh gives its
+   positions bit for bit; normal = the normalised blend of the mesh's vertex
+   normals (the face normal where the blend cancels, (0, 0, 1) where that is
+   zero too); uv = the blend of the UVs. Each output may be NULL (skipped);
+   element i goes to out_positions[3 i], out_normals[3 i], out_uvs[2 i]
+   (absolute index), so ranges may be split across threads. No allocation.
+   Checks only what it touches (the records and their triangles).
+   Errors: HF_ERROR_NULL_POINTER (mesh, its positions or indices, added;
+   normals or uvs asked for and the mesh has none), HF_ERROR_BAD_COUNT,
+   HF_ERROR_BAD_STRIDE, HF_ERROR_BAD_RANGE, HF_ERROR_INDEX_OUT_OF_RANGE (a
+   record's triangle or that triangle's indices), HF_ERROR_NON_FINITE (a
+   weight, or an input position / normal / uv it reads). */
+HFDEF hf_result hf_tess_evaluate(const hf_mesh *mesh,
+                                 const hf_tess_vertex *added, int added_count,
+                                 int first, int count, float *out_positions,
+                                 float *out_normals, float *out_uvs);
+
+/* ---- 5.3 guides --------------------------------------------------------- */
+
+/* the same cap as HF_MAX_POINTS of the interpolation section */
+#define HF_GUIDE_MAX_POINTS 256
+
+/* Zero-initialise, then set points and max_length. */
+typedef struct hf_guide_params {
+    int points;               /* control points per guide, 2 ..
+                                 HF_GUIDE_MAX_POINTS (16 is typical) */
+    float max_length;         /* > 0 and finite */
+    const hf_map *length_map; /* NULL = 1; guide length = max_length *
+                                 length_map(uv) */
+    const float *comb;        /* optional combing direction per base vertex
+                                 (object space, any length; zero = none) */
+    int comb_stride;          /* bytes; 0 = 12 */
+    const hf_map *comb_map;   /* optional combing direction map, >= 3
+                                 channels, object space; 8-bit texels decode
+                                 as 2 c - 1 (like a normal map), float as
+                                 is. Wins over `comb`. */
+} hf_guide_params;
+
+/* Output of hf_guides_rest; as hf_tess_output: caller arrays (NULL =
+   skipped; all NULL = count only), the call sets the counts. Guides
+   0 .. pure_guide_count - 1 are the pure guides (one per distinct base
+   position, in order of first appearance), then one LOD guide per added
+   vertex: guide pure_guide_count + i grows from added vertex i. */
+typedef struct hf_guide_output {
+    float *points;      /* 3 * params->points * guide_count: point j of
+                           guide g at [3 (g * points + j)], root first */
+    float *lengths;     /* guide_count */
+    float *directions;  /* 3 * guide_count: unit growth direction */
+    float *normals;     /* 3 * guide_count: unit (welded) surface normal */
+    uint32_t *guide_of_vertex; /* vertex_count + added_count: the guide of
+                                  each vertex of the tessellated mesh */
+    int guide_capacity; /* guides the per-guide arrays hold */
+    /* written on success: */
+    int guide_count;
+    int pure_guide_count;
+} hf_guide_output;
+
+/* Rest shapes of the guides (stage 2). `mesh` is the base mesh at rest,
+   `added` / `added_count` the added vertices from hf_tessellate (0 and NULL
+   for none). Base vertices are welded by exact position (bitwise, -0 ==
+   +0): all copies of a position split at a UV seam or hard edge share one
+   pure guide, whose normal is the normalised sum of the copies' normals
+   (mesh normals, or hf_mesh_compute_normals when the mesh has none) and
+   whose length is the mean of max_length * length_map at the copies' UVs.
+   A LOD guide's normal is the normalised barycentric blend of its base
+   triangle's welded guide normals, its root hf_tess_evaluate's position, its
+   length max_length * length_map(its uv). The growth direction is the
+   combing direction (map, else per vertex; welded and blended the same
+   way) or the normal where there is none or it has zero length. Point j =
+   root + direction * length * j / (points - 1).
+   Scratch memory from `alloc` (NULL = default): at most 68 bytes per base
+   vertex, freed before returning.
+   Errors (nothing written): HF_ERROR_NULL_POINTER (mesh, params, out; a map
+   given and the mesh has no UVs; added NULL with added_count > 0),
+   validation errors of the mesh and maps, HF_ERROR_BAD_COUNT
+   (added_count < 0, or points out of range), HF_ERROR_BAD_PARAMETER
+   (max_length; a comb map with < 3 channels; an added weight outside
+   [0, 1]), HF_ERROR_INDEX_OUT_OF_RANGE (an added triangle),
+   HF_ERROR_NON_FINITE (comb directions, added weights),
+   HF_ERROR_OVERFLOW, HF_ERROR_BUFFER_TOO_SMALL (guide_capacity),
+   HF_ERROR_OUT_OF_MEMORY. */
+HFDEF hf_result hf_guides_rest(const hf_mesh *mesh,
+                               const hf_tess_vertex *added, int added_count,
+                               const hf_guide_params *params,
+                               hf_guide_output *out,
+                               const hf_allocator *alloc);
+
+/* ---- 5.4 strand placement ----------------------------------------------- */
+
+typedef enum hf_root_sampler {
+    /* uniform over each triangle: s = sqrt(r1), weights (1 - s, s (1 - r2),
+       s r2) */
+    HF_SAMPLER_UNIFORM = 0,
+    /* stratified: point k of a triangle is point k of a 2D Sobol (0,2)
+       sequence, digitally shifted per triangle, mapped to the triangle by
+       Heitz's area-preserving low-distortion square-to-triangle map: fewer
+       clumps and holes inside a triangle, and every prefix of a triangle's
+       points is itself spread out */
+    HF_SAMPLER_STRATIFIED = 1,
+    /* the 2010 plugin's formula, bA = r1, bB = r2 (1 - bA): NOT uniform, it
+       crowds strands toward corner A. Only for comparison and tests. */
+    HF_SAMPLER_CORNER_BIASED = 2
+} hf_root_sampler;
+
+/* One strand: 24 bytes (static-asserted in the implementation). Its three
+   guides are those of the corners of guide triangle `triangle`: corner k
+   is vertex indices[3 triangle + k] of the mesh given to hf_place_strands
+   (the tessellated mesh), whose guide is guide_of_vertex of that vertex. */
+typedef struct hf_strand {
+    uint32_t triangle; /* guide triangle */
+    float bary[2];     /* weights of corners 0 and 1; corner 2 has
+                          (1 - bary[0]) - bary[1], computed in that order */
+    float uv[2];       /* root UV: blend of the corner UVs (0, 0 without) */
+    float random;      /* uniform in [0, 1), per strand (for variation) */
+} hf_strand;
+
+#define HF_MAX_STRANDS (1 << 28)
+
+/* Zero-initialise, then set strands_per_area or total_strands. */
+typedef struct hf_place_params {
+    float strands_per_area; /* expected strands per unit world area where
+                               the density is 1; > 0 and finite unless
+                               total_strands is set */
+    int total_strands;      /* > 0: exactly this many strands, distributed
+                               in proportion to density * area (then
+                               strands_per_area is ignored); 0: use
+                               strands_per_area */
+    int estimator; /* hf_density_estimator; 0 = HF_DENSITY_CORNERS */
+    int sampler;   /* hf_root_sampler; 0 = HF_SAMPLER_UNIFORM */
+    uint64_t seed;
+    int max_strands;       /* refuse more than this; 0 = HF_MAX_STRANDS */
+    int refuse_degenerate; /* as in hf_tess_params */
+} hf_place_params;
+
+/* Strand placement (stage 3) on the triangles of `mesh` (normally the
+   tessellated mesh: positions and UVs from hf_tessellate's output).
+   Triangle t expects e_t = D_t * A_t * strands_per_area strands (scaled so
+   the e_t sum to total_strands when that is set). The counts are rounded by
+   systematic sampling with one seeded offset u: triangle t gets
+   floor(C_t + u) - floor(C_{t-1} + u), C_t the running sum of e; so each
+   triangle gets floor(e_t) or ceil(e_t), E[count] = e_t exactly, and the
+   total is floor(sum e + u) (within 1 of the density integral), or exactly
+   total_strands. Zero-area triangles get none.
+   LOD order: strand k (in sampler order) of a triangle with n strands has
+   key (k + u_t) / n, u_t random per triangle, and the array is sorted by
+   key (stable, radix). So the first fraction f of the array holds
+   floor or ceil of f * n strands of every triangle: any prefix covers the
+   whole surface in proportion to density, and with the stratified sampler
+   each triangle's share is itself spread out.
+
+   Two calls: with out NULL, sets *out_count; then with out holding
+   capacity >= that many records, fills them and sets *out_count.
+   Scratch memory: 16 bytes per strand from `alloc` (NULL = default), freed
+   before returning; the counting call allocates nothing.
+   Errors (nothing written): HF_ERROR_NULL_POINTER (mesh, params,
+   out_count; mesh UVs with a density map), mesh / map validation errors,
+   HF_ERROR_BAD_PARAMETER (strands_per_area, estimator, sampler,
+   max_strands), HF_ERROR_BAD_COUNT (total_strands < 0),
+   HF_ERROR_NON_FINITE (an area overflows), HF_ERROR_DEGENERATE (see
+   refuse_degenerate; every triangle zero-area; total_strands asked of a
+   mesh whose density * area is zero everywhere), HF_ERROR_BAD_RANGE (UV
+   span, see HF_DENSITY_MAX_UV_SPAN), HF_ERROR_OVERFLOW (the count would
+   exceed max_strands), HF_ERROR_BUFFER_TOO_SMALL, HF_ERROR_OUT_OF_MEMORY. */
+HFDEF hf_result hf_place_strands(const hf_mesh *mesh, const hf_map *density,
+                                 const hf_place_params *params,
+                                 hf_strand *out, int capacity,
+                                 int *out_count, const hf_allocator *alloc);
+
+/* Root positions of strands first .. first + count - 1 (of strand_count)
+   on `mesh` (the guide mesh, e.g. re-evaluated this frame):
+   b0 P0 + b1 P1 + b2 P2 of the strand's triangle, 3 floats per strand at
+   out_positions[3 i] (absolute index). No allocation. Errors:
+   HF_ERROR_NULL_POINTER, HF_ERROR_BAD_COUNT, HF_ERROR_BAD_STRIDE,
+   HF_ERROR_BAD_RANGE, HF_ERROR_INDEX_OUT_OF_RANGE (a strand's triangle or
+   its indices), HF_ERROR_NON_FINITE (weights or positions read). */
+HFDEF hf_result hf_strand_roots(const hf_mesh *mesh, const hf_strand *strands,
+                                int strand_count, int first, int count,
+                                float *out_positions);
+
+/* ---- 5.5 maps on strands ------------------------------------------------ */
+
+/* Per-strand length max_length * length_map(root uv) (channel 0, negative
+   read as 0; NULL map = max_length) for strands first .. first + count - 1,
+   to out_lengths[i]. Errors: HF_ERROR_NULL_POINTER, map validation,
+   HF_ERROR_BAD_PARAMETER (max_length < 0 or not finite),
+   HF_ERROR_BAD_RANGE, HF_ERROR_NON_FINITE (a strand's uv). */
+HFDEF hf_result hf_strand_lengths(const hf_strand *strands, int strand_count,
+                                  int first, int count,
+                                  const hf_map *length_map, float max_length,
+                                  float *out_lengths);
+
+/* Per-strand colour from a 2D colour map at the root UV, 4 floats per strand
+   at out_rgba[4 i]: 1 channel = grey (g, g, g, 1), 2 = grey and alpha,
+   3 = (r, g, b, 1), 4 = rgba. Errors as hf_strand_lengths. */
+HFDEF hf_result hf_strand_colors(const hf_strand *strands, int strand_count,
+                                 int first, int count,
+                                 const hf_map *color_map, float *out_rgba);
+
+/* The "3D" colour scheme: a greyscale UV map (`index_map`, channel 0) picks
+   the column and the position t along the strand (0 root, 1 tip) picks the
+   row of a second texture (the colour ramp, e.g. dyed tips, stripes).
+   Writes out_xy = (clamp(index_map(u, v), 0, 1), clamp(t, 0, 1)): the
+   texture coordinate at which to sample the ramp. A shader does the same:
+
+       vec2 c = vec2(clamp(texture(index_map, uv).r, 0.0, 1.0),
+                     clamp(t, 0.0, 1.0));
+       vec4 color = texture(ramp, c);  // ramp: GL_LINEAR, GL_CLAMP_TO_EDGE
+
+   (hf_map bilinear sampling has GL's texel-centre convention, so CPU and
+   GPU agree.) Errors: NULL pointers, map validation, HF_ERROR_NON_FINITE. */
+HFDEF hf_result hf_color3d_coord(const hf_map *index_map, float u, float v,
+                                 float t, float out_xy[2]);
+
+/* hf_color3d_coord, then the bilinear sample of `ramp` at those
+   coordinates, expanded to rgba as hf_strand_colors does. */
+HFDEF hf_result hf_color3d_sample(const hf_map *index_map, const hf_map *ramp,
+                                  float u, float v, float t, float out[4]);
+
+/* ---- 5.6 binding strands to guides ------------------------------------- */
+
+/* How one strand follows three guides: indices into the guide array, the
+   barycentric weights of its root in the guide triangle (summing to 1), and
+   the ratio of the strand's own length to the weighted guide length. Made
+   once at growth; 28 bytes. */
+typedef struct hf_strand_binding {
+    uint32_t guide[3];
+    float weight[3];
+    float length_scale; /* taken literally: 0 collapses the strand */
+} hf_strand_binding;
+
+/* For strands first .. first + count - 1, the binding that
+   hf_interpolate reads: guide[k] = guide_of_vertex[indices[3 triangle + k]]
+   of `guide_mesh` (the mesh given to hf_place_strands; guide_of_vertex has
+   its vertex_count entries, from hf_guides_rest), weight = (bary[0],
+   bary[1], (1 - bary[0]) - bary[1]), and length_scale = strand length /
+   (weights . guide lengths) when both length arrays are given (strand
+   lengths from hf_strand_lengths, indexed like strands; guide lengths from
+   hf_guides_rest), else 1. Guides of weighted length 0 give 1. Writes out[i] (absolute
+   index). No allocation. Errors: HF_ERROR_NULL_POINTER (guide_lengths NULL
+   with strand_lengths given, and the required pointers),
+   HF_ERROR_BAD_COUNT (guide_count < 1), HF_ERROR_BAD_RANGE,
+   HF_ERROR_INDEX_OUT_OF_RANGE (triangle, vertex, or guide index),
+   HF_ERROR_NON_FINITE (weights, lengths). */
+HFDEF hf_result hf_bind_strands(const hf_mesh *guide_mesh,
+                                const uint32_t *guide_of_vertex,
+                                int guide_count, const hf_strand *strands,
+                                int strand_count, int first, int count,
+                                const float *strand_lengths,
+                                const float *guide_lengths,
+                                hf_strand_binding *out);
+
+/* ======================================================================== */
 /* 9. Interpolation and LOD                                                 */
 /* ======================================================================== */
 
@@ -316,15 +727,6 @@ HFDEF float hf_triangle_area(const float a[3], const float b[3],
    the stack instead of allocating.) */
 #define HF_MAX_POINTS 256
 
-/* How one strand follows three guides: indices into the guide array, the
-   barycentric weights of its root in the guide triangle (summing to 1), and
-   the ratio of the strand's own length to the weighted guide length. Made
-   once at growth; 28 bytes. */
-typedef struct hf_strand_binding {
-    uint32_t guide[3];
-    float weight[3];
-    float length_scale; /* 0 means 1 */
-} hf_strand_binding;
 
 typedef struct hf_interp_params {
     int points_per_strand; /* P, >= 2 (required) */
@@ -1241,6 +1643,1347 @@ HFDEF hf_result hf_mesh_compute_normals(const hf_mesh *mesh,
     return HF_OK;
 }
 
+/* ---- 5. grow ----------------------------------------------------------- */
+
+#if defined(_MSC_VER)
+#define HF__NOINLINE __declspec(noinline)
+#elif defined(__GNUC__) || defined(__clang__)
+#define HF__NOINLINE __attribute__((noinline))
+#else
+#define HF__NOINLINE
+#endif
+#ifndef HF_FLOOR
+#define HF_FLOOR(x) floor(x)
+#endif
+#ifndef HF_CEIL
+#define HF_CEIL(x) ceil(x)
+#endif
+
+/* The record sizes the documentation promises. */
+typedef char hf__strand_is_24_bytes[sizeof(hf_strand) == 24 ? 1 : -1];
+typedef char hf__tess_vertex_is_16_bytes[sizeof(hf_tess_vertex) == 16 ? 1
+                                                                       : -1];
+
+HF__PRIVATE const float *hf__mesh_uv(const hf_mesh *m, int i)
+{
+    return hf__attr(m->uvs, m->uv_stride, 8, i);
+}
+
+HF__PRIVATE const float *hf__mesh_nrm(const hf_mesh *m, int i)
+{
+    return hf__attr(m->normals, m->normal_stride, 12, i);
+}
+
+/* w0 a + w1 b + w2 c in one fixed order of operations. The tessellator and
+   every re-evaluation (hf_tess_evaluate, hf_guides_rest, hf_strand_roots)
+   go through these two functions, and keeping them out of line means the
+   compiler cannot contract or reorder them differently at each call site:
+   that is what makes re-evaluation bit-exact. */
+HF__PRIVATE HF__NOINLINE void hf__blend3(float *o, const float *a,
+                                         const float *b, const float *c,
+                                         const float *w)
+{
+    float x = (w[0] * a[0] + w[1] * b[0]) + w[2] * c[0];
+    float y = (w[0] * a[1] + w[1] * b[1]) + w[2] * c[1];
+    float z = (w[0] * a[2] + w[1] * b[2]) + w[2] * c[2];
+    o[0] = x;
+    o[1] = y;
+    o[2] = z;
+}
+
+HF__PRIVATE HF__NOINLINE void hf__blend2(float *o, const float *a,
+                                         const float *b, const float *c,
+                                         const float *w)
+{
+    float x = (w[0] * a[0] + w[1] * b[0]) + w[2] * c[0];
+    float y = (w[0] * a[1] + w[1] * b[1]) + w[2] * c[1];
+    o[0] = x;
+    o[1] = y;
+}
+
+/* Normalise in place; 0 (and v untouched) when v has no usable length. */
+HF__PRIVATE int hf__normalize3(float *v)
+{
+    float len2 = hf__dot3(v, v), s;
+    if (!(len2 > 1e-30f) || !hf__finitef(len2)) return 0;
+    s = 1.0f / HF_SQRTF(len2);
+    v[0] *= s;
+    v[1] *= s;
+    v[2] *= s;
+    return 1;
+}
+
+/* Unit normal of triangle (a, b, c), or (0, 0, 1) when it has none. */
+HF__PRIVATE void hf__face_normal(float *o, const float *a, const float *b,
+                                 const float *c)
+{
+    float e1[3], e2[3];
+    hf__sub3(e1, b, a);
+    hf__sub3(e2, c, a);
+    hf__cross3(o, e1, e2);
+    if (!hf__normalize3(o)) {
+        o[0] = 0.0f;
+        o[1] = 0.0f;
+        o[2] = 1.0f;
+    }
+}
+
+HF__PRIVATE int hf__all_finite(const float *v, int n)
+{
+    int i;
+    for (i = 0; i < n; ++i)
+        if (!hf__finitef(v[i])) return 0;
+    return 1;
+}
+
+HF__PRIVATE float hf__clamp0(float x) { return x > 0.0f ? x : 0.0f; }
+
+HF__PRIVATE float hf__clamp01(float x)
+{
+    return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f;
+}
+
+/* Channel 0 of texel (x, y), any integer x, y (the map's wrap applies),
+   read as 0 when negative. */
+HF__PRIVATE float hf__texel0(const hf_map *m, int x, int y)
+{
+    const unsigned char *row;
+    size_t i;
+    x = hf__wrap_index(x, m->width, m->wrap);
+    y = hf__wrap_index(y, m->height, m->wrap);
+    row = (const unsigned char *)m->data + (size_t)y * hf__map_row_stride(m);
+    i = (size_t)x * (size_t)m->channels;
+    if (m->format == HF_MAP_F32) return hf__clamp0(((const float *)row)[i]);
+    return (float)row[i] / 255.0f;
+}
+
+HF__PRIVATE float hf__sample0(const hf_map *m, float u, float v)
+{
+    float s[4];
+    hf_map_sample_fast(m, u, v, s);
+    return hf__clamp0(s[0]);
+}
+
+/* The UV triangle in texel units (x = u * width, y = v * height), moved by
+   whole periods on a repeating map so it starts in period 0; refuses a
+   triangle beyond HF_DENSITY_MAX_UV_SPAN (the rasterisers' cost and int
+   range depend on it). */
+HF__PRIVATE hf_result hf__texel_space(const hf_map *m, const float *a,
+                                      const float *b, const float *c,
+                                      double *x, double *y)
+{
+    double u[3], v[3];
+    const double lo = -(double)HF_DENSITY_MAX_UV_SPAN;
+    const double hi = 1.0 + (double)HF_DENSITY_MAX_UV_SPAN;
+    int k;
+    u[0] = a[0];
+    u[1] = b[0];
+    u[2] = c[0];
+    v[0] = a[1];
+    v[1] = b[1];
+    v[2] = c[1];
+    if (m->wrap == HF_WRAP_REPEAT) {
+        double su = u[0], sv = v[0];
+        for (k = 1; k < 3; ++k) {
+            if (u[k] < su) su = u[k];
+            if (v[k] < sv) sv = v[k];
+        }
+        su = HF_FLOOR(su);
+        sv = HF_FLOOR(sv);
+        for (k = 0; k < 3; ++k) {
+            u[k] -= su;
+            v[k] -= sv;
+        }
+    }
+    for (k = 0; k < 3; ++k) {
+        if (!(u[k] >= lo && u[k] <= hi && v[k] >= lo && v[k] <= hi))
+            return HF_ERROR_BAD_RANGE;
+        x[k] = u[k] * (double)m->width;
+        y[k] = v[k] * (double)m->height;
+    }
+    return HF_OK;
+}
+
+/* Texels of the Bresenham line from (x0, y0) to (x1, y1), the end texel
+   excluded (it starts the next edge), the start included even when the
+   line is a single texel. */
+HF__PRIVATE void hf__bresenham(const hf_map *m, int x0, int y0, int x1,
+                               int y1, double *sum, double *n)
+{
+    int dx = x1 > x0 ? x1 - x0 : x0 - x1, sx = x0 < x1 ? 1 : -1;
+    int dy = -(y1 > y0 ? y1 - y0 : y0 - y1), sy = y0 < y1 ? 1 : -1;
+    int err = dx + dy, e2;
+    if (x0 == x1 && y0 == y1) {
+        *sum += hf__texel0(m, x0, y0);
+        *n += 1.0;
+        return;
+    }
+    while (x0 != x1 || y0 != y1) {
+        *sum += hf__texel0(m, x0, y0);
+        *n += 1.0;
+        e2 = 2 * err;
+        if (e2 >= dy) {
+            err += dy;
+            x0 += sx;
+        }
+        if (e2 <= dx) {
+            err += dx;
+            y0 += sy;
+        }
+    }
+}
+
+/* Sutherland-Hodgman against one axis-aligned line: keeps the part with
+   p[axis] >= value (above != 0) or <= value. At most 2 n points out. */
+HF__PRIVATE int hf__clip_half(const double *in, int n, double *out, int axis,
+                              double value, int above)
+{
+    int i, m = 0;
+    for (i = 0; i < n; ++i) {
+        const double *p = in + 2 * i;
+        const double *q = in + 2 * ((i + 1) % n);
+        double dp = above ? p[axis] - value : value - p[axis];
+        double dq = above ? q[axis] - value : value - q[axis];
+        if (dp >= 0.0) {
+            out[2 * m] = p[0];
+            out[2 * m + 1] = p[1];
+            ++m;
+        }
+        if ((dp >= 0.0) != (dq >= 0.0)) {
+            double t = dp / (dp - dq);
+            out[2 * m] = p[0] + t * (q[0] - p[0]);
+            out[2 * m + 1] = p[1] + t * (q[1] - p[1]);
+            ++m;
+        }
+    }
+    return m;
+}
+
+HF__PRIVATE double hf__poly_area(const double *p, int n)
+{
+    double s = 0.0;
+    int i;
+    for (i = 0; i < n; ++i) {
+        const double *a = p + 2 * i, *b = p + 2 * ((i + 1) % n);
+        s += a[0] * b[1] - b[0] * a[1];
+    }
+    return 0.5 * HF_FABS(s);
+}
+
+/* Exact coverage rasteriser: the triangle is clipped to each texel row,
+   then each row piece to each texel of the row; every texel's value is
+   weighted by the area inside it. Returns the weight sum (0: no area). */
+HF__PRIVATE double hf__area_mean(const hf_map *m, const double *x,
+                                 const double *y, double *mean)
+{
+    /* 3 points clipped by 4 lines: at most 48 (2 n per clip) */
+    double tri[6], a[96], row[96], b[96], cell[96];
+    double ymin = y[0], ymax = y[0], sum = 0.0, wsum = 0.0;
+    int k, j, j0, j1;
+    for (k = 0; k < 3; ++k) {
+        tri[2 * k] = x[k];
+        tri[2 * k + 1] = y[k];
+        if (y[k] < ymin) ymin = y[k];
+        if (y[k] > ymax) ymax = y[k];
+    }
+    j0 = (int)HF_FLOOR(ymin);
+    j1 = (int)HF_CEIL(ymax);
+    if (j1 <= j0) j1 = j0 + 1;
+    for (j = j0; j < j1; ++j) {
+        int n = hf__clip_half(tri, 3, a, 1, (double)j, 1), i, i0, i1;
+        double xmin, xmax;
+        n = n >= 3 ? hf__clip_half(a, n, row, 1, (double)j + 1.0, 0) : 0;
+        if (n < 3) continue;
+        xmin = xmax = row[0];
+        for (k = 1; k < n; ++k) {
+            if (row[2 * k] < xmin) xmin = row[2 * k];
+            if (row[2 * k] > xmax) xmax = row[2 * k];
+        }
+        i0 = (int)HF_FLOOR(xmin);
+        i1 = (int)HF_CEIL(xmax);
+        if (i1 <= i0) i1 = i0 + 1;
+        for (i = i0; i < i1; ++i) {
+            int c = hf__clip_half(row, n, b, 0, (double)i, 1);
+            double w;
+            c = c >= 3 ? hf__clip_half(b, c, cell, 0, (double)i + 1.0, 0) : 0;
+            if (c < 3) continue;
+            w = hf__poly_area(cell, c);
+            if (w > 0.0) {
+                sum += w * (double)hf__texel0(m, i, j);
+                wsum += w;
+            }
+        }
+    }
+    *mean = wsum > 0.0 ? sum / wsum : 0.0;
+    return wsum;
+}
+
+/* Density of a UV triangle; `m` validated or NULL (density 1). */
+HF__PRIVATE hf_result hf__density(const hf_map *m, const float *a,
+                                  const float *b, const float *c,
+                                  int est, float *out)
+{
+    double x[3], y[3];
+    hf_result r;
+    if (!m) {
+        *out = 1.0f;
+        return HF_OK;
+    }
+    if (est != HF_DENSITY_CORNERS) {
+        r = hf__texel_space(m, a, b, c, x, y);
+        if (r != HF_OK) return r;
+        if (est == HF_DENSITY_EDGES) {
+            double sum = 0.0, n = 0.0;
+            int xi[3], yi[3], k;
+            for (k = 0; k < 3; ++k) {
+                xi[k] = (int)HF_FLOOR(x[k]);
+                yi[k] = (int)HF_FLOOR(y[k]);
+            }
+            for (k = 0; k < 3; ++k)
+                hf__bresenham(m, xi[k], yi[k], xi[(k + 1) % 3],
+                              yi[(k + 1) % 3], &sum, &n);
+            *out = (float)(sum / n);
+            return HF_OK;
+        } else {
+            double mean;
+            if (hf__area_mean(m, x, y, &mean) > 0.0) {
+                *out = (float)mean;
+                return HF_OK;
+            }
+            /* zero UV area: no interior to average, use the corners */
+        }
+    }
+    *out = (hf__sample0(m, a[0], a[1]) + hf__sample0(m, b[0], b[1]) +
+            hf__sample0(m, c[0], c[1])) /
+           3.0f;
+    return HF_OK;
+}
+
+HFDEF hf_result hf_uv_triangle_density(const hf_map *density,
+                                       const float uv0[2], const float uv1[2],
+                                       const float uv2[2],
+                                       int estimator, float *out_density)
+{
+    hf_result r;
+    float d;
+    if (!uv0 || !uv1 || !uv2 || !out_density) return HF_ERROR_NULL_POINTER;
+    if (density && (r = hf_map_validate(density, NULL)) != HF_OK) return r;
+    if (!hf__all_finite(uv0, 2) || !hf__all_finite(uv1, 2) ||
+        !hf__all_finite(uv2, 2))
+        return HF_ERROR_NON_FINITE;
+    if (estimator < 0 || estimator > 2)
+        return HF_ERROR_BAD_PARAMETER;
+    r = hf__density(density, uv0, uv1, uv2, estimator, &d);
+    if (r != HF_OK) return r;
+    *out_density = d;
+    return HF_OK;
+}
+
+/* ---- 5.2 density tessellation ------------------------------------------- */
+
+typedef struct hf__tess_corner {
+    uint32_t ref;  /* index in the output vertex list */
+    float bary[3]; /* in the base triangle */
+    float pos[3];
+    float uv[2];
+} hf__tess_corner;
+
+typedef struct hf__tess_item {
+    hf__tess_corner c[3];
+    int depth;
+} hf__tess_item;
+
+typedef struct hf__tess_ctx {
+    const hf_mesh *mesh;
+    const hf_map *density;
+    float factor;
+    int estimator, split;
+    uint64_t seed;
+    int max_depth, max_triangles, refuse_degenerate;
+    /* results of a run */
+    long long triangles, added;
+    int depth;
+} hf__tess_ctx;
+
+/* One pass over every base triangle: counts (out NULL) or fills the
+   arrays of out that are not NULL. Both passes make the same decisions
+   from the same arithmetic, so the fill pass writes exactly what the
+   count pass counted. */
+HF__PRIVATE hf_result hf__tess_run(hf__tess_ctx *c, hf_tess_output *out)
+{
+    const hf_mesh *m = c->mesh;
+    /* depth-first: at most 2 siblings wait per level, plus the current */
+    hf__tess_item stack[2 * HF_TESS_MAX_DEPTH + 2];
+    long long tris = m->triangle_count, added = 0, emitted = 0;
+    const uint32_t V = (uint32_t)m->vertex_count;
+    int t, depth = 0, any_area = 0;
+    if (tris > c->max_triangles) return HF_ERROR_TRIANGLE_CAP;
+    for (t = 0; t < m->triangle_count; ++t) {
+        const uint32_t *tri = m->indices + 3 * (size_t)t;
+        const float *P[3];
+        const float *UV[3];
+        static const float zero_uv[2] = {0.0f, 0.0f};
+        hf_rng rng;
+        int sp = 0, k;
+        float area;
+        hf__tess_item *root = &stack[sp++];
+        for (k = 0; k < 3; ++k) {
+            hf__tess_corner *q = &root->c[k];
+            P[k] = hf__mesh_pos(m, (int)tri[k]);
+            UV[k] = m->uvs ? hf__mesh_uv(m, (int)tri[k]) : zero_uv;
+            q->ref = tri[k];
+            q->bary[0] = k == 0 ? 1.0f : 0.0f;
+            q->bary[1] = k == 1 ? 1.0f : 0.0f;
+            q->bary[2] = k == 2 ? 1.0f : 0.0f;
+            HF_MEMCPY(q->pos, P[k], sizeof q->pos);
+            HF_MEMCPY(q->uv, UV[k], sizeof q->uv);
+        }
+        root->depth = 0;
+        area = hf_triangle_area(P[0], P[1], P[2]);
+        if (!hf__finitef(area)) return HF_ERROR_NON_FINITE;
+        if (area > 0.0f)
+            any_area = 1;
+        else if (c->refuse_degenerate)
+            return HF_ERROR_DEGENERATE;
+        /* one stream per base triangle: independent of the others */
+        hf_rng_seed(&rng, c->seed, (uint64_t)t);
+        while (sp > 0) {
+            hf__tess_item it = stack[--sp];
+            hf__tess_corner y;
+            float w[3], d = 1.0f;
+            int split = 0;
+            area = hf_triangle_area(it.c[0].pos, it.c[1].pos, it.c[2].pos);
+            if (area > 0.0f) {
+                hf_result r = hf__density(c->density, it.c[0].uv,
+                                          it.c[1].uv, it.c[2].uv,
+                                          c->estimator, &d);
+                if (r != HF_OK) return r;
+                split = d * area * c->factor > 1.0f;
+            }
+            if (!split) {
+                if (out && out->indices)
+                    for (k = 0; k < 3; ++k)
+                        out->indices[3 * (size_t)emitted + (size_t)k] =
+                            it.c[k].ref;
+                if (out && out->triangle_base)
+                    out->triangle_base[emitted] = (uint32_t)t;
+                ++emitted;
+                if (it.depth > depth) depth = it.depth;
+                continue;
+            }
+            if (it.depth >= c->max_depth) return HF_ERROR_DEPTH_CAP;
+            tris += 2;
+            if (tris > c->max_triangles) return HF_ERROR_TRIANGLE_CAP;
+            if (c->split == HF_SPLIT_RANDOM) {
+                /* uniform point of the triangle, pulled half way to the
+                   centroid: every weight >= 1/6 */
+                float s = HF_SQRTF(hf_rng_float(&rng)), r2 = hf_rng_float(&rng);
+                w[0] = 0.5f * (1.0f - s) + (1.0f / 6.0f);
+                w[1] = 0.5f * (s * (1.0f - r2)) + (1.0f / 6.0f);
+            } else {
+                w[0] = 1.0f / 3.0f;
+                w[1] = 1.0f / 3.0f;
+            }
+            w[2] = (1.0f - w[0]) - w[1];
+            hf__blend3(y.bary, it.c[0].bary, it.c[1].bary, it.c[2].bary, w);
+            hf__blend3(y.pos, P[0], P[1], P[2], y.bary);
+            hf__blend2(y.uv, UV[0], UV[1], UV[2], y.bary);
+            y.ref = V + (uint32_t)added;
+            if (out) {
+                size_t vi = (size_t)V + (size_t)added;
+                if (out->added) {
+                    out->added[added].triangle = (uint32_t)t;
+                    HF_MEMCPY(out->added[added].bary, y.bary, sizeof y.bary);
+                }
+                if (out->positions)
+                    HF_MEMCPY(out->positions + 3 * vi, y.pos, sizeof y.pos);
+                if (out->uvs) HF_MEMCPY(out->uvs + 2 * vi, y.uv, sizeof y.uv);
+            }
+            ++added;
+            /* children (a, b, Y), (b, c, Y), (c, a, Y): pushed in reverse
+               so they come out in that order */
+            for (k = 2; k >= 0; --k) {
+                hf__tess_item *ch = &stack[sp++];
+                ch->c[0] = it.c[k];
+                ch->c[1] = it.c[(k + 1) % 3];
+                ch->c[2] = y;
+                ch->depth = it.depth + 1;
+            }
+        }
+    }
+    if (!any_area) return HF_ERROR_DEGENERATE;
+    HF_ASSERT(emitted == tris);
+    c->triangles = tris;
+    c->added = added;
+    c->depth = depth;
+    return HF_OK;
+}
+
+HFDEF hf_result hf_tessellate(const hf_mesh *mesh, const hf_map *density,
+                              const hf_tess_params *params,
+                              hf_tess_output *out)
+{
+    hf__tess_ctx c;
+    hf_result r;
+    long long vertices;
+    int writing;
+    if (!mesh || !params || !out) return HF_ERROR_NULL_POINTER;
+    if ((r = hf_mesh_validate(mesh, NULL)) != HF_OK) return r;
+    if (density && (r = hf_map_validate(density, NULL)) != HF_OK) return r;
+    if ((density || out->uvs) && !mesh->uvs) return HF_ERROR_NULL_POINTER;
+    if (!hf__finitef(params->factor) || !(params->factor > 0.0f) ||
+        params->estimator < 0 || params->estimator > 2 ||
+        params->split < 0 || params->split > 1 ||
+        params->max_depth < 0 || params->max_depth > HF_TESS_MAX_DEPTH ||
+        params->max_triangles < 0 ||
+        params->max_triangles > HF_TESS_MAX_TRIANGLES)
+        return HF_ERROR_BAD_PARAMETER;
+    c.mesh = mesh;
+    c.density = density;
+    c.factor = params->factor;
+    c.estimator = params->estimator;
+    c.split = params->split;
+    c.seed = params->seed;
+    c.max_depth =
+        params->max_depth ? params->max_depth : HF_TESS_DEFAULT_MAX_DEPTH;
+    c.max_triangles = params->max_triangles ? params->max_triangles
+                                            : HF_TESS_DEFAULT_MAX_TRIANGLES;
+    c.refuse_degenerate = params->refuse_degenerate != 0;
+    /* the counting pass: every error, caps included, comes from here */
+    if ((r = hf__tess_run(&c, NULL)) != HF_OK) return r;
+    vertices = (long long)mesh->vertex_count + c.added;
+    if (vertices > 0x7fffffffLL) return HF_ERROR_OVERFLOW;
+    writing = out->indices || out->triangle_base || out->added ||
+              out->positions || out->uvs;
+    if (writing) {
+        hf__tess_ctx fill = c;
+        if (((out->indices || out->triangle_base) &&
+             out->triangle_capacity < c.triangles) ||
+            (out->added && out->added_capacity < c.added) ||
+            ((out->positions || out->uvs) && out->vertex_capacity < vertices))
+            return HF_ERROR_BUFFER_TOO_SMALL;
+        r = hf__tess_run(&fill, out);
+        HF_ASSERT(r == HF_OK && fill.triangles == c.triangles &&
+                  fill.added == c.added);
+        (void)r;
+        if (out->positions || out->uvs) {
+            int i;
+            for (i = 0; i < mesh->vertex_count; ++i) {
+                if (out->positions)
+                    HF_MEMCPY(out->positions + 3 * (size_t)i,
+                              hf__mesh_pos(mesh, i), 3 * sizeof(float));
+                if (out->uvs)
+                    HF_MEMCPY(out->uvs + 2 * (size_t)i, hf__mesh_uv(mesh, i),
+                              2 * sizeof(float));
+            }
+        }
+    }
+    out->triangle_count = (int)c.triangles;
+    out->added_count = (int)c.added;
+    out->vertex_count = (int)vertices;
+    out->depth = c.depth;
+    return HF_OK;
+}
+
+/* The checks a per-frame function needs on a mesh view, without reading
+   every element (hf_mesh_validate does that, once, at creation). */
+HF__PRIVATE hf_result hf__mesh_shape_ok(const hf_mesh *m)
+{
+    if (!m || !m->positions || !m->indices) return HF_ERROR_NULL_POINTER;
+    if (m->vertex_count < 1 || m->triangle_count < 1) return HF_ERROR_BAD_COUNT;
+    if ((m->position_stride != 0 && m->position_stride < 12) ||
+        (m->normal_stride != 0 && m->normal_stride < 12) ||
+        (m->uv_stride != 0 && m->uv_stride < 8))
+        return HF_ERROR_BAD_STRIDE;
+    return HF_OK;
+}
+
+/* (first, count) inside an array of `total`. */
+HF__PRIVATE hf_result hf__span_ok(int total, int first, int count)
+{
+    if (total < 0 || first < 0 || count < 0 || first > total - count)
+        return HF_ERROR_BAD_RANGE;
+    return HF_OK;
+}
+
+/* A triangle index and its three vertex indices in range. */
+HF__PRIVATE hf_result hf__tri_ok(const hf_mesh *m, uint32_t t)
+{
+    const uint32_t *tri;
+    if (t >= (uint32_t)m->triangle_count) return HF_ERROR_INDEX_OUT_OF_RANGE;
+    tri = m->indices + 3 * (size_t)t;
+    if (tri[0] >= (uint32_t)m->vertex_count ||
+        tri[1] >= (uint32_t)m->vertex_count ||
+        tri[2] >= (uint32_t)m->vertex_count)
+        return HF_ERROR_INDEX_OUT_OF_RANGE;
+    return HF_OK;
+}
+
+/* Blend of the corner normals, each normalised first (skinning may scale
+   them); the face normal where the blend cancels. */
+HF__PRIVATE void hf__blend_normal(float *o, const hf_mesh *m,
+                                  const uint32_t *tri, const float *w)
+{
+    float n[3][3];
+    int k;
+    for (k = 0; k < 3; ++k) {
+        HF_MEMCPY(n[k], hf__mesh_nrm(m, (int)tri[k]), sizeof n[k]);
+        hf__normalize3(n[k]);
+    }
+    hf__blend3(o, n[0], n[1], n[2], w);
+    if (!hf__normalize3(o))
+        hf__face_normal(o, hf__mesh_pos(m, (int)tri[0]),
+                        hf__mesh_pos(m, (int)tri[1]),
+                        hf__mesh_pos(m, (int)tri[2]));
+}
+
+HFDEF hf_result hf_tess_evaluate(const hf_mesh *mesh,
+                                 const hf_tess_vertex *added, int added_count,
+                                 int first, int count, float *out_positions,
+                                 float *out_normals, float *out_uvs)
+{
+    hf_result r;
+    int i, k;
+    if ((r = hf__mesh_shape_ok(mesh)) != HF_OK) return r;
+    if ((r = hf__span_ok(added_count, first, count)) != HF_OK) return r;
+    if (count == 0) return HF_OK;
+    if (!added) return HF_ERROR_NULL_POINTER;
+    if ((out_normals && !mesh->normals) || (out_uvs && !mesh->uvs))
+        return HF_ERROR_NULL_POINTER;
+    /* check everything this range reads before writing anything */
+    for (i = first; i < first + count; ++i) {
+        const hf_tess_vertex *a = &added[i];
+        const uint32_t *tri;
+        if ((r = hf__tri_ok(mesh, a->triangle)) != HF_OK) return r;
+        if (!hf__all_finite(a->bary, 3)) return HF_ERROR_NON_FINITE;
+        tri = mesh->indices + 3 * (size_t)a->triangle;
+        for (k = 0; k < 3; ++k) {
+            if (!hf__all_finite(hf__mesh_pos(mesh, (int)tri[k]), 3))
+                return HF_ERROR_NON_FINITE;
+            if (out_normals &&
+                !hf__all_finite(hf__mesh_nrm(mesh, (int)tri[k]), 3))
+                return HF_ERROR_NON_FINITE;
+            if (out_uvs && !hf__all_finite(hf__mesh_uv(mesh, (int)tri[k]), 2))
+                return HF_ERROR_NON_FINITE;
+        }
+    }
+    for (i = first; i < first + count; ++i) {
+        const hf_tess_vertex *a = &added[i];
+        const uint32_t *tri = mesh->indices + 3 * (size_t)a->triangle;
+        if (out_positions)
+            hf__blend3(out_positions + 3 * (size_t)i,
+                       hf__mesh_pos(mesh, (int)tri[0]),
+                       hf__mesh_pos(mesh, (int)tri[1]),
+                       hf__mesh_pos(mesh, (int)tri[2]), a->bary);
+        if (out_normals)
+            hf__blend_normal(out_normals + 3 * (size_t)i, mesh, tri, a->bary);
+        if (out_uvs)
+            hf__blend2(out_uvs + 2 * (size_t)i, hf__mesh_uv(mesh, (int)tri[0]),
+                       hf__mesh_uv(mesh, (int)tri[1]),
+                       hf__mesh_uv(mesh, (int)tri[2]), a->bary);
+    }
+    return HF_OK;
+}
+
+/* ---- 5.3 guides --------------------------------------------------------- */
+
+/* Position bits with -0 folded onto +0, so welding compares values. */
+HF__PRIVATE void hf__pos_key(const float *p, uint32_t *k)
+{
+    int i;
+    for (i = 0; i < 3; ++i) {
+        float x = p[i] == 0.0f ? 0.0f : p[i];
+        HF_MEMCPY(&k[i], &x, 4);
+    }
+}
+
+HF__PRIVATE uint32_t hf__hash3(const uint32_t *k)
+{
+    uint32_t h = k[0] * 0x9E3779B1u;
+    h ^= (k[1] + 0x7F4A7C15u) * 0x85EBCA77u;
+    h ^= h >> 15;
+    h ^= (k[2] + 0x165667B1u) * 0xC2B2AE3Du;
+    h ^= h >> 13;
+    h *= 0x27D4EB2Fu;
+    h ^= h >> 16;
+    return h;
+}
+
+/* Combing direction from the map at uv (>= 3 channels): 8-bit as 2c - 1. */
+HF__PRIVATE void hf__comb_from_map(const hf_map *m, const float *uv,
+                                   float *o)
+{
+    float s[4];
+    int k;
+    hf_map_sample_fast(m, uv[0], uv[1], s);
+    for (k = 0; k < 3; ++k)
+        o[k] = m->format == HF_MAP_U8 ? 2.0f * s[k] - 1.0f : s[k];
+}
+
+HFDEF hf_result hf_guides_rest(const hf_mesh *mesh,
+                               const hf_tess_vertex *added, int added_count,
+                               const hf_guide_params *params,
+                               hf_guide_output *out,
+                               const hf_allocator *alloc)
+{
+    hf_result r;
+    int V, T, N, i, k, P = 0, writing;
+    size_t cap = 1, bytes = 0, n_v;
+    unsigned char *block;
+    float *nrm, *gn, *gd, *gl;
+    uint32_t *table, *gov, *rep, *gc;
+    const hf_map *lmap, *cmap;
+    if (!mesh || !params || !out) return HF_ERROR_NULL_POINTER;
+    if ((r = hf_mesh_validate(mesh, NULL)) != HF_OK) return r;
+    V = mesh->vertex_count;
+    T = mesh->triangle_count;
+    N = params->points;
+    lmap = params->length_map;
+    cmap = params->comb_map;
+    if (added_count < 0) return HF_ERROR_BAD_COUNT;
+    if (added_count > 0 && !added) return HF_ERROR_NULL_POINTER;
+    if (N < 2 || N > HF_GUIDE_MAX_POINTS) return HF_ERROR_BAD_COUNT;
+    if (!hf__finitef(params->max_length) || !(params->max_length > 0.0f))
+        return HF_ERROR_BAD_PARAMETER;
+    if (lmap && (r = hf_map_validate(lmap, NULL)) != HF_OK) return r;
+    if (cmap && (r = hf_map_validate(cmap, NULL)) != HF_OK) return r;
+    if (cmap && cmap->channels < 3) return HF_ERROR_BAD_PARAMETER;
+    if ((lmap || cmap) && !mesh->uvs) return HF_ERROR_NULL_POINTER;
+    if (params->comb) {
+        if (params->comb_stride != 0 && params->comb_stride < 12)
+            return HF_ERROR_BAD_STRIDE;
+        for (i = 0; i < V; ++i)
+            if (!hf__all_finite(
+                    hf__attr(params->comb, params->comb_stride, 12, i), 3))
+                return HF_ERROR_NON_FINITE;
+    }
+    for (i = 0; i < added_count; ++i) {
+        if (added[i].triangle >= (uint32_t)T)
+            return HF_ERROR_INDEX_OUT_OF_RANGE;
+        if (!hf__all_finite(added[i].bary, 3)) return HF_ERROR_NON_FINITE;
+        for (k = 0; k < 3; ++k)
+            if (!(added[i].bary[k] >= 0.0f && added[i].bary[k] <= 1.0f))
+                return HF_ERROR_BAD_PARAMETER;
+    }
+    if ((long long)V + added_count > 0x7fffffffLL) return HF_ERROR_OVERFLOW;
+
+    /* scratch: table (cap), gov, rep, gc (V each), normals (3V, when the
+       mesh has none), gn, gd (3V each), gl (V) */
+    while (cap < 2 * (size_t)V) cap <<= 1;
+    n_v = (size_t)V;
+    if (!hf__mul_size(n_v, (mesh->normals ? 3u : 6u) + 3u + 1u, &bytes) ||
+        !hf__mul_size(bytes, 4u, &bytes) ||
+        bytes + 4u * cap + 12u * n_v < bytes)
+        return HF_ERROR_OVERFLOW;
+    bytes += 4u * cap + 12u * n_v;
+    block = (unsigned char *)hf__alloc(alloc, bytes);
+    if (!block) return HF_ERROR_OUT_OF_MEMORY;
+    gn = (float *)block;
+    gd = gn + 3 * n_v;
+    gl = gd + 3 * n_v;
+    nrm = mesh->normals ? NULL : gl + n_v;
+    table = (uint32_t *)(nrm ? nrm + 3 * n_v : gl + n_v);
+    gov = table + cap;
+    rep = gov + n_v;
+    gc = rep + n_v;
+    if (nrm) {
+        r = hf_mesh_compute_normals(mesh, nrm);
+        HF_ASSERT(r == HF_OK);
+    }
+    HF_MEMSET(table, 0xff, 4u * cap);
+
+    /* weld by exact position: open addressing, linear probing */
+    for (i = 0; i < V; ++i) {
+        uint32_t key[3], h;
+        const float *p = hf__mesh_pos(mesh, i);
+        hf__pos_key(p, key);
+        h = hf__hash3(key) & (uint32_t)(cap - 1);
+        for (;;) {
+            uint32_t g = table[h];
+            if (g == 0xffffffffu) {
+                g = (uint32_t)P++;
+                table[h] = g;
+                rep[g] = (uint32_t)i;
+                gc[g] = 0;
+                gl[g] = 0.0f;
+                HF_MEMSET(gn + 3 * (size_t)g, 0, 12);
+                HF_MEMSET(gd + 3 * (size_t)g, 0, 12);
+                gov[i] = g;
+                break;
+            } else {
+                uint32_t k2[3];
+                hf__pos_key(hf__mesh_pos(mesh, (int)rep[g]), k2);
+                if (k2[0] == key[0] && k2[1] == key[1] && k2[2] == key[2]) {
+                    gov[i] = g;
+                    break;
+                }
+            }
+            h = (h + 1u) & (uint32_t)(cap - 1);
+        }
+    }
+    /* accumulate the copies: normals, combing, length */
+    for (i = 0; i < V; ++i) {
+        uint32_t g = gov[i];
+        float n[3], d[3];
+        HF_MEMCPY(n, nrm ? nrm + 3 * (size_t)i : hf__mesh_nrm(mesh, i), 12);
+        hf__normalize3(n);
+        for (k = 0; k < 3; ++k) gn[3 * g + k] += n[k];
+        if (cmap)
+            hf__comb_from_map(cmap, hf__mesh_uv(mesh, i), d);
+        else if (params->comb)
+            HF_MEMCPY(d, hf__attr(params->comb, params->comb_stride, 12, i),
+                      12);
+        else
+            d[0] = d[1] = d[2] = 0.0f;
+        if (hf__normalize3(d))
+            for (k = 0; k < 3; ++k) gd[3 * g + k] += d[k];
+        gl[g] += lmap ? hf__sample0(lmap, hf__mesh_uv(mesh, i)[0],
+                                    hf__mesh_uv(mesh, i)[1])
+                      : 1.0f;
+        gc[g] += 1u;
+    }
+    for (i = 0; i < P; ++i) {
+        float *n = gn + 3 * (size_t)i, *d = gd + 3 * (size_t)i;
+        if (!hf__normalize3(n)) {
+            /* opposite copies cancel: keep the first copy's */
+            uint32_t v = rep[i];
+            HF_MEMCPY(n, nrm ? nrm + 3 * (size_t)v : hf__mesh_nrm(mesh, (int)v),
+                      12);
+            if (!hf__normalize3(n)) n[0] = n[1] = 0.0f, n[2] = 1.0f;
+        }
+        if (!hf__normalize3(d)) HF_MEMCPY(d, n, 12);
+        gl[i] = params->max_length * (gl[i] / (float)gc[i]);
+    }
+
+    writing = out->points || out->lengths || out->directions ||
+              out->normals || out->guide_of_vertex;
+    if ((out->points || out->lengths || out->directions || out->normals) &&
+        out->guide_capacity < P + added_count) {
+        hf__free(alloc, block);
+        return HF_ERROR_BUFFER_TOO_SMALL;
+    }
+    if (writing) {
+        int G = P + added_count;
+        for (i = 0; i < G; ++i) {
+            float root[3], n[3], d[3], len;
+            int j;
+            if (i < P) {
+                HF_MEMCPY(root, hf__mesh_pos(mesh, (int)rep[i]), 12);
+                HF_MEMCPY(n, gn + 3 * (size_t)i, 12);
+                HF_MEMCPY(d, gd + 3 * (size_t)i, 12);
+                len = gl[i];
+            } else {
+                const hf_tess_vertex *a = &added[i - P];
+                const uint32_t *tri = mesh->indices + 3 * (size_t)a->triangle;
+                uint32_t g0 = gov[tri[0]], g1 = gov[tri[1]], g2 = gov[tri[2]];
+                float uv[2];
+                hf__blend3(root, hf__mesh_pos(mesh, (int)tri[0]),
+                           hf__mesh_pos(mesh, (int)tri[1]),
+                           hf__mesh_pos(mesh, (int)tri[2]), a->bary);
+                hf__blend3(n, gn + 3 * (size_t)g0, gn + 3 * (size_t)g1,
+                           gn + 3 * (size_t)g2, a->bary);
+                if (!hf__normalize3(n))
+                    hf__face_normal(n, hf__mesh_pos(mesh, (int)tri[0]),
+                                    hf__mesh_pos(mesh, (int)tri[1]),
+                                    hf__mesh_pos(mesh, (int)tri[2]));
+                uv[0] = uv[1] = 0.0f;
+                if (mesh->uvs)
+                    hf__blend2(uv, hf__mesh_uv(mesh, (int)tri[0]),
+                               hf__mesh_uv(mesh, (int)tri[1]),
+                               hf__mesh_uv(mesh, (int)tri[2]), a->bary);
+                if (cmap)
+                    hf__comb_from_map(cmap, uv, d);
+                else if (params->comb)
+                    hf__blend3(d, gd + 3 * (size_t)g0, gd + 3 * (size_t)g1,
+                               gd + 3 * (size_t)g2, a->bary);
+                else
+                    HF_MEMCPY(d, n, 12);
+                if (!hf__normalize3(d)) HF_MEMCPY(d, n, 12);
+                len = params->max_length *
+                      (lmap ? hf__sample0(lmap, uv[0], uv[1]) : 1.0f);
+            }
+            if (out->points)
+                for (j = 0; j < N; ++j) {
+                    float *o = out->points + 3 * ((size_t)i * (size_t)N +
+                                                  (size_t)j);
+                    float s = len * ((float)j / (float)(N - 1));
+                    o[0] = root[0] + d[0] * s;
+                    o[1] = root[1] + d[1] * s;
+                    o[2] = root[2] + d[2] * s;
+                }
+            if (out->lengths) out->lengths[i] = len;
+            if (out->directions)
+                HF_MEMCPY(out->directions + 3 * (size_t)i, d, 12);
+            if (out->normals) HF_MEMCPY(out->normals + 3 * (size_t)i, n, 12);
+        }
+        if (out->guide_of_vertex) {
+            for (i = 0; i < V; ++i) out->guide_of_vertex[i] = gov[i];
+            for (i = 0; i < added_count; ++i)
+                out->guide_of_vertex[V + i] = (uint32_t)(P + i);
+        }
+    }
+    out->guide_count = P + added_count;
+    out->pure_guide_count = P;
+    hf__free(alloc, block);
+    return HF_OK;
+}
+
+/* ---- 5.4 strand placement ----------------------------------------------- */
+
+HF__PRIVATE uint32_t hf__reverse_bits(uint32_t x)
+{
+    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+    x = ((x >> 4) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4);
+    x = ((x >> 8) & 0x00FF00FFu) | ((x & 0x00FF00FFu) << 8);
+    return (x >> 16) | (x << 16);
+}
+
+/* Second dimension of the Sobol sequence (Kollig and Keller 2002). */
+HF__PRIVATE uint32_t hf__sobol2(uint32_t i)
+{
+    uint32_t r = 0, v;
+    for (v = 1u << 31; i; i >>= 1, v ^= v >> 1)
+        if (i & 1u) r ^= v;
+    return r;
+}
+
+HF__PRIVATE float hf__u32_to_unit(uint32_t x)
+{
+    return (float)(x >> 8) * (1.0f / 16777216.0f);
+}
+
+typedef struct hf__place_ctx {
+    const hf_mesh *mesh;
+    const hf_map *density;
+    int estimator, refuse_degenerate;
+} hf__place_ctx;
+
+/* Weight density * area of triangle t (0 for zero area). */
+HF__PRIVATE hf_result hf__place_weight(const hf__place_ctx *c, int t,
+                                       float *w, int *has_area)
+{
+    const hf_mesh *m = c->mesh;
+    const uint32_t *tri = m->indices + 3 * (size_t)t;
+    float area = hf_triangle_area(hf__mesh_pos(m, (int)tri[0]),
+                                  hf__mesh_pos(m, (int)tri[1]),
+                                  hf__mesh_pos(m, (int)tri[2]));
+    float d = 1.0f;
+    if (!hf__finitef(area)) return HF_ERROR_NON_FINITE;
+    *has_area = area > 0.0f;
+    if (!(area > 0.0f)) {
+        *w = 0.0f;
+        return c->refuse_degenerate ? HF_ERROR_DEGENERATE : HF_OK;
+    }
+    if (c->density) {
+        hf_result r = hf__density(c->density, hf__mesh_uv(m, (int)tri[0]),
+                                  hf__mesh_uv(m, (int)tri[1]),
+                                  hf__mesh_uv(m, (int)tri[2]), c->estimator,
+                                  &d);
+        if (r != HF_OK) return r;
+    }
+    *w = d * area;
+    return HF_OK;
+}
+
+/* Stable LSD radix sort of 64-bit items by their high 32 bits (4 passes of
+   8 bits); the result ends in `a`. */
+HF__PRIVATE void hf__radix_hi32(uint64_t *a, uint64_t *tmp, size_t n)
+{
+    size_t count[256], i;
+    int pass;
+    for (pass = 0; pass < 4; ++pass) {
+        int shift = 32 + 8 * pass;
+        size_t sum = 0;
+        uint64_t *t;
+        HF_MEMSET(count, 0, sizeof count);
+        for (i = 0; i < n; ++i) ++count[(a[i] >> shift) & 255u];
+        for (i = 0; i < 256; ++i) {
+            size_t c = count[i];
+            count[i] = sum;
+            sum += c;
+        }
+        for (i = 0; i < n; ++i) tmp[count[(a[i] >> shift) & 255u]++] = a[i];
+        t = a;
+        a = tmp;
+        tmp = t;
+    }
+}
+
+HFDEF hf_result hf_place_strands(const hf_mesh *mesh, const hf_map *density,
+                                 const hf_place_params *params,
+                                 hf_strand *out, int capacity,
+                                 int *out_count, const hf_allocator *alloc)
+{
+    hf__place_ctx c;
+    hf_result r;
+    hf_rng rng;
+    double S = 0.0, X, u0, prev_floor;
+    long long K;
+    int t, T, max_strands, any_area = 0;
+    uint64_t *keys, *tmp;
+    size_t n, bytes, done = 0;
+    if (!mesh || !params || !out_count) return HF_ERROR_NULL_POINTER;
+    if ((r = hf_mesh_validate(mesh, NULL)) != HF_OK) return r;
+    if (density && (r = hf_map_validate(density, NULL)) != HF_OK) return r;
+    if (density && !mesh->uvs) return HF_ERROR_NULL_POINTER;
+    if (params->total_strands < 0) return HF_ERROR_BAD_COUNT;
+    if (params->estimator < 0 || params->estimator > 2 ||
+        params->sampler < 0 || params->sampler > 2 ||
+        params->max_strands < 0 || params->max_strands > HF_MAX_STRANDS)
+        return HF_ERROR_BAD_PARAMETER;
+    if (params->total_strands == 0 &&
+        (!hf__finitef(params->strands_per_area) ||
+         !(params->strands_per_area > 0.0f)))
+        return HF_ERROR_BAD_PARAMETER;
+    max_strands = params->max_strands ? params->max_strands : HF_MAX_STRANDS;
+    c.mesh = mesh;
+    c.density = density;
+    c.estimator = params->estimator;
+    c.refuse_degenerate = params->refuse_degenerate != 0;
+    T = mesh->triangle_count;
+
+    /* counting pass: S = sum of density * area */
+    for (t = 0; t < T; ++t) {
+        float w;
+        int has_area;
+        if ((r = hf__place_weight(&c, t, &w, &has_area)) != HF_OK) return r;
+        any_area |= has_area;
+        S += (double)w;
+    }
+    if (!any_area) return HF_ERROR_DEGENERATE;
+    if (params->total_strands > 0) {
+        if (!(S > 0.0)) return HF_ERROR_DEGENERATE;
+        X = (double)params->total_strands;
+    } else {
+        X = S * (double)params->strands_per_area;
+    }
+    hf_rng_seed(&rng, params->seed, 0u);
+    u0 = (double)hf_rng_float(&rng);
+    /* finite and no more than max_strands (X + u0 < max + 1) */
+    if (!(X + u0 < (double)max_strands + 1.0)) return HF_ERROR_OVERFLOW;
+    K = (long long)HF_FLOOR(X + u0);
+    if (!out) {
+        *out_count = (int)K;
+        return HF_OK;
+    }
+    if (capacity < K) return HF_ERROR_BUFFER_TOO_SMALL;
+    if (K == 0) {
+        *out_count = 0;
+        return HF_OK;
+    }
+    n = (size_t)K;
+    if (!hf__mul_size(n, 2u * sizeof(uint64_t), &bytes))
+        return HF_ERROR_OVERFLOW;
+    keys = (uint64_t *)hf__alloc(alloc, bytes);
+    if (!keys) return HF_ERROR_OUT_OF_MEMORY;
+    tmp = keys + n;
+
+    /* fill pass: same weights, same running sum, systematic rounding */
+    {
+        double cum = 0.0;
+        prev_floor = HF_FLOOR(u0);
+        for (t = 0; t < T; ++t) {
+            const uint32_t *tri = mesh->indices + 3 * (size_t)t;
+            static const float zero_uv[2] = {0.0f, 0.0f};
+            const float *uv0 = mesh->uvs ? hf__mesh_uv(mesh, (int)tri[0]) : zero_uv;
+            const float *uv1 = mesh->uvs ? hf__mesh_uv(mesh, (int)tri[1]) : zero_uv;
+            const float *uv2 = mesh->uvs ? hf__mesh_uv(mesh, (int)tri[2]) : zero_uv;
+            float w, ut;
+            double C, fl;
+            uint32_t nt, k, sx, sy;
+            int has_area;
+            hf_rng trng;
+            r = hf__place_weight(&c, t, &w, &has_area);
+            HF_ASSERT(r == HF_OK);
+            cum += (double)w;
+            C = t == T - 1 ? X : X * (cum / S);
+            fl = HF_FLOOR(C + u0);
+            nt = (uint32_t)(fl - prev_floor);
+            prev_floor = fl;
+            if (nt == 0) continue;
+            HF_ASSERT(done + nt <= n);
+            hf_rng_seed(&trng, params->seed, (uint64_t)t + 1u);
+            ut = hf_rng_float(&trng);
+            sx = hf_rng_u32(&trng);
+            sy = hf_rng_u32(&trng);
+            for (k = 0; k < nt; ++k) {
+                hf_strand *s = &out[done];
+                float b[3];
+                double key;
+                uint32_t q;
+                if (params->sampler == HF_SAMPLER_STRATIFIED) {
+                    /* Heitz 2019: area-preserving, low distortion */
+                    float x = hf__u32_to_unit(hf__reverse_bits(k) ^ sx);
+                    float y = hf__u32_to_unit(hf__sobol2(k) ^ sy);
+                    if (y > x) {
+                        x *= 0.5f;
+                        y -= x;
+                    } else {
+                        y *= 0.5f;
+                        x -= y;
+                    }
+                    b[0] = x;
+                    b[1] = y;
+                } else if (params->sampler == HF_SAMPLER_CORNER_BIASED) {
+                    float r1 = hf_rng_float(&trng), r2 = hf_rng_float(&trng);
+                    b[0] = r1;
+                    b[1] = r2 * (1.0f - r1);
+                } else {
+                    float r1 = hf_rng_float(&trng), r2 = hf_rng_float(&trng);
+                    float sq = HF_SQRTF(r1);
+                    b[0] = 1.0f - sq;
+                    b[1] = sq * (1.0f - r2);
+                }
+                if (b[0] < 0.0f) b[0] = 0.0f;
+                if (b[1] < 0.0f) b[1] = 0.0f;
+                if (b[0] + b[1] > 1.0f) b[1] = 1.0f - b[0];
+                b[2] = (1.0f - b[0]) - b[1];
+                s->triangle = (uint32_t)t;
+                s->bary[0] = b[0];
+                s->bary[1] = b[1];
+                hf__blend2(s->uv, uv0, uv1, uv2, b);
+                s->random = hf_rng_float(&trng);
+                key = ((double)k + (double)ut) / (double)nt;
+                q = key >= 1.0 ? 0xffffffffu
+                               : (uint32_t)(key * 4294967296.0);
+                keys[done] = ((uint64_t)q << 32) | (uint64_t)done;
+                ++done;
+            }
+        }
+    }
+    HF_ASSERT(done == n);
+
+    /* LOD order: stable sort by key, then apply the permutation in place
+       (position p takes the record that was at perm[p]) */
+    hf__radix_hi32(keys, tmp, n);
+    {
+        uint32_t *perm = (uint32_t *)tmp;
+        size_t p;
+        for (p = 0; p < n; ++p) perm[p] = (uint32_t)keys[p];
+        for (p = 0; p < n; ++p) {
+            size_t s = p, q;
+            hf_strand hold;
+            if (perm[p] == (uint32_t)p) continue;
+            hold = out[s];
+            for (;;) {
+                q = perm[s];
+                perm[s] = (uint32_t)s;
+                if (q == p) {
+                    out[s] = hold;
+                    break;
+                }
+                out[s] = out[q];
+                s = q;
+            }
+        }
+    }
+    hf__free(alloc, keys);
+    *out_count = (int)K;
+    return HF_OK;
+}
+
+/* Strand records in [first, first + count): triangle in range for `m`
+   (when given) and weights and uv finite. */
+HF__PRIVATE hf_result hf__strands_ok(const hf_strand *s, int strand_count,
+                                     int first, int count, const hf_mesh *m)
+{
+    hf_result r;
+    int i;
+    if ((r = hf__span_ok(strand_count, first, count)) != HF_OK) return r;
+    if (count > 0 && !s) return HF_ERROR_NULL_POINTER;
+    for (i = first; i < first + count; ++i) {
+        if (m && (r = hf__tri_ok(m, s[i].triangle)) != HF_OK) return r;
+        if (!hf__all_finite(s[i].bary, 2) || !hf__all_finite(s[i].uv, 2))
+            return HF_ERROR_NON_FINITE;
+    }
+    return HF_OK;
+}
+
+HFDEF hf_result hf_strand_roots(const hf_mesh *mesh, const hf_strand *strands,
+                                int strand_count, int first, int count,
+                                float *out_positions)
+{
+    hf_result r;
+    int i, k;
+    if (!out_positions) return HF_ERROR_NULL_POINTER;
+    if ((r = hf__mesh_shape_ok(mesh)) != HF_OK) return r;
+    if ((r = hf__strands_ok(strands, strand_count, first, count, mesh)) !=
+        HF_OK)
+        return r;
+    for (i = first; i < first + count; ++i) {
+        const uint32_t *tri = mesh->indices + 3 * (size_t)strands[i].triangle;
+        for (k = 0; k < 3; ++k)
+            if (!hf__all_finite(hf__mesh_pos(mesh, (int)tri[k]), 3))
+                return HF_ERROR_NON_FINITE;
+    }
+    for (i = first; i < first + count; ++i) {
+        const hf_strand *s = &strands[i];
+        const uint32_t *tri = mesh->indices + 3 * (size_t)s->triangle;
+        float w[3];
+        w[0] = s->bary[0];
+        w[1] = s->bary[1];
+        w[2] = (1.0f - s->bary[0]) - s->bary[1];
+        hf__blend3(out_positions + 3 * (size_t)i,
+                   hf__mesh_pos(mesh, (int)tri[0]),
+                   hf__mesh_pos(mesh, (int)tri[1]),
+                   hf__mesh_pos(mesh, (int)tri[2]), w);
+    }
+    return HF_OK;
+}
+
+/* ---- 5.5 maps on strands ------------------------------------------------ */
+
+HFDEF hf_result hf_strand_lengths(const hf_strand *strands, int strand_count,
+                                  int first, int count,
+                                  const hf_map *length_map, float max_length,
+                                  float *out_lengths)
+{
+    hf_result r;
+    int i;
+    if (!out_lengths) return HF_ERROR_NULL_POINTER;
+    if (length_map && (r = hf_map_validate(length_map, NULL)) != HF_OK)
+        return r;
+    if (!hf__finitef(max_length) || max_length < 0.0f)
+        return HF_ERROR_BAD_PARAMETER;
+    if ((r = hf__strands_ok(strands, strand_count, first, count, NULL)) !=
+        HF_OK)
+        return r;
+    for (i = first; i < first + count; ++i)
+        out_lengths[i] =
+            max_length * (length_map ? hf__sample0(length_map, strands[i].uv[0],
+                                                   strands[i].uv[1])
+                                     : 1.0f);
+    return HF_OK;
+}
+
+/* A sample of `channels` channels expanded to rgba (grey, grey + alpha,
+   rgb, rgba). */
+HF__PRIVATE void hf__expand_rgba(int channels, const float *s, float *o)
+{
+    switch (channels) {
+    case 1:
+        o[0] = o[1] = o[2] = s[0];
+        o[3] = 1.0f;
+        break;
+    case 2:
+        o[0] = o[1] = o[2] = s[0];
+        o[3] = s[1];
+        break;
+    case 3:
+        o[0] = s[0];
+        o[1] = s[1];
+        o[2] = s[2];
+        o[3] = 1.0f;
+        break;
+    default:
+        o[0] = s[0];
+        o[1] = s[1];
+        o[2] = s[2];
+        o[3] = s[3];
+        break;
+    }
+}
+
+HFDEF hf_result hf_strand_colors(const hf_strand *strands, int strand_count,
+                                 int first, int count,
+                                 const hf_map *color_map, float *out_rgba)
+{
+    hf_result r;
+    int i;
+    if (!out_rgba || !color_map) return HF_ERROR_NULL_POINTER;
+    if ((r = hf_map_validate(color_map, NULL)) != HF_OK) return r;
+    if ((r = hf__strands_ok(strands, strand_count, first, count, NULL)) !=
+        HF_OK)
+        return r;
+    for (i = first; i < first + count; ++i) {
+        float s[4];
+        hf_map_sample_fast(color_map, strands[i].uv[0], strands[i].uv[1], s);
+        hf__expand_rgba(color_map->channels, s, out_rgba + 4 * (size_t)i);
+    }
+    return HF_OK;
+}
+
+HFDEF hf_result hf_color3d_coord(const hf_map *index_map, float u, float v,
+                                 float t, float out_xy[2])
+{
+    hf_result r;
+    float s[4];
+    if (!index_map || !out_xy) return HF_ERROR_NULL_POINTER;
+    if ((r = hf_map_validate(index_map, NULL)) != HF_OK) return r;
+    if (!hf__finitef(u) || !hf__finitef(v) || !hf__finitef(t))
+        return HF_ERROR_NON_FINITE;
+    hf_map_sample_fast(index_map, u, v, s);
+    out_xy[0] = hf__clamp01(s[0]);
+    out_xy[1] = hf__clamp01(t);
+    return HF_OK;
+}
+
+HFDEF hf_result hf_color3d_sample(const hf_map *index_map, const hf_map *ramp,
+                                  float u, float v, float t, float out[4])
+{
+    hf_result r;
+    float xy[2], s[4];
+    if (!ramp || !out) return HF_ERROR_NULL_POINTER;
+    if ((r = hf_map_validate(ramp, NULL)) != HF_OK) return r;
+    if ((r = hf_color3d_coord(index_map, u, v, t, xy)) != HF_OK) return r;
+    hf_map_sample_fast(ramp, xy[0], xy[1], s);
+    hf__expand_rgba(ramp->channels, s, out);
+    return HF_OK;
+}
+
+/* ---- 5.6 binding strands to guides ------------------------------------- */
+
+HFDEF hf_result hf_bind_strands(const hf_mesh *guide_mesh,
+                                const uint32_t *guide_of_vertex,
+                                int guide_count, const hf_strand *strands,
+                                int strand_count, int first, int count,
+                                const float *strand_lengths,
+                                const float *guide_lengths,
+                                hf_strand_binding *out)
+{
+    hf_result r;
+    int i, k;
+    if (!guide_of_vertex || !out) return HF_ERROR_NULL_POINTER;
+    if (strand_lengths && !guide_lengths) return HF_ERROR_NULL_POINTER;
+    if (guide_count < 1) return HF_ERROR_BAD_COUNT;
+    if ((r = hf__mesh_shape_ok(guide_mesh)) != HF_OK) return r;
+    if ((r = hf__strands_ok(strands, strand_count, first, count,
+                            guide_mesh)) != HF_OK)
+        return r;
+    for (i = first; i < first + count; ++i) {
+        const uint32_t *tri =
+            guide_mesh->indices + 3 * (size_t)strands[i].triangle;
+        for (k = 0; k < 3; ++k) {
+            uint32_t g = guide_of_vertex[tri[k]];
+            if (g >= (uint32_t)guide_count)
+                return HF_ERROR_INDEX_OUT_OF_RANGE;
+            if (guide_lengths && !hf__finitef(guide_lengths[g]))
+                return HF_ERROR_NON_FINITE;
+        }
+        if (strand_lengths && !hf__finitef(strand_lengths[i]))
+            return HF_ERROR_NON_FINITE;
+    }
+    for (i = first; i < first + count; ++i) {
+        const hf_strand *s = &strands[i];
+        const uint32_t *tri = guide_mesh->indices + 3 * (size_t)s->triangle;
+        hf_strand_binding *b = &out[i];
+        b->weight[0] = s->bary[0];
+        b->weight[1] = s->bary[1];
+        b->weight[2] = (1.0f - s->bary[0]) - s->bary[1];
+        for (k = 0; k < 3; ++k) b->guide[k] = guide_of_vertex[tri[k]];
+        b->length_scale = 1.0f;
+        if (strand_lengths) {
+            float gl = b->weight[0] * guide_lengths[b->guide[0]] +
+                       b->weight[1] * guide_lengths[b->guide[1]] +
+                       b->weight[2] * guide_lengths[b->guide[2]];
+            float sc = gl > 0.0f ? strand_lengths[i] / gl : 1.0f;
+            b->length_scale = hf__finitef(sc) && sc >= 0.0f ? sc : 1.0f;
+        }
+    }
+    return HF_OK;
+}
+
 /* ---- 9. interpolation and LOD ------------------------------------------- */
 
 HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
@@ -1275,7 +3018,7 @@ HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
         const float *g1 = guide_points + (size_t)b->guide[1] * (size_t)P * 3u;
         const float *g2 = guide_points + (size_t)b->guide[2] * (size_t)P * 3u;
         const float w0 = b->weight[0], w1 = b->weight[1], w2 = b->weight[2];
-        const float sc = b->length_scale != 0.0f ? b->length_scale : 1.0f;
+        const float sc = b->length_scale;
         /* the guide of largest weight is the one the strand clumps to */
         const float *gn = (w0 >= w1 && w0 >= w2) ? g0 : (w1 >= w2 ? g1 : g2);
         float *o = out_points + (size_t)s * (size_t)P * 3u;

@@ -552,6 +552,1602 @@ static void test_mesh_normals_degenerate_fallback(void)
     CHECK_EQ_INT(hf_mesh_compute_normals(&m, NULL), HF_ERROR_NULL_POINTER);
 }
 
+/* test_grow.c - tests of section 5 (Grow): density estimators, density
+   tessellation, guides, strand placement, maps on strands, bindings.
+   Included after the harness of tests/test_hairfur.c. */
+
+/* ---- helpers ------------------------------------------------------------ */
+
+/* An n x n grid of quads over [0, size]^2 in z = 0, UV = position / size,
+   two triangles per quad, counter-clockwise seen from +z. */
+typedef struct t_grid {
+    float *pos, *uv, *nrm;
+    uint32_t *idx;
+    hf_mesh mesh;
+} t_grid;
+
+static t_grid t_make_grid(int n, float size)
+{
+    t_grid g;
+    int x, y, v = (n + 1) * (n + 1), t = 0;
+    g.pos = (float *)malloc(sizeof(float) * 3 * (size_t)v);
+    g.uv = (float *)malloc(sizeof(float) * 2 * (size_t)v);
+    g.nrm = (float *)malloc(sizeof(float) * 3 * (size_t)v);
+    g.idx = (uint32_t *)malloc(sizeof(uint32_t) * 6 * (size_t)n * (size_t)n);
+    for (y = 0; y <= n; ++y)
+        for (x = 0; x <= n; ++x) {
+            int i = y * (n + 1) + x;
+            g.uv[2 * i] = (float)x / (float)n;
+            g.uv[2 * i + 1] = (float)y / (float)n;
+            g.pos[3 * i] = g.uv[2 * i] * size;
+            g.pos[3 * i + 1] = g.uv[2 * i + 1] * size;
+            g.pos[3 * i + 2] = 0.0f;
+            g.nrm[3 * i] = 0.0f;
+            g.nrm[3 * i + 1] = 0.0f;
+            g.nrm[3 * i + 2] = 1.0f;
+        }
+    for (y = 0; y < n; ++y)
+        for (x = 0; x < n; ++x) {
+            uint32_t a = (uint32_t)(y * (n + 1) + x), b = a + 1,
+                     c = a + (uint32_t)(n + 1), d = c + 1;
+            g.idx[t++] = a;
+            g.idx[t++] = b;
+            g.idx[t++] = d;
+            g.idx[t++] = a;
+            g.idx[t++] = d;
+            g.idx[t++] = c;
+        }
+    memset(&g.mesh, 0, sizeof g.mesh);
+    g.mesh.positions = g.pos;
+    g.mesh.uvs = g.uv;
+    g.mesh.normals = g.nrm;
+    g.mesh.vertex_count = v;
+    g.mesh.indices = g.idx;
+    g.mesh.triangle_count = 2 * n * n;
+    return g;
+}
+
+static void t_free_grid(t_grid *g)
+{
+    free(g->pos);
+    free(g->uv);
+    free(g->nrm);
+    free(g->idx);
+}
+
+static hf_map t_f32_map(const float *data, int w, int h, int channels)
+{
+    hf_map m;
+    memset(&m, 0, sizeof m);
+    m.data = data;
+    m.width = w;
+    m.height = h;
+    m.channels = channels;
+    m.format = HF_MAP_F32;
+    return m;
+}
+
+/* A smooth map with values in [0.05, 1]: a gradient plus a bump. */
+static float *t_blob_data(int w, int h)
+{
+    float *d = (float *)malloc(sizeof(float) * (size_t)w * (size_t)h);
+    int x, y;
+    for (y = 0; y < h; ++y)
+        for (x = 0; x < w; ++x) {
+            float u = ((float)x + 0.5f) / (float)w;
+            float v = ((float)y + 0.5f) / (float)h;
+            float du = u - 0.3f, dv = v - 0.6f;
+            float val = 0.05f + 0.45f * u +
+                        0.5f * (float)exp(-(du * du + dv * dv) / 0.02);
+            d[y * w + x] = val > 1.0f ? 1.0f : val;
+        }
+    return d;
+}
+
+static double t_tri_area(const float *pos, const uint32_t *tri)
+{
+    return (double)hf_triangle_area(pos + 3 * tri[0], pos + 3 * tri[1],
+                                    pos + 3 * tri[2]);
+}
+
+static double t_uv_area(const float *uv, const uint32_t *tri)
+{
+    const float *a = uv + 2 * tri[0], *b = uv + 2 * tri[1],
+                *c = uv + 2 * tri[2];
+    return 0.5 * fabs((double)(b[0] - a[0]) * (c[1] - a[1]) -
+                      (double)(c[0] - a[0]) * (b[1] - a[1]));
+}
+
+/* hf_tessellate twice (count, fill) into freshly allocated arrays. */
+typedef struct t_tess {
+    hf_tess_output out;
+    hf_result r;
+} t_tess;
+
+static t_tess t_tessellate(const hf_mesh *mesh, const hf_map *density,
+                           const hf_tess_params *p)
+{
+    t_tess t;
+    memset(&t, 0, sizeof t);
+    t.r = hf_tessellate(mesh, density, p, &t.out);
+    if (t.r != HF_OK) return t;
+    t.out.indices =
+        (uint32_t *)malloc(sizeof(uint32_t) * 3 * (size_t)t.out.triangle_count);
+    t.out.triangle_base =
+        (uint32_t *)malloc(sizeof(uint32_t) * (size_t)t.out.triangle_count);
+    t.out.added = (hf_tess_vertex *)malloc(
+        sizeof(hf_tess_vertex) * (size_t)(t.out.added_count + 1));
+    t.out.positions =
+        (float *)malloc(sizeof(float) * 3 * (size_t)t.out.vertex_count);
+    t.out.uvs = (float *)malloc(sizeof(float) * 2 * (size_t)t.out.vertex_count);
+    t.out.triangle_capacity = t.out.triangle_count;
+    t.out.added_capacity = t.out.added_count;
+    t.out.vertex_capacity = t.out.vertex_count;
+    t.r = hf_tessellate(mesh, density, p, &t.out);
+    return t;
+}
+
+static void t_free_tess(t_tess *t)
+{
+    free(t->out.indices);
+    free(t->out.triangle_base);
+    free(t->out.added);
+    free(t->out.positions);
+    free(t->out.uvs);
+}
+
+static hf_mesh t_tess_mesh(const t_tess *t)
+{
+    hf_mesh m;
+    memset(&m, 0, sizeof m);
+    m.positions = t->out.positions;
+    m.uvs = t->out.uvs;
+    m.vertex_count = t->out.vertex_count;
+    m.indices = t->out.indices;
+    m.triangle_count = t->out.triangle_count;
+    return m;
+}
+
+static long t_ipow3(int k)
+{
+    long p = 1;
+    while (k-- > 0) p *= 3;
+    return p;
+}
+
+/* ---- 5.1 estimators ----------------------------------------------------- */
+
+static void test_grow_record_sizes(void)
+{
+    CHECK_EQ_INT(sizeof(hf_strand), 24);
+    CHECK_EQ_INT(sizeof(hf_tess_vertex), 16);
+}
+
+static void test_density_estimators_agree_on_constant_map(void)
+{
+    static float f[64 * 48];
+    static unsigned char u8[64 * 48];
+    hf_map mf = t_f32_map(f, 64, 48, 1), mu;
+    /* big, tiny (inside one texel), across the wrap seam, zero UV area */
+    static const float tris[4][6] = {
+        {0.1f, 0.1f, 0.9f, 0.2f, 0.3f, 0.8f},
+        {0.501f, 0.501f, 0.503f, 0.501f, 0.502f, 0.504f},
+        {0.9f, -0.2f, 1.3f, 0.1f, 1.0f, 0.4f},
+        {0.1f, 0.1f, 0.5f, 0.5f, 0.9f, 0.9f}};
+    int i, e, k;
+    for (i = 0; i < 64 * 48; ++i) {
+        f[i] = 0.37f;
+        u8[i] = 200;
+    }
+    mu = mf;
+    mu.data = u8;
+    mu.format = HF_MAP_U8;
+    for (k = 0; k < 4; ++k)
+        for (e = 0; e < 3; ++e) {
+            float d = -1.0f;
+            const float *t = tris[k];
+            CHECK_EQ_INT(hf_uv_triangle_density(&mf, t, t + 2, t + 4,
+                                                e, &d),
+                         HF_OK);
+            CHECK_NEAR(d, 0.37, 1e-6);
+            CHECK_EQ_INT(hf_uv_triangle_density(&mu, t, t + 2, t + 4,
+                                                e, &d),
+                         HF_OK);
+            CHECK_NEAR(d, 200.0 / 255.0, 1e-6);
+            CHECK_EQ_INT(hf_uv_triangle_density(NULL, t, t + 2, t + 4,
+                                                e, &d),
+                         HF_OK);
+            CHECK(d == 1.0f);
+        }
+}
+
+/* On f = d^2 / R^2 (d: distance to the centre of an equilateral triangle of
+   circumradius R) the three means are known: corners 1, edges 1/2 (each
+   edge: inradius^2 + half-side^2 / 3), area 1/4 (polar moment). So the
+   estimators must come out in that order with those values. And on a
+   linear ramp each estimator grows as the triangle moves up the ramp. */
+static void test_density_estimators_order_on_gradient(void)
+{
+    enum { W = 256 };
+    static float f[W * W], ramp[W * W];
+    hf_map m = t_f32_map(f, W, W, 1), mr = t_f32_map(ramp, W, W, 1);
+    const double R = 100.0, pi = 3.14159265358979;
+    float uv[3][2], dc, de, da;
+    int x, y, k, e;
+    for (y = 0; y < W; ++y)
+        for (x = 0; x < W; ++x) {
+            double dx = x + 0.5 - 128.0, dy = y + 0.5 - 128.0;
+            f[y * W + x] = (float)((dx * dx + dy * dy) / (R * R));
+            ramp[y * W + x] = ((float)x + 0.5f) / (float)W;
+        }
+    for (k = 0; k < 3; ++k) {
+        double a = pi / 2 + 2 * pi * k / 3;
+        uv[k][0] = (float)((128.0 + R * cos(a)) / W);
+        uv[k][1] = (float)((128.0 + R * sin(a)) / W);
+    }
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, uv[0], uv[1], uv[2],
+                                        HF_DENSITY_CORNERS, &dc),
+                 HF_OK);
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, uv[0], uv[1], uv[2],
+                                        HF_DENSITY_EDGES, &de),
+                 HF_OK);
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, uv[0], uv[1], uv[2],
+                                        HF_DENSITY_AREA, &da),
+                 HF_OK);
+    CHECK_NEAR(dc, 1.0, 0.01);
+    CHECK_NEAR(de, 0.5, 0.02);
+    CHECK_NEAR(da, 0.25, 0.005);
+    CHECK(dc > de && de > da);
+    for (e = 0; e < 3; ++e) {
+        float last = -1.0f;
+        int s;
+        for (s = 0; s < 8; ++s) {
+            float t[3][2] = {{0.05f, 0.1f}, {0.2f, 0.15f}, {0.1f, 0.4f}}, d;
+            for (k = 0; k < 3; ++k) t[k][0] += 0.1f * (float)s;
+            CHECK_EQ_INT(hf_uv_triangle_density(&mr, t[0], t[1], t[2],
+                                                e, &d),
+                         HF_OK);
+            CHECK(d > last);
+            last = d;
+            /* linear map: corners and area are the centroid's value */
+            if (e != HF_DENSITY_EDGES)
+                CHECK_NEAR(d, (t[0][0] + t[1][0] + t[2][0]) / 3.0f,
+                           1.5 / W);
+        }
+    }
+}
+
+/* Hand-computed: on a 2 x 2 map the UV triangle (0,0) (1,0) (0,1) covers
+   texel (0,0) fully, (1,0) and (0,1) half, (1,1) not at all; Bresenham
+   (clamp map) visits (0,0) (1,0) | (1,0) (1,1) | (0,1) (0,1). */
+static void test_density_area_and_edges_exact(void)
+{
+    static const float f[4] = {0.1f, 0.5f, 0.9f, 7.0f};
+    hf_map m = t_f32_map(f, 2, 2, 1);
+    const float a[2] = {0, 0}, b[2] = {1, 0}, c[2] = {0, 1};
+    float d;
+    m.wrap = HF_WRAP_CLAMP;
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, b, c, HF_DENSITY_AREA, &d),
+                 HF_OK);
+    CHECK_NEAR(d, (0.1 + 0.5 * 0.5 + 0.5 * 0.9) / 2.0, 1e-6);
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, b, c, HF_DENSITY_EDGES, &d),
+                 HF_OK);
+    CHECK_NEAR(d, (0.1 + 0.5 + 0.5 + 7.0 + 0.9 + 0.9) / 6.0, 1e-6);
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, b, c, HF_DENSITY_CORNERS, &d),
+                 HF_OK);
+    /* clamp: (0,0) reads texel centre value 0.1; (1,0) -> 0.5; (0,1) ->
+       0.9 (clamped beyond the last texel centre) */
+    CHECK_NEAR(d, (0.1 + 0.5 + 0.9) / 3.0, 1e-6);
+}
+
+static void test_density_bad_input(void)
+{
+    static const float f[4] = {1, 1, 1, 1};
+    hf_map m = t_f32_map(f, 2, 2, 1), bad = m;
+    const float a[2] = {0, 0}, b[2] = {1, 0}, c[2] = {0, 1};
+    const float far_[2] = {40.0f, 0.5f}, nan_[2] = {NAN, 0.0f};
+    float d = -5.0f;
+    bad.width = 0;
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, NULL, b, c, HF_DENSITY_AREA, &d),
+                 HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, b, c, HF_DENSITY_AREA, NULL),
+                 HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_uv_triangle_density(&bad, a, b, c, HF_DENSITY_AREA, &d),
+                 HF_ERROR_BAD_COUNT);
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, nan_, b, c, HF_DENSITY_AREA, &d),
+                 HF_ERROR_NON_FINITE);
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, b, c, 3,
+                                        &d),
+                 HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, far_, c, HF_DENSITY_AREA, &d),
+                 HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, far_, c, HF_DENSITY_EDGES, &d),
+                 HF_ERROR_BAD_RANGE);
+    CHECK(d == -5.0f);
+    /* the corner estimator samples anywhere */
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, far_, c, HF_DENSITY_CORNERS,
+                                        &d),
+                 HF_OK);
+    CHECK(d == 1.0f);
+}
+
+/* ---- 5.2 tessellation --------------------------------------------------- */
+
+/* A 2 x 2 grid: 8 triangles of area 1/8. With density D and factor f the
+   triangles split k times, k the least with D f / (8 3^k) <= 1: exactly
+   8 * 3^k triangles, 8 (3^k - 1) / 2 added vertices, depth k. */
+static void test_tess_constant_map_power_of_three(void)
+{
+    t_grid g = t_make_grid(2, 1.0f);
+    static float half[16];
+    hf_map m = t_f32_map(half, 4, 4, 1);
+    int k, e, i;
+    for (i = 0; i < 16; ++i) half[i] = 0.5f;
+    for (k = 0; k <= 5; ++k)
+        for (e = 0; e < 4; ++e) {
+            hf_tess_params p;
+            hf_tess_output out;
+            memset(&p, 0, sizeof p);
+            memset(&out, 0, sizeof out);
+            p.max_depth = 8;
+            /* D f A = 0.7 * 3^k: away from the 1.0 boundary */
+            p.factor = 8.0f * (float)t_ipow3(k) * 0.7f;
+            if (e < 3) {
+                p.factor *= 2.0f; /* D = 0.5 */
+                p.estimator = e;
+            }
+            CHECK_EQ_INT(hf_tessellate(&g.mesh, e < 3 ? &m : NULL, &p, &out),
+                         HF_OK);
+            CHECK_EQ_INT(out.triangle_count, 8 * t_ipow3(k));
+            CHECK_EQ_INT(out.added_count, 8 * (t_ipow3(k) - 1) / 2);
+            CHECK_EQ_INT(out.vertex_count, 9 + out.added_count);
+            CHECK_EQ_INT(out.depth, k);
+        }
+    t_free_grid(&g);
+}
+
+/* Every output triangle small enough (recomputed with the public functions,
+   bit-exact), area and UV area preserved, every added vertex re-evaluates
+   to its position bit for bit, and to the transformed position on a
+   transformed ("skinned") base mesh. */
+static void test_tess_output_properties(void)
+{
+    t_grid g = t_make_grid(4, 2.0f);
+    float *blob = t_blob_data(64, 64);
+    hf_map m = t_f32_map(blob, 64, 64, 1);
+    int e, s;
+    double base_area = 0.0, base_uv = 0.0;
+    int t;
+    for (t = 0; t < g.mesh.triangle_count; ++t) {
+        base_area += t_tri_area(g.pos, g.idx + 3 * t);
+        base_uv += t_uv_area(g.uv, g.idx + 3 * t);
+    }
+    for (e = 0; e < 3; ++e)
+        for (s = 0; s < 2; ++s) {
+            hf_tess_params p;
+            t_tess ts;
+            double area = 0.0, uva = 0.0;
+            float *ev, *evuv, *sk_pos, *sk_ev;
+            int V = g.mesh.vertex_count, i, ok_small = 1, ok_bits = 1,
+                ok_base = 1, ok_skin = 1;
+            hf_mesh sk;
+            memset(&p, 0, sizeof p);
+            p.factor = 150.0f;
+            p.estimator = e;
+            p.split = s;
+            p.seed = 7;
+            ts = t_tessellate(&g.mesh, &m, &p);
+            CHECK_EQ_INT(ts.r, HF_OK);
+            if (ts.r != HF_OK) continue;
+            CHECK(ts.out.triangle_count > 4 * g.mesh.triangle_count);
+            for (t = 0; t < ts.out.triangle_count; ++t) {
+                const uint32_t *tri = ts.out.indices + 3 * t;
+                float d, a;
+                CHECK(tri[0] < (uint32_t)ts.out.vertex_count &&
+                      tri[1] < (uint32_t)ts.out.vertex_count &&
+                      tri[2] < (uint32_t)ts.out.vertex_count);
+                a = hf_triangle_area(ts.out.positions + 3 * tri[0],
+                                     ts.out.positions + 3 * tri[1],
+                                     ts.out.positions + 3 * tri[2]);
+                CHECK_EQ_INT(hf_uv_triangle_density(
+                                 &m, ts.out.uvs + 2 * tri[0],
+                                 ts.out.uvs + 2 * tri[1],
+                                 ts.out.uvs + 2 * tri[2], p.estimator, &d),
+                             HF_OK);
+                if (d * a * p.factor > 1.0f) ok_small = 0;
+                area += t_tri_area(ts.out.positions, tri);
+                uva += t_uv_area(ts.out.uvs, tri);
+                /* added corners belong to this triangle's base triangle */
+                for (i = 0; i < 3; ++i)
+                    if (tri[i] >= (uint32_t)V &&
+                        ts.out.added[tri[i] - V].triangle !=
+                            ts.out.triangle_base[t])
+                        ok_base = 0;
+            }
+            CHECK(ok_small);
+            CHECK(ok_base);
+            CHECK_NEAR(area, base_area, 1e-5 * base_area);
+            CHECK_NEAR(uva, base_uv, 1e-5 * base_uv);
+            CHECK(memcmp(ts.out.positions, g.pos, sizeof(float) * 3 * V) == 0);
+            /* re-evaluation, bit for bit */
+            ev = (float *)malloc(sizeof(float) * 3 * ts.out.added_count);
+            evuv = (float *)malloc(sizeof(float) * 2 * ts.out.added_count);
+            CHECK_EQ_INT(hf_tess_evaluate(&g.mesh, ts.out.added,
+                                          ts.out.added_count, 0,
+                                          ts.out.added_count, ev, NULL, evuv),
+                         HF_OK);
+            for (i = 0; i < ts.out.added_count; ++i) {
+                if (memcmp(ev + 3 * i, ts.out.positions + 3 * (V + i), 12))
+                    ok_bits = 0;
+                if (memcmp(evuv + 2 * i, ts.out.uvs + 2 * (V + i), 8))
+                    ok_bits = 0;
+                if (!(ts.out.added[i].bary[0] >= 0.0f &&
+                      ts.out.added[i].bary[1] >= 0.0f &&
+                      ts.out.added[i].bary[2] >= 0.0f))
+                    ok_bits = 0;
+            }
+            CHECK(ok_bits);
+            /* skinned: rotate 90 degrees about z, lift by 3 */
+            sk = g.mesh;
+            sk_pos = (float *)malloc(sizeof(float) * 3 * V);
+            sk_ev = (float *)malloc(sizeof(float) * 3 * ts.out.added_count);
+            for (i = 0; i < V; ++i) {
+                sk_pos[3 * i] = -g.pos[3 * i + 1];
+                sk_pos[3 * i + 1] = g.pos[3 * i];
+                sk_pos[3 * i + 2] = g.pos[3 * i + 2] + 3.0f;
+            }
+            sk.positions = sk_pos;
+            CHECK_EQ_INT(hf_tess_evaluate(&sk, ts.out.added,
+                                          ts.out.added_count, 0,
+                                          ts.out.added_count, sk_ev, NULL,
+                                          NULL),
+                         HF_OK);
+            for (i = 0; i < ts.out.added_count; ++i) {
+                const float *r = ev + 3 * i, *q = sk_ev + 3 * i;
+                if (fabs(q[0] + r[1]) > 1e-5 || fabs(q[1] - r[0]) > 1e-5 ||
+                    fabs(q[2] - 3.0) > 1e-5)
+                    ok_skin = 0;
+            }
+            CHECK(ok_skin);
+            free(ev);
+            free(evuv);
+            free(sk_pos);
+            free(sk_ev);
+            t_free_tess(&ts);
+        }
+    free(blob);
+    t_free_grid(&g);
+}
+
+static void test_tess_evaluate_ranges_and_normals(void)
+{
+    t_grid g = t_make_grid(3, 1.0f);
+    hf_tess_params p;
+    t_tess ts;
+    float *a, *b, *n;
+    int N, i, ok = 1;
+    hf_tess_vertex bad;
+    memset(&p, 0, sizeof p);
+    p.factor = 100.0f;
+    ts = t_tessellate(&g.mesh, NULL, &p);
+    CHECK_EQ_INT(ts.r, HF_OK);
+    N = ts.out.added_count;
+    a = (float *)malloc(sizeof(float) * 3 * N);
+    b = (float *)malloc(sizeof(float) * 3 * N);
+    n = (float *)malloc(sizeof(float) * 3 * N);
+    memset(a, 0, sizeof(float) * 3 * N);
+    memset(b, 0, sizeof(float) * 3 * N);
+    CHECK_EQ_INT(hf_tess_evaluate(&g.mesh, ts.out.added, N, 0, N, a, n, NULL),
+                 HF_OK);
+    CHECK_EQ_INT(hf_tess_evaluate(&g.mesh, ts.out.added, N, 0, N / 3, b, NULL,
+                                  NULL),
+                 HF_OK);
+    CHECK_EQ_INT(hf_tess_evaluate(&g.mesh, ts.out.added, N, N / 3, N - N / 3,
+                                  b, NULL, NULL),
+                 HF_OK);
+    CHECK(memcmp(a, b, sizeof(float) * 3 * N) == 0);
+    for (i = 0; i < N; ++i)
+        if (n[3 * i] != 0.0f || n[3 * i + 1] != 0.0f || n[3 * i + 2] != 1.0f)
+            ok = 0;
+    CHECK(ok);
+    CHECK_EQ_INT(hf_tess_evaluate(&g.mesh, ts.out.added, N, N - 1, 2, b, NULL,
+                                  NULL),
+                 HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_tess_evaluate(&g.mesh, ts.out.added, N, -1, 1, b, NULL,
+                                  NULL),
+                 HF_ERROR_BAD_RANGE);
+    bad.triangle = 999;
+    bad.bary[0] = bad.bary[1] = bad.bary[2] = 1.0f / 3.0f;
+    memset(b, 0x5a, sizeof(float) * 3);
+    CHECK_EQ_INT(hf_tess_evaluate(&g.mesh, &bad, 1, 0, 1, b, NULL, NULL),
+                 HF_ERROR_INDEX_OUT_OF_RANGE);
+    bad.triangle = 0;
+    bad.bary[1] = NAN;
+    CHECK_EQ_INT(hf_tess_evaluate(&g.mesh, &bad, 1, 0, 1, b, NULL, NULL),
+                 HF_ERROR_NON_FINITE);
+    {
+        unsigned char s[12];
+        memset(s, 0x5a, 12);
+        CHECK(memcmp(b, s, 12) == 0);
+    }
+    g.mesh.normals = NULL;
+    CHECK_EQ_INT(hf_tess_evaluate(&g.mesh, ts.out.added, N, 0, N, a, n, NULL),
+                 HF_ERROR_NULL_POINTER);
+    free(a);
+    free(b);
+    free(n);
+    t_free_tess(&ts);
+    t_free_grid(&g);
+}
+
+static void test_tess_caps_write_nothing(void)
+{
+    t_grid g = t_make_grid(2, 1.0f);
+    hf_tess_params p;
+    hf_tess_output out, probe;
+    uint32_t idx[3 * 200];
+    hf_tess_vertex added[100];
+    float pos[3 * 200];
+    unsigned char before[sizeof idx];
+    memset(&p, 0, sizeof p);
+    memset(&out, 0, sizeof out);
+    /* far past the caps: fails fast, from the counting pass */
+    p.factor = 1e30f;
+    out.triangle_count = out.added_count = out.vertex_count = -7;
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, NULL, &p, &out), HF_ERROR_DEPTH_CAP);
+    CHECK_EQ_INT(out.triangle_count, -7);
+    p.max_depth = HF_TESS_MAX_DEPTH;
+    p.max_triangles = 1000;
+    p.factor = 1e9f; /* 8 * 3^19 = 9e9 triangles wanted, depth 19 */
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, NULL, &p, &out),
+                 HF_ERROR_TRIANGLE_CAP);
+    p.max_triangles = 0; /* default cap, 4M: "billions" would be refused */
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, NULL, &p, &out),
+                 HF_ERROR_TRIANGLE_CAP);
+    CHECK_EQ_INT(out.triangle_count, -7);
+    /* a base mesh over the cap */
+    p.factor = 1.0f;
+    p.max_triangles = 7;
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, NULL, &p, &out),
+                 HF_ERROR_TRIANGLE_CAP);
+
+    /* with arrays given: a cap error or a short buffer writes nothing */
+    memset(idx, 0xab, sizeof idx);
+    memset(before, 0xab, sizeof before);
+    out.indices = idx;
+    out.added = added;
+    out.positions = pos;
+    out.triangle_capacity = 200;
+    out.added_capacity = 100;
+    out.vertex_capacity = 200;
+    p.max_triangles = 0;
+    p.max_depth = 2;
+    p.factor = 1000.0f;
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, NULL, &p, &out), HF_ERROR_DEPTH_CAP);
+    CHECK(memcmp(idx, before, sizeof idx) == 0);
+    p.factor = 8.0f * 9.0f * 0.7f; /* 72 triangles */
+    memset(&probe, 0, sizeof probe);
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, NULL, &p, &probe), HF_OK);
+    CHECK_EQ_INT(probe.triangle_count, 72);
+    out.triangle_capacity = 71;
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, NULL, &p, &out),
+                 HF_ERROR_BUFFER_TOO_SMALL);
+    CHECK(memcmp(idx, before, sizeof idx) == 0);
+    out.triangle_capacity = 72;
+    out.added_capacity = probe.added_count - 1;
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, NULL, &p, &out),
+                 HF_ERROR_BUFFER_TOO_SMALL);
+    CHECK(memcmp(idx, before, sizeof idx) == 0);
+    CHECK_EQ_INT(out.triangle_count, -7);
+    out.added_capacity = probe.added_count;
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, NULL, &p, &out), HF_OK);
+    CHECK_EQ_INT(out.triangle_count, 72);
+    /* exact size: the 73rd index slot untouched */
+    CHECK(idx[3 * 72] == 0xabababab);
+    t_free_grid(&g);
+}
+
+static void test_tess_bad_input(void)
+{
+    t_grid g = t_make_grid(2, 1.0f);
+    hf_tess_params p;
+    hf_tess_output out;
+    static const float one[4] = {1, 1, 1, 1};
+    hf_map m = t_f32_map(one, 2, 2, 1), bad_map = m;
+    float saved;
+    const float bad_factors[4] = {0.0f, -1.0f, NAN, INFINITY};
+    int i;
+    memset(&p, 0, sizeof p);
+    memset(&out, 0, sizeof out);
+    out.triangle_count = -7;
+    p.factor = 10.0f;
+    CHECK_EQ_INT(hf_tessellate(NULL, NULL, &p, &out), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, NULL, NULL, &out),
+                 HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, NULL, &p, NULL),
+                 HF_ERROR_NULL_POINTER);
+    for (i = 0; i < 4; ++i) {
+        p.factor = bad_factors[i];
+        CHECK_EQ_INT(hf_tessellate(&g.mesh, NULL, &p, &out),
+                     HF_ERROR_BAD_PARAMETER);
+    }
+    p.factor = 10.0f;
+    p.estimator = 3;
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, &m, &p, &out),
+                 HF_ERROR_BAD_PARAMETER);
+    p.estimator = HF_DENSITY_CORNERS;
+    p.split = 2;
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, &m, &p, &out),
+                 HF_ERROR_BAD_PARAMETER);
+    p.split = HF_SPLIT_CENTROID;
+    p.max_depth = HF_TESS_MAX_DEPTH + 1;
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, &m, &p, &out),
+                 HF_ERROR_BAD_PARAMETER);
+    p.max_depth = -1;
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, &m, &p, &out),
+                 HF_ERROR_BAD_PARAMETER);
+    p.max_depth = 0;
+    p.max_triangles = HF_TESS_MAX_TRIANGLES + 1;
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, &m, &p, &out),
+                 HF_ERROR_BAD_PARAMETER);
+    p.max_triangles = 0;
+    bad_map.width = 0;
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, &bad_map, &p, &out),
+                 HF_ERROR_BAD_COUNT);
+    g.mesh.uvs = NULL;
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, &m, &p, &out), HF_ERROR_NULL_POINTER);
+    g.mesh.uvs = g.uv;
+    g.idx[5] = 99;
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, &m, &p, &out),
+                 HF_ERROR_INDEX_OUT_OF_RANGE);
+    g.idx[5] = 3;
+    saved = g.pos[4];
+    g.pos[4] = NAN;
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, &m, &p, &out), HF_ERROR_NON_FINITE);
+    g.pos[4] = 3e30f; /* finite, but areas overflow */
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, &m, &p, &out), HF_ERROR_NON_FINITE);
+    g.pos[4] = saved;
+    /* UVs out of the rasterisers' range */
+    g.uv[2 * 4] = 40.0f;
+    p.estimator = HF_DENSITY_AREA;
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, &m, &p, &out), HF_ERROR_BAD_RANGE);
+    p.estimator = HF_DENSITY_CORNERS;
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, &m, &p, &out), HF_OK);
+    g.uv[2 * 4] = 0.5f;
+    CHECK_EQ_INT(out.triangle_count, 8 * 3); /* D A f = 1.25: one split */
+    out.triangle_count = -7;
+    /* degenerate triangles: one is kept unsplit by default, refused on
+       request; all of them is refused */
+    g.idx[3] = g.idx[4]; /* triangle 1 = (d, d, c): zero area */
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, &m, &p, &out), HF_OK);
+    CHECK_EQ_INT(out.triangle_count, 7 * 3 + 1);
+    out.triangle_count = -7;
+    p.refuse_degenerate = 1;
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, &m, &p, &out), HF_ERROR_DEGENERATE);
+    p.refuse_degenerate = 0;
+    for (i = 0; i < 8; ++i) g.idx[3 * i + 1] = g.idx[3 * i];
+    CHECK_EQ_INT(hf_tessellate(&g.mesh, &m, &p, &out), HF_ERROR_DEGENERATE);
+    CHECK_EQ_INT(out.triangle_count, -7);
+    t_free_grid(&g);
+}
+
+static void test_tess_same_seed_same_bytes(void)
+{
+    t_grid g = t_make_grid(3, 1.0f);
+    float *blob = t_blob_data(32, 32);
+    hf_map m = t_f32_map(blob, 32, 32, 1);
+    hf_tess_params p;
+    t_tess a, b, c;
+    memset(&p, 0, sizeof p);
+    p.factor = 300.0f;
+    p.split = HF_SPLIT_RANDOM;
+    p.estimator = HF_DENSITY_AREA;
+    p.seed = 42;
+    a = t_tessellate(&g.mesh, &m, &p);
+    b = t_tessellate(&g.mesh, &m, &p);
+    p.seed = 43;
+    c = t_tessellate(&g.mesh, &m, &p);
+    CHECK_EQ_INT(a.r, HF_OK);
+    CHECK_EQ_INT(a.out.triangle_count, b.out.triangle_count);
+    CHECK_EQ_INT(a.out.added_count, b.out.added_count);
+    CHECK(memcmp(a.out.indices, b.out.indices,
+                 12 * (size_t)a.out.triangle_count) == 0);
+    CHECK(memcmp(a.out.added, b.out.added,
+                 sizeof(hf_tess_vertex) * (size_t)a.out.added_count) == 0);
+    CHECK(memcmp(a.out.positions, b.out.positions,
+                 12 * (size_t)a.out.vertex_count) == 0);
+    /* another seed moves the split points */
+    CHECK(c.out.added_count != a.out.added_count ||
+          memcmp(a.out.added, c.out.added,
+                 sizeof(hf_tess_vertex) * (size_t)a.out.added_count) != 0);
+    t_free_tess(&a);
+    t_free_tess(&b);
+    t_free_tess(&c);
+    free(blob);
+    t_free_grid(&g);
+}
+
+/* ---- 5.3 guides --------------------------------------------------------- */
+
+/* A cube of side 2 as an engine stores it: 24 vertices (4 per face, with
+   the face normal and a face UV), 12 triangles. */
+typedef struct t_cube {
+    float pos[24 * 3], nrm[24 * 3], uv[24 * 2];
+    uint32_t idx[36];
+    hf_mesh mesh;
+} t_cube;
+
+static void t_make_cube(t_cube *c)
+{
+    static const int axis[6] = {0, 0, 1, 1, 2, 2};
+    int f, k;
+    for (f = 0; f < 6; ++f) {
+        int a = axis[f], u = (a + 1) % 3, v = (a + 2) % 3;
+        float s = (f & 1) ? -1.0f : 1.0f;
+        for (k = 0; k < 4; ++k) {
+            int i = 4 * f + k;
+            float cu = (k == 1 || k == 2) ? 1.0f : -1.0f;
+            float cv = (k >= 2) ? 1.0f : -1.0f;
+            c->pos[3 * i + a] = s;
+            c->pos[3 * i + u] = cu * s;
+            c->pos[3 * i + v] = cv;
+            c->nrm[3 * i + a] = s;
+            c->nrm[3 * i + u] = 0.0f;
+            c->nrm[3 * i + v] = 0.0f;
+            c->uv[2 * i] = ((float)f + (cu + 1.0f) * 0.5f) / 6.0f;
+            c->uv[2 * i + 1] = (cv + 1.0f) * 0.5f;
+        }
+        c->idx[6 * f + 0] = (uint32_t)(4 * f);
+        c->idx[6 * f + 1] = (uint32_t)(4 * f + 1);
+        c->idx[6 * f + 2] = (uint32_t)(4 * f + 2);
+        c->idx[6 * f + 3] = (uint32_t)(4 * f);
+        c->idx[6 * f + 4] = (uint32_t)(4 * f + 2);
+        c->idx[6 * f + 5] = (uint32_t)(4 * f + 3);
+    }
+    memset(&c->mesh, 0, sizeof c->mesh);
+    c->mesh.positions = c->pos;
+    c->mesh.normals = c->nrm;
+    c->mesh.uvs = c->uv;
+    c->mesh.vertex_count = 24;
+    c->mesh.indices = c->idx;
+    c->mesh.triangle_count = 12;
+}
+
+static void test_guides_weld_and_rest_shape(void)
+{
+    t_cube c;
+    hf_tess_params tp;
+    t_tess ts;
+    hf_guide_params gp;
+    hf_guide_output go;
+    float *pts, lengths[64], dirs[64 * 3], nrms[64 * 3], roots[12 * 3];
+    uint32_t gov[64];
+    float ramp[8];
+    hf_map lmap;
+    int i, j, G, ok = 1;
+    const int N = 5;
+    t_counter cnt;
+    hf_allocator al = t_counting(&cnt);
+    t_make_cube(&c);
+    memset(&tp, 0, sizeof tp);
+    tp.factor = 1.0f; /* triangle area 2: one split each */
+    ts = t_tessellate(&c.mesh, NULL, &tp);
+    CHECK_EQ_INT(ts.r, HF_OK);
+    CHECK_EQ_INT(ts.out.added_count, 12);
+    for (i = 0; i < 8; ++i) ramp[i] = 0.25f + 0.1f * (float)i;
+    lmap = t_f32_map(ramp, 8, 1, 1);
+    memset(&gp, 0, sizeof gp);
+    gp.points = N;
+    gp.max_length = 2.0f;
+    gp.length_map = &lmap;
+    memset(&go, 0, sizeof go);
+    CHECK_EQ_INT(hf_guides_rest(&c.mesh, ts.out.added, 12, &gp, &go, &al),
+                 HF_OK);
+    CHECK_EQ_INT(go.pure_guide_count, 8);
+    CHECK_EQ_INT(go.guide_count, 20);
+    CHECK_EQ_INT(cnt.allocs, cnt.frees);
+    G = go.guide_count;
+    pts = (float *)malloc(sizeof(float) * 3 * N * G);
+    go.points = pts;
+    go.lengths = lengths;
+    go.directions = dirs;
+    go.normals = nrms;
+    go.guide_of_vertex = gov;
+    go.guide_capacity = G - 1;
+    lengths[0] = -3.0f;
+    CHECK_EQ_INT(hf_guides_rest(&c.mesh, ts.out.added, 12, &gp, &go, &al),
+                 HF_ERROR_BUFFER_TOO_SMALL);
+    CHECK(lengths[0] == -3.0f);
+    go.guide_capacity = G;
+    cnt.fail_after = cnt.allocs; /* next allocation fails */
+    CHECK_EQ_INT(hf_guides_rest(&c.mesh, ts.out.added, 12, &gp, &go, &al),
+                 HF_ERROR_OUT_OF_MEMORY);
+    CHECK(lengths[0] == -3.0f);
+    cnt.fail_after = -1;
+    CHECK_EQ_INT(hf_guides_rest(&c.mesh, ts.out.added, 12, &gp, &go, &al),
+                 HF_OK);
+    CHECK_EQ_INT(cnt.allocs, cnt.frees);
+    /* copies share a guide; each pure guide: the corner's diagonal normal,
+       length the mean of the copies' map values */
+    for (i = 0; i < 24; ++i) {
+        uint32_t g = gov[i];
+        int k, copies = 0;
+        CHECK(g < 8);
+        for (j = 0; j < 24; ++j)
+            if (!memcmp(c.pos + 3 * j, c.pos + 3 * i, 12)) {
+                CHECK(gov[j] == g);
+                ++copies;
+            }
+        CHECK_EQ_INT(copies, 3);
+        for (k = 0; k < 3; ++k) {
+            CHECK_NEAR(nrms[3 * g + k], c.pos[3 * i + k] / sqrt(3.0), 1e-6);
+            CHECK_NEAR(pts[3 * (g * N) + k], c.pos[3 * i + k], 0.0);
+        }
+    }
+    for (i = 0; i < 8; ++i) {
+        /* length = max_length * mean of the map at the copies' UVs */
+        double mean = 0.0;
+        int copies = 0;
+        for (j = 0; j < 24; ++j)
+            if (gov[j] == (uint32_t)i) {
+                float s[4];
+                hf_map_sample(&lmap, c.uv[2 * j], c.uv[2 * j + 1], s);
+                mean += s[0];
+                ++copies;
+            }
+        CHECK_NEAR(lengths[i], 2.0 * mean / copies, 1e-6);
+    }
+    /* LOD guides: root = evaluated vertex, normal = face normal here (the
+       blend of three welded corner normals of one face points out of it),
+       evenly spaced points */
+    for (i = 0; i < 12; ++i) {
+        int g = 8 + i, k;
+        float root[3], uv[2], s[4], face[3];
+        const hf_tess_vertex *a = &ts.out.added[i];
+        CHECK_EQ_INT(gov[24 + i], g);
+        hf_tess_evaluate(&c.mesh, ts.out.added, 12, i, 1, roots, NULL, NULL);
+        memcpy(root, roots + 3 * i, 12);
+        CHECK(memcmp(root, pts + 3 * (g * N), 12) == 0);
+        memcpy(face, c.nrm + 3 * c.idx[3 * a->triangle], 12);
+        CHECK(nrms[3 * g] * face[0] + nrms[3 * g + 1] * face[1] +
+                  nrms[3 * g + 2] * face[2] >
+              0.9);
+        CHECK_NEAR(nrms[3 * g] * nrms[3 * g] + nrms[3 * g + 1] * nrms[3 * g + 1] +
+                       nrms[3 * g + 2] * nrms[3 * g + 2],
+                   1.0, 1e-5);
+        uv[0] = ts.out.uvs[2 * (24 + i)];
+        uv[1] = ts.out.uvs[2 * (24 + i) + 1];
+        hf_map_sample(&lmap, uv[0], uv[1], s);
+        CHECK_NEAR(lengths[g], 2.0 * s[0], 1e-6);
+        for (j = 0; j < N; ++j)
+            for (k = 0; k < 3; ++k)
+                if (fabs(pts[3 * (g * N + j) + k] -
+                         (root[k] + dirs[3 * g + k] * lengths[g] * j /
+                                        (N - 1))) > 1e-5)
+                    ok = 0;
+    }
+    CHECK(ok);
+    ok = 1;
+    for (i = 0; i < 3 * N * G; ++i)
+        if (!t_is_finite(pts[i])) ok = 0;
+    CHECK(ok);
+    free(pts);
+    t_free_tess(&ts);
+}
+
+static void test_guides_combing(void)
+{
+    t_grid g = t_make_grid(2, 1.0f);
+    hf_guide_params gp;
+    hf_guide_output go;
+    float comb[9 * 3], dirs[9 * 3], pts[9 * 2 * 3];
+    unsigned char cm[3] = {255, 128, 128};
+    hf_map cmap;
+    int i;
+    memset(&cmap, 0, sizeof cmap);
+    cmap.data = cm;
+    cmap.width = cmap.height = 1;
+    cmap.channels = 3;
+    for (i = 0; i < 9; ++i) {
+        comb[3 * i] = 0.0f;
+        comb[3 * i + 1] = 3.0f;
+        comb[3 * i + 2] = 0.0f;
+    }
+    comb[0] = comb[1] = 0.0f; /* vertex 0: zero comb -> its normal */
+    memset(&gp, 0, sizeof gp);
+    gp.points = 2;
+    gp.max_length = 1.0f;
+    gp.comb = comb;
+    memset(&go, 0, sizeof go);
+    go.directions = dirs;
+    go.points = pts;
+    go.guide_capacity = 9;
+    CHECK_EQ_INT(hf_guides_rest(&g.mesh, NULL, 0, &gp, &go, NULL), HF_OK);
+    CHECK_EQ_INT(go.guide_count, 9);
+    CHECK(dirs[0] == 0.0f && dirs[1] == 0.0f && dirs[2] == 1.0f);
+    for (i = 1; i < 9; ++i)
+        CHECK(dirs[3 * i] == 0.0f && dirs[3 * i + 1] == 1.0f &&
+              dirs[3 * i + 2] == 0.0f);
+    CHECK_NEAR(pts[3 * 3 + 1], g.pos[3 * 1 + 1] + 1.0f, 1e-6);
+    /* the map wins over per-vertex combing; 8-bit decodes as 2c - 1 */
+    gp.comb_map = &cmap;
+    CHECK_EQ_INT(hf_guides_rest(&g.mesh, NULL, 0, &gp, &go, NULL), HF_OK);
+    for (i = 0; i < 9; ++i) CHECK(dirs[3 * i] > 0.9999f);
+    t_free_grid(&g);
+}
+
+static void test_guides_bad_input(void)
+{
+    t_grid g = t_make_grid(2, 1.0f);
+    hf_guide_params gp;
+    hf_guide_output go;
+    hf_tess_vertex a;
+    float one = 1.0f, comb[27];
+    hf_map m1 = t_f32_map(&one, 1, 1, 1);
+    int i;
+    memset(&gp, 0, sizeof gp);
+    memset(&go, 0, sizeof go);
+    go.guide_count = -7;
+    gp.points = 16;
+    gp.max_length = 1.0f;
+    a.triangle = 0;
+    a.bary[0] = a.bary[1] = a.bary[2] = 1.0f / 3.0f;
+    CHECK_EQ_INT(hf_guides_rest(NULL, NULL, 0, &gp, &go, NULL),
+                 HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_guides_rest(&g.mesh, NULL, 1, &gp, &go, NULL),
+                 HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_guides_rest(&g.mesh, &a, -1, &gp, &go, NULL),
+                 HF_ERROR_BAD_COUNT);
+    gp.points = 1;
+    CHECK_EQ_INT(hf_guides_rest(&g.mesh, &a, 1, &gp, &go, NULL),
+                 HF_ERROR_BAD_COUNT);
+    gp.points = HF_GUIDE_MAX_POINTS + 1;
+    CHECK_EQ_INT(hf_guides_rest(&g.mesh, &a, 1, &gp, &go, NULL),
+                 HF_ERROR_BAD_COUNT);
+    gp.points = 16;
+    gp.max_length = 0.0f;
+    CHECK_EQ_INT(hf_guides_rest(&g.mesh, &a, 1, &gp, &go, NULL),
+                 HF_ERROR_BAD_PARAMETER);
+    gp.max_length = NAN;
+    CHECK_EQ_INT(hf_guides_rest(&g.mesh, &a, 1, &gp, &go, NULL),
+                 HF_ERROR_BAD_PARAMETER);
+    gp.max_length = 1.0f;
+    a.triangle = 8;
+    CHECK_EQ_INT(hf_guides_rest(&g.mesh, &a, 1, &gp, &go, NULL),
+                 HF_ERROR_INDEX_OUT_OF_RANGE);
+    a.triangle = 0;
+    a.bary[2] = NAN;
+    CHECK_EQ_INT(hf_guides_rest(&g.mesh, &a, 1, &gp, &go, NULL),
+                 HF_ERROR_NON_FINITE);
+    a.bary[2] = 1.5f;
+    CHECK_EQ_INT(hf_guides_rest(&g.mesh, &a, 1, &gp, &go, NULL),
+                 HF_ERROR_BAD_PARAMETER);
+    a.bary[2] = 1.0f / 3.0f;
+    gp.comb_map = &m1; /* one channel */
+    CHECK_EQ_INT(hf_guides_rest(&g.mesh, &a, 1, &gp, &go, NULL),
+                 HF_ERROR_BAD_PARAMETER);
+    gp.comb_map = NULL;
+    gp.length_map = &m1;
+    g.mesh.uvs = NULL;
+    CHECK_EQ_INT(hf_guides_rest(&g.mesh, &a, 1, &gp, &go, NULL),
+                 HF_ERROR_NULL_POINTER);
+    g.mesh.uvs = g.uv;
+    for (i = 0; i < 27; ++i) comb[i] = 1.0f;
+    comb[13] = INFINITY;
+    gp.comb = comb;
+    CHECK_EQ_INT(hf_guides_rest(&g.mesh, &a, 1, &gp, &go, NULL),
+                 HF_ERROR_NON_FINITE);
+    gp.comb = NULL;
+    CHECK_EQ_INT(go.guide_count, -7);
+    /* no mesh normals: computed ones */
+    g.mesh.normals = NULL;
+    CHECK_EQ_INT(hf_guides_rest(&g.mesh, &a, 1, &gp, &go, NULL), HF_OK);
+    CHECK_EQ_INT(go.guide_count, 10);
+    t_free_grid(&g);
+}
+
+/* ---- 5.4 placement ------------------------------------------------------ */
+
+/* Chi-square of strand roots over the 64 equal sub-triangles of the unit
+   right triangle (8 x 8 midpoint grid). */
+static double t_chi_square_roots(int sampler, int n,
+                                 uint64_t seed)
+{
+    static const float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    static const float uv[6] = {0, 0, 1, 0, 0, 1};
+    static const uint32_t idx[3] = {0, 1, 2};
+    hf_mesh m;
+    hf_place_params p;
+    hf_strand *s = (hf_strand *)malloc(sizeof(hf_strand) * (size_t)n);
+    float *r = (float *)malloc(sizeof(float) * 3 * (size_t)n);
+    int lo[8][8], up[8][8], count = 0, i, j;
+    double chi = 0.0, e = (double)n / 64.0;
+    memset(&m, 0, sizeof m);
+    m.positions = pos;
+    m.uvs = uv;
+    m.vertex_count = 3;
+    m.indices = idx;
+    m.triangle_count = 1;
+    memset(&p, 0, sizeof p);
+    p.total_strands = n;
+    p.sampler = sampler;
+    p.seed = seed;
+    memset(lo, 0, sizeof lo);
+    memset(up, 0, sizeof up);
+    if (hf_place_strands(&m, NULL, &p, s, n, &count, NULL) != HF_OK ||
+        count != n ||
+        hf_strand_roots(&m, s, n, 0, n, r) != HF_OK) {
+        free(s);
+        free(r);
+        return -1.0;
+    }
+    for (i = 0; i < n; ++i) {
+        double x = r[3 * i] * 8.0, y = r[3 * i + 1] * 8.0;
+        int cx = (int)x, cy = (int)y, upper;
+        if (cx > 7) cx = 7;
+        if (cy > 7) cy = 7;
+        upper = (x - cx) + (y - cy) >= 1.0;
+        if (cx + cy > 7) { /* on the hypotenuse, rounding */
+            cy = 7 - cx;
+            upper = 0;
+        }
+        if (upper)
+            up[cy][cx]++;
+        else
+            lo[cy][cx]++;
+    }
+    /* 36 lower cells (cx + cy <= 7) and 28 upper ones (cx + cy <= 6) */
+    for (j = 0; j < 8; ++j)
+        for (i = 0; i < 8; ++i) {
+            if (i + j <= 7) chi += (lo[j][i] - e) * (lo[j][i] - e) / e;
+            if (i + j <= 6) chi += (up[j][i] - e) * (up[j][i] - e) / e;
+        }
+    free(s);
+    free(r);
+    return chi;
+}
+
+/* Uniformity: 6400 roots on one triangle, 64 equal cells, 63 degrees of
+   freedom: the 0.1 % critical value is 103.4. The default sampler and the
+   stratified one pass with a fixed seed; the plugin's corner-biased
+   formula fails by a wide margin (so the test can fail). */
+static void test_place_uniform_chi_square(void)
+{
+    double u = t_chi_square_roots(HF_SAMPLER_UNIFORM, 6400, 1);
+    double s = t_chi_square_roots(HF_SAMPLER_STRATIFIED, 6400, 1);
+    double b = t_chi_square_roots(HF_SAMPLER_CORNER_BIASED, 6400, 1);
+    CHECK(u >= 0.0 && u < 103.4);
+    CHECK(s >= 0.0 && s < 103.4);
+    CHECK(b > 103.4);
+    /* stratified is far more even than chance: chi^2 well below its dof */
+    CHECK(s < 20.0);
+}
+
+/* mean nearest-neighbour distance (clumps) and the largest empty circle
+   over a probe grid (holes) of n roots in the unit right triangle */
+static void t_spread(int sampler, int n, double *mean_nn,
+                     double *max_hole)
+{
+    static const float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    static const uint32_t idx[3] = {0, 1, 2};
+    hf_mesh m;
+    hf_place_params p;
+    hf_strand *s = (hf_strand *)malloc(sizeof(hf_strand) * (size_t)n);
+    float *r = (float *)malloc(sizeof(float) * 3 * (size_t)n);
+    int i, j, count = 0;
+    double sum = 0.0, hole = 0.0;
+    memset(&m, 0, sizeof m);
+    m.positions = pos;
+    m.vertex_count = 3;
+    m.indices = idx;
+    m.triangle_count = 1;
+    memset(&p, 0, sizeof p);
+    p.total_strands = n;
+    p.sampler = sampler;
+    p.seed = 5;
+    hf_place_strands(&m, NULL, &p, s, n, &count, NULL);
+    hf_strand_roots(&m, s, n, 0, n, r);
+    for (i = 0; i < n; ++i) {
+        double best = 1e9;
+        for (j = 0; j < n; ++j) {
+            double dx = r[3 * i] - r[3 * j], dy = r[3 * i + 1] - r[3 * j + 1];
+            double d = dx * dx + dy * dy;
+            if (j != i && d < best) best = d;
+        }
+        sum += sqrt(best);
+    }
+    for (i = 0; i < 80; ++i)
+        for (j = 0; i + j < 80; ++j) {
+            double x = (i + 0.5) / 80.0, y = (j + 0.5) / 80.0, best = 1e9;
+            int k;
+            for (k = 0; k < n; ++k) {
+                double dx = x - r[3 * k], dy = y - r[3 * k + 1];
+                double d = dx * dx + dy * dy;
+                if (d < best) best = d;
+            }
+            if (sqrt(best) > hole) hole = sqrt(best);
+        }
+    *mean_nn = sum / n;
+    *max_hole = hole;
+    free(s);
+    free(r);
+}
+
+static void test_place_stratified_fewer_clumps_and_holes(void)
+{
+    double nn_u, hole_u, nn_s, hole_s;
+    t_spread(HF_SAMPLER_UNIFORM, 1024, &nn_u, &hole_u);
+    t_spread(HF_SAMPLER_STRATIFIED, 1024, &nn_s, &hole_s);
+    /* Poisson points: mean NN distance 0.5 / sqrt(density) ~ 0.011 */
+    CHECK(nn_s > 1.2 * nn_u); /* measured: 0.0144 vs 0.0110 */
+    CHECK(hole_s < 0.75 * hole_u); /* measured: 0.022 vs 0.040 */
+}
+
+/* The expected total is the density integral: with the AREA estimator
+   sum(D_t A_t) is exactly the integral of the (piecewise-constant) map over
+   the surface, and systematic rounding puts the count within 1 of
+   integral * strands_per_area (stated tolerance: 1 + 1e-4 relative, for
+   float rounding). With total_strands the count is exact and each
+   triangle gets floor or ceil of its share. */
+static void test_place_total_matches_density_integral(void)
+{
+    t_grid g = t_make_grid(16, 2.0f);
+    enum { W = 32 };
+    static float d[W * W];
+    hf_map m = t_f32_map(d, W, W, 1);
+    hf_place_params p;
+    double mean = 0.0, integral;
+    int i, count = -1, t;
+    hf_rng rng;
+    hf_strand *s;
+    int *per;
+    hf_rng_seed(&rng, 3, 0);
+    for (i = 0; i < W * W; ++i) {
+        d[i] = hf_rng_float(&rng);
+        mean += d[i];
+    }
+    mean /= W * W;
+    integral = 4.0 * mean; /* area 4 */
+    memset(&p, 0, sizeof p);
+    p.estimator = HF_DENSITY_AREA;
+    p.strands_per_area = 1000.0f;
+    for (i = 0; i < 5; ++i) {
+        p.seed = (uint64_t)i;
+        CHECK_EQ_INT(hf_place_strands(&g.mesh, &m, &p, NULL, 0, &count, NULL),
+                     HF_OK);
+        CHECK_NEAR(count, integral * 1000.0, 1.0 + 1e-4 * integral * 1000.0);
+    }
+    /* exact total, per-triangle floor or ceil */
+    p.total_strands = 5000;
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, &m, &p, NULL, 0, &count, NULL),
+                 HF_OK);
+    CHECK_EQ_INT(count, 5000);
+    s = (hf_strand *)malloc(sizeof(hf_strand) * 5000);
+    per = (int *)calloc((size_t)g.mesh.triangle_count, sizeof(int));
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, &m, &p, s, 5000, &count, NULL),
+                 HF_OK);
+    for (i = 0; i < count; ++i) per[s[i].triangle]++;
+    {
+        double S = 0.0;
+        int ok = 1;
+        for (t = 0; t < g.mesh.triangle_count; ++t) {
+            const uint32_t *tri = g.idx + 3 * t;
+            float dd;
+            hf_uv_triangle_density(&m, g.uv + 2 * tri[0], g.uv + 2 * tri[1],
+                                   g.uv + 2 * tri[2], HF_DENSITY_AREA, &dd);
+            S += dd * t_tri_area(g.pos, tri);
+        }
+        for (t = 0; t < g.mesh.triangle_count; ++t) {
+            const uint32_t *tri = g.idx + 3 * t;
+            float dd;
+            double e;
+            hf_uv_triangle_density(&m, g.uv + 2 * tri[0], g.uv + 2 * tri[1],
+                                   g.uv + 2 * tri[2], HF_DENSITY_AREA, &dd);
+            e = 5000.0 * dd * t_tri_area(g.pos, tri) / S;
+            if (per[t] < floor(e - 1e-3) || per[t] > ceil(e + 1e-3)) ok = 0;
+        }
+        CHECK(ok);
+    }
+    free(s);
+    free(per);
+    t_free_grid(&g);
+}
+
+static int t_cmp_by_triangle(const void *a, const void *b)
+{
+    const hf_strand *x = (const hf_strand *)a, *y = (const hf_strand *)b;
+    if (x->triangle != y->triangle) return x->triangle < y->triangle ? -1 : 1;
+    return x->random < y->random ? -1 : (x->random > y->random ? 1 : 0);
+}
+
+/* regions (of a 10 x 10 grid over the unit square) reached by the first n
+   roots, and the extreme per-region counts */
+static int t_regions_reached(const hf_mesh *m, const hf_strand *s, int n,
+                             int *min_c, int *max_c)
+{
+    int cells[100], i, reached = 0;
+    float *r = (float *)malloc(sizeof(float) * 3 * (size_t)n);
+    memset(cells, 0, sizeof cells);
+    hf_strand_roots(m, s, n, 0, n, r);
+    for (i = 0; i < n; ++i) {
+        int cx = (int)(r[3 * i] * 10.0f), cy = (int)(r[3 * i + 1] * 10.0f);
+        cx = cx > 9 ? 9 : cx;
+        cy = cy > 9 ? 9 : cy;
+        cells[cy * 10 + cx]++;
+    }
+    *min_c = 1 << 30;
+    *max_c = 0;
+    for (i = 0; i < 100; ++i) {
+        reached += cells[i] > 0;
+        if (cells[i] < *min_c) *min_c = cells[i];
+        if (cells[i] > *max_c) *max_c = cells[i];
+    }
+    free(r);
+    return reached;
+}
+
+/* LOD order: the first 10 % of the strands of a 5000-triangle mesh reach
+   all 100 regions, each with close to its 1 % share; the same strands in
+   placement (triangle) order do not, so the check can fail. */
+static void test_place_lod_prefix_covers_surface(void)
+{
+    t_grid g = t_make_grid(50, 1.0f);
+    hf_place_params p;
+    hf_strand *s;
+    int count = 0, mn, mx, smp;
+    memset(&p, 0, sizeof p);
+    p.total_strands = 50000;
+    s = (hf_strand *)malloc(sizeof(hf_strand) * 50000);
+    for (smp = 0; smp < 2; ++smp) {
+        p.sampler = smp ? HF_SAMPLER_STRATIFIED : HF_SAMPLER_UNIFORM;
+        CHECK_EQ_INT(
+            hf_place_strands(&g.mesh, NULL, &p, s, 50000, &count, NULL),
+            HF_OK);
+        CHECK_EQ_INT(t_regions_reached(&g.mesh, s, 5000, &mn, &mx), 100);
+        /* 50 expected per region; every triangle gives exactly 1 of its 10 */
+        CHECK(mn >= 40 && mx <= 60);
+        CHECK_EQ_INT(t_regions_reached(&g.mesh, s, 500, &mn, &mx), 100);
+    }
+    qsort(s, 50000, sizeof(hf_strand), t_cmp_by_triangle);
+    CHECK(t_regions_reached(&g.mesh, s, 5000, &mn, &mx) < 100);
+    free(s);
+    t_free_grid(&g);
+}
+
+static void test_place_same_seed_same_bytes(void)
+{
+    t_grid g = t_make_grid(8, 1.0f);
+    float *blob = t_blob_data(32, 32);
+    hf_map m = t_f32_map(blob, 32, 32, 1);
+    hf_place_params p;
+    hf_strand *a, *b;
+    int na = 0, nb = 0, smp;
+    t_counter cnt;
+    hf_allocator al = t_counting(&cnt);
+    memset(&p, 0, sizeof p);
+    p.strands_per_area = 3000.0f;
+    p.seed = 99;
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, &m, &p, NULL, 0, &na, &al), HF_OK);
+    CHECK_EQ_INT(cnt.allocs, 0); /* counting allocates nothing */
+    a = (hf_strand *)malloc(sizeof(hf_strand) * (size_t)na);
+    b = (hf_strand *)malloc(sizeof(hf_strand) * (size_t)na);
+    for (smp = 0; smp < 3; ++smp) {
+        int i, ok = 1;
+        p.sampler = smp;
+        memset(a, 0, sizeof(hf_strand) * (size_t)na);
+        memset(b, 0xff, sizeof(hf_strand) * (size_t)na);
+        CHECK_EQ_INT(hf_place_strands(&g.mesh, &m, &p, a, na, &nb, &al),
+                     HF_OK);
+        CHECK_EQ_INT(nb, na);
+        CHECK_EQ_INT(hf_place_strands(&g.mesh, &m, &p, b, na, &nb, NULL),
+                     HF_OK);
+        CHECK(memcmp(a, b, sizeof(hf_strand) * (size_t)na) == 0);
+        for (i = 0; i < na; ++i) {
+            const hf_strand *q = &a[i];
+            float b2 = (1.0f - q->bary[0]) - q->bary[1];
+            if (!(q->bary[0] >= 0.0f && q->bary[1] >= 0.0f && b2 >= 0.0f &&
+                  q->random >= 0.0f && q->random < 1.0f &&
+                  q->triangle < (uint32_t)g.mesh.triangle_count))
+                ok = 0;
+        }
+        CHECK(ok);
+    }
+    CHECK_EQ_INT(cnt.allocs, cnt.frees);
+    CHECK(cnt.allocs == 3);
+    p.seed = 100;
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, &m, &p, b, na, &nb, NULL), HF_OK);
+    CHECK(nb != na || memcmp(a, b, sizeof(hf_strand) * (size_t)na) != 0);
+    /* allocation failure: nothing written */
+    p.seed = 99;
+    memset(b, 0x33, sizeof(hf_strand) * (size_t)na);
+    memcpy(a, b, sizeof(hf_strand) * (size_t)na);
+    cnt.fail_after = cnt.allocs;
+    nb = -7;
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, &m, &p, b, na, &nb, &al),
+                 HF_ERROR_OUT_OF_MEMORY);
+    CHECK(memcmp(a, b, sizeof(hf_strand) * (size_t)na) == 0);
+    CHECK_EQ_INT(nb, -7);
+    free(a);
+    free(b);
+    free(blob);
+    t_free_grid(&g);
+}
+
+static void test_place_bad_input(void)
+{
+    t_grid g = t_make_grid(2, 1.0f);
+    hf_place_params p;
+    hf_strand s[64], before[64];
+    static const float zero[4] = {0, 0, 0, 0};
+    hf_map mz = t_f32_map(zero, 2, 2, 1);
+    int n = -7, k = -7, i;
+    const float bad_spa[4] = {0.0f, -1.0f, NAN, INFINITY};
+    memset(s, 0x44, sizeof s);
+    memcpy(before, s, sizeof s);
+    memset(&p, 0, sizeof p);
+    p.strands_per_area = 40.0f;
+    CHECK_EQ_INT(hf_place_strands(NULL, NULL, &p, s, 64, &n, NULL),
+                 HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, NULL, NULL, s, 64, &n, NULL),
+                 HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, NULL, &p, s, 64, NULL, NULL),
+                 HF_ERROR_NULL_POINTER);
+    for (i = 0; i < 4; ++i) {
+        p.strands_per_area = bad_spa[i];
+        CHECK_EQ_INT(hf_place_strands(&g.mesh, NULL, &p, s, 64, &n, NULL),
+                     HF_ERROR_BAD_PARAMETER);
+    }
+    p.strands_per_area = 40.0f;
+    p.total_strands = -1;
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, NULL, &p, s, 64, &n, NULL),
+                 HF_ERROR_BAD_COUNT);
+    p.total_strands = 0;
+    p.sampler = 3;
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, NULL, &p, s, 64, &n, NULL),
+                 HF_ERROR_BAD_PARAMETER);
+    p.sampler = HF_SAMPLER_UNIFORM;
+    /* counts that would overflow */
+    p.strands_per_area = 1e30f;
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, NULL, &p, NULL, 0, &n, NULL),
+                 HF_ERROR_OVERFLOW);
+    p.strands_per_area = 3e9f;
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, NULL, &p, NULL, 0, &n, NULL),
+                 HF_ERROR_OVERFLOW);
+    p.strands_per_area = 40.0f;
+    p.max_strands = 10;
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, NULL, &p, NULL, 0, &n, NULL),
+                 HF_ERROR_OVERFLOW);
+    p.max_strands = 0;
+    CHECK_EQ_INT(n, -7);
+    /* short buffer */
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, NULL, &p, NULL, 0, &k, NULL),
+                 HF_OK);
+    CHECK(k == 39 || k == 40);
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, NULL, &p, s, k - 1, &n, NULL),
+                 HF_ERROR_BUFFER_TOO_SMALL);
+    CHECK(memcmp(s, before, sizeof s) == 0);
+    CHECK_EQ_INT(n, -7);
+    /* zero density: no strands, not an error; but a total cannot be met */
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, &mz, &p, s, 64, &n, NULL), HF_OK);
+    CHECK_EQ_INT(n, 0);
+    n = -7;
+    p.total_strands = 10;
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, &mz, &p, s, 64, &n, NULL),
+                 HF_ERROR_DEGENERATE);
+    p.total_strands = 0;
+    /* degenerate triangles */
+    g.idx[1] = g.idx[0];
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, NULL, &p, NULL, 0, &k, NULL),
+                 HF_OK);
+    p.refuse_degenerate = 1;
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, NULL, &p, s, 64, &n, NULL),
+                 HF_ERROR_DEGENERATE);
+    p.refuse_degenerate = 0;
+    for (i = 0; i < 8; ++i) g.idx[3 * i + 2] = g.idx[3 * i];
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, NULL, &p, s, 64, &n, NULL),
+                 HF_ERROR_DEGENERATE);
+    CHECK(memcmp(s, before, sizeof s) == 0);
+    CHECK_EQ_INT(n, -7);
+    t_free_grid(&g);
+}
+
+/* A zero-area triangle grows nothing; the rest of the mesh still grows. */
+static void test_place_skips_zero_area_triangles(void)
+{
+    t_grid g = t_make_grid(2, 1.0f);
+    hf_place_params p;
+    hf_strand s[200];
+    int n = 0, i, ok = 1;
+    g.idx[1] = g.idx[0]; /* triangle 0 degenerate */
+    memset(&p, 0, sizeof p);
+    p.total_strands = 200;
+    CHECK_EQ_INT(hf_place_strands(&g.mesh, NULL, &p, s, 200, &n, NULL),
+                 HF_OK);
+    CHECK_EQ_INT(n, 200);
+    for (i = 0; i < n; ++i)
+        if (s[i].triangle == 0) ok = 0;
+    CHECK(ok);
+    t_free_grid(&g);
+}
+
+/* ---- 5.5 maps on strands, 5.6 bindings ---------------------------------- */
+
+static void test_strand_lengths_and_colors(void)
+{
+    hf_strand s[3];
+    float lengths[3], rgba[12], xy[2], c[4], ref[4];
+    static const float len_map[2] = {0.25f, 1.0f};
+    static const float rgb[3 * 4] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1};
+    static const float idx_map[1] = {0.25f};
+    static const float big_idx[1] = {2.0f};
+    hf_map lm = t_f32_map(len_map, 2, 1, 1), cm = t_f32_map(rgb, 2, 2, 3);
+    hf_map im = t_f32_map(idx_map, 1, 1, 1), bm = t_f32_map(big_idx, 1, 1, 1);
+    hf_map grey = t_f32_map(idx_map, 1, 1, 1);
+    int i;
+    memset(s, 0, sizeof s);
+    s[0].uv[0] = 0.25f; /* texel 0 centre */
+    s[0].uv[1] = 0.25f;
+    s[1].uv[0] = 0.75f; /* texel 1 centre */
+    s[1].uv[1] = 0.75f;
+    s[2].uv[0] = 0.5f; /* between: mean */
+    s[2].uv[1] = 0.5f;
+    CHECK_EQ_INT(hf_strand_lengths(s, 3, 0, 3, &lm, 2.0f, lengths), HF_OK);
+    CHECK_NEAR(lengths[0], 0.5, 1e-6);
+    CHECK_NEAR(lengths[1], 2.0, 1e-6);
+    CHECK_NEAR(lengths[2], 1.25, 1e-6);
+    CHECK_EQ_INT(hf_strand_lengths(s, 3, 0, 3, NULL, 2.0f, lengths), HF_OK);
+    CHECK(lengths[0] == 2.0f);
+    CHECK_EQ_INT(hf_strand_colors(s, 3, 0, 3, &cm, rgba), HF_OK);
+    CHECK(rgba[0] == 1.0f && rgba[1] == 0.0f && rgba[2] == 0.0f &&
+          rgba[3] == 1.0f);
+    CHECK(rgba[4] == 1.0f && rgba[5] == 1.0f && rgba[6] == 1.0f);
+    CHECK_NEAR(rgba[8], 0.5, 1e-6);
+    CHECK_EQ_INT(hf_strand_colors(s, 3, 0, 1, &grey, rgba), HF_OK);
+    CHECK(rgba[0] == 0.25f && rgba[1] == 0.25f && rgba[2] == 0.25f &&
+          rgba[3] == 1.0f);
+    /* 3D colour: column from the index map, row from t */
+    CHECK_EQ_INT(hf_color3d_coord(&im, 0.3f, 0.8f, 0.75f, xy), HF_OK);
+    CHECK(xy[0] == 0.25f && xy[1] == 0.75f);
+    CHECK_EQ_INT(hf_color3d_sample(&im, &cm, 0.3f, 0.8f, 0.75f, c), HF_OK);
+    hf_map_sample(&cm, 0.25f, 0.75f, ref);
+    for (i = 0; i < 3; ++i) CHECK(c[i] == ref[i]);
+    CHECK(c[3] == 1.0f);
+    CHECK_EQ_INT(hf_color3d_coord(&bm, 0.3f, 0.8f, 1.5f, xy), HF_OK);
+    CHECK(xy[0] == 1.0f && xy[1] == 1.0f);
+    xy[0] = -3.0f;
+    CHECK_EQ_INT(hf_color3d_coord(&im, 0.3f, 0.8f, NAN, xy),
+                 HF_ERROR_NON_FINITE);
+    CHECK(xy[0] == -3.0f);
+    CHECK_EQ_INT(hf_strand_lengths(s, 3, 2, 2, &lm, 2.0f, lengths),
+                 HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_strand_lengths(s, 3, 0, 3, &lm, -1.0f, lengths),
+                 HF_ERROR_BAD_PARAMETER);
+    s[1].uv[0] = NAN;
+    lengths[0] = -9.0f;
+    CHECK_EQ_INT(hf_strand_lengths(s, 3, 0, 3, &lm, 2.0f, lengths),
+                 HF_ERROR_NON_FINITE);
+    CHECK(lengths[0] == -9.0f);
+}
+
+/* The whole stage end to end: tessellate, guides, place, lengths, bind,
+   interpolate at rest: each strand starts at its root and is as long as
+   the length map says (the guides are parallel on a flat grid). */
+static void test_grow_end_to_end_bindings(void)
+{
+    t_grid g = t_make_grid(4, 1.0f);
+    float *blob = t_blob_data(32, 32);
+    hf_map m = t_f32_map(blob, 32, 32, 1);
+    hf_tess_params tp;
+    t_tess ts;
+    hf_mesh tm;
+    hf_guide_params gp;
+    hf_guide_output go;
+    hf_place_params pp;
+    hf_interp_params ip;
+    hf_strand *s;
+    hf_strand_binding *b;
+    float *gpts, *glen, *slen, *roots, *spts;
+    uint32_t *gov;
+    int n = 0, i, P = 8, ok_root = 1, ok_len = 1;
+    memset(&tp, 0, sizeof tp);
+    tp.factor = 60.0f;
+    ts = t_tessellate(&g.mesh, &m, &tp);
+    CHECK_EQ_INT(ts.r, HF_OK);
+    tm = t_tess_mesh(&ts);
+    memset(&gp, 0, sizeof gp);
+    gp.points = P;
+    gp.max_length = 0.5f;
+    gp.length_map = &m;
+    memset(&go, 0, sizeof go);
+    CHECK_EQ_INT(hf_guides_rest(&g.mesh, ts.out.added, ts.out.added_count,
+                                &gp, &go, NULL),
+                 HF_OK);
+    gpts = (float *)malloc(sizeof(float) * 3 * P * go.guide_count);
+    glen = (float *)malloc(sizeof(float) * go.guide_count);
+    gov = (uint32_t *)malloc(sizeof(uint32_t) * ts.out.vertex_count);
+    go.points = gpts;
+    go.lengths = glen;
+    go.guide_of_vertex = gov;
+    go.guide_capacity = go.guide_count;
+    CHECK_EQ_INT(hf_guides_rest(&g.mesh, ts.out.added, ts.out.added_count,
+                                &gp, &go, NULL),
+                 HF_OK);
+    memset(&pp, 0, sizeof pp);
+    pp.total_strands = 2000;
+    pp.sampler = HF_SAMPLER_STRATIFIED;
+    s = (hf_strand *)malloc(sizeof(hf_strand) * 2000);
+    CHECK_EQ_INT(hf_place_strands(&tm, &m, &pp, s, 2000, &n, NULL), HF_OK);
+    slen = (float *)malloc(sizeof(float) * n);
+    roots = (float *)malloc(sizeof(float) * 3 * n);
+    b = (hf_strand_binding *)malloc(sizeof(hf_strand_binding) * n);
+    spts = (float *)malloc(sizeof(float) * 3 * P * n);
+    CHECK_EQ_INT(hf_strand_lengths(s, n, 0, n, &m, 0.5f, slen), HF_OK);
+    CHECK_EQ_INT(hf_strand_roots(&tm, s, n, 0, n, roots), HF_OK);
+    CHECK_EQ_INT(hf_bind_strands(&tm, gov, go.guide_count, s, n, 0, n, slen,
+                                 glen, b),
+                 HF_OK);
+    memset(&ip, 0, sizeof ip);
+    ip.points_per_strand = P;
+    CHECK_EQ_INT(hf_interpolate(gpts, go.guide_count, b, 0, n, &ip, spts),
+                 HF_OK);
+    for (i = 0; i < n; ++i) {
+        const float *p0 = spts + 3 * P * i, *pt = p0 + 3 * (P - 1);
+        double dx = pt[0] - p0[0], dy = pt[1] - p0[1], dz = pt[2] - p0[2];
+        if (fabs(p0[0] - roots[3 * i]) > 1e-6 ||
+            fabs(p0[1] - roots[3 * i + 1]) > 1e-6 || p0[2] != 0.0f)
+            ok_root = 0;
+        if (fabs(sqrt(dx * dx + dy * dy + dz * dz) - slen[i]) > 1e-5)
+            ok_len = 0;
+    }
+    CHECK(ok_root);
+    CHECK(ok_len);
+    gov[0] = 999999;
+    CHECK_EQ_INT(hf_bind_strands(&tm, gov, go.guide_count, s, n, 0, n, slen,
+                                 glen, b),
+                 HF_ERROR_INDEX_OUT_OF_RANGE);
+    CHECK_EQ_INT(hf_bind_strands(&tm, gov, go.guide_count, s, n, 0, n, slen,
+                                 NULL, b),
+                 HF_ERROR_NULL_POINTER);
+    free(gpts);
+    free(glen);
+    free(gov);
+    free(s);
+    free(slen);
+    free(roots);
+    free(b);
+    free(spts);
+    free(blob);
+    t_free_tess(&ts);
+    t_free_grid(&g);
+}
+
+static void run_grow_tests(void)
+{
+    RUN(test_grow_record_sizes);
+    RUN(test_density_estimators_agree_on_constant_map);
+    RUN(test_density_estimators_order_on_gradient);
+    RUN(test_density_area_and_edges_exact);
+    RUN(test_density_bad_input);
+    RUN(test_tess_constant_map_power_of_three);
+    RUN(test_tess_output_properties);
+    RUN(test_tess_evaluate_ranges_and_normals);
+    RUN(test_tess_caps_write_nothing);
+    RUN(test_tess_bad_input);
+    RUN(test_tess_same_seed_same_bytes);
+    RUN(test_guides_weld_and_rest_shape);
+    RUN(test_guides_combing);
+    RUN(test_guides_bad_input);
+    RUN(test_place_uniform_chi_square);
+    RUN(test_place_stratified_fewer_clumps_and_holes);
+    RUN(test_place_total_matches_density_integral);
+    RUN(test_place_lod_prefix_covers_surface);
+    RUN(test_place_same_seed_same_bytes);
+    RUN(test_place_bad_input);
+    RUN(test_place_skips_zero_area_triangles);
+    RUN(test_strand_lengths_and_colors);
+    RUN(test_grow_end_to_end_bindings);
+}
+
 /* ======================================================================== */
 /* 9. interpolation and LOD                                                 */
 /* ======================================================================== */
@@ -584,6 +2180,7 @@ static void test_interp_on_guide_equals_guide(void)
     for (k = 0; k < 3; ++k) {
         b[k].guide[0] = 0; b[k].guide[1] = 1; b[k].guide[2] = 2;
         b[k].weight[k] = 1.0f;
+        b[k].length_scale = 1.0f;
     }
     CHECK_EQ_INT(hf_interpolate(g, 3, b, 0, 3, &ip, out), HF_OK);
     CHECK(memcmp(out, g, sizeof g) == 0);
@@ -610,6 +2207,7 @@ static void test_interp_linear_in_barycentrics(void)
         b[1].weight[k] = w2[k];
         b[2].weight[k] = 0.25f * w1[k] + 0.75f * w2[k];
     }
+    b[0].length_scale = b[1].length_scale = b[2].length_scale = 1.0f;
     CHECK_EQ_INT(hf_interpolate(g, 3, b, 0, 3, &ip, out), HF_OK);
     for (i = 0; i < TP * 3; ++i) {
         double direct = w1[0] * g[i] + w1[1] * g[TP * 3 + i] +
@@ -632,6 +2230,7 @@ static void test_interp_length_scale_and_clump(void)
     ip.points_per_strand = TP;
     for (k = 0; k < 3; ++k) b[0].guide[k] = b[1].guide[k] = (uint32_t)k;
     b[0].weight[0] = 0.5f; b[0].weight[1] = 0.25f; b[0].weight[2] = 0.25f;
+    b[0].length_scale = 1.0f;
     b[1] = b[0];
     b[1].length_scale = 0.5f;
     CHECK_EQ_INT(hf_interpolate(g, 3, b, 0, 2, &ip, out), HF_OK);
@@ -2015,6 +3614,7 @@ int main(void)
     RUN(test_ribbons_errors_write_nothing);
     RUN(test_ribbon_indices);
     RUN(test_ribbon_winding_faces_camera);
+    run_grow_tests();
     run_lut_tests();
     printf("%d passed, %d failed\n", t_passed, t_failed);
     return t_failed ? 1 : 0;
