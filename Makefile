@@ -17,7 +17,7 @@ HDR    := hairfur.h
 TEST   := tests/test_hairfur.c
 
 # Debian packages for the examples (the library itself needs none).
-DEPS_PKGS := build-essential clang libstb-dev
+DEPS_PKGS := build-essential clang libstb-dev libassimp-dev
 
 CLANG   := $(shell command -v clang 2>/dev/null)
 CLANGXX := $(shell command -v clang++ 2>/dev/null)
@@ -42,7 +42,7 @@ endif
 TEST_BINS := $(addprefix $(BUILD)/test_,$(TEST_NAMES))
 
 EX_CFLAGS := -std=c99 -O2 -Wall -Wextra -Wpedantic
-EXAMPLES  := $(BUILD)/bake_luts $(BUILD)/grow_pictures
+EXAMPLES  := $(BUILD)/bake_luts $(BUILD)/grow_pictures $(BUILD)/grow_fur
 
 .PHONY: all test check-build demo examples deps clean gl-test-or-skip
 
@@ -85,13 +85,22 @@ $(STB_H):
 $(BUILD)/%: examples/%.c $(HDR) $(STB_H) | $(BUILD)
 	gcc $(EX_CFLAGS) $< -o $@ -lm
 
+# grow_fur loads meshes with assimp (Debian's libassimp-dev).
+$(BUILD)/grow_fur: examples/grow_fur.c examples/head_mesh.h $(HDR) $(STB_H) | $(BUILD)
+	@printf '#include <assimp/cimport.h>\n' | gcc -E -x c - >/dev/null 2>&1 || \
+	  { echo "grow_fur needs assimp: run 'make deps' (Debian package libassimp-dev)"; exit 1; }
+	gcc $(EX_CFLAGS) $< -o $@ -lassimp -lm
+
 examples: $(EXAMPLES)
 
 # The main job: the most complete end-to-end program so far.
 demo: $(EXAMPLES) | $(OUT)
 	$(BUILD)/bake_luts --out $(OUT)
 	$(BUILD)/grow_pictures $(OUT)
-	@echo "demo: wrote $(OUT)/marschner_m.png, $(OUT)/marschner_n.png, $(OUT)/marschner_scales.txt and the grow_*.png pictures"
+	$(BUILD)/grow_fur --frames 120 --out $(OUT)/fur.obj
+	@echo "demo: wrote $(OUT)/fur.obj (the swung head's fur, opens in Blender),"
+	@echo "      $(OUT)/marschner_m.png, $(OUT)/marschner_n.png, $(OUT)/marschner_scales.txt"
+	@echo "      and the growth pictures $(OUT)/grow_*.png"
 
 # GL checks need glad, EGL and GLFW headers: without them, say what is
 # missing and skip (CI installs them, so CI runs the checks).

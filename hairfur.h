@@ -75,6 +75,14 @@
        2. random numbers (hf_rng)
        3. maps (hf_map): validation, bilinear sampling, Gaussian blur
        4. meshes (hf_mesh): validation, normals, triangle area
+       5. grow: density tessellation, guides, strand placement, maps on
+          strands, strand-to-guide bindings
+       6. ropes: Verlet ropes with follow-the-leader constraints, shape
+          stiffness, colliders, animation-only mode
+       7. interpolation and LOD
+       8. ribbons: camera-facing vertices, the GPU point path, indices
+       9. LUT baking: the Marschner M and N textures
+      10. the fur object (hf_fur): all of the above, per frame
 
    VERSION HISTORY
 
@@ -718,7 +726,257 @@ HFDEF hf_result hf_bind_strands(const hf_mesh *guide_mesh,
                                 hf_strand_binding *out);
 
 /* ======================================================================== */
-/* 9. Interpolation and LOD                                                 */
+/* 6. Ropes: Verlet ropes for guide hairs, or any rope                      */
+/* ======================================================================== */
+
+/* A set of ropes that all have the same number of points (>= 2), simulated
+   with position Verlet and position-based constraints. Per frame:
+
+       hf_ropes_set_roots(ropes, 0, n, pos, nrm, tan, 0);  // skinned roots
+       hf_ropes_step(ropes, 0, n, dt, &params, colliders, n_colliders);
+       // read ropes->x/y/z (or hf_ropes_get_positions)
+
+   Every per-frame call takes a (first, count) range of ropes, touches only
+   the state of those ropes, never allocates, and gives byte-identical
+   results however the ropes are split into ranges (each rope's update reads
+   only its own state, the shared params and the colliders).
+
+   LAYOUT. State is structure-of-arrays and point-major: point j of rope r is
+   element [j * rope_count + r] of x, y, z (current) and px, py, pz
+   (previous). Point-major lets the solver, which walks each rope from root
+   to tip, run one rope per SIMD lane. Point 0 is the root.
+
+   ROOT FRAME. Each rope has a root frame: a position, a normal and a
+   tangent. The library builds an orthonormal basis from them: the normal is
+   normalised, the tangent is made perpendicular to it and normalised (a
+   tangent that is zero or parallel to the normal is replaced by a
+   deterministic perpendicular), and the bitangent is cross(tangent,
+   normal). The rest pose is stored in this frame's coordinates (u along
+   the tangent, v along the normal, w along the bitangent), so a rope
+   carried by its frame keeps its shape. Guides grown along the normal have
+   their rest pose on the v axis. */
+
+/* Maximum |coordinate| accepted for positions, roots and colliders (m). */
+#define HF_ROPE_MAX_COORD 1.0e6f
+/* Maximum |component| of gravity and wind, and maximum turbulence
+   amplitude (m/s^2). */
+#define HF_ROPE_MAX_ACCEL 1.0e4f
+
+typedef enum hf_rope_mode {
+    HF_ROPE_SIMULATED = 0, /* Verlet simulation (the default) */
+    HF_ROPE_ANIMATED = 1   /* rest shape carried rigidly by the root frame */
+} hf_rope_mode;
+
+typedef enum hf_rope_solver {
+    /* follow-the-leader (Mueller, Kim, Chentanez 2012): each pass places
+       every point at its rest distance from its parent, root to tip, so
+       the rope is inextensible after one pass; velocities get Mueller's
+       correction scaled by ftl_damping. The default. */
+    HF_ROPE_SOLVER_FTL = 0,
+    /* plain Gauss-Seidel distance constraints, equal masses, pinned root;
+       stretch falls with the iteration count. For comparison. */
+    HF_ROPE_SOLVER_DISTANCE = 1
+} hf_rope_solver;
+
+/* Simulation parameters. Call hf_rope_params_init() to fill the defaults,
+   then change fields: every field is taken literally (so zero gravity or
+   zero damping is just 0). The defaults and units: */
+typedef struct hf_rope_params {
+    float gravity[3];  /* (0, -9.81, 0) m/s^2 */
+    float wind[3];     /* (0, 0, 0) m/s^2: a constant extra acceleration */
+    float turbulence;  /* 0 m/s^2: amplitude of a smooth per-rope random
+                          acceleration added to the wind (value noise of
+                          the rope index and the rope's simulated time) */
+    float turbulence_frequency; /* 1 Hz: how often the turbulence changes */
+    float damping;     /* 0.02: fraction of velocity lost per 1/60 s of
+                          simulated time, [0, 1] */
+    float time_scale;  /* 1: simulated seconds per real second, (0, 100];
+                          the 2010 plugin ran Bullet at 2 */
+    float substep;     /* 1/120 s: the longest sub-step, [1e-5, 1] */
+    int max_substeps;  /* 8: cap on sub-steps per call, [1, 1000]; when the
+                          cap binds, sub-steps get longer (no time lost) */
+    float max_dt;      /* 1/15 s: a longer dt is clamped to this, (0, 1] */
+    int iterations;    /* 2: solver passes per sub-step, [0, 1000]; each
+                          pass is a distance pass then a collision pass.
+                          FTL without colliders needs (and does) one. */
+    int solver;        /* hf_rope_solver: HF_ROPE_SOLVER_FTL */
+    float ftl_damping; /* 0.9: Mueller's s_damping, [0, 1] */
+    float root_stiffness; /* 0: pull of point 1 toward its rest place in
+                          the root frame (along the root normal for a
+                          guide), fraction of the gap closed per 1/60 s,
+                          [0, 1]; 1 holds the first segment rigidly */
+    float global_stiffness_root; /* 0: pull of each point toward the rest */
+    float global_stiffness_tip;  /* 0: pose carried by the root frame, per
+                          1/60 s, [0, 1], linear from root to tip (TressFX
+                          global shape constraint) */
+    float local_stiffness_root;  /* 0: pull of each segment toward its rest */
+    float local_stiffness_tip;   /* 0: direction relative to its parent
+                          segment, per 1/60 s, [0, 1], linear from root to
+                          tip (TressFX local shape constraint) */
+    float collision_margin; /* 0.002 m: particles end at least this far
+                          outside every collider, [0, 1000] */
+    float mode_blend_time;  /* 0.25 s: a simulated rope switched to
+                          animated glides to its rest pose over this much
+                          simulated time, [0, 1000]; 0 = at once */
+} hf_rope_params;
+
+/* Fill params with the defaults listed above. */
+HFDEF void hf_rope_params_init(hf_rope_params *params);
+
+/* Check every field against its documented range: HF_OK,
+   HF_ERROR_NULL_POINTER, HF_ERROR_NON_FINITE or HF_ERROR_BAD_PARAMETER;
+   diag (may be NULL) names the field. hf_ropes_step calls it. */
+HFDEF hf_result hf_rope_params_validate(const hf_rope_params *params,
+                                        hf_diag *diag);
+
+typedef enum hf_collider_type {
+    HF_COLLIDER_SPHERE = 0, /* centre a, radius */
+    HF_COLLIDER_CAPSULE = 1 /* segment a-b, radius */
+} hf_collider_type;
+
+/* A collider in world space; the caller moves it every frame. */
+typedef struct hf_collider {
+    int type; /* hf_collider_type */
+    float a[3], b[3];
+    float radius; /* m, [0, HF_ROPE_MAX_COORD] */
+} hf_collider;
+
+/* The rope set. The caller owns the struct and the memory behind it
+   (hf_ropes_init) or gets both from hf_ropes_create. Read the public
+   arrays freely between calls; write them only if you know what the
+   solver expects (e.g. tests). Fields marked private may change. */
+typedef struct hf_ropes {
+    int rope_count;
+    int points;          /* per rope, >= 2 */
+    float *x, *y, *z;    /* current positions, [j * rope_count + r] */
+    float *px, *py, *pz; /* positions one sub-step earlier */
+    float *rest_u, *rest_v, *rest_w; /* rest pose in root-frame coordinates */
+    float *rest_length;  /* segment j (points j, j+1): [j * rope_count + r],
+                            j < points - 1 */
+    /* private */
+    float *frame;   /* 24 rows of rope_count: current frame, previous one */
+    float *scratch; /* per-call temporaries, rows of rope_count */
+    float *last_h, *blend, *length;
+    double *time;
+    unsigned char *mode;
+    hf_allocator allocator; /* hf_ropes_create only */
+    int owned;
+} hf_ropes;
+
+/* Bytes of memory hf_ropes_init needs for rope_count ropes of `points`
+   points (about 40 bytes per point plus 230 per rope). Errors:
+   HF_ERROR_NULL_POINTER, HF_ERROR_BAD_COUNT (rope_count < 1 or points < 2),
+   HF_ERROR_OVERFLOW. */
+HFDEF hf_result hf_ropes_memory_size(int rope_count, int points,
+                                     size_t *out_size);
+
+/* Set up `ropes` on caller memory of memory_size bytes (any alignment; at
+   least hf_ropes_memory_size). The memory must outlive the ropes; nothing
+   is allocated, and there is nothing to free but the memory. Every rope
+   starts as a zero-length rope at the origin with an identity root frame
+   (tangent x, normal y), simulated: call hf_ropes_set_rest next. Errors:
+   HF_ERROR_NULL_POINTER, HF_ERROR_BAD_COUNT, HF_ERROR_OVERFLOW,
+   HF_ERROR_BUFFER_TOO_SMALL; *ropes is untouched then. */
+HFDEF hf_result hf_ropes_init(hf_ropes *ropes, int rope_count, int points,
+                              void *memory, size_t memory_size);
+
+/* The same, with the struct and its memory in one block from `alloc`
+   (NULL = default); free it with hf_ropes_destroy. *out_ropes is set only
+   on success. Errors: as hf_ropes_init, HF_ERROR_OUT_OF_MEMORY. */
+HFDEF hf_result hf_ropes_create(int rope_count, int points,
+                                const hf_allocator *alloc,
+                                hf_ropes **out_ropes);
+/* Free what hf_ropes_create returned (NULL is ignored). Ropes set up with
+   hf_ropes_init are left alone: their memory is the caller's. */
+HFDEF void hf_ropes_destroy(hf_ropes *ropes);
+
+/* Give ropes [first, first + count) their rest pose and root frame. Point j
+   of rope r is read at byte ((size_t)r * points + j) * position_stride of
+   `positions` (world space, rope-major, 0 = 12); root r at byte
+   r * root_stride (0 = 12) of root_pos, root_normal and root_tangent. Arrays
+   are indexed by the absolute rope index, so pass the same pointers for
+   every range. Stores the rest pose in root-frame coordinates and the rest
+   segment lengths (zero-length segments are allowed), and puts the rope at
+   rest (as hf_ropes_reset). Errors: HF_ERROR_NULL_POINTER,
+   HF_ERROR_BAD_RANGE, HF_ERROR_BAD_STRIDE, HF_ERROR_NON_FINITE,
+   HF_ERROR_BAD_PARAMETER (a coordinate beyond HF_ROPE_MAX_COORD),
+   HF_ERROR_DEGENERATE (a zero normal); nothing is written then. */
+HFDEF hf_result hf_ropes_set_rest(hf_ropes *ropes, int first, int count,
+                                  const float *positions, int position_stride,
+                                  const float *root_pos,
+                                  const float *root_normal,
+                                  const float *root_tangent, int root_stride);
+
+/* Set this frame's root frames of ropes [first, first + count), read as in
+   hf_ropes_set_rest. The next hf_ropes_step moves each root from the frame
+   it ended the last step with to this one across its sub-steps, so a fast
+   root does not yank its rope in one sub-step. Calling it twice before a
+   step keeps the last. Errors: HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE,
+   HF_ERROR_BAD_STRIDE, HF_ERROR_NON_FINITE, HF_ERROR_BAD_PARAMETER,
+   HF_ERROR_DEGENERATE (zero normal); nothing is written then. */
+HFDEF hf_result hf_ropes_set_roots(hf_ropes *ropes, int first, int count,
+                                   const float *root_pos,
+                                   const float *root_normal,
+                                   const float *root_tangent, int root_stride);
+
+/* Advance ropes [first, first + count) by dt seconds (times
+   params->time_scale). dt above params->max_dt is clamped to it (HF_OK);
+   dt zero, negative, NaN or infinite returns HF_ERROR_BAD_TIME_STEP and
+   changes nothing. count 0 is a valid empty range. `colliders` may be NULL
+   when collider_count is 0. When the call returns, every non-root point of
+   a simulated rope is at least radius + collision_margin from every
+   collider, provided the colliders inflated by the margin do not overlap
+   one another (where they do, the later collider in the array wins); the
+   root point sits on the skin and is exempt. Animated ropes ignore
+   colliders. A rope that an unstable setting throws further than
+   8 * length + 0.01 m from its root is reset to its rest pose, so no
+   output is ever NaN. Errors: HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE,
+   HF_ERROR_BAD_COUNT (collider_count < 0), HF_ERROR_BAD_TIME_STEP,
+   HF_ERROR_NON_FINITE / HF_ERROR_BAD_PARAMETER (params or colliders);
+   nothing is written then. No allocation. */
+HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
+                              float dt, const hf_rope_params *params,
+                              const hf_collider *colliders,
+                              int collider_count);
+
+/* Switch ropes [first, first + count) between simulation and animation on
+   the fly, without a jump. To HF_ROPE_SIMULATED: immediate; a fully
+   animated rope keeps the velocity of its animated motion (its previous
+   positions are the animated pose one sub-step back); a rope still gliding
+   (below) starts from where it is, at rest. To HF_ROPE_ANIMATED: the pose
+   the rope has now is kept in root-frame coordinates and the rope glides,
+   kinematically (no simulation, no colliders), from it to its rest pose
+   over params->mode_blend_time (linearly, so a frame moves at most the
+   root frame's own motion plus gap * dt / mode_blend_time), then is
+   carried rigidly. The same mode again changes nothing. `mode` is an
+   hf_rope_mode (an int so that a bad value is defined in C++). Errors:
+   HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE, HF_ERROR_BAD_PARAMETER
+   (unknown mode). */
+HFDEF hf_result hf_ropes_set_mode(hf_ropes *ropes, int first, int count,
+                                  int mode);
+
+/* Teleport ropes [first, first + count): put every point at its rest place
+   in the current root frame, with zero velocity; the next step starts from
+   there (no interpolation from an old frame). Errors:
+   HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE. */
+HFDEF hf_result hf_ropes_reset(hf_ropes *ropes, int first, int count);
+
+/* The largest relative length error |length - rest| / rest over every
+   segment of ropes [first, first + count) with a non-zero rest length
+   (0.005 = 0.5 %); 0 for an empty range. Errors: HF_ERROR_NULL_POINTER,
+   HF_ERROR_BAD_RANGE; *out_stretch untouched then. */
+HFDEF hf_result hf_ropes_max_stretch(const hf_ropes *ropes, int first,
+                                     int count, float *out_stretch);
+
+/* Copy the current positions of ropes [first, first + count) to `out`,
+   rope-major: point j of rope r goes to byte
+   ((size_t)r * points + j) * stride (0 = 12), absolute rope index. Errors:
+   HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE, HF_ERROR_BAD_STRIDE. */
+HFDEF hf_result hf_ropes_get_positions(const hf_ropes *ropes, int first,
+                                       int count, float *out, int stride);
+
+/* ======================================================================== */
+/* 7. Interpolation and LOD                                                 */
 /* ======================================================================== */
 
 /* Every strand and every guide has the same number of points P, 2 <= P <=
@@ -772,7 +1030,7 @@ HFDEF float hf_lod_from_distance(float distance, float full_detail_distance,
                                  float cull_distance);
 
 /* ======================================================================== */
-/* 10. Ribbons                                                              */
+/* 8. Ribbons                                                               */
 /* ======================================================================== */
 
 /* One output attribute: `data` points at the attribute of vertex 0, `stride`
@@ -872,7 +1130,7 @@ HFDEF hf_result hf_ribbon_indices(int strand_count, int points_per_strand,
                                   uint32_t *out, long long capacity);
 
 /* ======================================================================== */
-/* 11. LUT baking                                                           */
+/* 9. LUT baking                                                            */
 /* ======================================================================== */
 /* Marschner M and N lookup textures. */
 
@@ -1004,6 +1262,145 @@ HFDEF hf_result hf_lut_eval_m(const hf_lut_params *p, double theta_h,
                               double out[3]);
 HFDEF hf_result hf_lut_eval_n(const hf_lut_params *p, double cos_theta_d,
                               double phi, double out[3]);
+
+/* ======================================================================== */
+/* 10. The fur object                                                      */
+/* ======================================================================== */
+
+/* hf_fur composes every stage: created once from a zero-initialised
+   description (it grows everything then), it owns the guides, strands and
+   rope state, and exposes the per-frame calls. It allocates only in
+   hf_fur_create; every per-frame call takes a (first, count) range and
+   allocates nothing. Per frame, in this order (a barrier between steps
+   when ranges run on several threads):
+
+       hf_fur_set_lod(fur, lod);                            // one thread
+       hf_fur_set_roots(fur, &skinned_mesh, 0, info.guide_count);
+       hf_fur_simulate(fur, 0, info.guide_count, dt, colliders, n);
+       hf_fur_interpolate_guides(fur, 0, info.lod_guide_count);
+       hf_fur_interpolate(fur, 0, info.drawn_strand_count);
+       hf_fur_ribbons(fur, 0, info.drawn_strand_count, &view, &out);
+
+   Guides 0 .. pure_guide_count - 1 are the pure guides (one per welded base
+   vertex, always simulated); the rest are LOD guides (one per vertex that
+   tessellation added), simulated only while the LOD is at or above
+   lod_simulate_threshold and otherwise interpolated from the pure guides. */
+typedef struct hf_fur hf_fur;
+
+/* Every zero field means the default written beside it. */
+typedef struct hf_fur_desc {
+    hf_mesh mesh; /* the base mesh at rest (required); UVs are needed when
+                     any map is given; no normals: area-weighted ones */
+    const hf_map *density_map;       /* NULL: density 1 everywhere */
+    const hf_map *length_map;        /* NULL: every strand max_length */
+    const hf_map *color_map;         /* NULL: white strands */
+    const hf_map *color3d_index_map; /* NULL: 3D-colour x = 0 */
+    int points_per_strand;  /* 0 = 16; 2 .. HF_MAX_POINTS */
+    float max_length;       /* 0 = 0.05 (world units, metres in examples) */
+    float tess_factor;      /* 0 = no tessellation: pure guides only. Else
+                               triangles split while D * A * factor > 1 */
+    int tess_estimator;     /* hf_density_estimator; 0 = corners */
+    int tess_split;         /* hf_split_point; 0 = centroid */
+    int tess_max_triangles; /* 0 = HF_TESS_DEFAULT_MAX_TRIANGLES */
+    float strands_per_area; /* expected strands per unit area at density 1;
+                               0 = use total_strands */
+    int total_strands;      /* exact strand count when strands_per_area is
+                               0; both 0 = 10000 */
+    int sampler;            /* hf_root_sampler; 0 = uniform */
+    uint64_t seed;          /* every stochastic stage; 0 is a fine seed */
+    float clump;            /* 0 = none; [0, 1], see hf_interp_params */
+    float lod_simulate_threshold; /* 0 = 0.5: LOD guides simulated at
+                                     lod >= this */
+    const hf_rope_params *rope_params; /* NULL = hf_rope_params_init */
+    const hf_allocator *allocator;     /* NULL = default; copied */
+} hf_fur_desc;
+
+/* Sizes and state of a fur, for sizing buffers and splitting ranges. The
+   pointers stay valid until hf_fur_destroy. */
+typedef struct hf_fur_info {
+    int points_per_strand;
+    int guide_count, pure_guide_count, lod_guide_count;
+    int strand_count;        /* all strands, in LOD order */
+    int drawn_strand_count;  /* the prefix the current LOD draws */
+    int lod_guides_simulated;
+    float lod, width_scale;  /* current LOD and its width multiplier */
+    int triangle_count;      /* guide (tessellated) triangles */
+    const float *guide_points;  /* guide_count * P * 3 */
+    const float *strand_points; /* strand_count * P * 3 */
+    const hf_strand *strands;   /* strand_count records */
+    const float *strand_lengths; /* strand_count */
+    const float *strand_colors;  /* 4 per strand (rgba from color_map) */
+} hf_fur_info;
+
+/* Grow a fur: validate, tessellate, make guides, place strands, read the
+   maps, set up the ropes. *out_fur is set only on success. Errors: any of
+   the building blocks' (mesh and map validation, HF_ERROR_BAD_PARAMETER
+   for an out-of-range field, the tessellation caps, ...) and
+   HF_ERROR_OUT_OF_MEMORY; nothing is leaked on failure. `diag` (may be
+   NULL) says which stage failed. */
+HFDEF hf_result hf_fur_create(const hf_fur_desc *desc, hf_fur **out_fur,
+                              hf_diag *diag);
+/* Free a fur and everything it allocated (NULL is ignored). */
+HFDEF void hf_fur_destroy(hf_fur *fur);
+/* Fill *info. Errors: HF_ERROR_NULL_POINTER. */
+HFDEF hf_result hf_fur_get_info(const hf_fur *fur, hf_fur_info *info);
+
+/* Choose the level of detail, lod in [0, 1] (see hf_lod_strand_count; NaN
+   counts as 0): the drawn prefix, the width multiplier, and whether LOD
+   guides are simulated. LOD guides switched on start from their current
+   (interpolated) shape at rest velocity, so nothing jumps. Not a range
+   call: run it on one thread between frames. */
+HFDEF hf_result hf_fur_set_lod(hf_fur *fur, float lod);
+
+/* Root frames of guides [first, first + count) from the skinned base mesh
+   (same vertex count and triangles as at creation; only positions,
+   optional normals and their strides are read): a pure guide takes the
+   position and normal of its vertex, a LOD guide the barycentric blend on
+   its base triangle (hf_tess_evaluate); without normals, the face normal
+   of a triangle of the vertex. The tangent is the direction of a fixed
+   mesh edge at the root. Errors: HF_ERROR_NULL_POINTER, HF_ERROR_BAD_COUNT
+   (vertex count differs), HF_ERROR_BAD_RANGE, HF_ERROR_BAD_STRIDE,
+   HF_ERROR_NON_FINITE (a position or normal read); nothing set then. */
+HFDEF hf_result hf_fur_set_roots(hf_fur *fur, const hf_mesh *skinned,
+                                 int first, int count);
+
+/* Step the ropes of guides [first, first + count) by dt (see
+   hf_ropes_step: clamped above max_dt, HF_ERROR_BAD_TIME_STEP for zero,
+   negative or non-finite) with the given colliders, and copy their points
+   into the guide array. LOD guides are skipped while not simulated. */
+HFDEF hf_result hf_fur_simulate(hf_fur *fur, int first, int count, float dt,
+                                const hf_collider *colliders,
+                                int collider_count);
+
+/* While LOD guides are not simulated, interpolate LOD guides [first, first
+   + count) (0-based among the LOD guides) from the pure guides of their
+   base triangle; a no-op (HF_OK) while they are simulated. Needs every
+   pure guide simulated first. */
+HFDEF hf_result hf_fur_interpolate_guides(hf_fur *fur, int first, int count);
+
+/* Interpolate strands [first, first + count) from the guides (see
+   hf_interpolate), into the fur's strand points. Needs every guide
+   updated first. */
+HFDEF hf_result hf_fur_interpolate(hf_fur *fur, int first, int count);
+
+/* Ribbons of strands [first, first + count) into `out` (see hf_ribbons),
+   with the strand UVs, colours and 3D-colour coordinates of the fur. The
+   fur's LOD width multiplier multiplies view->width_scale (0 = 1);
+   view->points_per_strand is ignored (the fur's is used). */
+HFDEF hf_result hf_fur_ribbons(const hf_fur *fur, int first, int count,
+                               const hf_ribbon_params *view,
+                               const hf_ribbon_output *out);
+/* The GPU-expansion path of strands [first, first + count): see
+   hf_ribbon_points; widths as hf_fur_ribbons. */
+HFDEF hf_result hf_fur_points(const hf_fur *fur, int first, int count,
+                              const hf_ribbon_params *view, float *out4);
+
+/* The largest relative segment stretch of the simulated guides (see
+   hf_ropes_max_stretch). Errors: HF_ERROR_NULL_POINTER. */
+HFDEF hf_result hf_fur_max_stretch(const hf_fur *fur, float *out_stretch);
+
+/* Teleport: every guide to its rest shape in its current root frame. */
+HFDEF hf_result hf_fur_reset(hf_fur *fur);
 
 #ifdef __cplusplus
 }
@@ -2984,7 +3381,1356 @@ HFDEF hf_result hf_bind_strands(const hf_mesh *guide_mesh,
     return HF_OK;
 }
 
-/* ---- 9. interpolation and LOD ------------------------------------------- */
+/* ---- 6. ropes ----------------------------------------------------------- */
+
+#ifndef HF_POW
+#define HF_POW(x, y) pow(x, y)
+#endif
+#ifndef HF_FLOOR
+#define HF_FLOOR(x) floor(x)
+#endif
+
+#if defined(__GNUC__) || defined(__clang__) || defined(_MSC_VER)
+#define HF__RESTRICT __restrict
+#else
+#define HF__RESTRICT
+#endif
+
+/* Scratch rows (each rope_count floats), rewritten by every step. */
+enum {
+    HF__RS_F = 0,   /* rows 0..11: root frame of this sub-step: p, t, n, b */
+    HF__RS_G = 12,  /* rows 12..23: animated ropes: frame one sub-step back */
+    HF__RS_A = 24,  /* rows 24..26: acceleration * h^2 of this sub-step */
+    HF__RS_VF = 27, /* velocity factor: damping and the dt-change ratio */
+    HF__RS_KB = 28, /* per-rope temporary */
+    HF__RS_ROWS = 29
+};
+
+/* Resolved per-call constants. */
+typedef struct hf__rope_step {
+    int n;             /* sub-steps */
+    float h;           /* sub-step length (s, simulated) */
+    float keep;        /* velocity kept per sub-step */
+    float k_root;      /* root stiffness per sub-step */
+    int iterations;    /* effective passes */
+    int ftl;
+    float ftl_damping;
+    float margin;
+    float g[3];        /* gravity + wind */
+    float turbulence, turbulence_frequency;
+    float blend_time;
+    float gs_root, gs_tip, ls_root, ls_tip; /* per 1/60 s */
+    int global_on, local_on;
+} hf__rope_step;
+
+HFDEF void hf_rope_params_init(hf_rope_params *p)
+{
+    if (!p) return;
+    HF_MEMSET(p, 0, sizeof *p);
+    p->gravity[1] = -9.81f;
+    p->turbulence_frequency = 1.0f;
+    p->damping = 0.02f;
+    p->time_scale = 1.0f;
+    p->substep = 1.0f / 120.0f;
+    p->max_substeps = 8;
+    p->max_dt = 1.0f / 15.0f;
+    p->iterations = 2;
+    p->solver = HF_ROPE_SOLVER_FTL;
+    p->ftl_damping = 0.9f;
+    p->collision_margin = 0.002f;
+    p->mode_blend_time = 0.25f;
+}
+
+/* A float field in [lo, hi]. */
+HF__PRIVATE hf_result hf__rope_check_f(hf_diag *diag, const char *field,
+                                       float v, float lo, float hi)
+{
+    if (!hf__finitef(v))
+        return hf__fail(diag, HF_ERROR_NON_FINITE, field, -1,
+                        "params.%s is NaN or infinite", field);
+    if (!(v >= lo && v <= hi))
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, field, -1,
+                        "params.%s = %g is outside [%g, %g]", field,
+                        (double)v, (double)lo, (double)hi);
+    return HF_OK;
+}
+
+HFDEF hf_result hf_rope_params_validate(const hf_rope_params *p,
+                                        hf_diag *diag)
+{
+    hf_result r;
+    const float A = HF_ROPE_MAX_ACCEL;
+    int k;
+    if (!p)
+        return hf__fail(diag, HF_ERROR_NULL_POINTER, "params", -1,
+                        "params is NULL");
+    for (k = 0; k < 3; ++k) {
+        if ((r = hf__rope_check_f(diag, "gravity", p->gravity[k], -A, A)) !=
+                HF_OK ||
+            (r = hf__rope_check_f(diag, "wind", p->wind[k], -A, A)) != HF_OK)
+            return r;
+    }
+    if ((r = hf__rope_check_f(diag, "turbulence", p->turbulence, 0.0f, A)) ||
+        (r = hf__rope_check_f(diag, "turbulence_frequency",
+                              p->turbulence_frequency, 0.0f, 1000.0f)) ||
+        (r = hf__rope_check_f(diag, "damping", p->damping, 0.0f, 1.0f)) ||
+        (r = hf__rope_check_f(diag, "time_scale", p->time_scale, 1e-30f,
+                              100.0f)) ||
+        (r = hf__rope_check_f(diag, "substep", p->substep, 1e-5f, 1.0f)) ||
+        (r = hf__rope_check_f(diag, "max_dt", p->max_dt, 1e-30f, 1.0f)) ||
+        (r = hf__rope_check_f(diag, "ftl_damping", p->ftl_damping, 0.0f,
+                              1.0f)) ||
+        (r = hf__rope_check_f(diag, "root_stiffness", p->root_stiffness,
+                              0.0f, 1.0f)) ||
+        (r = hf__rope_check_f(diag, "global_stiffness_root",
+                              p->global_stiffness_root, 0.0f, 1.0f)) ||
+        (r = hf__rope_check_f(diag, "global_stiffness_tip",
+                              p->global_stiffness_tip, 0.0f, 1.0f)) ||
+        (r = hf__rope_check_f(diag, "local_stiffness_root",
+                              p->local_stiffness_root, 0.0f, 1.0f)) ||
+        (r = hf__rope_check_f(diag, "local_stiffness_tip",
+                              p->local_stiffness_tip, 0.0f, 1.0f)) ||
+        (r = hf__rope_check_f(diag, "collision_margin", p->collision_margin,
+                              0.0f, 1000.0f)) ||
+        (r = hf__rope_check_f(diag, "mode_blend_time", p->mode_blend_time,
+                              0.0f, 1000.0f)))
+        return r;
+    if (p->max_substeps < 1 || p->max_substeps > 1000)
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "max_substeps", -1,
+                        "params.max_substeps = %d is outside [1, 1000]",
+                        p->max_substeps);
+    if (p->iterations < 0 || p->iterations > 1000)
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "iterations", -1,
+                        "params.iterations = %d is outside [0, 1000]",
+                        p->iterations);
+    if (p->solver != HF_ROPE_SOLVER_FTL &&
+        p->solver != HF_ROPE_SOLVER_DISTANCE)
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "solver", -1,
+                        "params.solver = %d is not a hf_rope_solver",
+                        p->solver);
+    hf__ok(diag);
+    return HF_OK;
+}
+
+/* ---- memory ------------------------------------------------------------- */
+
+/* Array sizes in bytes, in layout order: 10 point arrays (x, y, z, px, py,
+   pz, rest_u, rest_v, rest_w, rest_length), frame, scratch, last_h, blend,
+   length, time, mode. Each starts on a 64-byte boundary. */
+enum { HF__ROPE_ARRAYS = 17 };
+
+HF__PRIVATE hf_result hf__ropes_layout(int rope_count, int points,
+                                       size_t sizes[HF__ROPE_ARRAYS],
+                                       size_t *total)
+{
+    size_t n, pt, t = 64, R;
+    int i;
+    if (rope_count < 1 || points < 2) return HF_ERROR_BAD_COUNT;
+    R = (size_t)rope_count;
+    if (!hf__mul_size(R, (size_t)points, &n) ||
+        !hf__mul_size(n, sizeof(float), &pt))
+        return HF_ERROR_OVERFLOW;
+    for (i = 0; i < 10; ++i) sizes[i] = pt;
+    if (!hf__mul_size(R, 24 * sizeof(float), &sizes[10]) ||
+        !hf__mul_size(R, HF__RS_ROWS * sizeof(float), &sizes[11]) ||
+        !hf__mul_size(R, sizeof(double), &sizes[15]))
+        return HF_ERROR_OVERFLOW;
+    sizes[12] = sizes[13] = sizes[14] = R * sizeof(float);
+    sizes[16] = R;
+    for (i = 0; i < HF__ROPE_ARRAYS; ++i) {
+        size_t s = sizes[i] + 63u;
+        if (s < sizes[i] || t + s < t) return HF_ERROR_OVERFLOW;
+        t += s & ~(size_t)63u;
+    }
+    *total = t;
+    return HF_OK;
+}
+
+HFDEF hf_result hf_ropes_memory_size(int rope_count, int points,
+                                     size_t *out_size)
+{
+    size_t sizes[HF__ROPE_ARRAYS], total;
+    hf_result r;
+    if (!out_size) return HF_ERROR_NULL_POINTER;
+    r = hf__ropes_layout(rope_count, points, sizes, &total);
+    if (r == HF_OK) *out_size = total;
+    return r;
+}
+
+HFDEF hf_result hf_ropes_init(hf_ropes *ropes, int rope_count, int points,
+                              void *memory, size_t memory_size)
+{
+    size_t sizes[HF__ROPE_ARRAYS], total, R, k;
+    unsigned char *base, *at;
+    void *arr[HF__ROPE_ARRAYS];
+    hf_result r;
+    int i;
+    if (!ropes || !memory) return HF_ERROR_NULL_POINTER;
+    r = hf__ropes_layout(rope_count, points, sizes, &total);
+    if (r != HF_OK) return r;
+    if (memory_size < total) return HF_ERROR_BUFFER_TOO_SMALL;
+    HF_MEMSET(memory, 0, total);
+    base = (unsigned char *)memory;
+    at = base + ((64u - (size_t)((uintptr_t)base & 63u)) & 63u);
+    for (i = 0; i < HF__ROPE_ARRAYS; ++i) {
+        arr[i] = at;
+        at += (sizes[i] + 63u) & ~(size_t)63u;
+    }
+    HF_MEMSET(ropes, 0, sizeof *ropes);
+    ropes->rope_count = rope_count;
+    ropes->points = points;
+    ropes->x = (float *)arr[0];
+    ropes->y = (float *)arr[1];
+    ropes->z = (float *)arr[2];
+    ropes->px = (float *)arr[3];
+    ropes->py = (float *)arr[4];
+    ropes->pz = (float *)arr[5];
+    ropes->rest_u = (float *)arr[6];
+    ropes->rest_v = (float *)arr[7];
+    ropes->rest_w = (float *)arr[8];
+    ropes->rest_length = (float *)arr[9];
+    ropes->frame = (float *)arr[10];
+    ropes->scratch = (float *)arr[11];
+    ropes->last_h = (float *)arr[12];
+    ropes->blend = (float *)arr[13];
+    ropes->length = (float *)arr[14];
+    ropes->time = (double *)arr[15];
+    ropes->mode = (unsigned char *)arr[16];
+    /* identity frames (tangent x, normal y, bitangent cross(t, n) = z),
+       current and previous */
+    R = (size_t)rope_count;
+    for (k = 0; k < R; ++k) {
+        ropes->frame[3 * R + k] = 1.0f;
+        ropes->frame[7 * R + k] = 1.0f;
+        ropes->frame[11 * R + k] = 1.0f;
+        ropes->frame[15 * R + k] = 1.0f;
+        ropes->frame[19 * R + k] = 1.0f;
+        ropes->frame[23 * R + k] = 1.0f;
+        ropes->time[k] = 0.0;
+    }
+    return HF_OK;
+}
+
+HFDEF hf_result hf_ropes_create(int rope_count, int points,
+                                const hf_allocator *alloc,
+                                hf_ropes **out_ropes)
+{
+    size_t need, head = (sizeof(hf_ropes) + 63u) & ~(size_t)63u;
+    hf_ropes *ro;
+    hf_result r;
+    if (!out_ropes) return HF_ERROR_NULL_POINTER;
+    r = hf_ropes_memory_size(rope_count, points, &need);
+    if (r != HF_OK) return r;
+    if (need + head < need) return HF_ERROR_OVERFLOW;
+    ro = (hf_ropes *)hf__alloc(alloc, need + head);
+    if (!ro) return HF_ERROR_OUT_OF_MEMORY;
+    r = hf_ropes_init(ro, rope_count, points, (unsigned char *)ro + head,
+                      need);
+    HF_ASSERT(r == HF_OK);
+    if (alloc) ro->allocator = *alloc;
+    ro->owned = alloc ? 2 : 1;
+    *out_ropes = ro;
+    return HF_OK;
+}
+
+HFDEF void hf_ropes_destroy(hf_ropes *ropes)
+{
+    if (!ropes || !ropes->owned) return;
+    if (ropes->owned == 2) {
+        hf_allocator a = ropes->allocator;
+        hf__free(&a, ropes);
+    } else {
+        hf__free(NULL, ropes);
+    }
+}
+
+/* ---- frames ------------------------------------------------------------- */
+
+HF__PRIVATE int hf__ropes_range(const hf_ropes *ro, int first, int count)
+{
+    return first >= 0 && count >= 0 && first <= ro->rope_count &&
+           count <= ro->rope_count - first;
+}
+
+HF__PRIVATE int hf__ropes_ok(const hf_ropes *ro)
+{
+    return ro && ro->x && ro->rope_count >= 1 && ro->points >= 2;
+}
+
+/* Unit vector perpendicular to unit n, chosen from n alone: the axis that n
+   leans on least, made perpendicular. */
+HF__PRIVATE void hf__rope_perp(const float *n, float *out)
+{
+    float ax = HF_FABS(n[0]), ay = HF_FABS(n[1]), az = HF_FABS(n[2]);
+    float e[3] = {0.0f, 0.0f, 0.0f}, d, l2;
+    e[(ax <= ay && ax <= az) ? 0 : (ay <= az ? 1 : 2)] = 1.0f;
+    d = hf__dot3(n, e);
+    out[0] = e[0] - n[0] * d;
+    out[1] = e[1] - n[1] * d;
+    out[2] = e[2] - n[2] * d;
+    l2 = hf__dot3(out, out); /* >= 2/3 for a unit n */
+    d = 1.0f / HF_SQRTF(l2);
+    out[0] *= d;
+    out[1] *= d;
+    out[2] *= d;
+}
+
+/* Normalise v (finite) into out, scaling first so no square overflows.
+   Returns 0 (out untouched) for a zero vector. */
+HF__PRIVATE int hf__rope_unit(const float *v, float *out)
+{
+    float m = HF_FABS(v[0]), s[3], l2;
+    if (HF_FABS(v[1]) > m) m = HF_FABS(v[1]);
+    if (HF_FABS(v[2]) > m) m = HF_FABS(v[2]);
+    if (!(m > 1e-30f)) return 0;
+    s[0] = v[0] / m;
+    s[1] = v[1] / m;
+    s[2] = v[2] / m;
+    l2 = hf__dot3(s, s);
+    l2 = 1.0f / HF_SQRTF(l2);
+    out[0] = s[0] * l2;
+    out[1] = s[1] * l2;
+    out[2] = s[2] * l2;
+    return 1;
+}
+
+/* Orthonormal frame f[12] = p, t, n, b from a position, a unit normal and
+   any tangent (made perpendicular; a degenerate one replaced). */
+HF__PRIVATE void hf__rope_basis(const float *p, const float *n,
+                                const float *t_in, float *f)
+{
+    float t[3], d = hf__dot3(n, t_in), l2;
+    t[0] = t_in[0] - n[0] * d;
+    t[1] = t_in[1] - n[1] * d;
+    t[2] = t_in[2] - n[2] * d;
+    l2 = hf__dot3(t, t);
+    if (l2 > 1e-10f) {
+        l2 = 1.0f / HF_SQRTF(l2);
+        t[0] *= l2;
+        t[1] *= l2;
+        t[2] *= l2;
+    } else {
+        hf__rope_perp(n, t);
+    }
+    f[0] = p[0];
+    f[1] = p[1];
+    f[2] = p[2];
+    f[3] = t[0];
+    f[4] = t[1];
+    f[5] = t[2];
+    f[6] = n[0];
+    f[7] = n[1];
+    f[8] = n[2];
+    hf__cross3(f + 9, t, n);
+}
+
+HF__PRIVATE const float *hf__rope_at(const float *base, int stride, size_t i)
+{
+    return (const float *)((const unsigned char *)base +
+                           i * (size_t)(stride ? stride : 12));
+}
+
+HF__PRIVATE int hf__rope_coord_ok(const float *v)
+{
+    int k;
+    for (k = 0; k < 3; ++k)
+        if (!(HF_FABS(v[k]) <= HF_ROPE_MAX_COORD)) return 0;
+    return 1;
+}
+
+/* Validate the root frames of a range (nothing written). */
+HF__PRIVATE hf_result hf__ropes_check_roots(int first, int count,
+                                            const float *pos,
+                                            const float *nrm,
+                                            const float *tan, int stride)
+{
+    int r, k;
+    if (!pos || !nrm || !tan) return HF_ERROR_NULL_POINTER;
+    if (stride != 0 && stride < 12) return HF_ERROR_BAD_STRIDE;
+    for (r = first; r < first + count; ++r) {
+        const float *p = hf__rope_at(pos, stride, (size_t)r);
+        const float *n = hf__rope_at(nrm, stride, (size_t)r);
+        const float *t = hf__rope_at(tan, stride, (size_t)r);
+        float u[3];
+        for (k = 0; k < 3; ++k)
+            if (!hf__finitef(p[k]) || !hf__finitef(n[k]) ||
+                !hf__finitef(t[k]))
+                return HF_ERROR_NON_FINITE;
+        if (!hf__rope_coord_ok(p)) return HF_ERROR_BAD_PARAMETER;
+        if (!hf__rope_unit(n, u)) return HF_ERROR_DEGENERATE;
+    }
+    return HF_OK;
+}
+
+/* Store frame f[12] in rows [row0, row0 + 12) of the frame array. */
+HF__PRIVATE void hf__rope_put_frame(hf_ropes *ro, int row0, int r,
+                                    const float *f)
+{
+    size_t R = (size_t)ro->rope_count;
+    int k;
+    for (k = 0; k < 12; ++k) ro->frame[(size_t)(row0 + k) * R + r] = f[k];
+}
+
+HF__PRIVATE void hf__rope_get_frame(const hf_ropes *ro, int row0, int r,
+                                    float *f)
+{
+    size_t R = (size_t)ro->rope_count;
+    int k;
+    for (k = 0; k < 12; ++k) f[k] = ro->frame[(size_t)(row0 + k) * R + r];
+}
+
+HF__PRIVATE void hf__ropes_write_roots(hf_ropes *ro, int first, int count,
+                                       const float *pos, const float *nrm,
+                                       const float *tan, int stride)
+{
+    int r;
+    for (r = first; r < first + count; ++r) {
+        float n[3], t[3], f[12];
+        const float *tin = hf__rope_at(tan, stride, (size_t)r);
+        hf__rope_unit(hf__rope_at(nrm, stride, (size_t)r), n);
+        if (!hf__rope_unit(tin, t)) t[0] = t[1] = t[2] = 0.0f;
+        hf__rope_basis(hf__rope_at(pos, stride, (size_t)r), n, t, f);
+        hf__rope_put_frame(ro, 0, r, f);
+    }
+}
+
+/* The root frame at fraction alpha of the way from the previous frame to
+   the current one: lerped position, nlerped normal and tangent,
+   re-orthonormalised. alpha >= 1 is the current frame, bit for bit. */
+HF__PRIVATE void hf__rope_frame_at(const hf_ropes *ro, int r, float alpha,
+                                   float *f)
+{
+    float c[12], p[12], n[3], t[3], pos[3], l2;
+    int k;
+    hf__rope_get_frame(ro, 0, r, c);
+    if (alpha >= 1.0f) {
+        for (k = 0; k < 12; ++k) f[k] = c[k];
+        return;
+    }
+    hf__rope_get_frame(ro, 12, r, p);
+    for (k = 0; k < 3; ++k) {
+        pos[k] = p[k] * (1.0f - alpha) + c[k] * alpha;
+        t[k] = p[3 + k] * (1.0f - alpha) + c[3 + k] * alpha;
+        n[k] = p[6 + k] * (1.0f - alpha) + c[6 + k] * alpha;
+    }
+    l2 = hf__dot3(n, n);
+    if (l2 > 1e-6f) { /* a normal flipped by 180 degrees has no midpoint */
+        l2 = 1.0f / HF_SQRTF(l2);
+        n[0] *= l2;
+        n[1] *= l2;
+        n[2] *= l2;
+    } else {
+        n[0] = c[6];
+        n[1] = c[7];
+        n[2] = c[8];
+    }
+    hf__rope_basis(pos, n, t, f);
+}
+
+/* ---- rest pose, roots, modes -------------------------------------------- */
+
+/* Particles of rope r at its rest pose in the current frame, at rest. */
+HF__PRIVATE void hf__rope_reset_one(hf_ropes *ro, int r)
+{
+    size_t R = (size_t)ro->rope_count, i;
+    float f[12];
+    int j;
+    hf__rope_get_frame(ro, 0, r, f);
+    hf__rope_put_frame(ro, 12, r, f);
+    for (j = 0; j < ro->points; ++j) {
+        float u, v, w;
+        i = (size_t)j * R + (size_t)r;
+        u = ro->rest_u[i];
+        v = ro->rest_v[i];
+        w = ro->rest_w[i];
+        ro->x[i] = ro->px[i] = f[0] + f[3] * u + f[6] * v + f[9] * w;
+        ro->y[i] = ro->py[i] = f[1] + f[4] * u + f[7] * v + f[10] * w;
+        ro->z[i] = ro->pz[i] = f[2] + f[5] * u + f[8] * v + f[11] * w;
+    }
+    ro->last_h[r] = 0.0f;
+    ro->blend[r] = ro->mode[r] == HF_ROPE_ANIMATED ? 1.0f : 0.0f;
+}
+
+HFDEF hf_result hf_ropes_set_rest(hf_ropes *ropes, int first, int count,
+                                  const float *positions, int position_stride,
+                                  const float *root_pos,
+                                  const float *root_normal,
+                                  const float *root_tangent, int root_stride)
+{
+    size_t P, R;
+    hf_result res;
+    int r, j, k;
+    if (!hf__ropes_ok(ropes) || !positions) return HF_ERROR_NULL_POINTER;
+    if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
+    if (position_stride != 0 && position_stride < 12)
+        return HF_ERROR_BAD_STRIDE;
+    res = hf__ropes_check_roots(first, count, root_pos, root_normal,
+                                root_tangent, root_stride);
+    if (res != HF_OK) return res;
+    P = (size_t)ropes->points;
+    R = (size_t)ropes->rope_count;
+    for (r = first; r < first + count; ++r)
+        for (j = 0; j < (int)P; ++j) {
+            const float *q =
+                hf__rope_at(positions, position_stride, (size_t)r * P + j);
+            for (k = 0; k < 3; ++k)
+                if (!hf__finitef(q[k])) return HF_ERROR_NON_FINITE;
+            if (!hf__rope_coord_ok(q)) return HF_ERROR_BAD_PARAMETER;
+        }
+    hf__ropes_write_roots(ropes, first, count, root_pos, root_normal,
+                          root_tangent, root_stride);
+    for (r = first; r < first + count; ++r) {
+        float f[12], total = 0.0f;
+        hf__rope_get_frame(ropes, 0, r, f);
+        for (j = 0; j < (int)P; ++j) {
+            const float *q =
+                hf__rope_at(positions, position_stride, (size_t)r * P + j);
+            size_t i = (size_t)j * R + (size_t)r;
+            float d[3];
+            hf__sub3(d, q, f);
+            ropes->rest_u[i] = hf__dot3(d, f + 3);
+            ropes->rest_v[i] = hf__dot3(d, f + 6);
+            ropes->rest_w[i] = hf__dot3(d, f + 9);
+            if (j + 1 < (int)P) {
+                const float *q1 = hf__rope_at(positions, position_stride,
+                                              (size_t)r * P + j + 1);
+                float e[3];
+                double l;
+                hf__sub3(e, q1, q);
+                l = HF_SQRT((double)e[0] * e[0] + (double)e[1] * e[1] +
+                            (double)e[2] * e[2]);
+                ropes->rest_length[i] = (float)l;
+                total += (float)l;
+            } else {
+                ropes->rest_length[i] = 0.0f;
+            }
+        }
+        ropes->length[r] = total;
+        hf__rope_reset_one(ropes, r);
+    }
+    return HF_OK;
+}
+
+HFDEF hf_result hf_ropes_set_roots(hf_ropes *ropes, int first, int count,
+                                   const float *root_pos,
+                                   const float *root_normal,
+                                   const float *root_tangent, int root_stride)
+{
+    hf_result res;
+    if (!hf__ropes_ok(ropes)) return HF_ERROR_NULL_POINTER;
+    if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
+    res = hf__ropes_check_roots(first, count, root_pos, root_normal,
+                                root_tangent, root_stride);
+    if (res != HF_OK) return res;
+    hf__ropes_write_roots(ropes, first, count, root_pos, root_normal,
+                          root_tangent, root_stride);
+    return HF_OK;
+}
+
+HFDEF hf_result hf_ropes_set_mode(hf_ropes *ropes, int first, int count,
+                                  int mode)
+{
+    size_t R;
+    int r;
+    if (!hf__ropes_ok(ropes)) return HF_ERROR_NULL_POINTER;
+    if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
+    if (mode != HF_ROPE_SIMULATED && mode != HF_ROPE_ANIMATED)
+        return HF_ERROR_BAD_PARAMETER;
+    R = (size_t)ropes->rope_count;
+    for (r = first; r < first + count; ++r) {
+        int j, gliding = ropes->mode[r] == HF_ROPE_ANIMATED &&
+                         ropes->blend[r] < 1.0f;
+        if (mode == HF_ROPE_SIMULATED && gliding) {
+            /* px holds the glide's start pose: restart from rest (in the
+               world) where the rope is now, without a jump */
+            for (j = 0; j < ropes->points; ++j) {
+                size_t i = (size_t)j * R + (size_t)r;
+                ropes->px[i] = ropes->x[i];
+                ropes->py[i] = ropes->y[i];
+                ropes->pz[i] = ropes->z[i];
+            }
+            ropes->last_h[r] = 0.0f;
+        } else if (mode == HF_ROPE_ANIMATED &&
+                   ropes->mode[r] == HF_ROPE_SIMULATED) {
+            /* keep the pose the rope has now in the coordinates of the
+               frame it was computed in (the last step's, held in the
+               previous-frame rows), for the glide */
+            float f[12];
+            hf__rope_get_frame(ropes, 12, r, f);
+            for (j = 0; j < ropes->points; ++j) {
+                size_t i = (size_t)j * R + (size_t)r;
+                float d[3];
+                d[0] = ropes->x[i] - f[0];
+                d[1] = ropes->y[i] - f[1];
+                d[2] = ropes->z[i] - f[2];
+                ropes->px[i] = hf__dot3(d, f + 3);
+                ropes->py[i] = hf__dot3(d, f + 6);
+                ropes->pz[i] = hf__dot3(d, f + 9);
+            }
+            ropes->blend[r] = 0.0f;
+        }
+        if (mode == HF_ROPE_SIMULATED) ropes->blend[r] = 0.0f;
+        ropes->mode[r] = (unsigned char)mode;
+    }
+    return HF_OK;
+}
+
+HFDEF hf_result hf_ropes_reset(hf_ropes *ropes, int first, int count)
+{
+    int r;
+    if (!hf__ropes_ok(ropes)) return HF_ERROR_NULL_POINTER;
+    if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
+    for (r = first; r < first + count; ++r) hf__rope_reset_one(ropes, r);
+    return HF_OK;
+}
+
+HFDEF hf_result hf_ropes_max_stretch(const hf_ropes *ropes, int first,
+                                     int count, float *out_stretch)
+{
+    size_t R;
+    float m = 0.0f;
+    int j, r;
+    if (!hf__ropes_ok(ropes) || !out_stretch) return HF_ERROR_NULL_POINTER;
+    if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
+    R = (size_t)ropes->rope_count;
+    for (j = 0; j + 1 < ropes->points; ++j) {
+        const float *x0 = ropes->x + (size_t)j * R, *x1 = x0 + R;
+        const float *y0 = ropes->y + (size_t)j * R, *y1 = y0 + R;
+        const float *z0 = ropes->z + (size_t)j * R, *z1 = z0 + R;
+        const float *L = ropes->rest_length + (size_t)j * R;
+        for (r = first; r < first + count; ++r) {
+            double dx = (double)x1[r] - x0[r], dy = (double)y1[r] - y0[r],
+                   dz = (double)z1[r] - z0[r], e;
+            if (!(L[r] > 0.0f)) continue;
+            e = HF_FABS(HF_SQRT(dx * dx + dy * dy + dz * dz) - L[r]) / L[r];
+            if (e > m) m = (float)e;
+        }
+    }
+    *out_stretch = m;
+    return HF_OK;
+}
+
+HFDEF hf_result hf_ropes_get_positions(const hf_ropes *ropes, int first,
+                                       int count, float *out, int stride)
+{
+    size_t R, P;
+    int j, r;
+    if (!hf__ropes_ok(ropes) || !out) return HF_ERROR_NULL_POINTER;
+    if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
+    if (stride != 0 && stride < 12) return HF_ERROR_BAD_STRIDE;
+    R = (size_t)ropes->rope_count;
+    P = (size_t)ropes->points;
+    for (r = first; r < first + count; ++r)
+        for (j = 0; j < (int)P; ++j) {
+            size_t i = (size_t)j * R + (size_t)r;
+            float *o = (float *)((unsigned char *)out +
+                                 ((size_t)r * P + (size_t)j) *
+                                     (size_t)(stride ? stride : 12));
+            o[0] = ropes->x[i];
+            o[1] = ropes->y[i];
+            o[2] = ropes->z[i];
+        }
+    return HF_OK;
+}
+
+/* ---- the step ----------------------------------------------------------- */
+
+/* Deterministic value noise in [-1, 1] of (rope, cell, axis): a hash, not
+   a generator, so a rope's turbulence does not depend on which other ropes
+   were stepped before it. */
+HF__PRIVATE float hf__rope_hash(uint32_t rope, int64_t cell, uint32_t axis)
+{
+    uint64_t h = (uint64_t)cell * 0x9E3779B97F4A7C15ULL ^
+                 ((uint64_t)rope << 2 | axis) * 0xC2B2AE3D27D4EB4FULL;
+    h ^= h >> 33;
+    h *= 0xFF51AFD7ED558CCDULL;
+    h ^= h >> 33;
+    h *= 0xC4CEB9FE1A85EC53ULL;
+    h ^= h >> 33;
+    return (float)(uint32_t)(h >> 40) * (2.0f / 16777216.0f) - 1.0f;
+}
+
+HF__PRIVATE float hf__rope_noise(uint32_t rope, double t, uint32_t axis)
+{
+    double c = HF_FLOOR(t);
+    float f = (float)(t - c), s = f * f * (3.0f - 2.0f * f);
+    int64_t i = (int64_t)c;
+    float a = hf__rope_hash(rope, i, axis), b = hf__rope_hash(rope, i + 1,
+                                                              axis);
+    return a + (b - a) * s;
+}
+
+/* Fraction of a gap closed per sub-step of h seconds for a stiffness k
+   given per 1/60 s. */
+HF__PRIVATE float hf__rope_k(float k, float h)
+{
+    if (k <= 0.0f) return 0.0f;
+    if (k >= 1.0f) return 1.0f;
+    return 1.0f - (float)HF_POW(1.0 - (double)k, (double)h * 60.0);
+}
+
+#define HF__ROW(base, row) ((base) + (size_t)(row) * R)
+
+/* Points [j0, P) of ropes [a, b) at frame rows fr (12 rows) times rest. */
+HF__PRIVATE void hf__rope_pose_row(const hf_ropes *ro, int j, int a, int b,
+                                   const float *fr, float *HF__RESTRICT ox,
+                                   float *HF__RESTRICT oy,
+                                   float *HF__RESTRICT oz)
+{
+    size_t R = (size_t)ro->rope_count;
+    const float *u = HF__ROW(ro->rest_u, j), *v = HF__ROW(ro->rest_v, j),
+                *w = HF__ROW(ro->rest_w, j);
+    const float *f0 = HF__ROW(fr, 0), *f1 = HF__ROW(fr, 1),
+                *f2 = HF__ROW(fr, 2), *f3 = HF__ROW(fr, 3),
+                *f4 = HF__ROW(fr, 4), *f5 = HF__ROW(fr, 5),
+                *f6 = HF__ROW(fr, 6), *f7 = HF__ROW(fr, 7),
+                *f8 = HF__ROW(fr, 8), *f9 = HF__ROW(fr, 9),
+                *f10 = HF__ROW(fr, 10), *f11 = HF__ROW(fr, 11);
+    int r;
+    for (r = a; r < b; ++r) {
+        ox[r] = f0[r] + f3[r] * u[r] + f6[r] * v[r] + f9[r] * w[r];
+        oy[r] = f1[r] + f4[r] * u[r] + f7[r] * v[r] + f10[r] * w[r];
+        oz[r] = f2[r] + f5[r] * u[r] + f8[r] * v[r] + f11[r] * w[r];
+    }
+}
+
+/* Animated ropes [a, b): rest pose carried by the current frame; previous
+   positions one sub-step back, so that switching to simulation continues
+   the rigid motion's velocity. */
+HF__PRIVATE void hf__ropes_animated_run(hf_ropes *ro, int a, int b,
+                                        const hf__rope_step *st)
+{
+    size_t R = (size_t)ro->rope_count;
+    float *F = HF__ROW(ro->scratch, HF__RS_F),
+          *G = HF__ROW(ro->scratch, HF__RS_G);
+    float back = (float)(st->n - 1) / (float)st->n, f[12];
+    int r, j, k;
+    for (r = a; r < b; ++r) {
+        hf__rope_frame_at(ro, r, 1.0f, f);
+        for (k = 0; k < 12; ++k) F[(size_t)k * R + r] = f[k];
+        hf__rope_frame_at(ro, r, back, f);
+        for (k = 0; k < 12; ++k) G[(size_t)k * R + r] = f[k];
+        ro->last_h[r] = st->h;
+        ro->time[r] += (double)st->h * st->n;
+    }
+    for (j = 0; j < ro->points; ++j) {
+        hf__rope_pose_row(ro, j, a, b, F, HF__ROW(ro->x, j),
+                          HF__ROW(ro->y, j), HF__ROW(ro->z, j));
+        hf__rope_pose_row(ro, j, a, b, G, HF__ROW(ro->px, j),
+                          HF__ROW(ro->py, j), HF__ROW(ro->pz, j));
+    }
+}
+
+/* One collider against point row j (>= 1) of ropes [a, b). */
+HF__PRIVATE void hf__ropes_collide_row(hf_ropes *ro, int j, int a, int b,
+                                       const hf_collider *c, float margin)
+{
+    size_t R = (size_t)ro->rope_count;
+    const float *nx = HF__ROW(ro->scratch, HF__RS_F + 6),
+                *ny = HF__ROW(ro->scratch, HF__RS_F + 7),
+                *nz = HF__ROW(ro->scratch, HF__RS_F + 8);
+    float ax = c->a[0], ay = c->a[1], az = c->a[2];
+    float ex = 0.0f, ey = 0.0f, ez = 0.0f, inv = 0.0f;
+    float rr = c->radius + margin, rr2 = rr * rr;
+    int r;
+    if (c->type == HF_COLLIDER_CAPSULE) {
+        float l2;
+        ex = c->b[0] - ax;
+        ey = c->b[1] - ay;
+        ez = c->b[2] - az;
+        l2 = ex * ex + ey * ey + ez * ez;
+        inv = l2 > 1e-20f ? 1.0f / l2 : 0.0f; /* a point: a sphere */
+    }
+    {
+        float *HF__RESTRICT X = HF__ROW(ro->x, j);
+        float *HF__RESTRICT Y = HF__ROW(ro->y, j);
+        float *HF__RESTRICT Z = HF__ROW(ro->z, j);
+        for (r = a; r < b; ++r) {
+            float t = ((X[r] - ax) * ex + (Y[r] - ay) * ey +
+                       (Z[r] - az) * ez) *
+                      inv;
+            float cx, cy, cz, dx, dy, dz, d2;
+            t = t < 0.0f ? 0.0f : (t > 1.0f ? 1.0f : t);
+            cx = ax + ex * t;
+            cy = ay + ey * t;
+            cz = az + ez * t;
+            dx = X[r] - cx;
+            dy = Y[r] - cy;
+            dz = Z[r] - cz;
+            d2 = dx * dx + dy * dy + dz * dz;
+            if (d2 < rr2) {
+                /* push out along the offset; at the very centre, along the
+                   root normal (any fixed choice; this one is the rope's) */
+                if (d2 > 1e-24f) {
+                    float s = rr / HF_SQRTF(d2);
+                    X[r] = cx + dx * s;
+                    Y[r] = cy + dy * s;
+                    Z[r] = cz + dz * s;
+                } else {
+                    X[r] = cx + nx[r] * rr;
+                    Y[r] = cy + ny[r] * rr;
+                    Z[r] = cz + nz[r] * rr;
+                }
+            }
+        }
+    }
+}
+
+/* One collider against point row j (>= 1) of ropes [a, b) right after an
+   FTL placement: a point inside turns about its parent p, keeping its
+   distance L, onto the nearest direction that clears the collider. Locally
+   the collider is the ball of radius rr around the closest axis point c to
+   the point; with n = (p - c) / |p - c| and rho = |p - c|, the child
+   p + L d is outside that ball iff
+       d . n >= (rr^2 - rho^2 - L^2) / (2 L rho) = cmin,
+   so d is moved onto the cone d . n = cmin. A radial push then covers what
+   the local ball misses (capsule ends, a parent inside the margin). */
+HF__PRIVATE void hf__ropes_collide_ftl_row(hf_ropes *ro, int j, int a, int b,
+                                           const hf_collider *c, float margin)
+{
+    size_t R = (size_t)ro->rope_count;
+    const float *nx = HF__ROW(ro->scratch, HF__RS_F + 6),
+                *ny = HF__ROW(ro->scratch, HF__RS_F + 7),
+                *nz = HF__ROW(ro->scratch, HF__RS_F + 8),
+                *tx = HF__ROW(ro->scratch, HF__RS_F + 3),
+                *ty = HF__ROW(ro->scratch, HF__RS_F + 4),
+                *tz = HF__ROW(ro->scratch, HF__RS_F + 5);
+    const float *X0 = HF__ROW(ro->x, j - 1), *Y0 = HF__ROW(ro->y, j - 1),
+                *Z0 = HF__ROW(ro->z, j - 1);
+    const float *L = HF__ROW(ro->rest_length, j - 1);
+    float *HF__RESTRICT X = HF__ROW(ro->x, j);
+    float *HF__RESTRICT Y = HF__ROW(ro->y, j);
+    float *HF__RESTRICT Z = HF__ROW(ro->z, j);
+    float ax = c->a[0], ay = c->a[1], az = c->a[2];
+    float ex = 0.0f, ey = 0.0f, ez = 0.0f, inv = 0.0f;
+    float rr = c->radius + margin, rr2 = rr * rr;
+    int r;
+    if (c->type == HF_COLLIDER_CAPSULE) {
+        float l2;
+        ex = c->b[0] - ax;
+        ey = c->b[1] - ay;
+        ez = c->b[2] - az;
+        l2 = ex * ex + ey * ey + ez * ez;
+        inv = l2 > 1e-20f ? 1.0f / l2 : 0.0f;
+    }
+    for (r = a; r < b; ++r) {
+        float t = ((X[r] - ax) * ex + (Y[r] - ay) * ey + (Z[r] - az) * ez) *
+                  inv;
+        float cx, cy, cz, dx, dy, dz, d2;
+        t = t < 0.0f ? 0.0f : (t > 1.0f ? 1.0f : t);
+        cx = ax + ex * t;
+        cy = ay + ey * t;
+        cz = az + ez * t;
+        dx = X[r] - cx;
+        dy = Y[r] - cy;
+        dz = Z[r] - cz;
+        d2 = dx * dx + dy * dy + dz * dz;
+        if (d2 < rr2 && L[r] > 0.0f) {
+            /* n: from c to the parent */
+            float mx = X0[r] - cx, my = Y0[r] - cy, mz = Z0[r] - cz;
+            float rho2 = mx * mx + my * my + mz * mz, rho, cmin, dn, s2;
+            float ux = X[r] - X0[r], uy = Y[r] - Y0[r], uz = Z[r] - Z0[r];
+            float u2 = ux * ux + uy * uy + uz * uz, l = L[r], vx, vy, vz, v2;
+            if (rho2 > 1e-24f) {
+                rho = HF_SQRTF(rho2);
+                mx /= rho;
+                my /= rho;
+                mz /= rho;
+            } else { /* parent on the axis: out along the root normal */
+                rho = 0.0f;
+                mx = nx[r];
+                my = ny[r];
+                mz = nz[r];
+            }
+            if (u2 > 1e-24f) {
+                float iu = 1.0f / HF_SQRTF(u2);
+                ux *= iu;
+                uy *= iu;
+                uz *= iu;
+            } else {
+                ux = mx;
+                uy = my;
+                uz = mz;
+            }
+            cmin = rho > 0.0f ? (rr2 - rho * rho - l * l) / (2.0f * l * rho)
+                              : 1.0f;
+            cmin = cmin > 1.0f ? 1.0f : (cmin < -1.0f ? -1.0f : cmin);
+            dn = ux * mx + uy * my + uz * mz;
+            if (dn < cmin) {
+                /* keep the sideways part of the direction; when there is
+                   none, take the root tangent's */
+                vx = ux - mx * dn;
+                vy = uy - my * dn;
+                vz = uz - mz * dn;
+                v2 = vx * vx + vy * vy + vz * vz;
+                if (v2 < 1e-12f) {
+                    float tn = tx[r] * mx + ty[r] * my + tz[r] * mz;
+                    vx = tx[r] - mx * tn;
+                    vy = ty[r] - my * tn;
+                    vz = tz[r] - mz * tn;
+                    v2 = vx * vx + vy * vy + vz * vz;
+                    if (v2 < 1e-12f) {
+                        vx = 0.0f;
+                        vy = 0.0f;
+                        vz = 0.0f;
+                        v2 = 1.0f;
+                    }
+                }
+                s2 = HF_SQRTF(1.0f - cmin * cmin) / HF_SQRTF(v2);
+                X[r] = X0[r] + l * (mx * cmin + vx * s2);
+                Y[r] = Y0[r] + l * (my * cmin + vy * s2);
+                Z[r] = Z0[r] + l * (mz * cmin + vz * s2);
+            }
+        }
+        if (d2 < rr2) {
+            /* what the local ball missed (capsule ends, a parent inside
+               the margin, rounding): straight out */
+            float e2;
+            t = ((X[r] - ax) * ex + (Y[r] - ay) * ey + (Z[r] - az) * ez) *
+                inv;
+            t = t < 0.0f ? 0.0f : (t > 1.0f ? 1.0f : t);
+            cx = ax + ex * t;
+            cy = ay + ey * t;
+            cz = az + ez * t;
+            dx = X[r] - cx;
+            dy = Y[r] - cy;
+            dz = Z[r] - cz;
+            e2 = dx * dx + dy * dy + dz * dz;
+            if (e2 < rr2) {
+                if (e2 > 1e-24f) {
+                    float sc = rr / HF_SQRTF(e2);
+                    X[r] = cx + dx * sc;
+                    Y[r] = cy + dy * sc;
+                    Z[r] = cz + dz * sc;
+                } else {
+                    X[r] = cx + nx[r] * rr;
+                    Y[r] = cy + ny[r] * rr;
+                    Z[r] = cz + nz[r] * rr;
+                }
+            }
+        }
+    }
+}
+
+/* Every collider against points 1.. of ropes [a, b). */
+HF__PRIVATE void hf__ropes_collide(hf_ropes *ro, int a, int b,
+                                   const hf_collider *col, int ncol,
+                                   float margin)
+{
+    int j, c;
+    for (j = 1; j < ro->points; ++j)
+        for (c = 0; c < ncol; ++c)
+            hf__ropes_collide_row(ro, j, a, b, col + c, margin);
+}
+
+/* Ropes [a, b) gliding from simulation to animation: kinematic, no
+   simulation. px, py, pz hold the pose the rope had when it was switched,
+   in root-frame coordinates (hf_ropes_set_mode put it there); the rope
+   shows frame * lerp(that pose, rest, w), w rising linearly over
+   blend_time, so each frame moves at most the frame's own motion plus
+   gap * dt / blend_time. At w = 1 the rope is exactly animated. */
+HF__PRIVATE void hf__ropes_glide_run(hf_ropes *ro, int a, int b,
+                                     const hf__rope_step *st)
+{
+    size_t R = (size_t)ro->rope_count;
+    const float sdt = st->h * (float)st->n;
+    int r, j;
+    for (r = a; r < b; ++r) {
+        float w = st->blend_time > 0.0f
+                      ? ro->blend[r] + sdt / st->blend_time
+                      : 1.0f;
+        float f[12];
+        if (w >= 1.0f) {
+            hf__ropes_animated_run(ro, r, r + 1, st);
+            ro->blend[r] = 1.0f;
+            continue;
+        }
+        ro->blend[r] = w;
+        ro->last_h[r] = st->h;
+        ro->time[r] += (double)sdt;
+        hf__rope_frame_at(ro, r, 1.0f, f);
+        for (j = 0; j < ro->points; ++j) {
+            size_t i = (size_t)j * R + (size_t)r;
+            float u = ro->px[i] + (ro->rest_u[i] - ro->px[i]) * w;
+            float v = ro->py[i] + (ro->rest_v[i] - ro->py[i]) * w;
+            float q = ro->pz[i] + (ro->rest_w[i] - ro->pz[i]) * w;
+            ro->x[i] = f[0] + f[3] * u + f[6] * v + f[9] * q;
+            ro->y[i] = f[1] + f[4] * u + f[7] * v + f[10] * q;
+            ro->z[i] = f[2] + f[5] * u + f[8] * v + f[11] * q;
+        }
+    }
+}
+
+/* Simulated ropes [a, b). */
+HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
+                                   const hf__rope_step *st,
+                                   const hf_collider *col, int ncol)
+{
+    size_t R = (size_t)ro->rope_count;
+    const int P = ro->points;
+    float *S = ro->scratch;
+    float *F = HF__ROW(S, HF__RS_F);
+    float *AX = HF__ROW(S, HF__RS_A), *AY = HF__ROW(S, HF__RS_A + 1),
+          *AZ = HF__ROW(S, HF__RS_A + 2), *VF = HF__ROW(S, HF__RS_VF),
+          *KB = HF__ROW(S, HF__RS_KB);
+    /* frame rows of the sub-step */
+    const float *nx = HF__ROW(F, 6), *ny = HF__ROW(F, 7), *nz = HF__ROW(F, 8);
+    const float h = st->h, h2 = h * h;
+    int s, j, r, it, c;
+
+    for (s = 0; s < st->n; ++s) {
+        float alpha = s + 1 == st->n ? 1.0f : (float)(s + 1) / (float)st->n;
+        /* per rope: frame, acceleration, velocity factor, blend pull */
+        for (r = a; r < b; ++r) {
+            float f[12], gx = st->g[0], gy = st->g[1], gz = st->g[2], vf;
+            int k;
+            hf__rope_frame_at(ro, r, alpha, f);
+            for (k = 0; k < 12; ++k) F[(size_t)k * R + r] = f[k];
+            if (st->turbulence > 0.0f) {
+                double tt = ro->time[r] * (double)st->turbulence_frequency;
+                gx += st->turbulence * hf__rope_noise((uint32_t)r, tt, 0);
+                gy += st->turbulence * hf__rope_noise((uint32_t)r, tt, 1);
+                gz += st->turbulence * hf__rope_noise((uint32_t)r, tt, 2);
+            }
+            AX[r] = gx * h2;
+            AY[r] = gy * h2;
+            AZ[r] = gz * h2;
+            vf = st->keep;
+            /* time-corrected Verlet: x - px spans the previous sub-step;
+               capped so a tiny previous step cannot amplify rounding */
+            if (s == 0 && ro->last_h[r] > 0.0f) {
+                float q = h / ro->last_h[r];
+                vf *= q < 4.0f ? q : 4.0f;
+            }
+            VF[r] = vf;
+            ro->time[r] += (double)h;
+        }
+        /* integrate points 1.. (position Verlet) */
+        for (j = 1; j < P; ++j) {
+            float *HF__RESTRICT X = HF__ROW(ro->x, j);
+            float *HF__RESTRICT Y = HF__ROW(ro->y, j);
+            float *HF__RESTRICT Z = HF__ROW(ro->z, j);
+            float *HF__RESTRICT PX = HF__ROW(ro->px, j);
+            float *HF__RESTRICT PY = HF__ROW(ro->py, j);
+            float *HF__RESTRICT PZ = HF__ROW(ro->pz, j);
+            for (r = a; r < b; ++r) {
+                float vx = (X[r] - PX[r]) * VF[r];
+                float vy = (Y[r] - PY[r]) * VF[r];
+                float vz = (Z[r] - PZ[r]) * VF[r];
+                PX[r] = X[r];
+                PY[r] = Y[r];
+                PZ[r] = Z[r];
+                X[r] += vx + AX[r];
+                Y[r] += vy + AY[r];
+                Z[r] += vz + AZ[r];
+            }
+        }
+        /* pin the root to the frame */
+        for (r = a; r < b; ++r) {
+            ro->px[r] = ro->x[r];
+            ro->py[r] = ro->y[r];
+            ro->pz[r] = ro->z[r];
+        }
+        hf__rope_pose_row(ro, 0, a, b, F, ro->x, ro->y, ro->z);
+        /* shape: root segment, global pose */
+        if (st->k_root > 0.0f || st->global_on) {
+            for (j = 1; j < P; ++j) {
+                float tgx, tgy, tgz;
+                float t = (float)j / (float)(P - 1);
+                float kg = hf__rope_k(st->gs_root + (st->gs_tip - st->gs_root) *
+                                                        t,
+                                      h);
+                float *HF__RESTRICT X = HF__ROW(ro->x, j);
+                float *HF__RESTRICT Y = HF__ROW(ro->y, j);
+                float *HF__RESTRICT Z = HF__ROW(ro->z, j);
+                const float *u = HF__ROW(ro->rest_u, j),
+                            *v = HF__ROW(ro->rest_v, j),
+                            *w = HF__ROW(ro->rest_w, j);
+                if (j == 1) kg = 1.0f - (1.0f - kg) * (1.0f - st->k_root);
+                if (kg <= 0.0f) continue;
+                for (r = a; r < b; ++r) {
+                    const float k = kg;
+                    tgx = F[r] + F[3 * R + r] * u[r] + F[6 * R + r] * v[r] +
+                          F[9 * R + r] * w[r];
+                    tgy = F[R + r] + F[4 * R + r] * u[r] +
+                          F[7 * R + r] * v[r] + F[10 * R + r] * w[r];
+                    tgz = F[2 * R + r] + F[5 * R + r] * u[r] +
+                          F[8 * R + r] * v[r] + F[11 * R + r] * w[r];
+                    X[r] += k * (tgx - X[r]);
+                    Y[r] += k * (tgy - Y[r]);
+                    Z[r] += k * (tgz - Z[r]);
+                }
+            }
+        }
+        /* local shape: each segment toward its rest direction relative to
+           its parent segment (the rest offset turned by the smallest
+           rotation that takes the parent's rest direction to its current
+           one) */
+        if (st->local_on) {
+            for (j = 1; j + 1 < P; ++j) {
+                float t = (float)(j + 1) / (float)(P - 1);
+                float kl = hf__rope_k(st->ls_root + (st->ls_tip - st->ls_root) *
+                                                        t,
+                                      h);
+                const float *X0 = HF__ROW(ro->x, j - 1),
+                            *Y0 = HF__ROW(ro->y, j - 1),
+                            *Z0 = HF__ROW(ro->z, j - 1);
+                const float *X1 = HF__ROW(ro->x, j), *Y1 = HF__ROW(ro->y, j),
+                            *Z1 = HF__ROW(ro->z, j);
+                float *HF__RESTRICT X2 = HF__ROW(ro->x, j + 1);
+                float *HF__RESTRICT Y2 = HF__ROW(ro->y, j + 1);
+                float *HF__RESTRICT Z2 = HF__ROW(ro->z, j + 1);
+                const float *u0 = HF__ROW(ro->rest_u, j - 1),
+                            *v0 = HF__ROW(ro->rest_v, j - 1),
+                            *w0 = HF__ROW(ro->rest_w, j - 1);
+                const float *u1 = HF__ROW(ro->rest_u, j),
+                            *v1 = HF__ROW(ro->rest_v, j),
+                            *w1 = HF__ROW(ro->rest_w, j);
+                const float *u2 = HF__ROW(ro->rest_u, j + 1),
+                            *v2 = HF__ROW(ro->rest_v, j + 1),
+                            *w2 = HF__ROW(ro->rest_w, j + 1);
+                const float *L = HF__ROW(ro->rest_length, j - 1);
+                if (kl <= 0.0f) continue;
+                for (r = a; r < b; ++r) {
+                    /* rest directions in world: parent p, child q */
+                    float pu = u1[r] - u0[r], pv = v1[r] - v0[r],
+                          pw = w1[r] - w0[r];
+                    float qu = u2[r] - u1[r], qv = v2[r] - v1[r],
+                          qw = w2[r] - w1[r];
+                    float px_ = F[3 * R + r] * pu + F[6 * R + r] * pv +
+                                F[9 * R + r] * pw;
+                    float py_ = F[4 * R + r] * pu + F[7 * R + r] * pv +
+                                F[10 * R + r] * pw;
+                    float pz_ = F[5 * R + r] * pu + F[8 * R + r] * pv +
+                                F[11 * R + r] * pw;
+                    float qx = F[3 * R + r] * qu + F[6 * R + r] * qv +
+                               F[9 * R + r] * qw;
+                    float qy = F[4 * R + r] * qu + F[7 * R + r] * qv +
+                               F[10 * R + r] * qw;
+                    float qz = F[5 * R + r] * qu + F[8 * R + r] * qv +
+                               F[11 * R + r] * qw;
+                    float bx = X1[r] - X0[r], by = Y1[r] - Y0[r],
+                          bz = Z1[r] - Z0[r];
+                    float b2 = bx * bx + by * by + bz * bz;
+                    float ok = (L[r] > 1e-12f && b2 > 1e-24f) ? 1.0f : 0.0f;
+                    float ia = ok > 0.0f ? 1.0f / L[r] : 0.0f;
+                    float ib = ok > 0.0f ? 1.0f / HF_SQRTF(b2) : 0.0f;
+                    float cc, kx, ky, kz, kd, den, rx, ry, rz;
+                    px_ *= ia;
+                    py_ *= ia;
+                    pz_ *= ia;
+                    bx *= ib;
+                    by *= ib;
+                    bz *= ib;
+                    /* Rodrigues without trigonometry: the rotation taking
+                       unit p to unit b, applied to q; identity when either
+                       direction is undefined */
+                    cc = ok > 0.0f ? px_ * bx + py_ * by + pz_ * bz : 1.0f;
+                    kx = py_ * bz - pz_ * by;
+                    ky = pz_ * bx - px_ * bz;
+                    kz = px_ * by - py_ * bx;
+                    kd = kx * qx + ky * qy + kz * qz;
+                    den = 1.0f + cc;
+                    den = kd / (den > 1e-6f ? den : 1e-6f);
+                    rx = qx * cc + (ky * qz - kz * qy) + kx * den;
+                    ry = qy * cc + (kz * qx - kx * qz) + ky * den;
+                    rz = qz * cc + (kx * qy - ky * qx) + kz * den;
+                    X2[r] += kl * (X1[r] + rx - X2[r]);
+                    Y2[r] += kl * (Y1[r] + ry - Y2[r]);
+                    Z2[r] += kl * (Z1[r] + rz - Z2[r]);
+                }
+            }
+        }
+        /* distance passes, each with its collisions (see below) */
+        for (it = 0; it < st->iterations; ++it) {
+            for (j = 1; j < P; ++j) {
+                float *HF__RESTRICT X0 = HF__ROW(ro->x, j - 1);
+                float *HF__RESTRICT Y0 = HF__ROW(ro->y, j - 1);
+                float *HF__RESTRICT Z0 = HF__ROW(ro->z, j - 1);
+                float *HF__RESTRICT X1 = HF__ROW(ro->x, j);
+                float *HF__RESTRICT Y1 = HF__ROW(ro->y, j);
+                float *HF__RESTRICT Z1 = HF__ROW(ro->z, j);
+                float *HF__RESTRICT PX0 = HF__ROW(ro->px, j - 1);
+                float *HF__RESTRICT PY0 = HF__ROW(ro->py, j - 1);
+                float *HF__RESTRICT PZ0 = HF__ROW(ro->pz, j - 1);
+                const float *L = HF__ROW(ro->rest_length, j - 1);
+                /* Mueller's velocity fix goes to the parent; never to the
+                   pinned root */
+                const float sd = j >= 2 ? st->ftl_damping : 0.0f;
+                if (st->ftl || j == 1) {
+                    for (r = a; r < b; ++r) {
+                        float dx = X1[r] - X0[r], dy = Y1[r] - Y0[r],
+                              dz = Z1[r] - Z0[r];
+                        float d2 = dx * dx + dy * dy + dz * dz, sc, ox, oy,
+                              oz;
+                        /* coincident points: grow along the root normal */
+                        int deg = d2 < 1e-24f;
+                        dx = deg ? nx[r] : dx;
+                        dy = deg ? ny[r] : dy;
+                        dz = deg ? nz[r] : dz;
+                        d2 = deg ? 1.0f : d2;
+                        sc = L[r] / HF_SQRTF(d2);
+                        ox = X1[r];
+                        oy = Y1[r];
+                        oz = Z1[r];
+                        X1[r] = X0[r] + dx * sc;
+                        Y1[r] = Y0[r] + dy * sc;
+                        Z1[r] = Z0[r] + dz * sc;
+                        if (st->ftl) {
+                            PX0[r] += sd * (X1[r] - ox);
+                            PY0[r] += sd * (Y1[r] - oy);
+                            PZ0[r] += sd * (Z1[r] - oz);
+                        }
+                    }
+                    /* FTL never moves a parent again, so colliding each
+                       point right after placing it leaves the whole rope
+                       outside when the pass ends */
+                    if (st->ftl)
+                        for (c = 0; c < ncol; ++c)
+                            hf__ropes_collide_ftl_row(ro, j, a, b, col + c,
+                                                      st->margin);
+                } else {
+                    for (r = a; r < b; ++r) {
+                        float dx = X1[r] - X0[r], dy = Y1[r] - Y0[r],
+                              dz = Z1[r] - Z0[r];
+                        float d2 = dx * dx + dy * dy + dz * dz;
+                        /* half the error to each end (equal masses) */
+                        float e = d2 > 1e-24f
+                                      ? 0.5f - 0.5f * L[r] / HF_SQRTF(d2)
+                                      : 0.0f;
+                        X0[r] += dx * e;
+                        Y0[r] += dy * e;
+                        Z0[r] += dz * e;
+                        X1[r] -= dx * e;
+                        Y1[r] -= dy * e;
+                        Z1[r] -= dz * e;
+                    }
+                }
+            }
+            if (!st->ftl && ncol > 0)
+                hf__ropes_collide(ro, a, b, col, ncol, st->margin);
+        }
+        if (st->iterations == 0 && ncol > 0)
+            hf__ropes_collide(ro, a, b, col, ncol, st->margin);
+    }
+
+    /* bookkeeping and the safety net */
+    for (r = a; r < b; ++r) {
+        float lim = 8.0f * ro->length[r] + 0.01f;
+        ro->last_h[r] = h;
+        KB[r] = lim * lim; /* reuse the row: squared limit */
+        VF[r] = 0.0f;      /* reuse: 1 if the rope went bad */
+    }
+    for (j = 1; j < P; ++j) {
+        const float *X = HF__ROW(ro->x, j), *Y = HF__ROW(ro->y, j),
+                    *Z = HF__ROW(ro->z, j);
+        for (r = a; r < b; ++r) {
+            float dx = X[r] - ro->x[r], dy = Y[r] - ro->y[r],
+                  dz = Z[r] - ro->z[r];
+            float d2 = dx * dx + dy * dy + dz * dz;
+            /* false for NaN too */
+            VF[r] = (d2 <= KB[r]) ? VF[r] : 1.0f;
+        }
+    }
+    for (r = a; r < b; ++r)
+        if (VF[r] != 0.0f) {
+            float keep = ro->blend[r];
+            hf__rope_reset_one(ro, r);
+            ro->blend[r] = keep;
+        }
+}
+
+HF__PRIVATE int hf__rope_kind(const hf_ropes *ro, int r)
+{
+    if (ro->mode[r] != HF_ROPE_ANIMATED) return 0;
+    return ro->blend[r] >= 1.0f ? 2 : 1;
+}
+
+HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
+                              float dt, const hf_rope_params *params,
+                              const hf_collider *colliders,
+                              int collider_count)
+{
+    hf__rope_step st;
+    hf_result res;
+    float sdt, q;
+    int r, c, k, end;
+    if (!hf__ropes_ok(ropes) || !params) return HF_ERROR_NULL_POINTER;
+    if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
+    if (collider_count < 0) return HF_ERROR_BAD_COUNT;
+    if (collider_count > 0 && !colliders) return HF_ERROR_NULL_POINTER;
+    if (!hf__finitef(dt) || !(dt > 0.0f)) return HF_ERROR_BAD_TIME_STEP;
+    res = hf_rope_params_validate(params, NULL);
+    if (res != HF_OK) return res;
+    for (c = 0; c < collider_count; ++c) {
+        const hf_collider *o = colliders + c;
+        for (k = 0; k < 3; ++k)
+            if (!hf__finitef(o->a[k]) || !hf__finitef(o->b[k]))
+                return HF_ERROR_NON_FINITE;
+        if (!hf__finitef(o->radius)) return HF_ERROR_NON_FINITE;
+        if ((o->type != HF_COLLIDER_SPHERE &&
+             o->type != HF_COLLIDER_CAPSULE) ||
+            !hf__rope_coord_ok(o->a) ||
+            (o->type == HF_COLLIDER_CAPSULE && !hf__rope_coord_ok(o->b)) ||
+            !(o->radius >= 0.0f && o->radius <= HF_ROPE_MAX_COORD))
+            return HF_ERROR_BAD_PARAMETER;
+    }
+    if (count == 0) return HF_OK;
+
+    /* resolve: clamp, scale, split into equal sub-steps */
+    if (dt > params->max_dt) dt = params->max_dt;
+    sdt = dt * params->time_scale;
+    q = sdt / params->substep;
+    st.n = q >= (float)params->max_substeps ? params->max_substeps
+                                            : (int)q;
+    if ((float)st.n < q * 0.9999f && st.n < params->max_substeps) ++st.n;
+    if (st.n < 1) st.n = 1;
+    st.h = sdt / (float)st.n;
+    st.keep = 1.0f - hf__rope_k(params->damping, st.h);
+    st.k_root = hf__rope_k(params->root_stiffness, st.h);
+    st.ftl = params->solver == HF_ROPE_SOLVER_FTL;
+    st.iterations = params->iterations;
+    /* FTL with colliders folded into its sweep is exact after one pass */
+    if (st.ftl && st.iterations > 1) st.iterations = 1;
+    st.ftl_damping = params->ftl_damping;
+    st.margin = params->collision_margin;
+    for (k = 0; k < 3; ++k) st.g[k] = params->gravity[k] + params->wind[k];
+    st.turbulence = params->turbulence;
+    st.turbulence_frequency = params->turbulence_frequency;
+    st.blend_time = params->mode_blend_time;
+    st.gs_root = params->global_stiffness_root;
+    st.gs_tip = params->global_stiffness_tip;
+    st.ls_root = params->local_stiffness_root;
+    st.ls_tip = params->local_stiffness_tip;
+    st.global_on = st.gs_root > 0.0f || st.gs_tip > 0.0f;
+    st.local_on = st.ls_root > 0.0f || st.ls_tip > 0.0f;
+
+    /* runs of ropes of one kind, each with its kernel; the kinds depend
+       only on each rope's own state, so any split gives the same bytes */
+    end = first + count;
+    for (r = first; r < end;) {
+        int kind = hf__rope_kind(ropes, r), b = r + 1;
+        while (b < end && hf__rope_kind(ropes, b) == kind) ++b;
+        if (kind == 2)
+            hf__ropes_animated_run(ropes, r, b, &st);
+        else if (kind == 1)
+            hf__ropes_glide_run(ropes, r, b, &st);
+        else
+            hf__ropes_sim_run(ropes, r, b, &st, colliders, collider_count);
+        r = b;
+    }
+    /* this frame becomes the start of the next step's interpolation */
+    for (r = first; r < end; ++r) {
+        float f[12];
+        hf__rope_get_frame(ropes, 0, r, f);
+        hf__rope_put_frame(ropes, 12, r, f);
+    }
+    return HF_OK;
+}
+
+#undef HF__ROW
+
+/* ---- 7. interpolation and LOD ------------------------------------------- */
 
 HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
                                const hf_strand_binding *bindings, int first,
@@ -3071,7 +4817,7 @@ HFDEF float hf_lod_from_distance(float distance, float full_detail_distance,
     return r * r;
 }
 
-/* ---- 10. ribbons -------------------------------------------------------- */
+/* ---- 8. ribbons --------------------------------------------------------- */
 
 /* Validate everything hf_ribbons and hf_ribbon_points share. */
 HF__PRIVATE hf_result hf__ribbon_check(const hf_ribbon_strands *strands,
@@ -3358,7 +5104,7 @@ HFDEF hf_result hf_ribbon_indices(int strand_count, int points_per_strand,
     return HF_OK;
 }
 
-/* ---- 11. LUT baking ----------------------------------------------------- */
+/* ---- 9. LUT baking ------------------------------------------------------ */
 /* Marschner M and N lookup textures; the contract is docs/marschner-spec.md. Every
    quantity is double; each texel is rounded to float once. */
 
@@ -3961,6 +5707,627 @@ HFDEF hf_result hf_lut_to_u8(const float *rgba, int n,
     if (scales_out)
         for (c = 0; c < 4; ++c) scales_out[c] = sc[c];
     return HF_OK;
+}
+
+/* ---- 10. the fur object ------------------------------------------------ */
+
+struct hf_fur {
+    hf_allocator alloc;
+    int P, vertex_count, base_triangle_count;
+    int guide_count, pure_count, lod_count;
+    int strand_count, drawn, triangle_count;
+    int lod_sim;
+    float lod, width_scale, lod_threshold, clump;
+    hf_rope_params rope;
+    hf_ropes *ropes;
+    float *guide_points;  /* guide_count * P * 3, rope-major */
+    float *strand_points; /* strand_count * P * 3 */
+    hf_strand *strands;
+    hf_strand_binding *bindings;     /* per strand, over all guides */
+    hf_strand_binding *lod_bindings; /* per LOD guide, over pure guides */
+    float *strand_lengths, *strand_rgba, *strand_uv, *strand_c3x;
+    hf_tess_vertex *added; /* lod_count records */
+    uint32_t *ref;         /* 3 per guide: root vertex, tangent edge end,
+                              third corner (face normal without normals) */
+    float *root_pos, *root_nrm, *root_tan; /* 3 per guide, per frame */
+};
+
+/* Allocation that remembers nothing: hf_fur_destroy frees each array by
+   name, and every pointer starts NULL, so a failed create unwinds by
+   calling destroy. */
+HF__PRIVATE void *hf__fur_array(hf_fur *f, size_t count, size_t size,
+                                hf_result *r)
+{
+    size_t bytes;
+    void *p;
+    if (*r != HF_OK) return NULL;
+    if (!hf__mul_size(count ? count : 1, size, &bytes)) {
+        *r = HF_ERROR_OVERFLOW;
+        return NULL;
+    }
+    p = hf__alloc(&f->alloc, bytes);
+    if (!p) *r = HF_ERROR_OUT_OF_MEMORY;
+    return p;
+}
+
+HFDEF void hf_fur_destroy(hf_fur *f)
+{
+    hf_allocator a;
+    if (!f) return;
+    a = f->alloc;
+    hf_ropes_destroy(f->ropes);
+    hf__free(&a, f->guide_points);
+    hf__free(&a, f->strand_points);
+    hf__free(&a, f->strands);
+    hf__free(&a, f->bindings);
+    hf__free(&a, f->lod_bindings);
+    hf__free(&a, f->strand_lengths);
+    hf__free(&a, f->strand_rgba);
+    hf__free(&a, f->strand_uv);
+    hf__free(&a, f->strand_c3x);
+    hf__free(&a, f->added);
+    hf__free(&a, f->ref);
+    hf__free(&a, f->root_pos);
+    hf__free(&a, f->root_nrm);
+    hf__free(&a, f->root_tan);
+    hf__free(&a, f);
+}
+
+/* Binding of barycentric weights over three guides, with the length ratio
+   that lets the blend keep the strand's own length. */
+HF__PRIVATE void hf__bind(hf_strand_binding *b, const uint32_t *g,
+                          const float *w, float own_length,
+                          const float *guide_lengths)
+{
+    float blended = 0.0f;
+    int k;
+    for (k = 0; k < 3; ++k) {
+        b->guide[k] = g[k];
+        b->weight[k] = w[k];
+        blended += w[k] * guide_lengths[g[k]];
+    }
+    b->length_scale = blended > 1e-20f ? own_length / blended : 1.0f;
+    if (b->length_scale == 0.0f) b->length_scale = 1e-20f; /* 0 means 1 */
+}
+
+HFDEF hf_result hf_fur_create(const hf_fur_desc *desc, hf_fur **out_fur,
+                              hf_diag *diag)
+{
+    hf_fur *f;
+    hf_result r = HF_OK;
+    hf_allocator alloc;
+    hf_tess_params tp;
+    hf_tess_output to;
+    hf_guide_params gp;
+    hf_guide_output go;
+    hf_place_params pp;
+    hf_mesh gm; /* the guide mesh: tessellated positions, uvs, triangles */
+    float *normals = NULL, *tess_pos = NULL, *tess_uv = NULL;
+    float *rest_points = NULL, *guide_len = NULL, *guide_nrm = NULL;
+    uint32_t *tess_idx = NULL, *tess_base = NULL, *guide_of = NULL;
+    const char *stage = "normals"; /* for the diagnostic */
+    int P, i, k, G, V, S;
+
+    if (!desc || !out_fur)
+        return hf__fail(diag, HF_ERROR_NULL_POINTER, "desc", -1,
+                        "desc or out_fur is NULL");
+    if ((r = hf_mesh_validate(&desc->mesh, diag)) != HF_OK) return r;
+    P = desc->points_per_strand ? desc->points_per_strand : 16;
+    if (P < 2 || P > HF_MAX_POINTS)
+        return hf__fail(diag, HF_ERROR_BAD_COUNT, "points_per_strand", -1,
+                        "points_per_strand %d is outside 2..%d", P,
+                        HF_MAX_POINTS);
+    if (!hf__finitef(desc->clump) || desc->clump < 0.0f ||
+        desc->clump > 1.0f || !hf__finitef(desc->lod_simulate_threshold) ||
+        desc->lod_simulate_threshold < 0.0f ||
+        desc->lod_simulate_threshold > 1.0f || !hf__finitef(desc->max_length) ||
+        desc->max_length < 0.0f || !hf__finitef(desc->tess_factor) ||
+        desc->tess_factor < 0.0f)
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "desc", -1,
+                        "clump, lod_simulate_threshold, max_length or "
+                        "tess_factor is negative, non-finite or above 1");
+    if (desc->rope_params &&
+        (r = hf_rope_params_validate(desc->rope_params, diag)) != HF_OK)
+        return r;
+
+    HF_MEMSET(&alloc, 0, sizeof alloc);
+    if (desc->allocator) alloc = *desc->allocator;
+    f = (hf_fur *)hf__alloc(&alloc, sizeof *f);
+    if (!f)
+        return hf__fail(diag, HF_ERROR_OUT_OF_MEMORY, "fur", -1,
+                        "out of memory");
+    HF_MEMSET(f, 0, sizeof *f);
+    f->alloc = alloc;
+    f->P = P;
+    f->vertex_count = V = desc->mesh.vertex_count;
+    f->base_triangle_count = desc->mesh.triangle_count;
+    f->clump = desc->clump;
+    f->lod_threshold = desc->lod_simulate_threshold != 0.0f
+                           ? desc->lod_simulate_threshold
+                           : 0.5f;
+    if (desc->rope_params)
+        f->rope = *desc->rope_params;
+    else
+        hf_rope_params_init(&f->rope);
+
+    /* normals of the rest mesh, when it has none */
+    gm = desc->mesh;
+    if (!gm.normals) {
+        normals = (float *)hf__fur_array(f, (size_t)V * 3u, sizeof(float), &r);
+        if (r == HF_OK) r = hf_mesh_compute_normals(&gm, normals);
+        if (r != HF_OK) goto fail;
+        gm.normals = normals;
+        gm.normal_stride = 0;
+    }
+
+    /* stage 1: tessellation, two calls */
+    stage = "tessellation";
+    HF_MEMSET(&to, 0, sizeof to);
+    if (desc->tess_factor > 0.0f) {
+        HF_MEMSET(&tp, 0, sizeof tp);
+        tp.factor = desc->tess_factor;
+        tp.estimator = desc->tess_estimator;
+        tp.split = desc->tess_split;
+        tp.seed = desc->seed;
+        tp.max_triangles = desc->tess_max_triangles;
+        if ((r = hf_tessellate(&gm, desc->density_map, &tp, &to)) != HF_OK)
+            goto fail;
+        tess_idx = (uint32_t *)hf__fur_array(f, (size_t)to.triangle_count * 3u,
+                                             sizeof(uint32_t), &r);
+        tess_base = (uint32_t *)hf__fur_array(f, (size_t)to.triangle_count,
+                                              sizeof(uint32_t), &r);
+        f->added = (hf_tess_vertex *)hf__fur_array(
+            f, (size_t)to.added_count, sizeof(hf_tess_vertex), &r);
+        tess_pos = (float *)hf__fur_array(f, (size_t)to.vertex_count * 3u,
+                                          sizeof(float), &r);
+        if (gm.uvs)
+            tess_uv = (float *)hf__fur_array(f, (size_t)to.vertex_count * 2u,
+                                             sizeof(float), &r);
+        if (r != HF_OK) goto fail;
+        to.indices = tess_idx;
+        to.triangle_base = tess_base;
+        to.added = f->added;
+        to.positions = tess_pos;
+        to.uvs = tess_uv;
+        to.triangle_capacity = to.triangle_count;
+        to.added_capacity = to.added_count;
+        to.vertex_capacity = to.vertex_count;
+        if ((r = hf_tessellate(&gm, desc->density_map, &tp, &to)) != HF_OK)
+            goto fail;
+    }
+    f->lod_count = to.added_count;
+
+    /* stage 2: guides */
+    stage = "guides";
+    HF_MEMSET(&gp, 0, sizeof gp);
+    gp.points = P;
+    gp.max_length = desc->max_length != 0.0f ? desc->max_length : 0.05f;
+    gp.length_map = desc->length_map;
+    HF_MEMSET(&go, 0, sizeof go);
+    if ((r = hf_guides_rest(&gm, f->added, f->lod_count, &gp, &go,
+                            &f->alloc)) != HF_OK)
+        goto fail;
+    G = go.guide_count;
+    rest_points = (float *)hf__fur_array(f, (size_t)G * (size_t)P * 3u,
+                                         sizeof(float), &r);
+    guide_len = (float *)hf__fur_array(f, (size_t)G, sizeof(float), &r);
+    guide_nrm = (float *)hf__fur_array(f, (size_t)G * 3u, sizeof(float), &r);
+    guide_of = (uint32_t *)hf__fur_array(f, (size_t)V + (size_t)f->lod_count,
+                                         sizeof(uint32_t), &r);
+    if (r != HF_OK) goto fail;
+    go.points = rest_points;
+    go.lengths = guide_len;
+    go.normals = guide_nrm;
+    go.guide_of_vertex = guide_of;
+    go.guide_capacity = G;
+    if ((r = hf_guides_rest(&gm, f->added, f->lod_count, &gp, &go,
+                            &f->alloc)) != HF_OK)
+        goto fail;
+    f->guide_count = G;
+    f->pure_count = go.pure_guide_count;
+
+    /* the guide mesh for placement: tessellated, or the base mesh */
+    if (tess_idx) {
+        HF_MEMSET(&gm, 0, sizeof gm);
+        gm.positions = tess_pos;
+        gm.uvs = tess_uv;
+        gm.vertex_count = to.vertex_count;
+        gm.indices = tess_idx;
+        gm.triangle_count = to.triangle_count;
+    }
+    f->triangle_count = gm.triangle_count;
+
+    /* stage 3: strands, two calls */
+    stage = "strand placement";
+    HF_MEMSET(&pp, 0, sizeof pp);
+    pp.strands_per_area = desc->strands_per_area;
+    pp.total_strands = desc->total_strands;
+    if (pp.strands_per_area == 0.0f && pp.total_strands == 0)
+        pp.total_strands = 10000;
+    pp.estimator = desc->tess_estimator;
+    pp.sampler = desc->sampler;
+    pp.seed = desc->seed;
+    if ((r = hf_place_strands(&gm, desc->density_map, &pp, NULL, 0, &S,
+                              &f->alloc)) != HF_OK)
+        goto fail;
+    f->strands = (hf_strand *)hf__fur_array(f, (size_t)S, sizeof(hf_strand),
+                                            &r);
+    if (r != HF_OK) goto fail;
+    if ((r = hf_place_strands(&gm, desc->density_map, &pp, f->strands, S, &S,
+                              &f->alloc)) != HF_OK)
+        goto fail;
+    f->strand_count = f->drawn = S;
+
+    /* stage 3b: maps on strands, bindings */
+    stage = "strand maps";
+    f->strand_lengths = (float *)hf__fur_array(f, (size_t)S, sizeof(float), &r);
+    f->strand_rgba = (float *)hf__fur_array(f, (size_t)S * 4u, sizeof(float), &r);
+    f->strand_uv = (float *)hf__fur_array(f, (size_t)S * 2u, sizeof(float), &r);
+    f->strand_c3x = (float *)hf__fur_array(f, (size_t)S, sizeof(float), &r);
+    f->bindings = (hf_strand_binding *)hf__fur_array(
+        f, (size_t)S, sizeof(hf_strand_binding), &r);
+    f->lod_bindings = (hf_strand_binding *)hf__fur_array(
+        f, (size_t)f->lod_count, sizeof(hf_strand_binding), &r);
+    if (r != HF_OK) goto fail;
+    if ((r = hf_strand_lengths(f->strands, S, 0, S, desc->length_map,
+                               gp.max_length, f->strand_lengths)) != HF_OK)
+        goto fail;
+    if (desc->color_map) {
+        r = hf_strand_colors(f->strands, S, 0, S, desc->color_map,
+                             f->strand_rgba);
+        if (r != HF_OK) goto fail;
+    } else {
+        for (i = 0; i < 4 * S; ++i) f->strand_rgba[i] = 1.0f;
+    }
+    for (i = 0; i < S; ++i) {
+        const hf_strand *s = &f->strands[i];
+        f->strand_uv[2 * i] = s->uv[0];
+        f->strand_uv[2 * i + 1] = s->uv[1];
+        f->strand_c3x[i] = 0.0f;
+        if (desc->color3d_index_map) {
+            float xy[2];
+            if ((r = hf_color3d_coord(desc->color3d_index_map, s->uv[0],
+                                      s->uv[1], 0.0f, xy)) != HF_OK)
+                goto fail;
+            f->strand_c3x[i] = xy[0];
+        }
+    }
+    if ((r = hf_bind_strands(&gm, guide_of, G, f->strands, S, 0, S,
+                             f->strand_lengths, guide_len, f->bindings)) !=
+        HF_OK)
+        goto fail;
+    /* LOD guides bind to the pure guides of their base triangle the same
+       way, keeping their own length */
+    for (i = 0; i < f->lod_count; ++i) {
+        const hf_tess_vertex *a = &f->added[i];
+        const uint32_t *tri = desc->mesh.indices + 3u * (size_t)a->triangle;
+        uint32_t g[3];
+        for (k = 0; k < 3; ++k) g[k] = guide_of[tri[k]];
+        hf__bind(&f->lod_bindings[i], g, a->bary,
+                 guide_len[f->pure_count + i], guide_len);
+    }
+
+    stage = "ropes";
+    /* frame references: the root vertex, an edge for the tangent and a
+       third corner for the face normal */
+    f->ref = (uint32_t *)hf__fur_array(f, (size_t)G * 3u, sizeof(uint32_t), &r);
+    f->root_pos = (float *)hf__fur_array(f, (size_t)G * 3u, sizeof(float), &r);
+    f->root_nrm = (float *)hf__fur_array(f, (size_t)G * 3u, sizeof(float), &r);
+    f->root_tan = (float *)hf__fur_array(f, (size_t)G * 3u, sizeof(float), &r);
+    f->guide_points = (float *)hf__fur_array(f, (size_t)G * (size_t)P * 3u,
+                                             sizeof(float), &r);
+    f->strand_points = (float *)hf__fur_array(f, (size_t)S * (size_t)P * 3u,
+                                              sizeof(float), &r);
+    if (r != HF_OK) goto fail;
+    for (i = 0; i < G * 3; ++i) f->ref[i] = 0xffffffffu;
+    for (i = 0; i < desc->mesh.triangle_count; ++i) {
+        /* the first non-degenerate triangle of each pure guide wins */
+        const uint32_t *tri = desc->mesh.indices + 3u * (size_t)i;
+        float area = hf_triangle_area(hf__mesh_pos(&desc->mesh, (int)tri[0]),
+                                      hf__mesh_pos(&desc->mesh, (int)tri[1]),
+                                      hf__mesh_pos(&desc->mesh, (int)tri[2]));
+        for (k = 0; k < 3; ++k) {
+            uint32_t g = guide_of[tri[k]];
+            if (f->ref[3 * g] == 0xffffffffu ||
+                (area > 0.0f && f->ref[3 * g + 2] == 0xfffffffeu)) {
+                f->ref[3 * g] = tri[k];
+                f->ref[3 * g + 1] = tri[(k + 1) % 3];
+                /* mark a degenerate pick so a later good triangle replaces it */
+                f->ref[3 * g + 2] = area > 0.0f ? tri[(k + 2) % 3] : 0xfffffffeu;
+            }
+        }
+    }
+    for (i = 0; i < f->pure_count; ++i) /* unused vertices: no tangent edge */
+        for (k = 0; k < 3; ++k)
+            if (f->ref[3 * i + k] >= 0xfffffffeu)
+                f->ref[3 * i + k] = f->ref[3 * i] < 0xfffffffeu ? f->ref[3 * i] : 0u;
+    for (i = 0; i < f->lod_count; ++i) {
+        const uint32_t *tri =
+            desc->mesh.indices + 3u * (size_t)f->added[i].triangle;
+        for (k = 0; k < 3; ++k) f->ref[3 * (f->pure_count + i) + k] = tri[k];
+    }
+    HF_MEMCPY(f->guide_points, rest_points,
+              sizeof(float) * (size_t)G * (size_t)P * 3u);
+
+    /* stage 4: ropes at rest, roots from the rest mesh */
+    if ((r = hf_ropes_create(G, P, &f->alloc, &f->ropes)) != HF_OK)
+        goto fail;
+    if ((r = hf_fur_set_roots(f, &desc->mesh, 0, G)) != HF_OK) goto fail;
+    if ((r = hf_ropes_set_rest(f->ropes, 0, G, rest_points, 0, f->root_pos,
+                               f->root_nrm, f->root_tan, 0)) != HF_OK)
+        goto fail;
+    f->lod = 1.0f;
+    f->width_scale = 1.0f;
+    f->lod_sim = 1;
+    if ((r = hf_fur_interpolate(f, 0, S)) != HF_OK) goto fail;
+
+    hf__free(&f->alloc, normals);
+    hf__free(&f->alloc, tess_pos);
+    hf__free(&f->alloc, tess_uv);
+    hf__free(&f->alloc, tess_idx);
+    hf__free(&f->alloc, tess_base);
+    hf__free(&f->alloc, rest_points);
+    hf__free(&f->alloc, guide_len);
+    hf__free(&f->alloc, guide_nrm);
+    hf__free(&f->alloc, guide_of);
+    *out_fur = f;
+    hf__ok(diag);
+    return HF_OK;
+
+fail : {
+    hf_allocator a = f->alloc;
+    hf__free(&a, normals);
+    hf__free(&a, tess_pos);
+    hf__free(&a, tess_uv);
+    hf__free(&a, tess_idx);
+    hf__free(&a, tess_base);
+    hf__free(&a, rest_points);
+    hf__free(&a, guide_len);
+    hf__free(&a, guide_nrm);
+    hf__free(&a, guide_of);
+    hf_fur_destroy(f);
+    return hf__fail(diag, r, stage, -1, "hf_fur_create: %s: %s", stage,
+                    hf_result_string(r));
+}
+}
+
+HFDEF hf_result hf_fur_get_info(const hf_fur *f, hf_fur_info *info)
+{
+    if (!f || !info) return HF_ERROR_NULL_POINTER;
+    HF_MEMSET(info, 0, sizeof *info);
+    info->points_per_strand = f->P;
+    info->guide_count = f->guide_count;
+    info->pure_guide_count = f->pure_count;
+    info->lod_guide_count = f->lod_count;
+    info->strand_count = f->strand_count;
+    info->drawn_strand_count = f->drawn;
+    info->lod_guides_simulated = f->lod_sim;
+    info->lod = f->lod;
+    info->width_scale = f->width_scale;
+    info->triangle_count = f->triangle_count;
+    info->guide_points = f->guide_points;
+    info->strand_points = f->strand_points;
+    info->strands = f->strands;
+    info->strand_lengths = f->strand_lengths;
+    info->strand_colors = f->strand_rgba;
+    return HF_OK;
+}
+
+HFDEF hf_result hf_fur_set_lod(hf_fur *f, float lod)
+{
+    int sim;
+    if (!f) return HF_ERROR_NULL_POINTER;
+    if (!(lod > 0.0f)) lod = 0.0f; /* NaN too */
+    if (lod > 1.0f) lod = 1.0f;
+    f->lod = lod;
+    f->drawn = hf_lod_strand_count(f->strand_count, lod);
+    f->width_scale = hf_lod_width_scale(f->strand_count, f->drawn);
+    sim = lod >= f->lod_threshold;
+    if (sim && !f->lod_sim && f->lod_count > 0) {
+        /* LOD guides wake up where they are drawn (interpolated), at rest
+           velocity: no jump. Point-major rope state: [j * G + r]. */
+        hf_ropes *ro = f->ropes;
+        const int G = f->guide_count;
+        int r, j;
+        hf_ropes_set_mode(ro, f->pure_count, f->lod_count, HF_ROPE_SIMULATED);
+        for (r = f->pure_count; r < G; ++r)
+            for (j = 0; j < f->P; ++j) {
+                const float *p = f->guide_points + ((size_t)r * f->P + j) * 3u;
+                const size_t e = (size_t)j * (size_t)G + (size_t)r;
+                ro->x[e] = ro->px[e] = p[0];
+                ro->y[e] = ro->py[e] = p[1];
+                ro->z[e] = ro->pz[e] = p[2];
+            }
+    } else if (!sim && f->lod_sim && f->lod_count > 0) {
+        /* asleep they are carried rigidly (cheap) and drawn interpolated */
+        hf_ropes_set_mode(f->ropes, f->pure_count, f->lod_count,
+                          HF_ROPE_ANIMATED);
+    }
+    f->lod_sim = sim;
+    return HF_OK;
+}
+
+HF__PRIVATE int hf__finite3(const float *p)
+{
+    return hf__finitef(p[0]) && hf__finitef(p[1]) && hf__finitef(p[2]);
+}
+
+HFDEF hf_result hf_fur_set_roots(hf_fur *f, const hf_mesh *m, int first,
+                                 int count)
+{
+    int g, k;
+    hf_result r;
+    if (!f || !m || !m->positions) return HF_ERROR_NULL_POINTER;
+    if (m->vertex_count != f->vertex_count ||
+        m->triangle_count != f->base_triangle_count)
+        return HF_ERROR_BAD_COUNT;
+    if (!hf__range_ok(first, count) || first + count > f->guide_count)
+        return HF_ERROR_BAD_RANGE;
+    if ((m->position_stride != 0 && m->position_stride < 12) ||
+        (m->normal_stride != 0 && m->normal_stride < 12))
+        return HF_ERROR_BAD_STRIDE;
+    /* check every value read before anything is set */
+    for (g = first; g < first + count; ++g)
+        for (k = 0; k < 3; ++k) {
+            const int v = (int)f->ref[3 * g + k];
+            if (!hf__finite3(hf__mesh_pos(m, v)) ||
+                (m->normals && k == 0 &&
+                 !hf__finite3(hf__attr(m->normals, m->normal_stride, 12, v))))
+                return HF_ERROR_NON_FINITE;
+        }
+    /* LOD guides: positions (and normals) blended on their base triangle */
+    {
+        int lf = first > f->pure_count ? first - f->pure_count : 0;
+        int le = first + count - f->pure_count;
+        if (le > lf) {
+            r = hf_tess_evaluate(m, f->added, f->lod_count, lf, le - lf,
+                                 f->root_pos + 3u * (size_t)f->pure_count,
+                                 m->normals ? f->root_nrm +
+                                                  3u * (size_t)f->pure_count
+                                            : NULL,
+                                 NULL);
+            if (r != HF_OK) return r;
+        }
+    }
+    for (g = first; g < first + count; ++g) {
+        const uint32_t *ref = f->ref + 3 * g;
+        const float *a = hf__mesh_pos(m, (int)ref[0]);
+        const float *b = hf__mesh_pos(m, (int)ref[1]);
+        const float *c = hf__mesh_pos(m, (int)ref[2]);
+        float *pos = f->root_pos + 3 * g, *nrm = f->root_nrm + 3 * g;
+        float e1[3], e2[3];
+        hf__sub3(e1, b, a);
+        hf__sub3(e2, c, a);
+        HF_MEMCPY(f->root_tan + 3 * g, e1, sizeof e1);
+        if (g < f->pure_count) {
+            HF_MEMCPY(pos, a, 12);
+            if (m->normals)
+                HF_MEMCPY(nrm, hf__attr(m->normals, m->normal_stride, 12,
+                                        (int)ref[0]),
+                          12);
+        }
+        if (!m->normals || hf__dot3(nrm, nrm) == 0.0f) {
+            /* face normal; a degenerate face keeps the rest-time up axis */
+            hf__cross3(nrm, e1, e2);
+            if (!(hf__dot3(nrm, nrm) > 0.0f) || !hf__finite3(nrm)) {
+                nrm[0] = 0.0f;
+                nrm[1] = 0.0f;
+                nrm[2] = 1.0f;
+            }
+        }
+    }
+    return hf_ropes_set_roots(f->ropes, first, count, f->root_pos,
+                              f->root_nrm, f->root_tan, 0);
+}
+
+HFDEF hf_result hf_fur_simulate(hf_fur *f, int first, int count, float dt,
+                                const hf_collider *colliders,
+                                int collider_count)
+{
+    hf_result r;
+    int end;
+    if (!f) return HF_ERROR_NULL_POINTER;
+    if (!hf__range_ok(first, count) || first + count > f->guide_count)
+        return HF_ERROR_BAD_RANGE;
+    end = first + count;
+    if (!f->lod_sim && end > f->pure_count) {
+        /* sleeping LOD guides are still carried by their roots, so they
+           wake up in place; they are stepped but not copied out */
+        int lf = first > f->pure_count ? first : f->pure_count;
+        r = hf_ropes_step(f->ropes, lf, end - lf, dt, &f->rope, colliders,
+                          collider_count);
+        if (r != HF_OK) return r;
+        end = lf;
+    }
+    if (end <= first) return HF_OK;
+    r = hf_ropes_step(f->ropes, first, end - first, dt, &f->rope, colliders,
+                      collider_count);
+    if (r != HF_OK) return r;
+    return hf_ropes_get_positions(f->ropes, first, end - first,
+                                  f->guide_points, 0);
+}
+
+HFDEF hf_result hf_fur_interpolate_guides(hf_fur *f, int first, int count)
+{
+    hf_interp_params ip;
+    if (!f) return HF_ERROR_NULL_POINTER;
+    if (!hf__range_ok(first, count) || first + count > f->lod_count)
+        return HF_ERROR_BAD_RANGE;
+    if (f->lod_sim || count == 0) return HF_OK;
+    ip.points_per_strand = f->P;
+    ip.clump = 0.0f;
+    return hf_interpolate(f->guide_points, f->pure_count, f->lod_bindings,
+                          first, count, &ip,
+                          f->guide_points +
+                              (size_t)f->pure_count * (size_t)f->P * 3u);
+}
+
+HFDEF hf_result hf_fur_interpolate(hf_fur *f, int first, int count)
+{
+    hf_interp_params ip;
+    if (!f) return HF_ERROR_NULL_POINTER;
+    if (!hf__range_ok(first, count) || first + count > f->strand_count)
+        return HF_ERROR_BAD_RANGE;
+    ip.points_per_strand = f->P;
+    ip.clump = f->clump;
+    return hf_interpolate(f->guide_points, f->guide_count, f->bindings, first,
+                          count, &ip, f->strand_points);
+}
+
+HF__PRIVATE hf_result hf__fur_view(const hf_fur *f, int first, int count,
+                                   const hf_ribbon_params *view,
+                                   hf_ribbon_params *p, hf_ribbon_strands *s)
+{
+    if (!f || !view) return HF_ERROR_NULL_POINTER;
+    if (!hf__range_ok(first, count) || first + count > f->strand_count)
+        return HF_ERROR_BAD_RANGE;
+    *p = *view;
+    p->points_per_strand = f->P;
+    p->width_scale = (view->width_scale != 0.0f ? view->width_scale : 1.0f) *
+                     f->width_scale;
+    HF_MEMSET(s, 0, sizeof *s);
+    s->points = f->strand_points;
+    s->root_uv = f->strand_uv;
+    s->color = f->strand_rgba;
+    s->color3d_x = f->strand_c3x;
+    return HF_OK;
+}
+
+HFDEF hf_result hf_fur_ribbons(const hf_fur *f, int first, int count,
+                               const hf_ribbon_params *view,
+                               const hf_ribbon_output *out)
+{
+    hf_ribbon_params p;
+    hf_ribbon_strands s;
+    hf_result r = hf__fur_view(f, first, count, view, &p, &s);
+    return r != HF_OK ? r : hf_ribbons(&s, first, count, &p, out);
+}
+
+HFDEF hf_result hf_fur_points(const hf_fur *f, int first, int count,
+                              const hf_ribbon_params *view, float *out4)
+{
+    hf_ribbon_params p;
+    hf_ribbon_strands s;
+    hf_result r = hf__fur_view(f, first, count, view, &p, &s);
+    return r != HF_OK ? r : hf_ribbon_points(&s, first, count, &p, out4);
+}
+
+HFDEF hf_result hf_fur_reset(hf_fur *f)
+{
+    hf_result r;
+    if (!f) return HF_ERROR_NULL_POINTER;
+    r = hf_ropes_reset(f->ropes, 0, f->guide_count);
+    if (r != HF_OK) return r;
+    return hf_ropes_get_positions(f->ropes, 0, f->guide_count,
+                                  f->guide_points, 0);
+}
+
+HFDEF hf_result hf_fur_max_stretch(const hf_fur *f, float *out_stretch)
+{
+    if (!f || !out_stretch) return HF_ERROR_NULL_POINTER;
+    return hf_ropes_max_stretch(f->ropes, 0,
+                                f->lod_sim ? f->guide_count : f->pure_count,
+                                out_stretch);
 }
 
 #ifdef __cplusplus

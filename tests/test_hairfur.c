@@ -552,9 +552,10 @@ static void test_mesh_normals_degenerate_fallback(void)
     CHECK_EQ_INT(hf_mesh_compute_normals(&m, NULL), HF_ERROR_NULL_POINTER);
 }
 
-/* test_grow.c - tests of section 5 (Grow): density estimators, density
-   tessellation, guides, strand placement, maps on strands, bindings.
-   Included after the harness of tests/test_hairfur.c. */
+/* ======================================================================== */
+/* 5. grow: density estimators, density tessellation, guides, strand        */
+/*    placement, maps on strands, bindings                                  */
+/* ======================================================================== */
 
 /* ---- helpers ------------------------------------------------------------ */
 
@@ -2149,7 +2150,997 @@ static void run_grow_tests(void)
 }
 
 /* ======================================================================== */
-/* 9. interpolation and LOD                                                 */
+/* 6. ropes                                                                 */
+/* ======================================================================== */
+
+/* ---- helpers ------------------------------------------------------------ */
+
+#define TR_PI 3.14159265358979323846
+
+/* Ropes owned by a test: the struct plus malloc'd memory. */
+typedef struct tr_set {
+    hf_ropes ro;
+    void *mem;
+    size_t size;
+} tr_set;
+
+static int tr_open(tr_set *s, int ropes, int points)
+{
+    memset(s, 0, sizeof *s);
+    if (hf_ropes_memory_size(ropes, points, &s->size) != HF_OK) return 0;
+    s->mem = malloc(s->size);
+    if (!s->mem) return 0;
+    return hf_ropes_init(&s->ro, ropes, points, s->mem, s->size) == HF_OK;
+}
+
+static void tr_close(tr_set *s) { free(s->mem); }
+
+/* Straight rest pose for rope r: from root[r] along dir[r], total length
+   len, written rope-major into pos. */
+static void tr_straight(float *pos, int r, int points, const float *root,
+                        const float *dir, float len)
+{
+    int j;
+    for (j = 0; j < points; ++j) {
+        float t = len * (float)j / (float)(points - 1);
+        float *o = pos + 3 * ((size_t)r * points + j);
+        o[0] = root[0] + dir[0] * t;
+        o[1] = root[1] + dir[1] * t;
+        o[2] = root[2] + dir[2] * t;
+    }
+}
+
+/* Every particle (current and previous) finite. */
+static int tr_finite(const hf_ropes *ro)
+{
+    size_t i, n = (size_t)ro->rope_count * ro->points;
+    for (i = 0; i < n; ++i)
+        if (!t_is_finite(ro->x[i]) || !t_is_finite(ro->y[i]) ||
+            !t_is_finite(ro->z[i]) || !t_is_finite(ro->px[i]) ||
+            !t_is_finite(ro->py[i]) || !t_is_finite(ro->pz[i]))
+            return 0;
+    return 1;
+}
+
+static void tr_snapshot(const hf_ropes *ro, float *out)
+{
+    hf_ropes_get_positions(ro, 0, ro->rope_count, out, 0);
+}
+
+/* Largest distance any particle moved between two snapshots. */
+static double tr_max_move(const float *a, const float *b, size_t points)
+{
+    double m = 0.0;
+    size_t i;
+    for (i = 0; i < points; ++i) {
+        double dx = a[3 * i] - b[3 * i], dy = a[3 * i + 1] - b[3 * i + 1],
+               dz = a[3 * i + 2] - b[3 * i + 2];
+        double d = sqrt(dx * dx + dy * dy + dz * dz);
+        if (d > m) m = d;
+    }
+    return m;
+}
+
+/* Kinetic energy (unit mass per non-root point) from two snapshots. */
+static double tr_kinetic(const float *a, const float *b, int ropes,
+                         int points, double dt)
+{
+    double e = 0.0;
+    int r, j;
+    for (r = 0; r < ropes; ++r)
+        for (j = 1; j < points; ++j) {
+            size_t i = 3 * ((size_t)r * points + j);
+            double vx = (a[i] - b[i]) / dt, vy = (a[i + 1] - b[i + 1]) / dt,
+                   vz = (a[i + 2] - b[i + 2]) / dt;
+            e += 0.5 * (vx * vx + vy * vy + vz * vz);
+        }
+    return e;
+}
+
+/* Rotate v about unit axis k by angle (Rodrigues), in double. */
+static void tr_rotate(const double *k, double ang, const float *v, float *out)
+{
+    double c = cos(ang), s = sin(ang);
+    double kv = k[0] * v[0] + k[1] * v[1] + k[2] * v[2];
+    double cx = k[1] * v[2] - k[2] * v[1], cy = k[2] * v[0] - k[0] * v[2],
+           cz = k[0] * v[1] - k[1] * v[0];
+    out[0] = (float)(v[0] * c + cx * s + k[0] * kv * (1 - c));
+    out[1] = (float)(v[1] * c + cy * s + k[1] * kv * (1 - c));
+    out[2] = (float)(v[2] * c + cz * s + k[2] * kv * (1 - c));
+}
+
+static double tr_dist_seg(const float *p, const hf_collider *c)
+{
+    double ax = c->a[0], ay = c->a[1], az = c->a[2], t = 0.0;
+    double ex = 0, ey = 0, ez = 0, dx, dy, dz;
+    if (c->type == HF_COLLIDER_CAPSULE) {
+        double l2;
+        ex = c->b[0] - ax;
+        ey = c->b[1] - ay;
+        ez = c->b[2] - az;
+        l2 = ex * ex + ey * ey + ez * ez;
+        if (l2 > 0)
+            t = ((p[0] - ax) * ex + (p[1] - ay) * ey + (p[2] - az) * ez) / l2;
+        t = t < 0 ? 0 : (t > 1 ? 1 : t);
+    }
+    dx = p[0] - (ax + ex * t);
+    dy = p[1] - (ay + ey * t);
+    dz = p[2] - (az + ez * t);
+    return sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+/* ---- tests -------------------------------------------------------------- */
+
+static void test_ropes_params_defaults_and_validation(void)
+{
+    hf_rope_params p, q;
+    hf_diag d;
+    hf_rope_params_init(&p);
+    CHECK(p.gravity[0] == 0.0f && p.gravity[1] == -9.81f &&
+          p.gravity[2] == 0.0f);
+    CHECK(p.wind[0] == 0.0f && p.wind[1] == 0.0f && p.wind[2] == 0.0f);
+    CHECK(p.turbulence == 0.0f && p.turbulence_frequency == 1.0f);
+    CHECK(p.damping == 0.02f && p.time_scale == 1.0f);
+    CHECK(p.substep == 1.0f / 120.0f && p.max_substeps == 8);
+    CHECK(p.max_dt == 1.0f / 15.0f && p.iterations == 2);
+    CHECK(p.solver == HF_ROPE_SOLVER_FTL && p.ftl_damping == 0.9f);
+    CHECK(p.root_stiffness == 0.0f && p.global_stiffness_root == 0.0f &&
+          p.global_stiffness_tip == 0.0f && p.local_stiffness_root == 0.0f &&
+          p.local_stiffness_tip == 0.0f);
+    CHECK(p.collision_margin == 0.002f && p.mode_blend_time == 0.25f);
+    CHECK_EQ_INT(hf_rope_params_validate(&p, &d), HF_OK);
+    CHECK_EQ_INT(hf_rope_params_validate(NULL, NULL), HF_ERROR_NULL_POINTER);
+
+    q = p; q.damping = 1.5f;
+    CHECK_EQ_INT(hf_rope_params_validate(&q, &d), HF_ERROR_BAD_PARAMETER);
+    CHECK(strcmp(d.field, "damping") == 0);
+    q = p; q.gravity[2] = (float)NAN;
+    CHECK_EQ_INT(hf_rope_params_validate(&q, &d), HF_ERROR_NON_FINITE);
+    CHECK(strcmp(d.field, "gravity") == 0);
+    q = p; q.wind[0] = 2e4f;
+    CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_BAD_PARAMETER);
+    q = p; q.substep = 0.0f; /* a zero-initialised struct fails here */
+    CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_BAD_PARAMETER);
+    q = p; q.time_scale = 0.0f;
+    CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_BAD_PARAMETER);
+    q = p; q.max_substeps = 0;
+    CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_BAD_PARAMETER);
+    q = p; q.iterations = -1;
+    CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_BAD_PARAMETER);
+    q = p; q.solver = 7;
+    CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_BAD_PARAMETER);
+    q = p; q.global_stiffness_tip = -0.1f;
+    CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_BAD_PARAMETER);
+    q = p; q.max_dt = (float)INFINITY;
+    CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_NON_FINITE);
+    memset(&q, 0, sizeof q);
+    CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_BAD_PARAMETER);
+}
+
+static void test_ropes_memory_init_create(void)
+{
+    size_t size = 0, size2 = 0;
+    unsigned char *mem;
+    hf_ropes ro, before;
+    hf_ropes *made = NULL;
+    t_counter cnt;
+    hf_allocator al = t_counting(&cnt);
+    CHECK_EQ_INT(hf_ropes_memory_size(0, 16, &size), HF_ERROR_BAD_COUNT);
+    CHECK_EQ_INT(hf_ropes_memory_size(4, 1, &size), HF_ERROR_BAD_COUNT);
+    CHECK_EQ_INT(hf_ropes_memory_size(4, 16, NULL), HF_ERROR_NULL_POINTER);
+    if (sizeof(size_t) == 8)
+        CHECK_EQ_INT(hf_ropes_memory_size(0x7fffffff, 0x7fffffff, &size),
+                     HF_ERROR_OVERFLOW);
+    CHECK_EQ_INT(hf_ropes_memory_size(1000, 16, &size), HF_OK);
+    /* 10 point arrays, 56 floats + 1 double + 1 byte per rope, padding */
+    CHECK(size >= 1000u * 16u * 40u + 1000u * (56u * 4u + 9u));
+    CHECK(size <= 1000u * 16u * 40u + 1000u * (56u * 4u + 9u) + 64u * 18u);
+    CHECK_EQ_INT(hf_ropes_memory_size(3, 5, &size2), HF_OK);
+
+    mem = (unsigned char *)malloc(size2 + 1);
+    memset(&before, 0xab, sizeof before);
+    ro = before;
+    CHECK_EQ_INT(hf_ropes_init(&ro, 3, 5, mem + 1, size2 - 1),
+                 HF_ERROR_BUFFER_TOO_SMALL);
+    CHECK(memcmp(&ro, &before, sizeof ro) == 0);
+    CHECK_EQ_INT(hf_ropes_init(&ro, 3, 5, NULL, size2),
+                 HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_ropes_init(&ro, 3, 1, mem + 1, size2),
+                 HF_ERROR_BAD_COUNT);
+    CHECK(memcmp(&ro, &before, sizeof ro) == 0);
+    /* any alignment of the memory; arrays come out 64-byte aligned */
+    CHECK_EQ_INT(hf_ropes_init(&ro, 3, 5, mem + 1, size2), HF_OK);
+    CHECK(((uintptr_t)ro.x & 63u) == 0 && ((uintptr_t)ro.pz & 63u) == 0);
+    CHECK(((uintptr_t)ro.time & 7u) == 0);
+    CHECK_EQ_INT(ro.rope_count, 3);
+    CHECK_EQ_INT(ro.points, 5);
+    CHECK(ro.x[14] == 0.0f && ro.mode[2] == HF_ROPE_SIMULATED);
+    hf_ropes_destroy(&ro); /* not owned: must leave the memory alone */
+    free(mem);
+
+    CHECK_EQ_INT(hf_ropes_create(10, 8, &al, &made), HF_OK);
+    CHECK(made != NULL);
+    CHECK_EQ_INT(cnt.allocs, 1);
+    if (made) {
+        hf_rope_params p;
+        hf_rope_params_init(&p);
+        CHECK_EQ_INT(hf_ropes_step(made, 0, 10, 1.0f / 60.0f, &p, NULL, 0),
+                     HF_OK);
+        CHECK_EQ_INT(cnt.allocs, 1); /* the step allocates nothing */
+        hf_ropes_destroy(made);
+    }
+    CHECK_EQ_INT(cnt.frees, 1);
+    cnt.fail_after = 0;
+    made = NULL;
+    CHECK_EQ_INT(hf_ropes_create(10, 8, &al, &made), HF_ERROR_OUT_OF_MEMORY);
+    CHECK(made == NULL);
+}
+
+/* A rope released horizontally swings down and settles, and FTL keeps it
+   inextensible, with the default parameters. */
+static void test_ropes_hanging_settles(void)
+{
+    enum { P = 17, FRAMES = 600 };
+    const float root[3] = {0, 0, 0}, nrm[3] = {1, 0, 0}, tan[3] = {0, 0, 1};
+    float rest[3 * P], a[3 * P], b[3 * P], st, worst = 0.0f;
+    double ke, ke_peak = 0.0, ke_last_second = 0.0;
+    hf_rope_params p;
+    tr_set s;
+    int f;
+    if (!tr_open(&s, 1, P)) { CHECK(0); return; }
+    hf_rope_params_init(&p);
+    tr_straight(rest, 0, P, root, nrm, 0.3f);
+    CHECK_EQ_INT(hf_ropes_set_rest(&s.ro, 0, 1, rest, 0, root, nrm, tan, 0),
+                 HF_OK);
+    tr_snapshot(&s.ro, a);
+    for (f = 0; f < FRAMES; ++f) {
+        memcpy(b, a, sizeof a);
+        CHECK_EQ_INT(hf_ropes_step(&s.ro, 0, 1, 1.0f / 60.0f, &p, NULL, 0),
+                     HF_OK);
+        tr_snapshot(&s.ro, a);
+        ke = tr_kinetic(a, b, 1, P, 1.0 / 60.0);
+        if (ke > ke_peak) ke_peak = ke;
+        if (f >= FRAMES - 60 && ke > ke_last_second) ke_last_second = ke;
+        hf_ropes_max_stretch(&s.ro, 0, 1, &st);
+        if (st > worst) worst = st;
+    }
+    CHECK(ke_peak > 1.0);                      /* it really swung */
+    CHECK(ke_last_second < 1e-6 * ke_peak);    /* and settled */
+    CHECK(worst < 0.005f);                     /* the bound */
+    CHECK(worst < 1e-4f);                      /* FTL does much better */
+    /* hangs straight down from the root */
+    CHECK_NEAR(a[3 * (P - 1) + 0], 0.0, 1e-3);
+    CHECK_NEAR(a[3 * (P - 1) + 1], -0.3, 1e-3);
+    CHECK(tr_finite(&s.ro));
+    tr_close(&s);
+}
+
+/* Zero gravity and full global stiffness: the rope is its rest shape
+   carried rigidly by a moving, turning root frame. */
+static void test_ropes_shape_kept_by_moving_frame(void)
+{
+    enum { R = 3, P = 12, FRAMES = 90 };
+    static float rest[3 * R * P], now[3 * R * P];
+    float root0[3 * R], nrm0[3 * R], tan0[3 * R];
+    float root[3 * R], nrm[3 * R], tan[3 * R];
+    double axis[3] = {1, 2, 3}, al = sqrt(14.0), worst = 0.0, control = 0.0;
+    hf_rope_params p;
+    tr_set s;
+    int r, j, f, pass;
+    axis[0] /= al; axis[1] /= al; axis[2] /= al;
+    for (r = 0; r < R; ++r) {
+        root0[3 * r] = 0.1f * r; root0[3 * r + 1] = 0.5f; root0[3 * r + 2] = 0;
+        nrm0[3 * r] = 0; nrm0[3 * r + 1] = 1; nrm0[3 * r + 2] = 0;
+        tan0[3 * r] = 1; tan0[3 * r + 1] = 0; tan0[3 * r + 2] = 0;
+        for (j = 0; j < P; ++j) { /* a curl: a quarter helix */
+            float t = (float)j / (P - 1);
+            float *o = rest + 3 * (r * P + j);
+            o[0] = root0[3 * r] + 0.05f * (1.0f - cosf(2.0f * t));
+            o[1] = root0[3 * r + 1] + 0.2f * t;
+            o[2] = root0[3 * r + 2] + 0.05f * sinf(2.0f * t) * (r + 1);
+        }
+    }
+    for (pass = 0; pass < 2; ++pass) {
+        if (!tr_open(&s, R, P)) { CHECK(0); return; }
+        hf_rope_params_init(&p);
+        p.gravity[1] = 0.0f;
+        p.global_stiffness_root = p.global_stiffness_tip = pass ? 0.0f : 1.0f;
+        CHECK_EQ_INT(hf_ropes_set_rest(&s.ro, 0, R, rest, 0, root0, nrm0,
+                                       tan0, 0),
+                     HF_OK);
+        for (f = 1; f <= FRAMES; ++f) {
+            double ang = 0.05 * f, tt = f / 60.0;
+            float off[3];
+            off[0] = (float)(0.3 * sin(2 * TR_PI * tt));
+            off[1] = (float)(0.1 * tt);
+            off[2] = (float)(-0.2 * tt);
+            for (r = 0; r < R; ++r) {
+                int k;
+                for (k = 0; k < 3; ++k) root[3 * r + k] = root0[3 * r + k] + off[k];
+                tr_rotate(axis, ang, nrm0 + 3 * r, nrm + 3 * r);
+                tr_rotate(axis, ang, tan0 + 3 * r, tan + 3 * r);
+            }
+            CHECK_EQ_INT(hf_ropes_set_roots(&s.ro, 0, R, root, nrm, tan, 0),
+                         HF_OK);
+            CHECK_EQ_INT(hf_ropes_step(&s.ro, 0, R, 1.0f / 60.0f, &p, NULL, 0),
+                         HF_OK);
+            tr_snapshot(&s.ro, now);
+            for (r = 0; r < R; ++r)
+                for (j = 0; j < P; ++j) {
+                    float d[3], e[3];
+                    const float *q = rest + 3 * (r * P + j);
+                    const float *g = now + 3 * (r * P + j);
+                    double err;
+                    d[0] = q[0] - root0[3 * r];
+                    d[1] = q[1] - root0[3 * r + 1];
+                    d[2] = q[2] - root0[3 * r + 2];
+                    tr_rotate(axis, ang, d, e);
+                    err = sqrt(pow(g[0] - root[3 * r] - e[0], 2) +
+                               pow(g[1] - root[3 * r + 1] - e[1], 2) +
+                               pow(g[2] - root[3 * r + 2] - e[2], 2));
+                    if (pass == 0 && err > worst) worst = err;
+                    if (pass == 1 && err > control) control = err;
+                }
+        }
+        CHECK(tr_finite(&s.ro));
+        tr_close(&s);
+    }
+    CHECK(worst < 2e-5);    /* float rounding only */
+    CHECK(control > 0.01);  /* without stiffness the shape is lost */
+}
+
+/* Two colliders swept through a bundle of hanging ropes: after every step
+   no non-root point is inside either (with the margin). */
+static void test_ropes_collider_sweep_never_penetrates(void)
+{
+    enum { G = 8, R = G * G, P = 17, FRAMES = 90 };
+    static float rest[3 * R * P], now[3 * R * P];
+    float root[3 * R], nrm[3 * R], tan[3 * R], worst_st = 0.0f, st;
+    hf_collider col[2];
+    hf_rope_params p;
+    double worst = 1e9;
+    long contacts = 0;
+    tr_set s;
+    int r, j, f, c;
+    if (!tr_open(&s, R, P)) { CHECK(0); return; }
+    for (r = 0; r < R; ++r) {
+        root[3 * r] = -0.1f + 0.2f * (r % G) / (G - 1);
+        root[3 * r + 1] = 0.0f;
+        root[3 * r + 2] = -0.1f + 0.2f * (r / G) / (G - 1);
+        nrm[3 * r] = 0; nrm[3 * r + 1] = -1; nrm[3 * r + 2] = 0;
+        tan[3 * r] = 1; tan[3 * r + 1] = 0; tan[3 * r + 2] = 0;
+        tr_straight(rest, r, P, root + 3 * r, nrm + 3 * r, 0.3f);
+    }
+    CHECK_EQ_INT(hf_ropes_set_rest(&s.ro, 0, R, rest, 0, root, nrm, tan, 0),
+                 HF_OK);
+    hf_rope_params_init(&p);
+    memset(col, 0, sizeof col);
+    col[0].type = HF_COLLIDER_SPHERE;
+    col[0].radius = 0.05f;
+    col[1].type = HF_COLLIDER_CAPSULE;
+    col[1].radius = 0.02f;
+    for (f = 0; f < FRAMES; ++f) {
+        float t = (float)f / (FRAMES - 1);
+        col[0].a[0] = -0.4f + 0.8f * t; /* left to right, low */
+        col[0].a[1] = -0.22f;
+        col[0].a[2] = 0.01f;
+        col[1].a[0] = col[1].b[0] = 0.4f - 0.8f * t; /* right to left, high */
+        col[1].a[1] = col[1].b[1] = -0.08f;
+        col[1].a[2] = -0.3f;
+        col[1].b[2] = 0.3f;
+        CHECK_EQ_INT(hf_ropes_step(&s.ro, 0, R, 1.0f / 60.0f, &p, col, 2),
+                     HF_OK);
+        tr_snapshot(&s.ro, now);
+        for (r = 0; r < R; ++r)
+            for (j = 1; j < P; ++j)
+                for (c = 0; c < 2; ++c) {
+                    double d = tr_dist_seg(now + 3 * (r * P + j), col + c) -
+                               col[c].radius;
+                    if (d < worst) worst = d;
+                    if (d < p.collision_margin * 1.01) ++contacts;
+                }
+        hf_ropes_max_stretch(&s.ro, 0, R, &st);
+        if (st > worst_st) worst_st = st;
+    }
+    CHECK(contacts > 100);                        /* the sweep hit ropes */
+    CHECK(worst >= p.collision_margin * 0.999);   /* and never got in */
+    CHECK(worst_st < 0.05f);
+    CHECK(tr_finite(&s.ro));
+    tr_close(&s);
+}
+
+/* Animated -> simulated -> animated on a moving root: no particle moves in
+   a frame by more than the motion of a frame. */
+static void test_ropes_mode_switch_no_jump(void)
+{
+    enum { R = 4, P = 17, FRAMES = 120, ON = 30, OFF = 50 };
+    static float rest[3 * R * P], a[3 * R * P], b[3 * R * P];
+    float root[3 * R], root0[3 * R], nrm[3 * R], tan[3 * R];
+    double move[FRAMES], gap = 0.0, anim_move = 0.0, sim_move = 0.0;
+    hf_rope_params p;
+    tr_set s;
+    int r, f, j;
+    if (!tr_open(&s, R, P)) { CHECK(0); return; }
+    for (r = 0; r < R; ++r) {
+        root0[3 * r] = 0.05f * r; root0[3 * r + 1] = 0; root0[3 * r + 2] = 0;
+        nrm[3 * r] = 0; nrm[3 * r + 1] = 1; nrm[3 * r + 2] = 0; /* up */
+        tan[3 * r] = 1; tan[3 * r + 1] = 0; tan[3 * r + 2] = 0;
+        tr_straight(rest, r, P, root0 + 3 * r, nrm + 3 * r, 0.3f);
+    }
+    hf_rope_params_init(&p);
+    CHECK_EQ_INT(hf_ropes_set_rest(&s.ro, 0, R, rest, 0, root0, nrm, tan, 0),
+                 HF_OK);
+    CHECK_EQ_INT(hf_ropes_set_mode(&s.ro, 0, R, HF_ROPE_ANIMATED), HF_OK);
+    CHECK_EQ_INT(hf_ropes_set_mode(&s.ro, 0, R, 3),
+                 HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_ropes_reset(&s.ro, 0, R), HF_OK);
+    tr_snapshot(&s.ro, a);
+    for (f = 0; f < FRAMES; ++f) {
+        double tt = (f + 1) / 60.0;
+        if (f == ON) hf_ropes_set_mode(&s.ro, 0, R, HF_ROPE_SIMULATED);
+        if (f == OFF) {
+            /* how far the simulated rope is from its animated pose: what a
+               naive switch would jump */
+            for (r = 0; r < R; ++r)
+                for (j = 0; j < P; ++j) {
+                    const float *q = a + 3 * (r * P + j);
+                    double dx = q[0] - (root[3 * r] + 0.0),
+                           dy = q[1] - (root[3 * r + 1] + 0.3 * j / (P - 1)),
+                           dz = q[2] - root[3 * r + 2];
+                    double d = sqrt(dx * dx + dy * dy + dz * dz);
+                    if (d > gap) gap = d;
+                }
+            hf_ropes_set_mode(&s.ro, 0, R, HF_ROPE_ANIMATED);
+        }
+        for (r = 0; r < R; ++r) {
+            root[3 * r] = root0[3 * r] + (float)(0.1 * sin(2 * TR_PI * tt));
+            root[3 * r + 1] = root0[3 * r + 1];
+            root[3 * r + 2] = root0[3 * r + 2];
+        }
+        hf_ropes_set_roots(&s.ro, 0, R, root, nrm, tan, 0);
+        memcpy(b, a, sizeof a);
+        CHECK_EQ_INT(hf_ropes_step(&s.ro, 0, R, 1.0f / 60.0f, &p, NULL, 0),
+                     HF_OK);
+        tr_snapshot(&s.ro, a);
+        move[f] = tr_max_move(a, b, (size_t)R * P);
+        if (f < ON && move[f] > anim_move) anim_move = move[f];
+        if (f > ON && f < OFF && move[f] > sim_move) sim_move = move[f];
+    }
+    /* the first simulated frame continues the animated motion: it moves no
+       more than an animated frame, plus what gravity adds in one frame */
+    CHECK(move[ON] <= anim_move * 1.02 + 9.81 / 3600.0);
+    /* switching back glides: no frame moves more than the largest move of
+       the simulated frames before the switch */
+    for (f = OFF; f < FRAMES; ++f) CHECK(move[f] <= sim_move * 1.02);
+    /* the test is meaningful: a jump to the animated pose is far bigger */
+    CHECK(gap > 2.0 * sim_move);
+    if (getenv("TR_VERBOSE")) {
+        printf("anim_move %g sim_move %g gap %g move[ON] %g\n", anim_move,
+               sim_move, gap, move[ON]);
+        for (f = OFF - 2; f < OFF + 20; ++f) printf("  move[%d] = %g\n", f, move[f]);
+    }
+    /* and the glide ended: back on the animated pose */
+    for (r = 0; r < R; ++r)
+        for (j = 0; j < P; ++j) {
+            const float *q = a + 3 * (r * P + j);
+            CHECK_NEAR(q[0], root[3 * r], 1e-5);
+            CHECK_NEAR(q[1], root[3 * r + 1] + 0.3 * j / (P - 1), 1e-5);
+        }
+    tr_close(&s);
+}
+
+/* dt zero, negative, NaN, infinite: an error and no change; dt of a second:
+   clamped to max_dt, the same bytes as a step of max_dt; never a NaN. */
+static void test_ropes_bad_time_steps(void)
+{
+    enum { R = 5, P = 9 };
+    static float rest[3 * R * P];
+    float root[3 * R], nrm[3 * R], tan[3 * R];
+    const float bad[4] = {0.0f, -1.0f / 60.0f, (float)NAN, (float)INFINITY};
+    hf_rope_params p;
+    tr_set s, t;
+    unsigned char *copy;
+    int r, i, f;
+    if (!tr_open(&s, R, P) || !tr_open(&t, R, P)) { CHECK(0); return; }
+    for (r = 0; r < R; ++r) {
+        root[3 * r] = (float)r; root[3 * r + 1] = 1; root[3 * r + 2] = 0;
+        nrm[3 * r] = 1; nrm[3 * r + 1] = 0; nrm[3 * r + 2] = 0;
+        tan[3 * r] = 0; tan[3 * r + 1] = 0; tan[3 * r + 2] = 1;
+        tr_straight(rest, r, P, root + 3 * r, nrm + 3 * r, 0.25f);
+    }
+    hf_rope_params_init(&p);
+    hf_ropes_set_rest(&s.ro, 0, R, rest, 0, root, nrm, tan, 0);
+    hf_ropes_step(&s.ro, 0, R, 1.0f / 60.0f, &p, NULL, 0); /* in motion */
+    copy = (unsigned char *)malloc(s.size);
+    memcpy(copy, s.mem, s.size);
+    for (i = 0; i < 4; ++i) {
+        CHECK_EQ_INT(hf_ropes_step(&s.ro, 0, R, bad[i], &p, NULL, 0),
+                     HF_ERROR_BAD_TIME_STEP);
+        CHECK(memcmp(copy, s.mem, s.size) == 0);
+    }
+    /* same start in t, then one second vs max_dt */
+    hf_ropes_set_rest(&t.ro, 0, R, rest, 0, root, nrm, tan, 0);
+    hf_ropes_step(&t.ro, 0, R, 1.0f / 60.0f, &p, NULL, 0);
+    for (f = 0; f < 20; ++f) {
+        root[0] += 1.0f; /* a big jump of rope 0's root every frame */
+        hf_ropes_set_roots(&s.ro, 0, R, root, nrm, tan, 0);
+        hf_ropes_set_roots(&t.ro, 0, R, root, nrm, tan, 0);
+        CHECK_EQ_INT(hf_ropes_step(&s.ro, 0, R, 1.0f, &p, NULL, 0), HF_OK);
+        CHECK_EQ_INT(hf_ropes_step(&t.ro, 0, R, p.max_dt, &p, NULL, 0),
+                     HF_OK);
+    }
+    CHECK(memcmp(s.ro.x, t.ro.x, sizeof(float) * R * P) == 0);
+    CHECK(memcmp(s.ro.py, t.ro.py, sizeof(float) * R * P) == 0);
+    CHECK(tr_finite(&s.ro));
+    /* a tiny step and a huge time scale stay finite */
+    p.time_scale = 100.0f;
+    CHECK_EQ_INT(hf_ropes_step(&s.ro, 0, R, 1e-7f, &p, NULL, 0), HF_OK);
+    CHECK_EQ_INT(hf_ropes_step(&s.ro, 0, R, 1.0f, &p, NULL, 0), HF_OK);
+    CHECK(tr_finite(&s.ro));
+    free(copy);
+    tr_close(&s);
+    tr_close(&t);
+}
+
+/* Everything on (turbulence, wind, shape, colliders, mixed modes): any
+   split into ranges, in any order, gives the same bytes. */
+static void test_ropes_ranges_byte_identical(void)
+{
+    enum { R = 37, P = 11, FRAMES = 60 };
+    static float rest[3 * R * P];
+    float root[3 * R], nrm[3 * R], tan[3 * R];
+    const int cuts[] = {0, 5, 6, 6, 20, 37};
+    hf_collider col[2];
+    hf_rope_params p;
+    tr_set s[3];
+    int r, f, k, i, same = 1;
+    for (k = 0; k < 3; ++k)
+        if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
+    for (r = 0; r < R; ++r) {
+        float a = 0.3f * r;
+        root[3 * r] = 0.1f * cosf(a); root[3 * r + 1] = 0.0f;
+        root[3 * r + 2] = 0.1f * sinf(a);
+        nrm[3 * r] = cosf(a); nrm[3 * r + 1] = 0.3f; nrm[3 * r + 2] = sinf(a);
+        tan[3 * r] = 0; tan[3 * r + 1] = 1; tan[3 * r + 2] = 0;
+        tr_straight(rest, r, P, root + 3 * r, nrm + 3 * r, 0.2f);
+    }
+    hf_rope_params_init(&p);
+    p.wind[0] = 3.0f;
+    p.turbulence = 5.0f;
+    p.turbulence_frequency = 2.0f;
+    p.global_stiffness_root = 0.2f;
+    p.local_stiffness_root = 0.5f;
+    p.local_stiffness_tip = 0.1f;
+    p.root_stiffness = 0.5f;
+    memset(col, 0, sizeof col);
+    col[0].type = HF_COLLIDER_SPHERE;
+    col[0].radius = 0.1f;
+    col[1].type = HF_COLLIDER_CAPSULE;
+    col[1].radius = 0.03f;
+    for (k = 0; k < 3; ++k) {
+        hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm, tan, 0);
+        hf_ropes_set_mode(&s[k].ro, 10, 7, HF_ROPE_ANIMATED);
+    }
+    for (f = 0; f < FRAMES; ++f) {
+        double tt = f / 60.0;
+        for (r = 0; r < R; ++r) root[3 * r + 1] = (float)(0.05 * sin(7 * tt));
+        col[1].a[0] = 0.3f; col[1].a[1] = -0.25f; col[1].a[2] = -0.3f;
+        col[1].b[0] = -0.3f; col[1].b[1] = -0.25f; col[1].b[2] = 0.3f;
+        col[1].a[1] += (float)(0.1 * sin(3 * tt));
+        for (k = 0; k < 3; ++k) {
+            if (f == 20) hf_ropes_set_mode(&s[k].ro, 12, 3, HF_ROPE_SIMULATED);
+            if (f == 25) hf_ropes_set_mode(&s[k].ro, 30, 5, HF_ROPE_ANIMATED);
+            if (f == 40) hf_ropes_reset(&s[k].ro, 2, 2);
+        }
+        /* s0: all at once */
+        hf_ropes_set_roots(&s[0].ro, 0, R, root, nrm, tan, 0);
+        CHECK_EQ_INT(hf_ropes_step(&s[0].ro, 0, R, 1.0f / 60.0f, &p, col, 2),
+                     HF_OK);
+        /* s1: uneven ranges, including an empty one */
+        for (i = 0; i + 1 < (int)(sizeof cuts / sizeof cuts[0]); ++i) {
+            hf_ropes_set_roots(&s[1].ro, cuts[i], cuts[i + 1] - cuts[i], root,
+                               nrm, tan, 0);
+            CHECK_EQ_INT(hf_ropes_step(&s[1].ro, cuts[i], cuts[i + 1] - cuts[i],
+                                       1.0f / 60.0f, &p, col, 2),
+                         HF_OK);
+        }
+        /* s2: one rope at a time, backwards */
+        for (r = R - 1; r >= 0; --r) {
+            hf_ropes_set_roots(&s[2].ro, r, 1, root, nrm, tan, 0);
+            hf_ropes_step(&s[2].ro, r, 1, 1.0f / 60.0f, &p, col, 2);
+        }
+        for (k = 1; k < 3; ++k) {
+            size_t n = sizeof(float) * R * P;
+            same &= memcmp(s[0].ro.x, s[k].ro.x, n) == 0;
+            same &= memcmp(s[0].ro.y, s[k].ro.y, n) == 0;
+            same &= memcmp(s[0].ro.z, s[k].ro.z, n) == 0;
+            same &= memcmp(s[0].ro.px, s[k].ro.px, n) == 0;
+            same &= memcmp(s[0].ro.py, s[k].ro.py, n) == 0;
+            same &= memcmp(s[0].ro.pz, s[k].ro.pz, n) == 0;
+            same &= memcmp(s[0].ro.blend, s[k].ro.blend, 4 * R) == 0;
+            same &= memcmp(s[0].ro.time, s[k].ro.time, 8 * R) == 0;
+        }
+    }
+    CHECK(same);
+    CHECK(tr_finite(&s[0].ro));
+    CHECK_EQ_INT(hf_ropes_step(&s[0].ro, 30, 8, 0.01f, &p, col, 2),
+                 HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_ropes_step(&s[0].ro, -1, 2, 0.01f, &p, col, 2),
+                 HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_ropes_step(&s[0].ro, 0, 2, 0.01f, &p, NULL, 2),
+                 HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_ropes_step(&s[0].ro, 0, 2, 0.01f, &p, col, -1),
+                 HF_ERROR_BAD_COUNT);
+    col[0].radius = -1.0f;
+    CHECK_EQ_INT(hf_ropes_step(&s[0].ro, 0, 2, 0.01f, &p, col, 2),
+                 HF_ERROR_BAD_PARAMETER);
+    col[0].radius = (float)NAN;
+    CHECK_EQ_INT(hf_ropes_step(&s[0].ro, 0, 2, 0.01f, &p, col, 2),
+                 HF_ERROR_NON_FINITE);
+    for (k = 0; k < 3; ++k) tr_close(&s[k]);
+}
+
+/* Root frame input: bad values refused with nothing written; a tangent
+   parallel to the normal, or zero, still gives a rigid frame. */
+static void test_ropes_root_frames(void)
+{
+    enum { R = 2, P = 4 };
+    float rest[3 * R * P], root[3 * R], nrm[3 * R], tan[3 * R], got[3 * R * P];
+    unsigned char *copy;
+    tr_set s;
+    int r, i, j;
+    if (!tr_open(&s, R, P)) { CHECK(0); return; }
+    for (r = 0; r < R; ++r) {
+        root[3 * r] = 1.0f; root[3 * r + 1] = 2.0f; root[3 * r + 2] = 3.0f;
+        nrm[3 * r] = 0; nrm[3 * r + 1] = 0; nrm[3 * r + 2] = 2; /* not unit */
+        tan[3 * r] = 1; tan[3 * r + 1] = 0; tan[3 * r + 2] = 1; /* not perp. */
+        for (j = 0; j < P; ++j) { /* a bent rest pose */
+            rest[3 * (r * P + j)] = 1.0f + 0.1f * j * j;
+            rest[3 * (r * P + j) + 1] = 2.0f + 0.05f * j;
+            rest[3 * (r * P + j) + 2] = 3.0f + 0.1f * j;
+        }
+    }
+    CHECK_EQ_INT(hf_ropes_set_rest(&s.ro, 0, R, rest, 0, root, nrm, tan, 0),
+                 HF_OK);
+    /* the rest pose comes back as given (frame then inverse frame) */
+    tr_snapshot(&s.ro, got);
+    for (i = 0; i < 3 * R * P; ++i) CHECK_NEAR(got[i], rest[i], 2e-6);
+    /* rope 0: u along the tangent made perpendicular: (1, 0, 0) */
+    CHECK_NEAR(s.ro.rest_u[2 * R], 0.4f, 1e-6);
+    CHECK_NEAR(s.ro.rest_v[2 * R], 0.2f, 1e-6);  /* along the normal z */
+    CHECK_NEAR(s.ro.rest_w[2 * R], -0.1f, 1e-6); /* b = t x n = -y */
+    CHECK_NEAR(s.ro.rest_length[0], sqrt(0.01 + 0.0025 + 0.01), 1e-7);
+
+    copy = (unsigned char *)malloc(s.size);
+    memcpy(copy, s.mem, s.size);
+    nrm[3] = nrm[4] = nrm[5] = 0.0f;
+    CHECK_EQ_INT(hf_ropes_set_roots(&s.ro, 0, R, root, nrm, tan, 0),
+                 HF_ERROR_DEGENERATE);
+    nrm[5] = 1.0f;
+    tan[0] = (float)NAN;
+    CHECK_EQ_INT(hf_ropes_set_roots(&s.ro, 0, R, root, nrm, tan, 0),
+                 HF_ERROR_NON_FINITE);
+    tan[0] = 1.0f;
+    root[4] = 2e6f;
+    CHECK_EQ_INT(hf_ropes_set_roots(&s.ro, 0, R, root, nrm, tan, 0),
+                 HF_ERROR_BAD_PARAMETER);
+    root[4] = 2.0f;
+    CHECK_EQ_INT(hf_ropes_set_roots(&s.ro, 0, R, root, nrm, tan, 8),
+                 HF_ERROR_BAD_STRIDE);
+    CHECK_EQ_INT(hf_ropes_set_roots(&s.ro, 1, 2, root, nrm, tan, 0),
+                 HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_ropes_set_roots(&s.ro, 0, R, NULL, nrm, tan, 0),
+                 HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_ropes_set_roots(NULL, 0, R, root, nrm, tan, 0),
+                 HF_ERROR_NULL_POINTER);
+    rest[7] = (float)NAN;
+    CHECK_EQ_INT(hf_ropes_set_rest(&s.ro, 0, R, rest, 0, root, nrm, tan, 0),
+                 HF_ERROR_NON_FINITE);
+    rest[7] = 2.0f + 0.05f * 2;
+    CHECK(memcmp(copy, s.mem, s.size) == 0);
+    free(copy);
+
+    /* degenerate tangents: parallel to the normal (rope 0), zero (rope 1);
+       a huge normal (no overflow) */
+    tan[0] = 0; tan[1] = 0; tan[2] = -5;
+    tan[3] = 0; tan[4] = 0; tan[5] = 0;
+    nrm[0] = 0; nrm[1] = 0; nrm[2] = 3e38f;
+    CHECK_EQ_INT(hf_ropes_set_roots(&s.ro, 0, R, root, nrm, tan, 0), HF_OK);
+    CHECK_EQ_INT(hf_ropes_reset(&s.ro, 0, R), HF_OK);
+    tr_snapshot(&s.ro, got);
+    for (r = 0; r < R; ++r)
+        for (i = 0; i < P; ++i)
+            for (j = 0; j < P; ++j) { /* rigid: all distances kept */
+                const float *a = got + 3 * (r * P + i), *b = got + 3 * (r * P + j);
+                const float *c = rest + 3 * (i), *d = rest + 3 * (j);
+                double g = sqrt(pow(a[0] - b[0], 2) + pow(a[1] - b[1], 2) +
+                                pow(a[2] - b[2], 2));
+                double e = sqrt(pow(c[0] - d[0], 2) + pow(c[1] - d[1], 2) +
+                                pow(c[2] - d[2], 2));
+                CHECK_NEAR(g, e, 1e-5);
+            }
+    for (r = 0; r < R; ++r) /* v (0.05 j after the scaled normal) along z */
+        CHECK_NEAR(got[3 * (r * P + 3) + 2] - 3.0f, s.ro.rest_v[3 * R + r],
+                   1e-6);
+    tr_close(&s);
+}
+
+/* Reset after a teleport: rest pose at the new root, at rest. */
+static void test_ropes_reset_teleport(void)
+{
+    enum { P = 9 };
+    float rest[3 * P], a[3 * P], b[3 * P];
+    float root[3] = {0, 0, 0}, nrm[3] = {1, 0, 0}, tan[3] = {0, 1, 0};
+    hf_rope_params p;
+    tr_set s;
+    int f, j;
+    if (!tr_open(&s, 1, P)) { CHECK(0); return; }
+    tr_straight(rest, 0, P, root, nrm, 0.4f);
+    hf_ropes_set_rest(&s.ro, 0, 1, rest, 0, root, nrm, tan, 0);
+    hf_rope_params_init(&p);
+    for (f = 0; f < 30; ++f) hf_ropes_step(&s.ro, 0, 1, 1.0f / 60.0f, &p, NULL, 0);
+    root[0] = 10.0f; root[2] = -4.0f;
+    hf_ropes_set_roots(&s.ro, 0, 1, root, nrm, tan, 0);
+    CHECK_EQ_INT(hf_ropes_reset(&s.ro, 0, 1), HF_OK);
+    CHECK_EQ_INT(hf_ropes_reset(&s.ro, 1, 1), HF_ERROR_BAD_RANGE);
+    tr_snapshot(&s.ro, a);
+    for (j = 0; j < P; ++j) {
+        CHECK_NEAR(a[3 * j], 10.0 + 0.4 * j / (P - 1), 1e-6);
+        CHECK_NEAR(a[3 * j + 1], 0.0, 1e-6);
+        CHECK_NEAR(a[3 * j + 2], -4.0, 1e-6);
+    }
+    /* no velocity and no interpolation from the old root: a weightless
+       step leaves it in place */
+    p.gravity[1] = 0.0f;
+    hf_ropes_step(&s.ro, 0, 1, 1.0f / 60.0f, &p, NULL, 0);
+    tr_snapshot(&s.ro, b);
+    if (getenv("TR_VERBOSE")) printf("teleport move %g\n", tr_max_move(a, b, P));
+    CHECK(tr_max_move(a, b, P) < 1e-5); /* float rounding at 10 m */
+    tr_close(&s);
+}
+
+/* Root and local stiffness make fur stand up against gravity. */
+static void test_ropes_root_and_local_stiffness(void)
+{
+    enum { P = 13 };
+    float rest[3 * P], a[3 * P];
+    float root[3] = {0, 0, 0}, nrm[3] = {0, 1, 0}, tan[3] = {1, 0, 0};
+    double first_dir[3], tip_err[3];
+    hf_rope_params p;
+    tr_set s;
+    int pass, f;
+    tr_straight(rest, 0, P, root, nrm, 0.1f);
+    for (pass = 0; pass < 3; ++pass) {
+        if (!tr_open(&s, 1, P)) { CHECK(0); return; }
+        hf_ropes_set_rest(&s.ro, 0, 1, rest, 0, root, nrm, tan, 0);
+        hf_rope_params_init(&p);
+        p.root_stiffness = pass >= 1 ? 1.0f : 0.0f;
+        p.local_stiffness_root = p.local_stiffness_tip = pass == 2 ? 1.0f : 0.0f;
+        for (f = 0; f < 120; ++f) {
+            /* a small sideways nudge so nothing balances by symmetry */
+            p.wind[0] = f < 10 ? 1.0f : 0.0f;
+            hf_ropes_step(&s.ro, 0, 1, 1.0f / 60.0f, &p, NULL, 0);
+        }
+        tr_snapshot(&s.ro, a);
+        first_dir[pass] = (a[4] - a[1]) / (0.1 / (P - 1));
+        tip_err[pass] = sqrt(pow(a[3 * (P - 1)], 2) +
+                             pow(a[3 * (P - 1) + 1] - 0.1, 2) +
+                             pow(a[3 * (P - 1) + 2], 2));
+        tr_close(&s);
+    }
+    CHECK(first_dir[0] < 0.0);       /* no stiffness: it flops over */
+    CHECK(first_dir[1] > 0.9999);    /* root stiffness: first segment up */
+    CHECK(tip_err[1] > 0.02);        /*   but the rest droops */
+    CHECK(first_dir[2] > 0.9999);    /* plus local stiffness: */
+    CHECK(tip_err[2] < 1e-4);        /*   the whole strand stands */
+}
+
+/* A head (sphere, r = 0.1 m) swinging 0.2 m at 1 Hz with 16-segment 0.3 m
+   ropes on it: stretch stays below 0.5 % and no point enters the head. */
+static void test_ropes_swinging_head(void)
+{
+    enum { RING = 8, ROWS = 4, R = RING * ROWS, P = 17, FRAMES = 300 };
+    static float rest[3 * R * P], now[3 * R * P];
+    float root[3 * R], nrm[3 * R], tan[3 * R], dirs[3 * R], worst = 0, st;
+    double inside = 1e9;
+    hf_collider head;
+    hf_rope_params p;
+    tr_set s;
+    int r, f, j;
+    if (!tr_open(&s, R, P)) { CHECK(0); return; }
+    for (r = 0; r < R; ++r) {
+        double el = 0.3 + 1.2 * (r / RING) / (ROWS - 1) * 0.9; /* from top */
+        double az = 2 * TR_PI * (r % RING) / RING;
+        float *n = dirs + 3 * r;
+        n[0] = (float)(sin(el) * cos(az));
+        n[1] = (float)cos(el);
+        n[2] = (float)(sin(el) * sin(az));
+        nrm[3 * r] = n[0]; nrm[3 * r + 1] = n[1]; nrm[3 * r + 2] = n[2];
+        tan[3 * r] = 0; tan[3 * r + 1] = 1; tan[3 * r + 2] = 0;
+        root[3 * r] = 0.1f * n[0];
+        root[3 * r + 1] = 0.1f * n[1];
+        root[3 * r + 2] = 0.1f * n[2];
+        tr_straight(rest, r, P, root + 3 * r, n, 0.3f);
+    }
+    hf_ropes_set_rest(&s.ro, 0, R, rest, 0, root, nrm, tan, 0);
+    hf_rope_params_init(&p);
+    memset(&head, 0, sizeof head);
+    head.type = HF_COLLIDER_SPHERE;
+    head.radius = 0.1f;
+    for (f = 0; f < FRAMES; ++f) {
+        float cx = (float)(0.2 * sin(2 * TR_PI * (f + 1) / 60.0));
+        head.a[0] = cx;
+        for (r = 0; r < R; ++r) root[3 * r] = cx + 0.1f * dirs[3 * r];
+        hf_ropes_set_roots(&s.ro, 0, R, root, nrm, tan, 0);
+        CHECK_EQ_INT(hf_ropes_step(&s.ro, 0, R, 1.0f / 60.0f, &p, &head, 1),
+                     HF_OK);
+        hf_ropes_max_stretch(&s.ro, 0, R, &st);
+        if (st > worst) worst = st;
+        tr_snapshot(&s.ro, now);
+        for (r = 0; r < R; ++r)
+            for (j = 1; j < P; ++j) {
+                double d = tr_dist_seg(now + 3 * (r * P + j), &head);
+                if (d < inside) inside = d;
+            }
+    }
+    CHECK(worst < 0.005f);
+    CHECK(inside >= 0.1 + p.collision_margin * 0.999);
+    tr_close(&s);
+}
+
+/* Stretch measurement: exact on a hand-made stretch. */
+static void test_ropes_max_stretch_exact(void)
+{
+    enum { R = 2, P = 5 };
+    float rest[3 * R * P], root[3 * R], nrm[3 * R], tan[3 * R], st = -1.0f;
+    tr_set s;
+    int r;
+    if (!tr_open(&s, R, P)) { CHECK(0); return; }
+    for (r = 0; r < R; ++r) {
+        root[3 * r] = 0; root[3 * r + 1] = (float)r; root[3 * r + 2] = 0;
+        nrm[3 * r] = 1; nrm[3 * r + 1] = 0; nrm[3 * r + 2] = 0;
+        tan[3 * r] = 0; tan[3 * r + 1] = 1; tan[3 * r + 2] = 0;
+        tr_straight(rest, r, P, root + 3 * r, nrm + 3 * r, 0.4f);
+    }
+    hf_ropes_set_rest(&s.ro, 0, R, rest, 0, root, nrm, tan, 0);
+    s.ro.x[(P - 1) * R + 1] += 0.01f; /* last segment of rope 1: 0.11 m */
+    s.ro.x[2 * R + 0] -= 0.02f;       /* rope 0: 0.08 and 0.12 m */
+    CHECK_EQ_INT(hf_ropes_max_stretch(&s.ro, 1, 1, &st), HF_OK);
+    CHECK_NEAR(st, 0.1, 1e-5);
+    CHECK_EQ_INT(hf_ropes_max_stretch(&s.ro, 0, 1, &st), HF_OK);
+    CHECK_NEAR(st, 0.2, 1e-5);
+    CHECK_EQ_INT(hf_ropes_max_stretch(&s.ro, 0, 2, &st), HF_OK);
+    CHECK_NEAR(st, 0.2, 1e-5);
+    CHECK_EQ_INT(hf_ropes_max_stretch(&s.ro, 2, 0, &st), HF_OK);
+    CHECK(st == 0.0f);
+    st = 5.0f;
+    CHECK_EQ_INT(hf_ropes_max_stretch(&s.ro, 1, 2, &st), HF_ERROR_BAD_RANGE);
+    CHECK(st == 5.0f);
+    CHECK_EQ_INT(hf_ropes_max_stretch(&s.ro, 0, 1, NULL),
+                 HF_ERROR_NULL_POINTER);
+    tr_close(&s);
+}
+
+/* Wind as an acceleration: the rope settles along gravity + wind;
+   turbulence moves it, deterministically. */
+static void test_ropes_wind_and_turbulence(void)
+{
+    enum { P = 9 };
+    float rest[3 * P], a[3 * P], b[3 * P], c[3 * P];
+    float root[3] = {0, 0, 0}, nrm[3] = {0, -1, 0}, tan[3] = {1, 0, 0};
+    hf_rope_params p;
+    tr_set s;
+    int f, pass;
+    double dx, dy, l;
+    tr_straight(rest, 0, P, root, nrm, 0.2f);
+    for (pass = 0; pass < 3; ++pass) {
+        if (!tr_open(&s, 1, P)) { CHECK(0); return; }
+        hf_ropes_set_rest(&s.ro, 0, 1, rest, 0, root, nrm, tan, 0);
+        hf_rope_params_init(&p);
+        p.wind[0] = 9.81f;
+        if (pass > 0) p.turbulence = 10.0f;
+        for (f = 0; f < 600; ++f)
+            hf_ropes_step(&s.ro, 0, 1, 1.0f / 60.0f, &p, NULL, 0);
+        tr_snapshot(&s.ro, pass == 0 ? a : pass == 1 ? b : c);
+        CHECK(tr_finite(&s.ro));
+        tr_close(&s);
+    }
+    dx = a[3 * (P - 1)];
+    dy = a[3 * (P - 1) + 1];
+    l = sqrt(dx * dx + dy * dy);
+    CHECK_NEAR(dx / l, sqrt(0.5), 1e-3);
+    CHECK_NEAR(dy / l, -sqrt(0.5), 1e-3);
+    CHECK(tr_max_move(a, b, P) > 1e-3);      /* turbulence does something */
+    CHECK(memcmp(b, c, sizeof b) == 0);      /* the same twice */
+}
+
+/* Plain distance constraints: stretch falls with iterations; FTL is
+   exact. */
+static void test_ropes_distance_solver_iterations(void)
+{
+    enum { P = 17 };
+    const int iters[3] = {1, 8, 2};
+    float rest[3 * P], worst[3];
+    float root[3] = {0, 0, 0}, nrm[3] = {1, 0, 0}, tan[3] = {0, 0, 1};
+    hf_rope_params p;
+    tr_set s;
+    int pass, f;
+    tr_straight(rest, 0, P, root, nrm, 0.3f);
+    for (pass = 0; pass < 3; ++pass) {
+        if (!tr_open(&s, 1, P)) { CHECK(0); return; }
+        hf_ropes_set_rest(&s.ro, 0, 1, rest, 0, root, nrm, tan, 0);
+        hf_rope_params_init(&p);
+        p.solver = pass < 2 ? HF_ROPE_SOLVER_DISTANCE : HF_ROPE_SOLVER_FTL;
+        p.iterations = iters[pass];
+        worst[pass] = 0.0f;
+        for (f = 0; f < 120; ++f) {
+            float st;
+            hf_ropes_step(&s.ro, 0, 1, 1.0f / 60.0f, &p, NULL, 0);
+            hf_ropes_max_stretch(&s.ro, 0, 1, &st);
+            if (st > worst[pass]) worst[pass] = st;
+        }
+        CHECK(tr_finite(&s.ro));
+        tr_close(&s);
+    }
+    CHECK(worst[0] > 0.01f);            /* one sweep: visibly stretchy */
+    CHECK(worst[1] < worst[0] * 0.5f);  /* eight: much less */
+    CHECK(worst[2] < 1e-4f);            /* FTL: none */
+}
+
+static void test_ropes_get_positions(void)
+{
+    enum { R = 3, P = 4 };
+    float rest[3 * R * P], root[3 * R], nrm[3 * R], tan[3 * R];
+    float out[4 * R * P];
+    tr_set s;
+    int r, j;
+    if (!tr_open(&s, R, P)) { CHECK(0); return; }
+    for (r = 0; r < R; ++r) {
+        root[3 * r] = (float)r; root[3 * r + 1] = 0; root[3 * r + 2] = 0;
+        nrm[3 * r] = 0; nrm[3 * r + 1] = 0; nrm[3 * r + 2] = 1;
+        tan[3 * r] = 1; tan[3 * r + 1] = 0; tan[3 * r + 2] = 0;
+        tr_straight(rest, r, P, root + 3 * r, nrm + 3 * r, 0.3f);
+    }
+    hf_ropes_set_rest(&s.ro, 0, R, rest, 0, root, nrm, tan, 0);
+    for (j = 0; j < 4 * R * P; ++j) out[j] = -7.0f;
+    CHECK_EQ_INT(hf_ropes_get_positions(&s.ro, 1, 2, out, 16), HF_OK);
+    for (j = 0; j < 4 * P; ++j) CHECK(out[j] == -7.0f); /* rope 0 untouched */
+    for (r = 1; r < R; ++r)
+        for (j = 0; j < P; ++j) {
+            size_t i = (size_t)j * R + r;
+            const float *o = out + 4 * (r * P + j);
+            CHECK(o[0] == s.ro.x[i] && o[1] == s.ro.y[i] && o[2] == s.ro.z[i]);
+            CHECK(o[3] == -7.0f);
+        }
+    CHECK_EQ_INT(hf_ropes_get_positions(&s.ro, 0, R, out, 4),
+                 HF_ERROR_BAD_STRIDE);
+    CHECK_EQ_INT(hf_ropes_get_positions(&s.ro, 0, R + 1, out, 0),
+                 HF_ERROR_BAD_RANGE);
+    tr_close(&s);
+}
+
+static void run_ropes_tests(void)
+{
+    RUN(test_ropes_params_defaults_and_validation);
+    RUN(test_ropes_memory_init_create);
+    RUN(test_ropes_hanging_settles);
+    RUN(test_ropes_shape_kept_by_moving_frame);
+    RUN(test_ropes_collider_sweep_never_penetrates);
+    RUN(test_ropes_mode_switch_no_jump);
+    RUN(test_ropes_bad_time_steps);
+    RUN(test_ropes_ranges_byte_identical);
+    RUN(test_ropes_root_frames);
+    RUN(test_ropes_reset_teleport);
+    RUN(test_ropes_root_and_local_stiffness);
+    RUN(test_ropes_swinging_head);
+    RUN(test_ropes_max_stretch_exact);
+    RUN(test_ropes_wind_and_turbulence);
+    RUN(test_ropes_distance_solver_iterations);
+    RUN(test_ropes_get_positions);
+}
+
+/* ======================================================================== */
+/* 7. interpolation and LOD                                                 */
 /* ======================================================================== */
 
 enum { TP = 8 }; /* points per strand in these tests */
@@ -2307,7 +3298,7 @@ static void test_lod_counts_and_widths_exact(void)
 }
 
 /* ======================================================================== */
-/* 10. ribbons                                                              */
+/* 8. ribbons                                                               */
 /* ======================================================================== */
 
 typedef struct t_rvert {
@@ -2598,7 +3589,7 @@ static void test_ribbon_winding_faces_camera(void)
 }
 
 /* ======================================================================== */
-/* 11. LUT baking (Marschner M and N textures; docs/marschner-spec.md)               */
+/* 9. LUT baking (Marschner M and N textures; docs/marschner-spec.md)      */
 /* ======================================================================== */
 
 /* Expected numbers are the spot values, texel table and channel sums of
@@ -3582,6 +4573,391 @@ static void run_lut_tests(void)
 }
 
 /* ======================================================================== */
+/* 10. the fur object                                                       */
+/* ======================================================================== */
+
+/* A small UV sphere with a seam column and split poles, as engines export
+   it: (R + 1) * (S + 1) vertices. */
+enum { FR = 6, FS = 8 };
+typedef struct t_fur_scene {
+    float pos[(FR + 1) * (FS + 1) * 3], nrm[(FR + 1) * (FS + 1) * 3];
+    float uv[(FR + 1) * (FS + 1) * 2];
+    uint32_t idx[FR * FS * 6];
+    hf_fur_desc desc;
+} t_fur_scene;
+
+static void t_fur_scene_init(t_fur_scene *sc, float radius)
+{
+    int r, s, k = 0;
+    for (r = 0; r <= FR; ++r)
+        for (s = 0; s <= FS; ++s) {
+            int v = r * (FS + 1) + s;
+            /* exact poles: sin(pi) is 1.2e-16, and guides weld by exact
+               position, as an exporter's duplicated vertices are */
+            double th = 3.14159265358979 * r / FR;
+            double st = (r == 0 || r == FR) ? 0.0 : sin(th);
+            double ph = 2 * 3.14159265358979 * (s % FS) / FS;
+            sc->nrm[3 * v] = (float)(st * cos(ph));
+            sc->nrm[3 * v + 1] = (float)cos(th);
+            sc->nrm[3 * v + 2] = (float)(st * sin(ph));
+            sc->pos[3 * v] = radius * sc->nrm[3 * v];
+            sc->pos[3 * v + 1] = radius * sc->nrm[3 * v + 1];
+            sc->pos[3 * v + 2] = radius * sc->nrm[3 * v + 2];
+            sc->uv[2 * v] = (float)s / FS;
+            sc->uv[2 * v + 1] = (float)r / FR;
+        }
+    for (r = 0; r < FR; ++r)
+        for (s = 0; s < FS; ++s) {
+            uint32_t a = (uint32_t)(r * (FS + 1) + s), b = a + 1;
+            uint32_t c = a + FS + 1, d = c + 1;
+            sc->idx[k++] = a; sc->idx[k++] = b; sc->idx[k++] = c;
+            sc->idx[k++] = b; sc->idx[k++] = d; sc->idx[k++] = c;
+        }
+    memset(&sc->desc, 0, sizeof sc->desc);
+    sc->desc.mesh.positions = sc->pos;
+    sc->desc.mesh.normals = sc->nrm;
+    sc->desc.mesh.uvs = sc->uv;
+    sc->desc.mesh.vertex_count = (FR + 1) * (FS + 1);
+    sc->desc.mesh.indices = sc->idx;
+    sc->desc.mesh.triangle_count = FR * FS * 2;
+    sc->desc.points_per_strand = 8;
+    sc->desc.max_length = 0.3f;
+    sc->desc.total_strands = 500;
+    sc->desc.tess_factor = 20.0f; /* some LOD guides */
+    sc->desc.seed = 5;
+}
+
+/* One frame of every stage over `n` equal ranges, the mesh moved by dx. */
+static void t_fur_frame(hf_fur *f, t_fur_scene *sc, float dx, int n,
+                        void *vbuf, hf_result *worst)
+{
+    hf_fur_info info;
+    hf_mesh m = sc->desc.mesh;
+    float moved[(FR + 1) * (FS + 1) * 3];
+    hf_collider col;
+    hf_ribbon_params view;
+    hf_ribbon_output out;
+    int i, stage;
+    for (i = 0; i < (FR + 1) * (FS + 1) * 3; ++i)
+        moved[i] = sc->pos[i] + (i % 3 == 0 ? dx : 0.0f);
+    m.positions = moved;
+    memset(&col, 0, sizeof col);
+    col.type = HF_COLLIDER_SPHERE;
+    col.a[0] = dx; /* dx < 0: no collider */
+    col.radius = 0.95f;
+    memset(&view, 0, sizeof view);
+    view.eye[2] = 5.0f;
+    view.root_width = 0.01f;
+    view.tip_width = 0.002f;
+    memset(&out, 0, sizeof out);
+    out.position.data = vbuf;
+    out.position.stride = 24;
+    out.tangent.data = (float *)vbuf + 3;
+    out.tangent.stride = 24;
+    hf_fur_get_info(f, &info);
+    for (stage = 0; stage < 5; ++stage) {
+        int total = stage < 2 ? info.guide_count
+                              : stage == 2 ? info.lod_guide_count
+                                           : info.drawn_strand_count;
+        int first = 0;
+        for (i = 0; i < n; ++i) {
+            int cnt = total * (i + 1) / n - first;
+            hf_result r = HF_OK;
+            switch (stage) {
+            case 0: r = hf_fur_set_roots(f, &m, first, cnt); break;
+            case 1: r = hf_fur_simulate(f, first, cnt, 1.0f / 60.0f, &col,
+                                        dx >= 0.0f); break;
+            case 2: r = hf_fur_interpolate_guides(f, first, cnt); break;
+            case 3: r = hf_fur_interpolate(f, first, cnt); break;
+            default: r = hf_fur_ribbons(f, first, cnt, &view, &out); break;
+            }
+            if (r != HF_OK) *worst = r;
+            first += cnt;
+        }
+    }
+}
+
+static void test_fur_create_counts_and_welding(void)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    hf_diag d;
+    int i, j;
+    t_fur_scene_init(&sc, 1.0f);
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, &d), HF_OK);
+    if (!f) return;
+    CHECK_EQ_INT(hf_fur_get_info(f, &info), HF_OK);
+    /* seam column and split poles weld: (R - 1) * S + 2 distinct positions */
+    CHECK_EQ_INT(info.pure_guide_count, (FR - 1) * FS + 2);
+    CHECK(info.lod_guide_count > 0);
+    CHECK_EQ_INT(info.guide_count, info.pure_guide_count + info.lod_guide_count);
+    CHECK_EQ_INT(info.strand_count, 500);
+    CHECK_EQ_INT(info.drawn_strand_count, 500);
+    CHECK_EQ_INT(info.points_per_strand, 8);
+    /* at rest, strand roots lie on the unit sphere's guide triangles and
+       every strand has its own length along it */
+    for (i = 0; i < info.strand_count; ++i) {
+        const float *p = info.strand_points + (size_t)i * 8 * 3;
+        double r0 = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]), len = 0;
+        CHECK(r0 <= 1.0 + 1e-5 && r0 > 0.85);
+        for (j = 1; j < 8; ++j) {
+            const float *a = p + 3 * (j - 1), *b = p + 3 * j;
+            len += sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
+                        (b[2] - a[2]) * (b[2] - a[2]));
+        }
+        CHECK(len > 0.2 && len < 0.31);
+    }
+    hf_fur_destroy(f);
+}
+
+static void test_fur_no_allocation_per_frame(void)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    t_counter cnt;
+    hf_allocator a = t_counting(&cnt);
+    hf_result worst = HF_OK;
+    long after_create;
+    void *vbuf = malloc(24u * 2u * 8u * 500u);
+    int k;
+    t_fur_scene_init(&sc, 1.0f);
+    sc.desc.allocator = &a;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    after_create = cnt.allocs - cnt.frees;
+    CHECK(cnt.allocs > 0);
+    for (k = 0; k < 10; ++k) {
+        hf_fur_set_lod(f, k % 3 == 0 ? 0.2f : 1.0f);
+        t_fur_frame(f, &sc, 0.02f * (float)k, 1, vbuf, &worst);
+    }
+    CHECK_EQ_INT(worst, HF_OK);
+    CHECK_EQ_INT(cnt.allocs - cnt.frees, after_create);
+    CHECK_EQ_INT(cnt.allocs, after_create + 0 + (cnt.frees)); /* no new blocks */
+    hf_fur_destroy(f);
+    CHECK_EQ_INT(cnt.allocs, cnt.frees);
+    free(vbuf);
+}
+
+static void test_fur_ranges_byte_identical(void)
+{
+    t_fur_scene sc;
+    hf_fur *f[3] = {NULL, NULL, NULL};
+    int splits[3] = {1, 2, 7}, k, i;
+    size_t bytes = 24u * 2u * 8u * 500u;
+    unsigned char *v[3];
+    hf_result worst = HF_OK;
+    hf_fur_info info[3];
+    t_fur_scene_init(&sc, 1.0f);
+    for (k = 0; k < 3; ++k) {
+        v[k] = (unsigned char *)calloc(1, bytes);
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &f[k], NULL), HF_OK);
+        if (!f[k]) return;
+    }
+    for (i = 0; i < 8; ++i)
+        for (k = 0; k < 3; ++k) {
+            if (i == 4) hf_fur_set_lod(f[k], 0.3f); /* LOD guides interpolated */
+            t_fur_frame(f[k], &sc, 0.05f * (float)i, splits[k], v[k], &worst);
+        }
+    CHECK_EQ_INT(worst, HF_OK);
+    for (k = 0; k < 3; ++k) hf_fur_get_info(f[k], &info[k]);
+    for (k = 1; k < 3; ++k) {
+        CHECK(memcmp(v[0], v[k], bytes) == 0);
+        CHECK(memcmp(info[0].guide_points, info[k].guide_points,
+                     sizeof(float) * 3u * 8u * (size_t)info[0].guide_count) == 0);
+    }
+    /* and the motion did something */
+    {
+        hf_fur *g = NULL;
+        hf_fur_info gi;
+        hf_fur_create(&sc.desc, &g, NULL);
+        hf_fur_get_info(g, &gi);
+        CHECK(memcmp(gi.strand_points, info[0].strand_points,
+                     sizeof(float) * 3u * 8u * 150u) != 0);
+        hf_fur_destroy(g);
+    }
+    for (k = 0; k < 3; ++k) {
+        hf_fur_destroy(f[k]);
+        free(v[k]);
+    }
+}
+
+static void test_fur_lod_prefix_and_width(void)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    hf_result worst = HF_OK;
+    float *v = (float *)calloc(6u * 2u * 8u * 500u, sizeof(float));
+    float w;
+    t_fur_scene_init(&sc, 1.0f);
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (!f) return;
+    CHECK_EQ_INT(hf_fur_set_lod(f, 0.25f), HF_OK);
+    hf_fur_get_info(f, &info);
+    CHECK_EQ_INT(info.drawn_strand_count, 125);
+    CHECK(info.width_scale == 2.0f);
+    CHECK_EQ_INT(info.lod_guides_simulated, 0);
+    t_fur_frame(f, &sc, 0.0f, 1, v, &worst);
+    CHECK_EQ_INT(worst, HF_OK);
+    /* root width = 0.01 * sqrt(500 / 125) */
+    w = sqrtf((v[6] - v[0]) * (v[6] - v[0]) + (v[7] - v[1]) * (v[7] - v[1]) +
+              (v[8] - v[2]) * (v[8] - v[2]));
+    CHECK_NEAR(w, 0.02f, 1e-6);
+    CHECK_EQ_INT(hf_fur_set_lod(f, 1.0f), HF_OK);
+    hf_fur_get_info(f, &info);
+    CHECK_EQ_INT(info.drawn_strand_count, 500);
+    CHECK(info.width_scale == 1.0f);
+    CHECK_EQ_INT(info.lod_guides_simulated, 1);
+    CHECK_EQ_INT(hf_fur_set_lod(f, (float)NAN), HF_OK);
+    hf_fur_get_info(f, &info);
+    CHECK_EQ_INT(info.drawn_strand_count, 0);
+    hf_fur_destroy(f);
+    free(v);
+}
+
+static void test_fur_lod_guides_wake_without_jump(void)
+{
+    /* LOD guides asleep (interpolated), then woken: the first simulated
+       frame moves no guide point by more than a step's motion */
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    hf_result worst = HF_OK;
+    float *v = (float *)calloc(6u * 2u * 8u * 500u, sizeof(float));
+    float *before;
+    double maxd = 0.0;
+    int i, n;
+    t_fur_scene_init(&sc, 1.0f);
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (!f) return;
+    /* no collider: interpolated guides cut the chord of a curved collider
+       and would be pushed out on waking; that is interpolation's error,
+       not a jump of the switch */
+    hf_fur_set_lod(f, 0.1f);
+    for (i = 0; i < 600; ++i) t_fur_frame(f, &sc, -1e-9f, 1, v, &worst);
+    hf_fur_get_info(f, &info);
+    n = info.guide_count * 8 * 3;
+    before = (float *)malloc(sizeof(float) * (size_t)n);
+    memcpy(before, info.guide_points, sizeof(float) * (size_t)n);
+    hf_fur_set_lod(f, 1.0f);
+    t_fur_frame(f, &sc, -1e-9f, 1, v, &worst);
+    CHECK_EQ_INT(worst, HF_OK);
+    for (i = 0; i < n; ++i) {
+        double d = fabs((double)info.guide_points[i] - before[i]);
+        maxd = d > maxd ? d : maxd;
+    }
+    /* settled after 10 s: one step moves points by millimetres at most; a
+       jump to the rest pose would move tips by tenths of the length */
+    CHECK(maxd < 0.003);
+    free(before);
+    free(v);
+    hf_fur_destroy(f);
+}
+
+static void test_fur_bad_desc_and_out_of_memory(void)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL, *sentinel = (hf_fur *)&sc;
+    hf_diag d;
+    hf_fur_desc b;
+    t_counter cnt;
+    hf_allocator a = t_counting(&cnt);
+    long k, total;
+    t_fur_scene_init(&sc, 1.0f);
+    CHECK_EQ_INT(hf_fur_create(NULL, &f, &d), HF_ERROR_NULL_POINTER);
+    b = sc.desc; b.mesh.indices = NULL;
+    CHECK_EQ_INT(hf_fur_create(&b, &f, &d), HF_ERROR_NULL_POINTER);
+    b = sc.desc; b.points_per_strand = 1;
+    CHECK_EQ_INT(hf_fur_create(&b, &f, &d), HF_ERROR_BAD_COUNT);
+    b = sc.desc; b.clump = -0.5f;
+    CHECK_EQ_INT(hf_fur_create(&b, &f, &d), HF_ERROR_BAD_PARAMETER);
+    b = sc.desc; b.max_length = (float)NAN;
+    CHECK_EQ_INT(hf_fur_create(&b, &f, &d), HF_ERROR_BAD_PARAMETER);
+    b = sc.desc; b.tess_factor = 1e30f; /* billions of triangles */
+    f = sentinel;
+    CHECK(hf_fur_create(&b, &f, &d) < 0);
+    CHECK(f == sentinel);
+    CHECK(strstr(d.message, "tessellation") != NULL);
+    /* every allocation failing in turn: OOM, nothing leaked */
+    b = sc.desc;
+    b.allocator = &a;
+    CHECK_EQ_INT(hf_fur_create(&b, &f, NULL), HF_OK);
+    hf_fur_destroy(f);
+    total = cnt.allocs;
+    for (k = 0; k < total; ++k) {
+        cnt.allocs = cnt.frees = 0;
+        cnt.fail_after = k;
+        f = sentinel;
+        CHECK_EQ_INT(hf_fur_create(&b, &f, NULL), HF_ERROR_OUT_OF_MEMORY);
+        CHECK(f == sentinel);
+        CHECK_EQ_INT(cnt.allocs, cnt.frees);
+    }
+}
+
+static void test_fur_same_seed_same_bytes(void)
+{
+    t_fur_scene sc;
+    hf_fur *a = NULL, *b = NULL;
+    hf_fur_info ia, ib;
+    t_fur_scene_init(&sc, 1.0f);
+    hf_fur_create(&sc.desc, &a, NULL);
+    hf_fur_create(&sc.desc, &b, NULL);
+    if (!a || !b) { CHECK(0); return; }
+    hf_fur_get_info(a, &ia);
+    hf_fur_get_info(b, &ib);
+    CHECK(memcmp(ia.strands, ib.strands, sizeof(hf_strand) * 500u) == 0);
+    CHECK(memcmp(ia.strand_points, ib.strand_points, sizeof(float) * 500u * 24u) == 0);
+    hf_fur_destroy(b);
+    sc.desc.seed = 6;
+    hf_fur_create(&sc.desc, &b, NULL);
+    hf_fur_get_info(b, &ib);
+    CHECK(memcmp(ia.strands, ib.strands, sizeof(hf_strand) * 500u) != 0);
+    hf_fur_destroy(a);
+    hf_fur_destroy(b);
+}
+
+static void test_fur_errors_per_frame(void)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    hf_mesh m;
+    float bad[(FR + 1) * (FS + 1) * 3];
+    t_fur_scene_init(&sc, 1.0f);
+    hf_fur_create(&sc.desc, &f, NULL);
+    if (!f) { CHECK(0); return; }
+    hf_fur_get_info(f, &info);
+    CHECK_EQ_INT(hf_fur_simulate(f, 0, info.guide_count, 0.0f, NULL, 0),
+                 HF_ERROR_BAD_TIME_STEP);
+    CHECK_EQ_INT(hf_fur_simulate(f, 0, info.guide_count, (float)NAN, NULL, 0),
+                 HF_ERROR_BAD_TIME_STEP);
+    CHECK_EQ_INT(hf_fur_simulate(f, 0, info.guide_count + 1, 0.01f, NULL, 0),
+                 HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_fur_interpolate(f, -1, 3), HF_ERROR_BAD_RANGE);
+    m = sc.desc.mesh;
+    memcpy(bad, sc.pos, sizeof bad);
+    bad[3 * 10 + 1] = (float)INFINITY;
+    m.positions = bad;
+    CHECK_EQ_INT(hf_fur_set_roots(f, &m, 0, info.guide_count), HF_ERROR_NON_FINITE);
+    m.vertex_count -= 1;
+    CHECK_EQ_INT(hf_fur_set_roots(f, &m, 0, info.guide_count), HF_ERROR_BAD_COUNT);
+    CHECK_EQ_INT(hf_fur_ribbons(f, 0, 1, NULL, NULL), HF_ERROR_NULL_POINTER);
+    hf_fur_destroy(f);
+}
+
+static void run_fur_tests(void)
+{
+    RUN(test_fur_create_counts_and_welding);
+    RUN(test_fur_no_allocation_per_frame);
+    RUN(test_fur_ranges_byte_identical);
+    RUN(test_fur_lod_prefix_and_width);
+    RUN(test_fur_lod_guides_wake_without_jump);
+    RUN(test_fur_bad_desc_and_out_of_memory);
+    RUN(test_fur_same_seed_same_bytes);
+    RUN(test_fur_errors_per_frame);
+}
+
+/* ======================================================================== */
 
 int main(void)
 {
@@ -3615,7 +4991,9 @@ int main(void)
     RUN(test_ribbon_indices);
     RUN(test_ribbon_winding_faces_camera);
     run_grow_tests();
+    run_ropes_tests();
     run_lut_tests();
+    run_fur_tests();
     printf("%d passed, %d failed\n", t_passed, t_failed);
     return t_failed ? 1 : 0;
 }
