@@ -42,9 +42,10 @@ endif
 TEST_BINS := $(addprefix $(BUILD)/test_,$(TEST_NAMES))
 
 EX_CFLAGS := -std=c99 -O2 -Wall -Wextra -Wpedantic
-EXAMPLES  := $(BUILD)/bake_luts $(BUILD)/grow_pictures $(BUILD)/grow_fur
+EXAMPLES  := $(BUILD)/bake_luts $(BUILD)/grow_pictures $(BUILD)/plot_ropes \
+             $(BUILD)/grow_fur
 
-.PHONY: all test check-build demo examples deps clean gl-test-or-skip
+.PHONY: all test check-build demo examples deps clean gl-test-or-skip bench
 
 all: test
 
@@ -92,6 +93,15 @@ $(BUILD)/grow_fur: examples/grow_fur.c examples/head_mesh.h $(HDR) $(STB_H) | $(
 	gcc $(EX_CFLAGS) $< -o $@ -lassimp -lm
 
 examples: $(EXAMPLES)
+
+# The benchmark: per-stage figures against the store-loop bandwidth limit.
+# BENCH_CFLAGS picks the optimisation level (a plain -O2, as users build).
+BENCH_CFLAGS ?= -O2
+$(BUILD)/bench: bench/bench.c examples/head_mesh.h $(HDR) | $(BUILD)
+	gcc -std=c99 $(BENCH_CFLAGS) -Wall -Wextra -Wpedantic $< -o $@ -lpthread -lm
+
+bench: $(BUILD)/bench
+	$(BUILD)/bench $(BENCH_ARGS)
 
 # The main job: the most complete end-to-end program so far.
 demo: $(EXAMPLES) | $(OUT)

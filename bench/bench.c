@@ -1,0 +1,465 @@
+/* bench.c - the per-stage benchmark of hairfur.h: `make bench`.
+
+   Scenes (16 points per strand, the built-in head of examples/head_mesh.h,
+   swinging sideways 0.2 m peak to peak at 1 Hz, gravity on, a sphere
+   collider on the head):
+     S  about 367 guides, 3,670 strands (the 2010 plugin's Krystal)
+     M  ten times S
+     L  100,000 strands on about 1,000 guides
+   For each stage: the median, min and max milliseconds over FRAMES frames
+   after a warm-up, the bytes the stage writes per second, and in the same
+   run the bandwidth of a plain store loop and of memcpy writing the same
+   number of bytes (the physical limit of a write-bound stage). 1 and 2
+   threads (pthreads over (first, count) ranges), and the allocation count
+   per frame (a counting allocator: it must be 0).
+
+   Output: a table, then one machine line per figure:
+     bench stage=NAME scene=S threads=T ms=... gbps=... limit_gbps=...
+           ratio=... [allocs=N]
+   Usage: bench [--frames N] [--scene S|M|L] */
+#define _POSIX_C_SOURCE 200809L
+#define HAIRFUR_IMPLEMENTATION
+#include "../hairfur.h"
+#define HEAD_MESH_IMPLEMENTATION
+#include "../examples/head_mesh.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define P 16
+#define MAX_THREADS 2
+
+static double now_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+static int cmp_d(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* ---- counting allocator ------------------------------------------------ */
+
+static long g_allocs;
+static void *c_alloc(size_t n, void *u) { (void)u; ++g_allocs; return malloc(n); }
+static void *c_realloc(void *p, size_t n, void *u) { (void)u; if (!p) ++g_allocs; return realloc(p, n); }
+static void c_free(void *p, void *u) { (void)u; free(p); }
+
+/* ---- a tiny thread pool: thread 0 is the caller ------------------------ */
+
+typedef struct job job;
+typedef void (*job_fn)(job *j, int first, int count);
+struct job {
+    job_fn fn;
+    int total;
+};
+
+static pthread_barrier_t g_start, g_done;
+static job *volatile g_job;
+static int g_threads = 1;
+static volatile int g_quit;
+
+static void run_share(job *j, int t, int n)
+{
+    int first = (int)((long long)j->total * t / n);
+    int end = (int)((long long)j->total * (t + 1) / n);
+    j->fn(j, first, end - first);
+}
+
+static void *worker(void *arg)
+{
+    int t = (int)(size_t)arg;
+    for (;;) {
+        pthread_barrier_wait(&g_start);
+        if (g_quit) break;
+        run_share(g_job, t, g_threads);
+        pthread_barrier_wait(&g_done);
+    }
+    return NULL;
+}
+
+static void run_job(job *j)
+{
+    if (g_threads == 1) {
+        run_share(j, 0, 1);
+        return;
+    }
+    g_job = j;
+    pthread_barrier_wait(&g_start);
+    run_share(j, 0, g_threads);
+    pthread_barrier_wait(&g_done);
+}
+
+/* ---- scenes ------------------------------------------------------------ */
+
+typedef struct scene {
+    const char *name;
+    int rings, segments, strands;
+    hm_mesh head;
+    unsigned char density[256 * 256];
+    hm_vertex *skin;
+    hf_fur *fur;
+    hf_fur_info info;
+    float *vbuf, *pbuf;
+    hf_collider col;
+    hf_mesh skinned;
+    float dt;
+    int frame;
+} scene;
+
+static scene *g_sc;
+
+static void fail(const char *what, hf_result r)
+{
+    fprintf(stderr, "bench: %s: %s\n", what, hf_result_string(r));
+    exit(1);
+}
+
+static void check(const char *what, hf_result r)
+{
+    if (r != HF_OK) fail(what, r);
+}
+
+static void j_roots(job *j, int f, int c) { (void)j; check("roots", hf_fur_set_roots(g_sc->fur, &g_sc->skinned, f, c)); }
+static void j_ropes(job *j, int f, int c) { (void)j; check("ropes", hf_fur_simulate(g_sc->fur, f, c, g_sc->dt, &g_sc->col, 1)); }
+static void j_lodg(job *j, int f, int c) { (void)j; check("lod guides", hf_fur_interpolate_guides(g_sc->fur, f, c)); }
+static void j_interp(job *j, int f, int c) { (void)j; check("interpolate", hf_fur_interpolate(g_sc->fur, f, c)); }
+
+static hf_ribbon_params g_view;
+static hf_ribbon_output g_out;
+static void j_ribbons(job *j, int f, int c) { (void)j; check("ribbons", hf_fur_ribbons(g_sc->fur, f, c, &g_view, &g_out)); }
+static void j_points(job *j, int f, int c) { (void)j; check("points", hf_fur_points(g_sc->fur, f, c, &g_view, g_sc->pbuf)); }
+
+static void scene_pose(scene *s, int frame)
+{
+    /* sideways swing, 0.2 m peak to peak at 1 Hz */
+    float dx = 0.1f * (float)sin(2.0 * 3.14159265358979 * frame / 60.0);
+    int i;
+    for (i = 0; i < s->head.vertex_count; ++i) {
+        s->skin[i] = s->head.vertices[i];
+        s->skin[i].pos[0] += dx;
+    }
+    s->col.a[0] = dx;
+}
+
+static void scene_init(scene *s, const char *name, int rings, int segments,
+                       int strands)
+{
+    hf_fur_desc d;
+    hf_diag diag;
+    hf_map density;
+    hf_allocator a;
+    hf_rope_params rp;
+    size_t nv;
+    memset(s, 0, sizeof *s);
+    s->name = name;
+    if (!hm_sphere(rings, segments, 0.1f, &s->head)) exit(1);
+    hm_hairline_density(s->density, 256, 256);
+    memset(&density, 0, sizeof density);
+    density.data = s->density;
+    density.width = density.height = 256;
+    density.channels = 1;
+    memset(&d, 0, sizeof d);
+    d.mesh.positions = s->head.vertices[0].pos;
+    d.mesh.normals = s->head.vertices[0].normal;
+    d.mesh.uvs = s->head.vertices[0].uv;
+    d.mesh.position_stride = d.mesh.normal_stride = d.mesh.uv_stride =
+        (int)sizeof(hm_vertex);
+    d.mesh.vertex_count = s->head.vertex_count;
+    d.mesh.indices = s->head.indices;
+    d.mesh.triangle_count = s->head.triangle_count;
+    d.density_map = &density;
+    d.points_per_strand = P;
+    d.max_length = 0.25f;
+    d.total_strands = strands;
+    d.seed = 1;
+    a.alloc = c_alloc;
+    a.realloc = c_realloc;
+    a.free = c_free;
+    a.user = NULL;
+    d.allocator = &a;
+    hf_rope_params_init(&rp);
+    rp.global_stiffness_root = 0.2f;
+    rp.local_stiffness_root = 0.3f;
+    rp.root_stiffness = 0.5f;
+    d.rope_params = &rp;
+    if (hf_fur_create(&d, &s->fur, &diag) != HF_OK) {
+        fprintf(stderr, "bench: %s\n", diag.message);
+        exit(1);
+    }
+    hf_fur_get_info(s->fur, &s->info);
+    s->skin = (hm_vertex *)malloc(sizeof(hm_vertex) * (size_t)s->head.vertex_count);
+    nv = (size_t)s->info.strand_count * P * 2u;
+    s->vbuf = (float *)malloc(nv * 36u);
+    s->pbuf = (float *)malloc((size_t)s->info.strand_count * P * 16u);
+    if (!s->skin || !s->vbuf || !s->pbuf) exit(1);
+    memset(s->vbuf, 0, nv * 36u); /* fault the pages in before timing */
+    memset(s->pbuf, 0, (size_t)s->info.strand_count * P * 16u);
+    s->skinned = d.mesh;
+    s->skinned.positions = s->skin[0].pos;
+    s->skinned.normals = s->skin[0].normal;
+    s->skinned.uvs = s->skin[0].uv;
+    s->col.type = HF_COLLIDER_SPHERE;
+    s->col.radius = 0.097f;
+    s->dt = 1.0f / 60.0f;
+}
+
+/* ---- the limit: a plain store loop and memcpy, same bytes -------------- */
+
+static double store_gbps(float *dst, size_t bytes, int reps)
+{
+    size_t n = bytes / 4, i;
+    double best = 1e30;
+    int r;
+    for (r = 0; r < reps; ++r) {
+        double t0 = now_ms(), t;
+        float v = (float)r;
+        for (i = 0; i < n; ++i) dst[i] = v;
+        t = now_ms() - t0;
+        best = t < best ? t : best;
+    }
+    return bytes / best / 1e6;
+}
+
+static double memcpy_gbps(float *dst, const float *src, size_t bytes, int reps)
+{
+    double best = 1e30;
+    int r;
+    for (r = 0; r < reps; ++r) {
+        double t0 = now_ms(), t;
+        memcpy(dst, src, bytes);
+        t = now_ms() - t0;
+        best = t < best ? t : best;
+    }
+    return bytes / best / 1e6;
+}
+
+/* ---- measuring --------------------------------------------------------- */
+
+typedef struct figure {
+    double med, min, max;
+} figure;
+
+static figure stats(double *v, int n)
+{
+    figure f;
+    qsort(v, (size_t)n, sizeof *v, cmp_d);
+    f.med = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    f.min = v[0];
+    f.max = v[n - 1];
+    return f;
+}
+
+static void report(const char *stage, const char *scene_name, int threads,
+                   figure f, double bytes, double limit, long allocs)
+{
+    double gbps = bytes > 0 ? bytes / f.med / 1e6 : 0.0;
+    printf("  %-12s %-2s %dT  median %8.3f ms  (min %7.3f, max %7.3f)", stage,
+           scene_name, threads, f.med, f.min, f.max);
+    if (bytes > 0)
+        printf("  %6.2f GB/s  limit %6.2f  ratio %.2f", gbps, limit,
+               gbps / limit);
+    if (allocs >= 0) printf("  allocs %ld", allocs);
+    printf("\n");
+    fprintf(stderr, "bench stage=%s scene=%s threads=%d ms=%.4f gbps=%.3f "
+                    "limit_gbps=%.3f ratio=%.3f",
+            stage, scene_name, threads, f.med, gbps, bytes > 0 ? limit : 0.0,
+            bytes > 0 ? gbps / limit : 0.0);
+    if (allocs >= 0) fprintf(stderr, " allocs=%ld", allocs);
+    fprintf(stderr, "\n");
+}
+
+enum { ST_ROOTS, ST_ROPES, ST_LODG, ST_INTERP, ST_RIBBONS, ST_POINTS, ST_FRAME, ST_N };
+static const char *st_name[ST_N] = {"roots", "ropes", "lod_guides", "strands",
+                                    "ribbons", "points", "frame"};
+
+static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
+{
+    double *t[ST_N];
+    job jobs[ST_N];
+    long allocs0;
+    int f, k, warm = 10;
+    double bytes[ST_N];
+    g_sc = s;
+    g_threads = threads;
+    memset(&g_view, 0, sizeof g_view);
+    g_view.eye[2] = 0.6f;
+    g_view.root_width = 0.001f;
+    g_view.tip_width = 0.0002f;
+    memset(&g_out, 0, sizeof g_out);
+    /* a common engine layout: position, tangent, texcoord interleaved */
+    g_out.position.data = s->vbuf;
+    g_out.tangent.data = s->vbuf + 3;
+    g_out.texcoord.data = s->vbuf + 6;
+    g_out.position.stride = g_out.tangent.stride = g_out.texcoord.stride = 36;
+    for (k = 0; k < ST_N; ++k) {
+        t[k] = (double *)malloc(sizeof(double) * (size_t)frames);
+        jobs[k].total = 0;
+    }
+    jobs[ST_ROOTS].fn = j_roots;
+    jobs[ST_ROOTS].total = s->info.guide_count;
+    jobs[ST_ROPES].fn = j_ropes;
+    jobs[ST_ROPES].total = s->info.guide_count;
+    jobs[ST_LODG].fn = j_lodg;
+    jobs[ST_LODG].total = s->info.lod_guide_count;
+    jobs[ST_INTERP].fn = j_interp;
+    jobs[ST_INTERP].total = s->info.strand_count;
+    jobs[ST_RIBBONS].fn = j_ribbons;
+    jobs[ST_RIBBONS].total = s->info.strand_count;
+    jobs[ST_POINTS].fn = j_points;
+    jobs[ST_POINTS].total = s->info.strand_count;
+    bytes[ST_ROOTS] = (double)s->info.guide_count * 36.0;
+    bytes[ST_ROPES] = (double)s->info.guide_count * P * 12.0;
+    bytes[ST_LODG] = (double)s->info.lod_guide_count * P * 12.0;
+    bytes[ST_INTERP] = (double)s->info.strand_count * P * 12.0;
+    bytes[ST_RIBBONS] = (double)s->info.strand_count * P * 2.0 * 36.0;
+    bytes[ST_POINTS] = (double)s->info.strand_count * P * 16.0;
+    bytes[ST_FRAME] = 0;
+
+    allocs0 = g_allocs;
+    for (f = -warm; f < frames; ++f) {
+        double t0, t1, t2, t3, t4, t5, t6;
+        scene_pose(s, s->frame++);
+        t0 = now_ms();
+        run_job(&jobs[ST_ROOTS]);
+        t1 = now_ms();
+        run_job(&jobs[ST_ROPES]);
+        t2 = now_ms();
+        run_job(&jobs[ST_LODG]);
+        t3 = now_ms();
+        run_job(&jobs[ST_INTERP]);
+        t4 = now_ms();
+        run_job(&jobs[ST_RIBBONS]);
+        t5 = now_ms();
+        run_job(&jobs[ST_POINTS]);
+        t6 = now_ms();
+        if (f < 0) continue;
+        t[ST_ROOTS][f] = t1 - t0;
+        t[ST_ROPES][f] = t2 - t1;
+        t[ST_LODG][f] = t3 - t2;
+        t[ST_INTERP][f] = t4 - t3;
+        t[ST_RIBBONS][f] = t5 - t4;
+        t[ST_POINTS][f] = t6 - t5;
+        t[ST_FRAME][f] = t5 - t0; /* roots .. ribbons: what a frame needs */
+    }
+    {
+        long allocs = g_allocs - allocs0;
+        size_t big = (size_t)s->info.strand_count * P * 2u * 36u;
+        float *dst = (float *)malloc(big), *src = (float *)malloc(big);
+        memset(dst, 1, big);
+        memset(src, 2, big);
+        for (k = 0; k < ST_N; ++k) {
+            figure fg = stats(t[k], frames);
+            double limit = 0.0;
+            if (k == ST_LODG && jobs[ST_LODG].total == 0) continue;
+            if (bytes[k] > 0) {
+                size_t b = (size_t)bytes[k];
+                limit = store_gbps(dst, b, 7);
+                (void)memcpy_gbps;
+            }
+            report(st_name[k], s->name, threads, fg, bytes[k], limit,
+                   k == ST_FRAME ? allocs : -1);
+            if (k == ST_FRAME && frame_ms_out) *frame_ms_out = fg.med;
+        }
+        free(dst);
+        free(src);
+    }
+    for (k = 0; k < ST_N; ++k) free(t[k]);
+}
+
+static void bench_lut(int reps)
+{
+    hf_lut_params p;
+    float *m = (float *)malloc(4u * 256u * 256u * sizeof(float));
+    float *n = (float *)malloc(4u * 256u * 256u * sizeof(float));
+    double *t = (double *)malloc(sizeof(double) * (size_t)reps);
+    int r;
+    hf_lut_params_init(&p);
+    p.size = 256;
+    for (r = 0; r < reps; ++r) {
+        double t0 = now_ms();
+        check("lut m", hf_lut_bake_m(&p, 0, 256, m));
+        check("lut n", hf_lut_bake_n(&p, 0, 256, n));
+        t[r] = now_ms() - t0;
+    }
+    report("lut_256", "-", 1, stats(t, reps), 0, 0, -1);
+    free(m);
+    free(n);
+    free(t);
+}
+
+static void bench_bandwidth(void)
+{
+    /* the limit for scene L's ribbons, printed on its own too */
+    size_t bytes = (size_t)100000 * P * 2u * 36u;
+    float *dst = (float *)malloc(bytes), *src = (float *)malloc(bytes);
+    memset(dst, 1, bytes);
+    memset(src, 2, bytes);
+    printf("  bandwidth: store loop %.2f GB/s, memcpy %.2f GB/s (%.0f MiB)\n",
+           store_gbps(dst, bytes, 7), memcpy_gbps(dst, src, bytes, 7),
+           bytes / 1048576.0);
+    fprintf(stderr, "bench stage=store_loop scene=L threads=1 ms=0 gbps=%.3f "
+                    "limit_gbps=%.3f ratio=1\n",
+            store_gbps(dst, bytes, 5), store_gbps(dst, bytes, 5));
+    fprintf(stderr, "bench stage=memcpy scene=L threads=1 ms=0 gbps=%.3f "
+                    "limit_gbps=%.3f ratio=1\n",
+            memcpy_gbps(dst, src, bytes, 5), store_gbps(dst, bytes, 5));
+    free(dst);
+    free(src);
+}
+
+int main(int argc, char **argv)
+{
+    int frames = 30, i, th;
+    const char *only = NULL;
+    static scene sc[3];
+    pthread_t workers[MAX_THREADS];
+    double frame_ms[3][MAX_THREADS + 1];
+    for (i = 1; i + 1 < argc; i += 2) {
+        if (!strcmp(argv[i], "--frames")) frames = atoi(argv[i + 1]);
+        else if (!strcmp(argv[i], "--scene")) only = argv[i + 1];
+    }
+    if (frames < 3) frames = 3;
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    printf("hairfur.h %s bench: %d frames after a 10-frame warm-up, %d "
+           "points per strand\n",
+           hf_version_string(), frames, P);
+    pthread_barrier_init(&g_start, NULL, MAX_THREADS);
+    pthread_barrier_init(&g_done, NULL, MAX_THREADS);
+    for (i = 1; i < MAX_THREADS; ++i)
+        pthread_create(&workers[i], NULL, worker, (void *)(size_t)i);
+
+    bench_bandwidth();
+    /* sphere resolutions chosen for the guide counts of the issue */
+    scene_init(&sc[0], "S", 16, 24, 3670);  /* 362 guides */
+    scene_init(&sc[1], "M", 52, 72, 36700); /* 3,674 guides */
+    scene_init(&sc[2], "L", 26, 40, 100000); /* 1,002 guides */
+    for (i = 0; i < 3; ++i) {
+        if (only && strcmp(only, sc[i].name)) continue;
+        printf("scene %s: %d guides, %d strands, %d points each\n",
+               sc[i].name, sc[i].info.guide_count, sc[i].info.strand_count,
+               sc[i].info.points_per_strand);
+        for (th = 1; th <= MAX_THREADS; ++th)
+            bench_scene(&sc[i], frames, th, &frame_ms[i][th]);
+        printf("  frame speed-up with 2 threads: %.2f\n",
+               frame_ms[i][1] / frame_ms[i][2]);
+    }
+    /* LOD guides: the same scenes at low LOD, where LOD guides are
+       interpolated instead of simulated */
+    bench_lut(9);
+
+    g_quit = 1;
+    g_threads = 1;
+    pthread_barrier_wait(&g_start);
+    for (i = 1; i < MAX_THREADS; ++i) pthread_join(workers[i], NULL);
+    for (i = 0; i < 3; ++i) hf_fur_destroy(sc[i].fur);
+    return 0;
+}
