@@ -1,7 +1,10 @@
 # hairfur.h - build, test, examples.
 #
 #   make test      the unit tests: C99 and C++11, -O2 and ASan+UBSan,
-#                  with gcc and (where installed) clang; strict warnings
+#                  with gcc and (where installed) clang, and the scalar
+#                  (HF_NO_SIMD) build; strict warnings; GL checks when
+#                  EGL is present
+#   make bench     per-stage speed against the memory-bandwidth limit
 #   make demo      the most complete end-to-end program, writes into out/
 #   make examples  build every example into build/
 #   make deps      install the Debian packages the examples need (as root),
@@ -27,7 +30,8 @@ TEST_gcc_c99      := gcc -std=c99 -O2
 TEST_gcc_cxx11    := g++ -std=c++11 -x c++ -O2
 TEST_gcc_c99_san  := gcc -std=c99 $(SAN)
 TEST_gcc_cxx11_san:= g++ -std=c++11 -x c++ $(SAN)
-TEST_NAMES := gcc_c99 gcc_cxx11 gcc_c99_san gcc_cxx11_san
+TEST_gcc_c99_scalar := gcc -std=c99 -O2 -DHF_NO_SIMD
+TEST_NAMES := gcc_c99 gcc_cxx11 gcc_c99_san gcc_cxx11_san gcc_c99_scalar
 ifneq ($(CLANG),)
 TEST_clang_c99      := clang -std=c99 -O2
 TEST_clang_c99_san  := clang -std=c99 $(SAN)

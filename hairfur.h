@@ -50,6 +50,8 @@
                             the user pointer of the hf_allocator in use (NULL
                             when none is given). Every function that allocates
                             also takes an optional runtime hf_allocator.
+       HF_NO_SIMD           use only scalar code (SSE2 is used where the
+                            compiler targets it); results are identical.
        HF_ASSERT(x)         the library's own invariants (default: assert).
                             Never used on caller input: that gets a result.
        HF_SQRTF, HF_SQRT, HF_EXP, HF_POW, HF_SIN, HF_COS, HF_ASIN, HF_ACOS,
@@ -1474,6 +1476,18 @@ HFDEF hf_result hf_fur_reset(hf_fur *fur);
 #endif
 #ifndef HF_MEMSET
 #define HF_MEMSET(d, v, n) memset(d, v, n)
+#endif
+
+/* SSE2 (every x86-64) for the few kernels that vectorise by hand; the
+   SIMD and scalar paths use the same IEEE operations, so they give the
+   same bytes. HF_NO_SIMD forces the scalar path. */
+#if !defined(HF_NO_SIMD) &&                                                    \
+    (defined(__SSE2__) || defined(_M_X64) ||                                   \
+     (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
+#define HF__SSE 1
+#include <emmintrin.h>
+#else
+#define HF__SSE 0
 #endif
 
 #if defined(__GNUC__) || defined(__clang__)
@@ -4737,7 +4751,8 @@ HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
                                int count, const hf_interp_params *params,
                                float *out_points)
 {
-    int s, j, k, P;
+    float ctab[3 * HF_MAX_POINTS];
+    int s, i, k, P;
     float clump;
     if (!guide_points || !bindings || !params || !out_points)
         return HF_ERROR_NULL_POINTER;
@@ -4758,6 +4773,9 @@ HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
         }
         if (!hf__finitef(b->length_scale)) return HF_ERROR_NON_FINITE;
     }
+    /* clump weight of float i of a strand: clump * (i / 3) / (P - 1) */
+    for (i = 0; i < 3 * P; ++i)
+        ctab[i] = clump / (float)(P - 1) * (float)(i / 3);
     for (s = first; s < first + count; ++s) {
         const hf_strand_binding *b = &bindings[s];
         const float *g0 = guide_points + (size_t)b->guide[0] * (size_t)P * 3u;
@@ -4768,19 +4786,41 @@ HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
         /* the guide of largest weight is the one the strand clumps to */
         const float *gn = (w0 >= w1 && w0 >= w2) ? g0 : (w1 >= w2 ? g1 : g2);
         float *o = out_points + (size_t)s * (size_t)P * 3u;
-        float root[3];
-        const float dt = clump / (float)(P - 1);
-        for (k = 0; k < 3; ++k) root[k] = w0 * g0[k] + w1 * g1[k] + w2 * g2[k];
-        for (j = 0; j < P; ++j) {
-            const float c = dt * (float)j;
-            for (k = 0; k < 3; ++k) {
-                const int i = j * 3 + k;
-                float p = w0 * g0[i] + w1 * g1[i] + w2 * g2[i];
-                /* scale 1 skips the round trip through root, so a strand on
-                   a guide equals it bit for bit */
-                if (sc != 1.0f) p = root[k] + sc * (p - root[k]);
-                o[i] = p + c * (gn[i] - p);
+        float rb[6];
+        /* p' = sc p + (1 - sc) root keeps the root and scales the offsets;
+           with sc = 1 it is p exactly, so a strand on a guide equals it */
+        for (k = 0; k < 3; ++k) {
+            rb[k] = (1.0f - sc) * (w0 * g0[k] + w1 * g1[k] + w2 * g2[k]);
+            rb[k + 3] = rb[k];
+        }
+        i = 0;
+#if HF__SSE
+        {
+            const __m128 W0 = _mm_set1_ps(w0), W1 = _mm_set1_ps(w1);
+            const __m128 W2 = _mm_set1_ps(w2), SC = _mm_set1_ps(sc);
+            /* (1 - sc) root, repeating every 3 floats: 3 phases of 4 */
+            const __m128 R0 = _mm_loadu_ps(rb), R1 = _mm_loadu_ps(rb + 1),
+                         R2 = _mm_loadu_ps(rb + 2);
+            int phase = 0;
+            for (; i + 4 <= 3 * P; i += 4) {
+                const __m128 R = phase == 0 ? R0 : (phase == 1 ? R1 : R2);
+                __m128 p = _mm_add_ps(
+                    _mm_add_ps(_mm_mul_ps(W0, _mm_loadu_ps(g0 + i)),
+                               _mm_mul_ps(W1, _mm_loadu_ps(g1 + i))),
+                    _mm_mul_ps(W2, _mm_loadu_ps(g2 + i)));
+                p = _mm_add_ps(_mm_mul_ps(SC, p), R);
+                p = _mm_add_ps(p, _mm_mul_ps(_mm_loadu_ps(ctab + i),
+                                             _mm_sub_ps(_mm_loadu_ps(gn + i), p)));
+                _mm_storeu_ps(o + i, p);
+                phase = phase == 2 ? 0 : phase + 1;
             }
+        }
+#endif
+        /* the same operations, in the same order, one float at a time */
+        for (; i < 3 * P; ++i) {
+            float p = w0 * g0[i] + w1 * g1[i] + w2 * g2[i];
+            p = sc * p + rb[i % 3];
+            o[i] = p + ctab[i] * (gn[i] - p);
         }
     }
     return HF_OK;
@@ -4860,12 +4900,6 @@ HF__PRIVATE void hf__half_widths(const hf_ribbon_params *p, float *hw)
     }
 }
 
-HF__PRIVATE float *hf__stream_at(const hf_stream *st, int packed, size_t v)
-{
-    return (float *)((unsigned char *)st->data +
-                     v * (size_t)(st->stride ? st->stride : packed));
-}
-
 /* A unit vector perpendicular to unit t, chosen deterministically. */
 HF__PRIVATE void hf__any_perp(const float *t, float *o)
 {
@@ -4880,15 +4914,133 @@ HF__PRIVATE void hf__any_perp(const float *t, float *o)
     o[2] /= l;
 }
 
+/* inv[i] = 1 / sqrt(x[i]). SSE does four at once with the same IEEE
+   operations (sqrtps, divps) as the scalar tail, so the result does not
+   depend on the path or on where a range starts. */
+HF__PRIVATE void hf__inv_sqrt_n(const float *x, float *inv, int n)
+{
+    int i = 0;
+#if HF__SSE
+    const __m128 one = _mm_set1_ps(1.0f);
+    for (; i + 4 <= n; i += 4)
+        _mm_storeu_ps(inv + i, _mm_div_ps(one, _mm_sqrt_ps(_mm_loadu_ps(x + i))));
+#endif
+    for (; i < n; ++i) inv[i] = 1.0f / HF_SQRTF(x[i]);
+}
+
+/* Unit tangents and sides of one strand (see hf_ribbons for the rules on
+   degenerate points). Lengths are normalised in batches so the square roots
+   and divisions vectorise. */
+HF__PRIVATE void hf__strand_frame(const float *pts, int P,
+                                  const hf_ribbon_params *params, float *tan,
+                                  float *side)
+{
+    float d[HF_MAX_POINTS * 3], l2[HF_MAX_POINTS], inv[HF_MAX_POINTS];
+    float last[3] = {0.0f, 1.0f, 0.0f};
+    int j, first_ok = -1;
+    const int ortho = params->orthographic != 0;
+    /* tangents: central differences, one-sided at the ends */
+    for (j = 0; j < P; ++j) {
+        const float *a = pts + 3 * (j > 0 ? j - 1 : 0);
+        const float *b = pts + 3 * (j < P - 1 ? j + 1 : P - 1);
+        float *dj = d + 3 * j;
+        hf__sub3(dj, b, a);
+        l2[j] = hf__dot3(dj, dj);
+    }
+    hf__inv_sqrt_n(l2, inv, P);
+    for (j = 0; j < P; ++j) {
+        /* a zero-length segment keeps the previous tangent */
+        if (l2[j] > 1e-30f && hf__finitef(l2[j])) {
+            last[0] = d[3 * j] * inv[j];
+            last[1] = d[3 * j + 1] * inv[j];
+            last[2] = d[3 * j + 2] * inv[j];
+        }
+        tan[3 * j] = last[0];
+        tan[3 * j + 1] = last[1];
+        tan[3 * j + 2] = last[2];
+    }
+    /* a strand whose first points have no length takes the tangent of its
+       first point that has one */
+    for (j = P - 2; j >= 0; --j) {
+        const float *a = pts + 3 * j, *b = pts + 3 * (j + 1);
+        if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
+            HF_MEMCPY(tan + 3 * j, tan + 3 * (j + 1), 3 * sizeof(float));
+        else
+            break;
+    }
+    /* sides: cross(t, v), v = eye - p or -view_dir; d now holds the cross
+       products and inv their reciprocal lengths */
+    for (j = 0; j < P; ++j) {
+        float v[3];
+        if (ortho) {
+            v[0] = -params->view_dir[0];
+            v[1] = -params->view_dir[1];
+            v[2] = -params->view_dir[2];
+        } else {
+            hf__sub3(v, params->eye, pts + 3 * j);
+        }
+        hf__cross3(d + 3 * j, tan + 3 * j, v);
+        l2[j] = hf__dot3(d + 3 * j, d + 3 * j);
+        /* |t| = 1, so |c|^2 = |v|^2 sin^2: parallel or eye-on-point below */
+        inv[j] = hf__dot3(v, v); /* parked: |v|^2 */
+        if (!(l2[j] > 1e-12f * inv[j] && l2[j] > 1e-30f &&
+              hf__finitef(l2[j])))
+            l2[j] = -1.0f; /* marks "no side here" */
+        else if (first_ok < 0)
+            first_ok = j;
+    }
+    for (j = 0; j < P; ++j) inv[j] = l2[j] > 0.0f ? l2[j] : 1.0f;
+    hf__inv_sqrt_n(inv, inv, P);
+    if (first_ok < 0) {
+        /* no point has a side: a fixed perpendicular of the tangent */
+        hf__any_perp(tan, side);
+        first_ok = 0;
+        l2[0] = 1.0f;
+        inv[0] = 1.0f;
+        d[0] = side[0];
+        d[1] = side[1];
+        d[2] = side[2];
+    }
+    for (j = 0; j < P; ++j) {
+        const int src = l2[j] > 0.0f ? j : -1;
+        if (src >= 0) {
+            side[3 * j] = d[3 * j] * inv[j];
+            side[3 * j + 1] = d[3 * j + 1] * inv[j];
+            side[3 * j + 2] = d[3 * j + 2] * inv[j];
+        } else if (j > first_ok) {
+            HF_MEMCPY(side + 3 * j, side + 3 * (j - 1), 3 * sizeof(float));
+        }
+    }
+    /* points before the first side borrow it */
+    for (j = first_ok - 1; j >= 0; --j)
+        HF_MEMCPY(side + 3 * j, side + 3 * (j + 1), 3 * sizeof(float));
+}
+
+/* First byte of vertex v in a stream, and its stride. hf_ribbons writes
+   each stream in its own tight loop, so every layout is plain strided
+   stores with no per-vertex test of which streams exist. */
+HF__PRIVATE unsigned char *hf__stream_base(const hf_stream *st, int packed,
+                                           size_t v, size_t *stride)
+{
+    *stride = (size_t)(st->stride ? st->stride : packed);
+    return (unsigned char *)st->data + v * *stride;
+}
+
+/* Store one float at any byte address. Writing each float from a register
+   (rather than memcpy from a small array just filled) avoids a failed
+   store-to-load forwarding stall per vertex, which cost a third of the
+   ribbon time. */
+HF__PRIVATE void hf__put(unsigned char *o, float x) { HF_MEMCPY(o, &x, 4); }
+
 HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
                            int count, const hf_ribbon_params *params,
                            const hf_ribbon_output *out)
 {
-    float hw[HF_MAX_POINTS], tan[HF_MAX_POINTS * 3], side[HF_MAX_POINTS * 3];
-    unsigned char ok[HF_MAX_POINTS];
+    float hw[HF_MAX_POINTS], tt[HF_MAX_POINTS];
+    float tan[HF_MAX_POINTS * 3], side[HF_MAX_POINTS * 3];
     const hf_stream *streams[5];
     float alpha_root, alpha_tip;
-    int s, j, k, P, ortho;
+    int s, j, k, P;
     hf_result r = hf__ribbon_check(strands, first, count, params);
     if (r != HF_OK) return r;
     if (!out) return HF_ERROR_NULL_POINTER;
@@ -4900,124 +5052,81 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
     for (k = 0; k < 5; ++k)
         if (streams[k]->stride < 0) return HF_ERROR_BAD_STRIDE;
     P = params->points_per_strand;
-    ortho = params->orthographic != 0;
     alpha_root = params->alpha_root;
     alpha_tip = params->alpha_tip;
     if (alpha_root == 0.0f && alpha_tip == 0.0f) alpha_root = alpha_tip = 1.0f;
     hf__half_widths(params, hw);
+    for (j = 0; j < P; ++j) tt[j] = (float)j / (float)(P - 1);
 
     for (s = first; s < first + count; ++s) {
         const float *pts = strands->points + (size_t)s * (size_t)P * 3u;
         const size_t v0 = (size_t)s * (size_t)P * 2u;
-        int first_ok = -1;
-        float last_t[3] = {0.0f, 1.0f, 0.0f};
-        /* tangents: central differences, one-sided at the ends */
-        for (j = 0; j < P; ++j) {
-            const float *a = pts + 3 * (j > 0 ? j - 1 : 0);
-            const float *b = pts + 3 * (j < P - 1 ? j + 1 : P - 1);
-            float d[3], l2;
-            hf__sub3(d, b, a);
-            l2 = hf__dot3(d, d);
-            if (l2 > 1e-30f && hf__finitef(l2)) {
-                float inv = 1.0f / HF_SQRTF(l2);
-                last_t[0] = d[0] * inv;
-                last_t[1] = d[1] * inv;
-                last_t[2] = d[2] * inv;
-            }
-            tan[3 * j] = last_t[0];
-            tan[3 * j + 1] = last_t[1];
-            tan[3 * j + 2] = last_t[2];
-        }
-        /* a strand whose first points have no length takes the tangent of
-           its first point that has one */
-        for (j = P - 2; j >= 0; --j) {
-            const float *a = pts + 3 * j, *b = pts + 3 * (j + 1);
-            if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
-                HF_MEMCPY(tan + 3 * j, tan + 3 * (j + 1), 3 * sizeof(float));
-            else
-                break;
-        }
-        /* sides: cross(t, v); parallel or eye-on-point borrows a neighbour */
-        for (j = 0; j < P; ++j) {
-            const float *p = pts + 3 * j;
-            float v[3], c[3], l2, lt;
-            if (ortho) {
-                v[0] = -params->view_dir[0];
-                v[1] = -params->view_dir[1];
-                v[2] = -params->view_dir[2];
-            } else {
-                hf__sub3(v, params->eye, p);
-            }
-            hf__cross3(c, tan + 3 * j, v);
-            l2 = hf__dot3(c, c);
-            lt = hf__dot3(v, v); /* |t| = 1: |c|^2 = |v|^2 sin^2 */
-            ok[j] = (unsigned char)(l2 > 1e-12f * lt && l2 > 1e-30f &&
-                                    hf__finitef(l2));
-            if (ok[j]) {
-                float inv = 1.0f / HF_SQRTF(l2);
-                side[3 * j] = c[0] * inv;
-                side[3 * j + 1] = c[1] * inv;
-                side[3 * j + 2] = c[2] * inv;
-                if (first_ok < 0) first_ok = j;
+        size_t st;
+        unsigned char *o;
+        hf__strand_frame(pts, P, params, tan, side);
+        if (out->position.data) {
+            o = hf__stream_base(&out->position, 12, v0, &st);
+            for (j = 0; j < P; ++j, o += 2 * st) {
+                const float *p = pts + 3 * j, *sd = side + 3 * j;
+                const float w = hw[j];
+                hf__put(o, p[0] - sd[0] * w);
+                hf__put(o + 4, p[1] - sd[1] * w);
+                hf__put(o + 8, p[2] - sd[2] * w);
+                hf__put(o + st, p[0] + sd[0] * w);
+                hf__put(o + st + 4, p[1] + sd[1] * w);
+                hf__put(o + st + 8, p[2] + sd[2] * w);
             }
         }
-        if (first_ok < 0) {
-            hf__any_perp(tan, side);
-            first_ok = 0;
-            ok[0] = 1;
-        }
-        for (j = first_ok - 1; j >= 0; --j)
-            HF_MEMCPY(side + 3 * j, side + 3 * (j + 1), 3 * sizeof(float));
-        for (j = first_ok + 1; j < P; ++j)
-            if (!ok[j])
-                HF_MEMCPY(side + 3 * j, side + 3 * (j - 1), 3 * sizeof(float));
-
-        /* write: every stream, both sides, in vertex order */
-        for (j = 0; j < P; ++j) {
-            const float *p = pts + 3 * j;
-            const float *sd = side + 3 * j;
-            const float t = (float)j / (float)(P - 1);
-            const size_t v = v0 + 2u * (size_t)j;
-            if (out->position.data) {
-                float *a = hf__stream_at(&out->position, 12, v);
-                float *b = hf__stream_at(&out->position, 12, v + 1);
+        if (out->tangent.data) {
+            o = hf__stream_base(&out->tangent, 12, v0, &st);
+            for (j = 0; j < P; ++j, o += 2 * st)
                 for (k = 0; k < 3; ++k) {
-                    a[k] = p[k] - sd[k] * hw[j];
-                    b[k] = p[k] + sd[k] * hw[j];
+                    hf__put(o + 4 * k, tan[3 * j + k]);
+                    hf__put(o + st + 4 * k, tan[3 * j + k]);
                 }
+        }
+        if (out->texcoord.data) {
+            const float u = strands->root_uv ? strands->root_uv[2 * (size_t)s] : 0.0f;
+            const float v = strands->root_uv ? strands->root_uv[2 * (size_t)s + 1]
+                                             : 0.0f;
+            o = hf__stream_base(&out->texcoord, 12, v0, &st);
+            for (j = 0; j < P; ++j, o += 2 * st) {
+                hf__put(o, u);
+                hf__put(o + 4, v);
+                hf__put(o + 8, tt[j]);
+                hf__put(o + st, u);
+                hf__put(o + st + 4, v);
+                hf__put(o + st + 8, tt[j]);
             }
-            if (out->tangent.data) {
-                HF_MEMCPY(hf__stream_at(&out->tangent, 12, v), tan + 3 * j, 12);
-                HF_MEMCPY(hf__stream_at(&out->tangent, 12, v + 1), tan + 3 * j,
-                          12);
+        }
+        if (out->color.data) {
+            const float *rgba =
+                strands->color ? strands->color + 4 * (size_t)s : NULL;
+            float c4[4];
+            c4[0] = rgba ? rgba[0] : 1.0f;
+            c4[1] = rgba ? rgba[1] : 1.0f;
+            c4[2] = rgba ? rgba[2] : 1.0f;
+            c4[3] = rgba ? rgba[3] : 1.0f;
+            o = hf__stream_base(&out->color, 16, v0, &st);
+            for (j = 0; j < P; ++j, o += 2 * st) {
+                const float a =
+                    c4[3] * (alpha_root + (alpha_tip - alpha_root) * tt[j]);
+                for (k = 0; k < 3; ++k) {
+                    hf__put(o + 4 * k, c4[k]);
+                    hf__put(o + st + 4 * k, c4[k]);
+                }
+                hf__put(o + 12, a);
+                hf__put(o + st + 12, a);
             }
-            if (out->texcoord.data) {
-                float tc[3];
-                tc[0] = strands->root_uv ? strands->root_uv[2 * (size_t)s] : 0.0f;
-                tc[1] = strands->root_uv ? strands->root_uv[2 * (size_t)s + 1]
-                                         : 0.0f;
-                tc[2] = t;
-                HF_MEMCPY(hf__stream_at(&out->texcoord, 12, v), tc, 12);
-                HF_MEMCPY(hf__stream_at(&out->texcoord, 12, v + 1), tc, 12);
-            }
-            if (out->color.data) {
-                float c4[4];
-                const float *rgba =
-                    strands->color ? strands->color + 4 * (size_t)s : NULL;
-                c4[0] = rgba ? rgba[0] : 1.0f;
-                c4[1] = rgba ? rgba[1] : 1.0f;
-                c4[2] = rgba ? rgba[2] : 1.0f;
-                c4[3] = (rgba ? rgba[3] : 1.0f) *
-                        (alpha_root + (alpha_tip - alpha_root) * t);
-                HF_MEMCPY(hf__stream_at(&out->color, 16, v), c4, 16);
-                HF_MEMCPY(hf__stream_at(&out->color, 16, v + 1), c4, 16);
-            }
-            if (out->color3d.data) {
-                float c2[2];
-                c2[0] = strands->color3d_x ? strands->color3d_x[s] : 0.0f;
-                c2[1] = t;
-                HF_MEMCPY(hf__stream_at(&out->color3d, 8, v), c2, 8);
-                HF_MEMCPY(hf__stream_at(&out->color3d, 8, v + 1), c2, 8);
+        }
+        if (out->color3d.data) {
+            const float x = strands->color3d_x ? strands->color3d_x[s] : 0.0f;
+            o = hf__stream_base(&out->color3d, 8, v0, &st);
+            for (j = 0; j < P; ++j, o += 2 * st) {
+                hf__put(o, x);
+                hf__put(o + 4, tt[j]);
+                hf__put(o + st, x);
+                hf__put(o + st + 4, tt[j]);
             }
         }
     }
