@@ -5,7 +5,9 @@
 #                  (HF_NO_SIMD) build; strict warnings; GL checks when
 #                  EGL is present
 #   make bench     per-stage speed against the memory-bandwidth limit
-#   make demo      the most complete end-to-end program, writes into out/
+#   make demo      grows, swings and renders fur on the built-in head into
+#                  out/ (installs or names the Debian packages it needs)
+#   make run       the interactive Marschner example (needs a display)
 #   make examples  build every example into build/
 #   make deps      install the Debian packages the examples need (as root),
 #                  or print the apt-get line
@@ -49,7 +51,7 @@ EX_CFLAGS := -std=c99 -O2 -Wall -Wextra -Wpedantic
 EXAMPLES  := $(BUILD)/bake_luts $(BUILD)/grow_pictures $(BUILD)/plot_ropes \
              $(BUILD)/grow_fur
 
-.PHONY: all test check-build demo examples deps clean gl-test-or-skip bench
+.PHONY: all test check-build demo demo-deps examples deps clean gl-test-or-skip bench
 
 all: test
 
@@ -107,14 +109,32 @@ $(BUILD)/bench: bench/bench.c examples/head_mesh.h $(HDR) | $(BUILD)
 bench: $(BUILD)/bench
 	$(BUILD)/bench $(BENCH_ARGS)
 
-# The main job: the most complete end-to-end program so far.
-demo: $(EXAMPLES) | $(OUT)
+# The main job: grow fur on the built-in head, swing it, export the ribbons
+# (out/fur.obj), bake the LUTs and render headless Marschner frames.
+demo: demo-deps $(EXAMPLES) | $(OUT)
 	$(BUILD)/bake_luts --out $(OUT)
 	$(BUILD)/grow_pictures $(OUT)
 	$(BUILD)/grow_fur --frames 120 --out $(OUT)/fur.obj
-	@echo "demo: wrote $(OUT)/fur.obj (the swung head's fur, opens in Blender),"
-	@echo "      $(OUT)/marschner_m.png, $(OUT)/marschner_n.png, $(OUT)/marschner_scales.txt"
+	@$(MAKE) --no-print-directory gl-demo
+	@echo "demo: wrote $(OUT)/fur.obj (the swung head's fur as ribbons: opens in Blender),"
+	@echo "      $(OUT)/fur_swing_030.png ... fur_swing_090.png, fur_kajiya.png,"
+	@echo "      fur_color3d_gpu.png, fur_minimal.png (headless GL renders),"
+	@echo "      $(OUT)/marschner_m.png, marschner_n.png, marschner_scales.txt (LUTs)"
 	@echo "      and the growth pictures $(OUT)/grow_*.png"
+
+# Make sure the Debian packages are there: install them as root, or say
+# exactly what to install.
+demo-deps:
+	@miss=""; for p in $(DEPS_PKGS); do \
+	  dpkg -s $$p >/dev/null 2>&1 || miss="$$miss $$p"; done; \
+	if [ -n "$$miss" ]; then \
+	  if [ "$$(id -u)" = 0 ]; then \
+	    apt-get update && apt-get install -y$$miss; \
+	  else \
+	    echo "make demo needs:$$miss"; \
+	    echo "  sudo apt-get install -y$$miss   (or: sudo make deps)"; exit 1; \
+	  fi; \
+	fi
 
 # GL checks need glad, EGL and GLFW headers: without them, say what is
 # missing and skip (CI installs them, so CI runs the checks).
@@ -128,8 +148,9 @@ gl-test-or-skip:
 	fi
 
 # The OpenGL examples and checks (GLAD at build time, EGL headless, GLFW).
-GL_EXAMPLES :=
+GL_EXAMPLES := gl_minimal gl_marschner
 include gl.mk
+include glex.mk
 
 deps:
 	@if [ "$$(id -u)" = 0 ]; then \

@@ -115,7 +115,8 @@ gl-check: $(BUILD)/gl_check
 	@$(BUILD)/gl_check || true
 
 # DISPLAY is unset so the checks prove the headless path needs no display.
-GL_TESTS := $(BUILD)/gl_smoke $(BUILD)/gl_misc_test $(BUILD)/gl_ribbon_check
+GL_TESTS := $(BUILD)/gl_smoke $(BUILD)/gl_misc_test $(BUILD)/gl_ribbon_check \
+            $(BUILD)/gl_fur_check
 gl-test: $(BUILD)/gl_check $(GL_TESTS) | $(OUT)
 	@if ! why=$$(env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_check); then \
 	  echo "GL tests skipped: $$why"; exit 0; \
@@ -129,6 +130,9 @@ gl-test: $(BUILD)/gl_check $(GL_TESTS) | $(OUT)
 	  examples/ribbon_expand.glsl $(OUT)/ribbons.png \
 	  > $(BUILD)/gl_ribbon_check.log 2>&1 || fail=1; \
 	  tail -n 1 $(BUILD)/gl_ribbon_check.log; \
+	env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_fur_check \
+	  > $(BUILD)/gl_fur_check.log 2>&1 || fail=1; \
+	  tail -n 1 $(BUILD)/gl_fur_check.log; \
 	if [ $$fail -ne 0 ]; then echo "make gl-test: FAILED (logs in $(BUILD)/gl_*.log)"; exit 1; fi; \
 	echo "make gl-test: all GL checks passed"
 

@@ -1332,6 +1332,8 @@ typedef struct hf_fur_info {
     const hf_strand *strands;   /* strand_count records */
     const float *strand_lengths; /* strand_count */
     const float *strand_colors;  /* 4 per strand (rgba from color_map) */
+    const float *strand_uv;      /* 2 per strand: root UV, packed */
+    const float *strand_color3d_x; /* 1 per strand: index-map value */
 } hf_fur_info;
 
 /* Grow a fur: validate, tessellate, make guides, place strands, read the
@@ -6219,6 +6221,8 @@ HFDEF hf_result hf_fur_get_info(const hf_fur *f, hf_fur_info *info)
     info->strands = f->strands;
     info->strand_lengths = f->strand_lengths;
     info->strand_colors = f->strand_rgba;
+    info->strand_uv = f->strand_uv;
+    info->strand_color3d_x = f->strand_c3x;
     return HF_OK;
 }
 

@@ -1,0 +1,1192 @@
+/* gl_marschner.c - hairfur.h fur lit with the Marschner model in GLSL 330.
+
+   Shows a complete engine-style integration on the built-in head
+   (examples/head_mesh.h):
+     - the Marschner M and N lookup textures baked in-process
+       (hf_lut_bake_m / hf_lut_bake_n, RGBA32F, GL_LINEAR, clamp to edge) and
+       combined in the fragment shader as docs/luts.md "The shader" says,
+       plus the diffuse term sqrt(1 - (L.T)^2) and ambient light;
+       Kajiya-Kay as a switch;
+     - hair colour from the 2D colour map (per-vertex colour stream of
+       hf_fur_ribbons) or the 3D colour scheme (color3d stream sampling a
+       ramp texture with dyed tips);
+     - a swinging, turning head that drives the rope physics, with sphere
+       and capsule colliders that can be drawn;
+     - an orbiting camera and LOD by distance (hf_lod_from_distance), the
+       drawn strand count in the window title;
+     - two ways to feed the GPU: CPU ribbons (hf_fur_ribbons, the dynamic
+       position + tangent streams only) or GPU expansion (hf_fur_points into
+       a GL_RGBA32F texture buffer, expanded by examples/ribbon_expand.glsl),
+       both drawn with the same hf_ribbon_indices buffer.
+
+   Build: make build/gl_marschner (see glex.mk), or from the repo root:
+     make build/glad/gl.o
+     gcc -std=c99 -O2 -Ibuild/glad/include -Iexamples -I. \
+         examples/gl_marschner.c build/glad/gl.o -o build/gl_marschner \
+         -lglfw -lEGL -lm
+   Run from the repo root (the GPU path reads examples/ribbon_expand.glsl):
+     build/gl_marschner              window: K Kajiya-Kay/Marschner, G GPU
+                                     expansion, C 3D colour, V colliders,
+                                     +/- or scroll distance, arrows orbit,
+                                     space pauses the orbit, H head motion,
+                                     S specular on/off, Esc quits
+     build/gl_marschner --headless --frames 60 --out out/fur.png
+   Options: --headless --frames N --out FILE.png --width W --height H
+     --kajiya --gpu-expand --color3d --colliders --distance D | --lod F
+     --azimuth DEG --elevation DEG --orbit DEG_PER_S --still --no-specular
+     --strands N --lut-size N --a2c --expand-shader FILE --draw-all
+
+   Define GLM_NO_MAIN to include this file in a test (tests/gl_fur_check.c)
+   and drive glm_init / glm_step / glm_draw yourself. */
+#define _POSIX_C_SOURCE 199309L /* clock_gettime */
+#define GLC_IMPLEMENTATION
+#include "gl_common.h"
+#define HAIRFUR_IMPLEMENTATION
+#include "hairfur.h"
+#define HEAD_MESH_IMPLEMENTATION
+#include "head_mesh.h"
+#ifndef GLM_NO_MAIN
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#endif
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define GLM_PI 3.14159265358979f
+#define GLM_HEAD_R 0.1f          /* head_mesh.h sphere radius, metres */
+#define GLM_FULL_DETAIL 0.6f     /* LOD 1 up to this camera distance */
+#define GLM_CULL 30.0f           /* and no hair beyond this one */
+#define GLM_MAX_COLLIDERS 3
+
+typedef struct glm_options {
+    int width, height, headless, frames, strands, lut_size;
+    const char *out, *expand_shader;
+    int kajiya, gpu_expand, color3d, colliders, still, a2c, draw_all;
+    float specular;   /* 1 = on; 0 = diffuse + ambient only */
+    float distance;   /* camera distance to the head centre (m) */
+    float lod;        /* < 0: from the distance */
+    float azimuth, elevation, orbit_speed; /* degrees, degrees/s */
+} glm_options;
+
+static void glm_default_options(glm_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->width = 640;
+    o->height = 480;
+    o->strands = 20000;
+    o->lut_size = 256;
+    o->specular = 1.0f;
+    o->distance = 0.55f;
+    o->lod = -1.0f;
+    o->azimuth = 30.0f;
+    o->elevation = 12.0f;
+    o->orbit_speed = 12.0f;
+}
+
+/* Interleaved per-vertex layouts. The dynamic stream is rewritten every
+   frame; the static one (texcoord, colour with the tip fade, 3D-colour
+   coordinates) depends only on the strand and the point, so it is written
+   once for all strands: 24 instead of 60 bytes a vertex go over the bus. */
+typedef struct glm_dyn { float pos[3], tan[3]; } glm_dyn;
+typedef struct glm_static { float uv_t[3], rgba[4], c3d[2]; } glm_static;
+
+typedef struct glm_app {
+    glm_options o;
+    hm_mesh head;
+    hm_vertex *skin;
+    hf_mesh skinned;
+    unsigned char *density_px, *length_px, *color_px, *index_px;
+    hf_map density, length, color, index;
+    hf_fur *fur;
+    hf_fur_info info;
+    int P;
+    glm_dyn *dyn;       /* CPU-ribbon stream, all strands */
+    float *points4;     /* GPU-expansion stream, all strands */
+    hf_collider col[GLM_MAX_COLLIDERS];
+    float pose[12];
+    float eye[3], target[3], view_proj[16];
+    float lod;
+    int drawn;
+    double t;           /* simulated time */
+    double cpu_ms, draw_ms;
+    int draw_hair;      /* tests switch the hair off to get a mask */
+    /* GL */
+    GLuint prog_cpu, prog_gpu, prog_head, prog_line;
+    GLuint vao_cpu, vao_gpu, vao_head, vao_line;
+    GLuint vbo_dyn, vbo_static, vbo_points, tbo_points, vbo_uv, tbo_uv;
+    GLuint vbo_scolor, tbo_scolor, vbo_c3x, tbo_c3x, ibo_hair;
+    GLuint vbo_head, ibo_head, vbo_line;
+    GLuint tex_m, tex_n, tex_ramp, tex_density;
+    float *line_buf;
+    int line_count;
+} glm_app;
+
+static double glm_now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+/* ---- shaders ------------------------------------------------------------ */
+
+/* CPU-ribbon vertex shader: everything comes from hf_fur_ribbons. */
+static const char *glm_vs_cpu =
+    "#version 330 core\n"
+    "layout(location = 0) in vec3 a_pos;\n"
+    "layout(location = 1) in vec3 a_tangent;\n"
+    "layout(location = 2) in vec3 a_texcoord;\n"
+    "layout(location = 3) in vec4 a_color;\n"
+    "layout(location = 4) in vec2 a_color3d;\n"
+    "uniform mat4 u_view_proj;\n"
+    "out vec3 v_position, v_tangent, v_texcoord;\n"
+    "out vec4 v_color;\n"
+    "out vec2 v_c3d;\n"
+    "void main() {\n"
+    "    v_position = a_pos; v_tangent = a_tangent; v_texcoord = a_texcoord;\n"
+    "    v_color = a_color; v_c3d = a_color3d;\n"
+    "    gl_Position = u_view_proj * vec4(a_pos, 1.0);\n"
+    "}\n";
+
+/* Appended to ribbon_expand.glsl (whose main is renamed): the per-strand
+   colour and 3D-colour x come from two more texture buffers, the fade from
+   t, so both paths feed the fragment shader the same values. */
+static const char *glm_vs_gpu_tail =
+    "\nuniform samplerBuffer u_strand_color; // rgba per strand\n"
+    "uniform samplerBuffer u_strand_c3x;     // 3D-colour x per strand\n"
+    "uniform vec2 u_alpha;                   // alpha at root, tip\n"
+    "out vec4 v_color;\n"
+    "out vec2 v_c3d;\n"
+    "void main() {\n"
+    "    ribbon_expand_main();\n"
+    "    int s = (gl_VertexID >> 1) / u_points_per_strand;\n"
+    "    vec4 c = texelFetch(u_strand_color, s);\n"
+    "    float t = v_texcoord.z;\n"
+    "    v_color = vec4(c.rgb, c.a * mix(u_alpha.x, u_alpha.y, t));\n"
+    "    v_c3d = vec2(texelFetch(u_strand_c3x, s).r, t);\n"
+    "}\n";
+
+/* The hair fragment shader: Marschner from the two LUTs (docs/luts.md),
+   or Kajiya-Kay; diffuse sqrt(1 - (L.T)^2); ambient. Lighting is done in
+   linear space and written with gamma 2.2. */
+static const char *glm_fs_hair =
+    "#version 330 core\n"
+    "in vec3 v_position, v_tangent, v_texcoord;\n"
+    "in vec4 v_color;\n"
+    "in vec2 v_c3d;\n"
+    "uniform sampler2D u_lut_m, u_lut_n, u_ramp;\n"
+    "uniform int u_kajiya, u_color3d;\n"
+    "uniform float u_spec;            // 0 = diffuse + ambient only\n"
+    "uniform float u_dither;          // alpha dither (alpha to coverage)\n"
+    "uniform vec3 u_eye, u_light_dir, u_light_color, u_ambient;\n"
+    "uniform vec4 u_head;             // centre, radius\n"
+    "out vec4 o_color;\n"
+    "const float cos2Min = 1e-2;      // grazing theta_d guard\n"
+    "void main() {\n"
+    "    vec3 T = normalize(v_tangent);\n"
+    "    vec3 L = u_light_dir;\n"
+    "    vec3 V = normalize(u_eye - v_position);\n"
+    "    vec3 srgb = u_color3d != 0 ? texture(u_ramp, v_c3d).rgb : v_color.rgb;\n"
+    "    // per-strand brightness variation from a hash of the root UV (the\n"
+    "    // same for every fragment of a strand): strands read as strands\n"
+    "    float h = fract(sin(dot(v_texcoord.xy, vec2(12.9898, 78.233))) * 43758.5453);\n"
+    "    vec3 base = pow(srgb, vec3(2.2)) * (0.7 + 0.6 * h);\n"
+    "    float TL = dot(T, L), TV = dot(T, V);\n"
+    "    float sinTL = sqrt(max(0.0, 1.0 - TL * TL));\n"
+    "    float sinTV = sqrt(max(0.0, 1.0 - TV * TV));\n"
+    "    vec3 spec;\n"
+    "    if (u_kajiya != 0) {\n"
+    "        // Kajiya-Kay: mirror cone, V pointing away (spec section 10)\n"
+    "        float c = max(0.0, sinTL * sinTV - TL * TV);\n"
+    "        spec = vec3(0.35 * pow(c, 80.0)) + 0.25 * base / max(base.r, 1e-3)\n"
+    "               * pow(c, 12.0);\n"
+    "    } else {\n"
+    "        vec2 uv1 = vec2(TL, TV) * 0.5 + 0.5;\n"
+    "        vec4 M = texture(u_lut_m, uv1);   // M_R, M_TT, M_TRT, cos(theta_d)\n"
+    "        vec3 Lp = L - TL * T, Vp = V - TV * T;\n"
+    "        float cosPhi = dot(Lp, Vp) * inversesqrt(max(dot(Lp, Lp) * dot(Vp, Vp), 1e-12));\n"
+    "        vec2 uv2 = vec2(M.a, cosPhi) * 0.5 + 0.5;\n"
+    "        vec4 N = texture(u_lut_n, uv2);   // N_R, N_TT, N_TRT, 1\n"
+    "        float inv = 1.0 / max(M.a * M.a, cos2Min);\n"
+    "        // S = (M_R N_R + M_TT N_TT + M_TRT N_TRT) / cos^2(theta_d); the\n"
+    "        // LUT has one grey absorption, so TT and TRT (light that went\n"
+    "        // through the fibre) take the hair's hue; R stays white.\n"
+    "        vec3 tint = mix(vec3(1.0), base / max(max(base.r, base.g),\n"
+    "                                              max(base.b, 1e-3)), 0.75);\n"
+    "        spec = 2.0 * (vec3(M.r * N.r) + (M.g * N.g + M.b * N.b) * tint)\n"
+    "               * inv * sinTL;          // cos(theta_i); 2: artistic gain\n"
+    "    }\n"
+    "    // the head's shadow (an analytic sphere) and a cheap occlusion that\n"
+    "    // darkens hair close to the scalp: inner hair gets less light\n"
+    "    vec3 toC = u_head.xyz - v_position;\n"
+    "    float along = dot(toC, L);\n"
+    "    float miss = length(toC - along * L);\n"
+    "    float shadow = along > 0.0 ? smoothstep(0.8 * u_head.w, 1.15 * u_head.w, miss) : 1.0;\n"
+    "    float occ = mix(0.35, 1.0, smoothstep(0.0, 0.03, length(toC) - u_head.w));\n"
+    "    vec3 c = u_ambient * base * occ\n"
+    "           + u_light_color * shadow * occ * (0.8 * base * sinTL + u_spec * spec);\n"
+    "    // dither the alpha per pixel: alpha to coverage alone quantises\n"
+    "    // the tip fade to 4 levels, which shows as concentric shells\n"
+    "    float n = fract(52.9829189 * fract(dot(gl_FragCoord.xy,\n"
+    "                                           vec2(0.06711056, 0.00583715))));\n"
+    "    o_color = vec4(pow(c, vec3(1.0 / 2.2)),\n"
+    "                   clamp(v_color.a + u_dither * (n - 0.5), 0.0, 1.0));\n"
+    "}\n";
+
+static const char *glm_vs_head =
+    "#version 330 core\n"
+    "layout(location = 0) in vec3 a_pos;\n"
+    "layout(location = 1) in vec3 a_normal;\n"
+    "layout(location = 2) in vec2 a_uv;\n"
+    "uniform mat4 u_view_proj;\n"
+    "out vec3 v_normal;\n"
+    "out vec2 v_uv;\n"
+    "void main() {\n"
+    "    v_normal = a_normal; v_uv = a_uv;\n"
+    "    gl_Position = u_view_proj * vec4(a_pos, 1.0);\n"
+    "}\n";
+
+/* Skin, with the scalp painted in a dark hair colour where the density
+   map has hair, as games do, so gaps between ribbons do not show skin. */
+static const char *glm_fs_head =
+    "#version 330 core\n"
+    "in vec3 v_normal;\n"
+    "in vec2 v_uv;\n"
+    "uniform sampler2D u_density;\n"
+    "uniform vec3 u_light_dir, u_light_color, u_ambient, u_scalp;\n"
+    "out vec4 o_color;\n"
+    "void main() {\n"
+    "    vec3 n = normalize(v_normal);\n"
+    "    vec3 skin = pow(vec3(0.85, 0.66, 0.55), vec3(2.2));\n"
+    "    float d = smoothstep(0.1, 0.6, texture(u_density, v_uv).r);\n"
+    "    vec3 albedo = mix(skin, u_scalp, d);\n"
+    "    vec3 c = albedo * (u_ambient + u_light_color * max(dot(n, u_light_dir), 0.0));\n"
+    "    o_color = vec4(pow(c, vec3(1.0 / 2.2)), 1.0);\n"
+    "}\n";
+
+static const char *glm_vs_line =
+    "#version 330 core\n"
+    "layout(location = 0) in vec3 a_pos;\n"
+    "uniform mat4 u_view_proj;\n"
+    "void main() { gl_Position = u_view_proj * vec4(a_pos, 1.0); }\n";
+static const char *glm_fs_line =
+    "#version 330 core\n"
+    "uniform vec4 u_color;\n"
+    "out vec4 o_color;\n"
+    "void main() { o_color = u_color; }\n";
+
+/* ribbon_expand.glsl with its main() renamed, then glm_vs_gpu_tail: the
+   shipped shader is used as it is. Returns malloc'd source or NULL. */
+static char *glm_gpu_vs_source(const char *path)
+{
+    char *src = glc_read_text_file(path), *at, *out;
+    size_t n;
+    const char *from = "void main()", *to = "void ribbon_expand_main()";
+    if (!src) return NULL;
+    at = strstr(src, from);
+    if (!at) {
+        fprintf(stderr, "gl_marschner: no main() in %s\n", path);
+        free(src);
+        return NULL;
+    }
+    n = strlen(src) + strlen(to) + strlen(glm_vs_gpu_tail) + 1;
+    out = (char *)malloc(n);
+    if (out) {
+        memcpy(out, src, (size_t)(at - src));
+        strcpy(out + (at - src), to);
+        strcat(out, at + strlen(from));
+        strcat(out, glm_vs_gpu_tail);
+    }
+    free(src);
+    return out;
+}
+
+/* ---- scene: maps, motion, colliders, camera ------------------------------ */
+
+/* The 3D-colour index map: soft streaks around the head (x of the ramp). */
+static void glm_index_map(unsigned char *px, int w, int h)
+{
+    int x, y;
+    for (y = 0; y < h; ++y)
+        for (x = 0; x < w; ++x) {
+            double u = (x + 0.5) / w, v = (y + 0.5) / h;
+            double s = 0.5 + 0.5 * sin(u * 2.0 * GLM_PI * 5.0 + v * 4.0) *
+                                 cos(u * 2.0 * GLM_PI * 2.0 - v * 3.0);
+            px[y * w + x] = (unsigned char)(255.0 * s + 0.5);
+        }
+}
+
+/* The ramp: x picks a natural shade (dark brown .. honey blonde), y = t
+   along the strand; the last third of each strand is dyed (violet to
+   pink). 8-bit sRGB, as an artist would paint it. */
+static void glm_ramp(unsigned char *rgba, int w, int h)
+{
+    static const float dark[3] = {0.20f, 0.12f, 0.07f},
+                       blond[3] = {0.80f, 0.62f, 0.36f},
+                       dye0[3] = {0.45f, 0.16f, 0.70f},
+                       dye1[3] = {0.98f, 0.35f, 0.60f};
+    int x, y, k;
+    for (y = 0; y < h; ++y)
+        for (x = 0; x < w; ++x) {
+            float u = (x + 0.5f) / (float)w, t = (y + 0.5f) / (float)h;
+            float dye = (t - 0.6f) / 0.25f;
+            unsigned char *p = rgba + 4 * (y * w + x);
+            dye = dye < 0 ? 0 : dye > 1 ? 1 : dye;
+            dye = dye * dye * (3 - 2 * dye);
+            for (k = 0; k < 3; ++k) {
+                float nat = dark[k] + (blond[k] - dark[k]) * u;
+                float dyed = dye0[k] + (dye1[k] - dye0[k]) * u;
+                float c = (nat * (0.85f + 0.15f * t)) * (1 - dye) + dyed * dye;
+                p[k] = (unsigned char)(255.0f * (c > 1 ? 1 : c) + 0.5f);
+            }
+            p[3] = 255;
+        }
+}
+
+/* The head's motion at time t: sideways swing (0.05 m at 1 Hz) and a turn
+   (+-25 degrees at 0.5 Hz), as grow_fur; rows of a 3x4 matrix. */
+static void glm_pose(double t, int still, float m[12])
+{
+    double yaw = still ? 0.0 : 0.436 * sin(GLM_PI * t);
+    double dx = still ? 0.0 : 0.05 * sin(2.0 * GLM_PI * t);
+    float c = (float)cos(yaw), s = (float)sin(yaw);
+    memset(m, 0, 12 * sizeof *m);
+    m[0] = c; m[2] = s; m[3] = (float)dx; m[5] = 1; m[8] = -s; m[10] = c;
+}
+
+static void glm_xform(const float m[12], const float *p, float w, float *o)
+{
+    int k;
+    for (k = 0; k < 3; ++k)
+        o[k] = m[4 * k] * p[0] + m[4 * k + 1] * p[1] + m[4 * k + 2] * p[2] +
+               m[4 * k + 3] * w;
+}
+
+/* Colliders in head space, moved by the pose: the skull (a little outside
+   the drawn skin, so hair lying on the scalp is not buried in the sphere's
+   flat triangles), the neck and the shoulders. */
+static void glm_colliders(const float m[12], hf_collider col[3])
+{
+    static const float a[3][3] = {{0, 0, 0}, {0, -0.06f, -0.01f},
+                                  {-0.19f, -0.25f, -0.01f}},
+                       b[3][3] = {{0, 0, 0}, {0, -0.21f, -0.01f},
+                                  {0.19f, -0.25f, -0.01f}};
+    static const float r[3] = {GLM_HEAD_R * 1.015f, 0.05f, 0.065f};
+    int i;
+    for (i = 0; i < 3; ++i) {
+        memset(&col[i], 0, sizeof col[i]);
+        col[i].type = i == 0 ? HF_COLLIDER_SPHERE : HF_COLLIDER_CAPSULE;
+        glm_xform(m, a[i], 1.0f, col[i].a);
+        glm_xform(m, b[i], 1.0f, col[i].b);
+        col[i].radius = r[i];
+    }
+}
+
+/* Line segments of a capsule (a sphere when a == b): meridians, parallels,
+   and the side lines. Writes 6 floats per segment, returns the count. */
+static int glm_capsule_lines(const hf_collider *c, float *out)
+{
+    int n = 0, i, k, cap;
+    float axis[3], e1[3], e2[3], len;
+    const float *end[2];
+    end[0] = c->a;
+    end[1] = c->type == HF_COLLIDER_CAPSULE ? c->b : c->a;
+    for (k = 0; k < 3; ++k) axis[k] = end[1][k] - end[0][k];
+    len = sqrtf(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+    if (len < 1e-6f) { axis[0] = 0; axis[1] = 1; axis[2] = 0; }
+    else for (k = 0; k < 3; ++k) axis[k] /= len;
+    /* a basis around the axis */
+    e1[0] = axis[1]; e1[1] = -axis[0]; e1[2] = 0;
+    if (fabsf(axis[2]) > 0.9f) { e1[0] = 0; e1[1] = axis[2]; e1[2] = -axis[1]; }
+    {
+        float l = sqrtf(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+        for (k = 0; k < 3; ++k) e1[k] /= l;
+    }
+    e2[0] = axis[1] * e1[2] - axis[2] * e1[1];
+    e2[1] = axis[2] * e1[0] - axis[0] * e1[2];
+    e2[2] = axis[0] * e1[1] - axis[1] * e1[0];
+    /* each hemisphere: 8 meridian half-arcs and 3 parallels, 16 steps */
+    for (cap = 0; cap < 2; ++cap) {
+        float sgn = cap ? 1.0f : -1.0f;
+        int m, step;
+        for (m = 0; m < 8; ++m)
+            for (step = 0; step < 8; ++step) {
+                float ph = 2 * GLM_PI * m / 8;
+                for (i = 0; i < 2; ++i) {
+                    float th = GLM_PI * 0.5f * (step + i) / 8; /* from equator */
+                    for (k = 0; k < 3; ++k)
+                        out[6 * n + 3 * i + k] =
+                            end[cap][k] + c->radius *
+                            (cosf(th) * (cosf(ph) * e1[k] + sinf(ph) * e2[k]) +
+                             sgn * sinf(th) * axis[k]);
+                }
+                ++n;
+            }
+        for (m = 0; m < 3; ++m)
+            for (step = 0; step < 16; ++step) {
+                float th = GLM_PI * 0.5f * m / 3;
+                for (i = 0; i < 2; ++i) {
+                    float ph = 2 * GLM_PI * (step + i) / 16;
+                    for (k = 0; k < 3; ++k)
+                        out[6 * n + 3 * i + k] =
+                            end[cap][k] + c->radius *
+                            (cosf(th) * (cosf(ph) * e1[k] + sinf(ph) * e2[k]) +
+                             sgn * sinf(th) * axis[k]);
+                }
+                ++n;
+            }
+    }
+    if (c->type == HF_COLLIDER_CAPSULE)
+        for (i = 0; i < 8; ++i) {
+            float ph = 2 * GLM_PI * i / 8;
+            for (k = 0; k < 3; ++k) {
+                float rim = c->radius * (cosf(ph) * e1[k] + sinf(ph) * e2[k]);
+                out[6 * n + k] = end[0][k] + rim;
+                out[6 * n + 3 + k] = end[1][k] + rim;
+            }
+            ++n;
+        }
+    return n;
+}
+#define GLM_LINES_PER_COLLIDER (2 * (64 + 48) + 8)
+
+/* Camera on an orbit around the head; LOD from its distance. */
+static void glm_camera(glm_app *a)
+{
+    float proj[16], view[16];
+    const float up[3] = {0, 1, 0};
+    float az = a->o.azimuth * GLM_PI / 180.0f,
+          el = a->o.elevation * GLM_PI / 180.0f;
+    a->target[0] = 0.0f;
+    a->target[1] = -0.03f;
+    a->target[2] = 0.0f;
+    a->eye[0] = a->target[0] + a->o.distance * sinf(az) * cosf(el);
+    a->eye[1] = a->target[1] + a->o.distance * sinf(el);
+    a->eye[2] = a->target[2] + a->o.distance * cosf(az) * cosf(el);
+    glc_mat4_perspective(proj, 0.7f, (float)a->o.width / (float)a->o.height,
+                         0.02f, 100.0f);
+    glc_mat4_look_at(view, a->eye, a->target, up);
+    glc_mat4_mul(a->view_proj, proj, view);
+}
+
+/* ---- GL setup ------------------------------------------------------------ */
+
+static GLuint glm_texture2d(GLenum internal, int w, int h, GLenum format,
+                            GLenum type, const void *data, GLenum wrap)
+{
+    GLuint t;
+    glGenTextures(1, &t);
+    glBindTexture(GL_TEXTURE_2D, t);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage2D(GL_TEXTURE_2D, 0, (GLint)internal, w, h, 0, format, type, data);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, (GLint)wrap);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, (GLint)wrap);
+    return t;
+}
+
+/* A texture buffer over a new buffer object of `bytes` bytes. */
+static void glm_tbo(GLuint *buf, GLuint *tex, GLenum format, size_t bytes,
+                    const void *data, GLenum usage)
+{
+    glGenBuffers(1, buf);
+    glBindBuffer(GL_TEXTURE_BUFFER, *buf);
+    glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)bytes, data, usage);
+    glGenTextures(1, tex);
+    glBindTexture(GL_TEXTURE_BUFFER, *tex);
+    glTexBuffer(GL_TEXTURE_BUFFER, format, *buf);
+}
+
+static void glm_ribbon_view(const glm_app *a, hf_ribbon_params *v)
+{
+    memset(v, 0, sizeof *v);
+    memcpy(v->eye, a->eye, sizeof v->eye);
+    v->root_width = 0.0011f; /* metres, on a head of radius 0.1 */
+    v->tip_width = 0.00025f;
+    v->taper_power = 1.5f;   /* keep the width longer, then thin quickly */
+    v->alpha_root = 1.0f;
+    v->alpha_tip = 0.2f;     /* tips fade */
+}
+
+/* Returns 1, or 0 with a message. The GL context must be current. */
+static int glm_init(glm_app *a, const glm_options *o)
+{
+    hf_fur_desc desc;
+    hf_rope_params rp;
+    hf_diag diag;
+    hf_result r;
+    hf_lut_params lp;
+    float *lut;
+    unsigned char ramp[64 * 32 * 4];
+    uint32_t *idx;
+    long long n_idx;
+    size_t nv;
+    int i, S;
+    double t0 = glm_now_ms();
+
+    memset(a, 0, sizeof *a);
+    a->o = *o;
+    a->draw_hair = 1;
+    if (!hm_sphere(24, 32, GLM_HEAD_R, &a->head)) return 0;
+    a->skin = (hm_vertex *)malloc(sizeof(hm_vertex) * (size_t)a->head.vertex_count);
+    a->density_px = (unsigned char *)malloc(256 * 256);
+    a->length_px = (unsigned char *)malloc(256 * 256);
+    a->color_px = (unsigned char *)malloc(64 * 64 * 3);
+    a->index_px = (unsigned char *)malloc(128 * 128);
+    if (!a->skin || !a->density_px || !a->length_px || !a->color_px ||
+        !a->index_px)
+        return 0;
+    memcpy(a->skin, a->head.vertices,
+           sizeof(hm_vertex) * (size_t)a->head.vertex_count);
+    hm_hairline_density(a->density_px, 256, 256);
+    hm_bangs_length(a->length_px, 256, 256);
+    hm_hair_color(a->color_px, 64, 64);
+    glm_index_map(a->index_px, 128, 128);
+    a->density.data = a->density_px;
+    a->density.width = a->density.height = 256;
+    a->density.channels = 1;
+    a->length = a->density;
+    a->length.data = a->length_px;
+    a->color.data = a->color_px;
+    a->color.width = a->color.height = 64;
+    a->color.channels = 3;
+    a->index.data = a->index_px;
+    a->index.width = a->index.height = 128;
+    a->index.channels = 1;
+
+    /* grow: as grow_fur, with both colour schemes */
+    memset(&desc, 0, sizeof desc);
+    desc.mesh.positions = a->head.vertices[0].pos;
+    desc.mesh.position_stride = (int)sizeof(hm_vertex);
+    desc.mesh.normals = a->head.vertices[0].normal;
+    desc.mesh.normal_stride = (int)sizeof(hm_vertex);
+    desc.mesh.uvs = a->head.vertices[0].uv;
+    desc.mesh.uv_stride = (int)sizeof(hm_vertex);
+    desc.mesh.vertex_count = a->head.vertex_count;
+    desc.mesh.indices = a->head.indices;
+    desc.mesh.triangle_count = a->head.triangle_count;
+    desc.density_map = &a->density;
+    desc.length_map = &a->length;
+    desc.color_map = &a->color;
+    desc.color3d_index_map = &a->index;
+    desc.points_per_strand = 16;
+    desc.max_length = 0.14f;
+    desc.total_strands = o->strands;
+    desc.sampler = HF_SAMPLER_STRATIFIED;
+    desc.seed = 7;
+    desc.clump = 0.25f;
+    desc.tess_factor = 25000.0f;
+    hf_rope_params_init(&rp);
+    /* no global (rest-pose) stiffness: the rest pose sticks straight out
+       of the scalp, so pulling towards it makes a helmet; some local
+       stiffness keeps strands from folding, the root one lifts them off
+       the scalp a little */
+    rp.local_stiffness_root = 0.3f;
+    rp.local_stiffness_tip = 0.05f;
+    rp.root_stiffness = 0.5f;
+    desc.rope_params = &rp;
+    if ((r = hf_fur_create(&desc, &a->fur, &diag)) != HF_OK) {
+        fprintf(stderr, "gl_marschner: %s\n", diag.message);
+        return 0;
+    }
+    hf_fur_get_info(a->fur, &a->info);
+    a->P = a->info.points_per_strand;
+    S = a->info.strand_count;
+    a->skinned = desc.mesh;
+    a->skinned.positions = a->skin[0].pos;
+    a->skinned.normals = a->skin[0].normal;
+    nv = 2u * (size_t)S * (size_t)a->P;
+    a->dyn = (glm_dyn *)malloc(sizeof(glm_dyn) * nv);
+    a->points4 = (float *)malloc(sizeof(float) * 4u * (size_t)S * (size_t)a->P);
+    a->line_buf = (float *)malloc(sizeof(float) * 6u * GLM_MAX_COLLIDERS *
+                                  GLM_LINES_PER_COLLIDER);
+    if (!a->dyn || !a->points4 || !a->line_buf) return 0;
+
+    /* programs */
+    {
+        char *gpu_src = NULL;
+        const char *path = o->expand_shader ? o->expand_shader
+                                            : "examples/ribbon_expand.glsl";
+        a->prog_cpu = glc_program(glm_vs_cpu, glm_fs_hair, "hair (CPU ribbons)");
+        a->prog_head = glc_program(glm_vs_head, glm_fs_head, "head");
+        a->prog_line = glc_program(glm_vs_line, glm_fs_line, "lines");
+        if (!a->prog_cpu || !a->prog_head || !a->prog_line) return 0;
+        gpu_src = glm_gpu_vs_source(path);
+        if (gpu_src) {
+            a->prog_gpu = glc_program(gpu_src, glm_fs_hair, "hair (GPU expansion)");
+            free(gpu_src);
+        }
+        if (!a->prog_gpu) {
+            fprintf(stderr, "gl_marschner: no GPU-expansion path (%s); run "
+                    "from the repository root or pass --expand-shader\n", path);
+            if (o->gpu_expand) return 0;
+        }
+    }
+
+    /* the LUTs, baked once (about 10 ms at 256) */
+    hf_lut_params_init(&lp);
+    lp.size = o->lut_size;
+    lut = (float *)malloc(sizeof(float) * 4u * (size_t)lp.size * (size_t)lp.size);
+    if (!lut) return 0;
+    if ((r = hf_lut_bake_m(&lp, 0, lp.size, lut)) != HF_OK) {
+        fprintf(stderr, "gl_marschner: LUT: %s\n", hf_result_string(r));
+        return 0;
+    }
+    a->tex_m = glm_texture2d(GL_RGBA32F, lp.size, lp.size, GL_RGBA, GL_FLOAT,
+                             lut, GL_CLAMP_TO_EDGE);
+    hf_lut_bake_n(&lp, 0, lp.size, lut);
+    a->tex_n = glm_texture2d(GL_RGBA32F, lp.size, lp.size, GL_RGBA, GL_FLOAT,
+                             lut, GL_CLAMP_TO_EDGE);
+    free(lut);
+    glm_ramp(ramp, 64, 32);
+    a->tex_ramp = glm_texture2d(GL_RGBA8, 64, 32, GL_RGBA, GL_UNSIGNED_BYTE,
+                                ramp, GL_CLAMP_TO_EDGE);
+    a->tex_density = glm_texture2d(GL_R8, 256, 256, GL_RED, GL_UNSIGNED_BYTE,
+                                   a->density_px, GL_REPEAT);
+
+    /* the index buffer: once, for every strand; a LOD draws a prefix */
+    n_idx = hf_ribbon_index_count(S, a->P, HF_TRIANGLES);
+    idx = (uint32_t *)malloc(sizeof(uint32_t) * (size_t)n_idx);
+    if (!idx || hf_ribbon_indices(S, a->P, HF_TRIANGLES, idx, n_idx) != HF_OK)
+        return 0;
+    glGenBuffers(1, &a->ibo_hair);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, a->ibo_hair);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(4 * n_idx), idx,
+                 GL_STATIC_DRAW);
+    free(idx);
+
+    /* CPU path: a dynamic (position, tangent) buffer and a static one */
+    glGenVertexArrays(1, &a->vao_cpu);
+    glBindVertexArray(a->vao_cpu);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, a->ibo_hair);
+    glGenBuffers(1, &a->vbo_dyn);
+    glBindBuffer(GL_ARRAY_BUFFER, a->vbo_dyn);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(glm_dyn) * nv), NULL,
+                 GL_STREAM_DRAW);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm_dyn), (void *)0);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(glm_dyn),
+                          (void *)offsetof(glm_dyn, tan));
+    glEnableVertexAttribArray(0);
+    glEnableVertexAttribArray(1);
+    {
+        /* the static streams need strand points only to be finite: the
+           fur's shape at creation serves */
+        glm_static *st = (glm_static *)malloc(sizeof(glm_static) * nv);
+        hf_ribbon_params v;
+        hf_ribbon_output out;
+        if (!st) return 0;
+        glm_camera(a);
+        glm_ribbon_view(a, &v);
+        memset(&out, 0, sizeof out);
+        out.texcoord.data = st[0].uv_t;
+        out.texcoord.stride = sizeof(glm_static);
+        out.color.data = st[0].rgba;
+        out.color.stride = sizeof(glm_static);
+        out.color3d.data = st[0].c3d;
+        out.color3d.stride = sizeof(glm_static);
+        if ((r = hf_fur_interpolate(a->fur, 0, S)) != HF_OK ||
+            (r = hf_fur_ribbons(a->fur, 0, S, &v, &out)) != HF_OK) {
+            fprintf(stderr, "gl_marschner: %s\n", hf_result_string(r));
+            free(st);
+            return 0;
+        }
+        glGenBuffers(1, &a->vbo_static);
+        glBindBuffer(GL_ARRAY_BUFFER, a->vbo_static);
+        glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(glm_static) * nv), st,
+                     GL_STATIC_DRAW);
+        free(st);
+        glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, sizeof(glm_static),
+                              (void *)0);
+        glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, sizeof(glm_static),
+                              (void *)offsetof(glm_static, rgba));
+        glVertexAttribPointer(4, 2, GL_FLOAT, GL_FALSE, sizeof(glm_static),
+                              (void *)offsetof(glm_static, c3d));
+        glEnableVertexAttribArray(2);
+        glEnableVertexAttribArray(3);
+        glEnableVertexAttribArray(4);
+    }
+
+    /* GPU path: points (streamed), root UV, colour and 3D-colour x per
+       strand (static). hf_fur_info has no 3D-colour x, so it is computed
+       the way hf_fur_create does, from the strand's root UV. */
+    glGenVertexArrays(1, &a->vao_gpu);
+    glBindVertexArray(a->vao_gpu);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, a->ibo_hair);
+    glm_tbo(&a->vbo_points, &a->tbo_points, GL_RGBA32F,
+            sizeof(float) * 4u * (size_t)S * (size_t)a->P, NULL, GL_STREAM_DRAW);
+    {
+        float *tmp = (float *)malloc(sizeof(float) * 2u * (size_t)S);
+        float *c3x = (float *)malloc(sizeof(float) * (size_t)S);
+        if (!tmp || !c3x) return 0;
+        for (i = 0; i < S; ++i) {
+            float xy[2];
+            tmp[2 * i] = a->info.strands[i].uv[0];
+            tmp[2 * i + 1] = a->info.strands[i].uv[1];
+            hf_color3d_coord(&a->index, tmp[2 * i], tmp[2 * i + 1], 0.0f, xy);
+            c3x[i] = xy[0];
+        }
+        glm_tbo(&a->vbo_uv, &a->tbo_uv, GL_RG32F, sizeof(float) * 2u * (size_t)S,
+                tmp, GL_STATIC_DRAW);
+        glm_tbo(&a->vbo_c3x, &a->tbo_c3x, GL_R32F, sizeof(float) * (size_t)S,
+                c3x, GL_STATIC_DRAW);
+        free(tmp);
+        free(c3x);
+    }
+    glm_tbo(&a->vbo_scolor, &a->tbo_scolor, GL_RGBA32F,
+            sizeof(float) * 4u * (size_t)S, a->info.strand_colors, GL_STATIC_DRAW);
+
+    /* head: the skinned vertices, streamed */
+    glGenVertexArrays(1, &a->vao_head);
+    glBindVertexArray(a->vao_head);
+    glGenBuffers(1, &a->vbo_head);
+    glBindBuffer(GL_ARRAY_BUFFER, a->vbo_head);
+    glBufferData(GL_ARRAY_BUFFER,
+                 (GLsizeiptr)(sizeof(hm_vertex) * (size_t)a->head.vertex_count),
+                 NULL, GL_STREAM_DRAW);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(hm_vertex), (void *)0);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(hm_vertex),
+                          (void *)offsetof(hm_vertex, normal));
+    glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, sizeof(hm_vertex),
+                          (void *)offsetof(hm_vertex, uv));
+    glEnableVertexAttribArray(0);
+    glEnableVertexAttribArray(1);
+    glEnableVertexAttribArray(2);
+    glGenBuffers(1, &a->ibo_head);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, a->ibo_head);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                 (GLsizeiptr)(12 * (size_t)a->head.triangle_count),
+                 a->head.indices, GL_STATIC_DRAW);
+
+    /* collider lines */
+    glGenVertexArrays(1, &a->vao_line);
+    glBindVertexArray(a->vao_line);
+    glGenBuffers(1, &a->vbo_line);
+    glBindBuffer(GL_ARRAY_BUFFER, a->vbo_line);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * 6u *
+                 GLM_MAX_COLLIDERS * GLM_LINES_PER_COLLIDER), NULL, GL_STREAM_DRAW);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 12, (void *)0);
+    glEnableVertexAttribArray(0);
+    glBindVertexArray(0);
+    if (!glc_check_gl("glm_init")) return 0;
+    printf("gl_marschner: %d strands of %d points, %d guides; grown, LUTs "
+           "baked (%d x %d) and buffers made in %.0f ms\n", S, a->P,
+           a->info.guide_count, lp.size, lp.size, glm_now_ms() - t0);
+    return 1;
+}
+
+/* ---- per frame ------------------------------------------------------------ */
+
+/* Advance the simulation to time t (dt since the last step): camera, LOD,
+   skinning, colliders, roots, ropes, LOD guides. Returns 1, or 0 with a
+   message. */
+static int glm_simulate(glm_app *a, double t, float dt)
+{
+    hf_result r;
+    float lod;
+    int i;
+    double t0 = glm_now_ms();
+    a->t = t;
+    glm_camera(a);
+    lod = a->o.lod >= 0.0f ? a->o.lod
+                           : hf_lod_from_distance(a->o.distance, GLM_FULL_DETAIL,
+                                                  GLM_CULL);
+    if (lod != a->lod || a->drawn == 0) {
+        hf_fur_set_lod(a->fur, lod);
+        hf_fur_get_info(a->fur, &a->info);
+        a->lod = lod;
+    }
+    a->drawn = a->info.drawn_strand_count;
+    glm_pose(t, a->o.still, a->pose);
+    for (i = 0; i < a->head.vertex_count; ++i) {
+        glm_xform(a->pose, a->head.vertices[i].pos, 1.0f, a->skin[i].pos);
+        glm_xform(a->pose, a->head.vertices[i].normal, 0.0f, a->skin[i].normal);
+    }
+    glm_colliders(a->pose, a->col);
+    r = hf_fur_set_roots(a->fur, &a->skinned, 0, a->info.guide_count);
+    if (!r) r = hf_fur_simulate(a->fur, 0, a->info.guide_count, dt, a->col,
+                                GLM_MAX_COLLIDERS);
+    if (!r) r = hf_fur_interpolate_guides(a->fur, 0, a->info.lod_guide_count);
+    if (r != HF_OK) {
+        fprintf(stderr, "gl_marschner: simulate at t = %.3f: %s\n", t,
+                hf_result_string(r));
+        return 0;
+    }
+    a->cpu_ms = glm_now_ms() - t0;
+    return 1;
+}
+
+/* The drawn strands of this frame: interpolation, then CPU ribbons or GPU
+   points, and the upload. Only frames that are drawn need it. */
+static int glm_build(glm_app *a)
+{
+    hf_ribbon_params v;
+    hf_result r;
+    const int n = a->drawn;
+    double t0 = glm_now_ms();
+    glm_ribbon_view(a, &v);
+    r = hf_fur_interpolate(a->fur, 0, n);
+    if (!r && a->o.gpu_expand) {
+        r = hf_fur_points(a->fur, 0, n, &v, a->points4);
+    } else if (!r) {
+        hf_ribbon_output out;
+        memset(&out, 0, sizeof out);
+        out.position.data = a->dyn[0].pos;
+        out.position.stride = sizeof(glm_dyn);
+        out.tangent.data = a->dyn[0].tan;
+        out.tangent.stride = sizeof(glm_dyn);
+        r = hf_fur_ribbons(a->fur, 0, n, &v, &out);
+    }
+    if (r != HF_OK) {
+        fprintf(stderr, "gl_marschner: strands: %s\n", hf_result_string(r));
+        return 0;
+    }
+    a->cpu_ms += glm_now_ms() - t0;
+    /* orphan, then write the drawn prefix: the driver need not wait for
+       the GPU to finish reading last frame's data */
+    if (a->o.gpu_expand) {
+        size_t bytes = sizeof(float) * 4u * (size_t)n * (size_t)a->P;
+        glBindBuffer(GL_TEXTURE_BUFFER, a->vbo_points);
+        glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)(sizeof(float) * 4u *
+                     (size_t)a->info.strand_count * (size_t)a->P), NULL,
+                     GL_STREAM_DRAW);
+        glBufferSubData(GL_TEXTURE_BUFFER, 0, (GLsizeiptr)bytes, a->points4);
+    } else {
+        size_t bytes = sizeof(glm_dyn) * 2u * (size_t)n * (size_t)a->P;
+        glBindBuffer(GL_ARRAY_BUFFER, a->vbo_dyn);
+        glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(glm_dyn) * 2u *
+                     (size_t)a->info.strand_count * (size_t)a->P), NULL,
+                     GL_STREAM_DRAW);
+        glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)bytes, a->dyn);
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, a->vbo_head);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(sizeof(hm_vertex) *
+                    (size_t)a->head.vertex_count), a->skin);
+    return 1;
+}
+
+static int glm_step(glm_app *a, double t, float dt, int build)
+{
+    return glm_simulate(a, t, dt) && (!build || glm_build(a));
+}
+
+static void glm_lights(GLuint prog, const glm_app *a)
+{
+    /* key light from the upper front right, a cool ambient */
+    float L[3] = {0.55f, 0.75f, 0.45f};
+    float l = sqrtf(L[0] * L[0] + L[1] * L[1] + L[2] * L[2]);
+    glUniform3f(glGetUniformLocation(prog, "u_light_dir"), L[0] / l, L[1] / l,
+                L[2] / l);
+    glUniform3f(glGetUniformLocation(prog, "u_light_color"), 1.9f, 1.8f, 1.65f);
+    glUniform3f(glGetUniformLocation(prog, "u_ambient"), 0.22f, 0.24f, 0.30f);
+    glUniformMatrix4fv(glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE,
+                       a->view_proj);
+}
+
+static void glm_draw(glm_app *a)
+{
+    const int n = a->drawn;
+    double t0 = glm_now_ms();
+    glc_begin_frame();
+    glClearColor(0.13f, 0.14f, 0.17f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDisable(GL_CULL_FACE);
+
+    /* the head */
+    glUseProgram(a->prog_head);
+    glm_lights(a->prog_head, a);
+    glUniform3f(glGetUniformLocation(a->prog_head, "u_scalp"), 0.05f, 0.025f, 0.012f);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, a->tex_density);
+    glUniform1i(glGetUniformLocation(a->prog_head, "u_density"), 0);
+    glBindVertexArray(a->vao_head);
+    glDrawElements(GL_TRIANGLES, 3 * a->head.triangle_count, GL_UNSIGNED_INT, 0);
+
+    /* the hair: no culling (camera-facing ribbons have no back to cull;
+       the GPU path's fallback side at a degenerate point may flip the
+       winding). Tips fade by alpha blending with depth writes on: on
+       llvmpipe it looked smoother than alpha to coverage (--a2c), whose 4
+       coverage levels need the dithering in the shader and then show its
+       pattern. Blending without sorting lets a faded tip hide strands
+       drawn after it behind it; at these alphas that is not visible. */
+    if (a->draw_hair && n > 0) {
+        GLuint prog = a->o.gpu_expand && a->prog_gpu ? a->prog_gpu : a->prog_cpu;
+        glUseProgram(prog);
+        glm_lights(prog, a);
+        glUniform3fv(glGetUniformLocation(prog, "u_eye"), 1, a->eye);
+        glUniform4f(glGetUniformLocation(prog, "u_head"), a->pose[3], a->pose[7],
+                    a->pose[11], GLM_HEAD_R);
+        glUniform1i(glGetUniformLocation(prog, "u_kajiya"), a->o.kajiya);
+        glUniform1i(glGetUniformLocation(prog, "u_color3d"), a->o.color3d);
+        glUniform1f(glGetUniformLocation(prog, "u_spec"), a->o.specular);
+        glUniform1f(glGetUniformLocation(prog, "u_dither"),
+                    a->o.a2c ? 0.25f : 0.0f);
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, a->tex_m);
+        glActiveTexture(GL_TEXTURE1);
+        glBindTexture(GL_TEXTURE_2D, a->tex_n);
+        glActiveTexture(GL_TEXTURE2);
+        glBindTexture(GL_TEXTURE_2D, a->tex_ramp);
+        glUniform1i(glGetUniformLocation(prog, "u_lut_m"), 0);
+        glUniform1i(glGetUniformLocation(prog, "u_lut_n"), 1);
+        glUniform1i(glGetUniformLocation(prog, "u_ramp"), 2);
+        if (prog == a->prog_gpu) {
+            hf_ribbon_params v;
+            glm_ribbon_view(a, &v);
+            glActiveTexture(GL_TEXTURE3);
+            glBindTexture(GL_TEXTURE_BUFFER, a->tbo_points);
+            glActiveTexture(GL_TEXTURE4);
+            glBindTexture(GL_TEXTURE_BUFFER, a->tbo_uv);
+            glActiveTexture(GL_TEXTURE5);
+            glBindTexture(GL_TEXTURE_BUFFER, a->tbo_scolor);
+            glActiveTexture(GL_TEXTURE6);
+            glBindTexture(GL_TEXTURE_BUFFER, a->tbo_c3x);
+            glUniform1i(glGetUniformLocation(prog, "u_points"), 3);
+            glUniform1i(glGetUniformLocation(prog, "u_root_uv"), 4);
+            glUniform1i(glGetUniformLocation(prog, "u_strand_color"), 5);
+            glUniform1i(glGetUniformLocation(prog, "u_strand_c3x"), 6);
+            glUniform1i(glGetUniformLocation(prog, "u_points_per_strand"), a->P);
+            glUniform1i(glGetUniformLocation(prog, "u_orthographic"), 0);
+            glUniform2f(glGetUniformLocation(prog, "u_alpha"), v.alpha_root,
+                        v.alpha_tip);
+            glBindVertexArray(a->vao_gpu);
+        } else {
+            glBindVertexArray(a->vao_cpu);
+        }
+        if (a->o.a2c && glc_samples() > 1) {
+            glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+        } else {
+            glEnable(GL_BLEND);
+            glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+        }
+        /* alpha is coverage, not colour: keep the target opaque (a PNG
+           with the fade in its alpha channel looks washed out) */
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
+        glDrawElements(GL_TRIANGLES, (GLsizei)(6 * (a->P - 1) * n),
+                       GL_UNSIGNED_INT, 0);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+        glDisable(GL_BLEND);
+        glActiveTexture(GL_TEXTURE0);
+    }
+
+    /* colliders: wireframes, bright where visible, faint where hidden */
+    if (a->o.colliders) {
+        int c, nl = 0;
+        for (c = 0; c < GLM_MAX_COLLIDERS; ++c)
+            nl += glm_capsule_lines(&a->col[c], a->line_buf + 6 * nl);
+        glUseProgram(a->prog_line);
+        glUniformMatrix4fv(glGetUniformLocation(a->prog_line, "u_view_proj"), 1,
+                           GL_FALSE, a->view_proj);
+        glBindVertexArray(a->vao_line);
+        glBindBuffer(GL_ARRAY_BUFFER, a->vbo_line);
+        glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(sizeof(float) * 6u *
+                        (size_t)nl), a->line_buf);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+        glDepthMask(GL_FALSE);
+        glDisable(GL_DEPTH_TEST);
+        glUniform4f(glGetUniformLocation(a->prog_line, "u_color"), 0.3f, 0.9f, 1.0f, 0.25f);
+        glDrawArrays(GL_LINES, 0, 2 * nl);
+        glEnable(GL_DEPTH_TEST);
+        glUniform4f(glGetUniformLocation(a->prog_line, "u_color"), 0.3f, 0.9f, 1.0f, 0.9f);
+        glDrawArrays(GL_LINES, 0, 2 * nl);
+        glDepthMask(GL_TRUE);
+        glDisable(GL_BLEND);
+    }
+    glBindVertexArray(0);
+    glFinish(); /* so draw_ms is the GPU's time, not the queueing */
+    a->draw_ms = glm_now_ms() - t0;
+}
+
+static void glm_shutdown(glm_app *a)
+{
+    GLuint bufs[11], texs[8], vaos[4];
+    bufs[0] = a->vbo_dyn; bufs[1] = a->vbo_static; bufs[2] = a->vbo_points;
+    bufs[3] = a->vbo_uv; bufs[4] = a->vbo_scolor; bufs[5] = a->vbo_c3x;
+    bufs[6] = a->ibo_hair; bufs[7] = a->vbo_head; bufs[8] = a->ibo_head;
+    bufs[9] = a->vbo_line; bufs[10] = 0;
+    texs[0] = a->tex_m; texs[1] = a->tex_n; texs[2] = a->tex_ramp;
+    texs[3] = a->tex_density; texs[4] = a->tbo_points; texs[5] = a->tbo_uv;
+    texs[6] = a->tbo_scolor; texs[7] = a->tbo_c3x;
+    vaos[0] = a->vao_cpu; vaos[1] = a->vao_gpu; vaos[2] = a->vao_head;
+    vaos[3] = a->vao_line;
+    if (glc_width() > 0) {
+        glDeleteBuffers(11, bufs);
+        glDeleteTextures(8, texs);
+        glDeleteVertexArrays(4, vaos);
+        glDeleteProgram(a->prog_cpu);
+        glDeleteProgram(a->prog_gpu);
+        glDeleteProgram(a->prog_head);
+        glDeleteProgram(a->prog_line);
+    }
+    hf_fur_destroy(a->fur);
+    hm_free(&a->head);
+    free(a->skin);
+    free(a->density_px);
+    free(a->length_px);
+    free(a->color_px);
+    free(a->index_px);
+    free(a->dyn);
+    free(a->points4);
+    free(a->line_buf);
+    memset(a, 0, sizeof *a);
+}
+
+#ifndef GLM_NO_MAIN
+/* Parse the command line into o; returns 0 on a bad argument. */
+static int glm_parse(int argc, char **argv, glm_options *o)
+{
+    int i;
+    for (i = 1; i < argc; ++i) {
+        const char *s = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(s, "--headless")) o->headless = 1;
+        else if (!strcmp(s, "--kajiya")) o->kajiya = 1;
+        else if (!strcmp(s, "--gpu-expand")) o->gpu_expand = 1;
+        else if (!strcmp(s, "--color3d")) o->color3d = 1;
+        else if (!strcmp(s, "--colliders")) o->colliders = 1;
+        else if (!strcmp(s, "--still")) o->still = 1;
+        else if (!strcmp(s, "--a2c")) o->a2c = 1;
+        else if (!strcmp(s, "--draw-all")) o->draw_all = 1;
+        else if (!strcmp(s, "--no-specular")) o->specular = 0.0f;
+        else if (!v) return 0;
+        else if (!strcmp(s, "--frames")) o->frames = atoi(v), ++i;
+        else if (!strcmp(s, "--out")) o->out = v, ++i;
+        else if (!strcmp(s, "--width")) o->width = atoi(v), ++i;
+        else if (!strcmp(s, "--height")) o->height = atoi(v), ++i;
+        else if (!strcmp(s, "--strands")) o->strands = atoi(v), ++i;
+        else if (!strcmp(s, "--lut-size")) o->lut_size = atoi(v), ++i;
+        else if (!strcmp(s, "--distance")) o->distance = (float)atof(v), ++i;
+        else if (!strcmp(s, "--lod")) o->lod = (float)atof(v), ++i;
+        else if (!strcmp(s, "--azimuth")) o->azimuth = (float)atof(v), ++i;
+        else if (!strcmp(s, "--elevation")) o->elevation = (float)atof(v), ++i;
+        else if (!strcmp(s, "--orbit")) o->orbit_speed = (float)atof(v), ++i;
+        else if (!strcmp(s, "--expand-shader")) o->expand_shader = v, ++i;
+        else return 0;
+    }
+    return o->width > 0 && o->height > 0 && o->strands > 0 &&
+           o->lut_size > 0 && o->lut_size <= HF_LUT_MAX_SIZE &&
+           o->distance > 0.05f && o->lod <= 1.0f;
+}
+
+static glm_app glm_the_app; /* for the GLFW callbacks */
+
+static void glm_key(GLFWwindow *w, int key, int scancode, int action, int mods)
+{
+    glm_options *o = &glm_the_app.o;
+    (void)scancode;
+    (void)mods;
+    if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+    switch (key) {
+    case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(w, GLFW_TRUE); break;
+    case GLFW_KEY_K: o->kajiya = !o->kajiya; break;
+    case GLFW_KEY_G:
+        if (glm_the_app.prog_gpu) o->gpu_expand = !o->gpu_expand;
+        break;
+    case GLFW_KEY_C: o->color3d = !o->color3d; break;
+    case GLFW_KEY_V: o->colliders = !o->colliders; break;
+    case GLFW_KEY_H: o->still = !o->still; break;
+    case GLFW_KEY_S: o->specular = o->specular > 0 ? 0.0f : 1.0f; break;
+    case GLFW_KEY_SPACE: o->orbit_speed = o->orbit_speed != 0 ? 0.0f : 12.0f; break;
+    case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: o->distance /= 1.15f; break;
+    case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: o->distance *= 1.15f; break;
+    case GLFW_KEY_LEFT: o->azimuth -= 5; break;
+    case GLFW_KEY_RIGHT: o->azimuth += 5; break;
+    case GLFW_KEY_UP: o->elevation += 5; break;
+    case GLFW_KEY_DOWN: o->elevation -= 5; break;
+    default: break;
+    }
+    if (o->distance < 0.25f) o->distance = 0.25f;
+    if (o->distance > 40.0f) o->distance = 40.0f;
+}
+
+static void glm_scroll(GLFWwindow *w, double dx, double dy)
+{
+    (void)w;
+    (void)dx;
+    glm_the_app.o.distance *= (float)pow(1.1, -dy);
+    glm_key(w, GLFW_KEY_UNKNOWN, 0, GLFW_PRESS, 0); /* clamp */
+}
+
+int main(int argc, char **argv)
+{
+    glm_options o;
+    glm_app *a = &glm_the_app;
+    double last = 0, title_at = -1, sum_cpu = 0, sum_draw = 0;
+    int drawn_frames = 0, ok = 1;
+    glm_default_options(&o);
+    if (!glm_parse(argc, argv, &o)) {
+        fprintf(stderr,
+                "usage: gl_marschner [--headless] [--frames N] [--out FILE.png]\n"
+                "  [--width W] [--height H] [--kajiya] [--gpu-expand] [--color3d]\n"
+                "  [--colliders] [--distance D | --lod F] [--azimuth DEG]\n"
+                "  [--elevation DEG] [--orbit DEG_PER_S] [--still] [--no-specular]\n"
+                "  [--strands N] [--lut-size N] [--a2c] [--draw-all]\n"
+                "  [--expand-shader FILE]\n");
+        return 2;
+    }
+    if (o.headless ? !glc_open_headless(o.width, o.height)
+                   : !glc_open_window(o.width, o.height, "hairfur gl_marschner"))
+        return 1;
+    if (o.headless && o.frames < 1) o.frames = 60;
+    if (o.frames > 0) glc_set_frame_limit(o.frames);
+    if (!glm_init(a, &o)) return 1;
+    if (!o.headless) {
+        glfwSetKeyCallback((GLFWwindow *)glc_window(), glm_key);
+        glfwSetScrollCallback((GLFWwindow *)glc_window(), glm_scroll);
+    }
+    while (ok && !glc_should_close()) {
+        /* headless: a fixed 60 Hz clock; window: the wall clock, dt capped */
+        long f = glc_frame_index();
+        int last_frame = o.frames > 0 && f + 1 == o.frames;
+        int draw = !a->o.headless || a->o.draw_all || last_frame;
+        double now = a->o.headless ? (f + 1) / 60.0 : glc_time();
+        float dt = a->o.headless ? 1.0f / 60.0f : (float)(now - last);
+        if (dt <= 0.0f) dt = 1.0f / 60.0f;
+        if (dt > 0.05f) dt = 0.05f;
+        last = now;
+        a->o.azimuth += a->o.orbit_speed * dt;
+        ok = glm_step(a, now, dt, draw);
+        if (ok && draw) {
+            glm_draw(a);
+            sum_cpu += a->cpu_ms;
+            sum_draw += a->draw_ms;
+            ++drawn_frames;
+        }
+        if (ok && last_frame && a->o.out) {
+            ok = glc_save_png(a->o.out);
+            if (ok) printf("gl_marschner: wrote %s\n", a->o.out);
+        }
+        if (!a->o.headless && now - title_at > 0.25) {
+            char title[256];
+            snprintf(title, sizeof title,
+                     "hairfur gl_marschner - %s, %s%s - distance %.2f m, LOD "
+                     "%.2f: %d of %d strands drawn - CPU %.1f ms, draw %.1f ms",
+                     a->o.kajiya ? "Kajiya-Kay" : "Marschner",
+                     a->o.gpu_expand ? "GPU expansion" : "CPU ribbons",
+                     a->o.color3d ? ", 3D colour" : "", a->o.distance, a->lod,
+                     a->drawn, a->info.strand_count, a->cpu_ms, a->draw_ms);
+            glfwSetWindowTitle((GLFWwindow *)glc_window(), title);
+            title_at = now;
+        }
+        glc_swap();
+    }
+    if (ok && drawn_frames > 0)
+        printf("gl_marschner: %s, %s, %dx%d, distance %.2f, LOD %.3f: %d of %d "
+               "strands drawn; mean over %d drawn frames: CPU %.1f ms, GL "
+               "draw %.1f ms\n", a->o.kajiya ? "Kajiya-Kay" : "Marschner",
+               a->o.gpu_expand ? "GPU expansion" : "CPU ribbons", a->o.width,
+               a->o.height, a->o.distance, a->lod, a->drawn,
+               a->info.strand_count, drawn_frames, sum_cpu / drawn_frames,
+               sum_draw / drawn_frames);
+    glm_shutdown(a);
+    glc_close();
+    return ok ? 0 : 1;
+}
+#endif /* GLM_NO_MAIN */
