@@ -151,6 +151,8 @@ gl-test-or-skip:
 GL_EXAMPLES := gl_minimal gl_marschner
 include gl.mk
 include glex.mk
+# make bench-peers: hairfur's ropes against Bullet's (libbullet-dev).
+include peers.mk
 
 deps:
 	@if [ "$$(id -u)" = 0 ]; then \
