@@ -1093,7 +1093,9 @@ typedef struct hf_ribbon_params {
    with no length uses (0, 1, 0)); where t_j is parallel to v_j or the eye
    sits on p_j, the side of the nearest point of the strand that has one is
    reused (before any: along the strand; a strand with none uses a fixed
-   perpendicular of its tangent). Writes exactly 2 * P vertices per strand
+   perpendicular of its tangent). A strand with a NaN or infinite point is
+   written collapsed: every vertex at the origin with zero width, so it
+   draws nothing. Writes exactly 2 * P vertices per strand
    into each non-NULL stream; no allocation. Errors: NULL params, points
    or out, P < 2, first < 0, count < 0, negative or non-finite widths,
    non-finite eye, view_dir, scale or alpha, a zero view_dir in
@@ -5028,6 +5030,21 @@ HF__PRIVATE unsigned char *hf__stream_base(const hf_stream *st, int packed,
     return (unsigned char *)st->data + v * *stride;
 }
 
+/* 1 when every coordinate of a strand is finite: x * 0 is 0 for finite x
+   and NaN for NaN or infinity, and the sum keeps any NaN. */
+HF__PRIVATE int hf__points_finite(const float *pts, int n)
+{
+    float acc = 0.0f;
+    int i;
+    for (i = 0; i < n; ++i) acc += pts[i] * 0.0f;
+    return acc == 0.0f;
+}
+
+/* A strand whose points are not all finite is drawn collapsed: every
+   point at the origin with zero width, so nothing shows and no NaN reaches
+   the vertex buffer. */
+static const float hf__zero_points[3 * HF_MAX_POINTS] = {0.0f};
+
 /* Store one float at any byte address. Writing each float from a register
    (rather than memcpy from a small array just filled) avoids a failed
    store-to-load forwarding stall per vertex, which cost a third of the
@@ -5063,14 +5080,16 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
     for (s = first; s < first + count; ++s) {
         const float *pts = strands->points + (size_t)s * (size_t)P * 3u;
         const size_t v0 = (size_t)s * (size_t)P * 2u;
+        const float wscale = hf__points_finite(pts, 3 * P) ? 1.0f : 0.0f;
         size_t st;
         unsigned char *o;
+        if (wscale == 0.0f) pts = hf__zero_points;
         hf__strand_frame(pts, P, params, tan, side);
         if (out->position.data) {
             o = hf__stream_base(&out->position, 12, v0, &st);
             for (j = 0; j < P; ++j, o += 2 * st) {
                 const float *p = pts + 3 * j, *sd = side + 3 * j;
-                const float w = hw[j];
+                const float w = hw[j] * wscale;
                 hf__put(o, p[0] - sd[0] * w);
                 hf__put(o + 4, p[1] - sd[1] * w);
                 hf__put(o + 8, p[2] - sd[2] * w);
@@ -5149,11 +5168,13 @@ HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
     for (s = first; s < first + count; ++s) {
         const float *p = strands->points + (size_t)s * (size_t)P * 3u;
         float *o = out4 + (size_t)s * (size_t)P * 4u;
+        const float wscale = hf__points_finite(p, 3 * P) ? 1.0f : 0.0f;
+        if (wscale == 0.0f) p = hf__zero_points; /* collapsed, as hf_ribbons */
         for (j = 0; j < P; ++j) {
             o[4 * j] = p[3 * j];
             o[4 * j + 1] = p[3 * j + 1];
             o[4 * j + 2] = p[3 * j + 2];
-            o[4 * j + 3] = hw[j];
+            o[4 * j + 3] = hw[j] * wscale;
         }
     }
     return HF_OK;

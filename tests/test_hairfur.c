@@ -3486,6 +3486,33 @@ static void test_ribbons_degenerate_never_nan(void)
     CHECK(memcmp(v[TP * 2].tan, v[(TP + 2) * 2].tan, 12) == 0);
 }
 
+static void test_ribbons_nonfinite_strand_collapses(void)
+{
+    /* strand 1 has a NaN and strand 2 an infinite point: both collapse to
+       zero-width ribbons at the origin; strand 0 is untouched by them */
+    float pts[3 * TP * 3], pa[3 * TP * 4];
+    t_rvert v[3 * TP * 2], ref[TP * 2];
+    hf_ribbon_strands st;
+    hf_ribbon_params p = t_rparams();
+    hf_ribbon_output o = t_interleaved(v);
+    int i, k;
+    t_make_guides(pts, 3);
+    pts[(TP + 3) * 3 + 1] = (float)NAN;
+    pts[(2 * TP + 7) * 3] = (float)INFINITY;
+    memset(&st, 0, sizeof st);
+    st.points = pts;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &p, &o), HF_OK);
+    memcpy(ref, v, sizeof ref);
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 3, &p, &o), HF_OK);
+    CHECK_EQ_INT(hf_ribbon_points(&st, 0, 3, &p, pa), HF_OK);
+    CHECK(memcmp(ref, v, sizeof ref) == 0);
+    for (i = 0; i < 3 * TP * 2; ++i)
+        for (k = 0; k < 15; ++k) CHECK(t_is_finite((&v[i].pos[0])[k]));
+    for (i = TP * 2; i < 3 * TP * 2; ++i)
+        CHECK(v[i].pos[0] == 0.0f && v[i].pos[1] == 0.0f && v[i].pos[2] == 0.0f);
+    for (i = TP * 4; i < 3 * TP * 4; ++i) CHECK(pa[i] == 0.0f);
+}
+
 static void test_ribbons_ranges_byte_identical(void)
 {
     enum { N = 23 };
@@ -5029,6 +5056,7 @@ int main(void)
     RUN(test_lod_counts_and_widths_exact);
     RUN(test_ribbons_perpendicular_and_widths);
     RUN(test_ribbons_degenerate_never_nan);
+    RUN(test_ribbons_nonfinite_strand_collapses);
     RUN(test_ribbons_ranges_byte_identical);
     RUN(test_ribbons_separate_streams_and_skips);
     RUN(test_ribbons_errors_write_nothing);
