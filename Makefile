@@ -5,6 +5,10 @@
 #                  (HF_NO_SIMD) build; strict warnings; GL checks when
 #                  EGL is present
 #   make bench     per-stage speed against the memory-bandwidth limit
+#   make bench-peers  hairfur ropes against Bullet soft-body ropes
+#   make fuzz      libFuzzer targets (FUZZ_SECONDS each); fuzz-smoke for CI,
+#                  fuzz-replay replays corpus and regressions with gcc
+#   make soak      a million rope steps under random abuse (minutes)
 #   make demo      grows, swings and renders fur on the built-in head into
 #                  out/ (installs or names the Debian packages it needs)
 #   make run       the interactive Marschner example (needs a display)
@@ -153,6 +157,8 @@ include gl.mk
 include glex.mk
 # make bench-peers: hairfur's ropes against Bullet's (libbullet-dev).
 include peers.mk
+# make fuzz, fuzz-smoke, fuzz-replay, soak.
+include fuzz.mk
 
 deps:
 	@if [ "$$(id -u)" = 0 ]; then \

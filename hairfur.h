@@ -165,6 +165,11 @@ typedef enum hf_result {
     HF_RESULT_FORCE_INT32 = 0x7fffffff
 } hf_result;
 
+/* The largest magnitude accepted where the library multiplies inputs
+   (map values, lengths, widths, interpolation inputs): products of two such
+   values stay finite in float. */
+#define HF_MAX_ABS 1e18f
+
 /* A static, never-NULL message for a result code ("unknown result code" for
    a value that is not in the table). */
 HFDEF const char *hf_result_string(hf_result result);
@@ -244,10 +249,13 @@ typedef struct hf_map {
 
 /* Check a map view: data not NULL, width and height >= 1 and at most
    HF_MAP_MAX_DIMENSION, 1 to 4 channels, a known format, a row stride at
-   least one packed row, no size overflow, and (for HF_MAP_F32) every value
-   finite. Returns HF_OK or the code of the first problem found; `diag` (may
+   least one packed row, no size overflow, and for HF_MAP_F32: data 4-byte
+   aligned, a row stride that is a multiple of 4 (HF_ERROR_BAD_STRIDE), and
+   every value finite (HF_ERROR_NON_FINITE) and within +-HF_MAP_MAX_VALUE
+   (HF_ERROR_BAD_PARAMETER). Returns HF_OK or the code of the first problem found; `diag` (may
    be NULL) names it. */
 #define HF_MAP_MAX_DIMENSION 65536
+#define HF_MAP_MAX_VALUE HF_MAX_ABS
 HFDEF hf_result hf_map_validate(const hf_map *map, hf_diag *diag);
 
 /* Bilinear sample at (u, v) with the map's wrap mode. Writes `channels`
@@ -657,7 +665,8 @@ HFDEF hf_result hf_strand_roots(const hf_mesh *mesh, const hf_strand *strands,
 
 /* ---- 5.5 maps on strands ------------------------------------------------ */
 
-/* Per-strand length max_length * length_map(root uv) (channel 0, negative
+/* Per-strand length max_length * length_map(root uv) (max_length at most
+   HF_MAP_MAX_VALUE, so the product stays finite; channel 0, negative
    read as 0; NULL map = max_length) for strands first .. first + count - 1,
    to out_lengths[i]. Errors: HF_ERROR_NULL_POINTER, map validation,
    HF_ERROR_BAD_PARAMETER (max_length < 0 or not finite),
@@ -1009,8 +1018,9 @@ typedef struct hf_interp_params {
    (the LOD guides' part of it) as long as no binding names a guide inside
    the written range. No allocation. Errors: NULL pointers, P < 2, count <
    0, first < 0, a guide index >= guide_count (HF_ERROR_INDEX_OUT_OF_RANGE),
-   non-finite weights, scale or clump (HF_ERROR_NON_FINITE), clump outside
-   [0, 1] (HF_ERROR_BAD_PARAMETER); nothing written then. The caller sizes
+   non-finite weights, scale, clump or guide point (HF_ERROR_NON_FINITE),
+   clump outside [0, 1] or a scale or guide coordinate beyond +-HF_MAX_ABS
+   (HF_ERROR_BAD_PARAMETER); nothing written then. The caller sizes
    out_points for strand first + count - 1. */
 HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
                                const hf_strand_binding *bindings, int first,
@@ -1081,7 +1091,8 @@ typedef struct hf_ribbon_params {
     float root_width, tip_width;
     float taper_power;
     float width_scale; /* multiplier, e.g. hf_lod_width_scale; 0 means 1 */
-    /* alpha at root and tip, linear in t; both 0 means 1 and 1 (opaque) */
+    /* alpha at root and tip in [0, 1], linear in t; both 0 means 1 and 1
+       (opaque). Widths and width_scale are at most HF_MAX_ABS. */
     float alpha_root, alpha_tip;
 } hf_ribbon_params;
 
@@ -1587,6 +1598,16 @@ HF__PRIVATE int hf__range_ok(int first, int count)
     return first >= 0 && count >= 0 && count <= 0x7fffffff - first;
 }
 
+/* A float array with a byte stride: the stride 0 (packed) or at least the
+   element and a multiple of 4, and the pointer 4-byte aligned, so that
+   every float read is an aligned load (anything else is undefined
+   behaviour on strict targets). */
+HF__PRIVATE int hf__stride_ok(const void *ptr, int stride, int elem)
+{
+    if (ptr && ((uintptr_t)ptr & 3u) != 0) return 0;
+    return stride == 0 || (stride >= elem && (stride & 3) == 0);
+}
+
 /* a * b without wrap-around: returns 0 and leaves *out alone on overflow. */
 HF__PRIVATE int hf__mul_size(size_t a, size_t b, size_t *out)
 {
@@ -1718,6 +1739,11 @@ HFDEF hf_result hf_map_validate(const hf_map *map, hf_diag *diag)
     if (!hf__mul_size(hf__map_row_stride(map), (size_t)map->height, &total))
         return hf__fail(diag, HF_ERROR_OVERFLOW, "row_stride", -1,
                         "map.row_stride * height overflows size_t");
+    if (map->format == HF_MAP_F32 && !hf__stride_ok(map->data, map->row_stride, 4))
+        return hf__fail(diag, HF_ERROR_BAD_STRIDE, "row_stride", -1,
+                        "a float map needs 4-byte aligned data and a row "
+                        "stride that is a multiple of 4 (row_stride %d)",
+                        map->row_stride);
     if (map->format == HF_MAP_F32) {
         int x, y, c;
         size_t stride = hf__map_row_stride(map);
@@ -1726,13 +1752,24 @@ HFDEF hf_result hf_map_validate(const hf_map *map, hf_diag *diag)
                 (const float *)((const unsigned char *)map->data +
                                 (size_t)y * stride);
             for (x = 0; x < map->width; ++x)
-                for (c = 0; c < map->channels; ++c)
-                    if (!hf__finitef(row[x * map->channels + c]))
+                for (c = 0; c < map->channels; ++c) {
+                    const float v = row[x * map->channels + c];
+                    if (!hf__finitef(v))
                         return hf__fail(
                             diag, HF_ERROR_NON_FINITE, "data",
                             (long long)y * map->width + x,
                             "map texel (%d, %d) channel %d is not finite", x,
                             y, c);
+                    /* a bound that keeps every sum, mean and product the
+                       stages take of map values finite */
+                    if (v > HF_MAP_MAX_VALUE || v < -HF_MAP_MAX_VALUE)
+                        return hf__fail(
+                            diag, HF_ERROR_BAD_PARAMETER, "data",
+                            (long long)y * map->width + x,
+                            "map texel (%d, %d) channel %d = %g is beyond "
+                            "+-%g",
+                            x, y, c, (double)v, (double)HF_MAP_MAX_VALUE);
+                }
         }
     }
     hf__ok(diag);
@@ -1901,12 +1938,13 @@ HF__PRIVATE const float *hf__mesh_pos(const hf_mesh *m, int i)
 }
 
 HF__PRIVATE hf_result hf__check_stride(hf_diag *diag, const char *field,
-                                       int stride, int size)
+                                       const void *ptr, int stride, int size)
 {
-    if (stride != 0 && stride < size)
+    if (!hf__stride_ok(ptr, stride, size))
         return hf__fail(diag, HF_ERROR_BAD_STRIDE, field, -1,
-                        "%s %d is below the element size %d (and not 0 for "
-                        "packed)",
+                        "%s %d is not 0 or a multiple of 4 of at least the "
+                        "element size %d, or its array is not 4-byte "
+                        "aligned",
                         field, stride, size);
     return HF_OK;
 }
@@ -1957,12 +1995,12 @@ HFDEF hf_result hf_mesh_validate(const hf_mesh *mesh, hf_diag *diag)
         return hf__fail(diag, HF_ERROR_NULL_POINTER, "indices", -1,
                         "mesh.indices is NULL with %d triangles",
                         mesh->triangle_count);
-    if ((r = hf__check_stride(diag, "position_stride", mesh->position_stride,
-                              12)) != HF_OK ||
-        (r = hf__check_stride(diag, "normal_stride", mesh->normal_stride,
-                              12)) != HF_OK ||
-        (r = hf__check_stride(diag, "uv_stride", mesh->uv_stride, 8)) !=
-            HF_OK)
+    if ((r = hf__check_stride(diag, "position_stride", mesh->positions,
+                              mesh->position_stride, 12)) != HF_OK ||
+        (r = hf__check_stride(diag, "normal_stride", mesh->normals,
+                              mesh->normal_stride, 12)) != HF_OK ||
+        (r = hf__check_stride(diag, "uv_stride", mesh->uvs, mesh->uv_stride,
+                              8)) != HF_OK)
         return r;
     /* the last byte addressed must fit in size_t (32-bit hosts) */
     if (!hf__mul_size((size_t)mesh->vertex_count,
@@ -2606,9 +2644,9 @@ HF__PRIVATE hf_result hf__mesh_shape_ok(const hf_mesh *m)
 {
     if (!m || !m->positions || !m->indices) return HF_ERROR_NULL_POINTER;
     if (m->vertex_count < 1 || m->triangle_count < 1) return HF_ERROR_BAD_COUNT;
-    if ((m->position_stride != 0 && m->position_stride < 12) ||
-        (m->normal_stride != 0 && m->normal_stride < 12) ||
-        (m->uv_stride != 0 && m->uv_stride < 8))
+    if (!hf__stride_ok(m->positions, m->position_stride, 12) ||
+        !hf__stride_ok(m->normals, m->normal_stride, 12) ||
+        !hf__stride_ok(m->uvs, m->uv_stride, 8))
         return HF_ERROR_BAD_STRIDE;
     return HF_OK;
 }
@@ -2758,14 +2796,15 @@ HFDEF hf_result hf_guides_rest(const hf_mesh *mesh,
     if (added_count < 0) return HF_ERROR_BAD_COUNT;
     if (added_count > 0 && !added) return HF_ERROR_NULL_POINTER;
     if (N < 2 || N > HF_GUIDE_MAX_POINTS) return HF_ERROR_BAD_COUNT;
-    if (!hf__finitef(params->max_length) || !(params->max_length > 0.0f))
+    if (!hf__finitef(params->max_length) || !(params->max_length > 0.0f) ||
+        params->max_length > HF_MAP_MAX_VALUE)
         return HF_ERROR_BAD_PARAMETER;
     if (lmap && (r = hf_map_validate(lmap, NULL)) != HF_OK) return r;
     if (cmap && (r = hf_map_validate(cmap, NULL)) != HF_OK) return r;
     if (cmap && cmap->channels < 3) return HF_ERROR_BAD_PARAMETER;
     if ((lmap || cmap) && !mesh->uvs) return HF_ERROR_NULL_POINTER;
     if (params->comb) {
-        if (params->comb_stride != 0 && params->comb_stride < 12)
+        if (!hf__stride_ok(params->comb, params->comb_stride, 12))
             return HF_ERROR_BAD_STRIDE;
         for (i = 0; i < V; ++i)
             if (!hf__all_finite(
@@ -3259,7 +3298,8 @@ HFDEF hf_result hf_strand_lengths(const hf_strand *strands, int strand_count,
     if (!out_lengths) return HF_ERROR_NULL_POINTER;
     if (length_map && (r = hf_map_validate(length_map, NULL)) != HF_OK)
         return r;
-    if (!hf__finitef(max_length) || max_length < 0.0f)
+    if (!hf__finitef(max_length) || max_length < 0.0f ||
+        max_length > HF_MAP_MAX_VALUE)
         return HF_ERROR_BAD_PARAMETER;
     if ((r = hf__strands_ok(strands, strand_count, first, count, NULL)) !=
         HF_OK)
@@ -3764,7 +3804,9 @@ HF__PRIVATE hf_result hf__ropes_check_roots(int first, int count,
 {
     int r, k;
     if (!pos || !nrm || !tan) return HF_ERROR_NULL_POINTER;
-    if (stride != 0 && stride < 12) return HF_ERROR_BAD_STRIDE;
+    if (!hf__stride_ok(pos, stride, 12) || !hf__stride_ok(nrm, stride, 12) ||
+        !hf__stride_ok(tan, stride, 12))
+        return HF_ERROR_BAD_STRIDE;
     for (r = first; r < first + count; ++r) {
         const float *p = hf__rope_at(pos, stride, (size_t)r);
         const float *n = hf__rope_at(nrm, stride, (size_t)r);
@@ -3880,7 +3922,7 @@ HFDEF hf_result hf_ropes_set_rest(hf_ropes *ropes, int first, int count,
     int r, j, k;
     if (!hf__ropes_ok(ropes) || !positions) return HF_ERROR_NULL_POINTER;
     if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
-    if (position_stride != 0 && position_stride < 12)
+    if (!hf__stride_ok(positions, position_stride, 12))
         return HF_ERROR_BAD_STRIDE;
     res = hf__ropes_check_roots(first, count, root_pos, root_normal,
                                 root_tangent, root_stride);
@@ -4035,7 +4077,7 @@ HFDEF hf_result hf_ropes_get_positions(const hf_ropes *ropes, int first,
     int j, r;
     if (!hf__ropes_ok(ropes) || !out) return HF_ERROR_NULL_POINTER;
     if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
-    if (stride != 0 && stride < 12) return HF_ERROR_BAD_STRIDE;
+    if (!hf__stride_ok(out, stride, 12)) return HF_ERROR_BAD_STRIDE;
     R = (size_t)ropes->rope_count;
     P = (size_t)ropes->points;
     for (r = first; r < first + count; ++r)
@@ -4776,6 +4818,15 @@ HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
             if (!hf__finitef(b->weight[k])) return HF_ERROR_NON_FINITE;
         }
         if (!hf__finitef(b->length_scale)) return HF_ERROR_NON_FINITE;
+        if (b->length_scale > HF_MAX_ABS || b->length_scale < -HF_MAX_ABS)
+            return HF_ERROR_BAD_PARAMETER;
+    }
+    /* the guides: a few thousand points, cheap to check against the strands
+       they feed */
+    for (i = 0; i < guide_count * P * 3; ++i) {
+        const float g = guide_points[i];
+        if (!hf__finitef(g)) return HF_ERROR_NON_FINITE;
+        if (g > HF_MAX_ABS || g < -HF_MAX_ABS) return HF_ERROR_BAD_PARAMETER;
     }
     /* clump weight of float i of a strand: clump * (i / 3) / (P - 1) */
     for (i = 0; i < 3 * P; ++i)
@@ -4880,8 +4931,13 @@ HF__PRIVATE hf_result hf__ribbon_check(const hf_ribbon_strands *strands,
         !hf__finitef(p->taper_power) || !hf__finitef(p->width_scale) ||
         !hf__finitef(p->alpha_root) || !hf__finitef(p->alpha_tip))
         return HF_ERROR_NON_FINITE;
+    /* widths and scale bounded so half widths stay finite; alpha is an
+       opacity */
     if (p->root_width < 0.0f || p->tip_width < 0.0f ||
-        p->taper_power < 0.0f || p->width_scale < 0.0f)
+        p->taper_power < 0.0f || p->width_scale < 0.0f ||
+        p->root_width > HF_MAX_ABS || p->tip_width > HF_MAX_ABS ||
+        p->width_scale > HF_MAX_ABS || p->alpha_root < 0.0f ||
+        p->alpha_root > 1.0f || p->alpha_tip < 0.0f || p->alpha_tip > 1.0f)
         return HF_ERROR_BAD_PARAMETER;
     if (p->orthographic && hf__dot3(p->view_dir, p->view_dir) == 0.0f)
         return HF_ERROR_DEGENERATE;
@@ -5045,6 +5101,10 @@ HF__PRIVATE int hf__points_finite(const float *pts, int n)
    the vertex buffer. */
 static const float hf__zero_points[3 * HF_MAX_POINTS] = {0.0f};
 
+/* Optional per-strand inputs are copied through; a non-finite one reads as
+   0, so no NaN reaches a vertex. */
+HF__PRIVATE float hf__fin0(float x) { return hf__finitef(x) ? x : 0.0f; }
+
 /* Store one float at any byte address. Writing each float from a register
    (rather than memcpy from a small array just filled) avoids a failed
    store-to-load forwarding stall per vertex, which cost a third of the
@@ -5107,9 +5167,11 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
                 }
         }
         if (out->texcoord.data) {
-            const float u = strands->root_uv ? strands->root_uv[2 * (size_t)s] : 0.0f;
-            const float v = strands->root_uv ? strands->root_uv[2 * (size_t)s + 1]
-                                             : 0.0f;
+            const float u =
+                strands->root_uv ? hf__fin0(strands->root_uv[2 * (size_t)s]) : 0.0f;
+            const float v =
+                strands->root_uv ? hf__fin0(strands->root_uv[2 * (size_t)s + 1])
+                                 : 0.0f;
             o = hf__stream_base(&out->texcoord, 12, v0, &st);
             for (j = 0; j < P; ++j, o += 2 * st) {
                 hf__put(o, u);
@@ -5124,14 +5186,14 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
             const float *rgba =
                 strands->color ? strands->color + 4 * (size_t)s : NULL;
             float c4[4];
-            c4[0] = rgba ? rgba[0] : 1.0f;
-            c4[1] = rgba ? rgba[1] : 1.0f;
-            c4[2] = rgba ? rgba[2] : 1.0f;
-            c4[3] = rgba ? rgba[3] : 1.0f;
+            c4[0] = rgba ? hf__fin0(rgba[0]) : 1.0f;
+            c4[1] = rgba ? hf__fin0(rgba[1]) : 1.0f;
+            c4[2] = rgba ? hf__fin0(rgba[2]) : 1.0f;
+            c4[3] = rgba ? hf__fin0(rgba[3]) : 1.0f;
             o = hf__stream_base(&out->color, 16, v0, &st);
             for (j = 0; j < P; ++j, o += 2 * st) {
                 const float a =
-                    c4[3] * (alpha_root + (alpha_tip - alpha_root) * tt[j]);
+                    c4[3] * ((1.0f - tt[j]) * alpha_root + tt[j] * alpha_tip);
                 for (k = 0; k < 3; ++k) {
                     hf__put(o + 4 * k, c4[k]);
                     hf__put(o + st + 4 * k, c4[k]);
@@ -5141,7 +5203,8 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
             }
         }
         if (out->color3d.data) {
-            const float x = strands->color3d_x ? strands->color3d_x[s] : 0.0f;
+            const float x =
+                strands->color3d_x ? hf__fin0(strands->color3d_x[s]) : 0.0f;
             o = hf__stream_base(&out->color3d, 8, v0, &st);
             for (j = 0; j < P; ++j, o += 2 * st) {
                 hf__put(o, x);
@@ -5191,8 +5254,9 @@ HFDEF long long hf_ribbon_index_count(int strand_count, int points_per_strand,
         per = 2LL * points_per_strand + 1;
     else
         return -1;
-    n = per * strand_count; /* both factors < 2^33: no overflow */
-    return n > 0x7fffffffLL ? -1 : n;
+    if (strand_count > 0 && per > 0x7fffffffLL / strand_count) return -1;
+    n = per * strand_count;
+    return n;
 }
 
 HFDEF hf_result hf_ribbon_indices(int strand_count, int points_per_strand,
@@ -6297,8 +6361,8 @@ HFDEF hf_result hf_fur_set_roots(hf_fur *f, const hf_mesh *m, int first,
         return HF_ERROR_BAD_COUNT;
     if (!hf__range_ok(first, count) || first + count > f->guide_count)
         return HF_ERROR_BAD_RANGE;
-    if ((m->position_stride != 0 && m->position_stride < 12) ||
-        (m->normal_stride != 0 && m->normal_stride < 12))
+    if (!hf__stride_ok(m->positions, m->position_stride, 12) ||
+        !hf__stride_ok(m->normals, m->normal_stride, 12))
         return HF_ERROR_BAD_STRIDE;
     /* check every value read before anything is set */
     for (g = first; g < first + count; ++g)

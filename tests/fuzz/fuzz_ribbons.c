@@ -1,0 +1,275 @@
+/* fuzz_ribbons.c - hf_ribbons, hf_ribbon_points, hf_ribbon_index_count /
+   hf_ribbon_indices, hf_interpolate and the LOD helpers with fuzz-built
+   strands (coincident points, straight lines through the eye, huge and
+   NaN coordinates), eyes (on a point, far away), view directions, widths,
+   tapers, alphas, streams and ranges.
+
+   Contracts checked (abort() on violation): every result is HF_OK or a
+   table code; on failure every output stream still holds its sentinel;
+   on success the range's vertices are written and nothing else, tangents
+   are unit, every written value is finite (the library promises: never NaN in the
+   output; see FZ_SKIP_KNOWN), and a split of the range gives the same
+   bytes; indices are in range.
+
+   libFuzzer: clang -g -O1 -fsanitize=fuzzer,address,undefined fuzz_ribbons.c
+   replay:    gcc -O1 -g fuzz_main.c fuzz_ribbons.c -lm (see fuzz.mk) */
+#define HAIRFUR_IMPLEMENTATION
+#include "../../hairfur.h"
+#include "fuzz_common.h"
+
+#include <math.h>
+
+#define FZ_VERT_FLOATS 15 /* position 3, tangent 3, texcoord 3, color 4, c3d 2 */
+
+static hf_ribbon_output fz_interleaved(float *v, int mask)
+{
+    hf_ribbon_output o;
+    memset(&o, 0, sizeof o);
+    if (mask & 1) { o.position.data = v; o.position.stride = 60; }
+    if (mask & 2) { o.tangent.data = v + 3; o.tangent.stride = 60; }
+    if (mask & 4) { o.texcoord.data = v + 6; o.texcoord.stride = 60; }
+    if (mask & 8) { o.color.data = v + 9; o.color.stride = 60; }
+    if (mask & 16) { o.color3d.data = v + 13; o.color3d.stride = 60; }
+    return o;
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    fz_reader r;
+    int S, P, i, k, first, count, mask;
+    float *pts, *uv, *rgba, *c3x, *v, *v2, *p4;
+    hf_ribbon_strands st;
+    hf_ribbon_params rp;
+    hf_ribbon_output o;
+    hf_result rr;
+    size_t nv, vbytes;
+
+    fz_init(&r, data, size);
+    S = fz_int(&r, 1, 8);
+    P = fz_int(&r, 2, 12);
+    pts = (float *)malloc(sizeof(float) * 3u * (size_t)S * (size_t)P);
+    uv = (float *)malloc(sizeof(float) * 2u * (size_t)S);
+    rgba = (float *)malloc(sizeof(float) * 4u * (size_t)S);
+    c3x = (float *)malloc(sizeof(float) * (size_t)S);
+    if (!pts || !uv || !rgba || !c3x) abort();
+    for (i = 0; i < S * P; ++i) {
+        int mode = fz_u8(&r) % 8;
+        for (k = 0; k < 3; ++k) {
+            if (mode == 0 && i % P > 0) /* coincident with the previous */
+                pts[3 * i + k] = pts[3 * (i - 1) + k];
+            else if (mode == 1 && i % P > 0) /* a straight line */
+                pts[3 * i + k] = pts[3 * (i - 1) + k] + (k == 2 ? 0.1f : 0.0f);
+            else
+                pts[3 * i + k] = fz_float(&r, 1.0f);
+        }
+    }
+    for (i = 0; i < 2 * S; ++i) uv[i] = fz_float_in(&r, 0.0f, 1.0f);
+    for (i = 0; i < 4 * S; ++i) rgba[i] = fz_float_in(&r, 0.0f, 1.0f);
+    for (i = 0; i < S; ++i) c3x[i] = fz_float_in(&r, 0.0f, 1.0f);
+#ifdef FZ_SKIP_KNOWN
+    /* known bug (regressions/ribbons-nan-points-*): points are not
+       checked, so NaN / inf points give NaN vertices */
+    for (i = 0; i < 3 * S * P; ++i)
+        if (!fz_finite(pts[i])) pts[i] = 0.0f;
+    /* the same for the per-strand root UVs, colours and 3D-colour x */
+    for (i = 0; i < 2 * S; ++i) if (!fz_finite(uv[i])) uv[i] = 0.0f;
+    for (i = 0; i < 4 * S; ++i)
+        if (!(fabsf(rgba[i]) < 1e6f)) rgba[i] = 0.0f; /* alpha * colour */
+    for (i = 0; i < S; ++i) if (!fz_finite(c3x[i])) c3x[i] = 0.0f;
+#endif
+
+    memset(&st, 0, sizeof st);
+    st.points = pts;
+    st.root_uv = (fz_u8(&r) & 1) ? uv : NULL;
+    st.color = (fz_u8(&r) & 1) ? rgba : NULL;
+    st.color3d_x = (fz_u8(&r) & 1) ? c3x : NULL;
+
+    memset(&rp, 0, sizeof rp);
+    rp.points_per_strand = fz_chance(&r, 250) ? P : fz_int(&r, -1, P);
+    k = fz_u8(&r) % 4;
+    for (i = 0; i < 3; ++i) {
+        /* the eye: anywhere, on a point of a strand, or far away */
+        if (k == 0) rp.eye[i] = pts[3 * (fz_int(&r, 0, S * P - 1)) + i];
+        else if (k == 1) rp.eye[i] = fz_float(&r, 1e20f);
+        else rp.eye[i] = fz_float(&r, 3.0f);
+        rp.view_dir[i] = fz_float(&r, 1.0f);
+    }
+    if (k == 0) /* exactly on one point */
+        for (i = 0; i < 3; ++i) rp.eye[i] = pts[i];
+    rp.orthographic = fz_u8(&r) & 1;
+    rp.root_width = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 0.02f)
+                                       : fz_float(&r, 1e30f);
+    rp.tip_width = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 0.02f)
+                                      : fz_float(&r, 1e30f);
+    rp.taper_power = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 4.0f)
+                                        : fz_float(&r, 1e30f);
+    rp.width_scale = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 4.0f)
+                                        : fz_float(&r, 1e30f);
+    rp.alpha_root = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 1.0f)
+                                       : fz_float(&r, 1e30f);
+    rp.alpha_tip = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 1.0f)
+                                      : fz_float(&r, 1e30f);
+#ifdef FZ_SKIP_KNOWN
+    /* known bug (regressions/ribbons-width-overflow-*): finite widths,
+       scales and alphas whose products or differences overflow give
+       inf / NaN vertices */
+    if (!(fabsf(rp.root_width) < 1e6f)) rp.root_width = 1e6f;
+    if (!(fabsf(rp.tip_width) < 1e6f)) rp.tip_width = 1e6f;
+    if (!(fabsf(rp.width_scale) < 1e6f)) rp.width_scale = 1e6f;
+    if (!(fabsf(rp.alpha_root) < 1e6f)) rp.alpha_root = 1e6f;
+    if (!(fabsf(rp.alpha_tip) < 1e6f)) rp.alpha_tip = 1e6f;
+    for (i = 0; i < 3 * S * P; ++i)
+        if (!(fabsf(pts[i]) < 1e30f)) pts[i] = 1e30f;
+#endif
+
+    /* ---- hf_ribbons, whole range and split ---------------------------- */
+    nv = 2u * (size_t)S * (size_t)P;
+    vbytes = nv * FZ_VERT_FLOATS * sizeof(float);
+    v = (float *)fz_sentinel_alloc(vbytes);
+    v2 = (float *)fz_sentinel_alloc(vbytes);
+    mask = fz_chance(&r, 240) ? fz_u8(&r) & 31 : 31;
+    o = fz_interleaved(v, mask);
+    if (fz_chance(&r, 4)) o.color.stride = -4; /* refused */
+    fz_range_untotalled(&r, S, &first, &count);
+    rr = hf_ribbons(&st, first, count, &rp, &o);
+    FZ_REQUIRE(fz_known_result(rr));
+    if (rr != HF_OK) {
+        FZ_REQUIRE(fz_untouched(v, vbytes));
+    } else {
+        /* the layout follows params' P, which may be below the buffer's */
+        const size_t Pr = (size_t)rp.points_per_strand;
+        size_t a = 2u * (size_t)first * Pr, n = 2u * (size_t)count * Pr;
+        size_t j;
+        FZ_REQUIRE(fz_untouched(v, a * FZ_VERT_FLOATS * 4u));
+        FZ_REQUIRE(fz_untouched(v + (a + n) * FZ_VERT_FLOATS,
+                                (nv - a - n) * FZ_VERT_FLOATS * 4u));
+        for (j = a; j < a + n; ++j) {
+            const float *x = v + j * FZ_VERT_FLOATS;
+            if (mask & 1) FZ_REQUIRE(fz_all_finite(x, 3));
+            if (mask & 2) {
+                double l = sqrt((double)x[3] * x[3] + (double)x[4] * x[4] +
+                                (double)x[5] * x[5]);
+                FZ_REQUIRE(fz_all_finite(x + 3, 3) && fabs(l - 1.0) < 1e-3);
+            }
+            if (mask & 4) FZ_REQUIRE(fz_all_finite(x + 6, 3));
+            if (mask & 8) FZ_REQUIRE(fz_all_finite(x + 9, 4));
+            if (mask & 16) FZ_REQUIRE(fz_all_finite(x + 13, 2));
+        }
+        /* the same range in pieces: the same bytes */
+        {
+            hf_ribbon_output o2 = fz_interleaved(v2, mask);
+            int done = first, end = first + count;
+            while (done < end) {
+                int c = fz_int(&r, 1, end - done);
+                rr = hf_ribbons(&st, done, c, &rp, &o2);
+                FZ_REQUIRE(rr == HF_OK);
+                done += c;
+            }
+            FZ_REQUIRE(memcmp(v, v2, vbytes) == 0);
+        }
+    }
+
+    /* ---- hf_ribbon_points ---------------------------------------------- */
+    p4 = (float *)fz_sentinel_alloc(sizeof(float) * 4u * (size_t)S * (size_t)P);
+    fz_range_untotalled(&r, S, &first, &count);
+    rr = hf_ribbon_points(&st, first, count, &rp, p4);
+    FZ_REQUIRE(fz_known_result(rr));
+    if (rr != HF_OK)
+        FZ_REQUIRE(fz_untouched(p4, sizeof(float) * 4u * (size_t)S * (size_t)P));
+    else
+        FZ_REQUIRE(fz_all_finite(p4 + 4 * (size_t)first *
+                                          (size_t)rp.points_per_strand,
+                                 4u * (size_t)count *
+                                     (size_t)rp.points_per_strand));
+    free(p4);
+
+    /* ---- indices --------------------------------------------------------- */
+    {
+        int topo = fz_chance(&r, 240) ? fz_int(&r, 0, 1) : fz_int(&r, -1, 4);
+        int sc = fz_chance(&r, 240) ? S : fz_int(&r, -1, 0x7fffffff);
+        int pp = fz_chance(&r, 240) ? P : fz_int(&r, -1, 0x7fffffff);
+#ifdef FZ_SKIP_KNOWN
+        /* known bug (regressions/ribbons-index-count-signed-overflow.bin):
+           6 (P - 1) * strand_count overflows long long */
+        if (sc > (1 << 20)) sc = 1 << 20;
+#endif
+        long long n = hf_ribbon_index_count(sc, pp, topo);
+        FZ_REQUIRE(n >= -1 && n <= 0x7fffffffLL);
+        if (n >= 0 && n < 100000) {
+            uint32_t *ix = (uint32_t *)fz_sentinel_alloc(4u * (size_t)n + 4u);
+            if (n > 0) {
+                rr = hf_ribbon_indices(sc, pp, topo, ix, n - 1);
+                FZ_REQUIRE(rr == HF_ERROR_BUFFER_TOO_SMALL);
+                FZ_REQUIRE(fz_untouched(ix, 4u * (size_t)n + 4u));
+            }
+            rr = hf_ribbon_indices(sc, pp, topo, ix, n);
+            FZ_REQUIRE(rr == HF_OK);
+            for (i = 0; i < (int)n; ++i)
+                FZ_REQUIRE(ix[i] == 0xffffffffu ||
+                           ix[i] < 2u * (uint32_t)sc * (uint32_t)pp);
+            FZ_REQUIRE(fz_untouched(ix + n, 4u));
+            free(ix);
+        } else if (n < 0) {
+            uint32_t one = 7;
+            rr = hf_ribbon_indices(sc, pp, topo, &one, 1);
+            FZ_REQUIRE(rr != HF_OK && fz_known_result(rr) && one == 7);
+        }
+    }
+
+    /* ---- interpolation from the strands as guides ----------------------- */
+    {
+        hf_strand_binding *b = (hf_strand_binding *)malloc(
+            sizeof(hf_strand_binding) * (size_t)S);
+        hf_interp_params ip;
+        float *ipts = (float *)fz_sentinel_alloc(sizeof(float) * 3u *
+                                                 (size_t)S * (size_t)P);
+        if (!b) abort();
+        for (i = 0; i < S; ++i) {
+            float w0 = fz_float_in(&r, 0.0f, 1.0f);
+            float w1 = fz_float_in(&r, 0.0f, 1.0f - (w0 < 1.0f ? w0 : 1.0f));
+            for (k = 0; k < 3; ++k)
+                b[i].guide[k] = fz_chance(&r, 250) ? (uint32_t)fz_int(&r, 0, S - 1)
+                                                   : fz_u32(&r);
+            b[i].weight[0] = w0;
+            b[i].weight[1] = w1;
+            b[i].weight[2] = (1.0f - w0) - w1;
+            b[i].length_scale = fz_chance(&r, 240) ? fz_float_in(&r, 0.0f, 2.0f)
+                                                   : fz_float(&r, 1e3f);
+        }
+        memset(&ip, 0, sizeof ip);
+        ip.points_per_strand = fz_chance(&r, 250) ? P : fz_int(&r, -1, P);
+        ip.clump = fz_chance(&r, 240) ? fz_float_in(&r, 0.0f, 1.0f)
+                                      : fz_float(&r, 2.0f);
+        fz_range_untotalled(&r, S, &first, &count);
+        rr = hf_interpolate(pts, S, b, first, count, &ip, ipts);
+        FZ_REQUIRE(fz_known_result(rr));
+        if (rr != HF_OK)
+            FZ_REQUIRE(fz_untouched(ipts, sizeof(float) * 3u * (size_t)S *
+                                              (size_t)P));
+        /* (finite outputs are not promised here: huge guides times a
+           huge scale may overflow; the fur object bounds both) */
+        free(ipts);
+        free(b);
+    }
+
+    /* ---- LOD helpers ------------------------------------------------------ */
+    {
+        int total = fz_int(&r, -5, 0x7fffffff);
+        float lod = fz_float(&r, 1.5f);
+        int n = hf_lod_strand_count(total, lod);
+        float w = hf_lod_width_scale(total, fz_int(&r, -5, 0x7fffffff));
+        float d = hf_lod_from_distance(fz_float(&r, 100.0f), fz_float(&r, 10.0f),
+                                       fz_float(&r, 100.0f));
+        FZ_REQUIRE(n >= 0 && (total <= 0 || n <= total));
+        FZ_REQUIRE(fz_finite(w) && w >= 1.0f);
+        FZ_REQUIRE(fz_finite(d) && d >= 0.0f && d <= 1.0f);
+    }
+
+    free(v);
+    free(v2);
+    free(pts);
+    free(uv);
+    free(rgba);
+    free(c3x);
+    return 0;
+}
