@@ -8,7 +8,8 @@
 #   make bench-peers  hairfur ropes against Bullet soft-body ropes
 #   make fuzz      libFuzzer targets (FUZZ_SECONDS each); fuzz-smoke for CI,
 #                  fuzz-replay replays corpus and regressions with gcc
-#   make soak      a million rope steps under random abuse (minutes)
+#   make soak      a million rope steps under random abuse
+#   make valgrind  the test suite under memcheck
 #   make demo      grows, swings and renders fur on the built-in head into
 #                  out/ (installs or names the Debian packages it needs)
 #   make run       the interactive Marschner example (needs a display)
@@ -55,7 +56,7 @@ EX_CFLAGS := -std=c99 -O2 -Wall -Wextra -Wpedantic
 EXAMPLES  := $(BUILD)/bake_luts $(BUILD)/grow_pictures $(BUILD)/plot_ropes \
              $(BUILD)/grow_fur
 
-.PHONY: all test check-build demo demo-deps examples deps clean gl-test-or-skip bench
+.PHONY: all test check-build demo demo-deps examples deps clean gl-test-or-skip bench valgrind
 
 all: test
 
@@ -159,6 +160,15 @@ include glex.mk
 include peers.mk
 # make fuzz, fuzz-smoke, fuzz-replay, soak.
 include fuzz.mk
+
+# The test suite under valgrind's memcheck: no error, no leak.
+$(BUILD)/test_valgrind: $(TEST) $(HDR) | $(BUILD)
+	gcc -std=c99 -O1 -g $(WARN) $(TEST) -o $@ -lm
+valgrind: $(BUILD)/test_valgrind
+	@valgrind --leak-check=full --error-exitcode=1 $(BUILD)/test_valgrind \
+	  > $(BUILD)/valgrind.log 2>&1; rc=$$?; \
+	  grep -E "passed|ERROR SUMMARY|definitely lost|All heap blocks" $(BUILD)/valgrind.log; \
+	  exit $$rc
 
 deps:
 	@if [ "$$(id -u)" = 0 ]; then \
