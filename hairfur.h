@@ -14,29 +14,33 @@
 
        Everywhere else, include "hairfur.h" without the define.
 
-   QUICK START (the building blocks so far)
+   QUICK START
 
-       hf_mesh mesh = {0};
-       mesh.positions = my_vertex_buffer;          // float x, y, z
-       mesh.position_stride = sizeof(my_vertex);   // 0 = packed floats
-       mesh.uvs = &my_vertex_buffer[0].u;           // optional
-       mesh.uv_stride = sizeof(my_vertex);
-       mesh.vertex_count = n_vertices;
-       mesh.indices = my_indices;                   // 3 uint32 per triangle
-       mesh.triangle_count = n_triangles;
+       hf_fur_desc desc = {0};              // every zero means a default
+       desc.mesh.positions = &verts[0].x;   // your vertex buffer, strided
+       desc.mesh.position_stride = sizeof verts[0];
+       desc.mesh.normals = &verts[0].nx;  desc.mesh.normal_stride = ...;
+       desc.mesh.uvs = &verts[0].u;       desc.mesh.uv_stride = ...;
+       desc.mesh.vertex_count = n_verts;
+       desc.mesh.indices = indices;       desc.mesh.triangle_count = n_tris;
+       desc.density_map = &density;       // hf_map over your pixels
+       desc.total_strands = 20000;
+       hf_fur *fur;  hf_diag diag;
+       if (hf_fur_create(&desc, &fur, &diag) != HF_OK)
+           printf("%s\n", diag.message);  // names the stage and the problem
 
-       hf_diag diag;
-       hf_result r = hf_mesh_validate(&mesh, &diag);
-       if (r != HF_OK) printf("bad mesh: %s\n", diag.message);
+       // per frame (each call takes a (first, count) range for threads):
+       hf_fur_set_lod(fur, hf_lod_from_distance(dist, 1.0f, 30.0f));
+       hf_fur_get_info(fur, &info);
+       hf_fur_set_roots(fur, &skinned_mesh, 0, info.guide_count);
+       hf_fur_simulate(fur, 0, info.guide_count, dt, colliders, n);
+       hf_fur_interpolate_guides(fur, 0, info.lod_guide_count);
+       hf_fur_interpolate(fur, 0, info.drawn_strand_count);
+       hf_fur_ribbons(fur, 0, info.drawn_strand_count, &view, &streams);
 
-       float *normals = malloc(12 * n_vertices);
-       hf_mesh_compute_normals(&mesh, normals);     // area-weighted
-
-       hf_map density = {0};
-       density.data = pixels; density.width = 256; density.height = 256;
-       density.channels = 1;                        // 8-bit unorm by default
-       float d[4];
-       hf_map_sample(&density, 0.25f, 0.5f, d);     // bilinear, d[0] in [0, 1]
+   Each stage is also a building block over your own arrays (hf_tessellate,
+   hf_place_strands, hf_ropes_step, hf_interpolate, hf_ribbons,
+   hf_lut_bake_m, ...). docs/api.md in the repository lists every function.
 
    CONFIGURATION MACROS (define before the #include that has
    HAIRFUR_IMPLEMENTATION, unless marked "everywhere")
@@ -88,7 +92,10 @@
 
    VERSION HISTORY
 
-       0.1.0 (2026-11-22)  foundation: result codes, rng, mesh and map views.
+       0.1.0 (2026-11-22)  first release: maps and meshes, density
+                           tessellation, guides, placement, Verlet ropes,
+                           interpolation, LOD, ribbons, Marschner LUTs,
+                           the hf_fur object.
 */
 
 #ifndef HAIRFUR_H
