@@ -4189,6 +4189,28 @@ HF__PRIVATE void hf__ropes_animated_run(hf_ropes *ro, int a, int b,
 }
 
 /* One collider against point row j (>= 1) of ropes [a, b). */
+/* A collider ready for the row kernels: base point, capsule axis e and
+   1 / |e|^2 (0 for a sphere or a zero-length capsule: a point, so a
+   sphere), and the radius grown by the margin. */
+typedef struct hf__col_prep {
+    float a[3], e[3], inv, rr;
+} hf__col_prep;
+
+HF__PRIVATE hf__col_prep hf__collider_prep(const hf_collider *c, float margin)
+{
+    hf__col_prep k;
+    int i;
+    float l2;
+    for (i = 0; i < 3; ++i) {
+        k.a[i] = c->a[i];
+        k.e[i] = c->type == HF_COLLIDER_CAPSULE ? c->b[i] - c->a[i] : 0.0f;
+    }
+    l2 = k.e[0] * k.e[0] + k.e[1] * k.e[1] + k.e[2] * k.e[2];
+    k.inv = l2 > 1e-20f ? 1.0f / l2 : 0.0f;
+    k.rr = c->radius + margin;
+    return k;
+}
+
 HF__PRIVATE void hf__ropes_collide_row(hf_ropes *ro, int j, int a, int b,
                                        const hf_collider *c, float margin)
 {
@@ -4196,18 +4218,11 @@ HF__PRIVATE void hf__ropes_collide_row(hf_ropes *ro, int j, int a, int b,
     const float *nx = HF__ROW(ro->scratch, HF__RS_F + 6),
                 *ny = HF__ROW(ro->scratch, HF__RS_F + 7),
                 *nz = HF__ROW(ro->scratch, HF__RS_F + 8);
-    float ax = c->a[0], ay = c->a[1], az = c->a[2];
-    float ex = 0.0f, ey = 0.0f, ez = 0.0f, inv = 0.0f;
-    float rr = c->radius + margin, rr2 = rr * rr;
+    const hf__col_prep k_ = hf__collider_prep(c, margin);
+    const float ax = k_.a[0], ay = k_.a[1], az = k_.a[2];
+    const float ex = k_.e[0], ey = k_.e[1], ez = k_.e[2], inv = k_.inv;
+    const float rr = k_.rr, rr2 = k_.rr * k_.rr;
     int r;
-    if (c->type == HF_COLLIDER_CAPSULE) {
-        float l2;
-        ex = c->b[0] - ax;
-        ey = c->b[1] - ay;
-        ez = c->b[2] - az;
-        l2 = ex * ex + ey * ey + ez * ez;
-        inv = l2 > 1e-20f ? 1.0f / l2 : 0.0f; /* a point: a sphere */
-    }
     {
         float *HF__RESTRICT X = HF__ROW(ro->x, j);
         float *HF__RESTRICT Y = HF__ROW(ro->y, j);
@@ -4268,18 +4283,11 @@ HF__PRIVATE void hf__ropes_collide_ftl_row(hf_ropes *ro, int j, int a, int b,
     float *HF__RESTRICT X = HF__ROW(ro->x, j);
     float *HF__RESTRICT Y = HF__ROW(ro->y, j);
     float *HF__RESTRICT Z = HF__ROW(ro->z, j);
-    float ax = c->a[0], ay = c->a[1], az = c->a[2];
-    float ex = 0.0f, ey = 0.0f, ez = 0.0f, inv = 0.0f;
-    float rr = c->radius + margin, rr2 = rr * rr;
+    const hf__col_prep k_ = hf__collider_prep(c, margin);
+    const float ax = k_.a[0], ay = k_.a[1], az = k_.a[2];
+    const float ex = k_.e[0], ey = k_.e[1], ez = k_.e[2], inv = k_.inv;
+    const float rr = k_.rr, rr2 = k_.rr * k_.rr;
     int r;
-    if (c->type == HF_COLLIDER_CAPSULE) {
-        float l2;
-        ex = c->b[0] - ax;
-        ey = c->b[1] - ay;
-        ez = c->b[2] - az;
-        l2 = ex * ex + ey * ey + ez * ez;
-        inv = l2 > 1e-20f ? 1.0f / l2 : 0.0f;
-    }
     for (r = a; r < b; ++r) {
         float t = ((X[r] - ax) * ex + (Y[r] - ay) * ey + (Z[r] - az) * ez) *
                   inv;
