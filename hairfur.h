@@ -294,9 +294,10 @@ HFDEF hf_result hf_map_blur(const hf_map *map, float sigma, float *out,
 /* ======================================================================== */
 
 /* A view of a triangle mesh the caller owns: nothing is copied. Strides are
-   in bytes (0 = packed), so an interleaved engine vertex buffer is passed by
-   pointing each attribute at its first element with the vertex size as the
-   stride. */
+   in bytes (0 = packed; otherwise a multiple of 4, with 4-byte aligned
+   arrays, so every float read is aligned), so an interleaved engine vertex
+   buffer is passed by pointing each attribute at its first element with the
+   vertex size as the stride. */
 typedef struct hf_mesh {
     const float *positions; /* x, y, z per vertex (required) */
     int position_stride;    /* 0 = 12 */
@@ -310,7 +311,8 @@ typedef struct hf_mesh {
 } hf_mesh;
 
 /* Check a mesh view: positions and indices not NULL, vertex and triangle
-   counts >= 1, strides 0 or at least the element size (and positive), every
+   counts >= 1, strides 0 or a multiple of 4 of at least the element size
+   and 4-byte aligned arrays (HF_ERROR_BAD_STRIDE), every
    index < vertex_count, every position, normal and UV finite, every given
    normal of non-zero length, and no byte offset that overflows. Zero-area
    triangles are allowed here (they grow nothing); the stages that need area
