@@ -103,7 +103,7 @@ $(BUILD)/grow_fur: examples/grow_fur.c examples/head_mesh.h $(HDR) $(STB_H) | $(
 	  { echo "grow_fur needs assimp: run 'make deps' (Debian package libassimp-dev)"; exit 1; }
 	gcc $(EX_CFLAGS) $< -o $@ -lassimp -lm
 
-examples: $(EXAMPLES)
+examples: $(EXAMPLES) gl-examples
 
 # The benchmark: per-stage figures against the store-loop bandwidth limit.
 # BENCH_CFLAGS picks the optimisation level (a plain -O2, as users build).
