@@ -812,7 +812,9 @@ typedef struct hf_rope_params {
                           simulated time, [0, 1] */
     float time_scale;  /* 1: simulated seconds per real second, (0, 100];
                           the 2010 plugin ran Bullet at 2 */
-    float substep;     /* 1/120 s: the longest sub-step, [1e-5, 1] */
+    float substep;     /* 1/60 s: the longest sub-step, [1e-5, 1]; one a
+                          frame at 60 Hz, as TressFX steps; smaller for
+                          stiffer settings or faster motion */
     int max_substeps;  /* 8: cap on sub-steps per call, [1, 1000]; when the
                           cap binds, sub-steps get longer (no time lost) */
     float max_dt;      /* 1/15 s: a longer dt is clamped to this, (0, 1] */
@@ -3498,7 +3500,7 @@ HFDEF void hf_rope_params_init(hf_rope_params *p)
     p->turbulence_frequency = 1.0f;
     p->damping = 0.02f;
     p->time_scale = 1.0f;
-    p->substep = 1.0f / 120.0f;
+    p->substep = 1.0f / 60.0f;
     p->max_substeps = 8;
     p->max_dt = 1.0f / 15.0f;
     p->iterations = 2;

@@ -20,7 +20,7 @@
  *   a pair without the collider is run too (pure solver cost).
  *
  * hairfur: hf_rope_params_init defaults (FTL solver, 2 iterations,
- *   1/120 s sub-steps, time scale 1), one hf_ropes_set_roots +
+ *   1/60 s sub-steps, time scale 1), one hf_ropes_set_roots +
  *   hf_ropes_step per step, single thread.
  * Bullet 3.24 (the 2010 hair plugin's settings): btSoftBodyHelpers::
  *   CreateRope, m_cfg.kDP = 0.08, m_cfg.piterations = 16,

@@ -2281,7 +2281,7 @@ static void test_ropes_params_defaults_and_validation(void)
     CHECK(p.wind[0] == 0.0f && p.wind[1] == 0.0f && p.wind[2] == 0.0f);
     CHECK(p.turbulence == 0.0f && p.turbulence_frequency == 1.0f);
     CHECK(p.damping == 0.02f && p.time_scale == 1.0f);
-    CHECK(p.substep == 1.0f / 120.0f && p.max_substeps == 8);
+    CHECK(p.substep == 1.0f / 60.0f && p.max_substeps == 8);
     CHECK(p.max_dt == 1.0f / 15.0f && p.iterations == 2);
     CHECK(p.solver == HF_ROPE_SOLVER_FTL && p.ftl_damping == 0.9f);
     CHECK(p.root_stiffness == 0.0f && p.global_stiffness_root == 0.0f &&
