@@ -5109,10 +5109,25 @@ HF__PRIVATE unsigned char *hf__stream_base(const hf_stream *st, int packed,
    and NaN for NaN or infinity, and the sum keeps any NaN. */
 HF__PRIVATE int hf__points_finite(const float *pts, int n)
 {
-    float acc = 0.0f;
-    int i;
-    for (i = 0; i < n; ++i) acc += pts[i] * 0.0f;
-    return acc == 0.0f;
+    float acc0 = 0.0f, acc1 = 0.0f;
+    int i = 0;
+#if HF__SSE
+    /* two independent vector sums: a single scalar chain of dependent adds
+       cost a sixth of the ribbon time */
+    const __m128 z = _mm_setzero_ps();
+    __m128 a0 = z, a1 = z;
+    for (; i + 8 <= n; i += 8) {
+        a0 = _mm_add_ps(a0, _mm_mul_ps(_mm_loadu_ps(pts + i), z));
+        a1 = _mm_add_ps(a1, _mm_mul_ps(_mm_loadu_ps(pts + i + 4), z));
+    }
+    if (_mm_movemask_ps(_mm_cmpeq_ps(_mm_add_ps(a0, a1), z)) != 0xf) return 0;
+#endif
+    for (; i + 2 <= n; i += 2) {
+        acc0 += pts[i] * 0.0f;
+        acc1 += pts[i + 1] * 0.0f;
+    }
+    if (i < n) acc0 += pts[i] * 0.0f;
+    return acc0 + acc1 == 0.0f;
 }
 
 /* A strand whose points are not all finite is drawn collapsed: every
