@@ -4215,6 +4215,25 @@ HF__PRIVATE hf__col_prep hf__collider_prep(const hf_collider *c, float margin)
     return k;
 }
 
+/* The point c of the collider's axis closest to (x, y, z) (the centre for
+   a sphere), and the offset d = p - c; returns |d|^2. One definition for
+   every collision kernel, so they agree to the bit. */
+HF__PRIVATE float hf__col_closest(const hf__col_prep *k, float x, float y,
+                                  float z, float *c, float *d)
+{
+    float t = ((x - k->a[0]) * k->e[0] + (y - k->a[1]) * k->e[1] +
+               (z - k->a[2]) * k->e[2]) *
+              k->inv;
+    t = t < 0.0f ? 0.0f : (t > 1.0f ? 1.0f : t);
+    c[0] = k->a[0] + k->e[0] * t;
+    c[1] = k->a[1] + k->e[1] * t;
+    c[2] = k->a[2] + k->e[2] * t;
+    d[0] = x - c[0];
+    d[1] = y - c[1];
+    d[2] = z - c[2];
+    return d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+}
+
 HF__PRIVATE void hf__ropes_collide_row(hf_ropes *ro, int j, int a, int b,
                                        const hf_collider *c, float margin)
 {
@@ -4223,8 +4242,6 @@ HF__PRIVATE void hf__ropes_collide_row(hf_ropes *ro, int j, int a, int b,
                 *ny = HF__ROW(ro->scratch, HF__RS_F + 7),
                 *nz = HF__ROW(ro->scratch, HF__RS_F + 8);
     const hf__col_prep k_ = hf__collider_prep(c, margin);
-    const float ax = k_.a[0], ay = k_.a[1], az = k_.a[2];
-    const float ex = k_.e[0], ey = k_.e[1], ez = k_.e[2], inv = k_.inv;
     const float rr = k_.rr, rr2 = k_.rr * k_.rr;
     int r;
     {
@@ -4232,18 +4249,10 @@ HF__PRIVATE void hf__ropes_collide_row(hf_ropes *ro, int j, int a, int b,
         float *HF__RESTRICT Y = HF__ROW(ro->y, j);
         float *HF__RESTRICT Z = HF__ROW(ro->z, j);
         for (r = a; r < b; ++r) {
-            float t = ((X[r] - ax) * ex + (Y[r] - ay) * ey +
-                       (Z[r] - az) * ez) *
-                      inv;
-            float cx, cy, cz, dx, dy, dz, d2;
-            t = t < 0.0f ? 0.0f : (t > 1.0f ? 1.0f : t);
-            cx = ax + ex * t;
-            cy = ay + ey * t;
-            cz = az + ez * t;
-            dx = X[r] - cx;
-            dy = Y[r] - cy;
-            dz = Z[r] - cz;
-            d2 = dx * dx + dy * dy + dz * dz;
+            float cc[3], dd[3];
+            const float d2 = hf__col_closest(&k_, X[r], Y[r], Z[r], cc, dd);
+            const float cx = cc[0], cy = cc[1], cz = cc[2];
+            const float dx = dd[0], dy = dd[1], dz = dd[2];
             if (d2 < rr2) {
                 /* push out along the offset; at the very centre, along the
                    root normal (any fixed choice; this one is the rope's) */
@@ -4288,22 +4297,17 @@ HF__PRIVATE void hf__ropes_collide_ftl_row(hf_ropes *ro, int j, int a, int b,
     float *HF__RESTRICT Y = HF__ROW(ro->y, j);
     float *HF__RESTRICT Z = HF__ROW(ro->z, j);
     const hf__col_prep k_ = hf__collider_prep(c, margin);
-    const float ax = k_.a[0], ay = k_.a[1], az = k_.a[2];
-    const float ex = k_.e[0], ey = k_.e[1], ez = k_.e[2], inv = k_.inv;
     const float rr = k_.rr, rr2 = k_.rr * k_.rr;
     int r;
     for (r = a; r < b; ++r) {
-        float t = ((X[r] - ax) * ex + (Y[r] - ay) * ey + (Z[r] - az) * ez) *
-                  inv;
-        float cx, cy, cz, dx, dy, dz, d2;
-        t = t < 0.0f ? 0.0f : (t > 1.0f ? 1.0f : t);
-        cx = ax + ex * t;
-        cy = ay + ey * t;
-        cz = az + ez * t;
-        dx = X[r] - cx;
-        dy = Y[r] - cy;
-        dz = Z[r] - cz;
-        d2 = dx * dx + dy * dy + dz * dz;
+        float cc[3], dd[3], cx, cy, cz, dx, dy, dz, d2;
+        d2 = hf__col_closest(&k_, X[r], Y[r], Z[r], cc, dd);
+        cx = cc[0];
+        cy = cc[1];
+        cz = cc[2];
+        dx = dd[0];
+        dy = dd[1];
+        dz = dd[2];
         if (d2 < rr2 && L[r] > 0.0f) {
             /* n: from c to the parent */
             float mx = X0[r] - cx, my = Y0[r] - cy, mz = Z0[r] - cz;
@@ -4364,17 +4368,13 @@ HF__PRIVATE void hf__ropes_collide_ftl_row(hf_ropes *ro, int j, int a, int b,
         if (d2 < rr2) {
             /* what the local ball missed (capsule ends, a parent inside
                the margin, rounding): straight out */
-            float e2;
-            t = ((X[r] - ax) * ex + (Y[r] - ay) * ey + (Z[r] - az) * ez) *
-                inv;
-            t = t < 0.0f ? 0.0f : (t > 1.0f ? 1.0f : t);
-            cx = ax + ex * t;
-            cy = ay + ey * t;
-            cz = az + ez * t;
-            dx = X[r] - cx;
-            dy = Y[r] - cy;
-            dz = Z[r] - cz;
-            e2 = dx * dx + dy * dy + dz * dz;
+            float e2 = hf__col_closest(&k_, X[r], Y[r], Z[r], cc, dd);
+            cx = cc[0];
+            cy = cc[1];
+            cz = cc[2];
+            dx = dd[0];
+            dy = dd[1];
+            dz = dd[2];
             if (e2 < rr2) {
                 if (e2 > 1e-24f) {
                     float sc = rr / HF_SQRTF(e2);
