@@ -157,6 +157,32 @@ static int load_map(const char *path, int channels, hf_map *map)
     return 1;
 }
 
+/* A map from `path`, or, with no path and `builtin` set, `size` x `size`
+   pixels made by `gen`; *have says whether there is one. The pixels are
+   malloc'd (stb_image uses malloc): free map->data. 0 on failure. */
+static int get_map(const char *path, int channels, int builtin,
+                   void (*gen)(unsigned char *, int, int), int size,
+                   hf_map *map, int *have)
+{
+    unsigned char *px;
+    *have = 0;
+    if (path) {
+        if (!load_map(path, channels, map)) return 0;
+        *have = 1;
+        return 1;
+    }
+    if (!builtin) return 1;
+    px = (unsigned char *)malloc((size_t)size * (size_t)size * (size_t)channels);
+    if (!px) return 0;
+    gen(px, size, size);
+    memset(map, 0, sizeof *map);
+    map->data = px;
+    map->width = map->height = size;
+    map->channels = channels;
+    *have = 1;
+    return 1;
+}
+
 /* The scripted head motion at time t: a rigid transform (rotation about y
    by `yaw`, then a sideways offset). */
 static void head_pose(double t, float m[12])
@@ -196,7 +222,6 @@ int main(int argc, char **argv)
     hm_mesh head;
     hf_map density, length, color;
     int have_density = 0, have_length = 0, have_color = 0;
-    unsigned char *dpx = NULL, *lpx = NULL, *cpx = NULL;
     hf_fur_desc desc;
     hf_fur *fur = NULL;
     hf_fur_info info;
@@ -273,45 +298,13 @@ int main(int argc, char **argv)
     }
 
     /* the maps: files, or the built-in ones for the built-in head */
-    if (density_path) {
-        if (!load_map(density_path, 1, &density)) return 1;
-        have_density = 1;
-    } else if (!mesh_path) {
-        memset(&density, 0, sizeof density);
-        dpx = (unsigned char *)malloc(256 * 256);
-        if (!dpx) return 1;
-        hm_hairline_density(dpx, 256, 256);
-        density.data = dpx;
-        density.width = density.height = 256;
-        density.channels = 1;
-        have_density = 1;
-    }
-    if (length_path) {
-        if (!load_map(length_path, 1, &length)) return 1;
-        have_length = 1;
-    } else if (!mesh_path) {
-        memset(&length, 0, sizeof length);
-        lpx = (unsigned char *)malloc(256 * 256);
-        if (!lpx) return 1;
-        hm_bangs_length(lpx, 256, 256);
-        length.data = lpx;
-        length.width = length.height = 256;
-        length.channels = 1;
-        have_length = 1;
-    }
-    if (color_path) {
-        if (!load_map(color_path, 3, &color)) return 1;
-        have_color = 1;
-    } else if (!mesh_path) {
-        memset(&color, 0, sizeof color);
-        cpx = (unsigned char *)malloc(64 * 64 * 3);
-        if (!cpx) return 1;
-        hm_hair_color(cpx, 64, 64);
-        color.data = cpx;
-        color.width = color.height = 64;
-        color.channels = 3;
-        have_color = 1;
-    }
+    if (!get_map(density_path, 1, !mesh_path, hm_hairline_density, 256,
+                 &density, &have_density) ||
+        !get_map(length_path, 1, !mesh_path, hm_bangs_length, 256, &length,
+                 &have_length) ||
+        !get_map(color_path, 3, !mesh_path, hm_hair_color, 64, &color,
+                 &have_color))
+        return 1;
 
     /* grow */
     memset(&desc, 0, sizeof desc);
@@ -518,11 +511,9 @@ int main(int argc, char **argv)
     free(vbuf);
     free(ibuf);
     free(t_roots);
-    free(dpx);
-    free(lpx);
-    free(cpx);
-    if (density_path) stbi_image_free((void *)density.data);
-    if (length_path) stbi_image_free((void *)length.data);
-    if (color_path) stbi_image_free((void *)color.data);
+    /* stb_image's buffers come from malloc too (no STBI_MALLOC here) */
+    if (have_density) free((void *)density.data);
+    if (have_length) free((void *)length.data);
+    if (have_color) free((void *)color.data);
     return 0;
 }
