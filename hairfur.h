@@ -146,7 +146,8 @@ extern "C" {
       "an index is not less than the count of the array it indexes")          \
     X(HF_ERROR_NON_FINITE, -5, "an input value is NaN or infinite")           \
     X(HF_ERROR_BAD_FORMAT, -6,                                                 \
-      "unsupported map format or channel count (1 to 4 channels, u8 or f32)") \
+      "unsupported format: a map's (1 to 4 channels, u8 or f32) or a "         \
+      "vertex stream's (an hf_format value)")                                  \
     X(HF_ERROR_BAD_PARAMETER, -7,                                              \
       "a parameter lies outside its documented range")                        \
     X(HF_ERROR_DEGENERATE, -8,                                                 \
@@ -1056,27 +1057,58 @@ HFDEF float hf_lod_from_distance(float distance, float full_detail_distance,
 /* 8. Ribbons                                                               */
 /* ======================================================================== */
 
+/* How a stream stores each component. The compact formats halve or
+   quarter the bytes a frame writes, which is most of a ribbon's cost; GL
+   reads them with glVertexAttribPointer(type, normalized): GL_HALF_FLOAT,
+   GL_SHORT/GL_UNSIGNED_SHORT or GL_BYTE/GL_UNSIGNED_BYTE, normalized
+   GL_TRUE for the *NORM formats. Values outside a format's range are
+   clamped to it, so no vertex gets an infinity. */
+typedef enum hf_format {
+    HF_FORMAT_F32 = 0,     /* float (the default) */
+    HF_FORMAT_F16 = 1,     /* IEEE half, round to nearest even, |x| <= 65504 */
+    HF_FORMAT_SNORM16 = 2, /* int16 round(x * 32767), x clamped to [-1, 1] */
+    HF_FORMAT_UNORM16 = 3, /* uint16 round(x * 65535), x clamped to [0, 1] */
+    HF_FORMAT_SNORM8 = 4,  /* int8 round(x * 127), x clamped to [-1, 1] */
+    HF_FORMAT_UNORM8 = 5   /* uint8 round(x * 255), x clamped to [0, 1] */
+} hf_format;
+
+/* Bytes per component of a format (4, 2 or 1); 0 for an unknown one. */
+HFDEF int hf_format_bytes(int format /* hf_format */);
+
 /* One output attribute: `data` points at the attribute of vertex 0, `stride`
-   is the byte step between vertices (0 = packed). data = NULL skips the
-   attribute. Interleaved vertices: every stream points into one buffer
-   with the vertex size as stride. Separate buffers: one per stream. */
+   is the byte step between vertices (0 = packed: components times
+   hf_format_bytes). data = NULL skips the attribute. Interleaved vertices:
+   every stream points into one buffer with the vertex size as stride.
+   Separate buffers: one per stream. Components are written in native byte
+   order, with no alignment required. */
 typedef struct hf_stream {
     void *data;
     int stride;
+    int format; /* hf_format; 0 = HF_FORMAT_F32 */
 } hf_stream;
 
 /* Where ribbon vertices go. Strand s, point j, side k (0 = -side, 1 = +side)
-   is vertex (s * P + j) * 2 + k. */
+   is vertex (s * P + j) * 2 + k. Zero-initialise it, then set the streams
+   you want. */
 typedef struct hf_ribbon_output {
-    hf_stream position; /* float x, y, z */
-    hf_stream tangent;  /* float x, y, z: unit, root to tip */
-    hf_stream texcoord; /* float u, v, t: root UV of the strand, and t =
+    hf_stream position; /* x, y, z: (p - position_origin) / position_scale */
+    hf_stream tangent;  /* x, y, z: unit, root to tip */
+    hf_stream texcoord; /* u, v, t: root UV of the strand, and t =
                            j / (P - 1) along it (0 root, 1 tip) */
-    hf_stream color;    /* float r, g, b, a: strand colour (white when
+    hf_stream color;    /* r, g, b, a: strand colour (white when
                            none is given), alpha = the strand's alpha times
                            the root-to-tip fade */
-    hf_stream color3d;  /* float x, y: the "3D colour" coordinates: x = the
+    hf_stream color3d;  /* x, y: the "3D colour" coordinates: x = the
                            strand's value in the grayscale index map, y = t */
+    /* Positions are written relative to an origin and in units of a scale
+       (0 means 1): the defaults write world positions. For a compact
+       position format, set the origin to the hair's centre and the scale
+       to a radius that holds it (SNORM16 then keeps scale / 32767, 15 um
+       for 0.5 m; F16 keeps 11 bits relative), and undo both in the vertex
+       shader. The origin is finite and within +-HF_MAX_ABS; the scale is 0
+       or within [1 / HF_MAX_ABS, HF_MAX_ABS]. */
+    float position_origin[3];
+    float position_scale;
 } hf_ribbon_output;
 
 /* Per-strand inputs, all optional (NULL = the default in brackets). Index s
@@ -1111,17 +1143,21 @@ typedef struct hf_ribbon_params {
    with unit tangent t_j (central difference, one-sided at the ends) and
    view vector v_j (eye - p_j, or -view_dir), the side is
    s_j = normalize(cross(t_j, v_j)) and the vertices are p_j -/+ s_j * w_j / 2.
-   Never NaN: a zero-length segment reuses the previous tangent (a strand
-   with no length uses (0, 1, 0)); where t_j is parallel to v_j or the eye
+   Never NaN: a zero-length segment reuses the previous tangent (points
+   before the first that has one take that one; a strand with no length
+   uses (0, 1, 0)); where t_j is parallel to v_j or the eye
    sits on p_j, the side of the nearest point of the strand that has one is
    reused (before any: along the strand; a strand with none uses a fixed
    perpendicular of its tangent). A strand with a NaN or infinite point is
    written collapsed: every vertex at the origin with zero width, so it
    draws nothing. Writes exactly 2 * P vertices per strand
-   into each non-NULL stream; no allocation. Errors: NULL params, points
-   or out, P < 2, first < 0, count < 0, negative or non-finite widths,
-   non-finite eye, view_dir, scale or alpha, a zero view_dir in
-   orthographic mode, a negative stride; nothing written then. */
+   into each non-NULL stream, in its format; no allocation. Errors: NULL
+   params, points or out, P < 2, first < 0, count < 0, negative or
+   non-finite widths, non-finite eye, view_dir, scale or alpha, a zero
+   view_dir in orthographic mode (those as for every call); an unknown
+   stream format (HF_ERROR_BAD_FORMAT), a negative stride or one smaller
+   than the stream's element (HF_ERROR_BAD_STRIDE), a bad position origin
+   or scale; nothing written then. */
 HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
                            int count, const hf_ribbon_params *params,
                            const hf_ribbon_output *out);
@@ -1525,6 +1561,14 @@ HFDEF hf_result hf_fur_reset(hf_fur *fur);
 #endif
 /* Internal helpers are static and may sit idle in a given build. */
 #define HF__PRIVATE static HF__UNUSED
+/* For the few small kernels whose arguments must stay in registers. */
+#if defined(__GNUC__) || defined(__clang__)
+#define HF__INLINE static __inline__ __attribute__((always_inline, unused))
+#elif defined(_MSC_VER)
+#define HF__INLINE static __forceinline
+#else
+#define HF__INLINE static
+#endif
 
 #ifdef __cplusplus
 extern "C" {
@@ -5007,104 +5051,6 @@ HF__PRIVATE void hf__inv_sqrt_n(const float *x, float *inv, int n)
     for (; i < n; ++i) inv[i] = 1.0f / HF_SQRTF(x[i]);
 }
 
-/* Unit tangents and sides of one strand (see hf_ribbons for the rules on
-   degenerate points). Lengths are normalised in batches so the square roots
-   and divisions vectorise. */
-HF__PRIVATE void hf__strand_frame(const float *pts, int P,
-                                  const hf_ribbon_params *params, float *tan,
-                                  float *side)
-{
-    float d[HF_MAX_POINTS * 3], l2[HF_MAX_POINTS], inv[HF_MAX_POINTS];
-    float last[3] = {0.0f, 1.0f, 0.0f};
-    int j, first_ok = -1;
-    const int ortho = params->orthographic != 0;
-    /* tangents: central differences, one-sided at the ends */
-    for (j = 0; j < P; ++j) {
-        const float *a = pts + 3 * (j > 0 ? j - 1 : 0);
-        const float *b = pts + 3 * (j < P - 1 ? j + 1 : P - 1);
-        float *dj = d + 3 * j;
-        hf__sub3(dj, b, a);
-        l2[j] = hf__dot3(dj, dj);
-    }
-    hf__inv_sqrt_n(l2, inv, P);
-    for (j = 0; j < P; ++j) {
-        /* a zero-length segment keeps the previous tangent */
-        if (l2[j] > 1e-30f && hf__finitef(l2[j])) {
-            last[0] = d[3 * j] * inv[j];
-            last[1] = d[3 * j + 1] * inv[j];
-            last[2] = d[3 * j + 2] * inv[j];
-        }
-        tan[3 * j] = last[0];
-        tan[3 * j + 1] = last[1];
-        tan[3 * j + 2] = last[2];
-    }
-    /* a strand whose first points have no length takes the tangent of its
-       first point that has one */
-    for (j = P - 2; j >= 0; --j) {
-        const float *a = pts + 3 * j, *b = pts + 3 * (j + 1);
-        if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
-            HF_MEMCPY(tan + 3 * j, tan + 3 * (j + 1), 3 * sizeof(float));
-        else
-            break;
-    }
-    /* sides: cross(t, v), v = eye - p or -view_dir; d now holds the cross
-       products and inv their reciprocal lengths */
-    for (j = 0; j < P; ++j) {
-        float v[3];
-        if (ortho) {
-            v[0] = -params->view_dir[0];
-            v[1] = -params->view_dir[1];
-            v[2] = -params->view_dir[2];
-        } else {
-            hf__sub3(v, params->eye, pts + 3 * j);
-        }
-        hf__cross3(d + 3 * j, tan + 3 * j, v);
-        l2[j] = hf__dot3(d + 3 * j, d + 3 * j);
-        /* |t| = 1, so |c|^2 = |v|^2 sin^2: parallel or eye-on-point below */
-        inv[j] = hf__dot3(v, v); /* parked: |v|^2 */
-        if (!(l2[j] > 1e-12f * inv[j] && l2[j] > 1e-30f &&
-              hf__finitef(l2[j])))
-            l2[j] = -1.0f; /* marks "no side here" */
-        else if (first_ok < 0)
-            first_ok = j;
-    }
-    for (j = 0; j < P; ++j) inv[j] = l2[j] > 0.0f ? l2[j] : 1.0f;
-    hf__inv_sqrt_n(inv, inv, P);
-    if (first_ok < 0) {
-        /* no point has a side: a fixed perpendicular of the tangent */
-        hf__any_perp(tan, side);
-        first_ok = 0;
-        l2[0] = 1.0f;
-        inv[0] = 1.0f;
-        d[0] = side[0];
-        d[1] = side[1];
-        d[2] = side[2];
-    }
-    for (j = 0; j < P; ++j) {
-        const int src = l2[j] > 0.0f ? j : -1;
-        if (src >= 0) {
-            side[3 * j] = d[3 * j] * inv[j];
-            side[3 * j + 1] = d[3 * j + 1] * inv[j];
-            side[3 * j + 2] = d[3 * j + 2] * inv[j];
-        } else if (j > first_ok) {
-            HF_MEMCPY(side + 3 * j, side + 3 * (j - 1), 3 * sizeof(float));
-        }
-    }
-    /* points before the first side borrow it */
-    for (j = first_ok - 1; j >= 0; --j)
-        HF_MEMCPY(side + 3 * j, side + 3 * (j + 1), 3 * sizeof(float));
-}
-
-/* First byte of vertex v in a stream, and its stride. hf_ribbons writes
-   each stream in its own tight loop, so every layout is plain strided
-   stores with no per-vertex test of which streams exist. */
-HF__PRIVATE unsigned char *hf__stream_base(const hf_stream *st, int packed,
-                                           size_t v, size_t *stride)
-{
-    *stride = (size_t)(st->stride ? st->stride : packed);
-    return (unsigned char *)st->data + v * *stride;
-}
-
 /* 1 when every coordinate of a strand is finite: x * 0 is 0 for finite x
    and NaN for NaN or infinity, and the sum keeps any NaN. */
 HF__PRIVATE int hf__points_finite(const float *pts, int n)
@@ -5139,114 +5085,686 @@ static const float hf__zero_points[3 * HF_MAX_POINTS] = {0.0f};
    0, so no NaN reaches a vertex. */
 HF__PRIVATE float hf__fin0(float x) { return hf__finitef(x) ? x : 0.0f; }
 
-/* Store one float at any byte address. Writing each float from a register
-   (rather than memcpy from a small array just filled) avoids a failed
-   store-to-load forwarding stall per vertex, which cost a third of the
-   ribbon time. */
-HF__PRIVATE void hf__put(unsigned char *o, float x) { HF_MEMCPY(o, &x, 4); }
+/* One strand in structure-of-arrays rows, so that four points load as one
+   vector: in every row, point j is at index 4 + j. The point rows repeat
+   point 0 before it and point P - 1 after it (one-sided differences at the
+   ends then fall out of the central ones); entries past P - 1 in the other
+   rows hold copies, so a partial group of four computes on finite values. */
+#define HF__RROW (HF_MAX_POINTS + 12)
+typedef struct hf__rframe {
+    float p[3][HF__RROW]; /* points */
+    float t[3][HF__RROW]; /* unit tangents */
+    float s[3][HF__RROW]; /* unit sides */
+} hf__rframe;
+
+/* The reference: unit tangents and sides of one strand, a point at a time
+   (see hf_ribbons for the rules on degenerate points). The SSE kernel
+   below gives the same bytes where it applies. */
+HF__PRIVATE void hf__strand_frame(const float *pts, int P,
+                                  const hf_ribbon_params *params,
+                                  hf__rframe *fr)
+{
+    float d[HF_MAX_POINTS * 3], l2[HF_MAX_POINTS], inv[HF_MAX_POINTS];
+    float last[3] = {0.0f, 1.0f, 0.0f};
+    const int ortho = params->orthographic != 0, end = ((P + 3) & ~3) + 8;
+    int j, k, first_t = -1, first_ok = -1;
+    if (P < 2 || P > HF_MAX_POINTS) return; /* checked by the callers */
+    for (k = 0; k < 3; ++k) {
+        float *row = fr->p[k];
+        for (j = 0; j < 4; ++j) row[j] = pts[k];
+        for (j = 0; j < P; ++j) row[4 + j] = pts[3 * j + k];
+        for (j = 4 + P; j < end; ++j) row[j] = pts[3 * (P - 1) + k];
+    }
+    /* tangents: central differences, one-sided at the ends */
+    for (j = 0; j < P; ++j) {
+        const float *a = pts + 3 * (j > 0 ? j - 1 : 0);
+        const float *b = pts + 3 * (j < P - 1 ? j + 1 : P - 1);
+        float *dj = d + 3 * j;
+        hf__sub3(dj, b, a);
+        l2[j] = hf__dot3(dj, dj);
+    }
+    hf__inv_sqrt_n(l2, inv, P);
+    for (j = 0; j < P; ++j) {
+        /* a zero-length segment keeps the previous tangent */
+        if (l2[j] > 1e-30f && hf__finitef(l2[j])) {
+            last[0] = d[3 * j] * inv[j];
+            last[1] = d[3 * j + 1] * inv[j];
+            last[2] = d[3 * j + 2] * inv[j];
+            if (first_t < 0) first_t = j;
+        }
+        for (k = 0; k < 3; ++k) fr->t[k][4 + j] = last[k];
+    }
+    /* points before the first that has a tangent take that one */
+    for (j = first_t - 1; j >= 0; --j)
+        for (k = 0; k < 3; ++k) fr->t[k][4 + j] = fr->t[k][5 + j];
+    /* sides: cross(t, v), v = eye - p or -view_dir; d now holds the cross
+       products and inv their reciprocal lengths */
+    for (j = 0; j < P; ++j) {
+        float v[3], t[3];
+        for (k = 0; k < 3; ++k) {
+            t[k] = fr->t[k][4 + j];
+            v[k] = ortho ? -params->view_dir[k]
+                         : params->eye[k] - pts[3 * j + k];
+        }
+        hf__cross3(d + 3 * j, t, v);
+        l2[j] = hf__dot3(d + 3 * j, d + 3 * j);
+        /* |t| = 1, so |c|^2 = |v|^2 sin^2: parallel or eye-on-point below */
+        inv[j] = hf__dot3(v, v); /* parked: |v|^2 */
+        if (!(l2[j] > 1e-12f * inv[j] && l2[j] > 1e-30f &&
+              hf__finitef(l2[j])))
+            l2[j] = -1.0f; /* marks "no side here" */
+        else if (first_ok < 0)
+            first_ok = j;
+    }
+    for (j = 0; j < P; ++j) inv[j] = l2[j] > 0.0f ? l2[j] : 1.0f;
+    hf__inv_sqrt_n(inv, inv, P);
+    if (first_ok < 0) {
+        /* no point has a side: a fixed perpendicular of the tangent */
+        float t0[3];
+        for (k = 0; k < 3; ++k) t0[k] = fr->t[k][4];
+        hf__any_perp(t0, d);
+        first_ok = 0;
+        l2[0] = 1.0f;
+        inv[0] = 1.0f;
+    }
+    for (j = 0; j < P; ++j)
+        for (k = 0; k < 3; ++k) {
+            if (l2[j] > 0.0f)
+                fr->s[k][4 + j] = d[3 * j + k] * inv[j];
+            else if (j > first_ok)
+                fr->s[k][4 + j] = fr->s[k][3 + j];
+        }
+    /* points before the first side borrow it */
+    for (j = first_ok - 1; j >= 0; --j)
+        for (k = 0; k < 3; ++k) fr->s[k][4 + j] = fr->s[k][5 + j];
+    for (j = 4 + P; j < end - 4; ++j)
+        for (k = 0; k < 3; ++k) {
+            fr->t[k][j] = fr->t[k][3 + P];
+            fr->s[k][j] = fr->s[k][3 + P];
+        }
+}
+
+#if HF__SSE
+/* (p3, c0, c1, c2) and (c1, c2, c3, n0): each point's neighbours. */
+HF__PRIVATE __m128 hf__prev4(__m128 p, __m128 c)
+{
+    return _mm_shuffle_ps(_mm_shuffle_ps(p, c, _MM_SHUFFLE(0, 0, 3, 3)), c,
+                          _MM_SHUFFLE(2, 1, 2, 0));
+}
+HF__PRIVATE __m128 hf__next4(__m128 c, __m128 n)
+{
+    return _mm_shuffle_ps(c, _mm_shuffle_ps(c, n, _MM_SHUFFLE(0, 0, 3, 3)),
+                          _MM_SHUFFLE(2, 0, 2, 1));
+}
+
+/* a where m is set, else b */
+HF__PRIVATE __m128 hf__sel4(__m128 m, __m128 a, __m128 b)
+{
+    return _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b));
+}
+
+/* hf__strand_frame four points at a time, with the same IEEE operations
+   per point. Returns 0 and leaves the strand to the reference when a point
+   is not finite (*finite = 0) or has no tangent or no side: the rare cases
+   whose rules look along the strand. */
+HF__PRIVATE int hf__strand_frame_sse(const float *pts, int P,
+                                     const hf_ribbon_params *params,
+                                     hf__rframe *fr, int *finite)
+{
+    const int G = (P + 3) >> 2, ortho = params->orthographic != 0;
+    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+    const __m128 tiny = _mm_set1_ps(1e-30f), eps = _mm_set1_ps(1e-12f);
+    const __m128 big = _mm_set1_ps(3.40282347e+38f);
+    const __m128i lane = _mm_setr_epi32(0, 1, 2, 3);
+    __m128 acc = zero, e[3];
+    float *px = fr->p[0], *py = fr->p[1], *pz = fr->p[2];
+    int k, c, bad = 0;
+    /* rows: four points (12 floats) deinterleaved by shuffles, so no load
+       waits on the narrow stores of a just-written array */
+    for (k = 0; k < G; ++k) {
+        __m128 X, Y, Z;
+        if (4 * k + 4 <= P) {
+            const float *q = pts + 12 * k;
+            const __m128 a0 = _mm_loadu_ps(q), a1 = _mm_loadu_ps(q + 4),
+                         a2 = _mm_loadu_ps(q + 8);
+            /* a0 = x0 y0 z0 x1, a1 = y1 z1 x2 y2, a2 = z2 x3 y3 z3 */
+            const __m128 u = _mm_shuffle_ps(a1, a2, _MM_SHUFFLE(0, 1, 3, 2));
+            const __m128 v = _mm_shuffle_ps(a0, a1, _MM_SHUFFLE(1, 0, 2, 1));
+            const __m128 w = _mm_shuffle_ps(a1, a2, _MM_SHUFFLE(3, 2, 2, 3));
+            X = _mm_shuffle_ps(a0, u, _MM_SHUFFLE(2, 0, 3, 0));
+            Y = _mm_shuffle_ps(v, w, _MM_SHUFFLE(2, 0, 2, 0));
+            Z = _mm_shuffle_ps(v, _mm_shuffle_ps(u, w, _MM_SHUFFLE(3, 0, 0, 3)),
+                               _MM_SHUFFLE(3, 0, 3, 1));
+        } else { /* the last, partial group repeats the tip */
+            const int n = P - 4 * k;
+            const float *q0 = pts + 12 * k, *q1 = q0 + 3 * (n > 1 ? 1 : 0),
+                        *q2 = q0 + 3 * (n > 2 ? 2 : n - 1),
+                        *q3 = q0 + 3 * (n - 1);
+            X = _mm_setr_ps(q0[0], q1[0], q2[0], q3[0]);
+            Y = _mm_setr_ps(q0[1], q1[1], q2[1], q3[1]);
+            Z = _mm_setr_ps(q0[2], q1[2], q2[2], q3[2]);
+        }
+        /* x * 0 is NaN for NaN or infinity */
+        acc = _mm_add_ps(acc, _mm_add_ps(_mm_mul_ps(X, zero),
+                                         _mm_add_ps(_mm_mul_ps(Y, zero),
+                                                    _mm_mul_ps(Z, zero))));
+        _mm_storeu_ps(px + 4 + 4 * k, X);
+        _mm_storeu_ps(py + 4 + 4 * k, Y);
+        _mm_storeu_ps(pz + 4 + 4 * k, Z);
+    }
+    if (_mm_movemask_ps(_mm_cmpeq_ps(acc, zero)) != 0xf) {
+        *finite = 0;
+        return 0;
+    }
+    *finite = 1;
+    for (c = 0; c < 3; ++c) {
+        _mm_storeu_ps(fr->p[c], _mm_set1_ps(pts[c]));
+        _mm_storeu_ps(fr->p[c] + 4 + 4 * G, _mm_set1_ps(pts[3 * (P - 1) + c]));
+        e[c] = _mm_set1_ps(ortho ? -params->view_dir[c] : params->eye[c]);
+    }
+    for (k = 0; k < G; ++k) {
+        const int o = 4 + 4 * k;
+        const __m128 live = _mm_castsi128_ps(
+            _mm_cmplt_epi32(lane, _mm_set1_epi32(P - 4 * k)));
+        __m128 d[3], t[3], v[3], s[3], l2, c2, vv, ok, ok2, inv;
+        for (c = 0; c < 3; ++c) {
+            const float *r = fr->p[c] + o;
+            const __m128 cur = _mm_loadu_ps(r);
+            d[c] = _mm_sub_ps(hf__next4(cur, _mm_loadu_ps(r + 4)),
+                              hf__prev4(_mm_loadu_ps(r - 4), cur));
+            v[c] = ortho ? e[c] : _mm_sub_ps(e[c], cur);
+        }
+        l2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(d[0], d[0]),
+                                   _mm_mul_ps(d[1], d[1])),
+                        _mm_mul_ps(d[2], d[2]));
+        ok = _mm_and_ps(_mm_cmpgt_ps(l2, tiny), _mm_cmple_ps(l2, big));
+        /* 1 where undefined: no division by zero for any lane */
+        inv = _mm_div_ps(one, _mm_sqrt_ps(hf__sel4(ok, l2, one)));
+        for (c = 0; c < 3; ++c) t[c] = _mm_mul_ps(d[c], inv);
+        s[0] = _mm_sub_ps(_mm_mul_ps(t[1], v[2]), _mm_mul_ps(t[2], v[1]));
+        s[1] = _mm_sub_ps(_mm_mul_ps(t[2], v[0]), _mm_mul_ps(t[0], v[2]));
+        s[2] = _mm_sub_ps(_mm_mul_ps(t[0], v[1]), _mm_mul_ps(t[1], v[0]));
+        c2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(s[0], s[0]),
+                                   _mm_mul_ps(s[1], s[1])),
+                        _mm_mul_ps(s[2], s[2]));
+        vv = _mm_add_ps(_mm_add_ps(_mm_mul_ps(v[0], v[0]),
+                                   _mm_mul_ps(v[1], v[1])),
+                        _mm_mul_ps(v[2], v[2]));
+        ok2 = _mm_and_ps(_mm_cmpgt_ps(c2, _mm_mul_ps(eps, vv)),
+                         _mm_and_ps(_mm_cmpgt_ps(c2, tiny),
+                                    _mm_cmple_ps(c2, big)));
+        bad |= _mm_movemask_ps(_mm_andnot_ps(_mm_and_ps(ok, ok2), live));
+        inv = _mm_div_ps(one, _mm_sqrt_ps(hf__sel4(ok2, c2, one)));
+        for (c = 0; c < 3; ++c) {
+            _mm_storeu_ps(fr->t[c] + o, t[c]);
+            _mm_storeu_ps(fr->s[c] + o, _mm_mul_ps(s[c], inv));
+        }
+    }
+    return bad == 0;
+}
+#endif
+
+/* ---- vertex formats ---- */
+
+HFDEF int hf_format_bytes(int format)
+{
+    switch (format) {
+    case HF_FORMAT_F32: return 4;
+    case HF_FORMAT_F16:
+    case HF_FORMAT_SNORM16:
+    case HF_FORMAT_UNORM16: return 2;
+    case HF_FORMAT_SNORM8:
+    case HF_FORMAT_UNORM8: return 1;
+    default: return 0;
+    }
+}
+
+/* round to nearest even for |v| <= 2^22: adding 1.5 * 2^23 leaves no
+   fraction bits, and the subtraction is exact */
+HF__PRIVATE float hf__round_even(float v)
+{
+    return (v + 12582912.0f) - 12582912.0f;
+}
+
+HF__PRIVATE float hf__clampf(float x, float lo, float hi)
+{
+    return x < lo ? lo : (x > hi ? hi : x);
+}
+
+/* One component in a non-float format, as the low bits of the result.
+   The SSE encoder below performs the same operations on four lanes. */
+HF__PRIVATE uint32_t hf__encode1(float x, int fmt)
+{
+    uint32_t u, sign, h;
+    switch (fmt) {
+    case HF_FORMAT_F16:
+        /* round to nearest even; beyond the largest half, the largest
+           half (a vertex never gets infinity) */
+        x = hf__clampf(x, -65504.0f, 65504.0f);
+        HF_MEMCPY(&u, &x, 4);
+        sign = (u >> 16) & 0x8000u;
+        u &= 0x7fffffffu;
+        if (u < 0x38800000u) { /* below 2^-14: subnormal half */
+            float a;
+            HF_MEMCPY(&a, &u, 4);
+            a += 0.5f; /* rounds to a multiple of 2^-24 in the low bits */
+            HF_MEMCPY(&h, &a, 4);
+            h -= 0x3f000000u;
+        } else {
+            h = (u + 0xc8000fffu + ((u >> 13) & 1u)) >> 13;
+        }
+        return h | sign;
+    case HF_FORMAT_SNORM16:
+        return (uint32_t)(int32_t)hf__round_even(
+                   hf__clampf(x, -1.0f, 1.0f) * 32767.0f) & 0xffffu;
+    case HF_FORMAT_UNORM16:
+        return (uint32_t)hf__round_even(hf__clampf(x, 0.0f, 1.0f) * 65535.0f);
+    case HF_FORMAT_SNORM8:
+        return (uint32_t)(int32_t)hf__round_even(
+                   hf__clampf(x, -1.0f, 1.0f) * 127.0f) & 0xffu;
+    default: /* HF_FORMAT_UNORM8 */
+        return (uint32_t)hf__round_even(hf__clampf(x, 0.0f, 1.0f) * 255.0f);
+    }
+}
+
+/* One vertex: components c[0, nc) at o in format fmt. */
+HF__PRIVATE void hf__emit1(unsigned char *o, const float *c, int nc, int fmt)
+{
+    int i;
+    const int size = hf_format_bytes(fmt);
+    for (i = 0; i < nc; ++i, o += size) {
+        if (fmt == HF_FORMAT_F32) {
+            HF_MEMCPY(o, c + i, 4);
+        } else if (size == 2) {
+            const uint16_t h = (uint16_t)hf__encode1(c[i], fmt);
+            HF_MEMCPY(o, &h, 2);
+        } else {
+            *o = (unsigned char)hf__encode1(c[i], fmt);
+        }
+    }
+}
+
+#if HF__SSE
+HF__PRIVATE __m128i hf__encode4(__m128 x, int fmt)
+{
+    const __m128 m = _mm_set1_ps(12582912.0f);
+    float lo = -1.0f, scale;
+    __m128 v;
+    if (fmt == HF_FORMAT_F16) {
+        const __m128i u0 = _mm_castps_si128(_mm_min_ps(
+            _mm_max_ps(x, _mm_set1_ps(-65504.0f)), _mm_set1_ps(65504.0f)));
+        const __m128i sign =
+            _mm_and_si128(_mm_srli_epi32(u0, 16), _mm_set1_epi32(0x8000));
+        const __m128i u = _mm_and_si128(u0, _mm_set1_epi32(0x7fffffff));
+        const __m128i sub = _mm_sub_epi32(
+            _mm_castps_si128(
+                _mm_add_ps(_mm_castsi128_ps(u), _mm_set1_ps(0.5f))),
+            _mm_set1_epi32(0x3f000000));
+        const __m128i odd =
+            _mm_and_si128(_mm_srli_epi32(u, 13), _mm_set1_epi32(1));
+        const __m128i nrm = _mm_srli_epi32(
+            _mm_add_epi32(_mm_add_epi32(u, _mm_set1_epi32(-939520001) /* 0xc8000fff */),
+                          odd),
+            13);
+        /* u < 0x38800000 as signed ints: u has no sign bit */
+        const __m128i is_sub =
+            _mm_cmplt_epi32(u, _mm_set1_epi32(0x38800000));
+        return _mm_or_si128(_mm_or_si128(_mm_and_si128(is_sub, sub),
+                                         _mm_andnot_si128(is_sub, nrm)),
+                            sign);
+    }
+    switch (fmt) {
+    case HF_FORMAT_SNORM16: scale = 32767.0f; break;
+    case HF_FORMAT_UNORM16: scale = 65535.0f; lo = 0.0f; break;
+    case HF_FORMAT_SNORM8: scale = 127.0f; break;
+    default: scale = 255.0f; lo = 0.0f; break;
+    }
+    v = _mm_min_ps(_mm_max_ps(x, _mm_set1_ps(lo)), _mm_set1_ps(1.0f));
+    v = _mm_sub_ps(_mm_add_ps(_mm_mul_ps(v, _mm_set1_ps(scale)), m), m);
+    return _mm_and_si128(_mm_cvttps_epi32(v),
+                         _mm_set1_epi32(hf_format_bytes(fmt) == 2 ? 0xffff
+                                                                  : 0xff));
+}
+
+/* Floats x, y (and z) of lane i < n at o + i * step: the pairs straight
+   from unpacked registers, z from its lane, so nothing goes through a
+   stack copy. */
+HF__INLINE void hf__put4_f32(unsigned char *o, size_t step, int n,
+                              __m128 x, __m128 y, __m128 z, int nc)
+{
+    const __m128 lo = _mm_unpacklo_ps(x, y), hi = _mm_unpackhi_ps(x, y);
+    float zz[4];
+    int i;
+    if (n == 4) {
+        _mm_storel_pi((__m64 *)(void *)o, lo);
+        _mm_storeh_pi((__m64 *)(void *)(o + step), lo);
+        _mm_storel_pi((__m64 *)(void *)(o + 2 * step), hi);
+        _mm_storeh_pi((__m64 *)(void *)(o + 3 * step), hi);
+        if (nc == 3) {
+            zz[0] = _mm_cvtss_f32(z);
+            zz[1] = _mm_cvtss_f32(_mm_shuffle_ps(z, z, 1));
+            zz[2] = _mm_cvtss_f32(_mm_movehl_ps(z, z));
+            zz[3] = _mm_cvtss_f32(_mm_shuffle_ps(z, z, 3));
+            HF_MEMCPY(o + 8, zz, 4);
+            HF_MEMCPY(o + step + 8, zz + 1, 4);
+            HF_MEMCPY(o + 2 * step + 8, zz + 2, 4);
+            HF_MEMCPY(o + 3 * step + 8, zz + 3, 4);
+        }
+        return;
+    }
+    _mm_storeu_ps(zz, z);
+    for (i = 0; i < n; ++i, o += step) {
+        if (i & 1)
+            _mm_storeh_pi((__m64 *)(void *)o, i < 2 ? lo : hi);
+        else
+            _mm_storel_pi((__m64 *)(void *)o, i < 2 ? lo : hi);
+        if (nc == 3) HF_MEMCPY(o + 8, zz + i, 4);
+    }
+}
+
+/* Vertex i < n of four: components c[0, nc) of lane i at o + i * step. */
+HF__INLINE void hf__emit4(unsigned char *o, size_t step, int n,
+                           const __m128 *c, int nc, int fmt)
+{
+    int i;
+    if (fmt == HF_FORMAT_F32 && nc < 4) {
+        hf__put4_f32(o, step, n, c[0], c[1], nc > 2 ? c[2] : c[0], nc);
+    } else if (fmt == HF_FORMAT_F32) {
+        __m128 v[4];
+        v[0] = c[0];
+        v[1] = c[1];
+        v[2] = c[2];
+        v[3] = c[3];
+        _MM_TRANSPOSE4_PS(v[0], v[1], v[2], v[3]);
+        for (i = 0; i < n; ++i, o += step)
+            _mm_storeu_ps((float *)(void *)o, v[i]);
+    } else {
+        uint32_t a[4], b[4];
+        __m128i e0 = hf__encode4(c[0], fmt), e1 = hf__encode4(c[1], fmt);
+        __m128i e2 = nc > 2 ? hf__encode4(c[2], fmt) : _mm_setzero_si128();
+        __m128i e3 = nc > 3 ? hf__encode4(c[3], fmt) : _mm_setzero_si128();
+        if (hf_format_bytes(fmt) == 2) { /* x86: little-endian */
+            _mm_storeu_si128((__m128i *)(void *)a,
+                             _mm_or_si128(e0, _mm_slli_epi32(e1, 16)));
+            _mm_storeu_si128((__m128i *)(void *)b,
+                             _mm_or_si128(e2, _mm_slli_epi32(e3, 16)));
+            for (i = 0; i < n; ++i, o += step) {
+                HF_MEMCPY(o, a + i, 4);
+                if (nc == 3) {
+                    const uint16_t z = (uint16_t)b[i];
+                    HF_MEMCPY(o + 4, &z, 2);
+                } else if (nc == 4) {
+                    HF_MEMCPY(o + 4, b + i, 4);
+                }
+            }
+        } else {
+            _mm_storeu_si128(
+                (__m128i *)(void *)a,
+                _mm_or_si128(_mm_or_si128(e0, _mm_slli_epi32(e1, 8)),
+                             _mm_or_si128(_mm_slli_epi32(e2, 16),
+                                          _mm_slli_epi32(e3, 24))));
+            for (i = 0; i < n; ++i, o += step) {
+                if (nc == 4) {
+                    HF_MEMCPY(o, a + i, 4);
+                } else {
+                    const uint16_t xy = (uint16_t)a[i];
+                    HF_MEMCPY(o, &xy, 2);
+                    if (nc == 3) o[2] = (unsigned char)(a[i] >> 16);
+                }
+            }
+        }
+    }
+}
+#endif
+
+/* Where each stream goes, resolved once per call. */
+typedef struct hf__rout {
+    unsigned char *base[5];
+    size_t stride[5];
+    int fmt[5];
+    float origin[3], inv_scale;
+} hf__rout;
+
+enum { HF__S_POS, HF__S_TAN, HF__S_TEX, HF__S_COL, HF__S_C3D };
+static const int hf__stream_nc[5] = {3, 3, 3, 4, 2};
+
+/* Per call: half widths, t and the alpha fade, padded to groups of four. */
+typedef struct hf__rconst {
+    float hw[HF_MAX_POINTS + 4], tt[HF_MAX_POINTS + 4];
+    float fade[HF_MAX_POINTS + 4];
+} hf__rconst;
+
+/* Per strand: the optional inputs, already made finite. */
+typedef struct hf__rstrand {
+    float uv[2], rgba[4], c3x, wscale;
+} hf__rstrand;
+
+/* Vertices v (a) and v + 1 (b) of stream q, one point at a time. */
+HF__PRIVATE void hf__emit2(const hf__rout *ro, int q, size_t v,
+                           const float *a, const float *b)
+{
+    const size_t st = ro->stride[q];
+    hf__emit1(ro->base[q] + v * st, a, hf__stream_nc[q], ro->fmt[q]);
+    hf__emit1(ro->base[q] + (v + 1u) * st, b, hf__stream_nc[q], ro->fmt[q]);
+}
+
+/* Every stream's vertices of one strand from its frame, a point at a
+   time: the reference for the SSE writer below. Vertex 2 j + k of the
+   strand (k = 0: -side) starts at v0. */
+HF__PRIVATE void hf__ribbon_write_ref(const hf__rframe *fr, int P,
+                                      const hf__rconst *K,
+                                      const hf__rstrand *S,
+                                      const hf__rout *ro, size_t v0)
+{
+    int j, c;
+    for (j = 0; j < P; ++j) {
+        const size_t v = v0 + 2u * (size_t)j;
+        float a[4], b[4];
+        if (ro->base[HF__S_POS]) {
+            const float w = K->hw[j] * S->wscale;
+            for (c = 0; c < 3; ++c) {
+                const float p = fr->p[c][4 + j], sw = fr->s[c][4 + j] * w;
+                a[c] = ((p - sw) - ro->origin[c]) * ro->inv_scale;
+                b[c] = ((p + sw) - ro->origin[c]) * ro->inv_scale;
+            }
+            hf__emit2(ro, HF__S_POS, v, a, b);
+        }
+        if (ro->base[HF__S_TAN]) {
+            for (c = 0; c < 3; ++c) a[c] = fr->t[c][4 + j];
+            hf__emit2(ro, HF__S_TAN, v, a, a);
+        }
+        if (ro->base[HF__S_TEX]) {
+            a[0] = S->uv[0];
+            a[1] = S->uv[1];
+            a[2] = K->tt[j];
+            hf__emit2(ro, HF__S_TEX, v, a, a);
+        }
+        if (ro->base[HF__S_COL]) {
+            for (c = 0; c < 3; ++c) a[c] = S->rgba[c];
+            a[3] = S->rgba[3] * K->fade[j];
+            hf__emit2(ro, HF__S_COL, v, a, a);
+        }
+        if (ro->base[HF__S_C3D]) {
+            a[0] = S->c3x;
+            a[1] = K->tt[j];
+            hf__emit2(ro, HF__S_C3D, v, a, a);
+        }
+    }
+}
+
+#if HF__SSE
+/* hf__ribbon_write_ref four points at a time: the same values in the same
+   operations, so the same bytes. */
+HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
+                                  const hf__rconst *K, const hf__rstrand *S,
+                                  const hf__rout *ro, size_t v0)
+{
+    /* stream by stream, as the scalar loop per point writes: the first
+       stream touches every cache line of the strand with few stores, so
+       the misses that bring the lines in overlap */
+    const int G = (P + 3) >> 2;
+    const __m128 ws = _mm_set1_ps(S->wscale), is = _mm_set1_ps(ro->inv_scale);
+    __m128 L[4], R[4];
+    size_t st;
+    unsigned char *b;
+    int k, c;
+    if (ro->base[HF__S_POS]) {
+        st = ro->stride[HF__S_POS];
+        b = ro->base[HF__S_POS] + v0 * st;
+        for (k = 0; k < G; ++k, b += 8 * st) {
+            const int o = 4 + 4 * k, n = P - 4 * k < 4 ? P - 4 * k : 4;
+            const __m128 w = _mm_mul_ps(_mm_loadu_ps(K->hw + 4 * k), ws);
+            for (c = 0; c < 3; ++c) {
+                const __m128 p = _mm_loadu_ps(fr->p[c] + o);
+                const __m128 sw = _mm_mul_ps(_mm_loadu_ps(fr->s[c] + o), w);
+                const __m128 og = _mm_set1_ps(ro->origin[c]);
+                L[c] = _mm_mul_ps(_mm_sub_ps(_mm_sub_ps(p, sw), og), is);
+                R[c] = _mm_mul_ps(_mm_sub_ps(_mm_add_ps(p, sw), og), is);
+            }
+            hf__emit4(b, 2 * st, n, L, 3, ro->fmt[HF__S_POS]);
+            hf__emit4(b + st, 2 * st, n, R, 3, ro->fmt[HF__S_POS]);
+        }
+    }
+    if (ro->base[HF__S_TAN]) {
+        st = ro->stride[HF__S_TAN];
+        b = ro->base[HF__S_TAN] + v0 * st;
+        for (k = 0; k < G; ++k, b += 8 * st) {
+            const int o = 4 + 4 * k, n = P - 4 * k < 4 ? P - 4 * k : 4;
+            for (c = 0; c < 3; ++c) L[c] = _mm_loadu_ps(fr->t[c] + o);
+            hf__emit4(b, 2 * st, n, L, 3, ro->fmt[HF__S_TAN]);
+            hf__emit4(b + st, 2 * st, n, L, 3, ro->fmt[HF__S_TAN]);
+        }
+    }
+    if (ro->base[HF__S_TEX]) {
+        st = ro->stride[HF__S_TEX];
+        b = ro->base[HF__S_TEX] + v0 * st;
+        L[0] = _mm_set1_ps(S->uv[0]);
+        L[1] = _mm_set1_ps(S->uv[1]);
+        for (k = 0; k < G; ++k, b += 8 * st) {
+            const int n = P - 4 * k < 4 ? P - 4 * k : 4;
+            L[2] = _mm_loadu_ps(K->tt + 4 * k);
+            hf__emit4(b, 2 * st, n, L, 3, ro->fmt[HF__S_TEX]);
+            hf__emit4(b + st, 2 * st, n, L, 3, ro->fmt[HF__S_TEX]);
+        }
+    }
+    if (ro->base[HF__S_COL]) {
+        st = ro->stride[HF__S_COL];
+        b = ro->base[HF__S_COL] + v0 * st;
+        for (c = 0; c < 3; ++c) L[c] = _mm_set1_ps(S->rgba[c]);
+        for (k = 0; k < G; ++k, b += 8 * st) {
+            const int n = P - 4 * k < 4 ? P - 4 * k : 4;
+            L[3] = _mm_mul_ps(_mm_set1_ps(S->rgba[3]),
+                              _mm_loadu_ps(K->fade + 4 * k));
+            hf__emit4(b, 2 * st, n, L, 4, ro->fmt[HF__S_COL]);
+            hf__emit4(b + st, 2 * st, n, L, 4, ro->fmt[HF__S_COL]);
+        }
+    }
+    if (ro->base[HF__S_C3D]) {
+        st = ro->stride[HF__S_C3D];
+        b = ro->base[HF__S_C3D] + v0 * st;
+        L[0] = _mm_set1_ps(S->c3x);
+        for (k = 0; k < G; ++k, b += 8 * st) {
+            const int n = P - 4 * k < 4 ? P - 4 * k : 4;
+            L[1] = _mm_loadu_ps(K->tt + 4 * k);
+            hf__emit4(b, 2 * st, n, L, 2, ro->fmt[HF__S_C3D]);
+            hf__emit4(b + st, 2 * st, n, L, 2, ro->fmt[HF__S_C3D]);
+        }
+    }
+}
+#else
+HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
+                                  const hf__rconst *K, const hf__rstrand *S,
+                                  const hf__rout *ro, size_t v0)
+{
+    hf__ribbon_write_ref(fr, P, K, S, ro, v0);
+}
+#endif
 
 HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
                            int count, const hf_ribbon_params *params,
                            const hf_ribbon_output *out)
 {
-    float hw[HF_MAX_POINTS], tt[HF_MAX_POINTS];
-    float tan[HF_MAX_POINTS * 3], side[HF_MAX_POINTS * 3];
+    hf__rframe fr;
+    hf__rconst K;
+    hf__rout ro;
     const hf_stream *streams[5];
     float alpha_root, alpha_tip;
     int s, j, k, P;
     hf_result r = hf__ribbon_check(strands, first, count, params);
     if (r != HF_OK) return r;
     if (!out) return HF_ERROR_NULL_POINTER;
-    streams[0] = &out->position;
-    streams[1] = &out->tangent;
-    streams[2] = &out->texcoord;
-    streams[3] = &out->color;
-    streams[4] = &out->color3d;
-    for (k = 0; k < 5; ++k)
-        if (streams[k]->stride < 0) return HF_ERROR_BAD_STRIDE;
+    streams[HF__S_POS] = &out->position;
+    streams[HF__S_TAN] = &out->tangent;
+    streams[HF__S_TEX] = &out->texcoord;
+    streams[HF__S_COL] = &out->color;
+    streams[HF__S_C3D] = &out->color3d;
+    for (k = 0; k < 5; ++k) {
+        const int size = hf_format_bytes(streams[k]->format);
+        if (size == 0) return HF_ERROR_BAD_FORMAT;
+        /* a stride must hold the element: no vertex overwrites another */
+        if (streams[k]->stride < 0 ||
+            (streams[k]->stride > 0 &&
+             streams[k]->stride < size * hf__stream_nc[k]))
+            return HF_ERROR_BAD_STRIDE;
+        ro.base[k] = (unsigned char *)streams[k]->data;
+        ro.stride[k] = (size_t)(streams[k]->stride ? streams[k]->stride
+                                                   : size * hf__stream_nc[k]);
+        ro.fmt[k] = streams[k]->format;
+    }
+    for (k = 0; k < 3; ++k) {
+        if (!hf__finitef(out->position_origin[k])) return HF_ERROR_NON_FINITE;
+        if (out->position_origin[k] > HF_MAX_ABS ||
+            out->position_origin[k] < -HF_MAX_ABS)
+            return HF_ERROR_BAD_PARAMETER;
+        ro.origin[k] = out->position_origin[k];
+    }
+    if (!hf__finitef(out->position_scale)) return HF_ERROR_NON_FINITE;
+    /* bounded both ways so 1 / scale is finite and positive */
+    if (out->position_scale != 0.0f &&
+        !(out->position_scale >= 1.0f / HF_MAX_ABS &&
+          out->position_scale <= HF_MAX_ABS))
+        return HF_ERROR_BAD_PARAMETER;
+    ro.inv_scale =
+        out->position_scale != 0.0f ? 1.0f / out->position_scale : 1.0f;
+
     P = params->points_per_strand;
     alpha_root = params->alpha_root;
     alpha_tip = params->alpha_tip;
     if (alpha_root == 0.0f && alpha_tip == 0.0f) alpha_root = alpha_tip = 1.0f;
-    hf__half_widths(params, hw);
-    for (j = 0; j < P; ++j) tt[j] = (float)j / (float)(P - 1);
+    HF_MEMSET(&K, 0, sizeof K);
+    hf__half_widths(params, K.hw);
+    for (j = 0; j < P; ++j) {
+        K.tt[j] = (float)j / (float)(P - 1);
+        K.fade[j] = (1.0f - K.tt[j]) * alpha_root + K.tt[j] * alpha_tip;
+    }
 
     for (s = first; s < first + count; ++s) {
         const float *pts = strands->points + (size_t)s * (size_t)P * 3u;
-        const size_t v0 = (size_t)s * (size_t)P * 2u;
-        const float wscale = hf__points_finite(pts, 3 * P) ? 1.0f : 0.0f;
-        size_t st;
-        unsigned char *o;
-        if (wscale == 0.0f) pts = hf__zero_points;
-        hf__strand_frame(pts, P, params, tan, side);
-        if (out->position.data) {
-            o = hf__stream_base(&out->position, 12, v0, &st);
-            for (j = 0; j < P; ++j, o += 2 * st) {
-                const float *p = pts + 3 * j, *sd = side + 3 * j;
-                const float w = hw[j] * wscale;
-                hf__put(o, p[0] - sd[0] * w);
-                hf__put(o + 4, p[1] - sd[1] * w);
-                hf__put(o + 8, p[2] - sd[2] * w);
-                hf__put(o + st, p[0] + sd[0] * w);
-                hf__put(o + st + 4, p[1] + sd[1] * w);
-                hf__put(o + st + 8, p[2] + sd[2] * w);
+        hf__rstrand S;
+        int done = 0, finite;
+#if HF__SSE
+        done = hf__strand_frame_sse(pts, P, params, &fr, &finite);
+#else
+        finite = hf__points_finite(pts, 3 * P);
+#endif
+        S.wscale = 1.0f;
+        if (!done) {
+            if (!finite) {
+                pts = hf__zero_points;
+                S.wscale = 0.0f;
             }
+            hf__strand_frame(pts, P, params, &fr);
         }
-        if (out->tangent.data) {
-            o = hf__stream_base(&out->tangent, 12, v0, &st);
-            for (j = 0; j < P; ++j, o += 2 * st)
-                for (k = 0; k < 3; ++k) {
-                    hf__put(o + 4 * k, tan[3 * j + k]);
-                    hf__put(o + st + 4 * k, tan[3 * j + k]);
-                }
-        }
-        if (out->texcoord.data) {
-            const float u =
-                strands->root_uv ? hf__fin0(strands->root_uv[2 * (size_t)s]) : 0.0f;
-            const float v =
-                strands->root_uv ? hf__fin0(strands->root_uv[2 * (size_t)s + 1])
-                                 : 0.0f;
-            o = hf__stream_base(&out->texcoord, 12, v0, &st);
-            for (j = 0; j < P; ++j, o += 2 * st) {
-                hf__put(o, u);
-                hf__put(o + 4, v);
-                hf__put(o + 8, tt[j]);
-                hf__put(o + st, u);
-                hf__put(o + st + 4, v);
-                hf__put(o + st + 8, tt[j]);
-            }
-        }
-        if (out->color.data) {
-            const float *rgba =
-                strands->color ? strands->color + 4 * (size_t)s : NULL;
-            float c4[4];
-            c4[0] = rgba ? hf__fin0(rgba[0]) : 1.0f;
-            c4[1] = rgba ? hf__fin0(rgba[1]) : 1.0f;
-            c4[2] = rgba ? hf__fin0(rgba[2]) : 1.0f;
-            c4[3] = rgba ? hf__fin0(rgba[3]) : 1.0f;
-            o = hf__stream_base(&out->color, 16, v0, &st);
-            for (j = 0; j < P; ++j, o += 2 * st) {
-                const float a =
-                    c4[3] * ((1.0f - tt[j]) * alpha_root + tt[j] * alpha_tip);
-                for (k = 0; k < 3; ++k) {
-                    hf__put(o + 4 * k, c4[k]);
-                    hf__put(o + st + 4 * k, c4[k]);
-                }
-                hf__put(o + 12, a);
-                hf__put(o + st + 12, a);
-            }
-        }
-        if (out->color3d.data) {
-            const float x =
-                strands->color3d_x ? hf__fin0(strands->color3d_x[s]) : 0.0f;
-            o = hf__stream_base(&out->color3d, 8, v0, &st);
-            for (j = 0; j < P; ++j, o += 2 * st) {
-                hf__put(o, x);
-                hf__put(o + 4, tt[j]);
-                hf__put(o + st, x);
-                hf__put(o + st + 4, tt[j]);
-            }
-        }
+        for (k = 0; k < 2; ++k)
+            S.uv[k] = strands->root_uv
+                          ? hf__fin0(strands->root_uv[2 * (size_t)s + k])
+                          : 0.0f;
+        for (k = 0; k < 4; ++k)
+            S.rgba[k] = strands->color
+                            ? hf__fin0(strands->color[4 * (size_t)s + k])
+                            : 1.0f;
+        S.c3x = strands->color3d_x ? hf__fin0(strands->color3d_x[s]) : 0.0f;
+        hf__ribbon_write(&fr, P, &K, &S, &ro, (size_t)s * (size_t)P * 2u);
     }
     return HF_OK;
 }

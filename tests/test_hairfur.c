@@ -3362,6 +3362,7 @@ typedef struct t_rvert {
 static hf_ribbon_output t_interleaved(t_rvert *v)
 {
     hf_ribbon_output o;
+    memset(&o, 0, sizeof o);
     o.position.data = v[0].pos;
     o.tangent.data = v[0].tan;
     o.texcoord.data = v[0].tc;
@@ -3618,6 +3619,351 @@ static void test_ribbons_errors_write_nothing(void)
     CHECK_EQ_INT(hf_ribbon_points(&st, 0, 1, &p, &v[0].pos[0]),
                  HF_ERROR_NULL_POINTER);
     CHECK(memcmp(v, keep, sizeof v) == 0);
+}
+
+static void test_ribbons_leading_tangent(void)
+{
+    /* the first three points coincide: their tangent is the first one the
+       strand has, (1, 0, 0), not the (0, 1, 0) of a strand with none */
+    float pts[TP * 3];
+    t_rvert v[TP * 2];
+    hf_ribbon_strands st;
+    hf_ribbon_params p = t_rparams();
+    hf_ribbon_output o = t_interleaved(v);
+    int j;
+    for (j = 0; j < TP; ++j) {
+        pts[3 * j] = j < 3 ? 0.0f : 0.1f * (float)(j - 2);
+        pts[3 * j + 1] = 0.0f;
+        pts[3 * j + 2] = 0.0f;
+    }
+    memset(&st, 0, sizeof st);
+    st.points = pts;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &p, &o), HF_OK);
+    for (j = 0; j < TP * 2; ++j)
+        CHECK(v[j].tan[0] == 1.0f && v[j].tan[1] == 0.0f && v[j].tan[2] == 0.0f);
+}
+
+/* Random strands, some with the cases the SSE kernel leaves to the
+   reference (coincident points, a point on the eye, a NaN). */
+static void t_random_strands(float *pts, int n, int P, hf_rng *rng)
+{
+    int s, j, k;
+    for (s = 0; s < n; ++s) {
+        float *q = pts + (size_t)s * P * 3, dir[3];
+        const int kind = (int)hf_rng_below(rng, 8);
+        for (k = 0; k < 3; ++k) {
+            q[k] = hf_rng_float(rng) * 2.0f - 1.0f;
+            dir[k] = hf_rng_float(rng) - 0.5f;
+        }
+        for (j = 1; j < P; ++j)
+            for (k = 0; k < 3; ++k)
+                q[3 * j + k] = q[3 * (j - 1) + k] + 0.05f * dir[k] +
+                               0.02f * (hf_rng_float(rng) - 0.5f);
+        if (kind == 1) memcpy(q + 3, q, 12);             /* leading duplicate */
+        if (kind == 2) memcpy(q + 3 * (P - 1), q + 3 * (P - 2), 12); /* tip */
+        if (kind == 3) memcpy(q + 3 * (P / 2), q + 3 * (P / 2 - 1), 12);
+        if (kind == 4) { q[3 * (P / 2)] = 0.3f; q[3 * (P / 2) + 1] = 1.0f; q[3 * (P / 2) + 2] = 5.0f; }
+        if (kind == 5) q[3 * (P - 1) + 1] = (float)NAN;
+    }
+}
+
+static void test_ribbons_sse_matches_reference(void)
+{
+    /* Every P from 2 to 13 (partial groups of four), both camera kinds:
+       the SSE frame and writer give the reference's bytes. Without SSE the
+       reference runs alone and this checks nothing more. */
+    enum { NS = 40, PM = 13 };
+    float pts[NS * PM * 3];
+    hf_rng rng;
+    int P, s, ortho, handled = 0;
+#if HF__SSE
+    int declined = 0;
+#endif
+    hf_rng_seed(&rng, 99, 1);
+    for (P = 2; P <= PM; ++P)
+        for (ortho = 0; ortho < 2; ++ortho) {
+            hf_ribbon_params p = t_rparams();
+            p.points_per_strand = P;
+            p.orthographic = ortho;
+            p.view_dir[0] = 0.1f; p.view_dir[1] = -0.2f; p.view_dir[2] = -1.0f;
+            t_random_strands(pts, NS, P, &rng);
+            for (s = 0; s < NS; ++s) {
+                const float *q = pts + (size_t)s * P * 3;
+                hf__rframe a, b;
+                int finite = -1, c, j;
+                memset(&a, 0, sizeof a);
+                memset(&b, 0, sizeof b);
+                hf__strand_frame(q, P, &p, &a);
+#if HF__SSE
+                if (hf__strand_frame_sse(q, P, &p, &b, &finite)) {
+                    ++handled;
+                    CHECK_EQ_INT(finite, 1);
+                    for (c = 0; c < 3; ++c)
+                        for (j = 0; j < P; ++j) {
+                            CHECK(memcmp(&a.t[c][4 + j], &b.t[c][4 + j], 4) == 0);
+                            CHECK(memcmp(&a.s[c][4 + j], &b.s[c][4 + j], 4) == 0);
+                            CHECK(memcmp(&a.p[c][4 + j], &b.p[c][4 + j], 4) == 0);
+                        }
+                } else {
+                    ++declined;
+                }
+#else
+                (void)b; (void)finite; (void)c; (void)j;
+                ++handled;
+#endif
+            }
+        }
+    /* both paths were exercised */
+    CHECK(handled > 300);
+#if HF__SSE
+    CHECK(declined > 50);
+#endif
+    /* the writers: every format, interleaved streams, P = 7 (a partial
+       group) on random frames */
+    {
+        enum { P7 = 7, STRIDE = 64 };
+        unsigned char va[P7 * 2 * STRIDE], vb[P7 * 2 * STRIDE];
+        hf_ribbon_params p = t_rparams();
+        hf__rconst K;
+        hf__rstrand S;
+        hf__rout ro;
+        static const int off[5] = {0, 12, 24, 36, 52};
+        int fmt, q, j;
+        p.points_per_strand = P7;
+        p.alpha_root = 0.9f;
+        p.alpha_tip = 0.1f;
+        memset(&K, 0, sizeof K);
+        hf__half_widths(&p, K.hw);
+        for (j = 0; j < P7; ++j) {
+            K.tt[j] = (float)j / (float)(P7 - 1);
+            K.fade[j] = (1.0f - K.tt[j]) * p.alpha_root + K.tt[j] * p.alpha_tip;
+        }
+        t_random_strands(pts, 8, P7, &rng);
+        for (fmt = 0; fmt < 6; ++fmt)
+            for (s = 0; s < 8; ++s) {
+                hf__rframe fr;
+                const float *q7 = pts + (size_t)s * P7 * 3;
+                /* as hf_ribbons: a strand with a NaN is drawn collapsed */
+                const int fin = hf__points_finite(q7, 3 * P7);
+                memset(&fr, 0, sizeof fr);
+                hf__strand_frame(fin ? q7 : hf__zero_points, P7, &p, &fr);
+                S.uv[0] = hf_rng_float(&rng);
+                S.uv[1] = hf_rng_float(&rng) * 3.0f - 1.0f; /* out of range too */
+                for (j = 0; j < 4; ++j) S.rgba[j] = hf_rng_float(&rng);
+                S.c3x = hf_rng_float(&rng);
+                S.wscale = fin ? 1.0f : 0.0f;
+                memset(&ro, 0, sizeof ro);
+                for (q = 0; q < 5; ++q) {
+                    ro.stride[q] = STRIDE;
+                    ro.fmt[q] = (fmt + q) % 6;
+                }
+                ro.origin[0] = 0.1f; ro.origin[1] = -0.2f; ro.origin[2] = 0.3f;
+                ro.inv_scale = 0.5f;
+                memset(va, 0xa5, sizeof va);
+                memset(vb, 0xa5, sizeof vb);
+                /* streams side by side: 12, 12, 12, 16 and 8 bytes at most */
+                for (q = 0; q < 5; ++q) ro.base[q] = va + off[q];
+                hf__ribbon_write_ref(&fr, P7, &K, &S, &ro, 0);
+                for (q = 0; q < 5; ++q) ro.base[q] = vb + off[q];
+                hf__ribbon_write(&fr, P7, &K, &S, &ro, 0);
+                CHECK(memcmp(va, vb, sizeof va) == 0);
+            }
+    }
+}
+
+/* Half bits to float, exactly. */
+static double t_half(uint16_t h)
+{
+    const int e = (h >> 10) & 31, m = h & 1023;
+    const double v = e == 0 ? ldexp((double)m, -24) : ldexp(1024.0 + m, e - 25);
+    return (h & 0x8000) ? -v : v;
+}
+
+static void test_format_encoders(void)
+{
+    /* Scalar and SSE encoders agree bit for bit; each code is the nearest
+       (ties to even) to the clamped value, and decodes within half a step. */
+    static const float edge[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, 2.0f, -2.0f,
+        65504.0f, 65519.0f, 65520.0f, 1e30f, -1e30f, 6.0e-8f, 2.9e-8f, 3.0e-8f,
+        6.1035156e-05f, 6.1e-05f, 1.0009766f, 1.0004883f, 1.0014648f,
+        0.00001526f, 0.5f / 32767.0f, 1.5f / 32767.0f, 0.5f / 255.0f,
+        1.0f / 510.0f, 3.0f / 510.0f, 1e-40f, -1e-40f};
+    const int ne = (int)(sizeof edge / sizeof edge[0]);
+    hf_rng rng;
+    int fmt, i, bad = 0;
+    CHECK_EQ_INT(hf_format_bytes(HF_FORMAT_F32), 4);
+    CHECK_EQ_INT(hf_format_bytes(HF_FORMAT_F16), 2);
+    CHECK_EQ_INT(hf_format_bytes(HF_FORMAT_UNORM8), 1);
+    CHECK_EQ_INT(hf_format_bytes(6), 0);
+    CHECK_EQ_INT(hf_format_bytes(-1), 0);
+    hf_rng_seed(&rng, 5, 5);
+    for (fmt = 1; fmt < 6; ++fmt)
+        for (i = 0; i < 20000 + ne; ++i) {
+            float x;
+            uint32_t code;
+            double want, got, step;
+            if (i < ne) {
+                x = edge[i];
+            } else { /* random bits of every magnitude, and plain values */
+                uint32_t u = hf_rng_u32(&rng);
+                if ((u & 0x7f800000u) == 0x7f800000u) u &= 0xbfffffffu;
+                memcpy(&x, &u, 4);
+                if (i & 1) x = hf_rng_float(&rng) * 2.4f - 1.2f;
+            }
+            code = hf__encode1(x, fmt);
+#if HF__SSE
+            {
+                uint32_t lanes[4];
+                _mm_storeu_si128((__m128i *)(void *)lanes,
+                                 hf__encode4(_mm_set_ps(1.0f, x, -x, x), fmt));
+                if (lanes[0] != code || lanes[2] != code) ++bad;
+                if (lanes[1] != hf__encode1(-x, fmt)) ++bad;
+            }
+#endif
+            switch (fmt) {
+            case HF_FORMAT_F16: {
+                const double c = x < -65504.0f ? -65504.0 : (x > 65504.0f ? 65504.0 : (double)x);
+                got = t_half((uint16_t)code);
+                /* the step around c */
+                step = fabs(c) < ldexp(1.0, -14) ? ldexp(1.0, -24)
+                                                 : ldexp(1.0, (int)floor(log2(fabs(c))) - 10);
+                if (code > 0xffffu || fabs(got - c) > 0.5 * step + 1e-300) ++bad;
+                if (fabs(got - c) == 0.5 * step && ((code & 1u) != 0)) ++bad; /* ties to even */
+                if (signbit(got) != signbit((double)x) && got != 0.0) ++bad;
+                break;
+            }
+            case HF_FORMAT_SNORM16:
+            case HF_FORMAT_SNORM8: {
+                const double sc = fmt == HF_FORMAT_SNORM16 ? 32767.0 : 127.0;
+                const double c = x < -1.0f ? -1.0 : (x > 1.0f ? 1.0 : (double)x);
+                const int sv = fmt == HF_FORMAT_SNORM16 ? (int)(int16_t)code : (int)(int8_t)code;
+                want = c * sc;
+                got = (double)sv;
+                /* half a step, plus the float product's rounding */
+                if (fabs(got - want) > 0.5 + sc * 1.2e-7) ++bad;
+                break;
+            }
+            default: {
+                const double sc = fmt == HF_FORMAT_UNORM16 ? 65535.0 : 255.0;
+                const double c = x < 0.0f ? 0.0 : (x > 1.0f ? 1.0 : (double)x);
+                want = c * sc;
+                got = (double)code;
+                if (code > (uint32_t)sc || fabs(got - want) > 0.5 + sc * 1.2e-7) ++bad;
+                break;
+            }
+            }
+        }
+    CHECK_EQ_INT(bad, 0);
+    /* spot values */
+    CHECK_EQ_INT(hf__encode1(1.0f, HF_FORMAT_F16), 0x3c00);
+    CHECK_EQ_INT(hf__encode1(-2.0f, HF_FORMAT_F16), 0xc000);
+    CHECK_EQ_INT(hf__encode1(65504.0f, HF_FORMAT_F16), 0x7bff);
+    CHECK_EQ_INT(hf__encode1(1e9f, HF_FORMAT_F16), 0x7bff); /* clamped, not inf */
+    CHECK_EQ_INT(hf__encode1(5.9604645e-8f, HF_FORMAT_F16), 0x0001);
+    CHECK_EQ_INT(hf__encode1(1.0004883f, HF_FORMAT_F16), 0x3c00); /* tie, even */
+    CHECK_EQ_INT(hf__encode1(1.0014648f, HF_FORMAT_F16), 0x3c02); /* tie, even */
+    CHECK_EQ_INT(hf__encode1(-1.0f, HF_FORMAT_SNORM16), 0x8001);
+    CHECK_EQ_INT(hf__encode1(-3.0f, HF_FORMAT_SNORM8), 0x81);
+    CHECK_EQ_INT(hf__encode1(1.0f, HF_FORMAT_UNORM16), 0xffff);
+    CHECK_EQ_INT(hf__encode1(0.5f, HF_FORMAT_UNORM8), 128); /* 127.5: even */
+}
+
+static void test_ribbons_compact_formats(void)
+{
+    /* The same ribbons in compact formats decode to the float ones within
+       each format's step; padding bytes stay untouched. Layout: position
+       SNORM16 x3 at 0, tangent SNORM8 x3 at 6, texcoord UNORM16 x3 at 10,
+       colour UNORM8 x4 at 16, 3D colour F16 x2 at 20; 28-byte vertices
+       with bytes 24..27 unused. */
+    enum { NS = 3, STRIDE = 28 };
+    float g[NS * TP * 3];
+    t_rvert v[NS * TP * 2];
+    unsigned char cv[NS * TP * 2 * STRIDE];
+    hf_ribbon_strands st;
+    hf_ribbon_params p = t_rparams();
+    hf_ribbon_output o = t_interleaved(v), c;
+    static const float uv[6] = {0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f};
+    static const float col[12] = {1, 0, 0.3f, 1, 0, 1, 0, 1, 0.2f, 0.7f, 1, 0.5f};
+    static const float c3[3] = {0.25f, 0.5f, 0.75f};
+    /* the guides span x in [0, 9.4]: this box holds them */
+    const float origin[3] = {4.0f, 0.3f, 0.4f}, scale = 6.0f;
+    int i, k, bad = 0;
+    t_make_guides(g, NS);
+    memset(&st, 0, sizeof st);
+    st.points = g;
+    st.root_uv = uv;
+    st.color = col;
+    st.color3d_x = c3;
+    p.alpha_root = 1.0f;
+    p.alpha_tip = 0.25f;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, NS, &p, &o), HF_OK);
+    memset(&c, 0, sizeof c);
+    c.position.data = cv;       c.position.format = HF_FORMAT_SNORM16;
+    c.tangent.data = cv + 6;    c.tangent.format = HF_FORMAT_SNORM8;
+    c.texcoord.data = cv + 10;  c.texcoord.format = HF_FORMAT_UNORM16;
+    c.color.data = cv + 16;     c.color.format = HF_FORMAT_UNORM8;
+    c.color3d.data = cv + 20;   c.color3d.format = HF_FORMAT_F16;
+    c.position.stride = c.tangent.stride = c.texcoord.stride =
+        c.color.stride = c.color3d.stride = STRIDE;
+    memcpy(c.position_origin, origin, sizeof origin);
+    c.position_scale = scale;
+    memset(cv, 0x5a, sizeof cv);
+    CHECK_EQ_INT(hf_ribbons(&st, 0, NS, &p, &c), HF_OK);
+    for (i = 0; i < NS * TP * 2; ++i) {
+        const unsigned char *b = cv + (size_t)i * STRIDE;
+        int16_t ps[3];
+        uint16_t tc[3], h[2];
+        memcpy(ps, b, 6);
+        memcpy(tc, b + 10, 6);
+        memcpy(h, b + 20, 4);
+        for (k = 0; k < 3; ++k) {
+            const double pos = origin[k] + scale * (ps[k] / 32767.0);
+            if (fabs(pos - v[i].pos[k]) > scale * 0.5 / 32767.0 + 1e-6) ++bad;
+            if (fabs((int8_t)b[6 + k] / 127.0 - v[i].tan[k]) > 0.5 / 127.0 + 1e-6) ++bad;
+            if (fabs(tc[k] / 65535.0 - v[i].tc[k]) > 0.5 / 65535.0 + 1e-7) ++bad;
+        }
+        for (k = 0; k < 4; ++k)
+            if (fabs(b[16 + k] / 255.0 - v[i].col[k]) > 0.5 / 255.0 + 1e-7) ++bad;
+        for (k = 0; k < 2; ++k)
+            if (fabs(t_half(h[k]) - v[i].c3[k]) > 1.0 / 4096.0) ++bad;
+        for (k = 24; k < 28; ++k)
+            if (b[k] != 0x5a) ++bad;
+    }
+    CHECK_EQ_INT(bad, 0);
+    /* packed stride: components times their size */
+    {
+        int16_t packed[NS * TP * 2 * 3];
+        hf_ribbon_output q;
+        memset(&q, 0, sizeof q);
+        q.position.data = packed;
+        q.position.format = HF_FORMAT_SNORM16;
+        memcpy(q.position_origin, origin, sizeof origin);
+        q.position_scale = scale;
+        CHECK_EQ_INT(hf_ribbons(&st, 0, NS, &p, &q), HF_OK);
+        for (i = 0; i < NS * TP * 2; ++i)
+            CHECK(memcmp(packed + 3 * i, cv + (size_t)i * STRIDE, 6) == 0);
+    }
+    /* refusals, nothing written */
+    {
+        unsigned char keep[sizeof cv];
+        hf_ribbon_output b;
+        memcpy(keep, cv, sizeof cv);
+        b = c; b.tangent.format = 6;
+        CHECK_EQ_INT(hf_ribbons(&st, 0, NS, &p, &b), HF_ERROR_BAD_FORMAT);
+        b = c; b.color.format = -1;
+        CHECK_EQ_INT(hf_ribbons(&st, 0, NS, &p, &b), HF_ERROR_BAD_FORMAT);
+        b = c; b.position.stride = 5; /* 3 x 2 bytes do not fit */
+        CHECK_EQ_INT(hf_ribbons(&st, 0, NS, &p, &b), HF_ERROR_BAD_STRIDE);
+        b = c; b.position_scale = -1.0f;
+        CHECK_EQ_INT(hf_ribbons(&st, 0, NS, &p, &b), HF_ERROR_BAD_PARAMETER);
+        b = c; b.position_scale = 1e-30f;
+        CHECK_EQ_INT(hf_ribbons(&st, 0, NS, &p, &b), HF_ERROR_BAD_PARAMETER);
+        b = c; b.position_origin[1] = (float)NAN;
+        CHECK_EQ_INT(hf_ribbons(&st, 0, NS, &p, &b), HF_ERROR_NON_FINITE);
+        b = c; b.position_origin[2] = 1e30f;
+        CHECK_EQ_INT(hf_ribbons(&st, 0, NS, &p, &b), HF_ERROR_BAD_PARAMETER);
+        CHECK(memcmp(keep, cv, sizeof cv) == 0);
+    }
 }
 
 static void test_ribbon_indices(void)
@@ -6457,6 +6803,10 @@ int main(void)
     RUN(test_ribbons_ranges_byte_identical);
     RUN(test_ribbons_separate_streams_and_skips);
     RUN(test_ribbons_errors_write_nothing);
+    RUN(test_ribbons_leading_tangent);
+    RUN(test_ribbons_sse_matches_reference);
+    RUN(test_format_encoders);
+    RUN(test_ribbons_compact_formats);
     RUN(test_ribbon_indices);
     RUN(test_ribbon_winding_faces_camera);
     run_grow_tests();
