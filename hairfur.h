@@ -5411,7 +5411,7 @@ HF__PRIVATE void hf__emit1(unsigned char *o, const float *c, int nc, int fmt)
 }
 
 #if HF__SSE
-HF__PRIVATE __m128i hf__encode4(__m128 x, int fmt)
+HF__INLINE __m128i hf__encode4(__m128 x, int fmt)
 {
     const __m128 m = _mm_set1_ps(12582912.0f);
     float lo = -1.0f, scale;
@@ -5488,56 +5488,83 @@ HF__INLINE void hf__put4_f32(unsigned char *o, size_t step, int n,
     }
 }
 
-/* Vertex i < n of four: components c[0, nc) of lane i at o + i * step. */
-HF__INLINE void hf__emit4(unsigned char *o, size_t step, int n,
-                           const __m128 *c, int nc, int fmt)
+/* Components c[0, nc) of four vertices encoded and packed into the bytes
+   of each vertex: w0[i] holds its first 4 bytes, w1[i] the rest (x86 is
+   little-endian, so byte order is component order). */
+HF__INLINE void hf__pack4(const __m128 *c, int nc, int fmt, uint32_t *w0,
+                          uint32_t *w1)
 {
-    int i;
-    if (fmt == HF_FORMAT_F32 && nc < 4) {
-        hf__put4_f32(o, step, n, c[0], c[1], nc > 2 ? c[2] : c[0], nc);
-    } else if (fmt == HF_FORMAT_F32) {
-        __m128 v[4];
-        v[0] = c[0];
-        v[1] = c[1];
-        v[2] = c[2];
-        v[3] = c[3];
-        _MM_TRANSPOSE4_PS(v[0], v[1], v[2], v[3]);
-        for (i = 0; i < n; ++i, o += step)
-            _mm_storeu_ps((float *)(void *)o, v[i]);
+    const __m128i e0 = hf__encode4(c[0], fmt), e1 = hf__encode4(c[1], fmt);
+    const __m128i e2 = nc > 2 ? hf__encode4(c[2], fmt) : _mm_setzero_si128();
+    const __m128i e3 = nc > 3 ? hf__encode4(c[3], fmt) : _mm_setzero_si128();
+    if (hf_format_bytes(fmt) == 2) {
+        _mm_storeu_si128((__m128i *)(void *)w0,
+                         _mm_or_si128(e0, _mm_slli_epi32(e1, 16)));
+        _mm_storeu_si128((__m128i *)(void *)w1,
+                         _mm_or_si128(e2, _mm_slli_epi32(e3, 16)));
     } else {
-        uint32_t a[4], b[4];
-        __m128i e0 = hf__encode4(c[0], fmt), e1 = hf__encode4(c[1], fmt);
-        __m128i e2 = nc > 2 ? hf__encode4(c[2], fmt) : _mm_setzero_si128();
-        __m128i e3 = nc > 3 ? hf__encode4(c[3], fmt) : _mm_setzero_si128();
-        if (hf_format_bytes(fmt) == 2) { /* x86: little-endian */
-            _mm_storeu_si128((__m128i *)(void *)a,
-                             _mm_or_si128(e0, _mm_slli_epi32(e1, 16)));
-            _mm_storeu_si128((__m128i *)(void *)b,
-                             _mm_or_si128(e2, _mm_slli_epi32(e3, 16)));
-            for (i = 0; i < n; ++i, o += step) {
-                HF_MEMCPY(o, a + i, 4);
-                if (nc == 3) {
-                    const uint16_t z = (uint16_t)b[i];
-                    HF_MEMCPY(o + 4, &z, 2);
-                } else if (nc == 4) {
-                    HF_MEMCPY(o + 4, b + i, 4);
-                }
+        _mm_storeu_si128(
+            (__m128i *)(void *)w0,
+            _mm_or_si128(_mm_or_si128(e0, _mm_slli_epi32(e1, 8)),
+                         _mm_or_si128(_mm_slli_epi32(e2, 16),
+                                      _mm_slli_epi32(e3, 24))));
+    }
+}
+
+/* One vertex's packed bytes (see hf__pack4) at o. */
+HF__INLINE void hf__put_packed(unsigned char *o, uint32_t w0, uint32_t w1,
+                               int nc, int size)
+{
+    if (size == 2) {
+        HF_MEMCPY(o, &w0, 4);
+        if (nc == 3) {
+            const uint16_t z = (uint16_t)w1;
+            HF_MEMCPY(o + 4, &z, 2);
+        } else if (nc == 4) {
+            HF_MEMCPY(o + 4, &w1, 4);
+        }
+    } else if (nc == 4) {
+        HF_MEMCPY(o, &w0, 4);
+    } else {
+        const uint16_t xy = (uint16_t)w0;
+        HF_MEMCPY(o, &xy, 2);
+        if (nc == 3) o[2] = (unsigned char)(w0 >> 16);
+    }
+}
+
+/* Both vertices of points i < n of a group of four: lane i of L at
+   o + 2 i st, of R at o + (2 i + 1) st. R may be L (tangents, texcoords,
+   colours): then it is encoded once. */
+HF__INLINE void hf__emit_pair(unsigned char *o, size_t st, int n,
+                              const __m128 *L, const __m128 *R, int nc,
+                              int fmt)
+{
+    int i, side;
+    if (fmt == HF_FORMAT_F32) {
+        for (side = 0; side < 2; ++side) {
+            const __m128 *c = side ? R : L;
+            unsigned char *b = o + (size_t)side * st;
+            if (nc < 4) {
+                hf__put4_f32(b, 2 * st, n, c[0], c[1], nc > 2 ? c[2] : c[0],
+                             nc);
+            } else {
+                __m128 v0 = c[0], v1 = c[1], v2 = c[2], v3 = c[3];
+                _MM_TRANSPOSE4_PS(v0, v1, v2, v3);
+                _mm_storeu_ps((float *)(void *)b, v0);
+                if (n > 1) _mm_storeu_ps((float *)(void *)(b + 2 * st), v1);
+                if (n > 2) _mm_storeu_ps((float *)(void *)(b + 4 * st), v2);
+                if (n > 3) _mm_storeu_ps((float *)(void *)(b + 6 * st), v3);
             }
-        } else {
-            _mm_storeu_si128(
-                (__m128i *)(void *)a,
-                _mm_or_si128(_mm_or_si128(e0, _mm_slli_epi32(e1, 8)),
-                             _mm_or_si128(_mm_slli_epi32(e2, 16),
-                                          _mm_slli_epi32(e3, 24))));
-            for (i = 0; i < n; ++i, o += step) {
-                if (nc == 4) {
-                    HF_MEMCPY(o, a + i, 4);
-                } else {
-                    const uint16_t xy = (uint16_t)a[i];
-                    HF_MEMCPY(o, &xy, 2);
-                    if (nc == 3) o[2] = (unsigned char)(a[i] >> 16);
-                }
-            }
+        }
+    } else {
+        const int size = hf_format_bytes(fmt), same = R == L;
+        uint32_t w[2][2][4]; /* side, word, vertex */
+        hf__pack4(L, nc, fmt, w[0][0], w[0][1]);
+        if (!same) hf__pack4(R, nc, fmt, w[1][0], w[1][1]);
+        for (i = 0; i < n; ++i, o += 2 * st) {
+            hf__put_packed(o, w[0][0][i], w[0][1][i], nc, size);
+            hf__put_packed(o + st, w[same ? 0 : 1][0][i],
+                           w[same ? 0 : 1][1][i], nc, size);
         }
     }
 }
@@ -5647,8 +5674,7 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
                 L[c] = _mm_mul_ps(_mm_sub_ps(_mm_sub_ps(p, sw), og), is);
                 R[c] = _mm_mul_ps(_mm_sub_ps(_mm_add_ps(p, sw), og), is);
             }
-            hf__emit4(b, 2 * st, n, L, 3, ro->fmt[HF__S_POS]);
-            hf__emit4(b + st, 2 * st, n, R, 3, ro->fmt[HF__S_POS]);
+            hf__emit_pair(b, st, n, L, R, 3, ro->fmt[HF__S_POS]);
         }
     }
     if (ro->base[HF__S_TAN]) {
@@ -5657,8 +5683,7 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
         for (k = 0; k < G; ++k, b += 8 * st) {
             const int o = 4 + 4 * k, n = P - 4 * k < 4 ? P - 4 * k : 4;
             for (c = 0; c < 3; ++c) L[c] = _mm_loadu_ps(fr->t[c] + o);
-            hf__emit4(b, 2 * st, n, L, 3, ro->fmt[HF__S_TAN]);
-            hf__emit4(b + st, 2 * st, n, L, 3, ro->fmt[HF__S_TAN]);
+            hf__emit_pair(b, st, n, L, L, 3, ro->fmt[HF__S_TAN]);
         }
     }
     if (ro->base[HF__S_TEX]) {
@@ -5669,8 +5694,7 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
         for (k = 0; k < G; ++k, b += 8 * st) {
             const int n = P - 4 * k < 4 ? P - 4 * k : 4;
             L[2] = _mm_loadu_ps(K->tt + 4 * k);
-            hf__emit4(b, 2 * st, n, L, 3, ro->fmt[HF__S_TEX]);
-            hf__emit4(b + st, 2 * st, n, L, 3, ro->fmt[HF__S_TEX]);
+            hf__emit_pair(b, st, n, L, L, 3, ro->fmt[HF__S_TEX]);
         }
     }
     if (ro->base[HF__S_COL]) {
@@ -5681,8 +5705,7 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
             const int n = P - 4 * k < 4 ? P - 4 * k : 4;
             L[3] = _mm_mul_ps(_mm_set1_ps(S->rgba[3]),
                               _mm_loadu_ps(K->fade + 4 * k));
-            hf__emit4(b, 2 * st, n, L, 4, ro->fmt[HF__S_COL]);
-            hf__emit4(b + st, 2 * st, n, L, 4, ro->fmt[HF__S_COL]);
+            hf__emit_pair(b, st, n, L, L, 4, ro->fmt[HF__S_COL]);
         }
     }
     if (ro->base[HF__S_C3D]) {
@@ -5692,8 +5715,7 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
         for (k = 0; k < G; ++k, b += 8 * st) {
             const int n = P - 4 * k < 4 ? P - 4 * k : 4;
             L[1] = _mm_loadu_ps(K->tt + 4 * k);
-            hf__emit4(b, 2 * st, n, L, 2, ro->fmt[HF__S_C3D]);
-            hf__emit4(b + st, 2 * st, n, L, 2, ro->fmt[HF__S_C3D]);
+            hf__emit_pair(b, st, n, L, L, 2, ro->fmt[HF__S_C3D]);
         }
     }
 }

@@ -6,6 +6,12 @@
      S  about 367 guides, 3,670 strands (the 2010 plugin's Krystal)
      M  ten times S
      L  100,000 strands on about 1,000 guides
+   Stages: roots, ropes, lod_guides, strands (interpolation), ribbons
+   (36-byte float vertices: position, tangent, texcoord), points (the GPU
+   path, 16 bytes a point), ribbons16 (the same attributes in 16 bytes:
+   SNORM16 position, UNORM16 texcoord, SNORM8 tangent), frame (roots to
+   ribbons), frame16 (the same with ribbons16) and frame_points (the same
+   with points: the GPU expands the ribbons, examples/ribbon_expand.glsl).
    For each stage: the median, min and max milliseconds over FRAMES frames
    after a warm-up, the bytes the stage writes per second, and in the same
    run the bandwidth of a plain store loop and of memcpy writing the same
@@ -109,6 +115,7 @@ typedef struct scene {
     hf_fur *fur;
     hf_fur_info info;
     float *vbuf, *pbuf;
+    unsigned char *cbuf; /* 16-byte compact ribbon vertices */
     hf_collider col;
     hf_mesh skinned;
     float dt;
@@ -137,6 +144,8 @@ static hf_ribbon_params g_view;
 static hf_ribbon_output g_out;
 static void j_ribbons(job *j, int f, int c) { (void)j; check("ribbons", hf_fur_ribbons(g_sc->fur, f, c, &g_view, &g_out)); }
 static void j_points(job *j, int f, int c) { (void)j; check("points", hf_fur_points(g_sc->fur, f, c, &g_view, g_sc->pbuf)); }
+static hf_ribbon_output g_out16;
+static void j_ribbons16(job *j, int f, int c) { (void)j; check("ribbons16", hf_fur_ribbons(g_sc->fur, f, c, &g_view, &g_out16)); }
 
 static void scene_pose(scene *s, int frame)
 {
@@ -200,8 +209,10 @@ static void scene_init(scene *s, const char *name, int rings, int segments,
     nv = (size_t)s->info.strand_count * P * 2u;
     s->vbuf = (float *)malloc(nv * 36u);
     s->pbuf = (float *)malloc((size_t)s->info.strand_count * P * 16u);
-    if (!s->skin || !s->vbuf || !s->pbuf) exit(1);
+    s->cbuf = (unsigned char *)malloc(nv * 16u);
+    if (!s->skin || !s->vbuf || !s->pbuf || !s->cbuf) exit(1);
     memset(s->vbuf, 0, nv * 36u); /* fault the pages in before timing */
+    memset(s->cbuf, 0, nv * 16u);
     memset(s->pbuf, 0, (size_t)s->info.strand_count * P * 16u);
     s->skinned = d.mesh;
     s->skinned.positions = s->skin[0].pos;
@@ -277,9 +288,11 @@ static void report(const char *stage, const char *scene_name, int threads,
     fprintf(stderr, "\n");
 }
 
-enum { ST_ROOTS, ST_ROPES, ST_LODG, ST_INTERP, ST_RIBBONS, ST_POINTS, ST_FRAME, ST_N };
+enum { ST_ROOTS, ST_ROPES, ST_LODG, ST_INTERP, ST_RIBBONS, ST_POINTS,
+       ST_RIBBONS16, ST_FRAME, ST_FRAME16, ST_FRAMEP, ST_N };
 static const char *st_name[ST_N] = {"roots", "ropes", "lod_guides", "strands",
-                                    "ribbons", "points", "frame"};
+                                    "ribbons", "points", "ribbons16", "frame",
+                                    "frame16", "frame_points"};
 
 static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
 {
@@ -300,6 +313,17 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
     g_out.tangent.data = s->vbuf + 3;
     g_out.texcoord.data = s->vbuf + 6;
     g_out.position.stride = g_out.tangent.stride = g_out.texcoord.stride = 36;
+    /* the same attributes in 16 bytes: position SNORM16 x3 in a 0.5 m box
+       around the head, texcoord UNORM16 x3, tangent SNORM8 x3, one pad */
+    memset(&g_out16, 0, sizeof g_out16);
+    g_out16.position.data = s->cbuf;
+    g_out16.position.format = HF_FORMAT_SNORM16;
+    g_out16.texcoord.data = s->cbuf + 6;
+    g_out16.texcoord.format = HF_FORMAT_UNORM16;
+    g_out16.tangent.data = s->cbuf + 12;
+    g_out16.tangent.format = HF_FORMAT_SNORM8;
+    g_out16.position.stride = g_out16.tangent.stride = g_out16.texcoord.stride = 16;
+    g_out16.position_scale = 0.5f;
     for (k = 0; k < ST_N; ++k) {
         t[k] = (double *)malloc(sizeof(double) * (size_t)frames);
         jobs[k].total = 0;
@@ -316,17 +340,20 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
     jobs[ST_RIBBONS].total = s->info.strand_count;
     jobs[ST_POINTS].fn = j_points;
     jobs[ST_POINTS].total = s->info.strand_count;
+    jobs[ST_RIBBONS16].fn = j_ribbons16;
+    jobs[ST_RIBBONS16].total = s->info.strand_count;
     bytes[ST_ROOTS] = (double)s->info.guide_count * 36.0;
     bytes[ST_ROPES] = (double)s->info.guide_count * P * 12.0;
     bytes[ST_LODG] = (double)s->info.lod_guide_count * P * 12.0;
     bytes[ST_INTERP] = (double)s->info.strand_count * P * 12.0;
     bytes[ST_RIBBONS] = (double)s->info.strand_count * P * 2.0 * 36.0;
     bytes[ST_POINTS] = (double)s->info.strand_count * P * 16.0;
-    bytes[ST_FRAME] = 0;
+    bytes[ST_RIBBONS16] = (double)s->info.strand_count * P * 2.0 * 16.0;
+    bytes[ST_FRAME] = bytes[ST_FRAME16] = bytes[ST_FRAMEP] = 0;
 
     allocs0 = g_allocs;
     for (f = -warm; f < frames; ++f) {
-        double t0, t1, t2, t3, t4, t5, t6;
+        double t0, t1, t2, t3, t4, t5, t6, t7;
         scene_pose(s, s->frame++);
         t0 = now_ms();
         run_job(&jobs[ST_ROOTS]);
@@ -341,6 +368,8 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
         t5 = now_ms();
         run_job(&jobs[ST_POINTS]);
         t6 = now_ms();
+        run_job(&jobs[ST_RIBBONS16]);
+        t7 = now_ms();
         if (f < 0) continue;
         t[ST_ROOTS][f] = t1 - t0;
         t[ST_ROPES][f] = t2 - t1;
@@ -348,7 +377,10 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
         t[ST_INTERP][f] = t4 - t3;
         t[ST_RIBBONS][f] = t5 - t4;
         t[ST_POINTS][f] = t6 - t5;
+        t[ST_RIBBONS16][f] = t7 - t6;
         t[ST_FRAME][f] = t5 - t0; /* roots .. ribbons: what a frame needs */
+        t[ST_FRAME16][f] = (t4 - t0) + (t7 - t6); /* with 16-byte vertices */
+        t[ST_FRAMEP][f] = (t4 - t0) + (t6 - t5); /* ribbons built on the GPU */
     }
     {
         long allocs = g_allocs - allocs0;
@@ -366,7 +398,7 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
                 (void)memcpy_gbps;
             }
             report(st_name[k], s->name, threads, fg, bytes[k], limit,
-                   k == ST_FRAME ? allocs : -1);
+                   k >= ST_FRAME ? allocs : -1);
             if (k == ST_FRAME && frame_ms_out) *frame_ms_out = fg.med;
         }
         free(dst);
@@ -452,8 +484,6 @@ int main(int argc, char **argv)
         printf("  frame speed-up with 2 threads: %.2f\n",
                frame_ms[i][1] / frame_ms[i][2]);
     }
-    /* LOD guides: the same scenes at low LOD, where LOD guides are
-       interpolated instead of simulated */
     bench_lut(9);
 
     g_quit = 1;
