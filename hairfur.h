@@ -5646,6 +5646,66 @@ HF__PRIVATE void hf__ribbon_write_ref(const hf__rframe *fr, int P,
 }
 
 #if HF__SSE
+/* 2 when position and tangent are floats side by side in one vertex, 3
+   when the texcoord follows them too (the usual 36-byte layout); else 0. */
+HF__PRIVATE int hf__float_run(const hf__rout *ro)
+{
+    const unsigned char *p = ro->base[HF__S_POS];
+    const size_t st = ro->stride[HF__S_POS];
+    if (!p || ro->base[HF__S_TAN] != p + 12 || ro->stride[HF__S_TAN] != st ||
+        ro->fmt[HF__S_POS] != HF_FORMAT_F32 ||
+        ro->fmt[HF__S_TAN] != HF_FORMAT_F32)
+        return 0;
+    return ro->base[HF__S_TEX] == p + 24 && ro->stride[HF__S_TEX] == st &&
+                   ro->fmt[HF__S_TEX] == HF_FORMAT_F32
+               ? 3
+               : 2;
+}
+
+/* A float run (see hf__float_run) for points i < n of a group: left
+   position L, right position R, tangent T, and with uv the texcoord
+   (uv, t). Each vertex takes two or three stores instead of six. */
+HF__INLINE void hf__put_run(unsigned char *o, size_t st, int n,
+                            const __m128 *L, const __m128 *R,
+                            const __m128 *T, const float *uv,
+                            const float *t)
+{
+    __m128 l0 = L[0], l1 = L[1], l2 = L[2], l3 = T[0];
+    __m128 r0 = R[0], r1 = R[1], r2 = R[2], r3 = T[0];
+    __m128 q[4];
+    int i;
+    _MM_TRANSPOSE4_PS(l0, l1, l2, l3); /* x y z tx of each left vertex */
+    _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+    if (uv) { /* ty tz u v */
+        __m128 u = _mm_set1_ps(uv[0]), v = _mm_set1_ps(uv[1]);
+        q[0] = T[1];
+        q[1] = T[2];
+        _MM_TRANSPOSE4_PS(q[0], q[1], u, v);
+        q[2] = u;
+        q[3] = v;
+    } else { /* ty tz pairs */
+        q[0] = _mm_unpacklo_ps(T[1], T[2]);
+        q[1] = _mm_movehl_ps(q[0], q[0]);
+        q[2] = _mm_unpackhi_ps(T[1], T[2]);
+        q[3] = _mm_movehl_ps(q[2], q[2]);
+    }
+    for (i = 0; i < n; ++i, o += 2 * st) {
+        const __m128 lv = i == 0 ? l0 : i == 1 ? l1 : i == 2 ? l2 : l3;
+        const __m128 rv = i == 0 ? r0 : i == 1 ? r1 : i == 2 ? r2 : r3;
+        _mm_storeu_ps((float *)(void *)o, lv);
+        _mm_storeu_ps((float *)(void *)(o + st), rv);
+        if (uv) {
+            _mm_storeu_ps((float *)(void *)(o + 16), q[i]);
+            _mm_storeu_ps((float *)(void *)(o + st + 16), q[i]);
+            HF_MEMCPY(o + 32, t + i, 4);
+            HF_MEMCPY(o + st + 32, t + i, 4);
+        } else {
+            _mm_storel_pi((__m64 *)(void *)(o + 16), q[i]);
+            _mm_storel_pi((__m64 *)(void *)(o + st + 16), q[i]);
+        }
+    }
+}
+
 /* hf__ribbon_write_ref four points at a time: the same values in the same
    operations, so the same bytes. */
 HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
@@ -5655,13 +5715,31 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
     /* stream by stream, as the scalar loop per point writes: the first
        stream touches every cache line of the strand with few stores, so
        the misses that bring the lines in overlap */
-    const int G = (P + 3) >> 2;
+    const int G = (P + 3) >> 2, run = hf__float_run(ro);
     const __m128 ws = _mm_set1_ps(S->wscale), is = _mm_set1_ps(ro->inv_scale);
     __m128 L[4], R[4];
     size_t st;
     unsigned char *b;
     int k, c;
-    if (ro->base[HF__S_POS]) {
+    if (run) {
+        st = ro->stride[HF__S_POS];
+        b = ro->base[HF__S_POS] + v0 * st;
+        for (k = 0; k < G; ++k, b += 8 * st) {
+            const int o = 4 + 4 * k, n = P - 4 * k < 4 ? P - 4 * k : 4;
+            const __m128 w = _mm_mul_ps(_mm_loadu_ps(K->hw + 4 * k), ws);
+            __m128 T[3];
+            for (c = 0; c < 3; ++c) {
+                const __m128 p = _mm_loadu_ps(fr->p[c] + o);
+                const __m128 sw = _mm_mul_ps(_mm_loadu_ps(fr->s[c] + o), w);
+                const __m128 og = _mm_set1_ps(ro->origin[c]);
+                L[c] = _mm_mul_ps(_mm_sub_ps(_mm_sub_ps(p, sw), og), is);
+                R[c] = _mm_mul_ps(_mm_sub_ps(_mm_add_ps(p, sw), og), is);
+                T[c] = _mm_loadu_ps(fr->t[c] + o);
+            }
+            hf__put_run(b, st, n, L, R, T, run == 3 ? S->uv : NULL,
+                        K->tt + 4 * k);
+        }
+    } else if (ro->base[HF__S_POS]) {
         st = ro->stride[HF__S_POS];
         b = ro->base[HF__S_POS] + v0 * st;
         for (k = 0; k < G; ++k, b += 8 * st) {
@@ -5677,7 +5755,7 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
             hf__emit_pair(b, st, n, L, R, 3, ro->fmt[HF__S_POS]);
         }
     }
-    if (ro->base[HF__S_TAN]) {
+    if (ro->base[HF__S_TAN] && !run) {
         st = ro->stride[HF__S_TAN];
         b = ro->base[HF__S_TAN] + v0 * st;
         for (k = 0; k < G; ++k, b += 8 * st) {
@@ -5686,7 +5764,7 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
             hf__emit_pair(b, st, n, L, L, 3, ro->fmt[HF__S_TAN]);
         }
     }
-    if (ro->base[HF__S_TEX]) {
+    if (ro->base[HF__S_TEX] && run < 3) {
         st = ro->stride[HF__S_TEX];
         b = ro->base[HF__S_TEX] + v0 * st;
         L[0] = _mm_set1_ps(S->uv[0]);

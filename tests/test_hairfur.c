@@ -3727,7 +3727,13 @@ static void test_ribbons_sse_matches_reference(void)
         hf__rconst K;
         hf__rstrand S;
         hf__rout ro;
-        static const int off[5] = {0, 12, 24, 36, 52};
+        /* streams side by side: formats rotating (offsets hold 12, 12, 12,
+           16 and 8 bytes), then all floats in the two layouts the writer
+           stores as one run (position, tangent and texcoord; position and
+           tangent) */
+        static const int offs[3][5] = {{0, 12, 24, 36, 52},
+                                       {0, 12, 24, 36, 52},
+                                       {0, 12, 40, 24, 52}};
         int fmt, q, j;
         p.points_per_strand = P7;
         p.alpha_root = 0.9f;
@@ -3739,8 +3745,9 @@ static void test_ribbons_sse_matches_reference(void)
             K.fade[j] = (1.0f - K.tt[j]) * p.alpha_root + K.tt[j] * p.alpha_tip;
         }
         t_random_strands(pts, 8, P7, &rng);
-        for (fmt = 0; fmt < 6; ++fmt)
+        for (fmt = 0; fmt < 8; ++fmt)
             for (s = 0; s < 8; ++s) {
+                const int *off = offs[fmt < 6 ? 0 : fmt - 5];
                 hf__rframe fr;
                 const float *q7 = pts + (size_t)s * P7 * 3;
                 /* as hf_ribbons: a strand with a NaN is drawn collapsed */
@@ -3755,13 +3762,12 @@ static void test_ribbons_sse_matches_reference(void)
                 memset(&ro, 0, sizeof ro);
                 for (q = 0; q < 5; ++q) {
                     ro.stride[q] = STRIDE;
-                    ro.fmt[q] = (fmt + q) % 6;
+                    ro.fmt[q] = fmt < 6 ? (fmt + q) % 6 : HF_FORMAT_F32;
                 }
                 ro.origin[0] = 0.1f; ro.origin[1] = -0.2f; ro.origin[2] = 0.3f;
                 ro.inv_scale = 0.5f;
                 memset(va, 0xa5, sizeof va);
                 memset(vb, 0xa5, sizeof vb);
-                /* streams side by side: 12, 12, 12, 16 and 8 bytes at most */
                 for (q = 0; q < 5; ++q) ro.base[q] = va + off[q];
                 hf__ribbon_write_ref(&fr, P7, &K, &S, &ro, 0);
                 for (q = 0; q < 5; ++q) ro.base[q] = vb + off[q];
