@@ -169,6 +169,67 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
     }
 
+    /* ---- hf_ribbons with fuzz-chosen formats, origin and scale ---------
+       The streams keep their float offsets (each format is no larger), so
+       the vertex is 60 bytes whatever the formats. */
+    {
+        static const int comps[5] = {3, 3, 3, 4, 2};
+        hf_ribbon_output oc = fz_interleaved(v2, mask);
+        hf_stream *sp[5];
+        unsigned char *cb = (unsigned char *)v2;
+        sp[0] = &oc.position; sp[1] = &oc.tangent; sp[2] = &oc.texcoord;
+        sp[3] = &oc.color; sp[4] = &oc.color3d;
+        for (k = 0; k < 5; ++k)
+            sp[k]->format = fz_chance(&r, 240) ? fz_int(&r, 0, 5) : fz_int(&r, -2, 8);
+        for (k = 0; k < 3; ++k)
+            oc.position_origin[k] = fz_chance(&r, 230) ? fz_float(&r, 2.0f) : fz_float(&r, 1e30f);
+        oc.position_scale = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 4.0f) : fz_float(&r, 1e30f);
+        if (fz_chance(&r, 8)) oc.tangent.stride = fz_int(&r, 0, 12); /* may be too small */
+        memset(v2, FZ_SENTINEL, vbytes);
+        fz_range_untotalled(&r, S, &first, &count);
+        rr = hf_ribbons(&st, first, count, &rp, &oc);
+        FZ_REQUIRE(fz_known_result(rr));
+        if (rr != HF_OK) {
+            FZ_REQUIRE(fz_untouched(v2, vbytes));
+        } else if (oc.tangent.stride == 60 || !(mask & 2)) {
+            const size_t Pr = (size_t)rp.points_per_strand;
+            size_t a = 2u * (size_t)first * Pr, n = 2u * (size_t)count * Pr, j;
+            FZ_REQUIRE(fz_untouched(v2, a * 60u));
+            FZ_REQUIRE(fz_untouched(cb + (a + n) * 60u, (nv - a - n) * 60u));
+            /* no half float is an infinity or NaN */
+            for (j = a; j < a + n; ++j)
+                for (k = 0; k < 5; ++k) {
+                    static const int off[5] = {0, 12, 24, 36, 52};
+                    int c;
+                    if (!(mask & (1 << k)) || sp[k]->format != HF_FORMAT_F16) continue;
+                    for (c = 0; c < comps[k]; ++c) {
+                        uint16_t h;
+                        memcpy(&h, cb + j * 60u + (size_t)off[k] + 2u * (size_t)c, 2);
+                        FZ_REQUIRE((h & 0x7c00u) != 0x7c00u);
+                    }
+                }
+            /* the same range in pieces: the same bytes */
+            {
+                unsigned char *c2 = (unsigned char *)fz_sentinel_alloc(vbytes);
+                hf_ribbon_output o3 = oc;
+                hf_stream *sp3[5];
+                int done = first, end = first + count;
+                sp3[0] = &o3.position; sp3[1] = &o3.tangent; sp3[2] = &o3.texcoord;
+                sp3[3] = &o3.color; sp3[4] = &o3.color3d;
+                for (k = 0; k < 5; ++k)
+                    if (sp[k]->data)
+                        sp3[k]->data = c2 + ((unsigned char *)sp[k]->data - cb);
+                while (done < end) {
+                    int c = fz_int(&r, 1, end - done);
+                    FZ_REQUIRE(hf_ribbons(&st, done, c, &rp, &o3) == HF_OK);
+                    done += c;
+                }
+                FZ_REQUIRE(memcmp(cb + a * 60u, c2 + a * 60u, n * 60u) == 0);
+                free(c2);
+            }
+        }
+    }
+
     /* ---- hf_ribbon_points ---------------------------------------------- */
     p4 = (float *)fz_sentinel_alloc(sizeof(float) * 4u * (size_t)S * (size_t)P);
     fz_range_untotalled(&r, S, &first, &count);
