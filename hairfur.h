@@ -1013,8 +1013,8 @@ typedef struct hf_interp_params {
     int points_per_strand; /* P, >= 2 (required) */
     /* Clumping toward the guide of largest weight (the look of TressFX's
        follow hairs): point j moves by clump * j / (P - 1) of the way to
-       that guide's point, so roots stay and tips gather. 0 = none, 1 =
-       tips on the guide. */
+       that guide's point, so roots stay and tips gather. 0 = none (the
+       term is skipped, not multiplied by 0), 1 = tips on the guide. */
     float clump;
 } hf_interp_params;
 
@@ -4867,8 +4867,9 @@ HF__INLINE void hf__interp4(const float *g0, const float *g1, const float *g2,
                                      _mm_mul_ps(W1, _mm_loadu_ps(g1 + i))),
                           _mm_mul_ps(W2, _mm_loadu_ps(g2 + i)));
     p = _mm_add_ps(_mm_mul_ps(SC, p), R);
-    p = _mm_add_ps(p, _mm_mul_ps(_mm_loadu_ps(ctab + i),
-                                 _mm_sub_ps(_mm_loadu_ps(gn + i), p)));
+    if (gn) /* clumping: NULL when clump is 0, two loads fewer */
+        p = _mm_add_ps(p, _mm_mul_ps(_mm_loadu_ps(ctab + i),
+                                     _mm_sub_ps(_mm_loadu_ps(gn + i), p)));
     _mm_storeu_ps(o + i, p);
 }
 #endif
@@ -4924,7 +4925,9 @@ HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
            so a branch would miss half the time */
         const int n0 = (w0 >= w1) & (w0 >= w2), n1 = !n0 & (w1 >= w2);
         const float *gn =
-            guide_points + (size_t)b->guide[2 - 2 * n0 - n1] * (size_t)P * 3u;
+            clump == 0.0f ? NULL
+                          : guide_points + (size_t)b->guide[2 - 2 * n0 - n1] *
+                                               (size_t)P * 3u;
         float *o = out_points + (size_t)s * (size_t)P * 3u;
         float rb[6];
         /* p' = sc p + (1 - sc) root keeps the root and scales the offsets;
@@ -4964,7 +4967,7 @@ HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
         for (; i < 3 * P; ++i) {
             float p = w0 * g0[i] + w1 * g1[i] + w2 * g2[i];
             p = sc * p + rb[i % 3];
-            o[i] = p + ctab[i] * (gn[i] - p);
+            o[i] = gn ? p + ctab[i] * (gn[i] - p) : p;
         }
     }
     return HF_OK;

@@ -3223,16 +3223,17 @@ static void test_interp_linear_in_barycentrics(void)
 static void test_interp_simd_matches_scalar_reference(void)
 {
     /* The documented arithmetic, one float at a time, in the library's
-       order; the SSE path must give the same bytes (P = 13: 39 floats, so
-       the scalar tail runs too). make test also builds with HF_NO_SIMD. */
-    enum { Q = 13, G = 5, N = 40 };
-    float g[G * Q * 3], out[N * Q * 3], ref[N * Q * 3];
+       order; the SSE path must give the same bytes. P = 13..16 puts 3, 6, 9
+       and 0 floats past the last group of 12, so every tail runs; clump 0
+       skips the clump term. make test also builds with HF_NO_SIMD. */
+    enum { QM = 16, G = 5, N = 40 };
+    float g[G * QM * 3], out[N * QM * 3], ref[N * QM * 3];
     hf_strand_binding b[N];
     hf_interp_params ip;
     hf_rng r;
-    int s, i, k;
+    int s, i, k, Q, cl;
     hf_rng_seed(&r, 77u, 3u);
-    for (i = 0; i < G * Q * 3; ++i) g[i] = hf_rng_float(&r) * 2.0f - 1.0f;
+    for (i = 0; i < G * QM * 3; ++i) g[i] = hf_rng_float(&r) * 2.0f - 1.0f;
     for (s = 0; s < N; ++s) {
         float a = hf_rng_float(&r), c = hf_rng_float(&r) * (1.0f - a);
         for (k = 0; k < 3; ++k) b[s].guide[k] = hf_rng_below(&r, G);
@@ -3241,26 +3242,31 @@ static void test_interp_simd_matches_scalar_reference(void)
         b[s].weight[2] = (1.0f - a) - c;
         b[s].length_scale = 0.5f + hf_rng_float(&r);
     }
-    ip.points_per_strand = Q;
-    ip.clump = 0.35f;
-    CHECK_EQ_INT(hf_interpolate(g, G, b, 0, N, &ip, out), HF_OK);
-    for (s = 0; s < N; ++s) {
-        const float *g0 = g + b[s].guide[0] * Q * 3, *g1 = g + b[s].guide[1] * Q * 3;
-        const float *g2 = g + b[s].guide[2] * Q * 3;
-        const float w0 = b[s].weight[0], w1 = b[s].weight[1], w2 = b[s].weight[2];
-        const float sc = b[s].length_scale;
-        const float *gn = (w0 >= w1 && w0 >= w2) ? g0 : (w1 >= w2 ? g1 : g2);
-        float rb[3];
-        for (k = 0; k < 3; ++k)
-            rb[k] = (1.0f - sc) * (w0 * g0[k] + w1 * g1[k] + w2 * g2[k]);
-        for (i = 0; i < Q * 3; ++i) {
-            float p = w0 * g0[i] + w1 * g1[i] + w2 * g2[i];
-            float c = ip.clump / (float)(Q - 1) * (float)(i / 3);
-            p = sc * p + rb[i % 3];
-            ref[s * Q * 3 + i] = p + c * (gn[i] - p);
+    for (Q = 13; Q <= QM; ++Q)
+        for (cl = 0; cl < 2; ++cl) {
+            ip.points_per_strand = Q;
+            ip.clump = cl ? 0.35f : 0.0f;
+            memset(out, 0, sizeof out);
+            memset(ref, 0, sizeof ref);
+            CHECK_EQ_INT(hf_interpolate(g, G, b, 0, N, &ip, out), HF_OK);
+            for (s = 0; s < N; ++s) {
+                const float *g0 = g + b[s].guide[0] * Q * 3, *g1 = g + b[s].guide[1] * Q * 3;
+                const float *g2 = g + b[s].guide[2] * Q * 3;
+                const float w0 = b[s].weight[0], w1 = b[s].weight[1], w2 = b[s].weight[2];
+                const float sc = b[s].length_scale;
+                const float *gn = (w0 >= w1 && w0 >= w2) ? g0 : (w1 >= w2 ? g1 : g2);
+                float rb[3];
+                for (k = 0; k < 3; ++k)
+                    rb[k] = (1.0f - sc) * (w0 * g0[k] + w1 * g1[k] + w2 * g2[k]);
+                for (i = 0; i < Q * 3; ++i) {
+                    float p = w0 * g0[i] + w1 * g1[i] + w2 * g2[i];
+                    float c = ip.clump / (float)(Q - 1) * (float)(i / 3);
+                    p = sc * p + rb[i % 3];
+                    ref[s * Q * 3 + i] = ip.clump != 0.0f ? p + c * (gn[i] - p) : p;
+                }
+            }
+            CHECK(memcmp(out, ref, sizeof out) == 0);
         }
-    }
-    CHECK(memcmp(out, ref, sizeof out) == 0);
 }
 
 static void test_interp_length_scale_and_clump(void)
