@@ -17,7 +17,10 @@
      - two ways to feed the GPU: CPU ribbons (hf_fur_ribbons, the dynamic
        position + tangent streams only) or GPU expansion (hf_fur_points into
        a GL_RGBA32F texture buffer, expanded by examples/ribbon_expand.glsl),
-       both drawn with the same hf_ribbon_indices buffer.
+       both drawn with the same hf_ribbon_indices buffer;
+     - compact CPU ribbons (--compact): 16-byte vertices, position SNORM16
+       around the head centre, texcoord UNORM16, tangent SNORM8, read by GL
+       as normalized integers (docs/rendering.md "Compact vertices").
 
    Build: make build/gl_marschner (see glex.mk), or from the repo root:
      make build/glad/gl.o
@@ -35,6 +38,7 @@
      --kajiya --gpu-expand --color3d --colliders --distance D | --lod F
      --azimuth DEG --elevation DEG --orbit DEG_PER_S --still --no-specular
      --strands N --lut-size N --a2c --expand-shader FILE --draw-all
+     --compact (CPU ribbons in the 16-byte vertex; ignored with --gpu-expand)
 
    Define GLM_NO_MAIN to include this file in a test (tests/gl_fur_check.c)
    and drive glm_init / glm_step / glm_draw yourself. */
@@ -66,6 +70,7 @@ typedef struct glm_options {
     int width, height, headless, frames, strands, lut_size;
     const char *out, *expand_shader;
     int kajiya, gpu_expand, color3d, colliders, still, a2c, draw_all;
+    int compact;      /* CPU ribbons as glm_compact vertices */
     float specular;   /* 1 = on; 0 = diffuse + ambient only */
     float distance;   /* camera distance to the head centre (m) */
     float lod;        /* < 0: from the distance */
@@ -94,6 +99,21 @@ static void glm_default_options(glm_options *o)
 typedef struct glm_dyn { float pos[3], tan[3]; } glm_dyn;
 typedef struct glm_static { float uv_t[3], rgba[4], c3d[2]; } glm_static;
 
+/* --compact: the 16-byte vertex of bench/bench.c, in place of glm_dyn.
+   Position SNORM16 in a GLM_COMPACT_SCALE box around the head centre
+   (scale / 32767 = 15 um steps), texcoord UNORM16, tangent SNORM8 (the
+   shader renormalises it); one pad byte keeps the stride a multiple of 4.
+   The texcoord never changes, so it is written once at init and each frame
+   writes only position and tangent into the same array: 16 instead of 24
+   bytes a vertex go over the bus. Colour and 3D colour stay in glm_static. */
+typedef struct glm_compact {
+    int16_t pos[3];
+    uint16_t uv_t[3];
+    int8_t tan[3];
+    uint8_t pad;
+} glm_compact;
+#define GLM_COMPACT_SCALE 0.5f /* m: holds the head and its hair, swinging */
+
 typedef struct glm_app {
     glm_options o;
     hm_mesh head;
@@ -105,6 +125,9 @@ typedef struct glm_app {
     hf_fur_info info;
     int P;
     glm_dyn *dyn;       /* CPU-ribbon stream, all strands */
+    glm_compact *cdyn;  /* the same, --compact */
+    float corigin[3], cscale; /* what cdyn's positions were written
+                                 relative to, for the shader to undo */
     float *points4;     /* GPU-expansion stream, all strands */
     hf_collider col[GLM_MAX_COLLIDERS];
     float pose[12];
@@ -115,9 +138,10 @@ typedef struct glm_app {
     double cpu_ms, draw_ms;
     int draw_hair;      /* tests switch the hair off to get a mask */
     /* GL */
-    GLuint prog_cpu, prog_gpu, prog_head, prog_line;
-    GLuint vao_cpu, vao_gpu, vao_head, vao_line;
-    GLuint vbo_dyn, vbo_static, vbo_points, tbo_points, vbo_uv, tbo_uv;
+    GLuint prog_cpu, prog_cpu16, prog_gpu, prog_head, prog_line;
+    GLuint vao_cpu, vao_cpu16, vao_gpu, vao_head, vao_line;
+    GLuint vbo_dyn, vbo_dyn16, vbo_static, vbo_points, tbo_points;
+    GLuint vbo_uv, tbo_uv;
     GLuint vbo_scolor, tbo_scolor, vbo_c3x, tbo_c3x, ibo_hair;
     GLuint vbo_head, ibo_head, vbo_line;
     GLuint tex_m, tex_n, tex_ramp, tex_density;
@@ -150,6 +174,29 @@ static const char *glm_vs_cpu =
     "    v_position = a_pos; v_tangent = a_tangent; v_texcoord = a_texcoord;\n"
     "    v_color = a_color; v_c3d = a_color3d;\n"
     "    gl_Position = u_view_proj * vec4(a_pos, 1.0);\n"
+    "}\n";
+
+/* --compact: the same, with the position undone from SNORM16 (GL gives
+   a_pos in [-1, 1]) and the SNORM8 tangent renormalised, so the fragment
+   shader sees what glm_vs_cpu gives it. */
+static const char *glm_vs_cpu16 =
+    "#version 330 core\n"
+    "layout(location = 0) in vec3 a_pos;      // (p - origin) / scale\n"
+    "layout(location = 1) in vec3 a_tangent;  // |a_tangent| ~ 1 +- 1/127\n"
+    "layout(location = 2) in vec3 a_texcoord;\n"
+    "layout(location = 3) in vec4 a_color;\n"
+    "layout(location = 4) in vec2 a_color3d;\n"
+    "uniform mat4 u_view_proj;\n"
+    "uniform vec3 u_pos_origin;\n"
+    "uniform float u_pos_scale;\n"
+    "out vec3 v_position, v_tangent, v_texcoord;\n"
+    "out vec4 v_color;\n"
+    "out vec2 v_c3d;\n"
+    "void main() {\n"
+    "    vec3 p = u_pos_origin + u_pos_scale * a_pos;\n"
+    "    v_position = p; v_tangent = normalize(a_tangent);\n"
+    "    v_texcoord = a_texcoord; v_color = a_color; v_c3d = a_color3d;\n"
+    "    gl_Position = u_view_proj * vec4(p, 1.0);\n"
     "}\n";
 
 /* Appended to ribbon_expand.glsl (whose main is renamed): the per-strand
@@ -602,10 +649,12 @@ static int glm_init(glm_app *a, const glm_options *o)
     a->skinned.normals = a->skin[0].normal;
     nv = 2u * (size_t)S * (size_t)a->P;
     a->dyn = (glm_dyn *)malloc(sizeof(glm_dyn) * nv);
+    /* zeroed: the pad bytes are uploaded too */
+    a->cdyn = (glm_compact *)calloc(nv, sizeof(glm_compact));
     a->points4 = (float *)malloc(sizeof(float) * 4u * (size_t)S * (size_t)a->P);
     a->line_buf = (float *)malloc(sizeof(float) * 6u * GLM_MAX_COLLIDERS *
                                   GLM_LINES_PER_COLLIDER);
-    if (!a->dyn || !a->points4 || !a->line_buf) return 0;
+    if (!a->dyn || !a->cdyn || !a->points4 || !a->line_buf) return 0;
 
     /* programs */
     {
@@ -613,9 +662,12 @@ static int glm_init(glm_app *a, const glm_options *o)
         const char *path = o->expand_shader ? o->expand_shader
                                             : "examples/ribbon_expand.glsl";
         a->prog_cpu = glc_program(glm_vs_cpu, glm_fs_hair, "hair (CPU ribbons)");
+        a->prog_cpu16 = glc_program(glm_vs_cpu16, glm_fs_hair,
+                                    "hair (compact CPU ribbons)");
         a->prog_head = glc_program(glm_vs_head, glm_fs_head, "head");
         a->prog_line = glc_program(glm_vs_line, glm_fs_line, "lines");
-        if (!a->prog_cpu || !a->prog_head || !a->prog_line) return 0;
+        if (!a->prog_cpu || !a->prog_cpu16 || !a->prog_head || !a->prog_line)
+            return 0;
         gpu_src = glm_gpu_vs_source(path);
         if (gpu_src) {
             a->prog_gpu = glc_program(gpu_src, glm_fs_hair, "hair (GPU expansion)");
@@ -689,8 +741,16 @@ static int glm_init(glm_app *a, const glm_options *o)
         out.color.stride = sizeof(glm_static);
         out.color3d.data = st[0].c3d;
         out.color3d.stride = sizeof(glm_static);
-        if ((r = hf_fur_interpolate(a->fur, 0, S)) != HF_OK ||
-            (r = hf_fur_ribbons(a->fur, 0, S, &v, &out)) != HF_OK) {
+        if ((r = hf_fur_interpolate(a->fur, 0, S)) == HF_OK &&
+            (r = hf_fur_ribbons(a->fur, 0, S, &v, &out)) == HF_OK) {
+            /* --compact: the texcoords of the 16-byte vertices, once too */
+            memset(&out, 0, sizeof out);
+            out.texcoord.data = a->cdyn[0].uv_t;
+            out.texcoord.stride = sizeof(glm_compact);
+            out.texcoord.format = HF_FORMAT_UNORM16;
+            r = hf_fur_ribbons(a->fur, 0, S, &v, &out);
+        }
+        if (r != HF_OK) {
             fprintf(stderr, "gl_marschner: %s\n", hf_result_string(r));
             free(st);
             return 0;
@@ -710,6 +770,30 @@ static int glm_init(glm_app *a, const glm_options *o)
         glEnableVertexAttribArray(3);
         glEnableVertexAttribArray(4);
     }
+
+    /* --compact: position, texcoord and tangent from the 16-byte stream as
+       normalized integers (GL divides by 32767, 65535 and 127, the encoding
+       hf_ribbons uses; the shader undoes origin and scale), colour and 3D
+       colour from the static buffer as above */
+    glGenVertexArrays(1, &a->vao_cpu16);
+    glBindVertexArray(a->vao_cpu16);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, a->ibo_hair);
+    glGenBuffers(1, &a->vbo_dyn16);
+    glBindBuffer(GL_ARRAY_BUFFER, a->vbo_dyn16);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(glm_compact) * nv), NULL,
+                 GL_STREAM_DRAW);
+    glVertexAttribPointer(0, 3, GL_SHORT, GL_TRUE, sizeof(glm_compact),
+                          (void *)offsetof(glm_compact, pos));
+    glVertexAttribPointer(1, 3, GL_BYTE, GL_TRUE, sizeof(glm_compact),
+                          (void *)offsetof(glm_compact, tan));
+    glVertexAttribPointer(2, 3, GL_UNSIGNED_SHORT, GL_TRUE, sizeof(glm_compact),
+                          (void *)offsetof(glm_compact, uv_t));
+    glBindBuffer(GL_ARRAY_BUFFER, a->vbo_static);
+    glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, sizeof(glm_static),
+                          (void *)offsetof(glm_static, rgba));
+    glVertexAttribPointer(4, 2, GL_FLOAT, GL_FALSE, sizeof(glm_static),
+                          (void *)offsetof(glm_static, c3d));
+    for (i = 0; i < 5; ++i) glEnableVertexAttribArray((GLuint)i);
 
     /* GPU path: points (streamed), root UV, colour and 3D-colour x per
        strand (static). hf_fur_info has no 3D-colour x, so it is computed
@@ -832,6 +916,25 @@ static int glm_build(glm_app *a)
     r = hf_fur_interpolate(a->fur, 0, n);
     if (!r && a->o.gpu_expand) {
         r = hf_fur_points(a->fur, 0, n, &v, a->points4);
+    } else if (!r && a->o.compact) {
+        /* position and tangent only: the texcoords from init stay in
+           cdyn. The origin follows the head, so the hair stays well inside
+           the +-GLM_COMPACT_SCALE box however far the head moves. */
+        hf_ribbon_output out;
+        memset(&out, 0, sizeof out);
+        a->corigin[0] = a->pose[3];
+        a->corigin[1] = a->pose[7];
+        a->corigin[2] = a->pose[11];
+        a->cscale = GLM_COMPACT_SCALE;
+        out.position.data = a->cdyn[0].pos;
+        out.position.stride = sizeof(glm_compact);
+        out.position.format = HF_FORMAT_SNORM16;
+        out.tangent.data = a->cdyn[0].tan;
+        out.tangent.stride = sizeof(glm_compact);
+        out.tangent.format = HF_FORMAT_SNORM8;
+        memcpy(out.position_origin, a->corigin, sizeof a->corigin);
+        out.position_scale = a->cscale;
+        r = hf_fur_ribbons(a->fur, 0, n, &v, &out);
     } else if (!r) {
         hf_ribbon_output out;
         memset(&out, 0, sizeof out);
@@ -856,12 +959,15 @@ static int glm_build(glm_app *a)
                      GL_STREAM_DRAW);
         glBufferSubData(GL_TEXTURE_BUFFER, 0, (GLsizeiptr)bytes, a->points4);
     } else {
-        size_t bytes = sizeof(glm_dyn) * 2u * (size_t)n * (size_t)a->P;
-        glBindBuffer(GL_ARRAY_BUFFER, a->vbo_dyn);
-        glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(glm_dyn) * 2u *
+        size_t vsize = a->o.compact ? sizeof(glm_compact) : sizeof(glm_dyn);
+        size_t bytes = vsize * 2u * (size_t)n * (size_t)a->P;
+        glBindBuffer(GL_ARRAY_BUFFER, a->o.compact ? a->vbo_dyn16 : a->vbo_dyn);
+        glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(vsize * 2u *
                      (size_t)a->info.strand_count * (size_t)a->P), NULL,
                      GL_STREAM_DRAW);
-        glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)bytes, a->dyn);
+        glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)bytes,
+                        a->o.compact ? (const void *)a->cdyn
+                                     : (const void *)a->dyn);
     }
     glBindBuffer(GL_ARRAY_BUFFER, a->vbo_head);
     glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(sizeof(hm_vertex) *
@@ -916,7 +1022,8 @@ static void glm_draw(glm_app *a)
        pattern. Blending without sorting lets a faded tip hide strands
        drawn after it behind it; at these alphas that is not visible. */
     if (a->draw_hair && n > 0) {
-        GLuint prog = a->o.gpu_expand && a->prog_gpu ? a->prog_gpu : a->prog_cpu;
+        GLuint prog = a->o.gpu_expand && a->prog_gpu ? a->prog_gpu
+                    : a->o.compact ? a->prog_cpu16 : a->prog_cpu;
         glUseProgram(prog);
         glm_lights(prog, a);
         glUniform3fv(glGetUniformLocation(prog, "u_eye"), 1, a->eye);
@@ -956,6 +1063,11 @@ static void glm_draw(glm_app *a)
             glUniform2f(glGetUniformLocation(prog, "u_alpha"), v.alpha_root,
                         v.alpha_tip);
             glBindVertexArray(a->vao_gpu);
+        } else if (prog == a->prog_cpu16) {
+            glUniform3fv(glGetUniformLocation(prog, "u_pos_origin"), 1,
+                         a->corigin);
+            glUniform1f(glGetUniformLocation(prog, "u_pos_scale"), a->cscale);
+            glBindVertexArray(a->vao_cpu16);
         } else {
             glBindVertexArray(a->vao_cpu);
         }
@@ -1007,21 +1119,22 @@ static void glm_draw(glm_app *a)
 
 static void glm_shutdown(glm_app *a)
 {
-    GLuint bufs[11], texs[8], vaos[4];
+    GLuint bufs[11], texs[8], vaos[5];
     bufs[0] = a->vbo_dyn; bufs[1] = a->vbo_static; bufs[2] = a->vbo_points;
     bufs[3] = a->vbo_uv; bufs[4] = a->vbo_scolor; bufs[5] = a->vbo_c3x;
     bufs[6] = a->ibo_hair; bufs[7] = a->vbo_head; bufs[8] = a->ibo_head;
-    bufs[9] = a->vbo_line; bufs[10] = 0;
+    bufs[9] = a->vbo_line; bufs[10] = a->vbo_dyn16;
     texs[0] = a->tex_m; texs[1] = a->tex_n; texs[2] = a->tex_ramp;
     texs[3] = a->tex_density; texs[4] = a->tbo_points; texs[5] = a->tbo_uv;
     texs[6] = a->tbo_scolor; texs[7] = a->tbo_c3x;
     vaos[0] = a->vao_cpu; vaos[1] = a->vao_gpu; vaos[2] = a->vao_head;
-    vaos[3] = a->vao_line;
+    vaos[3] = a->vao_line; vaos[4] = a->vao_cpu16;
     if (glc_width() > 0) {
         glDeleteBuffers(11, bufs);
         glDeleteTextures(8, texs);
-        glDeleteVertexArrays(4, vaos);
+        glDeleteVertexArrays(5, vaos);
         glDeleteProgram(a->prog_cpu);
+        glDeleteProgram(a->prog_cpu16);
         glDeleteProgram(a->prog_gpu);
         glDeleteProgram(a->prog_head);
         glDeleteProgram(a->prog_line);
@@ -1034,6 +1147,7 @@ static void glm_shutdown(glm_app *a)
     free(a->color_px);
     free(a->index_px);
     free(a->dyn);
+    free(a->cdyn);
     free(a->points4);
     free(a->line_buf);
     memset(a, 0, sizeof *a);
@@ -1054,6 +1168,7 @@ static int glm_parse(int argc, char **argv, glm_options *o)
         else if (!strcmp(s, "--still")) o->still = 1;
         else if (!strcmp(s, "--a2c")) o->a2c = 1;
         else if (!strcmp(s, "--draw-all")) o->draw_all = 1;
+        else if (!strcmp(s, "--compact")) o->compact = 1;
         else if (!strcmp(s, "--no-specular")) o->specular = 0.0f;
         else if (!v) return 0;
         else if (!strcmp(s, "--frames")) o->frames = atoi(v), ++i;
@@ -1128,7 +1243,7 @@ int main(int argc, char **argv)
                 "  [--colliders] [--distance D | --lod F] [--azimuth DEG]\n"
                 "  [--elevation DEG] [--orbit DEG_PER_S] [--still] [--no-specular]\n"
                 "  [--strands N] [--lut-size N] [--a2c] [--draw-all]\n"
-                "  [--expand-shader FILE]\n");
+                "  [--expand-shader FILE] [--compact]\n");
         return 2;
     }
     if (o.headless ? !glc_open_headless(o.width, o.height)
@@ -1169,7 +1284,8 @@ int main(int argc, char **argv)
                      "hairfur gl_marschner - %s, %s%s - distance %.2f m, LOD "
                      "%.2f: %d of %d strands drawn - CPU %.1f ms, draw %.1f ms",
                      a->o.kajiya ? "Kajiya-Kay" : "Marschner",
-                     a->o.gpu_expand ? "GPU expansion" : "CPU ribbons",
+                     a->o.gpu_expand ? "GPU expansion"
+                     : a->o.compact ? "compact CPU ribbons" : "CPU ribbons",
                      a->o.color3d ? ", 3D colour" : "", a->o.distance, a->lod,
                      a->drawn, a->info.strand_count, a->cpu_ms, a->draw_ms);
             glfwSetWindowTitle((GLFWwindow *)glc_window(), title);
@@ -1181,8 +1297,9 @@ int main(int argc, char **argv)
         printf("gl_marschner: %s, %s, %dx%d, distance %.2f, LOD %.3f: %d of %d "
                "strands drawn; mean over %d drawn frames: CPU %.1f ms, GL "
                "draw %.1f ms\n", a->o.kajiya ? "Kajiya-Kay" : "Marschner",
-               a->o.gpu_expand ? "GPU expansion" : "CPU ribbons", a->o.width,
-               a->o.height, a->o.distance, a->lod, a->drawn,
+               a->o.gpu_expand ? "GPU expansion"
+               : a->o.compact ? "compact CPU ribbons" : "CPU ribbons",
+               a->o.width, a->o.height, a->o.distance, a->lod, a->drawn,
                a->info.strand_count, drawn_frames, sum_cpu / drawn_frames,
                sum_draw / drawn_frames);
     glm_shutdown(a);

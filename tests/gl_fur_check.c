@@ -10,16 +10,23 @@
  *   2. highlight: over hair pixels, the Marschner render is brighter than
  *      the diffuse-only one somewhere by a clear margin (max luminance
  *      difference), and brighter on average;
- *   3. not uniform: the standard deviation of luminance over the image.
+ *   3. not uniform: the standard deviation of luminance over the image;
+ *   4. compact vertices: the --compact render (16-byte vertices, position
+ *      SNORM16 around the head centre) matches the float one over hair
+ *      pixels (mean difference and fraction of pixels off by more than 8).
  * Each check also runs on negative controls (a blank image, the
  * diffuse-only render compared with itself, the head-only render as if it
- * were hair) and must reject them, so the checks are shown to be able to
- * fail every time the test runs.
+ * were hair, the compact render drawn with a scale 1 % off) and must reject
+ * them, so the checks are shown to be able to fail every time the test
+ * runs.
  *
- * Usage: gl_fur_check [--out-dir DIR] [--sabotage blank|nospec]
- *   --out-dir DIR  also write DIR/fur_check_{spec,diffuse,head}.png
+ * Usage: gl_fur_check [--out-dir DIR] [--sabotage blank|nospec|scale]
+ *   --out-dir DIR  also write DIR/fur_check_{spec,diffuse,head,gpu,
+ *                  compact}.png
  *   --sabotage     feed a blank image / the diffuse-only render in place of
- *                  the Marschner one: the test must then FAIL (exit 1)
+ *                  the Marschner one, or the wrong-scale compact render in
+ *                  place of the compact one: the test must then FAIL
+ *                  (exit 1)
  * Exit 0 all checks passed, 1 a check failed, 2 "SKIP: reason" (no headless
  * GL). Build: see glex.mk (needs examples/ribbon_expand.glsl only for the
  * GPU-expansion comparison, which it skips with a note if absent). */
@@ -130,6 +137,48 @@ static int check_not_uniform(const unsigned char *img, double *sd)
     return *sd > 12.0;
 }
 
+/* Check 4: the compact-vertex render against the float one, over hair
+   pixels (hair in either, against the head-only render): mean absolute
+   difference of R, G, B in grey levels, and the fraction of pixels with a
+   channel off by more than 8. Measured on llvmpipe here: 1.47 and 0.023.
+   About half is the UNORM16 root UV, which the shader's per-strand
+   brightness hash turns into a different (equally random) brightness per
+   strand: 0.80 and 0.015 with float texcoords. The rest is the SNORM16
+   position (steps of 15 um, a hundredth of a pixel): thin overlapping
+   ribbons make any sub-pixel shift flip some edge samples and depth ties,
+   and a shift of only 7 um alone gives 0.66 and 0.008 (an SNORM16 tangent
+   instead of SNORM8 changes nothing measurable). The limits are twice
+   the measurement, for other drivers; the control, drawn with a scale 1 %
+   off, gives 8.1 and 0.41, and a scale only 0.1 % off (hair 0.24 mm, a
+   sixth of a pixel, out of place) still gives 3.4 and 0.15. */
+#define COMPACT_MEAN_MAX 3.0
+#define COMPACT_FRAC_MAX 0.05
+
+static int check_compact(const unsigned char *img, const unsigned char *ref,
+                         const unsigned char *head, double *mean,
+                         double *frac)
+{
+    long n = 0, off = 0, i;
+    double sum = 0;
+    int k;
+    for (i = 0; i < (long)W * H; ++i) {
+        int worst = 0;
+        if (!differs(img + 4 * i, head + 4 * i) &&
+            !differs(ref + 4 * i, head + 4 * i))
+            continue;
+        for (k = 0; k < 3; ++k) {
+            int d = abs(img[4 * i + k] - ref[4 * i + k]);
+            sum += d;
+            if (d > worst) worst = d;
+        }
+        off += worst > 8;
+        ++n;
+    }
+    *mean = n ? sum / (3.0 * n) : 0;
+    *frac = n ? (double)off / n : 0;
+    return n > 1000 && *mean < COMPACT_MEAN_MAX && *frac < COMPACT_FRAC_MAX;
+}
+
 static void save(const char *dir, const char *name, const unsigned char *img)
 {
     char path[1024];
@@ -144,7 +193,7 @@ int main(int argc, char **argv)
     glm_options o;
     static glm_app app;
     glm_app *a = &app;
-    unsigned char *spec, *diff, *head, *gpu, *blank;
+    unsigned char *spec, *diff, *head, *gpu, *blank, *cmp, *cmp_bad;
     region g;
     double v1, v2, t0;
     int f, i;
@@ -154,7 +203,7 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--sabotage") && i + 1 < argc) sabotage = argv[++i];
         else {
             fprintf(stderr, "usage: gl_fur_check [--out-dir DIR] "
-                            "[--sabotage blank|nospec]\n");
+                            "[--sabotage blank|nospec|scale]\n");
             return 2;
         }
     }
@@ -180,12 +229,14 @@ int main(int argc, char **argv)
         return 1;
     }
     glc_set_quiet(0);
-    spec = (unsigned char *)malloc((size_t)W * H * 4 * 5);
+    spec = (unsigned char *)malloc((size_t)W * H * 4 * 7);
     if (!spec) return 1;
     diff = spec + (size_t)W * H * 4;
     head = diff + (size_t)W * H * 4;
     gpu = head + (size_t)W * H * 4;
     blank = gpu + (size_t)W * H * 4;
+    cmp = blank + (size_t)W * H * 4;
+    cmp_bad = cmp + (size_t)W * H * 4;
 
     /* 45 frames of physics, the last one with ribbons and uploads */
     for (f = 1; f <= 45; ++f)
@@ -227,17 +278,19 @@ int main(int argc, char **argv)
     i = check_not_uniform(spec, &v1);
     expect(i, "not uniform: std dev of luminance > 12", v1);
 
+    /* each check runs before its value is printed (the order in which a
+       call's arguments are evaluated is unspecified) */
     printf("negative controls (each must be rejected):\n");
-    expect(!check_coverage(blank, head, &g, &v1, &v2),
-           "blank image: coverage check rejects it (hair-coloured)", v2);
-    expect(!check_coverage(head, head, &g, &v1, &v2),
-           "head-only render: coverage check rejects it", v1);
-    expect(!check_highlight(diff, diff, head, &v1, &v2),
-           "diffuse-only vs itself: highlight check rejects it", v1);
-    expect(!check_highlight(blank, diff, head, &v1, &v2),
-           "blank vs diffuse-only: highlight check rejects it", v1);
-    expect(!check_not_uniform(blank, &v1), "blank image: uniformity check "
-           "rejects it", v1);
+    i = !check_coverage(blank, head, &g, &v1, &v2);
+    expect(i, "blank image: coverage check rejects it (hair-coloured)", v2);
+    i = !check_coverage(head, head, &g, &v1, &v2);
+    expect(i, "head-only render: coverage check rejects it", v1);
+    i = !check_highlight(diff, diff, head, &v1, &v2);
+    expect(i, "diffuse-only vs itself: highlight check rejects it", v1);
+    i = !check_highlight(blank, diff, head, &v1, &v2);
+    expect(i, "blank vs diffuse-only: highlight check rejects it", v1);
+    i = !check_not_uniform(blank, &v1);
+    expect(i, "blank image: uniformity check rejects it", v1);
 
     /* the GPU-expansion path draws the same picture from the same state */
     if (a->prog_gpu) {
@@ -263,6 +316,33 @@ int main(int argc, char **argv)
                "from the working directory)\n");
     }
     save(out_dir, "fur_check_gpu.png", gpu);
+
+    /* the compact vertices (--compact) draw the same picture from the same
+       state; the control draws them with the shader undoing a scale 1 %
+       too large (hair up to 2.4 mm, about 1.6 pixels, out of place) */
+    a->o.compact = 1;
+    if (!glm_build(a)) return 1;
+    glm_draw(a);
+    glc_read_rgba(cmp);
+    a->cscale *= 1.01f;
+    glm_draw(a);
+    glc_read_rgba(cmp_bad);
+    a->o.compact = 0;
+    save(out_dir, "fur_check_compact.png", cmp);
+    if (sabotage && !strcmp(sabotage, "scale")) {
+        printf("  SABOTAGE: the wrong-scale compact render replaces the "
+               "compact one\n");
+        memcpy(cmp, cmp_bad, (size_t)W * H * 4);
+    }
+    printf("compact vertices (16 bytes: SNORM16 position, UNORM16 texcoord, "
+           "SNORM8 tangent):\n");
+    i = check_compact(cmp, spec, head, &v1, &v2);
+    expect(i, "mean |compact - float| over hair pixels (< 3 grey levels)",
+           v1);
+    expect(i, "hair pixels off by more than 8 (fraction < 0.05)", v2);
+    i = !check_compact(cmp_bad, spec, head, &v1, &v2);
+    expect(i, "scale 1 % off: rejected (mean |compact - float|)", v1);
+    expect(i, "scale 1 % off: rejected (fraction off by more than 8)", v2);
     glm_shutdown(a);
     glc_close();
     free(spec);
