@@ -3519,6 +3519,11 @@ enum {
     HF__RS_ROWS = 29
 };
 
+/* Ropes of up to this many points get their per-point stiffness from a
+   table made once per call (hf__rope_k calls pow); longer ones compute it
+   row by row, as before. */
+#define HF__ROPE_KTAB 64
+
 /* Resolved per-call constants. */
 typedef struct hf__rope_step {
     int n;             /* sub-steps */
@@ -3534,6 +3539,8 @@ typedef struct hf__rope_step {
     float blend_time;
     float gs_root, gs_tip, ls_root, ls_tip; /* per 1/60 s */
     int global_on, local_on;
+    int ktab; /* kg, kl hold hf__rope_kg, hf__rope_kl */
+    float kg[HF__ROPE_KTAB], kl[HF__ROPE_KTAB];
 } hf__rope_step;
 
 HFDEF void hf_rope_params_init(hf_rope_params *p)
@@ -4125,6 +4132,53 @@ HFDEF hf_result hf_ropes_max_stretch(const hf_ropes *ropes, int first,
     return HF_OK;
 }
 
+#if HF__SSE
+/* hf_ropes_get_positions of ropes [r, r + 4) into packed output: four
+   points of the four ropes at a time, transposed in registers. */
+HF__PRIVATE void hf__ropes_get4(const hf_ropes *ro, int r, float *out)
+{
+    const size_t R = (size_t)ro->rope_count, P = (size_t)ro->points;
+    size_t j, i;
+    int k;
+    for (j = 0; j + 4 <= P; j += 4) {
+        __m128 xs[4], ys[4], zs[4];
+        for (k = 0; k < 4; ++k) {
+            i = (j + (size_t)k) * R + (size_t)r;
+            xs[k] = _mm_loadu_ps(ro->x + i);
+            ys[k] = _mm_loadu_ps(ro->y + i);
+            zs[k] = _mm_loadu_ps(ro->z + i);
+        }
+        /* now xs[k]: x of points j .. j + 3 of rope r + k */
+        _MM_TRANSPOSE4_PS(xs[0], xs[1], xs[2], xs[3]);
+        _MM_TRANSPOSE4_PS(ys[0], ys[1], ys[2], ys[3]);
+        _MM_TRANSPOSE4_PS(zs[0], zs[1], zs[2], zs[3]);
+        for (k = 0; k < 4; ++k) {
+            /* x y z x | y z x y | z x y z */
+            float *o = out + ((size_t)(r + k) * P + j) * 3u;
+            const __m128 xy = _mm_unpacklo_ps(xs[k], ys[k]),
+                         zx = _mm_unpacklo_ps(zs[k], xs[k]),
+                         yz = _mm_unpacklo_ps(ys[k], zs[k]),
+                         xyh = _mm_unpackhi_ps(xs[k], ys[k]),
+                         zxh = _mm_unpackhi_ps(zs[k], xs[k]),
+                         yzh = _mm_unpackhi_ps(ys[k], zs[k]);
+            _mm_storeu_ps(o, _mm_shuffle_ps(xy, zx, _MM_SHUFFLE(3, 0, 1, 0)));
+            _mm_storeu_ps(o + 4,
+                          _mm_shuffle_ps(yz, xyh, _MM_SHUFFLE(1, 0, 3, 2)));
+            _mm_storeu_ps(o + 8,
+                          _mm_shuffle_ps(zxh, yzh, _MM_SHUFFLE(3, 2, 3, 0)));
+        }
+    }
+    for (; j < P; ++j)
+        for (k = 0; k < 4; ++k) {
+            float *o = out + ((size_t)(r + k) * P + j) * 3u;
+            i = j * R + (size_t)(r + k);
+            o[0] = ro->x[i];
+            o[1] = ro->y[i];
+            o[2] = ro->z[i];
+        }
+}
+#endif
+
 HFDEF hf_result hf_ropes_get_positions(const hf_ropes *ropes, int first,
                                        int count, float *out, int stride)
 {
@@ -4135,7 +4189,12 @@ HFDEF hf_result hf_ropes_get_positions(const hf_ropes *ropes, int first,
     if (!hf__stride_ok(out, stride, 12)) return HF_ERROR_BAD_STRIDE;
     R = (size_t)ropes->rope_count;
     P = (size_t)ropes->points;
-    for (r = first; r < first + count; ++r)
+    r = first;
+#if HF__SSE
+    if (stride == 0 || stride == 12)
+        for (; r + 4 <= first + count; r += 4) hf__ropes_get4(ropes, r, out);
+#endif
+    for (; r < first + count; ++r)
         for (j = 0; j < (int)P; ++j) {
             size_t i = (size_t)j * R + (size_t)r;
             float *o = (float *)((unsigned char *)out +
@@ -4184,7 +4243,39 @@ HF__PRIVATE float hf__rope_k(float k, float h)
     return 1.0f - (float)HF_POW(1.0 - (double)k, (double)h * 60.0);
 }
 
+/* Pull of point j (>= 1) of P toward its rest place in the frame, per
+   sub-step: global shape, and for point 1 the root stiffness too. */
+HF__PRIVATE float hf__rope_kg(const hf__rope_step *st, int j, int P)
+{
+    float t = (float)j / (float)(P - 1);
+    float kg = hf__rope_k(st->gs_root + (st->gs_tip - st->gs_root) * t, st->h);
+    if (j == 1) kg = 1.0f - (1.0f - kg) * (1.0f - st->k_root);
+    return kg;
+}
+
+/* Local shape pull of point j + 1 (j >= 1) of P, per sub-step. */
+HF__PRIVATE float hf__rope_kl(const hf__rope_step *st, int j, int P)
+{
+    float t = (float)(j + 1) / (float)(P - 1);
+    return hf__rope_k(st->ls_root + (st->ls_tip - st->ls_root) * t, st->h);
+}
+
 #define HF__ROW(base, row) ((base) + (size_t)(row) * R)
+
+#if HF__SSE
+/* Shorthands for the four-rope kernels; each argument is used once. */
+#define HF__LD(p) _mm_loadu_ps(p)
+#define HF__ST(p, v) _mm_storeu_ps(p, v)
+#define HF__ADD(x, y) _mm_add_ps(x, y)
+#define HF__SUB(x, y) _mm_sub_ps(x, y)
+#define HF__MUL(x, y) _mm_mul_ps(x, y)
+/* a x + b y + c z, added left to right as the scalar code does */
+#define HF__DOT3(a, b, c, x, y, z)                                             \
+    HF__ADD(HF__ADD(HF__MUL(a, x), HF__MUL(b, y)), HF__MUL(c, z))
+/* o + a x + b y + c z, likewise */
+#define HF__POSE(o, a, b, c, x, y, z)                                          \
+    HF__ADD(HF__ADD(HF__ADD(o, HF__MUL(a, x)), HF__MUL(b, y)), HF__MUL(c, z))
+#endif
 
 /* Points [j0, P) of ropes [a, b) at frame rows fr (12 rows) times rest. */
 HF__PRIVATE void hf__rope_pose_row(const hf_ropes *ro, int j, int a, int b,
@@ -4201,8 +4292,20 @@ HF__PRIVATE void hf__rope_pose_row(const hf_ropes *ro, int j, int a, int b,
                 *f6 = HF__ROW(fr, 6), *f7 = HF__ROW(fr, 7),
                 *f8 = HF__ROW(fr, 8), *f9 = HF__ROW(fr, 9),
                 *f10 = HF__ROW(fr, 10), *f11 = HF__ROW(fr, 11);
-    int r;
-    for (r = a; r < b; ++r) {
+    int r = a;
+#if HF__SSE
+    for (; r + 4 <= b; r += 4) {
+        const __m128 uu = HF__LD(u + r), vv = HF__LD(v + r),
+                     ww = HF__LD(w + r);
+        HF__ST(ox + r, HF__POSE(HF__LD(f0 + r), HF__LD(f3 + r), HF__LD(f6 + r),
+                                HF__LD(f9 + r), uu, vv, ww));
+        HF__ST(oy + r, HF__POSE(HF__LD(f1 + r), HF__LD(f4 + r), HF__LD(f7 + r),
+                                HF__LD(f10 + r), uu, vv, ww));
+        HF__ST(oz + r, HF__POSE(HF__LD(f2 + r), HF__LD(f5 + r), HF__LD(f8 + r),
+                                HF__LD(f11 + r), uu, vv, ww));
+    }
+#endif
+    for (; r < b; ++r) {
         ox[r] = f0[r] + f3[r] * u[r] + f6[r] * v[r] + f9[r] * w[r];
         oy[r] = f1[r] + f4[r] * u[r] + f7[r] * v[r] + f10[r] * w[r];
         oz[r] = f2[r] + f5[r] * u[r] + f8[r] * v[r] + f11[r] * w[r];
@@ -4236,7 +4339,6 @@ HF__PRIVATE void hf__ropes_animated_run(hf_ropes *ro, int a, int b,
     }
 }
 
-/* One collider against point row j (>= 1) of ropes [a, b). */
 /* A collider ready for the row kernels: base point, capsule axis e and
    1 / |e|^2 (0 for a sphere or a zero-length capsule: a point, so a
    sphere), and the radius grown by the margin. */
@@ -4278,13 +4380,80 @@ HF__PRIVATE float hf__col_closest(const hf__col_prep *k, float x, float y,
     return d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
 }
 
-HF__PRIVATE void hf__ropes_collide_row(hf_ropes *ro, int j, int a, int b,
-                                       const hf_collider *c, float margin)
+#if HF__SSE
+/* m ? x : y in each lane, m from a comparison. */
+HF__PRIVATE __m128 hf__rope_sel4(__m128 m, __m128 x, __m128 y)
+{
+    return _mm_or_ps(_mm_and_ps(m, x), _mm_andnot_ps(m, y));
+}
+
+/* Inlined where a call per four points would cost more than the test. */
+#if defined(__GNUC__) || defined(__clang__)
+#define HF__INLINE4 static __inline__ __attribute__((always_inline, unused))
+#elif defined(_MSC_VER)
+#define HF__INLINE4 static __forceinline
+#else
+#define HF__INLINE4 static
+#endif
+
+/* A prepared collider in every lane, rr^2, and whether its axis is a point
+   (e == 0: a sphere or a zero-length capsule). */
+typedef struct hf__col_prep4 {
+    __m128 a[3], e[3], inv, rr2;
+    int point;
+} hf__col_prep4;
+
+HF__PRIVATE void hf__col_prep_lanes(const hf__col_prep *k, hf__col_prep4 *v)
+{
+    int i;
+    for (i = 0; i < 3; ++i) {
+        v->a[i] = _mm_set1_ps(k->a[i]);
+        v->e[i] = _mm_set1_ps(k->e[i]);
+    }
+    v->inv = _mm_set1_ps(k->inv);
+    v->rr2 = _mm_set1_ps(k->rr * k->rr);
+    v->point = k->e[0] == 0.0f && k->e[1] == 0.0f && k->e[2] == 0.0f;
+}
+
+/* Which of four points hf__col_closest finds inside radius rr (bit i:
+   lane i), from its |d|^2: the kernels run the scalar code on exactly the
+   points it would act on, and skip the rest (most points, most steps).
+   For a point axis, c = a + 0 * t equals a up to the sign of a zero (or is
+   NaN only where x - a already is infinite or NaN), so |x - a|^2 is the
+   same |d|^2 and the same decision. */
+HF__INLINE4 int hf__col_hits4(const hf__col_prep4 *k, __m128 x, __m128 y,
+                              __m128 z)
+{
+    __m128 t, dx, dy, dz;
+    if (k->point) {
+        dx = HF__SUB(x, k->a[0]);
+        dy = HF__SUB(y, k->a[1]);
+        dz = HF__SUB(z, k->a[2]);
+    } else {
+        const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+        t = HF__MUL(HF__DOT3(HF__SUB(x, k->a[0]), HF__SUB(y, k->a[1]),
+                             HF__SUB(z, k->a[2]), k->e[0], k->e[1], k->e[2]),
+                    k->inv);
+        /* t < 0 ? 0 : (t > 1 ? 1 : t), NaN and -0 kept as the scalar does */
+        t = hf__rope_sel4(_mm_cmplt_ps(t, zero), zero,
+                          hf__rope_sel4(_mm_cmpgt_ps(t, one), one, t));
+        dx = HF__SUB(x, HF__ADD(k->a[0], HF__MUL(k->e[0], t)));
+        dy = HF__SUB(y, HF__ADD(k->a[1], HF__MUL(k->e[1], t)));
+        dz = HF__SUB(z, HF__ADD(k->a[2], HF__MUL(k->e[2], t)));
+    }
+    t = HF__DOT3(dx, dy, dz, dx, dy, dz);
+    return _mm_movemask_ps(_mm_cmplt_ps(t, k->rr2));
+}
+#endif
+
+/* One collider against point row j (>= 1) of ropes [a, b); F: the frame
+   rows of the sub-step. */
+HF__PRIVATE void hf__ropes_collide_row(hf_ropes *ro, const float *F, int j,
+                                       int a, int b, const hf_collider *c,
+                                       float margin)
 {
     size_t R = (size_t)ro->rope_count;
-    const float *nx = HF__ROW(ro->scratch, HF__RS_F + 6),
-                *ny = HF__ROW(ro->scratch, HF__RS_F + 7),
-                *nz = HF__ROW(ro->scratch, HF__RS_F + 8);
+    const float *nx = HF__ROW(F, 6), *ny = HF__ROW(F, 7), *nz = HF__ROW(F, 8);
     const hf__col_prep k_ = hf__collider_prep(c, margin);
     const float rr = k_.rr, rr2 = k_.rr * k_.rr;
     int r;
@@ -4324,16 +4493,13 @@ HF__PRIVATE void hf__ropes_collide_row(hf_ropes *ro, int j, int a, int b,
        d . n >= (rr^2 - rho^2 - L^2) / (2 L rho) = cmin,
    so d is moved onto the cone d . n = cmin. A radial push then covers what
    the local ball misses (capsule ends, a parent inside the margin). */
-HF__PRIVATE void hf__ropes_collide_ftl_row(hf_ropes *ro, int j, int a, int b,
+HF__PRIVATE void hf__ropes_collide_ftl_row(hf_ropes *ro, const float *F,
+                                           int j, int a, int b,
                                            const hf_collider *c, float margin)
 {
     size_t R = (size_t)ro->rope_count;
-    const float *nx = HF__ROW(ro->scratch, HF__RS_F + 6),
-                *ny = HF__ROW(ro->scratch, HF__RS_F + 7),
-                *nz = HF__ROW(ro->scratch, HF__RS_F + 8),
-                *tx = HF__ROW(ro->scratch, HF__RS_F + 3),
-                *ty = HF__ROW(ro->scratch, HF__RS_F + 4),
-                *tz = HF__ROW(ro->scratch, HF__RS_F + 5);
+    const float *nx = HF__ROW(F, 6), *ny = HF__ROW(F, 7), *nz = HF__ROW(F, 8),
+                *tx = HF__ROW(F, 3), *ty = HF__ROW(F, 4), *tz = HF__ROW(F, 5);
     const float *X0 = HF__ROW(ro->x, j - 1), *Y0 = HF__ROW(ro->y, j - 1),
                 *Z0 = HF__ROW(ro->z, j - 1);
     const float *L = HF__ROW(ro->rest_length, j - 1);
@@ -4436,14 +4602,14 @@ HF__PRIVATE void hf__ropes_collide_ftl_row(hf_ropes *ro, int j, int a, int b,
 }
 
 /* Every collider against points 1.. of ropes [a, b). */
-HF__PRIVATE void hf__ropes_collide(hf_ropes *ro, int a, int b,
+HF__PRIVATE void hf__ropes_collide(hf_ropes *ro, const float *F, int a, int b,
                                    const hf_collider *col, int ncol,
                                    float margin)
 {
     int j, c;
     for (j = 1; j < ro->points; ++j)
         for (c = 0; c < ncol; ++c)
-            hf__ropes_collide_row(ro, j, a, b, col + c, margin);
+            hf__ropes_collide_row(ro, F, j, a, b, col + c, margin);
 }
 
 /* Ropes [a, b) gliding from simulation to animation: kinematic, no
@@ -4484,7 +4650,352 @@ HF__PRIVATE void hf__ropes_glide_run(hf_ropes *ro, int a, int b,
     }
 }
 
-/* Simulated ropes [a, b). */
+#if HF__SSE
+/* Colliders whose lane copies hf__ropes_sim_run prepares once; further
+   ones are prepared per use. */
+#define HF__ROPE_PREP 8
+
+
+/* Collisions of point row j of ropes [r, r + 4), at xyz[0..2]: every
+   collider in order; a point hf__col_hits4 finds inside goes through the
+   scalar row kernel on its own. xyz is read back after a hit. */
+HF__PRIVATE void hf__col_row4(hf_ropes *ro, const float *F, int j, int r,
+                              int ftl, const hf_collider *col, int ncol,
+                              const hf__col_prep4 *pre, float margin,
+                              __m128 *xyz)
+{
+    size_t o = (size_t)j * (size_t)ro->rope_count + (size_t)r;
+    int c, m, i;
+    for (c = 0; c < ncol; ++c) {
+        if (c < HF__ROPE_PREP) {
+            m = hf__col_hits4(pre + c, xyz[0], xyz[1], xyz[2]);
+        } else {
+            const hf__col_prep k = hf__collider_prep(col + c, margin);
+            hf__col_prep4 k4;
+            hf__col_prep_lanes(&k, &k4);
+            m = hf__col_hits4(&k4, xyz[0], xyz[1], xyz[2]);
+        }
+        if (!m) continue;
+        for (i = 0; i < 4; ++i)
+            if ((m >> i) & 1) {
+                if (ftl)
+                    hf__ropes_collide_ftl_row(ro, F, j, r + i, r + i + 1,
+                                              col + c, margin);
+                else
+                    hf__ropes_collide_row(ro, F, j, r + i, r + i + 1, col + c,
+                                          margin);
+            }
+        xyz[0] = HF__LD(ro->x + o);
+        xyz[1] = HF__LD(ro->y + o);
+        xyz[2] = HF__LD(ro->z + o);
+    }
+}
+
+/* hf__ropes_collide for ropes [a, b), b - a a multiple of 4. */
+HF__PRIVATE void hf__ropes_collide4(hf_ropes *ro, const float *F, int a,
+                                    int b, const hf_collider *col, int ncol,
+                                    const hf__col_prep4 *pre, float margin)
+{
+    size_t R = (size_t)ro->rope_count;
+    int j, r;
+    for (j = 1; j < ro->points; ++j)
+        for (r = a; r < b; r += 4) {
+            size_t o = (size_t)j * R + (size_t)r;
+            __m128 xyz[3];
+            xyz[0] = HF__LD(ro->x + o);
+            xyz[1] = HF__LD(ro->y + o);
+            xyz[2] = HF__LD(ro->z + o);
+            hf__col_row4(ro, F, j, r, 0, col, ncol, pre, margin, xyz);
+        }
+}
+
+/* One sub-step of simulated ropes [a, b), b - a a multiple of 4, a rope
+   per lane: what the loops of hf__ropes_sim_run do, after its per-rope
+   part, with the same operations per rope. Loops still run across ropes
+   (a chain of dependent square roots and divisions per rope, point after
+   point, leaves no parallelism otherwise), but rows are fused where the
+   order between them does not matter:
+   - the root pin first (rows 1.. never read row 0 before the local shape);
+   - integration and the global pull of row j in one loop;
+   - then, in the same row loop, the local shape of point j (segment
+     j - 1 turned like segment j - 2), which reads rows up to j only.
+     Segment j's world rest direction F (rest[j + 1] - rest[j]) is the
+     child direction q of point j + 1's turn and the parent direction p
+     of point j + 2's: it is made once, into scratch rows G (unused by
+     simulated ropes), two sets in turn. While a row's local shape runs,
+     the next row's state is prefetched: the first pass over a row waits
+     on memory otherwise;
+   - each FTL placement, then its collisions (the first collider's test
+     inline; a hit goes through the scalar kernel). */
+HF__PRIVATE void hf__ropes_substep4(hf_ropes *ro, const float *F, int a,
+                                    int b, const hf__rope_step *st,
+                                    const hf_collider *col, int ncol,
+                                    const hf__col_prep4 *pre)
+{
+    size_t R = (size_t)ro->rope_count;
+    const int P = ro->points;
+    float *S = ro->scratch;
+    const float *AX = HF__ROW(S, HF__RS_A), *AY = HF__ROW(S, HF__RS_A + 1),
+                *AZ = HF__ROW(S, HF__RS_A + 2), *VF = HF__ROW(S, HF__RS_VF);
+    const float *F0 = HF__ROW(F, 0), *F1 = HF__ROW(F, 1), *F2 = HF__ROW(F, 2),
+                *F3 = HF__ROW(F, 3), *F4 = HF__ROW(F, 4), *F5 = HF__ROW(F, 5),
+                *F6 = HF__ROW(F, 6), *F7 = HF__ROW(F, 7), *F8 = HF__ROW(F, 8),
+                *F9 = HF__ROW(F, 9), *F10 = HF__ROW(F, 10),
+                *F11 = HF__ROW(F, 11);
+    const __m128 one = _mm_set1_ps(1.0f);
+    const int shape = st->k_root > 0.0f || st->global_on;
+    float *Q[2][3], klm;
+    int j, r, it;
+
+    for (j = 0; j < 3; ++j) {
+        Q[0][j] = HF__ROW(S, HF__RS_G + j);
+        Q[1][j] = HF__ROW(S, HF__RS_G + 3 + j);
+    }
+    /* pin the root to the frame */
+    for (r = a; r < b; r += 4) {
+        const __m128 u = HF__LD(ro->rest_u + r), v = HF__LD(ro->rest_v + r),
+                     w = HF__LD(ro->rest_w + r);
+        HF__ST(ro->px + r, HF__LD(ro->x + r));
+        HF__ST(ro->py + r, HF__LD(ro->y + r));
+        HF__ST(ro->pz + r, HF__LD(ro->z + r));
+        HF__ST(ro->x + r, HF__POSE(HF__LD(F0 + r), HF__LD(F3 + r),
+                                   HF__LD(F6 + r), HF__LD(F9 + r), u, v, w));
+        HF__ST(ro->y + r, HF__POSE(HF__LD(F1 + r), HF__LD(F4 + r),
+                                   HF__LD(F7 + r), HF__LD(F10 + r), u, v, w));
+        HF__ST(ro->z + r, HF__POSE(HF__LD(F2 + r), HF__LD(F5 + r),
+                                   HF__LD(F8 + r), HF__LD(F11 + r), u, v, w));
+    }
+    for (j = 1; j < P; ++j) {
+        float *X = HF__ROW(ro->x, j), *Y = HF__ROW(ro->y, j),
+              *Z = HF__ROW(ro->z, j);
+        float *PX = HF__ROW(ro->px, j), *PY = HF__ROW(ro->py, j),
+              *PZ = HF__ROW(ro->pz, j);
+        const float *u = HF__ROW(ro->rest_u, j), *v = HF__ROW(ro->rest_v, j),
+                    *w = HF__ROW(ro->rest_w, j);
+        const float kgj = st->ktab ? st->kg[j] : hf__rope_kg(st, j, P);
+        const int pull = shape && !(kgj <= 0.0f);
+        const __m128 kg = _mm_set1_ps(kgj);
+        const int m = j - 1; /* segment m: q of point j's local shape */
+        /* integrate point j, pull it toward its global rest place */
+        for (r = a; r < b; r += 4) {
+            const __m128 vf = HF__LD(VF + r);
+            __m128 x = HF__LD(X + r), y = HF__LD(Y + r), z = HF__LD(Z + r);
+            const __m128 vx = HF__MUL(HF__SUB(x, HF__LD(PX + r)), vf),
+                         vy = HF__MUL(HF__SUB(y, HF__LD(PY + r)), vf),
+                         vz = HF__MUL(HF__SUB(z, HF__LD(PZ + r)), vf);
+            HF__ST(PX + r, x);
+            HF__ST(PY + r, y);
+            HF__ST(PZ + r, z);
+            x = HF__ADD(x, HF__ADD(vx, HF__LD(AX + r)));
+            y = HF__ADD(y, HF__ADD(vy, HF__LD(AY + r)));
+            z = HF__ADD(z, HF__ADD(vz, HF__LD(AZ + r)));
+            if (pull) {
+                const __m128 uu = HF__LD(u + r), vv = HF__LD(v + r),
+                             ww = HF__LD(w + r);
+                __m128 g;
+                g = HF__POSE(HF__LD(F0 + r), HF__LD(F3 + r), HF__LD(F6 + r),
+                             HF__LD(F9 + r), uu, vv, ww);
+                x = HF__ADD(x, HF__MUL(kg, HF__SUB(g, x)));
+                g = HF__POSE(HF__LD(F1 + r), HF__LD(F4 + r), HF__LD(F7 + r),
+                             HF__LD(F10 + r), uu, vv, ww);
+                y = HF__ADD(y, HF__MUL(kg, HF__SUB(g, y)));
+                g = HF__POSE(HF__LD(F2 + r), HF__LD(F5 + r), HF__LD(F8 + r),
+                             HF__LD(F11 + r), uu, vv, ww);
+                z = HF__ADD(z, HF__MUL(kg, HF__SUB(g, z)));
+            }
+            HF__ST(X + r, x);
+            HF__ST(Y + r, y);
+            HF__ST(Z + r, z);
+        }
+        if (!st->local_on) continue;
+        klm = m < 1 ? 0.0f : st->ktab ? st->kl[m] : hf__rope_kl(st, m, P);
+        {
+            /* q of segment m */
+            const float *u1 = HF__ROW(ro->rest_u, m),
+                        *v1 = HF__ROW(ro->rest_v, m),
+                        *w1 = HF__ROW(ro->rest_w, m);
+            float *QX = Q[m & 1][0], *QY = Q[m & 1][1], *QZ = Q[m & 1][2];
+            for (r = a; r < b; r += 4) {
+                const __m128 qu = HF__SUB(HF__LD(u + r), HF__LD(u1 + r)),
+                             qv = HF__SUB(HF__LD(v + r), HF__LD(v1 + r)),
+                             qw = HF__SUB(HF__LD(w + r), HF__LD(w1 + r));
+                HF__ST(QX + r, HF__DOT3(HF__LD(F3 + r), HF__LD(F6 + r),
+                                        HF__LD(F9 + r), qu, qv, qw));
+                HF__ST(QY + r, HF__DOT3(HF__LD(F4 + r), HF__LD(F7 + r),
+                                        HF__LD(F10 + r), qu, qv, qw));
+                HF__ST(QZ + r, HF__DOT3(HF__LD(F5 + r), HF__LD(F8 + r),
+                                        HF__LD(F11 + r), qu, qv, qw));
+            }
+        }
+        if (m >= 1 && !(klm <= 0.0f)) {
+            /* the local shape of hf__ropes_sim_run at its j = m */
+            const float *X0 = HF__ROW(ro->x, m - 1),
+                        *Y0 = HF__ROW(ro->y, m - 1),
+                        *Z0 = HF__ROW(ro->z, m - 1);
+            const float *X1 = HF__ROW(ro->x, m), *Y1 = HF__ROW(ro->y, m),
+                        *Z1 = HF__ROW(ro->z, m);
+            const float *L = HF__ROW(ro->rest_length, m - 1);
+            const float *QX = Q[m & 1][0], *QY = Q[m & 1][1],
+                        *QZ = Q[m & 1][2];
+            const float *PX_ = Q[(m + 1) & 1][0], *PY_ = Q[(m + 1) & 1][1],
+                        *PZ_ = Q[(m + 1) & 1][2];
+            const __m128 kl = _mm_set1_ps(klm);
+            const int pf = j + 1 < P;
+            for (r = a; r < b; r += 4) {
+                const __m128 x1 = HF__LD(X1 + r), y1 = HF__LD(Y1 + r),
+                             z1 = HF__LD(Z1 + r), l = HF__LD(L + r);
+                const __m128 qx = HF__LD(QX + r), qy = HF__LD(QY + r),
+                             qz = HF__LD(QZ + r);
+                __m128 px_, py_, pz_, bx, by, bz, b2, ok, ia, ib, cc, kx, ky,
+                    kz, kd, den, rx, ry, rz, x2, y2, z2;
+                int all_ok;
+                if (pf && ((r - a) & 15) == 0) {
+                    /* the next row, a cache line (16 ropes) at a time */
+                    const size_t o = (size_t)(j + 1) * R + (size_t)r;
+                    _mm_prefetch((const char *)(ro->x + o), _MM_HINT_T0);
+                    _mm_prefetch((const char *)(ro->y + o), _MM_HINT_T0);
+                    _mm_prefetch((const char *)(ro->z + o), _MM_HINT_T0);
+                    _mm_prefetch((const char *)(ro->px + o), _MM_HINT_T0);
+                    _mm_prefetch((const char *)(ro->py + o), _MM_HINT_T0);
+                    _mm_prefetch((const char *)(ro->pz + o), _MM_HINT_T0);
+                    _mm_prefetch((const char *)(ro->rest_u + o), _MM_HINT_T0);
+                    _mm_prefetch((const char *)(ro->rest_v + o), _MM_HINT_T0);
+                    _mm_prefetch((const char *)(ro->rest_w + o), _MM_HINT_T0);
+                    _mm_prefetch((const char *)(ro->rest_length + o - R),
+                                 _MM_HINT_T0);
+                }
+                bx = HF__SUB(x1, HF__LD(X0 + r));
+                by = HF__SUB(y1, HF__LD(Y0 + r));
+                bz = HF__SUB(z1, HF__LD(Z0 + r));
+                b2 = HF__DOT3(bx, by, bz, bx, by, bz);
+                ok = _mm_and_ps(_mm_cmpgt_ps(l, _mm_set1_ps(1e-12f)),
+                                _mm_cmpgt_ps(b2, _mm_set1_ps(1e-24f)));
+                all_ok = _mm_movemask_ps(ok) == 15;
+                ia = _mm_div_ps(one, l);
+                ib = _mm_div_ps(one, _mm_sqrt_ps(b2));
+                if (!all_ok) { /* the scalar's 0 (lanes may divide by 0) */
+                    ia = _mm_and_ps(ok, ia);
+                    ib = _mm_and_ps(ok, ib);
+                }
+                px_ = HF__MUL(HF__LD(PX_ + r), ia);
+                py_ = HF__MUL(HF__LD(PY_ + r), ia);
+                pz_ = HF__MUL(HF__LD(PZ_ + r), ia);
+                bx = HF__MUL(bx, ib);
+                by = HF__MUL(by, ib);
+                bz = HF__MUL(bz, ib);
+                cc = HF__DOT3(px_, py_, pz_, bx, by, bz);
+                if (!all_ok) cc = hf__rope_sel4(ok, cc, one);
+                kx = HF__SUB(HF__MUL(py_, bz), HF__MUL(pz_, by));
+                ky = HF__SUB(HF__MUL(pz_, bx), HF__MUL(px_, bz));
+                kz = HF__SUB(HF__MUL(px_, by), HF__MUL(py_, bx));
+                kd = HF__DOT3(kx, ky, kz, qx, qy, qz);
+                /* maxps(a, b) is a > b ? a : b, NaN included: the scalar's */
+                den = _mm_div_ps(kd, _mm_max_ps(HF__ADD(one, cc),
+                                                _mm_set1_ps(1e-6f)));
+                /* r = q cc + k x q + k den, turned q */
+                rx = HF__ADD(HF__ADD(HF__MUL(qx, cc),
+                                     HF__SUB(HF__MUL(ky, qz), HF__MUL(kz, qy))),
+                             HF__MUL(kx, den));
+                ry = HF__ADD(HF__ADD(HF__MUL(qy, cc),
+                                     HF__SUB(HF__MUL(kz, qx), HF__MUL(kx, qz))),
+                             HF__MUL(ky, den));
+                rz = HF__ADD(HF__ADD(HF__MUL(qz, cc),
+                                     HF__SUB(HF__MUL(kx, qy), HF__MUL(ky, qx))),
+                             HF__MUL(kz, den));
+                x2 = HF__LD(X + r);
+                y2 = HF__LD(Y + r);
+                z2 = HF__LD(Z + r);
+                x2 = HF__ADD(x2, HF__MUL(kl, HF__SUB(HF__ADD(x1, rx), x2)));
+                y2 = HF__ADD(y2, HF__MUL(kl, HF__SUB(HF__ADD(y1, ry), y2)));
+                z2 = HF__ADD(z2, HF__MUL(kl, HF__SUB(HF__ADD(z1, rz), z2)));
+                HF__ST(X + r, x2);
+                HF__ST(Y + r, y2);
+                HF__ST(Z + r, z2);
+            }
+        }
+    }
+    /* distance passes, each with its collisions */
+    for (it = 0; it < st->iterations; ++it) {
+        for (j = 1; j < P; ++j) {
+            float *X0 = HF__ROW(ro->x, j - 1), *Y0 = HF__ROW(ro->y, j - 1),
+                  *Z0 = HF__ROW(ro->z, j - 1);
+            float *X1 = HF__ROW(ro->x, j), *Y1 = HF__ROW(ro->y, j),
+                  *Z1 = HF__ROW(ro->z, j);
+            float *PX0 = HF__ROW(ro->px, j - 1), *PY0 = HF__ROW(ro->py, j - 1),
+                  *PZ0 = HF__ROW(ro->pz, j - 1);
+            const float *L = HF__ROW(ro->rest_length, j - 1);
+            const __m128 sd = _mm_set1_ps(j >= 2 ? st->ftl_damping : 0.0f);
+            if (st->ftl || j == 1) {
+                for (r = a; r < b; r += 4) {
+                    const __m128 x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),
+                                 z0 = HF__LD(Z0 + r);
+                    const __m128 ox = HF__LD(X1 + r), oy = HF__LD(Y1 + r),
+                                 oz = HF__LD(Z1 + r);
+                    __m128 dx = HF__SUB(ox, x0), dy = HF__SUB(oy, y0),
+                           dz = HF__SUB(oz, z0), d2, deg, sc, xyz[3];
+                    d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);
+                    /* coincident points: grow along the root normal */
+                    deg = _mm_cmplt_ps(d2, _mm_set1_ps(1e-24f));
+                    if (_mm_movemask_ps(deg)) { /* rare: the selects */
+                        dx = hf__rope_sel4(deg, HF__LD(F6 + r), dx);
+                        dy = hf__rope_sel4(deg, HF__LD(F7 + r), dy);
+                        dz = hf__rope_sel4(deg, HF__LD(F8 + r), dz);
+                        d2 = hf__rope_sel4(deg, one, d2);
+                    }
+                    sc = _mm_div_ps(HF__LD(L + r), _mm_sqrt_ps(d2));
+                    xyz[0] = HF__ADD(x0, HF__MUL(dx, sc));
+                    xyz[1] = HF__ADD(y0, HF__MUL(dy, sc));
+                    xyz[2] = HF__ADD(z0, HF__MUL(dz, sc));
+                    HF__ST(X1 + r, xyz[0]);
+                    HF__ST(Y1 + r, xyz[1]);
+                    HF__ST(Z1 + r, xyz[2]);
+                    if (!st->ftl) continue;
+                    HF__ST(PX0 + r, HF__ADD(HF__LD(PX0 + r),
+                                            HF__MUL(sd, HF__SUB(xyz[0], ox))));
+                    HF__ST(PY0 + r, HF__ADD(HF__LD(PY0 + r),
+                                            HF__MUL(sd, HF__SUB(xyz[1], oy))));
+                    HF__ST(PZ0 + r, HF__ADD(HF__LD(PZ0 + r),
+                                            HF__MUL(sd, HF__SUB(xyz[2], oz))));
+                    if (ncol > 1 ||
+                        (ncol == 1 &&
+                         hf__col_hits4(pre, xyz[0], xyz[1], xyz[2])))
+                        hf__col_row4(ro, F, j, r, 1, col, ncol, pre,
+                                     st->margin, xyz);
+                }
+            } else {
+                /* half the error to each end (equal masses) */
+                const __m128 half = _mm_set1_ps(0.5f);
+                for (r = a; r < b; r += 4) {
+                    const __m128 x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),
+                                 z0 = HF__LD(Z0 + r), x1 = HF__LD(X1 + r),
+                                 y1 = HF__LD(Y1 + r), z1 = HF__LD(Z1 + r);
+                    const __m128 dx = HF__SUB(x1, x0), dy = HF__SUB(y1, y0),
+                                 dz = HF__SUB(z1, z0);
+                    const __m128 d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);
+                    const __m128 e = _mm_and_ps(
+                        _mm_cmpgt_ps(d2, _mm_set1_ps(1e-24f)),
+                        HF__SUB(half, _mm_div_ps(HF__MUL(half, HF__LD(L + r)),
+                                                 _mm_sqrt_ps(d2))));
+                    HF__ST(X0 + r, HF__ADD(x0, HF__MUL(dx, e)));
+                    HF__ST(Y0 + r, HF__ADD(y0, HF__MUL(dy, e)));
+                    HF__ST(Z0 + r, HF__ADD(z0, HF__MUL(dz, e)));
+                    HF__ST(X1 + r, HF__SUB(x1, HF__MUL(dx, e)));
+                    HF__ST(Y1 + r, HF__SUB(y1, HF__MUL(dy, e)));
+                    HF__ST(Z1 + r, HF__SUB(z1, HF__MUL(dz, e)));
+                }
+            }
+        }
+        if (!st->ftl && ncol > 0)
+            hf__ropes_collide4(ro, F, a, b, col, ncol, pre, st->margin);
+    }
+    if (st->iterations == 0 && ncol > 0)
+        hf__ropes_collide4(ro, F, a, b, col, ncol, pre, st->margin);
+}
+
+#endif
+
+/* Simulated ropes [a, b). With SSE, hf__ropes_substep4 does whole groups
+   of four from a and the code here, the reference, the rest. */
 HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
                                    const hf__rope_step *st,
                                    const hf_collider *col, int ncol)
@@ -4492,23 +5003,35 @@ HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
     size_t R = (size_t)ro->rope_count;
     const int P = ro->points;
     float *S = ro->scratch;
-    float *F = HF__ROW(S, HF__RS_F);
+    float *FS = HF__ROW(S, HF__RS_F);
     float *AX = HF__ROW(S, HF__RS_A), *AY = HF__ROW(S, HF__RS_A + 1),
           *AZ = HF__ROW(S, HF__RS_A + 2), *VF = HF__ROW(S, HF__RS_VF),
           *KB = HF__ROW(S, HF__RS_KB);
-    /* frame rows of the sub-step */
-    const float *nx = HF__ROW(F, 6), *ny = HF__ROW(F, 7), *nz = HF__ROW(F, 8);
     const float h = st->h, h2 = h * h;
-    int s, j, r, it, c;
+    int s, j, r, it, c, a4;
+#if HF__SSE
+    hf__col_prep4 pre[HF__ROPE_PREP];
+    for (c = 0; c < ncol && c < HF__ROPE_PREP; ++c) {
+        const hf__col_prep k = hf__collider_prep(col + c, st->margin);
+        hf__col_prep_lanes(&k, pre + c);
+    }
+#endif
 
     for (s = 0; s < st->n; ++s) {
         float alpha = s + 1 == st->n ? 1.0f : (float)(s + 1) / (float)st->n;
+        /* frame rows of the sub-step; at alpha 1 the current frame itself
+           (what hf__rope_frame_at gives, bit for bit) */
+        const float *F = alpha >= 1.0f ? ro->frame : FS;
+        const float *nx = HF__ROW(F, 6), *ny = HF__ROW(F, 7),
+                    *nz = HF__ROW(F, 8);
         /* per rope: frame, acceleration, velocity factor, blend pull */
         for (r = a; r < b; ++r) {
             float f[12], gx = st->g[0], gy = st->g[1], gz = st->g[2], vf;
             int k;
-            hf__rope_frame_at(ro, r, alpha, f);
-            for (k = 0; k < 12; ++k) F[(size_t)k * R + r] = f[k];
+            if (alpha < 1.0f) {
+                hf__rope_frame_at(ro, r, alpha, f);
+                for (k = 0; k < 12; ++k) FS[(size_t)k * R + r] = f[k];
+            }
             if (st->turbulence > 0.0f) {
                 double tt = ro->time[r] * (double)st->turbulence_frequency;
                 gx += st->turbulence * hf__rope_noise((uint32_t)r, tt, 0);
@@ -4528,6 +5051,13 @@ HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
             VF[r] = vf;
             ro->time[r] += (double)h;
         }
+        a4 = a;
+#if HF__SSE
+        if (b - a >= 4) {
+            a4 = a + (b - a) / 4 * 4;
+            hf__ropes_substep4(ro, F, a, a4, st, col, ncol, pre);
+        }
+#endif
         /* integrate points 1.. (position Verlet) */
         for (j = 1; j < P; ++j) {
             float *HF__RESTRICT X = HF__ROW(ro->x, j);
@@ -4536,7 +5066,7 @@ HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
             float *HF__RESTRICT PX = HF__ROW(ro->px, j);
             float *HF__RESTRICT PY = HF__ROW(ro->py, j);
             float *HF__RESTRICT PZ = HF__ROW(ro->pz, j);
-            for (r = a; r < b; ++r) {
+            for (r = a4; r < b; ++r) {
                 float vx = (X[r] - PX[r]) * VF[r];
                 float vy = (Y[r] - PY[r]) * VF[r];
                 float vz = (Z[r] - PZ[r]) * VF[r];
@@ -4549,29 +5079,25 @@ HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
             }
         }
         /* pin the root to the frame */
-        for (r = a; r < b; ++r) {
+        for (r = a4; r < b; ++r) {
             ro->px[r] = ro->x[r];
             ro->py[r] = ro->y[r];
             ro->pz[r] = ro->z[r];
         }
-        hf__rope_pose_row(ro, 0, a, b, F, ro->x, ro->y, ro->z);
+        hf__rope_pose_row(ro, 0, a4, b, F, ro->x, ro->y, ro->z);
         /* shape: root segment, global pose */
         if (st->k_root > 0.0f || st->global_on) {
             for (j = 1; j < P; ++j) {
                 float tgx, tgy, tgz;
-                float t = (float)j / (float)(P - 1);
-                float kg = hf__rope_k(st->gs_root + (st->gs_tip - st->gs_root) *
-                                                        t,
-                                      h);
+                const float kg = st->ktab ? st->kg[j] : hf__rope_kg(st, j, P);
                 float *HF__RESTRICT X = HF__ROW(ro->x, j);
                 float *HF__RESTRICT Y = HF__ROW(ro->y, j);
                 float *HF__RESTRICT Z = HF__ROW(ro->z, j);
                 const float *u = HF__ROW(ro->rest_u, j),
                             *v = HF__ROW(ro->rest_v, j),
                             *w = HF__ROW(ro->rest_w, j);
-                if (j == 1) kg = 1.0f - (1.0f - kg) * (1.0f - st->k_root);
                 if (kg <= 0.0f) continue;
-                for (r = a; r < b; ++r) {
+                for (r = a4; r < b; ++r) {
                     const float k = kg;
                     tgx = F[r] + F[3 * R + r] * u[r] + F[6 * R + r] * v[r] +
                           F[9 * R + r] * w[r];
@@ -4591,10 +5117,7 @@ HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
            one) */
         if (st->local_on) {
             for (j = 1; j + 1 < P; ++j) {
-                float t = (float)(j + 1) / (float)(P - 1);
-                float kl = hf__rope_k(st->ls_root + (st->ls_tip - st->ls_root) *
-                                                        t,
-                                      h);
+                const float kl = st->ktab ? st->kl[j] : hf__rope_kl(st, j, P);
                 const float *X0 = HF__ROW(ro->x, j - 1),
                             *Y0 = HF__ROW(ro->y, j - 1),
                             *Z0 = HF__ROW(ro->z, j - 1);
@@ -4614,7 +5137,7 @@ HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
                             *w2 = HF__ROW(ro->rest_w, j + 1);
                 const float *L = HF__ROW(ro->rest_length, j - 1);
                 if (kl <= 0.0f) continue;
-                for (r = a; r < b; ++r) {
+                for (r = a4; r < b; ++r) {
                     /* rest directions in world: parent p, child q */
                     float pu = u1[r] - u0[r], pv = v1[r] - v0[r],
                           pw = w1[r] - w0[r];
@@ -4681,7 +5204,7 @@ HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
                    pinned root */
                 const float sd = j >= 2 ? st->ftl_damping : 0.0f;
                 if (st->ftl || j == 1) {
-                    for (r = a; r < b; ++r) {
+                    for (r = a4; r < b; ++r) {
                         float dx = X1[r] - X0[r], dy = Y1[r] - Y0[r],
                               dz = Z1[r] - Z0[r];
                         float d2 = dx * dx + dy * dy + dz * dz, sc, ox, oy,
@@ -4710,10 +5233,10 @@ HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
                        outside when the pass ends */
                     if (st->ftl)
                         for (c = 0; c < ncol; ++c)
-                            hf__ropes_collide_ftl_row(ro, j, a, b, col + c,
+                            hf__ropes_collide_ftl_row(ro, F, j, a4, b, col + c,
                                                       st->margin);
                 } else {
-                    for (r = a; r < b; ++r) {
+                    for (r = a4; r < b; ++r) {
                         float dx = X1[r] - X0[r], dy = Y1[r] - Y0[r],
                               dz = Z1[r] - Z0[r];
                         float d2 = dx * dx + dy * dy + dz * dz;
@@ -4731,10 +5254,10 @@ HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
                 }
             }
             if (!st->ftl && ncol > 0)
-                hf__ropes_collide(ro, a, b, col, ncol, st->margin);
+                hf__ropes_collide(ro, F, a4, b, col, ncol, st->margin);
         }
         if (st->iterations == 0 && ncol > 0)
-            hf__ropes_collide(ro, a, b, col, ncol, st->margin);
+            hf__ropes_collide(ro, F, a4, b, col, ncol, st->margin);
     }
 
     /* bookkeeping and the safety net */
@@ -4747,7 +5270,19 @@ HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
     for (j = 1; j < P; ++j) {
         const float *X = HF__ROW(ro->x, j), *Y = HF__ROW(ro->y, j),
                     *Z = HF__ROW(ro->z, j);
-        for (r = a; r < b; ++r) {
+        r = a;
+#if HF__SSE
+        for (; r + 4 <= b; r += 4) { /* the loop below, four at a time */
+            const __m128 dx = HF__SUB(HF__LD(X + r), HF__LD(ro->x + r)),
+                         dy = HF__SUB(HF__LD(Y + r), HF__LD(ro->y + r)),
+                         dz = HF__SUB(HF__LD(Z + r), HF__LD(ro->z + r));
+            const __m128 in =
+                _mm_cmple_ps(HF__DOT3(dx, dy, dz, dx, dy, dz), HF__LD(KB + r));
+            HF__ST(VF + r,
+                   hf__rope_sel4(in, HF__LD(VF + r), _mm_set1_ps(1.0f)));
+        }
+#endif
+        for (; r < b; ++r) {
             float dx = X[r] - ro->x[r], dy = Y[r] - ro->y[r],
                   dz = Z[r] - ro->z[r];
             float d2 = dx * dx + dy * dy + dz * dz;
@@ -4827,6 +5362,12 @@ HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
     st.ls_tip = params->local_stiffness_tip;
     st.global_on = st.gs_root > 0.0f || st.gs_tip > 0.0f;
     st.local_on = st.ls_root > 0.0f || st.ls_tip > 0.0f;
+    st.ktab = ropes->points <= HF__ROPE_KTAB;
+    if (st.ktab)
+        for (k = 1; k < ropes->points; ++k) {
+            st.kg[k] = hf__rope_kg(&st, k, ropes->points);
+            st.kl[k] = hf__rope_kl(&st, k, ropes->points);
+        }
 
     /* runs of ropes of one kind, each with its kernel; the kinds depend
        only on each rope's own state, so any split gives the same bytes */
@@ -4843,15 +5384,25 @@ HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
         r = b;
     }
     /* this frame becomes the start of the next step's interpolation */
-    for (r = first; r < end; ++r) {
-        float f[12];
-        hf__rope_get_frame(ropes, 0, r, f);
-        hf__rope_put_frame(ropes, 12, r, f);
-    }
+    for (k = 0; k < 12; ++k)
+        HF_MEMCPY(ropes->frame + (size_t)(12 + k) * (size_t)ropes->rope_count +
+                      first,
+                  ropes->frame + (size_t)k * (size_t)ropes->rope_count + first,
+                  (size_t)count * sizeof(float));
     return HF_OK;
 }
 
 #undef HF__ROW
+#if HF__SSE
+#undef HF__LD
+#undef HF__ST
+#undef HF__ADD
+#undef HF__SUB
+#undef HF__MUL
+#undef HF__DOT3
+#undef HF__POSE
+#undef HF__INLINE4
+#endif
 
 /* ---- 7. interpolation and LOD ------------------------------------------- */
 

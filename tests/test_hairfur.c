@@ -3130,6 +3130,120 @@ static void test_ropes_get_positions(void)
     tr_close(&s);
 }
 
+/* The SSE path (four ropes a lane each, from the start of a range) and the
+   scalar code (the rest of a range) give the same bytes: ranges of odd,
+   shifting sizes put every rope now in a lane, now in a tail, and a rope
+   at a time is scalar only. Hair drapes on the head sphere and meets a
+   capsule, so collisions happen in lanes too; some ropes have zero-length
+   segments or a first point off the root; some frames take several
+   sub-steps; a last phase without forces has zero-length ropes, whose
+   points coincide (the degenerate placement). */
+static void test_ropes_simd_lanes_match_scalar(void)
+{
+    enum { R = 45, P = 9, FRAMES = 90 };
+    static float rest[3 * R * P], pos[3][3 * R * P];
+    float root[3 * R], nrm[3 * R], tan[3 * R], dirs[3 * R];
+    hf_collider col[2];
+    hf_rope_params p;
+    tr_set s[3];
+    int r, j, f, k, same = 1, on_surface = 0;
+    for (k = 0; k < 3; ++k)
+        if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
+    for (r = 0; r < R; ++r) {
+        double el = 0.2 + 1.3 * (r + 0.5) / R, az = 2.39996 * r;
+        float *n = dirs + 3 * r;
+        n[0] = (float)(sin(el) * cos(az));
+        n[1] = (float)cos(el);
+        n[2] = (float)(sin(el) * sin(az));
+        nrm[3 * r] = n[0]; nrm[3 * r + 1] = n[1]; nrm[3 * r + 2] = n[2];
+        tan[3 * r] = 0; tan[3 * r + 1] = 1; tan[3 * r + 2] = 0;
+        root[3 * r] = 0.1f * n[0];
+        root[3 * r + 1] = 0.1f * n[1];
+        root[3 * r + 2] = 0.1f * n[2];
+        tr_straight(rest, r, P, root + 3 * r, n, 0.2f);
+        if (r % 7 == 3) /* points 4 and 5 coincide */
+            for (j = 0; j < 3; ++j)
+                rest[3 * ((size_t)r * P + 5) + j] =
+                    rest[3 * ((size_t)r * P + 4) + j];
+        if (r % 5 == 1) rest[3 * (size_t)r * P] += 0.001f;
+    }
+    hf_rope_params_init(&p);
+    p.turbulence = 4.0f;
+    p.global_stiffness_tip = 0.02f;
+    p.local_stiffness_root = 0.2f;
+    p.root_stiffness = 0.3f;
+    memset(col, 0, sizeof col);
+    col[0].type = HF_COLLIDER_SPHERE;
+    col[0].radius = 0.097f;
+    col[1].type = HF_COLLIDER_CAPSULE;
+    col[1].radius = 0.02f;
+    for (k = 0; k < 3; ++k)
+        hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm, tan, 0);
+    for (f = 0; f < FRAMES + 5; ++f) {
+        float cx = (float)(0.15 * sin(2 * TR_PI * f / 60.0));
+        float dt = f % 10 == 9 ? 0.05f : 1.0f / 60.0f;
+        int first = 0, size = 1 + 2 * (f % 4);
+        if (f == FRAMES) { /* no forces; ropes 0, 6, 12, ... of zero length */
+            p.gravity[1] = 0.0f;
+            p.turbulence = 0.0f;
+            for (r = 0; r < R; r += 6)
+                for (j = 0; j < 3 * P; ++j)
+                    rest[3 * (size_t)r * P + j] = root[3 * r + j % 3];
+            for (k = 0; k < 3; ++k)
+                hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm, tan, 0);
+        }
+        if (f < FRAMES)
+            for (r = 0; r < R; ++r) root[3 * r] = cx + 0.1f * dirs[3 * r];
+        col[0].a[0] = cx;
+        col[1].a[0] = cx - 0.2f; col[1].a[1] = -0.12f; col[1].a[2] = 0.0f;
+        col[1].b[0] = cx + 0.2f; col[1].b[1] = -0.12f; col[1].b[2] = 0.05f;
+        for (k = 0; k < 3; ++k)
+            hf_ropes_set_roots(&s[k].ro, 0, R, root, nrm, tan, 0);
+        CHECK_EQ_INT(hf_ropes_step(&s[0].ro, 0, R, dt, &p, col, 2), HF_OK);
+        while (first < R) { /* sizes 1, 3, 5, 7 in turn, shifting */
+            int n = R - first < size ? R - first : size;
+            CHECK_EQ_INT(hf_ropes_step(&s[1].ro, first, n, dt, &p, col, 2),
+                         HF_OK);
+            first += n;
+            size = size == 7 ? 1 : size + 2;
+        }
+        for (r = 0; r < R; ++r)
+            hf_ropes_step(&s[2].ro, r, 1, dt, &p, col, 2);
+        for (k = 1; k < 3; ++k) {
+            size_t n = sizeof(float) * R * P;
+            same &= memcmp(s[0].ro.x, s[k].ro.x, n) == 0;
+            same &= memcmp(s[0].ro.y, s[k].ro.y, n) == 0;
+            same &= memcmp(s[0].ro.z, s[k].ro.z, n) == 0;
+            same &= memcmp(s[0].ro.px, s[k].ro.px, n) == 0;
+            same &= memcmp(s[0].ro.py, s[k].ro.py, n) == 0;
+            same &= memcmp(s[0].ro.pz, s[k].ro.pz, n) == 0;
+        }
+        /* the collider was met: points pushed onto its inflated surface */
+        for (r = 0; r < R; ++r)
+            for (j = 1; j < P; ++j) {
+                size_t i = (size_t)j * R + r;
+                float q[3];
+                q[0] = s[0].ro.x[i]; q[1] = s[0].ro.y[i]; q[2] = s[0].ro.z[i];
+                if (fabs(tr_dist_seg(q, &col[0]) - 0.099) < 1e-5) ++on_surface;
+            }
+    }
+    CHECK(same);
+    CHECK(on_surface > 20);
+    CHECK(tr_finite(&s[0].ro));
+    /* positions read out whole (four ropes at a time) or a rope at a time */
+    memset(pos, 0, sizeof pos);
+    CHECK_EQ_INT(hf_ropes_get_positions(&s[0].ro, 0, R, pos[0], 0), HF_OK);
+    for (r = 0; r < R; ++r)
+        hf_ropes_get_positions(&s[0].ro, r, 1, pos[1], 12);
+    CHECK_EQ_INT(hf_ropes_get_positions(&s[0].ro, 1, R - 2, pos[2], 0), HF_OK);
+    CHECK(memcmp(pos[0], pos[1], sizeof pos[0]) == 0);
+    CHECK(memcmp(pos[0] + 3 * P, pos[2] + 3 * P,
+                 sizeof(float) * 3 * P * (R - 2)) == 0);
+    for (j = 0; j < 3 * P; ++j)
+        CHECK(pos[2][j] == 0.0f && pos[2][3 * P * (R - 1) + j] == 0.0f);
+    for (k = 0; k < 3; ++k) tr_close(&s[k]);
+}
+
 static void run_ropes_tests(void)
 {
     RUN(test_ropes_params_defaults_and_validation);
@@ -3148,6 +3262,7 @@ static void run_ropes_tests(void)
     RUN(test_ropes_wind_and_turbulence);
     RUN(test_ropes_distance_solver_iterations);
     RUN(test_ropes_get_positions);
+    RUN(test_ropes_simd_lanes_match_scalar);
 }
 
 /* ======================================================================== */
