@@ -1569,6 +1569,13 @@ HFDEF hf_result hf_fur_reset(hf_fur *fur);
 #else
 #define HF__INLINE static
 #endif
+#if HF__SSE
+/* a where m is set, else b: how the SSE kernels take a branch per lane */
+HF__INLINE __m128 hf__sel4(__m128 m, __m128 a, __m128 b)
+{
+    return _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b));
+}
+#endif
 
 #ifdef __cplusplus
 extern "C" {
@@ -4381,21 +4388,6 @@ HF__PRIVATE float hf__col_closest(const hf__col_prep *k, float x, float y,
 }
 
 #if HF__SSE
-/* m ? x : y in each lane, m from a comparison. */
-HF__PRIVATE __m128 hf__rope_sel4(__m128 m, __m128 x, __m128 y)
-{
-    return _mm_or_ps(_mm_and_ps(m, x), _mm_andnot_ps(m, y));
-}
-
-/* Inlined where a call per four points would cost more than the test. */
-#if defined(__GNUC__) || defined(__clang__)
-#define HF__INLINE4 static __inline__ __attribute__((always_inline, unused))
-#elif defined(_MSC_VER)
-#define HF__INLINE4 static __forceinline
-#else
-#define HF__INLINE4 static
-#endif
-
 /* A prepared collider in every lane, rr^2, and whether its axis is a point
    (e == 0: a sphere or a zero-length capsule). */
 typedef struct hf__col_prep4 {
@@ -4421,7 +4413,7 @@ HF__PRIVATE void hf__col_prep_lanes(const hf__col_prep *k, hf__col_prep4 *v)
    For a point axis, c = a + 0 * t equals a up to the sign of a zero (or is
    NaN only where x - a already is infinite or NaN), so |x - a|^2 is the
    same |d|^2 and the same decision. */
-HF__INLINE4 int hf__col_hits4(const hf__col_prep4 *k, __m128 x, __m128 y,
+HF__INLINE int hf__col_hits4(const hf__col_prep4 *k, __m128 x, __m128 y,
                               __m128 z)
 {
     __m128 t, dx, dy, dz;
@@ -4435,8 +4427,8 @@ HF__INLINE4 int hf__col_hits4(const hf__col_prep4 *k, __m128 x, __m128 y,
                              HF__SUB(z, k->a[2]), k->e[0], k->e[1], k->e[2]),
                     k->inv);
         /* t < 0 ? 0 : (t > 1 ? 1 : t), NaN and -0 kept as the scalar does */
-        t = hf__rope_sel4(_mm_cmplt_ps(t, zero), zero,
-                          hf__rope_sel4(_mm_cmpgt_ps(t, one), one, t));
+        t = hf__sel4(_mm_cmplt_ps(t, zero), zero,
+                          hf__sel4(_mm_cmpgt_ps(t, one), one, t));
         dx = HF__SUB(x, HF__ADD(k->a[0], HF__MUL(k->e[0], t)));
         dy = HF__SUB(y, HF__ADD(k->a[1], HF__MUL(k->e[1], t)));
         dz = HF__SUB(z, HF__ADD(k->a[2], HF__MUL(k->e[2], t)));
@@ -4884,7 +4876,7 @@ HF__PRIVATE void hf__ropes_substep4(hf_ropes *ro, const float *F, int a,
                 by = HF__MUL(by, ib);
                 bz = HF__MUL(bz, ib);
                 cc = HF__DOT3(px_, py_, pz_, bx, by, bz);
-                if (!all_ok) cc = hf__rope_sel4(ok, cc, one);
+                if (!all_ok) cc = hf__sel4(ok, cc, one);
                 kx = HF__SUB(HF__MUL(py_, bz), HF__MUL(pz_, by));
                 ky = HF__SUB(HF__MUL(pz_, bx), HF__MUL(px_, bz));
                 kz = HF__SUB(HF__MUL(px_, by), HF__MUL(py_, bx));
@@ -4937,10 +4929,10 @@ HF__PRIVATE void hf__ropes_substep4(hf_ropes *ro, const float *F, int a,
                     /* coincident points: grow along the root normal */
                     deg = _mm_cmplt_ps(d2, _mm_set1_ps(1e-24f));
                     if (_mm_movemask_ps(deg)) { /* rare: the selects */
-                        dx = hf__rope_sel4(deg, HF__LD(F6 + r), dx);
-                        dy = hf__rope_sel4(deg, HF__LD(F7 + r), dy);
-                        dz = hf__rope_sel4(deg, HF__LD(F8 + r), dz);
-                        d2 = hf__rope_sel4(deg, one, d2);
+                        dx = hf__sel4(deg, HF__LD(F6 + r), dx);
+                        dy = hf__sel4(deg, HF__LD(F7 + r), dy);
+                        dz = hf__sel4(deg, HF__LD(F8 + r), dz);
+                        d2 = hf__sel4(deg, one, d2);
                     }
                     sc = _mm_div_ps(HF__LD(L + r), _mm_sqrt_ps(d2));
                     xyz[0] = HF__ADD(x0, HF__MUL(dx, sc));
@@ -5279,7 +5271,7 @@ HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
             const __m128 in =
                 _mm_cmple_ps(HF__DOT3(dx, dy, dz, dx, dy, dz), HF__LD(KB + r));
             HF__ST(VF + r,
-                   hf__rope_sel4(in, HF__LD(VF + r), _mm_set1_ps(1.0f)));
+                   hf__sel4(in, HF__LD(VF + r), _mm_set1_ps(1.0f)));
         }
 #endif
         for (; r < b; ++r) {
@@ -5401,7 +5393,6 @@ HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
 #undef HF__MUL
 #undef HF__DOT3
 #undef HF__POSE
-#undef HF__INLINE4
 #endif
 
 /* ---- 7. interpolation and LOD ------------------------------------------- */
@@ -5777,11 +5768,6 @@ HF__PRIVATE __m128 hf__next4(__m128 c, __m128 n)
                           _MM_SHUFFLE(2, 0, 2, 1));
 }
 
-/* a where m is set, else b */
-HF__PRIVATE __m128 hf__sel4(__m128 m, __m128 a, __m128 b)
-{
-    return _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b));
-}
 
 /* hf__strand_frame four points at a time, with the same IEEE operations
    per point. Returns 0 and leaves the strand to the reference when a point
