@@ -6029,25 +6029,34 @@ HF__INLINE void hf__put4_f32(unsigned char *o, size_t step, int n,
 }
 
 /* Components c[0, nc) of four vertices encoded and packed into the bytes
-   of each vertex: w0[i] holds its first 4 bytes, w1[i] the rest (x86 is
-   little-endian, so byte order is component order). */
-HF__INLINE void hf__pack4(const __m128 *c, int nc, int fmt, uint32_t *w0,
-                          uint32_t *w1)
+   of each vertex: lane i of *w0 holds its first 4 bytes, of *w1 the rest
+   (x86 is little-endian, so byte order is component order). */
+HF__INLINE void hf__pack4(const __m128 *c, int nc, int fmt, __m128i *w0,
+                          __m128i *w1)
 {
     const __m128i e0 = hf__encode4(c[0], fmt), e1 = hf__encode4(c[1], fmt);
     const __m128i e2 = nc > 2 ? hf__encode4(c[2], fmt) : _mm_setzero_si128();
     const __m128i e3 = nc > 3 ? hf__encode4(c[3], fmt) : _mm_setzero_si128();
     if (hf_format_bytes(fmt) == 2) {
-        _mm_storeu_si128((__m128i *)(void *)w0,
-                         _mm_or_si128(e0, _mm_slli_epi32(e1, 16)));
-        _mm_storeu_si128((__m128i *)(void *)w1,
-                         _mm_or_si128(e2, _mm_slli_epi32(e3, 16)));
+        *w0 = _mm_or_si128(e0, _mm_slli_epi32(e1, 16));
+        *w1 = _mm_or_si128(e2, _mm_slli_epi32(e3, 16));
     } else {
-        _mm_storeu_si128(
-            (__m128i *)(void *)w0,
-            _mm_or_si128(_mm_or_si128(e0, _mm_slli_epi32(e1, 8)),
-                         _mm_or_si128(_mm_slli_epi32(e2, 16),
-                                      _mm_slli_epi32(e3, 24))));
+        *w0 = _mm_or_si128(_mm_or_si128(e0, _mm_slli_epi32(e1, 8)),
+                           _mm_or_si128(_mm_slli_epi32(e2, 16),
+                                        _mm_slli_epi32(e3, 24)));
+        *w1 = _mm_setzero_si128();
+    }
+}
+
+/* Lane i of v, taken in registers (a load from a just-stored copy would
+   wait on the store). */
+HF__INLINE uint32_t hf__lane(__m128i v, int i)
+{
+    switch (i) {
+    case 0: return (uint32_t)_mm_cvtsi128_si32(v);
+    case 1: return (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(v, 1));
+    case 2: return (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(v, 2));
+    default: return (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(v, 3));
     }
 }
 
@@ -6097,14 +6106,19 @@ HF__INLINE void hf__emit_pair(unsigned char *o, size_t st, int n,
             }
         }
     } else {
-        const int size = hf_format_bytes(fmt), same = R == L;
-        uint32_t w[2][2][4]; /* side, word, vertex */
-        hf__pack4(L, nc, fmt, w[0][0], w[0][1]);
-        if (!same) hf__pack4(R, nc, fmt, w[1][0], w[1][1]);
+        const int size = hf_format_bytes(fmt);
+        __m128i l0, l1, r0, r1;
+        hf__pack4(L, nc, fmt, &l0, &l1);
+        if (R != L) {
+            hf__pack4(R, nc, fmt, &r0, &r1);
+        } else {
+            r0 = l0;
+            r1 = l1;
+        }
         for (i = 0; i < n; ++i, o += 2 * st) {
-            hf__put_packed(o, w[0][0][i], w[0][1][i], nc, size);
-            hf__put_packed(o + st, w[same ? 0 : 1][0][i],
-                           w[same ? 0 : 1][1][i], nc, size);
+            hf__put_packed(o, hf__lane(l0, i), hf__lane(l1, i), nc, size);
+            hf__put_packed(o + st, hf__lane(r0, i), hf__lane(r1, i), nc,
+                           size);
         }
     }
 }
