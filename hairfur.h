@@ -6260,6 +6260,22 @@ HF__INLINE void hf__put_run(unsigned char *o, size_t st, int n,
     }
 }
 
+/* The two vertex positions of four points (rows from o): L = p - s w,
+   R = p + s w, relative to the origin and scale, as in the reference. */
+HF__INLINE void hf__ribbon_sides4(const hf__rframe *fr, int o, __m128 w,
+                                  const hf__rout *ro, __m128 is, __m128 *L,
+                                  __m128 *R)
+{
+    int c;
+    for (c = 0; c < 3; ++c) {
+        const __m128 p = _mm_loadu_ps(fr->p[c] + o);
+        const __m128 sw = _mm_mul_ps(_mm_loadu_ps(fr->s[c] + o), w);
+        const __m128 og = _mm_set1_ps(ro->origin[c]);
+        L[c] = _mm_mul_ps(_mm_sub_ps(_mm_sub_ps(p, sw), og), is);
+        R[c] = _mm_mul_ps(_mm_sub_ps(_mm_add_ps(p, sw), og), is);
+    }
+}
+
 /* hf__ribbon_write_ref four points at a time: the same values in the same
    operations, so the same bytes. */
 HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
@@ -6282,14 +6298,8 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
             const int o = 4 + 4 * k, n = P - 4 * k < 4 ? P - 4 * k : 4;
             const __m128 w = _mm_mul_ps(_mm_loadu_ps(K->hw + 4 * k), ws);
             __m128 T[3];
-            for (c = 0; c < 3; ++c) {
-                const __m128 p = _mm_loadu_ps(fr->p[c] + o);
-                const __m128 sw = _mm_mul_ps(_mm_loadu_ps(fr->s[c] + o), w);
-                const __m128 og = _mm_set1_ps(ro->origin[c]);
-                L[c] = _mm_mul_ps(_mm_sub_ps(_mm_sub_ps(p, sw), og), is);
-                R[c] = _mm_mul_ps(_mm_sub_ps(_mm_add_ps(p, sw), og), is);
-                T[c] = _mm_loadu_ps(fr->t[c] + o);
-            }
+            hf__ribbon_sides4(fr, o, w, ro, is, L, R);
+            for (c = 0; c < 3; ++c) T[c] = _mm_loadu_ps(fr->t[c] + o);
             hf__put_run(b, st, n, L, R, T, run == 3 ? S->uv : NULL,
                         K->tt + 4 * k);
         }
@@ -6299,13 +6309,7 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
         for (k = 0; k < G; ++k, b += 8 * st) {
             const int o = 4 + 4 * k, n = P - 4 * k < 4 ? P - 4 * k : 4;
             const __m128 w = _mm_mul_ps(_mm_loadu_ps(K->hw + 4 * k), ws);
-            for (c = 0; c < 3; ++c) {
-                const __m128 p = _mm_loadu_ps(fr->p[c] + o);
-                const __m128 sw = _mm_mul_ps(_mm_loadu_ps(fr->s[c] + o), w);
-                const __m128 og = _mm_set1_ps(ro->origin[c]);
-                L[c] = _mm_mul_ps(_mm_sub_ps(_mm_sub_ps(p, sw), og), is);
-                R[c] = _mm_mul_ps(_mm_sub_ps(_mm_add_ps(p, sw), og), is);
-            }
+            hf__ribbon_sides4(fr, o, w, ro, is, L, R);
             hf__emit_pair(b, st, n, L, R, 3, ro->fmt[HF__S_POS]);
         }
     }

@@ -2946,6 +2946,23 @@ static void test_ropes_root_and_local_stiffness(void)
     CHECK(tip_err[2] < 1e-4);        /*   the whole strand stands */
 }
 
+/* Rope r's root on the 0.1 m head sphere at polar angle el and azimuth az:
+   its direction, normal (the same), tangent (+y) and root point. */
+static void tr_on_head(int r, double el, double az, float *dirs, float *nrm,
+                       float *tan, float *root)
+{
+    float *n = dirs + 3 * r;
+    int k;
+    n[0] = (float)(sin(el) * cos(az));
+    n[1] = (float)cos(el);
+    n[2] = (float)(sin(el) * sin(az));
+    for (k = 0; k < 3; ++k) {
+        nrm[3 * r + k] = n[k];
+        tan[3 * r + k] = k == 1 ? 1.0f : 0.0f;
+        root[3 * r + k] = 0.1f * n[k];
+    }
+}
+
 /* A head (sphere, r = 0.1 m) swinging 0.2 m at 1 Hz with 16-segment 0.3 m
    ropes on it: stretch stays below 0.5 % and no point enters the head. */
 static void test_ropes_swinging_head(void)
@@ -2962,16 +2979,8 @@ static void test_ropes_swinging_head(void)
     for (r = 0; r < R; ++r) {
         double el = 0.3 + 1.2 * (r / RING) / (ROWS - 1) * 0.9; /* from top */
         double az = 2 * TR_PI * (r % RING) / RING;
-        float *n = dirs + 3 * r;
-        n[0] = (float)(sin(el) * cos(az));
-        n[1] = (float)cos(el);
-        n[2] = (float)(sin(el) * sin(az));
-        nrm[3 * r] = n[0]; nrm[3 * r + 1] = n[1]; nrm[3 * r + 2] = n[2];
-        tan[3 * r] = 0; tan[3 * r + 1] = 1; tan[3 * r + 2] = 0;
-        root[3 * r] = 0.1f * n[0];
-        root[3 * r + 1] = 0.1f * n[1];
-        root[3 * r + 2] = 0.1f * n[2];
-        tr_straight(rest, r, P, root + 3 * r, n, 0.3f);
+        tr_on_head(r, el, az, dirs, nrm, tan, root);
+        tr_straight(rest, r, P, root + 3 * r, dirs + 3 * r, 0.3f);
     }
     hf_ropes_set_rest(&s.ro, 0, R, rest, 0, root, nrm, tan, 0);
     hf_rope_params_init(&p);
@@ -3151,16 +3160,8 @@ static void test_ropes_simd_lanes_match_scalar(void)
         if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
     for (r = 0; r < R; ++r) {
         double el = 0.2 + 1.3 * (r + 0.5) / R, az = 2.39996 * r;
-        float *n = dirs + 3 * r;
-        n[0] = (float)(sin(el) * cos(az));
-        n[1] = (float)cos(el);
-        n[2] = (float)(sin(el) * sin(az));
-        nrm[3 * r] = n[0]; nrm[3 * r + 1] = n[1]; nrm[3 * r + 2] = n[2];
-        tan[3 * r] = 0; tan[3 * r + 1] = 1; tan[3 * r + 2] = 0;
-        root[3 * r] = 0.1f * n[0];
-        root[3 * r + 1] = 0.1f * n[1];
-        root[3 * r + 2] = 0.1f * n[2];
-        tr_straight(rest, r, P, root + 3 * r, n, 0.2f);
+        tr_on_head(r, el, az, dirs, nrm, tan, root);
+        tr_straight(rest, r, P, root + 3 * r, dirs + 3 * r, 0.2f);
         if (r % 7 == 3) /* points 4 and 5 coincide */
             for (j = 0; j < 3; ++j)
                 rest[3 * ((size_t)r * P + 5) + j] =
