@@ -897,7 +897,11 @@ HFDEF hf_result hf_ropes_memory_size(int rope_count, int points,
    least hf_ropes_memory_size). The memory must outlive the ropes; nothing
    is allocated, and there is nothing to free but the memory. Every rope
    starts as a zero-length rope at the origin with an identity root frame
-   (tangent x, normal y), simulated: call hf_ropes_set_rest next. Errors:
+   (tangent x, normal y), simulated: call hf_ropes_set_rest next. The
+   memory holds the ropes' state and the `scratch` rows, temporaries of one
+   call: after a step the state is the same bytes however the ropes were
+   split into ranges, the scratch rows are not (the SSE lanes and the
+   scalar tail keep different temporaries there). Errors:
    HF_ERROR_NULL_POINTER, HF_ERROR_BAD_COUNT, HF_ERROR_OVERFLOW,
    HF_ERROR_BUFFER_TOO_SMALL; *ropes is untouched then. */
 HFDEF hf_result hf_ropes_init(hf_ropes *ropes, int rope_count, int points,
