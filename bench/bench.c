@@ -22,7 +22,10 @@
    Output: a table, then one machine line per figure:
      bench stage=NAME scene=S threads=T ms=... gbps=... limit_gbps=...
            ratio=... [allocs=N]
-   Usage: bench [--frames N] [--scene S|M|L] */
+   Scene Mc (M's strands on a coarse head, whose tessellation adds LOD
+   guides) at LOD 0.25 measures lod_guides: LOD guides interpolated from
+   the pure guides instead of simulated.
+   Usage: bench [--frames N] [--scene S|M|L|Mc] */
 #define _POSIX_C_SOURCE 200809L
 #define HAIRFUR_IMPLEMENTATION
 #include "../hairfur.h"
@@ -160,7 +163,7 @@ static void scene_pose(scene *s, int frame)
 }
 
 static void scene_init(scene *s, const char *name, int rings, int segments,
-                       int strands)
+                       int strands, float tess_factor)
 {
     hf_fur_desc d;
     hf_diag diag;
@@ -189,6 +192,7 @@ static void scene_init(scene *s, const char *name, int rings, int segments,
     d.points_per_strand = P;
     d.max_length = 0.25f;
     d.total_strands = strands;
+    d.tess_factor = tess_factor;
     d.seed = 1;
     a.alloc = c_alloc;
     a.realloc = c_realloc;
@@ -407,6 +411,49 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
     for (k = 0; k < ST_N; ++k) free(t[k]);
 }
 
+/* LOD guides interpolated instead of simulated: a coarse head whose
+   tessellation adds guides (scenes S, M and L are fine enough that it adds
+   none), drawn at LOD 0.25, below the default simulate threshold of 0.5. */
+static void bench_lod_guides(scene *s, int frames)
+{
+    job jr, jg, jl;
+    double *t = (double *)malloc(sizeof(double) * (size_t)frames);
+    int f, th;
+    g_sc = s;
+    check("lod", hf_fur_set_lod(s->fur, 0.25f));
+    hf_fur_get_info(s->fur, &s->info);
+    printf("scene %s: %d guides (%d pure, %d LOD guides), %d strands, "
+           "LOD 0.25\n", s->name, s->info.guide_count,
+           s->info.pure_guide_count, s->info.lod_guide_count,
+           s->info.strand_count);
+    jr.fn = j_roots;
+    jr.total = s->info.guide_count;
+    jg.fn = j_ropes;
+    jg.total = s->info.guide_count;
+    jl.fn = j_lodg;
+    jl.total = s->info.lod_guide_count;
+    for (th = 1; th <= MAX_THREADS; ++th) {
+        double bytes = (double)s->info.lod_guide_count * P * 12.0, limit;
+        size_t b = (size_t)bytes;
+        float *dst = (float *)malloc(b);
+        g_threads = th;
+        for (f = -10; f < frames; ++f) {
+            double t0;
+            scene_pose(s, s->frame++);
+            run_job(&jr);
+            run_job(&jg);
+            t0 = now_ms();
+            run_job(&jl);
+            if (f >= 0) t[f] = now_ms() - t0;
+        }
+        memset(dst, 1, b);
+        limit = store_gbps(dst, b, 7);
+        report("lod_guides", s->name, th, stats(t, frames), bytes, limit, -1);
+        free(dst);
+    }
+    free(t);
+}
+
 static void bench_lut(int reps)
 {
     hf_lut_params p;
@@ -471,9 +518,9 @@ int main(int argc, char **argv)
 
     bench_bandwidth();
     /* sphere resolutions chosen for the guide counts of the issue */
-    scene_init(&sc[0], "S", 16, 24, 3670);  /* 362 guides */
-    scene_init(&sc[1], "M", 52, 72, 36700); /* 3,674 guides */
-    scene_init(&sc[2], "L", 26, 40, 100000); /* 1,002 guides */
+    scene_init(&sc[0], "S", 16, 24, 3670, 0.0f);   /* 362 guides */
+    scene_init(&sc[1], "M", 52, 72, 36700, 0.0f);  /* 3,674 guides */
+    scene_init(&sc[2], "L", 26, 40, 100000, 0.0f); /* 1,002 guides */
     for (i = 0; i < 3; ++i) {
         if (only && strcmp(only, sc[i].name)) continue;
         printf("scene %s: %d guides, %d strands, %d points each\n",
@@ -483,6 +530,12 @@ int main(int argc, char **argv)
             bench_scene(&sc[i], frames, th, &frame_ms[i][th]);
         printf("  frame speed-up with 2 threads: %.2f\n",
                frame_ms[i][1] / frame_ms[i][2]);
+    }
+    if (!only || !strcmp(only, "Mc")) {
+        static scene lodsc;
+        scene_init(&lodsc, "Mc", 10, 16, 36700, 80000.0f);
+        bench_lod_guides(&lodsc, frames);
+        hf_fur_destroy(lodsc.fur);
     }
     bench_lut(9);
 
