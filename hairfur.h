@@ -5890,10 +5890,12 @@ HFDEF int hf_format_bytes(int format)
 }
 
 /* round to nearest even for |v| <= 2^22: adding 1.5 * 2^23 leaves no
-   fraction bits, and the subtraction is exact */
+   fraction bits, and the subtraction is exact (t is a float variable so
+   that x87 excess precision cannot keep the fraction) */
 HF__PRIVATE float hf__round_even(float v)
 {
-    return (v + 12582912.0f) - 12582912.0f;
+    const float t = v + 12582912.0f;
+    return t - 12582912.0f;
 }
 
 HF__PRIVATE float hf__clampf(float x, float lo, float hi)
