@@ -4442,6 +4442,27 @@ HF__INLINE int hf__col_hits4(const hf__col_prep4 *k, __m128 x, __m128 y,
 }
 #endif
 
+/* A point inside the collider goes straight out to its surface: along
+   the offset from the closest axis point, or at the very axis along the
+   root normal n (any fixed choice; this one is the rope's). */
+HF__PRIVATE void hf__col_push_out(const hf__col_prep *k, float *x, float *y,
+                                  float *z, float nx, float ny, float nz)
+{
+    float c[3], d[3];
+    const float d2 = hf__col_closest(k, *x, *y, *z, c, d), rr = k->rr;
+    if (!(d2 < rr * rr)) return;
+    if (d2 > 1e-24f) {
+        const float s = rr / HF_SQRTF(d2);
+        *x = c[0] + d[0] * s;
+        *y = c[1] + d[1] * s;
+        *z = c[2] + d[2] * s;
+    } else {
+        *x = c[0] + nx * rr;
+        *y = c[1] + ny * rr;
+        *z = c[2] + nz * rr;
+    }
+}
+
 /* One collider against point row j (>= 1) of ropes [a, b); F: the frame
    rows of the sub-step. */
 HF__PRIVATE void hf__ropes_collide_row(hf_ropes *ro, const float *F, int j,
@@ -4451,33 +4472,12 @@ HF__PRIVATE void hf__ropes_collide_row(hf_ropes *ro, const float *F, int j,
     size_t R = (size_t)ro->rope_count;
     const float *nx = HF__ROW(F, 6), *ny = HF__ROW(F, 7), *nz = HF__ROW(F, 8);
     const hf__col_prep k_ = hf__collider_prep(c, margin);
-    const float rr = k_.rr, rr2 = k_.rr * k_.rr;
+    float *HF__RESTRICT X = HF__ROW(ro->x, j);
+    float *HF__RESTRICT Y = HF__ROW(ro->y, j);
+    float *HF__RESTRICT Z = HF__ROW(ro->z, j);
     int r;
-    {
-        float *HF__RESTRICT X = HF__ROW(ro->x, j);
-        float *HF__RESTRICT Y = HF__ROW(ro->y, j);
-        float *HF__RESTRICT Z = HF__ROW(ro->z, j);
-        for (r = a; r < b; ++r) {
-            float cc[3], dd[3];
-            const float d2 = hf__col_closest(&k_, X[r], Y[r], Z[r], cc, dd);
-            const float cx = cc[0], cy = cc[1], cz = cc[2];
-            const float dx = dd[0], dy = dd[1], dz = dd[2];
-            if (d2 < rr2) {
-                /* push out along the offset; at the very centre, along the
-                   root normal (any fixed choice; this one is the rope's) */
-                if (d2 > 1e-24f) {
-                    float s = rr / HF_SQRTF(d2);
-                    X[r] = cx + dx * s;
-                    Y[r] = cy + dy * s;
-                    Z[r] = cz + dz * s;
-                } else {
-                    X[r] = cx + nx[r] * rr;
-                    Y[r] = cy + ny[r] * rr;
-                    Z[r] = cz + nz[r] * rr;
-                }
-            }
-        }
-    }
+    for (r = a; r < b; ++r)
+        hf__col_push_out(&k_, X + r, Y + r, Z + r, nx[r], ny[r], nz[r]);
 }
 
 /* One collider against point row j (>= 1) of ropes [a, b) right after an
@@ -4503,20 +4503,14 @@ HF__PRIVATE void hf__ropes_collide_ftl_row(hf_ropes *ro, const float *F,
     float *HF__RESTRICT Y = HF__ROW(ro->y, j);
     float *HF__RESTRICT Z = HF__ROW(ro->z, j);
     const hf__col_prep k_ = hf__collider_prep(c, margin);
-    const float rr = k_.rr, rr2 = k_.rr * k_.rr;
+    const float rr2 = k_.rr * k_.rr;
     int r;
     for (r = a; r < b; ++r) {
-        float cc[3], dd[3], cx, cy, cz, dx, dy, dz, d2;
-        d2 = hf__col_closest(&k_, X[r], Y[r], Z[r], cc, dd);
-        cx = cc[0];
-        cy = cc[1];
-        cz = cc[2];
-        dx = dd[0];
-        dy = dd[1];
-        dz = dd[2];
+        float cc[3], dd[3];
+        const float d2 = hf__col_closest(&k_, X[r], Y[r], Z[r], cc, dd);
         if (d2 < rr2 && L[r] > 0.0f) {
             /* n: from c to the parent */
-            float mx = X0[r] - cx, my = Y0[r] - cy, mz = Z0[r] - cz;
+            float mx = X0[r] - cc[0], my = Y0[r] - cc[1], mz = Z0[r] - cc[2];
             float rho2 = mx * mx + my * my + mz * mz, rho, cmin, dn, s2;
             float ux = X[r] - X0[r], uy = Y[r] - Y0[r], uz = Z[r] - Z0[r];
             float u2 = ux * ux + uy * uy + uz * uz, l = L[r], vx, vy, vz, v2;
@@ -4571,29 +4565,10 @@ HF__PRIVATE void hf__ropes_collide_ftl_row(hf_ropes *ro, const float *F,
                 Z[r] = Z0[r] + l * (mz * cmin + vz * s2);
             }
         }
-        if (d2 < rr2) {
-            /* what the local ball missed (capsule ends, a parent inside
-               the margin, rounding): straight out */
-            float e2 = hf__col_closest(&k_, X[r], Y[r], Z[r], cc, dd);
-            cx = cc[0];
-            cy = cc[1];
-            cz = cc[2];
-            dx = dd[0];
-            dy = dd[1];
-            dz = dd[2];
-            if (e2 < rr2) {
-                if (e2 > 1e-24f) {
-                    float sc = rr / HF_SQRTF(e2);
-                    X[r] = cx + dx * sc;
-                    Y[r] = cy + dy * sc;
-                    Z[r] = cz + dz * sc;
-                } else {
-                    X[r] = cx + nx[r] * rr;
-                    Y[r] = cy + ny[r] * rr;
-                    Z[r] = cz + nz[r] * rr;
-                }
-            }
-        }
+        /* what the local ball missed (capsule ends, a parent inside the
+           margin, rounding): straight out */
+        if (d2 < rr2)
+            hf__col_push_out(&k_, X + r, Y + r, Z + r, nx[r], ny[r], nz[r]);
     }
 }
 
@@ -6169,7 +6144,7 @@ HF__PRIVATE void hf__ribbon_write_ref(const hf__rframe *fr, int P,
                                       const hf__rstrand *S,
                                       const hf__rout *ro, size_t v0)
 {
-    int j, c;
+    int j, c, q;
     for (j = 0; j < P; ++j) {
         const size_t v = v0 + 2u * (size_t)j;
         float a[4], b[4];
@@ -6182,25 +6157,27 @@ HF__PRIVATE void hf__ribbon_write_ref(const hf__rframe *fr, int P,
             }
             hf__emit2(ro, HF__S_POS, v, a, b);
         }
-        if (ro->base[HF__S_TAN]) {
-            for (c = 0; c < 3; ++c) a[c] = fr->t[c][4 + j];
-            hf__emit2(ro, HF__S_TAN, v, a, a);
-        }
-        if (ro->base[HF__S_TEX]) {
-            a[0] = S->uv[0];
-            a[1] = S->uv[1];
-            a[2] = K->tt[j];
-            hf__emit2(ro, HF__S_TEX, v, a, a);
-        }
-        if (ro->base[HF__S_COL]) {
-            for (c = 0; c < 3; ++c) a[c] = S->rgba[c];
-            a[3] = S->rgba[3] * K->fade[j];
-            hf__emit2(ro, HF__S_COL, v, a, a);
-        }
-        if (ro->base[HF__S_C3D]) {
-            a[0] = S->c3x;
-            a[1] = K->tt[j];
-            hf__emit2(ro, HF__S_C3D, v, a, a);
+        for (q = HF__S_TAN; q <= HF__S_C3D; ++q) {
+            if (!ro->base[q]) continue;
+            switch (q) { /* the same on both sides */
+            case HF__S_TAN:
+                for (c = 0; c < 3; ++c) a[c] = fr->t[c][4 + j];
+                break;
+            case HF__S_TEX:
+                a[0] = S->uv[0];
+                a[1] = S->uv[1];
+                a[2] = K->tt[j];
+                break;
+            case HF__S_COL:
+                for (c = 0; c < 3; ++c) a[c] = S->rgba[c];
+                a[3] = S->rgba[3] * K->fade[j];
+                break;
+            default: /* HF__S_C3D */
+                a[0] = S->c3x;
+                a[1] = K->tt[j];
+                break;
+            }
+            hf__emit2(ro, q, v, a, a);
         }
     }
 }
@@ -6282,6 +6259,52 @@ HF__INLINE void hf__ribbon_sides4(const hf__rframe *fr, int o, __m128 w,
     }
 }
 
+/* Stream q's values (tangent, texcoord, colour or 3D colour: the same on
+   both sides of the ribbon) for the four points of group k. */
+HF__INLINE void hf__stream_values4(int q, const hf__rframe *fr,
+                                   const hf__rconst *K, const hf__rstrand *S,
+                                   int k, __m128 *v)
+{
+    const __m128 tt = _mm_loadu_ps(K->tt + 4 * k);
+    int c;
+    switch (q) {
+    case HF__S_TAN:
+        for (c = 0; c < 3; ++c) v[c] = _mm_loadu_ps(fr->t[c] + 4 + 4 * k);
+        break;
+    case HF__S_TEX:
+        v[0] = _mm_set1_ps(S->uv[0]);
+        v[1] = _mm_set1_ps(S->uv[1]);
+        v[2] = tt;
+        break;
+    case HF__S_COL:
+        for (c = 0; c < 3; ++c) v[c] = _mm_set1_ps(S->rgba[c]);
+        v[3] = _mm_mul_ps(_mm_set1_ps(S->rgba[3]),
+                          _mm_loadu_ps(K->fade + 4 * k));
+        break;
+    default: /* HF__S_C3D */
+        v[0] = _mm_set1_ps(S->c3x);
+        v[1] = tt;
+        break;
+    }
+}
+
+/* All of stream q (nc = hf__stream_nc[q]) for one strand: both vertices
+   of each point get the same values. */
+HF__INLINE void hf__stream4(int q, int nc, const hf__rframe *fr, int P,
+                            const hf__rconst *K, const hf__rstrand *S,
+                            const hf__rout *ro, size_t v0)
+{
+    const size_t st = ro->stride[q];
+    unsigned char *b = ro->base[q] + v0 * st;
+    __m128 v[4];
+    int k;
+    for (k = 0; 4 * k < P; ++k, b += 8 * st) {
+        hf__stream_values4(q, fr, K, S, k, v);
+        hf__emit_pair(b, st, P - 4 * k < 4 ? P - 4 * k : 4, v, v, nc,
+                      ro->fmt[q]);
+    }
+}
+
 /* hf__ribbon_write_ref four points at a time: the same values in the same
    operations, so the same bytes. */
 HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
@@ -6319,47 +6342,14 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
             hf__emit_pair(b, st, n, L, R, 3, ro->fmt[HF__S_POS]);
         }
     }
-    if (ro->base[HF__S_TAN] && !run) {
-        st = ro->stride[HF__S_TAN];
-        b = ro->base[HF__S_TAN] + v0 * st;
-        for (k = 0; k < G; ++k, b += 8 * st) {
-            const int o = 4 + 4 * k, n = P - 4 * k < 4 ? P - 4 * k : 4;
-            for (c = 0; c < 3; ++c) L[c] = _mm_loadu_ps(fr->t[c] + o);
-            hf__emit_pair(b, st, n, L, L, 3, ro->fmt[HF__S_TAN]);
-        }
-    }
-    if (ro->base[HF__S_TEX] && run < 3) {
-        st = ro->stride[HF__S_TEX];
-        b = ro->base[HF__S_TEX] + v0 * st;
-        L[0] = _mm_set1_ps(S->uv[0]);
-        L[1] = _mm_set1_ps(S->uv[1]);
-        for (k = 0; k < G; ++k, b += 8 * st) {
-            const int n = P - 4 * k < 4 ? P - 4 * k : 4;
-            L[2] = _mm_loadu_ps(K->tt + 4 * k);
-            hf__emit_pair(b, st, n, L, L, 3, ro->fmt[HF__S_TEX]);
-        }
-    }
-    if (ro->base[HF__S_COL]) {
-        st = ro->stride[HF__S_COL];
-        b = ro->base[HF__S_COL] + v0 * st;
-        for (c = 0; c < 3; ++c) L[c] = _mm_set1_ps(S->rgba[c]);
-        for (k = 0; k < G; ++k, b += 8 * st) {
-            const int n = P - 4 * k < 4 ? P - 4 * k : 4;
-            L[3] = _mm_mul_ps(_mm_set1_ps(S->rgba[3]),
-                              _mm_loadu_ps(K->fade + 4 * k));
-            hf__emit_pair(b, st, n, L, L, 4, ro->fmt[HF__S_COL]);
-        }
-    }
-    if (ro->base[HF__S_C3D]) {
-        st = ro->stride[HF__S_C3D];
-        b = ro->base[HF__S_C3D] + v0 * st;
-        L[0] = _mm_set1_ps(S->c3x);
-        for (k = 0; k < G; ++k, b += 8 * st) {
-            const int n = P - 4 * k < 4 ? P - 4 * k : 4;
-            L[1] = _mm_loadu_ps(K->tt + 4 * k);
-            hf__emit_pair(b, st, n, L, L, 2, ro->fmt[HF__S_C3D]);
-        }
-    }
+    /* the other streams, unless written with the position run; a call
+       each, so the component count is a constant in every inlined copy */
+    if (ro->base[HF__S_TAN] && !run)
+        hf__stream4(HF__S_TAN, 3, fr, P, K, S, ro, v0);
+    if (ro->base[HF__S_TEX] && run < 3)
+        hf__stream4(HF__S_TEX, 3, fr, P, K, S, ro, v0);
+    if (ro->base[HF__S_COL]) hf__stream4(HF__S_COL, 4, fr, P, K, S, ro, v0);
+    if (ro->base[HF__S_C3D]) hf__stream4(HF__S_C3D, 2, fr, P, K, S, ro, v0);
 }
 #else
 HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
