@@ -993,6 +993,15 @@ static void glm_lights(GLuint prog, const glm_app *a)
                        a->view_proj);
 }
 
+/* Texture `tex` on unit `unit`, and the shader's sampler `name` on it. */
+static void glm_sampler(GLuint prog, int unit, GLenum target, GLuint tex,
+                        const char *name)
+{
+    glActiveTexture((GLenum)(GL_TEXTURE0 + unit));
+    glBindTexture(target, tex);
+    glUniform1i(glGetUniformLocation(prog, name), unit);
+}
+
 static void glm_draw(glm_app *a)
 {
     const int n = a->drawn;
@@ -1034,30 +1043,18 @@ static void glm_draw(glm_app *a)
         glUniform1f(glGetUniformLocation(prog, "u_spec"), a->o.specular);
         glUniform1f(glGetUniformLocation(prog, "u_dither"),
                     a->o.a2c ? 0.25f : 0.0f);
-        glActiveTexture(GL_TEXTURE0);
-        glBindTexture(GL_TEXTURE_2D, a->tex_m);
-        glActiveTexture(GL_TEXTURE1);
-        glBindTexture(GL_TEXTURE_2D, a->tex_n);
-        glActiveTexture(GL_TEXTURE2);
-        glBindTexture(GL_TEXTURE_2D, a->tex_ramp);
-        glUniform1i(glGetUniformLocation(prog, "u_lut_m"), 0);
-        glUniform1i(glGetUniformLocation(prog, "u_lut_n"), 1);
-        glUniform1i(glGetUniformLocation(prog, "u_ramp"), 2);
+        glm_sampler(prog, 0, GL_TEXTURE_2D, a->tex_m, "u_lut_m");
+        glm_sampler(prog, 1, GL_TEXTURE_2D, a->tex_n, "u_lut_n");
+        glm_sampler(prog, 2, GL_TEXTURE_2D, a->tex_ramp, "u_ramp");
         if (prog == a->prog_gpu) {
             hf_ribbon_params v;
             glm_ribbon_view(a, &v);
-            glActiveTexture(GL_TEXTURE3);
-            glBindTexture(GL_TEXTURE_BUFFER, a->tbo_points);
-            glActiveTexture(GL_TEXTURE4);
-            glBindTexture(GL_TEXTURE_BUFFER, a->tbo_uv);
-            glActiveTexture(GL_TEXTURE5);
-            glBindTexture(GL_TEXTURE_BUFFER, a->tbo_scolor);
-            glActiveTexture(GL_TEXTURE6);
-            glBindTexture(GL_TEXTURE_BUFFER, a->tbo_c3x);
-            glUniform1i(glGetUniformLocation(prog, "u_points"), 3);
-            glUniform1i(glGetUniformLocation(prog, "u_root_uv"), 4);
-            glUniform1i(glGetUniformLocation(prog, "u_strand_color"), 5);
-            glUniform1i(glGetUniformLocation(prog, "u_strand_c3x"), 6);
+            glm_sampler(prog, 3, GL_TEXTURE_BUFFER, a->tbo_points, "u_points");
+            glm_sampler(prog, 4, GL_TEXTURE_BUFFER, a->tbo_uv, "u_root_uv");
+            glm_sampler(prog, 5, GL_TEXTURE_BUFFER, a->tbo_scolor,
+                        "u_strand_color");
+            glm_sampler(prog, 6, GL_TEXTURE_BUFFER, a->tbo_c3x,
+                        "u_strand_c3x");
             glUniform1i(glGetUniformLocation(prog, "u_points_per_strand"), a->P);
             glUniform1i(glGetUniformLocation(prog, "u_orthographic"), 0);
             glUniform2f(glGetUniformLocation(prog, "u_alpha"), v.alpha_root,
