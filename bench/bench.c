@@ -389,9 +389,8 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
     {
         long allocs = g_allocs - allocs0;
         size_t big = (size_t)s->info.strand_count * P * 2u * 36u;
-        float *dst = (float *)malloc(big), *src = (float *)malloc(big);
+        float *dst = (float *)malloc(big);
         memset(dst, 1, big);
-        memset(src, 2, big);
         for (k = 0; k < ST_N; ++k) {
             figure fg = stats(t[k], frames);
             double limit = 0.0;
@@ -399,14 +398,12 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
             if (bytes[k] > 0) {
                 size_t b = (size_t)bytes[k];
                 limit = store_gbps(dst, b, 7);
-                (void)memcpy_gbps;
             }
             report(st_name[k], s->name, threads, fg, bytes[k], limit,
                    k >= ST_FRAME ? allocs : -1);
             if (k == ST_FRAME && frame_ms_out) *frame_ms_out = fg.med;
         }
         free(dst);
-        free(src);
     }
     for (k = 0; k < ST_N; ++k) free(t[k]);
 }
