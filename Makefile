@@ -1,22 +1,63 @@
-# hairfur.h - build, test, examples.
+# hairfur.h - build, test, examples, benchmarks, fuzzing.
 #
-#   make test      the unit tests: C99 and C++11, -O2 and ASan+UBSan,
-#                  with gcc and (where installed) clang, and the scalar
-#                  (HF_NO_SIMD) build; strict warnings; GL checks when
-#                  EGL is present
-#   make bench     per-stage speed against the memory-bandwidth limit
-#   make bench-peers  hairfur ropes against Bullet soft-body ropes
-#   make fuzz      libFuzzer targets (FUZZ_SECONDS each); fuzz-smoke for CI,
-#                  fuzz-replay replays corpus and regressions with gcc
-#   make soak      a million rope steps under random abuse
-#   make valgrind  the test suite under memcheck
-#   make demo      grows, swings and renders fur on the built-in head into
-#                  out/ (installs or names the Debian packages it needs)
-#   make run       the interactive Marschner example (needs a display)
-#   make examples  build every example into build/
-#   make deps      install the Debian packages the examples need (as root),
-#                  or print the apt-get line
-#   make clean
+# make (all) is make test; make build/<name> builds one program.
+#
+# Tests
+#   make test          the unit tests in 9 builds (gcc and, where installed,
+#                      clang; C99 and C++11; -O2 and ASan+UBSan; the scalar
+#                      HF_NO_SIMD build), the C++ compile and C/C++ link
+#                      checks, the API doc check, the quick start check,
+#                      then the GL checks when headless EGL is there
+#   make check         the fast loop: the unit tests built once (gcc -std=c99
+#                      -O2), the API doc check and the quick start check
+#   make check-build   build what make test runs, without running it
+#   make quickstart    the README quick start check: README.md's Quick start
+#                      program built with gcc, clang and g++, run, output
+#                      checked
+#   make api-doc-check tests/check_api_doc.sh (docs/api.md against hairfur.h)
+#                      when that script exists
+#   make valgrind      the test suite under memcheck
+#   make soak          a million rope steps under random abuse (SOAK_FRAMES)
+#   make fuzz          each libFuzzer target for FUZZ_SECONDS (60) s
+#   make fuzz-smoke    each target for FUZZ_SMOKE_SECONDS (20) s (CI)
+#   make fuzz-replay   replay corpus and regressions with gcc (no clang)
+#   make fuzz-build    build the libFuzzer targets
+#
+# GL (GLAD generated at build time, headless EGL, GLFW for windows)
+#   make gl-check      say whether headless EGL + GL 3.3 core works here
+#   make gl-test       the GL checks (skipped, with the reason, without GL)
+#   make gl-fur-check  only the fur render check (gl_fur_check)
+#   make gl-window-test  the window path (needs a display or xvfb-run)
+#   make gl-examples   build the GL examples (gl_minimal, gl_marschner)
+#   make gl-demo       headless renders of the swinging head into out/
+#   make run           the interactive Marschner example (needs a display)
+#   make run-minimal   the interactive minimal GL example
+#
+# Examples and benchmarks
+#   make demo          grow, swing and render fur on the built-in head into
+#                      out/ (installs or names the Debian packages it needs)
+#   make examples      build every example into build/
+#   make bench         per-stage speed against the memory-bandwidth limit
+#                      (BENCH_CFLAGS, BENCH_ARGS)
+#   make bench-peers   hairfur ropes against Bullet soft-body ropes
+#                      (BENCH_PEERS_ARGS)
+#
+# Housekeeping
+#   make deps          install every Debian package of mk/packages.txt (as
+#                      root), or print the apt-get line
+#   make clean         remove build/ and out/
+#   make help          print this list
+#
+# Steps the targets above use: demo-deps (the demo's package check),
+# gl-need (GL headers present), gl-test-or-skip (make test's GL step),
+# check-bullet (Bullet headers present), FORCE.
+#
+# Helper files in mk/ (no make fragments: this Makefile is the whole build)
+#   mk/packages.txt    the Debian packages, in groups (build, examples, gl,
+#                      fuzz, peers); the one list, also read by .ci/run
+#   mk/packages.sh     prints the packages of the groups it is given
+#   mk/quickstart.sh   extracts README.md's quick start program and checks
+#                      its output
 
 BUILD  := build
 OUT    := out
@@ -26,12 +67,25 @@ SAN    := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined \
 HDR    := hairfur.h
 TEST   := tests/test_hairfur.c
 
-# Debian packages for the examples (the library itself needs none).
-DEPS_PKGS := build-essential clang libstb-dev libassimp-dev
-
 CLANG   := $(shell command -v clang 2>/dev/null)
 CLANGXX := $(shell command -v clang++ 2>/dev/null)
 
+.PHONY: all test check check-build quickstart api-doc-check demo demo-deps \
+        examples deps clean help gl-test-or-skip bench valgrind FORCE
+
+all: test
+
+$(BUILD) $(OUT):
+	mkdir -p $@
+
+# ==== Debian packages ========================================================
+# One list, mk/packages.txt; mk/packages.sh prints the packages of the
+# groups it is given (all of them when given none). make deps installs
+# every group; make demo checks the groups the demo uses.
+PACKAGES      = $(shell sh mk/packages.sh)
+DEMO_PACKAGES = $(shell sh mk/packages.sh build examples gl)
+
+# ==== Unit tests =============================================================
 # name: compiler and flags. Each builds tests/test_hairfur.c and runs it.
 TEST_gcc_c99      := gcc -std=c99 -O2
 TEST_gcc_cxx11    := g++ -std=c++11 -x c++ -O2
@@ -52,17 +106,6 @@ endif
 
 TEST_BINS := $(addprefix $(BUILD)/test_,$(TEST_NAMES))
 
-EX_CFLAGS := -std=c99 -O2 -Wall -Wextra -Wpedantic
-EXAMPLES  := $(BUILD)/bake_luts $(BUILD)/grow_pictures $(BUILD)/plot_ropes \
-             $(BUILD)/grow_fur
-
-.PHONY: all test check-build demo demo-deps examples deps clean gl-test-or-skip bench valgrind
-
-all: test
-
-$(BUILD) $(OUT):
-	mkdir -p $@
-
 $(BUILD)/test_%: $(TEST) $(HDR) | $(BUILD)
 	$(TEST_$*) $(WARN) $(TEST) -o $@ -lm
 
@@ -77,17 +120,77 @@ $(BUILD)/link_check: tests/link_main.cpp $(BUILD)/link_impl.o $(HDR) | $(BUILD)
 
 check-build: $(TEST_BINS) $(BUILD)/cpp_compile $(BUILD)/link_check
 
-test: check-build
-	@$(BUILD)/cpp_compile
-	@$(BUILD)/link_check
-	@fail=0; for t in $(TEST_BINS); do \
+# $(1) = test binaries to run, $(2) = the target's name. Prints each
+# binary's last line (N passed, N failed), and the failures.
+define run_tests
+	@fail=0; for t in $(1); do \
 	  printf '%-28s ' "$$(basename $$t):"; \
 	  $$t > $$t.log 2>&1; rc=$$?; tail -n 1 $$t.log; \
 	  if [ $$rc -ne 0 ]; then fail=1; grep -v ' passed, ' $$t.log | head -n 40; fi; \
 	done; \
-	if [ $$fail -ne 0 ]; then echo "make test: FAILED"; exit 1; fi; \
-	echo "make test: all builds passed"
+	if [ $$fail -ne 0 ]; then echo "make $(2): FAILED"; exit 1; fi; \
+	echo "make $(2): all builds passed"
+endef
+
+test: check-build
+	@$(BUILD)/cpp_compile
+	@$(BUILD)/link_check
+	$(call run_tests,$(TEST_BINS),test)
+	@$(MAKE) --no-print-directory api-doc-check
+	@$(MAKE) --no-print-directory quickstart
 	@$(MAKE) --no-print-directory gl-test-or-skip
+
+# The edit-compile-test loop: one build of the suite, the doc checks.
+check: $(BUILD)/test_gcc_c99
+	$(call run_tests,$(BUILD)/test_gcc_c99,check)
+	@$(MAKE) --no-print-directory api-doc-check
+	@$(MAKE) --no-print-directory quickstart
+
+# docs/api.md against hairfur.h: the script prints the drift and fails.
+# Skipped, silently, where the script is absent.
+api-doc-check:
+	@if [ -f tests/check_api_doc.sh ]; then sh tests/check_api_doc.sh; fi
+
+# ==== README quick start check ===============================================
+# The first ```c block under "## Quick start" in README.md is a complete
+# program: extracted into build/quickstart.c (with a #line directive, so
+# compiler messages name README.md), built as C99 with gcc and clang (where
+# installed) and as C++11 with g++, strict warnings, then run: each must
+# exit 0 and print "quickstart: <V> vertices, <I> indices, mean ribbon
+# width <W>" with V, I, W > 0. -O1: the flow-based warnings are on, and it
+# builds in a third of -O2's time (the suite covers -O2).
+# QUICKSTART_MD names another markdown file.
+QUICKSTART_MD ?= README.md
+QS_gcc_c99   := gcc -std=c99 -O1
+QS_gxx_cxx11 := g++ -x c++ -std=c++11 -O1
+QS_NAMES     := gcc_c99 gxx_cxx11
+ifneq ($(CLANG),)
+QS_clang_c99 := clang -std=c99 -O1
+QS_NAMES     += clang_c99
+endif
+QS_BINS := $(addprefix $(BUILD)/quickstart_,$(QS_NAMES))
+
+# Extracted on every run (QUICKSTART_MD may name another file), rewritten
+# only when the program changed.
+$(BUILD)/quickstart.c: $(QUICKSTART_MD) mk/quickstart.sh FORCE | $(BUILD)
+	@sh mk/quickstart.sh extract $(QUICKSTART_MD) $@
+FORCE:
+
+$(BUILD)/quickstart_%: $(BUILD)/quickstart.c $(HDR) | $(BUILD)
+	@echo "$(QS_$*) $(WARN) -I. $< -o $@ -lm"
+	@$(QS_$*) $(WARN) -I. $< -o $@ -lm || { \
+	  echo "make quickstart: the Quick start program of $(QUICKSTART_MD)" \
+	       "($<) does not build with $(QS_$*)"; exit 1; }
+
+quickstart: $(QS_BINS)
+	@sh mk/quickstart.sh run $(QS_BINS) || { \
+	  echo "make quickstart: FAILED (the program is the Quick start of" \
+	       "$(QUICKSTART_MD), extracted into $(BUILD)/quickstart.c)"; exit 1; }
+
+# ==== Examples ===============================================================
+EX_CFLAGS := -std=c99 -O2 -Wall -Wextra -Wpedantic
+EXAMPLES  := $(BUILD)/bake_luts $(BUILD)/grow_pictures $(BUILD)/plot_ropes \
+             $(BUILD)/grow_fur
 
 # stb_image_write.h comes from Debian's libstb-dev (/usr/include/stb).
 STB_H := /usr/include/stb/stb_image_write.h
@@ -105,41 +208,100 @@ $(BUILD)/grow_fur: examples/grow_fur.c examples/head_mesh.h $(HDR) $(STB_H) | $(
 
 examples: $(EXAMPLES) gl-examples
 
-# The benchmark: per-stage figures against the store-loop bandwidth limit.
-# BENCH_CFLAGS picks the optimisation level (a plain -O2, as users build).
-BENCH_CFLAGS ?= -O2
-$(BUILD)/bench: bench/bench.c examples/head_mesh.h $(HDR) | $(BUILD)
-	gcc -std=c99 $(BENCH_CFLAGS) -Wall -Wextra -Wpedantic $< -o $@ -lpthread -lm
+# ==== GL: loader, flags, examples, checks ====================================
+# GLAD (glad 2.x, Debian python3-glad 2.0.2): --reproducible uses the gl.xml
+# packaged with glad (no network, no date in the output), so the generated
+# loader is the same on every machine.
+GLAD_DIR   := $(BUILD)/glad
+GLAD_STAMP := $(GLAD_DIR)/.generated
+GLAD_O     := $(GLAD_DIR)/gl.o
+GLAD_CMD   := glad --api gl:core=3.3 --reproducible --out-path $(GLAD_DIR) c
 
-bench: $(BUILD)/bench
-	$(BUILD)/bench $(BENCH_ARGS)
+$(GLAD_STAMP):
+	@command -v glad >/dev/null 2>&1 || { \
+	  echo "GL build: the 'glad' command is missing: install python3-glad" \
+	       "(sudo apt-get install python3-glad, or make deps)"; exit 1; }
+	@if glad --help 2>/dev/null | grep -q -- '--generator'; then \
+	  echo "GL build: this glad is glad 0.1.x (--generator/--profile command" \
+	       "line); the build needs glad 2.x: install python3-glad >= 2.0"; \
+	  exit 1; fi
+	rm -rf $(GLAD_DIR)
+	$(GLAD_CMD)
+	@test -f $(GLAD_DIR)/src/gl.c && test -f $(GLAD_DIR)/include/glad/gl.h
+	touch $@
 
-# The main job: grow fur on the built-in head, swing it, export the ribbons
-# (out/fur.obj), bake the LUTs and render headless Marschner frames.
-demo: demo-deps $(EXAMPLES) | $(OUT)
-	$(BUILD)/bake_luts --out $(OUT)
-	$(BUILD)/grow_pictures $(OUT)
-	$(BUILD)/grow_fur --frames 120 --out $(OUT)/fur.obj
-	@$(MAKE) --no-print-directory gl-demo
-	@echo "demo: wrote $(OUT)/fur.obj (the swung head's fur as ribbons: opens in Blender),"
-	@echo "      $(OUT)/fur_swing_030.png ... fur_swing_090.png, fur_kajiya.png,"
-	@echo "      fur_color3d_gpu.png, fur_minimal.png (headless GL renders),"
-	@echo "      $(OUT)/marschner_m.png, marschner_n.png, marschner_scales.txt (LUTs)"
-	@echo "      and the growth pictures $(OUT)/grow_*.png"
+# Generated code: compiled once, without -Werror (it is not ours).
+$(GLAD_O): $(GLAD_STAMP)
+	$(CC) -std=c99 -O2 -I$(GLAD_DIR)/include -c $(GLAD_DIR)/src/gl.c -o $@
 
-# Make sure the Debian packages are there: install them as root, or say
-# exactly what to install.
-demo-deps:
-	@miss=""; for p in $(DEPS_PKGS); do \
-	  dpkg -s $$p >/dev/null 2>&1 || miss="$$miss $$p"; done; \
+# pkg-config where it knows the packages; plain -l flags otherwise.
+GL_PC_CFLAGS := $(shell pkg-config --cflags glfw3 egl 2>/dev/null)
+GL_PC_LIBS   := $(shell pkg-config --libs glfw3 egl 2>/dev/null)
+EGL_PC_LIBS  := $(shell pkg-config --libs egl 2>/dev/null)
+GL_CFLAGS    := -std=c99 -O2 -I$(GLAD_DIR)/include -Iexamples -I. $(GL_PC_CFLAGS)
+GL_LIBS      := $(if $(GL_PC_LIBS),$(GL_PC_LIBS),-lglfw -lEGL) -lm
+EGL_LIBS     := $(if $(EGL_PC_LIBS),$(EGL_PC_LIBS),-lEGL) -lm
+
+# Build-time headers, checked with a message naming the package.
+.PHONY: gl-need
+gl-need:
+	@miss=""; \
+	for h in "GLFW/glfw3.h libglfw3-dev" "EGL/egl.h libegl-dev" \
+	         "stb/stb_image_write.h libstb-dev"; do \
+	  set -- $$h; \
+	  printf '#include <%s>\n' "$$1" | $(CC) $(GL_PC_CFLAGS) -E -x c - \
+	    >/dev/null 2>&1 || miss="$$miss $$2"; \
+	done; \
 	if [ -n "$$miss" ]; then \
-	  if [ "$$(id -u)" = 0 ]; then \
-	    apt-get update && apt-get install -y$$miss; \
-	  else \
-	    echo "make demo needs:$$miss"; \
-	    echo "  sudo apt-get install -y$$miss   (or: sudo make deps)"; exit 1; \
-	  fi; \
+	  echo "GL build: missing headers: install$$miss (or make deps)"; exit 1; \
 	fi
+
+GL_COMMON := examples/gl_common.h
+
+# The GL examples: $(BUILD)/<name> from examples/<name>.c. They include
+# gl_common.h (one of them per program defines GLC_IMPLEMENTATION),
+# hairfur.h and head_mesh.h; they get GLFW for the window mode but run
+# headless without a display (headless mode never calls glfwInit).
+GL_EXAMPLES     := gl_minimal gl_marschner
+GL_EXAMPLE_BINS := $(addprefix $(BUILD)/,$(GL_EXAMPLES))
+
+$(GL_EXAMPLE_BINS): $(BUILD)/%: examples/%.c $(GL_COMMON) hairfur.h \
+                    examples/head_mesh.h $(GLAD_O) | gl-need $(BUILD)
+	$(CC) $(GL_CFLAGS) $(WARN) $< $(GLAD_O) -o $@ $(GL_LIBS)
+
+# gl_check needs no GLFW: only libEGL (and Mesa at run time).
+$(BUILD)/gl_check: tests/gl_check.c $(GL_COMMON) $(GLAD_O) | gl-need $(BUILD)
+	$(CC) $(GL_CFLAGS) $(WARN) $< $(GLAD_O) -o $@ $(EGL_LIBS)
+
+$(BUILD)/gl_smoke: tests/gl_smoke.c $(GL_COMMON) $(GLAD_O) | gl-need $(BUILD)
+	$(CC) $(GL_CFLAGS) $(WARN) $< $(GLAD_O) -o $@ $(GL_LIBS)
+
+$(BUILD)/gl_ribbon_check: tests/gl_ribbon_check.c $(GL_COMMON) hairfur.h \
+                          $(GLAD_O) | gl-need $(BUILD)
+	$(CC) $(GL_CFLAGS) $(WARN) $< $(GLAD_O) -o $@ $(GL_LIBS)
+
+$(BUILD)/gl_misc_test: tests/gl_misc_test.c $(GL_COMMON) $(GLAD_O) \
+                       | gl-need $(BUILD)
+	$(CC) $(GL_CFLAGS) $(WARN) $< $(GLAD_O) -o $@ $(GL_LIBS)
+
+$(BUILD)/gl_window_test: tests/gl_window_test.c $(GL_COMMON) $(GLAD_O) \
+                         | gl-need $(BUILD)
+	$(CC) $(GL_CFLAGS) $(WARN) $< $(GLAD_O) -o $@ $(GL_LIBS)
+
+# The fur render check includes examples/gl_marschner.c (with GLM_NO_MAIN).
+$(BUILD)/gl_fur_check: tests/gl_fur_check.c examples/gl_marschner.c \
+                       examples/head_mesh.h $(GL_COMMON) hairfur.h $(GLAD_O) \
+                       | gl-need $(BUILD)
+	$(CC) $(GL_CFLAGS) $(WARN) $< $(GLAD_O) -o $@ $(GL_LIBS)
+
+.PHONY: gl-check gl-test gl-examples gl-window-test gl-fur-check gl-demo \
+        run run-minimal
+gl-examples: $(GL_EXAMPLE_BINS)
+
+# Exit 0 either way: a missing GPU stack is not a build failure (the
+# program prints "SKIP: <what is missing>").
+gl-check: $(BUILD)/gl_check
+	@$(BUILD)/gl_check || true
 
 # GL checks need glad, EGL and GLFW headers: without them, say what is
 # missing and skip (CI installs them, so CI runs the checks).
@@ -152,15 +314,207 @@ gl-test-or-skip:
 	  echo "GL tests skipped: need python3-glad, libegl-dev, libglfw3-dev, libstb-dev (make deps)"; \
 	fi
 
-# The OpenGL examples and checks (GLAD at build time, EGL headless, GLFW).
-GL_EXAMPLES := gl_minimal gl_marschner
-include gl.mk
-include glex.mk
-# make bench-peers: hairfur's ropes against Bullet's (libbullet-dev).
-include peers.mk
-# make fuzz, fuzz-smoke, fuzz-replay, soak.
-include fuzz.mk
+# DISPLAY is unset so the checks prove the headless path needs no display.
+# gl_check runs first; without headless GL the recipe says why and passes
+# (gl_fur_check itself also exits 2 with "SKIP: reason" then).
+GL_TESTS := $(BUILD)/gl_smoke $(BUILD)/gl_misc_test $(BUILD)/gl_ribbon_check \
+            $(BUILD)/gl_fur_check
+gl-test: $(BUILD)/gl_check $(GL_TESTS) | $(OUT)
+	@if ! why=$$(env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_check); then \
+	  echo "GL tests skipped: $$why"; exit 0; \
+	fi; \
+	echo "$$why"; fail=0; \
+	env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_smoke $(OUT)/smoke.png \
+	  > $(BUILD)/gl_smoke.log 2>&1 || fail=1; tail -n 1 $(BUILD)/gl_smoke.log; \
+	env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_misc_test \
+	  > $(BUILD)/gl_misc_test.log 2>&1 || fail=1; tail -n 1 $(BUILD)/gl_misc_test.log; \
+	env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_ribbon_check \
+	  examples/ribbon_expand.glsl $(OUT)/ribbons.png \
+	  > $(BUILD)/gl_ribbon_check.log 2>&1 || fail=1; \
+	  tail -n 1 $(BUILD)/gl_ribbon_check.log; \
+	env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_fur_check \
+	  > $(BUILD)/gl_fur_check.log 2>&1 || fail=1; \
+	  tail -n 1 $(BUILD)/gl_fur_check.log; \
+	if [ $$fail -ne 0 ]; then echo "make gl-test: FAILED (logs in $(BUILD)/gl_*.log)"; exit 1; fi; \
+	echo "make gl-test: all GL checks passed"
 
+# The fur render check alone, writing its images into out/.
+gl-fur-check: $(BUILD)/gl_check $(BUILD)/gl_fur_check | $(OUT)
+	@if ! why=$$(env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_check); then \
+	  echo "gl_fur_check skipped: $$why"; exit 0; fi; \
+	env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_fur_check --out-dir $(OUT)
+
+# The window path needs a display: under xvfb-run (package xvfb) when
+# there is none. Not part of gl-test.
+gl-window-test: $(BUILD)/gl_window_test | $(OUT)
+	@if [ -n "$$DISPLAY" ]; then $(BUILD)/gl_window_test; \
+	elif command -v xvfb-run >/dev/null 2>&1; then \
+	  xvfb-run -a -s "-screen 0 640x480x24" $(BUILD)/gl_window_test; \
+	else echo "gl-window-test skipped: no DISPLAY and no xvfb-run" \
+	          "(install xvfb)"; fi
+
+# Headless renders of the swinging head (EGL, no display needed). Run from
+# the repository root: the GPU-expansion path reads
+# examples/ribbon_expand.glsl. With no headless GL, say why and go on.
+GLEX_RUN := env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_marschner --headless
+
+gl-demo: $(BUILD)/gl_check $(BUILD)/gl_marschner $(BUILD)/gl_minimal | $(OUT)
+	@if ! why=$$(env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_check); then \
+	  echo "GL demo skipped: $$why"; exit 0; fi; \
+	set -e; \
+	$(GLEX_RUN) --frames 30  --out $(OUT)/fur_swing_030.png; \
+	$(GLEX_RUN) --frames 60  --out $(OUT)/fur_swing_060.png; \
+	$(GLEX_RUN) --frames 90  --out $(OUT)/fur_swing_090.png; \
+	$(GLEX_RUN) --frames 90  --kajiya --out $(OUT)/fur_kajiya.png; \
+	$(GLEX_RUN) --frames 90  --gpu-expand --color3d --out $(OUT)/fur_color3d_gpu.png; \
+	env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_minimal --headless \
+	  --frames 60 --out $(OUT)/fur_minimal.png; \
+	echo "gl-demo: wrote $(OUT)/fur_swing_{030,060,090}.png, fur_kajiya.png," \
+	     "fur_color3d_gpu.png, fur_minimal.png"
+
+# The interactive windows (need a display).
+run: $(BUILD)/gl_marschner
+	@if [ -z "$$DISPLAY$$WAYLAND_DISPLAY" ]; then \
+	  echo "make run: no display (DISPLAY/WAYLAND_DISPLAY unset); try" \
+	       "'make gl-demo' for headless renders"; exit 1; fi
+	$(BUILD)/gl_marschner
+run-minimal: $(BUILD)/gl_minimal
+	$(BUILD)/gl_minimal
+
+# ==== Demo ===================================================================
+# Grow fur on the built-in head, swing it, export the ribbons (out/fur.obj),
+# bake the LUTs and render headless Marschner frames.
+demo: demo-deps $(EXAMPLES) | $(OUT)
+	$(BUILD)/bake_luts --out $(OUT)
+	$(BUILD)/grow_pictures $(OUT)
+	$(BUILD)/grow_fur --frames 120 --out $(OUT)/fur.obj
+	@$(MAKE) --no-print-directory gl-demo
+	@echo "demo: wrote $(OUT)/fur.obj (the swung head's fur as ribbons: opens in Blender),"
+	@echo "      $(OUT)/fur_swing_030.png ... fur_swing_090.png, fur_kajiya.png,"
+	@echo "      fur_color3d_gpu.png, fur_minimal.png (headless GL renders),"
+	@echo "      $(OUT)/marschner_m.png, marschner_n.png, marschner_scales.txt (LUTs)"
+	@echo "      and the growth pictures $(OUT)/grow_*.png"
+
+# Make sure the Debian packages of the demo are there (groups build,
+# examples and gl of mk/packages.txt): install them as root, or say exactly
+# what to install.
+demo-deps:
+	@miss=""; for p in $(DEMO_PACKAGES); do \
+	  dpkg -s $$p >/dev/null 2>&1 || miss="$$miss $$p"; done; \
+	if [ -n "$$miss" ]; then \
+	  if [ "$$(id -u)" = 0 ]; then \
+	    apt-get update && apt-get install -y$$miss; \
+	  else \
+	    echo "make demo needs:$$miss"; \
+	    echo "  sudo apt-get install -y$$miss   (or: sudo make deps)"; exit 1; \
+	  fi; \
+	fi
+
+# ==== Benchmarks =============================================================
+# The benchmark: per-stage figures against the store-loop bandwidth limit.
+# BENCH_CFLAGS picks the optimisation level (a plain -O2, as users build).
+BENCH_CFLAGS ?= -O2
+$(BUILD)/bench: bench/bench.c examples/head_mesh.h $(HDR) | $(BUILD)
+	gcc -std=c99 $(BENCH_CFLAGS) -Wall -Wextra -Wpedantic $< -o $@ -lpthread -lm
+
+bench: $(BUILD)/bench
+	$(BUILD)/bench $(BENCH_ARGS)
+
+# Against other libraries: hairfur.h ropes against Bullet soft-body ropes
+# (367, 1,000, 5,000 ropes); prints a table and `bench ...` lines. Needs
+# Debian's libbullet-dev (group peers of mk/packages.txt).
+BULLET_H      := /usr/include/bullet/btBulletDynamicsCommon.h
+BULLET_CFLAGS := $(shell pkg-config --cflags bullet 2>/dev/null || echo -I/usr/include/bullet)
+BULLET_LIBS   := $(shell pkg-config --libs bullet 2>/dev/null || \
+                   echo -lBulletSoftBody -lBulletDynamics -lBulletCollision -lLinearMath)
+BENCH_PEERS_ARGS ?=
+
+.PHONY: bench-peers check-bullet
+
+check-bullet:
+	@test -f $(BULLET_H) || { echo "bench-peers: Bullet headers missing ($(BULLET_H)): install libbullet-dev (make deps)"; exit 1; }
+
+$(BUILD)/bench_peers: bench/bench_peers.cpp $(HDR) | check-bullet
+	@mkdir -p $(BUILD)
+	g++ -O2 -std=c++11 -I. $(BULLET_CFLAGS) $< -o $@ $(BULLET_LIBS) -lm
+
+bench-peers: check-bullet $(BUILD)/bench_peers
+	@echo "machine: $$(nproc) cores, $$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ //')"
+	$(BUILD)/bench_peers $(BENCH_PEERS_ARGS)
+
+# ==== Fuzzing and soak =======================================================
+# libFuzzer targets built with Debian's clang (ASan + UBSan); fuzz prints
+# executions, exec/s and coverage per target. The repository corpus
+# (tests/fuzz/corpus/<target>/) is only read: each run's new inputs go to
+# $(BUILD)/fuzz-corpus/<target>/, which persists between runs; crashes go to
+# $(BUILD)/fuzz-artifacts/. To grow the seed corpus, use libFuzzer's merge
+# mode: build/fuzz_<t> -merge=1 tests/fuzz/corpus/<t> build/fuzz-corpus/<t>.
+# fuzz-replay builds each target with gcc and tests/fuzz/fuzz_main.c
+# instead, and replays the seed corpus and tests/fuzz/regressions/.
+FUZZ_TARGETS       := grow ropes ribbons lut
+FUZZ_SECONDS       ?= 60
+FUZZ_SMOKE_SECONDS ?= 20
+FUZZ_DIR           := tests/fuzz
+FUZZ_FLAGS         := -max_len=4096 -timeout=10 -rss_limit_mb=2048 \
+                      -print_final_stats=1
+FUZZ_CC     := $(if $(CLANG),$(CLANG),clang) -std=c99 -g -O1 \
+               -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all
+REPLAY_CC   := gcc -std=c99 -O1 -g -Wall -Wextra -Wpedantic -Werror \
+               -fsanitize=address,undefined -fno-sanitize-recover=all
+FUZZ_DEPS   := $(FUZZ_DIR)/fuzz_common.h $(HDR)
+
+.PHONY: fuzz fuzz-smoke fuzz-replay fuzz-build soak
+
+$(BUILD)/fuzz_%: $(FUZZ_DIR)/fuzz_%.c $(FUZZ_DEPS) | $(BUILD)
+	$(FUZZ_CC) $< -o $@ -lm
+
+$(BUILD)/replay_%: $(FUZZ_DIR)/fuzz_%.c $(FUZZ_DIR)/fuzz_main.c $(FUZZ_DEPS) | $(BUILD)
+	$(REPLAY_CC) $(FUZZ_DIR)/fuzz_main.c $< -o $@ -lm
+
+fuzz-build: $(addprefix $(BUILD)/fuzz_,$(FUZZ_TARGETS))
+
+# $(1) = seconds per target
+define fuzz_run
+	@command -v $(if $(CLANG),$(CLANG),clang) >/dev/null 2>&1 || \
+	  { echo "make fuzz needs clang with libFuzzer (Debian: clang, libclang-rt-14-dev)"; exit 1; }
+	@mkdir -p $(BUILD)/fuzz-artifacts
+	@fail=0; for t in $(FUZZ_TARGETS); do \
+	  mkdir -p $(BUILD)/fuzz-corpus/$$t; \
+	  log=$(BUILD)/fuzz-$$t.log; \
+	  $(BUILD)/fuzz_$$t $(FUZZ_FLAGS) -max_total_time=$(1) \
+	    -artifact_prefix=$(BUILD)/fuzz-artifacts/$$t- \
+	    $(BUILD)/fuzz-corpus/$$t $(FUZZ_DIR)/corpus/$$t > $$log 2>&1; rc=$$?; \
+	  done_line=$$(grep -E '^#[0-9]+[[:space:]]+DONE' $$log | tail -n 1); \
+	  printf '%-8s %s\n' "$$t:" "$${done_line:-(no DONE line: see $$log)}"; \
+	  if [ $$rc -ne 0 ]; then fail=1; \
+	    grep -E 'contract violated|runtime error|ERROR: |Test unit written' $$log | head -n 5; fi; \
+	done; \
+	if [ $$fail -ne 0 ]; then echo "fuzz: FOUND SOMETHING (inputs in $(BUILD)/fuzz-artifacts/)"; exit 1; fi; \
+	echo "fuzz: $(words $(FUZZ_TARGETS)) targets x $(1) s, nothing found"
+endef
+
+fuzz: fuzz-build
+	$(call fuzz_run,$(FUZZ_SECONDS))
+
+fuzz-smoke: fuzz-build
+	$(call fuzz_run,$(FUZZ_SMOKE_SECONDS))
+
+fuzz-replay: $(addprefix $(BUILD)/replay_,$(FUZZ_TARGETS))
+	@fail=0; for t in $(FUZZ_TARGETS); do \
+	  regs=$$(ls $(FUZZ_DIR)/regressions/$$t-* 2>/dev/null); \
+	  printf '%-8s ' "$$t:"; \
+	  $(BUILD)/replay_$$t $(FUZZ_DIR)/corpus/$$t $$regs || fail=1; \
+	done; \
+	if [ $$fail -ne 0 ]; then echo "fuzz-replay: FAILED"; exit 1; fi
+
+# tests/soak.c: a million rope steps under abuse.
+$(BUILD)/soak: tests/soak.c $(HDR) | $(BUILD)
+	gcc -std=c99 -O2 $(WARN) $< -o $@ -lm
+
+soak: $(BUILD)/soak
+	$(BUILD)/soak $(SOAK_FRAMES)
+
+# ==== valgrind ===============================================================
 # The test suite under valgrind's memcheck: no error, no leak.
 $(BUILD)/test_valgrind: $(TEST) $(HDR) | $(BUILD)
 	gcc -std=c99 -O1 -g $(WARN) $(TEST) -o $@ -lm
@@ -170,13 +524,19 @@ valgrind: $(BUILD)/test_valgrind
 	  grep -E "passed|ERROR SUMMARY|definitely lost|All heap blocks" $(BUILD)/valgrind.log; \
 	  exit $$rc
 
+# ==== Housekeeping ===========================================================
+# Every package of mk/packages.txt: installed as root, else the line to run.
 deps:
 	@if [ "$$(id -u)" = 0 ]; then \
-	  apt-get update && apt-get install -y $(DEPS_PKGS); \
+	  apt-get update && apt-get install -y $(PACKAGES); \
 	else \
 	  echo "Run as root, or install by hand:"; \
-	  echo "  sudo apt-get install -y $(DEPS_PKGS)"; \
+	  echo "  sudo apt-get install -y $(PACKAGES)"; \
 	fi
 
 clean:
 	rm -rf $(BUILD) $(OUT)
+
+# The comment block at the top of this file.
+help:
+	@sed -n '1,/^$$/{/^#/s/^# \{0,1\}//p;}' Makefile

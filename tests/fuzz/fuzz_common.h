@@ -2,7 +2,7 @@
 
    Each target (fuzz_grow.c, fuzz_ropes.c, fuzz_ribbons.c, fuzz_lut.c,
    fuzz_fur.c) includes this file once, after hairfur.h with
-   HAIRFUR_IMPLEMENTATION. Build lines are in tests/fuzz/fuzz.mk.
+   HAIRFUR_IMPLEMENTATION. Build lines are in the Makefile.
 
    Bytes to input, as meshoptimizer's simplifyfuzz does: byte 0 seeds a
    PCG32 stream that fills in whatever the input runs out of, so short

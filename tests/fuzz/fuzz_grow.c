@@ -13,7 +13,7 @@
    the same bytes, and every block from the allocator is freed.
 
    libFuzzer: clang -g -O1 -fsanitize=fuzzer,address,undefined fuzz_grow.c
-   replay:    gcc -O1 -g fuzz_main.c fuzz_grow.c -lm (see fuzz.mk) */
+   replay:    gcc -O1 -g fuzz_main.c fuzz_grow.c -lm (see the Makefile) */
 #define HAIRFUR_IMPLEMENTATION
 #include "../../hairfur.h"
 #include "fuzz_common.h"

@@ -11,7 +11,7 @@
    values or nothing.
 
    libFuzzer: clang -g -O1 -fsanitize=fuzzer,address,undefined fuzz_lut.c
-   replay:    gcc -O1 -g fuzz_main.c fuzz_lut.c -lm (see fuzz.mk) */
+   replay:    gcc -O1 -g fuzz_main.c fuzz_lut.c -lm (see the Makefile) */
 #define HAIRFUR_IMPLEMENTATION
 #include "../../hairfur.h"
 #include "fuzz_common.h"

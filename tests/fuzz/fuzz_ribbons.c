@@ -12,7 +12,7 @@
    bytes; indices are in range.
 
    libFuzzer: clang -g -O1 -fsanitize=fuzzer,address,undefined fuzz_ribbons.c
-   replay:    gcc -O1 -g fuzz_main.c fuzz_ribbons.c -lm (see fuzz.mk) */
+   replay:    gcc -O1 -g fuzz_main.c fuzz_ribbons.c -lm (see the Makefile) */
 #define HAIRFUR_IMPLEMENTATION
 #include "../../hairfur.h"
 #include "fuzz_common.h"

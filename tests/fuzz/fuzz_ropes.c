@@ -13,7 +13,7 @@
    a failing or counting allocator leaks nothing.
 
    libFuzzer: clang -g -O1 -fsanitize=fuzzer,address,undefined fuzz_ropes.c
-   replay:    gcc -O1 -g fuzz_main.c fuzz_ropes.c -lm (see fuzz.mk) */
+   replay:    gcc -O1 -g fuzz_main.c fuzz_ropes.c -lm (see the Makefile) */
 #define HAIRFUR_IMPLEMENTATION
 #include "../../hairfur.h"
 #include "fuzz_common.h"
