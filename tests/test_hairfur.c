@@ -2,7 +2,18 @@
 
    Build and run: make test (C and C++, -O2 and ASan+UBSan, gcc and clang).
    Prints one line per failed check and ends with "N passed, N failed";
-   exits non-zero when anything failed. */
+   exits non-zero when anything failed.
+
+   Layout: the harness, then the helpers the tests share, then the tests in
+   the order of the sections of hairfur.h, then main, which runs them in that
+   order. Each section's test_bad_* tests are its part of the bad-input
+   matrix: for every public function each bad input it can get (NULL, zero
+   or negative counts, out-of-range indices, NaN and infinite values,
+   degenerate geometry, huge factors, bad time steps, the eye on a strand):
+   the result code, outputs untouched (sentinel-filled and compared), no
+   NaN; and the limits (counts near INT_MAX, byte sizes that would overflow
+   size_t). */
+
 #define HAIRFUR_IMPLEMENTATION
 #include "../hairfur.h"
 
@@ -12,7 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* ---- harness ------------------------------------------------------------ */
+/* ==== harness ============================================================= */
 
 static int t_passed, t_failed, t_current_failed;
 static const char *t_current;
@@ -46,6 +57,9 @@ static const char *t_current;
             t_current_failed = 1;                                              \
         }                                                                      \
     } while (0)
+
+/* |x - r| <= tol * |r| */
+#define CHECK_REL(x, r, tol) CHECK_NEAR((x), (r), (tol) * fabs((double)(r)))
 
 #define RUN(fn)                                                                \
     do {                                                                       \
@@ -97,9 +111,843 @@ static hf_allocator t_counting(t_counter *c)
     return a;
 }
 
-/* ======================================================================== */
-/* 1. result codes, version                                                 */
-/* ======================================================================== */
+/* ==== shared helpers ====================================================== */
+
+/* ---- constants ----------------------------------------------------------- */
+
+#define T_PI 3.14159265358979323846
+#define T_DEG (T_PI / 180.0)
+
+/* ---- maps: a 4 x 2 gray map, float maps, a smooth blob ------------------- */
+
+/* 4 x 2 gray map: row 0 = 0, 51, 102, 153; row 1 = 255, 204, 153, 102 */
+static const unsigned char t_map_px[8] = {0, 51, 102, 153, 255, 204, 153, 102};
+
+static hf_map t_gray_map(int wrap)
+{
+    hf_map m;
+    memset(&m, 0, sizeof m);
+    m.data = t_map_px;
+    m.width = 4;
+    m.height = 2;
+    m.channels = 1;
+    m.wrap = wrap;
+    return m;
+}
+
+static hf_map t_f32_map(const float *data, int w, int h, int channels)
+{
+    hf_map m;
+    memset(&m, 0, sizeof m);
+    m.data = data;
+    m.width = w;
+    m.height = h;
+    m.channels = channels;
+    m.format = HF_MAP_F32;
+    return m;
+}
+
+/* A smooth map with values in [0.05, 1]: a gradient plus a bump. */
+static float *t_blob_data(int w, int h)
+{
+    float *d = (float *)malloc(sizeof(float) * (size_t)w * (size_t)h);
+    int x, y;
+    for (y = 0; y < h; ++y)
+        for (x = 0; x < w; ++x) {
+            float u = ((float)x + 0.5f) / (float)w;
+            float v = ((float)y + 0.5f) / (float)h;
+            float du = u - 0.3f, dv = v - 0.6f;
+            float val = 0.05f + 0.45f * u +
+                        0.5f * (float)exp(-(du * du + dv * dv) / 0.02);
+            d[y * w + x] = val > 1.0f ? 1.0f : val;
+        }
+    return d;
+}
+
+/* ---- meshes: an interleaved unit quad, n x n grids, triangle areas ------- */
+
+/* An engine-style interleaved vertex: the mesh view points into it. */
+typedef struct t_vertex {
+    float pos[3];
+    float normal[3];
+    float uv[2];
+    unsigned color;
+} t_vertex;
+
+static hf_mesh t_mesh_view(const t_vertex *v, int nv, const uint32_t *idx,
+                           int nt)
+{
+    hf_mesh m;
+    memset(&m, 0, sizeof m);
+    m.positions = v[0].pos;
+    m.position_stride = (int)sizeof(t_vertex);
+    m.normals = v[0].normal;
+    m.normal_stride = (int)sizeof(t_vertex);
+    m.uvs = v[0].uv;
+    m.uv_stride = (int)sizeof(t_vertex);
+    m.vertex_count = nv;
+    m.indices = idx;
+    m.triangle_count = nt;
+    return m;
+}
+
+/* unit quad in the xy plane, two triangles */
+static const t_vertex t_quad[4] = {{{0, 0, 0}, {0, 0, 1}, {0, 0}, 0},
+                                   {{1, 0, 0}, {0, 0, 1}, {1, 0}, 0},
+                                   {{1, 1, 0}, {0, 0, 1}, {1, 1}, 0},
+                                   {{0, 1, 0}, {0, 0, 1}, {0, 1}, 0}};
+static const uint32_t t_quad_idx[6] = {0, 1, 2, 0, 2, 3};
+
+/* An n x n grid of quads over [0, size]^2 in z = 0, UV = position / size,
+   two triangles per quad, counter-clockwise seen from +z. */
+typedef struct t_grid {
+    float *pos, *uv, *nrm;
+    uint32_t *idx;
+    hf_mesh mesh;
+} t_grid;
+
+static t_grid t_make_grid(int n, float size)
+{
+    t_grid g;
+    int x, y, v = (n + 1) * (n + 1), t = 0;
+    g.pos = (float *)malloc(sizeof(float) * 3 * (size_t)v);
+    g.uv = (float *)malloc(sizeof(float) * 2 * (size_t)v);
+    g.nrm = (float *)malloc(sizeof(float) * 3 * (size_t)v);
+    g.idx = (uint32_t *)malloc(sizeof(uint32_t) * 6 * (size_t)n * (size_t)n);
+    for (y = 0; y <= n; ++y)
+        for (x = 0; x <= n; ++x) {
+            int i = y * (n + 1) + x;
+            g.uv[2 * i] = (float)x / (float)n;
+            g.uv[2 * i + 1] = (float)y / (float)n;
+            g.pos[3 * i] = g.uv[2 * i] * size;
+            g.pos[3 * i + 1] = g.uv[2 * i + 1] * size;
+            g.pos[3 * i + 2] = 0.0f;
+            g.nrm[3 * i] = 0.0f;
+            g.nrm[3 * i + 1] = 0.0f;
+            g.nrm[3 * i + 2] = 1.0f;
+        }
+    for (y = 0; y < n; ++y)
+        for (x = 0; x < n; ++x) {
+            uint32_t a = (uint32_t)(y * (n + 1) + x), b = a + 1,
+                     c = a + (uint32_t)(n + 1), d = c + 1;
+            g.idx[t++] = a;
+            g.idx[t++] = b;
+            g.idx[t++] = d;
+            g.idx[t++] = a;
+            g.idx[t++] = d;
+            g.idx[t++] = c;
+        }
+    memset(&g.mesh, 0, sizeof g.mesh);
+    g.mesh.positions = g.pos;
+    g.mesh.uvs = g.uv;
+    g.mesh.normals = g.nrm;
+    g.mesh.vertex_count = v;
+    g.mesh.indices = g.idx;
+    g.mesh.triangle_count = 2 * n * n;
+    return g;
+}
+
+static void t_free_grid(t_grid *g)
+{
+    free(g->pos);
+    free(g->uv);
+    free(g->nrm);
+    free(g->idx);
+}
+
+static double t_tri_area(const float *pos, const uint32_t *tri)
+{
+    return (double)hf_triangle_area(pos + 3 * tri[0], pos + 3 * tri[1],
+                                    pos + 3 * tri[2]);
+}
+
+static double t_uv_area(const float *uv, const uint32_t *tri)
+{
+    const float *a = uv + 2 * tri[0], *b = uv + 2 * tri[1],
+                *c = uv + 2 * tri[2];
+    return 0.5 * fabs((double)(b[0] - a[0]) * (c[1] - a[1]) -
+                      (double)(c[0] - a[0]) * (b[1] - a[1]));
+}
+
+/* ---- tessellation into allocated arrays ---------------------------------- */
+
+/* hf_tessellate twice (count, fill) into freshly allocated arrays. */
+typedef struct t_tess {
+    hf_tess_output out;
+    hf_result r;
+} t_tess;
+
+static t_tess t_tessellate(const hf_mesh *mesh, const hf_map *density,
+                           const hf_tess_params *p)
+{
+    t_tess t;
+    memset(&t, 0, sizeof t);
+    t.r = hf_tessellate(mesh, density, p, &t.out);
+    if (t.r != HF_OK) return t;
+    t.out.indices =
+        (uint32_t *)malloc(sizeof(uint32_t) * 3 * (size_t)t.out.triangle_count);
+    t.out.triangle_base =
+        (uint32_t *)malloc(sizeof(uint32_t) * (size_t)t.out.triangle_count);
+    t.out.added = (hf_tess_vertex *)malloc(
+        sizeof(hf_tess_vertex) * (size_t)(t.out.added_count + 1));
+    t.out.positions =
+        (float *)malloc(sizeof(float) * 3 * (size_t)t.out.vertex_count);
+    t.out.uvs = (float *)malloc(sizeof(float) * 2 * (size_t)t.out.vertex_count);
+    t.out.triangle_capacity = t.out.triangle_count;
+    t.out.added_capacity = t.out.added_count;
+    t.out.vertex_capacity = t.out.vertex_count;
+    t.r = hf_tessellate(mesh, density, p, &t.out);
+    return t;
+}
+
+static void t_free_tess(t_tess *t)
+{
+    free(t->out.indices);
+    free(t->out.triangle_base);
+    free(t->out.added);
+    free(t->out.positions);
+    free(t->out.uvs);
+}
+
+static hf_mesh t_tess_mesh(const t_tess *t)
+{
+    hf_mesh m;
+    memset(&m, 0, sizeof m);
+    m.positions = t->out.positions;
+    m.uvs = t->out.uvs;
+    m.vertex_count = t->out.vertex_count;
+    m.indices = t->out.indices;
+    m.triangle_count = t->out.triangle_count;
+    return m;
+}
+
+/* ---- ropes: owned ropes, poses, snapshots, measures, a head sphere ------- */
+
+/* Ropes owned by a test: the struct plus malloc'd memory. */
+typedef struct tr_set {
+    hf_ropes ro;
+    void *mem;
+    size_t size;
+} tr_set;
+
+static int tr_open(tr_set *s, int ropes, int points)
+{
+    memset(s, 0, sizeof *s);
+    if (hf_ropes_memory_size(ropes, points, &s->size) != HF_OK) return 0;
+    s->mem = malloc(s->size);
+    if (!s->mem) return 0;
+    return hf_ropes_init(&s->ro, ropes, points, s->mem, s->size) == HF_OK;
+}
+
+static void tr_close(tr_set *s) { free(s->mem); }
+
+/* Straight rest pose for rope r: from root[r] along dir[r], total length
+   len, written rope-major into pos. */
+static void tr_straight(float *pos, int r, int points, const float *root,
+                        const float *dir, float len)
+{
+    int j;
+    for (j = 0; j < points; ++j) {
+        float t = len * (float)j / (float)(points - 1);
+        float *o = pos + 3 * ((size_t)r * points + j);
+        o[0] = root[0] + dir[0] * t;
+        o[1] = root[1] + dir[1] * t;
+        o[2] = root[2] + dir[2] * t;
+    }
+}
+
+/* Every particle (current and previous) finite. */
+static int tr_finite(const hf_ropes *ro)
+{
+    size_t i, n = (size_t)ro->rope_count * ro->points;
+    for (i = 0; i < n; ++i)
+        if (!t_is_finite(ro->x[i]) || !t_is_finite(ro->y[i]) ||
+            !t_is_finite(ro->z[i]) || !t_is_finite(ro->px[i]) ||
+            !t_is_finite(ro->py[i]) || !t_is_finite(ro->pz[i]))
+            return 0;
+    return 1;
+}
+
+static void tr_snapshot(const hf_ropes *ro, float *out)
+{
+    hf_ropes_get_positions(ro, 0, ro->rope_count, out, 0);
+}
+
+/* Largest distance any particle moved between two snapshots. */
+static double tr_max_move(const float *a, const float *b, size_t points)
+{
+    double m = 0.0;
+    size_t i;
+    for (i = 0; i < points; ++i) {
+        double dx = a[3 * i] - b[3 * i], dy = a[3 * i + 1] - b[3 * i + 1],
+               dz = a[3 * i + 2] - b[3 * i + 2];
+        double d = sqrt(dx * dx + dy * dy + dz * dz);
+        if (d > m) m = d;
+    }
+    return m;
+}
+
+/* Kinetic energy (unit mass per non-root point) from two snapshots. */
+static double tr_kinetic(const float *a, const float *b, int ropes,
+                         int points, double dt)
+{
+    double e = 0.0;
+    int r, j;
+    for (r = 0; r < ropes; ++r)
+        for (j = 1; j < points; ++j) {
+            size_t i = 3 * ((size_t)r * points + j);
+            double vx = (a[i] - b[i]) / dt, vy = (a[i + 1] - b[i + 1]) / dt,
+                   vz = (a[i + 2] - b[i + 2]) / dt;
+            e += 0.5 * (vx * vx + vy * vy + vz * vz);
+        }
+    return e;
+}
+
+/* Rotate v about unit axis k by angle (Rodrigues), in double. */
+static void tr_rotate(const double *k, double ang, const float *v, float *out)
+{
+    double c = cos(ang), s = sin(ang);
+    double kv = k[0] * v[0] + k[1] * v[1] + k[2] * v[2];
+    double cx = k[1] * v[2] - k[2] * v[1], cy = k[2] * v[0] - k[0] * v[2],
+           cz = k[0] * v[1] - k[1] * v[0];
+    out[0] = (float)(v[0] * c + cx * s + k[0] * kv * (1 - c));
+    out[1] = (float)(v[1] * c + cy * s + k[1] * kv * (1 - c));
+    out[2] = (float)(v[2] * c + cz * s + k[2] * kv * (1 - c));
+}
+
+static double tr_dist_seg(const float *p, const hf_collider *c)
+{
+    double ax = c->a[0], ay = c->a[1], az = c->a[2], t = 0.0;
+    double ex = 0, ey = 0, ez = 0, dx, dy, dz;
+    if (c->type == HF_COLLIDER_CAPSULE) {
+        double l2;
+        ex = c->b[0] - ax;
+        ey = c->b[1] - ay;
+        ez = c->b[2] - az;
+        l2 = ex * ex + ey * ey + ez * ez;
+        if (l2 > 0)
+            t = ((p[0] - ax) * ex + (p[1] - ay) * ey + (p[2] - az) * ez) / l2;
+        t = t < 0 ? 0 : (t > 1 ? 1 : t);
+    }
+    dx = p[0] - (ax + ex * t);
+    dy = p[1] - (ay + ey * t);
+    dz = p[2] - (az + ez * t);
+    return sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+/* Rope r's root on the 0.1 m head sphere at polar angle el and azimuth az:
+   its direction, normal (the same), tangent (+y) and root point. */
+static void tr_on_head(int r, double el, double az, float *dirs, float *nrm,
+                       float *tan, float *root)
+{
+    float *n = dirs + 3 * r;
+    int k;
+    n[0] = (float)(sin(el) * cos(az));
+    n[1] = (float)cos(el);
+    n[2] = (float)(sin(el) * sin(az));
+    for (k = 0; k < 3; ++k) {
+        nrm[3 * r + k] = n[k];
+        tan[3 * r + k] = k == 1 ? 1.0f : 0.0f;
+        root[3 * r + k] = 0.1f * n[k];
+    }
+}
+
+/* ---- strands: bent guides for interpolation and ribbons ------------------ */
+
+enum { TP = 8 }; /* points per strand in the interpolation and ribbon tests */
+
+/* three bent guides with distinct shapes */
+static void t_make_guides(float *g, int n)
+{
+    int i, j;
+    for (i = 0; i < n; ++i)
+        for (j = 0; j < TP; ++j) {
+            float *p = g + (i * TP + j) * 3;
+            p[0] = (float)i + 0.05f * (float)j * (float)j * (float)(i + 1);
+            p[1] = 0.1f * (float)j;
+            p[2] = (float)(i * i) * 0.3f - 0.02f * (float)j;
+        }
+}
+
+/* ---- ribbons: interleaved vertices, view, checks, half floats ------------ */
+
+typedef struct t_rvert {
+    float pos[3], tan[3], tc[3], col[4], c3[2];
+} t_rvert;
+
+static hf_ribbon_output t_interleaved(t_rvert *v)
+{
+    hf_ribbon_output o;
+    memset(&o, 0, sizeof o);
+    o.position.data = v[0].pos;
+    o.tangent.data = v[0].tan;
+    o.texcoord.data = v[0].tc;
+    o.color.data = v[0].col;
+    o.color3d.data = v[0].c3;
+    o.position.stride = o.tangent.stride = o.texcoord.stride =
+        o.color.stride = o.color3d.stride = (int)sizeof(t_rvert);
+    return o;
+}
+
+static hf_ribbon_params t_rparams(void)
+{
+    hf_ribbon_params p;
+    memset(&p, 0, sizeof p);
+    p.points_per_strand = TP;
+    p.eye[0] = 0.3f; p.eye[1] = 1.0f; p.eye[2] = 5.0f;
+    /* wide enough that the side recovered from the float vertices is exact
+       to 1e-6 relative: the tests measure the library, not float rounding */
+    p.root_width = 0.4f;
+    p.tip_width = 0.1f;
+    return p;
+}
+
+static float t_len3(const float *a) { return sqrtf(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
+
+/* Side vectors perpendicular to tangent and view; widths exact at the ends;
+   every value finite. */
+static void t_check_ribbon(const t_rvert *v, const float *pts, int strands,
+                           const hf_ribbon_params *p, int check_perp)
+{
+    int s, j, k;
+    for (s = 0; s < strands; ++s)
+        for (j = 0; j < TP; ++j) {
+            const t_rvert *a = &v[(s * TP + j) * 2], *b = a + 1;
+            const float *pt = pts + (s * TP + j) * 3;
+            float side[3], view[3], w, sl, vl;
+            for (k = 0; k < 3; ++k) {
+                side[k] = b->pos[k] - a->pos[k];
+                view[k] = p->orthographic ? -p->view_dir[k] : p->eye[k] - pt[k];
+            }
+            for (k = 0; k < 15; ++k) CHECK(t_is_finite((&a->pos[0])[k]));
+            w = t_len3(side);
+            sl = w > 0 ? w : 1;
+            vl = t_len3(view);
+            CHECK_NEAR(t_len3(a->tan), 1.0f, 1e-6);
+            if (check_perp) {
+                CHECK(fabs((side[0] * a->tan[0] + side[1] * a->tan[1] + side[2] * a->tan[2]) / sl) < 1e-5);
+                if (vl > 0)
+                    CHECK(fabs((side[0] * view[0] + side[1] * view[1] + side[2] * view[2]) / (sl * vl)) < 1e-5);
+            }
+            /* exact up to the rounding of the two float vertex positions */
+            if (j == 0) CHECK_NEAR(w, p->root_width, 3e-7 * (1.0 + t_len3(pt)));
+            if (j == TP - 1) CHECK_NEAR(w, p->tip_width, 3e-7 * (1.0 + t_len3(pt)));
+            /* the vertices straddle the point */
+            for (k = 0; k < 3; ++k) CHECK_NEAR(0.5f * (a->pos[k] + b->pos[k]), pt[k], 1e-6);
+        }
+}
+
+/* Half bits to float, exactly. */
+static double t_half(uint16_t h)
+{
+    const int e = (h >> 10) & 31, m = h & 1023;
+    const double v = e == 0 ? ldexp((double)m, -24) : ldexp(1024.0 + m, e - 25);
+    return (h & 0x8000) ? -v : v;
+}
+
+/* ---- LUTs: params, buffers, an independent Marschner model --------------- */
+
+static hf_lut_params t_lut_defaults(int size, hf_lut_variant v)
+{
+    hf_lut_params p;
+    hf_lut_params_init(&p);
+    p.size = size;
+    p.variant = v;
+    return p;
+}
+
+static float *t_lut_alloc(int n)
+{
+    return (float *)malloc(sizeof(float) * 4u * (size_t)n * (size_t)n);
+}
+
+/* The model pieces below come straight from docs/marschner-spec.md,
+   written independently of the library. Fresnel reflectance, s and p: */
+static double t_rs(double n, double x)
+{
+    double s = sin(x) / n, ci, ct, r;
+    if (s * s >= 1.0) return 1.0;
+    ci = fabs(cos(x));
+    ct = sqrt(1.0 - s * s);
+    r = (ci - n * ct) / (ci + n * ct);
+    return r * r;
+}
+
+static double t_rp(double n, double x)
+{
+    double s = sin(x) / n, ci, ct, r;
+    if (s * s >= 1.0) return 1.0;
+    ci = fabs(cos(x));
+    ct = sqrt(1.0 - s * s);
+    r = (n * ci - ct) / (n * ci + ct);
+    return r * r;
+}
+
+typedef struct t_col {
+    double eta1, eta2, sigma1, c;
+} t_col;
+
+static t_col t_column(double eta, double cd, double sigma)
+{
+    t_col k;
+    double s2 = 1.0 - cd * cd, cos_tt;
+    k.eta1 = sqrt(eta * eta - s2) / cd;
+    k.eta2 = eta * eta / k.eta1;
+    cos_tt = sqrt(eta * eta - s2) / eta;
+    k.sigma1 = sigma / cos_tt;
+    k.c = asin(1.0 / k.eta1);
+    return k;
+}
+
+/* A(p, h) of section 6.4 */
+static double t_atten(const t_col *k, int p, double h)
+{
+    double g = asin(h), gt = asin(h / k->eta1);
+    double f_ext = 0.5 * (t_rs(k->eta1, g) + t_rp(k->eta2, g));
+    double f_int = 0.5 * (t_rs(1.0 / k->eta1, gt) + t_rp(1.0 / k->eta2, gt));
+    double T = exp(-2.0 * k->sigma1 * (1.0 + cos(2.0 * gt)));
+    if (p == 0) return f_ext;
+    return (1.0 - f_ext) * (1.0 - f_ext) * pow(f_int, p - 1) * pow(T, p);
+}
+
+/* Phi(p, g) - p pi and its derivative, cubic (6.2) or exact (6.5) */
+static double t_phi(const t_col *k, int p, double g, int exact)
+{
+    if (exact) return 2.0 * p * asin(sin(g) / k->eta1) - 2.0 * g;
+    return (6.0 * p * k->c / T_PI - 2.0) * g -
+           8.0 * p * k->c / (T_PI * T_PI * T_PI) * g * g * g;
+}
+
+static double t_dphi(const t_col *k, int p, double g, int exact)
+{
+    if (exact)
+        return 2.0 * p * cos(g) / sqrt(k->eta1 * k->eta1 - sin(g) * sin(g)) -
+               2.0;
+    return (6.0 * p * k->c / T_PI - 2.0) -
+           24.0 * p * k->c / (T_PI * T_PI * T_PI) * g * g;
+}
+
+/* Reference N(p): brute-force root search (a fine grid split at the fold,
+   bisection to 1e-14) and the sum of section 6.1 with clamp j_min. */
+static double t_ref_n(int p, double eta, double cd, double phi, double sigma,
+                      int exact, double j_min)
+{
+    t_col k = t_column(eta, cd < 1e-4 ? 1e-4 : cd, sigma);
+    double t = phi - p * T_PI, brk[4], sum = 0.0;
+    int nb = 0, b, s;
+    const int steps = 512;
+    while (t >= T_PI) t -= 2.0 * T_PI;
+    while (t < -T_PI) t += 2.0 * T_PI;
+    brk[nb++] = -T_PI / 2;
+    if (p == 2 && k.eta1 < 2.0) {
+        double gc = exact ? asin(sqrt((4.0 - k.eta1 * k.eta1) / 3.0))
+                          : sqrt((6.0 * 2 * k.c / T_PI - 2.0) /
+                                 (3.0 * 16.0 * k.c / (T_PI * T_PI * T_PI)));
+        brk[nb++] = -gc;
+        brk[nb++] = gc;
+    }
+    brk[nb++] = T_PI / 2;
+    for (b = 0; b + 1 < nb; ++b)
+        for (s = 0; s < steps; ++s) {
+            double x0 = brk[b] + (brk[b + 1] - brk[b]) * s / steps;
+            double x1 = brk[b] + (brk[b + 1] - brk[b]) * (s + 1) / steps;
+            double f0 = t_phi(&k, p, x0, exact) - t;
+            double f1 = t_phi(&k, p, x1, exact) - t, x, jac;
+            int it;
+            if (!(f0 < 0.0 && f1 >= 0.0) && !(f0 > 0.0 && f1 <= 0.0)) continue;
+            for (it = 0; it < 200 && x1 - x0 > 1e-14; ++it) {
+                double xm = 0.5 * (x0 + x1), fm = t_phi(&k, p, xm, exact) - t;
+                if ((fm < 0.0) == (f0 < 0.0)) {
+                    x0 = xm;
+                    f0 = fm;
+                } else {
+                    x1 = xm;
+                }
+            }
+            x = 0.5 * (x0 + x1);
+            jac = 2.0 * fabs(t_dphi(&k, p, x, exact)) / cos(x);
+            if (jac < j_min) jac = j_min;
+            sum += t_atten(&k, p, sin(x)) / jac;
+        }
+    return sum;
+}
+
+/* 2 * integral over [0, pi] of N_p(phi) without the Jacobian clamp, and
+   1/2 * integral over [-1, 1] of A(p, h) (midpoint rules). N_TRT has an
+   integrable 1/sqrt spike at the caustic azimuth phi_c; the substitution
+   phi = phi_c -+ s^2 on either side of it makes every integrand smooth. */
+static void t_lut_energies(const hf_lut_params *p, double cd, int steps,
+                           double n_int[3], double a_int[3])
+{
+    t_col k = t_column(p->eta, cd, p->sigma_a);
+    double phi_c = T_PI / 2;
+    int i, c, side;
+    if (k.eta1 < 2.0) { /* the TRT fold exists: Phi(2, g_c) - 2 pi */
+        int exact = p->variant == HF_LUT_EXACT;
+        double gc = exact ? asin(sqrt((4.0 - k.eta1 * k.eta1) / 3.0))
+                          : sqrt((12.0 * k.c / T_PI - 2.0) /
+                                 (48.0 * k.c / (T_PI * T_PI * T_PI)));
+        phi_c = fabs(t_phi(&k, 2, gc, exact));
+    }
+    for (c = 0; c < 3; ++c) n_int[c] = a_int[c] = 0.0;
+    for (side = 0; side < 2; ++side) {
+        double smax = sqrt(side ? T_PI - phi_c : phi_c), ds = smax / steps;
+        for (i = 0; i < steps; ++i) {
+            double o[3], sv = (i + 0.5) * ds;
+            double phi = side ? phi_c + sv * sv : phi_c - sv * sv;
+            hf__lut_eval_n_clamp(p, cd, phi, 0.0, o);
+            for (c = 0; c < 3; ++c) n_int[c] += 2.0 * o[c] * 2.0 * sv * ds;
+        }
+    }
+    for (i = 0; i < 2 * steps; ++i) {
+        double h = -1.0 + (i + 0.5) / steps;
+        for (c = 0; c < 3; ++c)
+            a_int[c] += 0.5 * t_atten(&k, c, h) / steps;
+    }
+}
+
+static int t_lut_all_ok(const float *t, int n, int alpha_le_1)
+{
+    size_t i;
+    for (i = 0; i < 4u * (size_t)n * (size_t)n; ++i) {
+        if (!t_is_finite(t[i]) || t[i] < 0.0f) return 0;
+        if (alpha_le_1 && (i & 3) == 3 && t[i] > 1.0f) return 0;
+    }
+    return 1;
+}
+
+/* ---- fur: a UV sphere scene, one frame of every stage -------------------- */
+
+/* A small UV sphere with a seam column and split poles, as engines export
+   it: (R + 1) * (S + 1) vertices. */
+enum { FR = 6, FS = 8 };
+typedef struct t_fur_scene {
+    float pos[(FR + 1) * (FS + 1) * 3], nrm[(FR + 1) * (FS + 1) * 3];
+    float uv[(FR + 1) * (FS + 1) * 2];
+    uint32_t idx[FR * FS * 6];
+    hf_fur_desc desc;
+} t_fur_scene;
+
+static void t_fur_scene_init(t_fur_scene *sc, float radius)
+{
+    int r, s, k = 0;
+    for (r = 0; r <= FR; ++r)
+        for (s = 0; s <= FS; ++s) {
+            int v = r * (FS + 1) + s;
+            /* exact poles: sin(pi) is 1.2e-16, and guides weld by exact
+               position, as an exporter's duplicated vertices are */
+            double th = 3.14159265358979 * r / FR;
+            double st = (r == 0 || r == FR) ? 0.0 : sin(th);
+            double ph = 2 * 3.14159265358979 * (s % FS) / FS;
+            sc->nrm[3 * v] = (float)(st * cos(ph));
+            sc->nrm[3 * v + 1] = (float)cos(th);
+            sc->nrm[3 * v + 2] = (float)(st * sin(ph));
+            sc->pos[3 * v] = radius * sc->nrm[3 * v];
+            sc->pos[3 * v + 1] = radius * sc->nrm[3 * v + 1];
+            sc->pos[3 * v + 2] = radius * sc->nrm[3 * v + 2];
+            sc->uv[2 * v] = (float)s / FS;
+            sc->uv[2 * v + 1] = (float)r / FR;
+        }
+    for (r = 0; r < FR; ++r)
+        for (s = 0; s < FS; ++s) {
+            uint32_t a = (uint32_t)(r * (FS + 1) + s), b = a + 1;
+            uint32_t c = a + FS + 1, d = c + 1;
+            sc->idx[k++] = a; sc->idx[k++] = b; sc->idx[k++] = c;
+            sc->idx[k++] = b; sc->idx[k++] = d; sc->idx[k++] = c;
+        }
+    memset(&sc->desc, 0, sizeof sc->desc);
+    sc->desc.mesh.positions = sc->pos;
+    sc->desc.mesh.normals = sc->nrm;
+    sc->desc.mesh.uvs = sc->uv;
+    sc->desc.mesh.vertex_count = (FR + 1) * (FS + 1);
+    sc->desc.mesh.indices = sc->idx;
+    sc->desc.mesh.triangle_count = FR * FS * 2;
+    sc->desc.points_per_strand = 8;
+    sc->desc.max_length = 0.3f;
+    sc->desc.total_strands = 500;
+    sc->desc.tess_factor = 20.0f; /* some LOD guides */
+    sc->desc.seed = 5;
+}
+
+/* One frame of every stage over `n` equal ranges, the mesh moved by dx. */
+static void t_fur_frame(hf_fur *f, t_fur_scene *sc, float dx, int n,
+                        void *vbuf, hf_result *worst)
+{
+    hf_fur_info info;
+    hf_mesh m = sc->desc.mesh;
+    float moved[(FR + 1) * (FS + 1) * 3];
+    hf_collider col;
+    hf_ribbon_params view;
+    hf_ribbon_output out;
+    int i, stage;
+    for (i = 0; i < (FR + 1) * (FS + 1) * 3; ++i)
+        moved[i] = sc->pos[i] + (i % 3 == 0 ? dx : 0.0f);
+    m.positions = moved;
+    memset(&col, 0, sizeof col);
+    col.type = HF_COLLIDER_SPHERE;
+    col.a[0] = dx; /* dx < 0: no collider */
+    col.radius = 0.95f;
+    memset(&view, 0, sizeof view);
+    view.eye[2] = 5.0f;
+    view.root_width = 0.01f;
+    view.tip_width = 0.002f;
+    memset(&out, 0, sizeof out);
+    out.position.data = vbuf;
+    out.position.stride = 24;
+    out.tangent.data = (float *)vbuf + 3;
+    out.tangent.stride = 24;
+    hf_fur_get_info(f, &info);
+    for (stage = 0; stage < 5; ++stage) {
+        int total = stage < 2 ? info.guide_count
+                              : stage == 2 ? info.lod_guide_count
+                                           : info.drawn_strand_count;
+        int first = 0;
+        for (i = 0; i < n; ++i) {
+            int cnt = total * (i + 1) / n - first;
+            hf_result r = HF_OK;
+            switch (stage) {
+            case 0: r = hf_fur_set_roots(f, &m, first, cnt); break;
+            case 1: r = hf_fur_simulate(f, first, cnt, 1.0f / 60.0f, &col,
+                                        dx >= 0.0f); break;
+            case 2: r = hf_fur_interpolate_guides(f, first, cnt); break;
+            case 3: r = hf_fur_interpolate(f, first, cnt); break;
+            default: r = hf_fur_ribbons(f, first, cnt, &view, &out); break;
+            }
+            if (r != HF_OK) *worst = r;
+            first += cnt;
+        }
+    }
+}
+
+/* ---- bad input: sentinels, NaN and inf, a packed quad, small ropes ------- */
+
+#define TB_SENT 0xA5u
+#define TB_NAN ((float)NAN)
+#define TB_INF ((float)INFINITY)
+
+static void tb_fill(void *p, size_t n) { memset(p, TB_SENT, n); }
+static int tb_untouched(const void *p, size_t n)
+{
+    const unsigned char *b = (const unsigned char *)p;
+    size_t i;
+    for (i = 0; i < n; ++i)
+        if (b[i] != TB_SENT) return 0;
+    return 1;
+}
+static int tb_finite(const float *p, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; ++i)
+        if (!t_is_finite(p[i])) return 0;
+    return 1;
+}
+
+/* The result and the untouched output in one check. */
+#define TB_FAILS(call, code, buf, bytes)                                       \
+    do {                                                                       \
+        tb_fill((buf), (bytes));                                               \
+        CHECK_EQ_INT((call), (code));                                          \
+        CHECK(tb_untouched((buf), (bytes)));                                   \
+    } while (0)
+
+/* t_quad in packed arrays a test may change: 4 vertices, 2 triangles */
+typedef struct tb_quad {
+    float pos[12], nrm[12], uv[8];
+    uint32_t idx[6];
+    hf_mesh mesh;
+} tb_quad;
+
+static void tb_quad_init(tb_quad *q)
+{
+    int i;
+    for (i = 0; i < 4; ++i) {
+        memcpy(q->pos + 3 * i, t_quad[i].pos, sizeof t_quad[i].pos);
+        memcpy(q->nrm + 3 * i, t_quad[i].normal, sizeof t_quad[i].normal);
+        memcpy(q->uv + 2 * i, t_quad[i].uv, sizeof t_quad[i].uv);
+    }
+    memcpy(q->idx, t_quad_idx, sizeof t_quad_idx);
+    memset(&q->mesh, 0, sizeof q->mesh);
+    q->mesh.positions = q->pos;
+    q->mesh.normals = q->nrm;
+    q->mesh.uvs = q->uv;
+    q->mesh.vertex_count = 4;
+    q->mesh.indices = q->idx;
+    q->mesh.triangle_count = 2;
+}
+
+/* Every way a mesh can be bad, with the code the docs give it. Applied
+   to every function that validates a whole mesh. */
+typedef void (*tb_mesh_case_fn)(const hf_mesh *m, hf_result want,
+                                const char *what);
+
+static void tb_for_each_bad_mesh(tb_mesh_case_fn fn)
+{
+    tb_quad q;
+    hf_mesh m;
+    tb_quad_init(&q);
+    m = q.mesh; m.positions = NULL; fn(&m, HF_ERROR_NULL_POINTER, "positions NULL");
+    m = q.mesh; m.indices = NULL; fn(&m, HF_ERROR_NULL_POINTER, "indices NULL");
+    m = q.mesh; m.vertex_count = 0; fn(&m, HF_ERROR_BAD_COUNT, "vertex_count 0");
+    m = q.mesh; m.vertex_count = -1; fn(&m, HF_ERROR_BAD_COUNT, "vertex_count -1");
+    m = q.mesh; m.triangle_count = 0; fn(&m, HF_ERROR_BAD_COUNT, "triangle_count 0");
+    m = q.mesh; m.triangle_count = -5; fn(&m, HF_ERROR_BAD_COUNT, "triangle_count -5");
+    m = q.mesh; m.position_stride = 8; fn(&m, HF_ERROR_BAD_STRIDE, "position_stride 8");
+    m = q.mesh; m.position_stride = -12; fn(&m, HF_ERROR_BAD_STRIDE, "position_stride -12");
+    m = q.mesh; m.uv_stride = 4; fn(&m, HF_ERROR_BAD_STRIDE, "uv_stride 4");
+    m = q.mesh; m.normal_stride = -1; fn(&m, HF_ERROR_BAD_STRIDE, "normal_stride -1");
+    q.idx[4] = 4; fn(&q.mesh, HF_ERROR_INDEX_OUT_OF_RANGE, "index 4 of 4");
+    q.idx[4] = 0xffffffffu; fn(&q.mesh, HF_ERROR_INDEX_OUT_OF_RANGE, "index 2^32-1");
+    q.idx[4] = 2;
+    q.pos[4] = TB_NAN; fn(&q.mesh, HF_ERROR_NON_FINITE, "position NaN");
+    q.pos[4] = TB_INF; fn(&q.mesh, HF_ERROR_NON_FINITE, "position inf");
+    q.pos[4] = 0.0f;
+    q.uv[3] = TB_NAN; fn(&q.mesh, HF_ERROR_NON_FINITE, "uv NaN");
+    q.uv[3] = 0.0f;
+    q.nrm[5] = -TB_INF; fn(&q.mesh, HF_ERROR_NON_FINITE, "normal -inf");
+    q.nrm[3] = q.nrm[4] = q.nrm[5] = 0.0f;
+    fn(&q.mesh, HF_ERROR_DEGENERATE, "zero-length normal");
+    q.nrm[5] = 1.0f;
+}
+
+/* 3 ropes of 4 points along +y from x = 0, 1, 2; on caller memory */
+typedef struct tb_ropes {
+    hf_ropes r;
+    void *mem;
+    size_t bytes;
+    float rest[3 * 4 * 3], pos[9], nrm[9], tan[9];
+} tb_ropes;
+
+static void tb_ropes_open(tb_ropes *t)
+{
+    int i, j;
+    hf_ropes_memory_size(3, 4, &t->bytes);
+    t->mem = malloc(t->bytes);
+    hf_ropes_init(&t->r, 3, 4, t->mem, t->bytes);
+    for (i = 0; i < 3; ++i) {
+        t->pos[3 * i] = (float)i; t->pos[3 * i + 1] = 0; t->pos[3 * i + 2] = 0;
+        t->nrm[3 * i] = 0; t->nrm[3 * i + 1] = 1; t->nrm[3 * i + 2] = 0;
+        t->tan[3 * i] = 1; t->tan[3 * i + 1] = 0; t->tan[3 * i + 2] = 0;
+        for (j = 0; j < 4; ++j) {
+            float *p = t->rest + 3 * (i * 4 + j);
+            p[0] = (float)i; p[1] = 0.1f * (float)j; p[2] = 0;
+        }
+    }
+    hf_ropes_set_rest(&t->r, 0, 3, t->rest, 0, t->pos, t->nrm, t->tan, 0);
+}
+
+/* a failing call on the ropes leaves every byte as it was */
+#define TB_ROPES_FAIL(t, call, code)                                           \
+    do {                                                                       \
+        unsigned char *snap_ = (unsigned char *)malloc((t).bytes);             \
+        hf_ropes rs_ = (t).r;                                                  \
+        memcpy(snap_, (t).mem, (t).bytes);                                     \
+        CHECK_EQ_INT((call), (code));                                          \
+        CHECK(memcmp(snap_, (t).mem, (t).bytes) == 0);                         \
+        CHECK(memcmp(&rs_, &(t).r, sizeof rs_) == 0);                          \
+        free(snap_);                                                           \
+    } while (0)
+
+/* ==== 1. configuration, result codes, version ============================= */
 
 static void test_result_strings_distinct(void)
 {
@@ -134,9 +982,7 @@ static void test_version(void)
     CHECK(strcmp(buf, hf_version_string()) == 0);
 }
 
-/* ======================================================================== */
-/* 2. random numbers                                                        */
-/* ======================================================================== */
+/* ==== 2. random numbers =================================================== */
 
 static void test_rng_matches_pcg32_reference(void)
 {
@@ -185,24 +1031,7 @@ static void test_rng_float_and_below_ranges(void)
     CHECK_EQ_INT(hf_rng_below(&r, 1u), 0);
 }
 
-/* ======================================================================== */
-/* 3. maps                                                                  */
-/* ======================================================================== */
-
-/* 4 x 2 gray map: row 0 = 0, 51, 102, 153; row 1 = 255, 204, 153, 102 */
-static const unsigned char t_map_px[8] = {0, 51, 102, 153, 255, 204, 153, 102};
-
-static hf_map t_gray_map(int wrap)
-{
-    hf_map m;
-    memset(&m, 0, sizeof m);
-    m.data = t_map_px;
-    m.width = 4;
-    m.height = 2;
-    m.channels = 1;
-    m.wrap = wrap;
-    return m;
-}
+/* ==== 3. maps ============================================================= */
 
 static void test_map_sample_texel_centres_exact(void)
 {
@@ -398,41 +1227,88 @@ static void test_map_blur_errors_and_allocator(void)
     CHECK_EQ_INT(cnt.frees, 1);
 }
 
-/* ======================================================================== */
-/* 4. meshes                                                                */
-/* ======================================================================== */
-
-/* An engine-style interleaved vertex: the mesh view points into it. */
-typedef struct t_vertex {
-    float pos[3];
-    float normal[3];
-    float uv[2];
-    unsigned color;
-} t_vertex;
-
-static hf_mesh t_mesh_view(const t_vertex *v, int nv, const uint32_t *idx,
-                           int nt)
+static void test_bad_map_validate_sample_blur(void)
 {
-    hf_mesh m;
-    memset(&m, 0, sizeof m);
-    m.positions = v[0].pos;
-    m.position_stride = (int)sizeof(t_vertex);
-    m.normals = v[0].normal;
-    m.normal_stride = (int)sizeof(t_vertex);
-    m.uvs = v[0].uv;
-    m.uv_stride = (int)sizeof(t_vertex);
-    m.vertex_count = nv;
-    m.indices = idx;
-    m.triangle_count = nt;
-    return m;
+    unsigned char px[16] = {0};
+    float fpx[4] = {0.5f, 0.5f, 0.5f, 0.5f}, out[4], blur[16];
+    hf_map ok, m;
+    t_counter cnt;
+    hf_allocator a = t_counting(&cnt);
+    hf_diag d;
+    memset(&ok, 0, sizeof ok);
+    ok.data = px; ok.width = 4; ok.height = 4; ok.channels = 1;
+    CHECK_EQ_INT(hf_map_validate(&ok, &d), HF_OK);
+    CHECK_EQ_INT(hf_map_validate(NULL, &d), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(d.result, HF_ERROR_NULL_POINTER);
+    m = ok; m.data = NULL; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_NULL_POINTER);
+    m = ok; m.width = 0; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_COUNT);
+    m = ok; m.height = -1; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_COUNT);
+    m = ok; m.width = HF_MAP_MAX_DIMENSION + 1;
+    CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_COUNT);
+    m = ok; m.width = 0x7fffffff; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_COUNT);
+    m = ok; m.channels = 0; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_FORMAT);
+    m = ok; m.channels = 5; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_FORMAT);
+    m = ok; m.format = 2; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_FORMAT);
+    m = ok; m.format = -1; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_FORMAT);
+    m = ok; m.wrap = 2; CHECK(hf_map_validate(&m, NULL) < 0);
+    m = ok; m.row_stride = 3; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_STRIDE);
+    m = ok; m.row_stride = -4; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_STRIDE);
+    /* float maps: NaN and inf texels */
+    m = ok; m.data = fpx; m.width = 2; m.height = 2; m.format = HF_MAP_F32;
+    CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_OK);
+    fpx[3] = TB_NAN; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_NON_FINITE);
+    fpx[3] = -TB_INF; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_NON_FINITE);
+    /* sample: out untouched on every error */
+    TB_FAILS(hf_map_sample(&m, 0.5f, 0.5f, out), HF_ERROR_NON_FINITE, out, sizeof out);
+    fpx[3] = 0.5f;
+    TB_FAILS(hf_map_sample(NULL, 0.5f, 0.5f, out), HF_ERROR_NULL_POINTER, out, sizeof out);
+    CHECK_EQ_INT(hf_map_sample(&m, 0.5f, 0.5f, NULL), HF_ERROR_NULL_POINTER);
+    TB_FAILS(hf_map_sample(&m, TB_NAN, 0.5f, out), HF_ERROR_NON_FINITE, out, sizeof out);
+    TB_FAILS(hf_map_sample(&m, 0.5f, TB_INF, out), HF_ERROR_NON_FINITE, out, sizeof out);
+    m.channels = 9;
+    TB_FAILS(hf_map_sample(&m, 0.5f, 0.5f, out), HF_ERROR_BAD_FORMAT, out, sizeof out);
+    m.channels = 1;
+    /* huge but finite coordinates: a finite sample */
+    CHECK_EQ_INT(hf_map_sample(&m, 3e38f, -3e38f, out), HF_OK);
+    CHECK(tb_finite(out, 4));
+    /* blur */
+    CHECK_EQ_INT(hf_map_blur(&ok, 1.0f, NULL, NULL), HF_ERROR_NULL_POINTER);
+    TB_FAILS(hf_map_blur(NULL, 1.0f, blur, NULL), HF_ERROR_NULL_POINTER, blur, sizeof blur);
+    TB_FAILS(hf_map_blur(&ok, -1.0f, blur, NULL), HF_ERROR_BAD_PARAMETER, blur, sizeof blur);
+    TB_FAILS(hf_map_blur(&ok, TB_NAN, blur, NULL), HF_ERROR_BAD_PARAMETER, blur, sizeof blur);
+    TB_FAILS(hf_map_blur(&ok, TB_INF, blur, NULL), HF_ERROR_BAD_PARAMETER, blur, sizeof blur);
+    TB_FAILS(hf_map_blur(&ok, 1025.0f, blur, NULL), HF_ERROR_BAD_PARAMETER, blur, sizeof blur);
+    m = ok; m.channels = 0;
+    TB_FAILS(hf_map_blur(&m, 1.0f, blur, NULL), HF_ERROR_BAD_FORMAT, blur, sizeof blur);
+    cnt.fail_after = 0;
+    TB_FAILS(hf_map_blur(&ok, 1.0f, blur, &a), HF_ERROR_OUT_OF_MEMORY, blur, sizeof blur);
+    CHECK_EQ_INT(cnt.allocs, cnt.frees);
+    cnt.fail_after = -1;
+    CHECK_EQ_INT(hf_map_blur(&ok, 1024.0f, blur, &a), HF_OK); /* radius capped */
+    CHECK(tb_finite(blur, 16));
+    CHECK_EQ_INT(cnt.allocs, cnt.frees);
+    /* finite texels near FLT_MAX: validation passes them, so sampling,
+       blurring and density must stay finite or validation must refuse
+       them */
+    {
+        float big[4] = {-FLT_MAX, FLT_MAX, FLT_MAX, -FLT_MAX}, o4[4], bl[4];
+        float u0[2] = {0.1f, 0.5f}, u1[2] = {0.5f, 0.5f}, u2[2] = {0.9f, 0.5f};
+        float dens = -7.0f;
+        hf_result rr;
+        m = ok; m.data = big; m.width = 2; m.height = 2; m.format = HF_MAP_F32;
+        m.wrap = HF_WRAP_CLAMP;
+        rr = hf_map_sample(&m, 0.5f, 0.25f, o4);
+        CHECK(rr < 0 || tb_finite(o4, 4));
+        tb_fill(bl, sizeof bl);
+        rr = hf_map_blur(&m, 2.0f, bl, NULL);
+        CHECK(rr < 0 ? tb_untouched(bl, sizeof bl) : tb_finite(bl, 4));
+        big[0] = big[1] = big[2] = big[3] = FLT_MAX;
+        rr = hf_uv_triangle_density(&m, u0, u1, u2, HF_DENSITY_CORNERS, &dens);
+        CHECK(rr < 0 ? dens == -7.0f : t_is_finite(dens));
+    }
 }
 
-/* unit quad in the xy plane, two triangles */
-static const t_vertex t_quad[4] = {{{0, 0, 0}, {0, 0, 1}, {0, 0}, 0},
-                                   {{1, 0, 0}, {0, 0, 1}, {1, 0}, 0},
-                                   {{1, 1, 0}, {0, 0, 1}, {1, 1}, 0},
-                                   {{0, 1, 0}, {0, 0, 1}, {0, 1}, 0}};
-static const uint32_t t_quad_idx[6] = {0, 1, 2, 0, 2, 3};
+/* ==== 4. meshes =========================================================== */
 
 static void test_mesh_validate_interleaved_ok(void)
 {
@@ -563,171 +1439,95 @@ static void test_mesh_normals_degenerate_fallback(void)
     CHECK_EQ_INT(hf_mesh_compute_normals(&m, NULL), HF_ERROR_NULL_POINTER);
 }
 
-/* ======================================================================== */
-/* 5. grow: density estimators, density tessellation, guides, strand        */
-/*    placement, maps on strands, bindings                                  */
-/* ======================================================================== */
-
-/* ---- helpers ------------------------------------------------------------ */
-
-/* An n x n grid of quads over [0, size]^2 in z = 0, UV = position / size,
-   two triangles per quad, counter-clockwise seen from +z. */
-typedef struct t_grid {
-    float *pos, *uv, *nrm;
-    uint32_t *idx;
-    hf_mesh mesh;
-} t_grid;
-
-static t_grid t_make_grid(int n, float size)
+static void tb_validate_case(const hf_mesh *m, hf_result want, const char *what)
 {
-    t_grid g;
-    int x, y, v = (n + 1) * (n + 1), t = 0;
-    g.pos = (float *)malloc(sizeof(float) * 3 * (size_t)v);
-    g.uv = (float *)malloc(sizeof(float) * 2 * (size_t)v);
-    g.nrm = (float *)malloc(sizeof(float) * 3 * (size_t)v);
-    g.idx = (uint32_t *)malloc(sizeof(uint32_t) * 6 * (size_t)n * (size_t)n);
-    for (y = 0; y <= n; ++y)
-        for (x = 0; x <= n; ++x) {
-            int i = y * (n + 1) + x;
-            g.uv[2 * i] = (float)x / (float)n;
-            g.uv[2 * i + 1] = (float)y / (float)n;
-            g.pos[3 * i] = g.uv[2 * i] * size;
-            g.pos[3 * i + 1] = g.uv[2 * i + 1] * size;
-            g.pos[3 * i + 2] = 0.0f;
-            g.nrm[3 * i] = 0.0f;
-            g.nrm[3 * i + 1] = 0.0f;
-            g.nrm[3 * i + 2] = 1.0f;
-        }
-    for (y = 0; y < n; ++y)
-        for (x = 0; x < n; ++x) {
-            uint32_t a = (uint32_t)(y * (n + 1) + x), b = a + 1,
-                     c = a + (uint32_t)(n + 1), d = c + 1;
-            g.idx[t++] = a;
-            g.idx[t++] = b;
-            g.idx[t++] = d;
-            g.idx[t++] = a;
-            g.idx[t++] = d;
-            g.idx[t++] = c;
-        }
-    memset(&g.mesh, 0, sizeof g.mesh);
-    g.mesh.positions = g.pos;
-    g.mesh.uvs = g.uv;
-    g.mesh.normals = g.nrm;
-    g.mesh.vertex_count = v;
-    g.mesh.indices = g.idx;
-    g.mesh.triangle_count = 2 * n * n;
-    return g;
+    hf_diag d;
+    hf_result r = hf_mesh_validate(m, &d);
+    if (r != want) printf("  mesh case: %s\n", what);
+    CHECK_EQ_INT(r, want);
+    CHECK_EQ_INT(d.result, r);
+    CHECK(d.message[0] != 0);
 }
 
-static void t_free_grid(t_grid *g)
+static void tb_normals_case(const hf_mesh *m, hf_result want, const char *what)
 {
-    free(g->pos);
-    free(g->uv);
-    free(g->nrm);
-    free(g->idx);
+    float out[12];
+    tb_fill(out, sizeof out);
+    /* the mesh's own normals are ignored: their errors do not apply */
+    if (strstr(what, "normal")) {
+        hf_result r = hf_mesh_compute_normals(m, out);
+        CHECK(r == HF_OK || r == want);
+        if (r == HF_OK) CHECK(tb_finite(out, 12));
+        return;
+    }
+    if (hf_mesh_compute_normals(m, out) != want) printf("  normals case: %s\n", what);
+    CHECK(tb_untouched(out, sizeof out));
 }
 
-static hf_map t_f32_map(const float *data, int w, int h, int channels)
+static void test_bad_mesh_validate_and_normals(void)
 {
-    hf_map m;
-    memset(&m, 0, sizeof m);
-    m.data = data;
-    m.width = w;
-    m.height = h;
-    m.channels = channels;
-    m.format = HF_MAP_F32;
-    return m;
+    tb_quad q;
+    float out[12];
+    tb_quad_init(&q);
+    CHECK_EQ_INT(hf_mesh_validate(&q.mesh, NULL), HF_OK);
+    CHECK_EQ_INT(hf_mesh_validate(NULL, NULL), HF_ERROR_NULL_POINTER);
+    tb_for_each_bad_mesh(tb_validate_case);
+    tb_for_each_bad_mesh(tb_normals_case);
+    TB_FAILS(hf_mesh_compute_normals(NULL, out), HF_ERROR_NULL_POINTER, out, sizeof out);
+    CHECK_EQ_INT(hf_mesh_compute_normals(&q.mesh, NULL), HF_ERROR_NULL_POINTER);
+    /* zero-area triangles: allowed, normals (0, 0, 1), never NaN */
+    memset(q.pos, 0, sizeof q.pos);
+    CHECK_EQ_INT(hf_mesh_validate(&q.mesh, NULL), HF_OK);
+    CHECK_EQ_INT(hf_mesh_compute_normals(&q.mesh, out), HF_OK);
+    CHECK(tb_finite(out, 12) && out[2] == 1.0f);
+    /* huge but finite positions: cross products overflow, normals still
+       unit and finite */
+    tb_quad_init(&q);
+    q.pos[3] = 3e38f; q.pos[7] = 3e38f; q.pos[10] = -3e38f;
+    CHECK_EQ_INT(hf_mesh_compute_normals(&q.mesh, out), HF_OK);
+    CHECK(tb_finite(out, 12));
+    CHECK(t_is_finite(hf_triangle_area(q.pos, q.pos + 3, q.pos + 6)) ||
+          hf_triangle_area(q.pos, q.pos + 3, q.pos + 6) > 0.0f);
 }
 
-/* A smooth map with values in [0.05, 1]: a gradient plus a bump. */
-static float *t_blob_data(int w, int h)
-{
-    float *d = (float *)malloc(sizeof(float) * (size_t)w * (size_t)h);
-    int x, y;
-    for (y = 0; y < h; ++y)
-        for (x = 0; x < w; ++x) {
-            float u = ((float)x + 0.5f) / (float)w;
-            float v = ((float)y + 0.5f) / (float)h;
-            float du = u - 0.3f, dv = v - 0.6f;
-            float val = 0.05f + 0.45f * u +
-                        0.5f * (float)exp(-(du * du + dv * dv) / 0.02);
-            d[y * w + x] = val > 1.0f ? 1.0f : val;
-        }
-    return d;
-}
+/* (Mesh counts near INT_MAX cannot be tested without the arrays they
+   promise: a view of INT_MAX vertices is read element by element. The
+   size limits that need no array are in the ropes, ribbon-index,
+   placement and fur tests below.) */
 
-static double t_tri_area(const float *pos, const uint32_t *tri)
+/* A byte stride that is not a multiple of 4 would make misaligned float
+   loads (undefined behaviour): validation refuses it. */
+static void test_bad_odd_strides(void)
 {
-    return (double)hf_triangle_area(pos + 3 * tri[0], pos + 3 * tri[1],
-                                    pos + 3 * tri[2]);
-}
-
-static double t_uv_area(const float *uv, const uint32_t *tri)
-{
-    const float *a = uv + 2 * tri[0], *b = uv + 2 * tri[1],
-                *c = uv + 2 * tri[2];
-    return 0.5 * fabs((double)(b[0] - a[0]) * (c[1] - a[1]) -
-                      (double)(c[0] - a[0]) * (b[1] - a[1]));
-}
-
-/* hf_tessellate twice (count, fill) into freshly allocated arrays. */
-typedef struct t_tess {
-    hf_tess_output out;
-    hf_result r;
-} t_tess;
-
-static t_tess t_tessellate(const hf_mesh *mesh, const hf_map *density,
-                           const hf_tess_params *p)
-{
-    t_tess t;
-    memset(&t, 0, sizeof t);
-    t.r = hf_tessellate(mesh, density, p, &t.out);
-    if (t.r != HF_OK) return t;
-    t.out.indices =
-        (uint32_t *)malloc(sizeof(uint32_t) * 3 * (size_t)t.out.triangle_count);
-    t.out.triangle_base =
-        (uint32_t *)malloc(sizeof(uint32_t) * (size_t)t.out.triangle_count);
-    t.out.added = (hf_tess_vertex *)malloc(
-        sizeof(hf_tess_vertex) * (size_t)(t.out.added_count + 1));
-    t.out.positions =
-        (float *)malloc(sizeof(float) * 3 * (size_t)t.out.vertex_count);
-    t.out.uvs = (float *)malloc(sizeof(float) * 2 * (size_t)t.out.vertex_count);
-    t.out.triangle_capacity = t.out.triangle_count;
-    t.out.added_capacity = t.out.added_count;
-    t.out.vertex_capacity = t.out.vertex_count;
-    t.r = hf_tessellate(mesh, density, p, &t.out);
-    return t;
-}
-
-static void t_free_tess(t_tess *t)
-{
-    free(t->out.indices);
-    free(t->out.triangle_base);
-    free(t->out.added);
-    free(t->out.positions);
-    free(t->out.uvs);
-}
-
-static hf_mesh t_tess_mesh(const t_tess *t)
-{
+    static float buf[64];
+    unsigned char *b = (unsigned char *)buf;
+    uint32_t idx[3] = {0, 1, 2};
     hf_mesh m;
+    hf_map map;
+    hf_result r;
+    memset(buf, 0, sizeof buf);
     memset(&m, 0, sizeof m);
-    m.positions = t->out.positions;
-    m.uvs = t->out.uvs;
-    m.vertex_count = t->out.vertex_count;
-    m.indices = t->out.indices;
-    m.triangle_count = t->out.triangle_count;
-    return m;
+    m.positions = (const float *)b;
+    m.position_stride = 13;
+    m.vertex_count = 3;
+    m.indices = idx;
+    m.triangle_count = 1;
+    r = hf_mesh_validate(&m, NULL);
+    CHECK_EQ_INT(r, HF_ERROR_BAD_STRIDE);
+    memset(&map, 0, sizeof map);
+    map.data = buf;
+    map.width = 1;
+    map.height = 2;
+    map.channels = 1;
+    map.format = HF_MAP_F32;
+    map.row_stride = 5;
+    r = hf_map_validate(&map, NULL);
+    CHECK_EQ_INT(r, HF_ERROR_BAD_STRIDE);
 }
 
-static long t_ipow3(int k)
-{
-    long p = 1;
-    while (k-- > 0) p *= 3;
-    return p;
-}
+/* ==== 5. grow ============================================================= */
 
-/* ---- 5.1 estimators ----------------------------------------------------- */
+/* ---- 5.1 density estimators ---------------------------------------------- */
 
 static void test_grow_record_sizes(void)
 {
@@ -883,7 +1683,43 @@ static void test_density_bad_input(void)
     CHECK(d == 1.0f);
 }
 
-/* ---- 5.2 tessellation --------------------------------------------------- */
+static void test_bad_uv_density(void)
+{
+    float a[2] = {0, 0}, b[2] = {1, 0}, c[2] = {0, 1}, bad[2] = {TB_NAN, 0};
+    float far[2] = {1000.0f, 0.0f}, d = -7.0f;
+    unsigned char px[4] = {255, 255, 255, 255};
+    hf_map m;
+    memset(&m, 0, sizeof m);
+    m.data = px; m.width = 2; m.height = 2; m.channels = 1;
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, b, c, 0, &d), HF_OK);
+    CHECK(d == 1.0f);
+    d = -7.0f;
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, NULL, b, c, 0, &d), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, b, c, 0, NULL), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, bad, c, 1, &d), HF_ERROR_NON_FINITE);
+    bad[0] = 0.0f; bad[1] = -TB_INF;
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, b, bad, 2, &d), HF_ERROR_NON_FINITE);
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, b, c, 3, &d), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, b, c, -1, &d), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, far, c, 1, &d), HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, far, c, 2, &d), HF_ERROR_BAD_RANGE);
+    m.width = 0;
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, b, c, 0, &d), HF_ERROR_BAD_COUNT);
+    CHECK(d == -7.0f);
+    /* zero UV area: AREA falls back to CORNERS, finite */
+    m.width = 2;
+    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, a, a, 2, &d), HF_OK);
+    CHECK(t_is_finite(d));
+}
+
+/* ---- 5.2 tessellation ---------------------------------------------------- */
+
+static long t_ipow3(int k)
+{
+    long p = 1;
+    while (k-- > 0) p *= 3;
+    return p;
+}
 
 /* A 2 x 2 grid: 8 triangles of area 1/8. With density D and factor f the
    triangles split k times, k the least with D f / (8 3^k) <= 1: exactly
@@ -1279,7 +2115,170 @@ static void test_tess_same_seed_same_bytes(void)
     t_free_grid(&g);
 }
 
-/* ---- 5.3 guides --------------------------------------------------------- */
+static void tb_tess_case(const hf_mesh *m, hf_result want, const char *what)
+{
+    hf_tess_params p;
+    hf_tess_output o;
+    uint32_t idx[64];
+    memset(&p, 0, sizeof p);
+    p.factor = 1.0f;
+    memset(&o, 0, sizeof o);
+    o.indices = idx;
+    o.triangle_capacity = 20;
+    o.triangle_count = o.added_count = o.vertex_count = o.depth = -7;
+    tb_fill(idx, sizeof idx);
+    if (hf_tessellate(m, NULL, &p, &o) != want) printf("  tess case: %s\n", what);
+    CHECK(tb_untouched(idx, sizeof idx));
+    CHECK(o.triangle_count == -7 && o.added_count == -7 &&
+          o.vertex_count == -7 && o.depth == -7);
+}
+
+static void test_bad_tessellate(void)
+{
+    tb_quad q;
+    hf_tess_params p;
+    hf_tess_output o;
+    uint32_t idx[3 * 64];
+    unsigned char px[4] = {0, 0, 0, 0};
+    hf_map empty;
+    tb_quad_init(&q);
+    memset(&p, 0, sizeof p);
+    p.factor = 1.0f;
+    memset(&o, 0, sizeof o);
+#define TB_TESS(params_expr, code)                                             \
+    do {                                                                       \
+        hf_tess_params pp_ = p;                                                \
+        params_expr;                                                           \
+        o.indices = idx;                                                       \
+        o.triangle_capacity = 64;                                              \
+        o.triangle_count = o.added_count = o.vertex_count = o.depth = -7;      \
+        tb_fill(idx, sizeof idx);                                              \
+        CHECK_EQ_INT(hf_tessellate(&q.mesh, NULL, &pp_, &o), (code));          \
+        CHECK(tb_untouched(idx, sizeof idx));                                  \
+        CHECK(o.triangle_count == -7 && o.vertex_count == -7);                 \
+    } while (0)
+    TB_TESS(pp_.factor = 0.0f, HF_ERROR_BAD_PARAMETER);
+    TB_TESS(pp_.factor = -1.0f, HF_ERROR_BAD_PARAMETER);
+    TB_TESS(pp_.factor = TB_NAN, HF_ERROR_BAD_PARAMETER);
+    TB_TESS(pp_.factor = TB_INF, HF_ERROR_BAD_PARAMETER);
+    TB_TESS(pp_.estimator = 3, HF_ERROR_BAD_PARAMETER);
+    TB_TESS(pp_.split = -1, HF_ERROR_BAD_PARAMETER);
+    TB_TESS(pp_.max_depth = HF_TESS_MAX_DEPTH + 1, HF_ERROR_BAD_PARAMETER);
+    TB_TESS(pp_.max_triangles = HF_TESS_MAX_TRIANGLES + 1, HF_ERROR_BAD_PARAMETER);
+    TB_TESS(pp_.max_triangles = -1, HF_ERROR_BAD_PARAMETER);
+    /* billions of triangles: the caps, fast */
+    TB_TESS(pp_.factor = 1e30f, HF_ERROR_DEPTH_CAP);
+    /* with the deepest depth either cap may bind first (the counting pass
+       walks depth first); both are errors and both come fast */
+    {
+        hf_tess_params pp_ = p;
+        hf_result rr;
+        pp_.factor = FLT_MAX;
+        pp_.max_depth = HF_TESS_MAX_DEPTH;
+        pp_.max_triangles = HF_TESS_MAX_TRIANGLES;
+        o.indices = idx;
+        o.triangle_count = -7;
+        rr = hf_tessellate(&q.mesh, NULL, &pp_, &o);
+        CHECK(rr == HF_ERROR_DEPTH_CAP || rr == HF_ERROR_TRIANGLE_CAP);
+        CHECK_EQ_INT(o.triangle_count, -7);
+    }
+    TB_TESS((pp_.factor = 100.0f, pp_.max_triangles = 3), HF_ERROR_TRIANGLE_CAP);
+    /* too small a buffer */
+    TB_TESS(pp_.factor = 1000.0f, HF_ERROR_BUFFER_TOO_SMALL);
+    /* a NULL out, params, mesh */
+    CHECK_EQ_INT(hf_tessellate(&q.mesh, NULL, &p, NULL), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_tessellate(&q.mesh, NULL, NULL, &o), HF_ERROR_NULL_POINTER);
+    tb_for_each_bad_mesh(tb_tess_case);
+    /* a density map with a mesh without UVs */
+    memset(&empty, 0, sizeof empty);
+    empty.data = px; empty.width = 2; empty.height = 2; empty.channels = 1;
+    q.mesh.uvs = NULL;
+    o.indices = NULL;
+    o.triangle_count = -7;
+    CHECK_EQ_INT(hf_tessellate(&q.mesh, &empty, &p, &o), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(o.triangle_count, -7);
+    q.mesh.uvs = q.uv;
+    /* an empty map (width 0) */
+    empty.width = 0;
+    CHECK_EQ_INT(hf_tessellate(&q.mesh, &empty, &p, &o), HF_ERROR_BAD_COUNT);
+    /* zero-area triangles: every one degenerate is refused; one of two
+       with refuse_degenerate is refused */
+    memset(q.pos, 0, sizeof q.pos);
+    CHECK_EQ_INT(hf_tessellate(&q.mesh, NULL, &p, &o), HF_ERROR_DEGENERATE);
+    tb_quad_init(&q);
+    q.idx[5] = 2; /* triangle 1 = (0, 2, 2): zero area */
+    p.refuse_degenerate = 1;
+    CHECK_EQ_INT(hf_tessellate(&q.mesh, NULL, &p, &o), HF_ERROR_DEGENERATE);
+    p.refuse_degenerate = 0;
+    CHECK_EQ_INT(hf_tessellate(&q.mesh, NULL, &p, &o), HF_OK);
+    /* an area that overflows float */
+    tb_quad_init(&q);
+    q.pos[3] = 3e38f; q.pos[10] = 3e38f; q.pos[6] = 3e38f; q.pos[7] = 3e38f;
+    o.triangle_count = -7;
+    CHECK_EQ_INT(hf_tessellate(&q.mesh, NULL, &p, &o), HF_ERROR_NON_FINITE);
+    CHECK_EQ_INT(o.triangle_count, -7);
+#undef TB_TESS
+}
+
+static void test_bad_tess_evaluate(void)
+{
+    tb_quad q;
+    hf_tess_vertex v[2] = {{0, {0.2f, 0.3f, 0.5f}}, {1, {0.5f, 0.25f, 0.25f}}};
+    float pos[6], nrm[6], uv[4];
+    tb_quad_init(&q);
+#define TB_EVAL(mesh, added, n, first, count, code)                            \
+    do {                                                                       \
+        tb_fill(pos, sizeof pos);                                              \
+        tb_fill(nrm, sizeof nrm);                                              \
+        tb_fill(uv, sizeof uv);                                                \
+        CHECK_EQ_INT(hf_tess_evaluate((mesh), (added), (n), (first), (count), \
+                                      pos, nrm, uv),                           \
+                     (code));                                                  \
+        CHECK(tb_untouched(pos, sizeof pos) && tb_untouched(nrm, sizeof nrm) &&  \
+              tb_untouched(uv, sizeof uv));                                    \
+    } while (0)
+    TB_EVAL(NULL, v, 2, 0, 2, HF_ERROR_NULL_POINTER);
+    TB_EVAL(&q.mesh, NULL, 2, 0, 2, HF_ERROR_NULL_POINTER);
+    /* a negative array count: BAD_COUNT or BAD_RANGE (the code does the
+       latter; CONVENTIONS say negative counts are refused) */
+    tb_fill(pos, sizeof pos);
+    {
+        hf_result rr = hf_tess_evaluate(&q.mesh, v, -1, 0, 0, pos, nrm, uv);
+        CHECK(rr == HF_ERROR_BAD_COUNT || rr == HF_ERROR_BAD_RANGE);
+        CHECK(tb_untouched(pos, sizeof pos));
+    }
+    TB_EVAL(&q.mesh, v, 2, 1, 2, HF_ERROR_BAD_RANGE);
+    TB_EVAL(&q.mesh, v, 2, -1, 1, HF_ERROR_BAD_RANGE);
+    TB_EVAL(&q.mesh, v, 2, 1, 0x7fffffff, HF_ERROR_BAD_RANGE);
+    TB_EVAL(&q.mesh, v, 2, 0x7fffffff, 1, HF_ERROR_BAD_RANGE);
+    v[1].triangle = 2;
+    TB_EVAL(&q.mesh, v, 2, 0, 2, HF_ERROR_INDEX_OUT_OF_RANGE);
+    v[1].triangle = 1;
+    q.idx[5] = 9;
+    TB_EVAL(&q.mesh, v, 2, 0, 2, HF_ERROR_INDEX_OUT_OF_RANGE);
+    q.idx[5] = 3;
+    v[1].bary[0] = TB_NAN;
+    TB_EVAL(&q.mesh, v, 2, 0, 2, HF_ERROR_NON_FINITE);
+    v[1].bary[0] = 0.5f;
+    q.pos[6] = TB_INF;
+    TB_EVAL(&q.mesh, v, 2, 0, 2, HF_ERROR_NON_FINITE);
+    q.pos[6] = 1.0f;
+    q.mesh.position_stride = 4;
+    TB_EVAL(&q.mesh, v, 2, 0, 2, HF_ERROR_BAD_STRIDE);
+    q.mesh.position_stride = 0;
+    q.mesh.normals = NULL;
+    TB_EVAL(&q.mesh, v, 2, 0, 2, HF_ERROR_NULL_POINTER);
+    q.mesh.normals = q.nrm;
+    /* zero normals on the blend: the face normal, never NaN */
+    memset(q.nrm, 0, sizeof q.nrm);
+    CHECK_EQ_INT(hf_tess_evaluate(&q.mesh, v, 2, 0, 2, pos, nrm, uv), HF_OK);
+    CHECK(tb_finite(pos, 6) && tb_finite(nrm, 6) && tb_finite(uv, 4));
+    /* count 0 at the end is a valid empty range */
+    CHECK_EQ_INT(hf_tess_evaluate(&q.mesh, v, 2, 2, 0, pos, nrm, uv), HF_OK);
+#undef TB_EVAL
+}
+
+/* ---- 5.3 guides ---------------------------------------------------------- */
 
 /* A cube of side 2 as an engine stores it: 24 vertices (4 per face, with
    the face normal and a face UV), 12 triangles. */
@@ -1558,7 +2557,81 @@ static void test_guides_bad_input(void)
     t_free_grid(&g);
 }
 
-/* ---- 5.4 placement ------------------------------------------------------ */
+static void test_bad_guides_rest(void)
+{
+    tb_quad q;
+    hf_guide_params gp;
+    hf_guide_output go;
+    float pts[4 * 3 * 4], lens[4];
+    uint32_t gov[4];
+    hf_tess_vertex v = {0, {0.2f, 0.3f, 0.5f}};
+    t_counter cnt;
+    hf_allocator a = t_counting(&cnt);
+    tb_quad_init(&q);
+    memset(&gp, 0, sizeof gp);
+    gp.points = 4;
+    gp.max_length = 0.1f;
+#define TB_GUIDES(added, n, code)                                              \
+    do {                                                                       \
+        memset(&go, 0, sizeof go);                                             \
+        go.points = pts;                                                       \
+        go.lengths = lens;                                                     \
+        go.guide_of_vertex = gov;                                              \
+        go.guide_capacity = 4;                                                 \
+        go.guide_count = go.pure_guide_count = -7;                             \
+        tb_fill(pts, sizeof pts);                                              \
+        tb_fill(lens, sizeof lens);                                            \
+        tb_fill(gov, sizeof gov);                                              \
+        CHECK_EQ_INT(hf_guides_rest(&q.mesh, (added), (n), &gp, &go, &a),      \
+                     (code));                                                  \
+        CHECK(tb_untouched(pts, sizeof pts) && tb_untouched(lens, sizeof lens) && \
+              tb_untouched(gov, sizeof gov) && go.guide_count == -7);          \
+        CHECK_EQ_INT(cnt.allocs, cnt.frees);                                   \
+    } while (0)
+    gp.points = 1; TB_GUIDES(NULL, 0, HF_ERROR_BAD_COUNT);
+    gp.points = HF_GUIDE_MAX_POINTS + 1; TB_GUIDES(NULL, 0, HF_ERROR_BAD_COUNT);
+    gp.points = 4;
+    gp.max_length = 0.0f; TB_GUIDES(NULL, 0, HF_ERROR_BAD_PARAMETER);
+    gp.max_length = TB_NAN; TB_GUIDES(NULL, 0, HF_ERROR_BAD_PARAMETER);
+    gp.max_length = -1.0f; TB_GUIDES(NULL, 0, HF_ERROR_BAD_PARAMETER);
+    gp.max_length = 0.1f;
+    TB_GUIDES(NULL, 1, HF_ERROR_NULL_POINTER);
+    TB_GUIDES(&v, -1, HF_ERROR_BAD_COUNT);
+    v.triangle = 2; TB_GUIDES(&v, 1, HF_ERROR_INDEX_OUT_OF_RANGE);
+    v.triangle = 0;
+    v.bary[1] = TB_NAN; TB_GUIDES(&v, 1, HF_ERROR_NON_FINITE);
+    v.bary[1] = 1.5f; TB_GUIDES(&v, 1, HF_ERROR_BAD_PARAMETER);
+    v.bary[1] = 0.3f;
+    /* 4 base vertices + 1 added = 5 guides > capacity 4 */
+    TB_GUIDES(&v, 1, HF_ERROR_BUFFER_TOO_SMALL);
+    /* out of memory */
+    cnt.fail_after = 0;
+    TB_GUIDES(NULL, 0, HF_ERROR_OUT_OF_MEMORY);
+    cnt.fail_after = -1;
+    {
+        float comb[12];
+        memset(comb, 0, sizeof comb);
+        comb[4] = TB_INF;
+        gp.comb = comb;
+        TB_GUIDES(NULL, 0, HF_ERROR_NON_FINITE);
+        gp.comb = NULL;
+    }
+    CHECK_EQ_INT(hf_guides_rest(&q.mesh, NULL, 0, NULL, &go, NULL), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_guides_rest(&q.mesh, NULL, 0, &gp, NULL, NULL), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_guides_rest(NULL, NULL, 0, &gp, &go, NULL), HF_ERROR_NULL_POINTER);
+    q.nrm[0] = q.nrm[1] = q.nrm[2] = 0.0f;
+    TB_GUIDES(NULL, 0, HF_ERROR_DEGENERATE);
+    q.nrm[2] = 1.0f;
+    /* valid: every output finite */
+    memset(&go, 0, sizeof go);
+    go.points = pts; go.lengths = lens; go.guide_of_vertex = gov;
+    go.guide_capacity = 4;
+    CHECK_EQ_INT(hf_guides_rest(&q.mesh, NULL, 0, &gp, &go, NULL), HF_OK);
+    CHECK(tb_finite(pts, sizeof pts / sizeof pts[0]));
+#undef TB_GUIDES
+}
+
+/* ---- 5.4 placement ------------------------------------------------------- */
 
 /* Chi-square of strand roots over the 64 equal sub-triangles of the unit
    right triangle (8 x 8 midpoint grid). */
@@ -1982,7 +3055,71 @@ static void test_place_skips_zero_area_triangles(void)
     t_free_grid(&g);
 }
 
-/* ---- 5.5 maps on strands, 5.6 bindings ---------------------------------- */
+static void test_bad_place_strands(void)
+{
+    tb_quad q;
+    hf_place_params pp;
+    hf_strand out[64];
+    int n;
+    t_counter cnt;
+    hf_allocator a = t_counting(&cnt);
+    tb_quad_init(&q);
+    memset(&pp, 0, sizeof pp);
+    pp.strands_per_area = 20.0f;
+#define TB_PLACE(expr, cap, code)                                              \
+    do {                                                                       \
+        hf_place_params p_ = pp;                                               \
+        expr;                                                                  \
+        n = -7;                                                                \
+        tb_fill(out, sizeof out);                                              \
+        CHECK_EQ_INT(hf_place_strands(&q.mesh, NULL, &p_, out, (cap), &n, &a), \
+                     (code));                                                  \
+        CHECK(n == -7 && tb_untouched(out, sizeof out));                       \
+        CHECK_EQ_INT(cnt.allocs, cnt.frees);                                   \
+    } while (0)
+    TB_PLACE(p_.strands_per_area = 0.0f, 64, HF_ERROR_BAD_PARAMETER);
+    TB_PLACE(p_.strands_per_area = -1.0f, 64, HF_ERROR_BAD_PARAMETER);
+    TB_PLACE(p_.strands_per_area = TB_NAN, 64, HF_ERROR_BAD_PARAMETER);
+    TB_PLACE(p_.strands_per_area = TB_INF, 64, HF_ERROR_BAD_PARAMETER);
+    TB_PLACE(p_.total_strands = -1, 64, HF_ERROR_BAD_COUNT);
+    TB_PLACE(p_.estimator = 3, 64, HF_ERROR_BAD_PARAMETER);
+    TB_PLACE(p_.sampler = 3, 64, HF_ERROR_BAD_PARAMETER);
+    TB_PLACE(p_.max_strands = -1, 64, HF_ERROR_BAD_PARAMETER);
+    TB_PLACE(p_.strands_per_area = 1e30f, 64, HF_ERROR_OVERFLOW);
+    TB_PLACE(p_.strands_per_area = FLT_MAX, 64, HF_ERROR_OVERFLOW);
+    TB_PLACE((p_.total_strands = 0x7fffffff), 64, HF_ERROR_OVERFLOW);
+    TB_PLACE(p_.max_strands = 5, 64, HF_ERROR_OVERFLOW);
+    TB_PLACE((void)0, 5, HF_ERROR_BUFFER_TOO_SMALL);
+    cnt.fail_after = 0;
+    TB_PLACE((void)0, 64, HF_ERROR_OUT_OF_MEMORY);
+    cnt.fail_after = -1;
+    CHECK_EQ_INT(hf_place_strands(&q.mesh, NULL, &pp, out, 64, NULL, NULL),
+                 HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_place_strands(&q.mesh, NULL, NULL, out, 64, &n, NULL),
+                 HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_place_strands(NULL, NULL, &pp, out, 64, &n, NULL),
+                 HF_ERROR_NULL_POINTER);
+    /* every triangle zero-area */
+    memset(q.pos, 0, sizeof q.pos);
+    TB_PLACE((void)0, 64, HF_ERROR_DEGENERATE);
+    /* density zero everywhere with total_strands */
+    tb_quad_init(&q);
+    {
+        unsigned char zero[1] = {0};
+        hf_map m;
+        memset(&m, 0, sizeof m);
+        m.data = zero; m.width = 1; m.height = 1; m.channels = 1;
+        n = -7;
+        pp.total_strands = 10;
+        CHECK_EQ_INT(hf_place_strands(&q.mesh, &m, &pp, out, 64, &n, NULL),
+                     HF_ERROR_DEGENERATE);
+        CHECK_EQ_INT(n, -7);
+        pp.total_strands = 0;
+    }
+#undef TB_PLACE
+}
+
+/* ---- 5.5 maps on strands, 5.6 bindings ----------------------------------- */
 
 static void test_strand_lengths_and_colors(void)
 {
@@ -2133,154 +3270,109 @@ static void test_grow_end_to_end_bindings(void)
     t_free_grid(&g);
 }
 
-static void run_grow_tests(void)
+static void test_bad_strand_functions(void)
 {
-    RUN(test_grow_record_sizes);
-    RUN(test_density_estimators_agree_on_constant_map);
-    RUN(test_density_estimators_order_on_gradient);
-    RUN(test_density_area_and_edges_exact);
-    RUN(test_density_bad_input);
-    RUN(test_tess_constant_map_power_of_three);
-    RUN(test_tess_output_properties);
-    RUN(test_tess_evaluate_ranges_and_normals);
-    RUN(test_tess_caps_write_nothing);
-    RUN(test_tess_bad_input);
-    RUN(test_tess_same_seed_same_bytes);
-    RUN(test_guides_weld_and_rest_shape);
-    RUN(test_guides_combing);
-    RUN(test_guides_bad_input);
-    RUN(test_place_uniform_chi_square);
-    RUN(test_place_stratified_fewer_clumps_and_holes);
-    RUN(test_place_total_matches_density_integral);
-    RUN(test_place_lod_prefix_covers_surface);
-    RUN(test_place_same_seed_same_bytes);
-    RUN(test_place_bad_input);
-    RUN(test_place_skips_zero_area_triangles);
-    RUN(test_strand_lengths_and_colors);
-    RUN(test_grow_end_to_end_bindings);
-}
-
-/* ======================================================================== */
-/* 6. ropes                                                                 */
-/* ======================================================================== */
-
-/* ---- helpers ------------------------------------------------------------ */
-
-#define TR_PI 3.14159265358979323846
-
-/* Ropes owned by a test: the struct plus malloc'd memory. */
-typedef struct tr_set {
-    hf_ropes ro;
-    void *mem;
-    size_t size;
-} tr_set;
-
-static int tr_open(tr_set *s, int ropes, int points)
-{
-    memset(s, 0, sizeof *s);
-    if (hf_ropes_memory_size(ropes, points, &s->size) != HF_OK) return 0;
-    s->mem = malloc(s->size);
-    if (!s->mem) return 0;
-    return hf_ropes_init(&s->ro, ropes, points, s->mem, s->size) == HF_OK;
-}
-
-static void tr_close(tr_set *s) { free(s->mem); }
-
-/* Straight rest pose for rope r: from root[r] along dir[r], total length
-   len, written rope-major into pos. */
-static void tr_straight(float *pos, int r, int points, const float *root,
-                        const float *dir, float len)
-{
-    int j;
-    for (j = 0; j < points; ++j) {
-        float t = len * (float)j / (float)(points - 1);
-        float *o = pos + 3 * ((size_t)r * points + j);
-        o[0] = root[0] + dir[0] * t;
-        o[1] = root[1] + dir[1] * t;
-        o[2] = root[2] + dir[2] * t;
+    tb_quad q;
+    hf_strand s[2] = {{0, {0.2f, 0.3f}, {0.5f, 0.5f}, 0.5f},
+                      {1, {0.1f, 0.1f}, {0.25f, 0.75f}, 0.25f}};
+    float roots[6], lens[2], rgba[8], xy[2], c4[4];
+    unsigned char px[4] = {10, 20, 30, 40};
+    hf_map m;
+    uint32_t gov[4] = {0, 1, 2, 3};
+    float glen[4] = {1, 1, 1, 1};
+    hf_strand_binding b[2];
+    tb_quad_init(&q);
+    memset(&m, 0, sizeof m);
+    m.data = px; m.width = 2; m.height = 2; m.channels = 1;
+    /* roots */
+    TB_FAILS(hf_strand_roots(NULL, s, 2, 0, 2, roots), HF_ERROR_NULL_POINTER, roots, sizeof roots);
+    TB_FAILS(hf_strand_roots(&q.mesh, NULL, 2, 0, 2, roots), HF_ERROR_NULL_POINTER, roots, sizeof roots);
+    CHECK_EQ_INT(hf_strand_roots(&q.mesh, s, 2, 0, 2, NULL), HF_ERROR_NULL_POINTER);
+    tb_fill(roots, sizeof roots);
+    {
+        hf_result rr = hf_strand_roots(&q.mesh, s, -1, 0, 0, roots);
+        CHECK(rr == HF_ERROR_BAD_COUNT || rr == HF_ERROR_BAD_RANGE);
+        CHECK(tb_untouched(roots, sizeof roots));
     }
-}
-
-/* Every particle (current and previous) finite. */
-static int tr_finite(const hf_ropes *ro)
-{
-    size_t i, n = (size_t)ro->rope_count * ro->points;
-    for (i = 0; i < n; ++i)
-        if (!t_is_finite(ro->x[i]) || !t_is_finite(ro->y[i]) ||
-            !t_is_finite(ro->z[i]) || !t_is_finite(ro->px[i]) ||
-            !t_is_finite(ro->py[i]) || !t_is_finite(ro->pz[i]))
-            return 0;
-    return 1;
-}
-
-static void tr_snapshot(const hf_ropes *ro, float *out)
-{
-    hf_ropes_get_positions(ro, 0, ro->rope_count, out, 0);
-}
-
-/* Largest distance any particle moved between two snapshots. */
-static double tr_max_move(const float *a, const float *b, size_t points)
-{
-    double m = 0.0;
-    size_t i;
-    for (i = 0; i < points; ++i) {
-        double dx = a[3 * i] - b[3 * i], dy = a[3 * i + 1] - b[3 * i + 1],
-               dz = a[3 * i + 2] - b[3 * i + 2];
-        double d = sqrt(dx * dx + dy * dy + dz * dz);
-        if (d > m) m = d;
+    TB_FAILS(hf_strand_roots(&q.mesh, s, 2, 1, 2, roots), HF_ERROR_BAD_RANGE, roots, sizeof roots);
+    TB_FAILS(hf_strand_roots(&q.mesh, s, 2, 2, 0x7fffffff, roots), HF_ERROR_BAD_RANGE, roots, sizeof roots);
+    s[1].triangle = 7;
+    TB_FAILS(hf_strand_roots(&q.mesh, s, 2, 0, 2, roots), HF_ERROR_INDEX_OUT_OF_RANGE, roots, sizeof roots);
+    s[1].triangle = 1;
+    s[1].bary[1] = TB_NAN;
+    TB_FAILS(hf_strand_roots(&q.mesh, s, 2, 0, 2, roots), HF_ERROR_NON_FINITE, roots, sizeof roots);
+    s[1].bary[1] = 0.1f;
+    q.pos[9] = TB_NAN; /* vertex 3, used by triangle 1 */
+    TB_FAILS(hf_strand_roots(&q.mesh, s, 2, 0, 2, roots), HF_ERROR_NON_FINITE, roots, sizeof roots);
+    q.pos[9] = 0.0f;
+    q.mesh.position_stride = 11;
+    TB_FAILS(hf_strand_roots(&q.mesh, s, 2, 0, 2, roots), HF_ERROR_BAD_STRIDE, roots, sizeof roots);
+    q.mesh.position_stride = 0;
+    /* lengths: finite max_length times a float map value above 1 must not
+       overflow to inf */
+    {
+        float two[1] = {2.0f};
+        hf_map fm;
+        hf_result rr;
+        memset(&fm, 0, sizeof fm);
+        fm.data = two; fm.width = 1; fm.height = 1; fm.channels = 1;
+        fm.format = HF_MAP_F32;
+        tb_fill(lens, sizeof lens);
+        rr = hf_strand_lengths(s, 2, 0, 2, &fm, FLT_MAX, lens);
+        CHECK(rr < 0 ? tb_untouched(lens, sizeof lens) : tb_finite(lens, 2));
     }
-    return m;
+    TB_FAILS(hf_strand_lengths(NULL, 2, 0, 2, &m, 1.0f, lens), HF_ERROR_NULL_POINTER, lens, sizeof lens);
+    CHECK_EQ_INT(hf_strand_lengths(s, 2, 0, 2, &m, 1.0f, NULL), HF_ERROR_NULL_POINTER);
+    TB_FAILS(hf_strand_lengths(s, 2, 0, 2, &m, -1.0f, lens), HF_ERROR_BAD_PARAMETER, lens, sizeof lens);
+    TB_FAILS(hf_strand_lengths(s, 2, 0, 2, &m, TB_NAN, lens), HF_ERROR_BAD_PARAMETER, lens, sizeof lens);
+    TB_FAILS(hf_strand_lengths(s, 2, 0, 2, &m, TB_INF, lens), HF_ERROR_BAD_PARAMETER, lens, sizeof lens);
+    TB_FAILS(hf_strand_lengths(s, 2, 1, 2, &m, 1.0f, lens), HF_ERROR_BAD_RANGE, lens, sizeof lens);
+    s[0].uv[0] = TB_NAN;
+    TB_FAILS(hf_strand_lengths(s, 2, 0, 2, &m, 1.0f, lens), HF_ERROR_NON_FINITE, lens, sizeof lens);
+    s[0].uv[0] = 0.5f;
+    m.channels = 0;
+    TB_FAILS(hf_strand_lengths(s, 2, 0, 2, &m, 1.0f, lens), HF_ERROR_BAD_FORMAT, lens, sizeof lens);
+    m.channels = 1;
+    /* colours */
+    TB_FAILS(hf_strand_colors(s, 2, 0, 2, NULL, rgba), HF_ERROR_NULL_POINTER, rgba, sizeof rgba);
+    TB_FAILS(hf_strand_colors(s, 2, -1, 1, &m, rgba), HF_ERROR_BAD_RANGE, rgba, sizeof rgba);
+    s[1].uv[1] = -TB_INF;
+    TB_FAILS(hf_strand_colors(s, 2, 0, 2, &m, rgba), HF_ERROR_NON_FINITE, rgba, sizeof rgba);
+    s[1].uv[1] = 0.75f;
+    /* 3D colour */
+    TB_FAILS(hf_color3d_coord(NULL, 0.5f, 0.5f, 0.5f, xy), HF_ERROR_NULL_POINTER, xy, sizeof xy);
+    TB_FAILS(hf_color3d_coord(&m, TB_NAN, 0.5f, 0.5f, xy), HF_ERROR_NON_FINITE, xy, sizeof xy);
+    TB_FAILS(hf_color3d_coord(&m, 0.5f, 0.5f, TB_INF, xy), HF_ERROR_NON_FINITE, xy, sizeof xy);
+    TB_FAILS(hf_color3d_sample(&m, NULL, 0.5f, 0.5f, 0.5f, c4), HF_ERROR_NULL_POINTER, c4, sizeof c4);
+    TB_FAILS(hf_color3d_sample(&m, &m, 0.5f, TB_NAN, 0.5f, c4), HF_ERROR_NON_FINITE, c4, sizeof c4);
+    CHECK_EQ_INT(hf_color3d_coord(&m, 0.5f, 0.5f, 1e30f, xy), HF_OK);
+    CHECK(xy[1] == 1.0f);
+    /* bindings */
+#define TB_BIND(call, code) TB_FAILS(call, code, b, sizeof b)
+    TB_BIND(hf_bind_strands(NULL, gov, 4, s, 2, 0, 2, NULL, NULL, b), HF_ERROR_NULL_POINTER);
+    TB_BIND(hf_bind_strands(&q.mesh, NULL, 4, s, 2, 0, 2, NULL, NULL, b), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_bind_strands(&q.mesh, gov, 4, s, 2, 0, 2, NULL, NULL, NULL), HF_ERROR_NULL_POINTER);
+    TB_BIND(hf_bind_strands(&q.mesh, gov, 4, s, 2, 0, 2, lens, NULL, b), HF_ERROR_NULL_POINTER);
+    TB_BIND(hf_bind_strands(&q.mesh, gov, 0, s, 2, 0, 2, NULL, NULL, b), HF_ERROR_BAD_COUNT);
+    TB_BIND(hf_bind_strands(&q.mesh, gov, 4, s, 2, 2, 1, NULL, NULL, b), HF_ERROR_BAD_RANGE);
+    gov[3] = 4;
+    TB_BIND(hf_bind_strands(&q.mesh, gov, 4, s, 2, 0, 2, NULL, NULL, b), HF_ERROR_INDEX_OUT_OF_RANGE);
+    gov[3] = 3;
+    s[0].triangle = 2;
+    TB_BIND(hf_bind_strands(&q.mesh, gov, 4, s, 2, 0, 2, NULL, NULL, b), HF_ERROR_INDEX_OUT_OF_RANGE);
+    s[0].triangle = 0;
+    lens[0] = 1.0f; lens[1] = TB_NAN;
+    TB_BIND(hf_bind_strands(&q.mesh, gov, 4, s, 2, 0, 2, lens, glen, b), HF_ERROR_NON_FINITE);
+    lens[1] = 1.0f;
+    glen[2] = TB_INF;
+    TB_BIND(hf_bind_strands(&q.mesh, gov, 4, s, 2, 0, 2, lens, glen, b), HF_ERROR_NON_FINITE);
+    glen[2] = 0.0f; glen[0] = glen[1] = glen[3] = 0.0f; /* weighted length 0: 1 */
+    CHECK_EQ_INT(hf_bind_strands(&q.mesh, gov, 4, s, 2, 0, 2, lens, glen, b), HF_OK);
+    CHECK(b[0].length_scale == 1.0f && t_is_finite(b[1].length_scale));
+#undef TB_BIND
 }
 
-/* Kinetic energy (unit mass per non-root point) from two snapshots. */
-static double tr_kinetic(const float *a, const float *b, int ropes,
-                         int points, double dt)
-{
-    double e = 0.0;
-    int r, j;
-    for (r = 0; r < ropes; ++r)
-        for (j = 1; j < points; ++j) {
-            size_t i = 3 * ((size_t)r * points + j);
-            double vx = (a[i] - b[i]) / dt, vy = (a[i + 1] - b[i + 1]) / dt,
-                   vz = (a[i + 2] - b[i + 2]) / dt;
-            e += 0.5 * (vx * vx + vy * vy + vz * vz);
-        }
-    return e;
-}
-
-/* Rotate v about unit axis k by angle (Rodrigues), in double. */
-static void tr_rotate(const double *k, double ang, const float *v, float *out)
-{
-    double c = cos(ang), s = sin(ang);
-    double kv = k[0] * v[0] + k[1] * v[1] + k[2] * v[2];
-    double cx = k[1] * v[2] - k[2] * v[1], cy = k[2] * v[0] - k[0] * v[2],
-           cz = k[0] * v[1] - k[1] * v[0];
-    out[0] = (float)(v[0] * c + cx * s + k[0] * kv * (1 - c));
-    out[1] = (float)(v[1] * c + cy * s + k[1] * kv * (1 - c));
-    out[2] = (float)(v[2] * c + cz * s + k[2] * kv * (1 - c));
-}
-
-static double tr_dist_seg(const float *p, const hf_collider *c)
-{
-    double ax = c->a[0], ay = c->a[1], az = c->a[2], t = 0.0;
-    double ex = 0, ey = 0, ez = 0, dx, dy, dz;
-    if (c->type == HF_COLLIDER_CAPSULE) {
-        double l2;
-        ex = c->b[0] - ax;
-        ey = c->b[1] - ay;
-        ez = c->b[2] - az;
-        l2 = ex * ex + ey * ey + ez * ez;
-        if (l2 > 0)
-            t = ((p[0] - ax) * ex + (p[1] - ay) * ey + (p[2] - az) * ez) / l2;
-        t = t < 0 ? 0 : (t > 1 ? 1 : t);
-    }
-    dx = p[0] - (ax + ex * t);
-    dy = p[1] - (ay + ey * t);
-    dz = p[2] - (az + ez * t);
-    return sqrt(dx * dx + dy * dy + dz * dz);
-}
-
-/* ---- tests -------------------------------------------------------------- */
+/* ==== 6. ropes ============================================================ */
 
 static void test_ropes_params_defaults_and_validation(void)
 {
@@ -2417,7 +3509,7 @@ static void test_ropes_hanging_settles(void)
     }
     CHECK(ke_peak > 1.0);                      /* it really swung */
     CHECK(ke_last_second < 1e-6 * ke_peak);    /* and settled */
-    CHECK(worst < 0.005f);                     /* the issue's bound */
+    CHECK(worst < 0.005f);                     /* the documented bound */
     CHECK(worst < 1e-4f);                      /* FTL does much better */
     /* hangs straight down from the root */
     CHECK_NEAR(a[3 * (P - 1) + 0], 0.0, 1e-3);
@@ -2462,7 +3554,7 @@ static void test_ropes_shape_kept_by_moving_frame(void)
         for (f = 1; f <= FRAMES; ++f) {
             double ang = 0.05 * f, tt = f / 60.0;
             float off[3];
-            off[0] = (float)(0.3 * sin(2 * TR_PI * tt));
+            off[0] = (float)(0.3 * sin(2 * T_PI * tt));
             off[1] = (float)(0.1 * tt);
             off[2] = (float)(-0.2 * tt);
             for (r = 0; r < R; ++r) {
@@ -2604,7 +3696,7 @@ static void test_ropes_mode_switch_no_jump(void)
             hf_ropes_set_mode(&s.ro, 0, R, HF_ROPE_ANIMATED);
         }
         for (r = 0; r < R; ++r) {
-            root[3 * r] = root0[3 * r] + (float)(0.1 * sin(2 * TR_PI * tt));
+            root[3 * r] = root0[3 * r] + (float)(0.1 * sin(2 * T_PI * tt));
             root[3 * r + 1] = root0[3 * r + 1];
             root[3 * r + 2] = root0[3 * r + 2];
         }
@@ -2946,23 +4038,6 @@ static void test_ropes_root_and_local_stiffness(void)
     CHECK(tip_err[2] < 1e-4);        /*   the whole strand stands */
 }
 
-/* Rope r's root on the 0.1 m head sphere at polar angle el and azimuth az:
-   its direction, normal (the same), tangent (+y) and root point. */
-static void tr_on_head(int r, double el, double az, float *dirs, float *nrm,
-                       float *tan, float *root)
-{
-    float *n = dirs + 3 * r;
-    int k;
-    n[0] = (float)(sin(el) * cos(az));
-    n[1] = (float)cos(el);
-    n[2] = (float)(sin(el) * sin(az));
-    for (k = 0; k < 3; ++k) {
-        nrm[3 * r + k] = n[k];
-        tan[3 * r + k] = k == 1 ? 1.0f : 0.0f;
-        root[3 * r + k] = 0.1f * n[k];
-    }
-}
-
 /* A head (sphere, r = 0.1 m) swinging 0.2 m at 1 Hz with 16-segment 0.3 m
    ropes on it: stretch stays below 0.5 % and no point enters the head. */
 static void test_ropes_swinging_head(void)
@@ -2978,7 +4053,7 @@ static void test_ropes_swinging_head(void)
     if (!tr_open(&s, R, P)) { CHECK(0); return; }
     for (r = 0; r < R; ++r) {
         double el = 0.3 + 1.2 * (r / RING) / (ROWS - 1) * 0.9; /* from top */
-        double az = 2 * TR_PI * (r % RING) / RING;
+        double az = 2 * T_PI * (r % RING) / RING;
         tr_on_head(r, el, az, dirs, nrm, tan, root);
         tr_straight(rest, r, P, root + 3 * r, dirs + 3 * r, 0.3f);
     }
@@ -2988,7 +4063,7 @@ static void test_ropes_swinging_head(void)
     head.type = HF_COLLIDER_SPHERE;
     head.radius = 0.1f;
     for (f = 0; f < FRAMES; ++f) {
-        float cx = (float)(0.2 * sin(2 * TR_PI * (f + 1) / 60.0));
+        float cx = (float)(0.2 * sin(2 * T_PI * (f + 1) / 60.0));
         head.a[0] = cx;
         for (r = 0; r < R; ++r) root[3 * r] = cx + 0.1f * dirs[3 * r];
         hf_ropes_set_roots(&s.ro, 0, R, root, nrm, tan, 0);
@@ -3181,7 +4256,7 @@ static void test_ropes_simd_lanes_match_scalar(void)
     for (k = 0; k < 3; ++k)
         hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm, tan, 0);
     for (f = 0; f < FRAMES + 5; ++f) {
-        float cx = (float)(0.15 * sin(2 * TR_PI * f / 60.0));
+        float cx = (float)(0.15 * sin(2 * T_PI * f / 60.0));
         float dt = f % 10 == 9 ? 0.05f : 1.0f / 60.0f;
         int first = 0, size = 1 + 2 * (f % 4);
         if (f == FRAMES) { /* no forces; ropes 0, 6, 12, ... of zero length */
@@ -3245,45 +4320,231 @@ static void test_ropes_simd_lanes_match_scalar(void)
     for (k = 0; k < 3; ++k) tr_close(&s[k]);
 }
 
-static void run_ropes_tests(void)
+static void test_bad_rope_params(void)
 {
-    RUN(test_ropes_params_defaults_and_validation);
-    RUN(test_ropes_memory_init_create);
-    RUN(test_ropes_hanging_settles);
-    RUN(test_ropes_shape_kept_by_moving_frame);
-    RUN(test_ropes_collider_sweep_never_penetrates);
-    RUN(test_ropes_mode_switch_no_jump);
-    RUN(test_ropes_bad_time_steps);
-    RUN(test_ropes_ranges_byte_identical);
-    RUN(test_ropes_root_frames);
-    RUN(test_ropes_reset_teleport);
-    RUN(test_ropes_root_and_local_stiffness);
-    RUN(test_ropes_swinging_head);
-    RUN(test_ropes_max_stretch_exact);
-    RUN(test_ropes_wind_and_turbulence);
-    RUN(test_ropes_distance_solver_iterations);
-    RUN(test_ropes_get_positions);
-    RUN(test_ropes_simd_lanes_match_scalar);
+    hf_rope_params p, b;
+    hf_diag d;
+    float *fields[19];
+    int i, nf = 0;
+    hf_rope_params_init(&p);
+    CHECK_EQ_INT(hf_rope_params_validate(&p, &d), HF_OK);
+    CHECK_EQ_INT(hf_rope_params_validate(NULL, &d), HF_ERROR_NULL_POINTER);
+    b = p;
+    fields[nf++] = &b.gravity[0]; fields[nf++] = &b.gravity[2];
+    fields[nf++] = &b.wind[1]; fields[nf++] = &b.turbulence;
+    fields[nf++] = &b.turbulence_frequency; fields[nf++] = &b.damping;
+    fields[nf++] = &b.time_scale; fields[nf++] = &b.substep;
+    fields[nf++] = &b.max_dt; fields[nf++] = &b.ftl_damping;
+    fields[nf++] = &b.root_stiffness; fields[nf++] = &b.global_stiffness_root;
+    fields[nf++] = &b.global_stiffness_tip; fields[nf++] = &b.local_stiffness_root;
+    fields[nf++] = &b.local_stiffness_tip; fields[nf++] = &b.collision_margin;
+    fields[nf++] = &b.mode_blend_time;
+    for (i = 0; i < nf; ++i) {
+        float keep = *fields[i];
+        *fields[i] = TB_NAN;
+        CHECK_EQ_INT(hf_rope_params_validate(&b, &d), HF_ERROR_NON_FINITE);
+        CHECK(d.field != NULL);
+        *fields[i] = TB_INF;
+        CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_NON_FINITE);
+        *fields[i] = -1e30f; /* below every range */
+        CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
+        *fields[i] = keep;
+    }
+    b = p; b.time_scale = 0.0f; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
+    b = p; b.max_dt = 0.0f; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
+    b = p; b.max_substeps = 0; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
+    b = p; b.max_substeps = 0x7fffffff; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
+    b = p; b.iterations = -1; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
+    b = p; b.iterations = 0x7fffffff; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
+    b = p; b.solver = 2; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
+    b = p; b.gravity[1] = 2e4f; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
 }
 
-/* ======================================================================== */
-/* 7. interpolation and LOD                                                 */
-/* ======================================================================== */
-
-enum { TP = 8 }; /* points per strand in these tests */
-
-/* three bent guides with distinct shapes */
-static void t_make_guides(float *g, int n)
+static void test_bad_ropes_memory_and_limits(void)
 {
-    int i, j;
-    for (i = 0; i < n; ++i)
-        for (j = 0; j < TP; ++j) {
-            float *p = g + (i * TP + j) * 3;
-            p[0] = (float)i + 0.05f * (float)j * (float)j * (float)(i + 1);
-            p[1] = 0.1f * (float)j;
-            p[2] = (float)(i * i) * 0.3f - 0.02f * (float)j;
-        }
+    size_t sz = 12345;
+    hf_ropes r, sentinel;
+    unsigned char mem[64];
+    hf_ropes *out = (hf_ropes *)&sz;
+    t_counter cnt;
+    hf_allocator a = t_counting(&cnt);
+    CHECK_EQ_INT(hf_ropes_memory_size(1, 2, NULL), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_ropes_memory_size(0, 2, &sz), HF_ERROR_BAD_COUNT);
+    CHECK_EQ_INT(hf_ropes_memory_size(-1, 2, &sz), HF_ERROR_BAD_COUNT);
+    CHECK_EQ_INT(hf_ropes_memory_size(1, 1, &sz), HF_ERROR_BAD_COUNT);
+    CHECK_EQ_INT(hf_ropes_memory_size(1, -0x7fffffff - 1, &sz), HF_ERROR_BAD_COUNT);
+    CHECK_EQ_INT(sz, 12345);
+    /* counts near INT_MAX: the byte size overflows size_t (64-bit: 2^31 *
+       2^31 * 40 bytes) or is refused as too large, never wrapped */
+    CHECK(hf_ropes_memory_size(0x7fffffff, 0x7fffffff, &sz) == HF_ERROR_OVERFLOW);
+    CHECK_EQ_INT(sz, 12345);
+    {
+        hf_result rr = hf_ropes_memory_size(0x7fffffff, 2, &sz);
+        CHECK(rr == HF_OK || rr == HF_ERROR_OVERFLOW);
+        if (rr == HF_OK) CHECK(sz > (size_t)0x7fffffff * 40u);
+    }
+    memset(&sentinel, 0xA5, sizeof sentinel);
+    r = sentinel;
+    CHECK_EQ_INT(hf_ropes_init(&r, 1, 2, NULL, 1000), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_ropes_init(NULL, 1, 2, mem, sizeof mem), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_ropes_init(&r, 0, 2, mem, sizeof mem), HF_ERROR_BAD_COUNT);
+    CHECK_EQ_INT(hf_ropes_init(&r, 1, 2, mem, sizeof mem), HF_ERROR_BUFFER_TOO_SMALL);
+    CHECK_EQ_INT(hf_ropes_init(&r, 0x7fffffff, 0x7fffffff, mem, (size_t)-1),
+                 HF_ERROR_OVERFLOW);
+    CHECK(memcmp(&r, &sentinel, sizeof r) == 0);
+    /* create: OOM, absurd counts, nothing leaked, *out untouched */
+    cnt.fail_after = 0;
+    CHECK_EQ_INT(hf_ropes_create(4, 4, &a, &out), HF_ERROR_OUT_OF_MEMORY);
+    CHECK(out == (hf_ropes *)&sz);
+    cnt.fail_after = -1;
+    CHECK_EQ_INT(hf_ropes_create(0x7fffffff, 0x7fffffff, &a, &out), HF_ERROR_OVERFLOW);
+    CHECK(out == (hf_ropes *)&sz);
+    CHECK_EQ_INT(hf_ropes_create(4, 4, &a, NULL), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(cnt.allocs, cnt.frees);
+    hf_ropes_destroy(NULL);
 }
+
+static void test_bad_ropes_set_rest_and_roots(void)
+{
+    tb_ropes t;
+    int k;
+    tb_ropes_open(&t);
+    for (k = 0; k < 2; ++k) {
+        /* k = 0: hf_ropes_set_rest, k = 1: hf_ropes_set_roots */
+#define TB_SET(rest, pos, nrm, tan, stride, first, count, code)                \
+    TB_ROPES_FAIL(t,                                                           \
+                  k == 0 ? hf_ropes_set_rest(&t.r, first, count, rest, 0, pos, \
+                                             nrm, tan, stride)                 \
+                         : hf_ropes_set_roots(&t.r, first, count, pos, nrm,    \
+                                              tan, stride),                    \
+                  code)
+        TB_SET(t.rest, NULL, t.nrm, t.tan, 0, 0, 3, HF_ERROR_NULL_POINTER);
+        TB_SET(t.rest, t.pos, NULL, t.tan, 0, 0, 3, HF_ERROR_NULL_POINTER);
+        TB_SET(t.rest, t.pos, t.nrm, NULL, 0, 0, 3, HF_ERROR_NULL_POINTER);
+        TB_SET(t.rest, t.pos, t.nrm, t.tan, 0, 1, 3, HF_ERROR_BAD_RANGE);
+        TB_SET(t.rest, t.pos, t.nrm, t.tan, 0, -1, 1, HF_ERROR_BAD_RANGE);
+        TB_SET(t.rest, t.pos, t.nrm, t.tan, 0, 3, 0x7fffffff, HF_ERROR_BAD_RANGE);
+        TB_SET(t.rest, t.pos, t.nrm, t.tan, 8, 0, 3, HF_ERROR_BAD_STRIDE);
+        TB_SET(t.rest, t.pos, t.nrm, t.tan, -12, 0, 3, HF_ERROR_BAD_STRIDE);
+        t.pos[4] = TB_NAN;
+        TB_SET(t.rest, t.pos, t.nrm, t.tan, 0, 0, 3, HF_ERROR_NON_FINITE);
+        t.pos[4] = 2e6f; /* beyond HF_ROPE_MAX_COORD */
+        TB_SET(t.rest, t.pos, t.nrm, t.tan, 0, 0, 3, HF_ERROR_BAD_PARAMETER);
+        t.pos[4] = 0.0f;
+        t.tan[8] = TB_INF;
+        TB_SET(t.rest, t.pos, t.nrm, t.tan, 0, 0, 3, HF_ERROR_NON_FINITE);
+        t.tan[8] = 0.0f;
+        t.nrm[3] = t.nrm[4] = t.nrm[5] = 0.0f;
+        TB_SET(t.rest, t.pos, t.nrm, t.tan, 0, 0, 3, HF_ERROR_DEGENERATE);
+        t.nrm[4] = 1.0f;
+        CHECK_EQ_INT(hf_ropes_set_rest(NULL, 0, 3, t.rest, 0, t.pos, t.nrm, t.tan, 0),
+                     HF_ERROR_NULL_POINTER);
+        CHECK_EQ_INT(hf_ropes_set_roots(NULL, 0, 3, t.pos, t.nrm, t.tan, 0),
+                     HF_ERROR_NULL_POINTER);
+#undef TB_SET
+    }
+    /* rest positions: NULL, NaN, stride */
+    TB_ROPES_FAIL(t, hf_ropes_set_rest(&t.r, 0, 3, NULL, 0, t.pos, t.nrm, t.tan, 0),
+                  HF_ERROR_NULL_POINTER);
+    t.rest[20] = -TB_INF;
+    TB_ROPES_FAIL(t, hf_ropes_set_rest(&t.r, 0, 3, t.rest, 0, t.pos, t.nrm, t.tan, 0),
+                  HF_ERROR_NON_FINITE);
+    t.rest[20] = 0.0f;
+    TB_ROPES_FAIL(t, hf_ropes_set_rest(&t.r, 0, 3, t.rest, 4, t.pos, t.nrm, t.tan, 0),
+                  HF_ERROR_BAD_STRIDE);
+    /* a tangent parallel to the normal, and zero: a deterministic
+       perpendicular, no NaN */
+    t.tan[0] = 0; t.tan[1] = 5; t.tan[2] = 0;
+    t.tan[3] = t.tan[4] = t.tan[5] = 0;
+    CHECK_EQ_INT(hf_ropes_set_roots(&t.r, 0, 3, t.pos, t.nrm, t.tan, 0), HF_OK);
+    {
+        hf_rope_params p;
+        hf_rope_params_init(&p);
+        CHECK_EQ_INT(hf_ropes_step(&t.r, 0, 3, 1.0f / 60.0f, &p, NULL, 0), HF_OK);
+        CHECK(tb_finite(t.r.x, 12) && tb_finite(t.r.y, 12) && tb_finite(t.r.z, 12));
+    }
+    free(t.mem);
+}
+
+static void test_bad_ropes_step(void)
+{
+    tb_ropes t;
+    hf_rope_params p;
+    hf_collider c;
+    float st = -7.0f;
+    float out[36];
+    tb_ropes_open(&t);
+    hf_rope_params_init(&p);
+    memset(&c, 0, sizeof c);
+    c.type = HF_COLLIDER_SPHERE;
+    c.a[1] = 0.2f;
+    c.radius = 0.05f;
+    /* time steps */
+    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.0f, &p, NULL, 0), HF_ERROR_BAD_TIME_STEP);
+    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, -0.01f, &p, NULL, 0), HF_ERROR_BAD_TIME_STEP);
+    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, -0.0f, &p, NULL, 0), HF_ERROR_BAD_TIME_STEP);
+    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, TB_NAN, &p, NULL, 0), HF_ERROR_BAD_TIME_STEP);
+    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, TB_INF, &p, NULL, 0), HF_ERROR_BAD_TIME_STEP);
+    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, -TB_INF, &p, NULL, 0), HF_ERROR_BAD_TIME_STEP);
+    /* huge: clamped to max_dt, HF_OK, finite */
+    CHECK_EQ_INT(hf_ropes_step(&t.r, 0, 3, FLT_MAX, &p, &c, 1), HF_OK);
+    CHECK(tb_finite(t.r.x, 12) && tb_finite(t.r.y, 12) && tb_finite(t.r.z, 12));
+    CHECK_EQ_INT(hf_ropes_step(&t.r, 0, 3, 1e-30f, &p, &c, 1), HF_OK);
+    CHECK(tb_finite(t.r.x, 12) && tb_finite(t.r.y, 12));
+    /* the rest */
+    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.01f, NULL, NULL, 0), HF_ERROR_NULL_POINTER);
+    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.01f, &p, NULL, 1), HF_ERROR_NULL_POINTER);
+    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.01f, &p, &c, -1), HF_ERROR_BAD_COUNT);
+    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 2, 2, 0.01f, &p, NULL, 0), HF_ERROR_BAD_RANGE);
+    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 1, 0x7fffffff, 0.01f, &p, NULL, 0), HF_ERROR_BAD_RANGE);
+    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, -1, 1, 0.01f, &p, NULL, 0), HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_ropes_step(NULL, 0, 3, 0.01f, &p, NULL, 0), HF_ERROR_NULL_POINTER);
+    p.damping = TB_NAN;
+    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.01f, &p, NULL, 0), HF_ERROR_NON_FINITE);
+    hf_rope_params_init(&p);
+    c.radius = TB_NAN;
+    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.01f, &p, &c, 1), HF_ERROR_NON_FINITE);
+    c.radius = -1.0f;
+    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.01f, &p, &c, 1), HF_ERROR_BAD_PARAMETER);
+    c.radius = 0.05f;
+    c.a[0] = TB_INF;
+    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.01f, &p, &c, 1), HF_ERROR_NON_FINITE);
+    c.a[0] = 2e6f;
+    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.01f, &p, &c, 1), HF_ERROR_BAD_PARAMETER);
+    c.a[0] = 0.0f;
+    c.type = 2;
+    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.01f, &p, &c, 1), HF_ERROR_BAD_PARAMETER);
+    c.type = HF_COLLIDER_CAPSULE; /* a == b: a zero-length capsule */
+    c.b[0] = c.a[0]; c.b[1] = c.a[1]; c.b[2] = c.a[2];
+    CHECK_EQ_INT(hf_ropes_step(&t.r, 0, 3, 0.01f, &p, &c, 1), HF_OK);
+    CHECK(tb_finite(t.r.x, 12) && tb_finite(t.r.y, 12) && tb_finite(t.r.z, 12));
+    /* a collider centred exactly on a particle */
+    c.type = HF_COLLIDER_SPHERE;
+    c.a[0] = t.r.x[1 * 3 + 0]; c.a[1] = t.r.y[3]; c.a[2] = t.r.z[3];
+    CHECK_EQ_INT(hf_ropes_step(&t.r, 0, 3, 0.01f, &p, &c, 1), HF_OK);
+    CHECK(tb_finite(t.r.x, 12) && tb_finite(t.r.y, 12) && tb_finite(t.r.z, 12));
+    /* mode, reset, stretch, positions */
+    TB_ROPES_FAIL(t, hf_ropes_set_mode(&t.r, 0, 3, 2), HF_ERROR_BAD_PARAMETER);
+    TB_ROPES_FAIL(t, hf_ropes_set_mode(&t.r, 0, 3, -1), HF_ERROR_BAD_PARAMETER);
+    TB_ROPES_FAIL(t, hf_ropes_set_mode(&t.r, 3, 1, 0), HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_ropes_set_mode(NULL, 0, 1, 0), HF_ERROR_NULL_POINTER);
+    TB_ROPES_FAIL(t, hf_ropes_reset(&t.r, 0, 4), HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_ropes_reset(NULL, 0, 1), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_ropes_max_stretch(&t.r, 0, 4, &st), HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_ropes_max_stretch(&t.r, 0, 3, NULL), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_ropes_max_stretch(NULL, 0, 3, &st), HF_ERROR_NULL_POINTER);
+    CHECK(st == -7.0f);
+    CHECK_EQ_INT(hf_ropes_max_stretch(&t.r, 3, 0, &st), HF_OK);
+    CHECK(st == 0.0f);
+    TB_FAILS(hf_ropes_get_positions(&t.r, 0, 4, out, 0), HF_ERROR_BAD_RANGE, out, sizeof out);
+    TB_FAILS(hf_ropes_get_positions(&t.r, 0, 3, out, 8), HF_ERROR_BAD_STRIDE, out, sizeof out);
+    TB_FAILS(hf_ropes_get_positions(&t.r, 0, 3, out, -12), HF_ERROR_BAD_STRIDE, out, sizeof out);
+    TB_FAILS(hf_ropes_get_positions(NULL, 0, 3, out, 0), HF_ERROR_NULL_POINTER, out, sizeof out);
+    CHECK_EQ_INT(hf_ropes_get_positions(&t.r, 0, 3, NULL, 0), HF_ERROR_NULL_POINTER);
+    free(t.mem);
+}
+
+/* ==== 7. interpolation and LOD ============================================ */
 
 static void test_interp_on_guide_equals_guide(void)
 {
@@ -3473,75 +4734,71 @@ static void test_lod_counts_and_widths_exact(void)
     CHECK(hf_lod_from_distance((float)NAN, 2.0f, 50.0f) == 1.0f);
 }
 
-/* ======================================================================== */
-/* 8. ribbons                                                               */
-/* ======================================================================== */
-
-typedef struct t_rvert {
-    float pos[3], tan[3], tc[3], col[4], c3[2];
-} t_rvert;
-
-static hf_ribbon_output t_interleaved(t_rvert *v)
+static void test_bad_interpolate_and_lod(void)
 {
-    hf_ribbon_output o;
-    memset(&o, 0, sizeof o);
-    o.position.data = v[0].pos;
-    o.tangent.data = v[0].tan;
-    o.texcoord.data = v[0].tc;
-    o.color.data = v[0].col;
-    o.color3d.data = v[0].c3;
-    o.position.stride = o.tangent.stride = o.texcoord.stride =
-        o.color.stride = o.color3d.stride = (int)sizeof(t_rvert);
-    return o;
+    float g[2 * 3 * 3], out[2 * 3 * 3];
+    hf_strand_binding b[2];
+    hf_interp_params ip;
+    int i;
+    for (i = 0; i < 18; ++i) g[i] = (float)i * 0.1f;
+    for (i = 0; i < 2; ++i) {
+        b[i].guide[0] = 0; b[i].guide[1] = 1; b[i].guide[2] = 1;
+        b[i].weight[0] = 0.5f; b[i].weight[1] = 0.25f; b[i].weight[2] = 0.25f;
+        b[i].length_scale = 1.0f;
+    }
+    memset(&ip, 0, sizeof ip);
+    ip.points_per_strand = 3;
+#define TB_INTERP(guides, gc, first, count, code)                              \
+    TB_FAILS(hf_interpolate((guides), (gc), b, (first), (count), &ip, out),    \
+             (code), out, sizeof out)
+    TB_INTERP(NULL, 2, 0, 2, HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_interpolate(g, 2, NULL, 0, 2, &ip, out), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_interpolate(g, 2, b, 0, 2, NULL, out), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_interpolate(g, 2, b, 0, 2, &ip, NULL), HF_ERROR_NULL_POINTER);
+    TB_INTERP(g, 2, -1, 1, HF_ERROR_BAD_RANGE);
+    TB_INTERP(g, 2, 0, -1, HF_ERROR_BAD_RANGE);
+    TB_INTERP(g, 2, 1, 0x7fffffff, HF_ERROR_BAD_RANGE);
+    ip.points_per_strand = 1; TB_INTERP(g, 2, 0, 2, HF_ERROR_BAD_COUNT);
+    ip.points_per_strand = HF_MAX_POINTS + 1; TB_INTERP(g, 2, 0, 2, HF_ERROR_BAD_COUNT);
+    ip.points_per_strand = 3;
+    TB_INTERP(g, 1, 0, 2, HF_ERROR_INDEX_OUT_OF_RANGE);
+    b[1].guide[2] = 0xffffffffu; TB_INTERP(g, 2, 0, 2, HF_ERROR_INDEX_OUT_OF_RANGE);
+    b[1].guide[2] = 1;
+    b[1].weight[1] = TB_NAN; TB_INTERP(g, 2, 0, 2, HF_ERROR_NON_FINITE);
+    b[1].weight[1] = 0.25f;
+    b[0].length_scale = TB_INF; TB_INTERP(g, 2, 0, 2, HF_ERROR_NON_FINITE);
+    b[0].length_scale = 1.0f;
+    ip.clump = TB_NAN; TB_INTERP(g, 2, 0, 2, HF_ERROR_NON_FINITE);
+    ip.clump = 1.5f; TB_INTERP(g, 2, 0, 2, HF_ERROR_BAD_PARAMETER);
+    ip.clump = -0.1f; TB_INTERP(g, 2, 0, 2, HF_ERROR_BAD_PARAMETER);
+    ip.clump = 0.0f;
+    /* NaN guide points: never NaN in the output */
+    g[4] = TB_NAN;
+    tb_fill(out, sizeof out);
+    {
+        hf_result r = hf_interpolate(g, 2, b, 0, 2, &ip, out);
+        CHECK(r < 0 ? tb_untouched(out, sizeof out) : tb_finite(out, 18));
+    }
+    g[4] = 0.4f;
+#undef TB_INTERP
+    /* LOD helpers: total functions, never NaN */
+    CHECK_EQ_INT(hf_lod_strand_count(100, TB_NAN), 0);
+    CHECK_EQ_INT(hf_lod_strand_count(100, -TB_INF), 0);
+    CHECK_EQ_INT(hf_lod_strand_count(100, TB_INF), 100);
+    CHECK_EQ_INT(hf_lod_strand_count(-5, 0.5f), 0);
+    CHECK_EQ_INT(hf_lod_strand_count(0x7fffffff, 1.0f), 0x7fffffff);
+    CHECK(hf_lod_strand_count(0x7fffffff, 0.999999f) <= 0x7fffffff);
+    CHECK(hf_lod_width_scale(0x7fffffff, 1) > 1.0f && t_is_finite(hf_lod_width_scale(0x7fffffff, 1)));
+    CHECK(hf_lod_width_scale(-1, -1) == 1.0f);
+    CHECK(hf_lod_from_distance(TB_NAN, 1.0f, 10.0f) == 1.0f);
+    CHECK(hf_lod_from_distance(5.0f, TB_NAN, 10.0f) == 1.0f);
+    CHECK(hf_lod_from_distance(5.0f, 1.0f, TB_INF) == 1.0f);
+    CHECK(hf_lod_from_distance(-1.0f, 1.0f, 10.0f) == 1.0f);
+    CHECK(t_is_finite(hf_lod_from_distance(5.0f, 0.0f, 10.0f)));
+    CHECK(t_is_finite(hf_lod_from_distance(FLT_MAX, FLT_MAX, FLT_MAX)));
 }
 
-static hf_ribbon_params t_rparams(void)
-{
-    hf_ribbon_params p;
-    memset(&p, 0, sizeof p);
-    p.points_per_strand = TP;
-    p.eye[0] = 0.3f; p.eye[1] = 1.0f; p.eye[2] = 5.0f;
-    /* wide enough that the side recovered from the float vertices is exact
-       to 1e-6 relative: the tests measure the library, not float rounding */
-    p.root_width = 0.4f;
-    p.tip_width = 0.1f;
-    return p;
-}
-
-static float t_len3(const float *a) { return sqrtf(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
-
-/* Side vectors perpendicular to tangent and view; widths exact at the ends;
-   every value finite. Returns the number of failed properties. */
-static void t_check_ribbon(const t_rvert *v, const float *pts, int strands,
-                           const hf_ribbon_params *p, int check_perp)
-{
-    int s, j, k;
-    for (s = 0; s < strands; ++s)
-        for (j = 0; j < TP; ++j) {
-            const t_rvert *a = &v[(s * TP + j) * 2], *b = a + 1;
-            const float *pt = pts + (s * TP + j) * 3;
-            float side[3], view[3], w, sl, vl;
-            for (k = 0; k < 3; ++k) {
-                side[k] = b->pos[k] - a->pos[k];
-                view[k] = p->orthographic ? -p->view_dir[k] : p->eye[k] - pt[k];
-            }
-            for (k = 0; k < 15; ++k) CHECK(t_is_finite((&a->pos[0])[k]));
-            w = t_len3(side);
-            sl = w > 0 ? w : 1;
-            vl = t_len3(view);
-            CHECK_NEAR(t_len3(a->tan), 1.0f, 1e-6);
-            if (check_perp) {
-                CHECK(fabs((side[0] * a->tan[0] + side[1] * a->tan[1] + side[2] * a->tan[2]) / sl) < 1e-5);
-                if (vl > 0)
-                    CHECK(fabs((side[0] * view[0] + side[1] * view[1] + side[2] * view[2]) / (sl * vl)) < 1e-5);
-            }
-            /* exact up to the rounding of the two float vertex positions */
-            if (j == 0) CHECK_NEAR(w, p->root_width, 3e-7 * (1.0 + t_len3(pt)));
-            if (j == TP - 1) CHECK_NEAR(w, p->tip_width, 3e-7 * (1.0 + t_len3(pt)));
-            /* the vertices straddle the point */
-            for (k = 0; k < 3; ++k) CHECK_NEAR(0.5f * (a->pos[k] + b->pos[k]), pt[k], 1e-6);
-        }
-}
+/* ==== 8. ribbons ========================================================== */
 
 static void test_ribbons_perpendicular_and_widths(void)
 {
@@ -3899,14 +5156,6 @@ static void test_ribbons_sse_matches_reference(void)
     }
 }
 
-/* Half bits to float, exactly. */
-static double t_half(uint16_t h)
-{
-    const int e = (h >> 10) & 31, m = h & 1023;
-    const double v = e == 0 ? ldexp((double)m, -24) : ldexp(1024.0 + m, e - 25);
-    return (h & 0x8000) ? -v : v;
-}
-
 static void test_format_encoders(void)
 {
     /* Scalar and SSE encoders agree bit for bit; each code is the nearest
@@ -4143,146 +5392,109 @@ static void test_ribbon_winding_faces_camera(void)
     CHECK(n[0] * view[0] + n[1] * view[1] + n[2] * view[2] > 0.0f);
 }
 
-/* ======================================================================== */
-/* 9. LUT baking (Marschner M and N textures; docs/marschner-spec.md)      */
-/* ======================================================================== */
+static void test_bad_ribbons(void)
+{
+    float pts[2 * 3 * 3] = {0, 0, 0, 0, 0.1f, 0, 0, 0.2f, 0,
+                            1, 0, 0, 1, 0, 0, 1, 0, 0}; /* strand 1: no length */
+    float v[2 * 3 * 2 * 3], p4[2 * 3 * 4];
+    hf_ribbon_strands st;
+    hf_ribbon_params rp, b;
+    hf_ribbon_output o;
+    uint32_t ix[64];
+    memset(&st, 0, sizeof st);
+    st.points = pts;
+    memset(&rp, 0, sizeof rp);
+    rp.points_per_strand = 3;
+    rp.eye[2] = 2.0f;
+    rp.root_width = 0.01f;
+    memset(&o, 0, sizeof o);
+    o.position.data = v;
+#define TB_RIB(params, first, count, code)                                     \
+    do {                                                                       \
+        TB_FAILS(hf_ribbons(&st, (first), (count), &(params), &o), (code), v,  \
+                 sizeof v);                                                    \
+        TB_FAILS(hf_ribbon_points(&st, (first), (count), &(params), p4),       \
+                 (code), p4, sizeof p4);                                       \
+    } while (0)
+    b = rp; b.points_per_strand = 1; TB_RIB(b, 0, 2, HF_ERROR_BAD_COUNT);
+    b = rp; b.points_per_strand = HF_MAX_POINTS + 1; TB_RIB(b, 0, 2, HF_ERROR_BAD_COUNT);
+    TB_RIB(rp, -1, 1, HF_ERROR_BAD_RANGE);
+    TB_RIB(rp, 0, -1, HF_ERROR_BAD_RANGE);
+    TB_RIB(rp, 1, 0x7fffffff, HF_ERROR_BAD_RANGE);
+    b = rp; b.eye[1] = TB_NAN; TB_RIB(b, 0, 2, HF_ERROR_NON_FINITE);
+    b = rp; b.view_dir[0] = TB_INF; TB_RIB(b, 0, 2, HF_ERROR_NON_FINITE);
+    b = rp; b.root_width = -0.01f; TB_RIB(b, 0, 2, HF_ERROR_BAD_PARAMETER);
+    b = rp; b.tip_width = TB_NAN; TB_RIB(b, 0, 2, HF_ERROR_NON_FINITE);
+    b = rp; b.taper_power = -1.0f; TB_RIB(b, 0, 2, HF_ERROR_BAD_PARAMETER);
+    b = rp; b.width_scale = TB_INF; TB_RIB(b, 0, 2, HF_ERROR_NON_FINITE);
+    b = rp; b.alpha_tip = TB_NAN; TB_RIB(b, 0, 2, HF_ERROR_NON_FINITE);
+    b = rp; b.orthographic = 1; TB_RIB(b, 0, 2, HF_ERROR_DEGENERATE); /* zero view_dir */
+    st.points = NULL; TB_RIB(rp, 0, 2, HF_ERROR_NULL_POINTER); st.points = pts;
+    CHECK_EQ_INT(hf_ribbons(NULL, 0, 2, &rp, &o), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 2, NULL, &o), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 2, &rp, NULL), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_ribbon_points(&st, 0, 2, &rp, NULL), HF_ERROR_NULL_POINTER);
+    o.position.stride = -12;
+    TB_FAILS(hf_ribbons(&st, 0, 2, &rp, &o), HF_ERROR_BAD_STRIDE, v, sizeof v);
+    o.position.stride = 0;
+    /* the eye exactly on a strand point, and on the line of a strand:
+       finite vertices */
+    b = rp; b.eye[0] = 0; b.eye[1] = 0.1f; b.eye[2] = 0;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 2, &b, &o), HF_OK);
+    CHECK(tb_finite(v, sizeof v / sizeof v[0]));
+    b.eye[1] = 5.0f;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 2, &b, &o), HF_OK);
+    CHECK(tb_finite(v, sizeof v / sizeof v[0]));
+    /* orthographic along the strand */
+    b = rp; b.orthographic = 1; b.view_dir[1] = 1.0f;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 2, &b, &o), HF_OK);
+    CHECK(tb_finite(v, sizeof v / sizeof v[0]));
+    /* NaN positions get a result code or a clamp, never NaN out */
+    pts[4] = TB_NAN;
+    tb_fill(v, sizeof v);
+    {
+        hf_result r = hf_ribbons(&st, 0, 2, &rp, &o);
+        CHECK(r < 0 ? tb_untouched(v, sizeof v) : tb_finite(v, sizeof v / sizeof v[0]));
+    }
+    pts[4] = 0.1f;
+    /* finite widths whose product overflows: never inf or NaN */
+    b = rp; b.root_width = 1e30f; b.width_scale = 1e30f;
+    tb_fill(v, sizeof v);
+    {
+        hf_result r = hf_ribbons(&st, 0, 2, &b, &o);
+        CHECK(r < 0 ? tb_untouched(v, sizeof v) : tb_finite(v, sizeof v / sizeof v[0]));
+        r = hf_ribbon_points(&st, 0, 2, &b, p4);
+        CHECK(r < 0 || tb_finite(p4, sizeof p4 / sizeof p4[0]));
+    }
+#undef TB_RIB
+    /* indices */
+    CHECK(hf_ribbon_index_count(-1, 3, HF_TRIANGLES) == -1);
+    CHECK(hf_ribbon_index_count(1, 1, HF_TRIANGLES) == -1);
+    CHECK(hf_ribbon_index_count(1, 3, 2) == -1);
+    CHECK(hf_ribbon_index_count(0x7fffffff, 0x7fffffff, HF_TRIANGLES) == -1);
+    CHECK(hf_ribbon_index_count(0x7fffffff, 2, HF_STRIP_RESTART) == -1);
+    CHECK(hf_ribbon_index_count(0, 3, HF_TRIANGLES) == 0);
+    TB_FAILS(hf_ribbon_indices(2, 3, HF_TRIANGLES, ix, 23), HF_ERROR_BUFFER_TOO_SMALL, ix, sizeof ix);
+    TB_FAILS(hf_ribbon_indices(-1, 3, HF_TRIANGLES, ix, 64), HF_ERROR_BAD_COUNT, ix, sizeof ix);
+    TB_FAILS(hf_ribbon_indices(2, 1, HF_TRIANGLES, ix, 64), HF_ERROR_BAD_COUNT, ix, sizeof ix);
+    TB_FAILS(hf_ribbon_indices(2, 3, 7, ix, 64), HF_ERROR_BAD_PARAMETER, ix, sizeof ix);
+    TB_FAILS(hf_ribbon_indices(0x7fffffff, 0x7fffffff, HF_TRIANGLES, ix, 64),
+             HF_ERROR_OVERFLOW, ix, sizeof ix);
+    TB_FAILS(hf_ribbon_indices(2, 3, HF_TRIANGLES, ix, -1), HF_ERROR_BUFFER_TOO_SMALL, ix, sizeof ix);
+    CHECK_EQ_INT(hf_ribbon_indices(2, 3, HF_TRIANGLES, NULL, 64), HF_ERROR_NULL_POINTER);
+    /* 2 P strand_count past 2^32 while the index count fits an int: P =
+       2^29, 5 strands -> 2^31 * 5 / 2^29 ... the vertex-number check */
+    TB_FAILS(hf_ribbon_indices(1 << 24, 300, HF_STRIP_RESTART, ix, 64),
+             hf_ribbon_index_count(1 << 24, 300, HF_STRIP_RESTART) < 0
+                 ? HF_ERROR_OVERFLOW : HF_ERROR_BUFFER_TOO_SMALL,
+             ix, sizeof ix);
+}
+
+/* ==== 9. LUT baking: the Marschner M and N textures ======================= */
 
 /* Expected numbers are the spot values, texel table and channel sums of
    docs/marschner-spec.md section 11, and closed forms / integrals written here
    independently of the library from the formulas of sections 4-6. */
-
-#define T_PI 3.14159265358979323846
-#define T_DEG (T_PI / 180.0)
-
-static hf_lut_params t_lut_defaults(int size, hf_lut_variant v)
-{
-    hf_lut_params p;
-    hf_lut_params_init(&p);
-    p.size = size;
-    p.variant = v;
-    return p;
-}
-
-static float *t_lut_alloc(int n)
-{
-    return (float *)malloc(sizeof(float) * 4u * (size_t)n * (size_t)n);
-}
-
-/* |x - r| <= tol * |r| */
-#define CHECK_REL(x, r, tol) CHECK_NEAR((x), (r), (tol) * fabs((double)(r)))
-
-/* ---- independent model pieces, straight from docs/marschner-spec.md ---- */
-
-static double t_rs(double n, double x)
-{
-    double s = sin(x) / n, ci, ct, r;
-    if (s * s >= 1.0) return 1.0;
-    ci = fabs(cos(x));
-    ct = sqrt(1.0 - s * s);
-    r = (ci - n * ct) / (ci + n * ct);
-    return r * r;
-}
-
-static double t_rp(double n, double x)
-{
-    double s = sin(x) / n, ci, ct, r;
-    if (s * s >= 1.0) return 1.0;
-    ci = fabs(cos(x));
-    ct = sqrt(1.0 - s * s);
-    r = (n * ci - ct) / (n * ci + ct);
-    return r * r;
-}
-
-typedef struct t_col {
-    double eta1, eta2, sigma1, c;
-} t_col;
-
-static t_col t_column(double eta, double cd, double sigma)
-{
-    t_col k;
-    double s2 = 1.0 - cd * cd, cos_tt;
-    k.eta1 = sqrt(eta * eta - s2) / cd;
-    k.eta2 = eta * eta / k.eta1;
-    cos_tt = sqrt(eta * eta - s2) / eta;
-    k.sigma1 = sigma / cos_tt;
-    k.c = asin(1.0 / k.eta1);
-    return k;
-}
-
-/* A(p, h) of section 6.4 */
-static double t_atten(const t_col *k, int p, double h)
-{
-    double g = asin(h), gt = asin(h / k->eta1);
-    double f_ext = 0.5 * (t_rs(k->eta1, g) + t_rp(k->eta2, g));
-    double f_int = 0.5 * (t_rs(1.0 / k->eta1, gt) + t_rp(1.0 / k->eta2, gt));
-    double T = exp(-2.0 * k->sigma1 * (1.0 + cos(2.0 * gt)));
-    if (p == 0) return f_ext;
-    return (1.0 - f_ext) * (1.0 - f_ext) * pow(f_int, p - 1) * pow(T, p);
-}
-
-/* Phi(p, g) - p pi and its derivative, cubic (6.2) or exact (6.5) */
-static double t_phi(const t_col *k, int p, double g, int exact)
-{
-    if (exact) return 2.0 * p * asin(sin(g) / k->eta1) - 2.0 * g;
-    return (6.0 * p * k->c / T_PI - 2.0) * g -
-           8.0 * p * k->c / (T_PI * T_PI * T_PI) * g * g * g;
-}
-
-static double t_dphi(const t_col *k, int p, double g, int exact)
-{
-    if (exact)
-        return 2.0 * p * cos(g) / sqrt(k->eta1 * k->eta1 - sin(g) * sin(g)) -
-               2.0;
-    return (6.0 * p * k->c / T_PI - 2.0) -
-           24.0 * p * k->c / (T_PI * T_PI * T_PI) * g * g;
-}
-
-/* Reference N(p): brute-force root search (a fine grid split at the fold,
-   bisection to 1e-14) and the sum of section 6.1 with clamp j_min. */
-static double t_ref_n(int p, double eta, double cd, double phi, double sigma,
-                      int exact, double j_min)
-{
-    t_col k = t_column(eta, cd < 1e-4 ? 1e-4 : cd, sigma);
-    double t = phi - p * T_PI, brk[4], sum = 0.0;
-    int nb = 0, b, s;
-    const int steps = 512;
-    while (t >= T_PI) t -= 2.0 * T_PI;
-    while (t < -T_PI) t += 2.0 * T_PI;
-    brk[nb++] = -T_PI / 2;
-    if (p == 2 && k.eta1 < 2.0) {
-        double gc = exact ? asin(sqrt((4.0 - k.eta1 * k.eta1) / 3.0))
-                          : sqrt((6.0 * 2 * k.c / T_PI - 2.0) /
-                                 (3.0 * 16.0 * k.c / (T_PI * T_PI * T_PI)));
-        brk[nb++] = -gc;
-        brk[nb++] = gc;
-    }
-    brk[nb++] = T_PI / 2;
-    for (b = 0; b + 1 < nb; ++b)
-        for (s = 0; s < steps; ++s) {
-            double x0 = brk[b] + (brk[b + 1] - brk[b]) * s / steps;
-            double x1 = brk[b] + (brk[b + 1] - brk[b]) * (s + 1) / steps;
-            double f0 = t_phi(&k, p, x0, exact) - t;
-            double f1 = t_phi(&k, p, x1, exact) - t, x, jac;
-            int it;
-            if (!(f0 < 0.0 && f1 >= 0.0) && !(f0 > 0.0 && f1 <= 0.0)) continue;
-            for (it = 0; it < 200 && x1 - x0 > 1e-14; ++it) {
-                double xm = 0.5 * (x0 + x1), fm = t_phi(&k, p, xm, exact) - t;
-                if ((fm < 0.0) == (f0 < 0.0)) {
-                    x0 = xm;
-                    f0 = fm;
-                } else {
-                    x1 = xm;
-                }
-            }
-            x = 0.5 * (x0 + x1);
-            jac = 2.0 * fabs(t_dphi(&k, p, x, exact)) / cos(x);
-            if (jac < j_min) jac = j_min;
-            sum += t_atten(&k, p, sin(x)) / jac;
-        }
-    return sum;
-}
-
-/* ---- tests ---- */
 
 static void test_lut_params_init_defaults(void)
 {
@@ -4563,40 +5775,6 @@ static void test_lut_m_unit_area(void)
     }
 }
 
-/* 2 * integral over [0, pi] of N_p(phi) without the Jacobian clamp, and
-   1/2 * integral over [-1, 1] of A(p, h) (midpoint rules). N_TRT has an
-   integrable 1/sqrt spike at the caustic azimuth phi_c; the substitution
-   phi = phi_c -+ s^2 on either side of it makes every integrand smooth. */
-static void t_lut_energies(const hf_lut_params *p, double cd, int steps,
-                           double n_int[3], double a_int[3])
-{
-    t_col k = t_column(p->eta, cd, p->sigma_a);
-    double phi_c = T_PI / 2;
-    int i, c, side;
-    if (k.eta1 < 2.0) { /* the TRT fold exists: Phi(2, g_c) - 2 pi */
-        int exact = p->variant == HF_LUT_EXACT;
-        double gc = exact ? asin(sqrt((4.0 - k.eta1 * k.eta1) / 3.0))
-                          : sqrt((12.0 * k.c / T_PI - 2.0) /
-                                 (48.0 * k.c / (T_PI * T_PI * T_PI)));
-        phi_c = fabs(t_phi(&k, 2, gc, exact));
-    }
-    for (c = 0; c < 3; ++c) n_int[c] = a_int[c] = 0.0;
-    for (side = 0; side < 2; ++side) {
-        double smax = sqrt(side ? T_PI - phi_c : phi_c), ds = smax / steps;
-        for (i = 0; i < steps; ++i) {
-            double o[3], sv = (i + 0.5) * ds;
-            double phi = side ? phi_c + sv * sv : phi_c - sv * sv;
-            hf__lut_eval_n_clamp(p, cd, phi, 0.0, o);
-            for (c = 0; c < 3; ++c) n_int[c] += 2.0 * o[c] * 2.0 * sv * ds;
-        }
-    }
-    for (i = 0; i < 2 * steps; ++i) {
-        double h = -1.0 + (i + 0.5) / steps;
-        for (c = 0; c < 3; ++c)
-            a_int[c] += 0.5 * t_atten(&k, c, h) / steps;
-    }
-}
-
 /* Section 11: for every theta_d, the integral of N_p over phi equals half
    the integral of A(p, h) over h (any smooth Phi; both variants). */
 static void test_lut_n_energy_identity(void)
@@ -4711,16 +5889,6 @@ static void test_lut_n_conformance(void)
         free(t);
         free(ref);
     }
-}
-
-static int t_lut_all_ok(const float *t, int n, int alpha_le_1)
-{
-    size_t i;
-    for (i = 0; i < 4u * (size_t)n * (size_t)n; ++i) {
-        if (!t_is_finite(t[i]) || t[i] < 0.0f) return 0;
-        if (alpha_le_1 && (i & 3) == 3 && t[i] > 1.0f) return 0;
-    }
-    return 1;
 }
 
 /* No NaN, inf or negative value anywhere over the ends of every range. */
@@ -5101,136 +6269,88 @@ static void test_lut_texel_centres(void)
     free(t);
 }
 
-static void run_lut_tests(void)
+static void test_bad_lut(void)
 {
-    RUN(test_lut_params_init_defaults);
-    RUN(test_lut_validate_codes);
-    RUN(test_lut_n_spot_values);
-    RUN(test_lut_n_closed_forms);
-    RUN(test_lut_m_spot_values);
-    RUN(test_lut_texels_n64);
-    RUN(test_lut_channel_sums_n64);
-    RUN(test_lut_m_symmetric);
-    RUN(test_lut_m_unit_area);
-    RUN(test_lut_n_energy_identity);
-    RUN(test_lut_n_energy_no_absorption);
-    RUN(test_lut_n_caustic_clamp);
-    RUN(test_lut_n_conformance);
-    RUN(test_lut_extremes_finite);
-    RUN(test_lut_extremes_full_size);
-    RUN(test_lut_invalid_writes_nothing);
-    RUN(test_lut_row_splits_identical);
-    RUN(test_lut_rgb_matches_scalar);
-    RUN(test_lut_n_mirror_columns);
-    RUN(test_lut_to_u8);
-    RUN(test_lut_eval_errors);
-    RUN(test_lut_texel_centres);
-}
-
-/* ======================================================================== */
-/* 10. the fur object                                                       */
-/* ======================================================================== */
-
-/* A small UV sphere with a seam column and split poles, as engines export
-   it: (R + 1) * (S + 1) vertices. */
-enum { FR = 6, FS = 8 };
-typedef struct t_fur_scene {
-    float pos[(FR + 1) * (FS + 1) * 3], nrm[(FR + 1) * (FS + 1) * 3];
-    float uv[(FR + 1) * (FS + 1) * 2];
-    uint32_t idx[FR * FS * 6];
-    hf_fur_desc desc;
-} t_fur_scene;
-
-static void t_fur_scene_init(t_fur_scene *sc, float radius)
-{
-    int r, s, k = 0;
-    for (r = 0; r <= FR; ++r)
-        for (s = 0; s <= FS; ++s) {
-            int v = r * (FS + 1) + s;
-            /* exact poles: sin(pi) is 1.2e-16, and guides weld by exact
-               position, as an exporter's duplicated vertices are */
-            double th = 3.14159265358979 * r / FR;
-            double st = (r == 0 || r == FR) ? 0.0 : sin(th);
-            double ph = 2 * 3.14159265358979 * (s % FS) / FS;
-            sc->nrm[3 * v] = (float)(st * cos(ph));
-            sc->nrm[3 * v + 1] = (float)cos(th);
-            sc->nrm[3 * v + 2] = (float)(st * sin(ph));
-            sc->pos[3 * v] = radius * sc->nrm[3 * v];
-            sc->pos[3 * v + 1] = radius * sc->nrm[3 * v + 1];
-            sc->pos[3 * v + 2] = radius * sc->nrm[3 * v + 2];
-            sc->uv[2 * v] = (float)s / FS;
-            sc->uv[2 * v + 1] = (float)r / FR;
-        }
-    for (r = 0; r < FR; ++r)
-        for (s = 0; s < FS; ++s) {
-            uint32_t a = (uint32_t)(r * (FS + 1) + s), b = a + 1;
-            uint32_t c = a + FS + 1, d = c + 1;
-            sc->idx[k++] = a; sc->idx[k++] = b; sc->idx[k++] = c;
-            sc->idx[k++] = b; sc->idx[k++] = d; sc->idx[k++] = c;
-        }
-    memset(&sc->desc, 0, sizeof sc->desc);
-    sc->desc.mesh.positions = sc->pos;
-    sc->desc.mesh.normals = sc->nrm;
-    sc->desc.mesh.uvs = sc->uv;
-    sc->desc.mesh.vertex_count = (FR + 1) * (FS + 1);
-    sc->desc.mesh.indices = sc->idx;
-    sc->desc.mesh.triangle_count = FR * FS * 2;
-    sc->desc.points_per_strand = 8;
-    sc->desc.max_length = 0.3f;
-    sc->desc.total_strands = 500;
-    sc->desc.tess_factor = 20.0f; /* some LOD guides */
-    sc->desc.seed = 5;
-}
-
-/* One frame of every stage over `n` equal ranges, the mesh moved by dx. */
-static void t_fur_frame(hf_fur *f, t_fur_scene *sc, float dx, int n,
-                        void *vbuf, hf_result *worst)
-{
-    hf_fur_info info;
-    hf_mesh m = sc->desc.mesh;
-    float moved[(FR + 1) * (FS + 1) * 3];
-    hf_collider col;
-    hf_ribbon_params view;
-    hf_ribbon_output out;
-    int i, stage;
-    for (i = 0; i < (FR + 1) * (FS + 1) * 3; ++i)
-        moved[i] = sc->pos[i] + (i % 3 == 0 ? dx : 0.0f);
-    m.positions = moved;
-    memset(&col, 0, sizeof col);
-    col.type = HF_COLLIDER_SPHERE;
-    col.a[0] = dx; /* dx < 0: no collider */
-    col.radius = 0.95f;
-    memset(&view, 0, sizeof view);
-    view.eye[2] = 5.0f;
-    view.root_width = 0.01f;
-    view.tip_width = 0.002f;
-    memset(&out, 0, sizeof out);
-    out.position.data = vbuf;
-    out.position.stride = 24;
-    out.tangent.data = (float *)vbuf + 3;
-    out.tangent.stride = 24;
-    hf_fur_get_info(f, &info);
-    for (stage = 0; stage < 5; ++stage) {
-        int total = stage < 2 ? info.guide_count
-                              : stage == 2 ? info.lod_guide_count
-                                           : info.drawn_strand_count;
-        int first = 0;
-        for (i = 0; i < n; ++i) {
-            int cnt = total * (i + 1) / n - first;
-            hf_result r = HF_OK;
-            switch (stage) {
-            case 0: r = hf_fur_set_roots(f, &m, first, cnt); break;
-            case 1: r = hf_fur_simulate(f, first, cnt, 1.0f / 60.0f, &col,
-                                        dx >= 0.0f); break;
-            case 2: r = hf_fur_interpolate_guides(f, first, cnt); break;
-            case 3: r = hf_fur_interpolate(f, first, cnt); break;
-            default: r = hf_fur_ribbons(f, first, cnt, &view, &out); break;
-            }
-            if (r != HF_OK) *worst = r;
-            first += cnt;
-        }
+    hf_lut_params p, b;
+    float tex[4 * 4 * 4], tex2[4 * 4 * 4], sc[4];
+    unsigned char q[4 * 4 * 4];
+    double o3[3];
+    hf_lut_params_init(&p);
+    p.size = 4;
+    CHECK_EQ_INT(hf_lut_validate(&p, NULL), HF_OK);
+#define TB_LUT(params, first, count, code)                                     \
+    do {                                                                       \
+        TB_FAILS(hf_lut_bake_m(&(params), (first), (count), tex), (code), tex, \
+                 sizeof tex);                                                  \
+        TB_FAILS(hf_lut_bake_n(&(params), (first), (count), tex), (code), tex, \
+                 sizeof tex);                                                  \
+        tb_fill(tex2, sizeof tex2);                                            \
+        TB_FAILS(hf_lut_bake_n_rgb(&(params), (first), (count), tex, tex2),    \
+                 (code), tex, sizeof tex);                                     \
+        CHECK(tb_untouched(tex2, sizeof tex2));                                \
+    } while (0)
+    b = p; b.eta = TB_NAN; TB_LUT(b, 0, 4, HF_ERROR_NON_FINITE);
+    b = p; b.eta = 1.0; TB_LUT(b, 0, 4, HF_ERROR_BAD_PARAMETER);
+    b = p; b.eta = 3.5; TB_LUT(b, 0, 4, HF_ERROR_BAD_PARAMETER);
+    b = p; b.alpha_r_deg = INFINITY; TB_LUT(b, 0, 4, HF_ERROR_NON_FINITE);
+    b = p; b.beta_r_deg = 0.0; TB_LUT(b, 0, 4, HF_ERROR_BAD_PARAMETER);
+    b = p; b.beta_r_deg = -1.0; TB_LUT(b, 0, 4, HF_ERROR_BAD_PARAMETER);
+    b = p; b.sigma_a = -0.1; TB_LUT(b, 0, 4, HF_ERROR_BAD_PARAMETER);
+    b = p; b.sigma_a = NAN; TB_LUT(b, 0, 4, HF_ERROR_NON_FINITE);
+    b = p; b.sigma_a_rgb[2] = -1.0; CHECK_EQ_INT(hf_lut_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
+    b = p; b.variant = 2; TB_LUT(b, 0, 4, HF_ERROR_BAD_PARAMETER);
+    b = p; b.size = 0; CHECK_EQ_INT(hf_lut_validate(&b, NULL), HF_ERROR_BAD_COUNT);
+    b = p; b.size = HF_LUT_MAX_SIZE + 1; CHECK_EQ_INT(hf_lut_validate(&b, NULL), HF_ERROR_BAD_COUNT);
+    b = p; b.size = 0x7fffffff; CHECK_EQ_INT(hf_lut_validate(&b, NULL), HF_ERROR_BAD_COUNT);
+    CHECK_EQ_INT(hf_lut_validate(NULL, NULL), HF_ERROR_NULL_POINTER);
+    TB_LUT(p, -1, 1, HF_ERROR_BAD_RANGE);
+    TB_LUT(p, 0, -1, HF_ERROR_BAD_RANGE);
+    TB_LUT(p, 3, 2, HF_ERROR_BAD_RANGE);
+    TB_LUT(p, 1, 0x7fffffff, HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_lut_bake_m(&p, 0, 4, NULL), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_lut_bake_n_rgb(&p, 0, 4, tex, NULL), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_lut_bake_m(NULL, 0, 4, tex), HF_ERROR_NULL_POINTER);
+    /* extreme but valid: finite textures */
+    b = p; b.beta_r_deg = 1e-300; b.sigma_a = 1e300; b.alpha_r_deg = -1e300;
+    CHECK_EQ_INT(hf_lut_bake_m(&b, 0, 4, tex), HF_OK);
+    CHECK(tb_finite(tex, 64));
+    CHECK_EQ_INT(hf_lut_bake_n(&b, 0, 4, tex), HF_OK);
+    CHECK(tb_finite(tex, 64));
+    /* to_u8 */
+    CHECK_EQ_INT(hf_lut_bake_n(&p, 0, 4, tex), HF_OK);
+    TB_FAILS(hf_lut_to_u8(NULL, 4, NULL, q, sc), HF_ERROR_NULL_POINTER, q, sizeof q);
+    CHECK_EQ_INT(hf_lut_to_u8(tex, 4, NULL, NULL, sc), HF_ERROR_NULL_POINTER);
+    TB_FAILS(hf_lut_to_u8(tex, 0, NULL, q, sc), HF_ERROR_BAD_COUNT, q, sizeof q);
+    TB_FAILS(hf_lut_to_u8(tex, HF_LUT_MAX_SIZE + 1, NULL, q, sc), HF_ERROR_BAD_COUNT, q, sizeof q);
+    sc[0] = 1.0f; sc[1] = 0.0f; sc[2] = 1.0f; sc[3] = 1.0f;
+    {
+        float scales_in[4] = {1.0f, 0.0f, 1.0f, 1.0f};
+        TB_FAILS(hf_lut_to_u8(tex, 4, scales_in, q, NULL), HF_ERROR_BAD_PARAMETER, q, sizeof q);
+        scales_in[1] = TB_NAN;
+        TB_FAILS(hf_lut_to_u8(tex, 4, scales_in, q, NULL), HF_ERROR_BAD_PARAMETER, q, sizeof q);
     }
+    tex[17] = TB_NAN;
+    tb_fill(sc, sizeof sc);
+    TB_FAILS(hf_lut_to_u8(tex, 4, NULL, q, sc), HF_ERROR_NON_FINITE, q, sizeof q);
+    CHECK(tb_untouched(sc, sizeof sc));
+    /* eval */
+    o3[0] = o3[1] = o3[2] = -7.0;
+    CHECK_EQ_INT(hf_lut_eval_m(&p, NAN, o3), HF_ERROR_NON_FINITE);
+    CHECK_EQ_INT(hf_lut_eval_m(&p, INFINITY, o3), HF_ERROR_NON_FINITE);
+    CHECK_EQ_INT(hf_lut_eval_m(&p, 0.1, NULL), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_lut_eval_n(&p, 2.0, 0.5, o3), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_lut_eval_n(&p, 0.5, -0.1, o3), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_lut_eval_n(&p, 0.5, 4.0, o3), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_lut_eval_n(&p, NAN, 0.5, o3), HF_ERROR_NON_FINITE);
+    CHECK_EQ_INT(hf_lut_eval_n(NULL, 0.5, 0.5, o3), HF_ERROR_NULL_POINTER);
+    CHECK(o3[0] == -7.0 && o3[1] == -7.0 && o3[2] == -7.0);
+    /* eval with a size that the bake refuses: size is ignored */
+    b = p; b.size = 0;
+    CHECK_EQ_INT(hf_lut_eval_m(&b, 0.1, o3), HF_OK);
+#undef TB_LUT
 }
+
+/* ==== 10. the fur object ================================================== */
 
 static void test_fur_create_counts_and_welding(void)
 {
@@ -5500,1212 +6620,6 @@ static void test_fur_errors_per_frame(void)
     hf_fur_destroy(f);
 }
 
-static void run_fur_tests(void)
-{
-    RUN(test_fur_create_counts_and_welding);
-    RUN(test_fur_no_allocation_per_frame);
-    RUN(test_fur_ranges_byte_identical);
-    RUN(test_fur_lod_prefix_and_width);
-    RUN(test_fur_lod_guides_wake_without_jump);
-    RUN(test_fur_bad_desc_and_out_of_memory);
-    RUN(test_fur_same_seed_same_bytes);
-    RUN(test_fur_errors_per_frame);
-}
-
-/* ======================================================================== */
-/* 11. the bad-input matrix: for every public function each bad input it    */
-/*     can get (NULL, zero or negative counts, out-of-range indices, NaN    */
-/*     and infinite values, degenerate geometry, huge factors, bad time     */
-/*     steps, the eye on a strand): the result code, outputs untouched      */
-/*     (sentinel-filled and compared), no NaN; and the limits (counts near  */
-/*     INT_MAX, byte sizes that would overflow size_t). Helpers: tb_.       */
-/* ======================================================================== */
-
-/* ---- helpers ------------------------------------------------------------- */
-
-#define TB_SENT 0xA5u
-#define TB_NAN ((float)NAN)
-#define TB_INF ((float)INFINITY)
-
-static void tb_fill(void *p, size_t n) { memset(p, TB_SENT, n); }
-static int tb_untouched(const void *p, size_t n)
-{
-    const unsigned char *b = (const unsigned char *)p;
-    size_t i;
-    for (i = 0; i < n; ++i)
-        if (b[i] != TB_SENT) return 0;
-    return 1;
-}
-static int tb_finite(const float *p, size_t n)
-{
-    size_t i;
-    for (i = 0; i < n; ++i)
-        if (!t_is_finite(p[i])) return 0;
-    return 1;
-}
-
-/* The result and the untouched output in one check. */
-#define TB_FAILS(call, code, buf, bytes)                                       \
-    do {                                                                       \
-        tb_fill((buf), (bytes));                                               \
-        CHECK_EQ_INT((call), (code));                                          \
-        CHECK(tb_untouched((buf), (bytes)));                                   \
-    } while (0)
-
-/* a unit quad: 4 vertices, 2 triangles, packed arrays */
-typedef struct tb_quad {
-    float pos[12], nrm[12], uv[8];
-    uint32_t idx[6];
-    hf_mesh mesh;
-} tb_quad;
-
-static void tb_quad_init(tb_quad *q)
-{
-    static const float p[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
-    static const float u[8] = {0, 0, 1, 0, 1, 1, 0, 1};
-    static const uint32_t ix[6] = {0, 1, 2, 0, 2, 3};
-    int i;
-    memcpy(q->pos, p, sizeof p);
-    memcpy(q->uv, u, sizeof u);
-    memcpy(q->idx, ix, sizeof ix);
-    for (i = 0; i < 4; ++i) {
-        q->nrm[3 * i] = 0.0f;
-        q->nrm[3 * i + 1] = 0.0f;
-        q->nrm[3 * i + 2] = 1.0f;
-    }
-    memset(&q->mesh, 0, sizeof q->mesh);
-    q->mesh.positions = q->pos;
-    q->mesh.normals = q->nrm;
-    q->mesh.uvs = q->uv;
-    q->mesh.vertex_count = 4;
-    q->mesh.indices = q->idx;
-    q->mesh.triangle_count = 2;
-}
-
-/* Every way a mesh can be bad, with the code the docs give it. Applied
-   to every function that validates a whole mesh. */
-typedef void (*tb_mesh_case_fn)(const hf_mesh *m, hf_result want,
-                                const char *what);
-
-static void tb_for_each_bad_mesh(tb_mesh_case_fn fn)
-{
-    tb_quad q;
-    hf_mesh m;
-    tb_quad_init(&q);
-    m = q.mesh; m.positions = NULL; fn(&m, HF_ERROR_NULL_POINTER, "positions NULL");
-    m = q.mesh; m.indices = NULL; fn(&m, HF_ERROR_NULL_POINTER, "indices NULL");
-    m = q.mesh; m.vertex_count = 0; fn(&m, HF_ERROR_BAD_COUNT, "vertex_count 0");
-    m = q.mesh; m.vertex_count = -1; fn(&m, HF_ERROR_BAD_COUNT, "vertex_count -1");
-    m = q.mesh; m.triangle_count = 0; fn(&m, HF_ERROR_BAD_COUNT, "triangle_count 0");
-    m = q.mesh; m.triangle_count = -5; fn(&m, HF_ERROR_BAD_COUNT, "triangle_count -5");
-    m = q.mesh; m.position_stride = 8; fn(&m, HF_ERROR_BAD_STRIDE, "position_stride 8");
-    m = q.mesh; m.position_stride = -12; fn(&m, HF_ERROR_BAD_STRIDE, "position_stride -12");
-    m = q.mesh; m.uv_stride = 4; fn(&m, HF_ERROR_BAD_STRIDE, "uv_stride 4");
-    m = q.mesh; m.normal_stride = -1; fn(&m, HF_ERROR_BAD_STRIDE, "normal_stride -1");
-    q.idx[4] = 4; fn(&q.mesh, HF_ERROR_INDEX_OUT_OF_RANGE, "index 4 of 4");
-    q.idx[4] = 0xffffffffu; fn(&q.mesh, HF_ERROR_INDEX_OUT_OF_RANGE, "index 2^32-1");
-    q.idx[4] = 2;
-    q.pos[4] = TB_NAN; fn(&q.mesh, HF_ERROR_NON_FINITE, "position NaN");
-    q.pos[4] = TB_INF; fn(&q.mesh, HF_ERROR_NON_FINITE, "position inf");
-    q.pos[4] = 0.0f;
-    q.uv[3] = TB_NAN; fn(&q.mesh, HF_ERROR_NON_FINITE, "uv NaN");
-    q.uv[3] = 0.0f;
-    q.nrm[5] = -TB_INF; fn(&q.mesh, HF_ERROR_NON_FINITE, "normal -inf");
-    q.nrm[3] = q.nrm[4] = q.nrm[5] = 0.0f;
-    fn(&q.mesh, HF_ERROR_DEGENERATE, "zero-length normal");
-    q.nrm[5] = 1.0f;
-}
-
-/* ---- 3. maps -------------------------------------------------------------- */
-
-static void test_bad_map_validate_sample_blur(void)
-{
-    unsigned char px[16] = {0};
-    float fpx[4] = {0.5f, 0.5f, 0.5f, 0.5f}, out[4], blur[16];
-    hf_map ok, m;
-    t_counter cnt;
-    hf_allocator a = t_counting(&cnt);
-    hf_diag d;
-    memset(&ok, 0, sizeof ok);
-    ok.data = px; ok.width = 4; ok.height = 4; ok.channels = 1;
-    CHECK_EQ_INT(hf_map_validate(&ok, &d), HF_OK);
-    CHECK_EQ_INT(hf_map_validate(NULL, &d), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(d.result, HF_ERROR_NULL_POINTER);
-    m = ok; m.data = NULL; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_NULL_POINTER);
-    m = ok; m.width = 0; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_COUNT);
-    m = ok; m.height = -1; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_COUNT);
-    m = ok; m.width = HF_MAP_MAX_DIMENSION + 1;
-    CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_COUNT);
-    m = ok; m.width = 0x7fffffff; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_COUNT);
-    m = ok; m.channels = 0; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_FORMAT);
-    m = ok; m.channels = 5; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_FORMAT);
-    m = ok; m.format = 2; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_FORMAT);
-    m = ok; m.format = -1; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_FORMAT);
-    m = ok; m.wrap = 2; CHECK(hf_map_validate(&m, NULL) < 0);
-    m = ok; m.row_stride = 3; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_STRIDE);
-    m = ok; m.row_stride = -4; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_BAD_STRIDE);
-    /* float maps: NaN and inf texels */
-    m = ok; m.data = fpx; m.width = 2; m.height = 2; m.format = HF_MAP_F32;
-    CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_OK);
-    fpx[3] = TB_NAN; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_NON_FINITE);
-    fpx[3] = -TB_INF; CHECK_EQ_INT(hf_map_validate(&m, NULL), HF_ERROR_NON_FINITE);
-    /* sample: out untouched on every error */
-    TB_FAILS(hf_map_sample(&m, 0.5f, 0.5f, out), HF_ERROR_NON_FINITE, out, sizeof out);
-    fpx[3] = 0.5f;
-    TB_FAILS(hf_map_sample(NULL, 0.5f, 0.5f, out), HF_ERROR_NULL_POINTER, out, sizeof out);
-    CHECK_EQ_INT(hf_map_sample(&m, 0.5f, 0.5f, NULL), HF_ERROR_NULL_POINTER);
-    TB_FAILS(hf_map_sample(&m, TB_NAN, 0.5f, out), HF_ERROR_NON_FINITE, out, sizeof out);
-    TB_FAILS(hf_map_sample(&m, 0.5f, TB_INF, out), HF_ERROR_NON_FINITE, out, sizeof out);
-    m.channels = 9;
-    TB_FAILS(hf_map_sample(&m, 0.5f, 0.5f, out), HF_ERROR_BAD_FORMAT, out, sizeof out);
-    m.channels = 1;
-    /* huge but finite coordinates: a finite sample */
-    CHECK_EQ_INT(hf_map_sample(&m, 3e38f, -3e38f, out), HF_OK);
-    CHECK(tb_finite(out, 4));
-    /* blur */
-    CHECK_EQ_INT(hf_map_blur(&ok, 1.0f, NULL, NULL), HF_ERROR_NULL_POINTER);
-    TB_FAILS(hf_map_blur(NULL, 1.0f, blur, NULL), HF_ERROR_NULL_POINTER, blur, sizeof blur);
-    TB_FAILS(hf_map_blur(&ok, -1.0f, blur, NULL), HF_ERROR_BAD_PARAMETER, blur, sizeof blur);
-    TB_FAILS(hf_map_blur(&ok, TB_NAN, blur, NULL), HF_ERROR_BAD_PARAMETER, blur, sizeof blur);
-    TB_FAILS(hf_map_blur(&ok, TB_INF, blur, NULL), HF_ERROR_BAD_PARAMETER, blur, sizeof blur);
-    TB_FAILS(hf_map_blur(&ok, 1025.0f, blur, NULL), HF_ERROR_BAD_PARAMETER, blur, sizeof blur);
-    m = ok; m.channels = 0;
-    TB_FAILS(hf_map_blur(&m, 1.0f, blur, NULL), HF_ERROR_BAD_FORMAT, blur, sizeof blur);
-    cnt.fail_after = 0;
-    TB_FAILS(hf_map_blur(&ok, 1.0f, blur, &a), HF_ERROR_OUT_OF_MEMORY, blur, sizeof blur);
-    CHECK_EQ_INT(cnt.allocs, cnt.frees);
-    cnt.fail_after = -1;
-    CHECK_EQ_INT(hf_map_blur(&ok, 1024.0f, blur, &a), HF_OK); /* radius capped */
-    CHECK(tb_finite(blur, 16));
-    CHECK_EQ_INT(cnt.allocs, cnt.frees);
-    /* finite texels near FLT_MAX (see the report, bug A): validation
-       passes them, so sampling, blurring and density must stay finite or
-       validation must refuse them */
-    {
-        float big[4] = {-FLT_MAX, FLT_MAX, FLT_MAX, -FLT_MAX}, o4[4], bl[4];
-        float u0[2] = {0.1f, 0.5f}, u1[2] = {0.5f, 0.5f}, u2[2] = {0.9f, 0.5f};
-        float dens = -7.0f;
-        hf_result rr;
-        m = ok; m.data = big; m.width = 2; m.height = 2; m.format = HF_MAP_F32;
-        m.wrap = HF_WRAP_CLAMP;
-        rr = hf_map_sample(&m, 0.5f, 0.25f, o4);
-        CHECK(rr < 0 || tb_finite(o4, 4));
-        tb_fill(bl, sizeof bl);
-        rr = hf_map_blur(&m, 2.0f, bl, NULL);
-        CHECK(rr < 0 ? tb_untouched(bl, sizeof bl) : tb_finite(bl, 4));
-        big[0] = big[1] = big[2] = big[3] = FLT_MAX;
-        rr = hf_uv_triangle_density(&m, u0, u1, u2, HF_DENSITY_CORNERS, &dens);
-        CHECK(rr < 0 ? dens == -7.0f : t_is_finite(dens));
-    }
-}
-
-/* ---- 4. meshes ------------------------------------------------------------ */
-
-static void tb_validate_case(const hf_mesh *m, hf_result want, const char *what)
-{
-    hf_diag d;
-    hf_result r = hf_mesh_validate(m, &d);
-    if (r != want) printf("  mesh case: %s\n", what);
-    CHECK_EQ_INT(r, want);
-    CHECK_EQ_INT(d.result, r);
-    CHECK(d.message[0] != 0);
-}
-
-static void tb_normals_case(const hf_mesh *m, hf_result want, const char *what)
-{
-    float out[12];
-    tb_fill(out, sizeof out);
-    /* the mesh's own normals are ignored: their errors do not apply */
-    if (strstr(what, "normal")) {
-        hf_result r = hf_mesh_compute_normals(m, out);
-        CHECK(r == HF_OK || r == want);
-        if (r == HF_OK) CHECK(tb_finite(out, 12));
-        return;
-    }
-    if (hf_mesh_compute_normals(m, out) != want) printf("  normals case: %s\n", what);
-    CHECK(tb_untouched(out, sizeof out));
-}
-
-static void test_bad_mesh_validate_and_normals(void)
-{
-    tb_quad q;
-    float out[12];
-    tb_quad_init(&q);
-    CHECK_EQ_INT(hf_mesh_validate(&q.mesh, NULL), HF_OK);
-    CHECK_EQ_INT(hf_mesh_validate(NULL, NULL), HF_ERROR_NULL_POINTER);
-    tb_for_each_bad_mesh(tb_validate_case);
-    tb_for_each_bad_mesh(tb_normals_case);
-    TB_FAILS(hf_mesh_compute_normals(NULL, out), HF_ERROR_NULL_POINTER, out, sizeof out);
-    CHECK_EQ_INT(hf_mesh_compute_normals(&q.mesh, NULL), HF_ERROR_NULL_POINTER);
-    /* zero-area triangles: allowed, normals (0, 0, 1), never NaN */
-    memset(q.pos, 0, sizeof q.pos);
-    CHECK_EQ_INT(hf_mesh_validate(&q.mesh, NULL), HF_OK);
-    CHECK_EQ_INT(hf_mesh_compute_normals(&q.mesh, out), HF_OK);
-    CHECK(tb_finite(out, 12) && out[2] == 1.0f);
-    /* huge but finite positions: cross products overflow, normals still
-       unit and finite */
-    tb_quad_init(&q);
-    q.pos[3] = 3e38f; q.pos[7] = 3e38f; q.pos[10] = -3e38f;
-    CHECK_EQ_INT(hf_mesh_compute_normals(&q.mesh, out), HF_OK);
-    CHECK(tb_finite(out, 12));
-    CHECK(t_is_finite(hf_triangle_area(q.pos, q.pos + 3, q.pos + 6)) ||
-          hf_triangle_area(q.pos, q.pos + 3, q.pos + 6) > 0.0f);
-}
-
-/* (Mesh counts near INT_MAX cannot be tested without the arrays they
-   promise: a view of INT_MAX vertices is read element by element. The
-   size limits that need no array are in the ropes, ribbon-index,
-   placement and fur tests below.) */
-
-/* ---- 5. grow --------------------------------------------------------------- */
-
-static void test_bad_uv_density(void)
-{
-    float a[2] = {0, 0}, b[2] = {1, 0}, c[2] = {0, 1}, bad[2] = {TB_NAN, 0};
-    float far[2] = {1000.0f, 0.0f}, d = -7.0f;
-    unsigned char px[4] = {255, 255, 255, 255};
-    hf_map m;
-    memset(&m, 0, sizeof m);
-    m.data = px; m.width = 2; m.height = 2; m.channels = 1;
-    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, b, c, 0, &d), HF_OK);
-    CHECK(d == 1.0f);
-    d = -7.0f;
-    CHECK_EQ_INT(hf_uv_triangle_density(&m, NULL, b, c, 0, &d), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, b, c, 0, NULL), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, bad, c, 1, &d), HF_ERROR_NON_FINITE);
-    bad[0] = 0.0f; bad[1] = -TB_INF;
-    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, b, bad, 2, &d), HF_ERROR_NON_FINITE);
-    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, b, c, 3, &d), HF_ERROR_BAD_PARAMETER);
-    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, b, c, -1, &d), HF_ERROR_BAD_PARAMETER);
-    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, far, c, 1, &d), HF_ERROR_BAD_RANGE);
-    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, far, c, 2, &d), HF_ERROR_BAD_RANGE);
-    m.width = 0;
-    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, b, c, 0, &d), HF_ERROR_BAD_COUNT);
-    CHECK(d == -7.0f);
-    /* zero UV area: AREA falls back to CORNERS, finite */
-    m.width = 2;
-    CHECK_EQ_INT(hf_uv_triangle_density(&m, a, a, a, 2, &d), HF_OK);
-    CHECK(t_is_finite(d));
-}
-
-static void tb_tess_case(const hf_mesh *m, hf_result want, const char *what)
-{
-    hf_tess_params p;
-    hf_tess_output o;
-    uint32_t idx[64];
-    memset(&p, 0, sizeof p);
-    p.factor = 1.0f;
-    memset(&o, 0, sizeof o);
-    o.indices = idx;
-    o.triangle_capacity = 20;
-    o.triangle_count = o.added_count = o.vertex_count = o.depth = -7;
-    tb_fill(idx, sizeof idx);
-    if (hf_tessellate(m, NULL, &p, &o) != want) printf("  tess case: %s\n", what);
-    CHECK(tb_untouched(idx, sizeof idx));
-    CHECK(o.triangle_count == -7 && o.added_count == -7 &&
-          o.vertex_count == -7 && o.depth == -7);
-}
-
-static void test_bad_tessellate(void)
-{
-    tb_quad q;
-    hf_tess_params p;
-    hf_tess_output o;
-    uint32_t idx[3 * 64];
-    unsigned char px[4] = {0, 0, 0, 0};
-    hf_map empty;
-    tb_quad_init(&q);
-    memset(&p, 0, sizeof p);
-    p.factor = 1.0f;
-    memset(&o, 0, sizeof o);
-#define TB_TESS(params_expr, code)                                             \
-    do {                                                                       \
-        hf_tess_params pp_ = p;                                                \
-        params_expr;                                                           \
-        o.indices = idx;                                                       \
-        o.triangle_capacity = 64;                                              \
-        o.triangle_count = o.added_count = o.vertex_count = o.depth = -7;      \
-        tb_fill(idx, sizeof idx);                                              \
-        CHECK_EQ_INT(hf_tessellate(&q.mesh, NULL, &pp_, &o), (code));          \
-        CHECK(tb_untouched(idx, sizeof idx));                                  \
-        CHECK(o.triangle_count == -7 && o.vertex_count == -7);                 \
-    } while (0)
-    TB_TESS(pp_.factor = 0.0f, HF_ERROR_BAD_PARAMETER);
-    TB_TESS(pp_.factor = -1.0f, HF_ERROR_BAD_PARAMETER);
-    TB_TESS(pp_.factor = TB_NAN, HF_ERROR_BAD_PARAMETER);
-    TB_TESS(pp_.factor = TB_INF, HF_ERROR_BAD_PARAMETER);
-    TB_TESS(pp_.estimator = 3, HF_ERROR_BAD_PARAMETER);
-    TB_TESS(pp_.split = -1, HF_ERROR_BAD_PARAMETER);
-    TB_TESS(pp_.max_depth = HF_TESS_MAX_DEPTH + 1, HF_ERROR_BAD_PARAMETER);
-    TB_TESS(pp_.max_triangles = HF_TESS_MAX_TRIANGLES + 1, HF_ERROR_BAD_PARAMETER);
-    TB_TESS(pp_.max_triangles = -1, HF_ERROR_BAD_PARAMETER);
-    /* billions of triangles: the caps, fast */
-    TB_TESS(pp_.factor = 1e30f, HF_ERROR_DEPTH_CAP);
-    /* with the deepest depth either cap may bind first (the counting pass
-       walks depth first); both are errors and both come fast */
-    {
-        hf_tess_params pp_ = p;
-        hf_result rr;
-        pp_.factor = FLT_MAX;
-        pp_.max_depth = HF_TESS_MAX_DEPTH;
-        pp_.max_triangles = HF_TESS_MAX_TRIANGLES;
-        o.indices = idx;
-        o.triangle_count = -7;
-        rr = hf_tessellate(&q.mesh, NULL, &pp_, &o);
-        CHECK(rr == HF_ERROR_DEPTH_CAP || rr == HF_ERROR_TRIANGLE_CAP);
-        CHECK_EQ_INT(o.triangle_count, -7);
-    }
-    TB_TESS((pp_.factor = 100.0f, pp_.max_triangles = 3), HF_ERROR_TRIANGLE_CAP);
-    /* too small a buffer */
-    TB_TESS(pp_.factor = 1000.0f, HF_ERROR_BUFFER_TOO_SMALL);
-    /* a NULL out, params, mesh */
-    CHECK_EQ_INT(hf_tessellate(&q.mesh, NULL, &p, NULL), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_tessellate(&q.mesh, NULL, NULL, &o), HF_ERROR_NULL_POINTER);
-    tb_for_each_bad_mesh(tb_tess_case);
-    /* a density map with a mesh without UVs */
-    memset(&empty, 0, sizeof empty);
-    empty.data = px; empty.width = 2; empty.height = 2; empty.channels = 1;
-    q.mesh.uvs = NULL;
-    o.indices = NULL;
-    o.triangle_count = -7;
-    CHECK_EQ_INT(hf_tessellate(&q.mesh, &empty, &p, &o), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(o.triangle_count, -7);
-    q.mesh.uvs = q.uv;
-    /* an empty map (width 0) */
-    empty.width = 0;
-    CHECK_EQ_INT(hf_tessellate(&q.mesh, &empty, &p, &o), HF_ERROR_BAD_COUNT);
-    /* zero-area triangles: every one degenerate is refused; one of two
-       with refuse_degenerate is refused */
-    memset(q.pos, 0, sizeof q.pos);
-    CHECK_EQ_INT(hf_tessellate(&q.mesh, NULL, &p, &o), HF_ERROR_DEGENERATE);
-    tb_quad_init(&q);
-    q.idx[5] = 2; /* triangle 1 = (0, 2, 2): zero area */
-    p.refuse_degenerate = 1;
-    CHECK_EQ_INT(hf_tessellate(&q.mesh, NULL, &p, &o), HF_ERROR_DEGENERATE);
-    p.refuse_degenerate = 0;
-    CHECK_EQ_INT(hf_tessellate(&q.mesh, NULL, &p, &o), HF_OK);
-    /* an area that overflows float */
-    tb_quad_init(&q);
-    q.pos[3] = 3e38f; q.pos[10] = 3e38f; q.pos[6] = 3e38f; q.pos[7] = 3e38f;
-    o.triangle_count = -7;
-    CHECK_EQ_INT(hf_tessellate(&q.mesh, NULL, &p, &o), HF_ERROR_NON_FINITE);
-    CHECK_EQ_INT(o.triangle_count, -7);
-#undef TB_TESS
-}
-
-static void test_bad_tess_evaluate(void)
-{
-    tb_quad q;
-    hf_tess_vertex v[2] = {{0, {0.2f, 0.3f, 0.5f}}, {1, {0.5f, 0.25f, 0.25f}}};
-    float pos[6], nrm[6], uv[4];
-    tb_quad_init(&q);
-#define TB_EVAL(mesh, added, n, first, count, code)                            \
-    do {                                                                       \
-        tb_fill(pos, sizeof pos);                                              \
-        tb_fill(nrm, sizeof nrm);                                              \
-        tb_fill(uv, sizeof uv);                                                \
-        CHECK_EQ_INT(hf_tess_evaluate((mesh), (added), (n), (first), (count), \
-                                      pos, nrm, uv),                           \
-                     (code));                                                  \
-        CHECK(tb_untouched(pos, sizeof pos) && tb_untouched(nrm, sizeof nrm) &&  \
-              tb_untouched(uv, sizeof uv));                                    \
-    } while (0)
-    TB_EVAL(NULL, v, 2, 0, 2, HF_ERROR_NULL_POINTER);
-    TB_EVAL(&q.mesh, NULL, 2, 0, 2, HF_ERROR_NULL_POINTER);
-    /* a negative array count: BAD_COUNT or BAD_RANGE (the code does the
-       latter; CONVENTIONS say negative counts are refused) */
-    tb_fill(pos, sizeof pos);
-    {
-        hf_result rr = hf_tess_evaluate(&q.mesh, v, -1, 0, 0, pos, nrm, uv);
-        CHECK(rr == HF_ERROR_BAD_COUNT || rr == HF_ERROR_BAD_RANGE);
-        CHECK(tb_untouched(pos, sizeof pos));
-    }
-    TB_EVAL(&q.mesh, v, 2, 1, 2, HF_ERROR_BAD_RANGE);
-    TB_EVAL(&q.mesh, v, 2, -1, 1, HF_ERROR_BAD_RANGE);
-    TB_EVAL(&q.mesh, v, 2, 1, 0x7fffffff, HF_ERROR_BAD_RANGE);
-    TB_EVAL(&q.mesh, v, 2, 0x7fffffff, 1, HF_ERROR_BAD_RANGE);
-    v[1].triangle = 2;
-    TB_EVAL(&q.mesh, v, 2, 0, 2, HF_ERROR_INDEX_OUT_OF_RANGE);
-    v[1].triangle = 1;
-    q.idx[5] = 9;
-    TB_EVAL(&q.mesh, v, 2, 0, 2, HF_ERROR_INDEX_OUT_OF_RANGE);
-    q.idx[5] = 3;
-    v[1].bary[0] = TB_NAN;
-    TB_EVAL(&q.mesh, v, 2, 0, 2, HF_ERROR_NON_FINITE);
-    v[1].bary[0] = 0.5f;
-    q.pos[6] = TB_INF;
-    TB_EVAL(&q.mesh, v, 2, 0, 2, HF_ERROR_NON_FINITE);
-    q.pos[6] = 1.0f;
-    q.mesh.position_stride = 4;
-    TB_EVAL(&q.mesh, v, 2, 0, 2, HF_ERROR_BAD_STRIDE);
-    q.mesh.position_stride = 0;
-    q.mesh.normals = NULL;
-    TB_EVAL(&q.mesh, v, 2, 0, 2, HF_ERROR_NULL_POINTER);
-    q.mesh.normals = q.nrm;
-    /* zero normals on the blend: the face normal, never NaN */
-    memset(q.nrm, 0, sizeof q.nrm);
-    CHECK_EQ_INT(hf_tess_evaluate(&q.mesh, v, 2, 0, 2, pos, nrm, uv), HF_OK);
-    CHECK(tb_finite(pos, 6) && tb_finite(nrm, 6) && tb_finite(uv, 4));
-    /* count 0 at the end is a valid empty range */
-    CHECK_EQ_INT(hf_tess_evaluate(&q.mesh, v, 2, 2, 0, pos, nrm, uv), HF_OK);
-#undef TB_EVAL
-}
-
-static void test_bad_guides_rest(void)
-{
-    tb_quad q;
-    hf_guide_params gp;
-    hf_guide_output go;
-    float pts[4 * 3 * 4], lens[4];
-    uint32_t gov[4];
-    hf_tess_vertex v = {0, {0.2f, 0.3f, 0.5f}};
-    t_counter cnt;
-    hf_allocator a = t_counting(&cnt);
-    tb_quad_init(&q);
-    memset(&gp, 0, sizeof gp);
-    gp.points = 4;
-    gp.max_length = 0.1f;
-#define TB_GUIDES(added, n, code)                                              \
-    do {                                                                       \
-        memset(&go, 0, sizeof go);                                             \
-        go.points = pts;                                                       \
-        go.lengths = lens;                                                     \
-        go.guide_of_vertex = gov;                                              \
-        go.guide_capacity = 4;                                                 \
-        go.guide_count = go.pure_guide_count = -7;                             \
-        tb_fill(pts, sizeof pts);                                              \
-        tb_fill(lens, sizeof lens);                                            \
-        tb_fill(gov, sizeof gov);                                              \
-        CHECK_EQ_INT(hf_guides_rest(&q.mesh, (added), (n), &gp, &go, &a),      \
-                     (code));                                                  \
-        CHECK(tb_untouched(pts, sizeof pts) && tb_untouched(lens, sizeof lens) && \
-              tb_untouched(gov, sizeof gov) && go.guide_count == -7);          \
-        CHECK_EQ_INT(cnt.allocs, cnt.frees);                                   \
-    } while (0)
-    gp.points = 1; TB_GUIDES(NULL, 0, HF_ERROR_BAD_COUNT);
-    gp.points = HF_GUIDE_MAX_POINTS + 1; TB_GUIDES(NULL, 0, HF_ERROR_BAD_COUNT);
-    gp.points = 4;
-    gp.max_length = 0.0f; TB_GUIDES(NULL, 0, HF_ERROR_BAD_PARAMETER);
-    gp.max_length = TB_NAN; TB_GUIDES(NULL, 0, HF_ERROR_BAD_PARAMETER);
-    gp.max_length = -1.0f; TB_GUIDES(NULL, 0, HF_ERROR_BAD_PARAMETER);
-    gp.max_length = 0.1f;
-    TB_GUIDES(NULL, 1, HF_ERROR_NULL_POINTER);
-    TB_GUIDES(&v, -1, HF_ERROR_BAD_COUNT);
-    v.triangle = 2; TB_GUIDES(&v, 1, HF_ERROR_INDEX_OUT_OF_RANGE);
-    v.triangle = 0;
-    v.bary[1] = TB_NAN; TB_GUIDES(&v, 1, HF_ERROR_NON_FINITE);
-    v.bary[1] = 1.5f; TB_GUIDES(&v, 1, HF_ERROR_BAD_PARAMETER);
-    v.bary[1] = 0.3f;
-    /* 4 base vertices + 1 added = 5 guides > capacity 4 */
-    TB_GUIDES(&v, 1, HF_ERROR_BUFFER_TOO_SMALL);
-    /* out of memory */
-    cnt.fail_after = 0;
-    TB_GUIDES(NULL, 0, HF_ERROR_OUT_OF_MEMORY);
-    cnt.fail_after = -1;
-    {
-        float comb[12];
-        memset(comb, 0, sizeof comb);
-        comb[4] = TB_INF;
-        gp.comb = comb;
-        TB_GUIDES(NULL, 0, HF_ERROR_NON_FINITE);
-        gp.comb = NULL;
-    }
-    CHECK_EQ_INT(hf_guides_rest(&q.mesh, NULL, 0, NULL, &go, NULL), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_guides_rest(&q.mesh, NULL, 0, &gp, NULL, NULL), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_guides_rest(NULL, NULL, 0, &gp, &go, NULL), HF_ERROR_NULL_POINTER);
-    q.nrm[0] = q.nrm[1] = q.nrm[2] = 0.0f;
-    TB_GUIDES(NULL, 0, HF_ERROR_DEGENERATE);
-    q.nrm[2] = 1.0f;
-    /* valid: every output finite */
-    memset(&go, 0, sizeof go);
-    go.points = pts; go.lengths = lens; go.guide_of_vertex = gov;
-    go.guide_capacity = 4;
-    CHECK_EQ_INT(hf_guides_rest(&q.mesh, NULL, 0, &gp, &go, NULL), HF_OK);
-    CHECK(tb_finite(pts, sizeof pts / sizeof pts[0]));
-#undef TB_GUIDES
-}
-
-static void test_bad_place_strands(void)
-{
-    tb_quad q;
-    hf_place_params pp;
-    hf_strand out[64];
-    int n;
-    t_counter cnt;
-    hf_allocator a = t_counting(&cnt);
-    tb_quad_init(&q);
-    memset(&pp, 0, sizeof pp);
-    pp.strands_per_area = 20.0f;
-#define TB_PLACE(expr, cap, code)                                              \
-    do {                                                                       \
-        hf_place_params p_ = pp;                                               \
-        expr;                                                                  \
-        n = -7;                                                                \
-        tb_fill(out, sizeof out);                                              \
-        CHECK_EQ_INT(hf_place_strands(&q.mesh, NULL, &p_, out, (cap), &n, &a), \
-                     (code));                                                  \
-        CHECK(n == -7 && tb_untouched(out, sizeof out));                       \
-        CHECK_EQ_INT(cnt.allocs, cnt.frees);                                   \
-    } while (0)
-    TB_PLACE(p_.strands_per_area = 0.0f, 64, HF_ERROR_BAD_PARAMETER);
-    TB_PLACE(p_.strands_per_area = -1.0f, 64, HF_ERROR_BAD_PARAMETER);
-    TB_PLACE(p_.strands_per_area = TB_NAN, 64, HF_ERROR_BAD_PARAMETER);
-    TB_PLACE(p_.strands_per_area = TB_INF, 64, HF_ERROR_BAD_PARAMETER);
-    TB_PLACE(p_.total_strands = -1, 64, HF_ERROR_BAD_COUNT);
-    TB_PLACE(p_.estimator = 3, 64, HF_ERROR_BAD_PARAMETER);
-    TB_PLACE(p_.sampler = 3, 64, HF_ERROR_BAD_PARAMETER);
-    TB_PLACE(p_.max_strands = -1, 64, HF_ERROR_BAD_PARAMETER);
-    TB_PLACE(p_.strands_per_area = 1e30f, 64, HF_ERROR_OVERFLOW);
-    TB_PLACE(p_.strands_per_area = FLT_MAX, 64, HF_ERROR_OVERFLOW);
-    TB_PLACE((p_.total_strands = 0x7fffffff), 64, HF_ERROR_OVERFLOW);
-    TB_PLACE(p_.max_strands = 5, 64, HF_ERROR_OVERFLOW);
-    TB_PLACE((void)0, 5, HF_ERROR_BUFFER_TOO_SMALL);
-    cnt.fail_after = 0;
-    TB_PLACE((void)0, 64, HF_ERROR_OUT_OF_MEMORY);
-    cnt.fail_after = -1;
-    CHECK_EQ_INT(hf_place_strands(&q.mesh, NULL, &pp, out, 64, NULL, NULL),
-                 HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_place_strands(&q.mesh, NULL, NULL, out, 64, &n, NULL),
-                 HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_place_strands(NULL, NULL, &pp, out, 64, &n, NULL),
-                 HF_ERROR_NULL_POINTER);
-    /* every triangle zero-area */
-    memset(q.pos, 0, sizeof q.pos);
-    TB_PLACE((void)0, 64, HF_ERROR_DEGENERATE);
-    /* density zero everywhere with total_strands */
-    tb_quad_init(&q);
-    {
-        unsigned char zero[1] = {0};
-        hf_map m;
-        memset(&m, 0, sizeof m);
-        m.data = zero; m.width = 1; m.height = 1; m.channels = 1;
-        n = -7;
-        pp.total_strands = 10;
-        CHECK_EQ_INT(hf_place_strands(&q.mesh, &m, &pp, out, 64, &n, NULL),
-                     HF_ERROR_DEGENERATE);
-        CHECK_EQ_INT(n, -7);
-        pp.total_strands = 0;
-    }
-#undef TB_PLACE
-}
-
-static void test_bad_strand_functions(void)
-{
-    tb_quad q;
-    hf_strand s[2] = {{0, {0.2f, 0.3f}, {0.5f, 0.5f}, 0.5f},
-                      {1, {0.1f, 0.1f}, {0.25f, 0.75f}, 0.25f}};
-    float roots[6], lens[2], rgba[8], xy[2], c4[4];
-    unsigned char px[4] = {10, 20, 30, 40};
-    hf_map m;
-    uint32_t gov[4] = {0, 1, 2, 3};
-    float glen[4] = {1, 1, 1, 1};
-    hf_strand_binding b[2];
-    tb_quad_init(&q);
-    memset(&m, 0, sizeof m);
-    m.data = px; m.width = 2; m.height = 2; m.channels = 1;
-    /* roots */
-    TB_FAILS(hf_strand_roots(NULL, s, 2, 0, 2, roots), HF_ERROR_NULL_POINTER, roots, sizeof roots);
-    TB_FAILS(hf_strand_roots(&q.mesh, NULL, 2, 0, 2, roots), HF_ERROR_NULL_POINTER, roots, sizeof roots);
-    CHECK_EQ_INT(hf_strand_roots(&q.mesh, s, 2, 0, 2, NULL), HF_ERROR_NULL_POINTER);
-    tb_fill(roots, sizeof roots);
-    {
-        hf_result rr = hf_strand_roots(&q.mesh, s, -1, 0, 0, roots);
-        CHECK(rr == HF_ERROR_BAD_COUNT || rr == HF_ERROR_BAD_RANGE);
-        CHECK(tb_untouched(roots, sizeof roots));
-    }
-    TB_FAILS(hf_strand_roots(&q.mesh, s, 2, 1, 2, roots), HF_ERROR_BAD_RANGE, roots, sizeof roots);
-    TB_FAILS(hf_strand_roots(&q.mesh, s, 2, 2, 0x7fffffff, roots), HF_ERROR_BAD_RANGE, roots, sizeof roots);
-    s[1].triangle = 7;
-    TB_FAILS(hf_strand_roots(&q.mesh, s, 2, 0, 2, roots), HF_ERROR_INDEX_OUT_OF_RANGE, roots, sizeof roots);
-    s[1].triangle = 1;
-    s[1].bary[1] = TB_NAN;
-    TB_FAILS(hf_strand_roots(&q.mesh, s, 2, 0, 2, roots), HF_ERROR_NON_FINITE, roots, sizeof roots);
-    s[1].bary[1] = 0.1f;
-    q.pos[9] = TB_NAN; /* vertex 3, used by triangle 1 */
-    TB_FAILS(hf_strand_roots(&q.mesh, s, 2, 0, 2, roots), HF_ERROR_NON_FINITE, roots, sizeof roots);
-    q.pos[9] = 0.0f;
-    q.mesh.position_stride = 11;
-    TB_FAILS(hf_strand_roots(&q.mesh, s, 2, 0, 2, roots), HF_ERROR_BAD_STRIDE, roots, sizeof roots);
-    q.mesh.position_stride = 0;
-    /* lengths: finite max_length times a float map value above 1 must not
-       overflow to inf (bug B) */
-    {
-        float two[1] = {2.0f};
-        hf_map fm;
-        hf_result rr;
-        memset(&fm, 0, sizeof fm);
-        fm.data = two; fm.width = 1; fm.height = 1; fm.channels = 1;
-        fm.format = HF_MAP_F32;
-        tb_fill(lens, sizeof lens);
-        rr = hf_strand_lengths(s, 2, 0, 2, &fm, FLT_MAX, lens);
-        CHECK(rr < 0 ? tb_untouched(lens, sizeof lens) : tb_finite(lens, 2));
-    }
-    TB_FAILS(hf_strand_lengths(NULL, 2, 0, 2, &m, 1.0f, lens), HF_ERROR_NULL_POINTER, lens, sizeof lens);
-    CHECK_EQ_INT(hf_strand_lengths(s, 2, 0, 2, &m, 1.0f, NULL), HF_ERROR_NULL_POINTER);
-    TB_FAILS(hf_strand_lengths(s, 2, 0, 2, &m, -1.0f, lens), HF_ERROR_BAD_PARAMETER, lens, sizeof lens);
-    TB_FAILS(hf_strand_lengths(s, 2, 0, 2, &m, TB_NAN, lens), HF_ERROR_BAD_PARAMETER, lens, sizeof lens);
-    TB_FAILS(hf_strand_lengths(s, 2, 0, 2, &m, TB_INF, lens), HF_ERROR_BAD_PARAMETER, lens, sizeof lens);
-    TB_FAILS(hf_strand_lengths(s, 2, 1, 2, &m, 1.0f, lens), HF_ERROR_BAD_RANGE, lens, sizeof lens);
-    s[0].uv[0] = TB_NAN;
-    TB_FAILS(hf_strand_lengths(s, 2, 0, 2, &m, 1.0f, lens), HF_ERROR_NON_FINITE, lens, sizeof lens);
-    s[0].uv[0] = 0.5f;
-    m.channels = 0;
-    TB_FAILS(hf_strand_lengths(s, 2, 0, 2, &m, 1.0f, lens), HF_ERROR_BAD_FORMAT, lens, sizeof lens);
-    m.channels = 1;
-    /* colours */
-    TB_FAILS(hf_strand_colors(s, 2, 0, 2, NULL, rgba), HF_ERROR_NULL_POINTER, rgba, sizeof rgba);
-    TB_FAILS(hf_strand_colors(s, 2, -1, 1, &m, rgba), HF_ERROR_BAD_RANGE, rgba, sizeof rgba);
-    s[1].uv[1] = -TB_INF;
-    TB_FAILS(hf_strand_colors(s, 2, 0, 2, &m, rgba), HF_ERROR_NON_FINITE, rgba, sizeof rgba);
-    s[1].uv[1] = 0.75f;
-    /* 3D colour */
-    TB_FAILS(hf_color3d_coord(NULL, 0.5f, 0.5f, 0.5f, xy), HF_ERROR_NULL_POINTER, xy, sizeof xy);
-    TB_FAILS(hf_color3d_coord(&m, TB_NAN, 0.5f, 0.5f, xy), HF_ERROR_NON_FINITE, xy, sizeof xy);
-    TB_FAILS(hf_color3d_coord(&m, 0.5f, 0.5f, TB_INF, xy), HF_ERROR_NON_FINITE, xy, sizeof xy);
-    TB_FAILS(hf_color3d_sample(&m, NULL, 0.5f, 0.5f, 0.5f, c4), HF_ERROR_NULL_POINTER, c4, sizeof c4);
-    TB_FAILS(hf_color3d_sample(&m, &m, 0.5f, TB_NAN, 0.5f, c4), HF_ERROR_NON_FINITE, c4, sizeof c4);
-    CHECK_EQ_INT(hf_color3d_coord(&m, 0.5f, 0.5f, 1e30f, xy), HF_OK);
-    CHECK(xy[1] == 1.0f);
-    /* bindings */
-#define TB_BIND(call, code) TB_FAILS(call, code, b, sizeof b)
-    TB_BIND(hf_bind_strands(NULL, gov, 4, s, 2, 0, 2, NULL, NULL, b), HF_ERROR_NULL_POINTER);
-    TB_BIND(hf_bind_strands(&q.mesh, NULL, 4, s, 2, 0, 2, NULL, NULL, b), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_bind_strands(&q.mesh, gov, 4, s, 2, 0, 2, NULL, NULL, NULL), HF_ERROR_NULL_POINTER);
-    TB_BIND(hf_bind_strands(&q.mesh, gov, 4, s, 2, 0, 2, lens, NULL, b), HF_ERROR_NULL_POINTER);
-    TB_BIND(hf_bind_strands(&q.mesh, gov, 0, s, 2, 0, 2, NULL, NULL, b), HF_ERROR_BAD_COUNT);
-    TB_BIND(hf_bind_strands(&q.mesh, gov, 4, s, 2, 2, 1, NULL, NULL, b), HF_ERROR_BAD_RANGE);
-    gov[3] = 4;
-    TB_BIND(hf_bind_strands(&q.mesh, gov, 4, s, 2, 0, 2, NULL, NULL, b), HF_ERROR_INDEX_OUT_OF_RANGE);
-    gov[3] = 3;
-    s[0].triangle = 2;
-    TB_BIND(hf_bind_strands(&q.mesh, gov, 4, s, 2, 0, 2, NULL, NULL, b), HF_ERROR_INDEX_OUT_OF_RANGE);
-    s[0].triangle = 0;
-    lens[0] = 1.0f; lens[1] = TB_NAN;
-    TB_BIND(hf_bind_strands(&q.mesh, gov, 4, s, 2, 0, 2, lens, glen, b), HF_ERROR_NON_FINITE);
-    lens[1] = 1.0f;
-    glen[2] = TB_INF;
-    TB_BIND(hf_bind_strands(&q.mesh, gov, 4, s, 2, 0, 2, lens, glen, b), HF_ERROR_NON_FINITE);
-    glen[2] = 0.0f; glen[0] = glen[1] = glen[3] = 0.0f; /* weighted length 0: 1 */
-    CHECK_EQ_INT(hf_bind_strands(&q.mesh, gov, 4, s, 2, 0, 2, lens, glen, b), HF_OK);
-    CHECK(b[0].length_scale == 1.0f && t_is_finite(b[1].length_scale));
-#undef TB_BIND
-}
-
-/* ---- 6. ropes ---------------------------------------------------------------- */
-
-static void test_bad_rope_params(void)
-{
-    hf_rope_params p, b;
-    hf_diag d;
-    float *fields[19];
-    int i, nf = 0;
-    hf_rope_params_init(&p);
-    CHECK_EQ_INT(hf_rope_params_validate(&p, &d), HF_OK);
-    CHECK_EQ_INT(hf_rope_params_validate(NULL, &d), HF_ERROR_NULL_POINTER);
-    b = p;
-    fields[nf++] = &b.gravity[0]; fields[nf++] = &b.gravity[2];
-    fields[nf++] = &b.wind[1]; fields[nf++] = &b.turbulence;
-    fields[nf++] = &b.turbulence_frequency; fields[nf++] = &b.damping;
-    fields[nf++] = &b.time_scale; fields[nf++] = &b.substep;
-    fields[nf++] = &b.max_dt; fields[nf++] = &b.ftl_damping;
-    fields[nf++] = &b.root_stiffness; fields[nf++] = &b.global_stiffness_root;
-    fields[nf++] = &b.global_stiffness_tip; fields[nf++] = &b.local_stiffness_root;
-    fields[nf++] = &b.local_stiffness_tip; fields[nf++] = &b.collision_margin;
-    fields[nf++] = &b.mode_blend_time;
-    for (i = 0; i < nf; ++i) {
-        float keep = *fields[i];
-        *fields[i] = TB_NAN;
-        CHECK_EQ_INT(hf_rope_params_validate(&b, &d), HF_ERROR_NON_FINITE);
-        CHECK(d.field != NULL);
-        *fields[i] = TB_INF;
-        CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_NON_FINITE);
-        *fields[i] = -1e30f; /* below every range */
-        CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
-        *fields[i] = keep;
-    }
-    b = p; b.time_scale = 0.0f; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
-    b = p; b.max_dt = 0.0f; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
-    b = p; b.max_substeps = 0; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
-    b = p; b.max_substeps = 0x7fffffff; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
-    b = p; b.iterations = -1; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
-    b = p; b.iterations = 0x7fffffff; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
-    b = p; b.solver = 2; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
-    b = p; b.gravity[1] = 2e4f; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
-}
-
-static void test_bad_ropes_memory_and_limits(void)
-{
-    size_t sz = 12345;
-    hf_ropes r, sentinel;
-    unsigned char mem[64];
-    hf_ropes *out = (hf_ropes *)&sz;
-    t_counter cnt;
-    hf_allocator a = t_counting(&cnt);
-    CHECK_EQ_INT(hf_ropes_memory_size(1, 2, NULL), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_ropes_memory_size(0, 2, &sz), HF_ERROR_BAD_COUNT);
-    CHECK_EQ_INT(hf_ropes_memory_size(-1, 2, &sz), HF_ERROR_BAD_COUNT);
-    CHECK_EQ_INT(hf_ropes_memory_size(1, 1, &sz), HF_ERROR_BAD_COUNT);
-    CHECK_EQ_INT(hf_ropes_memory_size(1, -0x7fffffff - 1, &sz), HF_ERROR_BAD_COUNT);
-    CHECK_EQ_INT(sz, 12345);
-    /* counts near INT_MAX: the byte size overflows size_t (64-bit: 2^31 *
-       2^31 * 40 bytes) or is refused as too large, never wrapped */
-    CHECK(hf_ropes_memory_size(0x7fffffff, 0x7fffffff, &sz) == HF_ERROR_OVERFLOW);
-    CHECK_EQ_INT(sz, 12345);
-    {
-        hf_result rr = hf_ropes_memory_size(0x7fffffff, 2, &sz);
-        CHECK(rr == HF_OK || rr == HF_ERROR_OVERFLOW);
-        if (rr == HF_OK) CHECK(sz > (size_t)0x7fffffff * 40u);
-    }
-    memset(&sentinel, 0xA5, sizeof sentinel);
-    r = sentinel;
-    CHECK_EQ_INT(hf_ropes_init(&r, 1, 2, NULL, 1000), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_ropes_init(NULL, 1, 2, mem, sizeof mem), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_ropes_init(&r, 0, 2, mem, sizeof mem), HF_ERROR_BAD_COUNT);
-    CHECK_EQ_INT(hf_ropes_init(&r, 1, 2, mem, sizeof mem), HF_ERROR_BUFFER_TOO_SMALL);
-    CHECK_EQ_INT(hf_ropes_init(&r, 0x7fffffff, 0x7fffffff, mem, (size_t)-1),
-                 HF_ERROR_OVERFLOW);
-    CHECK(memcmp(&r, &sentinel, sizeof r) == 0);
-    /* create: OOM, absurd counts, nothing leaked, *out untouched */
-    cnt.fail_after = 0;
-    CHECK_EQ_INT(hf_ropes_create(4, 4, &a, &out), HF_ERROR_OUT_OF_MEMORY);
-    CHECK(out == (hf_ropes *)&sz);
-    cnt.fail_after = -1;
-    CHECK_EQ_INT(hf_ropes_create(0x7fffffff, 0x7fffffff, &a, &out), HF_ERROR_OVERFLOW);
-    CHECK(out == (hf_ropes *)&sz);
-    CHECK_EQ_INT(hf_ropes_create(4, 4, &a, NULL), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(cnt.allocs, cnt.frees);
-    hf_ropes_destroy(NULL);
-}
-
-/* 3 ropes of 4 points along +y from x = 0, 1, 2; on caller memory */
-typedef struct tb_ropes {
-    hf_ropes r;
-    void *mem;
-    size_t bytes;
-    float rest[3 * 4 * 3], pos[9], nrm[9], tan[9];
-} tb_ropes;
-
-static void tb_ropes_open(tb_ropes *t)
-{
-    int i, j;
-    hf_ropes_memory_size(3, 4, &t->bytes);
-    t->mem = malloc(t->bytes);
-    hf_ropes_init(&t->r, 3, 4, t->mem, t->bytes);
-    for (i = 0; i < 3; ++i) {
-        t->pos[3 * i] = (float)i; t->pos[3 * i + 1] = 0; t->pos[3 * i + 2] = 0;
-        t->nrm[3 * i] = 0; t->nrm[3 * i + 1] = 1; t->nrm[3 * i + 2] = 0;
-        t->tan[3 * i] = 1; t->tan[3 * i + 1] = 0; t->tan[3 * i + 2] = 0;
-        for (j = 0; j < 4; ++j) {
-            float *p = t->rest + 3 * (i * 4 + j);
-            p[0] = (float)i; p[1] = 0.1f * (float)j; p[2] = 0;
-        }
-    }
-    hf_ropes_set_rest(&t->r, 0, 3, t->rest, 0, t->pos, t->nrm, t->tan, 0);
-}
-
-/* a failing call on the ropes leaves every byte as it was */
-#define TB_ROPES_FAIL(t, call, code)                                           \
-    do {                                                                       \
-        unsigned char *snap_ = (unsigned char *)malloc((t).bytes);             \
-        hf_ropes rs_ = (t).r;                                                  \
-        memcpy(snap_, (t).mem, (t).bytes);                                     \
-        CHECK_EQ_INT((call), (code));                                          \
-        CHECK(memcmp(snap_, (t).mem, (t).bytes) == 0);                         \
-        CHECK(memcmp(&rs_, &(t).r, sizeof rs_) == 0);                          \
-        free(snap_);                                                           \
-    } while (0)
-
-static void test_bad_ropes_set_rest_and_roots(void)
-{
-    tb_ropes t;
-    int k;
-    tb_ropes_open(&t);
-    for (k = 0; k < 2; ++k) {
-        /* k = 0: hf_ropes_set_rest, k = 1: hf_ropes_set_roots */
-#define TB_SET(rest, pos, nrm, tan, stride, first, count, code)                \
-    TB_ROPES_FAIL(t,                                                           \
-                  k == 0 ? hf_ropes_set_rest(&t.r, first, count, rest, 0, pos, \
-                                             nrm, tan, stride)                 \
-                         : hf_ropes_set_roots(&t.r, first, count, pos, nrm,    \
-                                              tan, stride),                    \
-                  code)
-        TB_SET(t.rest, NULL, t.nrm, t.tan, 0, 0, 3, HF_ERROR_NULL_POINTER);
-        TB_SET(t.rest, t.pos, NULL, t.tan, 0, 0, 3, HF_ERROR_NULL_POINTER);
-        TB_SET(t.rest, t.pos, t.nrm, NULL, 0, 0, 3, HF_ERROR_NULL_POINTER);
-        TB_SET(t.rest, t.pos, t.nrm, t.tan, 0, 1, 3, HF_ERROR_BAD_RANGE);
-        TB_SET(t.rest, t.pos, t.nrm, t.tan, 0, -1, 1, HF_ERROR_BAD_RANGE);
-        TB_SET(t.rest, t.pos, t.nrm, t.tan, 0, 3, 0x7fffffff, HF_ERROR_BAD_RANGE);
-        TB_SET(t.rest, t.pos, t.nrm, t.tan, 8, 0, 3, HF_ERROR_BAD_STRIDE);
-        TB_SET(t.rest, t.pos, t.nrm, t.tan, -12, 0, 3, HF_ERROR_BAD_STRIDE);
-        t.pos[4] = TB_NAN;
-        TB_SET(t.rest, t.pos, t.nrm, t.tan, 0, 0, 3, HF_ERROR_NON_FINITE);
-        t.pos[4] = 2e6f; /* beyond HF_ROPE_MAX_COORD */
-        TB_SET(t.rest, t.pos, t.nrm, t.tan, 0, 0, 3, HF_ERROR_BAD_PARAMETER);
-        t.pos[4] = 0.0f;
-        t.tan[8] = TB_INF;
-        TB_SET(t.rest, t.pos, t.nrm, t.tan, 0, 0, 3, HF_ERROR_NON_FINITE);
-        t.tan[8] = 0.0f;
-        t.nrm[3] = t.nrm[4] = t.nrm[5] = 0.0f;
-        TB_SET(t.rest, t.pos, t.nrm, t.tan, 0, 0, 3, HF_ERROR_DEGENERATE);
-        t.nrm[4] = 1.0f;
-        CHECK_EQ_INT(hf_ropes_set_rest(NULL, 0, 3, t.rest, 0, t.pos, t.nrm, t.tan, 0),
-                     HF_ERROR_NULL_POINTER);
-        CHECK_EQ_INT(hf_ropes_set_roots(NULL, 0, 3, t.pos, t.nrm, t.tan, 0),
-                     HF_ERROR_NULL_POINTER);
-#undef TB_SET
-    }
-    /* rest positions: NULL, NaN, stride */
-    TB_ROPES_FAIL(t, hf_ropes_set_rest(&t.r, 0, 3, NULL, 0, t.pos, t.nrm, t.tan, 0),
-                  HF_ERROR_NULL_POINTER);
-    t.rest[20] = -TB_INF;
-    TB_ROPES_FAIL(t, hf_ropes_set_rest(&t.r, 0, 3, t.rest, 0, t.pos, t.nrm, t.tan, 0),
-                  HF_ERROR_NON_FINITE);
-    t.rest[20] = 0.0f;
-    TB_ROPES_FAIL(t, hf_ropes_set_rest(&t.r, 0, 3, t.rest, 4, t.pos, t.nrm, t.tan, 0),
-                  HF_ERROR_BAD_STRIDE);
-    /* a tangent parallel to the normal, and zero: a deterministic
-       perpendicular, no NaN */
-    t.tan[0] = 0; t.tan[1] = 5; t.tan[2] = 0;
-    t.tan[3] = t.tan[4] = t.tan[5] = 0;
-    CHECK_EQ_INT(hf_ropes_set_roots(&t.r, 0, 3, t.pos, t.nrm, t.tan, 0), HF_OK);
-    {
-        hf_rope_params p;
-        hf_rope_params_init(&p);
-        CHECK_EQ_INT(hf_ropes_step(&t.r, 0, 3, 1.0f / 60.0f, &p, NULL, 0), HF_OK);
-        CHECK(tb_finite(t.r.x, 12) && tb_finite(t.r.y, 12) && tb_finite(t.r.z, 12));
-    }
-    free(t.mem);
-}
-
-static void test_bad_ropes_step(void)
-{
-    tb_ropes t;
-    hf_rope_params p;
-    hf_collider c;
-    float st = -7.0f;
-    float out[36];
-    tb_ropes_open(&t);
-    hf_rope_params_init(&p);
-    memset(&c, 0, sizeof c);
-    c.type = HF_COLLIDER_SPHERE;
-    c.a[1] = 0.2f;
-    c.radius = 0.05f;
-    /* time steps */
-    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.0f, &p, NULL, 0), HF_ERROR_BAD_TIME_STEP);
-    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, -0.01f, &p, NULL, 0), HF_ERROR_BAD_TIME_STEP);
-    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, -0.0f, &p, NULL, 0), HF_ERROR_BAD_TIME_STEP);
-    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, TB_NAN, &p, NULL, 0), HF_ERROR_BAD_TIME_STEP);
-    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, TB_INF, &p, NULL, 0), HF_ERROR_BAD_TIME_STEP);
-    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, -TB_INF, &p, NULL, 0), HF_ERROR_BAD_TIME_STEP);
-    /* huge: clamped to max_dt, HF_OK, finite */
-    CHECK_EQ_INT(hf_ropes_step(&t.r, 0, 3, FLT_MAX, &p, &c, 1), HF_OK);
-    CHECK(tb_finite(t.r.x, 12) && tb_finite(t.r.y, 12) && tb_finite(t.r.z, 12));
-    CHECK_EQ_INT(hf_ropes_step(&t.r, 0, 3, 1e-30f, &p, &c, 1), HF_OK);
-    CHECK(tb_finite(t.r.x, 12) && tb_finite(t.r.y, 12));
-    /* the rest */
-    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.01f, NULL, NULL, 0), HF_ERROR_NULL_POINTER);
-    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.01f, &p, NULL, 1), HF_ERROR_NULL_POINTER);
-    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.01f, &p, &c, -1), HF_ERROR_BAD_COUNT);
-    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 2, 2, 0.01f, &p, NULL, 0), HF_ERROR_BAD_RANGE);
-    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 1, 0x7fffffff, 0.01f, &p, NULL, 0), HF_ERROR_BAD_RANGE);
-    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, -1, 1, 0.01f, &p, NULL, 0), HF_ERROR_BAD_RANGE);
-    CHECK_EQ_INT(hf_ropes_step(NULL, 0, 3, 0.01f, &p, NULL, 0), HF_ERROR_NULL_POINTER);
-    p.damping = TB_NAN;
-    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.01f, &p, NULL, 0), HF_ERROR_NON_FINITE);
-    hf_rope_params_init(&p);
-    c.radius = TB_NAN;
-    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.01f, &p, &c, 1), HF_ERROR_NON_FINITE);
-    c.radius = -1.0f;
-    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.01f, &p, &c, 1), HF_ERROR_BAD_PARAMETER);
-    c.radius = 0.05f;
-    c.a[0] = TB_INF;
-    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.01f, &p, &c, 1), HF_ERROR_NON_FINITE);
-    c.a[0] = 2e6f;
-    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.01f, &p, &c, 1), HF_ERROR_BAD_PARAMETER);
-    c.a[0] = 0.0f;
-    c.type = 2;
-    TB_ROPES_FAIL(t, hf_ropes_step(&t.r, 0, 3, 0.01f, &p, &c, 1), HF_ERROR_BAD_PARAMETER);
-    c.type = HF_COLLIDER_CAPSULE; /* a == b: a zero-length capsule */
-    c.b[0] = c.a[0]; c.b[1] = c.a[1]; c.b[2] = c.a[2];
-    CHECK_EQ_INT(hf_ropes_step(&t.r, 0, 3, 0.01f, &p, &c, 1), HF_OK);
-    CHECK(tb_finite(t.r.x, 12) && tb_finite(t.r.y, 12) && tb_finite(t.r.z, 12));
-    /* a collider centred exactly on a particle */
-    c.type = HF_COLLIDER_SPHERE;
-    c.a[0] = t.r.x[1 * 3 + 0]; c.a[1] = t.r.y[3]; c.a[2] = t.r.z[3];
-    CHECK_EQ_INT(hf_ropes_step(&t.r, 0, 3, 0.01f, &p, &c, 1), HF_OK);
-    CHECK(tb_finite(t.r.x, 12) && tb_finite(t.r.y, 12) && tb_finite(t.r.z, 12));
-    /* mode, reset, stretch, positions */
-    TB_ROPES_FAIL(t, hf_ropes_set_mode(&t.r, 0, 3, 2), HF_ERROR_BAD_PARAMETER);
-    TB_ROPES_FAIL(t, hf_ropes_set_mode(&t.r, 0, 3, -1), HF_ERROR_BAD_PARAMETER);
-    TB_ROPES_FAIL(t, hf_ropes_set_mode(&t.r, 3, 1, 0), HF_ERROR_BAD_RANGE);
-    CHECK_EQ_INT(hf_ropes_set_mode(NULL, 0, 1, 0), HF_ERROR_NULL_POINTER);
-    TB_ROPES_FAIL(t, hf_ropes_reset(&t.r, 0, 4), HF_ERROR_BAD_RANGE);
-    CHECK_EQ_INT(hf_ropes_reset(NULL, 0, 1), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_ropes_max_stretch(&t.r, 0, 4, &st), HF_ERROR_BAD_RANGE);
-    CHECK_EQ_INT(hf_ropes_max_stretch(&t.r, 0, 3, NULL), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_ropes_max_stretch(NULL, 0, 3, &st), HF_ERROR_NULL_POINTER);
-    CHECK(st == -7.0f);
-    CHECK_EQ_INT(hf_ropes_max_stretch(&t.r, 3, 0, &st), HF_OK);
-    CHECK(st == 0.0f);
-    TB_FAILS(hf_ropes_get_positions(&t.r, 0, 4, out, 0), HF_ERROR_BAD_RANGE, out, sizeof out);
-    TB_FAILS(hf_ropes_get_positions(&t.r, 0, 3, out, 8), HF_ERROR_BAD_STRIDE, out, sizeof out);
-    TB_FAILS(hf_ropes_get_positions(&t.r, 0, 3, out, -12), HF_ERROR_BAD_STRIDE, out, sizeof out);
-    TB_FAILS(hf_ropes_get_positions(NULL, 0, 3, out, 0), HF_ERROR_NULL_POINTER, out, sizeof out);
-    CHECK_EQ_INT(hf_ropes_get_positions(&t.r, 0, 3, NULL, 0), HF_ERROR_NULL_POINTER);
-    free(t.mem);
-}
-
-/* ---- 7. interpolation and LOD ---------------------------------------------- */
-
-static void test_bad_interpolate_and_lod(void)
-{
-    float g[2 * 3 * 3], out[2 * 3 * 3];
-    hf_strand_binding b[2];
-    hf_interp_params ip;
-    int i;
-    for (i = 0; i < 18; ++i) g[i] = (float)i * 0.1f;
-    for (i = 0; i < 2; ++i) {
-        b[i].guide[0] = 0; b[i].guide[1] = 1; b[i].guide[2] = 1;
-        b[i].weight[0] = 0.5f; b[i].weight[1] = 0.25f; b[i].weight[2] = 0.25f;
-        b[i].length_scale = 1.0f;
-    }
-    memset(&ip, 0, sizeof ip);
-    ip.points_per_strand = 3;
-#define TB_INTERP(guides, gc, first, count, code)                              \
-    TB_FAILS(hf_interpolate((guides), (gc), b, (first), (count), &ip, out),    \
-             (code), out, sizeof out)
-    TB_INTERP(NULL, 2, 0, 2, HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_interpolate(g, 2, NULL, 0, 2, &ip, out), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_interpolate(g, 2, b, 0, 2, NULL, out), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_interpolate(g, 2, b, 0, 2, &ip, NULL), HF_ERROR_NULL_POINTER);
-    TB_INTERP(g, 2, -1, 1, HF_ERROR_BAD_RANGE);
-    TB_INTERP(g, 2, 0, -1, HF_ERROR_BAD_RANGE);
-    TB_INTERP(g, 2, 1, 0x7fffffff, HF_ERROR_BAD_RANGE);
-    ip.points_per_strand = 1; TB_INTERP(g, 2, 0, 2, HF_ERROR_BAD_COUNT);
-    ip.points_per_strand = HF_MAX_POINTS + 1; TB_INTERP(g, 2, 0, 2, HF_ERROR_BAD_COUNT);
-    ip.points_per_strand = 3;
-    TB_INTERP(g, 1, 0, 2, HF_ERROR_INDEX_OUT_OF_RANGE);
-    b[1].guide[2] = 0xffffffffu; TB_INTERP(g, 2, 0, 2, HF_ERROR_INDEX_OUT_OF_RANGE);
-    b[1].guide[2] = 1;
-    b[1].weight[1] = TB_NAN; TB_INTERP(g, 2, 0, 2, HF_ERROR_NON_FINITE);
-    b[1].weight[1] = 0.25f;
-    b[0].length_scale = TB_INF; TB_INTERP(g, 2, 0, 2, HF_ERROR_NON_FINITE);
-    b[0].length_scale = 1.0f;
-    ip.clump = TB_NAN; TB_INTERP(g, 2, 0, 2, HF_ERROR_NON_FINITE);
-    ip.clump = 1.5f; TB_INTERP(g, 2, 0, 2, HF_ERROR_BAD_PARAMETER);
-    ip.clump = -0.1f; TB_INTERP(g, 2, 0, 2, HF_ERROR_BAD_PARAMETER);
-    ip.clump = 0.0f;
-    /* NaN guide points: never NaN in the output */
-    g[4] = TB_NAN;
-    tb_fill(out, sizeof out);
-    {
-        hf_result r = hf_interpolate(g, 2, b, 0, 2, &ip, out);
-        CHECK(r < 0 ? tb_untouched(out, sizeof out) : tb_finite(out, 18));
-    }
-    g[4] = 0.4f;
-#undef TB_INTERP
-    /* LOD helpers: total functions, never NaN */
-    CHECK_EQ_INT(hf_lod_strand_count(100, TB_NAN), 0);
-    CHECK_EQ_INT(hf_lod_strand_count(100, -TB_INF), 0);
-    CHECK_EQ_INT(hf_lod_strand_count(100, TB_INF), 100);
-    CHECK_EQ_INT(hf_lod_strand_count(-5, 0.5f), 0);
-    CHECK_EQ_INT(hf_lod_strand_count(0x7fffffff, 1.0f), 0x7fffffff);
-    CHECK(hf_lod_strand_count(0x7fffffff, 0.999999f) <= 0x7fffffff);
-    CHECK(hf_lod_width_scale(0x7fffffff, 1) > 1.0f && t_is_finite(hf_lod_width_scale(0x7fffffff, 1)));
-    CHECK(hf_lod_width_scale(-1, -1) == 1.0f);
-    CHECK(hf_lod_from_distance(TB_NAN, 1.0f, 10.0f) == 1.0f);
-    CHECK(hf_lod_from_distance(5.0f, TB_NAN, 10.0f) == 1.0f);
-    CHECK(hf_lod_from_distance(5.0f, 1.0f, TB_INF) == 1.0f);
-    CHECK(hf_lod_from_distance(-1.0f, 1.0f, 10.0f) == 1.0f);
-    CHECK(t_is_finite(hf_lod_from_distance(5.0f, 0.0f, 10.0f)));
-    CHECK(t_is_finite(hf_lod_from_distance(FLT_MAX, FLT_MAX, FLT_MAX)));
-}
-
-/* ---- 8. ribbons -------------------------------------------------------------- */
-
-static void test_bad_ribbons(void)
-{
-    float pts[2 * 3 * 3] = {0, 0, 0, 0, 0.1f, 0, 0, 0.2f, 0,
-                            1, 0, 0, 1, 0, 0, 1, 0, 0}; /* strand 1: no length */
-    float v[2 * 3 * 2 * 3], p4[2 * 3 * 4];
-    hf_ribbon_strands st;
-    hf_ribbon_params rp, b;
-    hf_ribbon_output o;
-    uint32_t ix[64];
-    memset(&st, 0, sizeof st);
-    st.points = pts;
-    memset(&rp, 0, sizeof rp);
-    rp.points_per_strand = 3;
-    rp.eye[2] = 2.0f;
-    rp.root_width = 0.01f;
-    memset(&o, 0, sizeof o);
-    o.position.data = v;
-#define TB_RIB(params, first, count, code)                                     \
-    do {                                                                       \
-        TB_FAILS(hf_ribbons(&st, (first), (count), &(params), &o), (code), v,  \
-                 sizeof v);                                                    \
-        TB_FAILS(hf_ribbon_points(&st, (first), (count), &(params), p4),       \
-                 (code), p4, sizeof p4);                                       \
-    } while (0)
-    b = rp; b.points_per_strand = 1; TB_RIB(b, 0, 2, HF_ERROR_BAD_COUNT);
-    b = rp; b.points_per_strand = HF_MAX_POINTS + 1; TB_RIB(b, 0, 2, HF_ERROR_BAD_COUNT);
-    TB_RIB(rp, -1, 1, HF_ERROR_BAD_RANGE);
-    TB_RIB(rp, 0, -1, HF_ERROR_BAD_RANGE);
-    TB_RIB(rp, 1, 0x7fffffff, HF_ERROR_BAD_RANGE);
-    b = rp; b.eye[1] = TB_NAN; TB_RIB(b, 0, 2, HF_ERROR_NON_FINITE);
-    b = rp; b.view_dir[0] = TB_INF; TB_RIB(b, 0, 2, HF_ERROR_NON_FINITE);
-    b = rp; b.root_width = -0.01f; TB_RIB(b, 0, 2, HF_ERROR_BAD_PARAMETER);
-    b = rp; b.tip_width = TB_NAN; TB_RIB(b, 0, 2, HF_ERROR_NON_FINITE);
-    b = rp; b.taper_power = -1.0f; TB_RIB(b, 0, 2, HF_ERROR_BAD_PARAMETER);
-    b = rp; b.width_scale = TB_INF; TB_RIB(b, 0, 2, HF_ERROR_NON_FINITE);
-    b = rp; b.alpha_tip = TB_NAN; TB_RIB(b, 0, 2, HF_ERROR_NON_FINITE);
-    b = rp; b.orthographic = 1; TB_RIB(b, 0, 2, HF_ERROR_DEGENERATE); /* zero view_dir */
-    st.points = NULL; TB_RIB(rp, 0, 2, HF_ERROR_NULL_POINTER); st.points = pts;
-    CHECK_EQ_INT(hf_ribbons(NULL, 0, 2, &rp, &o), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_ribbons(&st, 0, 2, NULL, &o), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_ribbons(&st, 0, 2, &rp, NULL), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_ribbon_points(&st, 0, 2, &rp, NULL), HF_ERROR_NULL_POINTER);
-    o.position.stride = -12;
-    TB_FAILS(hf_ribbons(&st, 0, 2, &rp, &o), HF_ERROR_BAD_STRIDE, v, sizeof v);
-    o.position.stride = 0;
-    /* the eye exactly on a strand point, and on the line of a strand:
-       finite vertices */
-    b = rp; b.eye[0] = 0; b.eye[1] = 0.1f; b.eye[2] = 0;
-    CHECK_EQ_INT(hf_ribbons(&st, 0, 2, &b, &o), HF_OK);
-    CHECK(tb_finite(v, sizeof v / sizeof v[0]));
-    b.eye[1] = 5.0f;
-    CHECK_EQ_INT(hf_ribbons(&st, 0, 2, &b, &o), HF_OK);
-    CHECK(tb_finite(v, sizeof v / sizeof v[0]));
-    /* orthographic along the strand */
-    b = rp; b.orthographic = 1; b.view_dir[1] = 1.0f;
-    CHECK_EQ_INT(hf_ribbons(&st, 0, 2, &b, &o), HF_OK);
-    CHECK(tb_finite(v, sizeof v / sizeof v[0]));
-    /* NaN positions get a result code or a clamp, never NaN out */
-    pts[4] = TB_NAN;
-    tb_fill(v, sizeof v);
-    {
-        hf_result r = hf_ribbons(&st, 0, 2, &rp, &o);
-        CHECK(r < 0 ? tb_untouched(v, sizeof v) : tb_finite(v, sizeof v / sizeof v[0]));
-    }
-    pts[4] = 0.1f;
-    /* finite widths whose product overflows: never inf or NaN */
-    b = rp; b.root_width = 1e30f; b.width_scale = 1e30f;
-    tb_fill(v, sizeof v);
-    {
-        hf_result r = hf_ribbons(&st, 0, 2, &b, &o);
-        CHECK(r < 0 ? tb_untouched(v, sizeof v) : tb_finite(v, sizeof v / sizeof v[0]));
-        r = hf_ribbon_points(&st, 0, 2, &b, p4);
-        CHECK(r < 0 || tb_finite(p4, sizeof p4 / sizeof p4[0]));
-    }
-#undef TB_RIB
-    /* indices */
-    CHECK(hf_ribbon_index_count(-1, 3, HF_TRIANGLES) == -1);
-    CHECK(hf_ribbon_index_count(1, 1, HF_TRIANGLES) == -1);
-    CHECK(hf_ribbon_index_count(1, 3, 2) == -1);
-    CHECK(hf_ribbon_index_count(0x7fffffff, 0x7fffffff, HF_TRIANGLES) == -1);
-    CHECK(hf_ribbon_index_count(0x7fffffff, 2, HF_STRIP_RESTART) == -1);
-    CHECK(hf_ribbon_index_count(0, 3, HF_TRIANGLES) == 0);
-    TB_FAILS(hf_ribbon_indices(2, 3, HF_TRIANGLES, ix, 23), HF_ERROR_BUFFER_TOO_SMALL, ix, sizeof ix);
-    TB_FAILS(hf_ribbon_indices(-1, 3, HF_TRIANGLES, ix, 64), HF_ERROR_BAD_COUNT, ix, sizeof ix);
-    TB_FAILS(hf_ribbon_indices(2, 1, HF_TRIANGLES, ix, 64), HF_ERROR_BAD_COUNT, ix, sizeof ix);
-    TB_FAILS(hf_ribbon_indices(2, 3, 7, ix, 64), HF_ERROR_BAD_PARAMETER, ix, sizeof ix);
-    TB_FAILS(hf_ribbon_indices(0x7fffffff, 0x7fffffff, HF_TRIANGLES, ix, 64),
-             HF_ERROR_OVERFLOW, ix, sizeof ix);
-    TB_FAILS(hf_ribbon_indices(2, 3, HF_TRIANGLES, ix, -1), HF_ERROR_BUFFER_TOO_SMALL, ix, sizeof ix);
-    CHECK_EQ_INT(hf_ribbon_indices(2, 3, HF_TRIANGLES, NULL, 64), HF_ERROR_NULL_POINTER);
-    /* 2 P strand_count past 2^32 while the index count fits an int: P =
-       2^29, 5 strands -> 2^31 * 5 / 2^29 ... the vertex-number check */
-    TB_FAILS(hf_ribbon_indices(1 << 24, 300, HF_STRIP_RESTART, ix, 64),
-             hf_ribbon_index_count(1 << 24, 300, HF_STRIP_RESTART) < 0
-                 ? HF_ERROR_OVERFLOW : HF_ERROR_BUFFER_TOO_SMALL,
-             ix, sizeof ix);
-}
-
-/* ---- 9. LUT baking ------------------------------------------------------------- */
-
-static void test_bad_lut(void)
-{
-    hf_lut_params p, b;
-    float tex[4 * 4 * 4], tex2[4 * 4 * 4], sc[4];
-    unsigned char q[4 * 4 * 4];
-    double o3[3];
-    hf_lut_params_init(&p);
-    p.size = 4;
-    CHECK_EQ_INT(hf_lut_validate(&p, NULL), HF_OK);
-#define TB_LUT(params, first, count, code)                                     \
-    do {                                                                       \
-        TB_FAILS(hf_lut_bake_m(&(params), (first), (count), tex), (code), tex, \
-                 sizeof tex);                                                  \
-        TB_FAILS(hf_lut_bake_n(&(params), (first), (count), tex), (code), tex, \
-                 sizeof tex);                                                  \
-        tb_fill(tex2, sizeof tex2);                                            \
-        TB_FAILS(hf_lut_bake_n_rgb(&(params), (first), (count), tex, tex2),    \
-                 (code), tex, sizeof tex);                                     \
-        CHECK(tb_untouched(tex2, sizeof tex2));                                \
-    } while (0)
-    b = p; b.eta = TB_NAN; TB_LUT(b, 0, 4, HF_ERROR_NON_FINITE);
-    b = p; b.eta = 1.0; TB_LUT(b, 0, 4, HF_ERROR_BAD_PARAMETER);
-    b = p; b.eta = 3.5; TB_LUT(b, 0, 4, HF_ERROR_BAD_PARAMETER);
-    b = p; b.alpha_r_deg = INFINITY; TB_LUT(b, 0, 4, HF_ERROR_NON_FINITE);
-    b = p; b.beta_r_deg = 0.0; TB_LUT(b, 0, 4, HF_ERROR_BAD_PARAMETER);
-    b = p; b.beta_r_deg = -1.0; TB_LUT(b, 0, 4, HF_ERROR_BAD_PARAMETER);
-    b = p; b.sigma_a = -0.1; TB_LUT(b, 0, 4, HF_ERROR_BAD_PARAMETER);
-    b = p; b.sigma_a = NAN; TB_LUT(b, 0, 4, HF_ERROR_NON_FINITE);
-    b = p; b.sigma_a_rgb[2] = -1.0; CHECK_EQ_INT(hf_lut_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
-    b = p; b.variant = 2; TB_LUT(b, 0, 4, HF_ERROR_BAD_PARAMETER);
-    b = p; b.size = 0; CHECK_EQ_INT(hf_lut_validate(&b, NULL), HF_ERROR_BAD_COUNT);
-    b = p; b.size = HF_LUT_MAX_SIZE + 1; CHECK_EQ_INT(hf_lut_validate(&b, NULL), HF_ERROR_BAD_COUNT);
-    b = p; b.size = 0x7fffffff; CHECK_EQ_INT(hf_lut_validate(&b, NULL), HF_ERROR_BAD_COUNT);
-    CHECK_EQ_INT(hf_lut_validate(NULL, NULL), HF_ERROR_NULL_POINTER);
-    TB_LUT(p, -1, 1, HF_ERROR_BAD_RANGE);
-    TB_LUT(p, 0, -1, HF_ERROR_BAD_RANGE);
-    TB_LUT(p, 3, 2, HF_ERROR_BAD_RANGE);
-    TB_LUT(p, 1, 0x7fffffff, HF_ERROR_BAD_RANGE);
-    CHECK_EQ_INT(hf_lut_bake_m(&p, 0, 4, NULL), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_lut_bake_n_rgb(&p, 0, 4, tex, NULL), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_lut_bake_m(NULL, 0, 4, tex), HF_ERROR_NULL_POINTER);
-    /* extreme but valid: finite textures */
-    b = p; b.beta_r_deg = 1e-300; b.sigma_a = 1e300; b.alpha_r_deg = -1e300;
-    CHECK_EQ_INT(hf_lut_bake_m(&b, 0, 4, tex), HF_OK);
-    CHECK(tb_finite(tex, 64));
-    CHECK_EQ_INT(hf_lut_bake_n(&b, 0, 4, tex), HF_OK);
-    CHECK(tb_finite(tex, 64));
-    /* to_u8 */
-    CHECK_EQ_INT(hf_lut_bake_n(&p, 0, 4, tex), HF_OK);
-    TB_FAILS(hf_lut_to_u8(NULL, 4, NULL, q, sc), HF_ERROR_NULL_POINTER, q, sizeof q);
-    CHECK_EQ_INT(hf_lut_to_u8(tex, 4, NULL, NULL, sc), HF_ERROR_NULL_POINTER);
-    TB_FAILS(hf_lut_to_u8(tex, 0, NULL, q, sc), HF_ERROR_BAD_COUNT, q, sizeof q);
-    TB_FAILS(hf_lut_to_u8(tex, HF_LUT_MAX_SIZE + 1, NULL, q, sc), HF_ERROR_BAD_COUNT, q, sizeof q);
-    sc[0] = 1.0f; sc[1] = 0.0f; sc[2] = 1.0f; sc[3] = 1.0f;
-    {
-        float scales_in[4] = {1.0f, 0.0f, 1.0f, 1.0f};
-        TB_FAILS(hf_lut_to_u8(tex, 4, scales_in, q, NULL), HF_ERROR_BAD_PARAMETER, q, sizeof q);
-        scales_in[1] = TB_NAN;
-        TB_FAILS(hf_lut_to_u8(tex, 4, scales_in, q, NULL), HF_ERROR_BAD_PARAMETER, q, sizeof q);
-    }
-    tex[17] = TB_NAN;
-    tb_fill(sc, sizeof sc);
-    TB_FAILS(hf_lut_to_u8(tex, 4, NULL, q, sc), HF_ERROR_NON_FINITE, q, sizeof q);
-    CHECK(tb_untouched(sc, sizeof sc));
-    /* eval */
-    o3[0] = o3[1] = o3[2] = -7.0;
-    CHECK_EQ_INT(hf_lut_eval_m(&p, NAN, o3), HF_ERROR_NON_FINITE);
-    CHECK_EQ_INT(hf_lut_eval_m(&p, INFINITY, o3), HF_ERROR_NON_FINITE);
-    CHECK_EQ_INT(hf_lut_eval_m(&p, 0.1, NULL), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_lut_eval_n(&p, 2.0, 0.5, o3), HF_ERROR_BAD_PARAMETER);
-    CHECK_EQ_INT(hf_lut_eval_n(&p, 0.5, -0.1, o3), HF_ERROR_BAD_PARAMETER);
-    CHECK_EQ_INT(hf_lut_eval_n(&p, 0.5, 4.0, o3), HF_ERROR_BAD_PARAMETER);
-    CHECK_EQ_INT(hf_lut_eval_n(&p, NAN, 0.5, o3), HF_ERROR_NON_FINITE);
-    CHECK_EQ_INT(hf_lut_eval_n(NULL, 0.5, 0.5, o3), HF_ERROR_NULL_POINTER);
-    CHECK(o3[0] == -7.0 && o3[1] == -7.0 && o3[2] == -7.0);
-    /* eval with a size that the bake refuses: size is ignored */
-    b = p; b.size = 0;
-    CHECK_EQ_INT(hf_lut_eval_m(&b, 0.1, o3), HF_OK);
-#undef TB_LUT
-}
-
-/* ---- 10. the fur object ---------------------------------------------------------- */
-
 static void test_bad_fur(void)
 {
     tb_quad q;
@@ -6846,67 +6760,20 @@ static void test_bad_fur(void)
 #undef TB_CREATE
 }
 
-/* A byte stride that is not a multiple of 4 makes misaligned float loads
-   (UB; bug C in the report). Refusing it is the simple fix and is assumed
-   here. Until fixed, this traps under UBSan, so it runs last. */
-static void test_bad_odd_strides(void)
-{
-    static float buf[64];
-    unsigned char *b = (unsigned char *)buf;
-    uint32_t idx[3] = {0, 1, 2};
-    hf_mesh m;
-    hf_map map;
-    hf_result r;
-    memset(buf, 0, sizeof buf);
-    memset(&m, 0, sizeof m);
-    m.positions = (const float *)b;
-    m.position_stride = 13;
-    m.vertex_count = 3;
-    m.indices = idx;
-    m.triangle_count = 1;
-    r = hf_mesh_validate(&m, NULL);
-    CHECK_EQ_INT(r, HF_ERROR_BAD_STRIDE);
-    memset(&map, 0, sizeof map);
-    map.data = buf;
-    map.width = 1;
-    map.height = 2;
-    map.channels = 1;
-    map.format = HF_MAP_F32;
-    map.row_stride = 5;
-    r = hf_map_validate(&map, NULL);
-    CHECK_EQ_INT(r, HF_ERROR_BAD_STRIDE);
-}
-
-static void run_badinput_tests(void)
-{
-    RUN(test_bad_map_validate_sample_blur);
-    RUN(test_bad_mesh_validate_and_normals);
-    RUN(test_bad_uv_density);
-    RUN(test_bad_tessellate);
-    RUN(test_bad_tess_evaluate);
-    RUN(test_bad_guides_rest);
-    RUN(test_bad_place_strands);
-    RUN(test_bad_strand_functions);
-    RUN(test_bad_rope_params);
-    RUN(test_bad_ropes_memory_and_limits);
-    RUN(test_bad_ropes_set_rest_and_roots);
-    RUN(test_bad_ropes_step);
-    RUN(test_bad_interpolate_and_lod);
-    RUN(test_bad_ribbons);
-    RUN(test_bad_lut);
-    RUN(test_bad_fur);
-    RUN(test_bad_odd_strides); /* last: traps under UBSan until fixed */
-}
-
-/* ======================================================================== */
+/* ==== main: every test, in the order above ================================ */
 
 int main(void)
 {
+    /* 1. configuration, result codes, version */
     RUN(test_result_strings_distinct);
     RUN(test_version);
+
+    /* 2. random numbers */
     RUN(test_rng_matches_pcg32_reference);
     RUN(test_rng_streams_and_copies);
     RUN(test_rng_float_and_below_ranges);
+
+    /* 3. maps */
     RUN(test_map_sample_texel_centres_exact);
     RUN(test_map_sample_bilinear_midpoints);
     RUN(test_map_wrap_repeat_vs_clamp);
@@ -6914,17 +6781,81 @@ int main(void)
     RUN(test_map_validate_errors);
     RUN(test_map_blur_constant_impulse_and_sum);
     RUN(test_map_blur_errors_and_allocator);
+    RUN(test_bad_map_validate_sample_blur);
+
+    /* 4. meshes */
     RUN(test_mesh_validate_interleaved_ok);
     RUN(test_mesh_validate_errors);
     RUN(test_triangle_area_exact);
     RUN(test_mesh_normals_area_weighted);
     RUN(test_mesh_normals_degenerate_fallback);
+    RUN(test_bad_mesh_validate_and_normals);
+    RUN(test_bad_odd_strides);
+
+    /* 5. grow */
+    RUN(test_grow_record_sizes);
+    RUN(test_density_estimators_agree_on_constant_map);
+    RUN(test_density_estimators_order_on_gradient);
+    RUN(test_density_area_and_edges_exact);
+    RUN(test_density_bad_input);
+    RUN(test_bad_uv_density);
+    RUN(test_tess_constant_map_power_of_three);
+    RUN(test_tess_output_properties);
+    RUN(test_tess_evaluate_ranges_and_normals);
+    RUN(test_tess_caps_write_nothing);
+    RUN(test_tess_bad_input);
+    RUN(test_tess_same_seed_same_bytes);
+    RUN(test_bad_tessellate);
+    RUN(test_bad_tess_evaluate);
+    RUN(test_guides_weld_and_rest_shape);
+    RUN(test_guides_combing);
+    RUN(test_guides_bad_input);
+    RUN(test_bad_guides_rest);
+    RUN(test_place_uniform_chi_square);
+    RUN(test_place_stratified_fewer_clumps_and_holes);
+    RUN(test_place_total_matches_density_integral);
+    RUN(test_place_lod_prefix_covers_surface);
+    RUN(test_place_same_seed_same_bytes);
+    RUN(test_place_bad_input);
+    RUN(test_place_skips_zero_area_triangles);
+    RUN(test_bad_place_strands);
+    RUN(test_strand_lengths_and_colors);
+    RUN(test_grow_end_to_end_bindings);
+    RUN(test_bad_strand_functions);
+
+    /* 6. ropes */
+    RUN(test_ropes_params_defaults_and_validation);
+    RUN(test_ropes_memory_init_create);
+    RUN(test_ropes_hanging_settles);
+    RUN(test_ropes_shape_kept_by_moving_frame);
+    RUN(test_ropes_collider_sweep_never_penetrates);
+    RUN(test_ropes_mode_switch_no_jump);
+    RUN(test_ropes_bad_time_steps);
+    RUN(test_ropes_ranges_byte_identical);
+    RUN(test_ropes_root_frames);
+    RUN(test_ropes_reset_teleport);
+    RUN(test_ropes_root_and_local_stiffness);
+    RUN(test_ropes_swinging_head);
+    RUN(test_ropes_max_stretch_exact);
+    RUN(test_ropes_wind_and_turbulence);
+    RUN(test_ropes_distance_solver_iterations);
+    RUN(test_ropes_get_positions);
+    RUN(test_ropes_simd_lanes_match_scalar);
+    RUN(test_bad_rope_params);
+    RUN(test_bad_ropes_memory_and_limits);
+    RUN(test_bad_ropes_set_rest_and_roots);
+    RUN(test_bad_ropes_step);
+
+    /* 7. interpolation and LOD */
     RUN(test_interp_on_guide_equals_guide);
     RUN(test_interp_linear_in_barycentrics);
-    RUN(test_interp_length_scale_and_clump);
     RUN(test_interp_simd_matches_scalar_reference);
+    RUN(test_interp_length_scale_and_clump);
     RUN(test_interp_errors_write_nothing);
     RUN(test_lod_counts_and_widths_exact);
+    RUN(test_bad_interpolate_and_lod);
+
+    /* 8. ribbons */
     RUN(test_ribbons_perpendicular_and_widths);
     RUN(test_ribbons_degenerate_never_nan);
     RUN(test_ribbons_nonfinite_strand_collapses);
@@ -6937,11 +6868,44 @@ int main(void)
     RUN(test_ribbons_compact_formats);
     RUN(test_ribbon_indices);
     RUN(test_ribbon_winding_faces_camera);
-    run_grow_tests();
-    run_ropes_tests();
-    run_lut_tests();
-    run_fur_tests();
-    run_badinput_tests();
+    RUN(test_bad_ribbons);
+
+    /* 9. LUT baking: the Marschner M and N textures */
+    RUN(test_lut_params_init_defaults);
+    RUN(test_lut_validate_codes);
+    RUN(test_lut_n_spot_values);
+    RUN(test_lut_n_closed_forms);
+    RUN(test_lut_m_spot_values);
+    RUN(test_lut_texels_n64);
+    RUN(test_lut_channel_sums_n64);
+    RUN(test_lut_m_symmetric);
+    RUN(test_lut_m_unit_area);
+    RUN(test_lut_n_energy_identity);
+    RUN(test_lut_n_energy_no_absorption);
+    RUN(test_lut_n_caustic_clamp);
+    RUN(test_lut_n_conformance);
+    RUN(test_lut_extremes_finite);
+    RUN(test_lut_extremes_full_size);
+    RUN(test_lut_invalid_writes_nothing);
+    RUN(test_lut_row_splits_identical);
+    RUN(test_lut_rgb_matches_scalar);
+    RUN(test_lut_n_mirror_columns);
+    RUN(test_lut_to_u8);
+    RUN(test_lut_eval_errors);
+    RUN(test_lut_texel_centres);
+    RUN(test_bad_lut);
+
+    /* 10. the fur object */
+    RUN(test_fur_create_counts_and_welding);
+    RUN(test_fur_no_allocation_per_frame);
+    RUN(test_fur_ranges_byte_identical);
+    RUN(test_fur_lod_prefix_and_width);
+    RUN(test_fur_lod_guides_wake_without_jump);
+    RUN(test_fur_bad_desc_and_out_of_memory);
+    RUN(test_fur_same_seed_same_bytes);
+    RUN(test_fur_errors_per_frame);
+    RUN(test_bad_fur);
+
     printf("%d passed, %d failed\n", t_passed, t_failed);
     return t_failed ? 1 : 0;
 }
