@@ -1,9 +1,11 @@
-/* hairfur.h - v0.1.0 - real-time hair and fur for game engines, on the CPU
+/* hairfur.h - v0.2.0 - real-time hair and fur for game engines, on the CPU
    Public domain or MIT, your choice: see the end of this file and LICENSE.
 
    hairfur.h turns a triangle mesh and a few UV maps (density, length, colour)
    into hair or fur geometry every frame, and leaves drawing to the host engine.
-   It has no dependencies beyond the C standard library.
+   It has no dependencies beyond the C standard library. It descends from the
+   2010 fur plugin of the Crystal Space engine (Bullet ropes, about 8 frames
+   a second for 3,670 strands); "the 2010 plugin" below means that code.
 
    DO THIS ONCE
 
@@ -14,18 +16,15 @@
 
        Everywhere else, include "hairfur.h" without the define.
 
-   QUICK START
+   QUICK START (README.md has it as a complete program, built by make test)
 
-       hf_fur_desc desc = {0};              // every zero means a default
+       hf_fur_desc desc = {0};              // C++: = {}; zero = default
        desc.mesh.positions = &verts[0].x;   // your vertex buffer, strided
        desc.mesh.position_stride = sizeof verts[0];
-       desc.mesh.normals = &verts[0].nx;  desc.mesh.normal_stride = ...;
-       desc.mesh.uvs = &verts[0].u;       desc.mesh.uv_stride = ...;
        desc.mesh.vertex_count = n_verts;
        desc.mesh.indices = indices;       desc.mesh.triangle_count = n_tris;
-       desc.density_map = &density;       // hf_map over your pixels
        desc.total_strands = 20000;
-       hf_fur *fur;  hf_diag diag;
+       hf_fur *fur;  hf_diag diag;  hf_fur_info info;
        if (hf_fur_create(&desc, &fur, &diag) != HF_OK)
            printf("%s\n", diag.message);  // names the stage and the problem
 
@@ -37,10 +36,43 @@
        hf_fur_interpolate_guides(fur, 0, info.lod_guide_count);
        hf_fur_interpolate(fur, 0, info.drawn_strand_count);
        hf_fur_ribbons(fur, 0, info.drawn_strand_count, &view, &streams);
+       ...
+       hf_fur_destroy(fur);
 
-   Each stage is also a building block over your own arrays (hf_tessellate,
-   hf_place_strands, hf_ropes_step, hf_interpolate, hf_ribbons,
-   hf_lut_bake_m, ...). docs/api.md in the repository lists every function.
+   FUNCTIONS BY TASK
+
+       Fur on a mesh, all stages in one object (section 10):
+           hf_fur_create, hf_fur_destroy, hf_fur_get_info, hf_fur_set_lod,
+           hf_fur_set_roots, hf_fur_simulate, hf_fur_interpolate_guides,
+           hf_fur_interpolate, hf_fur_ribbons, hf_fur_points,
+           hf_fur_max_stretch, hf_fur_reset
+       Drawing (section 8): hf_ribbon_index_count, hf_ribbon_indices,
+           hf_ribbon_chunk_strands, hf_ribbon_indices16 (16-bit chunks),
+           hf_format_bytes; over your own strands: hf_ribbons,
+           hf_ribbon_points (GPU expansion)
+       Level of detail (section 7): hf_lod_from_distance,
+           hf_lod_strand_count, hf_lod_width_scale
+       Growing, stage by stage (section 5): hf_tessellate,
+           hf_tess_evaluate, hf_guides_rest, hf_place_strands,
+           hf_strand_roots, hf_strand_lengths, hf_strand_colors,
+           hf_color3d_coord, hf_color3d_sample, hf_bind_strands,
+           hf_uv_triangle_density
+       Simulating ropes of your own (section 6): hf_rope_params_init,
+           hf_rope_params_validate, hf_ropes_memory_size, hf_ropes_init,
+           hf_ropes_create, hf_ropes_destroy, hf_ropes_set_rest,
+           hf_ropes_set_roots, hf_ropes_step, hf_ropes_set_mode,
+           hf_ropes_reset, hf_ropes_max_stretch, hf_ropes_get_positions
+       Interpolating strands of your own (section 7): hf_interpolate
+       Shading: the Marschner lookup textures (section 9):
+           hf_lut_params_init, hf_lut_validate, hf_lut_bake_m,
+           hf_lut_bake_n, hf_lut_bake_n_rgb, hf_lut_to_u8, hf_lut_eval_m,
+           hf_lut_eval_n
+       Inputs (sections 3, 4): hf_map_validate, hf_map_sample,
+           hf_map_sample_fast, hf_map_blur, hf_mesh_validate,
+           hf_mesh_compute_normals, hf_triangle_area
+       Results, versions, random numbers (sections 1, 2):
+           hf_result_string, hf_version, hf_version_string, hf_rng_seed,
+           hf_rng_u32, hf_rng_float, hf_rng_below
 
    CONFIGURATION MACROS (define before the #include that has
    HAIRFUR_IMPLEMENTATION, unless marked "everywhere")
@@ -54,16 +86,27 @@
                             the user pointer of the hf_allocator in use (NULL
                             when none is given). Every function that allocates
                             also takes an optional runtime hf_allocator.
-       HF_NO_SIMD           use only scalar code (SSE2 is used where the
-                            compiler targets it); results are identical.
+       HF_NO_SIMD           use only the scalar references (SSE2 is used
+                            where the compiler targets it); results are
+                            identical.
        HF_ASSERT(x)         the library's own invariants (default: assert).
                             Never used on caller input: that gets a result.
-       HF_SQRTF, HF_SQRT, HF_EXP, HF_POW, HF_SIN, HF_COS, HF_ASIN, HF_ACOS,
-       HF_FABS, HF_FLOORF, HF_CBRT, HF_MEMCPY, HF_MEMSET
-                            replace the libm / libc functions used.
+       HF_SQRTF, HF_FLOORF, HF_SQRT, HF_EXP, HF_POW, HF_SIN, HF_COS,
+       HF_ASIN, HF_ACOS, HF_FABS, HF_FLOOR, HF_CEIL, HF_CBRT, HF_MEMCPY,
+       HF_MEMSET            replace the libm / libc functions used (float
+                            ones in the per-frame code, double ones in
+                            growth and LUT baking).
 
    CONVENTIONS
 
+       - Units: metres and seconds. The defaults (gravity 9.81, strand
+         length 0.05, ribbon width 0.001, collision margin 0.002) assume
+         them; an engine in other units scales those fields.
+       - One rule for every struct: zero-initialise it, set what you need;
+         a zero field means the default documented beside it. Where 0 is a
+         meaningful value whose default is not 0 (no gravity, no damping),
+         set the field's bit in the struct's explicit_zero. The _init()
+         functions write the defaults themselves.
        - Every function that can fail returns hf_result: HF_OK (0) or a
          negative code; hf_result_string() gives a message. On failure no
          output has been written.
@@ -73,7 +116,10 @@
          rand(), no global state. Same inputs and seed, same bytes.
        - No function keeps state between calls; the per-frame functions take
          a (first, count) range and never allocate, so an engine can spread a
-         frame over its own threads.
+         frame over its own threads. Inputs are indexed by absolute strand
+         (or rope) index; outputs too, unless out_first moves the start of
+         the output buffer to strand out_first, so that a range can go into
+         a buffer that holds exactly that range.
 
    SECTIONS (in the order the data flows)
 
@@ -90,8 +136,29 @@
        9. LUT baking: the Marschner M and N textures
       10. the fur object (hf_fur): all of the above, per frame
 
+       The implementation follows the same order, after one prologue (the
+       overridable macros, the compiler words, the SIMD level) and one
+       place where every struct's zero fields get their defaults. Each
+       SIMD kernel hf__<name>_sse sits beside its scalar reference
+       hf__<name>_ref and gives the same bytes; one dispatch function per
+       stage picks between them.
+
    VERSION HISTORY
 
+       0.2.0 (2026-11-23)  one convention: every struct zero-initialised
+                           means its defaults (hf_rope_params and
+                           hf_lut_params too, with explicit_zero bits for a
+                           literal 0; ribbon widths default to 1 mm and
+                           0.25 mm); out_first writes a range into a buffer
+                           of exactly that range (hf_interp_params,
+                           hf_ribbon_params); 16-bit index chunks
+                           (hf_ribbon_chunk_strands, hf_ribbon_indices16);
+                           hf_fur_create refuses a negative or non-finite
+                           strands_per_area or a negative total_strands, and
+                           strands_per_area wins over total_strands as
+                           documented; the implementation as named steps
+                           with one SIMD layout. Rope, ribbon and
+                           interpolation bytes are unchanged.
        0.1.0 (2026-11-22)  first release: maps and meshes, density
                            tessellation, guides, placement, Verlet ropes,
                            interpolation, LOD, ribbons, Marschner LUTs,
@@ -105,9 +172,9 @@
 #include <stdint.h>
 
 #define HAIRFUR_VERSION_MAJOR 0
-#define HAIRFUR_VERSION_MINOR 1
+#define HAIRFUR_VERSION_MINOR 2
 #define HAIRFUR_VERSION_PATCH 0
-#define HAIRFUR_VERSION_STRING "0.1.0"
+#define HAIRFUR_VERSION_STRING "0.2.0"
 /* major * 10000 + minor * 100 + patch, comparable with hf_version(). */
 #define HAIRFUR_VERSION_NUMBER                                                 \
     (HAIRFUR_VERSION_MAJOR * 10000 + HAIRFUR_VERSION_MINOR * 100 +            \
@@ -278,7 +345,7 @@ HFDEF hf_result hf_map_sample(const hf_map *map, float u, float v,
 HFDEF void hf_map_sample_fast(const hf_map *map, float u, float v,
                               float out[4]);
 
-/* Separable Gaussian blur (the plugin blurred density maps before use).
+/* Separable Gaussian blur (the 2010 plugin blurred density maps before use).
    Writes width * height * channels floats to `out`, packed rows, the same
    layout as an HF_MAP_F32 map with row_stride 0; edges follow the map's
    wrap mode. The kernel has standard deviation `sigma` texels and radius
@@ -799,9 +866,22 @@ typedef enum hf_rope_solver {
     HF_ROPE_SOLVER_DISTANCE = 1
 } hf_rope_solver;
 
-/* Simulation parameters. Call hf_rope_params_init() to fill the defaults,
-   then change fields: every field is taken literally (so zero gravity or
-   zero damping is just 0). The defaults and units: */
+/* Fields of hf_rope_params whose 0 is meant literally (bits for
+   `explicit_zero`): a zero field otherwise asks for its default. */
+typedef enum hf_rope_zero {
+    HF_ROPE_ZERO_GRAVITY = 1 << 0,     /* no gravity: gravity = (0, 0, 0) */
+    HF_ROPE_ZERO_DAMPING = 1 << 1,     /* damping 0 */
+    HF_ROPE_ZERO_ITERATIONS = 1 << 2,  /* iterations 0: no solver pass */
+    HF_ROPE_ZERO_FTL_DAMPING = 1 << 3, /* ftl_damping 0 */
+    HF_ROPE_ZERO_MARGIN = 1 << 4,      /* collision_margin 0 */
+    HF_ROPE_ZERO_BLEND_TIME = 1 << 5   /* mode_blend_time 0: switch at once */
+} hf_rope_zero;
+
+/* Simulation parameters. Zero-initialise and set what you need: every zero
+   field means the default written beside it (gravity: all three zero). To
+   mean a literal 0 where the default is not 0, set the field's bit in
+   explicit_zero. hf_rope_params_init() writes the defaults themselves, for
+   reading or for changing one. The defaults and units: */
 typedef struct hf_rope_params {
     float gravity[3];  /* (0, -9.81, 0) m/s^2 */
     float wind[3];     /* (0, 0, 0) m/s^2: a constant extra acceleration */
@@ -840,13 +920,18 @@ typedef struct hf_rope_params {
                           outside every collider, [0, 1000] */
     float mode_blend_time;  /* 0.25 s: a simulated rope switched to
                           animated glides to its rest pose over this much
-                          simulated time, [0, 1000]; 0 = at once */
+                          simulated time, [0, 1000]; at once needs
+                          HF_ROPE_ZERO_BLEND_TIME */
+    int explicit_zero;      /* 0: hf_rope_zero bits, fields whose 0 is
+                               literal */
 } hf_rope_params;
 
-/* Fill params with the defaults listed above. */
+/* Fill params with the defaults listed above (what a zeroed struct means).
+   NULL is ignored. */
 HFDEF void hf_rope_params_init(hf_rope_params *params);
 
-/* Check every field against its documented range: HF_OK,
+/* Check every field, after the zero-means-default rule, against its
+   documented range: HF_OK,
    HF_ERROR_NULL_POINTER, HF_ERROR_NON_FINITE or HF_ERROR_BAD_PARAMETER;
    diag (may be NULL) names the field. hf_ropes_step calls it. */
 HFDEF hf_result hf_rope_params_validate(const hf_rope_params *params,
@@ -1020,6 +1105,11 @@ typedef struct hf_interp_params {
        that guide's point, so roots stay and tips gather. 0 = none (the
        term is skipped, not multiplied by 0), 1 = tips on the guide. */
     float clump;
+    /* The strand out_points starts at: strand s is written at
+       out_points + (s - out_first) * P * 3. 0: absolute strand index; set
+       it to `first` to write a range into a buffer that holds exactly that
+       range (first < out_first is HF_ERROR_BAD_RANGE). */
+    int out_first;
 } hf_interp_params;
 
 /* Interpolate strands [first, first + count) from guide points. Point j of
@@ -1036,8 +1126,9 @@ typedef struct hf_interp_params {
    0, first < 0, a guide index >= guide_count (HF_ERROR_INDEX_OUT_OF_RANGE),
    non-finite weights, scale, clump or guide point (HF_ERROR_NON_FINITE),
    clump outside [0, 1] or a scale or guide coordinate beyond +-HF_MAX_ABS
-   (HF_ERROR_BAD_PARAMETER); nothing written then. The caller sizes
-   out_points for strand first + count - 1. */
+   (HF_ERROR_BAD_PARAMETER), first < out_first (HF_ERROR_BAD_RANGE);
+   nothing written then. The caller sizes out_points for strand
+   first + count - 1 - out_first. */
 HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
                                const hf_strand_binding *bindings, int first,
                                int count, const hf_interp_params *params,
@@ -1092,8 +1183,8 @@ typedef struct hf_stream {
 } hf_stream;
 
 /* Where ribbon vertices go. Strand s, point j, side k (0 = -side, 1 = +side)
-   is vertex (s * P + j) * 2 + k. Zero-initialise it, then set the streams
-   you want. */
+   is vertex (s * P + j) * 2 + k (s counted from hf_ribbon_params'
+   out_first). Zero-initialise it, then set the streams you want. */
 typedef struct hf_ribbon_output {
     hf_stream position; /* x, y, z: (p - position_origin) / position_scale */
     hf_stream tangent;  /* x, y, z: unit, root to tip */
@@ -1134,14 +1225,27 @@ typedef struct hf_ribbon_params {
     float view_dir[3];
     /* Full ribbon width at root and tip, in world units, and the taper
        curve width(t) = root + (tip - root) * t^taper_power. Widths must be
-       finite and >= 0; taper_power 0 means 1 (linear). */
+       finite and >= 0; both 0 means HF_RIBBON_DEFAULT_ROOT_WIDTH and
+       HF_RIBBON_DEFAULT_TIP_WIDTH (a pointed tip: a root width and tip 0);
+       taper_power 0 means 1 (linear). */
     float root_width, tip_width;
     float taper_power;
     float width_scale; /* multiplier, e.g. hf_lod_width_scale; 0 means 1 */
     /* alpha at root and tip in [0, 1], linear in t; both 0 means 1 and 1
        (opaque). Widths and width_scale are at most HF_MAX_ABS. */
     float alpha_root, alpha_tip;
+    /* The strand the output buffers start at: strand s is written as if
+       it were strand s - out_first (vertex ((s - out_first) * P + j) * 2
+       + k, point (s - out_first) * P + j). 0: outputs indexed by absolute
+       strand. Set it to `first` to write a range into a buffer that holds
+       exactly that range; first < out_first is HF_ERROR_BAD_RANGE. */
+    int out_first;
 } hf_ribbon_params;
+
+/* Ribbon widths a zeroed hf_ribbon_params gets, in metres: fur on a head
+   seen from a metre or two. */
+#define HF_RIBBON_DEFAULT_ROOT_WIDTH 0.001f
+#define HF_RIBBON_DEFAULT_TIP_WIDTH 0.00025f
 
 /* Camera-facing ribbons for strands [first, first + count). For point j
    with unit tangent t_j (central difference, one-sided at the ends) and
@@ -1158,7 +1262,8 @@ typedef struct hf_ribbon_params {
    into each non-NULL stream, in its format; no allocation. Errors: NULL
    params, points or out, P < 2, first < 0, count < 0, negative or
    non-finite widths, non-finite eye, view_dir, scale or alpha, a zero
-   view_dir in orthographic mode (those as for every call); an unknown
+   view_dir in orthographic mode, first < out_first (those as for every
+   call); an unknown
    stream format (HF_ERROR_BAD_FORMAT), a negative stride or one smaller
    than the stream's element (HF_ERROR_BAD_STRIDE), a bad position origin
    or scale; nothing written then. */
@@ -1169,7 +1274,8 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
 /* The GPU-expansion path: instead of 2 * P vertices, write each point once
    as (x, y, z, half width) in 4 floats, a third of the bytes of a minimal
    ribbon; examples/ribbon_expand.glsl builds the same ribbons in a vertex
-   shader. Point j of strand s goes to out4 + (s * P + j) * 4. Same
+   shader. Point j of strand s goes to out4 + ((s - out_first) * P + j) *
+   4. Same
    parameters and errors as hf_ribbons (the camera fields are unused). */
 HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
                                  int count, const hf_ribbon_params *params,
@@ -1194,6 +1300,24 @@ HFDEF long long hf_ribbon_index_count(int strand_count, int points_per_strand,
 HFDEF hf_result hf_ribbon_indices(int strand_count, int points_per_strand,
                                   int topology /* hf_topology */,
                                   uint32_t *out, long long capacity);
+
+/* 16-bit indices, for hosts that draw 16-bit index buffers (WebGL 1, many
+   mobile paths): draw the strands in chunks of at most
+   hf_ribbon_chunk_strands strands, each chunk's vertices written into a
+   buffer of their own (hf_ribbon_params.out_first = the chunk's first
+   strand). Every chunk then uses the same index buffer, made once by
+   hf_ribbon_indices16 for the largest chunk (a shorter last chunk draws a
+   prefix of it: hf_ribbon_index_count of its strands).
+   hf_ribbon_chunk_strands gives the most strands whose vertices fit 16-bit
+   numbers below 0xFFFF (the restart index, which no vertex takes); 0 for
+   P outside 2 .. HF_MAX_POINTS or a bad topology. */
+HFDEF int hf_ribbon_chunk_strands(int points_per_strand,
+                                  int topology /* hf_topology */);
+/* As hf_ribbon_indices, into uint16_t: the restart index is 0xFFFF; more
+   strands than hf_ribbon_chunk_strands is HF_ERROR_OVERFLOW. */
+HFDEF hf_result hf_ribbon_indices16(int strand_count, int points_per_strand,
+                                    int topology /* hf_topology */,
+                                    uint16_t *out, long long capacity);
 
 /* ======================================================================== */
 /* 9. LUT baking                                                            */
@@ -1237,26 +1361,38 @@ typedef enum hf_lut_variant {
 
 #define HF_LUT_MAX_SIZE 4096 /* largest accepted texture size n */
 
-/* Parameters of the bake. Zero is a meaningful value for alpha_r_deg and
-   sigma_a, so a zeroed struct is NOT the defaults: start from
-   hf_lut_params_init(). Angles are in degrees, as in the paper's Table 1;
-   the TT and TRT shifts and widths are derived (alpha_TT = -alpha_R / 2,
-   alpha_TRT = -3 alpha_R / 2, beta_TT = beta_R / 2, beta_TRT = 2 beta_R).
-   The fields are double because the bake is computed in double: 1.55f is
-   1.5499999523, which moves some N values by up to 8e-7 relative. */
+/* Fields of hf_lut_params whose 0 is meant literally (bits for
+   `explicit_zero`). */
+typedef enum hf_lut_zero {
+    HF_LUT_ZERO_ALPHA_R = 1 << 0,    /* alpha_r_deg 0: no longitudinal shift */
+    HF_LUT_ZERO_SIGMA_A = 1 << 1,    /* sigma_a 0: no absorption */
+    HF_LUT_ZERO_SIGMA_A_RGB = 1 << 2 /* a zero sigma_a_rgb component is 0 */
+} hf_lut_zero;
+
+/* Parameters of the bake. Zero-initialise and set what you need: every
+   zero field means the default in brackets; to mean a literal 0 where the
+   default is not 0, set the field's bit in explicit_zero.
+   hf_lut_params_init() writes the defaults themselves. Angles are in
+   degrees, as in the paper's Table 1; the TT and TRT shifts and widths are
+   derived (alpha_TT = -alpha_R / 2, alpha_TRT = -3 alpha_R / 2, beta_TT =
+   beta_R / 2, beta_TRT = 2 beta_R). The fields are double because the
+   bake is computed in double: 1.55f is 1.5499999523, which moves some N
+   values by up to 8e-7 relative. */
 typedef struct hf_lut_params {
-    double eta;            /* index of refraction, 1.2 .. 3 (default 1.55) */
+    double eta;            /* index of refraction, 1.2 .. 3 (1.55) */
     double alpha_r_deg;    /* longitudinal shift of R, any finite (-7.5) */
     double beta_r_deg;     /* longitudinal width of R, > 0 (7.5) */
     double sigma_a;        /* absorption per fibre radius, >= 0 (0.2) */
     double sigma_a_rgb[3]; /* per-channel absorption, only for
-                              hf_lut_bake_n_rgb, each >= 0 (sigma_a each) */
-    int variant; /* hf_lut_variant: HF_LUT_CUBIC (default) or HF_LUT_EXACT */
+                              hf_lut_bake_n_rgb, each >= 0 (sigma_a) */
+    int variant; /* hf_lut_variant: HF_LUT_CUBIC (0) or HF_LUT_EXACT */
     int size;             /* n, both textures n x n, 1 .. 4096 (256) */
+    int explicit_zero;    /* hf_lut_zero bits (0) */
 } hf_lut_params;
 
-/* Fill `p` with the defaults above (eta 1.55, alpha_R -7.5, beta_R 7.5,
-   sigma_a 0.2, sigma_a_rgb 0.2 each, cubic, size 256). NULL is ignored. */
+/* Fill `p` with the defaults above (what a zeroed struct means: eta 1.55,
+   alpha_R -7.5, beta_R 7.5, sigma_a 0.2, sigma_a_rgb 0.2 each, cubic, size
+   256). NULL is ignored. */
 HFDEF void hf_lut_params_init(hf_lut_params *p);
 
 /* Check a parameter block. Returns HF_OK, or: HF_ERROR_NULL_POINTER (p is
@@ -1369,9 +1505,10 @@ typedef struct hf_fur_desc {
     int tess_split;         /* hf_split_point; 0 = centroid */
     int tess_max_triangles; /* 0 = HF_TESS_DEFAULT_MAX_TRIANGLES */
     float strands_per_area; /* expected strands per unit area at density 1;
-                               0 = use total_strands */
+                               > 0 wins over total_strands; 0 = use
+                               total_strands; negative or NaN refused */
     int total_strands;      /* exact strand count when strands_per_area is
-                               0; both 0 = 10000 */
+                               0; both 0 = 10000; negative refused */
     int sampler;            /* hf_root_sampler; 0 = uniform */
     uint64_t seed;          /* every stochastic stage; 0 is a fine seed */
     float clump;            /* 0 = none; [0, 1], see hf_interp_params */
@@ -1504,14 +1641,21 @@ HFDEF hf_result hf_fur_reset(hf_fur *fur);
 #define HF_ASSERT(x) assert(x)
 #endif
 
+/* libm and libc, each replaceable (see CONFIGURATION MACROS at the top). */
 #ifndef HF_SQRTF
 #define HF_SQRTF(x) sqrtf(x)
+#endif
+#ifndef HF_FLOORF
+#define HF_FLOORF(x) floorf(x)
 #endif
 #ifndef HF_SQRT
 #define HF_SQRT(x) sqrt(x)
 #endif
 #ifndef HF_EXP
 #define HF_EXP(x) exp(x)
+#endif
+#ifndef HF_POW
+#define HF_POW(x, y) pow(x, y)
 #endif
 #ifndef HF_SIN
 #define HF_SIN(x) sin(x)
@@ -1528,11 +1672,11 @@ HFDEF hf_result hf_fur_reset(hf_fur *fur);
 #ifndef HF_FABS
 #define HF_FABS(x) fabs(x)
 #endif
-#ifndef HF_FLOORF
-#define HF_FLOORF(x) floorf(x)
+#ifndef HF_FLOOR
+#define HF_FLOOR(x) floor(x)
 #endif
-#ifndef HF_POW
-#define HF_POW(x, y) pow(x, y)
+#ifndef HF_CEIL
+#define HF_CEIL(x) ceil(x)
 #endif
 #ifndef HF_CBRT
 #define HF_CBRT(x) cbrt(x)
@@ -1544,9 +1688,11 @@ HFDEF hf_result hf_fur_reset(hf_fur *fur);
 #define HF_MEMSET(d, v, n) memset(d, v, n)
 #endif
 
-/* SSE2 (every x86-64) for the few kernels that vectorise by hand; the
-   SIMD and scalar paths use the same IEEE operations, so they give the
-   same bytes. HF_NO_SIMD forces the scalar path. */
+/* SIMD level. SSE2 (every x86-64) is the one SIMD level: a kernel named
+   hf__<name>_sse sits beside its scalar reference hf__<name>_ref, both
+   use the same IEEE operations in the same order, so they give the same
+   bytes, and one function per stage picks between them (the dispatch).
+   HF_NO_SIMD forces the scalar references. */
 #if !defined(HF_NO_SIMD) &&                                                    \
     (defined(__SSE2__) || defined(_M_X64) ||                                   \
      (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
@@ -1556,26 +1702,40 @@ HFDEF hf_result hf_fur_reset(hf_fur *fur);
 #define HF__SSE 0
 #endif
 
+/* Compiler words, each with a plain fallback:
+   HF__UNUSED, HF__PRINTF  attributes that silence idle helpers and check
+                           diagnostic formats;
+   HF__PRIVATE             every internal function: static, maybe idle;
+   HF__INLINE              small kernels whose arguments must stay in
+                           registers (forced inline);
+   HF__NOINLINE            cold paths kept out of a hot loop;
+   HF__RESTRICT            the rope kernels' non-aliasing rows. */
 #if defined(__GNUC__) || defined(__clang__)
 #define HF__UNUSED __attribute__((unused))
 #define HF__PRINTF(f, a) __attribute__((format(printf, f, a)))
+#define HF__INLINE static __inline__ __attribute__((always_inline, unused))
+#define HF__NOINLINE __attribute__((noinline))
+#elif defined(_MSC_VER)
+#define HF__UNUSED
+#define HF__PRINTF(f, a)
+#define HF__INLINE static __forceinline
+#define HF__NOINLINE __declspec(noinline)
 #else
 #define HF__UNUSED
 #define HF__PRINTF(f, a)
-#endif
-/* Internal helpers are static and may sit idle in a given build. */
-#define HF__PRIVATE static HF__UNUSED
-/* For the few small kernels whose arguments must stay in registers. */
-#if defined(__GNUC__) || defined(__clang__)
-#define HF__INLINE static __inline__ __attribute__((always_inline, unused))
-#elif defined(_MSC_VER)
-#define HF__INLINE static __forceinline
-#else
 #define HF__INLINE static
+#define HF__NOINLINE
 #endif
+#define HF__PRIVATE static HF__UNUSED
+#if defined(__GNUC__) || defined(__clang__) || defined(_MSC_VER)
+#define HF__RESTRICT __restrict
+#else
+#define HF__RESTRICT
+#endif
+
 #if HF__SSE
 /* a where m is set, else b: how the SSE kernels take a branch per lane */
-HF__INLINE __m128 hf__sel4(__m128 m, __m128 a, __m128 b)
+HF__INLINE __m128 hf__sel_sse(__m128 m, __m128 a, __m128 b)
 {
     return _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b));
 }
@@ -1602,6 +1762,106 @@ HFDEF const char *hf_result_string(hf_result result)
 
 HFDEF int hf_version(void) { return HAIRFUR_VERSION_NUMBER; }
 HFDEF const char *hf_version_string(void) { return HAIRFUR_VERSION_STRING; }
+
+/* ---- defaults: what every zero field means, resolved in one place ------ */
+
+/* Every public struct follows one rule: a zero field means the default
+   documented beside it. Each entry point resolves its struct here into a
+   local copy, then validates and uses only that copy. A NaN is not zero,
+   so it reaches validation. */
+HF__PRIVATE float hf__def_f(float v, float def) { return v != 0.0f ? v : def; }
+HF__PRIVATE double hf__def_d(double v, double def)
+{
+    return v != 0.0 ? v : def;
+}
+HF__PRIVATE int hf__def_i(int v, int def) { return v != 0 ? v : def; }
+
+HF__PRIVATE void hf__rope_params_resolve(const hf_rope_params *in,
+                                         hf_rope_params *p)
+{
+    const int z = in->explicit_zero;
+    *p = *in;
+    if (!(z & HF_ROPE_ZERO_GRAVITY) && p->gravity[0] == 0.0f &&
+        p->gravity[1] == 0.0f && p->gravity[2] == 0.0f)
+        p->gravity[1] = -9.81f;
+    p->turbulence_frequency = hf__def_f(p->turbulence_frequency, 1.0f);
+    if (!(z & HF_ROPE_ZERO_DAMPING)) p->damping = hf__def_f(p->damping, 0.02f);
+    p->time_scale = hf__def_f(p->time_scale, 1.0f);
+    p->substep = hf__def_f(p->substep, 1.0f / 60.0f);
+    p->max_substeps = hf__def_i(p->max_substeps, 8);
+    p->max_dt = hf__def_f(p->max_dt, 1.0f / 15.0f);
+    if (!(z & HF_ROPE_ZERO_ITERATIONS))
+        p->iterations = hf__def_i(p->iterations, 2);
+    if (!(z & HF_ROPE_ZERO_FTL_DAMPING))
+        p->ftl_damping = hf__def_f(p->ftl_damping, 0.9f);
+    if (!(z & HF_ROPE_ZERO_MARGIN))
+        p->collision_margin = hf__def_f(p->collision_margin, 0.002f);
+    if (!(z & HF_ROPE_ZERO_BLEND_TIME))
+        p->mode_blend_time = hf__def_f(p->mode_blend_time, 0.25f);
+}
+
+HF__PRIVATE void hf__lut_params_resolve(const hf_lut_params *in,
+                                        hf_lut_params *p)
+{
+    const int z = in->explicit_zero;
+    int k;
+    *p = *in;
+    p->eta = hf__def_d(p->eta, 1.55);
+    if (!(z & HF_LUT_ZERO_ALPHA_R))
+        p->alpha_r_deg = hf__def_d(p->alpha_r_deg, -7.5);
+    p->beta_r_deg = hf__def_d(p->beta_r_deg, 7.5);
+    if (!(z & HF_LUT_ZERO_SIGMA_A)) p->sigma_a = hf__def_d(p->sigma_a, 0.2);
+    if (!(z & HF_LUT_ZERO_SIGMA_A_RGB))
+        for (k = 0; k < 3; ++k)
+            p->sigma_a_rgb[k] = hf__def_d(p->sigma_a_rgb[k], p->sigma_a);
+    p->size = hf__def_i(p->size, 256);
+}
+
+HF__PRIVATE void hf__ribbon_params_resolve(const hf_ribbon_params *in,
+                                           hf_ribbon_params *p)
+{
+    *p = *in;
+    if (p->root_width == 0.0f && p->tip_width == 0.0f) {
+        p->root_width = HF_RIBBON_DEFAULT_ROOT_WIDTH;
+        p->tip_width = HF_RIBBON_DEFAULT_TIP_WIDTH;
+    }
+    p->taper_power = hf__def_f(p->taper_power, 1.0f);
+    p->width_scale = hf__def_f(p->width_scale, 1.0f);
+    if (p->alpha_root == 0.0f && p->alpha_tip == 0.0f)
+        p->alpha_root = p->alpha_tip = 1.0f;
+}
+
+HF__PRIVATE void hf__tess_params_resolve(const hf_tess_params *in,
+                                         hf_tess_params *p)
+{
+    *p = *in;
+    p->max_depth = hf__def_i(p->max_depth, HF_TESS_DEFAULT_MAX_DEPTH);
+    p->max_triangles =
+        hf__def_i(p->max_triangles, HF_TESS_DEFAULT_MAX_TRIANGLES);
+}
+
+HF__PRIVATE void hf__place_params_resolve(const hf_place_params *in,
+                                          hf_place_params *p)
+{
+    *p = *in;
+    p->max_strands = hf__def_i(p->max_strands, HF_MAX_STRANDS);
+}
+
+/* The fur description; rope_params is resolved into *rope. */
+HF__PRIVATE void hf__fur_desc_resolve(const hf_fur_desc *in, hf_fur_desc *d,
+                                      hf_rope_params *rope)
+{
+    hf_rope_params zero;
+    *d = *in;
+    d->points_per_strand = hf__def_i(d->points_per_strand, 16);
+    d->max_length = hf__def_f(d->max_length, 0.05f);
+    if (d->strands_per_area == 0.0f && d->total_strands == 0)
+        d->total_strands = 10000;
+    d->lod_simulate_threshold = hf__def_f(d->lod_simulate_threshold, 0.5f);
+    HF_MEMSET(&zero, 0, sizeof zero);
+    hf__rope_params_resolve(in->rope_params ? in->rope_params : &zero, rope);
+    d->rope_params = rope;
+}
 
 /* Fill diag (if any) and return the code, so a check reads
    `return hf__fail(diag, CODE, "field", i, "fmt", ...)`. */
@@ -2164,19 +2424,6 @@ HFDEF hf_result hf_mesh_compute_normals(const hf_mesh *mesh,
 
 /* ---- 5. grow ----------------------------------------------------------- */
 
-#if defined(_MSC_VER)
-#define HF__NOINLINE __declspec(noinline)
-#elif defined(__GNUC__) || defined(__clang__)
-#define HF__NOINLINE __attribute__((noinline))
-#else
-#define HF__NOINLINE
-#endif
-#ifndef HF_FLOOR
-#define HF_FLOOR(x) floor(x)
-#endif
-#ifndef HF_CEIL
-#define HF_CEIL(x) ceil(x)
-#endif
 
 /* The record sizes the documentation promises. */
 typedef char hf__strand_is_24_bytes[sizeof(hf_strand) == 24 ? 1 : -1];
@@ -2639,22 +2886,25 @@ HF__PRIVATE hf_result hf__tess_run(hf__tess_ctx *c, hf_tess_output *out)
 }
 
 HFDEF hf_result hf_tessellate(const hf_mesh *mesh, const hf_map *density,
-                              const hf_tess_params *params,
+                              const hf_tess_params *in,
                               hf_tess_output *out)
 {
     hf__tess_ctx c;
+    hf_tess_params prm;
+    const hf_tess_params *params = &prm;
     hf_result r;
     long long vertices;
     int writing;
-    if (!mesh || !params || !out) return HF_ERROR_NULL_POINTER;
+    if (!mesh || !in || !out) return HF_ERROR_NULL_POINTER;
+    hf__tess_params_resolve(in, &prm);
     if ((r = hf_mesh_validate(mesh, NULL)) != HF_OK) return r;
     if (density && (r = hf_map_validate(density, NULL)) != HF_OK) return r;
     if ((density || out->uvs) && !mesh->uvs) return HF_ERROR_NULL_POINTER;
     if (!hf__finitef(params->factor) || !(params->factor > 0.0f) ||
         params->estimator < 0 || params->estimator > 2 ||
         params->split < 0 || params->split > 1 ||
-        params->max_depth < 0 || params->max_depth > HF_TESS_MAX_DEPTH ||
-        params->max_triangles < 0 ||
+        params->max_depth < 1 || params->max_depth > HF_TESS_MAX_DEPTH ||
+        params->max_triangles < 1 ||
         params->max_triangles > HF_TESS_MAX_TRIANGLES)
         return HF_ERROR_BAD_PARAMETER;
     c.mesh = mesh;
@@ -2663,10 +2913,8 @@ HFDEF hf_result hf_tessellate(const hf_mesh *mesh, const hf_map *density,
     c.estimator = params->estimator;
     c.split = params->split;
     c.seed = params->seed;
-    c.max_depth =
-        params->max_depth ? params->max_depth : HF_TESS_DEFAULT_MAX_DEPTH;
-    c.max_triangles = params->max_triangles ? params->max_triangles
-                                            : HF_TESS_DEFAULT_MAX_TRIANGLES;
+    c.max_depth = params->max_depth;
+    c.max_triangles = params->max_triangles;
     c.refuse_degenerate = params->refuse_degenerate != 0;
     /* the counting pass: every error, caps included, comes from here */
     if ((r = hf__tess_run(&c, NULL)) != HF_OK) return r;
@@ -2839,29 +3087,34 @@ HF__PRIVATE void hf__comb_from_map(const hf_map *m, const float *uv,
         o[k] = m->format == HF_MAP_U8 ? 2.0f * s[k] - 1.0f : s[k];
 }
 
-HFDEF hf_result hf_guides_rest(const hf_mesh *mesh,
-                               const hf_tess_vertex *added, int added_count,
-                               const hf_guide_params *params,
-                               hf_guide_output *out,
-                               const hf_allocator *alloc)
-{
-    hf_result r;
-    int V, T, N, i, k, P = 0, writing;
-    size_t cap = 1, bytes = 0, n_v;
+/* The welded pure guides of hf_guides_rest, in one scratch block. */
+typedef struct hf__weld {
+    int pure;         /* pure guides so far */
+    size_t cap;       /* hash table slots, a power of two >= 2 V */
+    uint32_t *table;  /* slot -> pure guide, 0xffffffff empty */
+    uint32_t *gov;    /* per base vertex: its pure guide */
+    uint32_t *rep;    /* per pure guide: its first vertex */
+    uint32_t *copies; /* per pure guide: vertices welded into it */
+    float *nrm;       /* computed vertex normals (mesh without), or NULL */
+    float *gn, *gd;   /* per pure guide: normal and comb sums, then unit */
+    float *gl;        /* per pure guide: length sum, then the mean length */
     unsigned char *block;
-    float *nrm, *gn, *gd, *gl;
-    uint32_t *table, *gov, *rep, *gc;
-    const hf_map *lmap, *cmap;
-    if (!mesh || !params || !out) return HF_ERROR_NULL_POINTER;
-    if ((r = hf_mesh_validate(mesh, NULL)) != HF_OK) return r;
-    V = mesh->vertex_count;
-    T = mesh->triangle_count;
-    N = params->points;
-    lmap = params->length_map;
-    cmap = params->comb_map;
+} hf__weld;
+
+/* Everything hf_guides_rest reads, before anything is allocated. */
+HF__PRIVATE hf_result hf__guides_check(const hf_mesh *mesh,
+                                       const hf_tess_vertex *added,
+                                       int added_count,
+                                       const hf_guide_params *params)
+{
+    const hf_map *lmap = params->length_map, *cmap = params->comb_map;
+    const int V = mesh->vertex_count, T = mesh->triangle_count;
+    hf_result r;
+    int i, k;
     if (added_count < 0) return HF_ERROR_BAD_COUNT;
     if (added_count > 0 && !added) return HF_ERROR_NULL_POINTER;
-    if (N < 2 || N > HF_GUIDE_MAX_POINTS) return HF_ERROR_BAD_COUNT;
+    if (params->points < 2 || params->points > HF_GUIDE_MAX_POINTS)
+        return HF_ERROR_BAD_COUNT;
     if (!hf__finitef(params->max_length) || !(params->max_length > 0.0f) ||
         params->max_length > HF_MAP_MAX_VALUE)
         return HF_ERROR_BAD_PARAMETER;
@@ -2886,68 +3139,92 @@ HFDEF hf_result hf_guides_rest(const hf_mesh *mesh,
                 return HF_ERROR_BAD_PARAMETER;
     }
     if ((long long)V + added_count > 0x7fffffffLL) return HF_ERROR_OVERFLOW;
+    return HF_OK;
+}
 
-    /* scratch: table (cap), gov, rep, gc (V each), normals (3V, when the
-       mesh has none), gn, gd (3V each), gl (V) */
-    while (cap < 2 * (size_t)V) cap <<= 1;
-    n_v = (size_t)V;
+/* The scratch block: table (cap), gov, rep, copies (V each), normals (3V,
+   when the mesh has none), gn, gd (3V each), gl (V). */
+HF__PRIVATE hf_result hf__weld_alloc(hf__weld *w, const hf_mesh *mesh,
+                                     const hf_allocator *alloc)
+{
+    const size_t n_v = (size_t)mesh->vertex_count;
+    size_t bytes = 0;
+    hf_result r;
+    HF_MEMSET(w, 0, sizeof *w);
+    w->cap = 1;
+    while (w->cap < 2 * n_v) w->cap <<= 1;
     if (!hf__mul_size(n_v, (mesh->normals ? 3u : 6u) + 3u + 1u, &bytes) ||
         !hf__mul_size(bytes, 4u, &bytes) ||
-        bytes + 4u * cap + 12u * n_v < bytes)
+        bytes + 4u * w->cap + 12u * n_v < bytes)
         return HF_ERROR_OVERFLOW;
-    bytes += 4u * cap + 12u * n_v;
-    block = (unsigned char *)hf__alloc(alloc, bytes);
-    if (!block) return HF_ERROR_OUT_OF_MEMORY;
-    gn = (float *)block;
-    gd = gn + 3 * n_v;
-    gl = gd + 3 * n_v;
-    nrm = mesh->normals ? NULL : gl + n_v;
-    table = (uint32_t *)(nrm ? nrm + 3 * n_v : gl + n_v);
-    gov = table + cap;
-    rep = gov + n_v;
-    gc = rep + n_v;
-    if (nrm) {
-        r = hf_mesh_compute_normals(mesh, nrm);
+    bytes += 4u * w->cap + 12u * n_v;
+    w->block = (unsigned char *)hf__alloc(alloc, bytes);
+    if (!w->block) return HF_ERROR_OUT_OF_MEMORY;
+    w->gn = (float *)w->block;
+    w->gd = w->gn + 3 * n_v;
+    w->gl = w->gd + 3 * n_v;
+    w->nrm = mesh->normals ? NULL : w->gl + n_v;
+    w->table = (uint32_t *)(w->nrm ? w->nrm + 3 * n_v : w->gl + n_v);
+    w->gov = w->table + w->cap;
+    w->rep = w->gov + n_v;
+    w->copies = w->rep + n_v;
+    if (w->nrm) {
+        r = hf_mesh_compute_normals(mesh, w->nrm);
         HF_ASSERT(r == HF_OK);
+        (void)r;
     }
-    HF_MEMSET(table, 0xff, 4u * cap);
+    HF_MEMSET(w->table, 0xff, 4u * w->cap);
+    return HF_OK;
+}
 
-    /* weld by exact position: open addressing, linear probing */
-    for (i = 0; i < V; ++i) {
+/* Weld base vertices by exact position: open addressing, linear
+   probing. */
+HF__PRIVATE void hf__weld_positions(hf__weld *w, const hf_mesh *mesh)
+{
+    int i;
+    for (i = 0; i < mesh->vertex_count; ++i) {
         uint32_t key[3], h;
-        const float *p = hf__mesh_pos(mesh, i);
-        hf__pos_key(p, key);
-        h = hf__hash3(key) & (uint32_t)(cap - 1);
+        hf__pos_key(hf__mesh_pos(mesh, i), key);
+        h = hf__hash3(key) & (uint32_t)(w->cap - 1);
         for (;;) {
-            uint32_t g = table[h];
+            uint32_t g = w->table[h];
             if (g == 0xffffffffu) {
-                g = (uint32_t)P++;
-                table[h] = g;
-                rep[g] = (uint32_t)i;
-                gc[g] = 0;
-                gl[g] = 0.0f;
-                HF_MEMSET(gn + 3 * (size_t)g, 0, 12);
-                HF_MEMSET(gd + 3 * (size_t)g, 0, 12);
-                gov[i] = g;
+                g = (uint32_t)w->pure++;
+                w->table[h] = g;
+                w->rep[g] = (uint32_t)i;
+                w->copies[g] = 0;
+                w->gl[g] = 0.0f;
+                HF_MEMSET(w->gn + 3 * (size_t)g, 0, 12);
+                HF_MEMSET(w->gd + 3 * (size_t)g, 0, 12);
+                w->gov[i] = g;
                 break;
             } else {
                 uint32_t k2[3];
-                hf__pos_key(hf__mesh_pos(mesh, (int)rep[g]), k2);
+                hf__pos_key(hf__mesh_pos(mesh, (int)w->rep[g]), k2);
                 if (k2[0] == key[0] && k2[1] == key[1] && k2[2] == key[2]) {
-                    gov[i] = g;
+                    w->gov[i] = g;
                     break;
                 }
             }
-            h = (h + 1u) & (uint32_t)(cap - 1);
+            h = (h + 1u) & (uint32_t)(w->cap - 1);
         }
     }
-    /* accumulate the copies: normals, combing, length */
-    for (i = 0; i < V; ++i) {
-        uint32_t g = gov[i];
+}
+
+/* Accumulate the copies of each pure guide (normals, combing, length),
+   then make them unit normals, unit directions and mean lengths. */
+HF__PRIVATE void hf__weld_accumulate(hf__weld *w, const hf_mesh *mesh,
+                                     const hf_guide_params *params)
+{
+    const hf_map *lmap = params->length_map, *cmap = params->comb_map;
+    int i, k;
+    for (i = 0; i < mesh->vertex_count; ++i) {
+        uint32_t g = w->gov[i];
         float n[3], d[3];
-        HF_MEMCPY(n, nrm ? nrm + 3 * (size_t)i : hf__mesh_nrm(mesh, i), 12);
+        HF_MEMCPY(n, w->nrm ? w->nrm + 3 * (size_t)i : hf__mesh_nrm(mesh, i),
+                  12);
         hf__normalize3(n);
-        for (k = 0; k < 3; ++k) gn[3 * g + k] += n[k];
+        for (k = 0; k < 3; ++k) w->gn[3 * g + k] += n[k];
         if (cmap)
             hf__comb_from_map(cmap, hf__mesh_uv(mesh, i), d);
         else if (params->comb)
@@ -2956,95 +3233,133 @@ HFDEF hf_result hf_guides_rest(const hf_mesh *mesh,
         else
             d[0] = d[1] = d[2] = 0.0f;
         if (hf__normalize3(d))
-            for (k = 0; k < 3; ++k) gd[3 * g + k] += d[k];
-        gl[g] += lmap ? hf__sample0(lmap, hf__mesh_uv(mesh, i)[0],
-                                    hf__mesh_uv(mesh, i)[1])
-                      : 1.0f;
-        gc[g] += 1u;
+            for (k = 0; k < 3; ++k) w->gd[3 * g + k] += d[k];
+        w->gl[g] += lmap ? hf__sample0(lmap, hf__mesh_uv(mesh, i)[0],
+                                       hf__mesh_uv(mesh, i)[1])
+                         : 1.0f;
+        w->copies[g] += 1u;
     }
-    for (i = 0; i < P; ++i) {
-        float *n = gn + 3 * (size_t)i, *d = gd + 3 * (size_t)i;
+    for (i = 0; i < w->pure; ++i) {
+        float *n = w->gn + 3 * (size_t)i, *d = w->gd + 3 * (size_t)i;
         if (!hf__normalize3(n)) {
             /* opposite copies cancel: keep the first copy's */
-            uint32_t v = rep[i];
-            HF_MEMCPY(n, nrm ? nrm + 3 * (size_t)v : hf__mesh_nrm(mesh, (int)v),
+            uint32_t v = w->rep[i];
+            HF_MEMCPY(n,
+                      w->nrm ? w->nrm + 3 * (size_t)v
+                             : hf__mesh_nrm(mesh, (int)v),
                       12);
             if (!hf__normalize3(n)) n[0] = n[1] = 0.0f, n[2] = 1.0f;
         }
         if (!hf__normalize3(d)) HF_MEMCPY(d, n, 12);
-        gl[i] = params->max_length * (gl[i] / (float)gc[i]);
+        w->gl[i] = params->max_length * (w->gl[i] / (float)w->copies[i]);
     }
+}
 
-    writing = out->points || out->lengths || out->directions ||
-              out->normals || out->guide_of_vertex;
+/* Root, normal, direction and length of LOD guide `a`: the blend on its
+   base triangle of the welded guides, maps read at its blended UV. */
+HF__PRIVATE void hf__lod_guide_frame(const hf__weld *w, const hf_mesh *mesh,
+                                     const hf_guide_params *params,
+                                     const hf_tess_vertex *a, float *root,
+                                     float *n, float *d, float *len)
+{
+    const hf_map *lmap = params->length_map, *cmap = params->comb_map;
+    const uint32_t *tri = mesh->indices + 3 * (size_t)a->triangle;
+    const uint32_t g0 = w->gov[tri[0]], g1 = w->gov[tri[1]],
+                   g2 = w->gov[tri[2]];
+    float uv[2];
+    hf__blend3(root, hf__mesh_pos(mesh, (int)tri[0]),
+               hf__mesh_pos(mesh, (int)tri[1]),
+               hf__mesh_pos(mesh, (int)tri[2]), a->bary);
+    hf__blend3(n, w->gn + 3 * (size_t)g0, w->gn + 3 * (size_t)g1,
+               w->gn + 3 * (size_t)g2, a->bary);
+    if (!hf__normalize3(n))
+        hf__face_normal(n, hf__mesh_pos(mesh, (int)tri[0]),
+                        hf__mesh_pos(mesh, (int)tri[1]),
+                        hf__mesh_pos(mesh, (int)tri[2]));
+    uv[0] = uv[1] = 0.0f;
+    if (mesh->uvs)
+        hf__blend2(uv, hf__mesh_uv(mesh, (int)tri[0]),
+                   hf__mesh_uv(mesh, (int)tri[1]),
+                   hf__mesh_uv(mesh, (int)tri[2]), a->bary);
+    if (cmap)
+        hf__comb_from_map(cmap, uv, d);
+    else if (params->comb)
+        hf__blend3(d, w->gd + 3 * (size_t)g0, w->gd + 3 * (size_t)g1,
+                   w->gd + 3 * (size_t)g2, a->bary);
+    else
+        HF_MEMCPY(d, n, 12);
+    if (!hf__normalize3(d)) HF_MEMCPY(d, n, 12);
+    *len = params->max_length * (lmap ? hf__sample0(lmap, uv[0], uv[1]) : 1.0f);
+}
+
+/* Every guide's outputs: pure guides from the weld, LOD guides blended. */
+HF__PRIVATE void hf__guides_write(const hf__weld *w, const hf_mesh *mesh,
+                                  const hf_tess_vertex *added,
+                                  int added_count,
+                                  const hf_guide_params *params,
+                                  hf_guide_output *out)
+{
+    const int points = params->points, guides = w->pure + added_count;
+    const int V = mesh->vertex_count;
+    int i, j;
+    for (i = 0; i < guides; ++i) {
+        float root[3], n[3], d[3], len;
+        if (i < w->pure) {
+            HF_MEMCPY(root, hf__mesh_pos(mesh, (int)w->rep[i]), 12);
+            HF_MEMCPY(n, w->gn + 3 * (size_t)i, 12);
+            HF_MEMCPY(d, w->gd + 3 * (size_t)i, 12);
+            len = w->gl[i];
+        } else {
+            hf__lod_guide_frame(w, mesh, params, &added[i - w->pure], root, n,
+                                d, &len);
+        }
+        if (out->points)
+            for (j = 0; j < points; ++j) {
+                float *o = out->points + 3 * ((size_t)i * (size_t)points +
+                                              (size_t)j);
+                float s = len * ((float)j / (float)(points - 1));
+                o[0] = root[0] + d[0] * s;
+                o[1] = root[1] + d[1] * s;
+                o[2] = root[2] + d[2] * s;
+            }
+        if (out->lengths) out->lengths[i] = len;
+        if (out->directions)
+            HF_MEMCPY(out->directions + 3 * (size_t)i, d, 12);
+        if (out->normals) HF_MEMCPY(out->normals + 3 * (size_t)i, n, 12);
+    }
+    if (out->guide_of_vertex) {
+        for (i = 0; i < V; ++i) out->guide_of_vertex[i] = w->gov[i];
+        for (i = 0; i < added_count; ++i)
+            out->guide_of_vertex[V + i] = (uint32_t)(w->pure + i);
+    }
+}
+
+HFDEF hf_result hf_guides_rest(const hf_mesh *mesh,
+                               const hf_tess_vertex *added, int added_count,
+                               const hf_guide_params *params,
+                               hf_guide_output *out,
+                               const hf_allocator *alloc)
+{
+    hf__weld w;
+    hf_result r;
+    if (!mesh || !params || !out) return HF_ERROR_NULL_POINTER;
+    if ((r = hf_mesh_validate(mesh, NULL)) != HF_OK) return r;
+    if ((r = hf__guides_check(mesh, added, added_count, params)) != HF_OK)
+        return r;
+    if ((r = hf__weld_alloc(&w, mesh, alloc)) != HF_OK) return r;
+    hf__weld_positions(&w, mesh);
+    hf__weld_accumulate(&w, mesh, params);
     if ((out->points || out->lengths || out->directions || out->normals) &&
-        out->guide_capacity < P + added_count) {
-        hf__free(alloc, block);
+        out->guide_capacity < w.pure + added_count) {
+        hf__free(alloc, w.block);
         return HF_ERROR_BUFFER_TOO_SMALL;
     }
-    if (writing) {
-        int G = P + added_count;
-        for (i = 0; i < G; ++i) {
-            float root[3], n[3], d[3], len;
-            int j;
-            if (i < P) {
-                HF_MEMCPY(root, hf__mesh_pos(mesh, (int)rep[i]), 12);
-                HF_MEMCPY(n, gn + 3 * (size_t)i, 12);
-                HF_MEMCPY(d, gd + 3 * (size_t)i, 12);
-                len = gl[i];
-            } else {
-                const hf_tess_vertex *a = &added[i - P];
-                const uint32_t *tri = mesh->indices + 3 * (size_t)a->triangle;
-                uint32_t g0 = gov[tri[0]], g1 = gov[tri[1]], g2 = gov[tri[2]];
-                float uv[2];
-                hf__blend3(root, hf__mesh_pos(mesh, (int)tri[0]),
-                           hf__mesh_pos(mesh, (int)tri[1]),
-                           hf__mesh_pos(mesh, (int)tri[2]), a->bary);
-                hf__blend3(n, gn + 3 * (size_t)g0, gn + 3 * (size_t)g1,
-                           gn + 3 * (size_t)g2, a->bary);
-                if (!hf__normalize3(n))
-                    hf__face_normal(n, hf__mesh_pos(mesh, (int)tri[0]),
-                                    hf__mesh_pos(mesh, (int)tri[1]),
-                                    hf__mesh_pos(mesh, (int)tri[2]));
-                uv[0] = uv[1] = 0.0f;
-                if (mesh->uvs)
-                    hf__blend2(uv, hf__mesh_uv(mesh, (int)tri[0]),
-                               hf__mesh_uv(mesh, (int)tri[1]),
-                               hf__mesh_uv(mesh, (int)tri[2]), a->bary);
-                if (cmap)
-                    hf__comb_from_map(cmap, uv, d);
-                else if (params->comb)
-                    hf__blend3(d, gd + 3 * (size_t)g0, gd + 3 * (size_t)g1,
-                               gd + 3 * (size_t)g2, a->bary);
-                else
-                    HF_MEMCPY(d, n, 12);
-                if (!hf__normalize3(d)) HF_MEMCPY(d, n, 12);
-                len = params->max_length *
-                      (lmap ? hf__sample0(lmap, uv[0], uv[1]) : 1.0f);
-            }
-            if (out->points)
-                for (j = 0; j < N; ++j) {
-                    float *o = out->points + 3 * ((size_t)i * (size_t)N +
-                                                  (size_t)j);
-                    float s = len * ((float)j / (float)(N - 1));
-                    o[0] = root[0] + d[0] * s;
-                    o[1] = root[1] + d[1] * s;
-                    o[2] = root[2] + d[2] * s;
-                }
-            if (out->lengths) out->lengths[i] = len;
-            if (out->directions)
-                HF_MEMCPY(out->directions + 3 * (size_t)i, d, 12);
-            if (out->normals) HF_MEMCPY(out->normals + 3 * (size_t)i, n, 12);
-        }
-        if (out->guide_of_vertex) {
-            for (i = 0; i < V; ++i) out->guide_of_vertex[i] = gov[i];
-            for (i = 0; i < added_count; ++i)
-                out->guide_of_vertex[V + i] = (uint32_t)(P + i);
-        }
-    }
-    out->guide_count = P + added_count;
-    out->pure_guide_count = P;
-    hf__free(alloc, block);
+    if (out->points || out->lengths || out->directions || out->normals ||
+        out->guide_of_vertex)
+        hf__guides_write(&w, mesh, added, added_count, params, out);
+    out->guide_count = w.pure + added_count;
+    out->pure_guide_count = w.pure;
+    hf__free(alloc, w.block);
     return HF_OK;
 }
 
@@ -3130,176 +3445,215 @@ HF__PRIVATE void hf__radix_hi32(uint64_t *a, uint64_t *tmp, size_t n)
     }
 }
 
+/* How many strands, from the counting pass: the density integral (sum
+   of density * area), the expected count X (scaled to total_strands when
+   that is set), the seeded offset u0 of systematic rounding and the count
+   floor(X + u0). */
+typedef struct hf__place_plan {
+    double density_sum, expected, u0;
+    long long count;
+} hf__place_plan;
+
+HF__PRIVATE hf_result hf__place_count(const hf__place_ctx *c,
+                                      const hf_place_params *params,
+                                      hf__place_plan *plan)
+{
+    hf_result r;
+    hf_rng rng;
+    int t, any_area = 0;
+    plan->density_sum = 0.0;
+    for (t = 0; t < c->mesh->triangle_count; ++t) {
+        float w;
+        int has_area;
+        if ((r = hf__place_weight(c, t, &w, &has_area)) != HF_OK) return r;
+        any_area |= has_area;
+        plan->density_sum += (double)w;
+    }
+    if (!any_area) return HF_ERROR_DEGENERATE;
+    if (params->total_strands > 0) {
+        if (!(plan->density_sum > 0.0)) return HF_ERROR_DEGENERATE;
+        plan->expected = (double)params->total_strands;
+    } else {
+        plan->expected = plan->density_sum * (double)params->strands_per_area;
+    }
+    hf_rng_seed(&rng, params->seed, 0u);
+    plan->u0 = (double)hf_rng_float(&rng);
+    /* finite and no more than max_strands (X + u0 < max + 1) */
+    if (!(plan->expected + plan->u0 < (double)params->max_strands + 1.0))
+        return HF_ERROR_OVERFLOW;
+    plan->count = (long long)HF_FLOOR(plan->expected + plan->u0);
+    return HF_OK;
+}
+
+/* Barycentric weights of corners 0 and 1 for strand k of a triangle, by
+   the sampler (sx, sy: the triangle's digital shift; trng its generator). */
+HF__PRIVATE void hf__place_sample(int sampler, uint32_t k, uint32_t sx,
+                                  uint32_t sy, hf_rng *trng, float b[3])
+{
+    if (sampler == HF_SAMPLER_STRATIFIED) {
+        /* Heitz 2019: area-preserving, low distortion */
+        float x = hf__u32_to_unit(hf__reverse_bits(k) ^ sx);
+        float y = hf__u32_to_unit(hf__sobol2(k) ^ sy);
+        if (y > x) {
+            x *= 0.5f;
+            y -= x;
+        } else {
+            y *= 0.5f;
+            x -= y;
+        }
+        b[0] = x;
+        b[1] = y;
+    } else if (sampler == HF_SAMPLER_CORNER_BIASED) {
+        float r1 = hf_rng_float(trng), r2 = hf_rng_float(trng);
+        b[0] = r1;
+        b[1] = r2 * (1.0f - r1);
+    } else {
+        float r1 = hf_rng_float(trng), r2 = hf_rng_float(trng);
+        float sq = HF_SQRTF(r1);
+        b[0] = 1.0f - sq;
+        b[1] = sq * (1.0f - r2);
+    }
+    if (b[0] < 0.0f) b[0] = 0.0f;
+    if (b[1] < 0.0f) b[1] = 0.0f;
+    if (b[0] + b[1] > 1.0f) b[1] = 1.0f - b[0];
+    b[2] = (1.0f - b[0]) - b[1];
+}
+
+/* The fill pass: the same weights and running sum as the count, rounded
+   systematically per triangle; every strand gets its LOD key (k + u_t) / n
+   in the high half of keys[i] and its index in the low half. */
+HF__PRIVATE void hf__place_fill(const hf__place_ctx *c,
+                                const hf_place_params *params,
+                                const hf__place_plan *plan, hf_strand *out,
+                                uint64_t *keys)
+{
+    static const float zero_uv[2] = {0.0f, 0.0f};
+    const hf_mesh *mesh = c->mesh;
+    const int T = mesh->triangle_count;
+    const double X = plan->expected, u0 = plan->u0;
+    double cum = 0.0, prev_floor = HF_FLOOR(u0);
+    size_t done = 0;
+    int t;
+    for (t = 0; t < T; ++t) {
+        const uint32_t *tri = mesh->indices + 3 * (size_t)t;
+        const float *uv0 = mesh->uvs ? hf__mesh_uv(mesh, (int)tri[0]) : zero_uv;
+        const float *uv1 = mesh->uvs ? hf__mesh_uv(mesh, (int)tri[1]) : zero_uv;
+        const float *uv2 = mesh->uvs ? hf__mesh_uv(mesh, (int)tri[2]) : zero_uv;
+        float w, ut;
+        double C, fl;
+        uint32_t nt, k, sx, sy;
+        int has_area;
+        hf_rng trng;
+        hf_result r = hf__place_weight(c, t, &w, &has_area);
+        HF_ASSERT(r == HF_OK);
+        (void)r;
+        cum += (double)w;
+        C = t == T - 1 ? X : X * (cum / plan->density_sum);
+        fl = HF_FLOOR(C + u0);
+        nt = (uint32_t)(fl - prev_floor);
+        prev_floor = fl;
+        if (nt == 0) continue;
+        HF_ASSERT(done + nt <= (size_t)plan->count);
+        hf_rng_seed(&trng, params->seed, (uint64_t)t + 1u);
+        ut = hf_rng_float(&trng);
+        sx = hf_rng_u32(&trng);
+        sy = hf_rng_u32(&trng);
+        for (k = 0; k < nt; ++k) {
+            hf_strand *s = &out[done];
+            float b[3];
+            double key;
+            uint32_t q;
+            hf__place_sample(params->sampler, k, sx, sy, &trng, b);
+            s->triangle = (uint32_t)t;
+            s->bary[0] = b[0];
+            s->bary[1] = b[1];
+            hf__blend2(s->uv, uv0, uv1, uv2, b);
+            s->random = hf_rng_float(&trng);
+            key = ((double)k + (double)ut) / (double)nt;
+            q = key >= 1.0 ? 0xffffffffu : (uint32_t)(key * 4294967296.0);
+            keys[done] = ((uint64_t)q << 32) | (uint64_t)done;
+            ++done;
+        }
+    }
+    HF_ASSERT(done == (size_t)plan->count);
+}
+
+/* LOD order: stable sort by key, then apply the permutation in place
+   (position p takes the record that was at perm[p]). */
+HF__PRIVATE void hf__place_lod_order(hf_strand *out, uint64_t *keys,
+                                     uint64_t *tmp, size_t n)
+{
+    uint32_t *perm = (uint32_t *)tmp;
+    size_t p;
+    hf__radix_hi32(keys, tmp, n);
+    for (p = 0; p < n; ++p) perm[p] = (uint32_t)keys[p];
+    for (p = 0; p < n; ++p) {
+        size_t s = p, q;
+        hf_strand hold;
+        if (perm[p] == (uint32_t)p) continue;
+        hold = out[s];
+        for (;;) {
+            q = perm[s];
+            perm[s] = (uint32_t)s;
+            if (q == p) {
+                out[s] = hold;
+                break;
+            }
+            out[s] = out[q];
+            s = q;
+        }
+    }
+}
+
 HFDEF hf_result hf_place_strands(const hf_mesh *mesh, const hf_map *density,
-                                 const hf_place_params *params,
+                                 const hf_place_params *in,
                                  hf_strand *out, int capacity,
                                  int *out_count, const hf_allocator *alloc)
 {
     hf__place_ctx c;
+    hf__place_plan plan;
+    hf_place_params prm;
+    const hf_place_params *params = &prm;
     hf_result r;
-    hf_rng rng;
-    double S = 0.0, X, u0, prev_floor;
-    long long K;
-    int t, T, max_strands, any_area = 0;
-    uint64_t *keys, *tmp;
-    size_t n, bytes, done = 0;
-    if (!mesh || !params || !out_count) return HF_ERROR_NULL_POINTER;
+    uint64_t *keys;
+    size_t n, bytes;
+    if (!mesh || !in || !out_count) return HF_ERROR_NULL_POINTER;
+    hf__place_params_resolve(in, &prm);
     if ((r = hf_mesh_validate(mesh, NULL)) != HF_OK) return r;
     if (density && (r = hf_map_validate(density, NULL)) != HF_OK) return r;
     if (density && !mesh->uvs) return HF_ERROR_NULL_POINTER;
     if (params->total_strands < 0) return HF_ERROR_BAD_COUNT;
     if (params->estimator < 0 || params->estimator > 2 ||
         params->sampler < 0 || params->sampler > 2 ||
-        params->max_strands < 0 || params->max_strands > HF_MAX_STRANDS)
+        params->max_strands < 1 || params->max_strands > HF_MAX_STRANDS)
         return HF_ERROR_BAD_PARAMETER;
     if (params->total_strands == 0 &&
         (!hf__finitef(params->strands_per_area) ||
          !(params->strands_per_area > 0.0f)))
         return HF_ERROR_BAD_PARAMETER;
-    max_strands = params->max_strands ? params->max_strands : HF_MAX_STRANDS;
     c.mesh = mesh;
     c.density = density;
     c.estimator = params->estimator;
     c.refuse_degenerate = params->refuse_degenerate != 0;
-    T = mesh->triangle_count;
-
-    /* counting pass: S = sum of density * area */
-    for (t = 0; t < T; ++t) {
-        float w;
-        int has_area;
-        if ((r = hf__place_weight(&c, t, &w, &has_area)) != HF_OK) return r;
-        any_area |= has_area;
-        S += (double)w;
-    }
-    if (!any_area) return HF_ERROR_DEGENERATE;
-    if (params->total_strands > 0) {
-        if (!(S > 0.0)) return HF_ERROR_DEGENERATE;
-        X = (double)params->total_strands;
-    } else {
-        X = S * (double)params->strands_per_area;
-    }
-    hf_rng_seed(&rng, params->seed, 0u);
-    u0 = (double)hf_rng_float(&rng);
-    /* finite and no more than max_strands (X + u0 < max + 1) */
-    if (!(X + u0 < (double)max_strands + 1.0)) return HF_ERROR_OVERFLOW;
-    K = (long long)HF_FLOOR(X + u0);
+    if ((r = hf__place_count(&c, params, &plan)) != HF_OK) return r;
     if (!out) {
-        *out_count = (int)K;
+        *out_count = (int)plan.count;
         return HF_OK;
     }
-    if (capacity < K) return HF_ERROR_BUFFER_TOO_SMALL;
-    if (K == 0) {
+    if (capacity < plan.count) return HF_ERROR_BUFFER_TOO_SMALL;
+    if (plan.count == 0) {
         *out_count = 0;
         return HF_OK;
     }
-    n = (size_t)K;
+    n = (size_t)plan.count;
     if (!hf__mul_size(n, 2u * sizeof(uint64_t), &bytes))
         return HF_ERROR_OVERFLOW;
     keys = (uint64_t *)hf__alloc(alloc, bytes);
     if (!keys) return HF_ERROR_OUT_OF_MEMORY;
-    tmp = keys + n;
-
-    /* fill pass: same weights, same running sum, systematic rounding */
-    {
-        double cum = 0.0;
-        prev_floor = HF_FLOOR(u0);
-        for (t = 0; t < T; ++t) {
-            const uint32_t *tri = mesh->indices + 3 * (size_t)t;
-            static const float zero_uv[2] = {0.0f, 0.0f};
-            const float *uv0 = mesh->uvs ? hf__mesh_uv(mesh, (int)tri[0]) : zero_uv;
-            const float *uv1 = mesh->uvs ? hf__mesh_uv(mesh, (int)tri[1]) : zero_uv;
-            const float *uv2 = mesh->uvs ? hf__mesh_uv(mesh, (int)tri[2]) : zero_uv;
-            float w, ut;
-            double C, fl;
-            uint32_t nt, k, sx, sy;
-            int has_area;
-            hf_rng trng;
-            r = hf__place_weight(&c, t, &w, &has_area);
-            HF_ASSERT(r == HF_OK);
-            cum += (double)w;
-            C = t == T - 1 ? X : X * (cum / S);
-            fl = HF_FLOOR(C + u0);
-            nt = (uint32_t)(fl - prev_floor);
-            prev_floor = fl;
-            if (nt == 0) continue;
-            HF_ASSERT(done + nt <= n);
-            hf_rng_seed(&trng, params->seed, (uint64_t)t + 1u);
-            ut = hf_rng_float(&trng);
-            sx = hf_rng_u32(&trng);
-            sy = hf_rng_u32(&trng);
-            for (k = 0; k < nt; ++k) {
-                hf_strand *s = &out[done];
-                float b[3];
-                double key;
-                uint32_t q;
-                if (params->sampler == HF_SAMPLER_STRATIFIED) {
-                    /* Heitz 2019: area-preserving, low distortion */
-                    float x = hf__u32_to_unit(hf__reverse_bits(k) ^ sx);
-                    float y = hf__u32_to_unit(hf__sobol2(k) ^ sy);
-                    if (y > x) {
-                        x *= 0.5f;
-                        y -= x;
-                    } else {
-                        y *= 0.5f;
-                        x -= y;
-                    }
-                    b[0] = x;
-                    b[1] = y;
-                } else if (params->sampler == HF_SAMPLER_CORNER_BIASED) {
-                    float r1 = hf_rng_float(&trng), r2 = hf_rng_float(&trng);
-                    b[0] = r1;
-                    b[1] = r2 * (1.0f - r1);
-                } else {
-                    float r1 = hf_rng_float(&trng), r2 = hf_rng_float(&trng);
-                    float sq = HF_SQRTF(r1);
-                    b[0] = 1.0f - sq;
-                    b[1] = sq * (1.0f - r2);
-                }
-                if (b[0] < 0.0f) b[0] = 0.0f;
-                if (b[1] < 0.0f) b[1] = 0.0f;
-                if (b[0] + b[1] > 1.0f) b[1] = 1.0f - b[0];
-                b[2] = (1.0f - b[0]) - b[1];
-                s->triangle = (uint32_t)t;
-                s->bary[0] = b[0];
-                s->bary[1] = b[1];
-                hf__blend2(s->uv, uv0, uv1, uv2, b);
-                s->random = hf_rng_float(&trng);
-                key = ((double)k + (double)ut) / (double)nt;
-                q = key >= 1.0 ? 0xffffffffu
-                               : (uint32_t)(key * 4294967296.0);
-                keys[done] = ((uint64_t)q << 32) | (uint64_t)done;
-                ++done;
-            }
-        }
-    }
-    HF_ASSERT(done == n);
-
-    /* LOD order: stable sort by key, then apply the permutation in place
-       (position p takes the record that was at perm[p]) */
-    hf__radix_hi32(keys, tmp, n);
-    {
-        uint32_t *perm = (uint32_t *)tmp;
-        size_t p;
-        for (p = 0; p < n; ++p) perm[p] = (uint32_t)keys[p];
-        for (p = 0; p < n; ++p) {
-            size_t s = p, q;
-            hf_strand hold;
-            if (perm[p] == (uint32_t)p) continue;
-            hold = out[s];
-            for (;;) {
-                q = perm[s];
-                perm[s] = (uint32_t)s;
-                if (q == p) {
-                    out[s] = hold;
-                    break;
-                }
-                out[s] = out[q];
-                s = q;
-            }
-        }
-    }
+    hf__place_fill(&c, params, &plan, out, keys);
+    hf__place_lod_order(out, keys, keys + n, n);
     hf__free(alloc, keys);
-    *out_count = (int)K;
+    *out_count = (int)plan.count;
     return HF_OK;
 }
 
@@ -3507,18 +3861,6 @@ HFDEF hf_result hf_bind_strands(const hf_mesh *guide_mesh,
 
 /* ---- 6. ropes ----------------------------------------------------------- */
 
-#ifndef HF_POW
-#define HF_POW(x, y) pow(x, y)
-#endif
-#ifndef HF_FLOOR
-#define HF_FLOOR(x) floor(x)
-#endif
-
-#if defined(__GNUC__) || defined(__clang__) || defined(_MSC_VER)
-#define HF__RESTRICT __restrict
-#else
-#define HF__RESTRICT
-#endif
 
 /* Scratch rows (each rope_count floats), rewritten by every step. */
 enum {
@@ -3556,20 +3898,10 @@ typedef struct hf__rope_step {
 
 HFDEF void hf_rope_params_init(hf_rope_params *p)
 {
+    hf_rope_params zero;
     if (!p) return;
-    HF_MEMSET(p, 0, sizeof *p);
-    p->gravity[1] = -9.81f;
-    p->turbulence_frequency = 1.0f;
-    p->damping = 0.02f;
-    p->time_scale = 1.0f;
-    p->substep = 1.0f / 60.0f;
-    p->max_substeps = 8;
-    p->max_dt = 1.0f / 15.0f;
-    p->iterations = 2;
-    p->solver = HF_ROPE_SOLVER_FTL;
-    p->ftl_damping = 0.9f;
-    p->collision_margin = 0.002f;
-    p->mode_blend_time = 0.25f;
+    HF_MEMSET(&zero, 0, sizeof zero);
+    hf__rope_params_resolve(&zero, p);
 }
 
 /* A float field in [lo, hi]. */
@@ -3586,15 +3918,13 @@ HF__PRIVATE hf_result hf__rope_check_f(hf_diag *diag, const char *field,
     return HF_OK;
 }
 
-HFDEF hf_result hf_rope_params_validate(const hf_rope_params *p,
-                                        hf_diag *diag)
+/* Check resolved parameters (hf__rope_params_resolve). */
+HF__PRIVATE hf_result hf__rope_params_check(const hf_rope_params *p,
+                                            hf_diag *diag)
 {
     hf_result r;
     const float A = HF_ROPE_MAX_ACCEL;
     int k;
-    if (!p)
-        return hf__fail(diag, HF_ERROR_NULL_POINTER, "params", -1,
-                        "params is NULL");
     for (k = 0; k < 3; ++k) {
         if ((r = hf__rope_check_f(diag, "gravity", p->gravity[k], -A, A)) !=
                 HF_OK ||
@@ -3641,6 +3971,17 @@ HFDEF hf_result hf_rope_params_validate(const hf_rope_params *p,
                         p->solver);
     hf__ok(diag);
     return HF_OK;
+}
+
+HFDEF hf_result hf_rope_params_validate(const hf_rope_params *params,
+                                        hf_diag *diag)
+{
+    hf_rope_params p;
+    if (!params)
+        return hf__fail(diag, HF_ERROR_NULL_POINTER, "params", -1,
+                        "params is NULL");
+    hf__rope_params_resolve(params, &p);
+    return hf__rope_params_check(&p, diag);
 }
 
 /* ---- memory ------------------------------------------------------------- */
@@ -4146,7 +4487,7 @@ HFDEF hf_result hf_ropes_max_stretch(const hf_ropes *ropes, int first,
 #if HF__SSE
 /* hf_ropes_get_positions of ropes [r, r + 4) into packed output: four
    points of the four ropes at a time, transposed in registers. */
-HF__PRIVATE void hf__ropes_get4(const hf_ropes *ro, int r, float *out)
+HF__PRIVATE void hf__ropes_get_sse(const hf_ropes *ro, int r, float *out)
 {
     const size_t R = (size_t)ro->rope_count, P = (size_t)ro->points;
     size_t j, i;
@@ -4190,31 +4531,43 @@ HF__PRIVATE void hf__ropes_get4(const hf_ropes *ro, int r, float *out)
 }
 #endif
 
+/* Rope-major copies of ropes [a, b): the reference (any stride) and its
+   dispatch (the SSE kernel above takes packed groups of four). */
+HF__PRIVATE void hf__ropes_copy_ref(const hf_ropes *ro, int a, int b,
+                                    float *out, size_t stride)
+{
+    const size_t R = (size_t)ro->rope_count, P = (size_t)ro->points;
+    size_t j;
+    int r;
+    for (r = a; r < b; ++r)
+        for (j = 0; j < P; ++j) {
+            const size_t i = j * R + (size_t)r;
+            float *o = (float *)((unsigned char *)out +
+                                 ((size_t)r * P + j) * stride);
+            o[0] = ro->x[i];
+            o[1] = ro->y[i];
+            o[2] = ro->z[i];
+        }
+}
+
+HF__PRIVATE void hf__ropes_copy(const hf_ropes *ro, int a, int b, float *out,
+                                size_t stride)
+{
+#if HF__SSE
+    if (stride == 12)
+        for (; a + 4 <= b; a += 4) hf__ropes_get_sse(ro, a, out);
+#endif
+    hf__ropes_copy_ref(ro, a, b, out, stride);
+}
+
 HFDEF hf_result hf_ropes_get_positions(const hf_ropes *ropes, int first,
                                        int count, float *out, int stride)
 {
-    size_t R, P;
-    int j, r;
     if (!hf__ropes_ok(ropes) || !out) return HF_ERROR_NULL_POINTER;
     if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
     if (!hf__stride_ok(out, stride, 12)) return HF_ERROR_BAD_STRIDE;
-    R = (size_t)ropes->rope_count;
-    P = (size_t)ropes->points;
-    r = first;
-#if HF__SSE
-    if (stride == 0 || stride == 12)
-        for (; r + 4 <= first + count; r += 4) hf__ropes_get4(ropes, r, out);
-#endif
-    for (; r < first + count; ++r)
-        for (j = 0; j < (int)P; ++j) {
-            size_t i = (size_t)j * R + (size_t)r;
-            float *o = (float *)((unsigned char *)out +
-                                 ((size_t)r * P + (size_t)j) *
-                                     (size_t)(stride ? stride : 12));
-            o[0] = ropes->x[i];
-            o[1] = ropes->y[i];
-            o[2] = ropes->z[i];
-        }
+    hf__ropes_copy(ropes, first, first + count, out,
+                   (size_t)(stride ? stride : 12));
     return HF_OK;
 }
 
@@ -4271,7 +4624,9 @@ HF__PRIVATE float hf__rope_kl(const hf__rope_step *st, int j, int P)
     return hf__rope_k(st->ls_root + (st->ls_tip - st->ls_root) * t, st->h);
 }
 
-#define HF__ROW(base, row) ((base) + (size_t)(row) * R)
+/* Row `row` of a point-major array of `stride` (the rope count) floats a
+   row. */
+#define HF__ROW(base, row, stride) ((base) + (size_t)(row) * (stride))
 
 #if HF__SSE
 /* Shorthands for the four-rope kernels; each argument is used once. */
@@ -4288,23 +4643,49 @@ HF__PRIVATE float hf__rope_kl(const hf__rope_step *st, int j, int P)
     HF__ADD(HF__ADD(HF__ADD(o, HF__MUL(a, x)), HF__MUL(b, y)), HF__MUL(c, z))
 #endif
 
-/* Points [j0, P) of ropes [a, b) at frame rows fr (12 rows) times rest. */
-HF__PRIVATE void hf__rope_pose_row(const hf_ropes *ro, int j, int a, int b,
-                                   const float *fr, float *HF__RESTRICT ox,
-                                   float *HF__RESTRICT oy,
-                                   float *HF__RESTRICT oz)
+/* Point row j of ropes [a, b) at frame rows fr (12 rows) times rest:
+   the scalar reference, the SSE kernel (whole groups of four from a,
+   returns where they end) and their dispatch. */
+HF__PRIVATE void hf__rope_pose_row_ref(const hf_ropes *ro, int j, int a,
+                                       int b, const float *fr,
+                                       float *HF__RESTRICT ox,
+                                       float *HF__RESTRICT oy,
+                                       float *HF__RESTRICT oz)
 {
-    size_t R = (size_t)ro->rope_count;
-    const float *u = HF__ROW(ro->rest_u, j), *v = HF__ROW(ro->rest_v, j),
-                *w = HF__ROW(ro->rest_w, j);
-    const float *f0 = HF__ROW(fr, 0), *f1 = HF__ROW(fr, 1),
-                *f2 = HF__ROW(fr, 2), *f3 = HF__ROW(fr, 3),
-                *f4 = HF__ROW(fr, 4), *f5 = HF__ROW(fr, 5),
-                *f6 = HF__ROW(fr, 6), *f7 = HF__ROW(fr, 7),
-                *f8 = HF__ROW(fr, 8), *f9 = HF__ROW(fr, 9),
-                *f10 = HF__ROW(fr, 10), *f11 = HF__ROW(fr, 11);
-    int r = a;
+    const size_t R = (size_t)ro->rope_count;
+    const float *u = HF__ROW(ro->rest_u, j, R), *v = HF__ROW(ro->rest_v, j, R),
+                *w = HF__ROW(ro->rest_w, j, R);
+    const float *f0 = HF__ROW(fr, 0, R), *f1 = HF__ROW(fr, 1, R),
+                *f2 = HF__ROW(fr, 2, R), *f3 = HF__ROW(fr, 3, R),
+                *f4 = HF__ROW(fr, 4, R), *f5 = HF__ROW(fr, 5, R),
+                *f6 = HF__ROW(fr, 6, R), *f7 = HF__ROW(fr, 7, R),
+                *f8 = HF__ROW(fr, 8, R), *f9 = HF__ROW(fr, 9, R),
+                *f10 = HF__ROW(fr, 10, R), *f11 = HF__ROW(fr, 11, R);
+    int r;
+    for (r = a; r < b; ++r) {
+        ox[r] = f0[r] + f3[r] * u[r] + f6[r] * v[r] + f9[r] * w[r];
+        oy[r] = f1[r] + f4[r] * u[r] + f7[r] * v[r] + f10[r] * w[r];
+        oz[r] = f2[r] + f5[r] * u[r] + f8[r] * v[r] + f11[r] * w[r];
+    }
+}
+
 #if HF__SSE
+HF__PRIVATE int hf__rope_pose_row_sse(const hf_ropes *ro, int j, int a,
+                                      int b, const float *fr,
+                                      float *HF__RESTRICT ox,
+                                      float *HF__RESTRICT oy,
+                                      float *HF__RESTRICT oz)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const float *u = HF__ROW(ro->rest_u, j, R), *v = HF__ROW(ro->rest_v, j, R),
+                *w = HF__ROW(ro->rest_w, j, R);
+    const float *f0 = HF__ROW(fr, 0, R), *f1 = HF__ROW(fr, 1, R),
+                *f2 = HF__ROW(fr, 2, R), *f3 = HF__ROW(fr, 3, R),
+                *f4 = HF__ROW(fr, 4, R), *f5 = HF__ROW(fr, 5, R),
+                *f6 = HF__ROW(fr, 6, R), *f7 = HF__ROW(fr, 7, R),
+                *f8 = HF__ROW(fr, 8, R), *f9 = HF__ROW(fr, 9, R),
+                *f10 = HF__ROW(fr, 10, R), *f11 = HF__ROW(fr, 11, R);
+    int r = a;
     for (; r + 4 <= b; r += 4) {
         const __m128 uu = HF__LD(u + r), vv = HF__LD(v + r),
                      ww = HF__LD(w + r);
@@ -4315,12 +4696,19 @@ HF__PRIVATE void hf__rope_pose_row(const hf_ropes *ro, int j, int a, int b,
         HF__ST(oz + r, HF__POSE(HF__LD(f2 + r), HF__LD(f5 + r), HF__LD(f8 + r),
                                 HF__LD(f11 + r), uu, vv, ww));
     }
+    return r;
+}
 #endif
-    for (; r < b; ++r) {
-        ox[r] = f0[r] + f3[r] * u[r] + f6[r] * v[r] + f9[r] * w[r];
-        oy[r] = f1[r] + f4[r] * u[r] + f7[r] * v[r] + f10[r] * w[r];
-        oz[r] = f2[r] + f5[r] * u[r] + f8[r] * v[r] + f11[r] * w[r];
-    }
+
+HF__PRIVATE void hf__rope_pose_row(const hf_ropes *ro, int j, int a, int b,
+                                   const float *fr, float *HF__RESTRICT ox,
+                                   float *HF__RESTRICT oy,
+                                   float *HF__RESTRICT oz)
+{
+#if HF__SSE
+    a = hf__rope_pose_row_sse(ro, j, a, b, fr, ox, oy, oz);
+#endif
+    hf__rope_pose_row_ref(ro, j, a, b, fr, ox, oy, oz);
 }
 
 /* Animated ropes [a, b): rest pose carried by the current frame; previous
@@ -4330,8 +4718,8 @@ HF__PRIVATE void hf__ropes_animated_run(hf_ropes *ro, int a, int b,
                                         const hf__rope_step *st)
 {
     size_t R = (size_t)ro->rope_count;
-    float *F = HF__ROW(ro->scratch, HF__RS_F),
-          *G = HF__ROW(ro->scratch, HF__RS_G);
+    float *F = HF__ROW(ro->scratch, HF__RS_F, R),
+          *G = HF__ROW(ro->scratch, HF__RS_G, R);
     float back = (float)(st->n - 1) / (float)st->n, f[12];
     int r, j, k;
     for (r = a; r < b; ++r) {
@@ -4343,10 +4731,10 @@ HF__PRIVATE void hf__ropes_animated_run(hf_ropes *ro, int a, int b,
         ro->time[r] += (double)st->h * st->n;
     }
     for (j = 0; j < ro->points; ++j) {
-        hf__rope_pose_row(ro, j, a, b, F, HF__ROW(ro->x, j),
-                          HF__ROW(ro->y, j), HF__ROW(ro->z, j));
-        hf__rope_pose_row(ro, j, a, b, G, HF__ROW(ro->px, j),
-                          HF__ROW(ro->py, j), HF__ROW(ro->pz, j));
+        hf__rope_pose_row(ro, j, a, b, F, HF__ROW(ro->x, j, R),
+                          HF__ROW(ro->y, j, R), HF__ROW(ro->z, j, R));
+        hf__rope_pose_row(ro, j, a, b, G, HF__ROW(ro->px, j, R),
+                          HF__ROW(ro->py, j, R), HF__ROW(ro->pz, j, R));
     }
 }
 
@@ -4399,7 +4787,7 @@ typedef struct hf__col_prep4 {
     int point;
 } hf__col_prep4;
 
-HF__PRIVATE void hf__col_prep_lanes(const hf__col_prep *k, hf__col_prep4 *v)
+HF__PRIVATE void hf__col_prep_sse(const hf__col_prep *k, hf__col_prep4 *v)
 {
     int i;
     for (i = 0; i < 3; ++i) {
@@ -4417,7 +4805,7 @@ HF__PRIVATE void hf__col_prep_lanes(const hf__col_prep *k, hf__col_prep4 *v)
    For a point axis, c = a + 0 * t equals a up to the sign of a zero (or is
    NaN only where x - a already is infinite or NaN), so |x - a|^2 is the
    same |d|^2 and the same decision. */
-HF__INLINE int hf__col_hits4(const hf__col_prep4 *k, __m128 x, __m128 y,
+HF__INLINE int hf__col_hits_sse(const hf__col_prep4 *k, __m128 x, __m128 y,
                               __m128 z)
 {
     __m128 t, dx, dy, dz;
@@ -4431,8 +4819,8 @@ HF__INLINE int hf__col_hits4(const hf__col_prep4 *k, __m128 x, __m128 y,
                              HF__SUB(z, k->a[2]), k->e[0], k->e[1], k->e[2]),
                     k->inv);
         /* t < 0 ? 0 : (t > 1 ? 1 : t), NaN and -0 kept as the scalar does */
-        t = hf__sel4(_mm_cmplt_ps(t, zero), zero,
-                          hf__sel4(_mm_cmpgt_ps(t, one), one, t));
+        t = hf__sel_sse(_mm_cmplt_ps(t, zero), zero,
+                          hf__sel_sse(_mm_cmpgt_ps(t, one), one, t));
         dx = HF__SUB(x, HF__ADD(k->a[0], HF__MUL(k->e[0], t)));
         dy = HF__SUB(y, HF__ADD(k->a[1], HF__MUL(k->e[1], t)));
         dz = HF__SUB(z, HF__ADD(k->a[2], HF__MUL(k->e[2], t)));
@@ -4470,11 +4858,11 @@ HF__PRIVATE void hf__ropes_collide_row(hf_ropes *ro, const float *F, int j,
                                        float margin)
 {
     size_t R = (size_t)ro->rope_count;
-    const float *nx = HF__ROW(F, 6), *ny = HF__ROW(F, 7), *nz = HF__ROW(F, 8);
+    const float *nx = HF__ROW(F, 6, R), *ny = HF__ROW(F, 7, R), *nz = HF__ROW(F, 8, R);
     const hf__col_prep k_ = hf__collider_prep(c, margin);
-    float *HF__RESTRICT X = HF__ROW(ro->x, j);
-    float *HF__RESTRICT Y = HF__ROW(ro->y, j);
-    float *HF__RESTRICT Z = HF__ROW(ro->z, j);
+    float *HF__RESTRICT X = HF__ROW(ro->x, j, R);
+    float *HF__RESTRICT Y = HF__ROW(ro->y, j, R);
+    float *HF__RESTRICT Z = HF__ROW(ro->z, j, R);
     int r;
     for (r = a; r < b; ++r)
         hf__col_push_out(&k_, X + r, Y + r, Z + r, nx[r], ny[r], nz[r]);
@@ -4494,14 +4882,14 @@ HF__PRIVATE void hf__ropes_collide_ftl_row(hf_ropes *ro, const float *F,
                                            const hf_collider *c, float margin)
 {
     size_t R = (size_t)ro->rope_count;
-    const float *nx = HF__ROW(F, 6), *ny = HF__ROW(F, 7), *nz = HF__ROW(F, 8),
-                *tx = HF__ROW(F, 3), *ty = HF__ROW(F, 4), *tz = HF__ROW(F, 5);
-    const float *X0 = HF__ROW(ro->x, j - 1), *Y0 = HF__ROW(ro->y, j - 1),
-                *Z0 = HF__ROW(ro->z, j - 1);
-    const float *L = HF__ROW(ro->rest_length, j - 1);
-    float *HF__RESTRICT X = HF__ROW(ro->x, j);
-    float *HF__RESTRICT Y = HF__ROW(ro->y, j);
-    float *HF__RESTRICT Z = HF__ROW(ro->z, j);
+    const float *nx = HF__ROW(F, 6, R), *ny = HF__ROW(F, 7, R), *nz = HF__ROW(F, 8, R),
+                *tx = HF__ROW(F, 3, R), *ty = HF__ROW(F, 4, R), *tz = HF__ROW(F, 5, R);
+    const float *X0 = HF__ROW(ro->x, j - 1, R), *Y0 = HF__ROW(ro->y, j - 1, R),
+                *Z0 = HF__ROW(ro->z, j - 1, R);
+    const float *L = HF__ROW(ro->rest_length, j - 1, R);
+    float *HF__RESTRICT X = HF__ROW(ro->x, j, R);
+    float *HF__RESTRICT Y = HF__ROW(ro->y, j, R);
+    float *HF__RESTRICT Z = HF__ROW(ro->z, j, R);
     const hf__col_prep k_ = hf__collider_prep(c, margin);
     const float rr2 = k_.rr * k_.rr;
     int r;
@@ -4621,6 +5009,325 @@ HF__PRIVATE void hf__ropes_glide_run(hf_ropes *ro, int a, int b,
     }
 }
 
+/* ---- the simulated rope step: one driver, named steps ---- */
+
+/* Per rope, before sub-step s of n: the frame rows of the sub-step (at
+   alpha 1 the current frame itself, what hf__rope_frame_at gives, bit for
+   bit), the acceleration times h^2 and the velocity factor. Returns the
+   frame rows the sub-step uses. */
+HF__PRIVATE const float *hf__ropes_substep_prep(hf_ropes *ro, int a, int b,
+                                                const hf__rope_step *st,
+                                                int s)
+{
+    const size_t R = (size_t)ro->rope_count;
+    float *scratch = ro->scratch;
+    float *FS = HF__ROW(scratch, HF__RS_F, R);
+    float *AX = HF__ROW(scratch, HF__RS_A, R),
+          *AY = HF__ROW(scratch, HF__RS_A + 1, R),
+          *AZ = HF__ROW(scratch, HF__RS_A + 2, R),
+          *VF = HF__ROW(scratch, HF__RS_VF, R);
+    const float h = st->h, h2 = h * h;
+    float alpha = s + 1 == st->n ? 1.0f : (float)(s + 1) / (float)st->n;
+    int r;
+    /* per rope: frame, acceleration, velocity factor */
+    for (r = a; r < b; ++r) {
+        float f[12], gx = st->g[0], gy = st->g[1], gz = st->g[2], vf;
+        int k;
+        if (alpha < 1.0f) {
+            hf__rope_frame_at(ro, r, alpha, f);
+            for (k = 0; k < 12; ++k) FS[(size_t)k * R + r] = f[k];
+        }
+        if (st->turbulence > 0.0f) {
+            double tt = ro->time[r] * (double)st->turbulence_frequency;
+            gx += st->turbulence * hf__rope_noise((uint32_t)r, tt, 0);
+            gy += st->turbulence * hf__rope_noise((uint32_t)r, tt, 1);
+            gz += st->turbulence * hf__rope_noise((uint32_t)r, tt, 2);
+        }
+        AX[r] = gx * h2;
+        AY[r] = gy * h2;
+        AZ[r] = gz * h2;
+        vf = st->keep;
+        /* time-corrected Verlet: x - px spans the previous sub-step;
+           capped so a tiny previous step cannot amplify rounding */
+        if (s == 0 && ro->last_h[r] > 0.0f) {
+            float q = h / ro->last_h[r];
+            vf *= q < 4.0f ? q : 4.0f;
+        }
+        VF[r] = vf;
+        ro->time[r] += (double)h;
+    }
+    return alpha >= 1.0f ? ro->frame : FS;
+}
+
+/* Position Verlet for points 1.. of ropes [a, b), then the root pinned to
+   the frame F. */
+HF__PRIVATE void hf__ropes_integrate_ref(hf_ropes *ro, const float *F, int a,
+                                         int b)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const int P = ro->points;
+    const float *VF = HF__ROW(ro->scratch, HF__RS_VF, R),
+                *AX = HF__ROW(ro->scratch, HF__RS_A, R),
+                *AY = HF__ROW(ro->scratch, HF__RS_A + 1, R),
+                *AZ = HF__ROW(ro->scratch, HF__RS_A + 2, R);
+    int j, r;
+    /* integrate points 1.. (position Verlet) */
+    for (j = 1; j < P; ++j) {
+        float *HF__RESTRICT X = HF__ROW(ro->x, j, R);
+        float *HF__RESTRICT Y = HF__ROW(ro->y, j, R);
+        float *HF__RESTRICT Z = HF__ROW(ro->z, j, R);
+        float *HF__RESTRICT PX = HF__ROW(ro->px, j, R);
+        float *HF__RESTRICT PY = HF__ROW(ro->py, j, R);
+        float *HF__RESTRICT PZ = HF__ROW(ro->pz, j, R);
+        for (r = a; r < b; ++r) {
+            float vx = (X[r] - PX[r]) * VF[r];
+            float vy = (Y[r] - PY[r]) * VF[r];
+            float vz = (Z[r] - PZ[r]) * VF[r];
+            PX[r] = X[r];
+            PY[r] = Y[r];
+            PZ[r] = Z[r];
+            X[r] += vx + AX[r];
+            Y[r] += vy + AY[r];
+            Z[r] += vz + AZ[r];
+        }
+    }
+    /* pin the root to the frame */
+    for (r = a; r < b; ++r) {
+        ro->px[r] = ro->x[r];
+        ro->py[r] = ro->y[r];
+        ro->pz[r] = ro->z[r];
+    }
+    hf__rope_pose_row(ro, 0, a, b, F, ro->x, ro->y, ro->z);
+}
+
+/* Shape: the root segment and the global pose, each point pulled toward
+   its rest place in the frame F. */
+HF__PRIVATE void hf__ropes_global_shape_ref(hf_ropes *ro, const float *F,
+                                            int a, int b,
+                                            const hf__rope_step *st)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const int P = ro->points;
+    int j, r;
+    for (j = 1; j < P; ++j) {
+        float tgx, tgy, tgz;
+        const float kg = st->ktab ? st->kg[j] : hf__rope_kg(st, j, P);
+        float *HF__RESTRICT X = HF__ROW(ro->x, j, R);
+        float *HF__RESTRICT Y = HF__ROW(ro->y, j, R);
+        float *HF__RESTRICT Z = HF__ROW(ro->z, j, R);
+        const float *u = HF__ROW(ro->rest_u, j, R),
+                    *v = HF__ROW(ro->rest_v, j, R),
+                    *w = HF__ROW(ro->rest_w, j, R);
+        if (kg <= 0.0f) continue;
+        for (r = a; r < b; ++r) {
+            const float k = kg;
+            tgx = F[r] + F[3 * R + r] * u[r] + F[6 * R + r] * v[r] +
+                  F[9 * R + r] * w[r];
+            tgy = F[R + r] + F[4 * R + r] * u[r] +
+                  F[7 * R + r] * v[r] + F[10 * R + r] * w[r];
+            tgz = F[2 * R + r] + F[5 * R + r] * u[r] +
+                  F[8 * R + r] * v[r] + F[11 * R + r] * w[r];
+            X[r] += k * (tgx - X[r]);
+            Y[r] += k * (tgy - Y[r]);
+            Z[r] += k * (tgz - Z[r]);
+        }
+    }
+}
+
+/* Local shape: each segment toward its rest direction relative to its
+   parent segment (the rest offset turned by the smallest rotation that
+   takes the parent's rest direction to its current one). */
+HF__PRIVATE void hf__ropes_local_shape_ref(hf_ropes *ro, const float *F,
+                                           int a, int b,
+                                           const hf__rope_step *st)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const int P = ro->points;
+    int j, r;
+    for (j = 1; j + 1 < P; ++j) {
+        const float kl = st->ktab ? st->kl[j] : hf__rope_kl(st, j, P);
+        const float *X0 = HF__ROW(ro->x, j - 1, R),
+                    *Y0 = HF__ROW(ro->y, j - 1, R),
+                    *Z0 = HF__ROW(ro->z, j - 1, R);
+        const float *X1 = HF__ROW(ro->x, j, R), *Y1 = HF__ROW(ro->y, j, R),
+                    *Z1 = HF__ROW(ro->z, j, R);
+        float *HF__RESTRICT X2 = HF__ROW(ro->x, j + 1, R);
+        float *HF__RESTRICT Y2 = HF__ROW(ro->y, j + 1, R);
+        float *HF__RESTRICT Z2 = HF__ROW(ro->z, j + 1, R);
+        const float *u0 = HF__ROW(ro->rest_u, j - 1, R),
+                    *v0 = HF__ROW(ro->rest_v, j - 1, R),
+                    *w0 = HF__ROW(ro->rest_w, j - 1, R);
+        const float *u1 = HF__ROW(ro->rest_u, j, R),
+                    *v1 = HF__ROW(ro->rest_v, j, R),
+                    *w1 = HF__ROW(ro->rest_w, j, R);
+        const float *u2 = HF__ROW(ro->rest_u, j + 1, R),
+                    *v2 = HF__ROW(ro->rest_v, j + 1, R),
+                    *w2 = HF__ROW(ro->rest_w, j + 1, R);
+        const float *L = HF__ROW(ro->rest_length, j - 1, R);
+        if (kl <= 0.0f) continue;
+        for (r = a; r < b; ++r) {
+            /* rest directions in world: parent p, child q */
+            float pu = u1[r] - u0[r], pv = v1[r] - v0[r],
+                  pw = w1[r] - w0[r];
+            float qu = u2[r] - u1[r], qv = v2[r] - v1[r],
+                  qw = w2[r] - w1[r];
+            float px_ = F[3 * R + r] * pu + F[6 * R + r] * pv +
+                        F[9 * R + r] * pw;
+            float py_ = F[4 * R + r] * pu + F[7 * R + r] * pv +
+                        F[10 * R + r] * pw;
+            float pz_ = F[5 * R + r] * pu + F[8 * R + r] * pv +
+                        F[11 * R + r] * pw;
+            float qx = F[3 * R + r] * qu + F[6 * R + r] * qv +
+                       F[9 * R + r] * qw;
+            float qy = F[4 * R + r] * qu + F[7 * R + r] * qv +
+                       F[10 * R + r] * qw;
+            float qz = F[5 * R + r] * qu + F[8 * R + r] * qv +
+                       F[11 * R + r] * qw;
+            float bx = X1[r] - X0[r], by = Y1[r] - Y0[r],
+                  bz = Z1[r] - Z0[r];
+            float b2 = bx * bx + by * by + bz * bz;
+            float ok = (L[r] > 1e-12f && b2 > 1e-24f) ? 1.0f : 0.0f;
+            float ia = ok > 0.0f ? 1.0f / L[r] : 0.0f;
+            float ib = ok > 0.0f ? 1.0f / HF_SQRTF(b2) : 0.0f;
+            float cc, kx, ky, kz, kd, den, rx, ry, rz;
+            px_ *= ia;
+            py_ *= ia;
+            pz_ *= ia;
+            bx *= ib;
+            by *= ib;
+            bz *= ib;
+            /* Rodrigues without trigonometry: the rotation taking
+               unit p to unit b, applied to q; identity when either
+               direction is undefined */
+            cc = ok > 0.0f ? px_ * bx + py_ * by + pz_ * bz : 1.0f;
+            kx = py_ * bz - pz_ * by;
+            ky = pz_ * bx - px_ * bz;
+            kz = px_ * by - py_ * bx;
+            kd = kx * qx + ky * qy + kz * qz;
+            den = 1.0f + cc;
+            den = kd / (den > 1e-6f ? den : 1e-6f);
+            rx = qx * cc + (ky * qz - kz * qy) + kx * den;
+            ry = qy * cc + (kz * qx - kx * qz) + ky * den;
+            rz = qz * cc + (kx * qy - ky * qx) + kz * den;
+            X2[r] += kl * (X1[r] + rx - X2[r]);
+            Y2[r] += kl * (Y1[r] + ry - Y2[r]);
+            Z2[r] += kl * (Z1[r] + rz - Z2[r]);
+        }
+    }
+}
+
+/* The solver passes, each a distance pass with its collisions. */
+HF__PRIVATE void hf__ropes_solve_ref(hf_ropes *ro, const float *F, int a,
+                                     int b, const hf__rope_step *st,
+                                     const hf_collider *col, int ncol)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const int P = ro->points;
+    const float *nx = HF__ROW(F, 6, R), *ny = HF__ROW(F, 7, R),
+                *nz = HF__ROW(F, 8, R);
+    int j, r, it, c;
+        for (it = 0; it < st->iterations; ++it) {
+        for (j = 1; j < P; ++j) {
+            float *HF__RESTRICT X0 = HF__ROW(ro->x, j - 1, R);
+            float *HF__RESTRICT Y0 = HF__ROW(ro->y, j - 1, R);
+            float *HF__RESTRICT Z0 = HF__ROW(ro->z, j - 1, R);
+            float *HF__RESTRICT X1 = HF__ROW(ro->x, j, R);
+            float *HF__RESTRICT Y1 = HF__ROW(ro->y, j, R);
+            float *HF__RESTRICT Z1 = HF__ROW(ro->z, j, R);
+            float *HF__RESTRICT PX0 = HF__ROW(ro->px, j - 1, R);
+            float *HF__RESTRICT PY0 = HF__ROW(ro->py, j - 1, R);
+            float *HF__RESTRICT PZ0 = HF__ROW(ro->pz, j - 1, R);
+            const float *L = HF__ROW(ro->rest_length, j - 1, R);
+            /* Mueller's velocity fix goes to the parent; never to the
+               pinned root */
+            const float sd = j >= 2 ? st->ftl_damping : 0.0f;
+            if (st->ftl || j == 1) {
+                for (r = a; r < b; ++r) {
+                    float dx = X1[r] - X0[r], dy = Y1[r] - Y0[r],
+                          dz = Z1[r] - Z0[r];
+                    float d2 = dx * dx + dy * dy + dz * dz, sc, ox, oy,
+                          oz;
+                    /* coincident points: grow along the root normal */
+                    int deg = d2 < 1e-24f;
+                    dx = deg ? nx[r] : dx;
+                    dy = deg ? ny[r] : dy;
+                    dz = deg ? nz[r] : dz;
+                    d2 = deg ? 1.0f : d2;
+                    sc = L[r] / HF_SQRTF(d2);
+                    ox = X1[r];
+                    oy = Y1[r];
+                    oz = Z1[r];
+                    X1[r] = X0[r] + dx * sc;
+                    Y1[r] = Y0[r] + dy * sc;
+                    Z1[r] = Z0[r] + dz * sc;
+                    if (st->ftl) {
+                        PX0[r] += sd * (X1[r] - ox);
+                        PY0[r] += sd * (Y1[r] - oy);
+                        PZ0[r] += sd * (Z1[r] - oz);
+                    }
+                }
+                /* FTL never moves a parent again, so colliding each
+                   point right after placing it leaves the whole rope
+                   outside when the pass ends */
+                if (st->ftl)
+                    for (c = 0; c < ncol; ++c)
+                        hf__ropes_collide_ftl_row(ro, F, j, a, b, col + c,
+                                                  st->margin);
+            } else {
+                for (r = a; r < b; ++r) {
+                    float dx = X1[r] - X0[r], dy = Y1[r] - Y0[r],
+                          dz = Z1[r] - Z0[r];
+                    float d2 = dx * dx + dy * dy + dz * dz;
+                    /* half the error to each end (equal masses) */
+                    float e = d2 > 1e-24f
+                                  ? 0.5f - 0.5f * L[r] / HF_SQRTF(d2)
+                                  : 0.0f;
+                    X0[r] += dx * e;
+                    Y0[r] += dy * e;
+                    Z0[r] += dz * e;
+                    X1[r] -= dx * e;
+                    Y1[r] -= dy * e;
+                    Z1[r] -= dz * e;
+                }
+            }
+        }
+        if (!st->ftl && ncol > 0)
+            hf__ropes_collide(ro, F, a, b, col, ncol, st->margin);
+    }
+    if (st->iterations == 0 && ncol > 0)
+        hf__ropes_collide(ro, F, a, b, col, ncol, st->margin);
+}
+
+/* One sub-step of simulated ropes [a, b), the scalar reference. */
+HF__PRIVATE void hf__ropes_substep_ref(hf_ropes *ro, const float *F, int a,
+                                       int b, const hf__rope_step *st,
+                                       const hf_collider *col, int ncol)
+{
+    hf__ropes_integrate_ref(ro, F, a, b);
+    if (st->k_root > 0.0f || st->global_on)
+        hf__ropes_global_shape_ref(ro, F, a, b, st);
+    if (st->local_on) hf__ropes_local_shape_ref(ro, F, a, b, st);
+    hf__ropes_solve_ref(ro, F, a, b, st, col, ncol);
+}
+
+/* Marks (VF[r] = 1) the ropes of [a, b) whose point row j lies beyond the
+   squared distance KB[r] from the root, or is NaN. */
+HF__PRIVATE void hf__ropes_mark_far_ref(const hf_ropes *ro, int j, int a,
+                                        int b, const float *KB, float *VF)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
+                *Z = HF__ROW(ro->z, j, R);
+    int r;
+    for (r = a; r < b; ++r) {
+        float dx = X[r] - ro->x[r], dy = Y[r] - ro->y[r],
+              dz = Z[r] - ro->z[r];
+        float d2 = dx * dx + dy * dy + dz * dz;
+        /* false for NaN too */
+        VF[r] = (d2 <= KB[r]) ? VF[r] : 1.0f;
+    }
+}
+
 #if HF__SSE
 /* Colliders whose lane copies hf__ropes_sim_run prepares once; further
    ones are prepared per use. */
@@ -4628,9 +5335,9 @@ HF__PRIVATE void hf__ropes_glide_run(hf_ropes *ro, int a, int b,
 
 
 /* Collisions of point row j of ropes [r, r + 4), at xyz[0..2]: every
-   collider in order; a point hf__col_hits4 finds inside goes through the
+   collider in order; a point hf__col_hits_sse finds inside goes through the
    scalar row kernel on its own. xyz is read back after a hit. */
-HF__PRIVATE void hf__col_row4(hf_ropes *ro, const float *F, int j, int r,
+HF__PRIVATE void hf__col_row_sse(hf_ropes *ro, const float *F, int j, int r,
                               int ftl, const hf_collider *col, int ncol,
                               const hf__col_prep4 *pre, float margin,
                               __m128 *xyz)
@@ -4639,12 +5346,12 @@ HF__PRIVATE void hf__col_row4(hf_ropes *ro, const float *F, int j, int r,
     int c, m, i;
     for (c = 0; c < ncol; ++c) {
         if (c < HF__ROPE_PREP) {
-            m = hf__col_hits4(pre + c, xyz[0], xyz[1], xyz[2]);
+            m = hf__col_hits_sse(pre + c, xyz[0], xyz[1], xyz[2]);
         } else {
             const hf__col_prep k = hf__collider_prep(col + c, margin);
             hf__col_prep4 k4;
-            hf__col_prep_lanes(&k, &k4);
-            m = hf__col_hits4(&k4, xyz[0], xyz[1], xyz[2]);
+            hf__col_prep_sse(&k, &k4);
+            m = hf__col_hits_sse(&k4, xyz[0], xyz[1], xyz[2]);
         }
         if (!m) continue;
         for (i = 0; i < 4; ++i)
@@ -4663,7 +5370,7 @@ HF__PRIVATE void hf__col_row4(hf_ropes *ro, const float *F, int j, int r,
 }
 
 /* hf__ropes_collide for ropes [a, b), b - a a multiple of 4. */
-HF__PRIVATE void hf__ropes_collide4(hf_ropes *ro, const float *F, int a,
+HF__PRIVATE void hf__ropes_collide_sse(hf_ropes *ro, const float *F, int a,
                                     int b, const hf_collider *col, int ncol,
                                     const hf__col_prep4 *pre, float margin)
 {
@@ -4676,53 +5383,25 @@ HF__PRIVATE void hf__ropes_collide4(hf_ropes *ro, const float *F, int a,
             xyz[0] = HF__LD(ro->x + o);
             xyz[1] = HF__LD(ro->y + o);
             xyz[2] = HF__LD(ro->z + o);
-            hf__col_row4(ro, F, j, r, 0, col, ncol, pre, margin, xyz);
+            hf__col_row_sse(ro, F, j, r, 0, col, ncol, pre, margin, xyz);
         }
 }
 
-/* One sub-step of simulated ropes [a, b), b - a a multiple of 4, a rope
-   per lane: what the loops of hf__ropes_sim_run do, after its per-rope
-   part, with the same operations per rope. Loops still run across ropes
-   (a chain of dependent square roots and divisions per rope, point after
-   point, leaves no parallelism otherwise), but rows are fused where the
-   order between them does not matter:
-   - the root pin first (rows 1.. never read row 0 before the local shape);
-   - integration and the global pull of row j in one loop;
-   - then, in the same row loop, the local shape of point j (segment
-     j - 1 turned like segment j - 2), which reads rows up to j only.
-     Segment j's world rest direction F (rest[j + 1] - rest[j]) is the
-     child direction q of point j + 1's turn and the parent direction p
-     of point j + 2's: it is made once, into scratch rows G (unused by
-     simulated ropes), two sets in turn. While a row's local shape runs,
-     the next row's state is prefetched: the first pass over a row waits
-     on memory otherwise;
-   - each FTL placement, then its collisions (the first collider's test
-     inline; a hit goes through the scalar kernel). */
-HF__PRIVATE void hf__ropes_substep4(hf_ropes *ro, const float *F, int a,
-                                    int b, const hf__rope_step *st,
-                                    const hf_collider *col, int ncol,
-                                    const hf__col_prep4 *pre)
-{
-    size_t R = (size_t)ro->rope_count;
-    const int P = ro->points;
-    float *S = ro->scratch;
-    const float *AX = HF__ROW(S, HF__RS_A), *AY = HF__ROW(S, HF__RS_A + 1),
-                *AZ = HF__ROW(S, HF__RS_A + 2), *VF = HF__ROW(S, HF__RS_VF);
-    const float *F0 = HF__ROW(F, 0), *F1 = HF__ROW(F, 1), *F2 = HF__ROW(F, 2),
-                *F3 = HF__ROW(F, 3), *F4 = HF__ROW(F, 4), *F5 = HF__ROW(F, 5),
-                *F6 = HF__ROW(F, 6), *F7 = HF__ROW(F, 7), *F8 = HF__ROW(F, 8),
-                *F9 = HF__ROW(F, 9), *F10 = HF__ROW(F, 10),
-                *F11 = HF__ROW(F, 11);
-    const __m128 one = _mm_set1_ps(1.0f);
-    const int shape = st->k_root > 0.0f || st->global_on;
-    float *Q[2][3], klm;
-    int j, r, it;
+/* Row kernels of the SSE sub-step (ropes [a, b), b - a a multiple of 4,
+   a rope per lane), each with the operations of its scalar reference. */
 
-    for (j = 0; j < 3; ++j) {
-        Q[0][j] = HF__ROW(S, HF__RS_G + j);
-        Q[1][j] = HF__ROW(S, HF__RS_G + 3 + j);
-    }
-    /* pin the root to the frame */
+/* The root pinned to the frame F (hf__ropes_integrate_ref's last loop). */
+HF__PRIVATE void hf__ropes_pin_root_sse(hf_ropes *ro, const float *F, int a,
+                                        int b)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const float *F0 = HF__ROW(F, 0, R), *F1 = HF__ROW(F, 1, R),
+                *F2 = HF__ROW(F, 2, R), *F3 = HF__ROW(F, 3, R),
+                *F4 = HF__ROW(F, 4, R), *F5 = HF__ROW(F, 5, R),
+                *F6 = HF__ROW(F, 6, R), *F7 = HF__ROW(F, 7, R),
+                *F8 = HF__ROW(F, 8, R), *F9 = HF__ROW(F, 9, R),
+                *F10 = HF__ROW(F, 10, R), *F11 = HF__ROW(F, 11, R);
+    int r;
     for (r = a; r < b; r += 4) {
         const __m128 u = HF__LD(ro->rest_u + r), v = HF__LD(ro->rest_v + r),
                      w = HF__LD(ro->rest_w + r);
@@ -4736,531 +5415,396 @@ HF__PRIVATE void hf__ropes_substep4(hf_ropes *ro, const float *F, int a,
         HF__ST(ro->z + r, HF__POSE(HF__LD(F2 + r), HF__LD(F5 + r),
                                    HF__LD(F8 + r), HF__LD(F11 + r), u, v, w));
     }
-    for (j = 1; j < P; ++j) {
-        float *X = HF__ROW(ro->x, j), *Y = HF__ROW(ro->y, j),
-              *Z = HF__ROW(ro->z, j);
-        float *PX = HF__ROW(ro->px, j), *PY = HF__ROW(ro->py, j),
-              *PZ = HF__ROW(ro->pz, j);
-        const float *u = HF__ROW(ro->rest_u, j), *v = HF__ROW(ro->rest_v, j),
-                    *w = HF__ROW(ro->rest_w, j);
-        const float kgj = st->ktab ? st->kg[j] : hf__rope_kg(st, j, P);
-        const int pull = shape && !(kgj <= 0.0f);
-        const __m128 kg = _mm_set1_ps(kgj);
-        const int m = j - 1; /* segment m: q of point j's local shape */
-        /* integrate point j, pull it toward its global rest place */
-        for (r = a; r < b; r += 4) {
-            const __m128 vf = HF__LD(VF + r);
-            __m128 x = HF__LD(X + r), y = HF__LD(Y + r), z = HF__LD(Z + r);
-            const __m128 vx = HF__MUL(HF__SUB(x, HF__LD(PX + r)), vf),
-                         vy = HF__MUL(HF__SUB(y, HF__LD(PY + r)), vf),
-                         vz = HF__MUL(HF__SUB(z, HF__LD(PZ + r)), vf);
-            HF__ST(PX + r, x);
-            HF__ST(PY + r, y);
-            HF__ST(PZ + r, z);
-            x = HF__ADD(x, HF__ADD(vx, HF__LD(AX + r)));
-            y = HF__ADD(y, HF__ADD(vy, HF__LD(AY + r)));
-            z = HF__ADD(z, HF__ADD(vz, HF__LD(AZ + r)));
-            if (pull) {
-                const __m128 uu = HF__LD(u + r), vv = HF__LD(v + r),
-                             ww = HF__LD(w + r);
-                __m128 g;
-                g = HF__POSE(HF__LD(F0 + r), HF__LD(F3 + r), HF__LD(F6 + r),
-                             HF__LD(F9 + r), uu, vv, ww);
-                x = HF__ADD(x, HF__MUL(kg, HF__SUB(g, x)));
-                g = HF__POSE(HF__LD(F1 + r), HF__LD(F4 + r), HF__LD(F7 + r),
-                             HF__LD(F10 + r), uu, vv, ww);
-                y = HF__ADD(y, HF__MUL(kg, HF__SUB(g, y)));
-                g = HF__POSE(HF__LD(F2 + r), HF__LD(F5 + r), HF__LD(F8 + r),
-                             HF__LD(F11 + r), uu, vv, ww);
-                z = HF__ADD(z, HF__MUL(kg, HF__SUB(g, z)));
-            }
-            HF__ST(X + r, x);
-            HF__ST(Y + r, y);
-            HF__ST(Z + r, z);
-        }
-        if (!st->local_on) continue;
-        klm = m < 1 ? 0.0f : st->ktab ? st->kl[m] : hf__rope_kl(st, m, P);
-        {
-            /* q of segment m */
-            const float *u1 = HF__ROW(ro->rest_u, m),
-                        *v1 = HF__ROW(ro->rest_v, m),
-                        *w1 = HF__ROW(ro->rest_w, m);
-            float *QX = Q[m & 1][0], *QY = Q[m & 1][1], *QZ = Q[m & 1][2];
-            for (r = a; r < b; r += 4) {
-                const __m128 qu = HF__SUB(HF__LD(u + r), HF__LD(u1 + r)),
-                             qv = HF__SUB(HF__LD(v + r), HF__LD(v1 + r)),
-                             qw = HF__SUB(HF__LD(w + r), HF__LD(w1 + r));
-                HF__ST(QX + r, HF__DOT3(HF__LD(F3 + r), HF__LD(F6 + r),
-                                        HF__LD(F9 + r), qu, qv, qw));
-                HF__ST(QY + r, HF__DOT3(HF__LD(F4 + r), HF__LD(F7 + r),
-                                        HF__LD(F10 + r), qu, qv, qw));
-                HF__ST(QZ + r, HF__DOT3(HF__LD(F5 + r), HF__LD(F8 + r),
-                                        HF__LD(F11 + r), qu, qv, qw));
-            }
-        }
-        if (m >= 1 && !(klm <= 0.0f)) {
-            /* the local shape of hf__ropes_sim_run at its j = m */
-            const float *X0 = HF__ROW(ro->x, m - 1),
-                        *Y0 = HF__ROW(ro->y, m - 1),
-                        *Z0 = HF__ROW(ro->z, m - 1);
-            const float *X1 = HF__ROW(ro->x, m), *Y1 = HF__ROW(ro->y, m),
-                        *Z1 = HF__ROW(ro->z, m);
-            const float *L = HF__ROW(ro->rest_length, m - 1);
-            const float *QX = Q[m & 1][0], *QY = Q[m & 1][1],
-                        *QZ = Q[m & 1][2];
-            const float *PX_ = Q[(m + 1) & 1][0], *PY_ = Q[(m + 1) & 1][1],
-                        *PZ_ = Q[(m + 1) & 1][2];
-            const __m128 kl = _mm_set1_ps(klm);
-            const int pf = j + 1 < P;
-            for (r = a; r < b; r += 4) {
-                const __m128 x1 = HF__LD(X1 + r), y1 = HF__LD(Y1 + r),
-                             z1 = HF__LD(Z1 + r), l = HF__LD(L + r);
-                const __m128 qx = HF__LD(QX + r), qy = HF__LD(QY + r),
-                             qz = HF__LD(QZ + r);
-                __m128 px_, py_, pz_, bx, by, bz, b2, ok, ia, ib, cc, kx, ky,
-                    kz, kd, den, rx, ry, rz, x2, y2, z2;
-                int all_ok;
-                if (pf && ((r - a) & 15) == 0) {
-                    /* the next row, a cache line (16 ropes) at a time */
-                    const size_t o = (size_t)(j + 1) * R + (size_t)r;
-                    _mm_prefetch((const char *)(ro->x + o), _MM_HINT_T0);
-                    _mm_prefetch((const char *)(ro->y + o), _MM_HINT_T0);
-                    _mm_prefetch((const char *)(ro->z + o), _MM_HINT_T0);
-                    _mm_prefetch((const char *)(ro->px + o), _MM_HINT_T0);
-                    _mm_prefetch((const char *)(ro->py + o), _MM_HINT_T0);
-                    _mm_prefetch((const char *)(ro->pz + o), _MM_HINT_T0);
-                    _mm_prefetch((const char *)(ro->rest_u + o), _MM_HINT_T0);
-                    _mm_prefetch((const char *)(ro->rest_v + o), _MM_HINT_T0);
-                    _mm_prefetch((const char *)(ro->rest_w + o), _MM_HINT_T0);
-                    _mm_prefetch((const char *)(ro->rest_length + o - R),
-                                 _MM_HINT_T0);
-                }
-                bx = HF__SUB(x1, HF__LD(X0 + r));
-                by = HF__SUB(y1, HF__LD(Y0 + r));
-                bz = HF__SUB(z1, HF__LD(Z0 + r));
-                b2 = HF__DOT3(bx, by, bz, bx, by, bz);
-                ok = _mm_and_ps(_mm_cmpgt_ps(l, _mm_set1_ps(1e-12f)),
-                                _mm_cmpgt_ps(b2, _mm_set1_ps(1e-24f)));
-                all_ok = _mm_movemask_ps(ok) == 15;
-                ia = _mm_div_ps(one, l);
-                ib = _mm_div_ps(one, _mm_sqrt_ps(b2));
-                if (!all_ok) { /* the scalar's 0 (lanes may divide by 0) */
-                    ia = _mm_and_ps(ok, ia);
-                    ib = _mm_and_ps(ok, ib);
-                }
-                px_ = HF__MUL(HF__LD(PX_ + r), ia);
-                py_ = HF__MUL(HF__LD(PY_ + r), ia);
-                pz_ = HF__MUL(HF__LD(PZ_ + r), ia);
-                bx = HF__MUL(bx, ib);
-                by = HF__MUL(by, ib);
-                bz = HF__MUL(bz, ib);
-                cc = HF__DOT3(px_, py_, pz_, bx, by, bz);
-                if (!all_ok) cc = hf__sel4(ok, cc, one);
-                kx = HF__SUB(HF__MUL(py_, bz), HF__MUL(pz_, by));
-                ky = HF__SUB(HF__MUL(pz_, bx), HF__MUL(px_, bz));
-                kz = HF__SUB(HF__MUL(px_, by), HF__MUL(py_, bx));
-                kd = HF__DOT3(kx, ky, kz, qx, qy, qz);
-                /* maxps(a, b) is a > b ? a : b, NaN included: the scalar's */
-                den = _mm_div_ps(kd, _mm_max_ps(HF__ADD(one, cc),
-                                                _mm_set1_ps(1e-6f)));
-                /* r = q cc + k x q + k den, turned q */
-                rx = HF__ADD(HF__ADD(HF__MUL(qx, cc),
-                                     HF__SUB(HF__MUL(ky, qz), HF__MUL(kz, qy))),
-                             HF__MUL(kx, den));
-                ry = HF__ADD(HF__ADD(HF__MUL(qy, cc),
-                                     HF__SUB(HF__MUL(kz, qx), HF__MUL(kx, qz))),
-                             HF__MUL(ky, den));
-                rz = HF__ADD(HF__ADD(HF__MUL(qz, cc),
-                                     HF__SUB(HF__MUL(kx, qy), HF__MUL(ky, qx))),
-                             HF__MUL(kz, den));
-                x2 = HF__LD(X + r);
-                y2 = HF__LD(Y + r);
-                z2 = HF__LD(Z + r);
-                x2 = HF__ADD(x2, HF__MUL(kl, HF__SUB(HF__ADD(x1, rx), x2)));
-                y2 = HF__ADD(y2, HF__MUL(kl, HF__SUB(HF__ADD(y1, ry), y2)));
-                z2 = HF__ADD(z2, HF__MUL(kl, HF__SUB(HF__ADD(z1, rz), z2)));
-                HF__ST(X + r, x2);
-                HF__ST(Y + r, y2);
-                HF__ST(Z + r, z2);
-            }
-        }
-    }
-    /* distance passes, each with its collisions */
-    for (it = 0; it < st->iterations; ++it) {
-        for (j = 1; j < P; ++j) {
-            float *X0 = HF__ROW(ro->x, j - 1), *Y0 = HF__ROW(ro->y, j - 1),
-                  *Z0 = HF__ROW(ro->z, j - 1);
-            float *X1 = HF__ROW(ro->x, j), *Y1 = HF__ROW(ro->y, j),
-                  *Z1 = HF__ROW(ro->z, j);
-            float *PX0 = HF__ROW(ro->px, j - 1), *PY0 = HF__ROW(ro->py, j - 1),
-                  *PZ0 = HF__ROW(ro->pz, j - 1);
-            const float *L = HF__ROW(ro->rest_length, j - 1);
-            const __m128 sd = _mm_set1_ps(j >= 2 ? st->ftl_damping : 0.0f);
-            if (st->ftl || j == 1) {
-                for (r = a; r < b; r += 4) {
-                    const __m128 x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),
-                                 z0 = HF__LD(Z0 + r);
-                    const __m128 ox = HF__LD(X1 + r), oy = HF__LD(Y1 + r),
-                                 oz = HF__LD(Z1 + r);
-                    __m128 dx = HF__SUB(ox, x0), dy = HF__SUB(oy, y0),
-                           dz = HF__SUB(oz, z0), d2, deg, sc, xyz[3];
-                    d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);
-                    /* coincident points: grow along the root normal */
-                    deg = _mm_cmplt_ps(d2, _mm_set1_ps(1e-24f));
-                    if (_mm_movemask_ps(deg)) { /* rare: the selects */
-                        dx = hf__sel4(deg, HF__LD(F6 + r), dx);
-                        dy = hf__sel4(deg, HF__LD(F7 + r), dy);
-                        dz = hf__sel4(deg, HF__LD(F8 + r), dz);
-                        d2 = hf__sel4(deg, one, d2);
-                    }
-                    sc = _mm_div_ps(HF__LD(L + r), _mm_sqrt_ps(d2));
-                    xyz[0] = HF__ADD(x0, HF__MUL(dx, sc));
-                    xyz[1] = HF__ADD(y0, HF__MUL(dy, sc));
-                    xyz[2] = HF__ADD(z0, HF__MUL(dz, sc));
-                    HF__ST(X1 + r, xyz[0]);
-                    HF__ST(Y1 + r, xyz[1]);
-                    HF__ST(Z1 + r, xyz[2]);
-                    if (!st->ftl) continue;
-                    HF__ST(PX0 + r, HF__ADD(HF__LD(PX0 + r),
-                                            HF__MUL(sd, HF__SUB(xyz[0], ox))));
-                    HF__ST(PY0 + r, HF__ADD(HF__LD(PY0 + r),
-                                            HF__MUL(sd, HF__SUB(xyz[1], oy))));
-                    HF__ST(PZ0 + r, HF__ADD(HF__LD(PZ0 + r),
-                                            HF__MUL(sd, HF__SUB(xyz[2], oz))));
-                    if (ncol > 1 ||
-                        (ncol == 1 &&
-                         hf__col_hits4(pre, xyz[0], xyz[1], xyz[2])))
-                        hf__col_row4(ro, F, j, r, 1, col, ncol, pre,
-                                     st->margin, xyz);
-                }
-            } else {
-                /* half the error to each end (equal masses) */
-                const __m128 half = _mm_set1_ps(0.5f);
-                for (r = a; r < b; r += 4) {
-                    const __m128 x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),
-                                 z0 = HF__LD(Z0 + r), x1 = HF__LD(X1 + r),
-                                 y1 = HF__LD(Y1 + r), z1 = HF__LD(Z1 + r);
-                    const __m128 dx = HF__SUB(x1, x0), dy = HF__SUB(y1, y0),
-                                 dz = HF__SUB(z1, z0);
-                    const __m128 d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);
-                    const __m128 e = _mm_and_ps(
-                        _mm_cmpgt_ps(d2, _mm_set1_ps(1e-24f)),
-                        HF__SUB(half, _mm_div_ps(HF__MUL(half, HF__LD(L + r)),
-                                                 _mm_sqrt_ps(d2))));
-                    HF__ST(X0 + r, HF__ADD(x0, HF__MUL(dx, e)));
-                    HF__ST(Y0 + r, HF__ADD(y0, HF__MUL(dy, e)));
-                    HF__ST(Z0 + r, HF__ADD(z0, HF__MUL(dz, e)));
-                    HF__ST(X1 + r, HF__SUB(x1, HF__MUL(dx, e)));
-                    HF__ST(Y1 + r, HF__SUB(y1, HF__MUL(dy, e)));
-                    HF__ST(Z1 + r, HF__SUB(z1, HF__MUL(dz, e)));
-                }
-            }
-        }
-        if (!st->ftl && ncol > 0)
-            hf__ropes_collide4(ro, F, a, b, col, ncol, pre, st->margin);
-    }
-    if (st->iterations == 0 && ncol > 0)
-        hf__ropes_collide4(ro, F, a, b, col, ncol, pre, st->margin);
 }
 
-#endif
-
-/* Simulated ropes [a, b). With SSE, hf__ropes_substep4 does whole groups
-   of four from a and the code here, the reference, the rest. */
-HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
-                                   const hf__rope_step *st,
-                                   const hf_collider *col, int ncol)
+/* Row j: Verlet integration and the global pull toward the rest place. */
+HF__PRIVATE void hf__ropes_integrate_row_sse(hf_ropes *ro, const float *F,
+                                             int j, int a, int b,
+                                             const hf__rope_step *st)
 {
-    size_t R = (size_t)ro->rope_count;
+    const size_t R = (size_t)ro->rope_count;
     const int P = ro->points;
-    float *S = ro->scratch;
-    float *FS = HF__ROW(S, HF__RS_F);
-    float *AX = HF__ROW(S, HF__RS_A), *AY = HF__ROW(S, HF__RS_A + 1),
-          *AZ = HF__ROW(S, HF__RS_A + 2), *VF = HF__ROW(S, HF__RS_VF),
-          *KB = HF__ROW(S, HF__RS_KB);
-    const float h = st->h, h2 = h * h;
-    int s, j, r, it, c, a4;
-#if HF__SSE
-    hf__col_prep4 pre[HF__ROPE_PREP];
-    for (c = 0; c < ncol && c < HF__ROPE_PREP; ++c) {
-        const hf__col_prep k = hf__collider_prep(col + c, st->margin);
-        hf__col_prep_lanes(&k, pre + c);
+    const float *AX = HF__ROW(ro->scratch, HF__RS_A, R),
+                *AY = HF__ROW(ro->scratch, HF__RS_A + 1, R),
+                *AZ = HF__ROW(ro->scratch, HF__RS_A + 2, R),
+                *VF = HF__ROW(ro->scratch, HF__RS_VF, R);
+    const float *F0 = HF__ROW(F, 0, R), *F1 = HF__ROW(F, 1, R),
+                *F2 = HF__ROW(F, 2, R), *F3 = HF__ROW(F, 3, R),
+                *F4 = HF__ROW(F, 4, R), *F5 = HF__ROW(F, 5, R),
+                *F6 = HF__ROW(F, 6, R), *F7 = HF__ROW(F, 7, R),
+                *F8 = HF__ROW(F, 8, R), *F9 = HF__ROW(F, 9, R),
+                *F10 = HF__ROW(F, 10, R), *F11 = HF__ROW(F, 11, R);
+    float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
+          *Z = HF__ROW(ro->z, j, R);
+    float *PX = HF__ROW(ro->px, j, R), *PY = HF__ROW(ro->py, j, R),
+          *PZ = HF__ROW(ro->pz, j, R);
+    const float *u = HF__ROW(ro->rest_u, j, R),
+                *v = HF__ROW(ro->rest_v, j, R),
+                *w = HF__ROW(ro->rest_w, j, R);
+    const float kgj = st->ktab ? st->kg[j] : hf__rope_kg(st, j, P);
+    const int pull = (st->k_root > 0.0f || st->global_on) && !(kgj <= 0.0f);
+    const __m128 kg = _mm_set1_ps(kgj);
+    int r;
+    for (r = a; r < b; r += 4) {
+        const __m128 vf = HF__LD(VF + r);
+        __m128 x = HF__LD(X + r), y = HF__LD(Y + r), z = HF__LD(Z + r);
+        const __m128 vx = HF__MUL(HF__SUB(x, HF__LD(PX + r)), vf),
+                     vy = HF__MUL(HF__SUB(y, HF__LD(PY + r)), vf),
+                     vz = HF__MUL(HF__SUB(z, HF__LD(PZ + r)), vf);
+        HF__ST(PX + r, x);
+        HF__ST(PY + r, y);
+        HF__ST(PZ + r, z);
+        x = HF__ADD(x, HF__ADD(vx, HF__LD(AX + r)));
+        y = HF__ADD(y, HF__ADD(vy, HF__LD(AY + r)));
+        z = HF__ADD(z, HF__ADD(vz, HF__LD(AZ + r)));
+        if (pull) {
+            const __m128 uu = HF__LD(u + r), vv = HF__LD(v + r),
+                         ww = HF__LD(w + r);
+            __m128 g;
+            g = HF__POSE(HF__LD(F0 + r), HF__LD(F3 + r), HF__LD(F6 + r),
+                         HF__LD(F9 + r), uu, vv, ww);
+            x = HF__ADD(x, HF__MUL(kg, HF__SUB(g, x)));
+            g = HF__POSE(HF__LD(F1 + r), HF__LD(F4 + r), HF__LD(F7 + r),
+                         HF__LD(F10 + r), uu, vv, ww);
+            y = HF__ADD(y, HF__MUL(kg, HF__SUB(g, y)));
+            g = HF__POSE(HF__LD(F2 + r), HF__LD(F5 + r), HF__LD(F8 + r),
+                         HF__LD(F11 + r), uu, vv, ww);
+            z = HF__ADD(z, HF__MUL(kg, HF__SUB(g, z)));
+        }
+        HF__ST(X + r, x);
+        HF__ST(Y + r, y);
+        HF__ST(Z + r, z);
     }
+}
+
+/* Row j's local shape: segment m = j - 1's world rest direction into the
+   scratch rows Q[m & 1] (the child direction q of point j + 1's turn, the
+   parent direction p of point j + 2's), then point j turned as in
+   hf__ropes_local_shape_ref at its j = m; the next row is prefetched. */
+HF__PRIVATE void hf__ropes_local_row_sse(hf_ropes *ro, const float *F, int j,
+                                         int a, int b,
+                                         const hf__rope_step *st,
+                                         float *Q[2][3])
+{
+    const size_t R = (size_t)ro->rope_count;
+    const int P = ro->points;
+    const float *F3 = HF__ROW(F, 3, R), *F4 = HF__ROW(F, 4, R),
+                *F5 = HF__ROW(F, 5, R), *F6 = HF__ROW(F, 6, R),
+                *F7 = HF__ROW(F, 7, R), *F8 = HF__ROW(F, 8, R),
+                *F9 = HF__ROW(F, 9, R), *F10 = HF__ROW(F, 10, R),
+                *F11 = HF__ROW(F, 11, R);
+    const float *u = HF__ROW(ro->rest_u, j, R),
+                *v = HF__ROW(ro->rest_v, j, R),
+                *w = HF__ROW(ro->rest_w, j, R);
+    float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
+          *Z = HF__ROW(ro->z, j, R);
+    const __m128 one = _mm_set1_ps(1.0f);
+    const int m = j - 1;
+    const float klm =
+        m < 1 ? 0.0f : st->ktab ? st->kl[m] : hf__rope_kl(st, m, P);
+    int r;
+    {
+        /* q of segment m */
+        const float *u1 = HF__ROW(ro->rest_u, m, R),
+                    *v1 = HF__ROW(ro->rest_v, m, R),
+                    *w1 = HF__ROW(ro->rest_w, m, R);
+        float *QX = Q[m & 1][0], *QY = Q[m & 1][1], *QZ = Q[m & 1][2];
+        for (r = a; r < b; r += 4) {
+            const __m128 qu = HF__SUB(HF__LD(u + r), HF__LD(u1 + r)),
+                         qv = HF__SUB(HF__LD(v + r), HF__LD(v1 + r)),
+                         qw = HF__SUB(HF__LD(w + r), HF__LD(w1 + r));
+            HF__ST(QX + r, HF__DOT3(HF__LD(F3 + r), HF__LD(F6 + r),
+                                    HF__LD(F9 + r), qu, qv, qw));
+            HF__ST(QY + r, HF__DOT3(HF__LD(F4 + r), HF__LD(F7 + r),
+                                    HF__LD(F10 + r), qu, qv, qw));
+            HF__ST(QZ + r, HF__DOT3(HF__LD(F5 + r), HF__LD(F8 + r),
+                                    HF__LD(F11 + r), qu, qv, qw));
+        }
+    }
+    if (m >= 1 && !(klm <= 0.0f)) {
+        /* the local shape of hf__ropes_sim_run at its j = m */
+        const float *X0 = HF__ROW(ro->x, m - 1, R),
+                    *Y0 = HF__ROW(ro->y, m - 1, R),
+                    *Z0 = HF__ROW(ro->z, m - 1, R);
+        const float *X1 = HF__ROW(ro->x, m, R), *Y1 = HF__ROW(ro->y, m, R),
+                    *Z1 = HF__ROW(ro->z, m, R);
+        const float *L = HF__ROW(ro->rest_length, m - 1, R);
+        const float *QX = Q[m & 1][0], *QY = Q[m & 1][1],
+                    *QZ = Q[m & 1][2];
+        const float *PX_ = Q[(m + 1) & 1][0], *PY_ = Q[(m + 1) & 1][1],
+                    *PZ_ = Q[(m + 1) & 1][2];
+        const __m128 kl = _mm_set1_ps(klm);
+        const int pf = j + 1 < P;
+        for (r = a; r < b; r += 4) {
+            const __m128 x1 = HF__LD(X1 + r), y1 = HF__LD(Y1 + r),
+                         z1 = HF__LD(Z1 + r), l = HF__LD(L + r);
+            const __m128 qx = HF__LD(QX + r), qy = HF__LD(QY + r),
+                         qz = HF__LD(QZ + r);
+            __m128 px_, py_, pz_, bx, by, bz, b2, ok, ia, ib, cc, kx, ky,
+                kz, kd, den, rx, ry, rz, x2, y2, z2;
+            int all_ok;
+            if (pf && ((r - a) & 15) == 0) {
+                /* the next row, a cache line (16 ropes) at a time */
+                const size_t o = (size_t)(j + 1) * R + (size_t)r;
+                _mm_prefetch((const char *)(ro->x + o), _MM_HINT_T0);
+                _mm_prefetch((const char *)(ro->y + o), _MM_HINT_T0);
+                _mm_prefetch((const char *)(ro->z + o), _MM_HINT_T0);
+                _mm_prefetch((const char *)(ro->px + o), _MM_HINT_T0);
+                _mm_prefetch((const char *)(ro->py + o), _MM_HINT_T0);
+                _mm_prefetch((const char *)(ro->pz + o), _MM_HINT_T0);
+                _mm_prefetch((const char *)(ro->rest_u + o), _MM_HINT_T0);
+                _mm_prefetch((const char *)(ro->rest_v + o), _MM_HINT_T0);
+                _mm_prefetch((const char *)(ro->rest_w + o), _MM_HINT_T0);
+                _mm_prefetch((const char *)(ro->rest_length + o - R),
+                             _MM_HINT_T0);
+            }
+            bx = HF__SUB(x1, HF__LD(X0 + r));
+            by = HF__SUB(y1, HF__LD(Y0 + r));
+            bz = HF__SUB(z1, HF__LD(Z0 + r));
+            b2 = HF__DOT3(bx, by, bz, bx, by, bz);
+            ok = _mm_and_ps(_mm_cmpgt_ps(l, _mm_set1_ps(1e-12f)),
+                            _mm_cmpgt_ps(b2, _mm_set1_ps(1e-24f)));
+            all_ok = _mm_movemask_ps(ok) == 15;
+            ia = _mm_div_ps(one, l);
+            ib = _mm_div_ps(one, _mm_sqrt_ps(b2));
+            if (!all_ok) { /* the scalar's 0 (lanes may divide by 0) */
+                ia = _mm_and_ps(ok, ia);
+                ib = _mm_and_ps(ok, ib);
+            }
+            px_ = HF__MUL(HF__LD(PX_ + r), ia);
+            py_ = HF__MUL(HF__LD(PY_ + r), ia);
+            pz_ = HF__MUL(HF__LD(PZ_ + r), ia);
+            bx = HF__MUL(bx, ib);
+            by = HF__MUL(by, ib);
+            bz = HF__MUL(bz, ib);
+            cc = HF__DOT3(px_, py_, pz_, bx, by, bz);
+            if (!all_ok) cc = hf__sel_sse(ok, cc, one);
+            kx = HF__SUB(HF__MUL(py_, bz), HF__MUL(pz_, by));
+            ky = HF__SUB(HF__MUL(pz_, bx), HF__MUL(px_, bz));
+            kz = HF__SUB(HF__MUL(px_, by), HF__MUL(py_, bx));
+            kd = HF__DOT3(kx, ky, kz, qx, qy, qz);
+            /* maxps(a, b) is a > b ? a : b, NaN included: the scalar's */
+            den = _mm_div_ps(kd, _mm_max_ps(HF__ADD(one, cc),
+                                            _mm_set1_ps(1e-6f)));
+            /* r = q cc + k x q + k den, turned q */
+            rx = HF__ADD(HF__ADD(HF__MUL(qx, cc),
+                                 HF__SUB(HF__MUL(ky, qz), HF__MUL(kz, qy))),
+                         HF__MUL(kx, den));
+            ry = HF__ADD(HF__ADD(HF__MUL(qy, cc),
+                                 HF__SUB(HF__MUL(kz, qx), HF__MUL(kx, qz))),
+                         HF__MUL(ky, den));
+            rz = HF__ADD(HF__ADD(HF__MUL(qz, cc),
+                                 HF__SUB(HF__MUL(kx, qy), HF__MUL(ky, qx))),
+                         HF__MUL(kz, den));
+            x2 = HF__LD(X + r);
+            y2 = HF__LD(Y + r);
+            z2 = HF__LD(Z + r);
+            x2 = HF__ADD(x2, HF__MUL(kl, HF__SUB(HF__ADD(x1, rx), x2)));
+            y2 = HF__ADD(y2, HF__MUL(kl, HF__SUB(HF__ADD(y1, ry), y2)));
+            z2 = HF__ADD(z2, HF__MUL(kl, HF__SUB(HF__ADD(z1, rz), z2)));
+            HF__ST(X + r, x2);
+            HF__ST(Y + r, y2);
+            HF__ST(Z + r, z2);
+        }
+    }
+}
+
+/* Row j's follow-the-leader placement (or, for the distance solver, the
+   root segment), then its collisions (the first collider's test inline; a
+   hit goes through the scalar kernel). */
+HF__PRIVATE void hf__ropes_ftl_row_sse(hf_ropes *ro, const float *F, int j,
+                                       int a, int b, const hf__rope_step *st,
+                                       const hf_collider *col, int ncol,
+                                       const hf__col_prep4 *pre)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const float *F6 = HF__ROW(F, 6, R), *F7 = HF__ROW(F, 7, R),
+                *F8 = HF__ROW(F, 8, R);
+    float *X0 = HF__ROW(ro->x, j - 1, R), *Y0 = HF__ROW(ro->y, j - 1, R),
+          *Z0 = HF__ROW(ro->z, j - 1, R);
+    float *X1 = HF__ROW(ro->x, j, R), *Y1 = HF__ROW(ro->y, j, R),
+          *Z1 = HF__ROW(ro->z, j, R);
+    float *PX0 = HF__ROW(ro->px, j - 1, R), *PY0 = HF__ROW(ro->py, j - 1, R),
+          *PZ0 = HF__ROW(ro->pz, j - 1, R);
+    const float *L = HF__ROW(ro->rest_length, j - 1, R);
+    const __m128 one = _mm_set1_ps(1.0f);
+    const __m128 sd = _mm_set1_ps(j >= 2 ? st->ftl_damping : 0.0f);
+    int r;
+    for (r = a; r < b; r += 4) {
+        const __m128 x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),
+                     z0 = HF__LD(Z0 + r);
+        const __m128 ox = HF__LD(X1 + r), oy = HF__LD(Y1 + r),
+                     oz = HF__LD(Z1 + r);
+        __m128 dx = HF__SUB(ox, x0), dy = HF__SUB(oy, y0),
+               dz = HF__SUB(oz, z0), d2, deg, sc, xyz[3];
+        d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);
+        /* coincident points: grow along the root normal */
+        deg = _mm_cmplt_ps(d2, _mm_set1_ps(1e-24f));
+        if (_mm_movemask_ps(deg)) { /* rare: the selects */
+            dx = hf__sel_sse(deg, HF__LD(F6 + r), dx);
+            dy = hf__sel_sse(deg, HF__LD(F7 + r), dy);
+            dz = hf__sel_sse(deg, HF__LD(F8 + r), dz);
+            d2 = hf__sel_sse(deg, one, d2);
+        }
+        sc = _mm_div_ps(HF__LD(L + r), _mm_sqrt_ps(d2));
+        xyz[0] = HF__ADD(x0, HF__MUL(dx, sc));
+        xyz[1] = HF__ADD(y0, HF__MUL(dy, sc));
+        xyz[2] = HF__ADD(z0, HF__MUL(dz, sc));
+        HF__ST(X1 + r, xyz[0]);
+        HF__ST(Y1 + r, xyz[1]);
+        HF__ST(Z1 + r, xyz[2]);
+        if (!st->ftl) continue;
+        HF__ST(PX0 + r, HF__ADD(HF__LD(PX0 + r),
+                                HF__MUL(sd, HF__SUB(xyz[0], ox))));
+        HF__ST(PY0 + r, HF__ADD(HF__LD(PY0 + r),
+                                HF__MUL(sd, HF__SUB(xyz[1], oy))));
+        HF__ST(PZ0 + r, HF__ADD(HF__LD(PZ0 + r),
+                                HF__MUL(sd, HF__SUB(xyz[2], oz))));
+        if (ncol > 1 ||
+            (ncol == 1 &&
+             hf__col_hits_sse(pre, xyz[0], xyz[1], xyz[2])))
+            hf__col_row_sse(ro, F, j, r, 1, col, ncol, pre,
+                         st->margin, xyz);
+    }
+}
+
+/* Row j of a distance pass: half the error to each end (equal masses). */
+HF__PRIVATE void hf__ropes_distance_row_sse(hf_ropes *ro, int j, int a,
+                                            int b)
+{
+    const size_t R = (size_t)ro->rope_count;
+    float *X0 = HF__ROW(ro->x, j - 1, R), *Y0 = HF__ROW(ro->y, j - 1, R),
+          *Z0 = HF__ROW(ro->z, j - 1, R);
+    float *X1 = HF__ROW(ro->x, j, R), *Y1 = HF__ROW(ro->y, j, R),
+          *Z1 = HF__ROW(ro->z, j, R);
+    const float *L = HF__ROW(ro->rest_length, j - 1, R);
+    const __m128 half = _mm_set1_ps(0.5f);
+    int r;
+    for (r = a; r < b; r += 4) {
+        const __m128 x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),
+                     z0 = HF__LD(Z0 + r), x1 = HF__LD(X1 + r),
+                     y1 = HF__LD(Y1 + r), z1 = HF__LD(Z1 + r);
+        const __m128 dx = HF__SUB(x1, x0), dy = HF__SUB(y1, y0),
+                     dz = HF__SUB(z1, z0);
+        const __m128 d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);
+        const __m128 e = _mm_and_ps(
+            _mm_cmpgt_ps(d2, _mm_set1_ps(1e-24f)),
+            HF__SUB(half, _mm_div_ps(HF__MUL(half, HF__LD(L + r)),
+                                     _mm_sqrt_ps(d2))));
+        HF__ST(X0 + r, HF__ADD(x0, HF__MUL(dx, e)));
+        HF__ST(Y0 + r, HF__ADD(y0, HF__MUL(dy, e)));
+        HF__ST(Z0 + r, HF__ADD(z0, HF__MUL(dz, e)));
+        HF__ST(X1 + r, HF__SUB(x1, HF__MUL(dx, e)));
+        HF__ST(Y1 + r, HF__SUB(y1, HF__MUL(dy, e)));
+        HF__ST(Z1 + r, HF__SUB(z1, HF__MUL(dz, e)));
+    }
+}
+
+/* One sub-step, SSE: what hf__ropes_substep_ref does, with the same
+   operations per rope. Loops still run across ropes (a chain of dependent
+   square roots and divisions per rope, point after point, leaves no
+   parallelism otherwise), but rows are fused where the order between them
+   does not matter: the root pin first (rows 1.. never read row 0 before
+   the local shape); then per row, integration with the global pull, and
+   the local shape of the point before, which reads rows up to j only;
+   each FTL placement, then its collisions. */
+HF__PRIVATE void hf__ropes_substep_sse(hf_ropes *ro, const float *F, int a,
+                                       int b, const hf__rope_step *st,
+                                       const hf_collider *col, int ncol,
+                                       const hf__col_prep4 *pre)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const int P = ro->points;
+    float *Q[2][3];
+    int j, it;
+    for (j = 0; j < 3; ++j) { /* scratch rows G: unused by simulated ropes */
+        Q[0][j] = HF__ROW(ro->scratch, HF__RS_G + j, R);
+        Q[1][j] = HF__ROW(ro->scratch, HF__RS_G + 3 + j, R);
+    }
+    hf__ropes_pin_root_sse(ro, F, a, b);
+    for (j = 1; j < P; ++j) {
+        hf__ropes_integrate_row_sse(ro, F, j, a, b, st);
+        if (st->local_on) hf__ropes_local_row_sse(ro, F, j, a, b, st, Q);
+    }
+    for (it = 0; it < st->iterations; ++it) {
+        for (j = 1; j < P; ++j)
+            if (st->ftl || j == 1)
+                hf__ropes_ftl_row_sse(ro, F, j, a, b, st, col, ncol, pre);
+            else
+                hf__ropes_distance_row_sse(ro, j, a, b);
+        if (!st->ftl && ncol > 0)
+            hf__ropes_collide_sse(ro, F, a, b, col, ncol, pre, st->margin);
+    }
+    if (st->iterations == 0 && ncol > 0)
+        hf__ropes_collide_sse(ro, F, a, b, col, ncol, pre, st->margin);
+}
+
+
+/* hf__ropes_mark_far_ref on whole groups of four from a; returns where
+   the groups end. */
+HF__PRIVATE int hf__ropes_mark_far_sse(const hf_ropes *ro, int j, int a,
+                                       int b, const float *KB, float *VF)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
+                *Z = HF__ROW(ro->z, j, R);
+    int r = a;
+    for (; r + 4 <= b; r += 4) {
+        const __m128 dx = HF__SUB(HF__LD(X + r), HF__LD(ro->x + r)),
+                     dy = HF__SUB(HF__LD(Y + r), HF__LD(ro->y + r)),
+                     dz = HF__SUB(HF__LD(Z + r), HF__LD(ro->z + r));
+        const __m128 in =
+            _mm_cmple_ps(HF__DOT3(dx, dy, dz, dx, dy, dz), HF__LD(KB + r));
+        HF__ST(VF + r, hf__sel_sse(in, HF__LD(VF + r), _mm_set1_ps(1.0f)));
+    }
+    return r;
+}
 #endif
 
-    for (s = 0; s < st->n; ++s) {
-        float alpha = s + 1 == st->n ? 1.0f : (float)(s + 1) / (float)st->n;
-        /* frame rows of the sub-step; at alpha 1 the current frame itself
-           (what hf__rope_frame_at gives, bit for bit) */
-        const float *F = alpha >= 1.0f ? ro->frame : FS;
-        const float *nx = HF__ROW(F, 6), *ny = HF__ROW(F, 7),
-                    *nz = HF__ROW(F, 8);
-        /* per rope: frame, acceleration, velocity factor, blend pull */
-        for (r = a; r < b; ++r) {
-            float f[12], gx = st->g[0], gy = st->g[1], gz = st->g[2], vf;
-            int k;
-            if (alpha < 1.0f) {
-                hf__rope_frame_at(ro, r, alpha, f);
-                for (k = 0; k < 12; ++k) FS[(size_t)k * R + r] = f[k];
-            }
-            if (st->turbulence > 0.0f) {
-                double tt = ro->time[r] * (double)st->turbulence_frequency;
-                gx += st->turbulence * hf__rope_noise((uint32_t)r, tt, 0);
-                gy += st->turbulence * hf__rope_noise((uint32_t)r, tt, 1);
-                gz += st->turbulence * hf__rope_noise((uint32_t)r, tt, 2);
-            }
-            AX[r] = gx * h2;
-            AY[r] = gy * h2;
-            AZ[r] = gz * h2;
-            vf = st->keep;
-            /* time-corrected Verlet: x - px spans the previous sub-step;
-               capped so a tiny previous step cannot amplify rounding */
-            if (s == 0 && ro->last_h[r] > 0.0f) {
-                float q = h / ro->last_h[r];
-                vf *= q < 4.0f ? q : 4.0f;
-            }
-            VF[r] = vf;
-            ro->time[r] += (double)h;
-        }
-        a4 = a;
+/* The dispatch of the simulated rope kernels: the SSE kernel takes whole
+   groups of four ropes from a, the scalar reference the rest. */
+HF__PRIVATE void hf__ropes_substep(hf_ropes *ro, const float *F, int a, int b,
+                                   const hf__rope_step *st,
+                                   const hf_collider *col, int ncol,
+                                   const void *lanes)
+{
+    int a4 = a;
 #if HF__SSE
-        if (b - a >= 4) {
-            a4 = a + (b - a) / 4 * 4;
-            hf__ropes_substep4(ro, F, a, a4, st, col, ncol, pre);
-        }
+    a4 = a + (b - a) / 4 * 4;
+    if (a4 > a)
+        hf__ropes_substep_sse(ro, F, a, a4, st, col, ncol,
+                              (const hf__col_prep4 *)lanes);
+#else
+    (void)lanes;
 #endif
-        /* integrate points 1.. (position Verlet) */
-        for (j = 1; j < P; ++j) {
-            float *HF__RESTRICT X = HF__ROW(ro->x, j);
-            float *HF__RESTRICT Y = HF__ROW(ro->y, j);
-            float *HF__RESTRICT Z = HF__ROW(ro->z, j);
-            float *HF__RESTRICT PX = HF__ROW(ro->px, j);
-            float *HF__RESTRICT PY = HF__ROW(ro->py, j);
-            float *HF__RESTRICT PZ = HF__ROW(ro->pz, j);
-            for (r = a4; r < b; ++r) {
-                float vx = (X[r] - PX[r]) * VF[r];
-                float vy = (Y[r] - PY[r]) * VF[r];
-                float vz = (Z[r] - PZ[r]) * VF[r];
-                PX[r] = X[r];
-                PY[r] = Y[r];
-                PZ[r] = Z[r];
-                X[r] += vx + AX[r];
-                Y[r] += vy + AY[r];
-                Z[r] += vz + AZ[r];
-            }
-        }
-        /* pin the root to the frame */
-        for (r = a4; r < b; ++r) {
-            ro->px[r] = ro->x[r];
-            ro->py[r] = ro->y[r];
-            ro->pz[r] = ro->z[r];
-        }
-        hf__rope_pose_row(ro, 0, a4, b, F, ro->x, ro->y, ro->z);
-        /* shape: root segment, global pose */
-        if (st->k_root > 0.0f || st->global_on) {
-            for (j = 1; j < P; ++j) {
-                float tgx, tgy, tgz;
-                const float kg = st->ktab ? st->kg[j] : hf__rope_kg(st, j, P);
-                float *HF__RESTRICT X = HF__ROW(ro->x, j);
-                float *HF__RESTRICT Y = HF__ROW(ro->y, j);
-                float *HF__RESTRICT Z = HF__ROW(ro->z, j);
-                const float *u = HF__ROW(ro->rest_u, j),
-                            *v = HF__ROW(ro->rest_v, j),
-                            *w = HF__ROW(ro->rest_w, j);
-                if (kg <= 0.0f) continue;
-                for (r = a4; r < b; ++r) {
-                    const float k = kg;
-                    tgx = F[r] + F[3 * R + r] * u[r] + F[6 * R + r] * v[r] +
-                          F[9 * R + r] * w[r];
-                    tgy = F[R + r] + F[4 * R + r] * u[r] +
-                          F[7 * R + r] * v[r] + F[10 * R + r] * w[r];
-                    tgz = F[2 * R + r] + F[5 * R + r] * u[r] +
-                          F[8 * R + r] * v[r] + F[11 * R + r] * w[r];
-                    X[r] += k * (tgx - X[r]);
-                    Y[r] += k * (tgy - Y[r]);
-                    Z[r] += k * (tgz - Z[r]);
-                }
-            }
-        }
-        /* local shape: each segment toward its rest direction relative to
-           its parent segment (the rest offset turned by the smallest
-           rotation that takes the parent's rest direction to its current
-           one) */
-        if (st->local_on) {
-            for (j = 1; j + 1 < P; ++j) {
-                const float kl = st->ktab ? st->kl[j] : hf__rope_kl(st, j, P);
-                const float *X0 = HF__ROW(ro->x, j - 1),
-                            *Y0 = HF__ROW(ro->y, j - 1),
-                            *Z0 = HF__ROW(ro->z, j - 1);
-                const float *X1 = HF__ROW(ro->x, j), *Y1 = HF__ROW(ro->y, j),
-                            *Z1 = HF__ROW(ro->z, j);
-                float *HF__RESTRICT X2 = HF__ROW(ro->x, j + 1);
-                float *HF__RESTRICT Y2 = HF__ROW(ro->y, j + 1);
-                float *HF__RESTRICT Z2 = HF__ROW(ro->z, j + 1);
-                const float *u0 = HF__ROW(ro->rest_u, j - 1),
-                            *v0 = HF__ROW(ro->rest_v, j - 1),
-                            *w0 = HF__ROW(ro->rest_w, j - 1);
-                const float *u1 = HF__ROW(ro->rest_u, j),
-                            *v1 = HF__ROW(ro->rest_v, j),
-                            *w1 = HF__ROW(ro->rest_w, j);
-                const float *u2 = HF__ROW(ro->rest_u, j + 1),
-                            *v2 = HF__ROW(ro->rest_v, j + 1),
-                            *w2 = HF__ROW(ro->rest_w, j + 1);
-                const float *L = HF__ROW(ro->rest_length, j - 1);
-                if (kl <= 0.0f) continue;
-                for (r = a4; r < b; ++r) {
-                    /* rest directions in world: parent p, child q */
-                    float pu = u1[r] - u0[r], pv = v1[r] - v0[r],
-                          pw = w1[r] - w0[r];
-                    float qu = u2[r] - u1[r], qv = v2[r] - v1[r],
-                          qw = w2[r] - w1[r];
-                    float px_ = F[3 * R + r] * pu + F[6 * R + r] * pv +
-                                F[9 * R + r] * pw;
-                    float py_ = F[4 * R + r] * pu + F[7 * R + r] * pv +
-                                F[10 * R + r] * pw;
-                    float pz_ = F[5 * R + r] * pu + F[8 * R + r] * pv +
-                                F[11 * R + r] * pw;
-                    float qx = F[3 * R + r] * qu + F[6 * R + r] * qv +
-                               F[9 * R + r] * qw;
-                    float qy = F[4 * R + r] * qu + F[7 * R + r] * qv +
-                               F[10 * R + r] * qw;
-                    float qz = F[5 * R + r] * qu + F[8 * R + r] * qv +
-                               F[11 * R + r] * qw;
-                    float bx = X1[r] - X0[r], by = Y1[r] - Y0[r],
-                          bz = Z1[r] - Z0[r];
-                    float b2 = bx * bx + by * by + bz * bz;
-                    float ok = (L[r] > 1e-12f && b2 > 1e-24f) ? 1.0f : 0.0f;
-                    float ia = ok > 0.0f ? 1.0f / L[r] : 0.0f;
-                    float ib = ok > 0.0f ? 1.0f / HF_SQRTF(b2) : 0.0f;
-                    float cc, kx, ky, kz, kd, den, rx, ry, rz;
-                    px_ *= ia;
-                    py_ *= ia;
-                    pz_ *= ia;
-                    bx *= ib;
-                    by *= ib;
-                    bz *= ib;
-                    /* Rodrigues without trigonometry: the rotation taking
-                       unit p to unit b, applied to q; identity when either
-                       direction is undefined */
-                    cc = ok > 0.0f ? px_ * bx + py_ * by + pz_ * bz : 1.0f;
-                    kx = py_ * bz - pz_ * by;
-                    ky = pz_ * bx - px_ * bz;
-                    kz = px_ * by - py_ * bx;
-                    kd = kx * qx + ky * qy + kz * qz;
-                    den = 1.0f + cc;
-                    den = kd / (den > 1e-6f ? den : 1e-6f);
-                    rx = qx * cc + (ky * qz - kz * qy) + kx * den;
-                    ry = qy * cc + (kz * qx - kx * qz) + ky * den;
-                    rz = qz * cc + (kx * qy - ky * qx) + kz * den;
-                    X2[r] += kl * (X1[r] + rx - X2[r]);
-                    Y2[r] += kl * (Y1[r] + ry - Y2[r]);
-                    Z2[r] += kl * (Z1[r] + rz - Z2[r]);
-                }
-            }
-        }
-        /* distance passes, each with its collisions (see below) */
-        for (it = 0; it < st->iterations; ++it) {
-            for (j = 1; j < P; ++j) {
-                float *HF__RESTRICT X0 = HF__ROW(ro->x, j - 1);
-                float *HF__RESTRICT Y0 = HF__ROW(ro->y, j - 1);
-                float *HF__RESTRICT Z0 = HF__ROW(ro->z, j - 1);
-                float *HF__RESTRICT X1 = HF__ROW(ro->x, j);
-                float *HF__RESTRICT Y1 = HF__ROW(ro->y, j);
-                float *HF__RESTRICT Z1 = HF__ROW(ro->z, j);
-                float *HF__RESTRICT PX0 = HF__ROW(ro->px, j - 1);
-                float *HF__RESTRICT PY0 = HF__ROW(ro->py, j - 1);
-                float *HF__RESTRICT PZ0 = HF__ROW(ro->pz, j - 1);
-                const float *L = HF__ROW(ro->rest_length, j - 1);
-                /* Mueller's velocity fix goes to the parent; never to the
-                   pinned root */
-                const float sd = j >= 2 ? st->ftl_damping : 0.0f;
-                if (st->ftl || j == 1) {
-                    for (r = a4; r < b; ++r) {
-                        float dx = X1[r] - X0[r], dy = Y1[r] - Y0[r],
-                              dz = Z1[r] - Z0[r];
-                        float d2 = dx * dx + dy * dy + dz * dz, sc, ox, oy,
-                              oz;
-                        /* coincident points: grow along the root normal */
-                        int deg = d2 < 1e-24f;
-                        dx = deg ? nx[r] : dx;
-                        dy = deg ? ny[r] : dy;
-                        dz = deg ? nz[r] : dz;
-                        d2 = deg ? 1.0f : d2;
-                        sc = L[r] / HF_SQRTF(d2);
-                        ox = X1[r];
-                        oy = Y1[r];
-                        oz = Z1[r];
-                        X1[r] = X0[r] + dx * sc;
-                        Y1[r] = Y0[r] + dy * sc;
-                        Z1[r] = Z0[r] + dz * sc;
-                        if (st->ftl) {
-                            PX0[r] += sd * (X1[r] - ox);
-                            PY0[r] += sd * (Y1[r] - oy);
-                            PZ0[r] += sd * (Z1[r] - oz);
-                        }
-                    }
-                    /* FTL never moves a parent again, so colliding each
-                       point right after placing it leaves the whole rope
-                       outside when the pass ends */
-                    if (st->ftl)
-                        for (c = 0; c < ncol; ++c)
-                            hf__ropes_collide_ftl_row(ro, F, j, a4, b, col + c,
-                                                      st->margin);
-                } else {
-                    for (r = a4; r < b; ++r) {
-                        float dx = X1[r] - X0[r], dy = Y1[r] - Y0[r],
-                              dz = Z1[r] - Z0[r];
-                        float d2 = dx * dx + dy * dy + dz * dz;
-                        /* half the error to each end (equal masses) */
-                        float e = d2 > 1e-24f
-                                      ? 0.5f - 0.5f * L[r] / HF_SQRTF(d2)
-                                      : 0.0f;
-                        X0[r] += dx * e;
-                        Y0[r] += dy * e;
-                        Z0[r] += dz * e;
-                        X1[r] -= dx * e;
-                        Y1[r] -= dy * e;
-                        Z1[r] -= dz * e;
-                    }
-                }
-            }
-            if (!st->ftl && ncol > 0)
-                hf__ropes_collide(ro, F, a4, b, col, ncol, st->margin);
-        }
-        if (st->iterations == 0 && ncol > 0)
-            hf__ropes_collide(ro, F, a4, b, col, ncol, st->margin);
-    }
+    hf__ropes_substep_ref(ro, F, a4, b, st, col, ncol);
+}
 
-    /* bookkeeping and the safety net */
+HF__PRIVATE void hf__ropes_mark_far(const hf_ropes *ro, int j, int a, int b,
+                                    const float *KB, float *VF)
+{
+#if HF__SSE
+    a = hf__ropes_mark_far_sse(ro, j, a, b, KB, VF);
+#endif
+    hf__ropes_mark_far_ref(ro, j, a, b, KB, VF);
+}
+
+/* After the sub-steps: remember the sub-step length, and reset a rope
+   that an unstable setting threw further than 8 * length + 0.01 m from
+   its root (the safety net that keeps every output finite). */
+HF__PRIVATE void hf__ropes_safety_net(hf_ropes *ro, int a, int b, float h)
+{
+    const size_t R = (size_t)ro->rope_count;
+    float *VF = HF__ROW(ro->scratch, HF__RS_VF, R),
+          *KB = HF__ROW(ro->scratch, HF__RS_KB, R);
+    int j, r;
     for (r = a; r < b; ++r) {
         float lim = 8.0f * ro->length[r] + 0.01f;
         ro->last_h[r] = h;
         KB[r] = lim * lim; /* reuse the row: squared limit */
         VF[r] = 0.0f;      /* reuse: 1 if the rope went bad */
     }
-    for (j = 1; j < P; ++j) {
-        const float *X = HF__ROW(ro->x, j), *Y = HF__ROW(ro->y, j),
-                    *Z = HF__ROW(ro->z, j);
-        r = a;
-#if HF__SSE
-        for (; r + 4 <= b; r += 4) { /* the loop below, four at a time */
-            const __m128 dx = HF__SUB(HF__LD(X + r), HF__LD(ro->x + r)),
-                         dy = HF__SUB(HF__LD(Y + r), HF__LD(ro->y + r)),
-                         dz = HF__SUB(HF__LD(Z + r), HF__LD(ro->z + r));
-            const __m128 in =
-                _mm_cmple_ps(HF__DOT3(dx, dy, dz, dx, dy, dz), HF__LD(KB + r));
-            HF__ST(VF + r,
-                   hf__sel4(in, HF__LD(VF + r), _mm_set1_ps(1.0f)));
-        }
-#endif
-        for (; r < b; ++r) {
-            float dx = X[r] - ro->x[r], dy = Y[r] - ro->y[r],
-                  dz = Z[r] - ro->z[r];
-            float d2 = dx * dx + dy * dy + dz * dz;
-            /* false for NaN too */
-            VF[r] = (d2 <= KB[r]) ? VF[r] : 1.0f;
-        }
-    }
+    for (j = 1; j < ro->points; ++j) hf__ropes_mark_far(ro, j, a, b, KB, VF);
     for (r = a; r < b; ++r)
         if (VF[r] != 0.0f) {
             float keep = ro->blend[r];
@@ -5269,28 +5813,44 @@ HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
         }
 }
 
+/* Simulated ropes [a, b): every sub-step, then the safety net. */
+HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
+                                   const hf__rope_step *st,
+                                   const hf_collider *col, int ncol)
+{
+    const void *lanes = NULL;
+    int s;
+#if HF__SSE
+    /* lane copies of the first colliders, made once per call */
+    hf__col_prep4 pre[HF__ROPE_PREP];
+    int c;
+    for (c = 0; c < ncol && c < HF__ROPE_PREP; ++c) {
+        const hf__col_prep k = hf__collider_prep(col + c, st->margin);
+        hf__col_prep_sse(&k, pre + c);
+    }
+    lanes = pre;
+#endif
+    for (s = 0; s < st->n; ++s) {
+        const float *F = hf__ropes_substep_prep(ro, a, b, st, s);
+        hf__ropes_substep(ro, F, a, b, st, col, ncol, lanes);
+    }
+    hf__ropes_safety_net(ro, a, b, st->h);
+}
+
+
 HF__PRIVATE int hf__rope_kind(const hf_ropes *ro, int r)
 {
     if (ro->mode[r] != HF_ROPE_ANIMATED) return 0;
     return ro->blend[r] >= 1.0f ? 2 : 1;
 }
 
-HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
-                              float dt, const hf_rope_params *params,
-                              const hf_collider *colliders,
-                              int collider_count)
+/* Colliders: finite, a known type, coordinates and radius in range. */
+HF__PRIVATE hf_result hf__colliders_check(const hf_collider *colliders,
+                                          int collider_count)
 {
-    hf__rope_step st;
-    hf_result res;
-    float sdt, q;
-    int r, c, k, end;
-    if (!hf__ropes_ok(ropes) || !params) return HF_ERROR_NULL_POINTER;
-    if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
+    int c, k;
     if (collider_count < 0) return HF_ERROR_BAD_COUNT;
     if (collider_count > 0 && !colliders) return HF_ERROR_NULL_POINTER;
-    if (!hf__finitef(dt) || !(dt > 0.0f)) return HF_ERROR_BAD_TIME_STEP;
-    res = hf_rope_params_validate(params, NULL);
-    if (res != HF_OK) return res;
     for (c = 0; c < collider_count; ++c) {
         const hf_collider *o = colliders + c;
         for (k = 0; k < 3; ++k)
@@ -5304,41 +5864,69 @@ HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
             !(o->radius >= 0.0f && o->radius <= HF_ROPE_MAX_COORD))
             return HF_ERROR_BAD_PARAMETER;
     }
-    if (count == 0) return HF_OK;
+    return HF_OK;
+}
 
-    /* resolve: clamp, scale, split into equal sub-steps */
+/* The per-call constants of a step from resolved parameters: dt clamped
+   and scaled, split into equal sub-steps, rates per sub-step. */
+HF__PRIVATE void hf__rope_step_setup(hf__rope_step *st,
+                                     const hf_rope_params *params, float dt,
+                                     int points)
+{
+    float sdt, q;
+    int k;
     if (dt > params->max_dt) dt = params->max_dt;
     sdt = dt * params->time_scale;
     q = sdt / params->substep;
-    st.n = q >= (float)params->max_substeps ? params->max_substeps
-                                            : (int)q;
-    if ((float)st.n < q * 0.9999f && st.n < params->max_substeps) ++st.n;
-    if (st.n < 1) st.n = 1;
-    st.h = sdt / (float)st.n;
-    st.keep = 1.0f - hf__rope_k(params->damping, st.h);
-    st.k_root = hf__rope_k(params->root_stiffness, st.h);
-    st.ftl = params->solver == HF_ROPE_SOLVER_FTL;
-    st.iterations = params->iterations;
+    st->n = q >= (float)params->max_substeps ? params->max_substeps
+                                             : (int)q;
+    if ((float)st->n < q * 0.9999f && st->n < params->max_substeps) ++st->n;
+    if (st->n < 1) st->n = 1;
+    st->h = sdt / (float)st->n;
+    st->keep = 1.0f - hf__rope_k(params->damping, st->h);
+    st->k_root = hf__rope_k(params->root_stiffness, st->h);
+    st->ftl = params->solver == HF_ROPE_SOLVER_FTL;
+    st->iterations = params->iterations;
     /* FTL with colliders folded into its sweep is exact after one pass */
-    if (st.ftl && st.iterations > 1) st.iterations = 1;
-    st.ftl_damping = params->ftl_damping;
-    st.margin = params->collision_margin;
-    for (k = 0; k < 3; ++k) st.g[k] = params->gravity[k] + params->wind[k];
-    st.turbulence = params->turbulence;
-    st.turbulence_frequency = params->turbulence_frequency;
-    st.blend_time = params->mode_blend_time;
-    st.gs_root = params->global_stiffness_root;
-    st.gs_tip = params->global_stiffness_tip;
-    st.ls_root = params->local_stiffness_root;
-    st.ls_tip = params->local_stiffness_tip;
-    st.global_on = st.gs_root > 0.0f || st.gs_tip > 0.0f;
-    st.local_on = st.ls_root > 0.0f || st.ls_tip > 0.0f;
-    st.ktab = ropes->points <= HF__ROPE_KTAB;
-    if (st.ktab)
-        for (k = 1; k < ropes->points; ++k) {
-            st.kg[k] = hf__rope_kg(&st, k, ropes->points);
-            st.kl[k] = hf__rope_kl(&st, k, ropes->points);
+    if (st->ftl && st->iterations > 1) st->iterations = 1;
+    st->ftl_damping = params->ftl_damping;
+    st->margin = params->collision_margin;
+    for (k = 0; k < 3; ++k) st->g[k] = params->gravity[k] + params->wind[k];
+    st->turbulence = params->turbulence;
+    st->turbulence_frequency = params->turbulence_frequency;
+    st->blend_time = params->mode_blend_time;
+    st->gs_root = params->global_stiffness_root;
+    st->gs_tip = params->global_stiffness_tip;
+    st->ls_root = params->local_stiffness_root;
+    st->ls_tip = params->local_stiffness_tip;
+    st->global_on = st->gs_root > 0.0f || st->gs_tip > 0.0f;
+    st->local_on = st->ls_root > 0.0f || st->ls_tip > 0.0f;
+    st->ktab = points <= HF__ROPE_KTAB;
+    if (st->ktab)
+        for (k = 1; k < points; ++k) {
+            st->kg[k] = hf__rope_kg(st, k, points);
+            st->kl[k] = hf__rope_kl(st, k, points);
         }
+}
+
+HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
+                              float dt, const hf_rope_params *params,
+                              const hf_collider *colliders,
+                              int collider_count)
+{
+    hf__rope_step st;
+    hf_rope_params prm;
+    hf_result res;
+    int r, k, end;
+    if (!hf__ropes_ok(ropes) || !params) return HF_ERROR_NULL_POINTER;
+    if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
+    if ((res = hf__colliders_check(colliders, collider_count)) != HF_OK)
+        return res;
+    if (!hf__finitef(dt) || !(dt > 0.0f)) return HF_ERROR_BAD_TIME_STEP;
+    hf__rope_params_resolve(params, &prm);
+    if ((res = hf__rope_params_check(&prm, NULL)) != HF_OK) return res;
+    if (count == 0) return HF_OK;
+    hf__rope_step_setup(&st, &prm, dt, ropes->points);
 
     /* runs of ropes of one kind, each with its kernel; the kinds depend
        only on each rope's own state, so any split gives the same bytes */
@@ -5379,7 +5967,7 @@ HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
 #if HF__SSE
 /* Floats [i, i + 4) of a strand; R is (1 - sc) root in the phase of i. The
    operations and their order are the scalar loop's in hf_interpolate. */
-HF__INLINE void hf__interp4(const float *g0, const float *g1, const float *g2,
+HF__INLINE void hf__interp_sse(const float *g0, const float *g1, const float *g2,
                             const float *gn, const float *ctab, float *o,
                             int i, __m128 W0, __m128 W1, __m128 W2,
                             __m128 SC, __m128 R)
@@ -5395,12 +5983,64 @@ HF__INLINE void hf__interp4(const float *g0, const float *g1, const float *g2,
 }
 #endif
 
+/* One strand's floats [i, 3 P) of hf__interpolate_run: p = the weighted
+   guides, scaled about the root (rb = (1 - sc) root, twice), then pulled
+   toward guide gn (NULL: no clumping) by ctab. */
+HF__PRIVATE void hf__interp_strand_ref(const float *g0, const float *g1,
+                                       const float *g2, const float *gn,
+                                       const float *ctab, float *o, int i,
+                                       int P, float w0, float w1, float w2,
+                                       float sc, const float *rb)
+{
+    for (; i < 3 * P; ++i) {
+        float p = w0 * g0[i] + w1 * g1[i] + w2 * g2[i];
+        p = sc * p + rb[i % 3];
+        o[i] = gn ? p + ctab[i] * (gn[i] - p) : p;
+    }
+}
+
+#if HF__SSE
+/* hf__interp_strand_ref on whole vectors from float 0; returns where they
+   end. */
+HF__PRIVATE int hf__interp_strand_sse(const float *g0, const float *g1,
+                                      const float *g2, const float *gn,
+                                      const float *ctab, float *o, int P,
+                                      float w0, float w1, float w2, float sc,
+                                      const float *rb)
+{
+    const __m128 W0 = _mm_set1_ps(w0), W1 = _mm_set1_ps(w1);
+    const __m128 W2 = _mm_set1_ps(w2), SC = _mm_set1_ps(sc);
+    /* (1 - sc) root, repeating every 3 floats: 3 phases of 4, built
+       in registers (loading them from rb would wait on its narrow
+       stores: a third of the time) */
+    const __m128 R0 = _mm_setr_ps(rb[0], rb[1], rb[2], rb[0]);
+    const __m128 R1 = _mm_setr_ps(rb[1], rb[2], rb[0], rb[1]);
+    const __m128 R2 = _mm_setr_ps(rb[2], rb[0], rb[1], rb[2]);
+    int i = 0;
+    /* three vectors a turn, so each gets its phase without a test */
+    for (; i + 12 <= 3 * P; i += 12) {
+        hf__interp_sse(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0);
+        hf__interp_sse(g0, g1, g2, gn, ctab, o, i + 4, W0, W1, W2, SC, R1);
+        hf__interp_sse(g0, g1, g2, gn, ctab, o, i + 8, W0, W1, W2, SC, R2);
+    }
+    if (i + 4 <= 3 * P) {
+        hf__interp_sse(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0);
+        i += 4;
+    }
+    if (i + 4 <= 3 * P) {
+        hf__interp_sse(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R1);
+        i += 4;
+    }
+    return i;
+}
+#endif
+
 /* Strands [first, first + count) from inputs already checked: the loop of
    hf_interpolate. */
 HF__PRIVATE void hf__interpolate_run(const float *guide_points,
                                      const hf_strand_binding *bindings,
                                      int first, int count, int P, float clump,
-                                     float *out_points)
+                                     float *out_points, int out_first)
 {
     float ctab[3 * HF_MAX_POINTS];
     int s, i, k;
@@ -5422,7 +6062,7 @@ HF__PRIVATE void hf__interpolate_run(const float *guide_points,
             clump == 0.0f ? NULL
                           : guide_points + (size_t)b->guide[2 - 2 * n0 - n1] *
                                                (size_t)P * 3u;
-        float *o = out_points + (size_t)s * (size_t)P * 3u;
+        float *o = out_points + (size_t)(s - out_first) * (size_t)P * 3u;
         float rb[6];
         /* p' = sc p + (1 - sc) root keeps the root and scales the offsets;
            with sc = 1 it is p exactly, so a strand on a guide equals it */
@@ -5432,37 +6072,11 @@ HF__PRIVATE void hf__interpolate_run(const float *guide_points,
         }
         i = 0;
 #if HF__SSE
-        {
-            const __m128 W0 = _mm_set1_ps(w0), W1 = _mm_set1_ps(w1);
-            const __m128 W2 = _mm_set1_ps(w2), SC = _mm_set1_ps(sc);
-            /* (1 - sc) root, repeating every 3 floats: 3 phases of 4, built
-               in registers (loading them from rb would wait on its narrow
-               stores: a third of the time) */
-            const __m128 R0 = _mm_setr_ps(rb[0], rb[1], rb[2], rb[0]);
-            const __m128 R1 = _mm_setr_ps(rb[1], rb[2], rb[0], rb[1]);
-            const __m128 R2 = _mm_setr_ps(rb[2], rb[0], rb[1], rb[2]);
-            /* three vectors a turn, so each gets its phase without a test */
-            for (; i + 12 <= 3 * P; i += 12) {
-                hf__interp4(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0);
-                hf__interp4(g0, g1, g2, gn, ctab, o, i + 4, W0, W1, W2, SC, R1);
-                hf__interp4(g0, g1, g2, gn, ctab, o, i + 8, W0, W1, W2, SC, R2);
-            }
-            if (i + 4 <= 3 * P) {
-                hf__interp4(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0);
-                i += 4;
-            }
-            if (i + 4 <= 3 * P) {
-                hf__interp4(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R1);
-                i += 4;
-            }
-        }
+        i = hf__interp_strand_sse(g0, g1, g2, gn, ctab, o, P, w0, w1, w2, sc,
+                                  rb);
 #endif
-        /* the same operations, in the same order, one float at a time */
-        for (; i < 3 * P; ++i) {
-            float p = w0 * g0[i] + w1 * g1[i] + w2 * g2[i];
-            p = sc * p + rb[i % 3];
-            o[i] = gn ? p + ctab[i] * (gn[i] - p) : p;
-        }
+        hf__interp_strand_ref(g0, g1, g2, gn, ctab, o, i, P, w0, w1, w2, sc,
+                              rb);
     }
 }
 
@@ -5478,7 +6092,9 @@ HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
     P = params->points_per_strand;
     if (P < 2 || P > HF_MAX_POINTS || guide_count < 1)
         return HF_ERROR_BAD_COUNT;
-    if (!hf__range_ok(first, count)) return HF_ERROR_BAD_RANGE;
+    if (!hf__range_ok(first, count) || params->out_first < 0 ||
+        first < params->out_first)
+        return HF_ERROR_BAD_RANGE;
     clump = params->clump;
     if (!hf__finitef(clump)) return HF_ERROR_NON_FINITE;
     if (clump < 0.0f || clump > 1.0f) return HF_ERROR_BAD_PARAMETER;
@@ -5503,7 +6119,7 @@ HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
         if (g > HF_MAX_ABS || g < -HF_MAX_ABS) return HF_ERROR_BAD_PARAMETER;
     }
     hf__interpolate_run(guide_points, bindings, first, count, P, clump,
-                        out_points);
+                        out_points, params->out_first);
     return HF_OK;
 }
 
@@ -5540,16 +6156,21 @@ HFDEF float hf_lod_from_distance(float distance, float full_detail_distance,
 
 /* ---- 8. ribbons --------------------------------------------------------- */
 
-/* Validate everything hf_ribbons and hf_ribbon_points share. */
+/* Resolve the defaults of `in` into *p and validate everything hf_ribbons
+   and hf_ribbon_points share. */
 HF__PRIVATE hf_result hf__ribbon_check(const hf_ribbon_strands *strands,
                                        int first, int count,
-                                       const hf_ribbon_params *p)
+                                       const hf_ribbon_params *in,
+                                       hf_ribbon_params *p)
 {
     int k;
-    if (!strands || !p || !strands->points) return HF_ERROR_NULL_POINTER;
+    if (!strands || !in || !strands->points) return HF_ERROR_NULL_POINTER;
+    hf__ribbon_params_resolve(in, p);
     if (p->points_per_strand < 2 || p->points_per_strand > HF_MAX_POINTS)
         return HF_ERROR_BAD_COUNT;
-    if (!hf__range_ok(first, count)) return HF_ERROR_BAD_RANGE;
+    if (!hf__range_ok(first, count) || p->out_first < 0 ||
+        first < p->out_first)
+        return HF_ERROR_BAD_RANGE;
     for (k = 0; k < 3; ++k)
         if (!hf__finitef(p->eye[k]) || !hf__finitef(p->view_dir[k]))
             return HF_ERROR_NON_FINITE;
@@ -5570,12 +6191,12 @@ HF__PRIVATE hf_result hf__ribbon_check(const hf_ribbon_strands *strands,
     return HF_OK;
 }
 
-/* Half width at t = j / (P - 1), with the taper curve. */
+/* Half width at t = j / (P - 1), with the taper curve (resolved p). */
 HF__PRIVATE void hf__half_widths(const hf_ribbon_params *p, float *hw)
 {
     const int P = p->points_per_strand;
-    const float scale = p->width_scale != 0.0f ? p->width_scale : 1.0f;
-    const float power = p->taper_power != 0.0f ? p->taper_power : 1.0f;
+    const float scale = p->width_scale;
+    const float power = p->taper_power;
     int j;
     for (j = 0; j < P; ++j) {
         float t = (float)j / (float)(P - 1);
@@ -5603,40 +6224,65 @@ HF__PRIVATE void hf__any_perp(const float *t, float *o)
 /* inv[i] = 1 / sqrt(x[i]). SSE does four at once with the same IEEE
    operations (sqrtps, divps) as the scalar tail, so the result does not
    depend on the path or on where a range starts. */
+HF__PRIVATE int hf__inv_sqrt_n_ref(const float *x, float *inv, int i, int n)
+{
+    for (; i < n; ++i) inv[i] = 1.0f / HF_SQRTF(x[i]);
+    return i;
+}
+#if HF__SSE
+HF__PRIVATE int hf__inv_sqrt_n_sse(const float *x, float *inv, int i, int n)
+{
+    const __m128 one = _mm_set1_ps(1.0f);
+    for (; i + 4 <= n; i += 4)
+        _mm_storeu_ps(inv + i, _mm_div_ps(one, _mm_sqrt_ps(_mm_loadu_ps(x + i))));
+    return i;
+}
+#endif
 HF__PRIVATE void hf__inv_sqrt_n(const float *x, float *inv, int n)
 {
     int i = 0;
 #if HF__SSE
-    const __m128 one = _mm_set1_ps(1.0f);
-    for (; i + 4 <= n; i += 4)
-        _mm_storeu_ps(inv + i, _mm_div_ps(one, _mm_sqrt_ps(_mm_loadu_ps(x + i))));
+    i = hf__inv_sqrt_n_sse(x, inv, i, n);
 #endif
-    for (; i < n; ++i) inv[i] = 1.0f / HF_SQRTF(x[i]);
+    hf__inv_sqrt_n_ref(x, inv, i, n);
 }
 
 /* 1 when every coordinate of a strand is finite: x * 0 is 0 for finite x
    and NaN for NaN or infinity, and the sum keeps any NaN. */
-HF__PRIVATE int hf__points_finite(const float *pts, int n)
+HF__PRIVATE int hf__points_finite_ref(const float *pts, int i, int n)
 {
     float acc0 = 0.0f, acc1 = 0.0f;
-    int i = 0;
-#if HF__SSE
-    /* two independent vector sums: a single scalar chain of dependent adds
-       cost a sixth of the ribbon time */
-    const __m128 z = _mm_setzero_ps();
-    __m128 a0 = z, a1 = z;
-    for (; i + 8 <= n; i += 8) {
-        a0 = _mm_add_ps(a0, _mm_mul_ps(_mm_loadu_ps(pts + i), z));
-        a1 = _mm_add_ps(a1, _mm_mul_ps(_mm_loadu_ps(pts + i + 4), z));
-    }
-    if (_mm_movemask_ps(_mm_cmpeq_ps(_mm_add_ps(a0, a1), z)) != 0xf) return 0;
-#endif
     for (; i + 2 <= n; i += 2) {
         acc0 += pts[i] * 0.0f;
         acc1 += pts[i + 1] * 0.0f;
     }
     if (i < n) acc0 += pts[i] * 0.0f;
     return acc0 + acc1 == 0.0f;
+}
+#if HF__SSE
+/* Floats [0, *end) of pts, whole groups of 8, with two independent vector
+   sums (a single scalar chain of dependent adds cost a sixth of the
+   ribbon time). */
+HF__PRIVATE int hf__points_finite_sse(const float *pts, int n, int *end)
+{
+    const __m128 z = _mm_setzero_ps();
+    __m128 a0 = z, a1 = z;
+    int i = 0;
+    for (; i + 8 <= n; i += 8) {
+        a0 = _mm_add_ps(a0, _mm_mul_ps(_mm_loadu_ps(pts + i), z));
+        a1 = _mm_add_ps(a1, _mm_mul_ps(_mm_loadu_ps(pts + i + 4), z));
+    }
+    *end = i;
+    return _mm_movemask_ps(_mm_cmpeq_ps(_mm_add_ps(a0, a1), z)) == 0xf;
+}
+#endif
+HF__PRIVATE int hf__points_finite(const float *pts, int n)
+{
+    int i = 0;
+#if HF__SSE
+    if (!hf__points_finite_sse(pts, n, &i)) return 0;
+#endif
+    return hf__points_finite_ref(pts, i, n);
 }
 
 /* A strand whose points are not all finite is drawn collapsed: every
@@ -5663,9 +6309,9 @@ typedef struct hf__rframe {
 /* The reference: unit tangents and sides of one strand, a point at a time
    (see hf_ribbons for the rules on degenerate points). The SSE kernel
    below gives the same bytes where it applies. */
-HF__PRIVATE void hf__strand_frame(const float *pts, int P,
-                                  const hf_ribbon_params *params,
-                                  hf__rframe *fr)
+HF__PRIVATE void hf__strand_frame_ref(const float *pts, int P,
+                                      const hf_ribbon_params *params,
+                                      hf__rframe *fr)
 {
     float d[HF_MAX_POINTS * 3], l2[HF_MAX_POINTS], inv[HF_MAX_POINTS];
     float last[3] = {0.0f, 1.0f, 0.0f};
@@ -5749,19 +6395,19 @@ HF__PRIVATE void hf__strand_frame(const float *pts, int P,
 
 #if HF__SSE
 /* (p3, c0, c1, c2) and (c1, c2, c3, n0): each point's neighbours. */
-HF__PRIVATE __m128 hf__prev4(__m128 p, __m128 c)
+HF__PRIVATE __m128 hf__prev_sse(__m128 p, __m128 c)
 {
     return _mm_shuffle_ps(_mm_shuffle_ps(p, c, _MM_SHUFFLE(0, 0, 3, 3)), c,
                           _MM_SHUFFLE(2, 1, 2, 0));
 }
-HF__PRIVATE __m128 hf__next4(__m128 c, __m128 n)
+HF__PRIVATE __m128 hf__next_sse(__m128 c, __m128 n)
 {
     return _mm_shuffle_ps(c, _mm_shuffle_ps(c, n, _MM_SHUFFLE(0, 0, 3, 3)),
                           _MM_SHUFFLE(2, 0, 2, 1));
 }
 
 
-/* hf__strand_frame four points at a time, with the same IEEE operations
+/* hf__strand_frame_ref four points at a time, with the same IEEE operations
    per point. Returns 0 and leaves the strand to the reference when a point
    is not finite (*finite = 0) or has no tangent or no side: the rare cases
    whose rules look along the strand. */
@@ -5828,8 +6474,8 @@ HF__PRIVATE int hf__strand_frame_sse(const float *pts, int P,
         for (c = 0; c < 3; ++c) {
             const float *r = fr->p[c] + o;
             const __m128 cur = _mm_loadu_ps(r);
-            d[c] = _mm_sub_ps(hf__next4(cur, _mm_loadu_ps(r + 4)),
-                              hf__prev4(_mm_loadu_ps(r - 4), cur));
+            d[c] = _mm_sub_ps(hf__next_sse(cur, _mm_loadu_ps(r + 4)),
+                              hf__prev_sse(_mm_loadu_ps(r - 4), cur));
             v[c] = ortho ? e[c] : _mm_sub_ps(e[c], cur);
         }
         l2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(d[0], d[0]),
@@ -5837,7 +6483,7 @@ HF__PRIVATE int hf__strand_frame_sse(const float *pts, int P,
                         _mm_mul_ps(d[2], d[2]));
         ok = _mm_and_ps(_mm_cmpgt_ps(l2, tiny), _mm_cmple_ps(l2, big));
         /* 1 where undefined: no division by zero for any lane */
-        inv = _mm_div_ps(one, _mm_sqrt_ps(hf__sel4(ok, l2, one)));
+        inv = _mm_div_ps(one, _mm_sqrt_ps(hf__sel_sse(ok, l2, one)));
         for (c = 0; c < 3; ++c) t[c] = _mm_mul_ps(d[c], inv);
         s[0] = _mm_sub_ps(_mm_mul_ps(t[1], v[2]), _mm_mul_ps(t[2], v[1]));
         s[1] = _mm_sub_ps(_mm_mul_ps(t[2], v[0]), _mm_mul_ps(t[0], v[2]));
@@ -5852,7 +6498,7 @@ HF__PRIVATE int hf__strand_frame_sse(const float *pts, int P,
                          _mm_and_ps(_mm_cmpgt_ps(c2, tiny),
                                     _mm_cmple_ps(c2, big)));
         bad |= _mm_movemask_ps(_mm_andnot_ps(_mm_and_ps(ok, ok2), live));
-        inv = _mm_div_ps(one, _mm_sqrt_ps(hf__sel4(ok2, c2, one)));
+        inv = _mm_div_ps(one, _mm_sqrt_ps(hf__sel_sse(ok2, c2, one)));
         for (c = 0; c < 3; ++c) {
             _mm_storeu_ps(fr->t[c] + o, t[c]);
             _mm_storeu_ps(fr->s[c] + o, _mm_mul_ps(s[c], inv));
@@ -5945,7 +6591,7 @@ HF__PRIVATE void hf__emit1(unsigned char *o, const float *c, int nc, int fmt)
 }
 
 #if HF__SSE
-HF__INLINE __m128i hf__encode4(__m128 x, int fmt)
+HF__INLINE __m128i hf__encode_sse(__m128 x, int fmt)
 {
     const __m128 m = _mm_set1_ps(12582912.0f);
     float lo = -1.0f, scale;
@@ -5989,7 +6635,7 @@ HF__INLINE __m128i hf__encode4(__m128 x, int fmt)
 /* Floats x, y (and z) of lane i < n at o + i * step: the pairs straight
    from unpacked registers, z from its lane, so nothing goes through a
    stack copy. */
-HF__INLINE void hf__put4_f32(unsigned char *o, size_t step, int n,
+HF__INLINE void hf__put_f32_sse(unsigned char *o, size_t step, int n,
                               __m128 x, __m128 y, __m128 z, int nc)
 {
     const __m128 lo = _mm_unpacklo_ps(x, y), hi = _mm_unpackhi_ps(x, y);
@@ -6025,12 +6671,12 @@ HF__INLINE void hf__put4_f32(unsigned char *o, size_t step, int n,
 /* Components c[0, nc) of four vertices encoded and packed into the bytes
    of each vertex: lane i of *w0 holds its first 4 bytes, of *w1 the rest
    (x86 is little-endian, so byte order is component order). */
-HF__INLINE void hf__pack4(const __m128 *c, int nc, int fmt, __m128i *w0,
+HF__INLINE void hf__pack_sse(const __m128 *c, int nc, int fmt, __m128i *w0,
                           __m128i *w1)
 {
-    const __m128i e0 = hf__encode4(c[0], fmt), e1 = hf__encode4(c[1], fmt);
-    const __m128i e2 = nc > 2 ? hf__encode4(c[2], fmt) : _mm_setzero_si128();
-    const __m128i e3 = nc > 3 ? hf__encode4(c[3], fmt) : _mm_setzero_si128();
+    const __m128i e0 = hf__encode_sse(c[0], fmt), e1 = hf__encode_sse(c[1], fmt);
+    const __m128i e2 = nc > 2 ? hf__encode_sse(c[2], fmt) : _mm_setzero_si128();
+    const __m128i e3 = nc > 3 ? hf__encode_sse(c[3], fmt) : _mm_setzero_si128();
     if (hf_format_bytes(fmt) == 2) {
         *w0 = _mm_or_si128(e0, _mm_slli_epi32(e1, 16));
         *w1 = _mm_or_si128(e2, _mm_slli_epi32(e3, 16));
@@ -6044,7 +6690,7 @@ HF__INLINE void hf__pack4(const __m128 *c, int nc, int fmt, __m128i *w0,
 
 /* Lane i of v, taken in registers (a load from a just-stored copy would
    wait on the store). */
-HF__INLINE uint32_t hf__lane(__m128i v, int i)
+HF__INLINE uint32_t hf__lane_sse(__m128i v, int i)
 {
     switch (i) {
     case 0: return (uint32_t)_mm_cvtsi128_si32(v);
@@ -6054,8 +6700,8 @@ HF__INLINE uint32_t hf__lane(__m128i v, int i)
     }
 }
 
-/* One vertex's packed bytes (see hf__pack4) at o. */
-HF__INLINE void hf__put_packed(unsigned char *o, uint32_t w0, uint32_t w1,
+/* One vertex's packed bytes (see hf__pack_sse) at o. */
+HF__INLINE void hf__put_packed_sse(unsigned char *o, uint32_t w0, uint32_t w1,
                                int nc, int size)
 {
     if (size == 2) {
@@ -6078,7 +6724,7 @@ HF__INLINE void hf__put_packed(unsigned char *o, uint32_t w0, uint32_t w1,
 /* Both vertices of points i < n of a group of four: lane i of L at
    o + 2 i st, of R at o + (2 i + 1) st. R may be L (tangents, texcoords,
    colours): then it is encoded once. */
-HF__INLINE void hf__emit_pair(unsigned char *o, size_t st, int n,
+HF__INLINE void hf__emit_pair_sse(unsigned char *o, size_t st, int n,
                               const __m128 *L, const __m128 *R, int nc,
                               int fmt)
 {
@@ -6088,7 +6734,7 @@ HF__INLINE void hf__emit_pair(unsigned char *o, size_t st, int n,
             const __m128 *c = side ? R : L;
             unsigned char *b = o + (size_t)side * st;
             if (nc < 4) {
-                hf__put4_f32(b, 2 * st, n, c[0], c[1], nc > 2 ? c[2] : c[0],
+                hf__put_f32_sse(b, 2 * st, n, c[0], c[1], nc > 2 ? c[2] : c[0],
                              nc);
             } else {
                 __m128 v0 = c[0], v1 = c[1], v2 = c[2], v3 = c[3];
@@ -6102,16 +6748,16 @@ HF__INLINE void hf__emit_pair(unsigned char *o, size_t st, int n,
     } else {
         const int size = hf_format_bytes(fmt);
         __m128i l0, l1, r0, r1;
-        hf__pack4(L, nc, fmt, &l0, &l1);
+        hf__pack_sse(L, nc, fmt, &l0, &l1);
         if (R != L) {
-            hf__pack4(R, nc, fmt, &r0, &r1);
+            hf__pack_sse(R, nc, fmt, &r0, &r1);
         } else {
             r0 = l0;
             r1 = l1;
         }
         for (i = 0; i < n; ++i, o += 2 * st) {
-            hf__put_packed(o, hf__lane(l0, i), hf__lane(l1, i), nc, size);
-            hf__put_packed(o + st, hf__lane(r0, i), hf__lane(r1, i), nc,
+            hf__put_packed_sse(o, hf__lane_sse(l0, i), hf__lane_sse(l1, i), nc, size);
+            hf__put_packed_sse(o + st, hf__lane_sse(r0, i), hf__lane_sse(r1, i), nc,
                            size);
         }
     }
@@ -6154,7 +6800,7 @@ HF__PRIVATE void hf__emit2(const hf__rout *ro, int q, size_t v,
    strand (k = 0: -side) starts at v0. */
 HF__PRIVATE void hf__ribbon_write_ref(const hf__rframe *fr, int P,
                                       const hf__rconst *K,
-                                      const hf__rstrand *S,
+                                      const hf__rstrand *str,
                                       const hf__rout *ro, size_t v0)
 {
     int j, c, q;
@@ -6162,7 +6808,7 @@ HF__PRIVATE void hf__ribbon_write_ref(const hf__rframe *fr, int P,
         const size_t v = v0 + 2u * (size_t)j;
         float a[4], b[4];
         if (ro->base[HF__S_POS]) {
-            const float w = K->hw[j] * S->wscale;
+            const float w = K->hw[j] * str->wscale;
             for (c = 0; c < 3; ++c) {
                 const float p = fr->p[c][4 + j], sw = fr->s[c][4 + j] * w;
                 a[c] = ((p - sw) - ro->origin[c]) * ro->inv_scale;
@@ -6177,16 +6823,16 @@ HF__PRIVATE void hf__ribbon_write_ref(const hf__rframe *fr, int P,
                 for (c = 0; c < 3; ++c) a[c] = fr->t[c][4 + j];
                 break;
             case HF__S_TEX:
-                a[0] = S->uv[0];
-                a[1] = S->uv[1];
+                a[0] = str->uv[0];
+                a[1] = str->uv[1];
                 a[2] = K->tt[j];
                 break;
             case HF__S_COL:
-                for (c = 0; c < 3; ++c) a[c] = S->rgba[c];
-                a[3] = S->rgba[3] * K->fade[j];
+                for (c = 0; c < 3; ++c) a[c] = str->rgba[c];
+                a[3] = str->rgba[3] * K->fade[j];
                 break;
             default: /* HF__S_C3D */
-                a[0] = S->c3x;
+                a[0] = str->c3x;
                 a[1] = K->tt[j];
                 break;
             }
@@ -6198,7 +6844,7 @@ HF__PRIVATE void hf__ribbon_write_ref(const hf__rframe *fr, int P,
 #if HF__SSE
 /* 2 when position and tangent are floats side by side in one vertex, 3
    when the texcoord follows them too (the usual 36-byte layout); else 0. */
-HF__PRIVATE int hf__float_run(const hf__rout *ro)
+HF__PRIVATE int hf__float_run_sse(const hf__rout *ro)
 {
     const unsigned char *p = ro->base[HF__S_POS];
     const size_t st = ro->stride[HF__S_POS];
@@ -6212,10 +6858,10 @@ HF__PRIVATE int hf__float_run(const hf__rout *ro)
                : 2;
 }
 
-/* A float run (see hf__float_run) for points i < n of a group: left
+/* A float run (see hf__float_run_sse) for points i < n of a group: left
    position L, right position R, tangent T, and with uv the texcoord
    (uv, t). Each vertex takes two or three stores instead of six. */
-HF__INLINE void hf__put_run(unsigned char *o, size_t st, int n,
+HF__INLINE void hf__put_run_sse(unsigned char *o, size_t st, int n,
                             const __m128 *L, const __m128 *R,
                             const __m128 *T, const float *uv,
                             const float *t)
@@ -6258,7 +6904,7 @@ HF__INLINE void hf__put_run(unsigned char *o, size_t st, int n,
 
 /* The two vertex positions of four points (rows from o): L = p - s w,
    R = p + s w, relative to the origin and scale, as in the reference. */
-HF__INLINE void hf__ribbon_sides4(const hf__rframe *fr, int o, __m128 w,
+HF__INLINE void hf__ribbon_sides_sse(const hf__rframe *fr, int o, __m128 w,
                                   const hf__rout *ro, __m128 is, __m128 *L,
                                   __m128 *R)
 {
@@ -6274,8 +6920,8 @@ HF__INLINE void hf__ribbon_sides4(const hf__rframe *fr, int o, __m128 w,
 
 /* Stream q's values (tangent, texcoord, colour or 3D colour: the same on
    both sides of the ribbon) for the four points of group k. */
-HF__INLINE void hf__stream_values4(int q, const hf__rframe *fr,
-                                   const hf__rconst *K, const hf__rstrand *S,
+HF__INLINE void hf__stream_values_sse(int q, const hf__rframe *fr,
+                                   const hf__rconst *K, const hf__rstrand *str,
                                    int k, __m128 *v)
 {
     const __m128 tt = _mm_loadu_ps(K->tt + 4 * k);
@@ -6285,17 +6931,17 @@ HF__INLINE void hf__stream_values4(int q, const hf__rframe *fr,
         for (c = 0; c < 3; ++c) v[c] = _mm_loadu_ps(fr->t[c] + 4 + 4 * k);
         break;
     case HF__S_TEX:
-        v[0] = _mm_set1_ps(S->uv[0]);
-        v[1] = _mm_set1_ps(S->uv[1]);
+        v[0] = _mm_set1_ps(str->uv[0]);
+        v[1] = _mm_set1_ps(str->uv[1]);
         v[2] = tt;
         break;
     case HF__S_COL:
-        for (c = 0; c < 3; ++c) v[c] = _mm_set1_ps(S->rgba[c]);
-        v[3] = _mm_mul_ps(_mm_set1_ps(S->rgba[3]),
+        for (c = 0; c < 3; ++c) v[c] = _mm_set1_ps(str->rgba[c]);
+        v[3] = _mm_mul_ps(_mm_set1_ps(str->rgba[3]),
                           _mm_loadu_ps(K->fade + 4 * k));
         break;
     default: /* HF__S_C3D */
-        v[0] = _mm_set1_ps(S->c3x);
+        v[0] = _mm_set1_ps(str->c3x);
         v[1] = tt;
         break;
     }
@@ -6303,8 +6949,8 @@ HF__INLINE void hf__stream_values4(int q, const hf__rframe *fr,
 
 /* All of stream q (nc = hf__stream_nc[q]) for one strand: both vertices
    of each point get the same values. */
-HF__INLINE void hf__stream4(int q, int nc, const hf__rframe *fr, int P,
-                            const hf__rconst *K, const hf__rstrand *S,
+HF__INLINE void hf__stream_sse(int q, int nc, const hf__rframe *fr, int P,
+                            const hf__rconst *K, const hf__rstrand *str,
                             const hf__rout *ro, size_t v0)
 {
     const size_t st = ro->stride[q];
@@ -6312,23 +6958,23 @@ HF__INLINE void hf__stream4(int q, int nc, const hf__rframe *fr, int P,
     __m128 v[4];
     int k;
     for (k = 0; 4 * k < P; ++k, b += 8 * st) {
-        hf__stream_values4(q, fr, K, S, k, v);
-        hf__emit_pair(b, st, P - 4 * k < 4 ? P - 4 * k : 4, v, v, nc,
+        hf__stream_values_sse(q, fr, K, str, k, v);
+        hf__emit_pair_sse(b, st, P - 4 * k < 4 ? P - 4 * k : 4, v, v, nc,
                       ro->fmt[q]);
     }
 }
 
 /* hf__ribbon_write_ref four points at a time: the same values in the same
    operations, so the same bytes. */
-HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
-                                  const hf__rconst *K, const hf__rstrand *S,
+HF__PRIVATE void hf__ribbon_write_sse(const hf__rframe *fr, int P,
+                                  const hf__rconst *K, const hf__rstrand *str,
                                   const hf__rout *ro, size_t v0)
 {
     /* stream by stream, as the scalar loop per point writes: the first
        stream touches every cache line of the strand with few stores, so
        the misses that bring the lines in overlap */
-    const int G = (P + 3) >> 2, run = hf__float_run(ro);
-    const __m128 ws = _mm_set1_ps(S->wscale), is = _mm_set1_ps(ro->inv_scale);
+    const int G = (P + 3) >> 2, run = hf__float_run_sse(ro);
+    const __m128 ws = _mm_set1_ps(str->wscale), is = _mm_set1_ps(ro->inv_scale);
     __m128 L[4], R[4];
     size_t st;
     unsigned char *b;
@@ -6340,9 +6986,9 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
             const int o = 4 + 4 * k, n = P - 4 * k < 4 ? P - 4 * k : 4;
             const __m128 w = _mm_mul_ps(_mm_loadu_ps(K->hw + 4 * k), ws);
             __m128 T[3];
-            hf__ribbon_sides4(fr, o, w, ro, is, L, R);
+            hf__ribbon_sides_sse(fr, o, w, ro, is, L, R);
             for (c = 0; c < 3; ++c) T[c] = _mm_loadu_ps(fr->t[c] + o);
-            hf__put_run(b, st, n, L, R, T, run == 3 ? S->uv : NULL,
+            hf__put_run_sse(b, st, n, L, R, T, run == 3 ? str->uv : NULL,
                         K->tt + 4 * k);
         }
     } else if (ro->base[HF__S_POS]) {
@@ -6351,39 +6997,65 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
         for (k = 0; k < G; ++k, b += 8 * st) {
             const int o = 4 + 4 * k, n = P - 4 * k < 4 ? P - 4 * k : 4;
             const __m128 w = _mm_mul_ps(_mm_loadu_ps(K->hw + 4 * k), ws);
-            hf__ribbon_sides4(fr, o, w, ro, is, L, R);
-            hf__emit_pair(b, st, n, L, R, 3, ro->fmt[HF__S_POS]);
+            hf__ribbon_sides_sse(fr, o, w, ro, is, L, R);
+            hf__emit_pair_sse(b, st, n, L, R, 3, ro->fmt[HF__S_POS]);
         }
     }
     /* the other streams, unless written with the position run; a call
        each, so the component count is a constant in every inlined copy */
     if (ro->base[HF__S_TAN] && !run)
-        hf__stream4(HF__S_TAN, 3, fr, P, K, S, ro, v0);
+        hf__stream_sse(HF__S_TAN, 3, fr, P, K, str, ro, v0);
     if (ro->base[HF__S_TEX] && run < 3)
-        hf__stream4(HF__S_TEX, 3, fr, P, K, S, ro, v0);
-    if (ro->base[HF__S_COL]) hf__stream4(HF__S_COL, 4, fr, P, K, S, ro, v0);
-    if (ro->base[HF__S_C3D]) hf__stream4(HF__S_C3D, 2, fr, P, K, S, ro, v0);
-}
-#else
-HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
-                                  const hf__rconst *K, const hf__rstrand *S,
-                                  const hf__rout *ro, size_t v0)
-{
-    hf__ribbon_write_ref(fr, P, K, S, ro, v0);
+        hf__stream_sse(HF__S_TEX, 3, fr, P, K, str, ro, v0);
+    if (ro->base[HF__S_COL]) hf__stream_sse(HF__S_COL, 4, fr, P, K, str, ro, v0);
+    if (ro->base[HF__S_C3D]) hf__stream_sse(HF__S_C3D, 2, fr, P, K, str, ro, v0);
 }
 #endif
 
+/* The dispatch of the ribbon kernels: one strand's frame (tangents and
+   sides; a strand with a non-finite point is framed collapsed, wscale 0),
+   then its vertices. */
+HF__PRIVATE void hf__strand_frame(const float *pts, int P,
+                                  const hf_ribbon_params *params,
+                                  hf__rframe *fr, float *wscale)
+{
+    int finite;
+    *wscale = 1.0f;
+#if HF__SSE
+    if (hf__strand_frame_sse(pts, P, params, fr, &finite)) return;
+#else
+    finite = hf__points_finite(pts, 3 * P);
+#endif
+    if (!finite) {
+        pts = hf__zero_points;
+        *wscale = 0.0f;
+    }
+    hf__strand_frame_ref(pts, P, params, fr);
+}
+
+HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
+                                  const hf__rconst *K, const hf__rstrand *str,
+                                  const hf__rout *ro, size_t v0)
+{
+#if HF__SSE
+    hf__ribbon_write_sse(fr, P, K, str, ro, v0);
+#else
+    hf__ribbon_write_ref(fr, P, K, str, ro, v0);
+#endif
+}
+
 HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
-                           int count, const hf_ribbon_params *params,
+                           int count, const hf_ribbon_params *view,
                            const hf_ribbon_output *out)
 {
     hf__rframe fr;
     hf__rconst K;
     hf__rout ro;
+    hf_ribbon_params prm;
+    const hf_ribbon_params *params = &prm;
     const hf_stream *streams[5];
-    float alpha_root, alpha_tip;
     int s, j, k, P;
-    hf_result r = hf__ribbon_check(strands, first, count, params);
+    hf_result r = hf__ribbon_check(strands, first, count, view, &prm);
     if (r != HF_OK) return r;
     if (!out) return HF_ERROR_NULL_POINTER;
     streams[HF__S_POS] = &out->position;
@@ -6421,61 +7093,49 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
         out->position_scale != 0.0f ? 1.0f / out->position_scale : 1.0f;
 
     P = params->points_per_strand;
-    alpha_root = params->alpha_root;
-    alpha_tip = params->alpha_tip;
-    if (alpha_root == 0.0f && alpha_tip == 0.0f) alpha_root = alpha_tip = 1.0f;
     HF_MEMSET(&K, 0, sizeof K);
     hf__half_widths(params, K.hw);
     for (j = 0; j < P; ++j) {
         K.tt[j] = (float)j / (float)(P - 1);
-        K.fade[j] = (1.0f - K.tt[j]) * alpha_root + K.tt[j] * alpha_tip;
+        K.fade[j] = (1.0f - K.tt[j]) * params->alpha_root +
+                    K.tt[j] * params->alpha_tip;
     }
 
     for (s = first; s < first + count; ++s) {
         const float *pts = strands->points + (size_t)s * (size_t)P * 3u;
-        hf__rstrand S;
-        int done = 0, finite;
-#if HF__SSE
-        done = hf__strand_frame_sse(pts, P, params, &fr, &finite);
-#else
-        finite = hf__points_finite(pts, 3 * P);
-#endif
-        S.wscale = 1.0f;
-        if (!done) {
-            if (!finite) {
-                pts = hf__zero_points;
-                S.wscale = 0.0f;
-            }
-            hf__strand_frame(pts, P, params, &fr);
-        }
+        hf__rstrand str;
+        hf__strand_frame(pts, P, params, &fr, &str.wscale);
         for (k = 0; k < 2; ++k)
-            S.uv[k] = strands->root_uv
+            str.uv[k] = strands->root_uv
                           ? hf__fin0(strands->root_uv[2 * (size_t)s + k])
                           : 0.0f;
         for (k = 0; k < 4; ++k)
-            S.rgba[k] = strands->color
+            str.rgba[k] = strands->color
                             ? hf__fin0(strands->color[4 * (size_t)s + k])
                             : 1.0f;
-        S.c3x = strands->color3d_x ? hf__fin0(strands->color3d_x[s]) : 0.0f;
-        hf__ribbon_write(&fr, P, &K, &S, &ro, (size_t)s * (size_t)P * 2u);
+        str.c3x = strands->color3d_x ? hf__fin0(strands->color3d_x[s]) : 0.0f;
+        hf__ribbon_write(&fr, P, &K, &str, &ro,
+                         (size_t)(s - params->out_first) * (size_t)P * 2u);
     }
     return HF_OK;
 }
 
 HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
-                                 int count, const hf_ribbon_params *params,
+                                 int count, const hf_ribbon_params *view,
                                  float *out4)
 {
     float hw[HF_MAX_POINTS];
+    hf_ribbon_params prm;
+    const hf_ribbon_params *params = &prm;
     int s, j, P;
-    hf_result r = hf__ribbon_check(strands, first, count, params);
+    hf_result r = hf__ribbon_check(strands, first, count, view, &prm);
     if (r != HF_OK) return r;
     if (!out4) return HF_ERROR_NULL_POINTER;
     P = params->points_per_strand;
     hf__half_widths(params, hw);
     for (s = first; s < first + count; ++s) {
         const float *p = strands->points + (size_t)s * (size_t)P * 3u;
-        float *o = out4 + (size_t)s * (size_t)P * 4u;
+        float *o = out4 + (size_t)(s - params->out_first) * (size_t)P * 4u;
         const float wscale = hf__points_finite(p, 3 * P) ? 1.0f : 0.0f;
         if (wscale == 0.0f) p = hf__zero_points; /* collapsed, as hf_ribbons */
         for (j = 0; j < P; ++j) {
@@ -6504,15 +7164,27 @@ HFDEF long long hf_ribbon_index_count(int strand_count, int points_per_strand,
     return n;
 }
 
-HFDEF hf_result hf_ribbon_indices(int strand_count, int points_per_strand,
-                                  int topology, uint32_t *out,
-                                  long long capacity)
+/* Index i of a 32-bit (out32) or 16-bit (out16) buffer. */
+HF__INLINE void hf__put_index(uint32_t *out32, uint16_t *out16, long long i,
+                              uint32_t v)
 {
-    long long n = hf_ribbon_index_count(strand_count, points_per_strand,
-                                        topology);
-    const int P = points_per_strand;
+    if (out32)
+        out32[i] = v;
+    else
+        out16[i] = (uint16_t)v;
+}
+
+/* hf_ribbon_indices into either width; vertex numbers stay below
+   `restart` (the restart index, which no vertex may take). */
+HF__PRIVATE hf_result hf__ribbon_indices_any(int strand_count, int P,
+                                             int topology, uint32_t *out32,
+                                             uint16_t *out16,
+                                             long long capacity,
+                                             long long restart)
+{
+    long long n = hf_ribbon_index_count(strand_count, P, topology), i = 0;
     int s, j;
-    if (!out) return HF_ERROR_NULL_POINTER;
+    if (!out32 && !out16) return HF_ERROR_NULL_POINTER;
     if (n < 0) {
         if (strand_count < 0 || P < 2) return HF_ERROR_BAD_COUNT;
         if (topology != HF_TRIANGLES && topology != HF_STRIP_RESTART)
@@ -6520,9 +7192,9 @@ HFDEF hf_result hf_ribbon_indices(int strand_count, int points_per_strand,
         return HF_ERROR_OVERFLOW;
     }
     if (capacity < n) return HF_ERROR_BUFFER_TOO_SMALL;
-    /* the last vertex number, 2 P strand_count - 1, must fit in 32 bits and
-       stay below the restart index */
-    if (2LL * P * strand_count > 0xffffffffLL) return HF_ERROR_OVERFLOW;
+    /* the last vertex number, 2 P strand_count - 1, must fit and stay
+       below the restart index */
+    if (2LL * P * strand_count > restart) return HF_ERROR_OVERFLOW;
     for (s = 0; s < strand_count; ++s) {
         const uint32_t base = (uint32_t)s * (uint32_t)P * 2u;
         if (topology == HF_TRIANGLES) {
@@ -6530,19 +7202,48 @@ HFDEF hf_result hf_ribbon_indices(int strand_count, int points_per_strand,
                 const uint32_t a = base + 2u * (uint32_t)j;
                 /* (a, a+1, a+2) and (a+2, a+1, a+3): counter-clockwise
                    seen from the camera, since side x tangent faces it */
-                *out++ = a;
-                *out++ = a + 1;
-                *out++ = a + 2;
-                *out++ = a + 2;
-                *out++ = a + 1;
-                *out++ = a + 3;
+                hf__put_index(out32, out16, i++, a);
+                hf__put_index(out32, out16, i++, a + 1);
+                hf__put_index(out32, out16, i++, a + 2);
+                hf__put_index(out32, out16, i++, a + 2);
+                hf__put_index(out32, out16, i++, a + 1);
+                hf__put_index(out32, out16, i++, a + 3);
             }
         } else {
-            for (j = 0; j < 2 * P; ++j) *out++ = base + (uint32_t)j;
-            *out++ = 0xffffffffu;
+            for (j = 0; j < 2 * P; ++j)
+                hf__put_index(out32, out16, i++, base + (uint32_t)j);
+            hf__put_index(out32, out16, i++, (uint32_t)restart);
         }
     }
     return HF_OK;
+}
+
+HFDEF hf_result hf_ribbon_indices(int strand_count, int points_per_strand,
+                                  int topology, uint32_t *out,
+                                  long long capacity)
+{
+    if (!out) return HF_ERROR_NULL_POINTER;
+    return hf__ribbon_indices_any(strand_count, points_per_strand, topology,
+                                  out, NULL, capacity, 0xffffffffLL);
+}
+
+HFDEF int hf_ribbon_chunk_strands(int points_per_strand, int topology)
+{
+    /* vertex numbers 0 .. 0xFFFE: 0xFFFF is the strip restart index, and
+       the triangle lists keep the same bound so one chunk size fits both */
+    if (points_per_strand < 2 || points_per_strand > HF_MAX_POINTS ||
+        (topology != HF_TRIANGLES && topology != HF_STRIP_RESTART))
+        return 0;
+    return 0xffff / (2 * points_per_strand);
+}
+
+HFDEF hf_result hf_ribbon_indices16(int strand_count, int points_per_strand,
+                                    int topology, uint16_t *out,
+                                    long long capacity)
+{
+    if (!out) return HF_ERROR_NULL_POINTER;
+    return hf__ribbon_indices_any(strand_count, points_per_strand, topology,
+                                  NULL, out, capacity, 0xffffLL);
 }
 
 /* ---- 9. LUT baking ------------------------------------------------------ */
@@ -6558,14 +7259,10 @@ HFDEF hf_result hf_ribbon_indices(int strand_count, int points_per_strand,
 
 HFDEF void hf_lut_params_init(hf_lut_params *p)
 {
+    hf_lut_params zero;
     if (!p) return;
-    p->eta = 1.55;
-    p->alpha_r_deg = -7.5;
-    p->beta_r_deg = 7.5;
-    p->sigma_a = 0.2;
-    p->sigma_a_rgb[0] = p->sigma_a_rgb[1] = p->sigma_a_rgb[2] = 0.2;
-    p->variant = HF_LUT_CUBIC;
-    p->size = 256;
+    HF_MEMSET(&zero, 0, sizeof zero);
+    hf__lut_params_resolve(&zero, p);
 }
 
 /* Finite test on the bits, so it survives -ffast-math. */
@@ -6576,16 +7273,18 @@ HF__PRIVATE int hf__lut_finite(double x)
     return (u & 0x7ff0000000000000ull) != 0x7ff0000000000000ull;
 }
 
-HF__PRIVATE hf_result hf__lut_check(const hf_lut_params *p, hf_diag *diag,
-                                    int check_size)
+/* Resolve `in` into *p (the defaults), then check *p. */
+HF__PRIVATE hf_result hf__lut_check(const hf_lut_params *in, hf_lut_params *p,
+                                    hf_diag *diag, int check_size)
 {
     static const char *const rgb_name[3] = {"sigma_a_rgb[0]",
                                             "sigma_a_rgb[1]",
                                             "sigma_a_rgb[2]"};
     int k;
-    if (!p)
+    if (!in)
         return hf__fail(diag, HF_ERROR_NULL_POINTER, "params", -1,
                         "LUT params is NULL");
+    hf__lut_params_resolve(in, p);
     if (!hf__lut_finite(p->eta))
         return hf__fail(diag, HF_ERROR_NON_FINITE, "eta", -1,
                         "eta is NaN or infinite");
@@ -6631,19 +7330,20 @@ HF__PRIVATE hf_result hf__lut_check(const hf_lut_params *p, hf_diag *diag,
     return HF_OK;
 }
 
-HFDEF hf_result hf_lut_validate(const hf_lut_params *p, hf_diag *diag)
+HFDEF hf_result hf_lut_validate(const hf_lut_params *params, hf_diag *diag)
 {
-    return hf__lut_check(p, diag, 1);
+    hf_lut_params p;
+    return hf__lut_check(params, &p, diag, 1);
 }
 
 /* Params, output pointers and row range, in that order, before anything
    is written. */
-HF__PRIVATE hf_result hf__lut_check_bake(const hf_lut_params *p,
-                                         int first_row, int row_count,
-                                         const float *out0,
+HF__PRIVATE hf_result hf__lut_check_bake(const hf_lut_params *in,
+                                         hf_lut_params *p, int first_row,
+                                         int row_count, const float *out0,
                                          const float *out1)
 {
-    hf_result r = hf__lut_check(p, NULL, 1);
+    hf_result r = hf__lut_check(in, p, NULL, 1);
     if (r != HF_OK) return r;
     if (!out0 || !out1) return HF_ERROR_NULL_POINTER;
     if (first_row < 0 || row_count < 0 || first_row > p->size ||
@@ -6700,12 +7400,14 @@ HF__PRIVATE double hf__lut_gauss(const hf__lut_m *m, int k, double theta_h)
     return HF_EXP(-0.5 * q * q) / m->den[k];
 }
 
-HFDEF hf_result hf_lut_eval_m(const hf_lut_params *p, double theta_h,
+HFDEF hf_result hf_lut_eval_m(const hf_lut_params *params, double theta_h,
                               double out[3])
 {
+    hf_lut_params q;
+    const hf_lut_params *p = &q;
     hf__lut_m m;
     int k;
-    hf_result r = hf__lut_check(p, NULL, 0);
+    hf_result r = hf__lut_check(params, &q, NULL, 0);
     if (r != HF_OK) return r;
     if (!out) return HF_ERROR_NULL_POINTER;
     if (!hf__lut_finite(theta_h)) return HF_ERROR_NON_FINITE;
@@ -6714,13 +7416,15 @@ HFDEF hf_result hf_lut_eval_m(const hf_lut_params *p, double theta_h,
     return HF_OK;
 }
 
-HFDEF hf_result hf_lut_bake_m(const hf_lut_params *p, int first_row,
+HFDEF hf_result hf_lut_bake_m(const hf_lut_params *params, int first_row,
                               int row_count, float *out)
 {
+    hf_lut_params q;
+    const hf_lut_params *p = &q;
     hf__lut_m m;
     double theta_i[HF__LUT_BLOCK];
     int n, i0, i, j;
-    hf_result r = hf__lut_check_bake(p, first_row, row_count, out, out);
+    hf_result r = hf__lut_check_bake(params, &q, first_row, row_count, out, out);
     if (r != HF_OK) return r;
     n = p->size;
     hf__lut_m_setup(p, &m);
@@ -6810,7 +7514,7 @@ HF__PRIVATE int hf__lut_cubic_roots(double a, double b, double t,
         return 1;
     }
     {
-        double P = b / a, Q = -t / a;
+        double P = b / a, Q = -t / a; /* x^3 + P x + Q = 0 */
         double disc = 0.25 * Q * Q + P * P * P / 27.0;
         if (disc > 0.0) {
             /* one real root; the sign avoids cancellation in -Q/2 +- sqrt */
@@ -7022,10 +7726,12 @@ HF__PRIVATE void hf__lut_eval_n_clamp(const hf_lut_params *p, double cd,
                     &out[0], &out[1], &out[2]);
 }
 
-HFDEF hf_result hf_lut_eval_n(const hf_lut_params *p, double cos_theta_d,
-                              double phi, double out[3])
+HFDEF hf_result hf_lut_eval_n(const hf_lut_params *params,
+                              double cos_theta_d, double phi, double out[3])
 {
-    hf_result r = hf__lut_check(p, NULL, 0);
+    hf_lut_params q;
+    const hf_lut_params *p = &q;
+    hf_result r = hf__lut_check(params, &q, NULL, 0);
     if (r != HF_OK) return r;
     if (!out) return HF_ERROR_NULL_POINTER;
     if (!hf__lut_finite(cos_theta_d) || !hf__lut_finite(phi))
@@ -7040,14 +7746,16 @@ HFDEF hf_result hf_lut_eval_n(const hf_lut_params *p, double cos_theta_d,
 /* N (out_trt NULL: RGBA = N_R, N_TT, N_TRT, 1) or the two per-RGB
    textures. Columns i and n-1-i hold the same |cos theta_d|, so only the
    right half is computed and mirrored. */
-HF__PRIVATE hf_result hf__lut_bake_n_any(const hf_lut_params *p,
+HF__PRIVATE hf_result hf__lut_bake_n_any(const hf_lut_params *params,
                                          int first_row, int row_count,
                                          float *out, float *out_trt)
 {
+    hf_lut_params q;
+    const hf_lut_params *p = &q;
     hf__lut_col col[HF__LUT_BLOCK];
     double sig4[HF__LUT_BLOCK][3];
     int n, i0, i, j, k, exact, rgb = out_trt != NULL, nsig;
-    hf_result r = hf__lut_check_bake(p, first_row, row_count, out,
+    hf_result r = hf__lut_check_bake(params, &q, first_row, row_count, out,
                                      rgb ? out_trt : out);
     if (r != HF_OK) return r;
     n = p->size;
@@ -7231,244 +7939,274 @@ HF__PRIVATE void hf__bind(hf_strand_binding *b, const uint32_t *g,
     if (b->length_scale == 0.0f) b->length_scale = 1e-20f; /* 0 means 1 */
 }
 
-HFDEF hf_result hf_fur_create(const hf_fur_desc *desc, hf_fur **out_fur,
-                              hf_diag *diag)
-{
-    hf_fur *f;
-    hf_result r = HF_OK;
-    hf_allocator alloc;
-    hf_tess_params tp;
+/* What hf_fur_create builds on the way and frees on both exits. */
+typedef struct hf__fur_build {
+    hf_fur_desc desc;    /* resolved */
+    hf_rope_params rope; /* resolved, desc.rope_params points here */
+    hf_mesh gm;          /* the rest mesh with normals, then the guide mesh
+                            (tessellated positions, uvs, triangles) */
     hf_tess_output to;
     hf_guide_params gp;
-    hf_guide_output go;
-    hf_place_params pp;
-    hf_mesh gm; /* the guide mesh: tessellated positions, uvs, triangles */
-    float *normals = NULL, *tess_pos = NULL, *tess_uv = NULL;
-    float *rest_points = NULL, *guide_len = NULL, *guide_nrm = NULL;
-    uint32_t *tess_idx = NULL, *tess_base = NULL, *guide_of = NULL;
-    const char *stage = "normals"; /* for the diagnostic */
-    int P, i, k, G, V, S;
+    float *normals, *tess_pos, *tess_uv;
+    float *rest_points, *guide_len, *guide_nrm;
+    uint32_t *tess_idx, *tess_base, *guide_of;
+} hf__fur_build;
 
-    if (!desc || !out_fur)
-        return hf__fail(diag, HF_ERROR_NULL_POINTER, "desc", -1,
-                        "desc or out_fur is NULL");
-    if ((r = hf_mesh_validate(&desc->mesh, diag)) != HF_OK) return r;
-    P = desc->points_per_strand ? desc->points_per_strand : 16;
+HF__PRIVATE void hf__fur_build_free(const hf_allocator *a, hf__fur_build *b)
+{
+    hf__free(a, b->normals);
+    hf__free(a, b->tess_pos);
+    hf__free(a, b->tess_uv);
+    hf__free(a, b->tess_idx);
+    hf__free(a, b->tess_base);
+    hf__free(a, b->rest_points);
+    hf__free(a, b->guide_len);
+    hf__free(a, b->guide_nrm);
+    hf__free(a, b->guide_of);
+}
+
+/* The resolved description's own fields (the stages check the rest). */
+HF__PRIVATE hf_result hf__fur_desc_check(const hf_fur_desc *d, hf_diag *diag)
+{
+    const int P = d->points_per_strand;
     if (P < 2 || P > HF_MAX_POINTS)
         return hf__fail(diag, HF_ERROR_BAD_COUNT, "points_per_strand", -1,
                         "points_per_strand %d is outside 2..%d", P,
                         HF_MAX_POINTS);
-    if (!hf__finitef(desc->clump) || desc->clump < 0.0f ||
-        desc->clump > 1.0f || !hf__finitef(desc->lod_simulate_threshold) ||
-        desc->lod_simulate_threshold < 0.0f ||
-        desc->lod_simulate_threshold > 1.0f || !hf__finitef(desc->max_length) ||
-        desc->max_length < 0.0f || !hf__finitef(desc->tess_factor) ||
-        desc->tess_factor < 0.0f)
+    if (!hf__finitef(d->clump) || d->clump < 0.0f || d->clump > 1.0f ||
+        !hf__finitef(d->lod_simulate_threshold) ||
+        d->lod_simulate_threshold < 0.0f || d->lod_simulate_threshold > 1.0f ||
+        !hf__finitef(d->max_length) || d->max_length < 0.0f ||
+        !hf__finitef(d->tess_factor) || d->tess_factor < 0.0f)
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "desc", -1,
                         "clump, lod_simulate_threshold, max_length or "
                         "tess_factor is negative, non-finite or above 1");
-    if (desc->rope_params &&
-        (r = hf_rope_params_validate(desc->rope_params, diag)) != HF_OK)
-        return r;
+    if (!hf__finitef(d->strands_per_area) || d->strands_per_area < 0.0f)
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "strands_per_area", -1,
+                        "strands_per_area %g is negative or non-finite",
+                        (double)d->strands_per_area);
+    if (d->total_strands < 0)
+        return hf__fail(diag, HF_ERROR_BAD_COUNT, "total_strands", -1,
+                        "total_strands %d is negative", d->total_strands);
+    return hf__rope_params_check(d->rope_params, diag);
+}
 
-    HF_MEMSET(&alloc, 0, sizeof alloc);
-    if (desc->allocator) alloc = *desc->allocator;
-    f = (hf_fur *)hf__alloc(&alloc, sizeof *f);
-    if (!f)
-        return hf__fail(diag, HF_ERROR_OUT_OF_MEMORY, "fur", -1,
-                        "out of memory");
-    HF_MEMSET(f, 0, sizeof *f);
-    f->alloc = alloc;
-    f->P = P;
-    f->vertex_count = V = desc->mesh.vertex_count;
-    f->base_triangle_count = desc->mesh.triangle_count;
-    f->clump = desc->clump;
-    f->lod_threshold = desc->lod_simulate_threshold != 0.0f
-                           ? desc->lod_simulate_threshold
-                           : 0.5f;
-    if (desc->rope_params)
-        f->rope = *desc->rope_params;
-    else
-        hf_rope_params_init(&f->rope);
+/* Normals of the rest mesh, when it has none. */
+HF__PRIVATE hf_result hf__fur_rest_normals(hf_fur *f, hf__fur_build *b)
+{
+    hf_result r = HF_OK;
+    b->gm = b->desc.mesh;
+    if (b->gm.normals) return HF_OK;
+    b->normals = (float *)hf__fur_array(f, (size_t)f->vertex_count * 3u,
+                                        sizeof(float), &r);
+    if (r == HF_OK) r = hf_mesh_compute_normals(&b->gm, b->normals);
+    b->gm.normals = b->normals;
+    b->gm.normal_stride = 0;
+    return r;
+}
 
-    /* normals of the rest mesh, when it has none */
-    gm = desc->mesh;
-    if (!gm.normals) {
-        normals = (float *)hf__fur_array(f, (size_t)V * 3u, sizeof(float), &r);
-        if (r == HF_OK) r = hf_mesh_compute_normals(&gm, normals);
-        if (r != HF_OK) goto fail;
-        gm.normals = normals;
-        gm.normal_stride = 0;
-    }
-
-    /* stage 1: tessellation, two calls */
-    stage = "tessellation";
-    HF_MEMSET(&to, 0, sizeof to);
-    if (desc->tess_factor > 0.0f) {
+/* Stage 1: density tessellation, two calls; none for tess_factor 0. */
+HF__PRIVATE hf_result hf__fur_tessellate(hf_fur *f, hf__fur_build *b)
+{
+    hf_tess_params tp;
+    hf_tess_output *to = &b->to;
+    hf_result r = HF_OK;
+    HF_MEMSET(to, 0, sizeof *to);
+    if (b->desc.tess_factor > 0.0f) {
         HF_MEMSET(&tp, 0, sizeof tp);
-        tp.factor = desc->tess_factor;
-        tp.estimator = desc->tess_estimator;
-        tp.split = desc->tess_split;
-        tp.seed = desc->seed;
-        tp.max_triangles = desc->tess_max_triangles;
-        if ((r = hf_tessellate(&gm, desc->density_map, &tp, &to)) != HF_OK)
-            goto fail;
-        tess_idx = (uint32_t *)hf__fur_array(f, (size_t)to.triangle_count * 3u,
-                                             sizeof(uint32_t), &r);
-        tess_base = (uint32_t *)hf__fur_array(f, (size_t)to.triangle_count,
-                                              sizeof(uint32_t), &r);
+        tp.factor = b->desc.tess_factor;
+        tp.estimator = b->desc.tess_estimator;
+        tp.split = b->desc.tess_split;
+        tp.seed = b->desc.seed;
+        tp.max_triangles = b->desc.tess_max_triangles;
+        if ((r = hf_tessellate(&b->gm, b->desc.density_map, &tp, to)) != HF_OK)
+            return r;
+        b->tess_idx = (uint32_t *)hf__fur_array(
+            f, (size_t)to->triangle_count * 3u, sizeof(uint32_t), &r);
+        b->tess_base = (uint32_t *)hf__fur_array(
+            f, (size_t)to->triangle_count, sizeof(uint32_t), &r);
         f->added = (hf_tess_vertex *)hf__fur_array(
-            f, (size_t)to.added_count, sizeof(hf_tess_vertex), &r);
-        tess_pos = (float *)hf__fur_array(f, (size_t)to.vertex_count * 3u,
-                                          sizeof(float), &r);
-        if (gm.uvs)
-            tess_uv = (float *)hf__fur_array(f, (size_t)to.vertex_count * 2u,
-                                             sizeof(float), &r);
-        if (r != HF_OK) goto fail;
-        to.indices = tess_idx;
-        to.triangle_base = tess_base;
-        to.added = f->added;
-        to.positions = tess_pos;
-        to.uvs = tess_uv;
-        to.triangle_capacity = to.triangle_count;
-        to.added_capacity = to.added_count;
-        to.vertex_capacity = to.vertex_count;
-        if ((r = hf_tessellate(&gm, desc->density_map, &tp, &to)) != HF_OK)
-            goto fail;
+            f, (size_t)to->added_count, sizeof(hf_tess_vertex), &r);
+        b->tess_pos = (float *)hf__fur_array(
+            f, (size_t)to->vertex_count * 3u, sizeof(float), &r);
+        if (b->gm.uvs)
+            b->tess_uv = (float *)hf__fur_array(
+                f, (size_t)to->vertex_count * 2u, sizeof(float), &r);
+        if (r != HF_OK) return r;
+        to->indices = b->tess_idx;
+        to->triangle_base = b->tess_base;
+        to->added = f->added;
+        to->positions = b->tess_pos;
+        to->uvs = b->tess_uv;
+        to->triangle_capacity = to->triangle_count;
+        to->added_capacity = to->added_count;
+        to->vertex_capacity = to->vertex_count;
+        r = hf_tessellate(&b->gm, b->desc.density_map, &tp, to);
     }
-    f->lod_count = to.added_count;
+    f->lod_count = to->added_count;
+    return r;
+}
 
-    /* stage 2: guides */
-    stage = "guides";
-    HF_MEMSET(&gp, 0, sizeof gp);
-    gp.points = P;
-    gp.max_length = desc->max_length != 0.0f ? desc->max_length : 0.05f;
-    gp.length_map = desc->length_map;
+/* Stage 2: rest shapes of the pure and LOD guides, two calls; then the
+   guide mesh that placement grows strands on. */
+HF__PRIVATE hf_result hf__fur_guides(hf_fur *f, hf__fur_build *b)
+{
+    hf_guide_output go;
+    hf_result r;
+    const int P = f->P;
+    int G;
+    HF_MEMSET(&b->gp, 0, sizeof b->gp);
+    b->gp.points = P;
+    b->gp.max_length = b->desc.max_length;
+    b->gp.length_map = b->desc.length_map;
     HF_MEMSET(&go, 0, sizeof go);
-    if ((r = hf_guides_rest(&gm, f->added, f->lod_count, &gp, &go,
+    if ((r = hf_guides_rest(&b->gm, f->added, f->lod_count, &b->gp, &go,
                             &f->alloc)) != HF_OK)
-        goto fail;
+        return r;
     G = go.guide_count;
-    rest_points = (float *)hf__fur_array(f, (size_t)G * (size_t)P * 3u,
-                                         sizeof(float), &r);
-    guide_len = (float *)hf__fur_array(f, (size_t)G, sizeof(float), &r);
-    guide_nrm = (float *)hf__fur_array(f, (size_t)G * 3u, sizeof(float), &r);
-    guide_of = (uint32_t *)hf__fur_array(f, (size_t)V + (size_t)f->lod_count,
-                                         sizeof(uint32_t), &r);
-    if (r != HF_OK) goto fail;
-    go.points = rest_points;
-    go.lengths = guide_len;
-    go.normals = guide_nrm;
-    go.guide_of_vertex = guide_of;
+    b->rest_points = (float *)hf__fur_array(f, (size_t)G * (size_t)P * 3u,
+                                            sizeof(float), &r);
+    b->guide_len = (float *)hf__fur_array(f, (size_t)G, sizeof(float), &r);
+    b->guide_nrm = (float *)hf__fur_array(f, (size_t)G * 3u, sizeof(float), &r);
+    b->guide_of = (uint32_t *)hf__fur_array(
+        f, (size_t)f->vertex_count + (size_t)f->lod_count, sizeof(uint32_t),
+        &r);
+    if (r != HF_OK) return r;
+    go.points = b->rest_points;
+    go.lengths = b->guide_len;
+    go.normals = b->guide_nrm;
+    go.guide_of_vertex = b->guide_of;
     go.guide_capacity = G;
-    if ((r = hf_guides_rest(&gm, f->added, f->lod_count, &gp, &go,
+    if ((r = hf_guides_rest(&b->gm, f->added, f->lod_count, &b->gp, &go,
                             &f->alloc)) != HF_OK)
-        goto fail;
+        return r;
     f->guide_count = G;
     f->pure_count = go.pure_guide_count;
-
-    /* the guide mesh for placement: tessellated, or the base mesh */
-    if (tess_idx) {
-        HF_MEMSET(&gm, 0, sizeof gm);
-        gm.positions = tess_pos;
-        gm.uvs = tess_uv;
-        gm.vertex_count = to.vertex_count;
-        gm.indices = tess_idx;
-        gm.triangle_count = to.triangle_count;
+    if (b->tess_idx) {
+        HF_MEMSET(&b->gm, 0, sizeof b->gm);
+        b->gm.positions = b->tess_pos;
+        b->gm.uvs = b->tess_uv;
+        b->gm.vertex_count = b->to.vertex_count;
+        b->gm.indices = b->tess_idx;
+        b->gm.triangle_count = b->to.triangle_count;
     }
-    f->triangle_count = gm.triangle_count;
+    f->triangle_count = b->gm.triangle_count;
+    return HF_OK;
+}
 
-    /* stage 3: strands, two calls */
-    stage = "strand placement";
+/* Stage 3: strand records in LOD order, two calls. strands_per_area wins
+   over total_strands, as hf_fur_desc documents. */
+HF__PRIVATE hf_result hf__fur_place(hf_fur *f, hf__fur_build *b)
+{
+    hf_place_params pp;
+    hf_result r;
+    int count;
     HF_MEMSET(&pp, 0, sizeof pp);
-    pp.strands_per_area = desc->strands_per_area;
-    pp.total_strands = desc->total_strands;
-    if (pp.strands_per_area == 0.0f && pp.total_strands == 0)
-        pp.total_strands = 10000;
-    pp.estimator = desc->tess_estimator;
-    pp.sampler = desc->sampler;
-    pp.seed = desc->seed;
-    if ((r = hf_place_strands(&gm, desc->density_map, &pp, NULL, 0, &S,
-                              &f->alloc)) != HF_OK)
-        goto fail;
-    f->strands = (hf_strand *)hf__fur_array(f, (size_t)S, sizeof(hf_strand),
-                                            &r);
-    if (r != HF_OK) goto fail;
-    if ((r = hf_place_strands(&gm, desc->density_map, &pp, f->strands, S, &S,
-                              &f->alloc)) != HF_OK)
-        goto fail;
-    f->strand_count = f->drawn = S;
+    pp.strands_per_area = b->desc.strands_per_area;
+    pp.total_strands = b->desc.strands_per_area > 0.0f ? 0
+                                                        : b->desc.total_strands;
+    pp.estimator = b->desc.tess_estimator;
+    pp.sampler = b->desc.sampler;
+    pp.seed = b->desc.seed;
+    if ((r = hf_place_strands(&b->gm, b->desc.density_map, &pp, NULL, 0,
+                              &count, &f->alloc)) != HF_OK)
+        return r;
+    f->strands = (hf_strand *)hf__fur_array(f, (size_t)count,
+                                            sizeof(hf_strand), &r);
+    if (r != HF_OK) return r;
+    if ((r = hf_place_strands(&b->gm, b->desc.density_map, &pp, f->strands,
+                              count, &count, &f->alloc)) != HF_OK)
+        return r;
+    f->strand_count = f->drawn = count;
+    return HF_OK;
+}
 
-    /* stage 3b: maps on strands, bindings */
-    stage = "strand maps";
-    f->strand_lengths = (float *)hf__fur_array(f, (size_t)S, sizeof(float), &r);
-    f->strand_rgba = (float *)hf__fur_array(f, (size_t)S * 4u, sizeof(float), &r);
-    f->strand_uv = (float *)hf__fur_array(f, (size_t)S * 2u, sizeof(float), &r);
-    f->strand_c3x = (float *)hf__fur_array(f, (size_t)S, sizeof(float), &r);
-    f->bindings = (hf_strand_binding *)hf__fur_array(
-        f, (size_t)S, sizeof(hf_strand_binding), &r);
-    f->lod_bindings = (hf_strand_binding *)hf__fur_array(
-        f, (size_t)f->lod_count, sizeof(hf_strand_binding), &r);
-    if (r != HF_OK) goto fail;
-    if ((r = hf_strand_lengths(f->strands, S, 0, S, desc->length_map,
-                               gp.max_length, f->strand_lengths)) != HF_OK)
-        goto fail;
-    if (desc->color_map) {
-        r = hf_strand_colors(f->strands, S, 0, S, desc->color_map,
+/* Per-strand length, colour, root UV and 3D-colour coordinate. */
+HF__PRIVATE hf_result hf__fur_strand_maps(hf_fur *f, hf__fur_build *b)
+{
+    const hf_fur_desc *d = &b->desc;
+    const int n_strands = f->strand_count;
+    hf_result r = HF_OK;
+    int i;
+    f->strand_lengths = (float *)hf__fur_array(f, (size_t)n_strands, sizeof(float), &r);
+    f->strand_rgba = (float *)hf__fur_array(f, (size_t)n_strands * 4u, sizeof(float), &r);
+    f->strand_uv = (float *)hf__fur_array(f, (size_t)n_strands * 2u, sizeof(float), &r);
+    f->strand_c3x = (float *)hf__fur_array(f, (size_t)n_strands, sizeof(float), &r);
+    if (r != HF_OK) return r;
+    if ((r = hf_strand_lengths(f->strands, n_strands, 0, n_strands, d->length_map,
+                               d->max_length, f->strand_lengths)) != HF_OK)
+        return r;
+    if (d->color_map) {
+        r = hf_strand_colors(f->strands, n_strands, 0, n_strands, d->color_map,
                              f->strand_rgba);
-        if (r != HF_OK) goto fail;
+        if (r != HF_OK) return r;
     } else {
-        for (i = 0; i < 4 * S; ++i) f->strand_rgba[i] = 1.0f;
+        for (i = 0; i < 4 * n_strands; ++i) f->strand_rgba[i] = 1.0f;
     }
-    for (i = 0; i < S; ++i) {
+    for (i = 0; i < n_strands; ++i) {
         const hf_strand *s = &f->strands[i];
         f->strand_uv[2 * i] = s->uv[0];
         f->strand_uv[2 * i + 1] = s->uv[1];
         f->strand_c3x[i] = 0.0f;
-        if (desc->color3d_index_map) {
+        if (d->color3d_index_map) {
             float xy[2];
-            if ((r = hf_color3d_coord(desc->color3d_index_map, s->uv[0],
+            if ((r = hf_color3d_coord(d->color3d_index_map, s->uv[0],
                                       s->uv[1], 0.0f, xy)) != HF_OK)
-                goto fail;
+                return r;
             f->strand_c3x[i] = xy[0];
         }
     }
-    if ((r = hf_bind_strands(&gm, guide_of, G, f->strands, S, 0, S,
-                             f->strand_lengths, guide_len, f->bindings)) !=
-        HF_OK)
-        goto fail;
-    /* LOD guides bind to the pure guides of their base triangle the same
-       way, keeping their own length */
+    return HF_OK;
+}
+
+/* Strands bind to the guides of their guide triangle; LOD guides bind to
+   the pure guides of their base triangle the same way, keeping their own
+   length. */
+HF__PRIVATE hf_result hf__fur_bind(hf_fur *f, hf__fur_build *b)
+{
+    const int n_strands = f->strand_count;
+    hf_result r = HF_OK;
+    int i, k;
+    f->bindings = (hf_strand_binding *)hf__fur_array(
+        f, (size_t)n_strands, sizeof(hf_strand_binding), &r);
+    f->lod_bindings = (hf_strand_binding *)hf__fur_array(
+        f, (size_t)f->lod_count, sizeof(hf_strand_binding), &r);
+    if (r != HF_OK) return r;
+    if ((r = hf_bind_strands(&b->gm, b->guide_of, f->guide_count, f->strands,
+                             n_strands, 0, n_strands, f->strand_lengths, b->guide_len,
+                             f->bindings)) != HF_OK)
+        return r;
     for (i = 0; i < f->lod_count; ++i) {
         const hf_tess_vertex *a = &f->added[i];
-        const uint32_t *tri = desc->mesh.indices + 3u * (size_t)a->triangle;
+        const uint32_t *tri = b->desc.mesh.indices + 3u * (size_t)a->triangle;
         uint32_t g[3];
-        for (k = 0; k < 3; ++k) g[k] = guide_of[tri[k]];
+        for (k = 0; k < 3; ++k) g[k] = b->guide_of[tri[k]];
         hf__bind(&f->lod_bindings[i], g, a->bary,
-                 guide_len[f->pure_count + i], guide_len);
+                 b->guide_len[f->pure_count + i], b->guide_len);
     }
+    return HF_OK;
+}
 
-    stage = "ropes";
-    /* frame references: the root vertex, an edge for the tangent and a
-       third corner for the face normal */
+/* Frame references of every guide: the root vertex, an edge for the
+   tangent and a third corner for the face normal. A pure guide takes the
+   first non-degenerate triangle of its vertex, a LOD guide its base
+   triangle. */
+HF__PRIVATE hf_result hf__fur_root_refs(hf_fur *f, hf__fur_build *b)
+{
+    const hf_mesh *m = &b->desc.mesh;
+    const int G = f->guide_count;
+    hf_result r = HF_OK;
+    int i, k;
     f->ref = (uint32_t *)hf__fur_array(f, (size_t)G * 3u, sizeof(uint32_t), &r);
-    f->root_pos = (float *)hf__fur_array(f, (size_t)G * 3u, sizeof(float), &r);
-    f->root_nrm = (float *)hf__fur_array(f, (size_t)G * 3u, sizeof(float), &r);
-    f->root_tan = (float *)hf__fur_array(f, (size_t)G * 3u, sizeof(float), &r);
-    f->guide_points = (float *)hf__fur_array(f, (size_t)G * (size_t)P * 3u,
-                                             sizeof(float), &r);
-    f->strand_points = (float *)hf__fur_array(f, (size_t)S * (size_t)P * 3u,
-                                              sizeof(float), &r);
-    if (r != HF_OK) goto fail;
+    if (r != HF_OK) return r;
     for (i = 0; i < G * 3; ++i) f->ref[i] = 0xffffffffu;
-    for (i = 0; i < desc->mesh.triangle_count; ++i) {
-        /* the first non-degenerate triangle of each pure guide wins */
-        const uint32_t *tri = desc->mesh.indices + 3u * (size_t)i;
-        float area = hf_triangle_area(hf__mesh_pos(&desc->mesh, (int)tri[0]),
-                                      hf__mesh_pos(&desc->mesh, (int)tri[1]),
-                                      hf__mesh_pos(&desc->mesh, (int)tri[2]));
+    for (i = 0; i < m->triangle_count; ++i) {
+        const uint32_t *tri = m->indices + 3u * (size_t)i;
+        float area = hf_triangle_area(hf__mesh_pos(m, (int)tri[0]),
+                                      hf__mesh_pos(m, (int)tri[1]),
+                                      hf__mesh_pos(m, (int)tri[2]));
         for (k = 0; k < 3; ++k) {
-            uint32_t g = guide_of[tri[k]];
+            uint32_t g = b->guide_of[tri[k]];
             if (f->ref[3 * g] == 0xffffffffu ||
                 (area > 0.0f && f->ref[3 * g + 2] == 0xfffffffeu)) {
                 f->ref[3 * g] = tri[k];
@@ -7483,53 +8221,94 @@ HFDEF hf_result hf_fur_create(const hf_fur_desc *desc, hf_fur **out_fur,
             if (f->ref[3 * i + k] >= 0xfffffffeu)
                 f->ref[3 * i + k] = f->ref[3 * i] < 0xfffffffeu ? f->ref[3 * i] : 0u;
     for (i = 0; i < f->lod_count; ++i) {
-        const uint32_t *tri =
-            desc->mesh.indices + 3u * (size_t)f->added[i].triangle;
+        const uint32_t *tri = m->indices + 3u * (size_t)f->added[i].triangle;
         for (k = 0; k < 3; ++k) f->ref[3 * (f->pure_count + i) + k] = tri[k];
     }
-    HF_MEMCPY(f->guide_points, rest_points,
-              sizeof(float) * (size_t)G * (size_t)P * 3u);
+    return HF_OK;
+}
 
-    /* stage 4: ropes at rest, roots from the rest mesh */
-    if ((r = hf_ropes_create(G, P, &f->alloc, &f->ropes)) != HF_OK)
-        goto fail;
-    if ((r = hf_fur_set_roots(f, &desc->mesh, 0, G)) != HF_OK) goto fail;
-    if ((r = hf_ropes_set_rest(f->ropes, 0, G, rest_points, 0, f->root_pos,
-                               f->root_nrm, f->root_tan, 0)) != HF_OK)
-        goto fail;
+/* Stage 4: the ropes at rest, roots from the rest mesh, and the strands
+   interpolated once so the first frame has points to draw. */
+HF__PRIVATE hf_result hf__fur_ropes(hf_fur *f, hf__fur_build *b)
+{
+    const size_t G = (size_t)f->guide_count, P = (size_t)f->P;
+    const size_t n_strands = (size_t)f->strand_count;
+    hf_result r = HF_OK;
+    f->root_pos = (float *)hf__fur_array(f, G * 3u, sizeof(float), &r);
+    f->root_nrm = (float *)hf__fur_array(f, G * 3u, sizeof(float), &r);
+    f->root_tan = (float *)hf__fur_array(f, G * 3u, sizeof(float), &r);
+    f->guide_points = (float *)hf__fur_array(f, G * P * 3u, sizeof(float), &r);
+    f->strand_points = (float *)hf__fur_array(f, n_strands * P * 3u, sizeof(float), &r);
+    if (r != HF_OK) return r;
+    HF_MEMCPY(f->guide_points, b->rest_points, sizeof(float) * G * P * 3u);
+    if ((r = hf_ropes_create(f->guide_count, f->P, &f->alloc, &f->ropes)) !=
+            HF_OK ||
+        (r = hf_fur_set_roots(f, &b->desc.mesh, 0, f->guide_count)) != HF_OK ||
+        (r = hf_ropes_set_rest(f->ropes, 0, f->guide_count, b->rest_points, 0,
+                               f->root_pos, f->root_nrm, f->root_tan, 0)) !=
+            HF_OK)
+        return r;
     f->lod = 1.0f;
     f->width_scale = 1.0f;
     f->lod_sim = 1;
-    if ((r = hf_fur_interpolate(f, 0, S)) != HF_OK) goto fail;
+    return hf_fur_interpolate(f, 0, f->strand_count);
+}
 
-    hf__free(&f->alloc, normals);
-    hf__free(&f->alloc, tess_pos);
-    hf__free(&f->alloc, tess_uv);
-    hf__free(&f->alloc, tess_idx);
-    hf__free(&f->alloc, tess_base);
-    hf__free(&f->alloc, rest_points);
-    hf__free(&f->alloc, guide_len);
-    hf__free(&f->alloc, guide_nrm);
-    hf__free(&f->alloc, guide_of);
+HFDEF hf_result hf_fur_create(const hf_fur_desc *desc, hf_fur **out_fur,
+                              hf_diag *diag)
+{
+    /* the steps in order, each named in the diagnostic when it fails */
+    static const struct {
+        const char *name;
+        hf_result (*run)(hf_fur *, hf__fur_build *);
+    } steps[] = {{"normals", hf__fur_rest_normals},
+                 {"tessellation", hf__fur_tessellate},
+                 {"guides", hf__fur_guides},
+                 {"strand placement", hf__fur_place},
+                 {"strand maps", hf__fur_strand_maps},
+                 {"strand maps", hf__fur_bind},
+                 {"ropes", hf__fur_root_refs},
+                 {"ropes", hf__fur_ropes}};
+    hf__fur_build b;
+    hf_fur *f;
+    hf_allocator alloc;
+    hf_result r;
+    size_t i;
+
+    if (!desc || !out_fur)
+        return hf__fail(diag, HF_ERROR_NULL_POINTER, "desc", -1,
+                        "desc or out_fur is NULL");
+    if ((r = hf_mesh_validate(&desc->mesh, diag)) != HF_OK) return r;
+    HF_MEMSET(&b, 0, sizeof b);
+    hf__fur_desc_resolve(desc, &b.desc, &b.rope);
+    if ((r = hf__fur_desc_check(&b.desc, diag)) != HF_OK) return r;
+
+    HF_MEMSET(&alloc, 0, sizeof alloc);
+    if (desc->allocator) alloc = *desc->allocator;
+    f = (hf_fur *)hf__alloc(&alloc, sizeof *f);
+    if (!f)
+        return hf__fail(diag, HF_ERROR_OUT_OF_MEMORY, "fur", -1,
+                        "out of memory");
+    HF_MEMSET(f, 0, sizeof *f);
+    f->alloc = alloc;
+    f->P = b.desc.points_per_strand;
+    f->vertex_count = desc->mesh.vertex_count;
+    f->base_triangle_count = desc->mesh.triangle_count;
+    f->clump = b.desc.clump;
+    f->lod_threshold = b.desc.lod_simulate_threshold;
+    f->rope = b.rope;
+
+    for (i = 0; i < sizeof steps / sizeof steps[0]; ++i)
+        if ((r = steps[i].run(f, &b)) != HF_OK) break;
+    hf__fur_build_free(&alloc, &b);
+    if (r != HF_OK) {
+        hf_fur_destroy(f);
+        return hf__fail(diag, r, steps[i].name, -1, "hf_fur_create: %s: %s",
+                        steps[i].name, hf_result_string(r));
+    }
     *out_fur = f;
     hf__ok(diag);
     return HF_OK;
-
-fail : {
-    hf_allocator a = f->alloc;
-    hf__free(&a, normals);
-    hf__free(&a, tess_pos);
-    hf__free(&a, tess_uv);
-    hf__free(&a, tess_idx);
-    hf__free(&a, tess_base);
-    hf__free(&a, rest_points);
-    hf__free(&a, guide_len);
-    hf__free(&a, guide_nrm);
-    hf__free(&a, guide_of);
-    hf_fur_destroy(f);
-    return hf__fail(diag, r, stage, -1, "hf_fur_create: %s: %s", stage,
-                    hf_result_string(r));
-}
 }
 
 HFDEF hf_result hf_fur_get_info(const hf_fur *f, hf_fur_info *info)
@@ -7702,7 +8481,8 @@ HFDEF hf_result hf_fur_interpolate_guides(hf_fur *f, int first, int count)
     hf__interpolate_run(f->guide_points, f->lod_bindings, first, count, f->P,
                         0.0f,
                         f->guide_points +
-                            (size_t)f->pure_count * (size_t)f->P * 3u);
+                            (size_t)f->pure_count * (size_t)f->P * 3u,
+                        0);
     return HF_OK;
 }
 
@@ -7712,7 +8492,7 @@ HFDEF hf_result hf_fur_interpolate(hf_fur *f, int first, int count)
     if (!hf__range_ok(first, count) || first + count > f->strand_count)
         return HF_ERROR_BAD_RANGE;
     hf__interpolate_run(f->guide_points, f->bindings, first, count, f->P,
-                        f->clump, f->strand_points);
+                        f->clump, f->strand_points, 0);
     return HF_OK;
 }
 
@@ -7723,10 +8503,9 @@ HF__PRIVATE hf_result hf__fur_view(const hf_fur *f, int first, int count,
     if (!f || !view) return HF_ERROR_NULL_POINTER;
     if (!hf__range_ok(first, count) || first + count > f->strand_count)
         return HF_ERROR_BAD_RANGE;
-    *p = *view;
+    hf__ribbon_params_resolve(view, p);
     p->points_per_strand = f->P;
-    p->width_scale = (view->width_scale != 0.0f ? view->width_scale : 1.0f) *
-                     f->width_scale;
+    p->width_scale *= f->width_scale;
     HF_MEMSET(s, 0, sizeof *s);
     s->points = f->strand_points;
     s->root_uv = f->strand_uv;

@@ -216,6 +216,7 @@ int main(int argc, char **argv)
                 usage();
                 return 2;
             }
+            p.explicit_zero |= HF_LUT_ZERO_SIGMA_A_RGB; /* 0 is no absorption */
             rgb = 1;
         } else if (!parse_double(v, &d)) {
             usage();
@@ -232,8 +233,11 @@ int main(int argc, char **argv)
         } else if (strcmp(a, "--absorption") == 0) {
             p.sigma_a = d;
             p.sigma_a_rgb[0] = p.sigma_a_rgb[1] = p.sigma_a_rgb[2] = d;
+            if (d == 0.0)
+                p.explicit_zero |= HF_LUT_ZERO_SIGMA_A | HF_LUT_ZERO_SIGMA_A_RGB;
         } else if (strcmp(a, "--alpha-r") == 0) {
             p.alpha_r_deg = d;
+            if (d == 0.0) p.explicit_zero |= HF_LUT_ZERO_ALPHA_R;
         } else if (strcmp(a, "--beta-r") == 0) {
             p.beta_r_deg = d;
         } else {

@@ -20,7 +20,7 @@
  *     limit and a deterministic clock headless), and glc_probe_headless()
  *     which says in words what is missing when headless GL 3.3 cannot work.
  *
- * Build (see gl.mk):
+ * Build (see the Makefile):
  *   glad --api gl:core=3.3 --reproducible --out-path build/glad c
  *   cc -Ibuild/glad/include -c build/glad/src/gl.c -o build/glad/gl.o
  *   cc -Ibuild/glad/include ex.c build/glad/gl.o -lglfw -lEGL -lm

@@ -22,7 +22,7 @@
        around the head centre, texcoord UNORM16, tangent SNORM8, read by GL
        as normalized integers (docs/rendering.md "Compact vertices").
 
-   Build: make build/gl_marschner (see glex.mk), or from the repo root:
+   Build: make build/gl_marschner (see the Makefile), or from the repo root:
      make build/glad/gl.o
      gcc -std=c99 -O2 -Ibuild/glad/include -Iexamples -I. \
          examples/gl_marschner.c build/glad/gl.o -o build/gl_marschner \

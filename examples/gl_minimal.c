@@ -9,7 +9,7 @@
    with one flat colour for the hair and another for the head. The index
    buffer is made once (hf_ribbon_indices): the topology never changes.
 
-   Build: make build/gl_minimal   (see glex.mk), or by hand from the repo root:
+   Build: make build/gl_minimal   (see the Makefile), or by hand from the repo root:
      make build/glad/gl.o
      gcc -std=c99 -O2 -Ibuild/glad/include -Iexamples -I. examples/gl_minimal.c \
          build/glad/gl.o -o build/gl_minimal -lglfw -lEGL -lm

@@ -28,7 +28,7 @@
  *                  place of the compact one: the test must then FAIL
  *                  (exit 1)
  * Exit 0 all checks passed, 1 a check failed, 2 "SKIP: reason" (no headless
- * GL). Build: see glex.mk (needs examples/ribbon_expand.glsl only for the
+ * GL). Build: see the Makefile (needs examples/ribbon_expand.glsl only for the
  * GPU-expansion comparison, which it skips with a note if absent). */
 #define GLM_NO_MAIN
 #include "../examples/gl_marschner.c"

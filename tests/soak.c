@@ -108,6 +108,10 @@ static void random_params(hf_rope_params *p)
     p->collision_margin = frand() < 0.2f ? 0.0f : frand() * 0.01f;
     p->time_scale = frand() < 0.8f ? 1.0f : 0.1f + frand() * 5.0f;
     p->mode_blend_time = frand() < 0.3f ? 0.0f : frand();
+    /* the zeros above are meant literally (no margin, no passes, ...) */
+    p->explicit_zero = HF_ROPE_ZERO_DAMPING | HF_ROPE_ZERO_ITERATIONS |
+                       HF_ROPE_ZERO_FTL_DAMPING | HF_ROPE_ZERO_MARGIN |
+                       HF_ROPE_ZERO_BLEND_TIME;
 }
 
 int main(int argc, char **argv)

@@ -3402,12 +3402,15 @@ static void test_ropes_params_defaults_and_validation(void)
     CHECK(strcmp(d.field, "gravity") == 0);
     q = p; q.wind[0] = 2e4f;
     CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_BAD_PARAMETER);
-    q = p; q.substep = 0.0f; /* a zero-initialised struct fails here */
+    q = p; q.substep = 1e-6f;
     CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_BAD_PARAMETER);
-    q = p; q.time_scale = 0.0f;
+    q = p; q.time_scale = -1.0f;
     CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_BAD_PARAMETER);
-    q = p; q.max_substeps = 0;
+    q = p; q.max_substeps = -1;
     CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_BAD_PARAMETER);
+    /* zero asks for the default: substep 0 is 1/60 s */
+    q = p; q.substep = 0.0f;
+    CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_OK);
     q = p; q.iterations = -1;
     CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_BAD_PARAMETER);
     q = p; q.solver = 7;
@@ -3416,8 +3419,8 @@ static void test_ropes_params_defaults_and_validation(void)
     CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_BAD_PARAMETER);
     q = p; q.max_dt = (float)INFINITY;
     CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_NON_FINITE);
-    memset(&q, 0, sizeof q);
-    CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_BAD_PARAMETER);
+    memset(&q, 0, sizeof q); /* a zeroed struct is the defaults */
+    CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_OK);
 }
 
 static void test_ropes_memory_init_create(void)
@@ -3995,6 +3998,7 @@ static void test_ropes_reset_teleport(void)
     /* no velocity and no interpolation from the old root: a weightless
        step leaves it in place */
     p.gravity[1] = 0.0f;
+    p.explicit_zero = HF_ROPE_ZERO_GRAVITY;
     hf_ropes_step(&s.ro, 0, 1, 1.0f / 60.0f, &p, NULL, 0);
     tr_snapshot(&s.ro, b);
     if (getenv("TR_VERBOSE")) printf("teleport move %g\n", tr_max_move(a, b, P));
@@ -4320,6 +4324,60 @@ static void test_ropes_simd_lanes_match_scalar(void)
     for (k = 0; k < 3; ++k) tr_close(&s[k]);
 }
 
+static void test_defaults_zeroed_rope_params_are_init(void)
+{
+    /* a zeroed struct and hf_rope_params_init give the same step, bytes */
+    hf_rope_params zero, init;
+    tr_set a, b;
+    float pos[2 * 6 * 3], root[6], nrm[6] = {0, 1, 0, 0, 1, 0};
+    float tan[6] = {1, 0, 0, 1, 0, 0};
+    int r, i;
+    memset(&zero, 0, sizeof zero);
+    hf_rope_params_init(&init);
+    CHECK_EQ_INT(hf_rope_params_validate(&zero, NULL), HF_OK);
+    CHECK(init.gravity[1] == -9.81f && init.damping == 0.02f &&
+          init.iterations == 2 && init.collision_margin == 0.002f &&
+          init.mode_blend_time == 0.25f && init.ftl_damping == 0.9f);
+    CHECK(tr_open(&a, 2, 6) && tr_open(&b, 2, 6));
+    for (r = 0; r < 2; ++r) {
+        root[3 * r] = (float)r; root[3 * r + 1] = 0.0f; root[3 * r + 2] = 0.0f;
+        tr_straight(pos, r, 6, root + 3 * r, tan + 3 * r, 0.05f);
+    }
+    CHECK_EQ_INT(hf_ropes_set_rest(&a.ro, 0, 2, pos, 0, root, nrm, tan, 0), HF_OK);
+    CHECK_EQ_INT(hf_ropes_set_rest(&b.ro, 0, 2, pos, 0, root, nrm, tan, 0), HF_OK);
+    for (i = 0; i < 10; ++i) {
+        CHECK_EQ_INT(hf_ropes_step(&a.ro, 0, 2, 1.0f / 60.0f, &zero, NULL, 0), HF_OK);
+        CHECK_EQ_INT(hf_ropes_step(&b.ro, 0, 2, 1.0f / 60.0f, &init, NULL, 0), HF_OK);
+    }
+    CHECK(memcmp(a.ro.x, b.ro.x, sizeof(float) * 12) == 0);
+    CHECK(memcmp(a.ro.y, b.ro.y, sizeof(float) * 12) == 0);
+    /* the ropes, laid out sideways, fell: gravity was on */
+    CHECK(a.ro.y[5 * 2 + 0] < -1e-3f);
+    tr_close(&a);
+    tr_close(&b);
+}
+
+static void test_defaults_explicit_zero(void)
+{
+    /* explicit_zero makes a zero literal: no gravity, the rope stays put */
+    hf_rope_params p;
+    tr_set a;
+    float pos[6 * 3], root[3] = {0, 0, 0}, nrm[3] = {0, 1, 0};
+    float tan[3] = {1, 0, 0}, before[6 * 3], after[6 * 3];
+    int i;
+    memset(&p, 0, sizeof p);
+    p.explicit_zero = HF_ROPE_ZERO_GRAVITY | HF_ROPE_ZERO_DAMPING;
+    CHECK(tr_open(&a, 1, 6));
+    tr_straight(pos, 0, 6, root, tan, 0.05f);
+    CHECK_EQ_INT(hf_ropes_set_rest(&a.ro, 0, 1, pos, 0, root, nrm, tan, 0), HF_OK);
+    tr_snapshot(&a.ro, before);
+    for (i = 0; i < 30; ++i)
+        CHECK_EQ_INT(hf_ropes_step(&a.ro, 0, 1, 1.0f / 60.0f, &p, NULL, 0), HF_OK);
+    tr_snapshot(&a.ro, after);
+    CHECK(tr_max_move(before, after, 6) < 1e-6);
+    tr_close(&a);
+}
+
 static void test_bad_rope_params(void)
 {
     hf_rope_params p, b;
@@ -4350,9 +4408,12 @@ static void test_bad_rope_params(void)
         CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
         *fields[i] = keep;
     }
-    b = p; b.time_scale = 0.0f; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
-    b = p; b.max_dt = 0.0f; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
-    b = p; b.max_substeps = 0; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
+    /* zero is the default, never an error; negative is */
+    b = p; b.time_scale = 0.0f; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_OK);
+    b = p; b.max_dt = 0.0f; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_OK);
+    b = p; b.max_substeps = 0; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_OK);
+    b = p; b.max_dt = -1.0f; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
+    b = p; b.max_substeps = -3; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
     b = p; b.max_substeps = 0x7fffffff; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
     b = p; b.iterations = -1; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
     b = p; b.iterations = 0x7fffffff; CHECK_EQ_INT(hf_rope_params_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
@@ -4621,6 +4682,7 @@ static void test_interp_simd_matches_scalar_reference(void)
     }
     for (Q = 13; Q <= QM; ++Q)
         for (cl = 0; cl < 2; ++cl) {
+            memset(&ip, 0, sizeof ip);
             ip.points_per_strand = Q;
             ip.clump = cl ? 0.35f : 0.0f;
             memset(out, 0, sizeof out);
@@ -5072,7 +5134,7 @@ static void test_ribbons_sse_matches_reference(void)
                 int finite = -1, c, j;
                 memset(&a, 0, sizeof a);
                 memset(&b, 0, sizeof b);
-                hf__strand_frame(q, P, &p, &a);
+                hf__strand_frame_ref(q, P, &p, &a);
 #if HF__SSE
                 if (hf__strand_frame_sse(q, P, &p, &b, &finite)) {
                     ++handled;
@@ -5132,7 +5194,7 @@ static void test_ribbons_sse_matches_reference(void)
                 /* as hf_ribbons: a strand with a NaN is drawn collapsed */
                 const int fin = hf__points_finite(q7, 3 * P7);
                 memset(&fr, 0, sizeof fr);
-                hf__strand_frame(fin ? q7 : hf__zero_points, P7, &p, &fr);
+                hf__strand_frame_ref(fin ? q7 : hf__zero_points, P7, &p, &fr);
                 S.uv[0] = hf_rng_float(&rng);
                 S.uv[1] = hf_rng_float(&rng) * 3.0f - 1.0f; /* out of range too */
                 for (j = 0; j < 4; ++j) S.rgba[j] = hf_rng_float(&rng);
@@ -5192,7 +5254,7 @@ static void test_format_encoders(void)
             {
                 uint32_t lanes[4];
                 _mm_storeu_si128((__m128i *)(void *)lanes,
-                                 hf__encode4(_mm_set_ps(1.0f, x, -x, x), fmt));
+                                 hf__encode_sse(_mm_set_ps(1.0f, x, -x, x), fmt));
                 if (lanes[0] != code || lanes[2] != code) ++bad;
                 if (lanes[1] != hf__encode1(-x, fmt)) ++bad;
             }
@@ -5490,6 +5552,127 @@ static void test_bad_ribbons(void)
              ix, sizeof ix);
 }
 
+static void test_defaults_zeroed_ribbon_params_draw(void)
+{
+    /* widths left zero draw the documented defaults, not a zero width */
+    float g[3 * TP * 3], v[2 * TP * 3];
+    hf_ribbon_strands st;
+    hf_ribbon_params p;
+    hf_ribbon_output o;
+    float w0, w1;
+    memset(&st, 0, sizeof st);
+    memset(&p, 0, sizeof p);
+    memset(&o, 0, sizeof o);
+    t_make_guides(g, 3);
+    st.points = g;
+    p.points_per_strand = TP;
+    p.eye[2] = 50.0f;
+    o.position.data = v;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &p, &o), HF_OK);
+    w0 = sqrtf((v[0] - v[3]) * (v[0] - v[3]) + (v[1] - v[4]) * (v[1] - v[4]) +
+               (v[2] - v[5]) * (v[2] - v[5]));
+    {
+        const float *a = v + 6 * (TP - 1);
+        w1 = sqrtf((a[0] - a[3]) * (a[0] - a[3]) + (a[1] - a[4]) * (a[1] - a[4]) +
+                   (a[2] - a[5]) * (a[2] - a[5]));
+    }
+    CHECK_NEAR(w0, HF_RIBBON_DEFAULT_ROOT_WIDTH, 1e-6);
+    CHECK_NEAR(w1, HF_RIBBON_DEFAULT_TIP_WIDTH, 1e-6);
+    /* a root width with tip 0 is taken as is: a pointed tip */
+    p.root_width = 0.002f;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &p, &o), HF_OK);
+    CHECK(v[6 * (TP - 1)] == v[6 * (TP - 1) + 3]);
+}
+
+static void test_ribbon_indices16(void)
+{
+    int P, topo;
+    for (topo = 0; topo < 2; ++topo)
+        for (P = 2; P <= 64; P += 7) {
+            const int per = hf_ribbon_chunk_strands(P, topo);
+            const long long n = hf_ribbon_index_count(per, P, topo);
+            uint32_t *i32 = (uint32_t *)malloc(sizeof(uint32_t) * (size_t)n);
+            uint16_t *i16 = (uint16_t *)malloc(sizeof(uint16_t) * (size_t)n);
+            long long k, restarts = 0;
+            /* the largest chunk: its last vertex is below 0xFFFF, one more
+               strand would not be */
+            CHECK(2LL * P * per <= 0xFFFF && 2LL * P * (per + 1) > 0xFFFF);
+            CHECK_EQ_INT(hf_ribbon_indices(per, P, topo, i32, n), HF_OK);
+            CHECK_EQ_INT(hf_ribbon_indices16(per, P, topo, i16, n), HF_OK);
+            for (k = 0; k < n; ++k) {
+                if (i32[k] == 0xFFFFFFFFu) {
+                    ++restarts;
+                    CHECK(i16[k] == 0xFFFF);
+                } else {
+                    CHECK(i16[k] == i32[k] && i16[k] != 0xFFFF);
+                }
+            }
+            CHECK_EQ_INT(restarts, topo == HF_STRIP_RESTART ? per : 0);
+            CHECK_EQ_INT(hf_ribbon_indices16(per + 1, P, topo, i16, n + 1000),
+                         HF_ERROR_OVERFLOW);
+            CHECK_EQ_INT(hf_ribbon_indices16(per, P, topo, i16, n - 1),
+                         HF_ERROR_BUFFER_TOO_SMALL);
+            free(i32);
+            free(i16);
+        }
+    CHECK_EQ_INT(hf_ribbon_chunk_strands(1, HF_TRIANGLES), 0);
+    CHECK_EQ_INT(hf_ribbon_chunk_strands(16, 7), 0);
+    CHECK_EQ_INT(hf_ribbon_chunk_strands(16, HF_TRIANGLES), 0xFFFF / 32);
+    CHECK_EQ_INT(hf_ribbon_indices16(1, 16, HF_TRIANGLES, NULL, 100),
+                 HF_ERROR_NULL_POINTER);
+}
+
+static void test_out_first_interpolate_and_ribbons(void)
+{
+    /* strands [2, 5) written with out_first = 2 into buffers holding just
+       those strands: the same bytes as the slice of a whole buffer */
+    enum { G = 3, N = 6, F = 2, C = 3 };
+    float g[G * TP * 3], whole[N * TP * 3], part[C * TP * 3];
+    float wv[N * TP * 2 * 3], pv[C * TP * 2 * 3];
+    float w4[N * TP * 4], p4[C * TP * 4];
+    hf_strand_binding b[N];
+    hf_interp_params ip;
+    hf_ribbon_params rp = t_rparams();
+    hf_ribbon_strands st;
+    hf_ribbon_output o;
+    int s, k;
+    t_make_guides(g, G);
+    for (s = 0; s < N; ++s) {
+        for (k = 0; k < 3; ++k) {
+            b[s].guide[k] = (uint32_t)k;
+            b[s].weight[k] = k == s % 3 ? 0.5f : 0.25f;
+        }
+        b[s].length_scale = 1.0f - 0.05f * (float)s;
+    }
+    memset(&ip, 0, sizeof ip);
+    ip.points_per_strand = TP;
+    ip.clump = 0.3f;
+    CHECK_EQ_INT(hf_interpolate(g, G, b, 0, N, &ip, whole), HF_OK);
+    ip.out_first = F;
+    CHECK_EQ_INT(hf_interpolate(g, G, b, F, C, &ip, part), HF_OK);
+    CHECK(memcmp(part, whole + F * TP * 3, sizeof part) == 0);
+    CHECK_EQ_INT(hf_interpolate(g, G, b, F - 1, C, &ip, part),
+                 HF_ERROR_BAD_RANGE);
+
+    memset(&st, 0, sizeof st);
+    st.points = whole;
+    memset(&o, 0, sizeof o);
+    o.position.data = wv;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, N, &rp, &o), HF_OK);
+    CHECK_EQ_INT(hf_ribbon_points(&st, 0, N, &rp, w4), HF_OK);
+    rp.out_first = F;
+    o.position.data = pv;
+    CHECK_EQ_INT(hf_ribbons(&st, F, C, &rp, &o), HF_OK);
+    CHECK(memcmp(pv, wv + F * TP * 2 * 3, sizeof pv) == 0);
+    CHECK_EQ_INT(hf_ribbon_points(&st, F, C, &rp, p4), HF_OK);
+    CHECK(memcmp(p4, w4 + F * TP * 4, sizeof p4) == 0);
+    tb_fill(pv, sizeof pv);
+    CHECK_EQ_INT(hf_ribbons(&st, F - 1, C, &rp, &o), HF_ERROR_BAD_RANGE);
+    CHECK(tb_untouched(pv, sizeof pv));
+    rp.out_first = -1;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &rp, &o), HF_ERROR_BAD_RANGE);
+}
+
 /* ==== 9. LUT baking: the Marschner M and N textures ======================= */
 
 /* Expected numbers are the spot values, texel table and channel sums of
@@ -5536,12 +5719,12 @@ static void test_lut_validate_codes(void)
     T_BAD(sigma_a_rgb[2], nan, HF_ERROR_NON_FINITE, "sigma_a_rgb[2]");
     T_BAD(eta, 1.19, HF_ERROR_BAD_PARAMETER, "eta");
     T_BAD(eta, 3.0001, HF_ERROR_BAD_PARAMETER, "eta");
-    T_BAD(beta_r_deg, 0.0, HF_ERROR_BAD_PARAMETER, "beta_r_deg");
+    T_BAD(beta_r_deg, -1e-300, HF_ERROR_BAD_PARAMETER, "beta_r_deg");
     T_BAD(beta_r_deg, -1.0, HF_ERROR_BAD_PARAMETER, "beta_r_deg");
     T_BAD(sigma_a, -1e-9, HF_ERROR_BAD_PARAMETER, "sigma_a");
     T_BAD(sigma_a_rgb[1], -0.5, HF_ERROR_BAD_PARAMETER, "sigma_a_rgb[1]");
     T_BAD(variant, (hf_lut_variant)2, HF_ERROR_BAD_PARAMETER, "variant");
-    T_BAD(size, 0, HF_ERROR_BAD_COUNT, "size");
+    T_BAD(size, -1, HF_ERROR_BAD_COUNT, "size");
     T_BAD(size, -3, HF_ERROR_BAD_COUNT, "size");
     T_BAD(size, HF_LUT_MAX_SIZE + 1, HF_ERROR_BAD_COUNT, "size");
 #undef T_BAD
@@ -5710,7 +5893,10 @@ static void test_lut_channel_sums_n64(void)
     for (k = 0; k < 4; ++k) {
         hf_lut_params p = t_lut_defaults(64, k == 3 ? HF_LUT_EXACT
                                                     : HF_LUT_CUBIC);
-        if (k == 2) p.sigma_a = 0.0;
+        if (k == 2) {
+            p.sigma_a = 0.0;
+            p.explicit_zero = HF_LUT_ZERO_SIGMA_A;
+        }
         CHECK_EQ_INT(k == 0 ? hf_lut_bake_m(&p, 0, 64, t)
                             : hf_lut_bake_n(&p, 0, 64, t),
                      HF_OK);
@@ -5927,6 +6113,7 @@ static void test_lut_extremes_finite(void)
                 hf_lut_params p = t_lut_defaults(n, HF_LUT_CUBIC);
                 p.beta_r_deg = betas[s];
                 p.alpha_r_deg = alphas[e];
+                p.explicit_zero = HF_LUT_ZERO_ALPHA_R; /* alpha 0 is 0 */
                 CHECK_EQ_INT(hf_lut_bake_m(&p, 0, n, a), HF_OK);
                 if (!t_lut_all_ok(a, n, 1)) ++fails;
             }
@@ -5934,6 +6121,7 @@ static void test_lut_extremes_finite(void)
     {
         hf_lut_params p = t_lut_defaults(3, HF_LUT_CUBIC);
         p.alpha_r_deg = 0.0;
+        p.explicit_zero = HF_LUT_ZERO_ALPHA_R;
         p.beta_r_deg = 1e-300;
         CHECK_EQ_INT(hf_lut_bake_m(&p, 0, 3, a), HF_OK);
         CHECK(a[4 * (1 * 3 + 1) + 0] == FLT_MAX); /* theta_h = 0 */
@@ -5983,10 +6171,10 @@ static void test_lut_invalid_writes_nothing(void)
         switch (k) {
         case 0: p.eta = nan; want = HF_ERROR_NON_FINITE; break;
         case 1: p.eta = 1.0; break;
-        case 2: p.beta_r_deg = 0.0; break;
+        case 2: p.beta_r_deg = -0.5; break;
         case 3: p.sigma_a = -1.0; break;
         case 4: p.sigma_a_rgb[0] = -1.0; break;
-        case 5: p.size = 0; want = HF_ERROR_BAD_COUNT; break;
+        case 5: p.size = -1; want = HF_ERROR_BAD_COUNT; break;
         case 6: p.variant = (hf_lut_variant)5; break;
         case 7: p.alpha_r_deg = HUGE_VAL; want = HF_ERROR_NON_FINITE; break;
         default: p.size = 5000; want = HF_ERROR_BAD_COUNT; break;
@@ -6293,13 +6481,14 @@ static void test_bad_lut(void)
     b = p; b.eta = 1.0; TB_LUT(b, 0, 4, HF_ERROR_BAD_PARAMETER);
     b = p; b.eta = 3.5; TB_LUT(b, 0, 4, HF_ERROR_BAD_PARAMETER);
     b = p; b.alpha_r_deg = INFINITY; TB_LUT(b, 0, 4, HF_ERROR_NON_FINITE);
-    b = p; b.beta_r_deg = 0.0; TB_LUT(b, 0, 4, HF_ERROR_BAD_PARAMETER);
+    b = p; b.beta_r_deg = -1e-9; TB_LUT(b, 0, 4, HF_ERROR_BAD_PARAMETER);
     b = p; b.beta_r_deg = -1.0; TB_LUT(b, 0, 4, HF_ERROR_BAD_PARAMETER);
     b = p; b.sigma_a = -0.1; TB_LUT(b, 0, 4, HF_ERROR_BAD_PARAMETER);
     b = p; b.sigma_a = NAN; TB_LUT(b, 0, 4, HF_ERROR_NON_FINITE);
     b = p; b.sigma_a_rgb[2] = -1.0; CHECK_EQ_INT(hf_lut_validate(&b, NULL), HF_ERROR_BAD_PARAMETER);
     b = p; b.variant = 2; TB_LUT(b, 0, 4, HF_ERROR_BAD_PARAMETER);
-    b = p; b.size = 0; CHECK_EQ_INT(hf_lut_validate(&b, NULL), HF_ERROR_BAD_COUNT);
+    b = p; b.size = -1; CHECK_EQ_INT(hf_lut_validate(&b, NULL), HF_ERROR_BAD_COUNT);
+    b = p; b.size = 0; CHECK_EQ_INT(hf_lut_validate(&b, NULL), HF_OK); /* 256 */
     b = p; b.size = HF_LUT_MAX_SIZE + 1; CHECK_EQ_INT(hf_lut_validate(&b, NULL), HF_ERROR_BAD_COUNT);
     b = p; b.size = 0x7fffffff; CHECK_EQ_INT(hf_lut_validate(&b, NULL), HF_ERROR_BAD_COUNT);
     CHECK_EQ_INT(hf_lut_validate(NULL, NULL), HF_ERROR_NULL_POINTER);
@@ -6348,6 +6537,31 @@ static void test_bad_lut(void)
     b = p; b.size = 0;
     CHECK_EQ_INT(hf_lut_eval_m(&b, 0.1, o3), HF_OK);
 #undef TB_LUT
+}
+
+static void test_defaults_zeroed_lut_params_are_init(void)
+{
+    hf_lut_params zero, init;
+    float *a = t_lut_alloc(8), *b = t_lut_alloc(8);
+    double m0[3], m1[3];
+    memset(&zero, 0, sizeof zero);
+    zero.size = 8;
+    hf_lut_params_init(&init);
+    init.size = 8;
+    CHECK_EQ_INT(hf_lut_validate(&zero, NULL), HF_OK);
+    CHECK_EQ_INT(hf_lut_bake_n(&zero, 0, 8, a), HF_OK);
+    CHECK_EQ_INT(hf_lut_bake_n(&init, 0, 8, b), HF_OK);
+    CHECK(memcmp(a, b, sizeof(float) * 4 * 8 * 8) == 0);
+    CHECK_EQ_INT(hf_lut_bake_m(&zero, 0, 8, a), HF_OK);
+    CHECK_EQ_INT(hf_lut_bake_m(&init, 0, 8, b), HF_OK);
+    CHECK(memcmp(a, b, sizeof(float) * 4 * 8 * 8) == 0);
+    /* alpha 0 on purpose: the R lobe peaks at theta_h 0, not at -7.5 deg */
+    zero.explicit_zero = HF_LUT_ZERO_ALPHA_R;
+    CHECK_EQ_INT(hf_lut_eval_m(&zero, 0.0, m0), HF_OK);
+    CHECK_EQ_INT(hf_lut_eval_m(&zero, 7.5 * T_DEG, m1), HF_OK);
+    CHECK(m0[0] > m1[0]);
+    free(a);
+    free(b);
 }
 
 /* ==== 10. the fur object ================================================== */
@@ -6760,6 +6974,76 @@ static void test_bad_fur(void)
 #undef TB_CREATE
 }
 
+static void test_defaults_fur_strand_count_precedence(void)
+{
+    /* strands_per_area wins over total_strands; bad values are refused */
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    hf_diag d;
+    t_fur_scene_init(&sc, 1.0f);
+    sc.desc.total_strands = 300;
+    sc.desc.strands_per_area = 2000.0f; /* a 1 m sphere: ~25,000 strands */
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, &d), HF_OK);
+    if (f) {
+        hf_fur_get_info(f, &info);
+        CHECK(info.strand_count > 15000);
+        hf_fur_destroy(f);
+    }
+    sc.desc.strands_per_area = -5.0f;
+    f = NULL;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, &d), HF_ERROR_BAD_PARAMETER);
+    CHECK(f == NULL);
+    CHECK(strstr(d.message, "strands_per_area") != NULL);
+    sc.desc.strands_per_area = (float)NAN;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, &d), HF_ERROR_BAD_PARAMETER);
+    sc.desc.strands_per_area = 0.0f;
+    sc.desc.total_strands = -1;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, &d), HF_ERROR_BAD_COUNT);
+    CHECK(f == NULL);
+}
+
+static void test_out_first_fur_chunks(void)
+{
+    /* the fur's strands drawn in 16-bit chunks: each chunk's vertices in a
+       buffer of its own equal the slice of one whole buffer */
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    hf_ribbon_params view;
+    hf_ribbon_output o;
+    float *whole, *chunk;
+    int per, first;
+    t_fur_scene_init(&sc, 1.0f);
+    sc.desc.total_strands = 9000; /* more than one 16-bit chunk */
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (!f) return;
+    hf_fur_get_info(f, &info);
+    per = hf_ribbon_chunk_strands(info.points_per_strand, HF_TRIANGLES);
+    CHECK(per > 0 && per < info.strand_count);
+    whole = (float *)malloc(sizeof(float) * 3 * 2 * (size_t)info.points_per_strand *
+                            (size_t)info.strand_count);
+    chunk = (float *)malloc(sizeof(float) * 3 * 2 * (size_t)info.points_per_strand *
+                            (size_t)per);
+    memset(&view, 0, sizeof view);
+    view.eye[2] = 5.0f;
+    memset(&o, 0, sizeof o);
+    o.position.data = whole;
+    CHECK_EQ_INT(hf_fur_ribbons(f, 0, info.strand_count, &view, &o), HF_OK);
+    o.position.data = chunk;
+    for (first = 0; first < info.strand_count; first += per) {
+        int n = info.strand_count - first < per ? info.strand_count - first : per;
+        size_t floats = (size_t)n * (size_t)info.points_per_strand * 6;
+        view.out_first = first;
+        CHECK_EQ_INT(hf_fur_ribbons(f, first, n, &view, &o), HF_OK);
+        CHECK(memcmp(chunk, whole + (size_t)first * (size_t)info.points_per_strand * 6,
+                     floats * sizeof(float)) == 0);
+    }
+    free(whole);
+    free(chunk);
+    hf_fur_destroy(f);
+}
+
 /* ==== main: every test, in the order above ================================ */
 
 int main(void)
@@ -6841,6 +7125,8 @@ int main(void)
     RUN(test_ropes_distance_solver_iterations);
     RUN(test_ropes_get_positions);
     RUN(test_ropes_simd_lanes_match_scalar);
+    RUN(test_defaults_zeroed_rope_params_are_init);
+    RUN(test_defaults_explicit_zero);
     RUN(test_bad_rope_params);
     RUN(test_bad_ropes_memory_and_limits);
     RUN(test_bad_ropes_set_rest_and_roots);
@@ -6868,6 +7154,9 @@ int main(void)
     RUN(test_ribbons_compact_formats);
     RUN(test_ribbon_indices);
     RUN(test_ribbon_winding_faces_camera);
+    RUN(test_defaults_zeroed_ribbon_params_draw);
+    RUN(test_ribbon_indices16);
+    RUN(test_out_first_interpolate_and_ribbons);
     RUN(test_bad_ribbons);
 
     /* 9. LUT baking: the Marschner M and N textures */
@@ -6893,6 +7182,7 @@ int main(void)
     RUN(test_lut_to_u8);
     RUN(test_lut_eval_errors);
     RUN(test_lut_texel_centres);
+    RUN(test_defaults_zeroed_lut_params_are_init);
     RUN(test_bad_lut);
 
     /* 10. the fur object */
@@ -6904,6 +7194,8 @@ int main(void)
     RUN(test_fur_bad_desc_and_out_of_memory);
     RUN(test_fur_same_seed_same_bytes);
     RUN(test_fur_errors_per_frame);
+    RUN(test_defaults_fur_strand_count_precedence);
+    RUN(test_out_first_fur_chunks);
     RUN(test_bad_fur);
 
     printf("%d passed, %d failed\n", t_passed, t_failed);

@@ -52,11 +52,19 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (fz_chance(&r, 128)) p.variant = fz_chance(&r, 250) ? 1 : fz_int(&r, -1, 5);
     p.size = fz_chance(&r, 250) ? fz_int(&r, 1, FZ_LUT_MAX) : fz_int(&r, -1, 0);
     if (fz_chance(&r, 2)) p.size = 0x7fffffff;
+    if (fz_chance(&r, 32)) p.explicit_zero = fz_int(&r, 0, 7);
 
     {
         hf_diag d;
         rv = hf_lut_validate(&p, &d);
         FZ_REQUIRE(fz_known_result(rv) && d.result == rv);
+        if (p.size == 0) {
+            /* 0 is the default size, 256: too big to bake per input, so
+               it is validated only, then baked at a small size */
+            FZ_REQUIRE(rv != HF_ERROR_BAD_COUNT);
+            p.size = 1 + fz_u8(&r) % FZ_LUT_MAX;
+            rv = hf_lut_validate(&p, NULL);
+        }
     }
     n = p.size >= 1 && p.size <= FZ_LUT_MAX ? p.size : 1;
     texels = (size_t)n * (size_t)n;

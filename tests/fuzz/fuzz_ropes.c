@@ -77,7 +77,7 @@ static void fz_roots(fz_reader *r, int R, float *pos, float *nrm, float *tan,
 /* A random field of the params to a fuzz value. */
 static void fz_mutate_params(fz_reader *r, hf_rope_params *p)
 {
-    switch (fz_u8(r) % 20) {
+    switch (fz_u8(r) % 21) {
     case 0: p->gravity[fz_u8(r) % 3] = fz_float(r, 100.0f); break;
     case 1: p->wind[fz_u8(r) % 3] = fz_float(r, 100.0f); break;
     case 2: p->turbulence = fz_float(r, 50.0f); break;
@@ -97,6 +97,7 @@ static void fz_mutate_params(fz_reader *r, hf_rope_params *p)
     case 16: p->local_stiffness_tip = fz_float(r, 1.0f); break;
     case 17: p->collision_margin = fz_float(r, 0.1f); break;
     case 18: p->mode_blend_time = fz_float(r, 1.0f); break;
+    case 19: p->explicit_zero = fz_int(r, 0, 63); break;
     default: p->max_substeps = fz_int(r, 1, 1000); break;
     }
 }
