@@ -61,7 +61,8 @@
            hf_rope_params_validate, hf_ropes_memory_size, hf_ropes_init,
            hf_ropes_create, hf_ropes_destroy, hf_ropes_set_rest,
            hf_ropes_set_roots, hf_ropes_step, hf_ropes_set_mode,
-           hf_ropes_reset, hf_ropes_max_stretch, hf_ropes_get_positions
+           hf_ropes_reset, hf_ropes_max_stretch, hf_ropes_roots_inside,
+           hf_ropes_get_positions
        Interpolating strands of your own (section 7): hf_interpolate
        Shading: the Marschner lookup textures (section 9):
            hf_lut_params_init, hf_lut_validate, hf_lut_bake_m,
@@ -967,6 +968,7 @@ typedef struct hf_ropes {
     float *last_h, *blend, *length;
     double *time;
     unsigned char *mode;
+    unsigned char *root_inside; /* 1: the root sat inside a collider */
     hf_allocator allocator; /* hf_ropes_create only */
     int owned;
 } hf_ropes;
@@ -1038,9 +1040,14 @@ HFDEF hf_result hf_ropes_set_roots(hf_ropes *ropes, int first, int count,
    when collider_count is 0. When the call returns, every non-root point of
    a simulated rope is at least radius + collision_margin from every
    collider, provided the colliders inflated by the margin do not overlap
-   one another (where they do, the later collider in the array wins); the
-   root point sits on the skin and is exempt. Animated ropes ignore
-   colliders. A rope that an unstable setting throws further than
+   one another, and every segment keeps its rest length (the follow-the-
+   leader solver turns a point about its parent until it clears every
+   collider; where no direction clears them all, the direction with the
+   least penetration wins, length kept). The root point sits on the skin
+   and is exempt; a collider that holds a rope's root is shrunk, for that
+   rope, to the root's distance from its axis (hf_ropes_roots_inside
+   counts such ropes). The distance solver pushes points straight out, as
+   before. Animated ropes ignore colliders. A rope that an unstable setting throws further than
    8 * length + 0.01 m from its root is reset to its rest pose, so no
    output is ever NaN. Errors: HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE,
    HF_ERROR_BAD_COUNT (collider_count < 0), HF_ERROR_BAD_TIME_STEP,
@@ -1072,6 +1079,16 @@ HFDEF hf_result hf_ropes_set_mode(hf_ropes *ropes, int first, int count,
    there (no interpolation from an old frame). Errors:
    HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE. */
 HFDEF hf_result hf_ropes_reset(hf_ropes *ropes, int first, int count);
+
+/* How many ropes of [first, first + count) had their root inside a
+   collider (below its surface; the margin band does not count) at their
+   last hf_ropes_step. Such a collider is, for that rope, shrunk to the
+   root's distance from its axis, so the rope stays inextensible and grows
+   out of the proxy; a count above 0 usually means a proxy larger than the
+   body it stands for: shrink it. Errors: HF_ERROR_NULL_POINTER,
+   HF_ERROR_BAD_RANGE. */
+HFDEF hf_result hf_ropes_roots_inside(const hf_ropes *ropes, int first,
+                                      int count, int *out_count);
 
 /* The largest relative length error |length - rest| / rest over every
    segment of ropes [first, first + count) with a non-zero rest length
@@ -1135,8 +1152,9 @@ HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
                                float *out_points);
 
 /* Level of detail. `lod` in [0, 1] draws a prefix of the strands (they are
-   stored in LOD order): round(lod * total), at least 1 when lod > 0 and
-   total > 0; 0 for lod <= 0 or NaN; total for lod >= 1. */
+   stored in LOD order): round(lod * total) (halves up, exact for every
+   int total), at least 1 when lod > 0 and total > 0; 0 for lod <= 0 or
+   NaN; total for lod >= 1. */
 HFDEF int hf_lod_strand_count(int total, float lod);
 /* Ribbon width multiplier that keeps coverage constant: sqrt(total / drawn);
    1 when drawn <= 0 or drawn >= total. */
@@ -1253,10 +1271,13 @@ typedef struct hf_ribbon_params {
    s_j = normalize(cross(t_j, v_j)) and the vertices are p_j -/+ s_j * w_j / 2.
    Never NaN: a zero-length segment reuses the previous tangent (points
    before the first that has one take that one; a strand with no length
-   uses (0, 1, 0)); where t_j is parallel to v_j or the eye
-   sits on p_j, the side of the nearest point of the strand that has one is
-   reused (before any: along the strand; a strand with none uses a fixed
-   perpendicular of its tangent). A strand with a NaN or infinite point is
+   uses (0, 1, 0)). The side is perpendicular to t_j and v_j within 1e-5
+   wherever they are not parallel (views within 3 degrees of the tangent
+   are computed in double); where t_j is parallel to v_j (to 1e-6) or the
+   eye sits on p_j, the side of the previous point is reused (before the
+   first point that has one: the next point's), made perpendicular to t_j
+   and renormalised; a strand with no side anywhere uses a fixed
+   perpendicular of its tangent. A strand with a NaN or infinite point is
    written collapsed: every vertex at the origin with zero width, so it
    draws nothing. Writes exactly 2 * P vertices per strand
    into each non-NULL stream, in its format; no allocation. Errors: NULL
@@ -1528,6 +1549,9 @@ typedef struct hf_fur_info {
     int lod_guides_simulated;
     float lod, width_scale;  /* current LOD and its width multiplier */
     int triangle_count;      /* guide (tessellated) triangles */
+    int roots_inside;        /* guides whose root sat inside a collider at
+                                their last hf_fur_simulate (see
+                                hf_ropes_roots_inside): shrink that proxy */
     const float *guide_points;  /* guide_count * P * 3 */
     const float *strand_points; /* strand_count * P * 3 */
     const hf_strand *strands;   /* strand_count records */
@@ -3988,8 +4012,8 @@ HFDEF hf_result hf_rope_params_validate(const hf_rope_params *params,
 
 /* Array sizes in bytes, in layout order: 10 point arrays (x, y, z, px, py,
    pz, rest_u, rest_v, rest_w, rest_length), frame, scratch, last_h, blend,
-   length, time, mode. Each starts on a 64-byte boundary. */
-enum { HF__ROPE_ARRAYS = 17 };
+   length, time, mode, root_inside. Each starts on a 64-byte boundary. */
+enum { HF__ROPE_ARRAYS = 18 };
 
 HF__PRIVATE hf_result hf__ropes_layout(int rope_count, int points,
                                        size_t sizes[HF__ROPE_ARRAYS],
@@ -4008,7 +4032,7 @@ HF__PRIVATE hf_result hf__ropes_layout(int rope_count, int points,
         !hf__mul_size(R, sizeof(double), &sizes[15]))
         return HF_ERROR_OVERFLOW;
     sizes[12] = sizes[13] = sizes[14] = R * sizeof(float);
-    sizes[16] = R;
+    sizes[16] = sizes[17] = R;
     for (i = 0; i < HF__ROPE_ARRAYS; ++i) {
         size_t s = sizes[i] + 63u;
         if (s < sizes[i] || t + s < t) return HF_ERROR_OVERFLOW;
@@ -4068,6 +4092,7 @@ HFDEF hf_result hf_ropes_init(hf_ropes *ropes, int rope_count, int points,
     ropes->length = (float *)arr[14];
     ropes->time = (double *)arr[15];
     ropes->mode = (unsigned char *)arr[16];
+    ropes->root_inside = (unsigned char *)arr[17];
     /* identity frames (tangent x, normal y, bitangent cross(t, n) = z),
        current and previous */
     R = (size_t)rope_count;
@@ -4740,9 +4765,11 @@ HF__PRIVATE void hf__ropes_animated_run(hf_ropes *ro, int a, int b,
 
 /* A collider ready for the row kernels: base point, capsule axis e and
    1 / |e|^2 (0 for a sphere or a zero-length capsule: a point, so a
-   sphere), and the radius grown by the margin. */
+   sphere), the radius grown by the margin, and the depth below which a
+   rope's root counts as inside (the radius less 1e-4 of it and 1 um, so
+   roots on the surface, rounded either way, do not). */
 typedef struct hf__col_prep {
-    float a[3], e[3], inv, rr;
+    float a[3], e[3], inv, rr, inner;
 } hf__col_prep;
 
 HF__PRIVATE hf__col_prep hf__collider_prep(const hf_collider *c, float margin)
@@ -4757,6 +4784,7 @@ HF__PRIVATE hf__col_prep hf__collider_prep(const hf_collider *c, float margin)
     l2 = k.e[0] * k.e[0] + k.e[1] * k.e[1] + k.e[2] * k.e[2];
     k.inv = l2 > 1e-20f ? 1.0f / l2 : 0.0f;
     k.rr = c->radius + margin;
+    k.inner = c->radius * 0.9999f - 1e-6f;
     return k;
 }
 
@@ -4868,95 +4896,244 @@ HF__PRIVATE void hf__ropes_collide_row(hf_ropes *ro, const float *F, int j,
         hf__col_push_out(&k_, X + r, Y + r, Z + r, nx[r], ny[r], nz[r]);
 }
 
-/* One collider against point row j (>= 1) of ropes [a, b) right after an
-   FTL placement: a point inside turns about its parent p, keeping its
-   distance L, onto the nearest direction that clears the collider. Locally
-   the collider is the ball of radius rr around the closest axis point c to
-   the point; with n = (p - c) / |p - c| and rho = |p - c|, the child
-   p + L d is outside that ball iff
-       d . n >= (rr^2 - rho^2 - L^2) / (2 L rho) = cmin,
-   so d is moved onto the cone d . n = cmin. A radial push then covers what
-   the local ball misses (capsule ends, a parent inside the margin). */
-HF__PRIVATE void hf__ropes_collide_ftl_row(hf_ropes *ro, const float *F,
-                                           int j, int a, int b,
-                                           const hf_collider *c, float margin)
+/* Follow-the-leader collisions: a point inside a collider turns about its
+   parent, keeping its distance L, onto the nearest direction that clears
+   every collider. Against the ball of radius rr around a point c (the
+   closest axis point to the child), with m = (p - c) / |p - c| and
+   rho = |p - c|, the child p + L d is outside iff
+       d . m >= (rr^2 - rho^2 - L^2) / (2 L rho) = cmin,
+   so d is turned onto the cone d . m = cmin. A capsule is the union of
+   such balls along its axis: the turn is repeated with the new closest
+   point, collider after collider, until no collider holds the point
+   (HF__FTL_ROUNDS at most). Where no direction clears them all
+   (overlapping proxies, a pinched gap) the length is kept and the
+   direction seen with the least penetration wins. A collider that holds
+   the rope's root is, for that rope, shrunk to the root's distance from
+   its axis, so a root inside a proxy neither stretches nor throws its
+   rope. */
+#define HF__FTL_ROUNDS 8
+
+/* Colliders prepared once per row call; further ones per use. */
+#define HF__ROPE_PREP 8
+
+/* The radius collider k has for a rope whose root is at `root`: rr, or
+   the root's distance from the axis where the root is inside the collider
+   (margin aside: a root in the margin band keeps it). */
+HF__PRIVATE float hf__col_radius_for(const hf__col_prep *k, const float *root)
 {
-    size_t R = (size_t)ro->rope_count;
-    const float *nx = HF__ROW(F, 6, R), *ny = HF__ROW(F, 7, R), *nz = HF__ROW(F, 8, R),
-                *tx = HF__ROW(F, 3, R), *ty = HF__ROW(F, 4, R), *tz = HF__ROW(F, 5, R);
-    const float *X0 = HF__ROW(ro->x, j - 1, R), *Y0 = HF__ROW(ro->y, j - 1, R),
-                *Z0 = HF__ROW(ro->z, j - 1, R);
-    const float *L = HF__ROW(ro->rest_length, j - 1, R);
-    float *HF__RESTRICT X = HF__ROW(ro->x, j, R);
-    float *HF__RESTRICT Y = HF__ROW(ro->y, j, R);
-    float *HF__RESTRICT Z = HF__ROW(ro->z, j, R);
-    const hf__col_prep k_ = hf__collider_prep(c, margin);
-    const float rr2 = k_.rr * k_.rr;
-    int r;
-    for (r = a; r < b; ++r) {
+    float c[3], d[3];
+    const float d2 = hf__col_closest(k, root[0], root[1], root[2], c, d);
+    return k->inner > 0.0f && d2 < k->inner * k->inner ? HF_SQRTF(d2) : k->rr;
+}
+
+/* The cap of directions d that the ball (c, rr) forbids to a child at
+   distance l from parent p: d . m < cmin (see above). A parent on the
+   axis takes the root normal n for m. */
+HF__PRIVATE void hf__ftl_cap(const float *p, float l, const float *c, float rr,
+                             const float *n, float *m, float *cmin)
+{
+    float rho2, rho;
+    int k;
+    for (k = 0; k < 3; ++k) m[k] = p[k] - c[k];
+    rho2 = hf__dot3(m, m);
+    if (rho2 > 1e-24f) {
+        rho = HF_SQRTF(rho2);
+        for (k = 0; k < 3; ++k) m[k] /= rho;
+    } else {
+        rho = 0.0f;
+        for (k = 0; k < 3; ++k) m[k] = n[k];
+    }
+    /* aim a hair outside the ball, so rounding does not leave the point a
+       float step inside */
+    rr += 1e-6f * (rr + l);
+    *cmin = rho > 0.0f ? (rr * rr - rho * rho - l * l) / (2.0f * l * rho)
+                       : 1.0f;
+    *cmin = *cmin > 1.0f ? 1.0f : (*cmin < -1.0f ? -1.0f : *cmin);
+}
+
+/* The unit direction nearest u on the cap's edge d . m = cmin: u's
+   sideways part kept; where u has none, the root tangent t's. */
+HF__PRIVATE void hf__ftl_onto_cap(const float *u, const float *m, float cmin,
+                                  const float *t, float *d)
+{
+    float v[3], v2, s;
+    const float dn = hf__dot3(u, m);
+    int k;
+    for (k = 0; k < 3; ++k) v[k] = u[k] - m[k] * dn;
+    v2 = hf__dot3(v, v);
+    if (v2 < 1e-12f) {
+        const float tn = hf__dot3(t, m);
+        for (k = 0; k < 3; ++k) v[k] = t[k] - m[k] * tn;
+        v2 = hf__dot3(v, v);
+        if (v2 < 1e-12f) {
+            v[0] = v[1] = v[2] = 0.0f;
+            v2 = 1.0f;
+        }
+    }
+    s = HF_SQRTF(1.0f - cmin * cmin) / HF_SQRTF(v2);
+    for (k = 0; k < 3; ++k) d[k] = m[k] * cmin + v[k] * s;
+}
+
+/* Where the edges of two caps cross: up to two unit directions d with
+   d . m1 = c1 and d . m2 = c2. Returns how many. */
+HF__PRIVATE int hf__ftl_cap_pair(const float *m1, float c1, const float *m2,
+                                 float c2, float *d)
+{
+    const float mu = hf__dot3(m1, m2), det = 1.0f - mu * mu;
+    float x[3], al, be, g2, h2;
+    int k;
+    if (!(det > 1e-8f)) return 0;
+    al = (c1 - mu * c2) / det;
+    be = (c2 - mu * c1) / det;
+    hf__cross3(x, m1, m2);
+    h2 = al * al + be * be + 2.0f * al * be * mu;
+    g2 = (1.0f - h2) / det;
+    if (!(g2 >= 0.0f)) return 0;
+    g2 = HF_SQRTF(g2);
+    for (k = 0; k < 3; ++k) {
+        d[k] = al * m1[k] + be * m2[k] + g2 * x[k];
+        d[3 + k] = al * m1[k] + be * m2[k] - g2 * x[k];
+    }
+    /* unit again: near-parallel edges lose bits in al and be, and the
+       child must stay exactly l from its parent */
+    for (k = 0; k < 2; ++k) {
+        float *dk = d + 3 * k, n2 = hf__dot3(dk, dk);
+        if (!(n2 > 0.25f && n2 < 4.0f)) return 0;
+        n2 = 1.0f / HF_SQRTF(n2);
+        dk[0] *= n2;
+        dk[1] *= n2;
+        dk[2] *= n2;
+    }
+    return 2;
+}
+
+/* The deepest penetration of q into the colliders (radii for this rope),
+   0 when outside all; *deepest: that collider, -1 when none. */
+HF__PRIVATE float hf__ftl_penetration(const hf__col_prep *k, const float *rr,
+                                      int ncol, const float *q, int *deepest)
+{
+    float worst = 0.0f;
+    int c;
+    *deepest = -1;
+    for (c = 0; c < ncol; ++c) {
         float cc[3], dd[3];
-        const float d2 = hf__col_closest(&k_, X[r], Y[r], Z[r], cc, dd);
-        if (d2 < rr2 && L[r] > 0.0f) {
-            /* n: from c to the parent */
-            float mx = X0[r] - cc[0], my = Y0[r] - cc[1], mz = Z0[r] - cc[2];
-            float rho2 = mx * mx + my * my + mz * mz, rho, cmin, dn, s2;
-            float ux = X[r] - X0[r], uy = Y[r] - Y0[r], uz = Z[r] - Z0[r];
-            float u2 = ux * ux + uy * uy + uz * uz, l = L[r], vx, vy, vz, v2;
-            if (rho2 > 1e-24f) {
-                rho = HF_SQRTF(rho2);
-                mx /= rho;
-                my /= rho;
-                mz /= rho;
-            } else { /* parent on the axis: out along the root normal */
-                rho = 0.0f;
-                mx = nx[r];
-                my = ny[r];
-                mz = nz[r];
-            }
-            if (u2 > 1e-24f) {
-                float iu = 1.0f / HF_SQRTF(u2);
-                ux *= iu;
-                uy *= iu;
-                uz *= iu;
-            } else {
-                ux = mx;
-                uy = my;
-                uz = mz;
-            }
-            cmin = rho > 0.0f ? (rr2 - rho * rho - l * l) / (2.0f * l * rho)
-                              : 1.0f;
-            cmin = cmin > 1.0f ? 1.0f : (cmin < -1.0f ? -1.0f : cmin);
-            dn = ux * mx + uy * my + uz * mz;
-            if (dn < cmin) {
-                /* keep the sideways part of the direction; when there is
-                   none, take the root tangent's */
-                vx = ux - mx * dn;
-                vy = uy - my * dn;
-                vz = uz - mz * dn;
-                v2 = vx * vx + vy * vy + vz * vz;
-                if (v2 < 1e-12f) {
-                    float tn = tx[r] * mx + ty[r] * my + tz[r] * mz;
-                    vx = tx[r] - mx * tn;
-                    vy = ty[r] - my * tn;
-                    vz = tz[r] - mz * tn;
-                    v2 = vx * vx + vy * vy + vz * vz;
-                    if (v2 < 1e-12f) {
-                        vx = 0.0f;
-                        vy = 0.0f;
-                        vz = 0.0f;
-                        v2 = 1.0f;
-                    }
-                }
-                s2 = HF_SQRTF(1.0f - cmin * cmin) / HF_SQRTF(v2);
-                X[r] = X0[r] + l * (mx * cmin + vx * s2);
-                Y[r] = Y0[r] + l * (my * cmin + vy * s2);
-                Z[r] = Z0[r] + l * (mz * cmin + vz * s2);
+        const float d2 = hf__col_closest(k + c, q[0], q[1], q[2], cc, dd);
+        if (d2 < rr[c] * rr[c]) {
+            const float pen = rr[c] - HF_SQRTF(d2);
+            if (*deepest < 0 || pen > worst) {
+                worst = pen;
+                *deepest = c;
             }
         }
-        /* what the local ball missed (capsule ends, a parent inside the
-           margin, rounding): straight out */
-        if (d2 < rr2)
-            hf__col_push_out(&k_, X + r, Y + r, Z + r, nx[r], ny[r], nz[r]);
+    }
+    return worst;
+}
+
+/* One point after its FTL placement, against colliders k[0 .. ncol) (at
+   most HF__ROPE_PREP at a time: the caller walks longer lists in
+   batches). Each round makes the caps of the colliders near the best
+   point so far (a capsule's from its axis point closest to that point),
+   then tries every direction that can be nearest and clear: u turned
+   onto each cap's edge, and the crossings of every two edges; the one
+   with the least penetration, then the nearest to u, wins. */
+HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
+                                       const float *p, float l,
+                                       const float *root, const float *n,
+                                       const float *t, const hf__col_prep *k,
+                                       int ncol)
+{
+    float q[3], best[3], u[3], rr[HF__ROPE_PREP];
+    float m[2 * HF__ROPE_PREP][3], cmin[2 * HF__ROPE_PREP], best_pen, best_dot;
+    int c, e, round, deepest, ncap;
+    q[0] = *x;
+    q[1] = *y;
+    q[2] = *z;
+    for (c = 0; c < ncol; ++c) rr[c] = hf__col_radius_for(k + c, root);
+    best_pen = hf__ftl_penetration(k, rr, ncol, q, &deepest);
+    if (deepest < 0 || !(l > 0.0f)) return; /* outside; or a zero segment */
+    for (c = 0; c < 3; ++c) u[c] = q[c] - p[c];
+    best_dot = hf__dot3(u, u);
+    if (best_dot > 1e-24f) {
+        best_dot = 1.0f / HF_SQRTF(best_dot);
+        for (c = 0; c < 3; ++c) u[c] *= best_dot;
+    } else {
+        for (c = 0; c < 3; ++c) u[c] = n[c];
+    }
+    HF_MEMCPY(best, q, sizeof q);
+    best_dot = -2.0f;
+    for (round = 0; round < HF__FTL_ROUNDS && best_pen > 0.0f; ++round) {
+        float from[3];
+        const float pen0 = best_pen;
+        /* the current best direction: turning it, not u, walks along a
+           capsule instead of back into the part it left */
+        for (c = 0; c < 3; ++c) from[c] = (best[c] - p[c]) / l;
+        ncap = 0;
+        for (c = 0; c < ncol; ++c) {
+            float cc[3], dd[3];
+            hf__col_closest(k + c, best[0], best[1], best[2], cc, dd);
+            hf__ftl_cap(p, l, cc, rr[c], n, m[ncap], &cmin[ncap]);
+            ++ncap;
+            if (k[c].inv > 0.0f) {
+                /* a capsule: also the ball at the axis point nearest the
+                   parent, the one that bounds a child close to it */
+                hf__col_closest(k + c, p[0], p[1], p[2], cc, dd);
+                hf__ftl_cap(p, l, cc, rr[c], n, m[ncap], &cmin[ncap]);
+                ++ncap;
+            }
+        }
+        for (c = 0; c < ncap; ++c)
+            for (e = c; e < ncap; ++e) {
+                float d[6];
+                int nd, i, w;
+                if (e == c) {
+                    hf__ftl_onto_cap(from, m[c], cmin[c], t, d);
+                    hf__ftl_onto_cap(u, m[c], cmin[c], t, d + 3);
+                    nd = 2;
+                } else {
+                    nd = hf__ftl_cap_pair(m[c], cmin[c], m[e], cmin[e], d);
+                }
+                for (i = 0; i < nd; ++i) {
+                    float cand[3], pen, dot;
+                    for (w = 0; w < 3; ++w) cand[w] = p[w] + l * d[3 * i + w];
+                    pen = hf__ftl_penetration(k, rr, ncol, cand, &deepest);
+                    dot = hf__dot3(d + 3 * i, u);
+                    if (pen < best_pen || (pen == best_pen && dot > best_dot)) {
+                        best_pen = pen;
+                        best_dot = dot;
+                        HF_MEMCPY(best, cand, sizeof cand);
+                    }
+                }
+            }
+        if (!(best_pen < pen0)) break; /* no progress */
+    }
+    *x = best[0];
+    *y = best[1];
+    *z = best[2];
+}
+
+/* Every collider against point row j (>= 1) of ropes [a, b) right after
+   an FTL placement; F: the frame rows of the sub-step. */
+HF__PRIVATE void hf__ropes_collide_ftl_row(hf_ropes *ro, const float *F,
+                                           int j, int a, int b,
+                                           const hf_collider *col, int ncol,
+                                           float margin)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const float *L = HF__ROW(ro->rest_length, j - 1, R);
+    hf__col_prep k[HF__ROPE_PREP];
+    int r, c0, c, nk;
+    for (c0 = 0; c0 < ncol; c0 += HF__ROPE_PREP) {
+        nk = ncol - c0 < HF__ROPE_PREP ? ncol - c0 : HF__ROPE_PREP;
+        for (c = 0; c < nk; ++c) k[c] = hf__collider_prep(col + c0 + c, margin);
+        for (r = a; r < b; ++r) {
+            const size_t o = (size_t)j * R + (size_t)r, o0 = o - R;
+            const float p[3] = {ro->x[o0], ro->y[o0], ro->z[o0]};
+            const float root[3] = {ro->x[r], ro->y[r], ro->z[r]};
+            const float n[3] = {F[6 * R + r], F[7 * R + r], F[8 * R + r]};
+            const float t[3] = {F[3 * R + r], F[4 * R + r], F[5 * R + r]};
+            hf__ftl_collide_point(ro->x + o, ro->y + o, ro->z + o, p, L[r],
+                                  root, n, t, k, nk);
+        }
     }
 }
 
@@ -5225,7 +5402,7 @@ HF__PRIVATE void hf__ropes_solve_ref(hf_ropes *ro, const float *F, int a,
     const int P = ro->points;
     const float *nx = HF__ROW(F, 6, R), *ny = HF__ROW(F, 7, R),
                 *nz = HF__ROW(F, 8, R);
-    int j, r, it, c;
+    int j, r, it;
         for (it = 0; it < st->iterations; ++it) {
         for (j = 1; j < P; ++j) {
             float *HF__RESTRICT X0 = HF__ROW(ro->x, j - 1, R);
@@ -5269,10 +5446,9 @@ HF__PRIVATE void hf__ropes_solve_ref(hf_ropes *ro, const float *F, int a,
                 /* FTL never moves a parent again, so colliding each
                    point right after placing it leaves the whole rope
                    outside when the pass ends */
-                if (st->ftl)
-                    for (c = 0; c < ncol; ++c)
-                        hf__ropes_collide_ftl_row(ro, F, j, a, b, col + c,
-                                                  st->margin);
+                if (st->ftl && ncol > 0)
+                    hf__ropes_collide_ftl_row(ro, F, j, a, b, col, ncol,
+                                              st->margin);
             } else {
                 for (r = a; r < b; ++r) {
                     float dx = X1[r] - X0[r], dy = Y1[r] - Y0[r],
@@ -5329,21 +5505,52 @@ HF__PRIVATE void hf__ropes_mark_far_ref(const hf_ropes *ro, int j, int a,
 }
 
 #if HF__SSE
-/* Colliders whose lane copies hf__ropes_sim_run prepares once; further
-   ones are prepared per use. */
-#define HF__ROPE_PREP 8
 
 
-/* Collisions of point row j of ropes [r, r + 4), at xyz[0..2]: every
-   collider in order; a point hf__col_hits_sse finds inside goes through the
-   scalar row kernel on its own. xyz is read back after a hit. */
-HF__PRIVATE void hf__col_row_sse(hf_ropes *ro, const float *F, int j, int r,
-                              int ftl, const hf_collider *col, int ncol,
-                              const hf__col_prep4 *pre, float margin,
-                              __m128 *xyz)
+/* Which colliders hold a point of four (bit i: lane i), every collider
+   tested with hf__col_hits_sse. */
+HF__PRIVATE int hf__col_any_sse(const hf_collider *col, int ncol,
+                                const hf__col_prep4 *pre, float margin,
+                                const __m128 *xyz)
 {
-    size_t o = (size_t)j * (size_t)ro->rope_count + (size_t)r;
+    int c, m = 0;
+    for (c = 0; c < ncol && m != 15; ++c) {
+        if (c < HF__ROPE_PREP) {
+            m |= hf__col_hits_sse(pre + c, xyz[0], xyz[1], xyz[2]);
+        } else {
+            const hf__col_prep k = hf__collider_prep(col + c, margin);
+            hf__col_prep4 k4;
+            hf__col_prep_sse(&k, &k4);
+            m |= hf__col_hits_sse(&k4, xyz[0], xyz[1], xyz[2]);
+        }
+    }
+    return m;
+}
+
+/* Collisions of point row j of ropes [r, r + 4), at xyz[0..2]: a lane
+   that some collider holds goes through the scalar kernel on its own
+   (ftl: hf__ropes_collide_ftl_row with every collider; else the radial
+   push of each collider in order). xyz is read back after a hit. */
+HF__PRIVATE void hf__col_row_sse(hf_ropes *ro, const float *F, int j, int r,
+                                 int ftl, const hf_collider *col, int ncol,
+                                 const hf__col_prep4 *pre, float margin,
+                                 __m128 *xyz)
+{
+    const size_t o = (size_t)j * (size_t)ro->rope_count + (size_t)r;
     int c, m, i;
+    if (ftl) {
+        m = hf__col_any_sse(col, ncol, pre, margin, xyz);
+        for (i = 0; i < 4; ++i)
+            if ((m >> i) & 1)
+                hf__ropes_collide_ftl_row(ro, F, j, r + i, r + i + 1, col,
+                                          ncol, margin);
+        if (m) {
+            xyz[0] = HF__LD(ro->x + o);
+            xyz[1] = HF__LD(ro->y + o);
+            xyz[2] = HF__LD(ro->z + o);
+        }
+        return;
+    }
     for (c = 0; c < ncol; ++c) {
         if (c < HF__ROPE_PREP) {
             m = hf__col_hits_sse(pre + c, xyz[0], xyz[1], xyz[2]);
@@ -5355,14 +5562,9 @@ HF__PRIVATE void hf__col_row_sse(hf_ropes *ro, const float *F, int j, int r,
         }
         if (!m) continue;
         for (i = 0; i < 4; ++i)
-            if ((m >> i) & 1) {
-                if (ftl)
-                    hf__ropes_collide_ftl_row(ro, F, j, r + i, r + i + 1,
-                                              col + c, margin);
-                else
-                    hf__ropes_collide_row(ro, F, j, r + i, r + i + 1, col + c,
-                                          margin);
-            }
+            if ((m >> i) & 1)
+                hf__ropes_collide_row(ro, F, j, r + i, r + i + 1, col + c,
+                                      margin);
         xyz[0] = HF__LD(ro->x + o);
         xyz[1] = HF__LD(ro->y + o);
         xyz[2] = HF__LD(ro->z + o);
@@ -5909,6 +6111,35 @@ HF__PRIVATE void hf__rope_step_setup(hf__rope_step *st,
         }
 }
 
+/* root_inside of ropes [a, b): whether the root sits inside a collider
+   (below its surface, the margin aside), which is when the collisions
+   shrink that collider for the rope. */
+HF__PRIVATE void hf__ropes_mark_roots(hf_ropes *ro, int a, int b,
+                                      const hf_collider *col, int ncol,
+                                      float margin)
+{
+    int r, c;
+    for (r = a; r < b; ++r) ro->root_inside[r] = 0;
+    for (c = 0; c < ncol; ++c) {
+        const hf__col_prep k = hf__collider_prep(col + c, margin);
+        for (r = a; r < b; ++r) {
+            const float root[3] = {ro->x[r], ro->y[r], ro->z[r]};
+            if (hf__col_radius_for(&k, root) < k.rr) ro->root_inside[r] = 1;
+        }
+    }
+}
+
+HFDEF hf_result hf_ropes_roots_inside(const hf_ropes *ropes, int first,
+                                      int count, int *out_count)
+{
+    int r, n = 0;
+    if (!hf__ropes_ok(ropes) || !out_count) return HF_ERROR_NULL_POINTER;
+    if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
+    for (r = first; r < first + count; ++r) n += ropes->root_inside[r] != 0;
+    *out_count = n;
+    return HF_OK;
+}
+
 HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
                               float dt, const hf_rope_params *params,
                               const hf_collider *colliders,
@@ -5942,6 +6173,8 @@ HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
             hf__ropes_sim_run(ropes, r, b, &st, colliders, collider_count);
         r = b;
     }
+    hf__ropes_mark_roots(ropes, first, end, colliders, collider_count,
+                         prm.collision_margin);
     /* this frame becomes the start of the next step's interpolation */
     for (k = 0; k < 12; ++k)
         HF_MEMCPY(ropes->frame + (size_t)(12 + k) * (size_t)ropes->rope_count +
@@ -6125,12 +6358,22 @@ HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
 
 HFDEF int hf_lod_strand_count(int total, float lod)
 {
-    float n;
-    int drawn;
+    /* round(lod * total) exactly, in integers: lod = m 2^-k with a 24-bit
+       m, so m * total fits 55 bits (float arithmetic is off by a few
+       strands above 2^24) */
+    uint32_t bits, m;
+    uint64_t prod;
+    int e, k, drawn;
     if (total <= 0 || !(lod > 0.0f)) return 0;
     if (lod >= 1.0f) return total;
-    n = lod * (float)total + 0.5f;
-    drawn = n >= (float)total ? total : (int)n;
+    HF_MEMCPY(&bits, &lod, sizeof bits);
+    e = (int)((bits >> 23) & 0xffu);
+    m = bits & 0x7fffffu;
+    if (e) m |= 0x800000u; else e = 1;
+    k = 150 - e; /* lod < 1: k >= 24 */
+    prod = (uint64_t)m * (uint64_t)total;
+    drawn = k >= 64 ? 0
+                    : (int)((prod + ((uint64_t)1 << (k - 1))) >> k);
     return drawn < 1 ? 1 : drawn;
 }
 
@@ -6306,6 +6549,58 @@ typedef struct hf__rframe {
     float s[3][HF__RROW]; /* unit sides */
 } hf__rframe;
 
+/* Below this sin^2 of the angle between view and tangent a side is
+   computed in double (hf__side_precise): float cancellation in the cross
+   product tilts it by about 1e-7 / sin, 2e-6 at this bound. */
+#define HF__SIDE_SIN2 2.5e-3f
+
+/* The side of point j in double: unit cross(t, v) rounded once. 0 when t
+   and v are parallel (to 1e-6) or the eye sits on the point. */
+HF__PRIVATE int hf__side_precise(hf__rframe *fr, const float *pts, int j,
+                                 const hf_ribbon_params *params)
+{
+    double t[3], v[3], c[3], c2, v2;
+    int k;
+    for (k = 0; k < 3; ++k) {
+        t[k] = (double)fr->t[k][4 + j];
+        v[k] = params->orthographic
+                   ? -(double)params->view_dir[k]
+                   : (double)params->eye[k] - (double)pts[3 * j + k];
+    }
+    c[0] = t[1] * v[2] - t[2] * v[1];
+    c[1] = t[2] * v[0] - t[0] * v[2];
+    c[2] = t[0] * v[1] - t[1] * v[0];
+    c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    if (!(c2 > 1e-12 * v2 && c2 > 1e-300 && c2 < 1e300)) return 0;
+    c2 = 1.0 / HF_SQRT(c2);
+    for (k = 0; k < 3; ++k) fr->s[k][4 + j] = (float)(c[k] * c2);
+    return 1;
+}
+
+/* Point j takes point `from`'s side minus its component along j's own
+   tangent, renormalised; a fixed perpendicular of the tangent where the
+   two are parallel. */
+HF__PRIVATE void hf__side_borrow(hf__rframe *fr, int j, int from)
+{
+    float t[3], s[3], st, l2;
+    int k;
+    for (k = 0; k < 3; ++k) {
+        t[k] = fr->t[k][4 + j];
+        s[k] = fr->s[k][4 + from];
+    }
+    st = hf__dot3(s, t);
+    for (k = 0; k < 3; ++k) s[k] -= st * t[k];
+    l2 = hf__dot3(s, s);
+    if (l2 > 1e-12f) {
+        l2 = 1.0f / HF_SQRTF(l2);
+        for (k = 0; k < 3; ++k) s[k] *= l2;
+    } else {
+        hf__any_perp(t, s);
+    }
+    for (k = 0; k < 3; ++k) fr->s[k][4 + j] = s[k];
+}
+
 /* The reference: unit tangents and sides of one strand, a point at a time
    (see hf_ribbons for the rules on degenerate points). The SSE kernel
    below gives the same bytes where it applies. */
@@ -6347,7 +6642,10 @@ HF__PRIVATE void hf__strand_frame_ref(const float *pts, int P,
     for (j = first_t - 1; j >= 0; --j)
         for (k = 0; k < 3; ++k) fr->t[k][4 + j] = fr->t[k][5 + j];
     /* sides: cross(t, v), v = eye - p or -view_dir; d now holds the cross
-       products and inv their reciprocal lengths */
+       products and inv their reciprocal lengths. In float where the view
+       is at least HF__SIDE_SIN2 off the tangent (|c|^2 = |v|^2 sin^2, as
+       |t| = 1); nearer, float cancellation would tilt the side, so those
+       points are marked (-2) and done in double below */
     for (j = 0; j < P; ++j) {
         float v[3], t[3];
         for (k = 0; k < 3; ++k) {
@@ -6357,35 +6655,37 @@ HF__PRIVATE void hf__strand_frame_ref(const float *pts, int P,
         }
         hf__cross3(d + 3 * j, t, v);
         l2[j] = hf__dot3(d + 3 * j, d + 3 * j);
-        /* |t| = 1, so |c|^2 = |v|^2 sin^2: parallel or eye-on-point below */
         inv[j] = hf__dot3(v, v); /* parked: |v|^2 */
-        if (!(l2[j] > 1e-12f * inv[j] && l2[j] > 1e-30f &&
+        if (!(l2[j] > HF__SIDE_SIN2 * inv[j] && l2[j] > 1e-30f &&
               hf__finitef(l2[j])))
-            l2[j] = -1.0f; /* marks "no side here" */
-        else if (first_ok < 0)
-            first_ok = j;
+            l2[j] = -2.0f;
     }
     for (j = 0; j < P; ++j) inv[j] = l2[j] > 0.0f ? l2[j] : 1.0f;
     hf__inv_sqrt_n(inv, inv, P);
+    for (j = 0; j < P; ++j) {
+        if (l2[j] > 0.0f)
+            for (k = 0; k < 3; ++k) fr->s[k][4 + j] = d[3 * j + k] * inv[j];
+        else if (hf__side_precise(fr, pts, j, params))
+            l2[j] = 1.0f;
+        else
+            l2[j] = -1.0f; /* no side: parallel view, or the eye on p */
+        if (l2[j] > 0.0f && first_ok < 0) first_ok = j;
+    }
     if (first_ok < 0) {
         /* no point has a side: a fixed perpendicular of the tangent */
-        float t0[3];
+        float t0[3], s0[3];
         for (k = 0; k < 3; ++k) t0[k] = fr->t[k][4];
-        hf__any_perp(t0, d);
+        hf__any_perp(t0, s0);
+        for (k = 0; k < 3; ++k) fr->s[k][4] = s0[k];
         first_ok = 0;
         l2[0] = 1.0f;
-        inv[0] = 1.0f;
     }
-    for (j = 0; j < P; ++j)
-        for (k = 0; k < 3; ++k) {
-            if (l2[j] > 0.0f)
-                fr->s[k][4 + j] = d[3 * j + k] * inv[j];
-            else if (j > first_ok)
-                fr->s[k][4 + j] = fr->s[k][3 + j];
-        }
-    /* points before the first side borrow it */
-    for (j = first_ok - 1; j >= 0; --j)
-        for (k = 0; k < 3; ++k) fr->s[k][4 + j] = fr->s[k][5 + j];
+    /* a point without a side borrows its neighbour's (the previous one,
+       before the first side the next one), made perpendicular to its own
+       tangent */
+    for (j = first_ok + 1; j < P; ++j)
+        if (l2[j] < 0.0f) hf__side_borrow(fr, j, j - 1);
+    for (j = first_ok - 1; j >= 0; --j) hf__side_borrow(fr, j, j + 1);
     for (j = 4 + P; j < end - 4; ++j)
         for (k = 0; k < 3; ++k) {
             fr->t[k][j] = fr->t[k][3 + P];
@@ -6409,15 +6709,17 @@ HF__PRIVATE __m128 hf__next_sse(__m128 c, __m128 n)
 
 /* hf__strand_frame_ref four points at a time, with the same IEEE operations
    per point. Returns 0 and leaves the strand to the reference when a point
-   is not finite (*finite = 0) or has no tangent or no side: the rare cases
-   whose rules look along the strand. */
+   is not finite (*finite = 0), has no tangent, or sees the view within
+   HF__SIDE_SIN2 of its tangent: the rare cases whose rules look along the
+   strand or need double precision. */
 HF__PRIVATE int hf__strand_frame_sse(const float *pts, int P,
                                      const hf_ribbon_params *params,
                                      hf__rframe *fr, int *finite)
 {
     const int G = (P + 3) >> 2, ortho = params->orthographic != 0;
     const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
-    const __m128 tiny = _mm_set1_ps(1e-30f), eps = _mm_set1_ps(1e-12f);
+    const __m128 tiny = _mm_set1_ps(1e-30f);
+    const __m128 side_sin2 = _mm_set1_ps(HF__SIDE_SIN2);
     const __m128 big = _mm_set1_ps(3.40282347e+38f);
     const __m128i lane = _mm_setr_epi32(0, 1, 2, 3);
     __m128 acc = zero, e[3];
@@ -6494,7 +6796,7 @@ HF__PRIVATE int hf__strand_frame_sse(const float *pts, int P,
         vv = _mm_add_ps(_mm_add_ps(_mm_mul_ps(v[0], v[0]),
                                    _mm_mul_ps(v[1], v[1])),
                         _mm_mul_ps(v[2], v[2]));
-        ok2 = _mm_and_ps(_mm_cmpgt_ps(c2, _mm_mul_ps(eps, vv)),
+        ok2 = _mm_and_ps(_mm_cmpgt_ps(c2, _mm_mul_ps(side_sin2, vv)),
                          _mm_and_ps(_mm_cmpgt_ps(c2, tiny),
                                     _mm_cmple_ps(c2, big)));
         bad |= _mm_movemask_ps(_mm_andnot_ps(_mm_and_ps(ok, ok2), live));
@@ -8325,6 +8627,7 @@ HFDEF hf_result hf_fur_get_info(const hf_fur *f, hf_fur_info *info)
     info->lod = f->lod;
     info->width_scale = f->width_scale;
     info->triangle_count = f->triangle_count;
+    hf_ropes_roots_inside(f->ropes, 0, f->guide_count, &info->roots_inside);
     info->guide_points = f->guide_points;
     info->strand_points = f->strand_points;
     info->strands = f->strands;

@@ -3438,9 +3438,9 @@ static void test_ropes_memory_init_create(void)
         CHECK_EQ_INT(hf_ropes_memory_size(0x7fffffff, 0x7fffffff, &size),
                      HF_ERROR_OVERFLOW);
     CHECK_EQ_INT(hf_ropes_memory_size(1000, 16, &size), HF_OK);
-    /* 10 point arrays, 56 floats + 1 double + 1 byte per rope, padding */
-    CHECK(size >= 1000u * 16u * 40u + 1000u * (56u * 4u + 9u));
-    CHECK(size <= 1000u * 16u * 40u + 1000u * (56u * 4u + 9u) + 64u * 18u);
+    /* 10 point arrays, 56 floats + 1 double + 2 bytes per rope, padding */
+    CHECK(size >= 1000u * 16u * 40u + 1000u * (56u * 4u + 10u));
+    CHECK(size <= 1000u * 16u * 40u + 1000u * (56u * 4u + 10u) + 64u * 19u);
     CHECK_EQ_INT(hf_ropes_memory_size(3, 5, &size2), HF_OK);
 
     mem = (unsigned char *)malloc(size2 + 1);
@@ -4378,6 +4378,206 @@ static void test_defaults_explicit_zero(void)
     tr_close(&a);
 }
 
+/* ---- collisions that never stretch ---- */
+
+/* One rope hanging past a capsule: one step keeps every segment (the
+   capsule turned the child onto a local ball of one axis point, and a
+   radial push then cut segment 9-10 short by 5.7 %). */
+static void test_ropes_capsule_keeps_length(void)
+{
+    enum { P = 16 };
+    float pos[3 * P], now[3 * P], root[3] = {0, 0, 0}, nrm[3] = {0, -1, 0};
+    float tan[3] = {1, 0, 0}, st = 1.0f;
+    double deepest = -1.0;
+    hf_rope_params p;
+    hf_collider cap;
+    tr_set s;
+    int j;
+    if (!tr_open(&s, 1, P)) { CHECK(0); return; }
+    tr_straight(pos, 0, P, root, nrm, 0.3f);
+    CHECK_EQ_INT(hf_ropes_set_rest(&s.ro, 0, 1, pos, 0, root, nrm, tan, 0), HF_OK);
+    memset(&p, 0, sizeof p);
+    memset(&cap, 0, sizeof cap);
+    cap.type = HF_COLLIDER_CAPSULE;
+    cap.a[0] = -0.27f; cap.a[1] = -0.25f;
+    cap.b[0] = 0.13f; cap.b[1] = -0.25f;
+    cap.radius = 0.06f;
+    CHECK_EQ_INT(hf_ropes_step(&s.ro, 0, 1, 1.0f / 60.0f, &p, &cap, 1), HF_OK);
+    CHECK_EQ_INT(hf_ropes_max_stretch(&s.ro, 0, 1, &st), HF_OK);
+    tr_snapshot(&s.ro, now);
+    for (j = 1; j < P; ++j) {
+        double in = cap.radius - tr_dist_seg(now + 3 * j, &cap);
+        if (in > deepest) deepest = in;
+    }
+    CHECK(st <= 1e-4f);
+    CHECK(deepest <= 1e-3);
+    tr_close(&s);
+}
+
+/* 64 guides on the 0.1 m head swinging 0.2 m at 1 Hz; returns the worst
+   stretch over 2 s with collider c, and the roots counted inside. */
+static float t_head_swing(const hf_collider *c0, int *roots_inside)
+{
+    enum { R = 64, P = 16, FRAMES = 120 };
+    static float rest[3 * R * P];
+    float root[3 * R], nrm[3 * R], tan[3 * R], dirs[3 * R], worst = 0, st;
+    hf_collider c = *c0;
+    hf_rope_params p;
+    tr_set s;
+    int r, f;
+    if (!tr_open(&s, R, P)) return 1e9f;
+    for (r = 0; r < R; ++r) {
+        tr_on_head(r, 0.2 + 2.6 * (r / 8) / 7.0, 2 * T_PI * (r % 8) / 8.0,
+                   dirs, nrm, tan, root);
+        tr_straight(rest, r, P, root + 3 * r, dirs + 3 * r, 0.2f);
+    }
+    hf_ropes_set_rest(&s.ro, 0, R, rest, 0, root, nrm, tan, 0);
+    memset(&p, 0, sizeof p);
+    for (f = 0; f < FRAMES; ++f) {
+        float cx = (float)(0.2 * sin(2 * T_PI * (f + 1) / 60.0));
+        c.a[0] = c0->a[0] + cx;
+        c.b[0] = c0->b[0] + cx;
+        for (r = 0; r < R; ++r) root[3 * r] = cx + 0.1f * dirs[3 * r];
+        hf_ropes_set_roots(&s.ro, 0, R, root, nrm, tan, 0);
+        if (hf_ropes_step(&s.ro, 0, R, 1.0f / 60.0f, &p, &c, 1) != HF_OK)
+            worst = 1e9f;
+        hf_ropes_max_stretch(&s.ro, 0, R, &st);
+        if (!(st <= worst)) worst = st;
+    }
+    hf_ropes_roots_inside(&s.ro, 0, R, roots_inside);
+    tr_close(&s);
+    return worst;
+}
+
+/* Roots inside a collider: the collider is shrunk, for those ropes, to
+   the root's depth, so nothing stretches (a 0.12 m sphere: 10 % before;
+   a capsule through the head: 227 %; a sphere holding every root: 809 %),
+   and hf_ropes_roots_inside counts them. Roots on the surface (a collider
+   the size of the head) do not count. */
+static void test_ropes_roots_inside_colliders(void)
+{
+    hf_collider c;
+    int inside = -1;
+    float st;
+    memset(&c, 0, sizeof c);
+    c.type = HF_COLLIDER_SPHERE;
+    c.radius = 0.1f;
+    st = t_head_swing(&c, &inside);
+    CHECK(st <= 1e-4f);
+    CHECK_EQ_INT(inside, 0);
+    c.radius = 0.12f;
+    st = t_head_swing(&c, &inside);
+    CHECK(st <= 1e-4f);
+    CHECK_EQ_INT(inside, 64);
+    c.radius = 0.5f;
+    st = t_head_swing(&c, &inside);
+    CHECK(st <= 1e-4f);
+    CHECK_EQ_INT(inside, 64);
+    c.type = HF_COLLIDER_CAPSULE;
+    c.a[1] = -0.3f;
+    c.b[1] = 0.3f;
+    c.radius = 0.115f;
+    st = t_head_swing(&c, &inside);
+    CHECK(st <= 1e-4f);
+    CHECK_EQ_INT(inside, 64);
+    CHECK_EQ_INT(hf_ropes_roots_inside(NULL, 0, 1, &inside),
+                 HF_ERROR_NULL_POINTER);
+}
+
+/* A seeded soak: random spheres and capsules (overlapping one another and
+   the head; the head collider sometimes larger than the head, holding the
+   roots), roots whipped about, dt in [1/240, 1/20]: stretch at most 1e-4,
+   no NaN, no point more than 1 mm inside a collider as its rope sees it
+   (shrunk to the root's depth where it holds the root). */
+static void test_ropes_collision_soak(void)
+{
+    enum { R = 64, P = 16, FRAMES = 150, SEEDS = 12, NC = 5 };
+    static float rest[3 * R * P], now[3 * R * P];
+    float root[3 * R], nrm[3 * R], tan[3 * R], dirs[3 * R], moved[3 * R];
+    double worst_in = 0.0;
+    float worst_st = 0.0f;
+    int seed, nan_seen = 0;
+    for (seed = 0; seed < SEEDS; ++seed) {
+        hf_collider col[NC], base[NC];
+        hf_rope_params p;
+        hf_rng g;
+        tr_set s;
+        float off[3] = {0, 0, 0}, vel[3] = {0, 0, 0};
+        int nc, r, j, c, f, k;
+        if (!tr_open(&s, R, P)) { CHECK(0); return; }
+        hf_rng_seed(&g, (uint64_t)seed, 9u);
+        for (r = 0; r < R; ++r) {
+            tr_on_head(r, T_PI * (0.05 + 0.9 * hf_rng_float(&g)),
+                       2 * T_PI * hf_rng_float(&g), dirs, nrm, tan, root);
+            tr_straight(rest, r, P, root + 3 * r, dirs + 3 * r, 0.25f);
+        }
+        hf_ropes_set_rest(&s.ro, 0, R, rest, 0, root, nrm, tan, 0);
+        memset(&p, 0, sizeof p);
+        nc = 1 + (int)hf_rng_below(&g, NC);
+        memset(col, 0, sizeof col);
+        /* the head: its size, or up to 3 cm larger */
+        col[0].radius = hf_rng_below(&g, 2) ? 0.1f : 0.1f + 0.03f * hf_rng_float(&g);
+        for (c = 1; c < nc; ++c) {
+            int ok = 0;
+            while (!ok) { /* anywhere, overlapping too, but no root inside */
+                col[c].type = (int)hf_rng_below(&g, 2);
+                for (k = 0; k < 3; ++k) {
+                    col[c].a[k] = 0.4f * (hf_rng_float(&g) - 0.5f);
+                    col[c].b[k] = col[c].a[k] + 0.3f * (hf_rng_float(&g) - 0.5f);
+                }
+                col[c].radius = 0.03f + 0.1f * hf_rng_float(&g);
+                ok = 1;
+                for (r = 0; r < R && ok; ++r)
+                    ok = tr_dist_seg(root + 3 * r, &col[c]) > col[c].radius + 0.003;
+            }
+        }
+        memcpy(base, col, sizeof col);
+        for (f = 0; f < FRAMES; ++f) {
+            float dt = 1.0f / 240.0f + (1.0f / 20.0f - 1.0f / 240.0f) * hf_rng_float(&g);
+            float st;
+            for (k = 0; k < 3; ++k) { /* whipped: random accelerations */
+                vel[k] = 0.98f * (vel[k] + dt * 60.0f * (hf_rng_float(&g) - 0.5f));
+                off[k] += vel[k] * dt;
+                if (fabsf(off[k]) > 0.5f) vel[k] = -vel[k];
+            }
+            for (r = 0; r < R; ++r)
+                for (k = 0; k < 3; ++k) moved[3 * r + k] = root[3 * r + k] + off[k];
+            for (c = 0; c < nc; ++c)
+                for (k = 0; k < 3; ++k) {
+                    col[c].a[k] = base[c].a[k] + off[k];
+                    col[c].b[k] = base[c].b[k] + off[k];
+                }
+            hf_ropes_set_roots(&s.ro, 0, R, moved, nrm, tan, 0);
+            CHECK_EQ_INT(hf_ropes_step(&s.ro, 0, R, dt, &p, col, nc), HF_OK);
+            hf_ropes_max_stretch(&s.ro, 0, R, &st);
+            if (!(st <= worst_st)) worst_st = st;
+            tr_snapshot(&s.ro, now);
+            for (r = 0; r < R; ++r)
+                for (c = 0; c < nc; ++c) {
+                    const float *rp = now + 3 * (r * P);
+                    const double dr = tr_dist_seg(rp, &col[c]);
+                    const double eff = dr < col[c].radius * 0.9999 - 1e-6
+                                           ? dr : col[c].radius;
+                    for (j = 1; j < P; ++j) {
+                        const float *q = now + 3 * (r * P + j);
+                        double in;
+                        if (!t_is_finite(q[0]) || !t_is_finite(q[1]) ||
+                            !t_is_finite(q[2]))
+                            nan_seen = 1;
+                        in = eff - tr_dist_seg(q, &col[c]);
+                        if (in > worst_in) worst_in = in;
+                    }
+                }
+        }
+        tr_close(&s);
+    }
+    if (getenv("TR_VERBOSE"))
+        printf("collision soak: stretch %g, deepest %g m\n", worst_st, worst_in);
+    CHECK(!nan_seen);
+    CHECK(worst_st <= 1e-4f);
+    CHECK(worst_in <= 1e-3);
+}
+
 static void test_bad_rope_params(void)
 {
     hf_rope_params p, b;
@@ -4858,6 +5058,19 @@ static void test_bad_interpolate_and_lod(void)
     CHECK(hf_lod_from_distance(-1.0f, 1.0f, 10.0f) == 1.0f);
     CHECK(t_is_finite(hf_lod_from_distance(5.0f, 0.0f, 10.0f)));
     CHECK(t_is_finite(hf_lod_from_distance(FLT_MAX, FLT_MAX, FLT_MAX)));
+}
+
+/* round(lod * total) exactly above 2^24 strands too: float arithmetic
+   was off by a few and gave the whole total for lod < 1. */
+static void test_lod_strand_count_exact(void)
+{
+    CHECK_EQ_INT(hf_lod_strand_count(100000007, 0.5f), 50000004);
+    CHECK_EQ_INT(hf_lod_strand_count(2147483647, 0.99999994f), 2147483519);
+    CHECK_EQ_INT(hf_lod_strand_count(16777217, 0.25f), 4194304);
+    CHECK_EQ_INT(hf_lod_strand_count(33554433, 1e-30f), 1);
+    CHECK_EQ_INT(hf_lod_strand_count(1000, 0.0005f), 1);
+    CHECK_EQ_INT(hf_lod_strand_count(1000, 0.0015f), 2);
+    CHECK_EQ_INT(hf_lod_strand_count(7, 1.0f), 7);
 }
 
 /* ==== 8. ribbons ========================================================== */
@@ -5452,6 +5665,108 @@ static void test_ribbon_winding_faces_camera(void)
     n[1] = e1[2] * e2[0] - e1[0] * e2[2];
     n[2] = e1[0] * e2[1] - e1[1] * e2[0];
     CHECK(n[0] * view[0] + n[1] * view[1] + n[2] * view[2] > 0.0f);
+}
+
+static double t_dot3d(const float *a, const double *b)
+{
+    return (double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2];
+}
+
+/* The side never twists off the point's own tangent: within 1e-5 of
+   perpendicular to tangent and view wherever they are not parallel (views
+   from sin 2e-6 to 0.1 off the tangent), perpendicular to the tangent
+   where it is borrowed (the eye on a point, a view along the tangent),
+   never NaN. Both builds run it: SSE (with its reference fallback) and
+   HF_NO_SIMD. */
+static void test_ribbon_sides_never_twist(void)
+{
+    static const double sins[8] = {2e-6, 1e-5, 1e-4, 1e-3, 1e-2, 0.05, 0.1,
+                                   0.0};
+    hf_rng rng;
+    float pts[TP * 3];
+    hf__rframe fr;
+    hf_ribbon_params p = t_rparams();
+    double worst_t = 0.0, worst_v = 0.0, worst_n = 0.0;
+    int trial, j, k, q, nan_seen = 0;
+    hf_rng_seed(&rng, 11u, 3u);
+    for (trial = 0; trial < 200; ++trial) {
+        /* a smooth random strand near the origin */
+        float dir[3] = {0, 1, 0}, bend = 0.4f * (hf_rng_float(&rng) - 0.5f);
+        for (k = 0; k < 3; ++k) dir[k] = hf_rng_float(&rng) - 0.5f;
+        for (j = 0; j < TP; ++j)
+            for (k = 0; k < 3; ++k)
+                pts[3 * j + k] = 0.1f * (float)j * dir[k] +
+                                 (k == 1 ? bend * 0.01f * (float)(j * j) : 0.0f);
+        for (q = 0; q < 8; ++q) {
+            const int at = (int)hf_rng_below(&rng, TP);
+            float ws;
+            double t[3], a[3], v[3], len, sn = sins[q];
+            hf__strand_frame(pts, TP, &p, &fr, &ws); /* tangents first */
+            for (k = 0; k < 3; ++k) t[k] = fr.t[k][4 + at];
+            /* a unit axis perpendicular to t */
+            a[0] = t[1]; a[1] = -t[0]; a[2] = 0.0;
+            if (fabs(t[2]) > 0.9) { a[0] = 0.0; a[1] = t[2]; a[2] = -t[1]; }
+            len = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+            for (k = 0; k < 3; ++k) {
+                a[k] /= len;
+                /* eye 1.5 away, sin `sn` off the tangent; q = 7: on p */
+                v[k] = q == 7 ? 0.0
+                              : 1.5 * (sqrt(1.0 - sn * sn) * t[k] + sn * a[k]);
+                p.eye[k] = (float)((double)pts[3 * at + k] + v[k]);
+            }
+            hf__strand_frame(pts, TP, &p, &fr, &ws);
+            for (j = 0; j < TP; ++j) {
+                float sj[3], tj[3];
+                double dv[3], dl, st, sv, n;
+                for (k = 0; k < 3; ++k) {
+                    sj[k] = fr.s[k][4 + j];
+                    tj[k] = fr.t[k][4 + j];
+                    dv[k] = (double)p.eye[k] - (double)pts[3 * j + k];
+                }
+                if (!t_is_finite(sj[0]) || !t_is_finite(sj[1]) ||
+                    !t_is_finite(sj[2]))
+                    nan_seen = 1;
+                n = fabs(sqrt((double)sj[0] * sj[0] + (double)sj[1] * sj[1] +
+                              (double)sj[2] * sj[2]) - 1.0);
+                st = fabs((double)sj[0] * tj[0] + (double)sj[1] * tj[1] +
+                          (double)sj[2] * tj[2]);
+                if (n > worst_n) worst_n = n;
+                if (st > worst_t) worst_t = st;
+                dl = sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2]);
+                if (dl > 0.0) {
+                    double c = fabs(t_dot3d(tj, dv)) / dl;
+                    /* the view's own rounding: skip views within 1e-5 of
+                       parallel, where the side is borrowed */
+                    if (c < 1.0 - 1e-10) {
+                        sv = fabs(t_dot3d(sj, dv)) / dl;
+                        if (sv > worst_v) worst_v = sv;
+                    }
+                }
+            }
+        }
+    }
+    if (getenv("TR_VERBOSE"))
+        printf("sides: |s.t| %g |s.v| %g ||s|-1| %g\n", worst_t, worst_v,
+               worst_n);
+    CHECK(!nan_seen);
+    CHECK(worst_t <= 1e-5);
+    CHECK(worst_v <= 1e-5);
+    CHECK(worst_n <= 1e-5);
+    /* a straight strand seen exactly along itself: no side anywhere */
+    for (j = 0; j < TP; ++j) {
+        pts[3 * j] = 0.0f; pts[3 * j + 1] = 0.1f * (float)j; pts[3 * j + 2] = 0.0f;
+    }
+    p.orthographic = 1;
+    p.view_dir[0] = 0.0f; p.view_dir[1] = -1.0f; p.view_dir[2] = 0.0f;
+    {
+        float ws;
+        hf__strand_frame(pts, TP, &p, &fr, &ws);
+        for (j = 0; j < TP; ++j) {
+            CHECK(fabsf(fr.s[1][4 + j]) <= 1e-6f);
+            CHECK(fabsf(fr.s[0][4 + j] * fr.s[0][4 + j] +
+                        fr.s[2][4 + j] * fr.s[2][4 + j] - 1.0f) <= 1e-5f);
+        }
+    }
 }
 
 static void test_bad_ribbons(void)
@@ -7127,6 +7442,9 @@ int main(void)
     RUN(test_ropes_simd_lanes_match_scalar);
     RUN(test_defaults_zeroed_rope_params_are_init);
     RUN(test_defaults_explicit_zero);
+    RUN(test_ropes_capsule_keeps_length);
+    RUN(test_ropes_roots_inside_colliders);
+    RUN(test_ropes_collision_soak);
     RUN(test_bad_rope_params);
     RUN(test_bad_ropes_memory_and_limits);
     RUN(test_bad_ropes_set_rest_and_roots);
@@ -7140,6 +7458,7 @@ int main(void)
     RUN(test_interp_errors_write_nothing);
     RUN(test_lod_counts_and_widths_exact);
     RUN(test_bad_interpolate_and_lod);
+    RUN(test_lod_strand_count_exact);
 
     /* 8. ribbons */
     RUN(test_ribbons_perpendicular_and_widths);
@@ -7157,6 +7476,7 @@ int main(void)
     RUN(test_defaults_zeroed_ribbon_params_draw);
     RUN(test_ribbon_indices16);
     RUN(test_out_first_interpolate_and_ribbons);
+    RUN(test_ribbon_sides_never_twist);
     RUN(test_bad_ribbons);
 
     /* 9. LUT baking: the Marschner M and N textures */
