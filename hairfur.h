@@ -4951,23 +4951,39 @@ HF__PRIVATE void hf__ftl_cap(const float *p, float l, const float *c, float rr,
     *cmin = *cmin > 1.0f ? 1.0f : (*cmin < -1.0f ? -1.0f : *cmin);
 }
 
+/* v minus its component along unit m, twice (a v that is mostly
+   rounding noise keeps a tilt after one pass); returns |v|^2. */
+HF__PRIVATE float hf__perp_part(float *v, const float *m)
+{
+    int pass, k;
+    for (pass = 0; pass < 2; ++pass) {
+        const float vm = hf__dot3(v, m);
+        for (k = 0; k < 3; ++k) v[k] -= m[k] * vm;
+    }
+    return hf__dot3(v, v);
+}
+
 /* The unit direction nearest u on the cap's edge d . m = cmin: u's
-   sideways part kept; where u has none, the root tangent t's. */
+   sideways part kept; where u has none (to 1e-4), the root tangent t's;
+   where t has none either, a fixed perpendicular of m. */
 HF__PRIVATE void hf__ftl_onto_cap(const float *u, const float *m, float cmin,
                                   const float *t, float *d)
 {
     float v[3], v2, s;
-    const float dn = hf__dot3(u, m);
     int k;
-    for (k = 0; k < 3; ++k) v[k] = u[k] - m[k] * dn;
-    v2 = hf__dot3(v, v);
-    if (v2 < 1e-12f) {
-        const float tn = hf__dot3(t, m);
-        for (k = 0; k < 3; ++k) v[k] = t[k] - m[k] * tn;
-        v2 = hf__dot3(v, v);
-        if (v2 < 1e-12f) {
-            v[0] = v[1] = v[2] = 0.0f;
-            v2 = 1.0f;
+    for (k = 0; k < 3; ++k) v[k] = u[k];
+    v2 = hf__perp_part(v, m);
+    if (v2 < 1e-8f) {
+        for (k = 0; k < 3; ++k) v[k] = t[k];
+        v2 = hf__perp_part(v, m);
+        if (v2 < 1e-8f) {
+            /* m crossed with the axis least aligned with it */
+            const float ax = HF_FABS(m[0]), ay = HF_FABS(m[1]),
+                        az = HF_FABS(m[2]);
+            float e[3] = {0.0f, 0.0f, 0.0f};
+            e[(ax <= ay && ax <= az) ? 0 : (ay <= az ? 1 : 2)] = 1.0f;
+            hf__cross3(v, m, e);
+            v2 = hf__perp_part(v, m);
         }
     }
     s = HF_SQRTF(1.0f - cmin * cmin) / HF_SQRTF(v2);

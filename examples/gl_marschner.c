@@ -1299,6 +1299,14 @@ int main(int argc, char **argv)
                a->o.width, a->o.height, a->o.distance, a->lod, a->drawn,
                a->info.strand_count, drawn_frames, sum_cpu / drawn_frames,
                sum_draw / drawn_frames);
+    if (ok && a->fur) {
+        hf_fur_info info;
+        hf_fur_get_info(a->fur, &info);
+        if (info.roots_inside > 0)
+            printf("gl_marschner: %d of %d guide roots sit inside a collider: "
+                   "it is shrunk to their depth for those guides; shrink the "
+                   "proxy to the body\n", info.roots_inside, info.guide_count);
+    }
     glm_shutdown(a);
     glc_close();
     return ok ? 0 : 1;

@@ -434,6 +434,13 @@ int main(int argc, char **argv)
                median(t_sim, frames), median(t_guides, frames),
                median(t_interp, frames), median(t_ribbons, frames),
                100.0 * stretch);
+        hf_fur_get_info(fur, &info);
+        if (info.roots_inside > 0)
+            printf("%d of %d guide roots sit inside the collider: it is "
+                   "shrunk to their depth for those guides; a proxy larger "
+                   "than the body keeps fur off it only where the roots are "
+                   "outside, so shrink the proxy\n",
+                   info.roots_inside, info.guide_count);
     }
 
     /* export the last frame */

@@ -18,6 +18,8 @@
 #include "../../hairfur.h"
 #include "fuzz_common.h"
 
+#include <math.h>
+
 typedef struct fz_ropeset {
     hf_ropes ropes;
     void *mem;
@@ -253,6 +255,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             }
             col[k].radius = fz_chance(&r, 240) ? fz_float_in(&r, 0.0f, 0.5f)
                                                : fz_float(&r, 1e6f);
+            if (fz_chance(&r, 64)) /* around rope 0's root: it holds it */
+                for (c = 0; c < 3; ++c) col[k].a[c] = rpos[c];
         }
         dt = fz_chance(&r, 220) ? fz_float_in(&r, 0.0f, 0.05f)
                                 : fz_float(&r, 1.0f);
@@ -280,6 +284,31 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         stretch = -7.0f;
         ra = hf_ropes_max_stretch(&A.ropes, 0, R, &stretch);
         FZ_REQUIRE(ra == HF_OK && fz_finite(stretch) && stretch >= 0.0f);
+        if (rb == HF_OK && params.solver == HF_ROPE_SOLVER_FTL &&
+            !(params.explicit_zero & HF_ROPE_ZERO_ITERATIONS)) {
+            /* follow-the-leader with a pass is inextensible, colliders
+               (roots inside them too) or not: each segment keeps its rest
+               length, to float resolution at its coordinates */
+            int k2, j2;
+            for (k2 = 0; k2 < R; ++k2) {
+                if (A.ropes.mode[k2] != HF_ROPE_SIMULATED ||
+                    A.ropes.blend[k2] != 0.0f)
+                    continue;
+                for (j2 = 0; j2 + 1 < P; ++j2) {
+                    const size_t a0 = (size_t)j2 * (size_t)R + (size_t)k2;
+                    const size_t a1 = a0 + (size_t)R;
+                    const double dx = (double)A.ropes.x[a1] - A.ropes.x[a0];
+                    const double dy = (double)A.ropes.y[a1] - A.ropes.y[a0];
+                    const double dz = (double)A.ropes.z[a1] - A.ropes.z[a0];
+                    const double m = fabs((double)A.ropes.x[a0]) +
+                                     fabs((double)A.ropes.y[a0]) +
+                                     fabs((double)A.ropes.z[a0]);
+                    const double l = sqrt(dx * dx + dy * dy + dz * dz);
+                    const double rest = A.ropes.rest_length[a0];
+                    FZ_REQUIRE(fabs(l - rest) <= 1e-3 * rest + 1e-6 * (1.0 + m));
+                }
+            }
+        }
 
         /* positions out, on a fuzz range with a fuzz stride */
         {
