@@ -451,7 +451,7 @@ bench-peers: check-bullet $(BUILD)/bench_peers
 # mode: build/fuzz_<t> -merge=1 tests/fuzz/corpus/<t> build/fuzz-corpus/<t>.
 # fuzz-replay builds each target with gcc and tests/fuzz/fuzz_main.c
 # instead, and replays the seed corpus and tests/fuzz/regressions/.
-FUZZ_TARGETS       := grow ropes ribbons lut
+FUZZ_TARGETS       := grow ropes ribbons lut fur
 FUZZ_SECONDS       ?= 60
 FUZZ_SMOKE_SECONDS ?= 20
 FUZZ_DIR           := tests/fuzz

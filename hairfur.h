@@ -3,9 +3,10 @@
 
    hairfur.h turns a triangle mesh and a few UV maps (density, length, colour)
    into hair or fur geometry every frame, and leaves drawing to the host engine.
-   It has no dependencies beyond the C standard library. It descends from the
-   2010 fur plugin of the Crystal Space engine (Bullet ropes, about 8 frames
-   a second for 3,670 strands); "the 2010 plugin" below means that code.
+   It has no dependencies beyond the C standard library. It descends from
+   furmesh, the 2010 fur plugin of the Crystal Space engine (Bullet ropes,
+   about 8 frames a second for 3,670 strands); "the Crystal Space plugin"
+   below means that code (docs/history.md).
 
    DO THIS ONCE
 
@@ -346,7 +347,8 @@ HFDEF hf_result hf_map_sample(const hf_map *map, float u, float v,
 HFDEF void hf_map_sample_fast(const hf_map *map, float u, float v,
                               float out[4]);
 
-/* Separable Gaussian blur (the 2010 plugin blurred density maps before use).
+/* Separable Gaussian blur (the Crystal Space plugin blurred density maps
+   before use).
    Writes width * height * channels floats to `out`, packed rows, the same
    layout as an HF_MAP_F32 map with row_stride 0; edges follow the map's
    wrap mode. The kernel has standard deviation `sigma` texels and radius
@@ -473,8 +475,8 @@ typedef enum hf_split_point {
     HF_SPLIT_CENTROID = 0,
     /* split at a seeded random point, uniform over the middle triangle (the
        triangle shrunk by 1/2 about its centroid): every child keeps at least
-       1/6 of the area, so no sliver is born (the 2010 plugin drew over the
-       whole triangle, which made needle-thin children) */
+       1/6 of the area, so no sliver is born (the Crystal Space plugin drew
+       over the whole triangle, which made needle-thin children) */
     HF_SPLIT_RANDOM = 1
 } hf_split_point;
 
@@ -661,8 +663,9 @@ typedef enum hf_root_sampler {
        clumps and holes inside a triangle, and every prefix of a triangle's
        points is itself spread out */
     HF_SAMPLER_STRATIFIED = 1,
-    /* the 2010 plugin's formula, bA = r1, bB = r2 (1 - bA): NOT uniform, it
-       crowds strands toward corner A. Only for comparison and tests. */
+    /* the Crystal Space plugin's formula, bA = r1, bB = r2 (1 - bA): NOT
+       uniform, it crowds strands toward corner A. Only for comparison and
+       tests. */
     HF_SAMPLER_CORNER_BIASED = 2
 } hf_root_sampler;
 
@@ -893,7 +896,7 @@ typedef struct hf_rope_params {
     float damping;     /* 0.02: fraction of velocity lost per 1/60 s of
                           simulated time, [0, 1] */
     float time_scale;  /* 1: simulated seconds per real second, (0, 100];
-                          the 2010 plugin ran Bullet at 2 */
+                          the Crystal Space plugin ran Bullet at 2 */
     float substep;     /* 1/60 s: the longest sub-step, [1e-5, 1]; one a
                           frame at 60 Hz, as TressFX steps; smaller for
                           stiffer settings or faster motion */

@@ -13,7 +13,7 @@ import os
 import random
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "corpus")
-TARGETS = {"grow": 24, "ropes": 24, "ribbons": 24, "lut": 24}
+TARGETS = {"grow": 24, "ropes": 24, "ribbons": 24, "lut": 24, "fur": 24}
 
 
 def main():
