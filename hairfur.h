@@ -1047,8 +1047,8 @@ HFDEF hf_result hf_ropes_set_roots(hf_ropes *ropes, int first, int count,
    leader solver turns a point about its parent until it clears every
    collider; where no direction clears them all, the direction with the
    least penetration wins, length kept). The root point sits on the skin
-   and is exempt; a collider that holds a rope's root is shrunk, for that
-   rope, to the root's distance from its axis (hf_ropes_roots_inside
+   and is exempt; a collider that holds a rope's root (deeper than the
+   margin) is shrunk, for that rope, to the root's distance from its axis (hf_ropes_roots_inside
    counts such ropes). The distance solver pushes points straight out, as
    before. Animated ropes ignore colliders. A rope that an unstable setting throws further than
    8 * length + 0.01 m from its root is reset to its rest pose, so no
@@ -1084,7 +1084,7 @@ HFDEF hf_result hf_ropes_set_mode(hf_ropes *ropes, int first, int count,
 HFDEF hf_result hf_ropes_reset(hf_ropes *ropes, int first, int count);
 
 /* How many ropes of [first, first + count) had their root inside a
-   collider (below its surface; the margin band does not count) at their
+   collider (deeper than collision_margin below its surface) at their
    last hf_ropes_step. Such a collider is, for that rope, shrunk to the
    root's distance from its axis, so the rope stays inextensible and grows
    out of the proxy; a count above 0 usually means a proxy larger than the
@@ -1275,8 +1275,8 @@ typedef struct hf_ribbon_params {
    Never NaN: a zero-length segment reuses the previous tangent (points
    before the first that has one take that one; a strand with no length
    uses (0, 1, 0)). The side is perpendicular to t_j and v_j within 1e-5
-   wherever they are not parallel (views within 3 degrees of the tangent
-   are computed in double); where t_j is parallel to v_j (to 1e-6) or the
+   wherever they are not parallel (views within about half a degree of
+   the tangent are computed in double); where t_j is parallel to v_j (to 1e-6) or the
    eye sits on p_j, the side of the previous point is reused (before the
    first point that has one: the next point's), made perpendicular to t_j
    and renormalised; a strand with no side anywhere uses a fixed
@@ -4768,9 +4768,10 @@ HF__PRIVATE void hf__ropes_animated_run(hf_ropes *ro, int a, int b,
 
 /* A collider ready for the row kernels: base point, capsule axis e and
    1 / |e|^2 (0 for a sphere or a zero-length capsule: a point, so a
-   sphere), the radius grown by the margin, and the depth below which a
-   rope's root counts as inside (the radius less 1e-4 of it and 1 um, so
-   roots on the surface, rounded either way, do not). */
+   sphere), the radius grown by the margin, and the distance from the
+   axis below which a rope's root counts as inside: deeper than the margin
+   below the surface (and 1e-4 of the radius, for rounding), so roots on
+   a proxy that hugs the skin a little outside it keep the margin. */
 typedef struct hf__col_prep {
     float a[3], e[3], inv, rr, inner;
 } hf__col_prep;
@@ -4787,7 +4788,7 @@ HF__PRIVATE hf__col_prep hf__collider_prep(const hf_collider *c, float margin)
     l2 = k.e[0] * k.e[0] + k.e[1] * k.e[1] + k.e[2] * k.e[2];
     k.inv = l2 > 1e-20f ? 1.0f / l2 : 0.0f;
     k.rr = c->radius + margin;
-    k.inner = c->radius * 0.9999f - 1e-6f;
+    k.inner = c->radius * 0.9999f - margin - 1e-6f;
     return k;
 }
 
@@ -4920,8 +4921,8 @@ HF__PRIVATE void hf__ropes_collide_row(hf_ropes *ro, const float *F, int j,
 #define HF__ROPE_PREP 8
 
 /* The radius collider k has for a rope whose root is at `root`: rr, or
-   the root's distance from the axis where the root is inside the collider
-   (margin aside: a root in the margin band keeps it). */
+   the root's distance from the axis where the root is more than the
+   margin inside the collider. */
 HF__PRIVATE float hf__col_radius_for(const hf__col_prep *k, const float *root)
 {
     float c[3], d[3];
@@ -6131,8 +6132,8 @@ HF__PRIVATE void hf__rope_step_setup(hf__rope_step *st,
 }
 
 /* root_inside of ropes [a, b): whether the root sits inside a collider
-   (below its surface, the margin aside), which is when the collisions
-   shrink that collider for the rope. */
+   (deeper than the margin below its surface), which is when the
+   collisions shrink that collider for the rope. */
 HF__PRIVATE void hf__ropes_mark_roots(hf_ropes *ro, int a, int b,
                                       const hf_collider *col, int ncol,
                                       float margin)
@@ -6568,10 +6569,11 @@ typedef struct hf__rframe {
     float s[3][HF__RROW]; /* unit sides */
 } hf__rframe;
 
-/* Below this sin^2 of the angle between view and tangent a side is
-   computed in double (hf__side_precise): float cancellation in the cross
-   product tilts it by about 1e-7 / sin, 2e-6 at this bound. */
-#define HF__SIDE_SIN2 2.5e-3f
+/* Below this sin^2 of the angle between view and tangent (about half a
+   degree) a side is computed in double (hf__side_precise): float
+   cancellation in the cross product tilts it by a few 1e-8 / sin, 3e-6 at
+   this bound (measured). */
+#define HF__SIDE_SIN2 1e-4f
 
 /* The side of point j in double: unit cross(t, v) rounded once. 0 when t
    and v are parallel (to 1e-6) or the eye sits on the point. */

@@ -413,16 +413,17 @@ static void glm_xform(const float m[12], const float *p, float w, float *o)
                m[4 * k + 3] * w;
 }
 
-/* Colliders in head space, moved by the pose: the skull (a little outside
-   the drawn skin, so hair lying on the scalp is not buried in the sphere's
-   flat triangles), the neck and the shoulders. */
+/* Colliders in head space, moved by the pose: the skull (the drawn
+   sphere: the 2 mm collision margin keeps hair lying on the scalp off its
+   flat triangles), the neck (it overlaps the underside of the head, so the
+   roots there sit inside it) and the shoulders. */
 static void glm_colliders(const float m[12], hf_collider col[3])
 {
     static const float a[3][3] = {{0, 0, 0}, {0, -0.06f, -0.01f},
                                   {-0.19f, -0.25f, -0.01f}},
                        b[3][3] = {{0, 0, 0}, {0, -0.21f, -0.01f},
                                   {0.19f, -0.25f, -0.01f}};
-    static const float r[3] = {GLM_HEAD_R * 1.015f, 0.05f, 0.065f};
+    static const float r[3] = {GLM_HEAD_R, 0.05f, 0.065f};
     int i;
     for (i = 0; i < 3; ++i) {
         memset(&col[i], 0, sizeof col[i]);
@@ -1303,9 +1304,10 @@ int main(int argc, char **argv)
         hf_fur_info info;
         hf_fur_get_info(a->fur, &info);
         if (info.roots_inside > 0)
-            printf("gl_marschner: %d of %d guide roots sit inside a collider: "
-                   "it is shrunk to their depth for those guides; shrink the "
-                   "proxy to the body\n", info.roots_inside, info.guide_count);
+            printf("gl_marschner: %d of %d guide roots sit inside a collider "
+                   "(for those guides it is shrunk to the root's depth); if "
+                   "the proxy is larger than the body there, shrink it\n",
+                   info.roots_inside, info.guide_count);
     }
     glm_shutdown(a);
     glc_close();

@@ -436,10 +436,9 @@ int main(int argc, char **argv)
                100.0 * stretch);
         hf_fur_get_info(fur, &info);
         if (info.roots_inside > 0)
-            printf("%d of %d guide roots sit inside the collider: it is "
-                   "shrunk to their depth for those guides; a proxy larger "
-                   "than the body keeps fur off it only where the roots are "
-                   "outside, so shrink the proxy\n",
+            printf("%d of %d guide roots sit inside the collider (for "
+                   "those guides it is shrunk to the root's depth); if the "
+                   "proxy is larger than the body there, shrink it\n",
                    info.roots_inside, info.guide_count);
     }
 
