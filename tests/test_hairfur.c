@@ -7361,6 +7361,39 @@ static void test_out_first_fur_chunks(void)
     hf_fur_destroy(f);
 }
 
+/* hf_fur_info.roots_inside: every guide's root inside a collider larger
+   than the body, none inside one within it; lengths kept. */
+static void test_fur_roots_inside_count(void)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    hf_collider c;
+    float st = 1.0f;
+    int frame;
+    t_fur_scene_init(&sc, 1.0f);
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (!f) return;
+    memset(&c, 0, sizeof c);
+    c.type = HF_COLLIDER_SPHERE;
+    c.radius = 0.5f; /* inside the coarse sphere's facets: no root in it */
+    hf_fur_get_info(f, &info);
+    for (frame = 0; frame < 3; ++frame)
+        CHECK_EQ_INT(hf_fur_simulate(f, 0, info.guide_count, 1.0f / 60.0f,
+                                     &c, 1), HF_OK);
+    hf_fur_get_info(f, &info);
+    CHECK_EQ_INT(info.roots_inside, 0);
+    c.radius = 1.2f; /* 20 cm larger: every root inside */
+    for (frame = 0; frame < 3; ++frame)
+        CHECK_EQ_INT(hf_fur_simulate(f, 0, info.guide_count, 1.0f / 60.0f,
+                                     &c, 1), HF_OK);
+    hf_fur_get_info(f, &info);
+    CHECK_EQ_INT(info.roots_inside, info.guide_count);
+    CHECK_EQ_INT(hf_fur_max_stretch(f, &st), HF_OK);
+    CHECK(st <= 1e-4f);
+    hf_fur_destroy(f);
+}
+
 /* ==== main: every test, in the order above ================================ */
 
 int main(void)
@@ -7518,6 +7551,7 @@ int main(void)
     RUN(test_fur_errors_per_frame);
     RUN(test_defaults_fur_strand_count_precedence);
     RUN(test_out_first_fur_chunks);
+    RUN(test_fur_roots_inside_count);
     RUN(test_bad_fur);
 
     printf("%d passed, %d failed\n", t_passed, t_failed);
