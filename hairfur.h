@@ -63,7 +63,7 @@
            hf_ropes_create, hf_ropes_destroy, hf_ropes_set_rest,
            hf_ropes_set_roots, hf_ropes_step, hf_ropes_set_mode,
            hf_ropes_reset, hf_ropes_max_stretch, hf_ropes_roots_inside,
-           hf_ropes_get_positions
+           hf_ropes_get_positions, hf_ropes_copy_range
        Interpolating strands of your own (section 7): hf_interpolate
        Shading: the Marschner lookup textures (section 9):
            hf_lut_params_init, hf_lut_validate, hf_lut_bake_m,
@@ -119,9 +119,11 @@
        - No function keeps state between calls; the per-frame functions take
          a (first, count) range and never allocate, so an engine can spread a
          frame over its own threads. Inputs are indexed by absolute strand
-         (or rope) index; outputs too, unless out_first moves the start of
-         the output buffer to strand out_first, so that a range can go into
-         a buffer that holds exactly that range.
+         (or rope) index; outputs too, unless out_first (interpolation,
+         ribbons, points) moves the start of the output buffer to strand
+         out_first, so that a range can go into a buffer that holds
+         exactly that range (hf_ropes_copy_range for rope positions; the
+         growth-time range outputs are indexed absolutely).
 
    SECTIONS (in the order the data flows)
 
@@ -1106,6 +1108,11 @@ HFDEF hf_result hf_ropes_max_stretch(const hf_ropes *ropes, int first,
    HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE, HF_ERROR_BAD_STRIDE. */
 HFDEF hf_result hf_ropes_get_positions(const hf_ropes *ropes, int first,
                                        int count, float *out, int stride);
+/* The same into a buffer that holds exactly ropes [first, first + count):
+   point j of rope first + i goes to byte ((size_t)i * points + j) * stride
+   (0 = 12). Same errors. */
+HFDEF hf_result hf_ropes_copy_range(const hf_ropes *ropes, int first,
+                                    int count, float *out, int stride);
 
 /* ======================================================================== */
 /* 7. Interpolation and LOD                                                 */
@@ -4513,9 +4520,10 @@ HFDEF hf_result hf_ropes_max_stretch(const hf_ropes *ropes, int first,
 }
 
 #if HF__SSE
-/* hf_ropes_get_positions of ropes [r, r + 4) into packed output: four
+/* Ropes [r, r + 4) into packed output that starts at rope `base`: four
    points of the four ropes at a time, transposed in registers. */
-HF__PRIVATE void hf__ropes_get_sse(const hf_ropes *ro, int r, float *out)
+HF__PRIVATE void hf__ropes_get_sse(const hf_ropes *ro, int r, float *out,
+                                   int base)
 {
     const size_t R = (size_t)ro->rope_count, P = (size_t)ro->points;
     size_t j, i;
@@ -4534,7 +4542,7 @@ HF__PRIVATE void hf__ropes_get_sse(const hf_ropes *ro, int r, float *out)
         _MM_TRANSPOSE4_PS(zs[0], zs[1], zs[2], zs[3]);
         for (k = 0; k < 4; ++k) {
             /* x y z x | y z x y | z x y z */
-            float *o = out + ((size_t)(r + k) * P + j) * 3u;
+            float *o = out + ((size_t)(r + k - base) * P + j) * 3u;
             const __m128 xy = _mm_unpacklo_ps(xs[k], ys[k]),
                          zx = _mm_unpacklo_ps(zs[k], xs[k]),
                          yz = _mm_unpacklo_ps(ys[k], zs[k]),
@@ -4550,7 +4558,7 @@ HF__PRIVATE void hf__ropes_get_sse(const hf_ropes *ro, int r, float *out)
     }
     for (; j < P; ++j)
         for (k = 0; k < 4; ++k) {
-            float *o = out + ((size_t)(r + k) * P + j) * 3u;
+            float *o = out + ((size_t)(r + k - base) * P + j) * 3u;
             i = j * R + (size_t)(r + k);
             o[0] = ro->x[i];
             o[1] = ro->y[i];
@@ -4559,10 +4567,12 @@ HF__PRIVATE void hf__ropes_get_sse(const hf_ropes *ro, int r, float *out)
 }
 #endif
 
-/* Rope-major copies of ropes [a, b): the reference (any stride) and its
-   dispatch (the SSE kernel above takes packed groups of four). */
+/* Rope-major copies of ropes [a, b) into `out`, which starts at rope
+   `base` (a for a buffer of exactly the range, 0 for absolute indexing):
+   the reference (any stride) and its dispatch (the SSE kernel above takes
+   packed groups of four). */
 HF__PRIVATE void hf__ropes_copy_ref(const hf_ropes *ro, int a, int b,
-                                    float *out, size_t stride)
+                                    float *out, size_t stride, int base)
 {
     const size_t R = (size_t)ro->rope_count, P = (size_t)ro->points;
     size_t j;
@@ -4571,7 +4581,7 @@ HF__PRIVATE void hf__ropes_copy_ref(const hf_ropes *ro, int a, int b,
         for (j = 0; j < P; ++j) {
             const size_t i = j * R + (size_t)r;
             float *o = (float *)((unsigned char *)out +
-                                 ((size_t)r * P + j) * stride);
+                                 ((size_t)(r - base) * P + j) * stride);
             o[0] = ro->x[i];
             o[1] = ro->y[i];
             o[2] = ro->z[i];
@@ -4579,13 +4589,13 @@ HF__PRIVATE void hf__ropes_copy_ref(const hf_ropes *ro, int a, int b,
 }
 
 HF__PRIVATE void hf__ropes_copy(const hf_ropes *ro, int a, int b, float *out,
-                                size_t stride)
+                                size_t stride, int base)
 {
 #if HF__SSE
     if (stride == 12)
-        for (; a + 4 <= b; a += 4) hf__ropes_get_sse(ro, a, out);
+        for (; a + 4 <= b; a += 4) hf__ropes_get_sse(ro, a, out, base);
 #endif
-    hf__ropes_copy_ref(ro, a, b, out, stride);
+    hf__ropes_copy_ref(ro, a, b, out, stride, base);
 }
 
 HFDEF hf_result hf_ropes_get_positions(const hf_ropes *ropes, int first,
@@ -4595,7 +4605,18 @@ HFDEF hf_result hf_ropes_get_positions(const hf_ropes *ropes, int first,
     if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
     if (!hf__stride_ok(out, stride, 12)) return HF_ERROR_BAD_STRIDE;
     hf__ropes_copy(ropes, first, first + count, out,
-                   (size_t)(stride ? stride : 12));
+                   (size_t)(stride ? stride : 12), 0);
+    return HF_OK;
+}
+
+HFDEF hf_result hf_ropes_copy_range(const hf_ropes *ropes, int first,
+                                    int count, float *out, int stride)
+{
+    if (!hf__ropes_ok(ropes) || !out) return HF_ERROR_NULL_POINTER;
+    if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
+    if (!hf__stride_ok(out, stride, 12)) return HF_ERROR_BAD_STRIDE;
+    hf__ropes_copy(ropes, first, first + count, out,
+                   (size_t)(stride ? stride : 12), first);
     return HF_OK;
 }
 

@@ -4580,6 +4580,49 @@ static void test_ropes_collision_soak(void)
     CHECK(worst_in <= 1e-3);
 }
 
+/* hf_ropes_copy_range: a range into a buffer of exactly that range, the
+   same bytes as the slice of hf_ropes_get_positions (SSE groups and the
+   scalar tail, packed and strided). */
+static void test_ropes_copy_range(void)
+{
+    enum { R = 11, P = 6 };
+    float pos[3 * R * P], root[3 * R], nrm[3 * R], tan[3 * R];
+    float whole[4 * R * P], part[4 * R * P];
+    hf_rope_params p;
+    tr_set s;
+    int r, k, first, count, stride;
+    if (!tr_open(&s, R, P)) { CHECK(0); return; }
+    for (r = 0; r < R; ++r) {
+        for (k = 0; k < 3; ++k) {
+            root[3 * r + k] = k == 0 ? 0.1f * (float)r : 0.0f;
+            nrm[3 * r + k] = k == 1 ? 1.0f : 0.0f;
+            tan[3 * r + k] = k == 0 ? 1.0f : 0.0f;
+        }
+        tr_straight(pos, r, P, root + 3 * r, tan + 3 * r, 0.2f);
+    }
+    hf_ropes_set_rest(&s.ro, 0, R, pos, 0, root, nrm, tan, 0);
+    memset(&p, 0, sizeof p);
+    hf_ropes_step(&s.ro, 0, R, 1.0f / 60.0f, &p, NULL, 0);
+    for (stride = 12; stride <= 16; stride += 4)
+        for (first = 0; first < R; first += 3)
+            for (count = 0; first + count <= R; count += 5) {
+                memset(whole, 0, sizeof whole);
+                tb_fill(part, sizeof part);
+                CHECK_EQ_INT(hf_ropes_get_positions(&s.ro, 0, R, whole, stride), HF_OK);
+                CHECK_EQ_INT(hf_ropes_copy_range(&s.ro, first, count, part, stride), HF_OK);
+                for (k = 0; k < count * P; ++k) /* each x, y, z */
+                    CHECK(memcmp((unsigned char *)part + (size_t)k * stride,
+                                 (unsigned char *)whole +
+                                     ((size_t)first * P + (size_t)k) * stride,
+                                 12) == 0);
+                CHECK(tb_untouched((unsigned char *)part + (size_t)count * P * stride,
+                                   sizeof part - (size_t)count * P * (size_t)stride));
+            }
+    CHECK_EQ_INT(hf_ropes_copy_range(&s.ro, 5, R, part, 0), HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_ropes_copy_range(&s.ro, 0, 1, NULL, 0), HF_ERROR_NULL_POINTER);
+    tr_close(&s);
+}
+
 static void test_bad_rope_params(void)
 {
     hf_rope_params p, b;
@@ -7480,6 +7523,7 @@ int main(void)
     RUN(test_ropes_capsule_keeps_length);
     RUN(test_ropes_roots_inside_colliders);
     RUN(test_ropes_collision_soak);
+    RUN(test_ropes_copy_range);
     RUN(test_bad_rope_params);
     RUN(test_bad_ropes_memory_and_limits);
     RUN(test_bad_ropes_set_rest_and_roots);
