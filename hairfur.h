@@ -316,7 +316,11 @@ typedef enum hf_map_wrap {
    are plain ints so that any value a caller stores is defined behaviour and
    gets a result code, in C and C++ alike. Texel (x, y) starts
    at byte y * row_stride + x * channels * element_size of `data`; row 0 is
-   v = 0. Texel centres sit at ((x + 0.5) / width, (y + 0.5) / height). */
+   v = 0, as in OpenGL's textures and the UVs most exporters write (v up).
+   Image files store their top row first (PNG; stb_image unless
+   stbi_set_flip_vertically_on_load(1)): flip those rows, or a map reads
+   upside down. Texel centres sit at ((x + 0.5) / width,
+   (y + 0.5) / height). */
 typedef struct hf_map {
     const void *data;
     int width, height;
