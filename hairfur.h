@@ -46,7 +46,8 @@
            hf_fur_create, hf_fur_destroy, hf_fur_get_info, hf_fur_set_lod,
            hf_fur_set_roots, hf_fur_simulate, hf_fur_interpolate_guides,
            hf_fur_interpolate, hf_fur_ribbons, hf_fur_points,
-           hf_fur_max_stretch, hf_fur_reset
+           hf_fur_max_stretch, hf_fur_reset, hf_fur_set_rope_params,
+           hf_fur_set_mode
        Drawing (section 8): hf_ribbon_index_count, hf_ribbon_indices,
            hf_ribbon_chunk_strands, hf_ribbon_indices16 (16-bit chunks),
            hf_format_bytes; over your own strands: hf_ribbons,
@@ -1642,8 +1643,22 @@ HFDEF hf_result hf_fur_points(const hf_fur *fur, int first, int count,
    hf_ropes_max_stretch). Errors: HF_ERROR_NULL_POINTER. */
 HFDEF hf_result hf_fur_max_stretch(const hf_fur *fur, float *out_stretch);
 
-/* Teleport: every guide to its rest shape in its current root frame. */
+/* Teleport: every guide to its rest shape in its current root frame (call
+   hf_fur_set_roots with the new pose first). */
 HFDEF hf_result hf_fur_reset(hf_fur *fur);
+
+/* Per-frame control. hf_fur_set_rope_params replaces the rope parameters
+   (gravity, wind and turbulence, damping, stiffness, margin, ...) from the
+   next hf_fur_simulate on; zero fields mean the defaults, as everywhere.
+   Errors: HF_ERROR_NULL_POINTER, HF_ERROR_NON_FINITE,
+   HF_ERROR_BAD_PARAMETER (as hf_rope_params_validate); nothing changes
+   then. Not a range call: run it between frames. */
+HFDEF hf_result hf_fur_set_rope_params(hf_fur *fur,
+                                       const hf_rope_params *params);
+/* Switch guides [first, first + count) between simulation and animation
+   (hf_rope_mode) without a jump, as hf_ropes_set_mode. Errors:
+   HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE, HF_ERROR_BAD_PARAMETER. */
+HFDEF hf_result hf_fur_set_mode(hf_fur *fur, int first, int count, int mode);
 
 #ifdef __cplusplus
 }
@@ -8880,6 +8895,24 @@ HFDEF hf_result hf_fur_points(const hf_fur *f, int first, int count,
     hf_ribbon_strands s;
     hf_result r = hf__fur_view(f, first, count, view, &p, &s);
     return r != HF_OK ? r : hf_ribbon_points(&s, first, count, &p, out4);
+}
+
+HFDEF hf_result hf_fur_set_rope_params(hf_fur *f,
+                                       const hf_rope_params *params)
+{
+    hf_rope_params p;
+    hf_result r;
+    if (!f || !params) return HF_ERROR_NULL_POINTER;
+    hf__rope_params_resolve(params, &p);
+    if ((r = hf__rope_params_check(&p, NULL)) != HF_OK) return r;
+    f->rope = p;
+    return HF_OK;
+}
+
+HFDEF hf_result hf_fur_set_mode(hf_fur *f, int first, int count, int mode)
+{
+    if (!f) return HF_ERROR_NULL_POINTER;
+    return hf_ropes_set_mode(f->ropes, first, count, mode);
 }
 
 HFDEF hf_result hf_fur_reset(hf_fur *f)

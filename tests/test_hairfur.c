@@ -7437,6 +7437,70 @@ static void test_fur_roots_inside_count(void)
     hf_fur_destroy(f);
 }
 
+/* Per-frame control: new rope parameters take effect at the next
+   simulate (no gravity: the guides stay at rest), bad ones change
+   nothing; guides switched to animated follow their rest shape. */
+static void test_fur_set_rope_params_and_mode(void)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    hf_rope_params p;
+    float *rest;
+    size_t n;
+    int frame;
+    double moved = 0.0;
+    t_fur_scene_init(&sc, 1.0f);
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (!f) return;
+    hf_fur_get_info(f, &info);
+    n = (size_t)info.guide_count * (size_t)info.points_per_strand * 3u;
+    rest = (float *)malloc(sizeof(float) * n);
+    memcpy(rest, info.guide_points, sizeof(float) * n);
+    memset(&p, 0, sizeof p);
+    p.explicit_zero = HF_ROPE_ZERO_GRAVITY;
+    CHECK_EQ_INT(hf_fur_set_rope_params(f, &p), HF_OK);
+    p.damping = 2.0f; /* refused: the weightless params stay */
+    CHECK_EQ_INT(hf_fur_set_rope_params(f, &p), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_fur_set_rope_params(NULL, &p), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_fur_set_rope_params(f, NULL), HF_ERROR_NULL_POINTER);
+    for (frame = 0; frame < 20; ++frame)
+        CHECK_EQ_INT(hf_fur_simulate(f, 0, info.guide_count, 1.0f / 60.0f,
+                                     NULL, 0), HF_OK);
+    for (size_t i = 0; i < n; ++i) {
+        double d = fabs((double)info.guide_points[i] - rest[i]);
+        if (d > moved) moved = d;
+    }
+    CHECK(moved < 1e-5);
+    /* gravity back: simulated guides sag, animated ones keep their rest */
+    memset(&p, 0, sizeof p);
+    CHECK_EQ_INT(hf_fur_set_rope_params(f, &p), HF_OK);
+    CHECK_EQ_INT(hf_fur_set_mode(f, 0, info.guide_count, HF_ROPE_ANIMATED), HF_OK);
+    CHECK_EQ_INT(hf_fur_set_mode(f, 0, info.guide_count + 1, HF_ROPE_ANIMATED),
+                 HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_fur_set_mode(f, 0, 1, 7), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_fur_set_mode(NULL, 0, 1, HF_ROPE_ANIMATED), HF_ERROR_NULL_POINTER);
+    for (frame = 0; frame < 60; ++frame)
+        hf_fur_simulate(f, 0, info.guide_count, 1.0f / 60.0f, NULL, 0);
+    moved = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        double d = fabs((double)info.guide_points[i] - rest[i]);
+        if (d > moved) moved = d;
+    }
+    CHECK(moved < 1e-4);
+    CHECK_EQ_INT(hf_fur_set_mode(f, 0, info.guide_count, HF_ROPE_SIMULATED), HF_OK);
+    for (frame = 0; frame < 30; ++frame)
+        hf_fur_simulate(f, 0, info.guide_count, 1.0f / 60.0f, NULL, 0);
+    moved = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        double d = fabs((double)info.guide_points[i] - rest[i]);
+        if (d > moved) moved = d;
+    }
+    CHECK(moved > 1e-3);
+    free(rest);
+    hf_fur_destroy(f);
+}
+
 /* ==== main: every test, in the order above ================================ */
 
 int main(void)
@@ -7596,6 +7660,7 @@ int main(void)
     RUN(test_defaults_fur_strand_count_precedence);
     RUN(test_out_first_fur_chunks);
     RUN(test_fur_roots_inside_count);
+    RUN(test_fur_set_rope_params_and_mode);
     RUN(test_bad_fur);
 
     printf("%d passed, %d failed\n", t_passed, t_failed);
