@@ -2112,9 +2112,9 @@ HFDEF hf_result hf_map_validate(const hf_map *map, hf_diag *diag)
     if (map->row_stride < 0 ||
         (map->row_stride != 0 && (size_t)map->row_stride < packed_row))
         return hf__fail(diag, HF_ERROR_BAD_STRIDE, "row_stride", -1,
-                        "map.row_stride %d is below one packed row (%zu "
+                        "map.row_stride %d is below one packed row (%lu "
                         "bytes)",
-                        map->row_stride, packed_row);
+                        map->row_stride, (unsigned long)packed_row);
     if (!hf__mul_size(hf__map_row_stride(map), (size_t)map->height, &total))
         return hf__fail(diag, HF_ERROR_OVERFLOW, "row_stride", -1,
                         "map.row_stride * height overflows size_t");
@@ -2398,9 +2398,9 @@ HFDEF hf_result hf_mesh_validate(const hf_mesh *mesh, hf_diag *diag)
             if (v >= (uint32_t)mesh->vertex_count)
                 return hf__fail(diag, HF_ERROR_INDEX_OUT_OF_RANGE, "indices",
                                 3LL * t + k,
-                                "indices[%lld] = %u is not less than "
+                                "indices[%.0f] = %u is not less than "
                                 "vertex_count %d",
-                                3LL * t + k, (unsigned)v,
+                                (double)(3LL * t + k), (unsigned)v,
                                 mesh->vertex_count);
         }
     }
