@@ -5,19 +5,26 @@
    from the "skinned" mesh, rope simulation with colliders, LOD, guide and
    strand interpolation, and camera-facing ribbons with their index buffer.
 
-   Usage:
+   Usage (grow_fur --help lists every option with its unit and default):
      grow_fur [--mesh FILE] [--density PNG] [--length PNG] [--color PNG]
-              [--strands N] [--points N] [--length-max F] [--frames N]
-              [--lod F] [--seed N] [--out FILE.obj | FILE.ply]
+              [--strands N] [--guides N | --tess-factor F] [--points N]
+              [--length-max M] [--frames N] [--lod F] [--seed N]
+              [--collider auto|none|x,y,z,r] [--eye x,y,z]
+              [--out FILE.obj | FILE.ply]
 
    Without --mesh it grows on the built-in head (examples/head_mesh.h: a
    sphere of radius 0.1 with a procedural hairline density map and a bangs
    length map). --mesh loads any format assimp reads (OBJ, glTF, FBX, ...);
-   all its meshes are merged, and the maps need its first UV channel. Maps
-   are PNG (or anything stb_image reads): density and length use their first
-   channel, colour its RGB. The head swings sideways (0.05 m at 1 Hz) and
+   all its meshes are merged, its smooth normals (from the file, or made by
+   assimp) are passed on, and the maps need its first UV channel (a map on
+   a mesh without UVs is refused). Maps are PNG (or anything stb_image
+   reads): density and length use their first channel, colour its RGB; the
+   PNG's top row is v = 1, as in OpenGL (rows are flipped on load, since
+   hf_map's row 0 is v = 0). --guides sets the LOD guide density from the
+   mesh's area (see docs/grow.md). The head swings sideways (0.05 m at 1 Hz) and
    turns (+-25 degrees) for --frames frames of 1/60 s; a sphere collider
-   follows the head. The last frame's ribbons, seen from the front, are
+   (--collider) follows the head. The last frame's ribbons, seen from
+   --eye (default: in front of the mesh's bounding box), are
    written as OBJ (positions, texture coordinates (root u, root v) and
    faces) or binary PLY (positions, tangents as normals, colours),
    both of which Blender opens.
@@ -37,6 +44,8 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <ctype.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -66,17 +75,142 @@ static double median(double *v, int n)
     return n ? v[n / 2] : 0.0;
 }
 
-static void usage(void)
+#define GF_DEFAULT_STRANDS 20000
+#define GF_MAX_DEFAULT_GUIDES 2000
+#define GF_MAX_COUNT (1 << 28)
+
+/* One line per option: its unit and default. */
+static void usage(FILE *fp)
 {
-    fprintf(stderr,
-            "usage: grow_fur [--mesh FILE] [--density PNG] [--length PNG] "
-            "[--color PNG] [--strands N] [--points N] [--length-max F] "
-            "[--frames N] [--lod F] [--seed N] [--out FILE.obj|FILE.ply]\n");
+    fprintf(fp,
+"usage: grow_fur [options]; every option takes one value. Lengths are in\n"
+"metres; a --mesh file's coordinates are read as metres (\"mesh units\").\n"
+"  --mesh FILE        mesh to grow on, any format assimp reads, all its meshes\n"
+"                     merged (default: the built-in head, a sphere of radius\n"
+"                     0.1 m with its own density, length and colour maps)\n"
+"  --density PNG      density map, channel 0, 0..255 = 0..1 (default: none,\n"
+"                     density 1 everywhere; needs mesh UVs)\n"
+"  --length PNG       length map, channel 0: strand length = map x --length-max\n"
+"                     (default: none, every strand --length-max; needs UVs)\n"
+"  --color PNG        colour map, RGB (default: none, white; needs UVs)\n"
+"                     maps: PNG top row = v 1, as in OpenGL (bottom row = v 0)\n"
+"  --strands N        strands grown, a count (default %d)\n"
+"  --guides N         target guide count (pure guides at the mesh's welded\n"
+"                     vertices + LOD guides); sets tess_factor from the mesh's\n"
+"                     area (default: a tenth of --strands, at most %d)\n"
+"  --tess-factor F    raw tess_factor instead of --guides, per square mesh unit:\n"
+"                     triangles split while density x area x F > 1; 0 = pure\n"
+"                     guides only (default: derived from --guides)\n"
+"  --points N         points per strand, 2..%d (default 16)\n"
+"  --length-max M     longest strand, metres (mesh units) (default 0.12)\n"
+"  --frames N         frames simulated, 1/60 s each (default 120)\n"
+"  --lod F            level of detail, 0..1 (hf_fur_set_lod; 1 = every\n"
+"                     strand drawn) (default 1)\n"
+"  --seed N           random seed, a count >= 0 (default 1)\n"
+"  --collider C       auto | none | x,y,z,r: the sphere the head carries, in\n"
+"                     mesh units (default auto: at the bounding box centre,\n"
+"                     radius 0.97 x a quarter of the box's x width; the\n"
+"                     built-in head: radius 0.97 x 0.1 at the origin)\n"
+"  --eye x,y,z        camera the ribbons face, mesh units (default: bounding\n"
+"                     box centre + (0, 0, 2.5 x half the box diagonal))\n"
+"  --out FILE         .obj or .ply output (default fur.obj)\n"
+"  --help             this list\n"
+"Counts (N) accept 20000, 2e4 or 20k (k = 1000). Exit code 2: bad arguments.\n",
+            GF_DEFAULT_STRANDS, GF_MAX_DEFAULT_GUIDES, HF_MAX_POINTS);
 }
 
-/* Every mesh of the scene merged into one interleaved buffer. */
+/* A count: an integer written as 20000, 2e4 or 20k (k = 1000), the whole
+   string, in [lo, hi]. Prints a message naming the option and returns 0
+   otherwise. */
+static int parse_count(const char *opt, const char *v, long long lo,
+                       long long hi, long long *out)
+{
+    char buf[64], *end;
+    size_t n = strlen(v);
+    double x, mult = 1.0;
+    if (n == 0 || n >= sizeof buf || isspace((unsigned char)v[0])) goto bad;
+    memcpy(buf, v, n + 1);
+    if (buf[n - 1] == 'k' || buf[n - 1] == 'K') {
+        mult = 1000.0;
+        buf[--n] = '\0';
+        if (n == 0) goto bad;
+    }
+    x = strtod(buf, &end);
+    if (end == buf || *end != '\0' || !isfinite(x)) goto bad;
+    x *= mult;
+    if (x != floor(x)) {
+        fprintf(stderr, "grow_fur: %s '%s': not a whole number\n", opt, v);
+        return 0;
+    }
+    if (x < (double)lo || x > (double)hi) {
+        fprintf(stderr, "grow_fur: %s '%s': out of range %lld..%lld\n", opt,
+                v, lo, hi);
+        return 0;
+    }
+    *out = (long long)x;
+    return 1;
+bad:
+    fprintf(stderr,
+            "grow_fur: %s '%s': not a count (write 20000, 2e4 or 20k)\n", opt,
+            v);
+    return 0;
+}
+
+/* A finite real number, the whole string, in [lo, hi]. */
+static int parse_real(const char *opt, const char *v, double lo, double hi,
+                      float *out)
+{
+    char *end;
+    double x;
+    if (!*v || isspace((unsigned char)v[0])) goto bad;
+    x = strtod(v, &end);
+    if (end == v || *end != '\0' || !isfinite(x)) goto bad;
+    if (x < lo || x > hi) {
+        fprintf(stderr, "grow_fur: %s '%s': out of range %g..%g\n", opt, v,
+                lo, hi);
+        return 0;
+    }
+    *out = (float)x;
+    return 1;
+bad:
+    fprintf(stderr, "grow_fur: %s '%s': not a number\n", opt, v);
+    return 0;
+}
+
+/* n comma-separated finite numbers (x,y,z or x,y,z,r), the whole string. */
+static int parse_reals(const char *opt, const char *v, int n, float *out,
+                       const char *form)
+{
+    const char *p = v;
+    char *end;
+    int k;
+    for (k = 0; k < n; ++k) {
+        double x;
+        if (!*p || isspace((unsigned char)*p)) goto bad;
+        x = strtod(p, &end);
+        if (end == p || !isfinite(x) || fabs(x) > 1e30) goto bad;
+        out[k] = (float)x;
+        p = end;
+        if (k + 1 < n) {
+            if (*p != ',') goto bad;
+            ++p;
+        }
+    }
+    if (*p != '\0') goto bad;
+    return 1;
+bad:
+    fprintf(stderr, "grow_fur: %s '%s': expected %s (numbers)\n", opt, v,
+            form);
+    return 0;
+}
+
+/* Every mesh of the scene merged into one interleaved buffer. *has_normals
+   and *has_uvs: every merged mesh had normals (assimp's smooth ones where
+   the file has none) / texture coordinates (channel 0); *uvless counts the
+   meshes without. */
 static int load_mesh(const char *path, vtx **out_v, uint32_t **out_i,
-                     int *nv, int *nt)
+                     int *nv, int *nt, int *has_normals, int *has_uvs,
+                     int *uvless, int *mesh_count)
 {
     const struct aiScene *sc = aiImportFile(
         path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
@@ -88,9 +222,17 @@ static int load_mesh(const char *path, vtx **out_v, uint32_t **out_i,
                 aiGetErrorString());
         return 0;
     }
+    *has_normals = *has_uvs = 1;
+    *uvless = *mesh_count = 0;
     for (m = 0; m < sc->mNumMeshes; ++m) {
         const struct aiMesh *me = sc->mMeshes[m];
         if (!(me->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+        if (!me->mNormals) *has_normals = 0;
+        if (!me->mTextureCoords[0]) {
+            *has_uvs = 0;
+            ++*uvless;
+        }
+        ++*mesh_count;
         v_total += me->mNumVertices;
         t_total += me->mNumFaces;
     }
@@ -143,7 +285,11 @@ static int load_mesh(const char *path, vtx **out_v, uint32_t **out_i,
 static int load_map(const char *path, int channels, hf_map *map)
 {
     int w, h, n;
-    unsigned char *px = stbi_load(path, &w, &h, &n, channels);
+    unsigned char *px;
+    /* hf_map's row 0 is v = 0 (OpenGL); a PNG stores its top row first:
+       flip, so that the PNG's top row is v = 1 */
+    stbi_set_flip_vertically_on_load(1);
+    px = stbi_load(path, &w, &h, &n, channels);
     if (!px) {
         fprintf(stderr, "grow_fur: cannot read %s: %s\n", path,
                 stbi_failure_reason());
@@ -210,12 +356,99 @@ static int ends_with(const char *s, const char *suf)
     return a >= b && strcmp(s + a - b, suf) == 0;
 }
 
+static const vtx *g_sort_v; /* for cmp_pos */
+static int cmp_pos(const void *a, const void *b)
+{
+    const float *p = g_sort_v[*(const int *)a].pos;
+    const float *q = g_sort_v[*(const int *)b].pos;
+    int k;
+    for (k = 0; k < 3; ++k)
+        if (p[k] != q[k]) return p[k] < q[k] ? -1 : 1;
+    return 0;
+}
+
+/* The pure guide count hf_fur_create will make: vertices used by a
+   triangle, welded by exact position. -1 without memory. */
+static int welded_count(const vtx *v, int nv, const uint32_t *idx, int nt)
+{
+    int *order = (int *)malloc(sizeof(int) * (size_t)nv);
+    unsigned char *used = (unsigned char *)calloc((size_t)nv, 1);
+    int i, n = 0, count = 0;
+    if (!order || !used) {
+        free(order);
+        free(used);
+        return -1;
+    }
+    for (i = 0; i < 3 * nt; ++i) used[idx[i]] = 1;
+    for (i = 0; i < nv; ++i)
+        if (used[i]) order[n++] = i;
+    g_sort_v = v;
+    qsort(order, (size_t)n, sizeof(int), cmp_pos);
+    for (i = 0; i < n; ++i)
+        if (i == 0 || cmp_pos(&order[i - 1], &order[i]) != 0) ++count;
+    free(order);
+    free(used);
+    return count;
+}
+
+/* LOD guides (added vertices) that tess_factor `factor` makes: the counting
+   pass of hf_tessellate, as hf_fur_create runs it. -1 past the
+   tessellation caps. */
+static long long lod_guides_for(const hf_mesh *mesh, const hf_map *density,
+                                float factor)
+{
+    hf_tess_params tp;
+    hf_tess_output to;
+    if (!(factor > 0.0f)) return 0;
+    memset(&tp, 0, sizeof tp);
+    memset(&to, 0, sizeof to);
+    tp.factor = factor;
+    if (hf_tessellate(mesh, density, &tp, &to) != HF_OK) return -1;
+    return to.added_count;
+}
+
+/* The tess_factor whose LOD guides come nearest `target`: starts at
+   target / area (a triangle of density 1 splits while A * factor > 1, so
+   about one added vertex per 1 / factor of area), then bisects on the
+   counting pass (the count grows with the factor). */
+static float fit_tess_factor(const hf_mesh *mesh, const hf_map *density,
+                             double area, long long target)
+{
+    double lo = 0.0, hi = 0.0, f, best_f = 0.0;
+    long long best_err = target, n;
+    int it;
+    if (target <= 0 || !(area > 0.0)) return 0.0f;
+    f = (double)target / area;
+    for (it = 0; it < 40; ++it) {
+        if (!(f < 1e30)) break;
+        n = lod_guides_for(mesh, density, (float)f);
+        if (n >= 0 && llabs(n - target) < best_err) {
+            best_err = llabs(n - target);
+            best_f = f;
+        }
+        if (n >= 0 && llabs(n - target) * 50 <= target) break; /* 2 % */
+        if (n < 0 || n > target) hi = f;
+        else lo = f;
+        f = hi > 0.0 ? (lo > 0.0 ? sqrt(lo * hi) : hi * 0.25) : f * 4.0;
+        if (hi > 0.0 && lo > 0.0 && hi / lo < 1.0001) break;
+    }
+    return (float)best_f;
+}
+
 int main(int argc, char **argv)
 {
     const char *mesh_path = NULL, *density_path = NULL, *length_path = NULL,
                *color_path = NULL, *out_path = "fur.obj";
-    int strands = 20000, points = 16, frames = 120, seed = 1, i, f;
-    float lod = 1.0f, max_length = 0.12f;
+    int strands = GF_DEFAULT_STRANDS, points = 16, frames = 120, i, f;
+    long long seed = 1, guides = -1, cnt;
+    float lod = 1.0f, max_length = 0.12f, tess_factor = -1.0f;
+    int has_normals = 1, has_uvs = 1, uvless = 0, mesh_count = 1;
+    int collider_mode = 0; /* 0 auto, 1 none, 2 explicit */
+    float collider_arg[4] = {0, 0, 0, 0}, eye[3] = {0, 0, 0};
+    int have_eye = 0, pure_guides;
+    double area = 0.0;
+    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+    float box_radius;
     vtx *rest = NULL, *skin = NULL;
     uint32_t *idx = NULL;
     int nv = 0, nt = 0;
@@ -238,12 +471,19 @@ int main(int argc, char **argv)
     for (i = 1; i < argc; ++i) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int ok = 1;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            usage();
+            usage(stdout);
             return 0;
         }
+        if (strncmp(a, "--", 2) != 0 || !strcmp(a, "--")) {
+            fprintf(stderr, "grow_fur: unexpected argument '%s' (--help "
+                            "lists the options)\n", a);
+            return 2;
+        }
         if (!v) {
-            usage();
+            fprintf(stderr, "grow_fur: %s needs a value (--help lists the "
+                            "options)\n", a);
             return 2;
         }
         if (!strcmp(a, "--mesh")) mesh_path = v;
@@ -251,28 +491,70 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--length")) length_path = v;
         else if (!strcmp(a, "--color")) color_path = v;
         else if (!strcmp(a, "--out")) out_path = v;
-        else if (!strcmp(a, "--strands")) strands = atoi(v);
-        else if (!strcmp(a, "--points")) points = atoi(v);
-        else if (!strcmp(a, "--frames")) frames = atoi(v);
-        else if (!strcmp(a, "--seed")) seed = atoi(v);
-        else if (!strcmp(a, "--lod")) lod = (float)atof(v);
-        else if (!strcmp(a, "--length-max")) max_length = (float)atof(v);
-        else {
-            usage();
+        else if (!strcmp(a, "--strands")) {
+            ok = parse_count(a, v, 1, GF_MAX_COUNT, &cnt);
+            strands = (int)cnt;
+        } else if (!strcmp(a, "--guides"))
+            ok = parse_count(a, v, 1, GF_MAX_COUNT, &guides);
+        else if (!strcmp(a, "--tess-factor"))
+            ok = parse_real(a, v, 0.0, 1e30, &tess_factor);
+        else if (!strcmp(a, "--points")) {
+            ok = parse_count(a, v, 2, HF_MAX_POINTS, &cnt);
+            points = (int)cnt;
+        } else if (!strcmp(a, "--frames")) {
+            ok = parse_count(a, v, 1, 100000000, &cnt);
+            frames = (int)cnt;
+        } else if (!strcmp(a, "--seed"))
+            ok = parse_count(a, v, 0, 9007199254740992LL, &seed);
+        else if (!strcmp(a, "--lod"))
+            ok = parse_real(a, v, 0.0, 1.0, &lod);
+        else if (!strcmp(a, "--length-max"))
+            ok = parse_real(a, v, 1e-9, 1e6, &max_length);
+        else if (!strcmp(a, "--collider")) {
+            if (!strcmp(v, "auto")) collider_mode = 0;
+            else if (!strcmp(v, "none")) collider_mode = 1;
+            else {
+                collider_mode = 2;
+                ok = parse_reals(a, v, 4, collider_arg,
+                                 "auto, none or x,y,z,r");
+                if (ok && !(collider_arg[3] >= 0.0f)) {
+                    fprintf(stderr, "grow_fur: --collider '%s': the radius "
+                                    "is negative\n", v);
+                    ok = 0;
+                }
+            }
+        } else if (!strcmp(a, "--eye")) {
+            ok = parse_reals(a, v, 3, eye, "x,y,z");
+            have_eye = 1;
+        } else {
+            fprintf(stderr, "grow_fur: unknown option '%s' (--help lists "
+                            "the options)\n", a);
             return 2;
         }
+        if (!ok) return 2;
         ++i;
     }
-    if (strands < 1 || frames < 1 || points < 2 || points > HF_MAX_POINTS ||
-        !(max_length > 0) || !(ends_with(out_path, ".obj") ||
-                              ends_with(out_path, ".ply"))) {
-        usage();
+    if (!(ends_with(out_path, ".obj") || ends_with(out_path, ".ply"))) {
+        fprintf(stderr, "grow_fur: --out '%s': the name must end in .obj or "
+                        ".ply\n", out_path);
         return 2;
+    }
+    if (guides >= 0 && tess_factor >= 0.0f) {
+        fprintf(stderr, "grow_fur: give --guides or --tess-factor, not "
+                        "both\n");
+        return 2;
+    }
+    if (guides < 0 && tess_factor < 0.0f) {
+        guides = strands / 10;
+        if (guides > GF_MAX_DEFAULT_GUIDES) guides = GF_MAX_DEFAULT_GUIDES;
+        if (guides < 1) guides = 1;
     }
 
     /* the mesh: a file through assimp, or the built-in head */
     if (mesh_path) {
-        if (!load_mesh(mesh_path, &rest, &idx, &nv, &nt)) return 1;
+        if (!load_mesh(mesh_path, &rest, &idx, &nv, &nt, &has_normals,
+                       &has_uvs, &uvless, &mesh_count))
+            return 1;
     } else {
         if (!hm_sphere(24, 32, radius, &head)) return 1;
         nv = head.vertex_count;
@@ -284,18 +566,104 @@ int main(int argc, char **argv)
         head.indices = NULL;
         hm_free(&head);
     }
-    /* the collider: the mesh's bounding sphere, shrunk so roots sit on it */
-    if (mesh_path) {
-        float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+    /* maps need UVs: refuse rather than read one texel everywhere */
+    if (!has_uvs && (density_path || length_path || color_path)) {
+        const char *what = density_path ? "--density" : length_path ? "--length" : "--color";
+        const char *map = density_path ? density_path : length_path ? length_path : color_path;
+        fprintf(stderr,
+                "grow_fur: %s %s needs texture coordinates, but %s has none "
+                "(%d of its %d triangle meshes lack UV channel 0): give the "
+                "mesh UVs, or leave the maps out\n",
+                what, map, mesh_path, uvless, mesh_count);
+        return 1;
+    }
+    /* smooth normals from assimp: pass them on, but only if every one is
+       usable (finite, non-zero length; hf_mesh_validate refuses others);
+       a bad one is replaced by the library's area-weighted normal */
+    if (mesh_path && has_normals) {
+        int bad = 0;
+        for (i = 0; i < nv; ++i) {
+            const float *n = rest[i].normal;
+            double l2 = (double)n[0] * n[0] + (double)n[1] * n[1] +
+                        (double)n[2] * n[2];
+            if (!isfinite(l2) || !(l2 > 1e-20)) ++bad;
+        }
+        if (bad) {
+            hf_mesh m;
+            float *nn = (float *)malloc(sizeof(float) * 3u * (size_t)nv);
+            memset(&m, 0, sizeof m);
+            m.positions = rest[0].pos;
+            m.position_stride = (int)sizeof(vtx);
+            m.vertex_count = nv;
+            m.indices = idx;
+            m.triangle_count = nt;
+            if (!nn || hf_mesh_compute_normals(&m, nn) != HF_OK) {
+                has_normals = 0;
+            } else {
+                for (i = 0; i < nv; ++i) {
+                    float *n = rest[i].normal;
+                    double l2 = (double)n[0] * n[0] + (double)n[1] * n[1] +
+                                (double)n[2] * n[2];
+                    if (!isfinite(l2) || !(l2 > 1e-20))
+                        memcpy(n, nn + 3 * i, sizeof(float) * 3u);
+                }
+                printf("normals: %d of %d mesh normals were zero or not "
+                       "finite: replaced by area-weighted ones\n", bad, nv);
+            }
+            free(nn);
+        }
+    }
+    printf("mesh: %s, %d vertices, %d triangles, normals %s, UVs %s\n",
+           mesh_path ? mesh_path : "built-in head", nv, nt,
+           has_normals ? "from the mesh" : "computed by hairfur",
+           has_uvs ? "yes" : "none");
+    /* bounding box and area */
+    {
         int k;
         for (i = 0; i < nv; ++i)
             for (k = 0; k < 3; ++k) {
                 lo[k] = rest[i].pos[k] < lo[k] ? rest[i].pos[k] : lo[k];
                 hi[k] = rest[i].pos[k] > hi[k] ? rest[i].pos[k] : hi[k];
             }
+        for (i = 0; i < nt; ++i)
+            area += hf_triangle_area(rest[idx[3 * i]].pos,
+                                     rest[idx[3 * i + 1]].pos,
+                                     rest[idx[3 * i + 2]].pos);
+        box_radius = 0.5f * sqrtf((hi[0] - lo[0]) * (hi[0] - lo[0]) +
+                                  (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                  (hi[2] - lo[2]) * (hi[2] - lo[2]));
+        printf("bounding box (mesh units): (%g, %g, %g) .. (%g, %g, %g); "
+               "area %g square mesh units\n",
+               (double)lo[0], (double)lo[1], (double)lo[2], (double)hi[0],
+               (double)hi[1], (double)hi[2], area);
+    }
+    /* the collider: by default the mesh's bounding sphere, shrunk so roots
+       sit on it (the built-in head: its own sphere) */
+    if (collider_mode == 0 && mesh_path) {
+        int k;
         for (k = 0; k < 3; ++k) center[k] = 0.5f * (lo[k] + hi[k]);
         radius = 0.5f * 0.5f * (hi[0] - lo[0]); /* a conservative inner ball */
     }
+    if (collider_mode == 0) radius *= 0.97f;
+    if (collider_mode == 2) {
+        memcpy(center, collider_arg, sizeof center);
+        radius = collider_arg[3];
+    }
+    if (collider_mode == 1)
+        printf("collider: none\n");
+    else
+        printf("collider: %s sphere, centre (%g, %g, %g), radius %g (mesh "
+               "units, at rest)\n",
+               collider_mode == 0 ? "auto" : "given", (double)center[0],
+               (double)center[1], (double)center[2], (double)radius);
+    if (!have_eye) {
+        eye[0] = 0.5f * (lo[0] + hi[0]);
+        eye[1] = 0.5f * (lo[1] + hi[1]);
+        eye[2] = 0.5f * (lo[2] + hi[2]) + 2.5f * box_radius;
+    }
+    printf("eye: (%g, %g, %g)%s\n", (double)eye[0], (double)eye[1],
+           (double)eye[2], have_eye ? "" : " (box centre + (0, 0, 2.5 x half "
+                                          "the box diagonal))");
 
     /* the maps: files, or the built-in ones for the built-in head */
     if (!get_map(density_path, 1, !mesh_path, hm_hairline_density, 256,
@@ -310,9 +678,11 @@ int main(int argc, char **argv)
     memset(&desc, 0, sizeof desc);
     desc.mesh.positions = rest[0].pos;
     desc.mesh.position_stride = (int)sizeof(vtx);
-    desc.mesh.normals = mesh_path ? NULL : rest[0].normal;
+    /* the mesh's smooth normals where it has them, else hairfur computes
+       area-weighted ones; UVs only where there are some */
+    desc.mesh.normals = has_normals ? rest[0].normal : NULL;
     desc.mesh.normal_stride = (int)sizeof(vtx);
-    desc.mesh.uvs = rest[0].uv;
+    desc.mesh.uvs = has_uvs ? rest[0].uv : NULL;
     desc.mesh.uv_stride = (int)sizeof(vtx);
     desc.mesh.vertex_count = nv;
     desc.mesh.indices = idx;
@@ -326,9 +696,31 @@ int main(int argc, char **argv)
     desc.sampler = HF_SAMPLER_STRATIFIED;
     desc.seed = (uint64_t)seed;
     desc.clump = 0.2f;
-    /* LOD guides where the mesh is coarse: about 4 cm^2 per guide triangle
-       at full density */
-    desc.tess_factor = 25000.0f;
+    /* LOD guides where the mesh is coarse. A triangle of density D and
+       area A is split while D * A * tess_factor > 1, so a factor of about
+       lod_guides / area gives that many added vertices (LOD guides); the
+       counting pass of hf_tessellate then tunes it. Pure guides sit at the
+       welded vertices, so a target below their count means no LOD
+       guides. */
+    pure_guides = welded_count(rest, nv, idx, nt);
+    if (pure_guides < 0) return 1;
+    if (tess_factor >= 0.0f) {
+        desc.tess_factor = tess_factor;
+        printf("guides: --tess-factor %g per square mesh unit\n",
+               (double)tess_factor);
+    } else {
+        long long want = guides - pure_guides;
+        desc.tess_factor =
+            want > 0 ? fit_tess_factor(&desc.mesh, desc.density_map, area, want)
+                     : 0.0f;
+        printf("guides: target %lld = %d pure (welded vertices) + %lld LOD "
+               "-> tess_factor %g per square mesh unit (first guess %g)\n",
+               guides, pure_guides, want > 0 ? want : 0,
+               (double)desc.tess_factor, want > 0 ? (double)want / area : 0.0);
+        if (want <= 0)
+            printf("guides: the mesh's %d welded vertices already reach the "
+                   "target of %lld: no LOD guides\n", pure_guides, guides);
+    }
     hf_rope_params_init(&rp);
     rp.global_stiffness_root = 0.3f;
     rp.global_stiffness_tip = 0.02f;
@@ -350,6 +742,10 @@ int main(int argc, char **argv)
                now_ms() - t0, nv, nt, info.triangle_count, info.guide_count,
                info.pure_guide_count, info.lod_guide_count,
                info.strand_count, info.points_per_strand);
+        if (guides >= 0)
+            printf("guides: %d of a target of %lld (%.2f x)\n",
+                   info.guide_count, guides,
+                   (double)info.guide_count / (double)guides);
     }
     hf_fur_set_lod(fur, lod);
     hf_fur_get_info(fur, &info);
@@ -367,7 +763,7 @@ int main(int argc, char **argv)
     skinned = desc.mesh;
     skinned.positions = skin[0].pos;
     skinned.normals = skin[0].normal;
-    skinned.uvs = skin[0].uv;
+    skinned.uvs = has_uvs ? skin[0].uv : NULL;
     for (f = 0; f < frames; ++f) {
         float m[12];
         hf_collider col;
@@ -381,14 +777,14 @@ int main(int argc, char **argv)
             skin[i].uv[0] = rest[i].uv[0];
             skin[i].uv[1] = rest[i].uv[1];
         }
-        if (mesh_path) skinned.normals = NULL; /* face normals from the mesh */
+        if (!has_normals) skinned.normals = NULL; /* face normals */
         memset(&col, 0, sizeof col);
         col.type = HF_COLLIDER_SPHERE;
         xform(m, center, 1.0f, col.a);
-        col.radius = radius * 0.97f;
+        col.radius = radius;
 
         memset(&view, 0, sizeof view);
-        view.eye[2] = 0.6f;
+        memcpy(view.eye, eye, sizeof view.eye);
         view.root_width = 0.0012f;
         view.tip_width = 0.0003f;
         view.alpha_root = 1.0f;
@@ -403,7 +799,9 @@ int main(int argc, char **argv)
         r = hf_fur_set_roots(fur, &skinned, 0, info.guide_count);
         t1 = now_ms();
         if (r == HF_OK)
-            r = hf_fur_simulate(fur, 0, info.guide_count, 1.0f / 60.0f, &col, 1);
+            r = hf_fur_simulate(fur, 0, info.guide_count, 1.0f / 60.0f,
+                                collider_mode == 1 ? NULL : &col,
+                                collider_mode == 1 ? 0 : 1);
         t2 = now_ms();
         if (r == HF_OK)
             r = hf_fur_interpolate_guides(fur, 0, info.lod_guide_count);
@@ -435,6 +833,8 @@ int main(int argc, char **argv)
                median(t_interp, frames), median(t_ribbons, frames),
                100.0 * stretch);
         hf_fur_get_info(fur, &info);
+        printf("collider: %d of %d guide roots inside it at the last frame\n",
+               info.roots_inside, info.guide_count);
         if (info.roots_inside > 0)
             printf("%d of %d guide roots sit inside the collider (for "
                    "those guides it is shrunk to the root's depth); if the "
