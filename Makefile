@@ -16,6 +16,9 @@
 #                      checked
 #   make api-doc-check tests/check_api_doc.sh (docs/api.md against hairfur.h)
 #                      when that script exists
+#   make grow-fur-check  grow_fur's options as a user meets them (bad counts,
+#                      --help, --guides on the built-in head); skipped, with
+#                      the reason, where grow_fur cannot be built
 #   make valgrind      the test suite under memcheck
 #   make soak          a million rope steps under random abuse (SOAK_FRAMES)
 #   make fuzz          each libFuzzer target for FUZZ_SECONDS (60) s
@@ -70,7 +73,7 @@ TEST   := tests/test_hairfur.c
 CLANG   := $(shell command -v clang 2>/dev/null)
 CLANGXX := $(shell command -v clang++ 2>/dev/null)
 
-.PHONY: all test check check-build quickstart api-doc-check demo demo-deps \
+.PHONY: all test check check-build quickstart api-doc-check grow-fur-check demo demo-deps \
         examples deps clean help gl-test-or-skip bench valgrind FORCE
 
 all: test
@@ -138,6 +141,7 @@ test: check-build
 	$(call run_tests,$(TEST_BINS),test)
 	@$(MAKE) --no-print-directory api-doc-check
 	@$(MAKE) --no-print-directory quickstart
+	@$(MAKE) --no-print-directory grow-fur-check
 	@$(MAKE) --no-print-directory gl-test-or-skip
 
 # The edit-compile-test loop: one build of the suite, the doc checks.
@@ -145,6 +149,10 @@ check: $(BUILD)/test_gcc_c99
 	$(call run_tests,$(BUILD)/test_gcc_c99,check)
 	@$(MAKE) --no-print-directory api-doc-check
 	@$(MAKE) --no-print-directory quickstart
+
+# grow_fur as a user meets it: tests/grow_fur_check.sh builds it itself.
+grow-fur-check:
+	@sh tests/grow_fur_check.sh
 
 # docs/api.md against hairfur.h: the script prints the drift and fails.
 # Skipped, silently, where the script is absent.
