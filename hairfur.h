@@ -162,8 +162,15 @@
                            strands_per_area or a negative total_strands, and
                            strands_per_area wins over total_strands as
                            documented; the implementation as named steps
-                           with one SIMD layout. Rope, ribbon and
-                           interpolation bytes are unchanged.
+                           with one SIMD layout (the same bytes as 0.1.0);
+                           FTL collisions that clear every collider at the
+                           rest length, roots inside a collider
+                           (hf_ropes_roots_inside), ribbon sides
+                           perpendicular to their tangent (these change
+                           bytes where a collider is touched or a view is
+                           within half a degree of a tangent); exact
+                           hf_lod_strand_count; hf_ropes_copy_range,
+                           hf_fur_set_rope_params, hf_fur_set_mode.
        0.1.0 (2026-11-22)  first release: maps and meshes, density
                            tessellation, guides, placement, Verlet ropes,
                            interpolation, LOD, ribbons, Marschner LUTs,
@@ -899,7 +906,8 @@ typedef struct hf_rope_params {
     float turbulence;  /* 0 m/s^2: amplitude of a smooth per-rope random
                           acceleration added to the wind (value noise of
                           the rope index and the rope's simulated time) */
-    float turbulence_frequency; /* 1 Hz: how often the turbulence changes */
+    float turbulence_frequency; /* 1 Hz: how often the turbulence changes,
+                          (0, 1000] */
     float damping;     /* 0.02: fraction of velocity lost per 1/60 s of
                           simulated time, [0, 1] */
     float time_scale;  /* 1: simulated seconds per real second, (0, 100];
@@ -912,7 +920,9 @@ typedef struct hf_rope_params {
     float max_dt;      /* 1/15 s: a longer dt is clamped to this, (0, 1] */
     int iterations;    /* 2: solver passes per sub-step, [0, 1000]; each
                           pass is a distance pass then a collision pass.
-                          FTL without colliders needs (and does) one. */
+                          FTL is exact after one and does one. 0 (with
+                          HF_ROPE_ZERO_ITERATIONS): no pass, so nothing
+                          holds the segment lengths. */
     int solver;        /* hf_rope_solver: HF_ROPE_SOLVER_FTL */
     float ftl_damping; /* 0.9: Mueller's s_damping, [0, 1] */
     float root_stiffness; /* 0: pull of point 1 toward its rest place in
@@ -1057,7 +1067,8 @@ HFDEF hf_result hf_ropes_set_roots(hf_ropes *ropes, int first, int count,
    and is exempt; a collider that holds a rope's root (deeper than the
    margin) is shrunk, for that rope, to the root's distance from its axis (hf_ropes_roots_inside
    counts such ropes). The distance solver pushes points straight out, as
-   before. Animated ropes ignore colliders. A rope that an unstable setting throws further than
+   before, and with iterations 0 (HF_ROPE_ZERO_ITERATIONS) nothing holds
+   the lengths. Animated ropes ignore colliders. A rope that an unstable setting throws further than
    8 * length + 0.01 m from its root is reset to its rest pose, so no
    output is ever NaN. Errors: HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE,
    HF_ERROR_BAD_COUNT (collider_count < 0), HF_ERROR_BAD_TIME_STEP,
@@ -1150,7 +1161,7 @@ typedef struct hf_interp_params {
    so the strand keeps its own root on the guide triangle (the surface) and
    its own length (scale), and equals guide k exactly when w_k = 1 and
    scale = 1; then clumping. Writes P * 3 floats per strand at
-   out_points + s * P * 3 and nothing else, so ranges can run on separate
+   out_points + (s - out_first) * P * 3 and nothing else, so ranges can run on separate
    threads. Use the same call for LOD guides that are not simulated: their
    bindings name pure guides, and out_points may be the guide array itself
    (the LOD guides' part of it) as long as no binding names a guide inside
@@ -5090,8 +5101,8 @@ HF__PRIVATE float hf__ftl_penetration(const hf__col_prep *k, const float *rr,
 }
 
 /* One point after its FTL placement, against colliders k[0 .. ncol) (at
-   most HF__ROPE_PREP at a time: the caller walks longer lists in
-   batches). Each round makes the caps of the colliders near the best
+   most HF__ROPE_PREP at a time: the caller walks longer lists in batches,
+   again until a walk moves nothing). Each round makes the caps of the colliders near the best
    point so far (a capsule's from its axis point closest to that point),
    then tries every direction that can be nearest and clear: u turned
    onto each cap's edge, and the crossings of every two edges; the one
@@ -5181,18 +5192,29 @@ HF__PRIVATE void hf__ropes_collide_ftl_row(hf_ropes *ro, const float *F,
     const size_t R = (size_t)ro->rope_count;
     const float *L = HF__ROW(ro->rest_length, j - 1, R);
     hf__col_prep k[HF__ROPE_PREP];
-    int r, c0, c, nk;
-    for (c0 = 0; c0 < ncol; c0 += HF__ROPE_PREP) {
-        nk = ncol - c0 < HF__ROPE_PREP ? ncol - c0 : HF__ROPE_PREP;
-        for (c = 0; c < nk; ++c) k[c] = hf__collider_prep(col + c0 + c, margin);
-        for (r = a; r < b; ++r) {
-            const size_t o = (size_t)j * R + (size_t)r, o0 = o - R;
-            const float p[3] = {ro->x[o0], ro->y[o0], ro->z[o0]};
-            const float root[3] = {ro->x[r], ro->y[r], ro->z[r]};
-            const float n[3] = {F[6 * R + r], F[7 * R + r], F[8 * R + r]};
-            const float t[3] = {F[3 * R + r], F[4 * R + r], F[5 * R + r]};
-            hf__ftl_collide_point(ro->x + o, ro->y + o, ro->z + o, p, L[r],
-                                  root, n, t, k, nk);
+    int r, c0, c, nk, walk;
+    for (r = a; r < b; ++r) {
+        const size_t o = (size_t)j * R + (size_t)r, o0 = o - R;
+        const float p[3] = {ro->x[o0], ro->y[o0], ro->z[o0]};
+        const float root[3] = {ro->x[r], ro->y[r], ro->z[r]};
+        const float n[3] = {F[6 * R + r], F[7 * R + r], F[8 * R + r]};
+        const float t[3] = {F[3 * R + r], F[4 * R + r], F[5 * R + r]};
+        /* more colliders than one batch: walk the batches again until a
+           whole walk moves nothing (a turn out of a later batch can land
+           in an earlier one) */
+        for (walk = 0; walk < (ncol > HF__ROPE_PREP ? HF__FTL_ROUNDS : 1);
+             ++walk) {
+            const float before[3] = {ro->x[o], ro->y[o], ro->z[o]};
+            for (c0 = 0; c0 < ncol; c0 += HF__ROPE_PREP) {
+                nk = ncol - c0 < HF__ROPE_PREP ? ncol - c0 : HF__ROPE_PREP;
+                for (c = 0; c < nk; ++c)
+                    k[c] = hf__collider_prep(col + c0 + c, margin);
+                hf__ftl_collide_point(ro->x + o, ro->y + o, ro->z + o, p,
+                                      L[r], root, n, t, k, nk);
+            }
+            if (ro->x[o] == before[0] && ro->y[o] == before[1] &&
+                ro->z[o] == before[2])
+                break;
         }
     }
 }
@@ -8342,8 +8364,9 @@ HF__PRIVATE hf_result hf__fur_desc_check(const hf_fur_desc *d, hf_diag *diag)
         !hf__finitef(d->max_length) || d->max_length < 0.0f ||
         !hf__finitef(d->tess_factor) || d->tess_factor < 0.0f)
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "desc", -1,
-                        "clump, lod_simulate_threshold, max_length or "
-                        "tess_factor is negative, non-finite or above 1");
+                        "clump or lod_simulate_threshold outside [0, 1], "
+                        "or max_length or tess_factor negative or "
+                        "non-finite");
     if (!hf__finitef(d->strands_per_area) || d->strands_per_area < 0.0f)
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "strands_per_area", -1,
                         "strands_per_area %g is negative or non-finite",
@@ -8629,8 +8652,8 @@ HFDEF hf_result hf_fur_create(const hf_fur_desc *desc, hf_fur **out_fur,
                  {"guides", hf__fur_guides},
                  {"strand placement", hf__fur_place},
                  {"strand maps", hf__fur_strand_maps},
-                 {"strand maps", hf__fur_bind},
-                 {"ropes", hf__fur_root_refs},
+                 {"strand bindings", hf__fur_bind},
+                 {"root frames", hf__fur_root_refs},
                  {"ropes", hf__fur_ropes}};
     hf__fur_build b;
     hf_fur *f;

@@ -4623,6 +4623,59 @@ static void test_ropes_copy_range(void)
     tr_close(&s);
 }
 
+/* More colliders than one batch of the collision kernel (8): a turn out
+   of a collider of the second batch landed inside one of the first (16
+   small colliders around a rope in a side wind, found by a review). */
+static void test_ropes_many_colliders(void)
+{
+    static const hf_collider col[16] = {
+        {0,{-0.00114607345f,0.0602713227f,-0.00918702409f},{0.00219258945f,0.048799105f,-0.0101300925f},0.00275745615f},
+        {1,{0.0133525329f,0.0206072219f,-0.0066940859f},{0.0221356824f,0.0231356826f,-0.00280768611f},0.00559769012f},
+        {1,{-0.0104756569f,0.0324156471f,0.00192570779f},{0.00729736593f,0.0300543979f,0.0193586573f},0.00253857579f},
+        {1,{0.00909922365f,0.074978143f,-0.00146022346f},{0.00232949574f,0.0695276111f,0.0164392218f},0.00637932774f},
+        {1,{0.0148187699f,0.0903722197f,0.00854090322f},{0.00897175912f,0.0886074677f,0.0279464535f},0.00316761993f},
+        {1,{-0.0121075213f,0.112851292f,-0.0099619031f},{-0.0145371314f,0.104271553f,0.014845917f},0.00399725139f},
+        {0,{0.0111459205f,0.116402686f,0.00520948973f},{-0.014726921f,0.101927981f,0.000386727042f},0.00389691233f},
+        {1,{-0.00936847553f,0.0472339392f,-0.0137897991f},{-0.0357111916f,0.0720666423f,0.00624251924f},0.00215178984f},
+        {0,{0.0133473938f,0.104479417f,-0.00609991886f},{-0.00286483858f,0.116535775f,-0.0201473664f},0.00385692576f},
+        {1,{-0.0121115185f,0.097258389f,-0.0140614714f},{-0.0136744659f,0.0898384377f,0.00949841365f},0.00248470204f},
+        {1,{-0.0142600965f,0.0677473694f,0.006735879f},{-0.0265186597f,0.0758847967f,0.0326705761f},0.0038475797f},
+        {1,{-0.00924178865f,0.0229095351f,-0.0139756212f},{-0.0237311348f,-0.00199930184f,-0.00295278337f},0.00359659456f},
+        {1,{0.0106576318f,0.0383067541f,-0.00532152969f},{0.0294966996f,0.0542080477f,0.0201537795f},0.00201514713f},
+        {0,{-0.00176767912f,0.119201049f,0.0147478869f},{0.0115390038f,0.140054971f,0.0419162661f},0.00342998514f},
+        {0,{-0.00104940496f,0.0510200635f,0.00362722483f},{-0.0294122025f,0.0626075044f,0.0115172351f},0.00270762667f},
+        {0,{0.00116988737f,0.0982443839f,0.00289947446f},{0.0138400896f,0.0992516652f,0.0280379727f},0.00259035151f}};
+    const float root[3] = {0.00206746347f, 0.00989271887f, 0.00581700169f};
+    const float nrm[3] = {0, 1, 0}, tan[3] = {1, 0, 0};
+    float pos[12 * 3], now[12 * 3], st;
+    double worst = 0.0;
+    hf_rope_params p;
+    tr_set s;
+    int j, c, step;
+    if (!tr_open(&s, 1, 12)) { CHECK(0); return; }
+    memset(&p, 0, sizeof p);
+    p.wind[0] = -27.8392124f;
+    p.wind[2] = -28.5135117f;
+    for (j = 0; j < 12; ++j) {
+        pos[3 * j] = root[0];
+        pos[3 * j + 1] = root[1] + 0.01f * (float)j;
+        pos[3 * j + 2] = root[2];
+    }
+    hf_ropes_set_rest(&s.ro, 0, 1, pos, 0, root, nrm, tan, 0);
+    for (step = 0; step < 30; ++step)
+        CHECK_EQ_INT(hf_ropes_step(&s.ro, 0, 1, 1.0f / 60.0f, &p, col, 16), HF_OK);
+    tr_snapshot(&s.ro, now);
+    for (j = 1; j < 12; ++j)
+        for (c = 0; c < 16; ++c) {
+            double in = col[c].radius + 0.002 - tr_dist_seg(now + 3 * j, &col[c]);
+            if (in > worst) worst = in;
+        }
+    hf_ropes_max_stretch(&s.ro, 0, 1, &st);
+    CHECK(worst <= 1e-5);
+    CHECK(st <= 1e-4f);
+    tr_close(&s);
+}
+
 static void test_bad_rope_params(void)
 {
     hf_rope_params p, b;
@@ -7588,6 +7641,7 @@ int main(void)
     RUN(test_ropes_roots_inside_colliders);
     RUN(test_ropes_collision_soak);
     RUN(test_ropes_copy_range);
+    RUN(test_ropes_many_colliders);
     RUN(test_bad_rope_params);
     RUN(test_bad_ropes_memory_and_limits);
     RUN(test_bad_ropes_set_rest_and_roots);
