@@ -4722,6 +4722,15 @@ HF__PRIVATE float hf__rope_kl(const hf__rope_step *st, int j, int P)
     HF__ADD(HF__ADD(HF__ADD(o, HF__MUL(a, x)), HF__MUL(b, y)), HF__MUL(c, z))
 #endif
 
+/* The 12 rows of a frame block (position, tangent, normal, bitangent;
+   x, y, z each), `stride` floats apart. */
+HF__PRIVATE void hf__frame_rows(const float *fr, size_t stride,
+                                const float *rows[12])
+{
+    int k;
+    for (k = 0; k < 12; ++k) rows[k] = HF__ROW(fr, k, stride);
+}
+
 /* Point row j of ropes [a, b) at frame rows fr (12 rows) times rest:
    the scalar reference, the SSE kernel (whole groups of four from a,
    returns where they end) and their dispatch. */
@@ -4734,17 +4743,13 @@ HF__PRIVATE void hf__rope_pose_row_ref(const hf_ropes *ro, int j, int a,
     const size_t R = (size_t)ro->rope_count;
     const float *u = HF__ROW(ro->rest_u, j, R), *v = HF__ROW(ro->rest_v, j, R),
                 *w = HF__ROW(ro->rest_w, j, R);
-    const float *f0 = HF__ROW(fr, 0, R), *f1 = HF__ROW(fr, 1, R),
-                *f2 = HF__ROW(fr, 2, R), *f3 = HF__ROW(fr, 3, R),
-                *f4 = HF__ROW(fr, 4, R), *f5 = HF__ROW(fr, 5, R),
-                *f6 = HF__ROW(fr, 6, R), *f7 = HF__ROW(fr, 7, R),
-                *f8 = HF__ROW(fr, 8, R), *f9 = HF__ROW(fr, 9, R),
-                *f10 = HF__ROW(fr, 10, R), *f11 = HF__ROW(fr, 11, R);
+    const float *f[12];
     int r;
+    hf__frame_rows(fr, R, f);
     for (r = a; r < b; ++r) {
-        ox[r] = f0[r] + f3[r] * u[r] + f6[r] * v[r] + f9[r] * w[r];
-        oy[r] = f1[r] + f4[r] * u[r] + f7[r] * v[r] + f10[r] * w[r];
-        oz[r] = f2[r] + f5[r] * u[r] + f8[r] * v[r] + f11[r] * w[r];
+        ox[r] = f[0][r] + f[3][r] * u[r] + f[6][r] * v[r] + f[9][r] * w[r];
+        oy[r] = f[1][r] + f[4][r] * u[r] + f[7][r] * v[r] + f[10][r] * w[r];
+        oz[r] = f[2][r] + f[5][r] * u[r] + f[8][r] * v[r] + f[11][r] * w[r];
     }
 }
 
@@ -4758,22 +4763,18 @@ HF__PRIVATE int hf__rope_pose_row_sse(const hf_ropes *ro, int j, int a,
     const size_t R = (size_t)ro->rope_count;
     const float *u = HF__ROW(ro->rest_u, j, R), *v = HF__ROW(ro->rest_v, j, R),
                 *w = HF__ROW(ro->rest_w, j, R);
-    const float *f0 = HF__ROW(fr, 0, R), *f1 = HF__ROW(fr, 1, R),
-                *f2 = HF__ROW(fr, 2, R), *f3 = HF__ROW(fr, 3, R),
-                *f4 = HF__ROW(fr, 4, R), *f5 = HF__ROW(fr, 5, R),
-                *f6 = HF__ROW(fr, 6, R), *f7 = HF__ROW(fr, 7, R),
-                *f8 = HF__ROW(fr, 8, R), *f9 = HF__ROW(fr, 9, R),
-                *f10 = HF__ROW(fr, 10, R), *f11 = HF__ROW(fr, 11, R);
+    const float *f[12];
     int r = a;
+    hf__frame_rows(fr, R, f);
     for (; r + 4 <= b; r += 4) {
         const __m128 uu = HF__LD(u + r), vv = HF__LD(v + r),
                      ww = HF__LD(w + r);
-        HF__ST(ox + r, HF__POSE(HF__LD(f0 + r), HF__LD(f3 + r), HF__LD(f6 + r),
-                                HF__LD(f9 + r), uu, vv, ww));
-        HF__ST(oy + r, HF__POSE(HF__LD(f1 + r), HF__LD(f4 + r), HF__LD(f7 + r),
-                                HF__LD(f10 + r), uu, vv, ww));
-        HF__ST(oz + r, HF__POSE(HF__LD(f2 + r), HF__LD(f5 + r), HF__LD(f8 + r),
-                                HF__LD(f11 + r), uu, vv, ww));
+        HF__ST(ox + r, HF__POSE(HF__LD(f[0] + r), HF__LD(f[3] + r), HF__LD(f[6] + r),
+                                HF__LD(f[9] + r), uu, vv, ww));
+        HF__ST(oy + r, HF__POSE(HF__LD(f[1] + r), HF__LD(f[4] + r), HF__LD(f[7] + r),
+                                HF__LD(f[10] + r), uu, vv, ww));
+        HF__ST(oz + r, HF__POSE(HF__LD(f[2] + r), HF__LD(f[5] + r), HF__LD(f[8] + r),
+                                HF__LD(f[11] + r), uu, vv, ww));
     }
     return r;
 }

@@ -266,30 +266,12 @@ static double memset_gbps(float *dst, size_t bytes, int reps)
 #if defined(__SSE2__) || defined(_M_X64)
 #include <emmintrin.h>
 /* 16-byte stores of a value that changes per store, so the compiler
-   cannot turn the loop into memset */
-static double vector_gbps(float *dst, size_t bytes, int reps)
+   cannot turn the loop into memset; `stream`: non-temporal stores from the
+   first 16-byte boundary (then an sfence) */
+static double vector_stores_gbps(float *dst, size_t bytes, int reps,
+                                 int stream)
 {
-    size_t n = bytes / 16, i;
-    double best = 1e30;
-    int r;
-    for (r = 0; r < reps; ++r) {
-        double t0 = now_ms(), t;
-        __m128 v = _mm_set1_ps((float)r);
-        const __m128 one = _mm_set1_ps(1.0f);
-        for (i = 0; i < n; ++i) {
-            _mm_storeu_ps(dst + 4 * i, v);
-            v = _mm_add_ps(v, one);
-        }
-        t = now_ms() - t0;
-        best = t < best ? t : best;
-    }
-    return bytes / best / 1e6;
-}
-
-/* non-temporal 16-byte stores from the first 16-byte boundary */
-static double stream_gbps(float *dst, size_t bytes, int reps)
-{
-    size_t skip = (16u - ((size_t)(uintptr_t)dst & 15u)) & 15u;
+    size_t skip = stream ? (16u - ((size_t)(uintptr_t)dst & 15u)) & 15u : 0;
     float *a = (float *)((unsigned char *)dst + skip);
     size_t n = (bytes - skip) / 16, i;
     double best = 1e30;
@@ -298,11 +280,14 @@ static double stream_gbps(float *dst, size_t bytes, int reps)
         double t0 = now_ms(), t;
         __m128 v = _mm_set1_ps((float)r);
         const __m128 one = _mm_set1_ps(1.0f);
-        for (i = 0; i < n; ++i) {
-            _mm_stream_ps(a + 4 * i, v);
-            v = _mm_add_ps(v, one);
+        if (stream) {
+            for (i = 0; i < n; ++i, v = _mm_add_ps(v, one))
+                _mm_stream_ps(a + 4 * i, v);
+            _mm_sfence();
+        } else {
+            for (i = 0; i < n; ++i, v = _mm_add_ps(v, one))
+                _mm_storeu_ps(a + 4 * i, v);
         }
-        _mm_sfence();
         t = now_ms() - t0;
         best = t < best ? t : best;
     }
@@ -316,7 +301,8 @@ static double limit_gbps(float *dst, size_t bytes, int reps)
 {
     double best = memset_gbps(dst, bytes, reps);
 #if defined(__SSE2__) || defined(_M_X64)
-    double v = vector_gbps(dst, bytes, reps), st = stream_gbps(dst, bytes, reps);
+    double v = vector_stores_gbps(dst, bytes, reps, 0),
+           st = vector_stores_gbps(dst, bytes, reps, 1);
     best = v > best ? v : best;
     best = st > best ? st : best;
 #endif
@@ -548,8 +534,8 @@ static void bench_bandwidth(void)
     sc = store_gbps(dst, bytes, 7);
     ms = memset_gbps(dst, bytes, 7);
 #if defined(__SSE2__) || defined(_M_X64)
-    vec = vector_gbps(dst, bytes, 7);
-    str = stream_gbps(dst, bytes, 7);
+    vec = vector_stores_gbps(dst, bytes, 7, 0);
+    str = vector_stores_gbps(dst, bytes, 7, 1);
 #endif
     best = ms > vec ? ms : vec;
     best = str > best ? str : best;
