@@ -33,12 +33,15 @@
 #   make gl-window-test  the window path (needs a display or xvfb-run)
 #   make gl-examples   build the GL examples (gl_minimal, gl_marschner)
 #   make gl-demo       headless renders of the swinging head into out/
+#   make characters    fur on the walking Wuson, hair on the jumping human
+#                      (assimp-testmodels), headless, into out/
 #   make run           the interactive Marschner example (needs a display)
 #   make run-minimal   the interactive minimal GL example
 #
 # Examples and benchmarks
-#   make demo          grow, swing and render fur on the built-in head into
-#                      out/ (installs or names the Debian packages it needs)
+#   make demo          grow, swing and render fur on the built-in head and
+#                      on animated characters into out/ (installs or names
+#                      the Debian packages it needs)
 #   make examples      build every example into build/
 #   make bench         per-stage speed against the memory-bandwidth limit
 #                      (BENCH_CFLAGS, BENCH_ARGS)
@@ -198,7 +201,7 @@ quickstart: $(QS_BINS)
 # ==== Examples ===============================================================
 EX_CFLAGS := -std=c99 -O2 -Wall -Wextra -Wpedantic
 EXAMPLES  := $(BUILD)/bake_luts $(BUILD)/grow_pictures $(BUILD)/plot_ropes \
-             $(BUILD)/grow_fur
+             $(BUILD)/grow_fur $(BUILD)/paint_density
 
 # stb_image_write.h comes from Debian's libstb-dev (/usr/include/stb).
 STB_H := /usr/include/stb/stb_image_write.h
@@ -212,6 +215,13 @@ $(BUILD)/%: examples/%.c $(HDR) $(STB_H) | $(BUILD)
 $(BUILD)/grow_fur: examples/grow_fur.c examples/head_mesh.h $(HDR) $(STB_H) | $(BUILD)
 	@printf '#include <assimp/cimport.h>\n' | gcc -E -x c - >/dev/null 2>&1 || \
 	  { echo "grow_fur needs assimp: run 'make deps' (Debian package libassimp-dev)"; exit 1; }
+	gcc $(EX_CFLAGS) $< -o $@ -lassimp -lm
+
+# paint_density reads meshes through examples/character.h (assimp).
+$(BUILD)/paint_density: examples/paint_density.c examples/character.h $(HDR) \
+                        $(STB_H) | $(BUILD)
+	@printf '#include <assimp/cimport.h>\n' | gcc -E -x c - >/dev/null 2>&1 || \
+	  { echo "paint_density needs assimp: run 'make deps' (Debian package libassimp-dev)"; exit 1; }
 	gcc $(EX_CFLAGS) $< -o $@ -lassimp -lm
 
 examples: $(EXAMPLES) gl-examples
@@ -255,7 +265,8 @@ EGL_LIBS     := $(if $(EGL_PC_LIBS),$(EGL_PC_LIBS),-lEGL) -lm
 gl-need:
 	@miss=""; \
 	for h in "GLFW/glfw3.h libglfw3-dev" "EGL/egl.h libegl-dev" \
-	         "stb/stb_image_write.h libstb-dev"; do \
+	         "stb/stb_image_write.h libstb-dev" \
+	         "assimp/cimport.h libassimp-dev"; do \
 	  set -- $$h; \
 	  printf '#include <%s>\n' "$$1" | $(CC) $(GL_PC_CFLAGS) -E -x c - \
 	    >/dev/null 2>&1 || miss="$$miss $$2"; \
@@ -270,12 +281,19 @@ GL_COMMON := examples/gl_common.h
 # gl_common.h (one of them per program defines GLC_IMPLEMENTATION),
 # hairfur.h and head_mesh.h; they get GLFW for the window mode but run
 # headless without a display (headless mode never calls glfwInit).
+# gl_marschner, the viewer for any mesh, also loads meshes and their
+# animations with assimp (examples/character.h).
 GL_EXAMPLES     := gl_minimal gl_marschner
 GL_EXAMPLE_BINS := $(addprefix $(BUILD)/,$(GL_EXAMPLES))
 
-$(GL_EXAMPLE_BINS): $(BUILD)/%: examples/%.c $(GL_COMMON) hairfur.h \
-                    examples/head_mesh.h $(GLAD_O) | gl-need $(BUILD)
+$(BUILD)/gl_minimal: examples/gl_minimal.c $(GL_COMMON) hairfur.h \
+                     examples/head_mesh.h $(GLAD_O) | gl-need $(BUILD)
 	$(CC) $(GL_CFLAGS) $(WARN) $< $(GLAD_O) -o $@ $(GL_LIBS)
+
+$(BUILD)/gl_marschner: examples/gl_marschner.c examples/character.h \
+                       $(GL_COMMON) hairfur.h examples/head_mesh.h $(GLAD_O) \
+                       | gl-need $(BUILD)
+	$(CC) $(GL_CFLAGS) $(WARN) $< $(GLAD_O) -o $@ $(GL_LIBS) -lassimp
 
 # gl_check needs no GLFW: only libEGL (and Mesa at run time).
 $(BUILD)/gl_check: tests/gl_check.c $(GL_COMMON) $(GLAD_O) | gl-need $(BUILD)
@@ -298,11 +316,11 @@ $(BUILD)/gl_window_test: tests/gl_window_test.c $(GL_COMMON) $(GLAD_O) \
 
 # The fur render check includes examples/gl_marschner.c (with GLM_NO_MAIN).
 $(BUILD)/gl_fur_check: tests/gl_fur_check.c examples/gl_marschner.c \
-                       examples/head_mesh.h $(GL_COMMON) hairfur.h $(GLAD_O) \
-                       | gl-need $(BUILD)
-	$(CC) $(GL_CFLAGS) $(WARN) $< $(GLAD_O) -o $@ $(GL_LIBS)
+                       examples/character.h examples/head_mesh.h $(GL_COMMON) \
+                       hairfur.h $(GLAD_O) | gl-need $(BUILD)
+	$(CC) $(GL_CFLAGS) $(WARN) $< $(GLAD_O) -o $@ $(GL_LIBS) -lassimp
 
-.PHONY: gl-check gl-test gl-examples gl-window-test gl-fur-check gl-demo \
+.PHONY: gl-check gl-test gl-examples gl-window-test gl-fur-check gl-demo characters \
         run run-minimal
 gl-examples: $(GL_EXAMPLE_BINS)
 
@@ -370,15 +388,46 @@ gl-demo: $(BUILD)/gl_check $(BUILD)/gl_marschner $(BUILD)/gl_minimal | $(OUT)
 	@if ! why=$$(env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_check); then \
 	  echo "GL demo skipped: $$why"; exit 0; fi; \
 	set -e; \
-	$(GLEX_RUN) --frames 30  --out $(OUT)/fur_swing_030.png; \
-	$(GLEX_RUN) --frames 60  --out $(OUT)/fur_swing_060.png; \
-	$(GLEX_RUN) --frames 90  --out $(OUT)/fur_swing_090.png; \
+	$(GLEX_RUN) --frames 90 --save-every 30 --out $(OUT)/fur_swing_%03d.png; \
 	$(GLEX_RUN) --frames 90  --kajiya --out $(OUT)/fur_kajiya.png; \
 	$(GLEX_RUN) --frames 90  --gpu-expand --color3d --out $(OUT)/fur_color3d_gpu.png; \
 	env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_minimal --headless \
 	  --frames 60 --out $(OUT)/fur_minimal.png; \
 	echo "gl-demo: wrote $(OUT)/fur_swing_{030,060,090}.png, fur_kajiya.png," \
 	     "fur_color3d_gpu.png, fur_minimal.png"
+
+# Fur and hair on real characters: Debian's assimp-testmodels creatures,
+# skinned and animated on the CPU (examples/character.h), capsules on their
+# bones, self-shadowed. The Wuson walks with fur; the human jumps with hair
+# on its Head mesh, on a scalp painted by paint_density (a plane through
+# the hairline, from the forehead down to the nape). Frames go to
+# out/fur_wuson_NNN.png and out/hair_human_NNN.png, a still of each to
+# out/fur_wuson.png and out/hair_human.png.
+MODELS   := /usr/share/assimp/models/X
+WUSON    := $(MODELS)/Testwuson.X
+HUMAN    := $(MODELS)/BCN_Epileptic.X
+CHAR_RUN := env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_marschner --headless --orbit 0
+
+characters: $(BUILD)/gl_check $(BUILD)/gl_marschner $(BUILD)/paint_density | $(OUT)
+	@if ! why=$$(env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_check); then \
+	  echo "characters skipped: $$why"; exit 0; fi; \
+	if [ ! -f $(WUSON) ] || [ ! -f $(HUMAN) ]; then \
+	  echo "characters: $(MODELS) has no Testwuson.X / BCN_Epileptic.X:" \
+	       "install the Debian package assimp-testmodels (make deps)"; exit 1; fi; \
+	set -e; \
+	$(CHAR_RUN) --mesh $(WUSON) --anim Wuson_Walk --hair-length 0.08 \
+	  --comb 0,-0.6,-1 --stiffness 0.4 --hair-color 0.62,0.48,0.33 \
+	  --settle 0.5 --frames 120 --save-every 12 --out $(OUT)/fur_wuson_%03d.png; \
+	cp $(OUT)/fur_wuson_120.png $(OUT)/fur_wuson.png; \
+	$(BUILD)/paint_density --mesh $(HUMAN) --part Head \
+	  --plane 0,1,-0.53,0.717 --out $(OUT)/hair_human_scalp.png; \
+	$(CHAR_RUN) --mesh $(HUMAN) --grow-on Head --density $(OUT)/hair_human_scalp.png \
+	  --hair-length 0.12 --comb 0,-0.5,-3 --stiffness 0.2 --settle 1 \
+	  --frames 198 --save-every 18 --out $(OUT)/hair_human_%03d.png; \
+	cp $(OUT)/hair_human_090.png $(OUT)/hair_human.png; \
+	echo "characters: wrote $(OUT)/fur_wuson_012.png ... fur_wuson_120.png," \
+	     "fur_wuson.png, hair_human_018.png ... hair_human_198.png," \
+	     "hair_human.png"
 
 # The interactive windows (need a display).
 run: $(BUILD)/gl_marschner
@@ -397,9 +446,12 @@ demo: demo-deps $(EXAMPLES) | $(OUT)
 	$(BUILD)/grow_pictures $(OUT)
 	$(BUILD)/grow_fur --frames 120 --out $(OUT)/fur.obj
 	@$(MAKE) --no-print-directory gl-demo
+	@$(MAKE) --no-print-directory characters
 	@echo "demo: wrote $(OUT)/fur.obj (the swung head's fur as ribbons: opens in Blender),"
 	@echo "      $(OUT)/fur_swing_030.png ... fur_swing_090.png, fur_kajiya.png,"
 	@echo "      fur_color3d_gpu.png, fur_minimal.png (headless GL renders),"
+	@echo "      $(OUT)/fur_wuson.png, hair_human.png and their frames (animated"
+	@echo "      characters from assimp-testmodels),"
 	@echo "      $(OUT)/marschner_m.png, marschner_n.png, marschner_scales.txt (LUTs)"
 	@echo "      and the growth pictures $(OUT)/grow_*.png"
 

@@ -1544,6 +1544,13 @@ typedef struct hf_fur_desc {
     const hf_map *length_map;        /* NULL: every strand max_length */
     const hf_map *color_map;         /* NULL: white strands */
     const hf_map *color3d_index_map; /* NULL: 3D-colour x = 0 */
+    const float *comb;      /* NULL: guides grow along the normal; else a
+                               growth direction per base vertex (object
+                               space, any length; zero = the normal), as
+                               hf_guide_params.comb */
+    int comb_stride;        /* bytes; 0 = 12 */
+    const hf_map *comb_map; /* NULL, or growth directions in UV space, >= 3
+                               channels (8-bit: 2 c - 1); wins over comb */
     int points_per_strand;  /* 0 = 16; 2 .. HF_MAX_POINTS */
     float max_length;       /* 0 = 0.05 (world units, metres in examples) */
     float tess_factor;      /* 0 = no tessellation: pure guides only. Else
@@ -8446,6 +8453,9 @@ HF__PRIVATE hf_result hf__fur_guides(hf_fur *f, hf__fur_build *b)
     b->gp.points = P;
     b->gp.max_length = b->desc.max_length;
     b->gp.length_map = b->desc.length_map;
+    b->gp.comb = b->desc.comb;
+    b->gp.comb_stride = b->desc.comb_stride;
+    b->gp.comb_map = b->desc.comb_map;
     HF_MEMSET(&go, 0, sizeof go);
     if ((r = hf_guides_rest(&b->gm, f->added, f->lod_count, &b->gp, &go,
                             &f->alloc)) != HF_OK)

@@ -49,11 +49,16 @@
 #include "hairfur.h"
 #define HEAD_MESH_IMPLEMENTATION
 #include "head_mesh.h"
+#define CHARACTER_IMPLEMENTATION
+#include "character.h"
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb/stb_image.h>
 #ifndef GLM_NO_MAIN
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #endif
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -62,9 +67,15 @@
 
 #define GLM_PI 3.14159265358979f
 #define GLM_HEAD_R 0.1f          /* head_mesh.h sphere radius, metres */
-#define GLM_FULL_DETAIL 0.6f     /* LOD 1 up to this camera distance */
-#define GLM_CULL 30.0f           /* and no hair beyond this one */
-#define GLM_MAX_COLLIDERS 3
+/* Everything the scene's size sets is a multiple of the framing distance
+   (1.588 bounding-box diagonals of the grown mesh: 0.55 m for the head):
+   LOD 1 up to 1.09 of it, no hair beyond 54.5 of it. */
+#define GLM_FRAME_DIAG 1.588f
+#define GLM_FULL_DETAIL 1.09f
+#define GLM_CULL 54.5f
+#define GLM_HEAD_COLLIDERS 3
+#define GLM_SHADOW_SIZE 1024     /* shadow map texels a side */
+#define GLM_WIDTH_SPACING 0.66f  /* root width / mean strand spacing */
 
 typedef struct glm_options {
     int width, height, headless, frames, strands, lut_size;
@@ -75,6 +86,19 @@ typedef struct glm_options {
     float distance;   /* camera distance to the head centre (m) */
     float lod;        /* < 0: from the distance */
     float azimuth, elevation, orbit_speed; /* degrees, degrees/s */
+    /* a mesh instead of the built-in head */
+    const char *mesh, *anim, *grow_on, *unit;
+    const char *density_path, *length_path, *color_path;
+    int no_shadows;     /* 1: no self-shadowing */
+    int save_every;     /* > 0: write every Nth frame to out (a %d pattern) */
+    float hair_length;  /* metres; 0 = 0.14 on the head, else 5 % of the
+                           grown mesh's bounding-box diagonal */
+    float hair_color[3];/* sRGB, without a colour map */
+    float stiffness;    /* global shape stiffness [0, 1] */
+    float comb[3];      /* world direction hair is combed in, its length
+                           the strength (0: along the normal) */
+    float settle;       /* seconds simulated at the first pose, first */
+    int guides;         /* guide target; 0 = strands / 10, at most 2,000 */
 } glm_options;
 
 static void glm_default_options(glm_options *o)
@@ -85,8 +109,10 @@ static void glm_default_options(glm_options *o)
     o->strands = 20000;
     o->lut_size = 256;
     o->specular = 1.0f;
-    o->distance = 0.55f;
     o->lod = -1.0f;
+    o->hair_color[0] = 0.42f;
+    o->hair_color[1] = 0.27f;
+    o->hair_color[2] = 0.16f;
     o->azimuth = 30.0f;
     o->elevation = 12.0f;
     o->orbit_speed = 12.0f;
@@ -112,15 +138,36 @@ typedef struct glm_compact {
     int8_t tan[3];
     uint8_t pad;
 } glm_compact;
-#define GLM_COMPACT_SCALE 0.5f /* m: holds the head and its hair, swinging */
+#define GLM_COMPACT_SCALE 0.5f /* m: holds the head and its hair, swinging;
+                                  a mesh: its size and twice its hair */
 
 typedef struct glm_app {
     glm_options o;
-    hm_mesh head;
-    hm_vertex *skin;
+    /* the body: the built-in head or a mesh file (ch.vertex_count > 0) */
+    ch_character ch;
+    int anim;             /* ch's animation, -1 none */
+    int nv, nt, nt_grown; /* vertices; triangles, the grown ones first */
+    ch_vertex *rest, *skin;
+    uint32_t *body_idx;   /* the triangles as drawn: grown ones first */
+    int grow_first, grow_count; /* the grown mesh's vertex range */
+    uint32_t *grow_idx;   /* its triangles, relative to grow_first */
     hf_mesh skinned;
+    float size;           /* bounding-box diagonal of the grown mesh (m) */
+    float ch_diag;        /* and of the whole body */
+    float frame_dist;     /* the framing distance: GLM_FRAME_DIAG * size */
+    float target0[3], centroid0[3]; /* camera target and grown centroid at
+                                       rest: a mesh's camera follows it */
+    float hair_len, root_width, shadow_k;
+    double hair_area;     /* grown area weighted by density (m^2) */
+    float *rest_len;      /* per guide: its length at rest */
+    float *comb_dir;      /* per grown vertex: growth direction (--comb) */
+    double stretch_max, stretch_sum;
+    long stretch_frames;
+    double ms_skin, ms_sim, ms_build, ms_draw; /* sums over frames */
+    long ms_frames, build_frames;
     unsigned char *density_px, *length_px, *color_px, *index_px;
     hf_map density, length, color, index;
+    int have_density, have_length;
     hf_fur *fur;
     hf_fur_info info;
     int P;
@@ -129,7 +176,8 @@ typedef struct glm_app {
     float corigin[3], cscale; /* what cdyn's positions were written
                                  relative to, for the shader to undo */
     float *points4;     /* GPU-expansion stream, all strands */
-    hf_collider col[GLM_MAX_COLLIDERS];
+    hf_collider *col, *all_col; /* the colliders used; all the bones' */
+    int *col_keep, ncol, max_col;
     float pose[12];
     float eye[3], target[3], view_proj[16];
     float lod;
@@ -139,6 +187,9 @@ typedef struct glm_app {
     int draw_hair;      /* tests switch the hair off to get a mask */
     /* GL */
     GLuint prog_cpu, prog_cpu16, prog_gpu, prog_head, prog_line;
+    GLuint depth_cpu, depth_cpu16, depth_gpu, depth_head; /* shadow pass */
+    GLuint shadow_fbo, tex_shadow;
+    float light_view_proj[16], shadow_depth; /* light's clip, depth range (m) */
     GLuint vao_cpu, vao_cpu16, vao_gpu, vao_head, vao_line;
     GLuint vbo_dyn, vbo_dyn16, vbo_static, vbo_points, tbo_points;
     GLuint vbo_uv, tbo_uv;
@@ -217,9 +268,36 @@ static const char *glm_vs_gpu_tail =
     "    v_c3d = vec2(texelFetch(u_strand_c3x, s).r, t);\n"
     "}\n";
 
+/* Self-shadowing, shared by the hair and the body: an approximate deep
+   shadow map. The shadow map holds the depth (from the light) of the
+   nearest hair or skin; a point that far behind it has that much hair in
+   front of it, and light falls off exponentially with that depth,
+   u_shadow_k per metre (set from the hair length), to 12 % at the least.
+   3 x 3 taps soften the edges. */
+#define GLM_SHADOW_GLSL                                                      \
+    "uniform sampler2D u_shadow;\n"                                          \
+    "uniform mat4 u_light_view_proj;\n"                                      \
+    "uniform float u_shadow_on, u_shadow_k, u_shadow_depth, u_shadow_bias;\n" \
+    "float hair_shadow(vec3 p) {\n"                                          \
+    "    if (u_shadow_on == 0.0) return 1.0;\n"                              \
+    "    vec4 q = u_light_view_proj * vec4(p, 1.0);\n"                       \
+    "    vec3 s = q.xyz / q.w * 0.5 + 0.5;\n"                                \
+    "    if (any(lessThan(s, vec3(0.0))) || any(greaterThan(s, vec3(1.0))))\n" \
+    "        return 1.0;\n"                                                  \
+    "    vec2 texel = 1.5 / vec2(textureSize(u_shadow, 0));\n"               \
+    "    float sum = 0.0;\n"                                                 \
+    "    for (int y = -1; y <= 1; ++y)\n"                                    \
+    "        for (int x = -1; x <= 1; ++x) {\n"                              \
+    "            float z0 = texture(u_shadow, s.xy + vec2(x, y) * texel).r;\n" \
+    "            float d = (s.z - z0) * u_shadow_depth - u_shadow_bias;\n"   \
+    "            sum += exp(-u_shadow_k * max(d, 0.0));\n"                   \
+    "        }\n"                                                            \
+    "    return mix(0.12, 1.0, sum / 9.0);\n"                                \
+    "}\n"
+
 /* The hair fragment shader: Marschner from the two LUTs (docs/luts.md),
-   or Kajiya-Kay; diffuse sqrt(1 - (L.T)^2); ambient. Lighting is done in
-   linear space and written with gamma 2.2. */
+   or Kajiya-Kay; diffuse sqrt(1 - (L.T)^2); ambient; self-shadowing.
+   Lighting is done in linear space and written with gamma 2.2. */
 static const char *glm_fs_hair =
     "#version 330 core\n"
     "in vec3 v_position, v_tangent, v_texcoord;\n"
@@ -230,7 +308,7 @@ static const char *glm_fs_hair =
     "uniform float u_spec;            // 0 = diffuse + ambient only\n"
     "uniform float u_dither;          // alpha dither (alpha to coverage)\n"
     "uniform vec3 u_eye, u_light_dir, u_light_color, u_ambient;\n"
-    "uniform vec4 u_head;             // centre, radius\n"
+    GLM_SHADOW_GLSL
     "out vec4 o_color;\n"
     "const float cos2Min = 1e-2;      // grazing theta_d guard\n"
     "void main() {\n"
@@ -267,13 +345,10 @@ static const char *glm_fs_hair =
     "        spec = 2.0 * (vec3(M.r * N.r) + (M.g * N.g + M.b * N.b) * tint)\n"
     "               * inv * sinTL;          // cos(theta_i); 2: artistic gain\n"
     "    }\n"
-    "    // the head's shadow (an analytic sphere) and a cheap occlusion that\n"
-    "    // darkens hair close to the scalp: inner hair gets less light\n"
-    "    vec3 toC = u_head.xyz - v_position;\n"
-    "    float along = dot(toC, L);\n"
-    "    float miss = length(toC - along * L);\n"
-    "    float shadow = along > 0.0 ? smoothstep(0.8 * u_head.w, 1.15 * u_head.w, miss) : 1.0;\n"
-    "    float occ = mix(0.35, 1.0, smoothstep(0.0, 0.03, length(toC) - u_head.w));\n"
+    "    // the shadow of the hair and body in front, and a cheap ambient\n"
+    "    // occlusion that darkens hair near its root: inner hair gets less\n"
+    "    float shadow = hair_shadow(v_position);\n"
+    "    float occ = mix(0.35, 1.0, smoothstep(0.0, 0.3, v_texcoord.z));\n"
     "    vec3 c = u_ambient * base * occ\n"
     "           + u_light_color * shadow * occ * (0.8 * base * sinTL + u_spec * spec);\n"
     "    // dither the alpha per pixel: alpha to coverage alone quantises\n"
@@ -290,28 +365,33 @@ static const char *glm_vs_head =
     "layout(location = 1) in vec3 a_normal;\n"
     "layout(location = 2) in vec2 a_uv;\n"
     "uniform mat4 u_view_proj;\n"
-    "out vec3 v_normal;\n"
+    "out vec3 v_position, v_normal;\n"
     "out vec2 v_uv;\n"
     "void main() {\n"
-    "    v_normal = a_normal; v_uv = a_uv;\n"
+    "    v_position = a_pos; v_normal = a_normal; v_uv = a_uv;\n"
     "    gl_Position = u_view_proj * vec4(a_pos, 1.0);\n"
     "}\n";
 
 /* Skin, with the scalp painted in a dark hair colour where the density
-   map has hair, as games do, so gaps between ribbons do not show skin. */
+   map has hair (u_scalp_on: on the grown triangles), as games do, so gaps
+   between ribbons do not show skin; shadowed by the hair. */
 static const char *glm_fs_head =
     "#version 330 core\n"
-    "in vec3 v_normal;\n"
+    "in vec3 v_position, v_normal;\n"
     "in vec2 v_uv;\n"
     "uniform sampler2D u_density;\n"
     "uniform vec3 u_light_dir, u_light_color, u_ambient, u_scalp;\n"
+    "uniform float u_scalp_on;\n"
+    GLM_SHADOW_GLSL
     "out vec4 o_color;\n"
     "void main() {\n"
     "    vec3 n = normalize(v_normal);\n"
     "    vec3 skin = pow(vec3(0.85, 0.66, 0.55), vec3(2.2));\n"
-    "    float d = smoothstep(0.1, 0.6, texture(u_density, v_uv).r);\n"
+    "    float d = u_scalp_on * smoothstep(0.1, 0.6, texture(u_density, v_uv).r);\n"
     "    vec3 albedo = mix(skin, u_scalp, d);\n"
-    "    vec3 c = albedo * (u_ambient + u_light_color * max(dot(n, u_light_dir), 0.0));\n"
+    "    float lit = max(dot(n, u_light_dir), 0.0);\n"
+    "    if (lit > 0.0) lit *= hair_shadow(v_position);\n"
+    "    vec3 c = albedo * (u_ambient + u_light_color * lit);\n"
     "    o_color = vec4(pow(c, vec3(1.0 / 2.2)), 1.0);\n"
     "}\n";
 
@@ -320,6 +400,11 @@ static const char *glm_vs_line =
     "layout(location = 0) in vec3 a_pos;\n"
     "uniform mat4 u_view_proj;\n"
     "void main() { gl_Position = u_view_proj * vec4(a_pos, 1.0); }\n";
+/* The shadow pass writes depth only. */
+static const char *glm_fs_depth =
+    "#version 330 core\n"
+    "void main() {}\n";
+
 static const char *glm_fs_line =
     "#version 330 core\n"
     "uniform vec4 u_color;\n"
@@ -417,7 +502,7 @@ static void glm_xform(const float m[12], const float *p, float w, float *o)
    sphere: the 2 mm collision margin keeps hair lying on the scalp off its
    flat triangles), the neck (it overlaps the underside of the head, so the
    roots there sit inside it) and the shoulders. */
-static void glm_colliders(const float m[12], hf_collider col[3])
+static void glm_head_colliders(const float m[12], hf_collider *col)
 {
     static const float a[3][3] = {{0, 0, 0}, {0, -0.06f, -0.01f},
                                   {-0.19f, -0.25f, -0.01f}},
@@ -502,23 +587,285 @@ static int glm_capsule_lines(const hf_collider *c, float *out)
 }
 #define GLM_LINES_PER_COLLIDER (2 * (64 + 48) + 8)
 
-/* Camera on an orbit around the head; LOD from its distance. */
+/* Camera on an orbit around the grown mesh (a mesh's camera follows
+   its grown part's centroid); LOD from its distance. */
 static void glm_camera(glm_app *a)
 {
     float proj[16], view[16];
     const float up[3] = {0, 1, 0};
     float az = a->o.azimuth * GLM_PI / 180.0f,
           el = a->o.elevation * GLM_PI / 180.0f;
-    a->target[0] = 0.0f;
-    a->target[1] = -0.03f;
-    a->target[2] = 0.0f;
+    int k;
+    for (k = 0; k < 3; ++k) a->target[k] = a->target0[k];
+    if (a->ch.vertex_count > 0 && a->skin) {
+        double c[3] = {0, 0, 0};
+        int i;
+        for (i = a->grow_first; i < a->grow_first + a->grow_count; ++i)
+            for (k = 0; k < 3; ++k) c[k] += a->skin[i].pos[k];
+        for (k = 0; k < 3; ++k)
+            a->target[k] += (float)(c[k] / a->grow_count) - a->centroid0[k];
+    }
     a->eye[0] = a->target[0] + a->o.distance * sinf(az) * cosf(el);
     a->eye[1] = a->target[1] + a->o.distance * sinf(el);
     a->eye[2] = a->target[2] + a->o.distance * cosf(az) * cosf(el);
     glc_mat4_perspective(proj, 0.7f, (float)a->o.width / (float)a->o.height,
-                         0.02f, 100.0f);
+                         0.036f * a->frame_dist, 180.0f * a->frame_dist);
     glc_mat4_look_at(view, a->eye, a->target, up);
     glc_mat4_mul(a->view_proj, proj, view);
+}
+
+
+/* ---- the body: the built-in head or a mesh file ------------------------- */
+
+/* A map read from a PNG (anything stb_image reads). hf_map's row 0 is
+   v = 0 and a PNG stores its top row first: the rows are flipped on load,
+   so the PNG's top row is v = 1, as in OpenGL and the mesh loaders. */
+static int glm_load_map(const char *path, int channels, unsigned char **px,
+                        hf_map *map)
+{
+    int w, h, n;
+    stbi_set_flip_vertically_on_load(1);
+    *px = stbi_load(path, &w, &h, &n, channels);
+    if (!*px) {
+        fprintf(stderr, "gl_marschner: cannot read %s: %s\n", path,
+                stbi_failure_reason());
+        return 0;
+    }
+    memset(map, 0, sizeof *map);
+    map->data = *px;
+    map->width = w;
+    map->height = h;
+    map->channels = channels;
+    return 1;
+}
+
+/* The built-in head: a sphere of radius 0.1 with its own maps. */
+static int glm_load_head(glm_app *a)
+{
+    hm_mesh head;
+    int i;
+    if (!hm_sphere(24, 32, GLM_HEAD_R, &head)) return 0;
+    a->nv = a->grow_count = head.vertex_count;
+    a->nt = a->nt_grown = head.triangle_count;
+    a->anim = -1;
+    a->rest = (ch_vertex *)malloc(sizeof(ch_vertex) * (size_t)a->nv);
+    a->body_idx = (uint32_t *)malloc(12u * (size_t)a->nt);
+    a->grow_idx = (uint32_t *)malloc(12u * (size_t)a->nt);
+    if (!a->rest || !a->body_idx || !a->grow_idx) {
+        hm_free(&head);
+        return 0;
+    }
+    for (i = 0; i < a->nv; ++i) {
+        memcpy(a->rest[i].pos, head.vertices[i].pos, sizeof a->rest[i].pos);
+        memcpy(a->rest[i].normal, head.vertices[i].normal,
+               sizeof a->rest[i].normal);
+        memcpy(a->rest[i].uv, head.vertices[i].uv, sizeof a->rest[i].uv);
+    }
+    memcpy(a->body_idx, head.indices, 12u * (size_t)a->nt);
+    memcpy(a->grow_idx, head.indices, 12u * (size_t)a->nt);
+    hm_free(&head);
+    a->max_col = GLM_HEAD_COLLIDERS;
+    return 1;
+}
+
+/* Is `name` one of the comma-separated names in `list`? */
+static int glm_listed(const char *list, const char *name)
+{
+    size_t n = strlen(name);
+    const char *s = list;
+    while (*s) {
+        const char *e = strchr(s, ',');
+        size_t len = e ? (size_t)(e - s) : strlen(s);
+        if (len == n && !strncmp(s, name, n)) return 1;
+        s += len + (e ? 1 : 0);
+    }
+    return 0;
+}
+
+/* A mesh file: the first pose of the animation is the rest pose; the
+   grown parts (--grow-on, default all) come first in the drawn triangles
+   and make the grown mesh, over the vertex range they span. */
+static int glm_load_mesh(glm_app *a)
+{
+    const glm_options *o = &a->o;
+    char err[512];
+    int p, t, k, lo = INT_MAX, hi = 0, any, n = 0;
+    ch_character *c = &a->ch;
+    if (!ch_load(c, o->mesh, o->unit, err, sizeof err)) {
+        fprintf(stderr, "gl_marschner: %s\n", err);
+        return 0;
+    }
+    a->anim = ch_find_animation(c, o->anim);
+    if (o->anim && a->anim < 0) {
+        fprintf(stderr, "gl_marschner: %s has no animation '%s'; it has:",
+                o->mesh, o->anim);
+        for (k = 0; k < c->animation_count; ++k)
+            fprintf(stderr, " %s", c->animation_name[k]);
+        fprintf(stderr, "%s\n", c->animation_count ? "" : " none");
+        return 0;
+    }
+    if (o->grow_on) { /* every name must be a part */
+        const char *s = o->grow_on;
+        while (*s) {
+            const char *e = strchr(s, ',');
+            size_t len = e ? (size_t)(e - s) : strlen(s);
+            for (p = 0; p < c->part_count; ++p)
+                if (strlen(c->parts[p].name) == len &&
+                    !strncmp(c->parts[p].name, s, len)) break;
+            if (p == c->part_count) {
+                fprintf(stderr, "gl_marschner: --grow-on: %s has no mesh "
+                        "'%.*s'; it has:", o->mesh, (int)len, s);
+                for (p = 0; p < c->part_count; ++p)
+                    fprintf(stderr, " %s", c->parts[p].name);
+                fprintf(stderr, "\n");
+                return 0;
+            }
+            s += len + (e ? 1 : 0);
+        }
+    }
+    a->nv = c->vertex_count;
+    a->nt = c->triangle_count;
+    a->rest = (ch_vertex *)malloc(sizeof(ch_vertex) * (size_t)a->nv);
+    a->body_idx = (uint32_t *)malloc(12u * (size_t)a->nt);
+    a->grow_idx = (uint32_t *)malloc(12u * (size_t)a->nt);
+    a->all_col = (hf_collider *)calloc((size_t)c->capsule_count + 1,
+                                       sizeof(hf_collider));
+    a->col_keep = (int *)calloc((size_t)c->capsule_count + 1, sizeof(int));
+    if (!a->rest || !a->body_idx || !a->grow_idx || !a->all_col ||
+        !a->col_keep)
+        return 0;
+    ch_pose(c, a->anim, 0.0, a->rest, a->all_col);
+    for (p = 0; p < c->part_count; ++p) {
+        const ch_part *pt = &c->parts[p];
+        if (o->grow_on && !glm_listed(o->grow_on, pt->name)) continue;
+        if ((o->density_path || o->length_path || o->color_path) &&
+            !pt->has_uvs) {
+            fprintf(stderr, "gl_marschner: %s: mesh '%s' has no texture "
+                    "coordinates, so the maps cannot be read on it\n",
+                    o->mesh, pt->name);
+            return 0;
+        }
+        if (pt->first_vertex < lo) lo = pt->first_vertex;
+        if (pt->first_vertex + pt->vertex_count > hi)
+            hi = pt->first_vertex + pt->vertex_count;
+    }
+    a->grow_first = lo;
+    a->grow_count = hi - lo;
+    /* the grown triangles first, then the rest */
+    for (any = 0; any < 2; ++any)
+        for (p = 0; p < c->part_count; ++p) {
+            const ch_part *pt = &c->parts[p];
+            int grown = !o->grow_on || glm_listed(o->grow_on, pt->name);
+            if (grown == any) continue;
+            for (t = pt->first_triangle;
+                 t < pt->first_triangle + pt->triangle_count; ++t, ++n)
+                for (k = 0; k < 3; ++k) {
+                    uint32_t v = c->indices[3 * (size_t)t + (size_t)k];
+                    a->body_idx[3 * (size_t)n + (size_t)k] = v;
+                    if (!any)
+                        a->grow_idx[3 * (size_t)n + (size_t)k] = v - (uint32_t)lo;
+                }
+            if (!any) a->nt_grown = n;
+        }
+    a->max_col = c->capsule_count;
+    return 1;
+}
+
+/* Size, framing, hair length, ribbon width, shadow strength and a mesh's
+   colliders from the body at rest, so that a model in centimetres (read
+   as metres by ch_load) gives the picture it gives in metres. */
+static void glm_measure(glm_app *a)
+{
+    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+    double area = 0.0, c[3] = {0, 0, 0};
+    int i, k;
+    for (i = a->grow_first; i < a->grow_first + a->grow_count; ++i)
+        for (k = 0; k < 3; ++k) {
+            float x = a->rest[i].pos[k];
+            if (x < lo[k]) lo[k] = x;
+            if (x > hi[k]) hi[k] = x;
+            c[k] += x;
+        }
+    a->size = sqrtf((hi[0] - lo[0]) * (hi[0] - lo[0]) +
+                    (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                    (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    if (!(a->size > 0.0f)) a->size = 1.0f;
+    a->frame_dist = GLM_FRAME_DIAG * a->size;
+    for (k = 0; k < 3; ++k) {
+        a->target0[k] = 0.5f * (lo[k] + hi[k]);
+        a->centroid0[k] = (float)(c[k] / a->grow_count);
+    }
+    if (a->ch.vertex_count == 0) /* the head: a little below the middle */
+        a->target0[1] -= 0.0866f * a->size;
+    a->hair_len = a->o.hair_length > 0.0f ? a->o.hair_length
+                : a->ch.vertex_count > 0 ? 0.05f * a->size : 0.14f;
+    /* the hair's area: triangles weighted by the density at their corners */
+    for (i = 0; i < a->nt_grown; ++i) {
+        const float *p0 = a->rest[a->grow_first + a->grow_idx[3 * i]].pos,
+                    *p1 = a->rest[a->grow_first + a->grow_idx[3 * i + 1]].pos,
+                    *p2 = a->rest[a->grow_first + a->grow_idx[3 * i + 2]].pos;
+        float e1[3], e2[3], n[3], d = 1.0f;
+        for (k = 0; k < 3; ++k) { e1[k] = p1[k] - p0[k]; e2[k] = p2[k] - p0[k]; }
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+        n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+        n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        if (a->have_density) {
+            float v[4];
+            d = 0.0f;
+            for (k = 0; k < 3; ++k) {
+                const float *uv = a->rest[a->grow_first + a->grow_idx[3 * i + k]].uv;
+                if (hf_map_sample(&a->density, uv[0], uv[1], v) == HF_OK)
+                    d += v[0] / 3.0f;
+            }
+        }
+        area += 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) * d;
+    }
+    /* ribbons two thirds of the mean strand spacing wide: the hair covers
+       the skin without reading as a sheet (1.1 mm on the head) */
+    a->hair_area = area;
+    a->root_width = GLM_WIDTH_SPACING * sqrtf((float)(area / a->o.strands));
+    if (!(a->root_width > 0.0f)) a->root_width = 0.001f * a->size;
+    /* light falls to exp(-5) through a hair length of hair */
+    a->shadow_k = 5.0f / a->hair_len;
+    for (k = 0; k < 3; ++k) { lo[k] = 1e30f; hi[k] = -1e30f; }
+    for (i = 0; i < a->nv; ++i)
+        for (k = 0; k < 3; ++k) {
+            if (a->rest[i].pos[k] < lo[k]) lo[k] = a->rest[i].pos[k];
+            if (a->rest[i].pos[k] > hi[k]) hi[k] = a->rest[i].pos[k];
+        }
+    a->ch_diag = sqrtf((hi[0] - lo[0]) * (hi[0] - lo[0]) +
+                       (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                       (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    /* a mesh's colliders: the bones' capsules that hair can reach (near
+       the grown part's box at rest), leaving out the tiny ones (fingers,
+       lips) */
+    a->ncol = a->ch.vertex_count > 0 ? 0 : GLM_HEAD_COLLIDERS;
+    if (a->ch.vertex_count > 0) {
+        float glo[3], ghi[3];
+        for (k = 0; k < 3; ++k) { glo[k] = 1e30f; ghi[k] = -1e30f; }
+        for (i = a->grow_first; i < a->grow_first + a->grow_count; ++i)
+            for (k = 0; k < 3; ++k) {
+                if (a->rest[i].pos[k] < glo[k]) glo[k] = a->rest[i].pos[k];
+                if (a->rest[i].pos[k] > ghi[k]) ghi[k] = a->rest[i].pos[k];
+            }
+        for (i = 0; i < a->ch.capsule_count; ++i) {
+            const hf_collider *cp = &a->all_col[i];
+            float best = 1e30f;
+            int j;
+            if (cp->radius < 0.004f * a->ch_diag) continue;
+            for (j = 0; j <= 8; ++j) { /* points along the axis to the box */
+                float d2 = 0.0f;
+                for (k = 0; k < 3; ++k) {
+                    float x = cp->a[k] + (cp->b[k] - cp->a[k]) * (float)j / 8.0f;
+                    float e = x < glo[k] ? glo[k] - x : x > ghi[k] ? x - ghi[k] : 0.0f;
+                    d2 += e * e;
+                }
+                if (d2 < best) best = d2;
+            }
+            if (sqrtf(best) <= cp->radius + a->hair_len)
+                a->col_keep[a->ncol++] = i;
+        }
+    }
 }
 
 /* ---- GL setup ------------------------------------------------------------ */
@@ -554,11 +901,23 @@ static void glm_ribbon_view(const glm_app *a, hf_ribbon_params *v)
 {
     memset(v, 0, sizeof *v);
     memcpy(v->eye, a->eye, sizeof v->eye);
-    v->root_width = 0.0011f; /* metres, on a head of radius 0.1 */
-    v->tip_width = 0.00025f;
+    v->root_width = a->root_width; /* from the strand spacing */
+    v->tip_width = 0.227f * a->root_width;
     v->taper_power = 1.5f;   /* keep the width longer, then thin quickly */
     v->alpha_root = 1.0f;
     v->alpha_tip = 0.2f;     /* tips fade */
+}
+
+static float glm_polyline_length(const float *p, int n)
+{
+    float len = 0.0f;
+    int i;
+    for (i = 1; i < n; ++i) {
+        float dx = p[3 * i] - p[3 * i - 3], dy = p[3 * i + 1] - p[3 * i - 2],
+              dz = p[3 * i + 2] - p[3 * i - 1];
+        len += sqrtf(dx * dx + dy * dy + dz * dz);
+    }
+    return len;
 }
 
 /* Returns 1, or 0 with a message. The GL context must be current. */
@@ -580,63 +939,123 @@ static int glm_init(glm_app *a, const glm_options *o)
     memset(a, 0, sizeof *a);
     a->o = *o;
     a->draw_hair = 1;
-    if (!hm_sphere(24, 32, GLM_HEAD_R, &a->head)) return 0;
-    a->skin = (hm_vertex *)malloc(sizeof(hm_vertex) * (size_t)a->head.vertex_count);
-    a->density_px = (unsigned char *)malloc(256 * 256);
-    a->length_px = (unsigned char *)malloc(256 * 256);
-    a->color_px = (unsigned char *)malloc(64 * 64 * 3);
+    if (!(o->mesh ? glm_load_mesh(a) : glm_load_head(a))) return 0;
+    a->skin = (ch_vertex *)malloc(sizeof(ch_vertex) * (size_t)a->nv);
+    a->col = (hf_collider *)calloc((size_t)a->max_col + 1, sizeof(hf_collider));
     a->index_px = (unsigned char *)malloc(128 * 128);
-    if (!a->skin || !a->density_px || !a->length_px || !a->color_px ||
-        !a->index_px)
-        return 0;
-    memcpy(a->skin, a->head.vertices,
-           sizeof(hm_vertex) * (size_t)a->head.vertex_count);
-    hm_hairline_density(a->density_px, 256, 256);
-    hm_bangs_length(a->length_px, 256, 256);
-    hm_hair_color(a->color_px, 64, 64);
+    if (!a->skin || !a->col || !a->index_px) return 0;
+    memcpy(a->skin, a->rest, sizeof(ch_vertex) * (size_t)a->nv);
+
+    /* maps: from files, else the head's own, else none (density and
+       length 1) and one colour */
+    if (o->density_path) {
+        if (!glm_load_map(o->density_path, 1, &a->density_px, &a->density))
+            return 0;
+    } else if (!o->mesh) {
+        a->density_px = (unsigned char *)malloc(256 * 256);
+        if (!a->density_px) return 0;
+        hm_hairline_density(a->density_px, 256, 256);
+        a->density.data = a->density_px;
+        a->density.width = a->density.height = 256;
+        a->density.channels = 1;
+    }
+    a->have_density = a->density_px != NULL;
+    if (o->length_path) {
+        if (!glm_load_map(o->length_path, 1, &a->length_px, &a->length))
+            return 0;
+    } else if (!o->mesh) {
+        a->length_px = (unsigned char *)malloc(256 * 256);
+        if (!a->length_px) return 0;
+        hm_bangs_length(a->length_px, 256, 256);
+        a->length.data = a->length_px;
+        a->length.width = a->length.height = 256;
+        a->length.channels = 1;
+    }
+    a->have_length = a->length_px != NULL;
+    if (o->color_path) {
+        if (!glm_load_map(o->color_path, 3, &a->color_px, &a->color)) return 0;
+    } else {
+        int n = o->mesh ? 1 : 64;
+        a->color_px = (unsigned char *)malloc((size_t)(n * n * 3));
+        if (!a->color_px) return 0;
+        if (o->mesh)
+            for (i = 0; i < 3; ++i)
+                a->color_px[i] = (unsigned char)(255.0f * o->hair_color[i] + 0.5f);
+        else
+            hm_hair_color(a->color_px, 64, 64);
+        a->color.data = a->color_px;
+        a->color.width = a->color.height = n;
+        a->color.channels = 3;
+    }
     glm_index_map(a->index_px, 128, 128);
-    a->density.data = a->density_px;
-    a->density.width = a->density.height = 256;
-    a->density.channels = 1;
-    a->length = a->density;
-    a->length.data = a->length_px;
-    a->color.data = a->color_px;
-    a->color.width = a->color.height = 64;
-    a->color.channels = 3;
     a->index.data = a->index_px;
     a->index.width = a->index.height = 128;
     a->index.channels = 1;
+    glm_measure(a);
+    if (a->o.distance <= 0.0f) a->o.distance = a->frame_dist;
 
-    /* grow: as grow_fur, with both colour schemes */
+    /* grow on the grown vertex range, at rest */
     memset(&desc, 0, sizeof desc);
-    desc.mesh.positions = a->head.vertices[0].pos;
-    desc.mesh.position_stride = (int)sizeof(hm_vertex);
-    desc.mesh.normals = a->head.vertices[0].normal;
-    desc.mesh.normal_stride = (int)sizeof(hm_vertex);
-    desc.mesh.uvs = a->head.vertices[0].uv;
-    desc.mesh.uv_stride = (int)sizeof(hm_vertex);
-    desc.mesh.vertex_count = a->head.vertex_count;
-    desc.mesh.indices = a->head.indices;
-    desc.mesh.triangle_count = a->head.triangle_count;
-    desc.density_map = &a->density;
-    desc.length_map = &a->length;
+    desc.mesh.positions = a->rest[a->grow_first].pos;
+    desc.mesh.position_stride = (int)sizeof(ch_vertex);
+    desc.mesh.normals = a->rest[a->grow_first].normal;
+    desc.mesh.normal_stride = (int)sizeof(ch_vertex);
+    desc.mesh.uvs = a->rest[a->grow_first].uv;
+    desc.mesh.uv_stride = (int)sizeof(ch_vertex);
+    desc.mesh.vertex_count = a->grow_count;
+    desc.mesh.indices = a->grow_idx;
+    desc.mesh.triangle_count = a->nt_grown;
+    desc.density_map = a->have_density ? &a->density : NULL;
+    desc.length_map = a->have_length ? &a->length : NULL;
     desc.color_map = &a->color;
     desc.color3d_index_map = &a->index;
+    if (o->comb[0] != 0.0f || o->comb[1] != 0.0f || o->comb[2] != 0.0f) {
+        /* growth direction: the normal tilted towards the comb's part
+           along the surface, tan(tilt) = the comb's length, the same
+           everywhere; the normal where the comb is the normal */
+        float len = sqrtf(o->comb[0] * o->comb[0] + o->comb[1] * o->comb[1] +
+                          o->comb[2] * o->comb[2]);
+        a->comb_dir = (float *)malloc(sizeof(float) * 3u * (size_t)a->grow_count);
+        if (!a->comb_dir) return 0;
+        for (i = 0; i < a->grow_count; ++i) {
+            const float *n = a->rest[a->grow_first + i].normal;
+            float cn = o->comb[0] * n[0] + o->comb[1] * n[1] + o->comb[2] * n[2];
+            float t[3], tl;
+            int k;
+            for (k = 0; k < 3; ++k) t[k] = o->comb[k] - cn * n[k];
+            tl = sqrtf(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+            for (k = 0; k < 3; ++k)
+                a->comb_dir[3 * i + k] =
+                    n[k] + (tl > 1e-6f * len ? len * t[k] / tl : 0.0f);
+        }
+        desc.comb = a->comb_dir;
+    }
     desc.points_per_strand = 16;
-    desc.max_length = 0.14f;
+    desc.max_length = a->hair_len;
     desc.total_strands = o->strands;
     desc.sampler = HF_SAMPLER_STRATIFIED;
     desc.seed = 7;
     desc.clump = 0.25f;
-    desc.tess_factor = 25000.0f;
+    if (!o->mesh && !o->guides) {
+        desc.tess_factor = 25000.0f; /* about 2,000 guides on the head */
+    } else {
+        /* LOD guides to make up the guide target: about one per 1 /
+           tess_factor of (density-weighted) area; none when the mesh's
+           vertices (the pure guides) are already that many */
+        int target = o->guides > 0 ? o->guides : o->strands / 10;
+        if (!o->guides && target > 2000) target = 2000;
+        if (target > a->grow_count && a->hair_area > 0.0)
+            desc.tess_factor = (float)((target - a->grow_count) / a->hair_area);
+    }
     hf_rope_params_init(&rp);
-    /* no global (rest-pose) stiffness: the rest pose sticks straight out
-       of the scalp, so pulling towards it makes a helmet; some local
-       stiffness keeps strands from folding, the root one lifts them off
-       the scalp a little */
+    /* some local stiffness keeps strands from folding, the root one lifts
+       them off the scalp a little; the global (rest-pose) stiffness, 0 by
+       default, holds fur up: hair with it looks like a helmet */
     rp.local_stiffness_root = 0.3f;
     rp.local_stiffness_tip = 0.05f;
     rp.root_stiffness = 0.5f;
+    rp.global_stiffness_root = o->stiffness;
+    rp.global_stiffness_tip = 0.5f * o->stiffness;
     desc.rope_params = &rp;
     if ((r = hf_fur_create(&desc, &a->fur, &diag)) != HF_OK) {
         fprintf(stderr, "gl_marschner: %s\n", diag.message);
@@ -646,14 +1065,20 @@ static int glm_init(glm_app *a, const glm_options *o)
     a->P = a->info.points_per_strand;
     S = a->info.strand_count;
     a->skinned = desc.mesh;
-    a->skinned.positions = a->skin[0].pos;
-    a->skinned.normals = a->skin[0].normal;
+    a->skinned.positions = a->skin[a->grow_first].pos;
+    a->skinned.normals = a->skin[a->grow_first].normal;
+    /* each guide's length at rest, for the stretch figure */
+    a->rest_len = (float *)malloc(sizeof(float) * (size_t)a->info.guide_count);
+    if (!a->rest_len) return 0;
+    for (i = 0; i < a->info.guide_count; ++i)
+        a->rest_len[i] = glm_polyline_length(a->info.guide_points +
+                                             3 * (size_t)i * (size_t)a->P, a->P);
     nv = 2u * (size_t)S * (size_t)a->P;
     a->dyn = (glm_dyn *)malloc(sizeof(glm_dyn) * nv);
     /* zeroed: the pad bytes are uploaded too */
     a->cdyn = (glm_compact *)calloc(nv, sizeof(glm_compact));
     a->points4 = (float *)malloc(sizeof(float) * 4u * (size_t)S * (size_t)a->P);
-    a->line_buf = (float *)malloc(sizeof(float) * 6u * GLM_MAX_COLLIDERS *
+    a->line_buf = (float *)malloc(sizeof(float) * 6u * (size_t)(a->max_col + 1) *
                                   GLM_LINES_PER_COLLIDER);
     if (!a->dyn || !a->cdyn || !a->points4 || !a->line_buf) return 0;
 
@@ -667,11 +1092,18 @@ static int glm_init(glm_app *a, const glm_options *o)
                                     "hair (compact CPU ribbons)");
         a->prog_head = glc_program(glm_vs_head, glm_fs_head, "head");
         a->prog_line = glc_program(glm_vs_line, glm_fs_line, "lines");
-        if (!a->prog_cpu || !a->prog_cpu16 || !a->prog_head || !a->prog_line)
+        a->depth_cpu = glc_program(glm_vs_cpu, glm_fs_depth, "shadow (CPU ribbons)");
+        a->depth_cpu16 = glc_program(glm_vs_cpu16, glm_fs_depth,
+                                     "shadow (compact CPU ribbons)");
+        a->depth_head = glc_program(glm_vs_head, glm_fs_depth, "shadow (body)");
+        if (!a->prog_cpu || !a->prog_cpu16 || !a->prog_head || !a->prog_line ||
+            !a->depth_cpu || !a->depth_cpu16 || !a->depth_head)
             return 0;
         gpu_src = glm_gpu_vs_source(path);
         if (gpu_src) {
             a->prog_gpu = glc_program(gpu_src, glm_fs_hair, "hair (GPU expansion)");
+            a->depth_gpu = glc_program(gpu_src, glm_fs_depth,
+                                       "shadow (GPU expansion)");
             free(gpu_src);
         }
         if (!a->prog_gpu) {
@@ -699,8 +1131,30 @@ static int glm_init(glm_app *a, const glm_options *o)
     glm_ramp(ramp, 64, 32);
     a->tex_ramp = glm_texture2d(GL_RGBA8, 64, 32, GL_RGBA, GL_UNSIGNED_BYTE,
                                 ramp, GL_CLAMP_TO_EDGE);
-    a->tex_density = glm_texture2d(GL_R8, 256, 256, GL_RED, GL_UNSIGNED_BYTE,
-                                   a->density_px, GL_REPEAT);
+    {
+        static const unsigned char full = 255; /* no map: hair everywhere */
+        a->tex_density = a->have_density
+            ? glm_texture2d(GL_R8, a->density.width, a->density.height, GL_RED,
+                            GL_UNSIGNED_BYTE, a->density_px, GL_REPEAT)
+            : glm_texture2d(GL_R8, 1, 1, GL_RED, GL_UNSIGNED_BYTE, &full,
+                            GL_REPEAT);
+    }
+    /* the shadow map: a depth texture the shaders read as a float */
+    a->tex_shadow = glm_texture2d(GL_DEPTH_COMPONENT24, GLM_SHADOW_SIZE,
+                                  GLM_SHADOW_SIZE, GL_DEPTH_COMPONENT,
+                                  GL_UNSIGNED_INT, NULL, GL_CLAMP_TO_EDGE);
+    glGenFramebuffers(1, &a->shadow_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, a->shadow_fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D,
+                           a->tex_shadow, 0);
+    glDrawBuffer(GL_NONE);
+    glReadBuffer(GL_NONE);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        fprintf(stderr, "gl_marschner: the shadow map framebuffer is "
+                "incomplete; run with --no-shadows\n");
+        return 0;
+    }
+    glc_begin_frame(); /* back to the output's framebuffer */
 
     /* the index buffer: once, for every strand; a LOD draws a prefix */
     n_idx = hf_ribbon_index_count(S, a->P, HF_TRIANGLES);
@@ -825,27 +1279,26 @@ static int glm_init(glm_app *a, const glm_options *o)
     glm_tbo(&a->vbo_scolor, &a->tbo_scolor, GL_RGBA32F,
             sizeof(float) * 4u * (size_t)S, a->info.strand_colors, GL_STATIC_DRAW);
 
-    /* head: the skinned vertices, streamed */
+    /* the body: the skinned vertices, streamed */
     glGenVertexArrays(1, &a->vao_head);
     glBindVertexArray(a->vao_head);
     glGenBuffers(1, &a->vbo_head);
     glBindBuffer(GL_ARRAY_BUFFER, a->vbo_head);
     glBufferData(GL_ARRAY_BUFFER,
-                 (GLsizeiptr)(sizeof(hm_vertex) * (size_t)a->head.vertex_count),
+                 (GLsizeiptr)(sizeof(ch_vertex) * (size_t)a->nv),
                  NULL, GL_STREAM_DRAW);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(hm_vertex), (void *)0);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(hm_vertex),
-                          (void *)offsetof(hm_vertex, normal));
-    glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, sizeof(hm_vertex),
-                          (void *)offsetof(hm_vertex, uv));
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(ch_vertex), (void *)0);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(ch_vertex),
+                          (void *)offsetof(ch_vertex, normal));
+    glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, sizeof(ch_vertex),
+                          (void *)offsetof(ch_vertex, uv));
     glEnableVertexAttribArray(0);
     glEnableVertexAttribArray(1);
     glEnableVertexAttribArray(2);
     glGenBuffers(1, &a->ibo_head);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, a->ibo_head);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER,
-                 (GLsizeiptr)(12 * (size_t)a->head.triangle_count),
-                 a->head.indices, GL_STATIC_DRAW);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(12 * (size_t)a->nt),
+                 a->body_idx, GL_STATIC_DRAW);
 
     /* collider lines */
     glGenVertexArrays(1, &a->vao_line);
@@ -853,14 +1306,17 @@ static int glm_init(glm_app *a, const glm_options *o)
     glGenBuffers(1, &a->vbo_line);
     glBindBuffer(GL_ARRAY_BUFFER, a->vbo_line);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * 6u *
-                 GLM_MAX_COLLIDERS * GLM_LINES_PER_COLLIDER), NULL, GL_STREAM_DRAW);
+                 (size_t)(a->max_col + 1) * GLM_LINES_PER_COLLIDER), NULL,
+                 GL_STREAM_DRAW);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 12, (void *)0);
     glEnableVertexAttribArray(0);
     glBindVertexArray(0);
     if (!glc_check_gl("glm_init")) return 0;
-    printf("gl_marschner: %d strands of %d points, %d guides; grown, LUTs "
-           "baked (%d x %d) and buffers made in %.0f ms\n", S, a->P,
-           a->info.guide_count, lp.size, lp.size, glm_now_ms() - t0);
+    printf("gl_marschner: %s: %d strands of %d points, %d guides, hair "
+           "%.3g m, %d colliders, size %.3g m; grown, LUTs baked (%d x %d) "
+           "and buffers made in %.0f ms\n", o->mesh ? o->mesh : "built-in head",
+           S, a->P, a->info.guide_count, a->hair_len, a->ncol, a->size,
+           lp.size, lp.size, glm_now_ms() - t0);
     return 1;
 }
 
@@ -874,34 +1330,58 @@ static int glm_simulate(glm_app *a, double t, float dt)
     hf_result r;
     float lod;
     int i;
-    double t0 = glm_now_ms();
+    double t0 = glm_now_ms(), t1;
     a->t = t;
+    /* the body at time t: a mesh is skinned from its bones, the head
+       moved rigidly; the colliders follow */
+    if (a->ch.vertex_count > 0) {
+        ch_pose(&a->ch, a->anim, a->o.still ? 0.0 : t, a->skin, a->all_col);
+        for (i = 0; i < a->ncol; ++i) a->col[i] = a->all_col[a->col_keep[i]];
+    } else {
+        glm_pose(t, a->o.still, a->pose);
+        for (i = 0; i < a->nv; ++i) {
+            glm_xform(a->pose, a->rest[i].pos, 1.0f, a->skin[i].pos);
+            glm_xform(a->pose, a->rest[i].normal, 0.0f, a->skin[i].normal);
+        }
+        glm_head_colliders(a->pose, a->col);
+    }
+    t1 = glm_now_ms();
+    a->ms_skin += t1 - t0;
     glm_camera(a);
     lod = a->o.lod >= 0.0f ? a->o.lod
-                           : hf_lod_from_distance(a->o.distance, GLM_FULL_DETAIL,
-                                                  GLM_CULL);
+                           : hf_lod_from_distance(a->o.distance,
+                                                  GLM_FULL_DETAIL * a->frame_dist,
+                                                  GLM_CULL * a->frame_dist);
     if (lod != a->lod || a->drawn == 0) {
         hf_fur_set_lod(a->fur, lod);
         hf_fur_get_info(a->fur, &a->info);
         a->lod = lod;
     }
     a->drawn = a->info.drawn_strand_count;
-    glm_pose(t, a->o.still, a->pose);
-    for (i = 0; i < a->head.vertex_count; ++i) {
-        glm_xform(a->pose, a->head.vertices[i].pos, 1.0f, a->skin[i].pos);
-        glm_xform(a->pose, a->head.vertices[i].normal, 0.0f, a->skin[i].normal);
-    }
-    glm_colliders(a->pose, a->col);
     r = hf_fur_set_roots(a->fur, &a->skinned, 0, a->info.guide_count);
     if (!r) r = hf_fur_simulate(a->fur, 0, a->info.guide_count, dt, a->col,
-                                GLM_MAX_COLLIDERS);
+                                a->ncol);
     if (!r) r = hf_fur_interpolate_guides(a->fur, 0, a->info.lod_guide_count);
     if (r != HF_OK) {
         fprintf(stderr, "gl_marschner: simulate at t = %.3f: %s\n", t,
                 hf_result_string(r));
         return 0;
     }
+    a->ms_sim += glm_now_ms() - t1;
+    ++a->ms_frames;
     a->cpu_ms = glm_now_ms() - t0;
+    { /* the worst stretch of a guide this frame (ropes keep their length) */
+        double worst = 0.0;
+        for (i = 0; i < a->info.guide_count; ++i) {
+            double e = glm_polyline_length(a->info.guide_points +
+                                           3 * (size_t)i * (size_t)a->P, a->P) /
+                       a->rest_len[i] - 1.0;
+            if (e > worst) worst = e;
+        }
+        if (worst > a->stretch_max) a->stretch_max = worst;
+        a->stretch_sum += worst;
+        ++a->stretch_frames;
+    }
     return 1;
 }
 
@@ -923,10 +1403,10 @@ static int glm_build(glm_app *a)
            the +-GLM_COMPACT_SCALE box however far the head moves. */
         hf_ribbon_output out;
         memset(&out, 0, sizeof out);
-        a->corigin[0] = a->pose[3];
-        a->corigin[1] = a->pose[7];
-        a->corigin[2] = a->pose[11];
-        a->cscale = GLM_COMPACT_SCALE;
+        memcpy(a->corigin, a->target, sizeof a->corigin);
+        a->cscale = a->ch.vertex_count > 0
+                        ? 0.6f * a->ch_diag + 2.0f * a->hair_len
+                        : GLM_COMPACT_SCALE;
         out.position.data = a->cdyn[0].pos;
         out.position.stride = sizeof(glm_compact);
         out.position.format = HF_FORMAT_SNORM16;
@@ -950,6 +1430,8 @@ static int glm_build(glm_app *a)
         return 0;
     }
     a->cpu_ms += glm_now_ms() - t0;
+    a->ms_build += glm_now_ms() - t0;
+    ++a->build_frames;
     /* orphan, then write the drawn prefix: the driver need not wait for
        the GPU to finish reading last frame's data */
     if (a->o.gpu_expand) {
@@ -971,8 +1453,8 @@ static int glm_build(glm_app *a)
                                      : (const void *)a->dyn);
     }
     glBindBuffer(GL_ARRAY_BUFFER, a->vbo_head);
-    glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(sizeof(hm_vertex) *
-                    (size_t)a->head.vertex_count), a->skin);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(sizeof(ch_vertex) *
+                    (size_t)a->nv), a->skin);
     return 1;
 }
 
@@ -981,13 +1463,33 @@ static int glm_step(glm_app *a, double t, float dt, int build)
     return glm_simulate(a, t, dt) && (!build || glm_build(a));
 }
 
+/* The key light, from the upper front right. */
+static void glm_light_dir(float L[3])
+{
+    float l;
+    L[0] = 0.55f; L[1] = 0.75f; L[2] = 0.45f;
+    l = sqrtf(L[0] * L[0] + L[1] * L[1] + L[2] * L[2]);
+    L[0] /= l; L[1] /= l; L[2] /= l;
+}
+
 static void glm_lights(GLuint prog, const glm_app *a)
 {
-    /* key light from the upper front right, a cool ambient */
-    float L[3] = {0.55f, 0.75f, 0.45f};
-    float l = sqrtf(L[0] * L[0] + L[1] * L[1] + L[2] * L[2]);
-    glUniform3f(glGetUniformLocation(prog, "u_light_dir"), L[0] / l, L[1] / l,
-                L[2] / l);
+    /* the key light, a cool ambient, the shadow map */
+    float L[3];
+    glm_light_dir(L);
+    glUniform3f(glGetUniformLocation(prog, "u_light_dir"), L[0], L[1], L[2]);
+    glUniformMatrix4fv(glGetUniformLocation(prog, "u_light_view_proj"), 1,
+                       GL_FALSE, a->light_view_proj);
+    glUniform1f(glGetUniformLocation(prog, "u_shadow_on"),
+                a->o.no_shadows ? 0.0f : 1.0f);
+    glUniform1f(glGetUniformLocation(prog, "u_shadow_k"), a->shadow_k);
+    glUniform1f(glGetUniformLocation(prog, "u_shadow_depth"), a->shadow_depth);
+    glUniform1f(glGetUniformLocation(prog, "u_shadow_bias"),
+                3.0f * a->shadow_depth / GLM_SHADOW_SIZE);
+    glActiveTexture(GL_TEXTURE7);
+    glBindTexture(GL_TEXTURE_2D, a->tex_shadow);
+    glUniform1i(glGetUniformLocation(prog, "u_shadow"), 7);
+    glActiveTexture(GL_TEXTURE0);
     glUniform3f(glGetUniformLocation(prog, "u_light_color"), 1.9f, 1.8f, 1.65f);
     glUniform3f(glGetUniformLocation(prog, "u_ambient"), 0.22f, 0.24f, 0.30f);
     glUniformMatrix4fv(glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE,
@@ -1003,10 +1505,89 @@ static void glm_sampler(GLuint prog, int unit, GLenum target, GLuint tex,
     glUniform1i(glGetUniformLocation(prog, name), unit);
 }
 
+/* The hair's draw call with `prog` (a hair or a shadow program of the
+   current path): its inputs, then the triangles of the drawn strands. */
+static void glm_draw_hair(glm_app *a, GLuint prog, const float eye[3],
+                          int orthographic, const float view_dir[3])
+{
+    glUniform3fv(glGetUniformLocation(prog, "u_eye"), 1, eye);
+    if (a->o.gpu_expand && a->prog_gpu) {
+        glm_sampler(prog, 3, GL_TEXTURE_BUFFER, a->tbo_points, "u_points");
+        glm_sampler(prog, 4, GL_TEXTURE_BUFFER, a->tbo_uv, "u_root_uv");
+        glm_sampler(prog, 5, GL_TEXTURE_BUFFER, a->tbo_scolor, "u_strand_color");
+        glm_sampler(prog, 6, GL_TEXTURE_BUFFER, a->tbo_c3x, "u_strand_c3x");
+        glUniform1i(glGetUniformLocation(prog, "u_points_per_strand"), a->P);
+        glUniform1i(glGetUniformLocation(prog, "u_orthographic"), orthographic);
+        glUniform3fv(glGetUniformLocation(prog, "u_view_dir"), 1, view_dir);
+        glBindVertexArray(a->vao_gpu);
+    } else if (a->o.compact) {
+        glUniform3fv(glGetUniformLocation(prog, "u_pos_origin"), 1, a->corigin);
+        glUniform1f(glGetUniformLocation(prog, "u_pos_scale"), a->cscale);
+        glBindVertexArray(a->vao_cpu16);
+    } else {
+        glBindVertexArray(a->vao_cpu);
+    }
+    glDrawElements(GL_TRIANGLES, (GLsizei)(6 * (a->P - 1) * a->drawn),
+                   GL_UNSIGNED_INT, 0);
+}
+
+/* The shadow map: body and hair from the light, orthographic around the
+   whole body and its hair as they are now. */
+static void glm_shadow_pass(glm_app *a)
+{
+    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+    float c[3], L[3], eye[3], view[16], proj[16], r = 0.0f, dir[3];
+    const float up[3] = {0, 1, 0};
+    int i, k;
+    GLuint prog;
+    for (i = 0; i < a->nv; ++i)
+        for (k = 0; k < 3; ++k) {
+            if (a->skin[i].pos[k] < lo[k]) lo[k] = a->skin[i].pos[k];
+            if (a->skin[i].pos[k] > hi[k]) hi[k] = a->skin[i].pos[k];
+        }
+    for (k = 0; k < 3; ++k) {
+        c[k] = 0.5f * (lo[k] + hi[k]);
+        r += 0.25f * (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    }
+    r = sqrtf(r) + 1.05f * a->hair_len;
+    glm_light_dir(L);
+    for (k = 0; k < 3; ++k) {
+        eye[k] = c[k] + 2.0f * r * L[k];
+        dir[k] = -L[k];
+    }
+    glc_mat4_look_at(view, eye, c, up);
+    glc_mat4_ortho(proj, -r, r, -r, r, r, 3.0f * r);
+    glc_mat4_mul(a->light_view_proj, proj, view);
+    a->shadow_depth = 2.0f * r;
+    if (a->o.no_shadows) return;
+    glBindFramebuffer(GL_FRAMEBUFFER, a->shadow_fbo);
+    glViewport(0, 0, GLM_SHADOW_SIZE, GLM_SHADOW_SIZE);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDisable(GL_CULL_FACE);
+    glUseProgram(a->depth_head);
+    glUniformMatrix4fv(glGetUniformLocation(a->depth_head, "u_view_proj"), 1,
+                       GL_FALSE, a->light_view_proj);
+    glBindVertexArray(a->vao_head);
+    glDrawElements(GL_TRIANGLES, 3 * a->nt, GL_UNSIGNED_INT, 0);
+    if (a->draw_hair && a->drawn > 0) {
+        prog = a->o.gpu_expand && a->prog_gpu ? a->depth_gpu
+             : a->o.compact ? a->depth_cpu16 : a->depth_cpu;
+        glUseProgram(prog);
+        glUniformMatrix4fv(glGetUniformLocation(prog, "u_view_proj"), 1,
+                           GL_FALSE, a->light_view_proj);
+        /* CPU ribbons face the camera; the GPU path faces the light */
+        glm_draw_hair(a, prog, eye, 1, dir);
+    }
+    glBindVertexArray(0);
+}
+
 static void glm_draw(glm_app *a)
 {
     const int n = a->drawn;
     double t0 = glm_now_ms();
+    glm_shadow_pass(a);
     glc_begin_frame();
     glClearColor(0.13f, 0.14f, 0.17f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -1014,15 +1595,29 @@ static void glm_draw(glm_app *a)
     glDepthFunc(GL_LEQUAL);
     glDisable(GL_CULL_FACE);
 
-    /* the head */
+    /* the body: the grown triangles with the scalp colour, then the rest */
     glUseProgram(a->prog_head);
     glm_lights(a->prog_head, a);
-    glUniform3f(glGetUniformLocation(a->prog_head, "u_scalp"), 0.05f, 0.025f, 0.012f);
+    {
+        float sc[3];
+        int k;
+        for (k = 0; k < 3; ++k) /* the hair colour, darkened, linear */
+            sc[k] = 0.25f * powf(a->o.mesh && !a->o.color_path
+                                     ? a->o.hair_color[k]
+                                     : (k == 0 ? 0.2f : k == 1 ? 0.1f : 0.05f),
+                                 2.2f);
+        glUniform3fv(glGetUniformLocation(a->prog_head, "u_scalp"), 1, sc);
+    }
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, a->tex_density);
     glUniform1i(glGetUniformLocation(a->prog_head, "u_density"), 0);
     glBindVertexArray(a->vao_head);
-    glDrawElements(GL_TRIANGLES, 3 * a->head.triangle_count, GL_UNSIGNED_INT, 0);
+    glUniform1f(glGetUniformLocation(a->prog_head, "u_scalp_on"), 1.0f);
+    glDrawElements(GL_TRIANGLES, 3 * a->nt_grown, GL_UNSIGNED_INT, 0);
+    glUniform1f(glGetUniformLocation(a->prog_head, "u_scalp_on"), 0.0f);
+    if (a->nt > a->nt_grown)
+        glDrawElements(GL_TRIANGLES, 3 * (a->nt - a->nt_grown), GL_UNSIGNED_INT,
+                       (void *)(12u * (size_t)a->nt_grown));
 
     /* the hair: no culling (camera-facing ribbons have no back to cull;
        the GPU path's fallback side at a degenerate point may flip the
@@ -1036,9 +1631,6 @@ static void glm_draw(glm_app *a)
                     : a->o.compact ? a->prog_cpu16 : a->prog_cpu;
         glUseProgram(prog);
         glm_lights(prog, a);
-        glUniform3fv(glGetUniformLocation(prog, "u_eye"), 1, a->eye);
-        glUniform4f(glGetUniformLocation(prog, "u_head"), a->pose[3], a->pose[7],
-                    a->pose[11], GLM_HEAD_R);
         glUniform1i(glGetUniformLocation(prog, "u_kajiya"), a->o.kajiya);
         glUniform1i(glGetUniformLocation(prog, "u_color3d"), a->o.color3d);
         glUniform1f(glGetUniformLocation(prog, "u_spec"), a->o.specular);
@@ -1050,24 +1642,8 @@ static void glm_draw(glm_app *a)
         if (prog == a->prog_gpu) {
             hf_ribbon_params v;
             glm_ribbon_view(a, &v);
-            glm_sampler(prog, 3, GL_TEXTURE_BUFFER, a->tbo_points, "u_points");
-            glm_sampler(prog, 4, GL_TEXTURE_BUFFER, a->tbo_uv, "u_root_uv");
-            glm_sampler(prog, 5, GL_TEXTURE_BUFFER, a->tbo_scolor,
-                        "u_strand_color");
-            glm_sampler(prog, 6, GL_TEXTURE_BUFFER, a->tbo_c3x,
-                        "u_strand_c3x");
-            glUniform1i(glGetUniformLocation(prog, "u_points_per_strand"), a->P);
-            glUniform1i(glGetUniformLocation(prog, "u_orthographic"), 0);
             glUniform2f(glGetUniformLocation(prog, "u_alpha"), v.alpha_root,
                         v.alpha_tip);
-            glBindVertexArray(a->vao_gpu);
-        } else if (prog == a->prog_cpu16) {
-            glUniform3fv(glGetUniformLocation(prog, "u_pos_origin"), 1,
-                         a->corigin);
-            glUniform1f(glGetUniformLocation(prog, "u_pos_scale"), a->cscale);
-            glBindVertexArray(a->vao_cpu16);
-        } else {
-            glBindVertexArray(a->vao_cpu);
         }
         if (a->o.a2c && glc_samples() > 1) {
             glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
@@ -1078,8 +1654,7 @@ static void glm_draw(glm_app *a)
         /* alpha is coverage, not colour: keep the target opaque (a PNG
            with the fade in its alpha channel looks washed out) */
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
-        glDrawElements(GL_TRIANGLES, (GLsizei)(6 * (a->P - 1) * n),
-                       GL_UNSIGNED_INT, 0);
+        glm_draw_hair(a, prog, a->eye, 0, a->eye);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
         glDisable(GL_BLEND);
@@ -1089,7 +1664,7 @@ static void glm_draw(glm_app *a)
     /* colliders: wireframes, bright where visible, faint where hidden */
     if (a->o.colliders) {
         int c, nl = 0;
-        for (c = 0; c < GLM_MAX_COLLIDERS; ++c)
+        for (c = 0; c < a->ncol; ++c)
             nl += glm_capsule_lines(&a->col[c], a->line_buf + 6 * nl);
         glUseProgram(a->prog_line);
         glUniformMatrix4fv(glGetUniformLocation(a->prog_line, "u_view_proj"), 1,
@@ -1117,29 +1692,39 @@ static void glm_draw(glm_app *a)
 
 static void glm_shutdown(glm_app *a)
 {
-    GLuint bufs[11], texs[8], vaos[5];
+    GLuint bufs[11], texs[9], vaos[5], progs[9];
+    int i;
     bufs[0] = a->vbo_dyn; bufs[1] = a->vbo_static; bufs[2] = a->vbo_points;
     bufs[3] = a->vbo_uv; bufs[4] = a->vbo_scolor; bufs[5] = a->vbo_c3x;
     bufs[6] = a->ibo_hair; bufs[7] = a->vbo_head; bufs[8] = a->ibo_head;
     bufs[9] = a->vbo_line; bufs[10] = a->vbo_dyn16;
     texs[0] = a->tex_m; texs[1] = a->tex_n; texs[2] = a->tex_ramp;
     texs[3] = a->tex_density; texs[4] = a->tbo_points; texs[5] = a->tbo_uv;
-    texs[6] = a->tbo_scolor; texs[7] = a->tbo_c3x;
+    texs[6] = a->tbo_scolor; texs[7] = a->tbo_c3x; texs[8] = a->tex_shadow;
     vaos[0] = a->vao_cpu; vaos[1] = a->vao_gpu; vaos[2] = a->vao_head;
     vaos[3] = a->vao_line; vaos[4] = a->vao_cpu16;
+    progs[0] = a->prog_cpu; progs[1] = a->prog_cpu16; progs[2] = a->prog_gpu;
+    progs[3] = a->prog_head; progs[4] = a->prog_line; progs[5] = a->depth_cpu;
+    progs[6] = a->depth_cpu16; progs[7] = a->depth_gpu; progs[8] = a->depth_head;
     if (glc_width() > 0) {
         glDeleteBuffers(11, bufs);
-        glDeleteTextures(8, texs);
+        glDeleteTextures(9, texs);
         glDeleteVertexArrays(5, vaos);
-        glDeleteProgram(a->prog_cpu);
-        glDeleteProgram(a->prog_cpu16);
-        glDeleteProgram(a->prog_gpu);
-        glDeleteProgram(a->prog_head);
-        glDeleteProgram(a->prog_line);
+        glDeleteFramebuffers(1, &a->shadow_fbo);
+        for (i = 0; i < 9; ++i) glDeleteProgram(progs[i]);
     }
     hf_fur_destroy(a->fur);
-    hm_free(&a->head);
+    if (a->ch.vertex_count > 0) ch_free(&a->ch);
+    free(a->rest);
     free(a->skin);
+    free(a->body_idx);
+    free(a->grow_idx);
+    free(a->col);
+    free(a->all_col);
+    free(a->col_keep);
+    free(a->rest_len);
+    free(a->comb_dir);
+    /* maps from files came from stb_image's malloc, the others from ours */
     free(a->density_px);
     free(a->length_px);
     free(a->color_px);
@@ -1152,13 +1737,129 @@ static void glm_shutdown(glm_app *a)
 }
 
 #ifndef GLM_NO_MAIN
-/* Parse the command line into o; returns 0 on a bad argument. */
+static void glm_usage(FILE *fp)
+{
+    fprintf(fp,
+"usage: gl_marschner [options]: fur or hair on the built-in head or any mesh,\n"
+"lit with the Marschner model, in a window or headless to PNG. Lengths are in\n"
+"metres; a mesh file's unit is found from its size (see --unit).\n"
+"The body\n"
+"  --mesh FILE        a mesh any format assimp reads, skinned and animated\n"
+"                     from its bones (default: the built-in head, a sphere of\n"
+"                     radius 0.1 m with its own maps, swinging and turning)\n"
+"  --anim NAME        the animation to play (default: the file's first)\n"
+"  --grow-on A,B      grow only on these meshes of the file (default: all)\n"
+"  --unit U           auto (default: a box diagonal up to 20 is metres, up to\n"
+"                     2000 centimetres, else millimetres), m, cm, mm, or\n"
+"                     metres per file unit\n"
+"  --still            the body does not move (first frame of the animation)\n"
+"The hair\n"
+"  --density PNG      density map, channel 0 (default: none, density 1; the\n"
+"                     head: its hairline); PNG top row = v 1, as in OpenGL\n"
+"  --length PNG       length map, channel 0, x --hair-length (default: none)\n"
+"  --color PNG        colour map, RGB (default: --hair-color)\n"
+"  --hair-color R,G,B sRGB in [0, 1] without a colour map (0.42,0.27,0.16)\n"
+"  --hair-length M    longest strand, metres (default: 0.14 on the head, 5 %%\n"
+"                     of the grown mesh's bounding-box diagonal on a mesh)\n"
+"  --strands N        strands (default 20000)\n"
+"  --guides N         guides (default: strands / 10, at most 2000; the\n"
+"                     mesh's vertices are guides, LOD guides make up the rest)\n"
+"  --stiffness S      hold to the rest shape, [0, 1] (default 0: hair falls;\n"
+"                     0.3-0.6 for fur)\n"
+"  --comb X,Y,Z       comb the hair in this world direction: the growth\n"
+"                     direction tilts from the normal towards it along the\n"
+"                     surface, tan(tilt) = its length (default 0,0,0: the\n"
+"                     normal)\n"
+"  --settle S         seconds simulated at the first pose before frame 1, so\n"
+"                     hair starts hanging (default 0)\n"
+"Drawing\n"
+"  --kajiya           Kajiya-Kay instead of Marschner\n"
+"  --no-shadows       no self-shadowing (default: a deep shadow map)\n"
+"  --no-specular      diffuse and ambient only\n"
+"  --gpu-expand       ribbons expanded on the GPU from hf_fur_points\n"
+"  --compact          CPU ribbons in the 16-byte vertex\n"
+"  --color3d          the 3D colour scheme (a ramp with dyed tips)\n"
+"  --colliders        draw the colliders\n"
+"  --a2c              alpha to coverage instead of blending\n"
+"  --lut-size N       Marschner LUT size (default 256)\n"
+"  --expand-shader F  the GPU expansion shader (examples/ribbon_expand.glsl)\n"
+"Camera (the default frames the grown mesh, whatever its size)\n"
+"  --distance D       metres from the target (default: 1.588 bounding-box\n"
+"                     diagonals of the grown mesh)\n"
+"  --lod F            level of detail [0, 1] (default: from the distance)\n"
+"  --azimuth DEG      (default 30)   --elevation DEG (default 12)\n"
+"  --orbit DEG_PER_S  camera orbit speed (default 12)\n"
+"Output\n"
+"  --headless         no window: render off-screen (EGL)\n"
+"  --frames N         frames of 1/60 s (default headless: 60; window: forever)\n"
+"  --out FILE.png     write the last frame; with --save-every N, FILE holds a\n"
+"                     %%d (e.g. out/f_%%03d.png) and every Nth frame is written\n"
+"  --save-every N     see --out\n"
+"  --draw-all         draw every headless frame, not only the written ones\n"
+"  --width W --height H  image size (default 640 x 480)\n"
+"Keys (window): K Kajiya-Kay/Marschner, G GPU expansion, C 3D colour,\n"
+"  V colliders, O shadows, S specular, H body motion, space orbit,\n"
+"  +/- or scroll distance, arrows orbit, Esc quits\n");
+}
+
+/* Strict numbers: the whole string, finite, in [lo, hi]. */
+static int glm_real(const char *opt, const char *v, double lo, double hi,
+                    float *out)
+{
+    char *end;
+    double x = strtod(v, &end);
+    if (end == v || *end || !isfinite(x) || x < lo || x > hi) {
+        fprintf(stderr, "gl_marschner: %s '%s': expected a number in "
+                "[%g, %g]\n", opt, v, lo, hi);
+        return 0;
+    }
+    *out = (float)x;
+    return 1;
+}
+
+/* Three numbers X,Y,Z, each in [lo, hi]. */
+static int glm_real3(const char *opt, const char *v, double lo, double hi,
+                     float out[3])
+{
+    char buf[128], *p = buf, *e;
+    int k;
+    snprintf(buf, sizeof buf, "%s", v);
+    for (k = 0; k < 3; ++k) {
+        e = strchr(p, ',');
+        if ((k < 2) != (e != NULL)) {
+            fprintf(stderr, "gl_marschner: %s '%s': expected three numbers "
+                    "X,Y,Z\n", opt, v);
+            return 0;
+        }
+        if (e) *e = '\0';
+        if (!glm_real(opt, p, lo, hi, &out[k])) return 0;
+        p = e ? e + 1 : p;
+    }
+    return 1;
+}
+
+static int glm_int(const char *opt, const char *v, long lo, long hi, int *out)
+{
+    char *end;
+    long x = strtol(v, &end, 10);
+    if (end == v || *end || x < lo || x > hi) {
+        fprintf(stderr, "gl_marschner: %s '%s': expected a whole number in "
+                "[%ld, %ld]\n", opt, v, lo, hi);
+        return 0;
+    }
+    *out = (int)x;
+    return 1;
+}
+
+/* Parse the command line into o: 1, 0 on a bad argument (with a message),
+   -1 for --help. */
 static int glm_parse(int argc, char **argv, glm_options *o)
 {
-    int i;
-    for (i = 1; i < argc; ++i) {
+    int i, ok = 1;
+    for (i = 1; i < argc && ok; ++i) {
         const char *s = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(s, "--headless")) o->headless = 1;
+        if (!strcmp(s, "--help") || !strcmp(s, "-h")) return -1;
+        else if (!strcmp(s, "--headless")) o->headless = 1;
         else if (!strcmp(s, "--kajiya")) o->kajiya = 1;
         else if (!strcmp(s, "--gpu-expand")) o->gpu_expand = 1;
         else if (!strcmp(s, "--color3d")) o->color3d = 1;
@@ -1168,24 +1869,52 @@ static int glm_parse(int argc, char **argv, glm_options *o)
         else if (!strcmp(s, "--draw-all")) o->draw_all = 1;
         else if (!strcmp(s, "--compact")) o->compact = 1;
         else if (!strcmp(s, "--no-specular")) o->specular = 0.0f;
-        else if (!v) return 0;
-        else if (!strcmp(s, "--frames")) o->frames = atoi(v), ++i;
-        else if (!strcmp(s, "--out")) o->out = v, ++i;
-        else if (!strcmp(s, "--width")) o->width = atoi(v), ++i;
-        else if (!strcmp(s, "--height")) o->height = atoi(v), ++i;
-        else if (!strcmp(s, "--strands")) o->strands = atoi(v), ++i;
-        else if (!strcmp(s, "--lut-size")) o->lut_size = atoi(v), ++i;
-        else if (!strcmp(s, "--distance")) o->distance = (float)atof(v), ++i;
-        else if (!strcmp(s, "--lod")) o->lod = (float)atof(v), ++i;
-        else if (!strcmp(s, "--azimuth")) o->azimuth = (float)atof(v), ++i;
-        else if (!strcmp(s, "--elevation")) o->elevation = (float)atof(v), ++i;
-        else if (!strcmp(s, "--orbit")) o->orbit_speed = (float)atof(v), ++i;
-        else if (!strcmp(s, "--expand-shader")) o->expand_shader = v, ++i;
-        else return 0;
+        else if (!strcmp(s, "--no-shadows")) o->no_shadows = 1;
+        else if (!v) {
+            fprintf(stderr, "gl_marschner: unknown option or %s without its "
+                    "value (--help lists them)\n", s);
+            return 0;
+        } else {
+            ++i;
+            if (!strcmp(s, "--frames")) ok = glm_int(s, v, 1, 1000000, &o->frames);
+            else if (!strcmp(s, "--out")) o->out = v;
+            else if (!strcmp(s, "--save-every")) ok = glm_int(s, v, 1, 1000000, &o->save_every);
+            else if (!strcmp(s, "--width")) ok = glm_int(s, v, 16, 8192, &o->width);
+            else if (!strcmp(s, "--height")) ok = glm_int(s, v, 16, 8192, &o->height);
+            else if (!strcmp(s, "--strands")) ok = glm_int(s, v, 1, 10000000, &o->strands);
+            else if (!strcmp(s, "--guides")) ok = glm_int(s, v, 1, 10000000, &o->guides);
+            else if (!strcmp(s, "--lut-size")) ok = glm_int(s, v, 2, HF_LUT_MAX_SIZE, &o->lut_size);
+            else if (!strcmp(s, "--distance")) ok = glm_real(s, v, 1e-3, 1e6, &o->distance);
+            else if (!strcmp(s, "--lod")) ok = glm_real(s, v, 0.0, 1.0, &o->lod);
+            else if (!strcmp(s, "--azimuth")) ok = glm_real(s, v, -1e6, 1e6, &o->azimuth);
+            else if (!strcmp(s, "--elevation")) ok = glm_real(s, v, -89.0, 89.0, &o->elevation);
+            else if (!strcmp(s, "--orbit")) ok = glm_real(s, v, -1e4, 1e4, &o->orbit_speed);
+            else if (!strcmp(s, "--hair-length")) ok = glm_real(s, v, 1e-6, 1e4, &o->hair_length);
+            else if (!strcmp(s, "--stiffness")) ok = glm_real(s, v, 0.0, 1.0, &o->stiffness);
+            else if (!strcmp(s, "--settle")) ok = glm_real(s, v, 0.0, 60.0, &o->settle);
+            else if (!strcmp(s, "--hair-color")) ok = glm_real3(s, v, 0.0, 1.0, o->hair_color);
+            else if (!strcmp(s, "--comb")) ok = glm_real3(s, v, -100.0, 100.0, o->comb);
+            else if (!strcmp(s, "--expand-shader")) o->expand_shader = v;
+            else if (!strcmp(s, "--mesh")) o->mesh = v;
+            else if (!strcmp(s, "--anim")) o->anim = v;
+            else if (!strcmp(s, "--grow-on")) o->grow_on = v;
+            else if (!strcmp(s, "--unit")) o->unit = v;
+            else if (!strcmp(s, "--density")) o->density_path = v;
+            else if (!strcmp(s, "--length")) o->length_path = v;
+            else if (!strcmp(s, "--color")) o->color_path = v;
+            else {
+                fprintf(stderr, "gl_marschner: unknown option %s (--help "
+                        "lists them)\n", s);
+                return 0;
+            }
+        }
     }
-    return o->width > 0 && o->height > 0 && o->strands > 0 &&
-           o->lut_size > 0 && o->lut_size <= HF_LUT_MAX_SIZE &&
-           o->distance > 0.05f && o->lod <= 1.0f;
+    if (ok && o->save_every > 0 && (!o->out || !strchr(o->out, '%'))) {
+        fprintf(stderr, "gl_marschner: --save-every needs --out with a %%d "
+                "in the name\n");
+        return 0;
+    }
+    return ok;
 }
 
 static glm_app glm_the_app; /* for the GLFW callbacks */
@@ -1193,6 +1922,7 @@ static glm_app glm_the_app; /* for the GLFW callbacks */
 static void glm_key(GLFWwindow *w, int key, int scancode, int action, int mods)
 {
     glm_options *o = &glm_the_app.o;
+    float f = glm_the_app.frame_dist;
     (void)scancode;
     (void)mods;
     if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
@@ -1204,6 +1934,7 @@ static void glm_key(GLFWwindow *w, int key, int scancode, int action, int mods)
         break;
     case GLFW_KEY_C: o->color3d = !o->color3d; break;
     case GLFW_KEY_V: o->colliders = !o->colliders; break;
+    case GLFW_KEY_O: o->no_shadows = !o->no_shadows; break;
     case GLFW_KEY_H: o->still = !o->still; break;
     case GLFW_KEY_S: o->specular = o->specular > 0 ? 0.0f : 1.0f; break;
     case GLFW_KEY_SPACE: o->orbit_speed = o->orbit_speed != 0 ? 0.0f : 12.0f; break;
@@ -1215,8 +1946,10 @@ static void glm_key(GLFWwindow *w, int key, int scancode, int action, int mods)
     case GLFW_KEY_DOWN: o->elevation -= 5; break;
     default: break;
     }
-    if (o->distance < 0.25f) o->distance = 0.25f;
-    if (o->distance > 40.0f) o->distance = 40.0f;
+    if (o->distance < 0.45f * f) o->distance = 0.45f * f;
+    if (o->distance > 70.0f * f) o->distance = 70.0f * f;
+    if (o->elevation > 89.0f) o->elevation = 89.0f;
+    if (o->elevation < -89.0f) o->elevation = -89.0f;
 }
 
 static void glm_scroll(GLFWwindow *w, double dx, double dy)
@@ -1227,38 +1960,78 @@ static void glm_scroll(GLFWwindow *w, double dx, double dy)
     glm_key(w, GLFW_KEY_UNKNOWN, 0, GLFW_PRESS, 0); /* clamp */
 }
 
+/* The per-run figures a user checks: stretch, roots inside colliders and
+   the milliseconds per stage. */
+static void glm_report(const glm_app *a, int drawn_frames)
+{
+    hf_fur_info info;
+    hf_fur_get_info(a->fur, &info);
+    printf("gl_marschner: %s, %s, %dx%d, distance %.3g m, LOD %.3f: %d of %d "
+           "strands drawn, %d guides, %d colliders\n",
+           a->o.kajiya ? "Kajiya-Kay" : "Marschner",
+           a->o.gpu_expand ? "GPU expansion"
+           : a->o.compact ? "compact CPU ribbons" : "CPU ribbons",
+           a->o.width, a->o.height, a->o.distance, a->lod, a->drawn,
+           a->info.strand_count, info.guide_count, a->ncol);
+    printf("gl_marschner: stretch (longest guide / its rest length - 1): "
+           "worst %.2e, mean of the per-frame worst %.2e over %ld frames; "
+           "%d of %d guide roots inside a collider\n", a->stretch_max,
+           a->stretch_frames ? a->stretch_sum / a->stretch_frames : 0.0,
+           a->stretch_frames, info.roots_inside, info.guide_count);
+    if (info.roots_inside > 0)
+        printf("gl_marschner: (for those guides the collider is shrunk to "
+               "the root's depth; if a proxy is larger than the body there, "
+               "shrink it)\n");
+    if (a->ms_frames > 0)
+        printf("gl_marschner: ms per frame: skin and colliders %.2f, roots + "
+               "ropes + LOD guides %.2f, strands + %s %.2f (%ld drawn "
+               "frames), GL draw %.1f\n", a->ms_skin / a->ms_frames,
+               a->ms_sim / a->ms_frames,
+               a->o.gpu_expand ? "GPU points" : "ribbons",
+               a->build_frames ? a->ms_build / a->build_frames : 0.0,
+               a->build_frames, drawn_frames ? a->ms_draw / drawn_frames : 0.0);
+}
+
 int main(int argc, char **argv)
 {
     glm_options o;
     glm_app *a = &glm_the_app;
-    double last = 0, title_at = -1, sum_cpu = 0, sum_draw = 0;
-    int drawn_frames = 0, ok = 1;
+    double last = 0, title_at = -1;
+    int drawn_frames = 0, ok = 1, pr, saved = 0;
+    long f0 = 0;
     glm_default_options(&o);
-    if (!glm_parse(argc, argv, &o)) {
-        fprintf(stderr,
-                "usage: gl_marschner [--headless] [--frames N] [--out FILE.png]\n"
-                "  [--width W] [--height H] [--kajiya] [--gpu-expand] [--color3d]\n"
-                "  [--colliders] [--distance D | --lod F] [--azimuth DEG]\n"
-                "  [--elevation DEG] [--orbit DEG_PER_S] [--still] [--no-specular]\n"
-                "  [--strands N] [--lut-size N] [--a2c] [--draw-all]\n"
-                "  [--expand-shader FILE] [--compact]\n");
-        return 2;
+    pr = glm_parse(argc, argv, &o);
+    if (pr <= 0) {
+        glm_usage(pr < 0 ? stdout : stderr);
+        return pr < 0 ? 0 : 2;
     }
     if (o.headless ? !glc_open_headless(o.width, o.height)
                    : !glc_open_window(o.width, o.height, "hairfur gl_marschner"))
         return 1;
     if (o.headless && o.frames < 1) o.frames = 60;
-    if (o.frames > 0) glc_set_frame_limit(o.frames);
     if (!glm_init(a, &o)) return 1;
+    /* hair grows straight out of the skin: let it fall at the first pose */
+    {
+        int k, n = (int)(a->o.settle * 60.0f + 0.5f);
+        for (k = 0; k < n && ok; ++k) ok = glm_simulate(a, 0.0, 1.0f / 60.0f);
+        a->stretch_max = a->stretch_sum = 0.0;
+        a->stretch_frames = a->ms_frames = 0;
+        a->ms_skin = a->ms_sim = 0.0;
+    }
+    f0 = glc_frame_index();
+    if (o.frames > 0) glc_set_frame_limit(f0 + o.frames);
     if (!o.headless) {
         glfwSetKeyCallback((GLFWwindow *)glc_window(), glm_key);
         glfwSetScrollCallback((GLFWwindow *)glc_window(), glm_scroll);
     }
     while (ok && !glc_should_close()) {
         /* headless: a fixed 60 Hz clock; window: the wall clock, dt capped */
-        long f = glc_frame_index();
+        long f = glc_frame_index() - f0;
         int last_frame = o.frames > 0 && f + 1 == o.frames;
-        int draw = !a->o.headless || a->o.draw_all || last_frame;
+        int save = a->o.out && (a->o.save_every > 0
+                                    ? (f + 1) % a->o.save_every == 0
+                                    : last_frame);
+        int draw = !a->o.headless || a->o.draw_all || save || last_frame;
         double now = a->o.headless ? (f + 1) / 60.0 : glc_time();
         float dt = a->o.headless ? 1.0f / 60.0f : (float)(now - last);
         if (dt <= 0.0f) dt = 1.0f / 60.0f;
@@ -1268,47 +2041,39 @@ int main(int argc, char **argv)
         ok = glm_step(a, now, dt, draw);
         if (ok && draw) {
             glm_draw(a);
-            sum_cpu += a->cpu_ms;
-            sum_draw += a->draw_ms;
+            a->ms_draw += a->draw_ms;
             ++drawn_frames;
         }
-        if (ok && last_frame && a->o.out) {
-            ok = glc_save_png(a->o.out);
-            if (ok) printf("gl_marschner: wrote %s\n", a->o.out);
+        if (ok && save) {
+            char path[1024];
+            if (a->o.save_every > 0)
+                snprintf(path, sizeof path, a->o.out, (int)(f + 1));
+            else
+                snprintf(path, sizeof path, "%s", a->o.out);
+            ok = glc_save_png(path);
+            if (ok) ++saved;
+            if (ok && (a->o.save_every == 0 || last_frame))
+                printf("gl_marschner: wrote %s%s\n", path,
+                       saved > 1 ? " (and the frames before it)" : "");
         }
         if (!a->o.headless && now - title_at > 0.25) {
             char title[256];
             snprintf(title, sizeof title,
-                     "hairfur gl_marschner - %s, %s%s - distance %.2f m, LOD "
-                     "%.2f: %d of %d strands drawn - CPU %.1f ms, draw %.1f ms",
+                     "hairfur gl_marschner - %s, %s%s%s - %.2f m, LOD %.2f: "
+                     "%d of %d strands - CPU %.1f ms, draw %.1f ms - K G C V "
+                     "O S H space +/- arrows Esc",
                      a->o.kajiya ? "Kajiya-Kay" : "Marschner",
                      a->o.gpu_expand ? "GPU expansion"
                      : a->o.compact ? "compact CPU ribbons" : "CPU ribbons",
-                     a->o.color3d ? ", 3D colour" : "", a->o.distance, a->lod,
+                     a->o.color3d ? ", 3D colour" : "",
+                     a->o.no_shadows ? "" : ", shadows", a->o.distance, a->lod,
                      a->drawn, a->info.strand_count, a->cpu_ms, a->draw_ms);
             glfwSetWindowTitle((GLFWwindow *)glc_window(), title);
             title_at = now;
         }
         glc_swap();
     }
-    if (ok && drawn_frames > 0)
-        printf("gl_marschner: %s, %s, %dx%d, distance %.2f, LOD %.3f: %d of %d "
-               "strands drawn; mean over %d drawn frames: CPU %.1f ms, GL "
-               "draw %.1f ms\n", a->o.kajiya ? "Kajiya-Kay" : "Marschner",
-               a->o.gpu_expand ? "GPU expansion"
-               : a->o.compact ? "compact CPU ribbons" : "CPU ribbons",
-               a->o.width, a->o.height, a->o.distance, a->lod, a->drawn,
-               a->info.strand_count, drawn_frames, sum_cpu / drawn_frames,
-               sum_draw / drawn_frames);
-    if (ok && a->fur) {
-        hf_fur_info info;
-        hf_fur_get_info(a->fur, &info);
-        if (info.roots_inside > 0)
-            printf("gl_marschner: %d of %d guide roots sit inside a collider "
-                   "(for those guides it is shrunk to the root's depth); if "
-                   "the proxy is larger than the body there, shrink it\n",
-                   info.roots_inside, info.guide_count);
-    }
+    if (ok) glm_report(a, drawn_frames);
     glm_shutdown(a);
     glc_close();
     return ok ? 0 : 1;

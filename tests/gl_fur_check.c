@@ -320,6 +320,15 @@ int main(int argc, char **argv)
     /* the compact vertices (--compact) draw the same picture from the same
        state; the control draws them with the shader undoing a scale 1 %
        too large (hair up to 2.4 mm, about 1.6 pixels, out of place) */
+    /* both without self-shadowing: the shadow map's texels are 0.7 mm on
+       the head, so a sub-pixel shift of a strand in it changes which strand
+       is nearest the light and the shadow of those behind it, noise that
+       would hide the vertex encoding this compares (the float render is
+       redrawn for the reference, into gpu, saved above) */
+    a->o.no_shadows = 1;
+    if (!glm_build(a)) return 1;
+    glm_draw(a);
+    glc_read_rgba(gpu);
     a->o.compact = 1;
     if (!glm_build(a)) return 1;
     glm_draw(a);
@@ -328,6 +337,7 @@ int main(int argc, char **argv)
     glm_draw(a);
     glc_read_rgba(cmp_bad);
     a->o.compact = 0;
+    a->o.no_shadows = 0;
     save(out_dir, "fur_check_compact.png", cmp);
     if (sabotage && !strcmp(sabotage, "scale")) {
         printf("  SABOTAGE: the wrong-scale compact render replaces the "
@@ -336,11 +346,11 @@ int main(int argc, char **argv)
     }
     printf("compact vertices (16 bytes: SNORM16 position, UNORM16 texcoord, "
            "SNORM8 tangent):\n");
-    i = check_compact(cmp, spec, head, &v1, &v2);
+    i = check_compact(cmp, gpu, head, &v1, &v2);
     expect(i, "mean |compact - float| over hair pixels (< 3 grey levels)",
            v1);
     expect(i, "hair pixels off by more than 8 (fraction < 0.05)", v2);
-    i = !check_compact(cmp_bad, spec, head, &v1, &v2);
+    i = !check_compact(cmp_bad, gpu, head, &v1, &v2);
     expect(i, "scale 1 % off: rejected (mean |compact - float|)", v1);
     expect(i, "scale 1 % off: rejected (fraction off by more than 8)", v2);
     glm_shutdown(a);
