@@ -140,19 +140,21 @@ static int check_not_uniform(const unsigned char *img, double *sd)
 /* Check 4: the compact-vertex render against the float one, over hair
    pixels (hair in either, against the head-only render): mean absolute
    difference of R, G, B in grey levels, and the fraction of pixels with a
-   channel off by more than 8. Measured on llvmpipe here: 1.47 and 0.023.
+   channel off by more than 8. Measured on llvmpipe here: 2.03 and 0.057
+   (1.47 and 0.023 when hair near the scalp was drawn darker: the
+   differences are in grey levels, so they grow with the hair's
+   brightness).
    About half is the UNORM16 root UV, which the shader's per-strand
    brightness hash turns into a different (equally random) brightness per
    strand: 0.80 and 0.015 with float texcoords. The rest is the SNORM16
    position (steps of 15 um, a hundredth of a pixel): thin overlapping
    ribbons make any sub-pixel shift flip some edge samples and depth ties,
    and a shift of only 7 um alone gives 0.66 and 0.008 (an SNORM16 tangent
-   instead of SNORM8 changes nothing measurable). The limits are twice
-   the measurement, for other drivers; the control, drawn with a scale 1 %
-   off, gives 8.1 and 0.41, and a scale only 0.1 % off (hair 0.24 mm, a
-   sixth of a pixel, out of place) still gives 3.4 and 0.15. */
-#define COMPACT_MEAN_MAX 3.0
-#define COMPACT_FRAC_MAX 0.05
+   instead of SNORM8 changes nothing measurable). The limits are about
+   twice the measurement, for other drivers; the control, drawn with a
+   scale 1 % off, gives 8.4 and 0.49. */
+#define COMPACT_MEAN_MAX 4.0
+#define COMPACT_FRAC_MAX 0.11
 
 static int check_compact(const unsigned char *img, const unsigned char *ref,
                          const unsigned char *head, double *mean,
@@ -347,9 +349,9 @@ int main(int argc, char **argv)
     printf("compact vertices (16 bytes: SNORM16 position, UNORM16 texcoord, "
            "SNORM8 tangent):\n");
     i = check_compact(cmp, gpu, head, &v1, &v2);
-    expect(i, "mean |compact - float| over hair pixels (< 3 grey levels)",
+    expect(i, "mean |compact - float| over hair pixels (< 4 grey levels)",
            v1);
-    expect(i, "hair pixels off by more than 8 (fraction < 0.05)", v2);
+    expect(i, "hair pixels off by more than 8 (fraction < 0.11)", v2);
     i = !check_compact(cmp_bad, gpu, head, &v1, &v2);
     expect(i, "scale 1 % off: rejected (mean |compact - float|)", v1);
     expect(i, "scale 1 % off: rejected (fraction off by more than 8)", v2);
