@@ -30,6 +30,8 @@
 #   make gl-check      say whether headless EGL + GL 3.3 core works here
 #   make gl-test       the GL checks (skipped, with the reason, without GL)
 #   make gl-fur-check  only the fur render check (gl_fur_check)
+#   make viewer-check  the viewer on meshes: errors, an animated character,
+#                      metres against centimetres
 #   make gl-window-test  the window path (needs a display or xvfb-run)
 #   make gl-examples   build the GL examples (gl_minimal, gl_marschner)
 #   make gl-demo       headless renders of the swinging head into out/
@@ -321,6 +323,7 @@ $(BUILD)/gl_fur_check: tests/gl_fur_check.c examples/gl_marschner.c \
 	$(CC) $(GL_CFLAGS) $(WARN) $< $(GLAD_O) -o $@ $(GL_LIBS) -lassimp
 
 .PHONY: gl-check gl-test gl-examples gl-window-test gl-fur-check gl-demo characters \
+        viewer-check \
         run run-minimal
 gl-examples: $(GL_EXAMPLE_BINS)
 
@@ -333,18 +336,18 @@ gl-check: $(BUILD)/gl_check
 # missing and skip (CI installs them, so CI runs the checks).
 gl-test-or-skip:
 	@if command -v glad >/dev/null 2>&1 && \
-	   printf '#include <EGL/egl.h>\n#include <GLFW/glfw3.h>\n#include <stb/stb_image_write.h>\n' | \
+	   printf '#include <EGL/egl.h>\n#include <GLFW/glfw3.h>\n#include <stb/stb_image_write.h>\n#include <assimp/cimport.h>\n' | \
 	   $(CC) -E -x c - >/dev/null 2>&1; then \
 	  $(MAKE) --no-print-directory gl-test; \
 	else \
-	  echo "GL tests skipped: need python3-glad, libegl-dev, libglfw3-dev, libstb-dev (make deps)"; \
+	  echo "GL tests skipped: need python3-glad, libegl-dev, libglfw3-dev, libstb-dev, libassimp-dev (make deps)"; \
 	fi
 
 # DISPLAY is unset so the checks prove the headless path needs no display.
 # gl_check runs first; without headless GL the recipe says why and passes
 # (gl_fur_check itself also exits 2 with "SKIP: reason" then).
 GL_TESTS := $(BUILD)/gl_smoke $(BUILD)/gl_misc_test $(BUILD)/gl_ribbon_check \
-            $(BUILD)/gl_fur_check
+            $(BUILD)/gl_fur_check $(BUILD)/gl_marschner $(BUILD)/png_diff
 gl-test: $(BUILD)/gl_check $(GL_TESTS) | $(OUT)
 	@if ! why=$$(env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_check); then \
 	  echo "GL tests skipped: $$why"; exit 0; \
@@ -361,8 +364,22 @@ gl-test: $(BUILD)/gl_check $(GL_TESTS) | $(OUT)
 	env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_fur_check \
 	  > $(BUILD)/gl_fur_check.log 2>&1 || fail=1; \
 	  tail -n 1 $(BUILD)/gl_fur_check.log; \
+	BUILD=$(BUILD) OUT=$(OUT) sh tests/viewer_check.sh \
+	  > $(BUILD)/gl_viewer_check.log 2>&1 || fail=1; \
+	  tail -n 1 $(BUILD)/gl_viewer_check.log; \
 	if [ $$fail -ne 0 ]; then echo "make gl-test: FAILED (logs in $(BUILD)/gl_*.log)"; exit 1; fi; \
 	echo "make gl-test: all GL checks passed"
+
+# png_diff: how much two renders differ (for tests/viewer_check.sh).
+$(BUILD)/png_diff: tests/png_diff.c | $(BUILD)
+	$(CC) -std=c99 -O2 -Wall -Wextra -Wpedantic $< -o $@ -lm
+
+# The viewer as a user meets it (tests/viewer_check.sh): --help, errors,
+# the walking Wuson, the same picture in metres and centimetres.
+viewer-check: $(BUILD)/gl_check $(BUILD)/gl_marschner $(BUILD)/png_diff | $(OUT)
+	@if ! why=$$(env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_check); then \
+	  echo "viewer_check skipped: $$why"; exit 0; fi; \
+	BUILD=$(BUILD) OUT=$(OUT) sh tests/viewer_check.sh
 
 # The fur render check alone, writing its images into out/.
 gl-fur-check: $(BUILD)/gl_check $(BUILD)/gl_fur_check | $(OUT)

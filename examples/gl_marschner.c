@@ -1851,6 +1851,22 @@ static int glm_int(const char *opt, const char *v, long lo, long hi, int *out)
     return 1;
 }
 
+/* Is `p` a file name with exactly one %d (flags 0 and a width allowed)
+   and no other conversion ("%%" is a %)? Then it is safe for snprintf. */
+static int glm_frame_pattern(const char *p)
+{
+    int n = 0;
+    for (; *p; ++p) {
+        if (*p != '%') continue;
+        if (p[1] == '%') { ++p; continue; }
+        ++p;
+        while (*p >= '0' && *p <= '9') ++p;
+        if (*p != 'd') return 0;
+        ++n;
+    }
+    return n == 1;
+}
+
 /* Parse the command line into o: 1, 0 on a bad argument (with a message),
    -1 for --help. */
 static int glm_parse(int argc, char **argv, glm_options *o)
@@ -1909,9 +1925,9 @@ static int glm_parse(int argc, char **argv, glm_options *o)
             }
         }
     }
-    if (ok && o->save_every > 0 && (!o->out || !strchr(o->out, '%'))) {
-        fprintf(stderr, "gl_marschner: --save-every needs --out with a %%d "
-                "in the name\n");
+    if (ok && o->save_every > 0 && (!o->out || !glm_frame_pattern(o->out))) {
+        fprintf(stderr, "gl_marschner: --save-every needs --out with one "
+                "%%d (or %%03d ...) in the name and no other %%\n");
         return 0;
     }
     return ok;

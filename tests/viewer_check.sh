@@ -1,0 +1,107 @@
+#!/bin/sh
+# viewer_check.sh - gl_marschner, the viewer for any mesh, as a user meets
+# it: --help, clear errors for bad input, an animated skinned character
+# from assimp-testmodels (ropes keep their length, frames written), and the
+# same picture for a mesh in metres and the same mesh in centimetres.
+# Needs build/gl_marschner, build/png_diff and headless GL (the Makefile's
+# viewer-check target checks those); skips, saying why, without the models.
+# Every check prints ok or FAILED; the exit status is the number failed.
+set -u
+B=${BUILD:-build}
+O=${OUT:-out}/viewer_check
+V="env -u DISPLAY -u WAYLAND_DISPLAY $B/gl_marschner"
+M=/usr/share/assimp/models
+fails=0
+mkdir -p "$O"
+
+ok() { echo "viewer_check: ok: $1"; }
+bad() { echo "viewer_check: FAILED: $1"; fails=$((fails + 1)); }
+
+# expect_error WHAT PATTERN ARGS...: exits non-zero, stderr names it
+expect_error() {
+    what=$1; pat=$2; shift 2
+    if $V "$@" >"$O/stdout" 2>"$O/stderr"; then
+        bad "$what: exit 0"
+    elif grep -q -- "$pat" "$O/stderr"; then
+        ok "$what: $(grep -m1 -- "$pat" "$O/stderr")"
+    else
+        bad "$what: stderr lacks '$pat': $(head -c 300 "$O/stderr")"
+    fi
+}
+
+if [ ! -f "$M/X/Testwuson.X" ] || [ ! -f "$M/OBJ/WusonOBJ.obj" ]; then
+    echo "viewer_check: skipped: no $M (install assimp-testmodels: make deps)"
+    exit 0
+fi
+
+# --help: every option the mesh path adds, and the keys
+if $V --help >"$O/help" 2>&1; then
+    miss=""
+    for o in --mesh --anim --grow-on --unit --density --length --color \
+             --no-shadows --headless --frames --out --save-every --comb \
+             --hair-length --settle Keys; do
+        grep -q -- "$o" "$O/help" || miss="$miss $o"
+    done
+    if [ -z "$miss" ]; then ok "--help lists the mesh options and the keys"
+    else bad "--help lacks:$miss"; fi
+else
+    bad "--help exits non-zero"
+fi
+
+# bad input: a clear message, no crash
+expect_error "missing mesh file" "nope.obj" --headless --mesh "$O/nope.obj"
+expect_error "unknown animation" "Wuson_Walk" --headless \
+    --mesh "$M/X/Testwuson.X" --anim Dance
+expect_error "unknown mesh to grow on" "Wuson" --headless \
+    --mesh "$M/X/Testwuson.X" --grow-on Tail
+expect_error "bad strand count" "expected a whole number" --headless \
+    --strands 5k
+expect_error "bad unit" "unit" --headless --mesh "$M/OBJ/WusonOBJ.obj" \
+    --unit furlong
+expect_error "--save-every without %d" "%d" --headless --save-every 5 \
+    --out "$O/x.png"
+expect_error "--save-every with %s" "%d" --headless --save-every 5 \
+    --out "$O/x_%s.png"
+expect_error "--save-every with two %d" "%d" --headless --save-every 5 \
+    --out "$O/x_%d_%d.png"
+
+# the walking Wuson: skinned, capsules on the bones, frames written
+if $V --headless --mesh "$M/X/Testwuson.X" --anim Wuson_Walk --strands 4000 \
+      --hair-length 0.08 --frames 30 --save-every 15 \
+      --out "$O/wuson_%03d.png" >"$O/walk" 2>&1; then
+    worst=$(sed -n 's/.*stretch.*worst \([^,]*\),.*/\1/p' "$O/walk")
+    cols=$(sed -n 's/.*guides, \([0-9]*\) colliders$/\1/p' "$O/walk")
+    if [ -f "$O/wuson_015.png" ] && [ -f "$O/wuson_030.png" ]; then
+        ok "walk: wrote wuson_015.png and wuson_030.png"
+    else bad "walk: frames missing"; fi
+    if awk -v w="$worst" 'BEGIN { exit !(w != "" && w + 0 < 1e-3) }'; then
+        ok "walk: worst stretch $worst < 1e-3"
+    else bad "walk: worst stretch '$worst'"; fi
+    if [ -n "$cols" ] && [ "$cols" -gt 10 ]; then
+        ok "walk: $cols bone capsules"
+    else bad "walk: colliders '$cols'"; fi
+else
+    bad "walk: exit non-zero: $(tail -3 "$O/walk")"
+fi
+
+# metres and centimetres: the same picture (the unit is found from the
+# size); read as metres, the centimetre mesh gives another one
+awk '/^v /{ printf "v %.9g %.9g %.9g\n", $2 * 100, $3 * 100, $4 * 100; next }
+     { print }' "$M/OBJ/WusonOBJ.obj" >"$O/wuson_cm.obj"
+set -- --headless --still --frames 20 --strands 4000 --hair-length 0.1
+if $V "$@" --mesh "$M/OBJ/WusonOBJ.obj" --out "$O/m.png" >/dev/null 2>&1 &&
+   $V "$@" --mesh "$O/wuson_cm.obj" --out "$O/cm.png" >/dev/null 2>&1 &&
+   $V "$@" --mesh "$O/wuson_cm.obj" --unit 0.001 --out "$O/mm.png" \
+      >/dev/null 2>&1; then
+    if d=$($B/png_diff "$O/m.png" "$O/cm.png"); then ok "m vs cm: $d"
+    else bad "m vs cm differ: $d"; fi
+    if d=$($B/png_diff "$O/m.png" "$O/mm.png"); then
+        bad "the control (cm read at 1 mm a unit) looks the same: $d"
+    else ok "control, cm read at 1 mm a unit, differs: $d"; fi
+else
+    bad "m / cm renders: exit non-zero"
+fi
+
+[ "$fails" -eq 0 ] && echo "viewer_check: all passed" ||
+    echo "viewer_check: $fails FAILED"
+exit "$fails"
