@@ -7013,6 +7013,83 @@ static void test_fur_create_counts_and_welding(void)
     hf_fur_destroy(f);
 }
 
+/* hf_fur_desc.comb / comb_map: every guide grows along the comb at rest
+   (the map wins over the per-vertex directions); without them, along the
+   normal. */
+static void t_fur_guide_dirs(const hf_fur *f, double dir_out[3], double *min_dot,
+                             const double want[3])
+{
+    hf_fur_info info;
+    int g, k, P;
+    *min_dot = 2.0;
+    hf_fur_get_info(f, &info);
+    P = info.points_per_strand;
+    for (g = 0; g < info.guide_count; ++g) {
+        const float *p = info.guide_points + (size_t)g * (size_t)P * 3u;
+        double d[3], len = 0.0, dot = 0.0;
+        for (k = 0; k < 3; ++k) {
+            d[k] = p[3 * (P - 1) + k] - p[k];
+            len += d[k] * d[k];
+        }
+        len = sqrt(len);
+        for (k = 0; k < 3; ++k) {
+            dir_out[k] = d[k] / len;
+            dot += dir_out[k] * want[k];
+        }
+        if (dot < *min_dot) *min_dot = dot;
+    }
+}
+
+static void test_fur_comb(void)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    static float comb[(FR + 1) * (FS + 1) * 3];
+    unsigned char px[3] = {255, 128, 128}; /* 2c - 1: about +x */
+    hf_map cmap;
+    const double down[3] = {0, -1, 0}, px_dir[3] = {1, 0, 0};
+    double d[3], worst;
+    int i;
+    t_fur_scene_init(&sc, 1.0f);
+    for (i = 0; i < (FR + 1) * (FS + 1); ++i) {
+        comb[3 * i] = 0.0f;
+        comb[3 * i + 1] = -2.5f; /* any length */
+        comb[3 * i + 2] = 0.0f;
+    }
+    /* no comb: along the normals, which point every way */
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (!f) return;
+    t_fur_guide_dirs(f, d, &worst, down);
+    CHECK(worst < 0.0);
+    hf_fur_destroy(f);
+    /* per-vertex comb: all down */
+    sc.desc.comb = comb;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (!f) return;
+    t_fur_guide_dirs(f, d, &worst, down);
+    CHECK(worst > 1.0 - 1e-5);
+    hf_fur_destroy(f);
+    /* the map wins */
+    memset(&cmap, 0, sizeof cmap);
+    cmap.data = px;
+    cmap.width = cmap.height = 1;
+    cmap.channels = 3;
+    sc.desc.comb_map = &cmap;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (!f) return;
+    t_fur_guide_dirs(f, d, &worst, px_dir);
+    CHECK(worst > 0.9999);
+    hf_fur_destroy(f);
+    /* a comb map with fewer than 3 channels is refused, naming it */
+    {
+        hf_diag diag;
+        cmap.channels = 1;
+        f = NULL;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, &diag), HF_ERROR_BAD_PARAMETER);
+        CHECK(f == NULL);
+    }
+}
+
 static void test_fur_no_allocation_per_frame(void)
 {
     t_fur_scene sc;
@@ -7704,6 +7781,7 @@ int main(void)
 
     /* 10. the fur object */
     RUN(test_fur_create_counts_and_welding);
+    RUN(test_fur_comb);
     RUN(test_fur_no_allocation_per_frame);
     RUN(test_fur_ranges_byte_identical);
     RUN(test_fur_lod_prefix_and_width);

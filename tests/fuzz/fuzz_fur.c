@@ -1,7 +1,8 @@
 /* fuzz_fur.c - the fur object on fuzz-built input: hf_fur_create from a
    fuzz mesh, maps and description (zero fields, bad fields, a failing or
    counting allocator), then a few frames of every per-frame call with
-   fuzz ranges, skinned roots and colliders (some holding the roots).
+   fuzz ranges, skinned roots and colliders (some holding the roots);
+   growth directions per vertex and from a map.
 
    Contracts checked (abort() on violation): every result is HF_OK or a
    code of the table; a failed create leaves *out_fur as it was and frees
@@ -26,7 +27,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     fz_reader r;
     fz_mesh m;
-    fz_map density, length, color;
+    fz_map density, length, color, comb_map;
     fz_counter counter;
     hf_allocator alloc;
     hf_fur_desc desc;
@@ -34,8 +35,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     hf_fur *fur = (hf_fur *)(uintptr_t)0x1234, *const untouched = fur;
     hf_diag diag;
     hf_result rv;
-    float *skinned = NULL, *vbuf = NULL, *pbuf = NULL;
-    int has_density, has_length, has_color, frame, k;
+    float *skinned = NULL, *vbuf = NULL, *pbuf = NULL, *comb = NULL;
+    int has_density, has_length, has_color, has_comb_map, frame, k;
 
     fz_init(&r, data, size);
     fz_make_mesh(&r, &m, 24, 24, 1.0f);
@@ -45,6 +46,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (has_density) fz_make_map(&r, &density, 8, 8, 1);
     if (has_length) fz_make_map(&r, &length, 8, 8, 1);
     if (has_color) fz_make_map(&r, &color, 8, 8, 1);
+    /* growth directions: per vertex (any floats: zero, huge, non-finite)
+       and a map (sometimes with too few channels) */
+    if (fz_chance(&r, 64) && m.mesh.vertex_count > 0) { /* it may be bad */
+        comb = (float *)malloc(sizeof(float) * 3u * (size_t)m.mesh.vertex_count);
+        if (comb)
+            for (k = 0; k < 3 * m.mesh.vertex_count; ++k)
+                comb[k] = fz_float(&r, 2.0f);
+    }
+    has_comb_map = fz_chance(&r, 48);
+    if (has_comb_map) fz_make_map(&r, &comb_map, 4, 4, fz_chance(&r, 200) ? 3 : 1);
 
     /* the description: zero fields are defaults; some fields fuzzed,
        mostly in range, sometimes bad */
@@ -53,6 +64,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     desc.density_map = has_density ? &density.map : NULL;
     desc.length_map = has_length ? &length.map : NULL;
     desc.color_map = has_color ? &color.map : NULL;
+    desc.comb = comb;
+    desc.comb_map = has_comb_map ? &comb_map.map : NULL;
     desc.points_per_strand = fz_chance(&r, 200) ? fz_int(&r, 0, 24)
                                                 : fz_int(&r, -2, 300);
     desc.max_length = fz_chance(&r, 220) ? fz_float_in(&r, 0.0f, 0.5f)
@@ -204,6 +217,8 @@ done:
     if (has_density) free(density.data);
     if (has_length) free(length.data);
     if (has_color) free(color.data);
+    if (has_comb_map) free(comb_map.data);
+    free(comb);
     fz_free_mesh(&m);
     return 0;
 }
