@@ -170,7 +170,9 @@
                            bytes where a collider is touched or a view is
                            within half a degree of a tangent); exact
                            hf_lod_strand_count; hf_ropes_copy_range,
-                           hf_fur_set_rope_params, hf_fur_set_mode.
+                           hf_fur_set_rope_params, hf_fur_set_mode;
+                           growth directions in hf_fur_desc (comb,
+                           comb_stride, comb_map).
        0.1.0 (2026-11-22)  first release: maps and meshes, density
                            tessellation, guides, placement, Verlet ropes,
                            interpolation, LOD, ribbons, Marschner LUTs,

@@ -1,17 +1,28 @@
-/* gl_marschner.c - hairfur.h fur lit with the Marschner model in GLSL 330.
+/* gl_marschner.c - hairfur.h fur and hair on any mesh, lit with the
+   Marschner model in GLSL 330: the viewer.
 
-   Shows a complete engine-style integration on the built-in head
-   (examples/head_mesh.h):
+   Shows a complete engine-style integration, on the built-in head
+   (examples/head_mesh.h) or on any mesh assimp reads (--mesh):
+     - a mesh's skin animated on the CPU every frame from its bones and
+       animation keys (examples/character.h: linear blend skinning), the
+       fur's roots following it (hf_fur_set_roots), and a capsule collider
+       per bone fitted to the vertices it moves, following it too;
+     - everything that depends on the model's size (camera, ribbon width
+       from the strand spacing, LOD distances, guide count, shadow
+       strength) measured from it, and the file's unit found from its
+       size, so a model in centimetres gives the picture it gives in
+       metres;
      - the Marschner M and N lookup textures baked in-process
        (hf_lut_bake_m / hf_lut_bake_n, RGBA32F, GL_LINEAR, clamp to edge) and
        combined in the fragment shader as docs/luts.md "The shader" says,
        plus the diffuse term sqrt(1 - (L.T)^2) and ambient light;
        Kajiya-Kay as a switch;
+     - self-shadowing: a shadow map of hair and body from the light, read
+       as an approximate deep shadow map (light falls off with the depth
+       of hair in front);
      - hair colour from the 2D colour map (per-vertex colour stream of
        hf_fur_ribbons) or the 3D colour scheme (color3d stream sampling a
        ramp texture with dyed tips);
-     - a swinging, turning head that drives the rope physics, with sphere
-       and capsule colliders that can be drawn;
      - an orbiting camera and LOD by distance (hf_lod_from_distance), the
        drawn strand count in the window title;
      - two ways to feed the GPU: CPU ribbons (hf_fur_ribbons, the dynamic
@@ -19,26 +30,21 @@
        a GL_RGBA32F texture buffer, expanded by examples/ribbon_expand.glsl),
        both drawn with the same hf_ribbon_indices buffer;
      - compact CPU ribbons (--compact): 16-byte vertices, position SNORM16
-       around the head centre, texcoord UNORM16, tangent SNORM8, read by GL
-       as normalized integers (docs/rendering.md "Compact vertices").
+       around the camera target, texcoord UNORM16, tangent SNORM8, read by
+       GL as normalized integers (docs/rendering.md "Compact vertices").
 
-   Build: make build/gl_marschner (see the Makefile), or from the repo root:
-     make build/glad/gl.o
-     gcc -std=c99 -O2 -Ibuild/glad/include -Iexamples -I. \
-         examples/gl_marschner.c build/glad/gl.o -o build/gl_marschner \
-         -lglfw -lEGL -lm
+   Build: make build/gl_marschner (needs libglfw3-dev, libegl-dev,
+   libstb-dev, libassimp-dev, python3-glad: make deps).
    Run from the repo root (the GPU path reads examples/ribbon_expand.glsl):
-     build/gl_marschner              window: K Kajiya-Kay/Marschner, G GPU
-                                     expansion, C 3D colour, V colliders,
-                                     +/- or scroll distance, arrows orbit,
-                                     space pauses the orbit, H head motion,
-                                     S specular on/off, Esc quits
+     build/gl_marschner                       the head, in a window
+     build/gl_marschner --mesh /usr/share/assimp/models/X/Testwuson.X \
+         --anim Wuson_Walk --hair-length 0.08 --stiffness 0.4
      build/gl_marschner --headless --frames 60 --out out/fur.png
-   Options: --headless --frames N --out FILE.png --width W --height H
-     --kajiya --gpu-expand --color3d --colliders --distance D | --lod F
-     --azimuth DEG --elevation DEG --orbit DEG_PER_S --still --no-specular
-     --strands N --lut-size N --a2c --expand-shader FILE --draw-all
-     --compact (CPU ribbons in the 16-byte vertex; ignored with --gpu-expand)
+   gl_marschner --help lists every option with its unit and default, and
+   the keys (K Kajiya-Kay, G GPU expansion, C 3D colour, V colliders,
+   O shadows, S specular, H motion, space orbit, +/- distance, arrows).
+   At the end it prints the worst stretch of a guide, the roots inside a
+   collider and the milliseconds of each stage.
 
    Define GLM_NO_MAIN to include this file in a test (tests/gl_fur_check.c)
    and drive glm_init / glm_step / glm_draw yourself. */
