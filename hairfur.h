@@ -171,8 +171,11 @@
                            within half a degree of a tangent); exact
                            hf_lod_strand_count; hf_ropes_copy_range,
                            hf_fur_set_rope_params, hf_fur_set_mode;
-                           growth directions in hf_fur_desc (comb,
-                           comb_stride, comb_map).
+                           in hf_fur_desc: growth directions (comb,
+                           comb_stride, comb_map), authored guide curves
+                           (guide_curves, guide_curve_points,
+                           guide_curve_count) and styling (curl, wave,
+                           frizz with their maps, colour variation).
        0.1.0 (2026-11-22)  first release: maps and meshes, density
                            tessellation, guides, placement, Verlet ropes,
                            interpolation, LOD, ribbons, Marschner LUTs,
@@ -1553,6 +1556,33 @@ typedef struct hf_fur_desc {
     int comb_stride;        /* bytes; 0 = 12 */
     const hf_map *comb_map; /* NULL, or growth directions in UV space, >= 3
                                channels (8-bit: 2 c - 1); wins over comb */
+    /* Authored guides: polylines whose shapes become the guides' rest
+       shapes. Each guide takes the shapes of the (up to) 3 curves whose
+       first points are nearest its root, weighted by 1 / distance^2, each
+       rotated from the surface normal at that curve's root (the normal of
+       the guide rooted nearest it) to the guide's own normal, and resampled
+       to points_per_strand points evenly along its length. The shape is
+       then carried by the guide's root frame, so a style survives
+       skinning. Lengths come from the curves (max_length, length_map and
+       comb are then not used); strands follow the guides as always.
+       Cost at creation: guides x curves distance tests. */
+    const float *guide_curves;     /* xyz of every point, curve after curve,
+                                      root first; NULL with count 0 */
+    const int *guide_curve_points; /* per curve: its points, >= 2 */
+    int guide_curve_count;         /* 0 = straight guides */
+    /* Styling of the guides' rest shapes, deterministic from the seed;
+       0 = none. Each is a scalar; its map, when given, multiplies it by
+       the map's first channel at the guide's root. The effects grow from
+       nothing at the root to full strength at a fifth of the length. */
+    float curl_radius;      /* helix radius, world units (metres) */
+    float curl_turns;       /* turns of the helix along a whole guide */
+    float wave_amplitude;   /* planar wave, world units */
+    float wave_count;       /* wave periods along a whole guide */
+    float frizz;            /* random offset of each point, a fraction of
+                               the segment length, growing to the tip */
+    const hf_map *curl_map, *wave_map, *frizz_map; /* NULL = 1 */
+    float color_variation;  /* [0, 1]: each strand's colour times a random
+                               factor in [1 - v, 1 + v] (clamped to 1) */
     int points_per_strand;  /* 0 = 16; 2 .. HF_MAX_POINTS */
     float max_length;       /* 0 = 0.05 (world units, metres in examples) */
     float tess_factor;      /* 0 = no tessellation: pure guides only. Else
@@ -8361,9 +8391,75 @@ HF__PRIVATE void hf__fur_build_free(const hf_allocator *a, hf__fur_build *b)
 }
 
 /* The resolved description's own fields (the stages check the rest). */
+/* Guide curves and styling: counts, points and values. */
+HF__PRIVATE hf_result hf__fur_style_check(const hf_fur_desc *d, hf_diag *diag)
+{
+    const float v[6] = {d->curl_radius, d->curl_turns, d->wave_amplitude,
+                        d->wave_count, d->frizz, d->color_variation};
+    static const char *const names[6] = {"curl_radius", "curl_turns",
+                                         "wave_amplitude", "wave_count",
+                                         "frizz", "color_variation"};
+    const hf_map *maps[3];
+    hf_result r;
+    long long total = 0;
+    int i, k;
+    for (i = 0; i < 6; ++i)
+        if (!hf__finitef(v[i]) || v[i] < 0.0f || v[i] > HF_ROPE_MAX_COORD ||
+            (i == 5 && v[i] > 1.0f))
+            return hf__fail(diag, HF_ERROR_BAD_PARAMETER, names[i], -1,
+                            "%s %g is negative, non-finite or too large%s",
+                            names[i], (double)v[i],
+                            i == 5 ? " (at most 1)" : "");
+    maps[0] = d->curl_map; maps[1] = d->wave_map; maps[2] = d->frizz_map;
+    for (i = 0; i < 3; ++i) {
+        if (!maps[i]) continue;
+        if (!d->mesh.uvs)
+            return hf__fail(diag, HF_ERROR_NULL_POINTER, "mesh.uvs", -1,
+                            "a styling map needs mesh UVs");
+        if ((r = hf_map_validate(maps[i], diag)) != HF_OK) return r;
+    }
+    if (d->guide_curve_count < 0)
+        return hf__fail(diag, HF_ERROR_BAD_COUNT, "guide_curve_count", -1,
+                        "guide_curve_count %d is negative",
+                        d->guide_curve_count);
+    if (d->guide_curve_count == 0) return HF_OK;
+    if (!d->guide_curves || !d->guide_curve_points)
+        return hf__fail(diag, HF_ERROR_NULL_POINTER, "guide_curves", -1,
+                        "guide_curve_count %d with a NULL array",
+                        d->guide_curve_count);
+    for (i = 0; i < d->guide_curve_count; ++i) {
+        int n = d->guide_curve_points[i];
+        const float *p;
+        double len = 0.0;
+        if (n < 2 || n > (1 << 24))
+            return hf__fail(diag, HF_ERROR_BAD_COUNT, "guide_curve_points", i,
+                            "curve %d has %d points (2 .. 16777216)", i, n);
+        p = d->guide_curves + 3 * total;
+        for (k = 0; k < 3 * n; ++k)
+            if (!hf__finitef(p[k]) || HF_FABS(p[k]) > HF_ROPE_MAX_COORD)
+                return hf__fail(diag, HF_ERROR_NON_FINITE, "guide_curves",
+                                total + k / 3, "curve %d, point %d is "
+                                "non-finite or too large", i, k / 3);
+        for (k = 1; k < n; ++k) {
+            double dx = p[3 * k] - p[3 * k - 3], dy = p[3 * k + 1] - p[3 * k - 2],
+                   dz = p[3 * k + 2] - p[3 * k - 1];
+            len += HF_SQRT(dx * dx + dy * dy + dz * dz);
+        }
+        if (!(len > 0.0))
+            return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "guide_curves", i,
+                            "curve %d has zero length", i);
+        total += n;
+        if (total > 0x7fffffffLL)
+            return hf__fail(diag, HF_ERROR_OVERFLOW, "guide_curve_points", i,
+                            "more than 2^31 curve points");
+    }
+    return HF_OK;
+}
+
 HF__PRIVATE hf_result hf__fur_desc_check(const hf_fur_desc *d, hf_diag *diag)
 {
     const int P = d->points_per_strand;
+    hf_result r;
     if (P < 2 || P > HF_MAX_POINTS)
         return hf__fail(diag, HF_ERROR_BAD_COUNT, "points_per_strand", -1,
                         "points_per_strand %d is outside 2..%d", P,
@@ -8384,6 +8480,7 @@ HF__PRIVATE hf_result hf__fur_desc_check(const hf_fur_desc *d, hf_diag *diag)
     if (d->total_strands < 0)
         return hf__fail(diag, HF_ERROR_BAD_COUNT, "total_strands", -1,
                         "total_strands %d is negative", d->total_strands);
+    if ((r = hf__fur_style_check(d, diag)) != HF_OK) return r;
     return hf__rope_params_check(d->rope_params, diag);
 }
 
@@ -8493,6 +8590,278 @@ HF__PRIVATE hf_result hf__fur_guides(hf_fur *f, hf__fur_build *b)
     return HF_OK;
 }
 
+/* The rotation taking unit vector a to unit vector b, applied to v. */
+HF__PRIVATE void hf__rotate_onto(const double *a, const double *b,
+                                 const double *v, double *o)
+{
+    double c = a[0] * b[0] + a[1] * b[1] + a[2] * b[2], x[3], k, d;
+    x[0] = a[1] * b[2] - a[2] * b[1];
+    x[1] = a[2] * b[0] - a[0] * b[2];
+    x[2] = a[0] * b[1] - a[1] * b[0];
+    if (c < -1.0 + 1e-9) { /* opposite: a half turn about an axis normal to a */
+        double u[3], l;
+        /* u = a x e, e the x axis (the y axis when a is near x) */
+        if (HF_FABS(a[0]) < 0.9) { u[0] = 0.0; u[1] = a[2]; u[2] = -a[1]; }
+        else { u[0] = -a[2]; u[1] = 0.0; u[2] = a[0]; }
+        l = HF_SQRT(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        d = (u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) / (l * l);
+        o[0] = 2.0 * d * u[0] - v[0];
+        o[1] = 2.0 * d * u[1] - v[1];
+        o[2] = 2.0 * d * u[2] - v[2];
+        return;
+    }
+    /* Rodrigues: v + x × v + x × (x × v) / (1 + c) */
+    {
+        double xv[3], xxv[3];
+        xv[0] = x[1] * v[2] - x[2] * v[1];
+        xv[1] = x[2] * v[0] - x[0] * v[2];
+        xv[2] = x[0] * v[1] - x[1] * v[0];
+        xxv[0] = x[1] * xv[2] - x[2] * xv[1];
+        xxv[1] = x[2] * xv[0] - x[0] * xv[2];
+        xxv[2] = x[0] * xv[1] - x[1] * xv[0];
+        k = 1.0 / (1.0 + c);
+        o[0] = v[0] + xv[0] + k * xxv[0];
+        o[1] = v[1] + xv[1] + k * xxv[1];
+        o[2] = v[2] + xv[2] + k * xxv[2];
+    }
+}
+
+/* Curve c resampled to P points evenly along its length, as offsets from
+   its first point (into o, 3 P doubles); returns its length. */
+HF__PRIVATE double hf__curve_resample(const float *p, int n, int P, double *o)
+{
+    double len = 0.0, at = 0.0, step;
+    int j, k = 1;
+    for (j = 1; j < n; ++j) {
+        double dx = p[3 * j] - p[3 * j - 3], dy = p[3 * j + 1] - p[3 * j - 2],
+               dz = p[3 * j + 2] - p[3 * j - 1];
+        len += HF_SQRT(dx * dx + dy * dy + dz * dz);
+    }
+    step = len / (P - 1);
+    o[0] = o[1] = o[2] = 0.0;
+    for (j = 1; j < P; ++j) {
+        double want = step * j, seg = 0.0, t;
+        int m;
+        /* walk to the segment holding arc length `want` */
+        for (;;) {
+            double dx = p[3 * k] - p[3 * k - 3], dy = p[3 * k + 1] - p[3 * k - 2],
+                   dz = p[3 * k + 2] - p[3 * k - 1];
+            seg = HF_SQRT(dx * dx + dy * dy + dz * dz);
+            if (at + seg >= want || k == n - 1) break;
+            at += seg;
+            ++k;
+        }
+        t = seg > 0.0 ? (want - at) / seg : 1.0;
+        if (t > 1.0) t = 1.0;
+        if (t < 0.0) t = 0.0;
+        for (m = 0; m < 3; ++m)
+            o[3 * j + m] = p[3 * (k - 1) + m] +
+                           t * (p[3 * k + m] - p[3 * (k - 1) + m]) - p[m];
+    }
+    return len;
+}
+
+/* Stage 2b: authored guide curves become the guides' rest shapes (see
+   hf_fur_desc.guide_curves). */
+HF__PRIVATE hf_result hf__fur_curves(hf_fur *f, hf__fur_build *b)
+{
+    const hf_fur_desc *d = &b->desc;
+    const int C = d->guide_curve_count, G = f->guide_count, P = f->P;
+    hf_result r = HF_OK;
+    double *shape, *cn;
+    const float **start;
+    int c, g, j, k;
+    if (C == 0) return HF_OK;
+    shape = (double *)hf__fur_array(f, (size_t)C * (size_t)P * 3u, sizeof(double), &r);
+    cn = (double *)hf__fur_array(f, (size_t)C * 3u, sizeof(double), &r);
+    start = (const float **)hf__fur_array(f, (size_t)C, sizeof(float *), &r);
+    if (r != HF_OK) {
+        hf__free(&f->alloc, shape);
+        hf__free(&f->alloc, cn);
+        hf__free(&f->alloc, (void *)start);
+        return r;
+    }
+    /* each curve: its shape, and the normal of the guide rooted nearest */
+    {
+        const float *p = d->guide_curves;
+        for (c = 0; c < C; ++c) {
+            double best = -1.0;
+            int bg = 0;
+            start[c] = p;
+            hf__curve_resample(p, d->guide_curve_points[c], P,
+                               shape + (size_t)c * (size_t)P * 3u);
+            for (g = 0; g < G; ++g) {
+                const float *q = b->rest_points + (size_t)g * (size_t)P * 3u;
+                double dx = q[0] - p[0], dy = q[1] - p[1], dz = q[2] - p[2],
+                       e = dx * dx + dy * dy + dz * dz;
+                if (best < 0.0 || e < best) { best = e; bg = g; }
+            }
+            for (k = 0; k < 3; ++k) cn[3 * c + k] = b->guide_nrm[3 * bg + k];
+            p += 3 * d->guide_curve_points[c];
+        }
+    }
+    /* each guide: the nearest 3 curves, blended in its own frame */
+    for (g = 0; g < G; ++g) {
+        float *q = b->rest_points + (size_t)g * (size_t)P * 3u;
+        double root[3], n[3], dist[3] = {-1.0, -1.0, -1.0}, wsum = 0.0, len = 0.0;
+        int near[3] = {-1, -1, -1};
+        for (k = 0; k < 3; ++k) {
+            root[k] = q[k];
+            n[k] = b->guide_nrm[3 * g + k];
+        }
+        for (c = 0; c < C; ++c) {
+            double dx = start[c][0] - root[0], dy = start[c][1] - root[1],
+                   dz = start[c][2] - root[2], e = dx * dx + dy * dy + dz * dz;
+            int at = 3;
+            while (at > 0 && (near[at - 1] < 0 || e < dist[at - 1])) --at;
+            if (at == 3) continue;
+            for (k = 2; k > at; --k) {
+                near[k] = near[k - 1];
+                dist[k] = dist[k - 1];
+            }
+            near[at] = c;
+            dist[at] = e;
+        }
+        for (j = 0; j < P; ++j) for (k = 0; k < 3; ++k) q[3 * j + k] = 0.0f;
+        {
+            double acc[3 * HF_MAX_POINTS];
+            for (j = 0; j < 3 * P; ++j) acc[j] = 0.0;
+            for (c = 0; c < 3 && near[c] >= 0; ++c) {
+                const double *o = shape + (size_t)near[c] * (size_t)P * 3u;
+                double w = 1.0 / (dist[c] + 1e-20), v[3];
+                for (j = 0; j < P; ++j) {
+                    hf__rotate_onto(cn + 3 * near[c], n, o + 3 * j, v);
+                    for (k = 0; k < 3; ++k) acc[3 * j + k] += w * v[k];
+                }
+                wsum += w;
+            }
+            for (j = 0; j < P; ++j)
+                for (k = 0; k < 3; ++k)
+                    q[3 * j + k] = (float)(root[k] + acc[3 * j + k] / wsum);
+        }
+        for (j = 1; j < P; ++j) {
+            double dx = q[3 * j] - q[3 * j - 3], dy = q[3 * j + 1] - q[3 * j - 2],
+                   dz = q[3 * j + 2] - q[3 * j - 1];
+            len += HF_SQRT(dx * dx + dy * dy + dz * dz);
+        }
+        b->guide_len[g] = (float)len;
+    }
+    hf__free(&f->alloc, shape);
+    hf__free(&f->alloc, cn);
+    hf__free(&f->alloc, (void *)start);
+    return HF_OK;
+}
+
+/* A guide's root UV (for the styling maps): the UV of the first vertex of
+   the guide mesh that the guide grows from. */
+HF__PRIVATE void hf__fur_guide_uvs(const hf__fur_build *b, int G, float *uv)
+{
+    int v;
+    for (v = 0; v < 2 * G; ++v) uv[v] = -1.0f;
+    for (v = 0; v < b->gm.vertex_count; ++v) {
+        uint32_t g = b->guide_of[v];
+        if ((int)g < G && uv[2 * g] < 0.0f) {
+            const float *t = hf__mesh_uv(&b->gm, v);
+            uv[2 * g] = t[0];
+            uv[2 * g + 1] = t[1];
+        }
+    }
+}
+
+/* Stage 2c: curl, wave and frizz on the guides' rest shapes. The frame
+   along a guide is carried from its root (the normal, and the tangent
+   across it) by parallel transport, so a curl turns smoothly. */
+HF__PRIVATE hf_result hf__fur_style(hf_fur *f, hf__fur_build *b)
+{
+    const hf_fur_desc *d = &b->desc;
+    const int G = f->guide_count, P = f->P;
+    hf_result r = HF_OK;
+    float *uv = NULL;
+    hf_rng rng;
+    int g, j, k;
+    if (d->curl_radius == 0.0f && d->wave_amplitude == 0.0f && d->frizz == 0.0f)
+        return HF_OK;
+    if (d->curl_map || d->wave_map || d->frizz_map) {
+        uv = (float *)hf__fur_array(f, (size_t)G * 2u, sizeof(float), &r);
+        if (r != HF_OK) return r;
+        hf__fur_guide_uvs(b, G, uv);
+    }
+    hf_rng_seed(&rng, d->seed, 0x5757u);
+    for (g = 0; g < G; ++g) {
+        float *q = b->rest_points + (size_t)g * (size_t)P * 3u;
+        double base[3 * HF_MAX_POINTS], u[3], t[3], s = 0.0, len = 0.0;
+        double curl = d->curl_radius, wave = d->wave_amplitude, frizz = d->frizz;
+        const hf_map *maps[3];
+        double *amp[3];
+        maps[0] = d->curl_map; maps[1] = d->wave_map; maps[2] = d->frizz_map;
+        amp[0] = &curl; amp[1] = &wave; amp[2] = &frizz;
+        for (k = 0; k < 3; ++k)
+            if (maps[k] && uv && uv[2 * g] >= 0.0f) {
+                float m[4];
+                hf_map_sample_fast(maps[k], uv[2 * g], uv[2 * g + 1], m);
+                *amp[k] *= m[0];
+            }
+        for (j = 0; j < 3 * P; ++j) base[j] = q[j];
+        for (j = 1; j < P; ++j) {
+            double dx = base[3 * j] - base[3 * j - 3],
+                   dy = base[3 * j + 1] - base[3 * j - 2],
+                   dz = base[3 * j + 2] - base[3 * j - 1];
+            len += HF_SQRT(dx * dx + dy * dy + dz * dz);
+        }
+        if (!(len > 0.0)) continue;
+        /* u: a unit vector across the first segment */
+        for (k = 0; k < 3; ++k) t[k] = base[3 + k] - base[k];
+        {
+            double a[3] = {1.0, 0.0, 0.0}, l, dt;
+            l = HF_SQRT(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+            for (k = 0; k < 3; ++k) t[k] /= l;
+            if (HF_FABS(t[0]) > 0.9) { a[0] = 0.0; a[1] = 1.0; }
+            dt = a[0] * t[0] + a[1] * t[1] + a[2] * t[2];
+            for (k = 0; k < 3; ++k) u[k] = a[k] - dt * t[k];
+            l = HF_SQRT(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+            for (k = 0; k < 3; ++k) u[k] /= l;
+        }
+        for (j = 1; j < P; ++j) {
+            double nt[3], v[3], l, seg, ramp, ang, off[3], du;
+            /* the tangent here, and u carried onto it */
+            for (k = 0; k < 3; ++k)
+                nt[k] = base[3 * (j < P - 1 ? j + 1 : j) + k] -
+                        base[3 * (j - 1) + k];
+            l = HF_SQRT(nt[0] * nt[0] + nt[1] * nt[1] + nt[2] * nt[2]);
+            if (l > 0.0) {
+                for (k = 0; k < 3; ++k) nt[k] /= l;
+                hf__rotate_onto(t, nt, u, v);
+                for (k = 0; k < 3; ++k) { u[k] = v[k]; t[k] = nt[k]; }
+            }
+            v[0] = t[1] * u[2] - t[2] * u[1];
+            v[1] = t[2] * u[0] - t[0] * u[2];
+            v[2] = t[0] * u[1] - t[1] * u[0];
+            seg = HF_SQRT((base[3 * j] - base[3 * j - 3]) * (base[3 * j] - base[3 * j - 3]) +
+                          (base[3 * j + 1] - base[3 * j - 2]) * (base[3 * j + 1] - base[3 * j - 2]) +
+                          (base[3 * j + 2] - base[3 * j - 1]) * (base[3 * j + 2] - base[3 * j - 1]));
+            s += seg;
+            ramp = s / (0.2 * len);
+            if (ramp > 1.0) ramp = 1.0;
+            ramp = ramp * ramp * (3.0 - 2.0 * ramp);
+            ang = 6.283185307179586 * d->curl_turns * s / len;
+            du = wave * HF_SIN(6.283185307179586 * d->wave_count * s / len);
+            for (k = 0; k < 3; ++k)
+                off[k] = ramp * (curl * (HF_COS(ang) * u[k] + HF_SIN(ang) * v[k] - u[k]) +
+                                 du * u[k]);
+            if (frizz > 0.0) {
+                double fr = frizz * seg * (s / len);
+                for (k = 0; k < 3; ++k)
+                    off[k] += fr * (2.0 * hf_rng_float(&rng) - 1.0);
+            }
+            for (k = 0; k < 3; ++k) q[3 * j + k] = (float)(base[3 * j + k] + off[k]);
+        }
+        /* guide_len stays the unstyled length: strands scale by their own
+           length over it, so a curl keeps its size */
+    }
+    hf__free(&f->alloc, uv);
+    return HF_OK;
+}
+
 /* Stage 3: strand records in LOD order, two calls. strands_per_area wins
    over total_strands, as hf_fur_desc documents. */
 HF__PRIVATE hf_result hf__fur_place(hf_fur *f, hf__fur_build *b)
@@ -8542,6 +8911,18 @@ HF__PRIVATE hf_result hf__fur_strand_maps(hf_fur *f, hf__fur_build *b)
     } else {
         for (i = 0; i < 4 * n_strands; ++i) f->strand_rgba[i] = 1.0f;
     }
+    if (d->color_variation > 0.0f) { /* per strand, in strand order */
+        hf_rng rng;
+        hf_rng_seed(&rng, d->seed, 0x4343u);
+        for (i = 0; i < n_strands; ++i) {
+            float m = 1.0f + d->color_variation * (2.0f * hf_rng_float(&rng) - 1.0f);
+            int k;
+            for (k = 0; k < 3; ++k) {
+                float c = f->strand_rgba[4 * i + k] * m;
+                f->strand_rgba[4 * i + k] = c > 1.0f ? 1.0f : c;
+            }
+        }
+    }
     for (i = 0; i < n_strands; ++i) {
         const hf_strand *s = &f->strands[i];
         f->strand_uv[2 * i] = s->uv[0];
@@ -8575,6 +8956,14 @@ HF__PRIVATE hf_result hf__fur_bind(hf_fur *f, hf__fur_build *b)
                              n_strands, 0, n_strands, f->strand_lengths, b->guide_len,
                              f->bindings)) != HF_OK)
         return r;
+    if (b->desc.guide_curve_count > 0) /* lengths come from the curves */
+        for (i = 0; i < n_strands; ++i) {
+            hf_strand_binding *s = &f->bindings[i];
+            f->strand_lengths[i] = s->weight[0] * b->guide_len[s->guide[0]] +
+                                   s->weight[1] * b->guide_len[s->guide[1]] +
+                                   s->weight[2] * b->guide_len[s->guide[2]];
+            s->length_scale = 1.0f;
+        }
     for (i = 0; i < f->lod_count; ++i) {
         const hf_tess_vertex *a = &f->added[i];
         const uint32_t *tri = b->desc.mesh.indices + 3u * (size_t)a->triangle;
@@ -8663,6 +9052,8 @@ HFDEF hf_result hf_fur_create(const hf_fur_desc *desc, hf_fur **out_fur,
     } steps[] = {{"normals", hf__fur_rest_normals},
                  {"tessellation", hf__fur_tessellate},
                  {"guides", hf__fur_guides},
+                 {"guide curves", hf__fur_curves},
+                 {"styling", hf__fur_style},
                  {"strand placement", hf__fur_place},
                  {"strand maps", hf__fur_strand_maps},
                  {"strand bindings", hf__fur_bind},

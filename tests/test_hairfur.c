@@ -7090,6 +7090,206 @@ static void test_fur_comb(void)
     }
 }
 
+/* Authored guide curves: straight curves along their root normal make
+   every guide straight along its own normal, of the curves' length; a bent
+   curve gives every guide its length; strands take the guides' lengths. */
+static void test_fur_guide_curves(void)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    static float pts[6 * 4 * 3];
+    int npts[6], c, g, j, k;
+    const float L = 0.4f;
+    /* six straight curves at the poles and around the equator */
+    static const float dirs[6][3] = {{0, 1, 0}, {0, -1, 0}, {1, 0, 0},
+                                     {-1, 0, 0}, {0, 0, 1}, {0, 0, -1}};
+    t_fur_scene_init(&sc, 1.0f);
+    for (c = 0; c < 6; ++c) {
+        npts[c] = 4;
+        for (j = 0; j < 4; ++j)
+            for (k = 0; k < 3; ++k)
+                pts[(c * 4 + j) * 3 + k] = dirs[c][k] * (1.0f + L * j / 3.0f);
+    }
+    sc.desc.guide_curves = pts;
+    sc.desc.guide_curve_points = npts;
+    sc.desc.guide_curve_count = 6;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (!f) return;
+    hf_fur_get_info(f, &info);
+    {
+        double worst = 0.0;
+        for (g = 0; g < info.guide_count; ++g) {
+            const float *q = info.guide_points + (size_t)g * 8 * 3;
+            double n[3], l = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+            for (k = 0; k < 3; ++k) n[k] = q[k] / l; /* unit sphere normal */
+            for (j = 0; j < 8; ++j)
+                for (k = 0; k < 3; ++k) {
+                    double want = q[k] + n[k] * L * j / 7.0;
+                    double e = fabs(q[3 * j + k] - want);
+                    if (e > worst) worst = e;
+                }
+        }
+        /* LOD guides sit on flat triangles: their normals are blends, not
+           the radial direction, hence the tolerance */
+        CHECK(worst < 0.02);
+    }
+    /* strands: their rest length is the guides' (0.4), not max_length */
+    for (g = 0; g < info.strand_count; ++g)
+        CHECK(fabs(info.strand_lengths[g] - L) < 1e-3);
+    hf_fur_destroy(f);
+
+    /* one bent curve: up 0.2, then sideways 0.3; every guide 0.5 long */
+    {
+        static const float bent[9] = {0, 1, 0, 0, 1.2f, 0, 0.3f, 1.2f, 0};
+        int nb = 3;
+        double worst = 0.0;
+        sc.desc.guide_curves = bent;
+        sc.desc.guide_curve_points = &nb;
+        sc.desc.guide_curve_count = 1;
+        f = NULL;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+        if (!f) return;
+        hf_fur_get_info(f, &info);
+        for (g = 0; g < info.guide_count; ++g) {
+            const float *q = info.guide_points + (size_t)g * 8 * 3;
+            double len = 0.0;
+            for (j = 1; j < 8; ++j)
+                len += sqrt((q[3 * j] - q[3 * j - 3]) * (q[3 * j] - q[3 * j - 3]) +
+                            (q[3 * j + 1] - q[3 * j - 2]) * (q[3 * j + 1] - q[3 * j - 2]) +
+                            (q[3 * j + 2] - q[3 * j - 1]) * (q[3 * j + 2] - q[3 * j - 1]));
+            /* resampled evenly: the corner is cut by at most a segment */
+            if (fabs(len - 0.5) > worst) worst = fabs(len - 0.5);
+        }
+        CHECK(worst < 0.02);
+        hf_fur_destroy(f);
+    }
+
+    /* bad curves: a clear code, nothing made */
+    {
+        static const float two[6] = {0, 1, 0, 0, 1.5f, 0};
+        static const float nan_pt[6] = {0, 1, 0, 0, NAN, 0};
+        static const float flat[6] = {0, 1, 0, 0, 1, 0};
+        int n2 = 2, n1 = 1;
+        hf_fur *const untouched = (hf_fur *)(uintptr_t)0x10;
+        hf_diag d;
+        f = untouched;
+        sc.desc.guide_curves = two;
+        sc.desc.guide_curve_points = &n2;
+        sc.desc.guide_curve_count = -1;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, &d), HF_ERROR_BAD_COUNT);
+        sc.desc.guide_curve_count = 1;
+        sc.desc.guide_curves = NULL;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, &d), HF_ERROR_NULL_POINTER);
+        sc.desc.guide_curves = two;
+        sc.desc.guide_curve_points = &n1;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, &d), HF_ERROR_BAD_COUNT);
+        sc.desc.guide_curve_points = &n2;
+        sc.desc.guide_curves = nan_pt;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, &d), HF_ERROR_NON_FINITE);
+        CHECK(strstr(d.message, "curve 0, point 1") != NULL);
+        sc.desc.guide_curves = flat;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, &d), HF_ERROR_BAD_PARAMETER);
+        CHECK(f == untouched);
+    }
+}
+
+/* Styling: a curl of radius r keeps guides within 2 r of their straight
+   shape and reaches near 2 r; same seed, same bytes; frizz depends on the
+   seed; colour variation stays within its factor. */
+static double t_max_dev_from_straight(const hf_fur_info *info, int P)
+{
+    double worst = 0.0;
+    int g, j, k;
+    for (g = 0; g < info->guide_count; ++g) {
+        const float *q = info->guide_points + (size_t)g * (size_t)P * 3u;
+        double n[3], l = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+        for (k = 0; k < 3; ++k) n[k] = q[k] / l;
+        for (j = 0; j < P; ++j) {
+            double d[3], t, e = 0.0;
+            for (k = 0; k < 3; ++k) d[k] = q[3 * j + k] - q[k];
+            t = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+            for (k = 0; k < 3; ++k) e += (d[k] - t * n[k]) * (d[k] - t * n[k]);
+            if (sqrt(e) > worst) worst = sqrt(e);
+        }
+    }
+    return worst;
+}
+
+static void test_fur_styling(void)
+{
+    t_fur_scene sc;
+    hf_fur *a = NULL, *b = NULL;
+    hf_fur_info ia, ib;
+    const float r = 0.03f;
+    double dev;
+    int i, differ = 0;
+    t_fur_scene_init(&sc, 1.0f);
+    sc.desc.points_per_strand = 24;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &a, NULL), HF_OK);
+    if (!a) return;
+    hf_fur_get_info(a, &ia);
+    CHECK(t_max_dev_from_straight(&ia, 24) < 0.02); /* LOD normals only */
+    hf_fur_destroy(a);
+    sc.desc.curl_radius = r;
+    sc.desc.curl_turns = 3.0f;
+    a = NULL;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &a, NULL), HF_OK);
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &b, NULL), HF_OK);
+    if (!a || !b) return;
+    hf_fur_get_info(a, &ia);
+    hf_fur_get_info(b, &ib);
+    dev = t_max_dev_from_straight(&ia, 24);
+    CHECK(dev > 1.5 * r && dev < 2.0 * r + 0.02);
+    CHECK(memcmp(ia.guide_points, ib.guide_points,
+                 sizeof(float) * 3u * 24u * (size_t)ia.guide_count) == 0);
+    hf_fur_destroy(a);
+    hf_fur_destroy(b);
+    /* frizz: another seed, other points */
+    sc.desc.curl_radius = 0.0f;
+    sc.desc.frizz = 0.5f;
+    a = b = NULL;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &a, NULL), HF_OK);
+    sc.desc.seed = 99;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &b, NULL), HF_OK);
+    if (!a || !b) return;
+    hf_fur_get_info(a, &ia);
+    hf_fur_get_info(b, &ib);
+    CHECK(memcmp(ia.guide_points, ib.guide_points,
+                 sizeof(float) * 3u * 24u * (size_t)ia.guide_count) != 0);
+    hf_fur_destroy(a);
+    hf_fur_destroy(b);
+    /* colour variation of white strands: factors in [0.7, 1], not all 1 */
+    sc.desc.frizz = 0.0f;
+    sc.desc.color_variation = 0.3f;
+    a = NULL;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &a, NULL), HF_OK);
+    if (!a) return;
+    hf_fur_get_info(a, &ia);
+    for (i = 0; i < ia.strand_count; ++i) {
+        float c = ia.strand_colors[4 * i];
+        CHECK(c >= 0.7f - 1e-6f && c <= 1.0f);
+        CHECK(ia.strand_colors[4 * i + 1] == c && ia.strand_colors[4 * i + 3] == 1.0f);
+        differ += c < 0.99f;
+    }
+    CHECK(differ > ia.strand_count / 4);
+    hf_fur_destroy(a);
+    /* bad styling values are refused */
+    {
+        hf_diag d;
+        a = NULL;
+        sc.desc.color_variation = 1.5f;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &a, &d), HF_ERROR_BAD_PARAMETER);
+        CHECK(strstr(d.message, "color_variation") != NULL);
+        sc.desc.color_variation = 0.0f;
+        sc.desc.curl_radius = NAN;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &a, &d), HF_ERROR_BAD_PARAMETER);
+        sc.desc.curl_radius = -1.0f;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &a, &d), HF_ERROR_BAD_PARAMETER);
+        CHECK(a == NULL);
+    }
+}
+
 static void test_fur_no_allocation_per_frame(void)
 {
     t_fur_scene sc;
@@ -7782,6 +7982,8 @@ int main(void)
     /* 10. the fur object */
     RUN(test_fur_create_counts_and_welding);
     RUN(test_fur_comb);
+    RUN(test_fur_guide_curves);
+    RUN(test_fur_styling);
     RUN(test_fur_no_allocation_per_frame);
     RUN(test_fur_ranges_byte_identical);
     RUN(test_fur_lod_prefix_and_width);

@@ -2,7 +2,8 @@
    fuzz mesh, maps and description (zero fields, bad fields, a failing or
    counting allocator), then a few frames of every per-frame call with
    fuzz ranges, skinned roots and colliders (some holding the roots);
-   growth directions per vertex and from a map.
+   growth directions per vertex and from a map, authored guide curves and
+   styling (curl, wave, frizz, colour variation).
 
    Contracts checked (abort() on violation): every result is HF_OK or a
    code of the table; a failed create leaves *out_fur as it was and frees
@@ -36,6 +37,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     hf_diag diag;
     hf_result rv;
     float *skinned = NULL, *vbuf = NULL, *pbuf = NULL, *comb = NULL;
+    float *curves = NULL;
+    int curve_points[6], curve_total = 0;
     int has_density, has_length, has_color, has_comb_map, frame, k;
 
     fz_init(&r, data, size);
@@ -66,6 +69,30 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     desc.color_map = has_color ? &color.map : NULL;
     desc.comb = comb;
     desc.comb_map = has_comb_map ? &comb_map.map : NULL;
+    /* authored guide curves: 1..6 curves of 0..7 points, any floats */
+    if (fz_chance(&r, 64)) {
+        int c, n = fz_int(&r, 1, 6);
+        for (c = 0; c < n; ++c) {
+            curve_points[c] = fz_chance(&r, 240) ? fz_int(&r, 2, 7) : fz_int(&r, -1, 1);
+            if (curve_points[c] > 0) curve_total += curve_points[c];
+        }
+        curves = (float *)malloc(sizeof(float) * 3u * (size_t)(curve_total + 1));
+        if (curves) {
+            for (k = 0; k < 3 * curve_total; ++k) curves[k] = fz_float(&r, 1.5f);
+            desc.guide_curves = fz_chance(&r, 250) ? curves : NULL;
+            desc.guide_curve_points = curve_points;
+            desc.guide_curve_count = fz_chance(&r, 250) ? n : -n;
+        }
+    }
+    /* styling, mostly in range */
+    if (fz_chance(&r, 96)) {
+        desc.curl_radius = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 0.05f) : fz_float(&r, 1.0f);
+        desc.curl_turns = fz_float_in(&r, 0.0f, 8.0f);
+        desc.wave_amplitude = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 0.05f) : fz_float(&r, 1.0f);
+        desc.wave_count = fz_float_in(&r, 0.0f, 8.0f);
+        desc.frizz = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 1.0f) : fz_float(&r, 1.0f);
+        desc.color_variation = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 1.0f) : fz_float(&r, 2.0f);
+    }
     desc.points_per_strand = fz_chance(&r, 200) ? fz_int(&r, 0, 24)
                                                 : fz_int(&r, -2, 300);
     desc.max_length = fz_chance(&r, 220) ? fz_float_in(&r, 0.0f, 0.5f)
@@ -219,6 +246,7 @@ done:
     if (has_color) free(color.data);
     if (has_comb_map) free(comb_map.data);
     free(comb);
+    free(curves);
     fz_free_mesh(&m);
     return 0;
 }
