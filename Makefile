@@ -528,7 +528,7 @@ bench-peers: check-bullet $(BUILD)/bench_peers
 # mode: build/fuzz_<t> -merge=1 tests/fuzz/corpus/<t> build/fuzz-corpus/<t>.
 # fuzz-replay builds each target with gcc and tests/fuzz/fuzz_main.c
 # instead, and replays the seed corpus and tests/fuzz/regressions/.
-FUZZ_TARGETS       := grow ropes ribbons lut fur
+FUZZ_TARGETS       := grow ropes ribbons lut fur curves
 FUZZ_SECONDS       ?= 60
 FUZZ_SMOKE_SECONDS ?= 20
 FUZZ_DIR           := tests/fuzz
@@ -547,6 +547,9 @@ $(BUILD)/fuzz_%: $(FUZZ_DIR)/fuzz_%.c $(FUZZ_DEPS) | $(BUILD)
 
 $(BUILD)/replay_%: $(FUZZ_DIR)/fuzz_%.c $(FUZZ_DIR)/fuzz_main.c $(FUZZ_DEPS) | $(BUILD)
 	$(REPLAY_CC) $(FUZZ_DIR)/fuzz_main.c $< -o $@ -lm
+
+# fuzz_curves reads the examples' curve files (examples/curves.h).
+$(BUILD)/fuzz_curves $(BUILD)/replay_curves: examples/curves.h
 
 fuzz-build: $(addprefix $(BUILD)/fuzz_,$(FUZZ_TARGETS))
 

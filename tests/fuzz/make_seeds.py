@@ -32,7 +32,50 @@ def main():
             with open(path, "wb") as f:
                 f.write(data)
             total += len(data)
-    print("wrote %d seeds (%d bytes) under %s" % (4 * 24, total, ROOT))
+    total += curve_seeds(rng)
+    print("wrote the seeds (%d bytes) under %s" % (total, ROOT))
+
+
+def curve_seeds(rng):
+    """fuzz_curves reads a file, not the reader: valid small .hair and .tfx
+    files (byte 0 even: .hair, odd: .tfx), with and without the optional
+    arrays, and a few cut short."""
+    import struct
+    d = os.path.join(ROOT, "curves")
+    os.makedirs(d, exist_ok=True)
+    total = 0
+    seeds = []
+    for flags in (2, 3, 3 | 4, 3 | 16, 3 | 4 | 8 | 16):
+        strands = rng.randint(1, 4)
+        segs = [rng.randint(1, 5) for _ in range(strands)]
+        if not flags & 1:
+            segs = [3] * strands
+        pts = sum(s + 1 for s in segs)
+        head = b"HAIR" + struct.pack("<IIII", strands, pts, flags, 3)
+        head += struct.pack("<ff3f", 1.0, 0.0, 1.0, 1.0, 1.0)
+        head += b"seed".ljust(88, b"\0")
+        body = b""
+        if flags & 1:
+            body += b"".join(struct.pack("<H", s) for s in segs)
+        body += b"".join(struct.pack("<f", rng.uniform(-1, 1)) for _ in range(3 * pts))
+        for bit, k in ((4, 1), (8, 1), (16, 3)):
+            if flags & bit:
+                body += b"".join(struct.pack("<f", rng.random()) for _ in range(k * pts))
+        seeds.append(b"\0" + head + body)
+    for strands, per in ((1, 2), (2, 4), (3, 16)):
+        head = struct.pack("<fII", 4.0, strands, per)
+        head += struct.pack("<5I", 160, 0, 0, 0, 0) + bytes(128)
+        body = b"".join(struct.pack("<4f", rng.uniform(-1, 1), rng.uniform(-1, 1),
+                                    rng.uniform(-1, 1), 1.0)
+                        for _ in range(strands * per))
+        seeds.append(b"\1" + head + body)
+    seeds.append(seeds[1][:-3])   # truncated .hair
+    seeds.append(seeds[-2][:100])  # truncated .tfx
+    for i, data in enumerate(seeds):
+        with open(os.path.join(d, "seed-%02d.bin" % i), "wb") as f:
+            f.write(data)
+        total += len(data)
+    return total
 
 
 if __name__ == "__main__":

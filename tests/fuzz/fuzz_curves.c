@@ -1,0 +1,45 @@
+/* fuzz_curves.c - the examples' curve readers (examples/curves.h) on
+   fuzz-made files: byte 0 picks the format (even: .hair, odd: TressFX
+   .tfx), the rest is the file.
+
+   Contracts checked (abort() on violation): a reader returns 1 or 0; on 0
+   the curves are empty and the message is not; on 1 there is at least one
+   curve, every curve has at least 2 points, the point counts add up to the
+   total, and every coordinate is finite.
+
+   libFuzzer: clang -g -O1 -fsanitize=fuzzer,address,undefined fuzz_curves.c
+   replay:    gcc -O1 -g fuzz_main.c fuzz_curves.c -lm (see the Makefile) */
+#define CURVES_IMPLEMENTATION
+#define CURVES_NO_ASSIMP
+#include "../../examples/curves.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    cv_curves c;
+    char err[256];
+    int ok, i;
+    long sum = 0;
+    if (size < 1) return 0;
+    err[0] = '\0';
+    ok = (data[0] & 1) ? cv_parse_tfx(data + 1, size - 1, &c, err, sizeof err)
+                       : cv_parse_hair(data + 1, size - 1, &c, err, sizeof err);
+    if (ok != 0 && ok != 1) abort();
+    if (!ok) {
+        if (c.count != 0 || c.points || c.xyz || !err[0]) abort();
+        return 0;
+    }
+    if (c.count < 1 || !c.points || !c.xyz) abort();
+    for (i = 0; i < c.count; ++i) {
+        if (c.points[i] < 2) abort();
+        sum += c.points[i];
+    }
+    if (sum != c.total) abort();
+    for (i = 0; i < 3 * c.total; ++i)
+        if (!isfinite(c.xyz[i])) abort();
+    cv_free(&c);
+    return 0;
+}
