@@ -203,7 +203,7 @@ quickstart: $(QS_BINS)
 # ==== Examples ===============================================================
 EX_CFLAGS := -std=c99 -O2 -Wall -Wextra -Wpedantic
 EXAMPLES  := $(BUILD)/bake_luts $(BUILD)/grow_pictures $(BUILD)/plot_ropes \
-             $(BUILD)/grow_fur $(BUILD)/paint_density
+             $(BUILD)/grow_fur $(BUILD)/paint_density $(BUILD)/make_hairstyle
 
 # stb_image_write.h comes from Debian's libstb-dev (/usr/include/stb).
 STB_H := /usr/include/stb/stb_image_write.h
@@ -219,11 +219,12 @@ $(BUILD)/grow_fur: examples/grow_fur.c examples/head_mesh.h $(HDR) $(STB_H) | $(
 	  { echo "grow_fur needs assimp: run 'make deps' (Debian package libassimp-dev)"; exit 1; }
 	gcc $(EX_CFLAGS) $< -o $@ -lassimp -lm
 
-# paint_density reads meshes through examples/character.h (assimp).
-$(BUILD)/paint_density: examples/paint_density.c examples/character.h $(HDR) \
-                        $(STB_H) | $(BUILD)
+# paint_density and make_hairstyle read meshes through examples/character.h
+# (assimp); make_hairstyle writes curves with examples/curves.h.
+$(BUILD)/paint_density $(BUILD)/make_hairstyle: $(BUILD)/%: examples/%.c \
+        examples/character.h examples/curves.h $(HDR) $(STB_H) | $(BUILD)
 	@printf '#include <assimp/cimport.h>\n' | gcc -E -x c - >/dev/null 2>&1 || \
-	  { echo "paint_density needs assimp: run 'make deps' (Debian package libassimp-dev)"; exit 1; }
+	  { echo "$* needs assimp: run 'make deps' (Debian package libassimp-dev)"; exit 1; }
 	gcc $(EX_CFLAGS) $< -o $@ -lassimp -lm
 
 examples: $(EXAMPLES) gl-examples
@@ -292,7 +293,7 @@ $(BUILD)/gl_minimal: examples/gl_minimal.c $(GL_COMMON) hairfur.h \
                      examples/head_mesh.h $(GLAD_O) | gl-need $(BUILD)
 	$(CC) $(GL_CFLAGS) $(WARN) $< $(GLAD_O) -o $@ $(GL_LIBS)
 
-$(BUILD)/gl_marschner: examples/gl_marschner.c examples/character.h \
+$(BUILD)/gl_marschner: examples/gl_marschner.c examples/character.h examples/curves.h \
                        $(GL_COMMON) hairfur.h examples/head_mesh.h $(GLAD_O) \
                        | gl-need $(BUILD)
 	$(CC) $(GL_CFLAGS) $(WARN) $< $(GLAD_O) -o $@ $(GL_LIBS) -lassimp
@@ -318,7 +319,7 @@ $(BUILD)/gl_window_test: tests/gl_window_test.c $(GL_COMMON) $(GLAD_O) \
 
 # The fur render check includes examples/gl_marschner.c (with GLM_NO_MAIN).
 $(BUILD)/gl_fur_check: tests/gl_fur_check.c examples/gl_marschner.c \
-                       examples/character.h examples/head_mesh.h $(GL_COMMON) \
+                       examples/character.h examples/curves.h examples/head_mesh.h $(GL_COMMON) \
                        hairfur.h $(GLAD_O) | gl-need $(BUILD)
 	$(CC) $(GL_CFLAGS) $(WARN) $< $(GLAD_O) -o $@ $(GL_LIBS) -lassimp
 
@@ -419,13 +420,16 @@ gl-demo: $(BUILD)/gl_check $(BUILD)/gl_marschner $(BUILD)/gl_minimal | $(OUT)
 # on its Head mesh, on a scalp painted by paint_density (a plane through
 # the hairline, from the forehead down to the nape). Frames go to
 # out/fur_wuson_NNN.png and out/hair_human_NNN.png, a still of each to
-# out/fur_wuson.png and out/hair_human.png.
+# out/fur_wuson.png and out/hair_human.png. Then an authored hairstyle:
+# curves made by make_hairstyle, saved as .hair and read back as the
+# guides of the human's hair (out/hair_styled.png).
 MODELS   := /usr/share/assimp/models/X
 WUSON    := $(MODELS)/Testwuson.X
 HUMAN    := $(MODELS)/BCN_Epileptic.X
 CHAR_RUN := env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_marschner --headless --orbit 0
 
-characters: $(BUILD)/gl_check $(BUILD)/gl_marschner $(BUILD)/paint_density | $(OUT)
+characters: $(BUILD)/gl_check $(BUILD)/gl_marschner $(BUILD)/paint_density \
+            $(BUILD)/make_hairstyle | $(OUT)
 	@if ! why=$$(env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_check); then \
 	  echo "characters skipped: $$why"; exit 0; fi; \
 	if [ ! -f $(WUSON) ] || [ ! -f $(HUMAN) ]; then \
@@ -442,9 +446,14 @@ characters: $(BUILD)/gl_check $(BUILD)/gl_marschner $(BUILD)/paint_density | $(O
 	  --hair-length 0.12 --comb 0,-0.5,-3 --stiffness 0.2 --settle 1 \
 	  --frames 198 --save-every 18 --out $(OUT)/hair_human_%03d.png; \
 	cp $(OUT)/hair_human_090.png $(OUT)/hair_human.png; \
+	$(BUILD)/make_hairstyle --mesh $(HUMAN) --part Head \
+	  --plane 0,1,-0.53,0.717 --out $(OUT)/hair_styled.hair; \
+	$(CHAR_RUN) --mesh $(HUMAN) --grow-on Head --density $(OUT)/hair_human_scalp.png \
+	  --guides $(OUT)/hair_styled.hair --stiffness 0.3 --color-variation 0.25 \
+	  --settle 1 --frames 60 --out $(OUT)/hair_styled.png; \
 	echo "characters: wrote $(OUT)/fur_wuson_012.png ... fur_wuson_120.png," \
 	     "fur_wuson.png, hair_human_018.png ... hair_human_198.png," \
-	     "hair_human.png"
+	     "hair_human.png, hair_styled.hair (authored curves), hair_styled.png"
 
 # The interactive windows (need a display).
 run: $(BUILD)/gl_marschner

@@ -57,6 +57,8 @@
 #include "head_mesh.h"
 #define CHARACTER_IMPLEMENTATION
 #include "character.h"
+#define CURVES_IMPLEMENTATION
+#include "curves.h"
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb/stb_image.h>
 #ifndef GLM_NO_MAIN
@@ -104,6 +106,9 @@ typedef struct glm_options {
     float comb[3];      /* world direction hair is combed in, its length
                            the strength (0: along the normal) */
     float settle;       /* seconds simulated at the first pose, first */
+    const char *guides_path; /* authored guide curves (.hair, .tfx, .obj) */
+    float curl[2], wave[2];  /* radius and turns; amplitude and count */
+    float frizz, color_variation;
     int guides;         /* guide target; 0 = strands / 10, at most 2,000 */
 } glm_options;
 
@@ -167,6 +172,7 @@ typedef struct glm_app {
     double hair_area;     /* grown area weighted by density (m^2) */
     float *rest_len;      /* per guide: its length at rest */
     float *comb_dir;      /* per grown vertex: growth direction (--comb) */
+    cv_curves curves;     /* --guides, in metres */
     double stretch_max, stretch_sum;
     long stretch_frames;
     double ms_skin, ms_sim, ms_build, ms_draw; /* sums over frames */
@@ -777,6 +783,18 @@ static int glm_load_mesh(glm_app *a)
     return 1;
 }
 
+static float glm_polyline_length(const float *p, int n)
+{
+    float len = 0.0f;
+    int i;
+    for (i = 1; i < n; ++i) {
+        float dx = p[3 * i] - p[3 * i - 3], dy = p[3 * i + 1] - p[3 * i - 2],
+              dz = p[3 * i + 2] - p[3 * i - 1];
+        len += sqrtf(dx * dx + dy * dy + dz * dz);
+    }
+    return len;
+}
+
 /* Size, framing, hair length, ribbon width, shadow strength and a mesh's
    colliders from the body at rest, so that a model in centimetres (read
    as metres by ch_load) gives the picture it gives in metres. */
@@ -805,6 +823,16 @@ static void glm_measure(glm_app *a)
         a->target0[1] -= 0.0866f * a->size;
     a->hair_len = a->o.hair_length > 0.0f ? a->o.hair_length
                 : a->ch.vertex_count > 0 ? 0.05f * a->size : 0.14f;
+    if (a->curves.count > 0) { /* guide curves: the longest of them */
+        const float *p = a->curves.xyz;
+        float longest = 0.0f;
+        for (i = 0; i < a->curves.count; ++i) {
+            float len = glm_polyline_length(p, a->curves.points[i]);
+            if (len > longest) longest = len;
+            p += 3 * a->curves.points[i];
+        }
+        a->hair_len = longest;
+    }
     /* the hair's area: triangles weighted by the density at their corners */
     for (i = 0; i < a->nt_grown; ++i) {
         const float *p0 = a->rest[a->grow_first + a->grow_idx[3 * i]].pos,
@@ -914,18 +942,6 @@ static void glm_ribbon_view(const glm_app *a, hf_ribbon_params *v)
     v->alpha_tip = 0.2f;     /* tips fade */
 }
 
-static float glm_polyline_length(const float *p, int n)
-{
-    float len = 0.0f;
-    int i;
-    for (i = 1; i < n; ++i) {
-        float dx = p[3 * i] - p[3 * i - 3], dy = p[3 * i + 1] - p[3 * i - 2],
-              dz = p[3 * i + 2] - p[3 * i - 1];
-        len += sqrtf(dx * dx + dy * dy + dz * dz);
-    }
-    return len;
-}
-
 /* Returns 1, or 0 with a message. The GL context must be current. */
 static int glm_init(glm_app *a, const glm_options *o)
 {
@@ -997,6 +1013,15 @@ static int glm_init(glm_app *a, const glm_options *o)
     a->index.data = a->index_px;
     a->index.width = a->index.height = 128;
     a->index.channels = 1;
+    if (o->guides_path) {
+        char err[700];
+        if (!cv_read(o->guides_path, &a->curves, err, sizeof err)) {
+            fprintf(stderr, "gl_marschner: --guides %s\n", err);
+            return 0;
+        }
+        /* in the mesh file's units, like the mesh */
+        if (a->ch.vertex_count > 0) cv_scale(&a->curves, a->ch.unit);
+    }
     glm_measure(a);
     if (a->o.distance <= 0.0f) a->o.distance = a->frame_dist;
 
@@ -1011,6 +1036,17 @@ static int glm_init(glm_app *a, const glm_options *o)
     desc.mesh.vertex_count = a->grow_count;
     desc.mesh.indices = a->grow_idx;
     desc.mesh.triangle_count = a->nt_grown;
+    for (i = 0; i < a->grow_count; ++i) { /* the library refuses them */
+        const float *n = a->rest[a->grow_first + i].normal;
+        if (!(n[0] * n[0] + n[1] * n[1] + n[2] * n[2] > 0.0f)) break;
+    }
+    if (i < a->grow_count) {
+        printf("gl_marschner: %s: vertex %d has no normal; the library's "
+               "area-weighted normals are used\n", o->mesh ? o->mesh : "mesh",
+               i);
+        desc.mesh.normals = NULL;
+        desc.mesh.normal_stride = 0;
+    }
     desc.density_map = a->have_density ? &a->density : NULL;
     desc.length_map = a->have_length ? &a->length : NULL;
     desc.color_map = &a->color;
@@ -1036,6 +1072,17 @@ static int glm_init(glm_app *a, const glm_options *o)
         }
         desc.comb = a->comb_dir;
     }
+    if (o->guides_path) {
+        desc.guide_curves = a->curves.xyz;
+        desc.guide_curve_points = a->curves.points;
+        desc.guide_curve_count = a->curves.count;
+    }
+    desc.curl_radius = o->curl[0];
+    desc.curl_turns = o->curl[1];
+    desc.wave_amplitude = o->wave[0];
+    desc.wave_count = o->wave[1];
+    desc.frizz = o->frizz;
+    desc.color_variation = o->color_variation;
     desc.points_per_strand = 16;
     desc.max_length = a->hair_len;
     desc.total_strands = o->strands;
@@ -1072,7 +1119,7 @@ static int glm_init(glm_app *a, const glm_options *o)
     S = a->info.strand_count;
     a->skinned = desc.mesh;
     a->skinned.positions = a->skin[a->grow_first].pos;
-    a->skinned.normals = a->skin[a->grow_first].normal;
+    if (desc.mesh.normals) a->skinned.normals = a->skin[a->grow_first].normal;
     /* each guide's length at rest, for the stretch figure */
     a->rest_len = (float *)malloc(sizeof(float) * (size_t)a->info.guide_count);
     if (!a->rest_len) return 0;
@@ -1730,6 +1777,7 @@ static void glm_shutdown(glm_app *a)
     free(a->col_keep);
     free(a->rest_len);
     free(a->comb_dir);
+    cv_free(&a->curves);
     /* maps from files came from stb_image's malloc, the others from ours */
     free(a->density_px);
     free(a->length_px);
@@ -1770,6 +1818,9 @@ static void glm_usage(FILE *fp)
 "  --strands N        strands (default 20000)\n"
 "  --guides N         guides (default: strands / 10, at most 2000; the\n"
 "                     mesh's vertices are guides, LOD guides make up the rest)\n"
+"  --guides FILE      authored guide curves (.hair, .tfx, .obj polylines), in\n"
+"                     the mesh's units and pose: their shapes become the\n"
+"                     guides' (lengths from the curves)\n"
 "  --stiffness S      hold to the rest shape, [0, 1] (default 0: hair falls;\n"
 "                     0.3-0.6 for fur)\n"
 "  --comb X,Y,Z       comb the hair in this world direction: the growth\n"
@@ -1778,6 +1829,12 @@ static void glm_usage(FILE *fp)
 "                     normal)\n"
 "  --settle S         seconds simulated at the first pose before frame 1, so\n"
 "                     hair starts hanging (default 0)\n"
+"  --curl R,TURNS     curl: helix radius (metres), turns along a strand\n"
+"  --wave A,COUNT     wave: amplitude (metres), periods along a strand\n"
+"  --frizz F          random offset per point, a fraction of a segment\n"
+"  --color-variation V  each strand's colour times [1 - V, 1 + V]\n"
+        );
+    fprintf(fp, /* two strings: C99 compilers need only take 4095 bytes */
 "Drawing\n"
 "  --kajiya           Kajiya-Kay instead of Marschner\n"
 "  --no-shadows       no self-shadowing (default: a deep shadow map)\n"
@@ -1823,18 +1880,18 @@ static int glm_real(const char *opt, const char *v, double lo, double hi,
     return 1;
 }
 
-/* Three numbers X,Y,Z, each in [lo, hi]. */
-static int glm_real3(const char *opt, const char *v, double lo, double hi,
-                     float out[3])
+/* n comma-separated numbers, each in [lo, hi]. */
+static int glm_reals(const char *opt, const char *v, double lo, double hi,
+                     int n, float *out)
 {
     char buf[128], *p = buf, *e;
     int k;
     snprintf(buf, sizeof buf, "%s", v);
-    for (k = 0; k < 3; ++k) {
+    for (k = 0; k < n; ++k) {
         e = strchr(p, ',');
-        if ((k < 2) != (e != NULL)) {
-            fprintf(stderr, "gl_marschner: %s '%s': expected three numbers "
-                    "X,Y,Z\n", opt, v);
+        if ((k < n - 1) != (e != NULL)) {
+            fprintf(stderr, "gl_marschner: %s '%s': expected %d numbers "
+                    "separated by commas\n", opt, v, n);
             return 0;
         }
         if (e) *e = '\0';
@@ -1843,6 +1900,8 @@ static int glm_real3(const char *opt, const char *v, double lo, double hi,
     }
     return 1;
 }
+#define glm_real3(opt, v, lo, hi, out) glm_reals(opt, v, lo, hi, 3, out)
+#define glm_real2(opt, v, lo, hi, out) glm_reals(opt, v, lo, hi, 2, out)
 
 static int glm_int(const char *opt, const char *v, long lo, long hi, int *out)
 {
@@ -1904,7 +1963,6 @@ static int glm_parse(int argc, char **argv, glm_options *o)
             else if (!strcmp(s, "--width")) ok = glm_int(s, v, 16, 8192, &o->width);
             else if (!strcmp(s, "--height")) ok = glm_int(s, v, 16, 8192, &o->height);
             else if (!strcmp(s, "--strands")) ok = glm_int(s, v, 1, 10000000, &o->strands);
-            else if (!strcmp(s, "--guides")) ok = glm_int(s, v, 1, 10000000, &o->guides);
             else if (!strcmp(s, "--lut-size")) ok = glm_int(s, v, 2, HF_LUT_MAX_SIZE, &o->lut_size);
             else if (!strcmp(s, "--distance")) ok = glm_real(s, v, 1e-3, 1e6, &o->distance);
             else if (!strcmp(s, "--lod")) ok = glm_real(s, v, 0.0, 1.0, &o->lod);
@@ -1916,6 +1974,17 @@ static int glm_parse(int argc, char **argv, glm_options *o)
             else if (!strcmp(s, "--settle")) ok = glm_real(s, v, 0.0, 60.0, &o->settle);
             else if (!strcmp(s, "--hair-color")) ok = glm_real3(s, v, 0.0, 1.0, o->hair_color);
             else if (!strcmp(s, "--comb")) ok = glm_real3(s, v, -100.0, 100.0, o->comb);
+            else if (!strcmp(s, "--guides")) {
+                /* a count, or a file of curves */
+                if (strspn(v, "0123456789") == strlen(v))
+                    ok = glm_int(s, v, 1, 10000000, &o->guides);
+                else
+                    o->guides_path = v;
+            }
+            else if (!strcmp(s, "--curl")) ok = glm_real2(s, v, 0.0, 1e3, o->curl);
+            else if (!strcmp(s, "--wave")) ok = glm_real2(s, v, 0.0, 1e3, o->wave);
+            else if (!strcmp(s, "--frizz")) ok = glm_real(s, v, 0.0, 10.0, &o->frizz);
+            else if (!strcmp(s, "--color-variation")) ok = glm_real(s, v, 0.0, 1.0, &o->color_variation);
             else if (!strcmp(s, "--expand-shader")) o->expand_shader = v;
             else if (!strcmp(s, "--mesh")) o->mesh = v;
             else if (!strcmp(s, "--anim")) o->anim = v;

@@ -1,0 +1,268 @@
+/* make_hairstyle.c - author a hairstyle as guide curves on a mesh, the way
+   a groom starts in a DCC tool, and save it as .hair or OBJ polylines.
+
+   Roots are the mesh's vertices in front of every --plane (the scalp, as
+   paint_density paints it), thinned to about --curves of them. Each curve
+   leaves the scalp along the normal, turns towards --fall (back and down
+   for hair combed back; where that points into the head, its part along
+   the head) over its first eighth, stays --lift above a sphere
+   fitted to the grown part (so it lies over the head instead of through
+   it), and waves sideways with --wave amplitude. The curves are written in
+   the file's own units and pose (the first frame of --anim), so they fit
+   the mesh they were made on: the viewer reads them back with --guides.
+
+     make_hairstyle --mesh FILE --part NAME --plane NX,NY,NZ,D
+                    [--anim NAME] [--curves N] [--length M] [--fall X,Y,Z]
+                    [--lift M] [--wave M] [--points N] --out FILE.hair|.obj
+
+   Build: make examples (needs libassimp-dev). */
+#define HAIRFUR_IMPLEMENTATION
+#include "../hairfur.h"
+#define CHARACTER_IMPLEMENTATION
+#include "character.h"
+#define CURVES_IMPLEMENTATION
+#include "curves.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MH_MAX_PLANES 8
+
+static void usage(FILE *fp)
+{
+    fprintf(fp,
+"usage: make_hairstyle --mesh FILE --plane NX,NY,NZ,D --out FILE.hair|.obj\n"
+"  --mesh FILE      the mesh (any format assimp reads)\n"
+"  --part NAME      grow on this mesh of the file (default: all)\n"
+"  --anim NAME      pose: the first frame of this animation (default: the\n"
+"                   file's first animation, as the viewer grows on it)\n"
+"  --unit U         auto (default), m, cm, mm or metres per file unit\n"
+"  --plane N,N,N,D  roots where dot(normalize(N), p) >= D (metres); up to %d\n"
+"  --curves N       about this many curves (default 400)\n"
+"  --length M       curve length, metres (default 0.3)\n"
+"  --fall X,Y,Z     direction the hair turns to (default 0,-0.5,-1: back,\n"
+"                   down; the face is +z)\n"
+"  --lift M         distance kept above the head's sphere (default 0.012)\n"
+"  --wave M         sideways wave amplitude, metres (default 0.006)\n"
+"  --points N       points per curve (default 24)\n"
+"  --out FILE       .hair (Cem Yuksel's format) or .obj (polylines)\n",
+            MH_MAX_PLANES);
+}
+
+static int parse_floats(const char *v, int n, float *out)
+{
+    const char *s = v;
+    char *end;
+    int k;
+    for (k = 0; k < n; ++k) {
+        double x = strtod(s, &end);
+        if (end == s || !isfinite(x)) return 0;
+        out[k] = (float)x;
+        s = end;
+        if (k < n - 1) {
+            if (*s != ',') return 0;
+            ++s;
+        }
+    }
+    return *s == '\0';
+}
+
+static int parse_pos(const char *v, double lo, double hi, float *out)
+{
+    char *end;
+    double x = strtod(v, &end);
+    if (end == v || *end || !isfinite(x) || x < lo || x > hi) return 0;
+    *out = (float)x;
+    return 1;
+}
+
+static void norm3(float *v)
+{
+    float l = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (l > 0.0f) { v[0] /= l; v[1] /= l; v[2] /= l; }
+}
+
+int main(int argc, char **argv)
+{
+    const char *mesh = NULL, *part = NULL, *anim = NULL, *unit = NULL,
+               *out = NULL;
+    float planes[MH_MAX_PLANES][4], fall[3] = {0.0f, -0.5f, -1.0f};
+    float want = 400, length = 0.3f, lift = 0.012f, wave = 0.006f, P = 24;
+    int np = 0, i, k, p, a, roots = 0, every, n;
+    ch_character c;
+    ch_vertex *v;
+    cv_curves cv;
+    char err[512];
+    double centre[3] = {0, 0, 0}, radius = 0.0;
+    int counted = 0;
+
+    for (i = 1; i < argc; ++i) {
+        const char *o = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
+        int ok = 1;
+        if (!strcmp(o, "--help") || !strcmp(o, "-h")) {
+            usage(stdout);
+            return 0;
+        }
+        if (!val) {
+            fprintf(stderr, "make_hairstyle: %s needs a value (--help)\n", o);
+            return 2;
+        }
+        ++i;
+        if (!strcmp(o, "--mesh")) mesh = val;
+        else if (!strcmp(o, "--part")) part = val;
+        else if (!strcmp(o, "--anim")) anim = val;
+        else if (!strcmp(o, "--unit")) unit = val;
+        else if (!strcmp(o, "--out")) out = val;
+        else if (!strcmp(o, "--plane")) {
+            ok = np < MH_MAX_PLANES && parse_floats(val, 4, planes[np]);
+            if (ok) {
+                float l = sqrtf(planes[np][0] * planes[np][0] +
+                                planes[np][1] * planes[np][1] +
+                                planes[np][2] * planes[np][2]);
+                ok = l > 0.0f;
+                for (k = 0; ok && k < 4; ++k) planes[np][k] /= l;
+                ++np;
+            }
+        } else if (!strcmp(o, "--fall")) ok = parse_floats(val, 3, fall);
+        else if (!strcmp(o, "--curves")) ok = parse_pos(val, 1, 1e6, &want);
+        else if (!strcmp(o, "--length")) ok = parse_pos(val, 1e-4, 100, &length);
+        else if (!strcmp(o, "--lift")) ok = parse_pos(val, 0, 10, &lift);
+        else if (!strcmp(o, "--wave")) ok = parse_pos(val, 0, 10, &wave);
+        else if (!strcmp(o, "--points")) ok = parse_pos(val, 2, 1000, &P);
+        else {
+            fprintf(stderr, "make_hairstyle: unknown option %s (--help)\n", o);
+            return 2;
+        }
+        if (!ok) {
+            fprintf(stderr, "make_hairstyle: %s '%s': not a valid value "
+                    "(--help)\n", o, val);
+            return 2;
+        }
+    }
+    if (!mesh || !out || np == 0) {
+        usage(stderr);
+        return 2;
+    }
+    norm3(fall);
+    if (!ch_load(&c, mesh, unit, err, sizeof err)) {
+        fprintf(stderr, "make_hairstyle: %s\n", err);
+        return 1;
+    }
+    p = part ? ch_find_part(&c, part) : -1;
+    if (part && p < 0) {
+        fprintf(stderr, "make_hairstyle: %s has no mesh '%s'\n", mesh, part);
+        return 1;
+    }
+    a = ch_find_animation(&c, anim);
+    if (anim && a < 0) {
+        fprintf(stderr, "make_hairstyle: %s has no animation '%s'\n", mesh, anim);
+        return 1;
+    }
+    v = (ch_vertex *)malloc(sizeof(ch_vertex) * (size_t)c.vertex_count);
+    if (!v) return 1;
+    ch_pose(&c, a, 0.0, v, NULL);
+    /* the grown part's sphere: centroid and mean distance */
+    {
+        int lo = p >= 0 ? c.parts[p].first_vertex : 0;
+        int hi = p >= 0 ? lo + c.parts[p].vertex_count : c.vertex_count;
+        for (i = lo; i < hi; ++i, ++counted)
+            for (k = 0; k < 3; ++k) centre[k] += v[i].pos[k];
+        for (k = 0; k < 3; ++k) centre[k] /= counted;
+        for (i = lo; i < hi; ++i) {
+            double d = 0.0;
+            for (k = 0; k < 3; ++k)
+                d += (v[i].pos[k] - centre[k]) * (v[i].pos[k] - centre[k]);
+            radius += sqrt(d) / counted;
+        }
+        /* the roots: vertices in front of every plane */
+        for (i = lo; i < hi; ++i) {
+            int in = 1;
+            for (k = 0; k < np && in; ++k)
+                in = planes[k][0] * v[i].pos[0] + planes[k][1] * v[i].pos[1] +
+                     planes[k][2] * v[i].pos[2] >= planes[k][3];
+            roots += in;
+        }
+        if (roots == 0) {
+            fprintf(stderr, "make_hairstyle: no vertex of %s is in front of "
+                    "every plane\n", part ? part : mesh);
+            return 1;
+        }
+        every = roots > (int)want ? (int)(roots / want + 0.5f) : 1;
+        n = (roots + every - 1) / every;
+        memset(&cv, 0, sizeof cv);
+        cv.count = n;
+        cv.total = n * (int)P;
+        cv.points = (int *)malloc(sizeof(int) * (size_t)n);
+        cv.xyz = (float *)malloc(sizeof(float) * 3u * (size_t)cv.total);
+        if (!cv.points || !cv.xyz) return 1;
+        roots = 0;
+        n = 0;
+        for (i = lo; i < hi; ++i) {
+            int in = 1, j;
+            float x[3], d[3], side[3];
+            for (k = 0; k < np && in; ++k)
+                in = planes[k][0] * v[i].pos[0] + planes[k][1] * v[i].pos[1] +
+                     planes[k][2] * v[i].pos[2] >= planes[k][3];
+            if (!in || roots++ % every) continue;
+            cv.points[n] = (int)P;
+            memcpy(x, v[i].pos, sizeof x);
+            memcpy(d, v[i].normal, sizeof d);
+            /* sideways: across the fall direction, for the wave */
+            side[0] = d[1] * fall[2] - d[2] * fall[1];
+            side[1] = d[2] * fall[0] - d[0] * fall[2];
+            side[2] = d[0] * fall[1] - d[1] * fall[0];
+            norm3(side);
+            for (j = 0; j < (int)P; ++j) {
+                float *o = cv.xyz + 3 * ((size_t)n * (size_t)P + (size_t)j);
+                float t = (float)j / (P - 1), w = wave * sinf(t * 18.85f) * t;
+                double r2 = 0.0, r;
+                for (k = 0; k < 3; ++k) o[k] = x[k] + w * side[k];
+                if (j + 1 == (int)P) break;
+                /* turn towards the fall over the first eighth; where the
+                   fall points into the head, towards its part along the
+                   head (so hair over the forehead goes up and back over
+                   the top, as combed, instead of down over the face) */
+                {
+                    float s = t * 8.0f > 1.0f ? 1.0f : t * 8.0f, nd[3], f[3],
+                          rh[3], fr;
+                    for (k = 0; k < 3; ++k) rh[k] = (float)(x[k] - centre[k]);
+                    norm3(rh);
+                    fr = fall[0] * rh[0] + fall[1] * rh[1] + fall[2] * rh[2];
+                    for (k = 0; k < 3; ++k)
+                        f[k] = fall[k] - (fr < 0.0f ? fr : 0.0f) * rh[k];
+                    norm3(f);
+                    for (k = 0; k < 3; ++k)
+                        nd[k] = (1.0f - s) * v[i].normal[k] + s * f[k];
+                    norm3(nd);
+                    for (k = 0; k < 3; ++k) d[k] = 0.5f * d[k] + 0.5f * nd[k];
+                    norm3(d);
+                }
+                for (k = 0; k < 3; ++k) x[k] += d[k] * length / (P - 1);
+                /* over the head, not through it */
+                for (k = 0; k < 3; ++k) r2 += (x[k] - centre[k]) * (x[k] - centre[k]);
+                r = sqrt(r2);
+                if (r < radius + lift && r > 0.0)
+                    for (k = 0; k < 3; ++k)
+                        x[k] = (float)(centre[k] + (x[k] - centre[k]) *
+                                                       (radius + lift) / r);
+            }
+            ++n;
+        }
+    }
+    cv_scale(&cv, 1.0f / c.unit); /* back to the file's units */
+    if (!(strlen(out) > 4 && !strcmp(out + strlen(out) - 4, ".obj")
+              ? cv_write_obj(out, &cv, err, sizeof err)
+              : cv_write_hair(out, &cv, "hairfur make_hairstyle", err, sizeof err))) {
+        fprintf(stderr, "make_hairstyle: %s\n", err);
+        return 1;
+    }
+    printf("make_hairstyle: wrote %s: %d curves of %d points, %.3g m long, "
+           "from %d scalp vertices\n", out, cv.count, (int)P, (double)length,
+           roots);
+    cv_free(&cv);
+    free(v);
+    ch_free(&c);
+    return 0;
+}
