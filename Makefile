@@ -450,7 +450,7 @@ characters: $(BUILD)/gl_check $(BUILD)/gl_marschner $(BUILD)/paint_density \
 	  --plane 0,1,-0.53,0.717 --out $(OUT)/hair_styled.hair; \
 	$(CHAR_RUN) --mesh $(HUMAN) --grow-on Head --density $(OUT)/hair_human_scalp.png \
 	  --guides $(OUT)/hair_styled.hair --stiffness 0.3 --color-variation 0.25 \
-	  --settle 1 --frames 60 --out $(OUT)/hair_styled.png; \
+	  --settle 1 --frames 60 --still --out $(OUT)/hair_styled.png; \
 	echo "characters: wrote $(OUT)/fur_wuson_012.png ... fur_wuson_120.png," \
 	     "fur_wuson.png, hair_human_018.png ... hair_human_198.png," \
 	     "hair_human.png, hair_styled.hair (authored curves), hair_styled.png"
