@@ -214,7 +214,7 @@ $(BUILD)/%: examples/%.c $(HDR) $(STB_H) | $(BUILD)
 	gcc $(EX_CFLAGS) $< -o $@ -lm
 
 # grow_fur loads meshes with assimp (Debian's libassimp-dev).
-$(BUILD)/grow_fur: examples/grow_fur.c examples/head_mesh.h $(HDR) $(STB_H) | $(BUILD)
+$(BUILD)/grow_fur: examples/grow_fur.c examples/head_mesh.h examples/curves.h $(HDR) $(STB_H) | $(BUILD)
 	@printf '#include <assimp/cimport.h>\n' | gcc -E -x c - >/dev/null 2>&1 || \
 	  { echo "grow_fur needs assimp: run 'make deps' (Debian package libassimp-dev)"; exit 1; }
 	gcc $(EX_CFLAGS) $< -o $@ -lassimp -lm
@@ -348,7 +348,8 @@ gl-test-or-skip:
 # gl_check runs first; without headless GL the recipe says why and passes
 # (gl_fur_check itself also exits 2 with "SKIP: reason" then).
 GL_TESTS := $(BUILD)/gl_smoke $(BUILD)/gl_misc_test $(BUILD)/gl_ribbon_check \
-            $(BUILD)/gl_fur_check $(BUILD)/gl_marschner $(BUILD)/png_diff
+            $(BUILD)/gl_fur_check $(BUILD)/gl_marschner $(BUILD)/png_diff \
+            $(BUILD)/make_hairstyle
 gl-test: $(BUILD)/gl_check $(GL_TESTS) | $(OUT)
 	@if ! why=$$(env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_check); then \
 	  echo "GL tests skipped: $$why"; exit 0; \
@@ -377,7 +378,8 @@ $(BUILD)/png_diff: tests/png_diff.c | $(BUILD)
 
 # The viewer as a user meets it (tests/viewer_check.sh): --help, errors,
 # the walking Wuson, the same picture in metres and centimetres.
-viewer-check: $(BUILD)/gl_check $(BUILD)/gl_marschner $(BUILD)/png_diff | $(OUT)
+viewer-check: $(BUILD)/gl_check $(BUILD)/gl_marschner $(BUILD)/png_diff \
+              $(BUILD)/make_hairstyle | $(OUT)
 	@if ! why=$$(env -u DISPLAY -u WAYLAND_DISPLAY $(BUILD)/gl_check); then \
 	  echo "viewer_check skipped: $$why"; exit 0; fi; \
 	BUILD=$(BUILD) OUT=$(OUT) sh tests/viewer_check.sh

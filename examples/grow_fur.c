@@ -10,7 +10,8 @@
               [--strands N] [--guides N | --tess-factor F] [--points N]
               [--length-max M] [--frames N] [--lod F] [--seed N]
               [--collider auto|none|x,y,z,r] [--eye x,y,z]
-              [--out FILE.obj | FILE.ply]
+              [--guides FILE.hair|.tfx|.obj]
+              [--out FILE.obj [--curves] | FILE.ply | FILE.hair]
 
    Without --mesh it grows on the built-in head (examples/head_mesh.h: a
    sphere of radius 0.1 with a procedural hairline density map and a bangs
@@ -39,6 +40,8 @@
 #define STB_IMAGE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image.h>
+#define CURVES_IMPLEMENTATION
+#include "curves.h"
 
 #include <assimp/cimport.h>
 #include <assimp/postprocess.h>
@@ -83,8 +86,9 @@ static double median(double *v, int n)
 static void usage(FILE *fp)
 {
     fprintf(fp,
-"usage: grow_fur [options]; every option takes one value. Lengths are in\n"
-"metres; a --mesh file's coordinates are read as metres (\"mesh units\").\n"
+"usage: grow_fur [options]; every option but --curves takes one value.\n"
+"Lengths are in metres; a --mesh file's coordinates are read as metres\n"
+"(\"mesh units\").\n"
 "  --mesh FILE        mesh to grow on, any format assimp reads, all its meshes\n"
 "                     merged (default: the built-in head, a sphere of radius\n"
 "                     0.1 m with its own density, length and colour maps)\n"
@@ -98,6 +102,10 @@ static void usage(FILE *fp)
 "  --guides N         target guide count (pure guides at the mesh's welded\n"
 "                     vertices + LOD guides); sets tess_factor from the mesh's\n"
 "                     area (default: a tenth of --strands, at most %d)\n"
+"  --guides FILE      guide curves (.hair, .tfx, .obj polylines; in the\n"
+"                     mesh's coordinates): their shapes become the guides'\n"
+"                     rest shapes (lengths from the curves); a value that is\n"
+"                     not a whole number is a file\n"
 "  --tess-factor F    raw tess_factor instead of --guides, per square mesh unit:\n"
 "                     triangles split while density x area x F > 1; 0 = pure\n"
 "                     guides only (default: derived from --guides)\n"
@@ -113,7 +121,10 @@ static void usage(FILE *fp)
 "                     built-in head: radius 0.97 x 0.1 at the origin)\n"
 "  --eye x,y,z        camera the ribbons face, mesh units (default: bounding\n"
 "                     box centre + (0, 0, 2.5 x half the box diagonal))\n"
-"  --out FILE         .obj or .ply output (default fur.obj)\n"
+"  --out FILE         the last frame: .obj or .ply ribbons, or .hair curves\n"
+"                     (the drawn strands with their colours; default fur.obj)\n"
+"  --curves           with --out F.obj: the strands as OBJ polylines (`l`)\n"
+"                     instead of ribbons\n"
 "  --help             this list\n"
 "Counts (N) accept 20000, 2e4 or 20k (k = 1000). Exit code 2: bad arguments.\n",
             GF_DEFAULT_STRANDS, GF_MAX_DEFAULT_GUIDES, HF_MAX_POINTS);
@@ -438,7 +449,9 @@ static float fit_tess_factor(const hf_mesh *mesh, const hf_map *density,
 int main(int argc, char **argv)
 {
     const char *mesh_path = NULL, *density_path = NULL, *length_path = NULL,
-               *color_path = NULL, *out_path = "fur.obj";
+               *color_path = NULL, *out_path = "fur.obj", *curves_path = NULL;
+    int curves_out = 0; /* --curves: OBJ polylines instead of ribbons */
+    cv_curves curves;
     int strands = GF_DEFAULT_STRANDS, points = 16, frames = 120, i, f;
     long long seed = 1, guides = -1, cnt;
     float lod = 1.0f, max_length = 0.12f, tess_factor = -1.0f;
@@ -476,6 +489,10 @@ int main(int argc, char **argv)
             usage(stdout);
             return 0;
         }
+        if (!strcmp(a, "--curves")) { /* the one option without a value */
+            curves_out = 1;
+            continue;
+        }
         if (strncmp(a, "--", 2) != 0 || !strcmp(a, "--")) {
             fprintf(stderr, "grow_fur: unexpected argument '%s' (--help "
                             "lists the options)\n", a);
@@ -494,8 +511,13 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--strands")) {
             ok = parse_count(a, v, 1, GF_MAX_COUNT, &cnt);
             strands = (int)cnt;
-        } else if (!strcmp(a, "--guides"))
-            ok = parse_count(a, v, 1, GF_MAX_COUNT, &guides);
+        } else if (!strcmp(a, "--guides")) {
+            /* a guide count, or a file of guide curves */
+            if (strspn(v, "0123456789+") == strlen(v))
+                ok = parse_count(a, v, 1, GF_MAX_COUNT, &guides);
+            else
+                curves_path = v;
+        }
         else if (!strcmp(a, "--tess-factor"))
             ok = parse_real(a, v, 0.0, 1e30, &tess_factor);
         else if (!strcmp(a, "--points")) {
@@ -534,10 +556,26 @@ int main(int argc, char **argv)
         if (!ok) return 2;
         ++i;
     }
-    if (!(ends_with(out_path, ".obj") || ends_with(out_path, ".ply"))) {
-        fprintf(stderr, "grow_fur: --out '%s': the name must end in .obj or "
-                        ".ply\n", out_path);
+    if (!(ends_with(out_path, ".obj") || ends_with(out_path, ".ply") ||
+          ends_with(out_path, ".hair"))) {
+        fprintf(stderr, "grow_fur: --out '%s': the name must end in .obj, "
+                        ".ply or .hair\n", out_path);
         return 2;
+    }
+    if (curves_out && !ends_with(out_path, ".obj")) {
+        fprintf(stderr, "grow_fur: --curves writes OBJ polylines: --out must "
+                        "end in .obj (.hair is always curves)\n");
+        return 2;
+    }
+    memset(&curves, 0, sizeof curves);
+    if (curves_path) {
+        char err[700];
+        if (!cv_read(curves_path, &curves, err, sizeof err)) {
+            fprintf(stderr, "grow_fur: --guides %s\n", err);
+            return 1;
+        }
+        printf("guides: %d curves, %d points from %s\n", curves.count,
+               curves.total, curves_path);
     }
     if (guides >= 0 && tess_factor >= 0.0f) {
         fprintf(stderr, "grow_fur: give --guides or --tess-factor, not "
@@ -696,6 +734,11 @@ int main(int argc, char **argv)
     desc.sampler = HF_SAMPLER_STRATIFIED;
     desc.seed = (uint64_t)seed;
     desc.clump = 0.2f;
+    if (curves.count > 0) {
+        desc.guide_curves = curves.xyz;
+        desc.guide_curve_points = curves.points;
+        desc.guide_curve_count = curves.count;
+    }
     /* LOD guides where the mesh is coarse. A triangle of density D and
        area A is split while D * A * tess_factor > 1, so a factor of about
        lod_guides / area gives that many added vertices (LOD guides); the
@@ -850,7 +893,32 @@ int main(int argc, char **argv)
         hf_ribbon_indices(info.drawn_strand_count, info.points_per_strand,
                           HF_TRIANGLES, ibuf, n_idx) != HF_OK)
         return 1;
-    {
+    if (ends_with(out_path, ".hair") || curves_out) {
+        /* the drawn strands as curves, with their colours (.hair) */
+        cv_curves o;
+        char err[600];
+        int P = info.points_per_strand, S = info.drawn_strand_count, k;
+        long q;
+        memset(&o, 0, sizeof o);
+        o.count = S;
+        o.total = S * P;
+        o.points = (int *)malloc(sizeof(int) * (size_t)(S > 0 ? S : 1));
+        o.xyz = (float *)malloc(sizeof(float) * 3u * (size_t)(S > 0 ? S * P : 1));
+        o.rgb = (float *)malloc(sizeof(float) * 3u * (size_t)(S > 0 ? S * P : 1));
+        if (!o.points || !o.xyz || !o.rgb) return 1;
+        for (k = 0; k < S; ++k) o.points[k] = P;
+        memcpy(o.xyz, info.strand_points, sizeof(float) * 3u * (size_t)S * (size_t)P);
+        for (q = 0; q < (long)S * P; ++q)
+            memcpy(o.rgb + 3 * q, info.strand_colors + 4 * (q / P), 3 * sizeof(float));
+        if (!(ends_with(out_path, ".hair")
+                  ? cv_write_hair(out_path, &o, "hairfur grow_fur", err, sizeof err)
+                  : cv_write_obj(out_path, &o, err, sizeof err))) {
+            fprintf(stderr, "grow_fur: %s\n", err);
+            return 1;
+        }
+        printf("wrote %s: %d curves of %d points\n", out_path, S, P);
+        cv_free(&o);
+    } else {
         FILE *fp = fopen(out_path, "wb");
         long long nvert = 2LL * info.drawn_strand_count * info.points_per_strand;
         long long k;
@@ -911,6 +979,7 @@ int main(int argc, char **argv)
     }
 
     hf_fur_destroy(fur);
+    cv_free(&curves);
     free(rest);
     free(skin);
     free(idx);

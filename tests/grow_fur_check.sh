@@ -64,5 +64,26 @@ grep -q "collider: none" "$tmp/out" || bad "--collider none not reported"
 grep -q "guide roots inside it" "$tmp/out" || bad "roots_inside not reported"
 grep -q "sit inside the collider" "$tmp/out" || bad "a collider larger than the head: no roots-inside warning"
 
+# curves out and back in: .hair (with colours) and OBJ polylines; read back
+# as guide curves, every guide takes their shape (strands keep the length)
+"$BIN" --frames 5 --strands 1k --out "$tmp/c.hair" >"$tmp/out" 2>&1 \
+    || bad "--out c.hair failed: $(tail -n 1 "$tmp/out")"
+grep -q "wrote .*c.hair: 1000 curves of 16 points" "$tmp/out" || bad "--out .hair: no curves written"
+"$BIN" --frames 5 --strands 1k --out "$tmp/c.obj" --curves >"$tmp/out" 2>&1 \
+    || bad "--out c.obj --curves failed"
+[ "$(grep -c '^l ' "$tmp/c.obj")" -eq 1000 ] || bad "--curves: not 1000 'l' lines"
+for g in c.hair c.obj; do
+    "$BIN" --guides "$tmp/$g" --frames 2 --strands 1k --out "$tmp/f.obj" >"$tmp/out" 2>&1 \
+        || bad "--guides $g failed: $(tail -n 1 "$tmp/out")"
+    grep -q "guides: 1000 curves, 16000 points" "$tmp/out" || bad "--guides $g: not read"
+done
+"$BIN" --out "$tmp/c.hair" --curves >"$tmp/out" 2>&1 && bad "--curves with .hair accepted"
+# a truncated .hair and a file of the wrong kind: refused, named
+head -c 300 "$tmp/c.hair" >"$tmp/cut.hair"
+"$BIN" --guides "$tmp/cut.hair" --frames 1 >"$tmp/out" 2>&1 && bad "a truncated .hair was accepted"
+grep -q "truncated" "$tmp/out" || bad "a truncated .hair: no 'truncated' in: $(cat "$tmp/out")"
+"$BIN" --guides "$tmp/f.obj" --frames 1 >"$tmp/out" 2>&1 && bad "an OBJ without polylines was accepted"
+grep -q "no polylines" "$tmp/out" || bad "OBJ without polylines: $(cat "$tmp/out")"
+
 if [ $fail -ne 0 ]; then echo "grow_fur_check: FAILED"; exit 1; fi
 echo "grow_fur_check: all passed"

@@ -3,7 +3,7 @@
 # it: --help, clear errors for bad input, an animated skinned character
 # from assimp-testmodels (ropes keep their length, frames written), and the
 # same picture for a mesh in metres and the same mesh in centimetres.
-# Needs build/gl_marschner, build/png_diff and headless GL (the Makefile's
+# Needs build/gl_marschner, build/make_hairstyle, build/png_diff and headless GL (the Makefile's
 # viewer-check target checks those); skips, saying why, without the models.
 # Every check prints ok or FAILED; the exit status is the number failed.
 set -u
@@ -83,6 +83,25 @@ if $V --headless --mesh "$M/X/Testwuson.X" --anim Wuson_Walk --strands 4000 \
 else
     bad "walk: exit non-zero: $(tail -3 "$O/walk")"
 fi
+
+# an authored hairstyle: make_hairstyle's curves read back as the guides
+H=$M/X/BCN_Epileptic.X
+if $B/make_hairstyle --mesh "$H" --part Head --plane 0,1,-0.53,0.717 \
+       --curves 100 --out "$O/style.hair" >"$O/style" 2>&1 &&
+   $V --headless --mesh "$H" --grow-on Head --guides "$O/style.hair" \
+       --strands 3000 --frames 10 --out "$O/styled.png" >"$O/styled" 2>&1; then
+    worst=$(sed -n 's/.*stretch.*worst \([^,]*\),.*/\1/p' "$O/styled")
+    hair=$(sed -n 's/.*guides, hair \([0-9.]*\) m,.*/\1/p' "$O/styled")
+    if awk -v w="$worst" -v h="$hair" \
+         'BEGIN { exit !(w != "" && w + 0 < 1e-3 && h + 0 > 0.25) }'; then
+        ok "--guides style.hair: hair $hair m (the curves' length), stretch $worst"
+    else bad "--guides: hair '$hair', stretch '$worst'"; fi
+else
+    bad "--guides style.hair: $(tail -n 2 "$O/style" "$O/styled")"
+fi
+printf 'HAIR' >"$O/bad.hair"
+expect_error "--guides with a bad .hair" "shorter than its 128-byte header" \
+    --headless --guides "$O/bad.hair"
 
 # metres and centimetres: the same picture (the unit is found from the
 # size); read as metres, the centimetre mesh gives another one
