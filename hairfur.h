@@ -42,9 +42,10 @@
 
    FUNCTIONS BY TASK
 
-       Fur on a mesh, all stages in one object (section 10):
-           hf_fur_create, hf_fur_destroy, hf_fur_get_info, hf_fur_set_lod,
-           hf_fur_set_roots, hf_fur_simulate, hf_fur_interpolate_guides,
+       Fur on a mesh, or a groom, all stages in one object (section 10):
+           hf_fur_create, hf_fur_create_groom, hf_fur_destroy,
+           hf_fur_get_info, hf_fur_set_lod, hf_fur_set_roots,
+           hf_fur_set_transform, hf_fur_simulate, hf_fur_interpolate_guides,
            hf_fur_interpolate, hf_fur_ribbons, hf_fur_points,
            hf_fur_max_stretch, hf_fur_reset, hf_fur_set_rope_params,
            hf_fur_set_mode
@@ -175,7 +176,10 @@
                            comb_stride, comb_map), authored guide curves
                            (guide_curves, guide_curve_points,
                            guide_curve_count) and styling (curl, wave,
-                           frizz with their maps, colour variation).
+                           frizz with their maps, colour variation);
+                           grooms without a mesh (hf_fur_create_groom,
+                           hf_groom_desc) and rigid root frames for any
+                           fur (hf_fur_set_transform).
        0.1.0 (2026-11-22)  first release: maps and meshes, density
                            tessellation, guides, placement, Verlet ropes,
                            interpolation, LOD, ribbons, Marschner LUTs,
@@ -1636,6 +1640,43 @@ HFDEF hf_result hf_fur_create(const hf_fur_desc *desc, hf_fur **out_fur,
                               hf_diag *diag);
 /* Free a fur and everything it allocated (NULL is ignored). */
 HFDEF void hf_fur_destroy(hf_fur *fur);
+
+/* A groom: strands without a mesh (an artist's groom from TressFX, .hair
+   or a DCC tool). Zero-initialise, then set the strands. */
+typedef struct hf_groom_desc {
+    const float *points;       /* xyz of every point, strand after strand,
+                                  root first (required) */
+    const int *strand_points;  /* per strand: its points, >= 2 (required) */
+    int strand_count;          /* >= 1 */
+    const float *colors;       /* NULL: white; else rgb per strand, [0, 1] */
+    int points_per_strand;     /* 0 = 16; each strand is resampled to P
+                                  points evenly along its length */
+    float guide_fraction;      /* 0 = 0.1: round(fraction * strands) of the
+                                  strands, at least 1, are simulated guides;
+                                  (0, 1] */
+    uint64_t seed;             /* the LOD order (a shuffle) */
+    const hf_rope_params *rope_params; /* NULL = hf_rope_params_init */
+    const hf_allocator *allocator;     /* NULL = default; copied */
+} hf_groom_desc;
+
+/* Make a fur from a groom. Its drawn strands are the groom's own strands
+   (resampled), in a shuffled LOD order; the first guide_fraction of them
+   are also its guides, simulated as ropes whose root frame is the
+   strand's root and first segment; every other strand follows its three
+   nearest guides (by root, weights 1 / distance^2) and keeps its own rest
+   offset from their blend, carried by their root frames. So at rest, and
+   when the roots move rigidly (hf_fur_set_transform), every strand is the
+   groom's own strand to float precision; under simulation it follows its
+   guides. Roots follow a rigid transform: hf_fur_set_roots refuses a
+   groom (HF_ERROR_BAD_PARAMETER). hf_fur_info: no triangles, strand UVs
+   0. Cost at creation: strands x guides distance tests. Errors:
+   HF_ERROR_NULL_POINTER, HF_ERROR_BAD_COUNT (counts, points per strand),
+   HF_ERROR_NON_FINITE (a point or colour), HF_ERROR_BAD_PARAMETER (a
+   zero-length strand, guide_fraction, rope parameters, a coordinate
+   beyond HF_ROPE_MAX_COORD), HF_ERROR_OVERFLOW, HF_ERROR_OUT_OF_MEMORY;
+   *out_fur is set only on success, and `diag` says what failed. */
+HFDEF hf_result hf_fur_create_groom(const hf_groom_desc *desc,
+                                    hf_fur **out_fur, hf_diag *diag);
 /* Fill *info. Errors: HF_ERROR_NULL_POINTER. */
 HFDEF hf_result hf_fur_get_info(const hf_fur *fur, hf_fur_info *info);
 
@@ -1657,6 +1698,15 @@ HFDEF hf_result hf_fur_set_lod(hf_fur *fur, float lod);
    HF_ERROR_NON_FINITE (a position or normal read); nothing set then. */
 HFDEF hf_result hf_fur_set_roots(hf_fur *fur, const hf_mesh *skinned,
                                  int first, int count);
+
+/* Root frames of guides [first, first + count) moved rigidly from their
+   rest frames (at creation) by `m`, rows of a 3x4 matrix (rotation and
+   uniform scale, then translation): the way a groom's roots follow a head,
+   and, with hf_fur_reset, a teleport of any fur. Errors:
+   HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE, HF_ERROR_NON_FINITE; nothing
+   set then. */
+HFDEF hf_result hf_fur_set_transform(hf_fur *fur, const float m[12],
+                                     int first, int count);
 
 /* Step the ropes of guides [first, first + count) by dt (see
    hf_ropes_step: clamped above max_dt, HF_ERROR_BAD_TIME_STEP for zero,
@@ -8304,6 +8354,11 @@ struct hf_fur {
     uint32_t *ref;         /* 3 per guide: root vertex, tangent edge end,
                               third corner (face normal without normals) */
     float *root_pos, *root_nrm, *root_tan; /* 3 per guide, per frame */
+    float *rest_frame;     /* 9 per guide: root position, normal and
+                              tangent at creation (hf_fur_set_transform) */
+    int groom;             /* made by hf_fur_create_groom: no mesh */
+    float *offsets;        /* groom: P * 3 per strand, its rest points
+                              minus its guides' blend, in their rest frames */
 };
 
 /* Allocation that remembers nothing: hf_fur_destroy frees each array by
@@ -8344,6 +8399,8 @@ HFDEF void hf_fur_destroy(hf_fur *f)
     hf__free(&a, f->root_pos);
     hf__free(&a, f->root_nrm);
     hf__free(&a, f->root_tan);
+    hf__free(&a, f->rest_frame);
+    hf__free(&a, f->offsets);
     hf__free(&a, f);
 }
 
@@ -9015,6 +9072,22 @@ HF__PRIVATE hf_result hf__fur_root_refs(hf_fur *f, hf__fur_build *b)
     return HF_OK;
 }
 
+/* The root frames at creation, for hf_fur_set_transform. */
+HF__PRIVATE hf_result hf__fur_keep_rest_frames(hf_fur *f)
+{
+    const size_t G = (size_t)f->guide_count;
+    hf_result r = HF_OK;
+    size_t g;
+    f->rest_frame = (float *)hf__fur_array(f, G * 9u, sizeof(float), &r);
+    if (r != HF_OK) return r;
+    for (g = 0; g < G; ++g) {
+        HF_MEMCPY(f->rest_frame + 9 * g, f->root_pos + 3 * g, 12);
+        HF_MEMCPY(f->rest_frame + 9 * g + 3, f->root_nrm + 3 * g, 12);
+        HF_MEMCPY(f->rest_frame + 9 * g + 6, f->root_tan + 3 * g, 12);
+    }
+    return HF_OK;
+}
+
 /* Stage 4: the ropes at rest, roots from the rest mesh, and the strands
    interpolated once so the first frame has points to draw. */
 HF__PRIVATE hf_result hf__fur_ropes(hf_fur *f, hf__fur_build *b)
@@ -9036,6 +9109,7 @@ HF__PRIVATE hf_result hf__fur_ropes(hf_fur *f, hf__fur_build *b)
                                f->root_pos, f->root_nrm, f->root_tan, 0)) !=
             HF_OK)
         return r;
+    if ((r = hf__fur_keep_rest_frames(f)) != HF_OK) return r;
     f->lod = 1.0f;
     f->width_scale = 1.0f;
     f->lod_sim = 1;
@@ -9099,6 +9173,338 @@ HFDEF hf_result hf_fur_create(const hf_fur_desc *desc, hf_fur **out_fur,
     *out_fur = f;
     hf__ok(diag);
     return HF_OK;
+}
+
+/* ---- grooms ----------------------------------------------------------- */
+
+/* Orthonormal frame (tangent, normal, binormal) as columns of o[9] (row
+   major 3x3) from a normal and a tangent that need not be unit or
+   perpendicular. */
+HF__PRIVATE void hf__groom_frame(const float *n, const float *t, double *o)
+{
+    double nn[3], tt[3], bb[3], l, d;
+    int k;
+    l = HF_SQRT((double)n[0] * n[0] + (double)n[1] * n[1] + (double)n[2] * n[2]);
+    for (k = 0; k < 3; ++k) nn[k] = l > 0.0 ? n[k] / l : (k == 1);
+    d = t[0] * nn[0] + t[1] * nn[1] + t[2] * nn[2];
+    for (k = 0; k < 3; ++k) tt[k] = t[k] - d * nn[k];
+    l = HF_SQRT(tt[0] * tt[0] + tt[1] * tt[1] + tt[2] * tt[2]);
+    if (!(l > 0.0)) { /* any perpendicular */
+        tt[0] = HF_FABS(nn[0]) < 0.9 ? 0.0 : -nn[2];
+        tt[1] = HF_FABS(nn[0]) < 0.9 ? nn[2] : 0.0;
+        tt[2] = HF_FABS(nn[0]) < 0.9 ? -nn[1] : nn[0];
+        l = HF_SQRT(tt[0] * tt[0] + tt[1] * tt[1] + tt[2] * tt[2]);
+    }
+    for (k = 0; k < 3; ++k) tt[k] /= l;
+    bb[0] = nn[1] * tt[2] - nn[2] * tt[1];
+    bb[1] = nn[2] * tt[0] - nn[0] * tt[2];
+    bb[2] = nn[0] * tt[1] - nn[1] * tt[0];
+    for (k = 0; k < 3; ++k) {
+        o[3 * k] = tt[k];
+        o[3 * k + 1] = nn[k];
+        o[3 * k + 2] = bb[k];
+    }
+}
+
+/* Groom strands [first, first + count): add each strand's rest offsets,
+   turned by the blend of its guides' rotations from rest (current frame
+   times rest frame transposed). Runs after the blend of guide points. */
+HF__PRIVATE void hf__groom_offsets(const hf_fur *f, int first, int count)
+{
+    const int P = f->P;
+    int s, k, i, j, c;
+    for (s = first; s < first + count; ++s) {
+        const hf_strand_binding *b = &f->bindings[s];
+        const float *off = f->offsets + (size_t)s * (size_t)P * 3u;
+        float *out = f->strand_points + (size_t)s * (size_t)P * 3u;
+        double R[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+        for (k = 0; k < 3; ++k) {
+            const uint32_t g = b->guide[k];
+            double cur[9], rest[9];
+            if (b->weight[k] == 0.0f) continue;
+            hf__groom_frame(f->root_nrm + 3 * g, f->root_tan + 3 * g, cur);
+            hf__groom_frame(f->rest_frame + 9 * g + 3, f->rest_frame + 9 * g + 6,
+                            rest);
+            for (i = 0; i < 3; ++i)
+                for (j = 0; j < 3; ++j) {
+                    double m = 0.0;
+                    for (c = 0; c < 3; ++c) m += cur[3 * i + c] * rest[3 * j + c];
+                    R[3 * i + j] += b->weight[k] * m;
+                }
+        }
+        for (j = 0; j < P; ++j) {
+            const float *o = off + 3 * j;
+            for (i = 0; i < 3; ++i)
+                out[3 * j + i] += (float)(R[3 * i] * o[0] + R[3 * i + 1] * o[1] +
+                                          R[3 * i + 2] * o[2]);
+        }
+    }
+}
+
+/* The groom's own fields (the ropes check their parameters). */
+HF__PRIVATE hf_result hf__groom_check(const hf_groom_desc *d, int P,
+                                      float fraction, hf_diag *diag)
+{
+    long long total = 0;
+    int i, k;
+    if (!d->points || !d->strand_points)
+        return hf__fail(diag, HF_ERROR_NULL_POINTER, "points", -1,
+                        "points or strand_points is NULL");
+    if (d->strand_count < 1 || d->strand_count > (1 << 24))
+        return hf__fail(diag, HF_ERROR_BAD_COUNT, "strand_count", -1,
+                        "strand_count %d is outside 1 .. 16777216",
+                        d->strand_count);
+    if (P < 2 || P > HF_MAX_POINTS)
+        return hf__fail(diag, HF_ERROR_BAD_COUNT, "points_per_strand", -1,
+                        "points_per_strand %d is outside 2..%d", P,
+                        HF_MAX_POINTS);
+    if (!hf__finitef(fraction) || !(fraction > 0.0f) || fraction > 1.0f)
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "guide_fraction", -1,
+                        "guide_fraction %g is outside (0, 1]",
+                        (double)fraction);
+    for (i = 0; i < d->strand_count; ++i) {
+        const int n = d->strand_points[i];
+        const float *p;
+        double len = 0.0;
+        if (n < 2 || n > (1 << 24))
+            return hf__fail(diag, HF_ERROR_BAD_COUNT, "strand_points", i,
+                            "strand %d has %d points (2 .. 16777216)", i, n);
+        p = d->points + 3 * total;
+        for (k = 0; k < 3 * n; ++k) {
+            if (!hf__finitef(p[k]))
+                return hf__fail(diag, HF_ERROR_NON_FINITE, "points",
+                                total + k / 3, "strand %d, point %d is "
+                                "non-finite", i, k / 3);
+            if (HF_FABS(p[k]) > HF_ROPE_MAX_COORD)
+                return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "points",
+                                total + k / 3, "strand %d, point %d is "
+                                "beyond HF_ROPE_MAX_COORD", i, k / 3);
+        }
+        for (k = 1; k < n; ++k) {
+            double dx = p[3 * k] - p[3 * k - 3], dy = p[3 * k + 1] - p[3 * k - 2],
+                   dz = p[3 * k + 2] - p[3 * k - 1];
+            len += HF_SQRT(dx * dx + dy * dy + dz * dz);
+        }
+        if (!(len > 0.0))
+            return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "strand_points", i,
+                            "strand %d has zero length", i);
+        total += n;
+        if (total > 0x7fffffffLL)
+            return hf__fail(diag, HF_ERROR_OVERFLOW, "strand_points", i,
+                            "more than 2^31 points");
+        if (d->colors)
+            for (k = 0; k < 3; ++k)
+                if (!hf__finitef(d->colors[3 * i + k]))
+                    return hf__fail(diag, HF_ERROR_NON_FINITE, "colors", i,
+                                    "strand %d's colour is non-finite", i);
+    }
+    return HF_OK;
+}
+
+/* The groom's strands resampled in LOD order, the guides, bindings,
+   offsets, records and ropes. */
+HF__PRIVATE hf_result hf__groom_build(hf_fur *f, const hf_groom_desc *d,
+                                      float fraction)
+{
+    const int S = d->strand_count, P = f->P;
+    const size_t SP3 = (size_t)S * (size_t)P * 3u;
+    int G, i, j, k;
+    hf_result r = HF_OK;
+    uint32_t *order;
+    long long *start;
+    double *tmp;
+    hf_rng rng;
+    G = (int)(fraction * (float)S + 0.5f);
+    if (G < 1) G = 1;
+    if (G > S) G = S;
+    f->strand_count = f->drawn = S;
+    f->guide_count = f->pure_count = G;
+    f->strands = (hf_strand *)hf__fur_array(f, (size_t)S, sizeof(hf_strand), &r);
+    f->bindings = (hf_strand_binding *)hf__fur_array(f, (size_t)S,
+                                                     sizeof(hf_strand_binding), &r);
+    f->strand_lengths = (float *)hf__fur_array(f, (size_t)S, sizeof(float), &r);
+    f->strand_rgba = (float *)hf__fur_array(f, (size_t)S * 4u, sizeof(float), &r);
+    f->strand_uv = (float *)hf__fur_array(f, (size_t)S * 2u, sizeof(float), &r);
+    f->strand_c3x = (float *)hf__fur_array(f, (size_t)S, sizeof(float), &r);
+    f->strand_points = (float *)hf__fur_array(f, SP3, sizeof(float), &r);
+    f->offsets = (float *)hf__fur_array(f, SP3, sizeof(float), &r);
+    f->guide_points = (float *)hf__fur_array(f, (size_t)G * (size_t)P * 3u,
+                                             sizeof(float), &r);
+    f->root_pos = (float *)hf__fur_array(f, (size_t)G * 3u, sizeof(float), &r);
+    f->root_nrm = (float *)hf__fur_array(f, (size_t)G * 3u, sizeof(float), &r);
+    f->root_tan = (float *)hf__fur_array(f, (size_t)G * 3u, sizeof(float), &r);
+    order = (uint32_t *)hf__fur_array(f, (size_t)S, sizeof(uint32_t), &r);
+    start = (long long *)hf__fur_array(f, (size_t)S, sizeof(long long), &r);
+    tmp = (double *)hf__fur_array(f, (size_t)P * 3u, sizeof(double), &r);
+    if (r != HF_OK) goto done;
+    HF_MEMSET(f->strands, 0, sizeof(hf_strand) * (size_t)S);
+    HF_MEMSET(f->strand_uv, 0, sizeof(float) * 2u * (size_t)S);
+    HF_MEMSET(f->strand_c3x, 0, sizeof(float) * (size_t)S);
+    /* LOD order: a shuffle, so every prefix is spread over the groom */
+    for (i = 0; i < S; ++i) order[i] = (uint32_t)i;
+    hf_rng_seed(&rng, d->seed, 0x6700u);
+    for (i = S - 1; i > 0; --i) {
+        uint32_t t, x = hf_rng_below(&rng, (uint32_t)i + 1u);
+        t = order[i]; order[i] = order[x]; order[x] = t;
+    }
+    start[0] = 0;
+    for (i = 1; i < S; ++i) start[i] = start[i - 1] + d->strand_points[i - 1];
+    /* each strand, resampled, at its place in LOD order */
+    for (i = 0; i < S; ++i) {
+        const uint32_t src = order[i];
+        float *o = f->strand_points + (size_t)i * (size_t)P * 3u;
+        const float *p = d->points + 3 * start[src];
+        double len = hf__curve_resample(p, d->strand_points[src], P, tmp);
+        for (j = 0; j < 3 * P; ++j) o[j] = (float)(p[j % 3] + tmp[j]);
+        f->strand_lengths[i] = (float)len;
+        for (k = 0; k < 3; ++k)
+            f->strand_rgba[4 * i + k] = d->colors ? d->colors[3 * src + k] : 1.0f;
+        f->strand_rgba[4 * i + 3] = 1.0f;
+    }
+    /* guides: the first G strands; root frame from the first segment */
+    HF_MEMCPY(f->guide_points, f->strand_points,
+              sizeof(float) * (size_t)G * (size_t)P * 3u);
+    for (i = 0; i < G; ++i) {
+        const float *q = f->guide_points + (size_t)i * (size_t)P * 3u;
+        float *n = f->root_nrm + 3 * i, *t = f->root_tan + 3 * i;
+        double l;
+        for (k = 0; k < 3; ++k) n[k] = q[3 + k] - q[k];
+        l = HF_SQRT((double)n[0] * n[0] + (double)n[1] * n[1] + (double)n[2] * n[2]);
+        if (l > 0.0) for (k = 0; k < 3; ++k) n[k] = (float)(n[k] / l);
+        else { n[0] = 0.0f; n[1] = 1.0f; n[2] = 0.0f; }
+        /* a tangent across it: n x (x or y axis) */
+        if (HF_FABS(n[0]) < 0.9f) { t[0] = 0.0f; t[1] = n[2]; t[2] = -n[1]; }
+        else { t[0] = -n[2]; t[1] = 0.0f; t[2] = n[0]; }
+        HF_MEMCPY(f->root_pos + 3 * i, q, 12);
+    }
+    /* bindings: a guide to itself; others to the nearest three guides */
+    for (i = 0; i < S; ++i) {
+        hf_strand_binding *b = &f->bindings[i];
+        const float *q = f->strand_points + (size_t)i * (size_t)P * 3u;
+        double dist[3] = {-1.0, -1.0, -1.0}, wsum = 0.0;
+        int near[3] = {-1, -1, -1}, g;
+        b->length_scale = 1.0f;
+        if (i < G) {
+            b->guide[0] = b->guide[1] = b->guide[2] = (uint32_t)i;
+            b->weight[0] = 1.0f;
+            b->weight[1] = b->weight[2] = 0.0f;
+        } else {
+            for (g = 0; g < G; ++g) {
+                const float *gr = f->root_pos + 3 * g;
+                double dx = gr[0] - q[0], dy = gr[1] - q[1], dz = gr[2] - q[2],
+                       e = dx * dx + dy * dy + dz * dz;
+                int at = 3;
+                while (at > 0 && (near[at - 1] < 0 || e < dist[at - 1])) --at;
+                if (at == 3) continue;
+                for (k = 2; k > at; --k) {
+                    near[k] = near[k - 1];
+                    dist[k] = dist[k - 1];
+                }
+                near[at] = g;
+                dist[at] = e;
+            }
+            for (k = 0; k < 3; ++k)
+                if (near[k] >= 0) wsum += 1.0 / (dist[k] + 1e-30);
+            for (k = 0; k < 3; ++k) {
+                b->guide[k] = (uint32_t)(near[k] >= 0 ? near[k] : near[0]);
+                b->weight[k] = near[k] >= 0
+                                   ? (float)(1.0 / (dist[k] + 1e-30) / wsum)
+                                   : 0.0f;
+            }
+        }
+    }
+    /* offsets: own rest points minus the blend of the guides' */
+    for (i = 0; i < S; ++i) {
+        const hf_strand_binding *b = &f->bindings[i];
+        const float *q = f->strand_points + (size_t)i * (size_t)P * 3u;
+        float *o = f->offsets + (size_t)i * (size_t)P * 3u;
+        for (j = 0; j < 3 * P; ++j) {
+            float blend = 0.0f;
+            for (k = 0; k < 3; ++k)
+                blend += b->weight[k] *
+                         f->guide_points[(size_t)b->guide[k] * (size_t)P * 3u +
+                                         (size_t)j];
+            o[j] = q[j] - blend;
+        }
+    }
+    if ((r = hf_ropes_create(G, P, &f->alloc, &f->ropes)) != HF_OK ||
+        (r = hf_ropes_set_rest(f->ropes, 0, G, f->guide_points, 0, f->root_pos,
+                               f->root_nrm, f->root_tan, 0)) != HF_OK ||
+        (r = hf__fur_keep_rest_frames(f)) != HF_OK)
+        goto done;
+    f->lod = 1.0f;
+    f->width_scale = 1.0f;
+    f->lod_sim = 1;
+    r = hf_fur_interpolate(f, 0, S);
+done:
+    hf__free(&f->alloc, order);
+    hf__free(&f->alloc, start);
+    hf__free(&f->alloc, tmp);
+    return r;
+}
+
+HFDEF hf_result hf_fur_create_groom(const hf_groom_desc *desc, hf_fur **out_fur,
+                                    hf_diag *diag)
+{
+    hf_rope_params rope, zero;
+    hf_allocator alloc;
+    hf_fur *f;
+    hf_result r;
+    int P;
+    float fraction;
+    if (!desc || !out_fur)
+        return hf__fail(diag, HF_ERROR_NULL_POINTER, "desc", -1,
+                        "desc or out_fur is NULL");
+    P = hf__def_i(desc->points_per_strand, 16);
+    fraction = hf__def_f(desc->guide_fraction, 0.1f);
+    if ((r = hf__groom_check(desc, P, fraction, diag)) != HF_OK) return r;
+    HF_MEMSET(&zero, 0, sizeof zero);
+    hf__rope_params_resolve(desc->rope_params ? desc->rope_params : &zero, &rope);
+    if ((r = hf__rope_params_check(&rope, diag)) != HF_OK) return r;
+    HF_MEMSET(&alloc, 0, sizeof alloc);
+    if (desc->allocator) alloc = *desc->allocator;
+    f = (hf_fur *)hf__alloc(&alloc, sizeof *f);
+    if (!f)
+        return hf__fail(diag, HF_ERROR_OUT_OF_MEMORY, "fur", -1,
+                        "out of memory");
+    HF_MEMSET(f, 0, sizeof *f);
+    f->alloc = alloc;
+    f->P = P;
+    f->groom = 1;
+    f->rope = rope;
+    f->lod_threshold = 0.5f;
+    if ((r = hf__groom_build(f, desc, fraction)) != HF_OK) {
+        hf_fur_destroy(f);
+        return hf__fail(diag, r, "groom", -1, "making the groom: %s",
+                        hf_result_string(r));
+    }
+    *out_fur = f;
+    return HF_OK;
+}
+
+HFDEF hf_result hf_fur_set_transform(hf_fur *f, const float m[12], int first,
+                                     int count)
+{
+    int g, k;
+    if (!f || !m) return HF_ERROR_NULL_POINTER;
+    if (!hf__range_ok(first, count) || first + count > f->guide_count)
+        return HF_ERROR_BAD_RANGE;
+    for (k = 0; k < 12; ++k)
+        if (!hf__finitef(m[k])) return HF_ERROR_NON_FINITE;
+    for (g = first; g < first + count; ++g) {
+        const float *rf = f->rest_frame + 9 * g;
+        for (k = 0; k < 3; ++k) {
+            const float *row = m + 4 * k;
+            f->root_pos[3 * g + k] = row[0] * rf[0] + row[1] * rf[1] +
+                                     row[2] * rf[2] + row[3];
+            f->root_nrm[3 * g + k] = row[0] * rf[3] + row[1] * rf[4] +
+                                     row[2] * rf[5];
+            f->root_tan[3 * g + k] = row[0] * rf[6] + row[1] * rf[7] +
+                                     row[2] * rf[8];
+        }
+    }
+    return hf_ropes_set_roots(f->ropes, first, count, f->root_pos, f->root_nrm,
+                              f->root_tan, 0);
 }
 
 HFDEF hf_result hf_fur_get_info(const hf_fur *f, hf_fur_info *info)
@@ -9171,6 +9577,7 @@ HFDEF hf_result hf_fur_set_roots(hf_fur *f, const hf_mesh *m, int first,
     int g, k;
     hf_result r;
     if (!f || !m || !m->positions) return HF_ERROR_NULL_POINTER;
+    if (f->groom) return HF_ERROR_BAD_PARAMETER; /* no mesh: set_transform */
     if (m->vertex_count != f->vertex_count ||
         m->triangle_count != f->base_triangle_count)
         return HF_ERROR_BAD_COUNT;
@@ -9284,6 +9691,7 @@ HFDEF hf_result hf_fur_interpolate(hf_fur *f, int first, int count)
         return HF_ERROR_BAD_RANGE;
     hf__interpolate_run(f->guide_points, f->bindings, first, count, f->P,
                         f->clump, f->strand_points, 0);
+    if (f->offsets) hf__groom_offsets(f, first, count);
     return HF_OK;
 }
 

@@ -7290,6 +7290,170 @@ static void test_fur_styling(void)
     }
 }
 
+/* A groom without a mesh: 300 helix strands of 16 evenly spaced points on
+   a patch of the unit sphere. At rest the fur's strands are the groom's
+   own; moved rigidly (animated guides, no blend time), they are the
+   groom's strands moved by the same matrix; ranges give the same bytes. */
+#define TG_S 300
+#define TG_P 16
+static void t_groom_make(float *pts, int *npts)
+{
+    hf_rng rng;
+    int s, j;
+    hf_rng_seed(&rng, 11, 0);
+    for (s = 0; s < TG_S; ++s) {
+        double th = 0.2 + 1.2 * hf_rng_float(&rng), ph = 6.2831853 * hf_rng_float(&rng);
+        double n[3], u[3], v[3], phase = 6.2831853 * hf_rng_float(&rng), l;
+        n[0] = sin(th) * cos(ph); n[1] = cos(th); n[2] = sin(th) * sin(ph);
+        u[0] = -sin(ph); u[1] = 0.0; u[2] = cos(ph);
+        v[0] = n[1] * u[2] - n[2] * u[1];
+        v[1] = n[2] * u[0] - n[0] * u[2];
+        v[2] = n[0] * u[1] - n[1] * u[0];
+        l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        npts[s] = TG_P;
+        for (j = 0; j < TG_P; ++j) {
+            /* a helix about the normal: equal chords for equal steps */
+            double a = phase + 0.9 * j, r = 0.02;
+            int k;
+            for (k = 0; k < 3; ++k)
+                pts[3 * (s * TG_P + j) + k] =
+                    (float)(n[k] * (1.0 + 0.02 * j) +
+                            r * (cos(a) - cos(phase)) * u[k] +
+                            r * (sin(a) - sin(phase)) * v[k] / l);
+        }
+    }
+}
+
+/* The largest distance between the fur's strands and the groom's own,
+   moved by m (rows of 3x4; NULL: not moved), each matched by the nearest
+   root. */
+static double t_groom_worst(const hf_fur_info *info, const float *pts,
+                            const float *m)
+{
+    static const float id[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    double worst = 0.0;
+    int i, j, k, s;
+    if (!m) m = id;
+    for (i = 0; i < info->strand_count; ++i) {
+        const float *q = info->strand_points + (size_t)i * TG_P * 3, *own = pts;
+        double best = 1e30;
+        for (s = 0; s < TG_S; ++s) {
+            const float *p = pts + 3 * s * TG_P;
+            double d = 0.0;
+            for (k = 0; k < 3; ++k) {
+                double x = m[4 * k] * p[0] + m[4 * k + 1] * p[1] +
+                           m[4 * k + 2] * p[2] + m[4 * k + 3];
+                d += (x - q[k]) * (x - q[k]);
+            }
+            if (d < best) { best = d; own = p; }
+        }
+        for (j = 0; j < TG_P; ++j)
+            for (k = 0; k < 3; ++k) {
+                const float *p = own + 3 * j;
+                double x = m[4 * k] * p[0] + m[4 * k + 1] * p[1] +
+                           m[4 * k + 2] * p[2] + m[4 * k + 3];
+                if (fabs(x - q[3 * j + k]) > worst) worst = fabs(x - q[3 * j + k]);
+            }
+    }
+    return worst;
+}
+
+static void test_fur_groom(void)
+{
+    static float pts[TG_S * TG_P * 3];
+    static int npts[TG_S];
+    static float whole[TG_S * TG_P * 3];
+    hf_groom_desc gd;
+    hf_rope_params rp;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    double worst = 0.0;
+    int i, j, k;
+    /* a rotation of 40 degrees about (1, 2, 3) / |.|, then a move */
+    float m[12];
+    {
+        double ax[3] = {1, 2, 3}, l = sqrt(14.0), c = cos(0.698), sn = sin(0.698);
+        for (k = 0; k < 3; ++k) ax[k] /= l;
+        for (i = 0; i < 3; ++i)
+            for (j = 0; j < 3; ++j) {
+                double e = (1 - c) * ax[i] * ax[j] + (i == j ? c : 0.0);
+                if ((i + 1) % 3 == j) e -= sn * ax[3 - i - j];
+                if ((j + 1) % 3 == i) e += sn * ax[3 - i - j];
+                m[4 * i + j] = (float)e;
+            }
+        m[3] = 0.3f; m[7] = -0.2f; m[11] = 0.5f;
+    }
+    t_groom_make(pts, npts);
+    memset(&gd, 0, sizeof gd);
+    gd.points = pts;
+    gd.strand_points = npts;
+    gd.strand_count = TG_S;
+    gd.guide_fraction = 0.2f;
+    gd.seed = 3;
+    hf_rope_params_init(&rp);
+    rp.explicit_zero = HF_ROPE_ZERO_BLEND_TIME;
+    rp.mode_blend_time = 0.0f;
+    gd.rope_params = &rp;
+    CHECK_EQ_INT(hf_fur_create_groom(&gd, &f, NULL), HF_OK);
+    if (!f) return;
+    hf_fur_get_info(f, &info);
+    CHECK_EQ_INT(info.strand_count, TG_S);
+    CHECK_EQ_INT(info.guide_count, 60);
+    CHECK_EQ_INT(info.points_per_strand, TG_P);
+    /* at rest: the groom's own strands */
+    worst = t_groom_worst(&info, pts, NULL);
+    CHECK(worst < 2e-6);
+    /* moved rigidly: the groom moved by m */
+    CHECK_EQ_INT(hf_fur_set_mode(f, 0, info.guide_count, HF_ROPE_ANIMATED), HF_OK);
+    CHECK_EQ_INT(hf_fur_set_transform(f, m, 0, info.guide_count), HF_OK);
+    CHECK_EQ_INT(hf_fur_simulate(f, 0, info.guide_count, 1.0f / 60.0f, NULL, 0), HF_OK);
+    CHECK_EQ_INT(hf_fur_interpolate(f, 0, TG_S), HF_OK);
+    memcpy(whole, info.strand_points, sizeof whole);
+    worst = t_groom_worst(&info, pts, m);
+    CHECK(worst < 1e-5);
+    /* ranges: the same bytes */
+    CHECK_EQ_INT(hf_fur_interpolate(f, 0, 123), HF_OK);
+    CHECK_EQ_INT(hf_fur_interpolate(f, 123, TG_S - 123), HF_OK);
+    CHECK(memcmp(whole, info.strand_points, sizeof whole) == 0);
+    /* a groom has no mesh */
+    {
+        t_fur_scene sc;
+        t_fur_scene_init(&sc, 1.0f);
+        CHECK_EQ_INT(hf_fur_set_roots(f, &sc.desc.mesh, 0, 1), HF_ERROR_BAD_PARAMETER);
+    }
+    CHECK_EQ_INT(hf_fur_set_transform(f, NULL, 0, 1), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_fur_set_transform(f, m, 50, 11), HF_ERROR_BAD_RANGE);
+    hf_fur_destroy(f);
+    /* bad grooms: a code, a message, nothing made */
+    {
+        hf_fur *const untouched = (hf_fur *)(uintptr_t)0x20;
+        hf_diag d;
+        float keep = pts[5];
+        f = untouched;
+        gd.guide_fraction = 1.5f;
+        CHECK_EQ_INT(hf_fur_create_groom(&gd, &f, &d), HF_ERROR_BAD_PARAMETER);
+        CHECK(strstr(d.message, "guide_fraction") != NULL);
+        gd.guide_fraction = 0.0f; /* 0 = 0.1 */
+        npts[7] = 1;
+        CHECK_EQ_INT(hf_fur_create_groom(&gd, &f, &d), HF_ERROR_BAD_COUNT);
+        npts[7] = TG_P;
+        pts[5] = NAN;
+        CHECK_EQ_INT(hf_fur_create_groom(&gd, &f, &d), HF_ERROR_NON_FINITE);
+        pts[5] = keep;
+        gd.strand_count = 0;
+        CHECK_EQ_INT(hf_fur_create_groom(&gd, &f, &d), HF_ERROR_BAD_COUNT);
+        CHECK_EQ_INT(hf_fur_create_groom(NULL, &f, &d), HF_ERROR_NULL_POINTER);
+        CHECK(f == untouched);
+        gd.strand_count = TG_S;
+        CHECK_EQ_INT(hf_fur_create_groom(&gd, &f, &d), HF_OK); /* 0.1: 30 */
+        if (f != untouched) {
+            hf_fur_get_info(f, &info);
+            CHECK_EQ_INT(info.guide_count, 30);
+            hf_fur_destroy(f);
+        }
+    }
+}
+
 static void test_fur_no_allocation_per_frame(void)
 {
     t_fur_scene sc;
@@ -7984,6 +8148,7 @@ int main(void)
     RUN(test_fur_comb);
     RUN(test_fur_guide_curves);
     RUN(test_fur_styling);
+    RUN(test_fur_groom);
     RUN(test_fur_no_allocation_per_frame);
     RUN(test_fur_ranges_byte_identical);
     RUN(test_fur_lod_prefix_and_width);

@@ -3,7 +3,8 @@
    counting allocator), then a few frames of every per-frame call with
    fuzz ranges, skinned roots and colliders (some holding the roots);
    growth directions per vertex and from a map, authored guide curves and
-   styling (curl, wave, frizz, colour variation).
+   styling (curl, wave, frizz, colour variation); a groom made from the
+   same curves, moved rigidly and stepped.
 
    Contracts checked (abort() on violation): every result is HF_OK or a
    code of the table; a failed create leaves *out_fur as it was and frees
@@ -38,7 +39,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     hf_result rv;
     float *skinned = NULL, *vbuf = NULL, *pbuf = NULL, *comb = NULL;
     float *curves = NULL;
-    int curve_points[6], curve_total = 0;
+    int curve_points[6] = {0, 0, 0, 0, 0, 0}, curve_total = 0, curve_n = 0;
     int has_density, has_length, has_color, has_comb_map, frame, k;
 
     fz_init(&r, data, size);
@@ -71,7 +72,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     desc.comb_map = has_comb_map ? &comb_map.map : NULL;
     /* authored guide curves: 1..6 curves of 0..7 points, any floats */
     if (fz_chance(&r, 64)) {
-        int c, n = fz_int(&r, 1, 6);
+        int c, n = curve_n = fz_int(&r, 1, 6);
         for (c = 0; c < n; ++c) {
             curve_points[c] = fz_chance(&r, 240) ? fz_int(&r, 2, 7) : fz_int(&r, -1, 1);
             if (curve_points[c] > 0) curve_total += curve_points[c];
@@ -235,6 +236,41 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             FZ_REQUIRE(info.roots_inside >= 0 && info.roots_inside <= info.guide_count);
         }
         hf_fur_destroy(fur);
+    }
+    /* a groom from the same curves (when there are any): created or
+       refused cleanly, then a rigid move and a frame */
+    if (curves && curve_total > 0) {
+        hf_groom_desc gd;
+        hf_fur *g = untouched;
+        const int n = curve_n;
+        memset(&gd, 0, sizeof gd);
+        gd.points = curves;
+        gd.strand_points = curve_points;
+        gd.strand_count = fz_chance(&r, 240) ? n : fz_int(&r, -2, n);
+        gd.points_per_strand = fz_chance(&r, 200) ? 0 : fz_int(&r, 0, 40);
+        gd.guide_fraction = fz_chance(&r, 200) ? fz_float_in(&r, 0.0f, 1.0f)
+                                               : fz_float(&r, 2.0f);
+        gd.seed = fz_u32(&r);
+        gd.allocator = &alloc;
+        rv = hf_fur_create_groom(&gd, &g, &diag);
+        FZ_REQUIRE(fz_known_result(rv));
+        if (rv != HF_OK) {
+            FZ_REQUIRE(g == untouched);
+        } else {
+            float mm[12];
+            hf_fur_info gi;
+            for (k = 0; k < 12; ++k) mm[k] = fz_float(&r, 2.0f);
+            FZ_REQUIRE(hf_fur_get_info(g, &gi) == HF_OK);
+            FZ_REQUIRE(gi.guide_count >= 1 && gi.guide_count <= gi.strand_count);
+            FZ_REQUIRE(fz_all_finite(gi.strand_points, 3u * (size_t)gi.strand_count *
+                                                           (size_t)gi.points_per_strand));
+            rv = hf_fur_set_transform(g, mm, 0, gi.guide_count);
+            FZ_REQUIRE(fz_known_result(rv));
+            if (rv == HF_OK &&
+                hf_fur_simulate(g, 0, gi.guide_count, 1.0f / 60.0f, NULL, 0) == HF_OK)
+                FZ_REQUIRE(hf_fur_interpolate(g, 0, gi.strand_count) == HF_OK);
+            hf_fur_destroy(g);
+        }
     }
 done:
     FZ_REQUIRE(counter.live == 0);
