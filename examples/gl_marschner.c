@@ -107,6 +107,8 @@ typedef struct glm_options {
                            the strength (0: along the normal) */
     float settle;       /* seconds simulated at the first pose, first */
     const char *guides_path; /* authored guide curves (.hair, .tfx, .obj) */
+    const char *groom_path;  /* a groom: its strands drawn, some simulated */
+    float guide_fraction;    /* of the groom's strands; 0 = 0.1 */
     float curl[2], wave[2];  /* radius and turns; amplitude and count */
     float frizz, color_variation;
     int guides;         /* guide target; 0 = strands / 10, at most 2,000 */
@@ -172,7 +174,9 @@ typedef struct glm_app {
     double hair_area;     /* grown area weighted by density (m^2) */
     float *rest_len;      /* per guide: its length at rest */
     float *comb_dir;      /* per grown vertex: growth direction (--comb) */
-    cv_curves curves;     /* --guides, in metres */
+    cv_curves curves;     /* --guides or --groom, in metres */
+    int groom;            /* --groom: roots follow the body rigidly */
+    float *groom_rgb;     /* per groom strand: --hair-color */
     double stretch_max, stretch_sum;
     long stretch_frames;
     double ms_skin, ms_sim, ms_build, ms_draw; /* sums over frames */
@@ -609,7 +613,7 @@ static void glm_camera(glm_app *a)
           el = a->o.elevation * GLM_PI / 180.0f;
     int k;
     for (k = 0; k < 3; ++k) a->target[k] = a->target0[k];
-    if (a->ch.vertex_count > 0 && a->skin) {
+    if (a->ch.vertex_count > 0 && a->skin && !a->groom) {
         double c[3] = {0, 0, 0};
         int i;
         for (i = a->grow_first; i < a->grow_first + a->grow_count; ++i)
@@ -802,14 +806,25 @@ static void glm_measure(glm_app *a)
 {
     float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
     double area = 0.0, c[3] = {0, 0, 0};
-    int i, k;
-    for (i = a->grow_first; i < a->grow_first + a->grow_count; ++i)
-        for (k = 0; k < 3; ++k) {
-            float x = a->rest[i].pos[k];
-            if (x < lo[k]) lo[k] = x;
-            if (x > hi[k]) hi[k] = x;
-            c[k] += x;
-        }
+    int i, k, n = 0;
+    if (a->groom) { /* a groom: its points, and its roots for the centroid */
+        const float *p = a->curves.xyz;
+        for (i = 0; i < a->curves.total; ++i)
+            for (k = 0; k < 3; ++k) {
+                if (p[3 * i + k] < lo[k]) lo[k] = p[3 * i + k];
+                if (p[3 * i + k] > hi[k]) hi[k] = p[3 * i + k];
+            }
+        for (i = 0; i < a->curves.count; ++n, p += 3 * a->curves.points[i++])
+            for (k = 0; k < 3; ++k) c[k] += p[k];
+    } else {
+        for (i = a->grow_first; i < a->grow_first + a->grow_count; ++i, ++n)
+            for (k = 0; k < 3; ++k) {
+                float x = a->rest[i].pos[k];
+                if (x < lo[k]) lo[k] = x;
+                if (x > hi[k]) hi[k] = x;
+                c[k] += x;
+            }
+    }
     a->size = sqrtf((hi[0] - lo[0]) * (hi[0] - lo[0]) +
                     (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                     (hi[2] - lo[2]) * (hi[2] - lo[2]));
@@ -817,7 +832,7 @@ static void glm_measure(glm_app *a)
     a->frame_dist = GLM_FRAME_DIAG * a->size;
     for (k = 0; k < 3; ++k) {
         a->target0[k] = 0.5f * (lo[k] + hi[k]);
-        a->centroid0[k] = (float)(c[k] / a->grow_count);
+        a->centroid0[k] = (float)(c[k] / n);
     }
     if (a->ch.vertex_count == 0) /* the head: a little below the middle */
         a->target0[1] -= 0.0866f * a->size;
@@ -833,8 +848,21 @@ static void glm_measure(glm_app *a)
         }
         a->hair_len = longest;
     }
-    /* the hair's area: triangles weighted by the density at their corners */
-    for (i = 0; i < a->nt_grown; ++i) {
+    /* the hair's area: triangles weighted by the density at their corners;
+       for a groom, about half the surface of its roots' box */
+    if (a->groom) {
+        float rl[3] = {1e30f, 1e30f, 1e30f}, rh[3] = {-1e30f, -1e30f, -1e30f};
+        const float *p = a->curves.xyz;
+        for (i = 0; i < a->curves.count; p += 3 * a->curves.points[i++])
+            for (k = 0; k < 3; ++k) {
+                if (p[k] < rl[k]) rl[k] = p[k];
+                if (p[k] > rh[k]) rh[k] = p[k];
+            }
+        area = (double)(rh[0] - rl[0]) * (rh[1] - rl[1]) +
+               (double)(rh[1] - rl[1]) * (rh[2] - rl[2]) +
+               (double)(rh[2] - rl[2]) * (rh[0] - rl[0]);
+    }
+    for (i = 0; i < (a->groom ? 0 : a->nt_grown); ++i) {
         const float *p0 = a->rest[a->grow_first + a->grow_idx[3 * i]].pos,
                     *p1 = a->rest[a->grow_first + a->grow_idx[3 * i + 1]].pos,
                     *p2 = a->rest[a->grow_first + a->grow_idx[3 * i + 2]].pos;
@@ -878,9 +906,11 @@ static void glm_measure(glm_app *a)
         float glo[3], ghi[3];
         for (k = 0; k < 3; ++k) { glo[k] = 1e30f; ghi[k] = -1e30f; }
         for (i = a->grow_first; i < a->grow_first + a->grow_count; ++i)
-            for (k = 0; k < 3; ++k) {
-                if (a->rest[i].pos[k] < glo[k]) glo[k] = a->rest[i].pos[k];
-                if (a->rest[i].pos[k] > ghi[k]) ghi[k] = a->rest[i].pos[k];
+            for (k = 0; k < 3; ++k) { /* a groom: where its roots are */
+                const float *q = a->rest[i].pos;
+                if (a->groom) q = a->centroid0;
+                if (q[k] < glo[k]) glo[k] = q[k];
+                if (q[k] > ghi[k]) ghi[k] = q[k];
             }
         for (i = 0; i < a->ch.capsule_count; ++i) {
             const hf_collider *cp = &a->all_col[i];
@@ -1013,10 +1043,17 @@ static int glm_init(glm_app *a, const glm_options *o)
     a->index.data = a->index_px;
     a->index.width = a->index.height = 128;
     a->index.channels = 1;
-    if (o->guides_path) {
+    if (o->guides_path && o->groom_path) {
+        fprintf(stderr, "gl_marschner: give --guides or --groom, not both\n");
+        return 0;
+    }
+    if (o->guides_path || o->groom_path) {
         char err[700];
-        if (!cv_read(o->guides_path, &a->curves, err, sizeof err)) {
-            fprintf(stderr, "gl_marschner: --guides %s\n", err);
+        a->groom = o->groom_path != NULL;
+        if (!cv_read(a->groom ? o->groom_path : o->guides_path, &a->curves, err,
+                     sizeof err)) {
+            fprintf(stderr, "gl_marschner: --%s %s\n",
+                    a->groom ? "groom" : "guides", err);
             return 0;
         }
         /* in the mesh file's units, like the mesh */
@@ -1110,7 +1147,27 @@ static int glm_init(glm_app *a, const glm_options *o)
     rp.global_stiffness_root = o->stiffness;
     rp.global_stiffness_tip = 0.5f * o->stiffness;
     desc.rope_params = &rp;
-    if ((r = hf_fur_create(&desc, &a->fur, &diag)) != HF_OK) {
+    if (a->groom) {
+        /* the groom's own strands, a fraction of them simulated */
+        hf_groom_desc gd;
+        a->groom_rgb = (float *)malloc(sizeof(float) * 3u * (size_t)a->curves.count);
+        if (!a->groom_rgb) return 0;
+        for (i = 0; i < 3 * a->curves.count; ++i)
+            a->groom_rgb[i] = o->hair_color[i % 3]; /* sRGB, as maps */
+        memset(&gd, 0, sizeof gd);
+        gd.points = a->curves.xyz;
+        gd.strand_points = a->curves.points;
+        gd.strand_count = a->curves.count;
+        gd.colors = a->groom_rgb;
+        gd.points_per_strand = 16;
+        gd.guide_fraction = o->guide_fraction;
+        gd.seed = 7;
+        gd.rope_params = &rp;
+        r = hf_fur_create_groom(&gd, &a->fur, &diag);
+    } else {
+        r = hf_fur_create(&desc, &a->fur, &diag);
+    }
+    if (r != HF_OK) {
         fprintf(stderr, "gl_marschner: %s\n", diag.message);
         return 0;
     }
@@ -1387,9 +1444,25 @@ static int glm_simulate(glm_app *a, double t, float dt)
     a->t = t;
     /* the body at time t: a mesh is skinned from its bones, the head
        moved rigidly; the colliders follow */
-    if (a->ch.vertex_count > 0) {
+    if (a->ch.vertex_count > 0 && !a->groom) {
         ch_pose(&a->ch, a->anim, a->o.still ? 0.0 : t, a->skin, a->all_col);
         for (i = 0; i < a->ncol; ++i) a->col[i] = a->all_col[a->col_keep[i]];
+    } else if (a->groom) {
+        /* a groom rides on the body moved rigidly (the head's motion) */
+        glm_pose(t, a->o.still, a->pose);
+        for (i = 0; i < a->nv; ++i) {
+            glm_xform(a->pose, a->rest[i].pos, 1.0f, a->skin[i].pos);
+            glm_xform(a->pose, a->rest[i].normal, 0.0f, a->skin[i].normal);
+        }
+        if (a->ch.vertex_count > 0)
+            for (i = 0; i < a->ncol; ++i) {
+                const hf_collider *c0 = &a->all_col[a->col_keep[i]];
+                a->col[i] = *c0;
+                glm_xform(a->pose, c0->a, 1.0f, a->col[i].a);
+                glm_xform(a->pose, c0->b, 1.0f, a->col[i].b);
+            }
+        else
+            glm_head_colliders(a->pose, a->col);
     } else {
         glm_pose(t, a->o.still, a->pose);
         for (i = 0; i < a->nv; ++i) {
@@ -1411,7 +1484,8 @@ static int glm_simulate(glm_app *a, double t, float dt)
         a->lod = lod;
     }
     a->drawn = a->info.drawn_strand_count;
-    r = hf_fur_set_roots(a->fur, &a->skinned, 0, a->info.guide_count);
+    r = a->groom ? hf_fur_set_transform(a->fur, a->pose, 0, a->info.guide_count)
+                 : hf_fur_set_roots(a->fur, &a->skinned, 0, a->info.guide_count);
     if (!r) r = hf_fur_simulate(a->fur, 0, a->info.guide_count, dt, a->col,
                                 a->ncol);
     if (!r) r = hf_fur_interpolate_guides(a->fur, 0, a->info.lod_guide_count);
@@ -1777,6 +1851,7 @@ static void glm_shutdown(glm_app *a)
     free(a->col_keep);
     free(a->rest_len);
     free(a->comb_dir);
+    free(a->groom_rgb);
     cv_free(&a->curves);
     /* maps from files came from stb_image's malloc, the others from ours */
     free(a->density_px);
@@ -1829,6 +1904,11 @@ static void glm_usage(FILE *fp)
 "                     normal)\n"
 "  --settle S         seconds simulated at the first pose before frame 1, so\n"
 "                     hair starts hanging (default 0)\n"
+"  --groom FILE       a groom (.hair, .tfx, .obj polylines): its own strands\n"
+"                     are drawn, a fraction of them simulated; its roots ride\n"
+"                     on the body moved rigidly (the head's motion; a mesh's\n"
+"                     animation is not played)\n"
+"  --guide-fraction F of the groom's strands simulated, (0, 1] (default 0.1)\n"
 "  --curl R,TURNS     curl: helix radius (metres), turns along a strand\n"
 "  --wave A,COUNT     wave: amplitude (metres), periods along a strand\n"
 "  --frizz F          random offset per point, a fraction of a segment\n"
@@ -1981,6 +2061,8 @@ static int glm_parse(int argc, char **argv, glm_options *o)
                 else
                     o->guides_path = v;
             }
+            else if (!strcmp(s, "--groom")) o->groom_path = v;
+            else if (!strcmp(s, "--guide-fraction")) ok = glm_real(s, v, 1e-6, 1.0, &o->guide_fraction);
             else if (!strcmp(s, "--curl")) ok = glm_real2(s, v, 0.0, 1e3, o->curl);
             else if (!strcmp(s, "--wave")) ok = glm_real2(s, v, 0.0, 1e3, o->wave);
             else if (!strcmp(s, "--frizz")) ok = glm_real(s, v, 0.0, 10.0, &o->frizz);

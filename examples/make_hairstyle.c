@@ -1,8 +1,9 @@
 /* make_hairstyle.c - author a hairstyle as guide curves on a mesh, the way
    a groom starts in a DCC tool, and save it as .hair or OBJ polylines.
 
-   Roots are the mesh's vertices in front of every --plane (the scalp, as
-   paint_density paints it), thinned to about --curves of them. Each curve
+   Roots are --curves points spread over the mesh's triangles by area
+   (seeded), kept in front of every --plane (the scalp, as paint_density
+   paints it). Each curve
    leaves the scalp along the normal, turns towards --fall (back and down
    for hair combed back; where that points into the head, its part along
    the head) over its first eighth, stays --lift above a sphere
@@ -90,7 +91,8 @@ int main(int argc, char **argv)
                *out = NULL;
     float planes[MH_MAX_PLANES][4], fall[3] = {0.0f, -0.5f, -1.0f};
     float want = 400, length = 0.3f, lift = 0.012f, wave = 0.006f, P = 24;
-    int np = 0, i, k, p, a, roots = 0, every, n;
+    int np = 0, i, k, p, a, t, roots = 0, n;
+    float *rootpos = NULL, *rootnrm = NULL;
     ch_character c;
     ch_vertex *v;
     cv_curves cv;
@@ -176,39 +178,81 @@ int main(int argc, char **argv)
                 d += (v[i].pos[k] - centre[k]) * (v[i].pos[k] - centre[k]);
             radius += sqrt(d) / counted;
         }
-        /* the roots: vertices in front of every plane */
-        for (i = lo; i < hi; ++i) {
-            int in = 1;
-            for (k = 0; k < np && in; ++k)
-                in = planes[k][0] * v[i].pos[0] + planes[k][1] * v[i].pos[1] +
-                     planes[k][2] * v[i].pos[2] >= planes[k][3];
-            roots += in;
+        /* the roots: --curves points spread over the part's triangles by
+           area (seeded), kept where they are in front of every plane */
+        {
+            const int t0 = p >= 0 ? c.parts[p].first_triangle : 0;
+            const int nt = p >= 0 ? c.parts[p].triangle_count : c.triangle_count;
+            double *cum = (double *)malloc(sizeof(double) * (size_t)(nt + 1));
+            long tries = 0, max_tries = 50L * (long)want + 1000;
+            hf_rng rng;
+            if (!cum) return 1;
+            cum[0] = 0.0;
+            for (t = 0; t < nt; ++t) {
+                const float *A = v[c.indices[3 * (t0 + t)]].pos,
+                            *B = v[c.indices[3 * (t0 + t) + 1]].pos,
+                            *C = v[c.indices[3 * (t0 + t) + 2]].pos;
+                double e1[3], e2[3], x0, y0, z0;
+                for (k = 0; k < 3; ++k) { e1[k] = B[k] - A[k]; e2[k] = C[k] - A[k]; }
+                x0 = e1[1] * e2[2] - e1[2] * e2[1];
+                y0 = e1[2] * e2[0] - e1[0] * e2[2];
+                z0 = e1[0] * e2[1] - e1[1] * e2[0];
+                cum[t + 1] = cum[t] + 0.5 * sqrt(x0 * x0 + y0 * y0 + z0 * z0);
+            }
+            n = (int)want;
+            rootpos = (float *)malloc(sizeof(float) * 3u * (size_t)n);
+            rootnrm = (float *)malloc(sizeof(float) * 3u * (size_t)n);
+            if (!rootpos || !rootnrm) return 1;
+            hf_rng_seed(&rng, 1, 0);
+            while (roots < n && tries++ < max_tries && cum[nt] > 0.0) {
+                double x = hf_rng_float(&rng) * cum[nt];
+                int lo2 = 0, hi2 = nt, in = 1;
+                float b0 = hf_rng_float(&rng), b1 = hf_rng_float(&rng), q[3], nn[3];
+                const ch_vertex *A, *B, *C;
+                while (hi2 - lo2 > 1) { /* the triangle holding x */
+                    int mid = (lo2 + hi2) / 2;
+                    if (cum[mid] <= x) lo2 = mid; else hi2 = mid;
+                }
+                if (b0 + b1 > 1.0f) { b0 = 1.0f - b0; b1 = 1.0f - b1; }
+                A = &v[c.indices[3 * (t0 + lo2)]];
+                B = &v[c.indices[3 * (t0 + lo2) + 1]];
+                C = &v[c.indices[3 * (t0 + lo2) + 2]];
+                for (k = 0; k < 3; ++k) {
+                    q[k] = A->pos[k] + b0 * (B->pos[k] - A->pos[k]) +
+                           b1 * (C->pos[k] - A->pos[k]);
+                    nn[k] = A->normal[k] + b0 * (B->normal[k] - A->normal[k]) +
+                            b1 * (C->normal[k] - A->normal[k]);
+                }
+                for (k = 0; k < np && in; ++k)
+                    in = planes[k][0] * q[0] + planes[k][1] * q[1] +
+                         planes[k][2] * q[2] >= planes[k][3];
+                if (!in) continue;
+                norm3(nn);
+                memcpy(rootpos + 3 * roots, q, sizeof q);
+                memcpy(rootnrm + 3 * roots, nn, sizeof nn);
+                ++roots;
+            }
+            free(cum);
         }
         if (roots == 0) {
-            fprintf(stderr, "make_hairstyle: no vertex of %s is in front of "
+            fprintf(stderr, "make_hairstyle: no point of %s is in front of "
                     "every plane\n", part ? part : mesh);
             return 1;
         }
-        every = roots > (int)want ? (int)(roots / want + 0.5f) : 1;
-        n = (roots + every - 1) / every;
+        n = roots;
         memset(&cv, 0, sizeof cv);
         cv.count = n;
         cv.total = n * (int)P;
         cv.points = (int *)malloc(sizeof(int) * (size_t)n);
         cv.xyz = (float *)malloc(sizeof(float) * 3u * (size_t)cv.total);
         if (!cv.points || !cv.xyz) return 1;
-        roots = 0;
-        n = 0;
-        for (i = lo; i < hi; ++i) {
-            int in = 1, j;
+        for (n = 0; n < roots; ++n) {
+            int j;
             float x[3], d[3], side[3];
-            for (k = 0; k < np && in; ++k)
-                in = planes[k][0] * v[i].pos[0] + planes[k][1] * v[i].pos[1] +
-                     planes[k][2] * v[i].pos[2] >= planes[k][3];
-            if (!in || roots++ % every) continue;
+            const float *rn = rootnrm + 3 * n;
             cv.points[n] = (int)P;
-            memcpy(x, v[i].pos, sizeof x);
-            memcpy(d, v[i].normal, sizeof d);
+            memcpy(x, rootpos + 3 * n, sizeof x);
+            memcpy(d, rn, sizeof d);
             /* sideways: across the fall direction, for the wave */
             side[0] = d[1] * fall[2] - d[2] * fall[1];
             side[1] = d[2] * fall[0] - d[0] * fall[2];
@@ -234,7 +278,7 @@ int main(int argc, char **argv)
                         f[k] = fall[k] - (fr < 0.0f ? fr : 0.0f) * rh[k];
                     norm3(f);
                     for (k = 0; k < 3; ++k)
-                        nd[k] = (1.0f - s) * v[i].normal[k] + s * f[k];
+                        nd[k] = (1.0f - s) * rn[k] + s * f[k];
                     norm3(nd);
                     for (k = 0; k < 3; ++k) d[k] = 0.5f * d[k] + 0.5f * nd[k];
                     norm3(d);
@@ -248,7 +292,6 @@ int main(int argc, char **argv)
                         x[k] = (float)(centre[k] + (x[k] - centre[k]) *
                                                        (radius + lift) / r);
             }
-            ++n;
         }
     }
     cv_scale(&cv, 1.0f / c.unit); /* back to the file's units */
@@ -258,11 +301,12 @@ int main(int argc, char **argv)
         fprintf(stderr, "make_hairstyle: %s\n", err);
         return 1;
     }
-    printf("make_hairstyle: wrote %s: %d curves of %d points, %.3g m long, "
-           "from %d scalp vertices\n", out, cv.count, (int)P, (double)length,
-           roots);
+    printf("make_hairstyle: wrote %s: %d curves of %d points, %.3g m long\n",
+           out, cv.count, (int)P, (double)length);
     cv_free(&cv);
     free(v);
+    free(rootpos);
+    free(rootnrm);
     ch_free(&c);
     return 0;
 }
