@@ -11,6 +11,7 @@
               [--length-max M] [--frames N] [--lod F] [--seed N]
               [--collider auto|none|x,y,z,r] [--eye x,y,z]
               [--guides FILE.hair|.tfx|.obj]
+              [--groom FILE.hair|.tfx|.obj [--guide-fraction F]]
               [--out FILE.obj [--curves] | FILE.ply | FILE.hair]
 
    Without --mesh it grows on the built-in head (examples/head_mesh.h: a
@@ -102,6 +103,11 @@ static void usage(FILE *fp)
 "  --guides N         target guide count (pure guides at the mesh's welded\n"
 "                     vertices + LOD guides); sets tess_factor from the mesh's\n"
 "                     area (default: a tenth of --strands, at most %d)\n"
+"  --groom FILE       a groom (.hair, .tfx, .obj polylines): its own strands\n"
+"                     are drawn (--strands and the maps do not apply), a\n"
+"                     --guide-fraction of them simulated; its roots move with\n"
+"                     the head's motion\n"
+"  --guide-fraction F of the groom's strands simulated, (0, 1] (default 0.1)\n"
 "  --guides FILE      guide curves (.hair, .tfx, .obj polylines; in the\n"
 "                     mesh's coordinates): their shapes become the guides'\n"
 "                     rest shapes (lengths from the curves); a value that is\n"
@@ -451,6 +457,8 @@ int main(int argc, char **argv)
     const char *mesh_path = NULL, *density_path = NULL, *length_path = NULL,
                *color_path = NULL, *out_path = "fur.obj", *curves_path = NULL;
     int curves_out = 0; /* --curves: OBJ polylines instead of ribbons */
+    const char *groom_path = NULL; /* --groom: a groom, no growth */
+    float guide_fraction = 0.0f;   /* of the groom's strands; 0 = 0.1 */
     cv_curves curves;
     int strands = GF_DEFAULT_STRANDS, points = 16, frames = 120, i, f;
     long long seed = 1, guides = -1, cnt;
@@ -518,6 +526,9 @@ int main(int argc, char **argv)
             else
                 curves_path = v;
         }
+        else if (!strcmp(a, "--groom")) groom_path = v;
+        else if (!strcmp(a, "--guide-fraction"))
+            ok = parse_real(a, v, 1e-6, 1.0, &guide_fraction);
         else if (!strcmp(a, "--tess-factor"))
             ok = parse_real(a, v, 0.0, 1e30, &tess_factor);
         else if (!strcmp(a, "--points")) {
@@ -568,14 +579,21 @@ int main(int argc, char **argv)
         return 2;
     }
     memset(&curves, 0, sizeof curves);
-    if (curves_path) {
+    if (curves_path && groom_path) {
+        fprintf(stderr, "grow_fur: give --guides FILE or --groom FILE, not "
+                        "both\n");
+        return 2;
+    }
+    if (curves_path || groom_path) {
         char err[700];
-        if (!cv_read(curves_path, &curves, err, sizeof err)) {
-            fprintf(stderr, "grow_fur: --guides %s\n", err);
+        const char *cp = groom_path ? groom_path : curves_path;
+        if (!cv_read(cp, &curves, err, sizeof err)) {
+            fprintf(stderr, "grow_fur: --%s %s\n", groom_path ? "groom" : "guides",
+                    err);
             return 1;
         }
-        printf("guides: %d curves, %d points from %s\n", curves.count,
-               curves.total, curves_path);
+        printf("%s: %d curves, %d points from %s\n",
+               groom_path ? "groom" : "guides", curves.count, curves.total, cp);
     }
     if (guides >= 0 && tess_factor >= 0.0f) {
         fprintf(stderr, "grow_fur: give --guides or --tess-factor, not "
@@ -734,7 +752,7 @@ int main(int argc, char **argv)
     desc.sampler = HF_SAMPLER_STRATIFIED;
     desc.seed = (uint64_t)seed;
     desc.clump = 0.2f;
-    if (curves.count > 0) {
+    if (curves.count > 0 && !groom_path) {
         desc.guide_curves = curves.xyz;
         desc.guide_curve_points = curves.points;
         desc.guide_curve_count = curves.count;
@@ -773,18 +791,37 @@ int main(int argc, char **argv)
     desc.rope_params = &rp;
     {
         double t0 = now_ms();
-        r = hf_fur_create(&desc, &fur, &diag);
+        if (groom_path) {
+            /* the groom's own strands; its roots ride on the head */
+            hf_groom_desc gd;
+            memset(&gd, 0, sizeof gd);
+            gd.points = curves.xyz;
+            gd.strand_points = curves.points;
+            gd.strand_count = curves.count;
+            gd.points_per_strand = points;
+            gd.guide_fraction = guide_fraction;
+            gd.seed = (uint64_t)seed;
+            gd.rope_params = &rp;
+            r = hf_fur_create_groom(&gd, &fur, &diag);
+        } else {
+            r = hf_fur_create(&desc, &fur, &diag);
+        }
         if (r != HF_OK) {
             fprintf(stderr, "grow_fur: %s\n", diag.message);
             return 1;
         }
         hf_fur_get_info(fur, &info);
-        printf("grown in %.1f ms: %d vertices, %d triangles -> %d guide "
-               "triangles; %d guides (%d pure, %d LOD); %d strands of %d "
-               "points\n",
-               now_ms() - t0, nv, nt, info.triangle_count, info.guide_count,
-               info.pure_guide_count, info.lod_guide_count,
-               info.strand_count, info.points_per_strand);
+        if (groom_path)
+            printf("groom made in %.1f ms: %d strands of %d points, %d of them "
+                   "simulated guides\n", now_ms() - t0, info.strand_count,
+                   info.points_per_strand, info.guide_count);
+        else
+            printf("grown in %.1f ms: %d vertices, %d triangles -> %d guide "
+                   "triangles; %d guides (%d pure, %d LOD); %d strands of %d "
+                   "points\n",
+                   now_ms() - t0, nv, nt, info.triangle_count, info.guide_count,
+                   info.pure_guide_count, info.lod_guide_count,
+                   info.strand_count, info.points_per_strand);
         if (guides >= 0)
             printf("guides: %d of a target of %lld (%.2f x)\n",
                    info.guide_count, guides,
@@ -839,7 +876,8 @@ int main(int argc, char **argv)
         out.tangent.stride = 24;
 
         t0 = now_ms();
-        r = hf_fur_set_roots(fur, &skinned, 0, info.guide_count);
+        r = groom_path ? hf_fur_set_transform(fur, m, 0, info.guide_count)
+                       : hf_fur_set_roots(fur, &skinned, 0, info.guide_count);
         t1 = now_ms();
         if (r == HF_OK)
             r = hf_fur_simulate(fur, 0, info.guide_count, 1.0f / 60.0f,

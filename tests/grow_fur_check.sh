@@ -78,6 +78,13 @@ for g in c.hair c.obj; do
     grep -q "guides: 1000 curves, 16000 points" "$tmp/out" || bad "--guides $g: not read"
 done
 "$BIN" --out "$tmp/c.hair" --curves >"$tmp/out" 2>&1 && bad "--curves with .hair accepted"
+# a groom: its own 1000 strands, half of them simulated
+"$BIN" --groom "$tmp/c.hair" --guide-fraction 0.5 --frames 5 --out "$tmp/g.hair" >"$tmp/out" 2>&1 \
+    || bad "--groom failed: $(tail -n 1 "$tmp/out")"
+grep -q "1000 strands of 16 points, 500 of them simulated guides" "$tmp/out" \
+    || bad "--groom: $(grep -m1 groom "$tmp/out")"
+"$BIN" --groom "$tmp/c.hair" --guides "$tmp/c.hair" >"$tmp/out" 2>&1 && bad "--groom with --guides accepted"
+"$BIN" --groom "$tmp/c.hair" --guide-fraction 0 >"$tmp/out" 2>&1 && bad "--guide-fraction 0 accepted"
 # a truncated .hair and a file of the wrong kind: refused, named
 head -c 300 "$tmp/c.hair" >"$tmp/cut.hair"
 "$BIN" --guides "$tmp/cut.hair" --frames 1 >"$tmp/out" 2>&1 && bad "a truncated .hair was accepted"

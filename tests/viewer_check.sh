@@ -99,6 +99,14 @@ if $B/make_hairstyle --mesh "$H" --part Head --plane 0,1,-0.53,0.717 \
 else
     bad "--guides style.hair: $(tail -n 2 "$O/style" "$O/styled")"
 fi
+# the same curves as a groom: its own strands, a quarter simulated
+if $V --headless --mesh "$H" --grow-on Head --groom "$O/style.hair" \
+       --guide-fraction 0.25 --frames 10 --out "$O/groom.png" >"$O/groom" 2>&1 &&
+   grep -q "100 strands of 16 points, 25 guides" "$O/groom"; then
+    ok "--groom style.hair: 100 strands, 25 guides"
+else
+    bad "--groom: $(grep -m1 -E 'strands|gl_marschner:' "$O/groom")"
+fi
 printf 'HAIR' >"$O/bad.hair"
 expect_error "--guides with a bad .hair" "shorter than its 128-byte header" \
     --headless --guides "$O/bad.hair"
