@@ -479,7 +479,8 @@ demo: demo-deps $(EXAMPLES) | $(OUT)
 	@echo "      $(OUT)/fur_swing_030.png ... fur_swing_090.png, fur_kajiya.png,"
 	@echo "      fur_color3d_gpu.png, fur_minimal.png (headless GL renders),"
 	@echo "      $(OUT)/fur_wuson.png, hair_human.png and their frames (animated"
-	@echo "      characters from assimp-testmodels),"
+	@echo "      characters from assimp-testmodels), hair_styled.png (an authored"
+	@echo "      hairstyle, out/hair_styled.hair),"
 	@echo "      $(OUT)/marschner_m.png, marschner_n.png, marschner_scales.txt (LUTs)"
 	@echo "      and the growth pictures $(OUT)/grow_*.png"
 
