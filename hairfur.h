@@ -48,7 +48,7 @@
            hf_fur_set_transform, hf_fur_simulate, hf_fur_interpolate_guides,
            hf_fur_interpolate, hf_fur_ribbons, hf_fur_points,
            hf_fur_max_stretch, hf_fur_reset, hf_fur_set_rope_params,
-           hf_fur_set_mode
+           hf_fur_set_rope_params_range, hf_fur_set_mode
        Drawing (section 8): hf_ribbon_index_count, hf_ribbon_indices,
            hf_ribbon_chunk_strands, hf_ribbon_indices16 (16-bit chunks),
            hf_format_bytes; over your own strands: hf_ribbons,
@@ -179,7 +179,8 @@
                            frizz with their maps, colour variation);
                            grooms without a mesh (hf_fur_create_groom,
                            hf_groom_desc) and rigid root frames for any
-                           fur (hf_fur_set_transform).
+                           fur (hf_fur_set_transform); rope parameters
+                           on a range (hf_fur_set_rope_params_range).
        0.1.0 (2026-11-22)  first release: maps and meshes, density
                            tessellation, guides, placement, Verlet ropes,
                            interpolation, LOD, ribbons, Marschner LUTs,
@@ -1755,6 +1756,16 @@ HFDEF hf_result hf_fur_reset(hf_fur *fur);
    then. Not a range call: run it between frames. */
 HFDEF hf_result hf_fur_set_rope_params(hf_fur *fur,
                                        const hf_rope_params *params);
+/* The same for guides [first, first + count) only (wind on one side, a
+   stiffer fringe, ...). A fur holds up to HF_FUR_ROPE_SETS different
+   parameter sets at once; equal sets are shared. Errors: as
+   hf_fur_set_rope_params, HF_ERROR_BAD_RANGE, and HF_ERROR_BAD_COUNT when
+   a new set would be the ninth in use; nothing changes then. Not a range
+   call in the threading sense: run it between frames. */
+#define HF_FUR_ROPE_SETS 8
+HFDEF hf_result hf_fur_set_rope_params_range(hf_fur *fur, int first,
+                                             int count,
+                                             const hf_rope_params *params);
 /* Switch guides [first, first + count) between simulation and animation
    (hf_rope_mode) without a jump, as hf_ropes_set_mode. Errors:
    HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE, HF_ERROR_BAD_PARAMETER. */
@@ -8342,7 +8353,8 @@ struct hf_fur {
     int strand_count, drawn, triangle_count;
     int lod_sim;
     float lod, width_scale, lod_threshold, clump;
-    hf_rope_params rope;
+    hf_rope_params rope[HF_FUR_ROPE_SETS]; /* the parameter sets in use */
+    unsigned char *rope_of;                /* per guide: its set */
     hf_ropes *ropes;
     float *guide_points;  /* guide_count * P * 3, rope-major */
     float *strand_points; /* strand_count * P * 3 */
@@ -8401,6 +8413,7 @@ HFDEF void hf_fur_destroy(hf_fur *f)
     hf__free(&a, f->root_tan);
     hf__free(&a, f->rest_frame);
     hf__free(&a, f->offsets);
+    hf__free(&a, f->rope_of);
     hf__free(&a, f);
 }
 
@@ -9072,14 +9085,17 @@ HF__PRIVATE hf_result hf__fur_root_refs(hf_fur *f, hf__fur_build *b)
     return HF_OK;
 }
 
-/* The root frames at creation, for hf_fur_set_transform. */
+/* The root frames at creation, for hf_fur_set_transform, and every
+   guide's rope parameter set (0). */
 HF__PRIVATE hf_result hf__fur_keep_rest_frames(hf_fur *f)
 {
     const size_t G = (size_t)f->guide_count;
     hf_result r = HF_OK;
     size_t g;
     f->rest_frame = (float *)hf__fur_array(f, G * 9u, sizeof(float), &r);
+    f->rope_of = (unsigned char *)hf__fur_array(f, G, 1, &r);
     if (r != HF_OK) return r;
+    HF_MEMSET(f->rope_of, 0, G); /* every guide: set 0, the desc's */
     for (g = 0; g < G; ++g) {
         HF_MEMCPY(f->rest_frame + 9 * g, f->root_pos + 3 * g, 12);
         HF_MEMCPY(f->rest_frame + 9 * g + 3, f->root_nrm + 3 * g, 12);
@@ -9160,7 +9176,7 @@ HFDEF hf_result hf_fur_create(const hf_fur_desc *desc, hf_fur **out_fur,
     f->base_triangle_count = desc->mesh.triangle_count;
     f->clump = b.desc.clump;
     f->lod_threshold = b.desc.lod_simulate_threshold;
-    f->rope = b.rope;
+    f->rope[0] = b.rope;
 
     for (i = 0; i < sizeof steps / sizeof steps[0]; ++i)
         if ((r = steps[i].run(f, &b)) != HF_OK) break;
@@ -9471,7 +9487,7 @@ HFDEF hf_result hf_fur_create_groom(const hf_groom_desc *desc, hf_fur **out_fur,
     f->alloc = alloc;
     f->P = P;
     f->groom = 1;
-    f->rope = rope;
+    f->rope[0] = rope;
     f->lod_threshold = 0.5f;
     if ((r = hf__groom_build(f, desc, fraction)) != HF_OK) {
         hf_fur_destroy(f);
@@ -9640,6 +9656,25 @@ HFDEF hf_result hf_fur_set_roots(hf_fur *f, const hf_mesh *m, int first,
                               f->root_nrm, f->root_tan, 0);
 }
 
+/* Step guides [first, end) in runs that share a rope parameter set (each
+   rope is stepped on its own, so runs give the bytes one call would). */
+HF__PRIVATE hf_result hf__fur_step_runs(hf_fur *f, int first, int end,
+                                        float dt, const hf_collider *colliders,
+                                        int collider_count)
+{
+    int a = first;
+    while (a < end) {
+        int b = a + 1;
+        hf_result r;
+        while (b < end && f->rope_of[b] == f->rope_of[a]) ++b;
+        r = hf_ropes_step(f->ropes, a, b - a, dt, &f->rope[f->rope_of[a]],
+                          colliders, collider_count);
+        if (r != HF_OK) return r;
+        a = b;
+    }
+    return HF_OK;
+}
+
 HFDEF hf_result hf_fur_simulate(hf_fur *f, int first, int count, float dt,
                                 const hf_collider *colliders,
                                 int collider_count)
@@ -9654,14 +9689,12 @@ HFDEF hf_result hf_fur_simulate(hf_fur *f, int first, int count, float dt,
         /* sleeping LOD guides are still carried by their roots, so they
            wake up in place; they are stepped but not copied out */
         int lf = first > f->pure_count ? first : f->pure_count;
-        r = hf_ropes_step(f->ropes, lf, end - lf, dt, &f->rope, colliders,
-                          collider_count);
+        r = hf__fur_step_runs(f, lf, end, dt, colliders, collider_count);
         if (r != HF_OK) return r;
         end = lf;
     }
     if (end <= first) return HF_OK;
-    r = hf_ropes_step(f->ropes, first, end - first, dt, &f->rope, colliders,
-                      collider_count);
+    r = hf__fur_step_runs(f, first, end, dt, colliders, collider_count);
     if (r != HF_OK) return r;
     return hf_ropes_get_positions(f->ropes, first, end - first,
                                   f->guide_points, 0);
@@ -9740,7 +9773,46 @@ HFDEF hf_result hf_fur_set_rope_params(hf_fur *f,
     if (!f || !params) return HF_ERROR_NULL_POINTER;
     hf__rope_params_resolve(params, &p);
     if ((r = hf__rope_params_check(&p, NULL)) != HF_OK) return r;
-    f->rope = p;
+    f->rope[0] = p;
+    HF_MEMSET(f->rope_of, 0, (size_t)f->guide_count);
+    return HF_OK;
+}
+
+HF__PRIVATE int hf__same_bytes(const void *a, const void *b, size_t n)
+{
+    const unsigned char *x = (const unsigned char *)a, *y = (const unsigned char *)b;
+    size_t i;
+    for (i = 0; i < n; ++i)
+        if (x[i] != y[i]) return 0;
+    return 1;
+}
+
+HFDEF hf_result hf_fur_set_rope_params_range(hf_fur *f, int first, int count,
+                                             const hf_rope_params *params)
+{
+    hf_rope_params p;
+    hf_result r;
+    int outside[HF_FUR_ROPE_SETS], used[HF_FUR_ROPE_SETS], g, k, slot = -1;
+    if (!f || !params) return HF_ERROR_NULL_POINTER;
+    if (!hf__range_ok(first, count) || first + count > f->guide_count)
+        return HF_ERROR_BAD_RANGE;
+    hf__rope_params_resolve(params, &p);
+    if ((r = hf__rope_params_check(&p, NULL)) != HF_OK) return r;
+    if (count == 0) return HF_OK;
+    for (k = 0; k < HF_FUR_ROPE_SETS; ++k) outside[k] = used[k] = 0;
+    for (g = 0; g < f->guide_count; ++g) {
+        ++used[f->rope_of[g]];
+        if (g < first || g >= first + count) ++outside[f->rope_of[g]];
+    }
+    /* a set already holding these parameters, else one only this range
+       uses (or nobody does) */
+    for (k = 0; k < HF_FUR_ROPE_SETS && slot < 0; ++k)
+        if (used[k] > 0 && hf__same_bytes(&f->rope[k], &p, sizeof p)) slot = k;
+    for (k = 0; k < HF_FUR_ROPE_SETS && slot < 0; ++k)
+        if (outside[k] == 0) slot = k;
+    if (slot < 0) return HF_ERROR_BAD_COUNT;
+    f->rope[slot] = p;
+    for (g = first; g < first + count; ++g) f->rope_of[g] = (unsigned char)slot;
     return HF_OK;
 }
 

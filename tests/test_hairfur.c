@@ -7934,6 +7934,76 @@ static void test_fur_roots_inside_count(void)
 /* Per-frame control: new rope parameters take effect at the next
    simulate (no gravity: the guides stay at rest), bad ones change
    nothing; guides switched to animated follow their rest shape. */
+/* Rope parameters on a range: weightless guides stay at rest while the
+   others sag; split calls give the bytes of one call; up to
+   HF_FUR_ROPE_SETS different sets, equal ones shared. */
+static void test_fur_rope_params_range(void)
+{
+    t_fur_scene sc;
+    hf_fur *a = NULL, *b = NULL;
+    hf_fur_info ia, ib;
+    hf_rope_params p;
+    float *rest;
+    size_t n, per;
+    int frame, G, half, g, k;
+    double still = 0.0, sag = 0.0;
+    t_fur_scene_init(&sc, 1.0f);
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &a, NULL), HF_OK);
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &b, NULL), HF_OK);
+    if (!a || !b) return;
+    hf_fur_get_info(a, &ia);
+    hf_fur_get_info(b, &ib);
+    G = ia.guide_count;
+    half = G / 2;
+    per = (size_t)ia.points_per_strand * 3u;
+    n = (size_t)G * per;
+    rest = (float *)malloc(sizeof(float) * n);
+    memcpy(rest, ia.guide_points, sizeof(float) * n);
+    memset(&p, 0, sizeof p);
+    p.explicit_zero = HF_ROPE_ZERO_GRAVITY;
+    CHECK_EQ_INT(hf_fur_set_rope_params_range(a, 0, half, &p), HF_OK);
+    CHECK_EQ_INT(hf_fur_set_rope_params_range(b, 0, half, &p), HF_OK);
+    for (frame = 0; frame < 20; ++frame) {
+        CHECK_EQ_INT(hf_fur_simulate(a, 0, G, 1.0f / 60.0f, NULL, 0), HF_OK);
+        CHECK_EQ_INT(hf_fur_simulate(b, 0, 7, 1.0f / 60.0f, NULL, 0), HF_OK);
+        CHECK_EQ_INT(hf_fur_simulate(b, 7, half - 4, 1.0f / 60.0f, NULL, 0), HF_OK);
+        CHECK_EQ_INT(hf_fur_simulate(b, half + 3, G - half - 3, 1.0f / 60.0f,
+                                     NULL, 0), HF_OK);
+    }
+    for (g = 0; g < G; ++g)
+        for (k = 0; k < (int)per; ++k) {
+            double d = fabs((double)ia.guide_points[(size_t)g * per + (size_t)k] -
+                            rest[(size_t)g * per + (size_t)k]);
+            if (g < half && d > still) still = d;
+            if (g >= half && d > sag) sag = d;
+        }
+    CHECK(still < 1e-5);
+    CHECK(sag > 1e-3);
+    CHECK(memcmp(ia.guide_points, ib.guide_points, sizeof(float) * n) == 0);
+    /* eight sets fit (the range call shares equal ones); a ninth does not */
+    for (k = 1; k < HF_FUR_ROPE_SETS; ++k) {
+        memset(&p, 0, sizeof p);
+        p.damping = 0.01f * (float)k;
+        CHECK_EQ_INT(hf_fur_set_rope_params_range(a, k, 1, &p), HF_OK);
+    }
+    CHECK_EQ_INT(hf_fur_set_rope_params_range(a, 20, 1, &p), HF_OK); /* shared */
+    memset(&p, 0, sizeof p);
+    p.damping = 0.5f;
+    CHECK_EQ_INT(hf_fur_set_rope_params_range(a, 30, 1, &p), HF_ERROR_BAD_COUNT);
+    CHECK_EQ_INT(hf_fur_set_rope_params_range(a, 0, G + 1, &p), HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_fur_set_rope_params_range(NULL, 0, 1, &p), HF_ERROR_NULL_POINTER);
+    p.damping = 2.0f;
+    CHECK_EQ_INT(hf_fur_set_rope_params_range(a, 0, 1, &p), HF_ERROR_BAD_PARAMETER);
+    /* the whole-fur call makes it one set again: the ninth fits now */
+    memset(&p, 0, sizeof p);
+    CHECK_EQ_INT(hf_fur_set_rope_params(a, &p), HF_OK);
+    p.damping = 0.5f;
+    CHECK_EQ_INT(hf_fur_set_rope_params_range(a, 30, 1, &p), HF_OK);
+    free(rest);
+    hf_fur_destroy(a);
+    hf_fur_destroy(b);
+}
+
 static void test_fur_set_rope_params_and_mode(void)
 {
     t_fur_scene sc;
@@ -8160,6 +8230,7 @@ int main(void)
     RUN(test_out_first_fur_chunks);
     RUN(test_fur_roots_inside_count);
     RUN(test_fur_set_rope_params_and_mode);
+    RUN(test_fur_rope_params_range);
     RUN(test_bad_fur);
 
     printf("%d passed, %d failed\n", t_passed, t_failed);
