@@ -180,7 +180,8 @@
                            grooms without a mesh (hf_fur_create_groom,
                            hf_groom_desc) and rigid root frames for any
                            fur (hf_fur_set_transform); rope parameters
-                           on a range (hf_fur_set_rope_params_range).
+                           on a range (hf_fur_set_rope_params_range);
+                           clumps of a chosen size (clump_size).
        0.1.0 (2026-11-22)  first release: maps and meshes, density
                            tessellation, guides, placement, Verlet ropes,
                            interpolation, LOD, ribbons, Marschner LUTs,
@@ -1603,6 +1604,10 @@ typedef struct hf_fur_desc {
     int sampler;            /* hf_root_sampler; 0 = uniform */
     uint64_t seed;          /* every stochastic stage; 0 is a fine seed */
     float clump;            /* 0 = none; [0, 1], see hf_interp_params */
+    float clump_size;       /* 0: each strand clumps to its main guide;
+                               > 0: strands gather into clumps about this
+                               wide (world units) around leader strands
+                               that far apart, whatever the guide spacing */
     float lod_simulate_threshold; /* 0 = 0.5: LOD guides simulated at
                                      lod >= this */
     const hf_rope_params *rope_params; /* NULL = hf_rope_params_init */
@@ -8355,6 +8360,8 @@ struct hf_fur {
     float lod, width_scale, lod_threshold, clump;
     hf_rope_params rope[HF_FUR_ROPE_SETS]; /* the parameter sets in use */
     unsigned char *rope_of;                /* per guide: its set */
+    uint32_t *leader;      /* clump_size > 0: per strand, the strand whose
+                              shape it clumps to (itself for a leader) */
     hf_ropes *ropes;
     float *guide_points;  /* guide_count * P * 3, rope-major */
     float *strand_points; /* strand_count * P * 3 */
@@ -8414,6 +8421,7 @@ HFDEF void hf_fur_destroy(hf_fur *f)
     hf__free(&a, f->rest_frame);
     hf__free(&a, f->offsets);
     hf__free(&a, f->rope_of);
+    hf__free(&a, f->leader);
     hf__free(&a, f);
 }
 
@@ -8464,22 +8472,24 @@ HF__PRIVATE void hf__fur_build_free(const hf_allocator *a, hf__fur_build *b)
 /* Guide curves and styling: counts, points and values. */
 HF__PRIVATE hf_result hf__fur_style_check(const hf_fur_desc *d, hf_diag *diag)
 {
-    const float v[6] = {d->curl_radius, d->curl_turns, d->wave_amplitude,
-                        d->wave_count, d->frizz, d->color_variation};
-    static const char *const names[6] = {"curl_radius", "curl_turns",
+    const float v[7] = {d->curl_radius, d->curl_turns, d->wave_amplitude,
+                        d->wave_count, d->frizz, d->clump_size,
+                        d->color_variation};
+    static const char *const names[7] = {"curl_radius", "curl_turns",
                                          "wave_amplitude", "wave_count",
-                                         "frizz", "color_variation"};
+                                         "frizz", "clump_size",
+                                         "color_variation"};
     const hf_map *maps[3];
     hf_result r;
     long long total = 0;
     int i, k;
-    for (i = 0; i < 6; ++i)
+    for (i = 0; i < 7; ++i)
         if (!hf__finitef(v[i]) || v[i] < 0.0f || v[i] > HF_ROPE_MAX_COORD ||
-            (i == 5 && v[i] > 1.0f))
+            (i == 6 && v[i] > 1.0f))
             return hf__fail(diag, HF_ERROR_BAD_PARAMETER, names[i], -1,
                             "%s %g is negative, non-finite or too large%s",
                             names[i], (double)v[i],
-                            i == 5 ? " (at most 1)" : "");
+                            i == 6 ? " (at most 1)" : "");
     maps[0] = d->curl_map; maps[1] = d->wave_map; maps[2] = d->frizz_map;
     for (i = 0; i < 3; ++i) {
         if (!maps[i]) continue;
@@ -9045,6 +9055,105 @@ HF__PRIVATE hf_result hf__fur_bind(hf_fur *f, hf__fur_build *b)
     return HF_OK;
 }
 
+/* Clump leaders (hf_fur_desc.clump_size): in LOD order, a strand whose
+   root has no leader within clump_size becomes one; every other strand
+   clumps to its nearest leader. A hash grid of clump_size cells keeps it
+   linear. */
+HF__PRIVATE hf_result hf__fur_clumps(hf_fur *f, hf__fur_build *b)
+{
+    const int S = f->strand_count, P = f->P;
+    const float size = b->desc.clump_size;
+    const double inv = size > 0.0f ? 1.0 / size : 0.0;
+    hf_result r = HF_OK;
+    float *root;
+    uint32_t *head, *next, cap = 1;
+    int i, k;
+    if (!(size > 0.0f) || b->desc.clump == 0.0f || S == 0) return HF_OK;
+    while (cap < 2u * (uint32_t)S && cap < (1u << 30)) cap <<= 1;
+    f->leader = (uint32_t *)hf__fur_array(f, (size_t)S, sizeof(uint32_t), &r);
+    root = (float *)hf__fur_array(f, (size_t)S * 3u, sizeof(float), &r);
+    head = (uint32_t *)hf__fur_array(f, cap, sizeof(uint32_t), &r);
+    next = (uint32_t *)hf__fur_array(f, (size_t)S, sizeof(uint32_t), &r);
+    if (r != HF_OK) goto done;
+    for (i = 0; i < (int)cap; ++i) head[i] = 0xffffffffu;
+    for (i = 0; i < S; ++i) { /* rest roots: the blend of the guides' */
+        const hf_strand_binding *bd = &f->bindings[i];
+        for (k = 0; k < 3; ++k)
+            root[3 * i + k] =
+                bd->weight[0] * b->rest_points[(size_t)bd->guide[0] * (size_t)P * 3u + (size_t)k] +
+                bd->weight[1] * b->rest_points[(size_t)bd->guide[1] * (size_t)P * 3u + (size_t)k] +
+                bd->weight[2] * b->rest_points[(size_t)bd->guide[2] * (size_t)P * 3u + (size_t)k];
+    }
+    for (i = 0; i < S; ++i) {
+        const float *q = root + 3 * i;
+        long long c[3];
+        double best = (double)size * size;
+        uint32_t lead = 0xffffffffu, h;
+        int dx, dy, dz;
+        for (k = 0; k < 3; ++k) c[k] = (long long)HF_FLOOR(q[k] * inv);
+        for (dx = -1; dx <= 1; ++dx)
+            for (dy = -1; dy <= 1; ++dy)
+                for (dz = -1; dz <= 1; ++dz) {
+                    uint64_t key = (uint64_t)(c[0] + dx) * 73856093u ^
+                                   (uint64_t)(c[1] + dy) * 19349663u ^
+                                   (uint64_t)(c[2] + dz) * 83492791u;
+                    uint32_t j = head[(uint32_t)(key ^ (key >> 29)) & (cap - 1)];
+                    for (; j != 0xffffffffu; j = next[j]) {
+                        const float *p = root + 3 * j;
+                        double e = ((double)p[0] - q[0]) * ((double)p[0] - q[0]) +
+                                   ((double)p[1] - q[1]) * ((double)p[1] - q[1]) +
+                                   ((double)p[2] - q[2]) * ((double)p[2] - q[2]);
+                        if (e < best) { best = e; lead = j; }
+                    }
+                }
+        if (lead == 0xffffffffu) { /* a new leader, into its cell */
+            uint64_t key = (uint64_t)c[0] * 73856093u ^ (uint64_t)c[1] * 19349663u ^
+                           (uint64_t)c[2] * 83492791u;
+            h = (uint32_t)(key ^ (key >> 29)) & (cap - 1);
+            next[i] = head[h];
+            head[h] = (uint32_t)i;
+            lead = (uint32_t)i;
+        }
+        f->leader[i] = lead;
+    }
+done:
+    hf__free(&f->alloc, root);
+    hf__free(&f->alloc, head);
+    hf__free(&f->alloc, next);
+    return r;
+}
+
+/* Strands [first, first + count) gathered to their leaders: point j moves
+   clump * j / (P - 1) of the way to the leader's point j (the leader's
+   blend of its guides, unclumped). */
+HF__PRIVATE void hf__fur_clump_leaders(const hf_fur *f, int first, int count)
+{
+    const int P = f->P;
+    int s, j, k;
+    for (s = first; s < first + count; ++s) {
+        const uint32_t l = f->leader[s];
+        const hf_strand_binding *b = &f->bindings[l];
+        const float *g[3];
+        float *o = f->strand_points + (size_t)s * (size_t)P * 3u, root[3];
+        if ((int)l == s) continue;
+        for (k = 0; k < 3; ++k)
+            g[k] = f->guide_points + (size_t)b->guide[k] * (size_t)P * 3u;
+        for (k = 0; k < 3; ++k)
+            root[k] = b->weight[0] * g[0][k] + b->weight[1] * g[1][k] +
+                      b->weight[2] * g[2][k];
+        for (j = 1; j < P; ++j) {
+            const float c = f->clump * (float)j / (float)(P - 1);
+            for (k = 0; k < 3; ++k) {
+                float lp = b->weight[0] * g[0][3 * j + k] +
+                           b->weight[1] * g[1][3 * j + k] +
+                           b->weight[2] * g[2][3 * j + k];
+                lp = root[k] + b->length_scale * (lp - root[k]);
+                o[3 * j + k] += c * (lp - o[3 * j + k]);
+            }
+        }
+    }
+}
+
 /* Frame references of every guide: the root vertex, an edge for the
    tangent and a third corner for the face normal. A pure guide takes the
    first non-degenerate triangle of its vertex, a LOD guide its base
@@ -9147,6 +9256,7 @@ HFDEF hf_result hf_fur_create(const hf_fur_desc *desc, hf_fur **out_fur,
                  {"strand placement", hf__fur_place},
                  {"strand maps", hf__fur_strand_maps},
                  {"strand bindings", hf__fur_bind},
+                 {"clumps", hf__fur_clumps},
                  {"root frames", hf__fur_root_refs},
                  {"ropes", hf__fur_ropes}};
     hf__fur_build b;
@@ -9723,7 +9833,8 @@ HFDEF hf_result hf_fur_interpolate(hf_fur *f, int first, int count)
     if (!hf__range_ok(first, count) || first + count > f->strand_count)
         return HF_ERROR_BAD_RANGE;
     hf__interpolate_run(f->guide_points, f->bindings, first, count, f->P,
-                        f->clump, f->strand_points, 0);
+                        f->leader ? 0.0f : f->clump, f->strand_points, 0);
+    if (f->leader) hf__fur_clump_leaders(f, first, count);
     if (f->offsets) hf__groom_offsets(f, first, count);
     return HF_OK;
 }

@@ -111,6 +111,7 @@ typedef struct glm_options {
     float guide_fraction;    /* of the groom's strands; 0 = 0.1 */
     float curl[2], wave[2];  /* radius and turns; amplitude and count */
     float frizz, color_variation;
+    float clump[2];          /* strength, size (0: clumps around guides) */
     int guides;         /* guide target; 0 = strands / 10, at most 2,000 */
 } glm_options;
 
@@ -126,6 +127,7 @@ static void glm_default_options(glm_options *o)
     o->hair_color[0] = 0.42f;
     o->hair_color[1] = 0.27f;
     o->hair_color[2] = 0.16f;
+    o->clump[0] = 0.25f;
     o->azimuth = 30.0f;
     o->elevation = 12.0f;
     o->orbit_speed = 12.0f;
@@ -1125,7 +1127,8 @@ static int glm_init(glm_app *a, const glm_options *o)
     desc.total_strands = o->strands;
     desc.sampler = HF_SAMPLER_STRATIFIED;
     desc.seed = 7;
-    desc.clump = 0.25f;
+    desc.clump = o->clump[0];
+    desc.clump_size = o->clump[1];
     if (!o->mesh && !o->guides) {
         desc.tess_factor = 25000.0f; /* about 2,000 guides on the head */
     } else {
@@ -1912,6 +1915,8 @@ static void glm_usage(FILE *fp)
 "  --curl R,TURNS     curl: helix radius (metres), turns along a strand\n"
 "  --wave A,COUNT     wave: amplitude (metres), periods along a strand\n"
 "  --frizz F          random offset per point, a fraction of a segment\n"
+"  --clump S,SIZE     clumping: strength [0, 1] (tips on the clump at 1) and\n"
+"                     clump size in metres (0: around the guides) (0.25,0)\n"
 "  --color-variation V  each strand's colour times [1 - V, 1 + V]\n"
         );
     fprintf(fp, /* two strings: C99 compilers need only take 4095 bytes */
@@ -2066,6 +2071,14 @@ static int glm_parse(int argc, char **argv, glm_options *o)
             else if (!strcmp(s, "--curl")) ok = glm_real2(s, v, 0.0, 1e3, o->curl);
             else if (!strcmp(s, "--wave")) ok = glm_real2(s, v, 0.0, 1e3, o->wave);
             else if (!strcmp(s, "--frizz")) ok = glm_real(s, v, 0.0, 10.0, &o->frizz);
+            else if (!strcmp(s, "--clump")) {
+                ok = glm_real2(s, v, 0.0, 1e3, o->clump);
+                if (ok && o->clump[0] > 1.0f) {
+                    fprintf(stderr, "gl_marschner: --clump '%s': the strength "
+                            "is at most 1\n", v);
+                    ok = 0;
+                }
+            }
             else if (!strcmp(s, "--color-variation")) ok = glm_real(s, v, 0.0, 1.0, &o->color_variation);
             else if (!strcmp(s, "--expand-shader")) o->expand_shader = v;
             else if (!strcmp(s, "--mesh")) o->mesh = v;

@@ -7454,6 +7454,77 @@ static void test_fur_groom(void)
     }
 }
 
+/* Distinct strand tips (within 1e-5 m), for clumping. */
+static int t_distinct_tips(const hf_fur_info *info)
+{
+    int i, j, n = 0, P = info->points_per_strand;
+    for (i = 0; i < info->strand_count; ++i) {
+        const float *a = info->strand_points + ((size_t)i * (size_t)P + (size_t)P - 1) * 3u;
+        for (j = 0; j < i; ++j) {
+            const float *b = info->strand_points + ((size_t)j * (size_t)P + (size_t)P - 1) * 3u;
+            if (fabs(a[0] - b[0]) < 1e-5 && fabs(a[1] - b[1]) < 1e-5 &&
+                fabs(a[2] - b[2]) < 1e-5)
+                break;
+        }
+        n += j == i;
+    }
+    return n;
+}
+
+/* clump_size: with clump 1 every tip lands on its leader's, so there are
+   as many distinct tips as leaders: few for large clumps, more for small
+   ones; leaders are clump_size apart. Ranges give the same bytes. */
+static void test_fur_clump_size(void)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    int big, small, guides_only;
+    float *whole;
+    size_t n;
+    t_fur_scene_init(&sc, 1.0f);
+    sc.desc.clump = 1.0f;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (!f) return;
+    hf_fur_get_info(f, &info);
+    guides_only = t_distinct_tips(&info); /* tips on the main guides */
+    hf_fur_destroy(f);
+    sc.desc.clump_size = 0.8f;
+    f = NULL;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (!f) return;
+    hf_fur_get_info(f, &info);
+    big = t_distinct_tips(&info);
+    n = (size_t)info.strand_count * (size_t)info.points_per_strand * 3u;
+    whole = (float *)malloc(sizeof(float) * n);
+    memcpy(whole, info.strand_points, sizeof(float) * n);
+    CHECK_EQ_INT(hf_fur_interpolate(f, 0, 77), HF_OK);
+    CHECK_EQ_INT(hf_fur_interpolate(f, 77, info.strand_count - 77), HF_OK);
+    CHECK(memcmp(whole, info.strand_points, sizeof(float) * n) == 0);
+    free(whole);
+    hf_fur_destroy(f);
+    sc.desc.clump_size = 0.25f;
+    f = NULL;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (!f) return;
+    hf_fur_get_info(f, &info);
+    small = t_distinct_tips(&info);
+    hf_fur_destroy(f);
+    /* on a unit sphere: 0.8 m clumps are a few dozen, 0.25 m a few hundred */
+    CHECK(big >= 8 && big < 60);
+    CHECK(small > 2 * big && small < info.strand_count);
+    CHECK(guides_only > big);
+    /* refused: negative or non-finite */
+    {
+        hf_diag d;
+        f = NULL;
+        sc.desc.clump_size = -1.0f;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, &d), HF_ERROR_BAD_PARAMETER);
+        CHECK(strstr(d.message, "clump_size") != NULL);
+        CHECK(f == NULL);
+    }
+}
+
 static void test_fur_no_allocation_per_frame(void)
 {
     t_fur_scene sc;
@@ -8219,6 +8290,7 @@ int main(void)
     RUN(test_fur_guide_curves);
     RUN(test_fur_styling);
     RUN(test_fur_groom);
+    RUN(test_fur_clump_size);
     RUN(test_fur_no_allocation_per_frame);
     RUN(test_fur_ranges_byte_identical);
     RUN(test_fur_lod_prefix_and_width);
