@@ -181,7 +181,9 @@
                            hf_groom_desc) and rigid root frames for any
                            fur (hf_fur_set_transform); rope parameters
                            on a range (hf_fur_set_rope_params_range);
-                           clumps of a chosen size (clump_size).
+                           clumps of a chosen size (clump_size); per-strand
+                           widths (hf_ribbon_strands.width,
+                           width_variation).
        0.1.0 (2026-11-22)  first release: maps and meshes, density
                            tessellation, guides, placement, Verlet ropes,
                            interpolation, LOD, ribbons, Marschner LUTs,
@@ -1269,6 +1271,8 @@ typedef struct hf_ribbon_strands {
     const float *color;      /* 4 per strand, r g b a [1, 1, 1, 1] (the
                                 layout hf_strand_colors writes) */
     const float *color3d_x;  /* 1 per strand [0] */
+    const float *width;      /* 1 per strand: a width multiplier [1];
+                                negative or non-finite reads as 0 */
 } hf_ribbon_strands;
 
 typedef struct hf_ribbon_params {
@@ -1589,6 +1593,8 @@ typedef struct hf_fur_desc {
     const hf_map *curl_map, *wave_map, *frizz_map; /* NULL = 1 */
     float color_variation;  /* [0, 1]: each strand's colour times a random
                                factor in [1 - v, 1 + v] (clamped to 1) */
+    float width_variation;  /* [0, 1]: each strand's ribbon width times a
+                               random factor in [1 - v, 1 + v] */
     int points_per_strand;  /* 0 = 16; 2 .. HF_MAX_POINTS */
     float max_length;       /* 0 = 0.05 (world units, metres in examples) */
     float tess_factor;      /* 0 = no tessellation: pure guides only. Else
@@ -6725,6 +6731,16 @@ static const float hf__zero_points[3 * HF_MAX_POINTS] = {0.0f};
    0, so no NaN reaches a vertex. */
 HF__PRIVATE float hf__fin0(float x) { return hf__finitef(x) ? x : 0.0f; }
 
+/* A strand's width multiplier: 1 without the array, else the value,
+   with negative or non-finite read as 0 and the top clamped. */
+HF__PRIVATE float hf__strand_width(const hf_ribbon_strands *st, int s)
+{
+    float w;
+    if (!st->width) return 1.0f;
+    w = hf__fin0(st->width[s]);
+    return w > 0.0f ? (w < HF_MAX_ABS ? w : HF_MAX_ABS) : 0.0f;
+}
+
 /* One strand in structure-of-arrays rows, so that four points load as one
    vector: in every row, point j is at index 4 + j. The point rows repeat
    point 0 before it and point P - 1 after it (one-sided differences at the
@@ -7596,6 +7612,7 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
         const float *pts = strands->points + (size_t)s * (size_t)P * 3u;
         hf__rstrand str;
         hf__strand_frame(pts, P, params, &fr, &str.wscale);
+        str.wscale *= hf__strand_width(strands, s);
         for (k = 0; k < 2; ++k)
             str.uv[k] = strands->root_uv
                           ? hf__fin0(strands->root_uv[2 * (size_t)s + k])
@@ -7627,8 +7644,10 @@ HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
     for (s = first; s < first + count; ++s) {
         const float *p = strands->points + (size_t)s * (size_t)P * 3u;
         float *o = out4 + (size_t)(s - params->out_first) * (size_t)P * 4u;
-        const float wscale = hf__points_finite(p, 3 * P) ? 1.0f : 0.0f;
-        if (wscale == 0.0f) p = hf__zero_points; /* collapsed, as hf_ribbons */
+        const float wscale = hf__points_finite(p, 3 * P)
+                                 ? hf__strand_width(strands, s) : 0.0f;
+        if (!hf__points_finite(p, 3 * P))
+            p = hf__zero_points; /* collapsed, as hf_ribbons */
         for (j = 0; j < P; ++j) {
             o[4 * j] = p[3 * j];
             o[4 * j + 1] = p[3 * j + 1];
@@ -8360,6 +8379,7 @@ struct hf_fur {
     float lod, width_scale, lod_threshold, clump;
     hf_rope_params rope[HF_FUR_ROPE_SETS]; /* the parameter sets in use */
     unsigned char *rope_of;                /* per guide: its set */
+    float *strand_width;   /* width_variation > 0: per strand multiplier */
     uint32_t *leader;      /* clump_size > 0: per strand, the strand whose
                               shape it clumps to (itself for a leader) */
     hf_ropes *ropes;
@@ -8422,6 +8442,7 @@ HFDEF void hf_fur_destroy(hf_fur *f)
     hf__free(&a, f->offsets);
     hf__free(&a, f->rope_of);
     hf__free(&a, f->leader);
+    hf__free(&a, f->strand_width);
     hf__free(&a, f);
 }
 
@@ -8472,24 +8493,24 @@ HF__PRIVATE void hf__fur_build_free(const hf_allocator *a, hf__fur_build *b)
 /* Guide curves and styling: counts, points and values. */
 HF__PRIVATE hf_result hf__fur_style_check(const hf_fur_desc *d, hf_diag *diag)
 {
-    const float v[7] = {d->curl_radius, d->curl_turns, d->wave_amplitude,
+    const float v[8] = {d->curl_radius, d->curl_turns, d->wave_amplitude,
                         d->wave_count, d->frizz, d->clump_size,
-                        d->color_variation};
-    static const char *const names[7] = {"curl_radius", "curl_turns",
+                        d->color_variation, d->width_variation};
+    static const char *const names[8] = {"curl_radius", "curl_turns",
                                          "wave_amplitude", "wave_count",
                                          "frizz", "clump_size",
-                                         "color_variation"};
+                                         "color_variation", "width_variation"};
     const hf_map *maps[3];
     hf_result r;
     long long total = 0;
     int i, k;
-    for (i = 0; i < 7; ++i)
+    for (i = 0; i < 8; ++i)
         if (!hf__finitef(v[i]) || v[i] < 0.0f || v[i] > HF_ROPE_MAX_COORD ||
-            (i == 6 && v[i] > 1.0f))
+            (i >= 6 && v[i] > 1.0f))
             return hf__fail(diag, HF_ERROR_BAD_PARAMETER, names[i], -1,
                             "%s %g is negative, non-finite or too large%s",
                             names[i], (double)v[i],
-                            i == 6 ? " (at most 1)" : "");
+                            i >= 6 ? " (at most 1)" : "");
     maps[0] = d->curl_map; maps[1] = d->wave_map; maps[2] = d->frizz_map;
     for (i = 0; i < 3; ++i) {
         if (!maps[i]) continue;
@@ -8990,6 +9011,16 @@ HF__PRIVATE hf_result hf__fur_strand_maps(hf_fur *f, hf__fur_build *b)
         if (r != HF_OK) return r;
     } else {
         for (i = 0; i < 4 * n_strands; ++i) f->strand_rgba[i] = 1.0f;
+    }
+    if (d->width_variation > 0.0f) { /* per strand, in strand order */
+        hf_rng rng;
+        f->strand_width = (float *)hf__fur_array(f, (size_t)n_strands,
+                                                 sizeof(float), &r);
+        if (r != HF_OK) return r;
+        hf_rng_seed(&rng, d->seed, 0x5757u + 1u);
+        for (i = 0; i < n_strands; ++i)
+            f->strand_width[i] =
+                1.0f + d->width_variation * (2.0f * hf_rng_float(&rng) - 1.0f);
     }
     if (d->color_variation > 0.0f) { /* per strand, in strand order */
         hf_rng rng;
@@ -9854,6 +9885,7 @@ HF__PRIVATE hf_result hf__fur_view(const hf_fur *f, int first, int count,
     s->root_uv = f->strand_uv;
     s->color = f->strand_rgba;
     s->color3d_x = f->strand_c3x;
+    s->width = f->strand_width;
     return HF_OK;
 }
 

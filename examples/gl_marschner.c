@@ -110,7 +110,7 @@ typedef struct glm_options {
     const char *groom_path;  /* a groom: its strands drawn, some simulated */
     float guide_fraction;    /* of the groom's strands; 0 = 0.1 */
     float curl[2], wave[2];  /* radius and turns; amplitude and count */
-    float frizz, color_variation;
+    float frizz, color_variation, width_variation;
     float clump[2];          /* strength, size (0: clumps around guides) */
     int guides;         /* guide target; 0 = strands / 10, at most 2,000 */
 } glm_options;
@@ -1122,6 +1122,7 @@ static int glm_init(glm_app *a, const glm_options *o)
     desc.wave_count = o->wave[1];
     desc.frizz = o->frizz;
     desc.color_variation = o->color_variation;
+    desc.width_variation = o->width_variation;
     desc.points_per_strand = 16;
     desc.max_length = a->hair_len;
     desc.total_strands = o->strands;
@@ -1918,6 +1919,7 @@ static void glm_usage(FILE *fp)
 "  --clump S,SIZE     clumping: strength [0, 1] (tips on the clump at 1) and\n"
 "                     clump size in metres (0: around the guides) (0.25,0)\n"
 "  --color-variation V  each strand's colour times [1 - V, 1 + V]\n"
+"  --width-variation V  each strand's width times [1 - V, 1 + V]\n"
         );
     fprintf(fp, /* two strings: C99 compilers need only take 4095 bytes */
 "Drawing\n"
@@ -2080,6 +2082,7 @@ static int glm_parse(int argc, char **argv, glm_options *o)
                 }
             }
             else if (!strcmp(s, "--color-variation")) ok = glm_real(s, v, 0.0, 1.0, &o->color_variation);
+            else if (!strcmp(s, "--width-variation")) ok = glm_real(s, v, 0.0, 1.0, &o->width_variation);
             else if (!strcmp(s, "--expand-shader")) o->expand_shader = v;
             else if (!strcmp(s, "--mesh")) o->mesh = v;
             else if (!strcmp(s, "--anim")) o->anim = v;

@@ -7525,6 +7525,74 @@ static void test_fur_clump_size(void)
     }
 }
 
+/* Per-strand widths: hf_ribbon_strands.width multiplies each strand's
+   ribbon (and GPU half widths); NaN or negative collapse it; a fur's
+   width_variation spreads its strands' widths over [1 - v, 1 + v]. */
+static void test_ribbon_strand_widths(void)
+{
+    float pts[3 * 4 * 3], w[3] = {1.0f, 2.5f, NAN}, v[3 * 4 * 2 * 3], g[3 * 4 * 4];
+    hf_ribbon_strands st;
+    hf_ribbon_params rp;
+    hf_ribbon_output out;
+    int s, j;
+    for (s = 0; s < 3; ++s)
+        for (j = 0; j < 4; ++j) {
+            pts[3 * (4 * s + j)] = 0.1f * (float)s;
+            pts[3 * (4 * s + j) + 1] = 0.05f * (float)j;
+            pts[3 * (4 * s + j) + 2] = 0.0f;
+        }
+    memset(&st, 0, sizeof st);
+    st.points = pts;
+    st.width = w;
+    memset(&rp, 0, sizeof rp);
+    rp.points_per_strand = 4;
+    rp.eye[2] = 5.0f;
+    rp.root_width = 0.002f;
+    rp.tip_width = 0.002f;
+    memset(&out, 0, sizeof out);
+    out.position.data = v;
+    CHECK_EQ_INT(hf_ribbons(&st, 0, 3, &rp, &out), HF_OK);
+    for (s = 0; s < 3; ++s) {
+        const float *a = v + 3 * (8 * s), *b = a + 3;
+        double d = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                        (a[2] - b[2]) * (a[2] - b[2]));
+        double want = s == 0 ? 0.002 : s == 1 ? 0.005 : 0.0;
+        CHECK(fabs(d - want) < 1e-6);
+    }
+    CHECK_EQ_INT(hf_ribbon_points(&st, 0, 3, &rp, g), HF_OK);
+    CHECK(fabs(g[3] - 0.001f) < 1e-7 && fabs(g[16 + 3] - 0.0025f) < 1e-7 &&
+          g[32 + 3] == 0.0f);
+    w[2] = -1.0f;
+    CHECK_EQ_INT(hf_ribbon_points(&st, 0, 3, &rp, g), HF_OK);
+    CHECK(g[32 + 3] == 0.0f);
+    /* a fur: the widths of its strands vary */
+    {
+        t_fur_scene sc;
+        hf_fur *f = NULL;
+        hf_fur_info info;
+        float lo = 1e9f, hi = 0.0f;
+        float *buf;
+        int i;
+        t_fur_scene_init(&sc, 1.0f);
+        sc.desc.width_variation = 0.4f;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+        if (!f) return;
+        hf_fur_get_info(f, &info);
+        buf = (float *)malloc(sizeof(float) * 4u * (size_t)info.strand_count * 8u);
+        memset(&rp, 0, sizeof rp);
+        rp.root_width = rp.tip_width = 0.01f;
+        CHECK_EQ_INT(hf_fur_points(f, 0, info.strand_count, &rp, buf), HF_OK);
+        for (i = 0; i < info.strand_count; ++i) {
+            float h = buf[(size_t)i * 8u * 4u + 3] / 0.005f;
+            if (h < lo) lo = h;
+            if (h > hi) hi = h;
+        }
+        CHECK(lo >= 0.6f - 1e-5f && hi <= 1.4f + 1e-5f && hi - lo > 0.5f);
+        free(buf);
+        hf_fur_destroy(f);
+    }
+}
+
 static void test_fur_no_allocation_per_frame(void)
 {
     t_fur_scene sc;
@@ -8291,6 +8359,7 @@ int main(void)
     RUN(test_fur_styling);
     RUN(test_fur_groom);
     RUN(test_fur_clump_size);
+    RUN(test_ribbon_strand_widths);
     RUN(test_fur_no_allocation_per_frame);
     RUN(test_fur_ranges_byte_identical);
     RUN(test_fur_lod_prefix_and_width);

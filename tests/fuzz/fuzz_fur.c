@@ -94,6 +94,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         desc.frizz = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 1.0f) : fz_float(&r, 1.0f);
         desc.color_variation = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 1.0f) : fz_float(&r, 2.0f);
         desc.clump_size = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 0.5f) : fz_float(&r, 2.0f);
+        desc.width_variation = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 1.0f) : fz_float(&r, 2.0f);
     }
     desc.points_per_strand = fz_chance(&r, 200) ? fz_int(&r, 0, 24)
                                                 : fz_int(&r, -2, 300);

@@ -37,7 +37,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     fz_reader r;
     int S, P, i, k, first, count, mask;
-    float *pts, *uv, *rgba, *c3x, *v, *v2, *p4;
+    float *pts, *uv, *rgba, *c3x, *wid, *v, *v2, *p4;
     hf_ribbon_strands st;
     hf_ribbon_params rp;
     hf_ribbon_output o;
@@ -51,7 +51,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     uv = (float *)malloc(sizeof(float) * 2u * (size_t)S);
     rgba = (float *)malloc(sizeof(float) * 4u * (size_t)S);
     c3x = (float *)malloc(sizeof(float) * (size_t)S);
-    if (!pts || !uv || !rgba || !c3x) abort();
+    wid = (float *)malloc(sizeof(float) * (size_t)S);
+    if (!pts || !uv || !rgba || !c3x || !wid) abort();
     for (i = 0; i < S * P; ++i) {
         int mode = fz_u8(&r) % 8;
         for (k = 0; k < 3; ++k) {
@@ -66,6 +67,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     for (i = 0; i < 2 * S; ++i) uv[i] = fz_float_in(&r, 0.0f, 1.0f);
     for (i = 0; i < 4 * S; ++i) rgba[i] = fz_float_in(&r, 0.0f, 1.0f);
     for (i = 0; i < S; ++i) c3x[i] = fz_float_in(&r, 0.0f, 1.0f);
+    for (i = 0; i < S; ++i) wid[i] = fz_float(&r, 2.0f); /* any: NaN, < 0 */
 #ifdef FZ_SKIP_KNOWN
     /* known bug (regressions/ribbons-nan-points-*): points are not
        checked, so NaN / inf points give NaN vertices */
@@ -83,6 +85,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     st.root_uv = (fz_u8(&r) & 1) ? uv : NULL;
     st.color = (fz_u8(&r) & 1) ? rgba : NULL;
     st.color3d_x = (fz_u8(&r) & 1) ? c3x : NULL;
+    st.width = (fz_u8(&r) & 1) ? wid : NULL;
 
     memset(&rp, 0, sizeof rp);
     rp.points_per_strand = fz_chance(&r, 250) ? P : fz_int(&r, -1, P);
@@ -332,5 +335,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     free(uv);
     free(rgba);
     free(c3x);
+    free(wid);
     return 0;
 }
