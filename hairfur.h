@@ -1667,6 +1667,12 @@ typedef struct hf_groom_desc {
                                   strands, at least 1, are simulated guides;
                                   (0, 1] */
     uint64_t seed;             /* the LOD order (a shuffle) */
+    const hf_mesh *scalp;      /* NULL: roots follow hf_fur_set_transform;
+                                  else the surface the groom grows from, at
+                                  rest (positions and triangles are read):
+                                  each guide root is bound to its nearest
+                                  point on it, and hf_fur_set_roots with the
+                                  skinned scalp moves the roots */
     const hf_rope_params *rope_params; /* NULL = hf_rope_params_init */
     const hf_allocator *allocator;     /* NULL = default; copied */
 } hf_groom_desc;
@@ -1679,9 +1685,12 @@ typedef struct hf_groom_desc {
    offset from their blend, carried by their root frames. So at rest, and
    when the roots move rigidly (hf_fur_set_transform), every strand is the
    groom's own strand to float precision; under simulation it follows its
-   guides. Roots follow a rigid transform: hf_fur_set_roots refuses a
-   groom (HF_ERROR_BAD_PARAMETER). hf_fur_info: no triangles, strand UVs
-   0. Cost at creation: strands x guides distance tests. Errors:
+   guides. Roots follow a rigid transform (hf_fur_set_transform) or, given
+   a scalp, the skinned scalp (hf_fur_set_roots: each guide's root frame
+   turns and moves with the frame of the scalp triangle it is bound to;
+   without a scalp it returns HF_ERROR_BAD_PARAMETER). hf_fur_info: no
+   triangles, strand UVs 0. Cost at creation: strands x guides and guides
+   x scalp triangles distance tests. Errors:
    HF_ERROR_NULL_POINTER, HF_ERROR_BAD_COUNT (counts, points per strand),
    HF_ERROR_NON_FINITE (a point or colour), HF_ERROR_BAD_PARAMETER (a
    zero-length strand, guide_fraction, rope parameters, a coordinate
@@ -8396,6 +8405,9 @@ struct hf_fur {
     float *rest_frame;     /* 9 per guide: root position, normal and
                               tangent at creation (hf_fur_set_transform) */
     int groom;             /* made by hf_fur_create_groom: no mesh */
+    float *scalp_bind;     /* groom with a scalp: per guide u, v on its
+                              triangle (ref), then the triangle's rest
+                              point, normal and tangent (11 floats) */
     float *offsets;        /* groom: P * 3 per strand, its rest points
                               minus its guides' blend, in their rest frames */
 };
@@ -8443,6 +8455,7 @@ HFDEF void hf_fur_destroy(hf_fur *f)
     hf__free(&a, f->rope_of);
     hf__free(&a, f->leader);
     hf__free(&a, f->strand_width);
+    hf__free(&a, f->scalp_bind);
     hf__free(&a, f);
 }
 
@@ -9398,6 +9411,131 @@ HF__PRIVATE void hf__groom_offsets(const hf_fur *f, int first, int count)
     }
 }
 
+/* Closest point to p on triangle abc, as barycentric (u, v) on b - a and
+   c - a (Ericson, Real-Time Collision Detection, 5.1.5). */
+HF__PRIVATE void hf__closest_on_triangle(const double *p, const double *a,
+                                         const double *b, const double *c,
+                                         double *u, double *v)
+{
+    double ab[3], ac[3], ap[3], bp[3], cp[3], d1, d2, d3, d4, d5, d6, va, vb, vc, den;
+    int k;
+    for (k = 0; k < 3; ++k) {
+        ab[k] = b[k] - a[k]; ac[k] = c[k] - a[k]; ap[k] = p[k] - a[k];
+        bp[k] = p[k] - b[k]; cp[k] = p[k] - c[k];
+    }
+    d1 = ab[0] * ap[0] + ab[1] * ap[1] + ab[2] * ap[2];
+    d2 = ac[0] * ap[0] + ac[1] * ap[1] + ac[2] * ap[2];
+    if (d1 <= 0.0 && d2 <= 0.0) { *u = 0.0; *v = 0.0; return; }
+    d3 = ab[0] * bp[0] + ab[1] * bp[1] + ab[2] * bp[2];
+    d4 = ac[0] * bp[0] + ac[1] * bp[1] + ac[2] * bp[2];
+    if (d3 >= 0.0 && d4 <= d3) { *u = 1.0; *v = 0.0; return; }
+    vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+        *u = d1 - d3 != 0.0 ? d1 / (d1 - d3) : 0.0; *v = 0.0; return;
+    }
+    d5 = ab[0] * cp[0] + ab[1] * cp[1] + ab[2] * cp[2];
+    d6 = ac[0] * cp[0] + ac[1] * cp[1] + ac[2] * cp[2];
+    if (d6 >= 0.0 && d5 <= d6) { *u = 0.0; *v = 1.0; return; }
+    vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+        *u = 0.0; *v = d2 - d6 != 0.0 ? d2 / (d2 - d6) : 0.0; return;
+    }
+    va = d3 * d6 - d5 * d4;
+    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
+        double w = (d4 - d3) + (d5 - d6);
+        w = w != 0.0 ? (d4 - d3) / w : 0.0;
+        *u = 1.0 - w; *v = w; return;
+    }
+    den = va + vb + vc;
+    if (den == 0.0) { *u = *v = 0.0; return; }
+    *u = vb / den;
+    *v = vc / den;
+}
+
+/* A scalp triangle's frame: the point at (u, v), the face normal and the
+   first edge (float, as the roots are). */
+HF__PRIVATE void hf__scalp_frame(const hf_mesh *m, const uint32_t *ref,
+                                 float u, float v, float *pos, float *nrm,
+                                 float *tan)
+{
+    const float *a = hf__mesh_pos(m, (int)ref[0]), *b = hf__mesh_pos(m, (int)ref[1]),
+                *c = hf__mesh_pos(m, (int)ref[2]);
+    float e1[3], e2[3];
+    int k;
+    hf__sub3(e1, b, a);
+    hf__sub3(e2, c, a);
+    for (k = 0; k < 3; ++k) pos[k] = a[k] + u * e1[k] + v * e2[k];
+    hf__cross3(nrm, e1, e2);
+    HF_MEMCPY(tan, e1, 12);
+}
+
+/* Each guide root to its nearest point on the scalp at rest. */
+HF__PRIVATE hf_result hf__groom_bind_scalp(hf_fur *f, const hf_mesh *m)
+{
+    const int G = f->guide_count, T = m->triangle_count;
+    hf_result r = HF_OK;
+    int g, t, k;
+    f->ref = (uint32_t *)hf__fur_array(f, (size_t)G * 3u, sizeof(uint32_t), &r);
+    f->scalp_bind = (float *)hf__fur_array(f, (size_t)G * 11u, sizeof(float), &r);
+    if (r != HF_OK) return r;
+    for (g = 0; g < G; ++g) {
+        double p[3], best = -1.0, bu = 0.0, bv = 0.0;
+        int bt = 0;
+        float *sb = f->scalp_bind + 11 * g;
+        for (k = 0; k < 3; ++k) p[k] = f->root_pos[3 * g + k];
+        for (t = 0; t < T; ++t) {
+            double a[3], b[3], c[3], u, v, e = 0.0;
+            const float *pa = hf__mesh_pos(m, (int)m->indices[3 * t]),
+                        *pb = hf__mesh_pos(m, (int)m->indices[3 * t + 1]),
+                        *pc = hf__mesh_pos(m, (int)m->indices[3 * t + 2]);
+            for (k = 0; k < 3; ++k) { a[k] = pa[k]; b[k] = pb[k]; c[k] = pc[k]; }
+            hf__closest_on_triangle(p, a, b, c, &u, &v);
+            for (k = 0; k < 3; ++k) {
+                double q = a[k] + u * (b[k] - a[k]) + v * (c[k] - a[k]) - p[k];
+                e += q * q;
+            }
+            if (best < 0.0 || e < best) { best = e; bt = t; bu = u; bv = v; }
+        }
+        for (k = 0; k < 3; ++k) f->ref[3 * g + k] = m->indices[3 * bt + k];
+        sb[0] = (float)bu;
+        sb[1] = (float)bv;
+        hf__scalp_frame(m, f->ref + 3 * g, sb[0], sb[1], sb + 2, sb + 5, sb + 8);
+    }
+    f->vertex_count = m->vertex_count;
+    f->base_triangle_count = m->triangle_count;
+    return HF_OK;
+}
+
+/* A groom's roots from the skinned scalp: each guide's rest root frame
+   turned and moved as its triangle's frame was. */
+HF__PRIVATE void hf__groom_roots_from_scalp(hf_fur *f, const hf_mesh *m,
+                                            int first, int count)
+{
+    int g, i, j, c;
+    for (g = first; g < first + count; ++g) {
+        const float *sb = f->scalp_bind + 11 * g, *rf = f->rest_frame + 9 * g;
+        float pos[3], nrm[3], tan[3];
+        double cur[9], rest[9], R[9], d[3];
+        hf__scalp_frame(m, f->ref + 3 * g, sb[0], sb[1], pos, nrm, tan);
+        hf__groom_frame(nrm, tan, cur);
+        hf__groom_frame(sb + 5, sb + 8, rest);
+        for (i = 0; i < 3; ++i)
+            for (j = 0; j < 3; ++j) {
+                R[3 * i + j] = 0.0;
+                for (c = 0; c < 3; ++c) R[3 * i + j] += cur[3 * i + c] * rest[3 * j + c];
+            }
+        for (i = 0; i < 3; ++i) d[i] = (double)rf[i] - sb[2 + i];
+        for (i = 0; i < 3; ++i) {
+            f->root_pos[3 * g + i] = (float)(pos[i] + R[3 * i] * d[0] +
+                                             R[3 * i + 1] * d[1] + R[3 * i + 2] * d[2]);
+            f->root_nrm[3 * g + i] = (float)(R[3 * i] * rf[3] + R[3 * i + 1] * rf[4] +
+                                             R[3 * i + 2] * rf[5]);
+            f->root_tan[3 * g + i] = (float)(R[3 * i] * rf[6] + R[3 * i + 1] * rf[7] +
+                                             R[3 * i + 2] * rf[8]);
+        }
+    }
+}
+
 /* The groom's own fields (the ropes check their parameters). */
 HF__PRIVATE hf_result hf__groom_check(const hf_groom_desc *d, int P,
                                       float fraction, hf_diag *diag)
@@ -9587,7 +9725,8 @@ HF__PRIVATE hf_result hf__groom_build(hf_fur *f, const hf_groom_desc *d,
     if ((r = hf_ropes_create(G, P, &f->alloc, &f->ropes)) != HF_OK ||
         (r = hf_ropes_set_rest(f->ropes, 0, G, f->guide_points, 0, f->root_pos,
                                f->root_nrm, f->root_tan, 0)) != HF_OK ||
-        (r = hf__fur_keep_rest_frames(f)) != HF_OK)
+        (r = hf__fur_keep_rest_frames(f)) != HF_OK ||
+        (d->scalp && (r = hf__groom_bind_scalp(f, d->scalp)) != HF_OK))
         goto done;
     f->lod = 1.0f;
     f->width_scale = 1.0f;
@@ -9615,6 +9754,8 @@ HFDEF hf_result hf_fur_create_groom(const hf_groom_desc *desc, hf_fur **out_fur,
     P = hf__def_i(desc->points_per_strand, 16);
     fraction = hf__def_f(desc->guide_fraction, 0.1f);
     if ((r = hf__groom_check(desc, P, fraction, diag)) != HF_OK) return r;
+    if (desc->scalp && (r = hf_mesh_validate(desc->scalp, diag)) != HF_OK)
+        return r;
     HF_MEMSET(&zero, 0, sizeof zero);
     hf__rope_params_resolve(desc->rope_params ? desc->rope_params : &zero, &rope);
     if ((r = hf__rope_params_check(&rope, diag)) != HF_OK) return r;
@@ -9734,7 +9875,8 @@ HFDEF hf_result hf_fur_set_roots(hf_fur *f, const hf_mesh *m, int first,
     int g, k;
     hf_result r;
     if (!f || !m || !m->positions) return HF_ERROR_NULL_POINTER;
-    if (f->groom) return HF_ERROR_BAD_PARAMETER; /* no mesh: set_transform */
+    if (f->groom && !f->scalp_bind)
+        return HF_ERROR_BAD_PARAMETER; /* no scalp: hf_fur_set_transform */
     if (m->vertex_count != f->vertex_count ||
         m->triangle_count != f->base_triangle_count)
         return HF_ERROR_BAD_COUNT;
@@ -9752,6 +9894,11 @@ HFDEF hf_result hf_fur_set_roots(hf_fur *f, const hf_mesh *m, int first,
                  !hf__finite3(hf__attr(m->normals, m->normal_stride, 12, v))))
                 return HF_ERROR_NON_FINITE;
         }
+    if (f->groom) { /* roots bound to scalp triangles */
+        hf__groom_roots_from_scalp(f, m, first, count);
+        return hf_ropes_set_roots(f->ropes, first, count, f->root_pos,
+                                  f->root_nrm, f->root_tan, 0);
+    }
     /* LOD guides: positions (and normals) blended on their base triangle */
     {
         int lf = first > f->pure_count ? first - f->pure_count : 0;

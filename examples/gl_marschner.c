@@ -615,7 +615,7 @@ static void glm_camera(glm_app *a)
           el = a->o.elevation * GLM_PI / 180.0f;
     int k;
     for (k = 0; k < 3; ++k) a->target[k] = a->target0[k];
-    if (a->ch.vertex_count > 0 && a->skin && !a->groom) {
+    if (a->ch.vertex_count > 0 && a->skin) {
         double c[3] = {0, 0, 0};
         int i;
         for (i = a->grow_first; i < a->grow_first + a->grow_count; ++i)
@@ -809,22 +809,21 @@ static void glm_measure(glm_app *a)
     float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
     double area = 0.0, c[3] = {0, 0, 0};
     int i, k, n = 0;
-    if (a->groom) { /* a groom: its points, and its roots for the centroid */
+    /* the grown part's centroid (the camera follows it); the box of the
+       grown part, or of a groom's points */
+    for (i = a->grow_first; i < a->grow_first + a->grow_count; ++i, ++n)
+        for (k = 0; k < 3; ++k) {
+            float x = a->rest[i].pos[k];
+            if (!a->groom && x < lo[k]) lo[k] = x;
+            if (!a->groom && x > hi[k]) hi[k] = x;
+            c[k] += x;
+        }
+    if (a->groom) {
         const float *p = a->curves.xyz;
         for (i = 0; i < a->curves.total; ++i)
             for (k = 0; k < 3; ++k) {
                 if (p[3 * i + k] < lo[k]) lo[k] = p[3 * i + k];
                 if (p[3 * i + k] > hi[k]) hi[k] = p[3 * i + k];
-            }
-        for (i = 0; i < a->curves.count; ++n, p += 3 * a->curves.points[i++])
-            for (k = 0; k < 3; ++k) c[k] += p[k];
-    } else {
-        for (i = a->grow_first; i < a->grow_first + a->grow_count; ++i, ++n)
-            for (k = 0; k < 3; ++k) {
-                float x = a->rest[i].pos[k];
-                if (x < lo[k]) lo[k] = x;
-                if (x > hi[k]) hi[k] = x;
-                c[k] += x;
             }
     }
     a->size = sqrtf((hi[0] - lo[0]) * (hi[0] - lo[0]) +
@@ -908,9 +907,8 @@ static void glm_measure(glm_app *a)
         float glo[3], ghi[3];
         for (k = 0; k < 3; ++k) { glo[k] = 1e30f; ghi[k] = -1e30f; }
         for (i = a->grow_first; i < a->grow_first + a->grow_count; ++i)
-            for (k = 0; k < 3; ++k) { /* a groom: where its roots are */
+            for (k = 0; k < 3; ++k) {
                 const float *q = a->rest[i].pos;
-                if (a->groom) q = a->centroid0;
                 if (q[k] < glo[k]) glo[k] = q[k];
                 if (q[k] > ghi[k]) ghi[k] = q[k];
             }
@@ -1167,6 +1165,8 @@ static int glm_init(glm_app *a, const glm_options *o)
         gd.guide_fraction = o->guide_fraction;
         gd.seed = 7;
         gd.rope_params = &rp;
+        /* on a mesh, the roots follow the skinned grown part */
+        gd.scalp = a->ch.vertex_count > 0 ? &desc.mesh : NULL;
         r = hf_fur_create_groom(&gd, &a->fur, &diag);
     } else {
         r = hf_fur_create(&desc, &a->fur, &diag);
@@ -1448,25 +1448,9 @@ static int glm_simulate(glm_app *a, double t, float dt)
     a->t = t;
     /* the body at time t: a mesh is skinned from its bones, the head
        moved rigidly; the colliders follow */
-    if (a->ch.vertex_count > 0 && !a->groom) {
+    if (a->ch.vertex_count > 0) {
         ch_pose(&a->ch, a->anim, a->o.still ? 0.0 : t, a->skin, a->all_col);
         for (i = 0; i < a->ncol; ++i) a->col[i] = a->all_col[a->col_keep[i]];
-    } else if (a->groom) {
-        /* a groom rides on the body moved rigidly (the head's motion) */
-        glm_pose(t, a->o.still, a->pose);
-        for (i = 0; i < a->nv; ++i) {
-            glm_xform(a->pose, a->rest[i].pos, 1.0f, a->skin[i].pos);
-            glm_xform(a->pose, a->rest[i].normal, 0.0f, a->skin[i].normal);
-        }
-        if (a->ch.vertex_count > 0)
-            for (i = 0; i < a->ncol; ++i) {
-                const hf_collider *c0 = &a->all_col[a->col_keep[i]];
-                a->col[i] = *c0;
-                glm_xform(a->pose, c0->a, 1.0f, a->col[i].a);
-                glm_xform(a->pose, c0->b, 1.0f, a->col[i].b);
-            }
-        else
-            glm_head_colliders(a->pose, a->col);
     } else {
         glm_pose(t, a->o.still, a->pose);
         for (i = 0; i < a->nv; ++i) {
@@ -1488,8 +1472,11 @@ static int glm_simulate(glm_app *a, double t, float dt)
         a->lod = lod;
     }
     a->drawn = a->info.drawn_strand_count;
-    r = a->groom ? hf_fur_set_transform(a->fur, a->pose, 0, a->info.guide_count)
-                 : hf_fur_set_roots(a->fur, &a->skinned, 0, a->info.guide_count);
+    /* a groom on the head rides on its rigid motion; on a mesh, on the
+       skinned grown part, as fur does */
+    r = a->groom && a->ch.vertex_count == 0
+            ? hf_fur_set_transform(a->fur, a->pose, 0, a->info.guide_count)
+            : hf_fur_set_roots(a->fur, &a->skinned, 0, a->info.guide_count);
     if (!r) r = hf_fur_simulate(a->fur, 0, a->info.guide_count, dt, a->col,
                                 a->ncol);
     if (!r) r = hf_fur_interpolate_guides(a->fur, 0, a->info.lod_guide_count);
@@ -1743,7 +1730,9 @@ static void glm_draw(glm_app *a)
     glBindTexture(GL_TEXTURE_2D, a->tex_density);
     glUniform1i(glGetUniformLocation(a->prog_head, "u_density"), 0);
     glBindVertexArray(a->vao_head);
-    glUniform1f(glGetUniformLocation(a->prog_head, "u_scalp_on"), 1.0f);
+    /* a groom has no density map to say where the scalp is */
+    glUniform1f(glGetUniformLocation(a->prog_head, "u_scalp_on"),
+                a->groom && !a->have_density ? 0.0f : 1.0f);
     glDrawElements(GL_TRIANGLES, 3 * a->nt_grown, GL_UNSIGNED_INT, 0);
     glUniform1f(glGetUniformLocation(a->prog_head, "u_scalp_on"), 0.0f);
     if (a->nt > a->nt_grown)
@@ -1909,9 +1898,8 @@ static void glm_usage(FILE *fp)
 "  --settle S         seconds simulated at the first pose before frame 1, so\n"
 "                     hair starts hanging (default 0)\n"
 "  --groom FILE       a groom (.hair, .tfx, .obj polylines): its own strands\n"
-"                     are drawn, a fraction of them simulated; its roots ride\n"
-"                     on the body moved rigidly (the head's motion; a mesh's\n"
-"                     animation is not played)\n"
+"                     are drawn, a fraction of them simulated; its roots\n"
+"                     follow the skinned --grow-on meshes (or the head)\n"
 "  --guide-fraction F of the groom's strands simulated, (0, 1] (default 0.1)\n"
 "  --curl R,TURNS     curl: helix radius (metres), turns along a strand\n"
 "  --wave A,COUNT     wave: amplitude (metres), periods along a strand\n"

@@ -7593,6 +7593,77 @@ static void test_ribbon_strand_widths(void)
     }
 }
 
+/* A groom on a skinned scalp: the unit sphere of the fur tests. Moving
+   the scalp rigidly moves the groom exactly as hf_fur_set_transform does;
+   growing the scalp by 10 % carries the roots with the surface. */
+static void test_fur_groom_scalp(void)
+{
+    static float pts[TG_S * TG_P * 3];
+    static int npts[TG_S];
+    static float moved[(FR + 1) * (FS + 1) * 3];
+    t_fur_scene sc;
+    hf_groom_desc gd;
+    hf_rope_params rp;
+    hf_mesh skinned;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    float m[12];
+    double worst = 0.0;
+    int i, k, g;
+    {
+        double c = cos(0.5), sn = sin(0.5); /* about y, then a move */
+        float mm[12] = {0};
+        mm[0] = (float)c; mm[2] = (float)sn; mm[5] = 1.0f;
+        mm[8] = (float)-sn; mm[10] = (float)c;
+        mm[3] = 0.2f; mm[7] = 0.1f; mm[11] = -0.3f;
+        memcpy(m, mm, sizeof m);
+    }
+    t_groom_make(pts, npts);
+    t_fur_scene_init(&sc, 1.0f);
+    memset(&gd, 0, sizeof gd);
+    gd.points = pts;
+    gd.strand_points = npts;
+    gd.strand_count = TG_S;
+    gd.guide_fraction = 0.2f;
+    gd.scalp = &sc.desc.mesh;
+    hf_rope_params_init(&rp);
+    rp.explicit_zero = HF_ROPE_ZERO_BLEND_TIME;
+    rp.mode_blend_time = 0.0f;
+    gd.rope_params = &rp;
+    CHECK_EQ_INT(hf_fur_create_groom(&gd, &f, NULL), HF_OK);
+    if (!f) return;
+    hf_fur_get_info(f, &info);
+    CHECK_EQ_INT(hf_fur_set_mode(f, 0, info.guide_count, HF_ROPE_ANIMATED), HF_OK);
+    /* the scalp moved rigidly */
+    for (i = 0; i < (FR + 1) * (FS + 1); ++i)
+        for (k = 0; k < 3; ++k)
+            moved[3 * i + k] = m[4 * k] * sc.pos[3 * i] + m[4 * k + 1] * sc.pos[3 * i + 1] +
+                               m[4 * k + 2] * sc.pos[3 * i + 2] + m[4 * k + 3];
+    skinned = sc.desc.mesh;
+    skinned.positions = moved;
+    skinned.normals = NULL;
+    CHECK_EQ_INT(hf_fur_set_roots(f, &skinned, 0, info.guide_count), HF_OK);
+    CHECK_EQ_INT(hf_fur_simulate(f, 0, info.guide_count, 1.0f / 60.0f, NULL, 0), HF_OK);
+    CHECK_EQ_INT(hf_fur_interpolate(f, 0, TG_S), HF_OK);
+    worst = t_groom_worst(&info, pts, m);
+    CHECK(worst < 5e-5);
+    /* the scalp 10 % larger: every guide root 10 % further out */
+    for (i = 0; i < 3 * (FR + 1) * (FS + 1); ++i) moved[i] = 1.1f * sc.pos[i];
+    CHECK_EQ_INT(hf_fur_set_roots(f, &skinned, 0, info.guide_count), HF_OK);
+    CHECK_EQ_INT(hf_fur_simulate(f, 0, info.guide_count, 1.0f / 60.0f, NULL, 0), HF_OK);
+    worst = 0.0;
+    for (g = 0; g < info.guide_count; ++g) {
+        const float *q = info.guide_points + (size_t)g * TG_P * 3;
+        double r = sqrt((double)q[0] * q[0] + (double)q[1] * q[1] + (double)q[2] * q[2]);
+        if (fabs(r - 1.1) > worst) worst = fabs(r - 1.1);
+    }
+    CHECK(worst < 0.01); /* roots sit on the flat triangles, not the sphere */
+    /* a wrong scalp: counts checked */
+    skinned.vertex_count -= 1;
+    CHECK_EQ_INT(hf_fur_set_roots(f, &skinned, 0, 1), HF_ERROR_BAD_COUNT);
+    hf_fur_destroy(f);
+}
+
 static void test_fur_no_allocation_per_frame(void)
 {
     t_fur_scene sc;
@@ -8358,6 +8429,7 @@ int main(void)
     RUN(test_fur_guide_curves);
     RUN(test_fur_styling);
     RUN(test_fur_groom);
+    RUN(test_fur_groom_scalp);
     RUN(test_fur_clump_size);
     RUN(test_ribbon_strand_widths);
     RUN(test_fur_no_allocation_per_frame);

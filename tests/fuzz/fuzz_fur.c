@@ -254,6 +254,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                                                : fz_float(&r, 2.0f);
         gd.seed = fz_u32(&r);
         gd.allocator = &alloc;
+        gd.scalp = fz_chance(&r, 128) ? &m.mesh : NULL; /* may be a bad mesh */
         rv = hf_fur_create_groom(&gd, &g, &diag);
         FZ_REQUIRE(fz_known_result(rv));
         if (rv != HF_OK) {
@@ -268,6 +269,19 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                                                            (size_t)gi.points_per_strand));
             rv = hf_fur_set_transform(g, mm, 0, gi.guide_count);
             FZ_REQUIRE(fz_known_result(rv));
+            if (gd.scalp) { /* the scalp moved a little: roots follow it */
+                hf_mesh sk = m.mesh;
+                float *moved = (float *)malloc(sizeof(float) * 8u *
+                                               (size_t)m.mesh.vertex_count);
+                if (moved) {
+                    for (k = 0; k < 8 * m.mesh.vertex_count; ++k)
+                        moved[k] = m.verts[k] + 0.01f * (float)(k % 5);
+                    sk.positions = moved;
+                    rv = hf_fur_set_roots(g, &sk, 0, gi.guide_count);
+                    FZ_REQUIRE(fz_known_result(rv));
+                    free(moved);
+                }
+            }
             if (rv == HF_OK &&
                 hf_fur_simulate(g, 0, gi.guide_count, 1.0f / 60.0f, NULL, 0) == HF_OK)
                 FZ_REQUIRE(hf_fur_interpolate(g, 0, gi.strand_count) == HF_OK);
