@@ -27,6 +27,9 @@
 #   make fuzz-build    build the libFuzzer targets
 #
 # GL (GLAD generated at build time, headless EGL, GLFW for windows)
+#   make cross-test    the test suite for ARM64 (qemu), Windows x64 (wine)
+#                      and 32-bit x86 (qemu-i386); each skipped, saying
+#                      why, without its tools (part of make test)
 #   make gl-check      say whether headless EGL + GL 3.3 core works here
 #   make gl-test       the GL checks (skipped, with the reason, without GL)
 #   make gl-fur-check  only the fur render check (gl_fur_check)
@@ -147,6 +150,7 @@ test: check-build
 	@$(MAKE) --no-print-directory api-doc-check
 	@$(MAKE) --no-print-directory quickstart
 	@$(MAKE) --no-print-directory grow-fur-check
+	@$(MAKE) --no-print-directory cross-test
 	@$(MAKE) --no-print-directory gl-test-or-skip
 
 # The edit-compile-test loop: one build of the suite, the doc checks.
@@ -199,6 +203,70 @@ quickstart: $(QS_BINS)
 	@sh mk/quickstart.sh run $(QS_BINS) || { \
 	  echo "make quickstart: FAILED (the program is the Quick start of" \
 	       "$(QUICKSTART_MD), extracted into $(BUILD)/quickstart.c)"; exit 1; }
+
+# ==== Other platforms ========================================================
+# The test suite cross-built with the strict warnings as errors and run
+# where this machine can run it: ARM64 under qemu-aarch64, Windows x64 (C
+# and C++) under wine, 32-bit x86 (SSE2 math) under qemu-i386. A step whose
+# tools are missing says which packages to install and is skipped; so is
+# one whose emulator cannot start here (the reason is printed).
+CROSS_WARN := -O2 -Wall -Wextra -Wpedantic -Werror
+WINE_ENV   := WINEDEBUG=-all WINEPREFIX=$(abspath $(BUILD))/wineprefix
+.PHONY: cross-test cross-arm64 cross-win64 cross-i686
+cross-test: cross-arm64 cross-win64 cross-i686
+
+# $(call cross_run,NAME,RUN COMMAND): run, print the summary line, and fail
+# only on failed tests (an emulator that cannot start is a skip).
+define cross_run
+	@$(2) > $(BUILD)/$(1).log 2>&1; \
+	if grep -q "passed, 0 failed" $(BUILD)/$(1).log; then \
+	  printf '%-28s %s\n' "$(1):" "$$(grep 'passed, ' $(BUILD)/$(1).log | tail -n 1)"; \
+	elif grep -q "passed, " $(BUILD)/$(1).log; then \
+	  printf '%-28s %s\n' "$(1):" "$$(grep 'passed, ' $(BUILD)/$(1).log | tail -n 1)"; \
+	  echo "cross-test: $(1) FAILED (log: $(BUILD)/$(1).log)"; exit 1; \
+	else \
+	  echo "cross-test: $(1) skipped: the emulator did not run it: $$(tail -n 1 $(BUILD)/$(1).log)"; \
+	fi
+endef
+
+cross-arm64: | $(BUILD)
+	@if ! command -v aarch64-linux-gnu-gcc >/dev/null 2>&1 || \
+	    ! command -v qemu-aarch64 >/dev/null 2>&1; then \
+	  echo "cross-test: ARM64 skipped: install gcc-aarch64-linux-gnu," \
+	       "libc6-dev-arm64-cross, qemu-user (make deps)"; exit 0; fi; \
+	aarch64-linux-gnu-gcc -std=c99 $(CROSS_WARN) tests/test_hairfur.c \
+	  -o $(BUILD)/test_arm64 -lm
+	@if command -v qemu-aarch64 >/dev/null 2>&1 && [ -x $(BUILD)/test_arm64 ]; then :; else exit 0; fi
+	$(call cross_run,test_arm64_qemu,QEMU_LD_PREFIX=/usr/aarch64-linux-gnu qemu-aarch64 $(BUILD)/test_arm64)
+
+cross-win64: | $(BUILD)
+	@if ! command -v x86_64-w64-mingw32-gcc >/dev/null 2>&1 || \
+	    ! command -v x86_64-w64-mingw32-g++ >/dev/null 2>&1 || \
+	    ! command -v wine >/dev/null 2>&1; then \
+	  echo "cross-test: Windows x64 skipped: install mingw-w64," \
+	       "g++-mingw-w64-x86-64, wine64 (make deps)"; exit 0; fi; \
+	x86_64-w64-mingw32-gcc -std=c99 $(CROSS_WARN) tests/test_hairfur.c \
+	  -o $(BUILD)/test_win64.exe -lm && \
+	x86_64-w64-mingw32-g++ -std=c++11 -x c++ $(CROSS_WARN) tests/test_hairfur.c \
+	  -o $(BUILD)/test_win64_cxx.exe -lm
+	@if command -v wine >/dev/null 2>&1 && [ -f $(BUILD)/test_win64.exe ]; then :; else exit 0; fi
+	$(call cross_run,test_win64_wine,$(WINE_ENV) wine $(BUILD)/test_win64.exe)
+	@if command -v wine >/dev/null 2>&1 && [ -f $(BUILD)/test_win64_cxx.exe ]; then :; else exit 0; fi
+	$(call cross_run,test_win64_cxx_wine,$(WINE_ENV) wine $(BUILD)/test_win64_cxx.exe)
+
+# 32-bit x86 with SSE2 math: with x87 math (no -mfpmath=sse) ten tests
+# fail, range splits included (x87 keeps 80-bit intermediates and rounds
+# where it spills), so the header needs SSE2 floating point there.
+cross-i686: | $(BUILD)
+	@if ! printf '#include <stdio.h>\nint main(void){return 0;}\n' | \
+	    gcc -m32 -x c - -o $(BUILD)/m32_probe >/dev/null 2>&1 || \
+	    ! command -v qemu-i386 >/dev/null 2>&1; then \
+	  echo "cross-test: 32-bit x86 skipped: install libc6-dev-i386," \
+	       "lib32gcc-12-dev, qemu-user (make deps)"; exit 0; fi; \
+	gcc -m32 -msse2 -mfpmath=sse -std=c99 $(CROSS_WARN) tests/test_hairfur.c \
+	  -o $(BUILD)/test_i686 -lm
+	@if command -v qemu-i386 >/dev/null 2>&1 && [ -x $(BUILD)/test_i686 ]; then :; else exit 0; fi
+	$(call cross_run,test_i686_qemu,qemu-i386 $(BUILD)/test_i686)
 
 # ==== Examples ===============================================================
 EX_CFLAGS := -std=c99 -O2 -Wall -Wextra -Wpedantic
