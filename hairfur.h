@@ -183,7 +183,8 @@
                            on a range (hf_fur_set_rope_params_range);
                            clumps of a chosen size (clump_size); per-strand
                            widths (hf_ribbon_strands.width,
-                           width_variation).
+                           width_variation); maps for clump, colour and
+                           width variation.
        0.1.0 (2026-11-22)  first release: maps and meshes, density
                            tessellation, guides, placement, Verlet ropes,
                            interpolation, LOD, ribbons, Marschner LUTs,
@@ -1591,6 +1592,10 @@ typedef struct hf_fur_desc {
     float frizz;            /* random offset of each point, a fraction of
                                the segment length, growing to the tip */
     const hf_map *curl_map, *wave_map, *frizz_map; /* NULL = 1 */
+    /* maps of the per-strand controls, read at each strand's root UV:
+       their first channel multiplies clump, color_variation and
+       width_variation there (NULL = 1) */
+    const hf_map *clump_map, *color_variation_map, *width_variation_map;
     float color_variation;  /* [0, 1]: each strand's colour times a random
                                factor in [1 - v, 1 + v] (clamped to 1) */
     float width_variation;  /* [0, 1]: each strand's ribbon width times a
@@ -8389,6 +8394,7 @@ struct hf_fur {
     hf_rope_params rope[HF_FUR_ROPE_SETS]; /* the parameter sets in use */
     unsigned char *rope_of;                /* per guide: its set */
     float *strand_width;   /* width_variation > 0: per strand multiplier */
+    float *strand_clump;   /* clump_map: per strand clump strength */
     uint32_t *leader;      /* clump_size > 0: per strand, the strand whose
                               shape it clumps to (itself for a leader) */
     hf_ropes *ropes;
@@ -8455,6 +8461,7 @@ HFDEF void hf_fur_destroy(hf_fur *f)
     hf__free(&a, f->rope_of);
     hf__free(&a, f->leader);
     hf__free(&a, f->strand_width);
+    hf__free(&a, f->strand_clump);
     hf__free(&a, f->scalp_bind);
     hf__free(&a, f);
 }
@@ -8513,7 +8520,7 @@ HF__PRIVATE hf_result hf__fur_style_check(const hf_fur_desc *d, hf_diag *diag)
                                          "wave_amplitude", "wave_count",
                                          "frizz", "clump_size",
                                          "color_variation", "width_variation"};
-    const hf_map *maps[3];
+    const hf_map *maps[6];
     hf_result r;
     long long total = 0;
     int i, k;
@@ -8525,7 +8532,9 @@ HF__PRIVATE hf_result hf__fur_style_check(const hf_fur_desc *d, hf_diag *diag)
                             names[i], (double)v[i],
                             i >= 6 ? " (at most 1)" : "");
     maps[0] = d->curl_map; maps[1] = d->wave_map; maps[2] = d->frizz_map;
-    for (i = 0; i < 3; ++i) {
+    maps[3] = d->clump_map; maps[4] = d->color_variation_map;
+    maps[5] = d->width_variation_map;
+    for (i = 0; i < 6; ++i) {
         if (!maps[i]) continue;
         if (!d->mesh.uvs)
             return hf__fail(diag, HF_ERROR_NULL_POINTER, "mesh.uvs", -1,
@@ -9003,6 +9012,15 @@ HF__PRIVATE hf_result hf__fur_place(hf_fur *f, hf__fur_build *b)
     return HF_OK;
 }
 
+/* A control map's first channel at uv (1 without a map). */
+HF__PRIVATE float hf__map_at(const hf_map *m, const float *uv)
+{
+    float v[4];
+    if (!m) return 1.0f;
+    hf_map_sample_fast(m, uv[0], uv[1], v);
+    return v[0];
+}
+
 /* Per-strand length, colour, root UV and 3D-colour coordinate. */
 HF__PRIVATE hf_result hf__fur_strand_maps(hf_fur *f, hf__fur_build *b)
 {
@@ -9033,13 +9051,26 @@ HF__PRIVATE hf_result hf__fur_strand_maps(hf_fur *f, hf__fur_build *b)
         hf_rng_seed(&rng, d->seed, 0x5757u + 1u);
         for (i = 0; i < n_strands; ++i)
             f->strand_width[i] =
-                1.0f + d->width_variation * (2.0f * hf_rng_float(&rng) - 1.0f);
+                1.0f + d->width_variation *
+                           hf__map_at(d->width_variation_map, f->strands[i].uv) *
+                           (2.0f * hf_rng_float(&rng) - 1.0f);
+    }
+    if (d->clump_map && d->clump > 0.0f) { /* per strand strength */
+        f->strand_clump = (float *)hf__fur_array(f, (size_t)n_strands,
+                                                 sizeof(float), &r);
+        if (r != HF_OK) return r;
+        for (i = 0; i < n_strands; ++i) {
+            float c = d->clump * hf__map_at(d->clump_map, f->strands[i].uv);
+            f->strand_clump[i] = c < 0.0f ? 0.0f : c > 1.0f ? 1.0f : c;
+        }
     }
     if (d->color_variation > 0.0f) { /* per strand, in strand order */
         hf_rng rng;
         hf_rng_seed(&rng, d->seed, 0x4343u);
         for (i = 0; i < n_strands; ++i) {
-            float m = 1.0f + d->color_variation * (2.0f * hf_rng_float(&rng) - 1.0f);
+            float m = 1.0f + d->color_variation *
+                                 hf__map_at(d->color_variation_map, f->strands[i].uv) *
+                                 (2.0f * hf_rng_float(&rng) - 1.0f);
             int k;
             for (k = 0; k < 3; ++k) {
                 float c = f->strand_rgba[4 * i + k] * m;
@@ -9167,32 +9198,49 @@ done:
     return r;
 }
 
-/* Strands [first, first + count) gathered to their leaders: point j moves
+/* Clumping strand by strand (clump_size or clump_map): point j moves
    clump * j / (P - 1) of the way to the leader's point j (the leader's
-   blend of its guides, unclumped). */
-HF__PRIVATE void hf__fur_clump_leaders(const hf_fur *f, int first, int count)
+   blend of its guides, unclumped), or without leaders to its main guide's
+   point j, as the interpolation kernel does; the strength per strand with
+   a clump map. */
+HF__PRIVATE void hf__fur_clump_pass(const hf_fur *f, int first, int count)
 {
     const int P = f->P;
     int s, j, k;
     for (s = first; s < first + count; ++s) {
-        const uint32_t l = f->leader[s];
-        const hf_strand_binding *b = &f->bindings[l];
-        const float *g[3];
-        float *o = f->strand_points + (size_t)s * (size_t)P * 3u, root[3];
-        if ((int)l == s) continue;
-        for (k = 0; k < 3; ++k)
-            g[k] = f->guide_points + (size_t)b->guide[k] * (size_t)P * 3u;
-        for (k = 0; k < 3; ++k)
-            root[k] = b->weight[0] * g[0][k] + b->weight[1] * g[1][k] +
-                      b->weight[2] * g[2][k];
-        for (j = 1; j < P; ++j) {
-            const float c = f->clump * (float)j / (float)(P - 1);
-            for (k = 0; k < 3; ++k) {
-                float lp = b->weight[0] * g[0][3 * j + k] +
-                           b->weight[1] * g[1][3 * j + k] +
-                           b->weight[2] * g[2][3 * j + k];
-                lp = root[k] + b->length_scale * (lp - root[k]);
-                o[3 * j + k] += c * (lp - o[3 * j + k]);
+        const float strength = f->strand_clump ? f->strand_clump[s] : f->clump;
+        float *o = f->strand_points + (size_t)s * (size_t)P * 3u;
+        if (strength == 0.0f) continue;
+        if (f->leader) {
+            const uint32_t l = f->leader[s];
+            const hf_strand_binding *b = &f->bindings[l];
+            const float *g[3];
+            float root[3];
+            if ((int)l == s) continue;
+            for (k = 0; k < 3; ++k)
+                g[k] = f->guide_points + (size_t)b->guide[k] * (size_t)P * 3u;
+            for (k = 0; k < 3; ++k)
+                root[k] = b->weight[0] * g[0][k] + b->weight[1] * g[1][k] +
+                          b->weight[2] * g[2][k];
+            for (j = 1; j < P; ++j) {
+                const float c = strength * (float)j / (float)(P - 1);
+                for (k = 0; k < 3; ++k) {
+                    float lp = b->weight[0] * g[0][3 * j + k] +
+                               b->weight[1] * g[1][3 * j + k] +
+                               b->weight[2] * g[2][3 * j + k];
+                    lp = root[k] + b->length_scale * (lp - root[k]);
+                    o[3 * j + k] += c * (lp - o[3 * j + k]);
+                }
+            }
+        } else { /* to the guide of largest weight (the first of equals) */
+            const hf_strand_binding *b = &f->bindings[s];
+            const float w0 = b->weight[0], w1 = b->weight[1], w2 = b->weight[2];
+            const int n = (w0 >= w1 && w0 >= w2) ? 0 : (w1 >= w2 ? 1 : 2);
+            const float *g = f->guide_points + (size_t)b->guide[n] * (size_t)P * 3u;
+            for (j = 1; j < P; ++j) {
+                const float c = strength * (float)j / (float)(P - 1);
+                for (k = 0; k < 3; ++k)
+                    o[3 * j + k] += c * (g[3 * j + k] - o[3 * j + k]);
             }
         }
     }
@@ -10011,8 +10059,9 @@ HFDEF hf_result hf_fur_interpolate(hf_fur *f, int first, int count)
     if (!hf__range_ok(first, count) || first + count > f->strand_count)
         return HF_ERROR_BAD_RANGE;
     hf__interpolate_run(f->guide_points, f->bindings, first, count, f->P,
-                        f->leader ? 0.0f : f->clump, f->strand_points, 0);
-    if (f->leader) hf__fur_clump_leaders(f, first, count);
+                        f->leader || f->strand_clump ? 0.0f : f->clump,
+                        f->strand_points, 0);
+    if (f->leader || f->strand_clump) hf__fur_clump_pass(f, first, count);
     if (f->offsets) hf__groom_offsets(f, first, count);
     return HF_OK;
 }

@@ -7664,6 +7664,69 @@ static void test_fur_groom_scalp(void)
     hf_fur_destroy(f);
 }
 
+/* The per-strand control maps: black turns clump, colour and width
+   variation off, white leaves them as the scalars say. */
+static void test_fur_control_maps(void)
+{
+    t_fur_scene sc;
+    hf_fur *a = NULL, *b = NULL;
+    hf_fur_info ia, ib;
+    unsigned char black = 0, white = 255;
+    hf_map mb, mw;
+    size_t n;
+    double worst = 0.0;
+    int i;
+    memset(&mb, 0, sizeof mb);
+    mb.data = &black;
+    mb.width = mb.height = mb.channels = 1;
+    mw = mb;
+    mw.data = &white;
+    t_fur_scene_init(&sc, 1.0f);
+    sc.desc.clump = 0.9f;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &a, NULL), HF_OK); /* no map */
+    sc.desc.clump_map = &mw;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &b, NULL), HF_OK); /* white map */
+    if (!a || !b) return;
+    hf_fur_get_info(a, &ia);
+    hf_fur_get_info(b, &ib);
+    n = (size_t)ia.strand_count * (size_t)ia.points_per_strand * 3u;
+    for (i = 0; i < (int)n; ++i)
+        if (fabs(ia.strand_points[i] - ib.strand_points[i]) > worst)
+            worst = fabs(ia.strand_points[i] - ib.strand_points[i]);
+    CHECK(worst < 1e-5);
+    hf_fur_destroy(a);
+    hf_fur_destroy(b);
+    /* black: as clump 0 */
+    sc.desc.clump = 0.0f;
+    sc.desc.clump_map = NULL;
+    a = b = NULL;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &a, NULL), HF_OK);
+    sc.desc.clump = 0.9f;
+    sc.desc.clump_map = &mb;
+    sc.desc.color_variation = 0.5f;
+    sc.desc.color_variation_map = &mb;
+    sc.desc.width_variation = 0.5f;
+    sc.desc.width_variation_map = &mb;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &b, NULL), HF_OK);
+    if (!a || !b) return;
+    hf_fur_get_info(a, &ia);
+    hf_fur_get_info(b, &ib);
+    CHECK(memcmp(ia.strand_points, ib.strand_points, sizeof(float) * n) == 0);
+    for (i = 0; i < 4 * ib.strand_count; ++i) CHECK(ib.strand_colors[i] == 1.0f);
+    {
+        hf_ribbon_params rp;
+        float *buf = (float *)malloc(sizeof(float) * 4u * (size_t)ib.strand_count * 8u);
+        memset(&rp, 0, sizeof rp);
+        rp.root_width = rp.tip_width = 0.01f;
+        CHECK_EQ_INT(hf_fur_points(b, 0, ib.strand_count, &rp, buf), HF_OK);
+        for (i = 0; i < ib.strand_count; ++i)
+            CHECK(buf[(size_t)i * 32u + 3] == 0.005f);
+        free(buf);
+    }
+    hf_fur_destroy(a);
+    hf_fur_destroy(b);
+}
+
 static void test_fur_no_allocation_per_frame(void)
 {
     t_fur_scene sc;
@@ -8432,6 +8495,7 @@ int main(void)
     RUN(test_fur_groom_scalp);
     RUN(test_fur_clump_size);
     RUN(test_ribbon_strand_widths);
+    RUN(test_fur_control_maps);
     RUN(test_fur_no_allocation_per_frame);
     RUN(test_fur_ranges_byte_identical);
     RUN(test_fur_lod_prefix_and_width);

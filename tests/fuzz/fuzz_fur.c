@@ -95,6 +95,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         desc.color_variation = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 1.0f) : fz_float(&r, 2.0f);
         desc.clump_size = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 0.5f) : fz_float(&r, 2.0f);
         desc.width_variation = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 1.0f) : fz_float(&r, 2.0f);
+        if (has_length && fz_chance(&r, 128)) desc.clump_map = &length.map;
+        if (has_density && fz_chance(&r, 128)) desc.color_variation_map = &density.map;
+        if (has_length && fz_chance(&r, 128)) desc.width_variation_map = &length.map;
     }
     desc.points_per_strand = fz_chance(&r, 200) ? fz_int(&r, 0, 24)
                                                 : fz_int(&r, -2, 300);
