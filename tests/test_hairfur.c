@@ -48,6 +48,16 @@ static const char *t_current;
         }                                                                      \
     } while (0)
 
+#define CHECK_EQ_STR(a, b)                                                     \
+    do {                                                                       \
+        const char *t_sa_ = (a), *t_sb_ = (b);                                 \
+        if (strcmp(t_sa_, t_sb_) != 0) {                                       \
+            printf("%s:%d: %s: CHECK_EQ_STR(%s, %s) failed: \"%s\" vs \"%s\"\n", \
+                   __FILE__, __LINE__, t_current, #a, #b, t_sa_, t_sb_);       \
+            t_current_failed = 1;                                              \
+        }                                                                      \
+    } while (0)
+
 #define CHECK_EQ_INT(a, b)                                                     \
     do {                                                                       \
         long long t_a_ = (long long)(a), t_b_ = (long long)(b);                \
@@ -7727,6 +7737,50 @@ static void test_fur_control_maps(void)
     hf_fur_destroy(b);
 }
 
+/* Diagnostics read back word for word: every number in them goes through
+   printf (%d, %lu, %g), so a C runtime that formats one wrongly (Windows',
+   under make cross-test) fails here. */
+static void test_diagnostics_read_back(void)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_diag d;
+    unsigned char px[64] = {0};
+    hf_map m;
+    static const float nan_curve[6] = {0, 1, 0, 0, NAN, 0};
+    int two = 2;
+    memset(&m, 0, sizeof m);
+    m.data = px;
+    m.width = 10;
+    m.height = 2;
+    m.channels = 3;
+    m.row_stride = 20;
+    CHECK_EQ_INT(hf_map_validate(&m, &d), HF_ERROR_BAD_STRIDE);
+    CHECK_EQ_STR(d.message, "map.row_stride 20 is below one packed row (30 bytes)");
+    CHECK_EQ_STR(d.field, "row_stride");
+    t_fur_scene_init(&sc, 1.0f);
+    sc.desc.points_per_strand = 300;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, &d), HF_ERROR_BAD_COUNT);
+    CHECK_EQ_STR(d.message, "points_per_strand 300 is outside 2..256");
+    sc.desc.points_per_strand = 8;
+    sc.desc.strands_per_area = -1.5f;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, &d), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_STR(d.message, "strands_per_area -1.5 is negative or non-finite");
+    sc.desc.strands_per_area = 0.0f;
+    sc.desc.color_variation = 1.5f;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, &d), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_STR(d.message, "color_variation 1.5 is negative, non-finite or too "
+                            "large (at most 1)");
+    sc.desc.color_variation = 0.0f;
+    sc.desc.guide_curves = nan_curve;
+    sc.desc.guide_curve_points = &two;
+    sc.desc.guide_curve_count = 1;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, &d), HF_ERROR_NON_FINITE);
+    CHECK_EQ_STR(d.message, "curve 0, point 1 is non-finite or too large");
+    CHECK(d.index == 1);
+    CHECK(f == NULL);
+}
+
 static void test_fur_no_allocation_per_frame(void)
 {
     t_fur_scene sc;
@@ -8496,6 +8550,7 @@ int main(void)
     RUN(test_fur_clump_size);
     RUN(test_ribbon_strand_widths);
     RUN(test_fur_control_maps);
+    RUN(test_diagnostics_read_back);
     RUN(test_fur_no_allocation_per_frame);
     RUN(test_fur_ranges_byte_identical);
     RUN(test_fur_lod_prefix_and_width);
