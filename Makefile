@@ -150,7 +150,7 @@ test: check-build
 	@$(MAKE) --no-print-directory api-doc-check
 	@$(MAKE) --no-print-directory quickstart
 	@$(MAKE) --no-print-directory grow-fur-check
-	@$(MAKE) --no-print-directory cross-test
+	@$(MAKE) --no-print-directory -j2 cross-test
 	@$(MAKE) --no-print-directory gl-test-or-skip
 
 # The edit-compile-test loop: one build of the suite, the doc checks.
