@@ -27,6 +27,7 @@
 #   make fuzz-build    build the libFuzzer targets
 #
 # GL (GLAD generated at build time, headless EGL, GLFW for windows)
+#   make msvc-check    the header's MSVC branches, parsed by clang as MSVC
 #   make cross-test    the test suite for ARM64 (qemu), Windows x64 (wine)
 #                      and 32-bit x86 (qemu-i386); each skipped, saying
 #                      why, without its tools (part of make test)
@@ -151,6 +152,7 @@ test: check-build
 	@$(MAKE) --no-print-directory quickstart
 	@$(MAKE) --no-print-directory grow-fur-check
 	@$(MAKE) --no-print-directory -j2 cross-test
+	@sh tests/msvc_check.sh
 	@$(MAKE) --no-print-directory gl-test-or-skip
 
 # The edit-compile-test loop: one build of the suite, the doc checks.
@@ -212,7 +214,9 @@ quickstart: $(QS_BINS)
 # one whose emulator cannot start here (the reason is printed).
 CROSS_WARN := -O2 -Wall -Wextra -Wpedantic -Werror
 WINE_ENV   := WINEDEBUG=-all WINEPREFIX=$(abspath $(BUILD))/wineprefix
-.PHONY: cross-test cross-arm64 cross-win64 cross-i686
+.PHONY: cross-test cross-arm64 cross-win64 cross-i686 msvc-check
+msvc-check:
+	@sh tests/msvc_check.sh
 cross-test: cross-arm64 cross-win64 cross-i686
 
 # $(call cross_run,NAME,RUN COMMAND): run, print the summary line, and fail

@@ -101,6 +101,21 @@
                             ones in the per-frame code, double ones in
                             growth and LUT baking).
 
+   COMPILERS AND PLATFORMS
+
+       gcc and clang: C99 and C++11, the strict warnings as errors, on
+       x86-64 (SSE2), ARM64, 32-bit x86 with SSE2 math (x87 math changes
+       results: use -msse2 -mfpmath=sse) and Windows x64 through mingw-w64
+       (make cross-test runs each). MSVC: the header keeps every
+       compiler-specific word behind its own macros, with an _MSC_VER
+       branch: HF__INLINE is static __forceinline, HF__NOINLINE
+       __declspec(noinline), HF__RESTRICT __restrict, HF__UNUSED and
+       HF__PRINTF empty; SSE2 is used when _M_X64 is defined or
+       _M_IX86_FP >= 2 (<emmintrin.h>, unaligned loads and stores only, so
+       no alignment attribute is needed); there is no run-time CPU
+       detection (no CPUID) yet. tests/msvc_check.sh parses that branch
+       with clang as MSVC; MSVC itself is not run here (unverified).
+
    CONVENTIONS
 
        - Units: metres and seconds. The defaults (gravity 9.81, strand
