@@ -214,6 +214,9 @@ quickstart: $(QS_BINS)
 # one whose emulator cannot start here (the reason is printed).
 CROSS_WARN := -O2 -Wall -Wextra -Wpedantic -Werror
 WINE_ENV   := WINEDEBUG=-all WINEPREFIX=$(abspath $(BUILD))/wineprefix
+# Debian's wine64 package installs its loader outside PATH (the wine
+# package adds /usr/bin/wine); either will do.
+WINE       := $(firstword $(shell command -v wine 2>/dev/null) $(wildcard /usr/lib/wine/wine64))
 .PHONY: cross-test cross-arm64 cross-win64 cross-i686 msvc-check
 msvc-check:
 	@sh tests/msvc_check.sh
@@ -246,17 +249,17 @@ cross-arm64: | $(BUILD)
 cross-win64: | $(BUILD)
 	@if ! command -v x86_64-w64-mingw32-gcc >/dev/null 2>&1 || \
 	    ! command -v x86_64-w64-mingw32-g++ >/dev/null 2>&1 || \
-	    ! command -v wine >/dev/null 2>&1; then \
+	    [ -z "$(WINE)" ]; then \
 	  echo "cross-test: Windows x64 skipped: install mingw-w64," \
 	       "g++-mingw-w64-x86-64, wine64 (make deps)"; exit 0; fi; \
 	x86_64-w64-mingw32-gcc -std=c99 $(CROSS_WARN) tests/test_hairfur.c \
 	  -o $(BUILD)/test_win64.exe -lm && \
 	x86_64-w64-mingw32-g++ -std=c++11 -x c++ $(CROSS_WARN) tests/test_hairfur.c \
 	  -o $(BUILD)/test_win64_cxx.exe -lm
-	@if command -v wine >/dev/null 2>&1 && [ -f $(BUILD)/test_win64.exe ]; then :; else exit 0; fi
-	$(call cross_run,test_win64_wine,$(WINE_ENV) wine $(BUILD)/test_win64.exe)
-	@if command -v wine >/dev/null 2>&1 && [ -f $(BUILD)/test_win64_cxx.exe ]; then :; else exit 0; fi
-	$(call cross_run,test_win64_cxx_wine,$(WINE_ENV) wine $(BUILD)/test_win64_cxx.exe)
+	@if [ -n "$(WINE)" ] && [ -f $(BUILD)/test_win64.exe ]; then :; else exit 0; fi
+	$(call cross_run,test_win64_wine,$(WINE_ENV) $(WINE) $(BUILD)/test_win64.exe)
+	@if [ -n "$(WINE)" ] && [ -f $(BUILD)/test_win64_cxx.exe ]; then :; else exit 0; fi
+	$(call cross_run,test_win64_cxx_wine,$(WINE_ENV) $(WINE) $(BUILD)/test_win64_cxx.exe)
 
 # 32-bit x86 with SSE2 math: with x87 math (no -mfpmath=sse) ten tests
 # fail, range splits included (x87 keeps 80-bit intermediates and rounds

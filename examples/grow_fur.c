@@ -9,7 +9,8 @@
      grow_fur [--mesh FILE] [--density PNG] [--length PNG] [--color PNG]
               [--strands N] [--guides N | --tess-factor F] [--points N]
               [--length-max M] [--frames N] [--lod F] [--seed N]
-              [--collider auto|none|x,y,z,r] [--eye x,y,z]
+              [--collider none|auto|sphere:X,Y,Z,R|capsule:X0,Y0,Z0,X1,Y1,Z1,R]...
+              [--eye x,y,z]
               [--guides FILE.hair|.tfx|.obj]
               [--groom FILE.hair|.tfx|.obj [--guide-fraction F]]
               [--out FILE.obj [--curves] | FILE.ply | FILE.hair]
@@ -24,8 +25,8 @@
    PNG's top row is v = 1, as in OpenGL (rows are flipped on load, since
    hf_map's row 0 is v = 0). --guides sets the LOD guide density from the
    mesh's area (see docs/grow.md). The head swings sideways (0.05 m at 1 Hz) and
-   turns (+-25 degrees) for --frames frames of 1/60 s; a sphere collider
-   (--collider) follows the head. The last frame's ribbons, seen from
+   turns (+-25 degrees) for --frames frames of 1/60 s; the colliders
+   (--collider, repeatable: spheres and capsules) follow the head. The last frame's ribbons, seen from
    --eye (default: in front of the mesh's bounding box), are
    written as OBJ (positions, texture coordinates (root u, root v) and
    faces) or binary PLY (positions, tangents as normals, colours),
@@ -82,6 +83,7 @@ static double median(double *v, int n)
 #define GF_DEFAULT_STRANDS 20000
 #define GF_MAX_DEFAULT_GUIDES 2000
 #define GF_MAX_COUNT (1 << 28)
+#define GF_MAX_COLLIDERS 64
 
 /* One line per option: its unit and default. */
 static void usage(FILE *fp)
@@ -121,10 +123,15 @@ static void usage(FILE *fp)
 "  --lod F            level of detail, 0..1 (hf_fur_set_lod; 1 = every\n"
 "                     strand drawn) (default 1)\n"
 "  --seed N           random seed, a count >= 0 (default 1)\n"
-"  --collider C       auto | none | x,y,z,r: the sphere the head carries, in\n"
-"                     mesh units (default auto: at the bounding box centre,\n"
-"                     radius 0.97 x a quarter of the box's x width; the\n"
-"                     built-in head: radius 0.97 x 0.1 at the origin)\n"
+"  --collider C       a collider the head carries, mesh units (metres);\n"
+"                     repeat it for several (at most %d):\n"
+"                       none     no collider (alone)\n"
+"                       auto     a sphere at the bounding box centre, radius\n"
+"                                0.97 x a quarter of the box's x width (the\n"
+"                                built-in head: 0.97 x 0.1 at the origin)\n"
+"                       sphere:X,Y,Z,R         centre, radius (X,Y,Z,R too)\n"
+"                       capsule:X0,Y0,Z0,X1,Y1,Z1,R  segment ends, radius\n"
+"                     (default: auto)\n"
 "  --eye x,y,z        camera the ribbons face, mesh units (default: bounding\n"
 "                     box centre + (0, 0, 2.5 x half the box diagonal))\n"
 "  --out FILE         the last frame: .obj or .ply ribbons, or .hair curves\n"
@@ -133,7 +140,8 @@ static void usage(FILE *fp)
 "                     instead of ribbons\n"
 "  --help             this list\n"
 "Counts (N) accept 20000, 2e4 or 20k (k = 1000). Exit code 2: bad arguments.\n",
-            GF_DEFAULT_STRANDS, GF_MAX_DEFAULT_GUIDES, HF_MAX_POINTS);
+            GF_DEFAULT_STRANDS, GF_MAX_DEFAULT_GUIDES, HF_MAX_POINTS,
+            GF_MAX_COLLIDERS);
 }
 
 /* A count: an integer written as 20000, 2e4 or 20k (k = 1000), the whole
