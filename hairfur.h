@@ -118,9 +118,23 @@
 
    CONVENTIONS
 
-       - Units: metres and seconds. The defaults (gravity 9.81, strand
-         length 0.05, ribbon width 0.001, collision margin 0.002) assume
-         them; an engine in other units scales those fields.
+       - Units: metres, seconds and radians, right-handed, gravity -9.81
+         along y by default. Every field's unit is given beside it. An
+         engine in other units either converts its positions to metres
+         on the way in and out (scale by s = 0.01 for centimetres), or
+         keeps its units and scales, by its metres-to-units factor k
+         (100 for centimetres):
+           lengths, times k: hf_fur_desc max_length, curl_radius,
+             wave_amplitude, clump_size; hf_ribbon_params root_width,
+             tip_width; hf_rope_params collision_margin; colliders' a, b
+             and radius; the distances given to hf_lod_from_distance;
+           accelerations (m/s^2), times k: gravity, wind, turbulence;
+           per area (1/m^2), divided by k^2: tess_factor,
+             strands_per_area.
+         Times (dt, max_dt, mode_blend_time, turbulence_frequency),
+         angles, stiffnesses, damping, fractions (frizz, clump, LOD) and
+         counts have no length in them and stay as they are. Positions
+         are accepted up to HF_ROPE_MAX_COORD (1e6) in any unit.
        - One rule for every struct: zero-initialise it, set what you need;
          a zero field means the default documented beside it. Where 0 is a
          meaningful value whose default is not 0 (no gravity, no damping),
@@ -728,8 +742,8 @@ typedef struct hf_strand {
 
 /* Zero-initialise, then set strands_per_area or total_strands. */
 typedef struct hf_place_params {
-    float strands_per_area; /* expected strands per unit world area where
-                               the density is 1; > 0 and finite unless
+    float strands_per_area; /* 1/m^2: expected strands per square metre
+                               where the density is 1; > 0 and finite unless
                                total_strands is set */
     int total_strands;      /* > 0: exactly this many strands, distributed
                                in proportion to density * area (then
@@ -1017,13 +1031,14 @@ typedef struct hf_ropes {
     float *last_h, *blend, *length;
     double *time;
     unsigned char *mode;
+    float *glide; /* 6 point rows: a glide's start pose and velocity */
     unsigned char *root_inside; /* 1: the root sat inside a collider */
     hf_allocator allocator; /* hf_ropes_create only */
     int owned;
 } hf_ropes;
 
 /* Bytes of memory hf_ropes_init needs for rope_count ropes of `points`
-   points (about 40 bytes per point plus 230 per rope). Errors:
+   points (about 64 bytes per point plus 230 per rope). Errors:
    HF_ERROR_NULL_POINTER, HF_ERROR_BAD_COUNT (rope_count < 1 or points < 2),
    HF_ERROR_OVERFLOW. */
 HFDEF hf_result hf_ropes_memory_size(int rope_count, int points,
@@ -1109,14 +1124,14 @@ HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
                               int collider_count);
 
 /* Switch ropes [first, first + count) between simulation and animation on
-   the fly, without a jump. To HF_ROPE_SIMULATED: immediate; a fully
-   animated rope keeps the velocity of its animated motion (its previous
-   positions are the animated pose one sub-step back); a rope still gliding
-   (below) starts from where it is, at rest. To HF_ROPE_ANIMATED: the pose
-   the rope has now is kept in root-frame coordinates and the rope glides,
-   kinematically (no simulation, no colliders), from it to its rest pose
-   over params->mode_blend_time (linearly, so a frame moves at most the
-   root frame's own motion plus gap * dt / mode_blend_time), then is
+   the fly, without a jump in position or velocity. To HF_ROPE_SIMULATED:
+   immediate; the rope keeps the velocity it has (an animated rope that of
+   its animated motion, a gliding one that of its glide). To
+   HF_ROPE_ANIMATED: the rope glides, kinematically (no constraints, no
+   colliders), over params->mode_blend_time: each sub-step it keeps its
+   inertia and moves part of the way to its animated pose, the animated
+   share growing as a smoothstep (flat at both ends), so its velocity
+   turns smoothly from the simulation's to the animation's; then it is
    carried rigidly. The same mode again changes nothing. `mode` is an
    hf_rope_mode (an int so that a bad value is defined in C++). Errors:
    HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE, HF_ERROR_BAD_PARAMETER
@@ -1298,7 +1313,7 @@ typedef struct hf_ribbon_params {
     float eye[3];
     int orthographic;
     float view_dir[3];
-    /* Full ribbon width at root and tip, in world units, and the taper
+    /* Full ribbon width at root and tip, in metres, and the taper
        curve width(t) = root + (tip - root) * t^taper_power. Widths must be
        finite and >= 0; both 0 means HF_RIBBON_DEFAULT_ROOT_WIDTH and
        HF_RIBBON_DEFAULT_TIP_WIDTH (a pointed tip: a root width and tip 0);
@@ -1600,9 +1615,9 @@ typedef struct hf_fur_desc {
        0 = none. Each is a scalar; its map, when given, multiplies it by
        the map's first channel at the guide's root. The effects grow from
        nothing at the root to full strength at a fifth of the length. */
-    float curl_radius;      /* helix radius, world units (metres) */
+    float curl_radius;      /* helix radius, m */
     float curl_turns;       /* turns of the helix along a whole guide */
-    float wave_amplitude;   /* planar wave, world units */
+    float wave_amplitude;   /* planar wave, m */
     float wave_count;       /* wave periods along a whole guide */
     float frizz;            /* random offset of each point, a fraction of
                                the segment length, growing to the tip */
@@ -1616,14 +1631,16 @@ typedef struct hf_fur_desc {
     float width_variation;  /* [0, 1]: each strand's ribbon width times a
                                random factor in [1 - v, 1 + v] */
     int points_per_strand;  /* 0 = 16; 2 .. HF_MAX_POINTS */
-    float max_length;       /* 0 = 0.05 (world units, metres in examples) */
-    float tess_factor;      /* 0 = no tessellation: pure guides only. Else
-                               triangles split while D * A * factor > 1 */
+    float max_length;       /* 0 = 0.05 m */
+    float tess_factor;      /* 1/m^2; 0 = no tessellation: pure guides
+                               only. Else triangles split while
+                               D * A * factor > 1 (about a guide per
+                               1/factor m^2 where the density is 1) */
     int tess_estimator;     /* hf_density_estimator; 0 = corners */
     int tess_split;         /* hf_split_point; 0 = centroid */
     int tess_max_triangles; /* 0 = HF_TESS_DEFAULT_MAX_TRIANGLES */
-    float strands_per_area; /* expected strands per unit area at density 1;
-                               > 0 wins over total_strands; 0 = use
+    float strands_per_area; /* 1/m^2: expected strands per square metre at
+                               density 1; > 0 wins over total_strands; 0 = use
                                total_strands; negative or NaN refused */
     int total_strands;      /* exact strand count when strands_per_area is
                                0; both 0 = 10000; negative refused */
@@ -1632,7 +1649,7 @@ typedef struct hf_fur_desc {
     float clump;            /* 0 = none; [0, 1], see hf_interp_params */
     float clump_size;       /* 0: each strand clumps to its main guide;
                                > 0: strands gather into clumps about this
-                               wide (world units) around leader strands
+                               wide (m) around leader strands
                                that far apart, whatever the guide spacing */
     float lod_simulate_threshold; /* 0 = 0.5: LOD guides simulated at
                                      lod >= this */
@@ -1807,7 +1824,10 @@ HFDEF hf_result hf_fur_set_rope_params_range(hf_fur *fur, int first,
                                              int count,
                                              const hf_rope_params *params);
 /* Switch guides [first, first + count) between simulation and animation
-   (hf_rope_mode) without a jump, as hf_ropes_set_mode. Errors:
+   (hf_rope_mode) without a jump, as hf_ropes_set_mode. The choice is kept
+   per guide: LOD guides put to sleep by hf_fur_set_lod (animated, drawn
+   interpolated) take it when they wake, and an animated one stays
+   animated then. Errors:
    HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE, HF_ERROR_BAD_PARAMETER. */
 HFDEF hf_result hf_fur_set_mode(hf_fur *fur, int first, int count, int mode);
 
@@ -4192,8 +4212,9 @@ HFDEF hf_result hf_rope_params_validate(const hf_rope_params *params,
 
 /* Array sizes in bytes, in layout order: 10 point arrays (x, y, z, px, py,
    pz, rest_u, rest_v, rest_w, rest_length), frame, scratch, last_h, blend,
-   length, time, mode, root_inside. Each starts on a 64-byte boundary. */
-enum { HF__ROPE_ARRAYS = 18 };
+   length, time, mode, root_inside, glide (6 point rows). Each starts on a
+   64-byte boundary. */
+enum { HF__ROPE_ARRAYS = 19 };
 
 HF__PRIVATE hf_result hf__ropes_layout(int rope_count, int points,
                                        size_t sizes[HF__ROPE_ARRAYS],
@@ -4209,7 +4230,8 @@ HF__PRIVATE hf_result hf__ropes_layout(int rope_count, int points,
     for (i = 0; i < 10; ++i) sizes[i] = pt;
     if (!hf__mul_size(R, 24 * sizeof(float), &sizes[10]) ||
         !hf__mul_size(R, HF__RS_ROWS * sizeof(float), &sizes[11]) ||
-        !hf__mul_size(R, sizeof(double), &sizes[15]))
+        !hf__mul_size(R, sizeof(double), &sizes[15]) ||
+        !hf__mul_size(pt, 6, &sizes[18]))
         return HF_ERROR_OVERFLOW;
     sizes[12] = sizes[13] = sizes[14] = R * sizeof(float);
     sizes[16] = sizes[17] = R;
@@ -4273,6 +4295,7 @@ HFDEF hf_result hf_ropes_init(hf_ropes *ropes, int rope_count, int points,
     ropes->time = (double *)arr[15];
     ropes->mode = (unsigned char *)arr[16];
     ropes->root_inside = (unsigned char *)arr[17];
+    ropes->glide = (float *)arr[18];
     /* identity frames (tangent x, normal y, bitangent cross(t, n) = z),
        current and previous */
     R = (size_t)rope_count;
@@ -4606,48 +4629,48 @@ HFDEF hf_result hf_ropes_set_roots(hf_ropes *ropes, int first, int count,
     return HF_OK;
 }
 
+/* Rope r starts gliding to animation: its pose, in the coordinates of the
+   frame it was computed in (the last step's, held in the previous-frame
+   rows), and its velocity per second in those axes (the frame's own
+   motion is taken off at the glide's first sub-step, when it is known). */
+HF__PRIVATE void hf__glide_start(hf_ropes *ro, int r)
+{
+    const size_t R = (size_t)ro->rope_count, n = R * (size_t)ro->points;
+    const float iv = ro->last_h[r] > 0.0f ? 1.0f / ro->last_h[r] : 0.0f;
+    float f[12];
+    int j, k;
+    hf__rope_get_frame(ro, 12, r, f);
+    for (j = 0; j < ro->points; ++j) {
+        size_t i = (size_t)j * R + (size_t)r;
+        float d[3], v[3];
+        d[0] = ro->x[i] - f[0];
+        d[1] = ro->y[i] - f[1];
+        d[2] = ro->z[i] - f[2];
+        v[0] = (ro->x[i] - ro->px[i]) * iv;
+        v[1] = (ro->y[i] - ro->py[i]) * iv;
+        v[2] = (ro->z[i] - ro->pz[i]) * iv;
+        for (k = 0; k < 3; ++k) {
+            ro->glide[(size_t)k * n + i] = hf__dot3(d, f + 3 + 3 * k);
+            ro->glide[(size_t)(3 + k) * n + i] = hf__dot3(v, f + 3 + 3 * k);
+        }
+    }
+    ro->blend[r] = 0.0f;
+}
+
 HFDEF hf_result hf_ropes_set_mode(hf_ropes *ropes, int first, int count,
                                   int mode)
 {
-    size_t R;
     int r;
     if (!hf__ropes_ok(ropes)) return HF_ERROR_NULL_POINTER;
     if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
     if (mode != HF_ROPE_SIMULATED && mode != HF_ROPE_ANIMATED)
         return HF_ERROR_BAD_PARAMETER;
-    R = (size_t)ropes->rope_count;
     for (r = first; r < first + count; ++r) {
-        int j, gliding = ropes->mode[r] == HF_ROPE_ANIMATED &&
-                         ropes->blend[r] < 1.0f;
-        if (mode == HF_ROPE_SIMULATED && gliding) {
-            /* px holds the glide's start pose: restart from rest (in the
-               world) where the rope is now, without a jump */
-            for (j = 0; j < ropes->points; ++j) {
-                size_t i = (size_t)j * R + (size_t)r;
-                ropes->px[i] = ropes->x[i];
-                ropes->py[i] = ropes->y[i];
-                ropes->pz[i] = ropes->z[i];
-            }
-            ropes->last_h[r] = 0.0f;
-        } else if (mode == HF_ROPE_ANIMATED &&
-                   ropes->mode[r] == HF_ROPE_SIMULATED) {
-            /* keep the pose the rope has now in the coordinates of the
-               frame it was computed in (the last step's, held in the
-               previous-frame rows), for the glide */
-            float f[12];
-            hf__rope_get_frame(ropes, 12, r, f);
-            for (j = 0; j < ropes->points; ++j) {
-                size_t i = (size_t)j * R + (size_t)r;
-                float d[3];
-                d[0] = ropes->x[i] - f[0];
-                d[1] = ropes->y[i] - f[1];
-                d[2] = ropes->z[i] - f[2];
-                ropes->px[i] = hf__dot3(d, f + 3);
-                ropes->py[i] = hf__dot3(d, f + 6);
-                ropes->pz[i] = hf__dot3(d, f + 9);
-            }
-            ropes->blend[r] = 0.0f;
-        }
+        /* x and px are world positions in every mode (a glide keeps
+           them so too), so a switch to simulation keeps position and
+           velocity; a glide toward animation starts from both */
+        if (mode == HF_ROPE_ANIMATED && ropes->mode[r] == HF_ROPE_SIMULATED)
+            hf__glide_start(ropes, r);
         if (mode == HF_ROPE_SIMULATED) ropes->blend[r] = 0.0f;
         ropes->mode[r] = (unsigned char)mode;
     }
@@ -5372,40 +5395,81 @@ HF__PRIVATE void hf__ropes_collide(hf_ropes *ro, const float *F, int a, int b,
 }
 
 /* Ropes [a, b) gliding from simulation to animation: kinematic, no
-   simulation. px, py, pz hold the pose the rope had when it was switched,
-   in root-frame coordinates (hf_ropes_set_mode put it there); the rope
-   shows frame * lerp(that pose, rest, w), w rising linearly over
-   blend_time, so each frame moves at most the frame's own motion plus
-   gap * dt / blend_time. At w = 1 the rope is exactly animated. */
+   constraints, no colliders. In root-frame coordinates each point follows
+   the cubic Hermite curve from the pose and velocity it had at the switch
+   to its rest place, reached at rest (moving with the frame) after
+   blend_time: no jump in position or velocity at either end. A blend of
+   two poses is shorter than either, so the rope is rebuilt from the root
+   out along the curve's segments at their rest lengths; the curve is a
+   function of time alone, so that keeps it smooth (for poses less than a
+   half turn apart: a rope exactly reversed has no smooth way round). At w = 1 the rope is
+   exactly animated. x and px stay world positions (px the last sub-step's
+   place), so switching back to simulation mid-glide keeps the velocity. */
 HF__PRIVATE void hf__ropes_glide_run(hf_ropes *ro, int a, int b,
                                      const hf__rope_step *st)
 {
-    size_t R = (size_t)ro->rope_count;
-    const float sdt = st->h * (float)st->n;
-    int r, j;
+    const size_t R = (size_t)ro->rope_count, n = R * (size_t)ro->points;
+    const float T = st->blend_time, h = st->h;
+    int r, j, s, k;
     for (r = a; r < b; ++r) {
-        float w = st->blend_time > 0.0f
-                      ? ro->blend[r] + sdt / st->blend_time
-                      : 1.0f;
-        float f[12];
-        if (w >= 1.0f) {
-            hf__ropes_animated_run(ro, r, r + 1, st);
-            ro->blend[r] = 1.0f;
-            continue;
+        float w = ro->blend[r], f0[12], f1[12];
+        hf__rope_frame_at(ro, r, 0.0f, f0);
+        for (s = 0; s < st->n; ++s) {
+            const float u = T > 0.0f && w + h / T < 1.0f ? w + h / T : 1.0f;
+            const float h00 = (2.0f * u - 3.0f) * u * u + 1.0f;
+            const float h10 = ((u - 2.0f) * u + 1.0f) * u * T;
+            const float h01 = (3.0f - 2.0f * u) * u * u;
+            float gp[3] = {0.0f, 0.0f, 0.0f}, hp[3] = {0.0f, 0.0f, 0.0f};
+            hf__rope_frame_at(ro, r, (float)(s + 1) / (float)st->n, f1);
+            for (j = 0; j < ro->points; ++j) {
+                const size_t i = (size_t)j * R + (size_t)r;
+                float *G = ro->glide + i, g[3], d[3];
+                g[0] = ro->rest_u[i];
+                g[1] = ro->rest_v[i];
+                g[2] = ro->rest_w[i];
+                if (w == 0.0f && s == 0) {
+                    /* the glide's first sub-step: take the frame's own
+                       motion at the point off the start velocity */
+                    float m[3];
+                    for (k = 0; k < 3; ++k)
+                        m[k] = f1[k] - f0[k] +
+                               (f1[3 + k] - f0[3 + k]) * G[0] +
+                               (f1[6 + k] - f0[6 + k]) * G[n] +
+                               (f1[9 + k] - f0[9 + k]) * G[2 * n];
+                    for (k = 0; k < 3; ++k)
+                        G[(3 + k) * n] -= hf__dot3(m, f0 + 3 + 3 * k) / h;
+                }
+                if (u < 1.0f) {
+                    for (k = 0; k < 3; ++k) {
+                        const float c = h00 * G[k * n] +
+                                        h10 * G[(3 + k) * n] + h01 * g[k];
+                        d[k] = c - hp[k]; /* the curve's own segment */
+                        hp[k] = c;
+                        g[k] = c;
+                    }
+                    if (j > 0) {
+                        const float l2 = hf__dot3(d, d);
+                        if (l2 > 1e-24f) {
+                            const float sc =
+                                ro->rest_length[i - R] / HF_SQRTF(l2);
+                            for (k = 0; k < 3; ++k) g[k] = gp[k] + d[k] * sc;
+                        }
+                    }
+                }
+                for (k = 0; k < 3; ++k) gp[k] = g[k];
+                ro->px[i] = ro->x[i];
+                ro->py[i] = ro->y[i];
+                ro->pz[i] = ro->z[i];
+                ro->x[i] = f1[0] + f1[3] * g[0] + f1[6] * g[1] + f1[9] * g[2];
+                ro->y[i] = f1[1] + f1[4] * g[0] + f1[7] * g[1] + f1[10] * g[2];
+                ro->z[i] = f1[2] + f1[5] * g[0] + f1[8] * g[1] + f1[11] * g[2];
+            }
+            w = u;
+            for (k = 0; k < 12; ++k) f0[k] = f1[k];
         }
         ro->blend[r] = w;
-        ro->last_h[r] = st->h;
-        ro->time[r] += (double)sdt;
-        hf__rope_frame_at(ro, r, 1.0f, f);
-        for (j = 0; j < ro->points; ++j) {
-            size_t i = (size_t)j * R + (size_t)r;
-            float u = ro->px[i] + (ro->rest_u[i] - ro->px[i]) * w;
-            float v = ro->py[i] + (ro->rest_v[i] - ro->py[i]) * w;
-            float q = ro->pz[i] + (ro->rest_w[i] - ro->pz[i]) * w;
-            ro->x[i] = f[0] + f[3] * u + f[6] * v + f[9] * q;
-            ro->y[i] = f[1] + f[4] * u + f[7] * v + f[10] * q;
-            ro->z[i] = f[2] + f[5] * u + f[8] * v + f[11] * q;
-        }
+        ro->last_h[r] = h;
+        ro->time[r] += (double)h * st->n;
     }
 }
 
@@ -8408,6 +8472,7 @@ struct hf_fur {
     float lod, width_scale, lod_threshold, clump;
     hf_rope_params rope[HF_FUR_ROPE_SETS]; /* the parameter sets in use */
     unsigned char *rope_of;                /* per guide: its set */
+    unsigned char *user_mode; /* per guide: hf_fur_set_mode's choice */
     float *strand_width;   /* width_variation > 0: per strand multiplier */
     float *strand_clump;   /* clump_map: per strand clump strength */
     uint32_t *leader;      /* clump_size > 0: per strand, the strand whose
@@ -8474,6 +8539,7 @@ HFDEF void hf_fur_destroy(hf_fur *f)
     hf__free(&a, f->rest_frame);
     hf__free(&a, f->offsets);
     hf__free(&a, f->rope_of);
+    hf__free(&a, f->user_mode);
     hf__free(&a, f->leader);
     hf__free(&a, f->strand_width);
     hf__free(&a, f->strand_clump);
@@ -8947,13 +9013,17 @@ HF__PRIVATE hf_result hf__fur_style(hf_fur *f, hf__fur_build *b)
             len += HF_SQRT(dx * dx + dy * dy + dz * dz);
         }
         if (!(len > 0.0)) continue;
-        /* u: a unit vector across the first segment */
+        /* u: a unit vector across the first segment, x projected onto
+           it, so that neighbouring guides curl in phase and the strands
+           between them keep the curl (a switch of axis at some angle
+           would put a seam of opposite phases across the fur); only
+           within a degree of x, where that is undefined, y */
         for (k = 0; k < 3; ++k) t[k] = base[3 + k] - base[k];
         {
             double a[3] = {1.0, 0.0, 0.0}, l, dt;
             l = HF_SQRT(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
             for (k = 0; k < 3; ++k) t[k] /= l;
-            if (HF_FABS(t[0]) > 0.9) { a[0] = 0.0; a[1] = 1.0; }
+            if (HF_FABS(t[0]) > 0.99985) { a[0] = 0.0; a[1] = 1.0; }
             dt = a[0] * t[0] + a[1] * t[1] + a[2] * t[2];
             for (k = 0; k < 3; ++k) u[k] = a[k] - dt * t[k];
             l = HF_SQRT(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
@@ -9310,8 +9380,10 @@ HF__PRIVATE hf_result hf__fur_keep_rest_frames(hf_fur *f)
     size_t g;
     f->rest_frame = (float *)hf__fur_array(f, G * 9u, sizeof(float), &r);
     f->rope_of = (unsigned char *)hf__fur_array(f, G, 1, &r);
+    f->user_mode = (unsigned char *)hf__fur_array(f, G, 1, &r);
     if (r != HF_OK) return r;
     HF_MEMSET(f->rope_of, 0, G); /* every guide: set 0, the desc's */
+    HF_MEMSET(f->user_mode, HF_ROPE_SIMULATED, G);
     for (g = 0; g < G; ++g) {
         HF_MEMCPY(f->rest_frame + 9 * g, f->root_pos + 3 * g, 12);
         HF_MEMCPY(f->rest_frame + 9 * g + 3, f->root_nrm + 3 * g, 12);
@@ -9905,12 +9977,14 @@ HFDEF hf_result hf_fur_set_lod(hf_fur *f, float lod)
     sim = lod >= f->lod_threshold;
     if (sim && !f->lod_sim && f->lod_count > 0) {
         /* LOD guides wake up where they are drawn (interpolated), at rest
-           velocity: no jump. Point-major rope state: [j * G + r]. */
+           velocity: no jump; those the caller set animated stay so.
+           Point-major rope state: [j * G + r]. */
         hf_ropes *ro = f->ropes;
         const int G = f->guide_count;
         int r, j;
-        hf_ropes_set_mode(ro, f->pure_count, f->lod_count, HF_ROPE_SIMULATED);
-        for (r = f->pure_count; r < G; ++r)
+        for (r = f->pure_count; r < G; ++r) {
+            if (f->user_mode[r] != HF_ROPE_SIMULATED) continue;
+            hf_ropes_set_mode(ro, r, 1, HF_ROPE_SIMULATED);
             for (j = 0; j < f->P; ++j) {
                 const float *p = f->guide_points + ((size_t)r * f->P + j) * 3u;
                 const size_t e = (size_t)j * (size_t)G + (size_t)r;
@@ -9918,6 +9992,7 @@ HFDEF hf_result hf_fur_set_lod(hf_fur *f, float lod)
                 ro->y[e] = ro->py[e] = p[1];
                 ro->z[e] = ro->pz[e] = p[2];
             }
+        }
     } else if (!sim && f->lod_sim && f->lod_count > 0) {
         /* asleep they are carried rigidly (cheap) and drawn interpolated */
         hf_ropes_set_mode(f->ropes, f->pure_count, f->lod_count,
@@ -10035,6 +10110,8 @@ HFDEF hf_result hf_fur_simulate(hf_fur *f, int first, int count, float dt,
     if (!f) return HF_ERROR_NULL_POINTER;
     if (!hf__range_ok(first, count) || first + count > f->guide_count)
         return HF_ERROR_BAD_RANGE;
+    /* LOD guides asleep (animated, drawn interpolated) keep sleeping and
+       take the mode when they wake */
     end = first + count;
     if (!f->lod_sim && end > f->pure_count) {
         /* sleeping LOD guides are still carried by their roots, so they
@@ -10172,8 +10249,19 @@ HFDEF hf_result hf_fur_set_rope_params_range(hf_fur *f, int first, int count,
 
 HFDEF hf_result hf_fur_set_mode(hf_fur *f, int first, int count, int mode)
 {
+    int g, end;
     if (!f) return HF_ERROR_NULL_POINTER;
-    return hf_ropes_set_mode(f->ropes, first, count, mode);
+    if (!hf__ropes_range(f->ropes, first, count)) return HF_ERROR_BAD_RANGE;
+    if (mode != HF_ROPE_SIMULATED && mode != HF_ROPE_ANIMATED)
+        return HF_ERROR_BAD_PARAMETER;
+    for (g = first; g < first + count; ++g)
+        f->user_mode[g] = (unsigned char)mode;
+    /* LOD guides asleep (animated, drawn interpolated) keep sleeping and
+       take the mode when they wake */
+    end = first + count;
+    if (!f->lod_sim && end > f->pure_count)
+        end = first > f->pure_count ? first : f->pure_count;
+    return hf_ropes_set_mode(f->ropes, first, end - first, mode);
 }
 
 HFDEF hf_result hf_fur_reset(hf_fur *f)

@@ -3448,9 +3448,10 @@ static void test_ropes_memory_init_create(void)
         CHECK_EQ_INT(hf_ropes_memory_size(0x7fffffff, 0x7fffffff, &size),
                      HF_ERROR_OVERFLOW);
     CHECK_EQ_INT(hf_ropes_memory_size(1000, 16, &size), HF_OK);
-    /* 10 point arrays, 56 floats + 1 double + 2 bytes per rope, padding */
-    CHECK(size >= 1000u * 16u * 40u + 1000u * (56u * 4u + 10u));
-    CHECK(size <= 1000u * 16u * 40u + 1000u * (56u * 4u + 10u) + 64u * 19u);
+    /* 16 point rows (10 arrays and the glide's 6), 56 floats + 1 double +
+       2 bytes per rope, padding */
+    CHECK(size >= 1000u * 16u * 64u + 1000u * (56u * 4u + 10u));
+    CHECK(size <= 1000u * 16u * 64u + 1000u * (56u * 4u + 10u) + 64u * 20u);
     CHECK_EQ_INT(hf_ropes_memory_size(3, 5, &size2), HF_OK);
 
     mem = (unsigned char *)malloc(size2 + 1);
@@ -3679,8 +3680,9 @@ static void test_ropes_mode_switch_no_jump(void)
     if (!tr_open(&s, R, P)) { CHECK(0); return; }
     for (r = 0; r < R; ++r) {
         root0[3 * r] = 0.05f * r; root0[3 * r + 1] = 0; root0[3 * r + 2] = 0;
-        nrm[3 * r] = 0; nrm[3 * r + 1] = 1; nrm[3 * r + 2] = 0; /* up */
-        tan[3 * r] = 1; tan[3 * r + 1] = 0; tan[3 * r + 2] = 0;
+        /* combed sideways: gravity hangs it a quarter turn off its rest */
+        nrm[3 * r] = 1; nrm[3 * r + 1] = 0; nrm[3 * r + 2] = 0;
+        tan[3 * r] = 0; tan[3 * r + 1] = 0; tan[3 * r + 2] = 1;
         tr_straight(rest, r, P, root0 + 3 * r, nrm + 3 * r, 0.3f);
     }
     hf_rope_params_init(&p);
@@ -3700,8 +3702,8 @@ static void test_ropes_mode_switch_no_jump(void)
             for (r = 0; r < R; ++r)
                 for (j = 0; j < P; ++j) {
                     const float *q = a + 3 * (r * P + j);
-                    double dx = q[0] - (root[3 * r] + 0.0),
-                           dy = q[1] - (root[3 * r + 1] + 0.3 * j / (P - 1)),
+                    double dx = q[0] - (root[3 * r] + 0.3 * j / (P - 1)),
+                           dy = q[1] - root[3 * r + 1],
                            dz = q[2] - root[3 * r + 2];
                     double d = sqrt(dx * dx + dy * dy + dz * dz);
                     if (d > gap) gap = d;
@@ -3709,9 +3711,9 @@ static void test_ropes_mode_switch_no_jump(void)
             hf_ropes_set_mode(&s.ro, 0, R, HF_ROPE_ANIMATED);
         }
         for (r = 0; r < R; ++r) {
-            root[3 * r] = root0[3 * r] + (float)(0.1 * sin(2 * T_PI * tt));
+            root[3 * r] = root0[3 * r];
             root[3 * r + 1] = root0[3 * r + 1];
-            root[3 * r + 2] = root0[3 * r + 2];
+            root[3 * r + 2] = root0[3 * r + 2] + (float)(0.1 * sin(2 * T_PI * tt));
         }
         hf_ropes_set_roots(&s.ro, 0, R, root, nrm, tan, 0);
         memcpy(b, a, sizeof a);
@@ -3725,9 +3727,11 @@ static void test_ropes_mode_switch_no_jump(void)
     /* the first simulated frame continues the animated motion: it moves no
        more than an animated frame, plus what gravity adds in one frame */
     CHECK(move[ON] <= anim_move * 1.02 + 9.81 / 3600.0);
-    /* switching back glides: no frame moves more than the largest move of
-       the simulated frames before the switch */
-    for (f = OFF; f < FRAMES; ++f) CHECK(move[f] <= sim_move * 1.02);
+    /* switching back glides along a Hermite curve: in the root frame no
+       faster than 1.5 gap / blend_time plus the speed it had, so a frame
+       moves at most that plus the frame's own motion (the animated one) */
+    for (f = OFF; f < FRAMES; ++f)
+        CHECK(move[f] <= (sim_move + anim_move + 1.5 * gap / 15.0) * 1.02);
     /* the test is meaningful: a jump to the animated pose is far bigger */
     CHECK(gap > 2.0 * sim_move);
     if (getenv("TR_VERBOSE")) {
@@ -3739,10 +3743,86 @@ static void test_ropes_mode_switch_no_jump(void)
     for (r = 0; r < R; ++r)
         for (j = 0; j < P; ++j) {
             const float *q = a + 3 * (r * P + j);
-            CHECK_NEAR(q[0], root[3 * r], 1e-5);
-            CHECK_NEAR(q[1], root[3 * r + 1] + 0.3 * j / (P - 1), 1e-5);
+            CHECK_NEAR(q[0], root[3 * r] + 0.3 * j / (P - 1), 1e-5);
+            CHECK_NEAR(q[2], root[3 * r + 2], 1e-5);
         }
     tr_close(&s);
+}
+
+/* The largest change of velocity (m/s) of any point across frame k of a
+   swinging rope set stepped at dt, switched at frames on (to simulated),
+   off (to animated) and back (to simulated, mid-glide); -1 on failure. */
+static double tr_switch_dv(float dt, int on, int off, int back, int which)
+{
+    enum { R = 3, P = 12 };
+    static float rest[3 * R * P], x0[3 * R * P], x1[3 * R * P],
+        x2[3 * R * P];
+    float root[3 * R], root0[3 * R], nrm[3 * R], tan[3 * R];
+    hf_rope_params p;
+    tr_set s;
+    int r, f, i, k = which == 0 ? on : which == 1 ? off : which == 2 ? back : which;
+    double dv = 0.0;
+    if (!tr_open(&s, R, P)) return -1.0;
+    for (r = 0; r < R; ++r) {
+        root0[3 * r] = 0.05f * r; root0[3 * r + 1] = 0; root0[3 * r + 2] = 0;
+        /* combed sideways: gravity hangs it a quarter turn off its rest
+           pose, the gap the glide must close */
+        nrm[3 * r] = 1; nrm[3 * r + 1] = 0; nrm[3 * r + 2] = 0;
+        tan[3 * r] = 0; tan[3 * r + 1] = 0; tan[3 * r + 2] = 1;
+        tr_straight(rest, r, P, root0 + 3 * r, nrm + 3 * r, 0.3f);
+    }
+    hf_rope_params_init(&p);
+    hf_ropes_set_rest(&s.ro, 0, R, rest, 0, root0, nrm, tan, 0);
+    hf_ropes_set_mode(&s.ro, 0, R, HF_ROPE_ANIMATED);
+    hf_ropes_reset(&s.ro, 0, R);
+    for (f = 0; f <= k; ++f) {
+        double tt = (f + 1) * (double)dt;
+        if (f == on || f == back)
+            hf_ropes_set_mode(&s.ro, 0, R, HF_ROPE_SIMULATED);
+        if (f == off) hf_ropes_set_mode(&s.ro, 0, R, HF_ROPE_ANIMATED);
+        for (r = 0; r < R; ++r) {
+            root[3 * r] = root0[3 * r];
+            root[3 * r + 1] = root0[3 * r + 1];
+            root[3 * r + 2] = root0[3 * r + 2] + (float)(0.02 * sin(T_PI * tt));
+        }
+        hf_ropes_set_roots(&s.ro, 0, R, root, nrm, tan, 0);
+        memcpy(x0, x1, sizeof x1);
+        memcpy(x1, x2, sizeof x2);
+        if (hf_ropes_step(&s.ro, 0, R, dt, &p, NULL, 0) != HF_OK) dv = -1.0;
+        tr_snapshot(&s.ro, x2);
+    }
+    /* x0, x1, x2: after frames k - 2, k - 1 and k, the first after the
+       switch */
+    for (i = 0; i < 3 * R * P && dv >= 0.0; i += 3) {
+        double d2 = 0.0, c;
+        int c3;
+        for (c3 = 0; c3 < 3; ++c3) {
+            c = (double)x2[i + c3] - 2.0 * x1[i + c3] + x0[i + c3];
+            d2 += c * c;
+        }
+        if (sqrt(d2) / dt > dv) dv = sqrt(d2) / dt;
+    }
+    tr_close(&s);
+    return dv;
+}
+
+/* Mode switches keep the velocity: the change of velocity across a switch
+   is an acceleration times the frame time, so it shrinks with the frame
+   time (a jump in velocity would not). Checked at 60 and 480 Hz, for the
+   switch to simulation, to animation (the glide) and back mid-glide. */
+static void test_ropes_mode_switch_smooth(void)
+{
+    int which;
+    for (which = 0; which < 3; ++which) {
+        /* the same moments in seconds: 0.5 s, 1.0 s, 1.1 s */
+        double slow = tr_switch_dv(1.0f / 60.0f, 15, 120, 126, which);
+        double fast = tr_switch_dv(1.0f / 480.0f, 120, 960, 1008, which);
+        if (getenv("TR_VERBOSE"))
+            printf("switch %d: dv %g m/s at 60 Hz, %g at 480 Hz\n", which,
+                   slow, fast);
+        CHECK(slow >= 0.0 && fast >= 0.0);
+        CHECK(fast < 0.3 * slow);
+    }
 }
 
 /* dt zero, negative, NaN, infinite: an error and no change; dt of a second:
@@ -7808,7 +7888,7 @@ static void test_fur_no_allocation_per_frame(void)
     free(vbuf);
 }
 
-static void test_fur_ranges_byte_identical(void)
+static void t_fur_ranges(int styled)
 {
     t_fur_scene sc;
     hf_fur *f[3] = {NULL, NULL, NULL};
@@ -7818,6 +7898,17 @@ static void test_fur_ranges_byte_identical(void)
     hf_result worst = HF_OK;
     hf_fur_info info[3];
     t_fur_scene_init(&sc, 1.0f);
+    if (styled) { /* every styling option at once */
+        sc.desc.curl_radius = 0.02f;
+        sc.desc.curl_turns = 2.0f;
+        sc.desc.wave_amplitude = 0.01f;
+        sc.desc.wave_count = 3.0f;
+        sc.desc.frizz = 0.2f;
+        sc.desc.clump = 0.5f;
+        sc.desc.clump_size = 0.2f;
+        sc.desc.color_variation = 0.3f;
+        sc.desc.width_variation = 0.4f;
+    }
     for (k = 0; k < 3; ++k) {
         v[k] = (unsigned char *)calloc(1, bytes);
         CHECK_EQ_INT(hf_fur_create(&sc.desc, &f[k], NULL), HF_OK);
@@ -7849,6 +7940,13 @@ static void test_fur_ranges_byte_identical(void)
         hf_fur_destroy(f[k]);
         free(v[k]);
     }
+}
+
+/* Range splits give the same bytes, plain and with every styling on. */
+static void test_fur_ranges_byte_identical(void)
+{
+    t_fur_ranges(0);
+    t_fur_ranges(1);
 }
 
 static void test_fur_lod_prefix_and_width(void)
@@ -8392,6 +8490,219 @@ static void test_fur_set_rope_params_and_mode(void)
     hf_fur_destroy(f);
 }
 
+/* The largest change of velocity (m/s) of any guide point across each
+   frame: dv[f] compares frame f's motion with frame f - 1's. */
+static void t_fur_dv(const float *x0, const float *x1, const float *x2,
+                     size_t n, float dt, double *dv)
+{
+    size_t i;
+    *dv = 0.0;
+    for (i = 0; i + 2 < n; i += 3) {
+        double d2 = 0.0;
+        int c;
+        for (c = 0; c < 3; ++c) {
+            double e = (double)x2[i + c] - 2.0 * x1[i + c] + x0[i + c];
+            d2 += e * e;
+        }
+        if (sqrt(d2) / dt > *dv) *dv = sqrt(d2) / dt;
+    }
+}
+
+/* Per-frame control of a fur on a moving body at frame time dt: new rope
+   parameters (wind and weaker gravity), half the guides animated, then
+   simulated again mid-glide. Returns the largest change of velocity of the
+   first two changes' frames (less what the new acceleration gives), with
+   that of ordinary frames and that of the switch back. */
+static double t_fur_control_worst(float dt, double *ordinary, double *back)
+{
+    enum { F = 90 };
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    hf_rope_params p;
+    float moved[(FR + 1) * (FS + 1) * 3];
+    float *x[3];
+    size_t n;
+    int frame, i, k, scale = (int)(1.0f / (60.0f * dt) + 0.5f);
+    double worst = 0.0, dv;
+    hf_mesh m;
+    *ordinary = *back = 0.0;
+    t_fur_scene_init(&sc, 1.0f);
+    if (hf_fur_create(&sc.desc, &f, NULL) != HF_OK) return -1.0;
+    hf_fur_get_info(f, &info);
+    n = (size_t)info.guide_count * (size_t)info.points_per_strand * 3u;
+    for (k = 0; k < 3; ++k) x[k] = (float *)calloc(n, sizeof(float));
+    m = sc.desc.mesh;
+    m.positions = moved;
+    for (frame = 0; frame < F * scale; ++frame) {
+        const int at = frame / scale, edge = frame % scale == 0;
+        const double t = (frame + 1) * (double)dt;
+        if (edge && at == 40) { /* wind and half gravity */
+            memset(&p, 0, sizeof p);
+            hf_rope_params_init(&p);
+            p.gravity[1] = -4.9f;
+            p.wind[0] = 3.0f;
+            hf_fur_set_rope_params(f, &p);
+        }
+        if (edge && at == 55)
+            hf_fur_set_mode(f, 0, info.guide_count / 2, HF_ROPE_ANIMATED);
+        if (edge && at == 62) /* back, mid-glide */
+            hf_fur_set_mode(f, 0, info.guide_count / 2, HF_ROPE_SIMULATED);
+        for (i = 0; i < (FR + 1) * (FS + 1) * 3; ++i)
+            moved[i] = sc.pos[i] + (i % 3 == 2 ? (float)(0.1 * sin(2.0 * t)) : 0.0f);
+        hf_fur_set_roots(f, &m, 0, info.guide_count);
+        hf_fur_simulate(f, 0, info.guide_count, dt, NULL, 0);
+        memcpy(x[0], x[1], n * sizeof(float));
+        memcpy(x[1], x[2], n * sizeof(float));
+        memcpy(x[2], info.guide_points, n * sizeof(float));
+        if (frame < 3 * scale) continue;
+        t_fur_dv(x[0], x[1], x[2], n, dt, &dv);
+        /* the first frame after each change */
+        if (frame == 40 * scale || frame == 55 * scale) {
+            /* less what wind (3) and gravity (4.9) change in a frame */
+            dv -= frame == 40 * scale ? 5.8 * dt : 0.0;
+            if (dv > worst) worst = dv;
+        } else if (frame == 62 * scale) {
+            *back = dv;
+        } else if (at < 40 || at > 70) {
+            if (dv > *ordinary) *ordinary = dv;
+        }
+    }
+    for (k = 0; k < 3; ++k) free(x[k]);
+    hf_fur_destroy(f);
+    return worst;
+}
+
+static void test_fur_controls_no_jump(void)
+{
+    double ord60, ord240, back60, back240;
+    double at60 = t_fur_control_worst(1.0f / 60.0f, &ord60, &back60);
+    double at240 = t_fur_control_worst(1.0f / 240.0f, &ord240, &back240);
+    if (getenv("TR_VERBOSE"))
+        printf("controls: dv %g m/s at 60 Hz (ordinary %g, back %g), %g at "
+               "240 Hz (ordinary %g, back %g)\n", at60, ord60, back60, at240,
+               ord240, back240);
+    CHECK(at60 >= 0.0 && at240 >= 0.0);
+    /* new parameters and the glide's start: like any frame */
+    CHECK(at60 <= 1.5 * ord60);
+    CHECK(at240 <= 1.5 * ord240);
+    /* back to simulation mid-glide: the constraints take over from the
+       curve, a change of acceleration, so it shrinks with the frame time
+       (a jump in velocity would not) */
+    CHECK(back240 < 0.5 * back60);
+}
+
+/* A mode set on LOD guides survives the LOD: put to sleep and woken
+   again, guides the caller animated stay animated (they keep their rest
+   pose under gravity). */
+static void test_fur_mode_survives_lod(void)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    float *rest;
+    size_t n, i;
+    int frame;
+    double moved = 0.0;
+    t_fur_scene_init(&sc, 1.0f);
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (!f) return;
+    hf_fur_get_info(f, &info);
+    CHECK(info.lod_guide_count > 0);
+    n = (size_t)info.guide_count * (size_t)info.points_per_strand * 3u;
+    rest = (float *)malloc(sizeof(float) * n);
+    memcpy(rest, info.guide_points, sizeof(float) * n);
+    CHECK_EQ_INT(hf_fur_set_mode(f, 0, info.guide_count, HF_ROPE_ANIMATED),
+                 HF_OK);
+    hf_fur_set_lod(f, 0.1f); /* LOD guides asleep */
+    hf_fur_set_lod(f, 1.0f); /* and awake */
+    for (frame = 0; frame < 30; ++frame) {
+        hf_fur_simulate(f, 0, info.guide_count, 1.0f / 60.0f, NULL, 0);
+        hf_fur_interpolate_guides(f, 0, info.lod_guide_count);
+    }
+    for (i = 0; i < n; ++i) {
+        double d = fabs((double)info.guide_points[i] - rest[i]);
+        if (d > moved) moved = d;
+    }
+    CHECK(moved < 1e-4);
+    /* asleep, a guide set simulated waits for the LOD to wake it */
+    hf_fur_set_lod(f, 0.1f);
+    CHECK_EQ_INT(hf_fur_set_mode(f, 0, info.guide_count, HF_ROPE_SIMULATED),
+                 HF_OK);
+    hf_fur_set_lod(f, 1.0f);
+    for (frame = 0; frame < 30; ++frame)
+        hf_fur_simulate(f, 0, info.guide_count, 1.0f / 60.0f, NULL, 0);
+    moved = 0.0;
+    for (i = (size_t)info.pure_guide_count * info.points_per_strand * 3u;
+         i < n; ++i) {
+        double d = fabs((double)info.guide_points[i] - rest[i]);
+        if (d > moved) moved = d;
+    }
+    CHECK(moved > 1e-3); /* the LOD guides sag now */
+    free(rest);
+    hf_fur_destroy(f);
+}
+
+/* Styled strands follow their guides' shapes: with curl and wave, each
+   segment of a drawn strand points within a bound of the same segment of
+   the guide nearest its root (measured: the blend of three guides, each
+   curled the same way, stays close to each of them). */
+static void test_fur_styled_strands_follow_guides(void)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    int s, g, j, P, segs = 0, over = 0;
+    double worst = 0.0;
+    t_fur_scene_init(&sc, 1.0f);
+    sc.desc.points_per_strand = 16;
+    sc.desc.tess_factor = 60.0f;
+    sc.desc.curl_radius = 0.03f;
+    sc.desc.curl_turns = 2.0f;
+    sc.desc.wave_amplitude = 0.02f;
+    sc.desc.wave_count = 2.0f;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (!f) return;
+    hf_fur_interpolate_guides(f, 0, 0);
+    hf_fur_get_info(f, &info);
+    hf_fur_interpolate(f, 0, info.drawn_strand_count);
+    P = info.points_per_strand;
+    for (s = 0; s < info.drawn_strand_count; ++s) {
+        const float *sp = info.strand_points + (size_t)s * P * 3;
+        const float *gp = NULL;
+        double best = 1e30;
+        for (g = 0; g < info.guide_count; ++g) {
+            const float *q = info.guide_points + (size_t)g * P * 3;
+            double d = (q[0] - sp[0]) * (q[0] - sp[0]) +
+                       (q[1] - sp[1]) * (q[1] - sp[1]) +
+                       (q[2] - sp[2]) * (q[2] - sp[2]);
+            if (d < best) { best = d; gp = q; }
+        }
+        for (j = 0; j + 1 < P; ++j) {
+            double a[3], b[3], la = 0.0, lb = 0.0, dot = 0.0, ang;
+            int c;
+            for (c = 0; c < 3; ++c) {
+                a[c] = sp[3 * (j + 1) + c] - sp[3 * j + c];
+                b[c] = gp[3 * (j + 1) + c] - gp[3 * j + c];
+                la += a[c] * a[c];
+                lb += b[c] * b[c];
+                dot += a[c] * b[c];
+            }
+            ang = acos(fmax(-1.0, fmin(1.0, dot / sqrt(la * lb + 1e-300)))) / T_DEG;
+            if (ang > worst) worst = ang;
+            if (ang > 30.0) ++over;
+            ++segs;
+        }
+    }
+    if (getenv("TR_VERBOSE"))
+        printf("styled strands: worst %.1f deg, %d of %d segments over 30\n",
+               worst, over, segs);
+    CHECK(segs > 1000);
+    CHECK(over <= segs / 100); /* 99 % within 30 degrees */
+    CHECK(worst < 90.0); /* never turned back against its guide */
+    hf_fur_destroy(f);
+}
+
 /* ==== main: every test, in the order above ================================ */
 
 int main(void)
@@ -8462,6 +8773,7 @@ int main(void)
     RUN(test_ropes_shape_kept_by_moving_frame);
     RUN(test_ropes_collider_sweep_never_penetrates);
     RUN(test_ropes_mode_switch_no_jump);
+    RUN(test_ropes_mode_switch_smooth);
     RUN(test_ropes_bad_time_steps);
     RUN(test_ropes_ranges_byte_identical);
     RUN(test_ropes_root_frames);
@@ -8562,6 +8874,9 @@ int main(void)
     RUN(test_out_first_fur_chunks);
     RUN(test_fur_roots_inside_count);
     RUN(test_fur_set_rope_params_and_mode);
+    RUN(test_fur_controls_no_jump);
+    RUN(test_fur_mode_survives_lod);
+    RUN(test_fur_styled_strands_follow_guides);
     RUN(test_fur_rope_params_range);
     RUN(test_bad_fur);
 
