@@ -43,8 +43,9 @@
    gl_marschner --help lists every option with its unit and default, and
    the keys (K Kajiya-Kay, G GPU expansion, C 3D colour, V colliders,
    O shadows, S specular, H motion, space orbit, +/- distance, arrows).
-   At the end it prints the worst stretch of a guide, the roots inside a
-   collider and the milliseconds of each stage.
+   At the end it prints the worst stretch of a guide, the count of
+   non-finite coordinates, how far the guide roots are from the skinned
+   mesh, the roots inside a collider and the milliseconds of each stage.
 
    Define GLM_NO_MAIN to include this file in a test (tests/gl_fur_check.c)
    and drive glm_init / glm_step / glm_draw yourself. */
@@ -98,6 +99,7 @@ typedef struct glm_options {
     const char *mesh, *anim, *grow_on, *unit;
     const char *density_path, *length_path, *color_path;
     int no_shadows;     /* 1: no self-shadowing */
+    int no_hair;        /* 1: the body alone (a control picture) */
     int save_every;     /* > 0: write every Nth frame to out (a %d pattern) */
     float hair_length;  /* metres; 0 = 0.14 on the head, else 5 % of the
                            grown mesh's bounding-box diagonal */
@@ -175,6 +177,10 @@ typedef struct glm_app {
     float hair_len, root_width, shadow_k;
     double hair_area;     /* grown area weighted by density (m^2) */
     float *rest_len;      /* per guide: its length at rest */
+    float *rest_root;     /* per guide: its root at creation, so the report
+                             can find where on the mesh it belongs */
+    long nonfinite;       /* guide coordinates not finite, over all frames */
+    int stretch_nan;      /* a guide's stretch was NaN in some frame */
     float *comb_dir;      /* per grown vertex: growth direction (--comb) */
     cv_curves curves;     /* --guides or --groom, in metres */
     int groom;            /* --groom: roots follow the body rigidly */
@@ -990,7 +996,7 @@ static int glm_init(glm_app *a, const glm_options *o)
 
     memset(a, 0, sizeof *a);
     a->o = *o;
-    a->draw_hair = 1;
+    a->draw_hair = !o->no_hair;
     if (!(o->mesh ? glm_load_mesh(a) : glm_load_head(a))) return 0;
     a->skin = (ch_vertex *)malloc(sizeof(ch_vertex) * (size_t)a->nv);
     a->col = (hf_collider *)calloc((size_t)a->max_col + 1, sizeof(hf_collider));
@@ -1187,6 +1193,12 @@ static int glm_init(glm_app *a, const glm_options *o)
     for (i = 0; i < a->info.guide_count; ++i)
         a->rest_len[i] = glm_polyline_length(a->info.guide_points +
                                              3 * (size_t)i * (size_t)a->P, a->P);
+    a->rest_root = (float *)malloc(sizeof(float) * 3u * (size_t)a->info.guide_count);
+    if (!a->rest_root) return 0;
+    for (i = 0; i < a->info.guide_count; ++i)
+        memcpy(a->rest_root + 3 * i,
+               a->info.guide_points + 3 * (size_t)i * (size_t)a->P,
+               sizeof(float) * 3u);
     nv = 2u * (size_t)S * (size_t)a->P;
     a->dyn = (glm_dyn *)malloc(sizeof(glm_dyn) * nv);
     /* zeroed: the pad bytes are uploaded too */
@@ -1488,13 +1500,16 @@ static int glm_simulate(glm_app *a, double t, float dt)
     a->ms_sim += glm_now_ms() - t1;
     ++a->ms_frames;
     a->cpu_ms = glm_now_ms() - t0;
-    { /* the worst stretch of a guide this frame (ropes keep their length) */
+    { /* the worst stretch of a guide this frame (ropes keep their length);
+         NaN fails every comparison, so it is counted apart, not lost */
         double worst = 0.0;
         for (i = 0; i < a->info.guide_count; ++i) {
-            double e = glm_polyline_length(a->info.guide_points +
-                                           3 * (size_t)i * (size_t)a->P, a->P) /
-                       a->rest_len[i] - 1.0;
-            if (e > worst) worst = e;
+            const float *p = a->info.guide_points + 3 * (size_t)i * (size_t)a->P;
+            double e = glm_polyline_length(p, a->P) / a->rest_len[i] - 1.0;
+            int k;
+            for (k = 0; k < 3 * a->P; ++k) a->nonfinite += !isfinite(p[k]);
+            if (isnan(e)) a->stretch_nan = 1;
+            else if (e > worst) worst = e;
         }
         if (worst > a->stretch_max) a->stretch_max = worst;
         a->stretch_sum += worst;
@@ -1843,6 +1858,7 @@ static void glm_shutdown(glm_app *a)
     free(a->all_col);
     free(a->col_keep);
     free(a->rest_len);
+    free(a->rest_root);
     free(a->comb_dir);
     free(a->groom_rgb);
     cv_free(&a->curves);
@@ -1859,6 +1875,12 @@ static void glm_shutdown(glm_app *a)
 }
 
 #ifndef GLM_NO_MAIN
+/* One list for --help and the window's start, so they cannot drift. */
+#define GLM_KEYS \
+"Keys (window): K Kajiya-Kay/Marschner, G GPU expansion, C 3D colour,\n" \
+"  V colliders, O shadows, S specular, H body motion, space orbit,\n" \
+"  +/- or scroll distance, arrows orbit, Esc quits\n"
+
 static void glm_usage(FILE *fp)
 {
     fprintf(fp,
@@ -1918,6 +1940,8 @@ static void glm_usage(FILE *fp)
 "  --compact          CPU ribbons in the 16-byte vertex\n"
 "  --color3d          the 3D colour scheme (a ramp with dyed tips)\n"
 "  --colliders        draw the colliders\n"
+"  --no-hair          draw the body alone (hair still simulated): a control\n"
+"                     picture\n"
 "  --a2c              alpha to coverage instead of blending\n"
 "  --lut-size N       Marschner LUT size (default 256)\n"
 "  --expand-shader F  the GPU expansion shader (examples/ribbon_expand.glsl)\n"
@@ -1935,9 +1959,7 @@ static void glm_usage(FILE *fp)
 "  --save-every N     see --out\n"
 "  --draw-all         draw every headless frame, not only the written ones\n"
 "  --width W --height H  image size (default 640 x 480)\n"
-"Keys (window): K Kajiya-Kay/Marschner, G GPU expansion, C 3D colour,\n"
-"  V colliders, O shadows, S specular, H body motion, space orbit,\n"
-"  +/- or scroll distance, arrows orbit, Esc quits\n");
+GLM_KEYS);
 }
 
 /* Strict numbers: the whole string, finite, in [lo, hi]. */
@@ -2026,6 +2048,7 @@ static int glm_parse(int argc, char **argv, glm_options *o)
         else if (!strcmp(s, "--compact")) o->compact = 1;
         else if (!strcmp(s, "--no-specular")) o->specular = 0.0f;
         else if (!strcmp(s, "--no-shadows")) o->no_shadows = 1;
+        else if (!strcmp(s, "--no-hair")) o->no_hair = 1;
         else if (!v) {
             fprintf(stderr, "gl_marschner: unknown option or %s without its "
                     "value (--help lists them)\n", s);
@@ -2137,11 +2160,92 @@ static void glm_scroll(GLFWwindow *w, double dx, double dy)
     glm_key(w, GLFW_KEY_UNKNOWN, 0, GLFW_PRESS, 0); /* clamp */
 }
 
-/* The per-run figures a user checks: stretch, roots inside colliders and
-   the milliseconds per stage. */
+/* Do the guide roots follow the skinned mesh? Each guide's root at
+   creation is found on a rest triangle of the grown mesh (barycentric),
+   that point is taken on the same skinned triangle, and its distance to
+   the root now is measured. A root that is not finite, or lies on no rest
+   triangle, is missing. A linear scan with a box test: run once, at the
+   end. */
+static void glm_root_check(const glm_app *a, int *missing, double *worst)
+{
+    const ch_vertex *rv = a->rest + a->grow_first;
+    const ch_vertex *sv = a->skin + a->grow_first;
+    const double eps = 1e-4 * a->size; /* off the surface: missing */
+    int g, t, k;
+    *missing = 0;
+    *worst = 0.0;
+    for (g = 0; g < a->info.guide_count; ++g) {
+        const float *p = a->rest_root + 3 * g;
+        const float *now = a->info.guide_points + 3 * (size_t)g * (size_t)a->P;
+        double best = eps, bw[3] = {0, 0, 0}, q[3], d2 = 0.0;
+        int bt = -1;
+        if (!isfinite(now[0]) || !isfinite(now[1]) || !isfinite(now[2])) {
+            ++*missing;
+            continue;
+        }
+        for (t = 0; t < a->nt_grown; ++t) {
+            const uint32_t *ix = a->grow_idx + 3 * (size_t)t;
+            const float *A = rv[ix[0]].pos, *B = rv[ix[1]].pos, *C = rv[ix[2]].pos;
+            double e1[3], e2[3], d[3], d11 = 0, d12 = 0, d22 = 0, p1 = 0,
+                   p2 = 0, den, u, v, w, r2 = 0.0;
+            for (k = 0; k < 3; ++k) {
+                float lo = A[k] < B[k] ? A[k] : B[k], hi = A[k] > B[k] ? A[k] : B[k];
+                lo = C[k] < lo ? C[k] : lo;
+                hi = C[k] > hi ? C[k] : hi;
+                if (p[k] < lo - eps || p[k] > hi + eps) break;
+            }
+            if (k < 3) continue;
+            for (k = 0; k < 3; ++k) {
+                e1[k] = (double)B[k] - A[k];
+                e2[k] = (double)C[k] - A[k];
+                d[k] = (double)p[k] - A[k];
+                d11 += e1[k] * e1[k];
+                d12 += e1[k] * e2[k];
+                d22 += e2[k] * e2[k];
+                p1 += d[k] * e1[k];
+                p2 += d[k] * e2[k];
+            }
+            den = d11 * d22 - d12 * d12;
+            if (!(den > 0.0)) continue; /* degenerate: no barycentrics */
+            v = (d22 * p1 - d12 * p2) / den;
+            w = (d11 * p2 - d12 * p1) / den;
+            u = 1.0 - v - w;
+            if (u < -1e-4 || v < -1e-4 || w < -1e-4) continue;
+            for (k = 0; k < 3; ++k) {
+                double r = d[k] - v * e1[k] - w * e2[k];
+                r2 += r * r;
+            }
+            if (sqrt(r2) < best) {
+                best = sqrt(r2);
+                bt = t;
+                bw[0] = u;
+                bw[1] = v;
+                bw[2] = w;
+            }
+        }
+        if (bt < 0) {
+            ++*missing;
+            continue;
+        }
+        for (k = 0; k < 3; ++k) {
+            const uint32_t *ix = a->grow_idx + 3 * (size_t)bt;
+            q[k] = bw[0] * sv[ix[0]].pos[k] + bw[1] * sv[ix[1]].pos[k] +
+                   bw[2] * sv[ix[2]].pos[k] - now[k];
+            d2 += q[k] * q[k];
+        }
+        if (sqrt(d2) > *worst) *worst = sqrt(d2);
+    }
+}
+
+/* The per-run figures a user checks: stretch, non-finite points, roots on
+   the skinned mesh, roots inside colliders and the milliseconds per
+   stage. */
 static void glm_report(const glm_app *a, int drawn_frames)
 {
     hf_fur_info info;
+    long bad_strand = 0, q;
+    int missing;
+    double worst;
     hf_fur_get_info(a->fur, &info);
     printf("gl_marschner: %s, %s, %dx%d, distance %.3g m, LOD %.3f: %d of %d "
            "strands drawn, %d guides, %d colliders\n",
@@ -2152,13 +2256,32 @@ static void glm_report(const glm_app *a, int drawn_frames)
            a->info.strand_count, info.guide_count, a->ncol);
     printf("gl_marschner: stretch (longest guide / its rest length - 1): "
            "worst %.2e, mean of the per-frame worst %.2e over %ld frames; "
-           "%d of %d guide roots inside a collider\n", a->stretch_max,
-           a->stretch_frames ? a->stretch_sum / a->stretch_frames : 0.0,
+           "%d of %d guide roots inside a collider\n",
+           a->stretch_nan ? (double)NAN : a->stretch_max,
+           a->stretch_nan ? (double)NAN
+           : a->stretch_frames ? a->stretch_sum / a->stretch_frames : 0.0,
            a->stretch_frames, info.roots_inside, info.guide_count);
     if (info.roots_inside > 0)
         printf("gl_marschner: (for those guides the collider is shrunk to "
                "the root's depth; if a proxy is larger than the body there, "
                "shrink it)\n");
+    /* the drawn strands of the last built frame */
+    for (q = 0; q < 3L * a->drawn * a->P; ++q)
+        bad_strand += !isfinite(info.strand_points[q]);
+    printf("gl_marschner: non-finite coordinates: %ld in the guides over "
+           "every simulated frame, %ld in the %d drawn strands of the last "
+           "frame\n", a->nonfinite, bad_strand, a->drawn);
+    if (a->groom && a->ch.vertex_count == 0) {
+        printf("gl_marschner: roots: a groom on the head moves rigidly, "
+               "not checked against the mesh\n");
+    } else {
+        glm_root_check(a, &missing, &worst);
+        printf("gl_marschner: roots: %d of %d guide roots missing (not "
+               "finite, or on no triangle at rest); the others at most "
+               "%.2e m (%.2e of the mesh size) from their point on the "
+               "skinned mesh\n", missing, info.guide_count, worst,
+               worst / a->size);
+    }
     if (a->ms_frames > 0)
         printf("gl_marschner: ms per frame: skin and colliders %.2f, roots + "
                "ropes + LOD guides %.2f, strands + %s %.2f (%ld drawn "
@@ -2198,6 +2321,8 @@ int main(int argc, char **argv)
     f0 = glc_frame_index();
     if (o.frames > 0) glc_set_frame_limit(f0 + o.frames);
     if (!o.headless) {
+        fputs(GLM_KEYS, stdout);
+        fflush(stdout);
         glfwSetKeyCallback((GLFWwindow *)glc_window(), glm_key);
         glfwSetScrollCallback((GLFWwindow *)glc_window(), glm_scroll);
     }
@@ -2234,11 +2359,15 @@ int main(int argc, char **argv)
                        saved > 1 ? " (and the frames before it)" : "");
         }
         if (!a->o.headless && now - title_at > 0.25) {
-            char title[256];
+            /* each key with what it switches (the full list is printed
+               at start and in --help) */
+            char title[512];
             snprintf(title, sizeof title,
                      "hairfur gl_marschner - %s, %s%s%s - %.2f m, LOD %.2f: "
-                     "%d of %d strands - CPU %.1f ms, draw %.1f ms - K G C V "
-                     "O S H space +/- arrows Esc",
+                     "%d of %d strands - CPU %.1f ms, draw %.1f ms - keys: "
+                     "K Kajiya-Kay, G GPU, C 3D colour, V colliders, "
+                     "O shadows, S specular, H motion, space orbit, "
+                     "+/- distance, arrows, Esc",
                      a->o.kajiya ? "Kajiya-Kay" : "Marschner",
                      a->o.gpu_expand ? "GPU expansion"
                      : a->o.compact ? "compact CPU ribbons" : "CPU ribbons",

@@ -7,6 +7,7 @@
 
    Usage (grow_fur --help lists every option with its unit and default):
      grow_fur [--mesh FILE] [--density PNG] [--length PNG] [--color PNG]
+              [--estimator area|edges|corners]
               [--strands N] [--guides N | --tess-factor F] [--points N]
               [--length-max M] [--frames N] [--lod F] [--seed N]
               [--collider none|auto|sphere:X,Y,Z,R|capsule:X0,Y0,Z0,X1,Y1,Z1,R]...
@@ -101,6 +102,11 @@ static void usage(FILE *fp)
 "                     (default: none, every strand --length-max; needs UVs)\n"
 "  --color PNG        colour map, RGB (default: none, white; needs UVs)\n"
 "                     maps: PNG top row = v 1, as in OpenGL (bottom row = v 0)\n"
+"  --estimator E      how a triangle's density is read from --density: area\n"
+"                     (the exact mean of the texels it covers), edges (the\n"
+"                     texels along its edges) or corners (3 bilinear samples:\n"
+"                     fast, blind inside big triangles; UVs any range)\n"
+"                     (default area)\n"
 "  --strands N        strands grown, a count (default %d)\n"
 "  --guides N         target guide count (pure guides at the mesh's welded\n"
 "                     vertices + LOD guides); sets tess_factor from the mesh's\n"
@@ -202,7 +208,7 @@ bad:
     return 0;
 }
 
-/* n comma-separated finite numbers (x,y,z or x,y,z,r), the whole string. */
+/* n comma-separated finite numbers (x,y,z), the whole string. */
 static int parse_reals(const char *opt, const char *v, int n, float *out,
                        const char *form)
 {
@@ -227,6 +233,83 @@ bad:
     fprintf(stderr, "grow_fur: %s '%s': expected %s (numbers)\n", opt, v,
             form);
     return 0;
+}
+
+/* One --collider shape: sphere:X,Y,Z,R, capsule:X0,Y0,Z0,X1,Y1,Z1,R or
+   X,Y,Z,R (a sphere). Each field, all of it, must be a finite number;
+   the message names the field that is not, so a typo is found at once. */
+static int parse_collider(const char *v, hf_collider *c)
+{
+    const char *form = "none, auto, sphere:X,Y,Z,R or "
+                       "capsule:X0,Y0,Z0,X1,Y1,Z1,R";
+    const char *p = v;
+    float f[7];
+    int n, k;
+    memset(c, 0, sizeof *c);
+    if (!strncmp(v, "capsule:", 8)) {
+        c->type = HF_COLLIDER_CAPSULE;
+        n = 7;
+        p += 8;
+    } else {
+        c->type = HF_COLLIDER_SPHERE;
+        n = 4;
+        if (!strncmp(v, "sphere:", 7)) p += 7;
+        else if (strchr(v, ':') || !strchr(v, ',')) {
+            fprintf(stderr, "grow_fur: --collider '%s': unknown collider "
+                            "(expected %s)\n", v, form);
+            return 0;
+        }
+    }
+    for (k = 0; k < n; ++k) {
+        size_t len = strcspn(p, ",");
+        char buf[64], *end;
+        double x;
+        if (len == 0 || len >= sizeof buf) {
+            fprintf(stderr, "grow_fur: --collider '%s': field %d is %s "
+                            "(expected %d numbers: %s)\n", v, k + 1,
+                    len ? "too long" : "empty", n, form);
+            return 0;
+        }
+        memcpy(buf, p, len);
+        buf[len] = '\0';
+        x = strtod(buf, &end);
+        if (isspace((unsigned char)buf[0]) || end == buf || *end != '\0' ||
+            !isfinite(x)) {
+            fprintf(stderr, "grow_fur: --collider '%s': '%s' is not a "
+                            "number\n", v, buf);
+            return 0;
+        }
+        if (fabs(x) > HF_ROPE_MAX_COORD) { /* the ropes' coordinate range */
+            fprintf(stderr, "grow_fur: --collider '%s': '%s' is beyond "
+                            "+-%g\n", v, buf, (double)HF_ROPE_MAX_COORD);
+            return 0;
+        }
+        f[k] = (float)x;
+        p += len;
+        if (k + 1 < n) {
+            if (*p != ',') {
+                fprintf(stderr, "grow_fur: --collider '%s': %d numbers "
+                                "given, %d expected (%s)\n", v, k + 1, n,
+                        form);
+                return 0;
+            }
+            ++p;
+        }
+    }
+    if (*p != '\0') {
+        fprintf(stderr, "grow_fur: --collider '%s': more than %d numbers "
+                        "(%s)\n", v, n, form);
+        return 0;
+    }
+    memcpy(c->a, f, sizeof c->a);
+    if (n == 7) memcpy(c->b, f + 3, sizeof c->b);
+    c->radius = f[n - 1];
+    if (!(c->radius > 0.0f)) {
+        fprintf(stderr, "grow_fur: --collider '%s': the radius '%g' must be "
+                        "positive\n", v, (double)c->radius);
+        return 0;
+    }
+    return 1;
 }
 
 /* Every mesh of the scene merged into one interleaved buffer. *has_normals
@@ -420,7 +503,7 @@ static int welded_count(const vtx *v, int nv, const uint32_t *idx, int nt)
    pass of hf_tessellate, as hf_fur_create runs it. -1 past the
    tessellation caps. */
 static long long lod_guides_for(const hf_mesh *mesh, const hf_map *density,
-                                float factor)
+                                int estimator, float factor)
 {
     hf_tess_params tp;
     hf_tess_output to;
@@ -428,6 +511,7 @@ static long long lod_guides_for(const hf_mesh *mesh, const hf_map *density,
     memset(&tp, 0, sizeof tp);
     memset(&to, 0, sizeof to);
     tp.factor = factor;
+    tp.estimator = estimator;
     if (hf_tessellate(mesh, density, &tp, &to) != HF_OK) return -1;
     return to.added_count;
 }
@@ -437,7 +521,7 @@ static long long lod_guides_for(const hf_mesh *mesh, const hf_map *density,
    about one added vertex per 1 / factor of area), then bisects on the
    counting pass (the count grows with the factor). */
 static float fit_tess_factor(const hf_mesh *mesh, const hf_map *density,
-                             double area, long long target)
+                             int estimator, double area, long long target)
 {
     double lo = 0.0, hi = 0.0, f, best_f = 0.0;
     long long best_err = target, n;
@@ -446,7 +530,7 @@ static float fit_tess_factor(const hf_mesh *mesh, const hf_map *density,
     f = (double)target / area;
     for (it = 0; it < 40; ++it) {
         if (!(f < 1e30)) break;
-        n = lod_guides_for(mesh, density, (float)f);
+        n = lod_guides_for(mesh, density, estimator, (float)f);
         if (n >= 0 && llabs(n - target) < best_err) {
             best_err = llabs(n - target);
             best_f = f;
@@ -472,9 +556,15 @@ int main(int argc, char **argv)
     long long seed = 1, guides = -1, cnt;
     float lod = 1.0f, max_length = 0.12f, tess_factor = -1.0f;
     int has_normals = 1, has_uvs = 1, uvless = 0, mesh_count = 1;
-    int collider_mode = 0; /* 0 auto, 1 none, 2 explicit */
-    float collider_arg[4] = {0, 0, 0, 0}, eye[3] = {0, 0, 0};
+    /* --collider: the shapes at rest; the auto one is filled in once the
+       mesh's box is known. No --collider at all means auto. */
+    hf_collider cols[GF_MAX_COLLIDERS], moved[GF_MAX_COLLIDERS];
+    int ncol = 0, auto_col = -1, no_col = 0;
+    float eye[3] = {0, 0, 0};
     int have_eye = 0, pure_guides;
+    /* area: a map's feature inside a big triangle still counts (corners
+       would read only the three corner samples, so a bald patch grows) */
+    int estimator = HF_DENSITY_AREA;
     double area = 0.0;
     float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
     float box_radius;
@@ -552,17 +642,30 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--length-max"))
             ok = parse_real(a, v, 1e-9, 1e6, &max_length);
         else if (!strcmp(a, "--collider")) {
-            if (!strcmp(v, "auto")) collider_mode = 0;
-            else if (!strcmp(v, "none")) collider_mode = 1;
-            else {
-                collider_mode = 2;
-                ok = parse_reals(a, v, 4, collider_arg,
-                                 "auto, none or x,y,z,r");
-                if (ok && !(collider_arg[3] >= 0.0f)) {
-                    fprintf(stderr, "grow_fur: --collider '%s': the radius "
-                                    "is negative\n", v);
+            if (!strcmp(v, "none")) {
+                no_col = 1;
+            } else if (ncol == GF_MAX_COLLIDERS) {
+                fprintf(stderr, "grow_fur: --collider '%s': at most %d "
+                                "colliders\n", v, GF_MAX_COLLIDERS);
+                ok = 0;
+            } else if (!strcmp(v, "auto")) {
+                if (auto_col >= 0) {
+                    fprintf(stderr, "grow_fur: --collider auto given "
+                                    "twice\n");
                     ok = 0;
                 }
+                auto_col = ncol++;
+            } else {
+                ok = parse_collider(v, &cols[ncol++]);
+            }
+        } else if (!strcmp(a, "--estimator")) {
+            if (!strcmp(v, "area")) estimator = HF_DENSITY_AREA;
+            else if (!strcmp(v, "edges")) estimator = HF_DENSITY_EDGES;
+            else if (!strcmp(v, "corners")) estimator = HF_DENSITY_CORNERS;
+            else {
+                fprintf(stderr, "grow_fur: --estimator '%s': expected area, "
+                                "edges or corners\n", v);
+                ok = 0;
             }
         } else if (!strcmp(a, "--eye")) {
             ok = parse_reals(a, v, 3, eye, "x,y,z");
@@ -603,6 +706,12 @@ int main(int argc, char **argv)
         printf("%s: %d curves, %d points from %s\n",
                groom_path ? "groom" : "guides", curves.count, curves.total, cp);
     }
+    if (no_col && ncol > 0) {
+        fprintf(stderr, "grow_fur: --collider none with other colliders: "
+                        "give none alone\n");
+        return 2;
+    }
+    if (!no_col && ncol == 0) auto_col = ncol++;
     if (guides >= 0 && tess_factor >= 0.0f) {
         fprintf(stderr, "grow_fur: give --guides or --tess-factor, not "
                         "both\n");
@@ -701,25 +810,34 @@ int main(int argc, char **argv)
                (double)lo[0], (double)lo[1], (double)lo[2], (double)hi[0],
                (double)hi[1], (double)hi[2], area);
     }
-    /* the collider: by default the mesh's bounding sphere, shrunk so roots
-       sit on it (the built-in head: its own sphere) */
-    if (collider_mode == 0 && mesh_path) {
+    /* auto: the mesh's bounding sphere, shrunk so roots sit on it (the
+       built-in head: its own sphere) */
+    if (auto_col >= 0) {
+        hf_collider *c = &cols[auto_col];
         int k;
-        for (k = 0; k < 3; ++k) center[k] = 0.5f * (lo[k] + hi[k]);
-        radius = 0.5f * 0.5f * (hi[0] - lo[0]); /* a conservative inner ball */
+        if (mesh_path) {
+            for (k = 0; k < 3; ++k) center[k] = 0.5f * (lo[k] + hi[k]);
+            radius = 0.5f * 0.5f * (hi[0] - lo[0]); /* a conservative inner ball */
+        }
+        memset(c, 0, sizeof *c);
+        c->type = HF_COLLIDER_SPHERE;
+        memcpy(c->a, center, sizeof c->a);
+        c->radius = 0.97f * radius;
     }
-    if (collider_mode == 0) radius *= 0.97f;
-    if (collider_mode == 2) {
-        memcpy(center, collider_arg, sizeof center);
-        radius = collider_arg[3];
+    if (ncol == 0) printf("collider: none\n");
+    for (i = 0; i < ncol; ++i) {
+        const hf_collider *c = &cols[i];
+        if (c->type == HF_COLLIDER_CAPSULE)
+            printf("collider: given capsule, (%g, %g, %g) - (%g, %g, %g), "
+                   "radius %g (mesh units, at rest)\n", (double)c->a[0],
+                   (double)c->a[1], (double)c->a[2], (double)c->b[0],
+                   (double)c->b[1], (double)c->b[2], (double)c->radius);
+        else
+            printf("collider: %s sphere, centre (%g, %g, %g), radius %g "
+                   "(mesh units, at rest)\n",
+                   i == auto_col ? "auto" : "given", (double)c->a[0],
+                   (double)c->a[1], (double)c->a[2], (double)c->radius);
     }
-    if (collider_mode == 1)
-        printf("collider: none\n");
-    else
-        printf("collider: %s sphere, centre (%g, %g, %g), radius %g (mesh "
-               "units, at rest)\n",
-               collider_mode == 0 ? "auto" : "given", (double)center[0],
-               (double)center[1], (double)center[2], (double)radius);
     if (!have_eye) {
         eye[0] = 0.5f * (lo[0] + hi[0]);
         eye[1] = 0.5f * (lo[1] + hi[1]);
@@ -758,6 +876,7 @@ int main(int argc, char **argv)
     desc.max_length = max_length;
     desc.total_strands = strands;
     desc.sampler = HF_SAMPLER_STRATIFIED;
+    desc.tess_estimator = estimator;
     desc.seed = (uint64_t)seed;
     desc.clump = 0.2f;
     if (curves.count > 0 && !groom_path) {
@@ -780,7 +899,8 @@ int main(int argc, char **argv)
     } else {
         long long want = guides - pure_guides;
         desc.tess_factor =
-            want > 0 ? fit_tess_factor(&desc.mesh, desc.density_map, area, want)
+            want > 0 ? fit_tess_factor(&desc.mesh, desc.density_map,
+                                       desc.tess_estimator, area, want)
                      : 0.0f;
         printf("guides: target %lld = %d pure (welded vertices) + %lld LOD "
                "-> tess_factor %g per square mesh unit (first guess %g)\n",
@@ -816,6 +936,9 @@ int main(int argc, char **argv)
         }
         if (r != HF_OK) {
             fprintf(stderr, "grow_fur: %s\n", diag.message);
+            if (r == HF_ERROR_BAD_RANGE && estimator != HF_DENSITY_CORNERS)
+                fprintf(stderr, "grow_fur: (UVs spanning many map periods: "
+                                "--estimator corners reads any)\n");
             return 1;
         }
         hf_fur_get_info(fur, &info);
@@ -854,7 +977,6 @@ int main(int argc, char **argv)
     skinned.uvs = has_uvs ? skin[0].uv : NULL;
     for (f = 0; f < frames; ++f) {
         float m[12];
-        hf_collider col;
         hf_ribbon_params view;
         hf_ribbon_output out;
         double t0, t1, t2, t3, t4, t5;
@@ -866,10 +988,11 @@ int main(int argc, char **argv)
             skin[i].uv[1] = rest[i].uv[1];
         }
         if (!has_normals) skinned.normals = NULL; /* face normals */
-        memset(&col, 0, sizeof col);
-        col.type = HF_COLLIDER_SPHERE;
-        xform(m, center, 1.0f, col.a);
-        col.radius = radius;
+        for (i = 0; i < ncol; ++i) {
+            moved[i] = cols[i];
+            xform(m, cols[i].a, 1.0f, moved[i].a);
+            xform(m, cols[i].b, 1.0f, moved[i].b);
+        }
 
         memset(&view, 0, sizeof view);
         memcpy(view.eye, eye, sizeof view.eye);
@@ -889,8 +1012,7 @@ int main(int argc, char **argv)
         t1 = now_ms();
         if (r == HF_OK)
             r = hf_fur_simulate(fur, 0, info.guide_count, 1.0f / 60.0f,
-                                collider_mode == 1 ? NULL : &col,
-                                collider_mode == 1 ? 0 : 1);
+                                ncol ? moved : NULL, ncol);
         t2 = now_ms();
         if (r == HF_OK)
             r = hf_fur_interpolate_guides(fur, 0, info.lod_guide_count);
@@ -922,8 +1044,9 @@ int main(int argc, char **argv)
                median(t_interp, frames), median(t_ribbons, frames),
                100.0 * stretch);
         hf_fur_get_info(fur, &info);
-        printf("collider: %d of %d guide roots inside it at the last frame\n",
-               info.roots_inside, info.guide_count);
+        printf("collider: %d of %d guide roots inside it at the last frame"
+               "%s\n", info.roots_inside, info.guide_count,
+               ncol > 1 ? " (any of the colliders)" : "");
         if (info.roots_inside > 0)
             printf("%d of %d guide roots sit inside the collider (for "
                    "those guides it is shrunk to the root's depth); if the "

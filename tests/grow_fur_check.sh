@@ -1,11 +1,14 @@
 #!/bin/sh
 # tests/grow_fur_check.sh - command-line checks of examples/grow_fur.c:
 # --help, exit code 2 with a message for bad counts, counts written 5k /
-# 2e4, and --guides landing within a factor 2 of its target on the
-# built-in head. Skips (exit 0, with the reason) where build/grow_fur
-# cannot be built (assimp or stb missing). Run from the repository root.
-BIN=build/grow_fur
-if ! make --no-print-directory "$BIN" >/dev/null 2>&1; then
+# 2e4, --guides landing within a factor 2 of its target on the built-in
+# head, the --collider forms, and the map convention (a density PNG white
+# in its top half grows strands only on the top half of a UV-mapped quad).
+# Skips (exit 0, with the reason) where build/grow_fur cannot be built
+# (assimp or stb missing). Run from the repository root. GROW_FUR=path
+# checks another build of grow_fur instead.
+BIN=${GROW_FUR:-build/grow_fur}
+if [ -z "${GROW_FUR:-}" ] && ! make --no-print-directory "$BIN" >/dev/null 2>&1; then
     echo "grow_fur_check: SKIP: cannot build $BIN (needs libassimp-dev and libstb-dev: make deps)"
     exit 0
 fi
@@ -17,7 +20,7 @@ bad() { echo "grow_fur_check: FAIL: $*"; fail=1; }
 # --help: exit 0, one line per option, the map orientation
 "$BIN" --help >"$tmp/help" 2>&1; rc=$?
 [ $rc -eq 0 ] || bad "--help exited $rc"
-for opt in --mesh --density --strands --guides --tess-factor --collider --eye --out; do
+for opt in --mesh --density --estimator --strands --guides --tess-factor --collider --eye --out; do
     grep -q -- "^  $opt " "$tmp/help" || bad "--help has no line for $opt"
 done
 grep -q "PNG top row = v 1" "$tmp/help" || bad "--help does not say which way maps are read"
@@ -29,6 +32,7 @@ for v in 5x abc "" -3 0 2.5 1e99 k " 7"; do
     grep -q -- "--strands '$v'" "$tmp/out" || bad "--strands '$v': no message naming it"
 done
 for args in "--lod 2" "--lod x" "--eye 1,2" "--collider 1,2,3" "--collider 0,0,0,-1" \
+            "--estimator middle" \
             "--frames" "--nonsense 1" "--out f.png" "--guides 10 --tess-factor 5"; do
     # shellcheck disable=SC2086
     "$BIN" $args >/dev/null 2>&1; rc=$?
@@ -59,6 +63,28 @@ done
 "$BIN" --collider none --eye 0,0,1 --frames 2 --strands 1k --out "$tmp/f.ply" >"$tmp/out" 2>&1 \
     || bad "--collider none --eye 0,0,1 failed"
 grep -q "collider: none" "$tmp/out" || bad "--collider none not reported"
+grep -q "guide roots inside it" "$tmp/out" || bad "--collider none: roots inside not reported"
+# sphere: and capsule: forms, repeatable, each reported as read
+"$BIN" --collider sphere:0,0,0,0.09 --collider capsule:0,-0.05,0,0,0.05,0,0.06 \
+    --collider auto --frames 2 --strands 1k --out "$tmp/f.obj" >"$tmp/out" 2>&1 \
+    || bad "--collider sphere: + capsule: + auto failed: $(tail -n 1 "$tmp/out")"
+grep -q "collider: given sphere, centre (0, 0, 0), radius 0.09" "$tmp/out" \
+    || bad "--collider sphere: not reported"
+grep -q "collider: given capsule, (0, -0.05, 0) - (0, 0.05, 0), radius 0.06" "$tmp/out" \
+    || bad "--collider capsule: not reported"
+grep -q "collider: auto sphere" "$tmp/out" || bad "--collider auto beside others not reported"
+# bad ones: exit 2, the message names the bad value
+for pair in "sphere:0,0,x,1|'x' is not a number" "capsule:0,0,0,1,1,1|6 numbers given, 7 expected" \
+            "sphere:1,2,3,4,5|more than 4 numbers" "sphere:0,0,0,0|must be positive" \
+            "sphere:0,,0,1|field 2 is empty" "box:0,0,0,1|unknown collider" \
+            "sphere:1e9,0,0,1|'1e9' is beyond" "capsule:0,0,0,0,0,1,nan|'nan' is not a number"; do
+    c=${pair%%|*}; msg=${pair#*|}
+    "$BIN" --collider "$c" --frames 1 --out "$tmp/f.obj" >"$tmp/out" 2>&1; rc=$?
+    [ $rc -eq 2 ] || bad "--collider '$c' exited $rc, not 2"
+    grep -q -- "--collider '$c': .*$msg" "$tmp/out" || bad "--collider '$c': no message '$msg': $(cat "$tmp/out")"
+done
+"$BIN" --collider none --collider auto --frames 1 >"$tmp/out" 2>&1; rc=$?
+[ $rc -eq 2 ] || bad "--collider none with another exited $rc, not 2"
 "$BIN" --collider 0,0,0,0.2 --frames 2 --strands 1k --out "$tmp/f.obj" >"$tmp/out" 2>&1 \
     || bad "--collider 0,0,0,0.2 failed"
 grep -q "guide roots inside it" "$tmp/out" || bad "roots_inside not reported"
@@ -91,6 +117,63 @@ head -c 300 "$tmp/c.hair" >"$tmp/cut.hair"
 grep -q "truncated" "$tmp/out" || bad "a truncated .hair: no 'truncated' in: $(cat "$tmp/out")"
 "$BIN" --guides "$tmp/f.obj" --frames 1 >"$tmp/out" 2>&1 && bad "an OBJ without polylines was accepted"
 grep -q "no polylines" "$tmp/out" || bad "OBJ without polylines: $(cat "$tmp/out")"
+
+# the map convention: a quad with v = y (v up, as assimp reads OBJ), and a
+# density PNG white in its top rows, black below. The quad is split at
+# y = 0.5 so that no triangle straddles the line (a straddling triangle's
+# strands land on both sides whatever the map says).
+if command -v python3 >/dev/null 2>&1; then
+    cat >"$tmp/quad.obj" <<'EOF'
+v 0 0 0
+v 1 0 0
+v 1 0.5 0
+v 0 0.5 0
+v 1 1 0
+v 0 1 0
+vt 0 0
+vt 1 0
+vt 1 0.5
+vt 0 0.5
+vt 1 1
+vt 0 1
+vn 0 0 1
+f 1/1/1 2/2/1 3/3/1
+f 1/1/1 3/3/1 4/4/1
+f 4/4/1 3/3/1 5/5/1
+f 4/4/1 5/5/1 6/6/1
+EOF
+    # an 8-bit grey PNG, 64 x 64: file rows 0..31 (the top) white
+    python3 - "$tmp/top.png" <<'EOF'
+import struct, sys, zlib
+W = H = 64
+rows = b"".join(b"\0" + bytes([255 if y < H // 2 else 0]) * W for y in range(H))
+def chunk(t, d):
+    return struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d))
+open(sys.argv[1], "wb").write(b"\x89PNG\r\n\x1a\n"
+    + chunk(b"IHDR", struct.pack(">IIBBBBB", W, H, 8, 0, 0, 0, 0))
+    + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
+EOF
+    # one frame, no collider: the head motion turns about y and slides
+    # along x, so a root's y is where it grew
+    if "$BIN" --mesh "$tmp/quad.obj" --density "$tmp/top.png" --collider none \
+          --strands 2000 --frames 1 --out "$tmp/quad_c.obj" --curves >"$tmp/out" 2>&1; then
+        # each 'l' line's first index is a strand's root
+        # shellcheck disable=SC2046
+        set -- $(awk '/^v / { n++; y[n] = $3 }
+            /^l / { r = y[$2]; c++; if (r > 0.5) top++; if (r > 0.75) q++
+                    if (min == "" || r < min) min = r }
+            END { printf "%d %d %d %s\n", c, top, q, min }' "$tmp/quad_c.obj")
+        if [ "$1" -eq 2000 ] && [ "$2" -eq "$1" ] && [ "$3" -gt 500 ]; then
+            echo "grow_fur_check: map convention: $2 of $1 roots on the top half (lowest y $4, $3 above 0.75)"
+        else
+            bad "map convention: of $1 roots $2 on the top half, $3 above 0.75, lowest y $4 (want all 2000 above 0.5)"
+        fi
+    else
+        bad "map convention: grow_fur failed: $(tail -n 2 "$tmp/out")"
+    fi
+else
+    echo "grow_fur_check: map convention: SKIP (no python3 to write the PNG)"
+fi
 
 if [ $fail -ne 0 ]; then echo "grow_fur_check: FAILED"; exit 1; fi
 echo "grow_fur_check: all passed"

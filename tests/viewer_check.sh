@@ -1,8 +1,9 @@
 #!/bin/sh
 # viewer_check.sh - gl_marschner, the viewer for any mesh, as a user meets
 # it: --help, clear errors for bad input, an animated skinned character
-# from assimp-testmodels (ropes keep their length, frames written), and the
-# same picture for a mesh in metres and the same mesh in centimetres.
+# from assimp-testmodels (stretch at most 1e-4, no NaN, every guide root on
+# the skinned mesh, frames written with hair in them), and the same picture
+# for a mesh in metres and the same mesh in centimetres.
 # Needs build/gl_marschner, build/make_hairstyle, build/png_diff and headless GL (the Makefile's
 # viewer-check target checks those); skips, saying why, without the models.
 # Every check prints ok or FAILED; the exit status is the number failed.
@@ -42,6 +43,12 @@ if $V --help >"$O/help" 2>&1; then
              --hair-length --settle Keys; do
         grep -q -- "$o" "$O/help" || miss="$miss $o"
     done
+    # every key the viewer answers, with what it does
+    keys=$(sed -n '/^Keys/,$p' "$O/help")
+    for k in "K Kajiya" "G GPU" "C 3D" "V collid" "O shadow" "S specular" \
+             "H body" "space orbit" "+/- or scroll" "arrows orbit" "Esc quits"; do
+        printf '%s\n' "$keys" | grep -qF -- "$k" || miss="$miss key:'$k'"
+    done
     if [ -z "$miss" ]; then ok "--help lists the mesh options and the keys"
     else bad "--help lacks:$miss"; fi
 else
@@ -66,17 +73,42 @@ expect_error "--save-every with two %d" "%d" --headless --save-every 5 \
     --out "$O/x_%d_%d.png"
 
 # the walking Wuson: skinned, capsules on the bones, frames written
-if $V --headless --mesh "$M/X/Testwuson.X" --anim Wuson_Walk --strands 4000 \
-      --hair-length 0.08 --frames 30 --save-every 15 \
-      --out "$O/wuson_%03d.png" >"$O/walk" 2>&1; then
+# is_small VALUE LIMIT: VALUE is a plain number (not nan or inf) below LIMIT
+is_small() {
+    printf '%s\n' "$1" | grep -Eq '^[0-9]+(\.[0-9]+)?(e[-+][0-9]+)?$' &&
+        awk -v w="$1" -v l="$2" 'BEGIN { exit !(w + 0 < l + 0) }'
+}
+WALK="--headless --mesh $M/X/Testwuson.X --anim Wuson_Walk --strands 4000 --hair-length 0.08 --frames 30"
+# shellcheck disable=SC2086
+if $V $WALK --save-every 15 --out "$O/wuson_%03d.png" >"$O/walk" 2>&1; then
     worst=$(sed -n 's/.*stretch.*worst \([^,]*\),.*/\1/p' "$O/walk")
     cols=$(sed -n 's/.*guides, \([0-9]*\) colliders$/\1/p' "$O/walk")
+    nf=$(sed -n 's/.*non-finite coordinates: \([0-9]*\) in the guides.*, \([0-9]*\) in the.*/\1 \2/p' "$O/walk")
+    miss=$(sed -n 's/.*roots: \([0-9]*\) of [0-9]* guide roots missing.*/\1/p' "$O/walk")
+    rdist=$(sed -n 's/.*roots: .* m (\([^ ]*\) of the mesh size).*/\1/p' "$O/walk")
     if [ -f "$O/wuson_015.png" ] && [ -f "$O/wuson_030.png" ]; then
         ok "walk: wrote wuson_015.png and wuson_030.png"
     else bad "walk: frames missing"; fi
-    if awk -v w="$worst" 'BEGIN { exit !(w != "" && w + 0 < 1e-3) }'; then
-        ok "walk: worst stretch $worst < 1e-3"
-    else bad "walk: worst stretch '$worst'"; fi
+    if is_small "$worst" 1e-4; then
+        ok "walk: worst stretch $worst < 1e-4"
+    else bad "walk: worst stretch '$worst' (want a number below 1e-4)"; fi
+    if [ "$nf" = "0 0" ]; then
+        ok "walk: no NaN or infinity in the guides (every frame) or the strands"
+    else bad "walk: non-finite coordinates (guides, strands): '$nf'"; fi
+    if [ "$miss" = "0" ] && is_small "$rdist" 1e-5; then
+        ok "walk: no root missing; roots within $rdist of the mesh size of the skinned mesh"
+    else bad "walk: roots missing '$miss', off the skinned mesh by '$rdist' of its size"; fi
+    # a picture with hair in it: not empty, and hair where the body alone
+    # (--no-hair, the same frame) shows none
+    # shellcheck disable=SC2086
+    if d=$($B/png_diff --stats "$O/wuson_030.png"); then ok "walk: picture: $d"
+    else bad "walk: empty picture: $d"; fi
+    # shellcheck disable=SC2086
+    if $V $WALK --no-hair --out "$O/wuson_bare.png" >"$O/bare" 2>&1; then
+        if d=$($B/png_diff "$O/wuson_030.png" "$O/wuson_bare.png" 12 0.02); then
+            bad "walk: no hair in the picture (against the body alone): $d"
+        else ok "walk: hair in the picture, against the body alone: $d"; fi
+    else bad "walk --no-hair: exit non-zero: $(tail -3 "$O/bare")"; fi
     if [ -n "$cols" ] && [ "$cols" -gt 10 ]; then
         ok "walk: $cols bone capsules"
     else bad "walk: colliders '$cols'"; fi
@@ -93,7 +125,7 @@ if $B/make_hairstyle --mesh "$H" --part Head --plane 0,1,-0.53,0.717 \
     worst=$(sed -n 's/.*stretch.*worst \([^,]*\),.*/\1/p' "$O/styled")
     hair=$(sed -n 's/.*guides, hair \([0-9.]*\) m,.*/\1/p' "$O/styled")
     if awk -v w="$worst" -v h="$hair" \
-         'BEGIN { exit !(w != "" && w + 0 < 1e-3 && h + 0 > 0.25) }'; then
+         'BEGIN { exit !(w ~ /^[0-9.e+-]+$/ && w + 0 < 1e-4 && h + 0 > 0.25) }'; then
         ok "--guides style.hair: hair $hair m (the curves' length), stretch $worst"
     else bad "--guides: hair '$hair', stretch '$worst'"; fi
 else
