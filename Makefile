@@ -19,6 +19,8 @@
 #   make grow-fur-check  grow_fur's options as a user meets them (bad counts,
 #                      --help, --guides on the built-in head); skipped, with
 #                      the reason, where grow_fur cannot be built
+#   make curves-check  the examples' .hair, .tfx and OBJ curve readers and
+#                      writers (tests/curves_check.c; part of make test)
 #   make valgrind      the test suite under memcheck
 #   make soak          a million rope steps under random abuse (SOAK_FRAMES)
 #   make fuzz          each libFuzzer target for FUZZ_SECONDS (60) s
@@ -151,6 +153,7 @@ test: check-build
 	@$(MAKE) --no-print-directory api-doc-check
 	@$(MAKE) --no-print-directory quickstart
 	@$(MAKE) --no-print-directory grow-fur-check
+	@$(MAKE) --no-print-directory curves-check
 	@$(MAKE) --no-print-directory -j2 cross-test
 	@sh tests/msvc_check.sh
 	@$(MAKE) --no-print-directory gl-test-or-skip
@@ -164,6 +167,30 @@ check: $(BUILD)/test_gcc_c99
 # grow_fur as a user meets it: tests/grow_fur_check.sh builds it itself.
 grow-fur-check:
 	@sh tests/grow_fur_check.sh
+
+# The examples' curve files (examples/curves.h): tests/curves_check.c with
+# ASan + UBSan and assimp (without assimp, the OBJ part is left out, with a
+# note), and again as 32-bit x86 without the OBJ part (its lying headers
+# are the ones that wrap 32-bit sizes) where gcc -m32 builds and runs here.
+.PHONY: curves-check
+CURVES_CHECK_DEPS := tests/curves_check.c examples/curves.h
+CURVES_ASSIMP_H    = $(wildcard /usr/include/assimp/cimport.h)
+$(BUILD)/curves_check: $(CURVES_CHECK_DEPS) | $(BUILD)
+	gcc -std=c99 $(SAN) $(WARN) $(if $(CURVES_ASSIMP_H),,-DCURVES_NO_ASSIMP) \
+	  -Iexamples $< -o $@ $(if $(CURVES_ASSIMP_H),-lassimp) -lm
+$(BUILD)/curves_check_i686: $(CURVES_CHECK_DEPS) | $(BUILD)
+	gcc -m32 -std=c99 -O2 $(WARN) -DCURVES_NO_ASSIMP -Iexamples $< -o $@ -lm
+
+curves-check: $(BUILD)/curves_check
+	@$(if $(CURVES_ASSIMP_H),:,echo "curves-check: the OBJ tests skipped: install libassimp-dev (make deps)")
+	@if printf 'int main(void){return 0;}\n' | \
+	    gcc -m32 -x c - -o $(BUILD)/m32_run_probe >/dev/null 2>&1 && \
+	    $(BUILD)/m32_run_probe; then \
+	  $(MAKE) --no-print-directory $(BUILD)/curves_check_i686; \
+	else rm -f $(BUILD)/curves_check_i686; \
+	  echo "curves-check: 32-bit build skipped: gcc -m32 cannot build or run" \
+	    "here (libc6-dev-i386, lib32gcc-12-dev)"; fi
+	$(call run_tests,$(BUILD)/curves_check $$(ls $(BUILD)/curves_check_i686 2>/dev/null),curves-check)
 
 # docs/api.md against hairfur.h: the script prints the drift and fails.
 # Skipped, silently, where the script is absent.
@@ -615,7 +642,7 @@ bench-peers: check-bullet $(BUILD)/bench_peers
 # mode: build/fuzz_<t> -merge=1 tests/fuzz/corpus/<t> build/fuzz-corpus/<t>.
 # fuzz-replay builds each target with gcc and tests/fuzz/fuzz_main.c
 # instead, and replays the seed corpus and tests/fuzz/regressions/.
-FUZZ_TARGETS       := grow ropes ribbons lut fur curves
+FUZZ_TARGETS       := grow ropes ribbons lut fur curves obj
 FUZZ_SECONDS       ?= 60
 FUZZ_SMOKE_SECONDS ?= 20
 FUZZ_DIR           := tests/fuzz
@@ -637,6 +664,12 @@ $(BUILD)/replay_%: $(FUZZ_DIR)/fuzz_%.c $(FUZZ_DIR)/fuzz_main.c $(FUZZ_DEPS) | $
 
 # fuzz_curves reads the examples' curve files (examples/curves.h).
 $(BUILD)/fuzz_curves $(BUILD)/replay_curves: examples/curves.h
+# fuzz_obj reads OBJ polylines with the same header, through assimp
+# (Debian's libassimp-dev).
+$(BUILD)/fuzz_obj: $(FUZZ_DIR)/fuzz_obj.c examples/curves.h | $(BUILD)
+	$(FUZZ_CC) $< -o $@ -lassimp -lm
+$(BUILD)/replay_obj: $(FUZZ_DIR)/fuzz_obj.c $(FUZZ_DIR)/fuzz_main.c examples/curves.h | $(BUILD)
+	$(REPLAY_CC) $(FUZZ_DIR)/fuzz_main.c $< -o $@ -lassimp -lm
 
 fuzz-build: $(addprefix $(BUILD)/fuzz_,$(FUZZ_TARGETS))
 

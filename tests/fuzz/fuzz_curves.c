@@ -3,9 +3,12 @@
    .tfx), the rest is the file.
 
    Contracts checked (abort() on violation): a reader returns 1 or 0; on 0
-   the curves are empty and the message is not; on 1 there is at least one
-   curve, every curve has at least 2 points, the point counts add up to the
-   total, and every coordinate is finite.
+   the curves are empty (every array NULL) and the message is not; on 1
+   there is at least one curve, every curve has at least 2 points, the
+   point counts add up to the total, every coordinate is finite, a .hair
+   result has colours, thickness and transparency (from the file or the
+   header's defaults) and a .tfx result has neither thickness nor
+   transparency. The OBJ reader has its own target, fuzz_obj.c.
 
    libFuzzer: clang -g -O1 -fsanitize=fuzzer,address,undefined fuzz_curves.c
    replay:    gcc -O1 -g fuzz_main.c fuzz_curves.c -lm (see the Makefile) */
@@ -29,10 +32,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                        : cv_parse_hair(data + 1, size - 1, &c, err, sizeof err);
     if (ok != 0 && ok != 1) abort();
     if (!ok) {
-        if (c.count != 0 || c.points || c.xyz || !err[0]) abort();
+        if (c.count != 0 || c.points || c.xyz || c.rgb || c.thickness ||
+            c.transparency || !err[0])
+            abort();
         return 0;
     }
     if (c.count < 1 || !c.points || !c.xyz) abort();
+    if ((data[0] & 1) ? (c.thickness || c.transparency)
+                      : (!c.rgb || !c.thickness || !c.transparency))
+        abort();
     for (i = 0; i < c.count; ++i) {
         if (c.points[i] < 2) abort();
         sum += c.points[i];

@@ -33,6 +33,7 @@ def main():
                 f.write(data)
             total += len(data)
     total += curve_seeds(rng)
+    total += obj_seeds()
     print("wrote the seeds (%d bytes) under %s" % (total, ROOT))
 
 
@@ -71,10 +72,45 @@ def curve_seeds(rng):
         seeds.append(b"\1" + head + body)
     seeds.append(seeds[1][:-3])   # truncated .hair
     seeds.append(seeds[-2][:100])  # truncated .tfx
+    # a .tfx with every array: positions, strand UVs, vertex UVs, strand
+    # thickness, vertex colours, one after another
+    strands, per = 2, 4
+    v = strands * per
+    sizes = (16 * v, 8 * strands, 8 * v, 4 * strands, 16 * v)
+    offs, at = [], 160
+    for n in sizes:
+        offs.append(at)
+        at += n
+    head = struct.pack("<fII", 4.0, strands, per) + struct.pack("<5I", *offs)
+    head += bytes(128)
+    body = b"".join(struct.pack("<f", rng.uniform(-1, 1)) for _ in range(sum(sizes) // 4))
+    seeds.append(b"\1" + head + body)
     for i, data in enumerate(seeds):
         with open(os.path.join(d, "seed-%02d.bin" % i), "wb") as f:
             f.write(data)
         total += len(data)
+    return total
+
+
+def obj_seeds():
+    """fuzz_obj reads OBJ text: polylines as `l` lines (whole and as
+    segments), with faces and points beside them, negative indices."""
+    d = os.path.join(ROOT, "obj")
+    os.makedirs(d, exist_ok=True)
+    verts = "".join("v %g %g %g\n" % (0.1 * i, 0.02 * i * i, -0.3 * i) for i in range(8))
+    seeds = [
+        verts + "l 1 2 3 4\nl 5 6 7 8\n",
+        verts + "l 1 2\nl 2 3\nl 3 4\nl 6 7\n",
+        verts + "o hair\nf 1 2 3\nl 4 5 6\np 7\nf 5 6 7 8\nl 7 8\n",
+        verts + "g a\nl -8 -7 -6\ng b\nl -3 -2 -1\n",
+        verts + "f 1 2 3\n",
+        "v 0 0 0\nv 1 1 1\nl 1 2 3\nl 0 1\n",
+    ]
+    total = 0
+    for i, text in enumerate(seeds):
+        with open(os.path.join(d, "seed-%02d.obj" % i), "w") as f:
+            f.write(text)
+        total += len(text)
     return total
 
 
