@@ -8703,6 +8703,56 @@ static void test_fur_styled_strands_follow_guides(void)
     hf_fur_destroy(f);
 }
 
+/* Teleport: a fur simulated a while, its root frames moved 5 m and turned
+   a quarter turn by hf_fur_set_transform, then hf_fur_reset: every guide
+   is its rest shape carried by the new frames (within 1e-5 m), and the
+   next frame starts from rest there (it moves no more than gravity moves
+   a still rope in one frame). */
+static void test_fur_teleport(void)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL, *ref = NULL;
+    hf_fur_info info, ri;
+    /* x' = -z + 5, y' = y, z' = x - 2: a quarter turn about y */
+    const float m[12] = {0, 0, -1, 5, 0, 1, 0, 0, 1, 0, 0, -2};
+    size_t n, i;
+    int frame;
+    double worst = 0.0, moved = 0.0;
+    float *before;
+    t_fur_scene_init(&sc, 1.0f);
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &ref, NULL), HF_OK);
+    if (!f || !ref) return;
+    hf_fur_get_info(f, &info);
+    hf_fur_get_info(ref, &ri);
+    n = (size_t)info.guide_count * (size_t)info.points_per_strand * 3u;
+    for (frame = 0; frame < 30; ++frame)
+        hf_fur_simulate(f, 0, info.guide_count, 1.0f / 60.0f, NULL, 0);
+    CHECK_EQ_INT(hf_fur_set_transform(f, m, 0, info.guide_count), HF_OK);
+    CHECK_EQ_INT(hf_fur_reset(f), HF_OK);
+    for (i = 0; i < n; i += 3) { /* ref holds the rest pose */
+        const float *r = ri.guide_points + i, *q = info.guide_points + i;
+        double e[3];
+        e[0] = q[0] - (m[0] * r[0] + m[1] * r[1] + m[2] * r[2] + m[3]);
+        e[1] = q[1] - (m[4] * r[0] + m[5] * r[1] + m[6] * r[2] + m[7]);
+        e[2] = q[2] - (m[8] * r[0] + m[9] * r[1] + m[10] * r[2] + m[11]);
+        e[0] = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+        if (e[0] > worst) worst = e[0];
+    }
+    CHECK(worst < 1e-5);
+    before = (float *)malloc(n * sizeof(float));
+    memcpy(before, info.guide_points, n * sizeof(float));
+    hf_fur_simulate(f, 0, info.guide_count, 1.0f / 60.0f, NULL, 0);
+    for (i = 0; i < n; ++i) {
+        double d = fabs((double)info.guide_points[i] - before[i]);
+        if (d > moved) moved = d;
+    }
+    CHECK(moved <= 9.81 / 3600.0 * 1.01);
+    free(before);
+    hf_fur_destroy(f);
+    hf_fur_destroy(ref);
+}
+
 /* ==== main: every test, in the order above ================================ */
 
 int main(void)
@@ -8877,6 +8927,7 @@ int main(void)
     RUN(test_fur_controls_no_jump);
     RUN(test_fur_mode_survives_lod);
     RUN(test_fur_styled_strands_follow_guides);
+    RUN(test_fur_teleport);
     RUN(test_fur_rope_params_range);
     RUN(test_bad_fur);
 
