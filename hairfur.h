@@ -1651,6 +1651,10 @@ typedef struct hf_fur_desc {
                                > 0: strands gather into clumps about this
                                wide (m) around leader strands
                                that far apart, whatever the guide spacing */
+    const hf_map *clump_size_map; /* NULL = 1: its first channel, clamped
+                               to [0, 1] at each strand's root UV, scales
+                               clump_size there (0: the strand stands
+                               alone, no clumping) */
     float lod_simulate_threshold; /* 0 = 0.5: LOD guides simulated at
                                      lod >= this */
     const hf_rope_params *rope_params; /* NULL = hf_rope_params_init */
@@ -8601,7 +8605,7 @@ HF__PRIVATE hf_result hf__fur_style_check(const hf_fur_desc *d, hf_diag *diag)
                                          "wave_amplitude", "wave_count",
                                          "frizz", "clump_size",
                                          "color_variation", "width_variation"};
-    const hf_map *maps[6];
+    const hf_map *maps[7];
     hf_result r;
     long long total = 0;
     int i, k;
@@ -8615,7 +8619,8 @@ HF__PRIVATE hf_result hf__fur_style_check(const hf_fur_desc *d, hf_diag *diag)
     maps[0] = d->curl_map; maps[1] = d->wave_map; maps[2] = d->frizz_map;
     maps[3] = d->clump_map; maps[4] = d->color_variation_map;
     maps[5] = d->width_variation_map;
-    for (i = 0; i < 6; ++i) {
+    maps[6] = d->clump_size_map;
+    for (i = 0; i < 7; ++i) {
         if (!maps[i]) continue;
         if (!d->mesh.uvs)
             return hf__fail(diag, HF_ERROR_NULL_POINTER, "mesh.uvs", -1,
@@ -9216,9 +9221,10 @@ HF__PRIVATE hf_result hf__fur_bind(hf_fur *f, hf__fur_build *b)
 }
 
 /* Clump leaders (hf_fur_desc.clump_size): in LOD order, a strand whose
-   root has no leader within clump_size becomes one; every other strand
-   clumps to its nearest leader. A hash grid of clump_size cells keeps it
-   linear. */
+   root has no leader within its clump size (clump_size, times the
+   clump_size_map there) becomes one; every other strand clumps to its
+   nearest leader. A hash grid of clump_size cells keeps it linear (a
+   strand's own size is never larger). */
 HF__PRIVATE hf_result hf__fur_clumps(hf_fur *f, hf__fur_build *b)
 {
     const int S = f->strand_count, P = f->P;
@@ -9248,6 +9254,11 @@ HF__PRIVATE hf_result hf__fur_clumps(hf_fur *f, hf__fur_build *b)
         const float *q = root + 3 * i;
         long long c[3];
         double best = (double)size * size;
+        if (b->desc.clump_size_map) {
+            float m = hf__map_at(b->desc.clump_size_map, f->strands[i].uv);
+            m = m > 0.0f ? (m < 1.0f ? m : 1.0f) : 0.0f; /* NaN: 0 */
+            best = ((double)size * m) * ((double)size * m);
+        }
         uint32_t lead = 0xffffffffu, h;
         int dx, dy, dz;
         for (k = 0; k < 3; ++k) c[k] = (long long)HF_FLOOR(q[k] * inv);

@@ -7815,6 +7815,51 @@ static void test_fur_control_maps(void)
     }
     hf_fur_destroy(a);
     hf_fur_destroy(b);
+    /* clump_size_map: white as no map, black as no clumping at all */
+    memset(&sc.desc, 0, sizeof sc.desc);
+    t_fur_scene_init(&sc, 1.0f);
+    sc.desc.clump = 0.9f;
+    sc.desc.clump_size = 0.3f;
+    {
+        hf_fur *c = NULL;
+        hf_fur_info ic;
+        a = b = NULL;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &a, NULL), HF_OK); /* no map */
+        sc.desc.clump_size_map = &mw;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &b, NULL), HF_OK);
+        sc.desc.clump_size_map = &mb;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &c, NULL), HF_OK);
+        if (!a || !b || !c) return;
+        hf_fur_get_info(a, &ia);
+        hf_fur_get_info(b, &ib);
+        hf_fur_get_info(c, &ic);
+        CHECK(memcmp(ia.strand_points, ib.strand_points, sizeof(float) * n) == 0);
+        CHECK(memcmp(ia.strand_points, ic.strand_points, sizeof(float) * n) != 0);
+        hf_fur_destroy(c);
+        sc.desc.clump = 0.0f;
+        sc.desc.clump_size_map = NULL;
+        c = NULL;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &c, NULL), HF_OK);
+        if (c) {
+            hf_fur_get_info(c, &ic);
+            hf_fur_interpolate(c, 0, ic.strand_count);
+            /* black: each strand clumps to itself, the unclumped strands */
+            hf_fur_destroy(a);
+            a = NULL;
+            sc.desc.clump = 0.9f;
+            sc.desc.clump_size_map = &mb;
+            CHECK_EQ_INT(hf_fur_create(&sc.desc, &a, NULL), HF_OK);
+            if (a) {
+                hf_fur_get_info(a, &ia);
+                hf_fur_interpolate(a, 0, ia.strand_count);
+                CHECK(memcmp(ia.strand_points, ic.strand_points,
+                             sizeof(float) * n) == 0);
+            }
+            hf_fur_destroy(c);
+        }
+    }
+    hf_fur_destroy(a);
+    hf_fur_destroy(b);
 }
 
 /* Diagnostics read back word for word: every number in them goes through

@@ -96,6 +96,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         desc.clump_size = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 0.5f) : fz_float(&r, 2.0f);
         desc.width_variation = fz_chance(&r, 230) ? fz_float_in(&r, 0.0f, 1.0f) : fz_float(&r, 2.0f);
         if (has_length && fz_chance(&r, 128)) desc.clump_map = &length.map;
+        if (has_length && fz_chance(&r, 128)) desc.clump_size_map = &length.map;
         if (has_density && fz_chance(&r, 128)) desc.color_variation_map = &density.map;
         if (has_length && fz_chance(&r, 128)) desc.width_variation_map = &length.map;
     }
