@@ -48,7 +48,7 @@
            hf_fur_set_transform, hf_fur_simulate, hf_fur_interpolate_guides,
            hf_fur_interpolate, hf_fur_ribbons, hf_fur_points,
            hf_fur_max_stretch, hf_fur_reset, hf_fur_set_rope_params,
-           hf_fur_set_rope_params_range, hf_fur_set_mode
+           hf_fur_set_rope_params_range, hf_fur_set_mode, hf_fur_set_simd
        Drawing (section 8): hf_ribbon_index_count, hf_ribbon_indices,
            hf_ribbon_chunk_strands, hf_ribbon_indices16 (16-bit chunks),
            hf_format_bytes; over your own strands: hf_ribbons,
@@ -75,7 +75,8 @@
            hf_map_sample_fast, hf_map_blur, hf_mesh_validate,
            hf_mesh_compute_normals, hf_triangle_area
        Results, versions, random numbers (sections 1, 2):
-           hf_result_string, hf_version, hf_version_string, hf_rng_seed,
+           hf_result_string, hf_version, hf_version_string, hf_simd_resolve,
+           hf_rng_seed,
            hf_rng_u32, hf_rng_float, hf_rng_below
 
    CONFIGURATION MACROS (define before the #include that has
@@ -327,6 +328,25 @@ typedef struct hf_allocator {
 /* HAIRFUR_VERSION_NUMBER of the compiled implementation, and its string. */
 HFDEF int hf_version(void);
 HFDEF const char *hf_version_string(void);
+
+/* SIMD levels of the per-frame kernels (interpolation, GPU points). Every
+   level gives the same bytes; they differ only in speed. */
+typedef enum hf_simd_level {
+    HF_SIMD_AUTO = 0,   /* the best this CPU and build run (the default) */
+    HF_SIMD_SCALAR = 1, /* the scalar references */
+    HF_SIMD_SSE2 = 2,   /* x86 baseline, 4 lanes */
+    HF_SIMD_AVX2 = 3,   /* 8 lanes */
+    HF_SIMD_AVX512 = 4  /* 16 lanes (AVX-512F) */
+} hf_simd_level;
+
+/* The level a kernel runs at when `requested` is asked for: 0 (auto) gives
+   the best this CPU supports in this build (CPUID on gcc and clang for
+   x86; what the compiler targets elsewhere; HF_NO_SIMD: scalar;
+   HF_SIMD_MAX caps it); a higher request than that is lowered to it, so
+   asking for a level is always safe. Unknown values count as auto. No
+   state: the answer comes from the CPU each call. */
+HFDEF int hf_simd_resolve(int requested);
+
 
 /* ======================================================================== */
 /* 2. Random numbers                                                        */
@@ -1197,6 +1217,7 @@ typedef struct hf_interp_params {
        it to `first` to write a range into a buffer that holds exactly that
        range (first < out_first is HF_ERROR_BAD_RANGE). */
     int out_first;
+    int simd; /* hf_simd_level; 0 = the best the CPU runs (same bytes) */
 } hf_interp_params;
 
 /* Interpolate strands [first, first + count) from guide points. Point j of
@@ -1330,6 +1351,13 @@ typedef struct hf_ribbon_params {
        strand. Set it to `first` to write a range into a buffer that holds
        exactly that range; first < out_first is HF_ERROR_BAD_RANGE. */
     int out_first;
+    /* 1: write hf_ribbon_points' output with streaming (non-temporal)
+       stores, which skip the cache: the right stores for write-combined
+       memory (a mapped GPU buffer, where vertices usually go) and for
+       outputs far larger than the cache. 0: ordinary stores. Same bytes
+       either way. */
+    int nontemporal;
+    int simd; /* hf_simd_level; 0 = the best the CPU runs (same bytes) */
 } hf_ribbon_params;
 
 /* Ribbon widths a zeroed hf_ribbon_params gets, in metres: fur on a head
@@ -1655,6 +1683,9 @@ typedef struct hf_fur_desc {
                                to [0, 1] at each strand's root UV, scales
                                clump_size there (0: the strand stands
                                alone, no clumping) */
+    int simd;               /* hf_simd_level of the interpolation; 0 = the
+                               best the CPU runs (every level gives the
+                               same bytes); hf_fur_set_simd changes it */
     float lod_simulate_threshold; /* 0 = 0.5: LOD guides simulated at
                                      lod >= this */
     const hf_rope_params *rope_params; /* NULL = hf_rope_params_init */
@@ -1834,6 +1865,12 @@ HFDEF hf_result hf_fur_set_rope_params_range(hf_fur *fur, int first,
    animated then. Errors:
    HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE, HF_ERROR_BAD_PARAMETER. */
 HFDEF hf_result hf_fur_set_mode(hf_fur *fur, int first, int count, int mode);
+/* The SIMD level of the fur's interpolation (hf_simd_level; 0 = the best
+   the CPU runs), for tests and benchmarks: every level gives the same
+   bytes. Ribbons and points take theirs from hf_ribbon_params.simd.
+   Errors: HF_ERROR_NULL_POINTER, HF_ERROR_BAD_PARAMETER (not an
+   hf_simd_level). */
+HFDEF hf_result hf_fur_set_simd(hf_fur *fur, int level);
 
 #ifdef __cplusplus
 }
@@ -1916,11 +1953,17 @@ HFDEF hf_result hf_fur_set_mode(hf_fur *fur, int first, int count, int mode);
 #define HF_MEMSET(d, v, n) memset(d, v, n)
 #endif
 
-/* SIMD level. SSE2 (every x86-64) is the one SIMD level: a kernel named
-   hf__<name>_sse sits beside its scalar reference hf__<name>_ref, both
-   use the same IEEE operations in the same order, so they give the same
-   bytes, and one function per stage picks between them (the dispatch).
-   HF_NO_SIMD forces the scalar references. */
+/* SIMD levels. A kernel named hf__<name>_sse (or _avx2, _avx512) sits
+   beside its scalar reference hf__<name>_ref; every level uses the same
+   IEEE operations in the same order (no FMA), so all give the same bytes,
+   and one function per stage picks between them (the dispatch) with the
+   level hf__simd resolves. SSE2 is the baseline wherever the compiler
+   targets it. AVX2 and AVX-512 kernels are compiled with target
+   attributes on gcc and clang for x86 (so a default -O2 build has them)
+   and picked at run time by CPUID (__builtin_cpu_supports); elsewhere
+   (MSVC) only when the compiler already targets them (__AVX2__,
+   __AVX512F__). HF_NO_SIMD forces the scalar references; HF_SIMD_MAX
+   (an hf_simd_level) caps the level at compile time. */
 #if !defined(HF_NO_SIMD) &&                                                    \
     (defined(__SSE2__) || defined(_M_X64) ||                                   \
      (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
@@ -1928,6 +1971,43 @@ HFDEF hf_result hf_fur_set_mode(hf_fur *fur, int first, int count, int mode);
 #include <emmintrin.h>
 #else
 #define HF__SSE 0
+#endif
+#if HF__SSE && (defined(__GNUC__) || defined(__clang__)) &&                    \
+    (defined(__x86_64__) || defined(__i386__))
+#define HF__X86_DISPATCH 1 /* kernels by target attribute, CPUID */
+#define HF__AVX2 1
+#define HF__AVX512 1
+#if defined(__clang__) /* clang never fuses separate intrinsics */
+#define HF__TARGET_AVX2 __attribute__((target("avx2")))
+#define HF__TARGET_AVX512 __attribute__((target("avx512f")))
+#else /* gcc fuses a * b + c into an FMA where the target has one (AVX-512F
+         does) unless told not to, in C++ and GNU C modes: that would
+         change the bytes */
+#define HF__TARGET_AVX2                                                        \
+    __attribute__((target("avx2"), optimize("fp-contract=off")))
+#define HF__TARGET_AVX512                                                      \
+    __attribute__((target("avx512f"), optimize("fp-contract=off")))
+#endif
+#else
+#define HF__X86_DISPATCH 0
+#if HF__SSE && defined(__AVX2__)
+#define HF__AVX2 1
+#else
+#define HF__AVX2 0
+#endif
+#if HF__SSE && defined(__AVX512F__)
+#define HF__AVX512 1
+#else
+#define HF__AVX512 0
+#endif
+#define HF__TARGET_AVX2
+#define HF__TARGET_AVX512
+#endif
+#if HF__AVX2 || HF__AVX512
+#include <immintrin.h>
+#endif
+#ifndef HF_SIMD_MAX
+#define HF_SIMD_MAX HF_SIMD_AVX512
 #endif
 
 /* Compiler words, each with a plain fallback:
@@ -1990,6 +2070,35 @@ HFDEF const char *hf_result_string(hf_result result)
 
 HFDEF int hf_version(void) { return HAIRFUR_VERSION_NUMBER; }
 HFDEF const char *hf_version_string(void) { return HAIRFUR_VERSION_STRING; }
+
+/* The best level the CPU runs in this build. */
+HF__PRIVATE int hf__cpu_simd(void)
+{
+#if HF__X86_DISPATCH
+    /* libgcc (or compiler-rt) reads CPUID and XCR0 at load time, so this
+       also knows whether the OS saves the wide registers */
+    if (__builtin_cpu_supports("avx512f") && HF__AVX512) return HF_SIMD_AVX512;
+    if (__builtin_cpu_supports("avx2") && HF__AVX2) return HF_SIMD_AVX2;
+    return HF_SIMD_SSE2;
+#elif HF__AVX512
+    return HF_SIMD_AVX512;
+#elif HF__AVX2
+    return HF_SIMD_AVX2;
+#elif HF__SSE
+    return HF_SIMD_SSE2;
+#else
+    return HF_SIMD_SCALAR;
+#endif
+}
+
+HFDEF int hf_simd_resolve(int requested)
+{
+    int best = hf__cpu_simd();
+    if (best > HF_SIMD_MAX) best = HF_SIMD_MAX < 1 ? 1 : HF_SIMD_MAX;
+    if (requested < HF_SIMD_SCALAR || requested > HF_SIMD_AVX512)
+        return best;
+    return requested < best ? requested : best;
+}
 
 /* ---- defaults: what every zero field means, resolved in one place ------ */
 
@@ -6559,12 +6668,110 @@ HF__PRIVATE int hf__interp_strand_sse(const float *g0, const float *g1,
 }
 #endif
 
+#if HF__AVX2
+/* hf__interp_strand_sse, eight floats a vector: the same operations in
+   the same order (no FMA), so the same bytes. (1 - sc) root repeats every
+   3 floats, so the vectors at floats 0, 8, 16 have phases 0, 2, 1. */
+HF__TARGET_AVX2 HF__INLINE void
+hf__interp_avx2(const float *g0, const float *g1, const float *g2,
+                const float *gn, const float *ctab, float *o, int i,
+                __m256 W0, __m256 W1, __m256 W2, __m256 SC, __m256 R)
+{
+    __m256 p = _mm256_add_ps(
+        _mm256_add_ps(_mm256_mul_ps(W0, _mm256_loadu_ps(g0 + i)),
+                      _mm256_mul_ps(W1, _mm256_loadu_ps(g1 + i))),
+        _mm256_mul_ps(W2, _mm256_loadu_ps(g2 + i)));
+    p = _mm256_add_ps(_mm256_mul_ps(SC, p), R);
+    if (gn)
+        p = _mm256_add_ps(p, _mm256_mul_ps(_mm256_loadu_ps(ctab + i),
+                                           _mm256_sub_ps(_mm256_loadu_ps(gn + i), p)));
+    _mm256_storeu_ps(o + i, p);
+}
+
+HF__TARGET_AVX2 HF__PRIVATE int
+hf__interp_strand_avx2(const float *g0, const float *g1, const float *g2,
+                       const float *gn, const float *ctab, float *o, int P,
+                       float w0, float w1, float w2, float sc, const float *rb)
+{
+    const __m256 W0 = _mm256_set1_ps(w0), W1 = _mm256_set1_ps(w1);
+    const __m256 W2 = _mm256_set1_ps(w2), SC = _mm256_set1_ps(sc);
+    const float a = rb[0], b = rb[1], c = rb[2];
+    const __m256 R0 = _mm256_setr_ps(a, b, c, a, b, c, a, b);
+    const __m256 R1 = _mm256_setr_ps(c, a, b, c, a, b, c, a);
+    const __m256 R2 = _mm256_setr_ps(b, c, a, b, c, a, b, c);
+    int i = 0;
+    for (; i + 24 <= 3 * P; i += 24) {
+        hf__interp_avx2(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0);
+        hf__interp_avx2(g0, g1, g2, gn, ctab, o, i + 8, W0, W1, W2, SC, R1);
+        hf__interp_avx2(g0, g1, g2, gn, ctab, o, i + 16, W0, W1, W2, SC, R2);
+    }
+    if (i + 8 <= 3 * P) {
+        hf__interp_avx2(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0);
+        i += 8;
+    }
+    if (i + 8 <= 3 * P) {
+        hf__interp_avx2(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R1);
+        i += 8;
+    }
+    return i;
+}
+#endif
+
+#if HF__AVX512
+/* Sixteen floats a vector: phases 0, 1, 2 at floats 0, 16, 32. */
+HF__TARGET_AVX512 HF__INLINE void
+hf__interp_avx512(const float *g0, const float *g1, const float *g2,
+                  const float *gn, const float *ctab, float *o, int i,
+                  __m512 W0, __m512 W1, __m512 W2, __m512 SC, __m512 R)
+{
+    __m512 p = _mm512_add_ps(
+        _mm512_add_ps(_mm512_mul_ps(W0, _mm512_loadu_ps(g0 + i)),
+                      _mm512_mul_ps(W1, _mm512_loadu_ps(g1 + i))),
+        _mm512_mul_ps(W2, _mm512_loadu_ps(g2 + i)));
+    p = _mm512_add_ps(_mm512_mul_ps(SC, p), R);
+    if (gn)
+        p = _mm512_add_ps(p, _mm512_mul_ps(_mm512_loadu_ps(ctab + i),
+                                           _mm512_sub_ps(_mm512_loadu_ps(gn + i), p)));
+    _mm512_storeu_ps(o + i, p);
+}
+
+HF__TARGET_AVX512 HF__PRIVATE int
+hf__interp_strand_avx512(const float *g0, const float *g1, const float *g2,
+                         const float *gn, const float *ctab, float *o, int P,
+                         float w0, float w1, float w2, float sc,
+                         const float *rb)
+{
+    const __m512 W0 = _mm512_set1_ps(w0), W1 = _mm512_set1_ps(w1);
+    const __m512 W2 = _mm512_set1_ps(w2), SC = _mm512_set1_ps(sc);
+    const float a = rb[0], b = rb[1], c = rb[2];
+    const __m512 R0 = _mm512_setr_ps(a, b, c, a, b, c, a, b, c, a, b, c, a, b, c, a);
+    const __m512 R1 = _mm512_setr_ps(b, c, a, b, c, a, b, c, a, b, c, a, b, c, a, b);
+    const __m512 R2 = _mm512_setr_ps(c, a, b, c, a, b, c, a, b, c, a, b, c, a, b, c);
+    int i = 0;
+    for (; i + 48 <= 3 * P; i += 48) {
+        hf__interp_avx512(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0);
+        hf__interp_avx512(g0, g1, g2, gn, ctab, o, i + 16, W0, W1, W2, SC, R1);
+        hf__interp_avx512(g0, g1, g2, gn, ctab, o, i + 32, W0, W1, W2, SC, R2);
+    }
+    if (i + 16 <= 3 * P) {
+        hf__interp_avx512(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0);
+        i += 16;
+    }
+    if (i + 16 <= 3 * P) {
+        hf__interp_avx512(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R1);
+        i += 16;
+    }
+    return i;
+}
+#endif
+
 /* Strands [first, first + count) from inputs already checked: the loop of
    hf_interpolate. */
 HF__PRIVATE void hf__interpolate_run(const float *guide_points,
                                      const hf_strand_binding *bindings,
                                      int first, int count, int P, float clump,
-                                     float *out_points, int out_first)
+                                     float *out_points, int out_first,
+                                     int level)
 {
     float ctab[3 * HF_MAX_POINTS];
     int s, i, k;
@@ -6595,13 +6802,27 @@ HF__PRIVATE void hf__interpolate_run(const float *guide_points,
             rb[k + 3] = rb[k];
         }
         i = 0;
+#if HF__AVX512
+        if (level >= HF_SIMD_AVX512)
+            i = hf__interp_strand_avx512(g0, g1, g2, gn, ctab, o, P, w0, w1,
+                                         w2, sc, rb);
+        else
+#endif
+#if HF__AVX2
+        if (level >= HF_SIMD_AVX2)
+            i = hf__interp_strand_avx2(g0, g1, g2, gn, ctab, o, P, w0, w1,
+                                       w2, sc, rb);
+        else
+#endif
 #if HF__SSE
-        i = hf__interp_strand_sse(g0, g1, g2, gn, ctab, o, P, w0, w1, w2, sc,
-                                  rb);
+        if (level >= HF_SIMD_SSE2)
+            i = hf__interp_strand_sse(g0, g1, g2, gn, ctab, o, P, w0, w1, w2,
+                                      sc, rb);
 #endif
         hf__interp_strand_ref(g0, g1, g2, gn, ctab, o, i, P, w0, w1, w2, sc,
                               rb);
     }
+    (void)level; /* HF_NO_SIMD */
 }
 
 HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
@@ -6643,7 +6864,8 @@ HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
         if (g > HF_MAX_ABS || g < -HF_MAX_ABS) return HF_ERROR_BAD_PARAMETER;
     }
     hf__interpolate_run(guide_points, bindings, first, count, P, clump,
-                        out_points, params->out_first);
+                        out_points, params->out_first,
+                        hf_simd_resolve(params->simd));
     return HF_OK;
 }
 
@@ -7725,6 +7947,69 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
     return HF_OK;
 }
 
+/* GPU points of one strand, from point j: (x, y, z, hw[j] * ws). */
+HF__PRIVATE void hf__points_strand_ref(const float *p, const float *hw,
+                                       float ws, float *o, int j, int P)
+{
+    for (; j < P; ++j) {
+        o[4 * j] = p[3 * j];
+        o[4 * j + 1] = p[3 * j + 1];
+        o[4 * j + 2] = p[3 * j + 2];
+        o[4 * j + 3] = hw[j] * ws;
+    }
+}
+
+#if HF__SSE
+/* A point a vector: xyz loaded with the next point's x, which the width
+   replaces (the last point is left to the reference: its load would read
+   past the strand). Streaming stores where asked and aligned. Returns
+   where it stopped. */
+HF__PRIVATE int hf__points_strand_sse(const float *p, const float *hw,
+                                      float ws, float *o, int P, int nt)
+{
+    const __m128 xyz = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
+    int j;
+    nt = nt && ((uintptr_t)o & 15u) == 0;
+    for (j = 0; j + 1 < P; ++j) {
+        const __m128 v = _mm_or_ps(_mm_and_ps(_mm_loadu_ps(p + 3 * j), xyz),
+                                   _mm_set_ps(hw[j] * ws, 0.0f, 0.0f, 0.0f));
+        if (nt)
+            _mm_stream_ps(o + 4 * j, v);
+        else
+            _mm_storeu_ps(o + 4 * j, v);
+    }
+    return j;
+}
+#endif
+
+#if HF__AVX2
+/* Two points a vector: eight floats from point j (x0 .. y2) spread to
+   x0 y0 z0 . x1 y1 z1 ., the widths blended in. */
+HF__TARGET_AVX2 HF__PRIVATE int
+hf__points_strand_avx2(const float *p, const float *hw, float ws, float *o,
+                       int P, int nt)
+{
+    const __m256i spread = _mm256_setr_epi32(0, 1, 2, 0, 3, 4, 5, 0);
+    const __m256 W = _mm256_set1_ps(ws);
+    int j;
+    nt = nt && ((uintptr_t)o & 31u) == 0;
+    for (j = 0; 3 * j + 8 <= 3 * P; j += 2) {
+        const __m256 v =
+            _mm256_permutevar8x32_ps(_mm256_loadu_ps(p + 3 * j), spread);
+        const __m256 w = _mm256_mul_ps(
+            _mm256_setr_ps(0.0f, 0.0f, 0.0f, hw[j], 0.0f, 0.0f, 0.0f,
+                           hw[j + 1]),
+            W);
+        const __m256 q = _mm256_blend_ps(v, w, 0x88);
+        if (nt)
+            _mm256_stream_ps(o + 4 * j, q);
+        else
+            _mm256_storeu_ps(o + 4 * j, q);
+    }
+    return j;
+}
+#endif
+
 HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
                                  int count, const hf_ribbon_params *view,
                                  float *out4)
@@ -7732,26 +8017,38 @@ HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
     float hw[HF_MAX_POINTS];
     hf_ribbon_params prm;
     const hf_ribbon_params *params = &prm;
-    int s, j, P;
+    int s, P, level, nt;
     hf_result r = hf__ribbon_check(strands, first, count, view, &prm);
     if (r != HF_OK) return r;
     if (!out4) return HF_ERROR_NULL_POINTER;
     P = params->points_per_strand;
+    level = hf_simd_resolve(params->simd);
+    nt = params->nontemporal != 0;
     hf__half_widths(params, hw);
     for (s = first; s < first + count; ++s) {
         const float *p = strands->points + (size_t)s * (size_t)P * 3u;
         float *o = out4 + (size_t)(s - params->out_first) * (size_t)P * 4u;
-        const float wscale = hf__points_finite(p, 3 * P)
-                                 ? hf__strand_width(strands, s) : 0.0f;
-        if (!hf__points_finite(p, 3 * P))
+        float wscale = 0.0f;
+        int j = 0;
+        if (hf__points_finite(p, 3 * P))
+            wscale = hf__strand_width(strands, s);
+        else
             p = hf__zero_points; /* collapsed, as hf_ribbons */
-        for (j = 0; j < P; ++j) {
-            o[4 * j] = p[3 * j];
-            o[4 * j + 1] = p[3 * j + 1];
-            o[4 * j + 2] = p[3 * j + 2];
-            o[4 * j + 3] = hw[j] * wscale;
-        }
+#if HF__AVX2
+        if (level >= HF_SIMD_AVX2)
+            j = hf__points_strand_avx2(p, hw, wscale, o, P, nt);
+#endif
+#if HF__SSE
+        if (level >= HF_SIMD_SSE2 && j == 0)
+            j = hf__points_strand_sse(p, hw, wscale, o, P, nt);
+#endif
+        hf__points_strand_ref(p, hw, wscale, o, j, P);
     }
+#if HF__SSE
+    if (nt) _mm_sfence(); /* streamed stores visible before we return */
+#endif
+    (void)level; /* HF_NO_SIMD */
+    (void)nt;
     return HF_OK;
 }
 
@@ -8472,7 +8769,7 @@ struct hf_fur {
     int P, vertex_count, base_triangle_count;
     int guide_count, pure_count, lod_count;
     int strand_count, drawn, triangle_count;
-    int lod_sim;
+    int lod_sim, simd;
     float lod, width_scale, lod_threshold, clump;
     hf_rope_params rope[HF_FUR_ROPE_SETS]; /* the parameter sets in use */
     unsigned char *rope_of;                /* per guide: its set */
@@ -9475,6 +9772,7 @@ HFDEF hf_result hf_fur_create(const hf_fur_desc *desc, hf_fur **out_fur,
     f->vertex_count = desc->mesh.vertex_count;
     f->base_triangle_count = desc->mesh.triangle_count;
     f->clump = b.desc.clump;
+    f->simd = b.desc.simd;
     f->lod_threshold = b.desc.lod_simulate_threshold;
     f->rope[0] = b.rope;
 
@@ -10152,7 +10450,7 @@ HFDEF hf_result hf_fur_interpolate_guides(hf_fur *f, int first, int count)
                         0.0f,
                         f->guide_points +
                             (size_t)f->pure_count * (size_t)f->P * 3u,
-                        0);
+                        0, hf_simd_resolve(f->simd));
     return HF_OK;
 }
 
@@ -10163,7 +10461,7 @@ HFDEF hf_result hf_fur_interpolate(hf_fur *f, int first, int count)
         return HF_ERROR_BAD_RANGE;
     hf__interpolate_run(f->guide_points, f->bindings, first, count, f->P,
                         f->leader || f->strand_clump ? 0.0f : f->clump,
-                        f->strand_points, 0);
+                        f->strand_points, 0, hf_simd_resolve(f->simd));
     if (f->leader || f->strand_clump) hf__fur_clump_pass(f, first, count);
     if (f->offsets) hf__groom_offsets(f, first, count);
     return HF_OK;
@@ -10273,6 +10571,15 @@ HFDEF hf_result hf_fur_set_mode(hf_fur *f, int first, int count, int mode)
     if (!f->lod_sim && end > f->pure_count)
         end = first > f->pure_count ? first : f->pure_count;
     return hf_ropes_set_mode(f->ropes, first, end - first, mode);
+}
+
+HFDEF hf_result hf_fur_set_simd(hf_fur *f, int level)
+{
+    if (!f) return HF_ERROR_NULL_POINTER;
+    if (level < HF_SIMD_AUTO || level > HF_SIMD_AVX512)
+        return HF_ERROR_BAD_PARAMETER;
+    f->simd = level;
+    return HF_OK;
 }
 
 HFDEF hf_result hf_fur_reset(hf_fur *f)

@@ -5049,10 +5049,15 @@ static void test_interp_linear_in_barycentrics(void)
 static void test_interp_simd_matches_scalar_reference(void)
 {
     /* The documented arithmetic, one float at a time, in the library's
-       order; the SSE path must give the same bytes. P = 13..16 puts 3, 6, 9
-       and 0 floats past the last group of 12, so every tail runs; clump 0
-       skips the clump term. make test also builds with HF_NO_SIMD. */
-    enum { QM = 16, G = 5, N = 40 };
+       order; every SIMD level (those this CPU lacks resolve lower) must
+       give the same bytes. The point counts put every remainder past the
+       groups of 12 (SSE), 24 (AVX2) and 48 (AVX-512) floats, so every tail
+       runs; clump 0 skips the clump term. make test also builds with
+       HF_NO_SIMD. */
+    enum { QM = 40, G = 5, N = 40 };
+    static const int qs[] = {2, 3, 5, 8, 13, 14, 15, 16, 17, 19, 21, 24,
+                             32, 33, 40};
+    int qi, level;
     float g[G * QM * 3], out[N * QM * 3], ref[N * QM * 3];
     hf_strand_binding b[N];
     hf_interp_params ip;
@@ -5068,11 +5073,14 @@ static void test_interp_simd_matches_scalar_reference(void)
         b[s].weight[2] = (1.0f - a) - c;
         b[s].length_scale = 0.5f + hf_rng_float(&r);
     }
-    for (Q = 13; Q <= QM; ++Q)
-        for (cl = 0; cl < 2; ++cl) {
+    for (qi = 0; qi < (int)(sizeof qs / sizeof qs[0]); ++qi)
+        for (cl = 0; cl < 2 * 5; ++cl) {
+            Q = qs[qi];
+            level = cl / 2; /* 0 (auto), scalar, SSE2, AVX2, AVX-512 */
             memset(&ip, 0, sizeof ip);
             ip.points_per_strand = Q;
-            ip.clump = cl ? 0.35f : 0.0f;
+            ip.simd = level;
+            ip.clump = cl % 2 ? 0.35f : 0.0f;
             memset(out, 0, sizeof out);
             memset(ref, 0, sizeof ref);
             CHECK_EQ_INT(hf_interpolate(g, G, b, 0, N, &ip, out), HF_OK);
@@ -5706,6 +5714,57 @@ static void test_format_encoders(void)
     CHECK_EQ_INT(hf__encode1(-3.0f, HF_FORMAT_SNORM8), 0x81);
     CHECK_EQ_INT(hf__encode1(1.0f, HF_FORMAT_UNORM16), 0xffff);
     CHECK_EQ_INT(hf__encode1(0.5f, HF_FORMAT_UNORM8), 128); /* 127.5: even */
+}
+
+/* GPU points at every SIMD level and with streaming stores, into aligned
+   and unaligned buffers: the same bytes as the documented formula, every
+   strand length (the AVX2 and SSE loops leave different tails), a NaN
+   strand collapsed, per-strand widths. */
+static void test_points_every_level(void)
+{
+    enum { N = 9, QM = 21 };
+    static float pts[N * QM * 3], wid[N];
+    static float buf[N * QM * 4 + 16], ref[N * QM * 4];
+    hf_ribbon_strands st;
+    hf_ribbon_params rp;
+    hf_rng r;
+    int i, s, j, Q, level, nt, shift;
+    hf_rng_seed(&r, 5u, 1u);
+    for (i = 0; i < N * QM * 3; ++i) pts[i] = hf_rng_float(&r) - 0.5f;
+    for (s = 0; s < N; ++s) wid[s] = 0.5f + hf_rng_float(&r);
+    for (Q = 2; Q <= QM; ++Q) {
+        pts[4 * Q * 3 + 1] = (float)NAN; /* strand 4 */
+        memset(&st, 0, sizeof st);
+        st.points = pts;
+        st.width = wid;
+        memset(&rp, 0, sizeof rp);
+        rp.points_per_strand = Q;
+        rp.root_width = 0.004f;
+        rp.tip_width = 0.001f;
+        /* the scalar reference: xyz, the half width times the strand's,
+           the NaN strand at the origin with no width */
+        rp.simd = HF_SIMD_SCALAR;
+        CHECK_EQ_INT(hf_ribbon_points(&st, 0, N, &rp, ref), HF_OK);
+        for (s = 0; s < N; ++s)
+            for (j = 0; j < Q; ++j) {
+                const float *q = ref + (s * Q + j) * 4;
+                for (i = 0; i < 3; ++i)
+                    CHECK(q[i] == (s == 4 ? 0.0f : pts[(s * Q + j) * 3 + i]));
+                CHECK(s == 4 ? q[3] == 0.0f
+                             : fabs(q[3] / wid[s] - ref[j * 4 + 3] / wid[0]) < 1e-7);
+            }
+        for (level = 0; level <= HF_SIMD_AVX512; ++level)
+            for (nt = 0; nt < 2; ++nt)
+                for (shift = 0; shift < 2; ++shift) {
+                    float *o = buf + 4 * shift + (((uintptr_t)buf & 31u) ? 4 : 0) % 8;
+                    memset(buf, 0xab, sizeof buf);
+                    rp.simd = level;
+                    rp.nontemporal = nt;
+                    CHECK_EQ_INT(hf_ribbon_points(&st, 0, N, &rp, o), HF_OK);
+                    CHECK(memcmp(o, ref, sizeof(float) * 4u * N * (size_t)Q) == 0);
+                }
+        pts[4 * Q * 3 + 1] = 0.25f;
+    }
 }
 
 static void test_ribbons_compact_formats(void)
@@ -8912,6 +8971,7 @@ int main(void)
     RUN(test_ribbons_leading_tangent);
     RUN(test_ribbons_sse_matches_reference);
     RUN(test_format_encoders);
+    RUN(test_points_every_level);
     RUN(test_ribbons_compact_formats);
     RUN(test_ribbon_indices);
     RUN(test_ribbon_winding_faces_camera);
