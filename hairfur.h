@@ -48,7 +48,7 @@
            hf_fur_set_transform, hf_fur_simulate, hf_fur_interpolate_guides,
            hf_fur_interpolate, hf_fur_ribbons, hf_fur_points,
            hf_fur_max_stretch, hf_fur_reset, hf_fur_set_rope_params,
-           hf_fur_set_rope_params_range, hf_fur_set_mode, hf_fur_set_simd
+           hf_fur_set_rope_params_range, hf_fur_set_mode, hf_fur_set_kernels
        Drawing (section 8): hf_ribbon_index_count, hf_ribbon_indices,
            hf_ribbon_chunk_strands, hf_ribbon_indices16 (16-bit chunks),
            hf_format_bytes; over your own strands: hf_ribbons,
@@ -1218,6 +1218,11 @@ typedef struct hf_interp_params {
        range (first < out_first is HF_ERROR_BAD_RANGE). */
     int out_first;
     int simd; /* hf_simd_level; 0 = the best the CPU runs (same bytes) */
+    /* 1: streaming (non-temporal) stores, which skip the cache: for
+       outputs far larger than it, so they do not push the guides out
+       (measured: 1.5-2x faster for 100,000 strands); 0: ordinary stores.
+       Same bytes either way. */
+    int nontemporal;
 } hf_interp_params;
 
 /* Interpolate strands [first, first + count) from guide points. Point j of
@@ -1685,7 +1690,10 @@ typedef struct hf_fur_desc {
                                alone, no clumping) */
     int simd;               /* hf_simd_level of the interpolation; 0 = the
                                best the CPU runs (every level gives the
-                               same bytes); hf_fur_set_simd changes it */
+                               same bytes); hf_fur_set_kernels changes it */
+    int nontemporal;        /* 1: strands interpolated with streaming
+                               stores (hf_interp_params.nontemporal), for
+                               furs whose strands outgrow the cache */
     float lod_simulate_threshold; /* 0 = 0.5: LOD guides simulated at
                                      lod >= this */
     const hf_rope_params *rope_params; /* NULL = hf_rope_params_init */
@@ -1865,12 +1873,13 @@ HFDEF hf_result hf_fur_set_rope_params_range(hf_fur *fur, int first,
    animated then. Errors:
    HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE, HF_ERROR_BAD_PARAMETER. */
 HFDEF hf_result hf_fur_set_mode(hf_fur *fur, int first, int count, int mode);
-/* The SIMD level of the fur's interpolation (hf_simd_level; 0 = the best
-   the CPU runs), for tests and benchmarks: every level gives the same
-   bytes. Ribbons and points take theirs from hf_ribbon_params.simd.
-   Errors: HF_ERROR_NULL_POINTER, HF_ERROR_BAD_PARAMETER (not an
-   hf_simd_level). */
-HFDEF hf_result hf_fur_set_simd(hf_fur *fur, int level);
+/* The kernels of the fur's interpolation: the SIMD level (hf_simd_level;
+   0 = the best the CPU runs) and streaming stores (nontemporal 1, as
+   hf_fur_desc.nontemporal). Every choice gives the same bytes; for tests,
+   benchmarks and tuning. Ribbons and points take theirs from
+   hf_ribbon_params. Errors: HF_ERROR_NULL_POINTER, HF_ERROR_BAD_PARAMETER
+   (not an hf_simd_level, or nontemporal not 0 or 1). */
+HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 
 #ifdef __cplusplus
 }
@@ -6603,7 +6612,7 @@ HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
 HF__INLINE void hf__interp_sse(const float *g0, const float *g1, const float *g2,
                             const float *gn, const float *ctab, float *o,
                             int i, __m128 W0, __m128 W1, __m128 W2,
-                            __m128 SC, __m128 R)
+                            __m128 SC, __m128 R, int nt)
 {
     __m128 p = _mm_add_ps(_mm_add_ps(_mm_mul_ps(W0, _mm_loadu_ps(g0 + i)),
                                      _mm_mul_ps(W1, _mm_loadu_ps(g1 + i))),
@@ -6612,7 +6621,10 @@ HF__INLINE void hf__interp_sse(const float *g0, const float *g1, const float *g2
     if (gn) /* clumping: NULL when clump is 0, two loads fewer */
         p = _mm_add_ps(p, _mm_mul_ps(_mm_loadu_ps(ctab + i),
                                      _mm_sub_ps(_mm_loadu_ps(gn + i), p)));
-    _mm_storeu_ps(o + i, p);
+    if (nt)
+        _mm_stream_ps(o + i, p);
+    else
+        _mm_storeu_ps(o + i, p);
 }
 #endif
 
@@ -6639,7 +6651,7 @@ HF__PRIVATE int hf__interp_strand_sse(const float *g0, const float *g1,
                                       const float *g2, const float *gn,
                                       const float *ctab, float *o, int P,
                                       float w0, float w1, float w2, float sc,
-                                      const float *rb)
+                                      const float *rb, int nt)
 {
     const __m128 W0 = _mm_set1_ps(w0), W1 = _mm_set1_ps(w1);
     const __m128 W2 = _mm_set1_ps(w2), SC = _mm_set1_ps(sc);
@@ -6652,177 +6664,316 @@ HF__PRIVATE int hf__interp_strand_sse(const float *g0, const float *g1,
     int i = 0;
     /* three vectors a turn, so each gets its phase without a test */
     for (; i + 12 <= 3 * P; i += 12) {
-        hf__interp_sse(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0);
-        hf__interp_sse(g0, g1, g2, gn, ctab, o, i + 4, W0, W1, W2, SC, R1);
-        hf__interp_sse(g0, g1, g2, gn, ctab, o, i + 8, W0, W1, W2, SC, R2);
+        hf__interp_sse(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0, nt);
+        hf__interp_sse(g0, g1, g2, gn, ctab, o, i + 4, W0, W1, W2, SC, R1, nt);
+        hf__interp_sse(g0, g1, g2, gn, ctab, o, i + 8, W0, W1, W2, SC, R2, nt);
     }
     if (i + 4 <= 3 * P) {
-        hf__interp_sse(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0);
+        hf__interp_sse(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0, nt);
         i += 4;
     }
     if (i + 4 <= 3 * P) {
-        hf__interp_sse(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R1);
+        hf__interp_sse(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R1, nt);
         i += 4;
     }
     return i;
 }
 #endif
 
-#if HF__AVX2
-/* hf__interp_strand_sse, eight floats a vector: the same operations in
-   the same order (no FMA), so the same bytes. (1 - sc) root repeats every
-   3 floats, so the vectors at floats 0, 8, 16 have phases 0, 2, 1. */
-HF__TARGET_AVX2 HF__INLINE void
-hf__interp_avx2(const float *g0, const float *g1, const float *g2,
-                const float *gn, const float *ctab, float *o, int i,
-                __m256 W0, __m256 W1, __m256 W2, __m256 SC, __m256 R)
+/* A range of strands to interpolate, and one strand's inputs from its
+   binding. */
+typedef struct hf__irun {
+    const float *guides;
+    const hf_strand_binding *bindings;
+    const float *ctab; /* clump weight of each float of a strand */
+    float *out;        /* strand s at out + (s - out_first) * 3 P */
+    int P, out_first, clump;
+    int nt; /* streaming stores (where a strand's row is 16-byte aligned) */
+} hf__irun;
+
+typedef struct hf__istrand {
+    const float *g0, *g1, *g2, *gn; /* gn: NULL without clumping */
+    float w0, w1, w2, sc, rb[6];     /* rb: (1 - sc) root, twice */
+    float *o;
+} hf__istrand;
+
+HF__INLINE void hf__interp_setup(const hf__irun *run, int s, hf__istrand *t)
 {
-    __m256 p = _mm256_add_ps(
-        _mm256_add_ps(_mm256_mul_ps(W0, _mm256_loadu_ps(g0 + i)),
-                      _mm256_mul_ps(W1, _mm256_loadu_ps(g1 + i))),
-        _mm256_mul_ps(W2, _mm256_loadu_ps(g2 + i)));
-    p = _mm256_add_ps(_mm256_mul_ps(SC, p), R);
-    if (gn)
-        p = _mm256_add_ps(p, _mm256_mul_ps(_mm256_loadu_ps(ctab + i),
-                                           _mm256_sub_ps(_mm256_loadu_ps(gn + i), p)));
-    _mm256_storeu_ps(o + i, p);
+    const hf_strand_binding *b = &run->bindings[s];
+    const size_t row = (size_t)run->P * 3u;
+    t->g0 = run->guides + (size_t)b->guide[0] * row;
+    t->g1 = run->guides + (size_t)b->guide[1] * row;
+    t->g2 = run->guides + (size_t)b->guide[2] * row;
+    t->w0 = b->weight[0];
+    t->w1 = b->weight[1];
+    t->w2 = b->weight[2];
+    t->sc = b->length_scale;
+    t->o = run->out + (size_t)(s - run->out_first) * row;
+    t->gn = NULL;
+    if (run->clump) {
+        /* the guide of largest weight is the one the strand clumps to
+           (the first of equals), picked without a branch: weights are
+           random, so a branch would miss half the time */
+        const int n0 = (t->w0 >= t->w1) & (t->w0 >= t->w2),
+                  n1 = !n0 & (t->w1 >= t->w2);
+        t->gn = run->guides + (size_t)b->guide[2 - 2 * n0 - n1] * row;
+    }
 }
 
-HF__TARGET_AVX2 HF__PRIVATE int
-hf__interp_strand_avx2(const float *g0, const float *g1, const float *g2,
-                       const float *gn, const float *ctab, float *o, int P,
-                       float w0, float w1, float w2, float sc, const float *rb)
+/* p' = sc p + (1 - sc) root keeps the root and scales the offsets; with
+   sc = 1 it is p exactly, so a strand on a guide equals it */
+HF__INLINE void hf__interp_root(hf__istrand *t)
 {
-    const __m256 W0 = _mm256_set1_ps(w0), W1 = _mm256_set1_ps(w1);
-    const __m256 W2 = _mm256_set1_ps(w2), SC = _mm256_set1_ps(sc);
-    const float a = rb[0], b = rb[1], c = rb[2];
-    const __m256 R0 = _mm256_setr_ps(a, b, c, a, b, c, a, b);
-    const __m256 R1 = _mm256_setr_ps(c, a, b, c, a, b, c, a);
-    const __m256 R2 = _mm256_setr_ps(b, c, a, b, c, a, b, c);
-    int i = 0;
-    for (; i + 24 <= 3 * P; i += 24) {
-        hf__interp_avx2(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0);
-        hf__interp_avx2(g0, g1, g2, gn, ctab, o, i + 8, W0, W1, W2, SC, R1);
-        hf__interp_avx2(g0, g1, g2, gn, ctab, o, i + 16, W0, W1, W2, SC, R2);
+    int k;
+    for (k = 0; k < 3; ++k) {
+        t->rb[k] = (1.0f - t->sc) *
+                   (t->w0 * t->g0[k] + t->w1 * t->g1[k] + t->w2 * t->g2[k]);
+        t->rb[k + 3] = t->rb[k];
     }
-    if (i + 8 <= 3 * P) {
-        hf__interp_avx2(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0);
-        i += 8;
+}
+
+HF__PRIVATE void hf__interp_range_ref(const hf__irun *run, int first,
+                                      int count)
+{
+    hf__istrand t;
+    int s;
+    for (s = first; s < first + count; ++s) {
+        hf__interp_setup(run, s, &t);
+        hf__interp_root(&t);
+        hf__interp_strand_ref(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, 0,
+                              run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
     }
-    if (i + 8 <= 3 * P) {
-        hf__interp_avx2(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R1);
-        i += 8;
+}
+
+#if HF__SSE
+HF__PRIVATE void hf__interp_range_sse(const hf__irun *run, int first,
+                                      int count)
+{
+    hf__istrand t;
+    int s, i;
+    for (s = first; s < first + count; ++s) {
+        hf__interp_setup(run, s, &t);
+        hf__interp_root(&t);
+        i = hf__interp_strand_sse(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o,
+                                  run->P, t.w0, t.w1, t.w2, t.sc, t.rb,
+                                  run->nt && ((uintptr_t)t.o & 15u) == 0);
+        hf__interp_strand_ref(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, i,
+                              run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
     }
-    return i;
+}
+#endif
+
+/* The last floats of a strand, from float i, in scalar code compiled for
+   the baseline target: inlined into an AVX-512 function, clang would fuse
+   its a * b + c into FMAs (which AVX-512F has) and change the bytes. */
+HF__NOINLINE HF__PRIVATE void hf__interp_tail(const hf__irun *run,
+                                             hf__istrand *t, int i)
+{
+    hf__interp_root(t);
+    hf__interp_strand_ref(t->g0, t->g1, t->g2, t->gn, run->ctab, t->o, i,
+                          run->P, t->w0, t->w1, t->w2, t->sc, t->rb);
+}
+
+#if HF__AVX2
+/* hf__interp_strand_sse, eight floats a vector: the same operations in
+   the same order (no FMA), so the same bytes. */
+HF__TARGET_AVX2 HF__INLINE void
+hf__interp_avx2(const hf__istrand *t, const float *ctab, int i, __m256 W0,
+                __m256 W1, __m256 W2, __m256 SC, __m256 R, int nt)
+{
+    __m256 p = _mm256_add_ps(
+        _mm256_add_ps(_mm256_mul_ps(W0, _mm256_loadu_ps(t->g0 + i)),
+                      _mm256_mul_ps(W1, _mm256_loadu_ps(t->g1 + i))),
+        _mm256_mul_ps(W2, _mm256_loadu_ps(t->g2 + i)));
+    p = _mm256_add_ps(_mm256_mul_ps(SC, p), R);
+    if (t->gn)
+        p = _mm256_add_ps(
+            p, _mm256_mul_ps(_mm256_loadu_ps(ctab + i),
+                             _mm256_sub_ps(_mm256_loadu_ps(t->gn + i), p)));
+    if (!nt) {
+        _mm256_storeu_ps(t->o + i, p);
+    } else { /* 16-byte aligned: two streaming halves */
+        _mm_stream_ps(t->o + i, _mm256_castps256_ps128(p));
+        _mm_stream_ps(t->o + i + 4, _mm256_extractf128_ps(p, 1));
+    }
+}
+
+/* The first point of a guide, xyz repeated along 8 lanes from lane k%3 */
+HF__TARGET_AVX2 HF__INLINE __m256 hf__xyz8(const float *g, __m256i x)
+{
+    const __m128 v = _mm_loadu_ps(g);
+    return _mm256_permutevar8x32_ps(
+        _mm256_insertf128_ps(_mm256_castps128_ps256(v), v, 1), x);
+}
+
+/* The strands of a range in one target function (no call per strand).
+   (1 - sc) root repeats every 3 floats: the vectors at floats 0, 8, 16
+   have phases 0, 2, 1, built from the first point of each guide by lane
+   permutes, in the scalar root's order. */
+HF__TARGET_AVX2 HF__PRIVATE void
+hf__interp_range_avx2(const hf__irun *run, int first, int count)
+{
+    const __m256i x0 = _mm256_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1);
+    const __m256i x2 = _mm256_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0);
+    const __m256i x1 = _mm256_setr_epi32(1, 2, 0, 1, 2, 0, 1, 2);
+    const int n = 3 * run->P;
+    hf__istrand t;
+    int s, i;
+    for (s = first; s < first + count; ++s) {
+        __m256 W0, W1, W2, SC, R0, R1, R2;
+        int nt;
+        hf__interp_setup(run, s, &t);
+        nt = run->nt && ((uintptr_t)t.o & 15u) == 0;
+        W0 = _mm256_set1_ps(t.w0);
+        W1 = _mm256_set1_ps(t.w1);
+        W2 = _mm256_set1_ps(t.w2);
+        SC = _mm256_set1_ps(t.sc);
+        R0 = _mm256_add_ps(
+            _mm256_add_ps(_mm256_mul_ps(W0, hf__xyz8(t.g0, x0)),
+                          _mm256_mul_ps(W1, hf__xyz8(t.g1, x0))),
+            _mm256_mul_ps(W2, hf__xyz8(t.g2, x0)));
+        R0 = _mm256_mul_ps(_mm256_set1_ps(1.0f - t.sc), R0);
+        R1 = _mm256_permutevar8x32_ps(R0, x2);
+        R2 = _mm256_permutevar8x32_ps(R0, x1);
+        for (i = 0; i + 24 <= n; i += 24) {
+            hf__interp_avx2(&t, run->ctab, i, W0, W1, W2, SC, R0, nt);
+            hf__interp_avx2(&t, run->ctab, i + 8, W0, W1, W2, SC, R1, nt);
+            hf__interp_avx2(&t, run->ctab, i + 16, W0, W1, W2, SC, R2, nt);
+        }
+        if (i + 8 <= n) {
+            hf__interp_avx2(&t, run->ctab, i, W0, W1, W2, SC, R0, nt);
+            i += 8;
+        }
+        if (i + 8 <= n) {
+            hf__interp_avx2(&t, run->ctab, i, W0, W1, W2, SC, R1, nt);
+            i += 8;
+        }
+        if (i < n) hf__interp_tail(run, &t, i);
+    }
 }
 #endif
 
 #if HF__AVX512
 /* Sixteen floats a vector: phases 0, 1, 2 at floats 0, 16, 32. */
 HF__TARGET_AVX512 HF__INLINE void
-hf__interp_avx512(const float *g0, const float *g1, const float *g2,
-                  const float *gn, const float *ctab, float *o, int i,
-                  __m512 W0, __m512 W1, __m512 W2, __m512 SC, __m512 R)
+hf__interp_avx512(const hf__istrand *t, const float *ctab, int i, __m512 W0,
+                  __m512 W1, __m512 W2, __m512 SC, __m512 R, int nt)
 {
     __m512 p = _mm512_add_ps(
-        _mm512_add_ps(_mm512_mul_ps(W0, _mm512_loadu_ps(g0 + i)),
-                      _mm512_mul_ps(W1, _mm512_loadu_ps(g1 + i))),
-        _mm512_mul_ps(W2, _mm512_loadu_ps(g2 + i)));
+        _mm512_add_ps(_mm512_mul_ps(W0, _mm512_loadu_ps(t->g0 + i)),
+                      _mm512_mul_ps(W1, _mm512_loadu_ps(t->g1 + i))),
+        _mm512_mul_ps(W2, _mm512_loadu_ps(t->g2 + i)));
     p = _mm512_add_ps(_mm512_mul_ps(SC, p), R);
-    if (gn)
-        p = _mm512_add_ps(p, _mm512_mul_ps(_mm512_loadu_ps(ctab + i),
-                                           _mm512_sub_ps(_mm512_loadu_ps(gn + i), p)));
-    _mm512_storeu_ps(o + i, p);
+    if (t->gn)
+        p = _mm512_add_ps(
+            p, _mm512_mul_ps(_mm512_loadu_ps(ctab + i),
+                             _mm512_sub_ps(_mm512_loadu_ps(t->gn + i), p)));
+    if (!nt) {
+        _mm512_storeu_ps(t->o + i, p);
+    } else { /* 16-byte aligned: four streaming quarters */
+        _mm_stream_ps(t->o + i, _mm512_maskz_extractf32x4_ps(0xf, p, 0));
+        _mm_stream_ps(t->o + i + 4, _mm512_maskz_extractf32x4_ps(0xf, p, 1));
+        _mm_stream_ps(t->o + i + 8, _mm512_maskz_extractf32x4_ps(0xf, p, 2));
+        _mm_stream_ps(t->o + i + 12, _mm512_maskz_extractf32x4_ps(0xf, p, 3));
+    }
 }
 
-HF__TARGET_AVX512 HF__PRIVATE int
-hf__interp_strand_avx512(const float *g0, const float *g1, const float *g2,
-                         const float *gn, const float *ctab, float *o, int P,
-                         float w0, float w1, float w2, float sc,
-                         const float *rb)
+HF__TARGET_AVX512 HF__INLINE __m512 hf__xyz16(const float *g, __m512i x)
 {
-    const __m512 W0 = _mm512_set1_ps(w0), W1 = _mm512_set1_ps(w1);
-    const __m512 W2 = _mm512_set1_ps(w2), SC = _mm512_set1_ps(sc);
-    const float a = rb[0], b = rb[1], c = rb[2];
-    const __m512 R0 = _mm512_setr_ps(a, b, c, a, b, c, a, b, c, a, b, c, a, b, c, a);
-    const __m512 R1 = _mm512_setr_ps(b, c, a, b, c, a, b, c, a, b, c, a, b, c, a, b);
-    const __m512 R2 = _mm512_setr_ps(c, a, b, c, a, b, c, a, b, c, a, b, c, a, b, c);
-    int i = 0;
-    for (; i + 48 <= 3 * P; i += 48) {
-        hf__interp_avx512(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0);
-        hf__interp_avx512(g0, g1, g2, gn, ctab, o, i + 16, W0, W1, W2, SC, R1);
-        hf__interp_avx512(g0, g1, g2, gn, ctab, o, i + 32, W0, W1, W2, SC, R2);
+    /* the masked forms: gcc's plain ones leave lanes "undefined", which
+       its C++ front end warns about */
+    return _mm512_maskz_permutexvar_ps(0xffff, x, _mm512_maskz_loadu_ps(7, g));
+}
+
+HF__TARGET_AVX512 HF__PRIVATE void
+hf__interp_range_avx512(const hf__irun *run, int first, int count)
+{
+    const __m512i x0 = _mm512_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,
+                                         0, 1, 2, 0);
+    const __m512i x1 = _mm512_setr_epi32(1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0,
+                                         1, 2, 0, 1);
+    const __m512i x2 = _mm512_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1,
+                                         2, 0, 1, 2);
+    const int n = 3 * run->P;
+    hf__istrand t;
+    int s, i;
+    for (s = first; s < first + count; ++s) {
+        __m512 W0, W1, W2, SC, R0, R1, R2;
+        int nt;
+        hf__interp_setup(run, s, &t);
+        nt = run->nt && ((uintptr_t)t.o & 15u) == 0;
+        W0 = _mm512_set1_ps(t.w0);
+        W1 = _mm512_set1_ps(t.w1);
+        W2 = _mm512_set1_ps(t.w2);
+        SC = _mm512_set1_ps(t.sc);
+        R0 = _mm512_add_ps(
+            _mm512_add_ps(_mm512_mul_ps(W0, hf__xyz16(t.g0, x0)),
+                          _mm512_mul_ps(W1, hf__xyz16(t.g1, x0))),
+            _mm512_mul_ps(W2, hf__xyz16(t.g2, x0)));
+        R0 = _mm512_mul_ps(_mm512_set1_ps(1.0f - t.sc), R0);
+        R1 = _mm512_maskz_permutexvar_ps(0xffff, x1, R0);
+        R2 = _mm512_maskz_permutexvar_ps(0xffff, x2, R0);
+        for (i = 0; i + 48 <= n; i += 48) {
+            hf__interp_avx512(&t, run->ctab, i, W0, W1, W2, SC, R0, nt);
+            hf__interp_avx512(&t, run->ctab, i + 16, W0, W1, W2, SC, R1, nt);
+            hf__interp_avx512(&t, run->ctab, i + 32, W0, W1, W2, SC, R2, nt);
+        }
+        if (i + 16 <= n) {
+            hf__interp_avx512(&t, run->ctab, i, W0, W1, W2, SC, R0, nt);
+            i += 16;
+        }
+        if (i + 16 <= n) {
+            hf__interp_avx512(&t, run->ctab, i, W0, W1, W2, SC, R1, nt);
+            i += 16;
+        }
+        if (i < n) hf__interp_tail(run, &t, i);
     }
-    if (i + 16 <= 3 * P) {
-        hf__interp_avx512(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0);
-        i += 16;
-    }
-    if (i + 16 <= 3 * P) {
-        hf__interp_avx512(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R1);
-        i += 16;
-    }
-    return i;
 }
 #endif
 
 /* Strands [first, first + count) from inputs already checked: the loop of
-   hf_interpolate. */
+   hf_interpolate, at SIMD level `level`. */
 HF__PRIVATE void hf__interpolate_run(const float *guide_points,
                                      const hf_strand_binding *bindings,
                                      int first, int count, int P, float clump,
                                      float *out_points, int out_first,
-                                     int level)
+                                     int level, int nt)
 {
     float ctab[3 * HF_MAX_POINTS];
-    int s, i, k;
+    hf__irun run;
+    int i;
     /* clump weight of float i of a strand: clump * (i / 3) / (P - 1) */
     for (i = 0; i < 3 * P; ++i)
         ctab[i] = clump / (float)(P - 1) * (float)(i / 3);
-    for (s = first; s < first + count; ++s) {
-        const hf_strand_binding *b = &bindings[s];
-        const float *g0 = guide_points + (size_t)b->guide[0] * (size_t)P * 3u;
-        const float *g1 = guide_points + (size_t)b->guide[1] * (size_t)P * 3u;
-        const float *g2 = guide_points + (size_t)b->guide[2] * (size_t)P * 3u;
-        const float w0 = b->weight[0], w1 = b->weight[1], w2 = b->weight[2];
-        const float sc = b->length_scale;
-        /* the guide of largest weight is the one the strand clumps to (the
-           first of equals), picked without a branch: weights are random,
-           so a branch would miss half the time */
-        const int n0 = (w0 >= w1) & (w0 >= w2), n1 = !n0 & (w1 >= w2);
-        const float *gn =
-            clump == 0.0f ? NULL
-                          : guide_points + (size_t)b->guide[2 - 2 * n0 - n1] *
-                                               (size_t)P * 3u;
-        float *o = out_points + (size_t)(s - out_first) * (size_t)P * 3u;
-        float rb[6];
-        /* p' = sc p + (1 - sc) root keeps the root and scales the offsets;
-           with sc = 1 it is p exactly, so a strand on a guide equals it */
-        for (k = 0; k < 3; ++k) {
-            rb[k] = (1.0f - sc) * (w0 * g0[k] + w1 * g1[k] + w2 * g2[k]);
-            rb[k + 3] = rb[k];
-        }
-        i = 0;
+    run.guides = guide_points;
+    run.bindings = bindings;
+    run.ctab = ctab;
+    run.out = out_points;
+    run.P = P;
+    run.out_first = out_first;
+    run.clump = clump != 0.0f;
+    run.nt = nt;
 #if HF__AVX512
-        if (level >= HF_SIMD_AVX512)
-            i = hf__interp_strand_avx512(g0, g1, g2, gn, ctab, o, P, w0, w1,
-                                         w2, sc, rb);
-        else
+    if (level >= HF_SIMD_AVX512)
+        hf__interp_range_avx512(&run, first, count);
+    else
 #endif
 #if HF__AVX2
-        if (level >= HF_SIMD_AVX2)
-            i = hf__interp_strand_avx2(g0, g1, g2, gn, ctab, o, P, w0, w1,
-                                       w2, sc, rb);
-        else
+    if (level >= HF_SIMD_AVX2)
+        hf__interp_range_avx2(&run, first, count);
+    else
 #endif
 #if HF__SSE
-        if (level >= HF_SIMD_SSE2)
-            i = hf__interp_strand_sse(g0, g1, g2, gn, ctab, o, P, w0, w1, w2,
-                                      sc, rb);
+    if (level >= HF_SIMD_SSE2)
+        hf__interp_range_sse(&run, first, count);
+    else
 #endif
-        hf__interp_strand_ref(g0, g1, g2, gn, ctab, o, i, P, w0, w1, w2, sc,
-                              rb);
-    }
-    (void)level; /* HF_NO_SIMD */
+        hf__interp_range_ref(&run, first, count);
+#if HF__SSE
+    if (nt && level >= HF_SIMD_SSE2)
+        _mm_sfence(); /* streamed stores visible before we return */
+#endif
+    (void)level;
 }
 
 HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
@@ -6865,7 +7016,7 @@ HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
     }
     hf__interpolate_run(guide_points, bindings, first, count, P, clump,
                         out_points, params->out_first,
-                        hf_simd_resolve(params->simd));
+                        hf_simd_resolve(params->simd), params->nontemporal);
     return HF_OK;
 }
 
@@ -7992,7 +8143,7 @@ hf__points_strand_avx2(const float *p, const float *hw, float ws, float *o,
     const __m256i spread = _mm256_setr_epi32(0, 1, 2, 0, 3, 4, 5, 0);
     const __m256 W = _mm256_set1_ps(ws);
     int j;
-    nt = nt && ((uintptr_t)o & 31u) == 0;
+    nt = nt && ((uintptr_t)o & 15u) == 0;
     for (j = 0; 3 * j + 8 <= 3 * P; j += 2) {
         const __m256 v =
             _mm256_permutevar8x32_ps(_mm256_loadu_ps(p + 3 * j), spread);
@@ -8001,10 +8152,12 @@ hf__points_strand_avx2(const float *p, const float *hw, float ws, float *o,
                            hw[j + 1]),
             W);
         const __m256 q = _mm256_blend_ps(v, w, 0x88);
-        if (nt)
-            _mm256_stream_ps(o + 4 * j, q);
-        else
+        if (nt) { /* 16-byte aligned: two streaming halves */
+            _mm_stream_ps(o + 4 * j, _mm256_castps256_ps128(q));
+            _mm_stream_ps(o + 4 * j + 4, _mm256_extractf128_ps(q, 1));
+        } else {
             _mm256_storeu_ps(o + 4 * j, q);
+        }
     }
     return j;
 }
@@ -8769,7 +8922,7 @@ struct hf_fur {
     int P, vertex_count, base_triangle_count;
     int guide_count, pure_count, lod_count;
     int strand_count, drawn, triangle_count;
-    int lod_sim, simd;
+    int lod_sim, simd, nontemporal;
     float lod, width_scale, lod_threshold, clump;
     hf_rope_params rope[HF_FUR_ROPE_SETS]; /* the parameter sets in use */
     unsigned char *rope_of;                /* per guide: its set */
@@ -8979,6 +9132,12 @@ HF__PRIVATE hf_result hf__fur_desc_check(const hf_fur_desc *d, hf_diag *diag)
                         "clump or lod_simulate_threshold outside [0, 1], "
                         "or max_length or tess_factor negative or "
                         "non-finite");
+    if (d->simd < HF_SIMD_AUTO || d->simd > HF_SIMD_AVX512 ||
+        d->nontemporal < 0 || d->nontemporal > 1)
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "simd", -1,
+                        "simd %d is not an hf_simd_level (0..4), or "
+                        "nontemporal %d is not 0 or 1",
+                        d->simd, d->nontemporal);
     if (!hf__finitef(d->strands_per_area) || d->strands_per_area < 0.0f)
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "strands_per_area", -1,
                         "strands_per_area %g is negative or non-finite",
@@ -9773,6 +9932,7 @@ HFDEF hf_result hf_fur_create(const hf_fur_desc *desc, hf_fur **out_fur,
     f->base_triangle_count = desc->mesh.triangle_count;
     f->clump = b.desc.clump;
     f->simd = b.desc.simd;
+    f->nontemporal = b.desc.nontemporal;
     f->lod_threshold = b.desc.lod_simulate_threshold;
     f->rope[0] = b.rope;
 
@@ -10450,7 +10610,7 @@ HFDEF hf_result hf_fur_interpolate_guides(hf_fur *f, int first, int count)
                         0.0f,
                         f->guide_points +
                             (size_t)f->pure_count * (size_t)f->P * 3u,
-                        0, hf_simd_resolve(f->simd));
+                        0, hf_simd_resolve(f->simd), 0);
     return HF_OK;
 }
 
@@ -10461,7 +10621,8 @@ HFDEF hf_result hf_fur_interpolate(hf_fur *f, int first, int count)
         return HF_ERROR_BAD_RANGE;
     hf__interpolate_run(f->guide_points, f->bindings, first, count, f->P,
                         f->leader || f->strand_clump ? 0.0f : f->clump,
-                        f->strand_points, 0, hf_simd_resolve(f->simd));
+                        f->strand_points, 0, hf_simd_resolve(f->simd),
+                        f->nontemporal);
     if (f->leader || f->strand_clump) hf__fur_clump_pass(f, first, count);
     if (f->offsets) hf__groom_offsets(f, first, count);
     return HF_OK;
@@ -10573,12 +10734,14 @@ HFDEF hf_result hf_fur_set_mode(hf_fur *f, int first, int count, int mode)
     return hf_ropes_set_mode(f->ropes, first, end - first, mode);
 }
 
-HFDEF hf_result hf_fur_set_simd(hf_fur *f, int level)
+HFDEF hf_result hf_fur_set_kernels(hf_fur *f, int simd, int nontemporal)
 {
     if (!f) return HF_ERROR_NULL_POINTER;
-    if (level < HF_SIMD_AUTO || level > HF_SIMD_AVX512)
+    if (simd < HF_SIMD_AUTO || simd > HF_SIMD_AVX512 || nontemporal < 0 ||
+        nontemporal > 1)
         return HF_ERROR_BAD_PARAMETER;
-    f->simd = level;
+    f->simd = simd;
+    f->nontemporal = nontemporal;
     return HF_OK;
 }
 

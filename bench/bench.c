@@ -24,6 +24,9 @@
      bench stage=NAME scene=S threads=T ms=... gbps=... limit_gbps=...
            ratio=... [allocs=N]
      bench stage=write_limit method=vector|stream|memset|scalar gbps=...
+   Per SIMD level (scenes M and L, one thread): strands_LEVEL,
+   strands_nt_LEVEL (streaming stores), points_LEVEL and points_nt_LEVEL,
+   LEVEL scalar, sse2, avx2, avx512 up to what the CPU has.
    Scene Mc (M's strands on a coarse head, whose tessellation adds LOD
    guides) at LOD 0.25 measures lod_guides: LOD guides interpolated from
    the pure guides instead of simulated.
@@ -460,6 +463,65 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
     for (k = 0; k < ST_N; ++k) free(t[k]);
 }
 
+/* The stages with SIMD kernels, per level (hf_simd_level), one thread:
+   what each level buys on this CPU, and what streaming stores buy
+   (strands_nt: hf_fur_set_kernels' nontemporal; points_nt:
+   hf_ribbon_params.nontemporal, meant for mapped GPU buffers). Levels the
+   CPU lacks are skipped (they would run as the best it has). */
+static const char *level_name[] = {"auto", "scalar", "sse2", "avx2",
+                                   "avx512"};
+enum { LV_STRANDS, LV_STRANDS_NT, LV_POINTS, LV_POINTS_NT, LV_N };
+
+static void bench_levels(scene *s, int frames)
+{
+    static const char *what[LV_N] = {"strands", "strands_nt", "points",
+                                     "points_nt"};
+    job ji, jp;
+    double *t[LV_N], bytes[LV_N];
+    int f, level, k, best = hf_simd_resolve(HF_SIMD_AUTO);
+    size_t big = (size_t)s->info.strand_count * P * 16u;
+    float *dst = (float *)malloc(big);
+    g_sc = s;
+    g_threads = 1;
+    ji.fn = j_interp;
+    ji.total = s->info.strand_count;
+    jp.fn = j_points;
+    jp.total = s->info.strand_count;
+    bytes[LV_STRANDS] = bytes[LV_STRANDS_NT] =
+        (double)s->info.strand_count * P * 12.0;
+    bytes[LV_POINTS] = bytes[LV_POINTS_NT] =
+        (double)s->info.strand_count * P * 16.0;
+    memset(dst, 1, big);
+    for (k = 0; k < LV_N; ++k)
+        t[k] = (double *)malloc(sizeof(double) * (size_t)frames);
+    for (level = HF_SIMD_SCALAR; level <= best; ++level) {
+        g_view.simd = level;
+        for (f = -5; f < frames; ++f) {
+            scene_pose(s, s->frame++);
+            for (k = 0; k < LV_N; ++k) {
+                const int nt = k == LV_STRANDS_NT || k == LV_POINTS_NT;
+                double t0;
+                check("kernels", hf_fur_set_kernels(s->fur, level, nt));
+                g_view.nontemporal = nt;
+                t0 = now_ms();
+                run_job(k <= LV_STRANDS_NT ? &ji : &jp);
+                if (f >= 0) t[k][f] = now_ms() - t0;
+            }
+        }
+        for (k = 0; k < LV_N; ++k) {
+            char name[32];
+            sprintf(name, "%s_%s", what[k], level_name[level]);
+            report(name, s->name, 1, stats(t[k], frames), bytes[k],
+                   limit_gbps(dst, (size_t)bytes[k], 7), -1);
+        }
+    }
+    check("kernels", hf_fur_set_kernels(s->fur, HF_SIMD_AUTO, 0));
+    g_view.simd = HF_SIMD_AUTO;
+    g_view.nontemporal = 0;
+    for (k = 0; k < LV_N; ++k) free(t[k]);
+    free(dst);
+}
+
 /* LOD guides interpolated instead of simulated: a coarse head whose
    tessellation adds guides (scenes S, M and L are fine enough that it adds
    none), drawn at LOD 0.25, below the default simulate threshold of 0.5. */
@@ -564,8 +626,9 @@ int main(int argc, char **argv)
     if (frames < 3) frames = 3;
     setvbuf(stdout, NULL, _IOLBF, 0);
     printf("hairfur.h %s bench: %d frames after a 10-frame warm-up, %d "
-           "points per strand\n",
-           hf_version_string(), frames, P);
+           "points per strand; SIMD level %s\n",
+           hf_version_string(), frames, P,
+           level_name[hf_simd_resolve(HF_SIMD_AUTO)]);
     pthread_barrier_init(&g_start, NULL, MAX_THREADS);
     pthread_barrier_init(&g_done, NULL, MAX_THREADS);
     for (i = 1; i < MAX_THREADS; ++i)
@@ -585,6 +648,7 @@ int main(int argc, char **argv)
             bench_scene(&sc[i], frames, th, &frame_ms[i][th]);
         printf("  frame speed-up with 2 threads: %.2f\n",
                frame_ms[i][1] / frame_ms[i][2]);
+        if (i > 0) bench_levels(&sc[i], frames); /* M and L */
     }
     if (!only || !strcmp(only, "Mc")) {
         static scene lodsc;

@@ -5052,8 +5052,8 @@ static void test_interp_simd_matches_scalar_reference(void)
        order; every SIMD level (those this CPU lacks resolve lower) must
        give the same bytes. The point counts put every remainder past the
        groups of 12 (SSE), 24 (AVX2) and 48 (AVX-512) floats, so every tail
-       runs; clump 0 skips the clump term. make test also builds with
-       HF_NO_SIMD. */
+       runs; clump 0 skips the clump term; streaming stores too. make test
+       also builds with HF_NO_SIMD. */
     enum { QM = 40, G = 5, N = 40 };
     static const int qs[] = {2, 3, 5, 8, 13, 14, 15, 16, 17, 19, 21, 24,
                              32, 33, 40};
@@ -5074,12 +5074,13 @@ static void test_interp_simd_matches_scalar_reference(void)
         b[s].length_scale = 0.5f + hf_rng_float(&r);
     }
     for (qi = 0; qi < (int)(sizeof qs / sizeof qs[0]); ++qi)
-        for (cl = 0; cl < 2 * 5; ++cl) {
+        for (cl = 0; cl < 2 * 5 * 2; ++cl) {
             Q = qs[qi];
-            level = cl / 2; /* 0 (auto), scalar, SSE2, AVX2, AVX-512 */
+            level = cl / 2 % 5; /* 0 (auto), scalar, SSE2, AVX2, AVX-512 */
             memset(&ip, 0, sizeof ip);
             ip.points_per_strand = Q;
             ip.simd = level;
+            ip.nontemporal = cl >= 10; /* streaming stores */
             ip.clump = cl % 2 ? 0.35f : 0.0f;
             memset(out, 0, sizeof out);
             memset(ref, 0, sizeof ref);
@@ -8857,6 +8858,53 @@ static void test_fur_teleport(void)
     hf_fur_destroy(ref);
 }
 
+/* hf_fur_set_kernels: every SIMD level, with and without streaming
+   stores, gives the fur's strands the same bytes (styled, clumped); bad
+   choices are refused and change nothing. */
+static void test_fur_kernels_same_bytes(void)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    float *ref;
+    size_t n;
+    int level, nt;
+    t_fur_scene_init(&sc, 1.0f);
+    sc.desc.clump = 0.4f;
+    sc.desc.curl_radius = 0.02f;
+    sc.desc.curl_turns = 2.0f;
+    sc.desc.points_per_strand = 13; /* every vector tail */
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (!f) return;
+    hf_fur_get_info(f, &info);
+    n = (size_t)info.strand_count * (size_t)info.points_per_strand * 3u;
+    ref = (float *)malloc(n * sizeof(float));
+    hf_fur_simulate(f, 0, info.guide_count, 1.0f / 60.0f, NULL, 0);
+    CHECK_EQ_INT(hf_fur_set_kernels(f, HF_SIMD_SCALAR, 0), HF_OK);
+    hf_fur_interpolate(f, 0, info.strand_count);
+    memcpy(ref, info.strand_points, n * sizeof(float));
+    for (level = HF_SIMD_AUTO; level <= HF_SIMD_AVX512; ++level)
+        for (nt = 0; nt < 2; ++nt) {
+            memset((float *)info.strand_points, 0, n * sizeof(float));
+            CHECK_EQ_INT(hf_fur_set_kernels(f, level, nt), HF_OK);
+            hf_fur_interpolate(f, 0, info.strand_count);
+            CHECK(memcmp(ref, info.strand_points, n * sizeof(float)) == 0);
+        }
+    CHECK_EQ_INT(hf_fur_set_kernels(f, 5, 0), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_fur_set_kernels(f, -1, 0), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_fur_set_kernels(f, 0, 2), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_fur_set_kernels(NULL, 0, 0), HF_ERROR_NULL_POINTER);
+    /* hf_simd_resolve: auto is the best, a request is never raised */
+    CHECK(hf_simd_resolve(HF_SIMD_AUTO) >= HF_SIMD_SCALAR);
+    CHECK(hf_simd_resolve(HF_SIMD_SCALAR) == HF_SIMD_SCALAR);
+    CHECK(hf_simd_resolve(HF_SIMD_AVX512) <= HF_SIMD_AVX512);
+    CHECK(hf_simd_resolve(HF_SIMD_AVX512) == hf_simd_resolve(HF_SIMD_AUTO));
+    CHECK(hf_simd_resolve(99) == hf_simd_resolve(HF_SIMD_AUTO));
+    CHECK(hf_simd_resolve(HF_SIMD_SSE2) <= HF_SIMD_SSE2);
+    free(ref);
+    hf_fur_destroy(f);
+}
+
 /* ==== main: every test, in the order above ================================ */
 
 int main(void)
@@ -9033,6 +9081,7 @@ int main(void)
     RUN(test_fur_mode_survives_lod);
     RUN(test_fur_styled_strands_follow_guides);
     RUN(test_fur_teleport);
+    RUN(test_fur_kernels_same_bytes);
     RUN(test_fur_rope_params_range);
     RUN(test_bad_fur);
 

@@ -100,6 +100,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (has_density && fz_chance(&r, 128)) desc.color_variation_map = &density.map;
         if (has_length && fz_chance(&r, 128)) desc.width_variation_map = &length.map;
     }
+    /* kernels: every level and streaming gives the same bytes; bad
+       values are refused */
+    desc.simd = fz_chance(&r, 230) ? fz_int(&r, 0, 4) : fz_int(&r, -3, 9);
+    desc.nontemporal = fz_chance(&r, 230) ? fz_int(&r, 0, 1) : fz_int(&r, -2, 3);
     desc.points_per_strand = fz_chance(&r, 200) ? fz_int(&r, 0, 24)
                                                 : fz_int(&r, -2, 300);
     desc.max_length = fz_chance(&r, 220) ? fz_float_in(&r, 0.0f, 0.5f)
