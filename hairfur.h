@@ -1356,11 +1356,14 @@ typedef struct hf_ribbon_params {
        strand. Set it to `first` to write a range into a buffer that holds
        exactly that range; first < out_first is HF_ERROR_BAD_RANGE. */
     int out_first;
-    /* 1: write hf_ribbon_points' output with streaming (non-temporal)
-       stores, which skip the cache: the right stores for write-combined
-       memory (a mapped GPU buffer, where vertices usually go) and for
-       outputs far larger than the cache. 0: ordinary stores. Same bytes
-       either way. */
+    /* 1: write with streaming (non-temporal) stores, which skip the
+       cache: the right stores for write-combined memory (a mapped GPU
+       buffer, where vertices usually go) and for outputs far larger than
+       the cache. hf_ribbon_points always can; hf_ribbons when its streams
+       are one interleaved buffer whose vertex they fill exactly (the
+       usual layout: position, tangent, texcoord) and a strand's vertices
+       take at most 8 KiB, else it uses ordinary stores. 0: ordinary
+       stores. Same bytes either way. */
     int nontemporal;
     int simd; /* hf_simd_level; 0 = the best the CPU runs (same bytes) */
 } hf_ribbon_params;
@@ -8021,6 +8024,66 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
 #endif
 }
 
+/* Streaming stores for ribbons (hf_ribbon_params.nontemporal) go through
+   a stage: a strand's vertices are written there by the usual kernels,
+   then copied out in 16-byte streaming stores. That needs the streams to
+   be one interleaved block whose vertices leave no byte unwritten (the
+   copy writes whole blocks), and a strand's block to fit the stage.
+   Returns 1 with the vertex size and the block's first byte when so. */
+#define HF__STAGE_BYTES 8192
+HF__PRIVATE int hf__ribbon_stage(const hf__rout *ro, int P, size_t *block,
+                                 unsigned char **first)
+{
+    unsigned char *lo = NULL;
+    size_t stride = 0, bytes = 0, end = 0;
+    int k, q;
+    for (k = 0; k < 5; ++k) {
+        if (!ro->base[k]) continue;
+        if (!lo || ro->base[k] < lo) lo = ro->base[k];
+        if (stride && ro->stride[k] != stride) return 0;
+        stride = ro->stride[k];
+        bytes += (size_t)hf_format_bytes(ro->fmt[k]) * (size_t)hf__stream_nc[k];
+    }
+    if (!lo || bytes != stride || 2u * (size_t)P * stride > HF__STAGE_BYTES)
+        return 0;
+    for (k = 0; k < 5; ++k) { /* inside one vertex, and not overlapping */
+        size_t a, e;
+        if (!ro->base[k]) continue;
+        a = (size_t)(ro->base[k] - lo);
+        e = a + (size_t)hf_format_bytes(ro->fmt[k]) * (size_t)hf__stream_nc[k];
+        if (e > stride) return 0;
+        for (q = 0; q < k; ++q) {
+            size_t b, f;
+            if (!ro->base[q]) continue;
+            b = (size_t)(ro->base[q] - lo);
+            f = b + (size_t)hf_format_bytes(ro->fmt[q]) * (size_t)hf__stream_nc[q];
+            if (a < f && b < e) return 0;
+        }
+        end = e > end ? e : end;
+    }
+    *block = stride;
+    *first = lo;
+    return HF__SSE && end == stride;
+}
+
+/* n bytes from src to dst: streaming 16-byte stores from dst's first
+   16-byte boundary, plain copies for the ends. */
+HF__PRIVATE void hf__stream_copy(unsigned char *dst, const float *src,
+                                 size_t n)
+{
+    const unsigned char *from = (const unsigned char *)src;
+    size_t head = (16u - ((uintptr_t)dst & 15u)) & 15u, i;
+    if (head > n) head = n;
+    HF_MEMCPY(dst, from, head);
+    i = head;
+#if HF__SSE
+    for (; i + 16 <= n; i += 16)
+        _mm_stream_si128((__m128i *)(void *)(dst + i),
+                         _mm_loadu_si128((const __m128i *)(const void *)(from + i)));
+#endif
+    HF_MEMCPY(dst + i, from + i, n - i);
+}
+
 HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
                            int count, const hf_ribbon_params *view,
                            const hf_ribbon_output *out)
@@ -8031,7 +8094,10 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
     hf_ribbon_params prm;
     const hf_ribbon_params *params = &prm;
     const hf_stream *streams[5];
-    int s, j, k, P;
+    float stage_buf[HF__STAGE_BYTES / 4];
+    unsigned char *dst0 = NULL;
+    size_t block = 0;
+    int s, j, k, P, stage;
     hf_result r = hf__ribbon_check(strands, first, count, view, &prm);
     if (r != HF_OK) return r;
     if (!out) return HF_ERROR_NULL_POINTER;
@@ -8078,8 +8144,11 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
                     K.tt[j] * params->alpha_tip;
     }
 
+    stage = params->nontemporal ? hf__ribbon_stage(&ro, P, &block, &dst0)
+                                : 0;
     for (s = first; s < first + count; ++s) {
         const float *pts = strands->points + (size_t)s * (size_t)P * 3u;
+        const size_t v0 = (size_t)(s - params->out_first) * (size_t)P * 2u;
         hf__rstrand str;
         hf__strand_frame(pts, P, params, &fr, &str.wscale);
         str.wscale *= hf__strand_width(strands, s);
@@ -8092,9 +8161,23 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
                             ? hf__fin0(strands->color[4 * (size_t)s + k])
                             : 1.0f;
         str.c3x = strands->color3d_x ? hf__fin0(strands->color3d_x[s]) : 0.0f;
-        hf__ribbon_write(&fr, P, &K, &str, &ro,
-                         (size_t)(s - params->out_first) * (size_t)P * 2u);
+        if (stage) {
+            /* the strand's vertices into the stage (in L1), then out to
+               its block with streaming stores */
+            hf__rout so = ro;
+            for (k = 0; k < 5; ++k)
+                if (ro.base[k])
+                    so.base[k] = (unsigned char *)stage_buf +
+                                 (ro.base[k] - dst0);
+            hf__ribbon_write(&fr, P, &K, &str, &so, 0);
+            hf__stream_copy(dst0 + v0 * block, stage_buf, 2u * (size_t)P * block);
+        } else {
+            hf__ribbon_write(&fr, P, &K, &str, &ro, v0);
+        }
     }
+#if HF__SSE
+    if (stage) _mm_sfence(); /* streamed stores visible before we return */
+#endif
     return HF_OK;
 }
 

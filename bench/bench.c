@@ -494,6 +494,35 @@ static void bench_levels(scene *s, int frames)
     memset(dst, 1, big);
     for (k = 0; k < LV_N; ++k)
         t[k] = (double *)malloc(sizeof(double) * (size_t)frames);
+    { /* ribbons (SSE2 kernels at every level), ordinary and streaming */
+        job jr;
+        double *tr[2];
+        size_t rb = (size_t)s->info.strand_count * P * 2u * 36u;
+        float *rdst = (float *)malloc(rb);
+        jr.fn = j_ribbons;
+        jr.total = s->info.strand_count;
+        memset(rdst, 1, rb);
+        for (k = 0; k < 2; ++k)
+            tr[k] = (double *)malloc(sizeof(double) * (size_t)frames);
+        for (f = -5; f < frames; ++f) {
+            scene_pose(s, s->frame++);
+            for (k = 0; k < 2; ++k) {
+                double t0;
+                g_view.nontemporal = k;
+                t0 = now_ms();
+                run_job(&jr);
+                if (f >= 0) tr[k][f] = now_ms() - t0;
+            }
+        }
+        g_view.nontemporal = 0;
+        for (k = 0; k < 2; ++k) {
+            report(k ? "ribbons_nt" : "ribbons", s->name, 1,
+                   stats(tr[k], frames), (double)rb, limit_gbps(rdst, rb, 7),
+                   -1);
+            free(tr[k]);
+        }
+        free(rdst);
+    }
     for (level = HF_SIMD_SCALAR; level <= best; ++level) {
         g_view.simd = level;
         for (f = -5; f < frames; ++f) {

@@ -5414,6 +5414,59 @@ static void test_ribbons_ranges_byte_identical(void)
     free(pts); free(a); free(b); free(pa); free(pb);
 }
 
+/* Streaming stores (hf_ribbon_params.nontemporal) give the same bytes:
+   through the stage for an interleaved buffer the vertex fills exactly,
+   at every byte offset of the buffer (the copy's unaligned ends), across
+   range splits; with ordinary stores when the streams leave a gap (no
+   colour) or split into separate buffers. Bytes around the output stay. */
+static void test_ribbons_nontemporal(void)
+{
+    enum { N = 9, V = sizeof(t_rvert), BYTES = N * TP * 2 * V };
+    float *pts = (float *)malloc(sizeof(float) * N * TP * 3);
+    unsigned char *a = (unsigned char *)malloc(BYTES + 64);
+    unsigned char *b = (unsigned char *)malloc(BYTES + 64);
+    hf_ribbon_strands st;
+    hf_ribbon_params p = t_rparams();
+    hf_ribbon_output o;
+    hf_rng r;
+    int i, off, gap, split;
+    hf_rng_seed(&r, 19u, 0u);
+    for (i = 0; i < N * TP * 3; ++i) pts[i] = hf_rng_float(&r) - 0.5f;
+    memset(&st, 0, sizeof st);
+    st.points = pts;
+    for (gap = 0; gap < 2; ++gap)
+        for (off = 0; off < 20; off += 4)
+            for (split = 1; split <= 2; ++split) {
+                unsigned char *buf[2];
+                int k;
+                buf[0] = a;
+                buf[1] = b;
+                for (k = 0; k < 2; ++k) {
+                    unsigned char *d = buf[k] + off;
+                    memset(buf[k], 0x5a, BYTES + 64);
+                    memset(&o, 0, sizeof o);
+                    o.position.data = d;
+                    o.tangent.data = d + 12;
+                    o.texcoord.data = d + 24;
+                    o.color.data = gap ? NULL : (void *)(d + 36);
+                    o.color3d.data = d + 52;
+                    o.position.stride = o.tangent.stride = o.texcoord.stride =
+                        o.color.stride = o.color3d.stride = V;
+                    p.nontemporal = k;
+                    if (split == 1) {
+                        CHECK_EQ_INT(hf_ribbons(&st, 0, N, &p, &o), HF_OK);
+                    } else {
+                        CHECK_EQ_INT(hf_ribbons(&st, 0, 4, &p, &o), HF_OK);
+                        CHECK_EQ_INT(hf_ribbons(&st, 4, N - 4, &p, &o), HF_OK);
+                    }
+                }
+                CHECK(memcmp(a, b, BYTES + 64) == 0);
+            }
+    free(pts);
+    free(a);
+    free(b);
+}
+
 static void test_ribbons_separate_streams_and_skips(void)
 {
     float g[TP * 3], pos[TP * 2 * 3], tanb[TP * 2 * 4];
@@ -9014,6 +9067,7 @@ int main(void)
     RUN(test_ribbons_degenerate_never_nan);
     RUN(test_ribbons_nonfinite_strand_collapses);
     RUN(test_ribbons_ranges_byte_identical);
+    RUN(test_ribbons_nontemporal);
     RUN(test_ribbons_separate_streams_and_skips);
     RUN(test_ribbons_errors_write_nothing);
     RUN(test_ribbons_leading_tangent);
