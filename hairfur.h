@@ -8194,25 +8194,32 @@ HF__PRIVATE void hf__points_strand_ref(const float *p, const float *hw,
 }
 
 #if HF__SSE
-/* A point a vector: xyz loaded with the next point's x, which the width
-   replaces (the last point is left to the reference: its load would read
-   past the strand). Streaming stores where asked and aligned. Returns
-   where it stopped. */
-HF__PRIVATE int hf__points_strand_sse(const float *p, const float *hw,
-                                      float ws, float *o, int P, int nt)
+/* A point a vector, from point j: xyz loaded with the next point's x,
+   which the width replaces; the last point loads from one float earlier
+   and shifts, so nothing past the strand is read and every point is
+   written here (a scalar store into a line being streamed would stall).
+   Streaming stores where asked and aligned. P >= 2. */
+HF__PRIVATE void hf__points_strand_sse(const float *p, const float *hw,
+                                       float ws, float *o, int j, int P,
+                                       int nt)
 {
     const __m128 xyz = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
-    int j;
     nt = nt && ((uintptr_t)o & 15u) == 0;
-    for (j = 0; j + 1 < P; ++j) {
-        const __m128 v = _mm_or_ps(_mm_and_ps(_mm_loadu_ps(p + 3 * j), xyz),
-                                   _mm_set_ps(hw[j] * ws, 0.0f, 0.0f, 0.0f));
+    for (; j < P; ++j) {
+        __m128 v;
+        if (j + 1 < P) {
+            v = _mm_loadu_ps(p + 3 * j);
+        } else { /* (z', x, y, z) to (x, y, z, z') */
+            v = _mm_loadu_ps(p + 3 * j - 1);
+            v = _mm_shuffle_ps(v, v, _MM_SHUFFLE(0, 3, 2, 1));
+        }
+        v = _mm_or_ps(_mm_and_ps(v, xyz),
+                      _mm_set_ps(hw[j] * ws, 0.0f, 0.0f, 0.0f));
         if (nt)
             _mm_stream_ps(o + 4 * j, v);
         else
             _mm_storeu_ps(o + 4 * j, v);
     }
-    return j;
 }
 #endif
 
@@ -8275,8 +8282,10 @@ HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
             j = hf__points_strand_avx2(p, hw, wscale, o, P, nt);
 #endif
 #if HF__SSE
-        if (level >= HF_SIMD_SSE2 && j == 0)
-            j = hf__points_strand_sse(p, hw, wscale, o, P, nt);
+        if (level >= HF_SIMD_SSE2) {
+            hf__points_strand_sse(p, hw, wscale, o, j, P, nt);
+            continue;
+        }
 #endif
         hf__points_strand_ref(p, hw, wscale, o, j, P);
     }
