@@ -91,9 +91,14 @@
                             the user pointer of the hf_allocator in use (NULL
                             when none is given). Every function that allocates
                             also takes an optional runtime hf_allocator.
-       HF_NO_SIMD           use only the scalar references (SSE2 is used
-                            where the compiler targets it); results are
-                            identical.
+       HF_NO_SIMD           use only the scalar references; results are
+                            identical. Otherwise SSE2 where the compiler
+                            targets it, and on gcc and clang for x86 also
+                            AVX2 and AVX-512 kernels, chosen at run time
+                            by CPUID (hf_simd_resolve).
+       HF_SIMD_MAX          an hf_simd_level: the highest level used
+                            (e.g. HF_SIMD_SSE2 keeps the wide kernels out
+                            of use).
        HF_ASSERT(x)         the library's own invariants (default: assert).
                             Never used on caller input: that gets a result.
        HF_SQRTF, HF_FLOORF, HF_SQRT, HF_EXP, HF_POW, HF_SIN, HF_COS,
@@ -113,8 +118,10 @@
        __declspec(noinline), HF__RESTRICT __restrict, HF__UNUSED and
        HF__PRINTF empty; SSE2 is used when _M_X64 is defined or
        _M_IX86_FP >= 2 (<emmintrin.h>, unaligned loads and stores only, so
-       no alignment attribute is needed); there is no run-time CPU
-       detection (no CPUID) yet. tests/msvc_check.sh parses that branch
+       no alignment attribute is needed); AVX2 and AVX-512 kernels only
+       where the compiler targets them (/arch:AVX2, /arch:AVX512 define
+       __AVX2__, __AVX512F__): there is no run-time CPU detection on MSVC
+       yet (gcc and clang use __builtin_cpu_supports). tests/msvc_check.sh parses that branch
        with clang as MSVC; MSVC itself is not run here (unverified).
 
    CONVENTIONS
@@ -175,9 +182,10 @@
        The implementation follows the same order, after one prologue (the
        overridable macros, the compiler words, the SIMD level) and one
        place where every struct's zero fields get their defaults. Each
-       SIMD kernel hf__<name>_sse sits beside its scalar reference
-       hf__<name>_ref and gives the same bytes; one dispatch function per
-       stage picks between them.
+       SIMD kernel hf__<name>_sse (_avx2, _avx512) sits beside its scalar
+       reference hf__<name>_ref and gives the same bytes; one dispatch
+       function per stage picks between them by the level hf_simd_resolve
+       gives.
 
    VERSION HISTORY
 
@@ -213,8 +221,17 @@
                            on a range (hf_fur_set_rope_params_range);
                            clumps of a chosen size (clump_size); per-strand
                            widths (hf_ribbon_strands.width,
-                           width_variation); maps for clump, colour and
-                           width variation.
+                           width_variation); maps for clump, clump size,
+                           colour and width variation; mode switches
+                           without a jump in velocity (a Hermite glide;
+                           the rope memory holds 6 more point rows), the
+                           mode kept per guide through LOD; SIMD levels
+                           chosen at run time (hf_simd_level,
+                           hf_simd_resolve, HF_SIMD_MAX, the simd fields,
+                           hf_fur_set_kernels) with AVX2 and AVX-512
+                           interpolation and AVX2 points, the same bytes
+                           at every level; streaming stores as an option
+                           (nontemporal).
        0.1.0 (2026-11-22)  first release: maps and meshes, density
                            tessellation, guides, placement, Verlet ropes,
                            interpolation, LOD, ribbons, Marschner LUTs,
