@@ -351,7 +351,8 @@ HFDEF const char *hf_version_string(void);
 typedef enum hf_simd_level {
     HF_SIMD_AUTO = 0,   /* the best this CPU and build run (the default) */
     HF_SIMD_SCALAR = 1, /* the scalar references */
-    HF_SIMD_SSE2 = 2,   /* x86 baseline, 4 lanes */
+    HF_SIMD_SSE2 = 2,   /* 4 lanes: SSE2, the x86-64 baseline, or NEON */
+    HF_SIMD_NEON = 2,   /* on ARM64 (always there), the same level */
     HF_SIMD_AVX2 = 3,   /* 8 lanes */
     HF_SIMD_AVX512 = 4  /* 16 lanes (AVX-512F) */
 } hf_simd_level;
@@ -2001,6 +2002,22 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 #else
 #define HF__SSE 0
 #endif
+/* ARM64 always has NEON (Advanced SIMD): its 4-lane kernels are chosen
+   at compile time and answer for the SSE2 level (HF_SIMD_NEON). */
+#if !defined(HF_NO_SIMD) && !HF__SSE &&                                        \
+    (defined(__aarch64__) || defined(_M_ARM64))
+#define HF__NEON 1
+#include <arm_neon.h>
+#if defined(__GNUC__) && !defined(__clang__)
+/* gcc fuses a * b + c into FMLA in C++ and GNU C modes: not in kernels
+   whose bytes must equal the scalar reference's */
+#define HF__TARGET_NEON __attribute__((optimize("fp-contract=off")))
+#else
+#define HF__TARGET_NEON
+#endif
+#else
+#define HF__NEON 0
+#endif
 #if HF__SSE && (defined(__GNUC__) || defined(__clang__)) &&                    \
     (defined(__x86_64__) || defined(__i386__))
 #define HF__X86_DISPATCH 1 /* kernels by target attribute, CPUID */
@@ -2113,7 +2130,7 @@ HF__PRIVATE int hf__cpu_simd(void)
     return HF_SIMD_AVX512;
 #elif HF__AVX2
     return HF_SIMD_AVX2;
-#elif HF__SSE
+#elif HF__SSE || HF__NEON
     return HF_SIMD_SSE2;
 #else
     return HF_SIMD_SCALAR;
@@ -6794,6 +6811,62 @@ HF__NOINLINE HF__PRIVATE void hf__interp_tail(const hf__irun *run,
                           run->P, t->w0, t->w1, t->w2, t->sc, t->rb);
 }
 
+#if HF__NEON
+/* hf__interp_strand_sse on ARM64: four floats a vector, the same
+   operations in the same order, so the same bytes. */
+HF__TARGET_NEON HF__INLINE void
+hf__interp_neon(const hf__istrand *t, const float *ctab, int i,
+                float32x4_t W0, float32x4_t W1, float32x4_t W2,
+                float32x4_t SC, float32x4_t R)
+{
+    float32x4_t p = vaddq_f32(vaddq_f32(vmulq_f32(W0, vld1q_f32(t->g0 + i)),
+                                        vmulq_f32(W1, vld1q_f32(t->g1 + i))),
+                              vmulq_f32(W2, vld1q_f32(t->g2 + i)));
+    p = vaddq_f32(vmulq_f32(SC, p), R);
+    if (t->gn)
+        p = vaddq_f32(p, vmulq_f32(vld1q_f32(ctab + i),
+                                   vsubq_f32(vld1q_f32(t->gn + i), p)));
+    vst1q_f32(t->o + i, p);
+}
+
+HF__TARGET_NEON HF__PRIVATE void
+hf__interp_range_neon(const hf__irun *run, int first, int count)
+{
+    const int n = 3 * run->P;
+    hf__istrand t;
+    int s, i;
+    for (s = first; s < first + count; ++s) {
+        float32x4_t W0, W1, W2, SC, R0, R1, R2;
+        hf__interp_setup(run, s, &t);
+        hf__interp_root(&t);
+        W0 = vdupq_n_f32(t.w0);
+        W1 = vdupq_n_f32(t.w1);
+        W2 = vdupq_n_f32(t.w2);
+        SC = vdupq_n_f32(t.sc);
+        /* phases 0, 1, 2 at floats 0, 4, 8: rb holds the root twice */
+        R0 = vld1q_f32(t.rb);
+        R1 = vld1q_f32(t.rb + 1);
+        R2 = vld1q_f32(t.rb + 2);
+        for (i = 0; i + 12 <= n; i += 12) {
+            hf__interp_neon(&t, run->ctab, i, W0, W1, W2, SC, R0);
+            hf__interp_neon(&t, run->ctab, i + 4, W0, W1, W2, SC, R1);
+            hf__interp_neon(&t, run->ctab, i + 8, W0, W1, W2, SC, R2);
+        }
+        if (i + 4 <= n) {
+            hf__interp_neon(&t, run->ctab, i, W0, W1, W2, SC, R0);
+            i += 4;
+        }
+        if (i + 4 <= n) {
+            hf__interp_neon(&t, run->ctab, i, W0, W1, W2, SC, R1);
+            i += 4;
+        }
+        if (i < n)
+            hf__interp_strand_ref(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, i,
+                                  run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
+    }
+}
+#endif
+
 #if HF__AVX2
 /* hf__interp_strand_sse, eight floats a vector: the same operations in
    the same order (no FMA), so the same bytes. */
@@ -6986,6 +7059,11 @@ HF__PRIVATE void hf__interpolate_run(const float *guide_points,
 #if HF__SSE
     if (level >= HF_SIMD_SSE2)
         hf__interp_range_sse(&run, first, count);
+    else
+#endif
+#if HF__NEON
+    if (level >= HF_SIMD_NEON)
+        hf__interp_range_neon(&run, first, count);
     else
 #endif
         hf__interp_range_ref(&run, first, count);
@@ -8240,6 +8318,25 @@ HF__PRIVATE void hf__points_strand_sse(const float *p, const float *hw,
 }
 #endif
 
+#if HF__NEON
+/* hf__points_strand_sse on ARM64 (no streaming stores there). */
+HF__TARGET_NEON HF__PRIVATE void
+hf__points_strand_neon(const float *p, const float *hw, float ws, float *o,
+                       int j, int P)
+{
+    for (; j < P; ++j) {
+        float32x4_t v;
+        if (j + 1 < P) {
+            v = vld1q_f32(p + 3 * j);
+        } else { /* (z', x, y, z) to (x, y, z, z') */
+            v = vld1q_f32(p + 3 * j - 1);
+            v = vextq_f32(v, v, 1);
+        }
+        vst1q_f32(o + 4 * j, vsetq_lane_f32(hw[j] * ws, v, 3));
+    }
+}
+#endif
+
 #if HF__AVX2
 /* Two points a vector: eight floats from point j (x0 .. y2) spread to
    x0 y0 z0 . x1 y1 z1 ., the widths blended in. */
@@ -8301,6 +8398,12 @@ HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
 #if HF__SSE
         if (level >= HF_SIMD_SSE2) {
             hf__points_strand_sse(p, hw, wscale, o, j, P, nt);
+            continue;
+        }
+#endif
+#if HF__NEON
+        if (level >= HF_SIMD_NEON) {
+            hf__points_strand_neon(p, hw, wscale, o, j, P);
             continue;
         }
 #endif
