@@ -5564,6 +5564,8 @@ HF__PRIVATE void hf__ropes_collide(hf_ropes *ro, const float *F, int a, int b,
    half turn apart: a rope exactly reversed has no smooth way round). At w = 1 the rope is
    exactly animated. x and px stay world positions (px the last sub-step's
    place), so switching back to simulation mid-glide keeps the velocity. */
+HF__PRIVATE void hf__ropes_safety_net(hf_ropes *ro, int a, int b, float h);
+
 HF__PRIVATE void hf__ropes_glide_run(hf_ropes *ro, int a, int b,
                                      const hf__rope_step *st)
 {
@@ -5572,6 +5574,9 @@ HF__PRIVATE void hf__ropes_glide_run(hf_ropes *ro, int a, int b,
     int r, j, s, k;
     for (r = a; r < b; ++r) {
         float w = ro->blend[r], f0[12], f1[12];
+        /* the tangent's reach: twice the rope's length */
+        const float vmax2 = (2.0f * ro->length[r] + 0.01f) *
+                            (2.0f * ro->length[r] + 0.01f);
         hf__rope_frame_at(ro, r, 0.0f, f0);
         for (s = 0; s < st->n; ++s) {
             const float u = T > 0.0f && w + h / T < 1.0f ? w + h / T : 1.0f;
@@ -5588,8 +5593,10 @@ HF__PRIVATE void hf__ropes_glide_run(hf_ropes *ro, int a, int b,
                 g[2] = ro->rest_w[i];
                 if (w == 0.0f && s == 0) {
                     /* the glide's first sub-step: take the frame's own
-                       motion at the point off the start velocity */
-                    float m[3];
+                       motion at the point off the start velocity, and
+                       bound what it can carry the point over the glide
+                       (a wild velocity, or a NaN, must not throw it) */
+                    float m[3], v2;
                     for (k = 0; k < 3; ++k)
                         m[k] = f1[k] - f0[k] +
                                (f1[3 + k] - f0[3 + k]) * G[0] +
@@ -5597,6 +5604,13 @@ HF__PRIVATE void hf__ropes_glide_run(hf_ropes *ro, int a, int b,
                                (f1[9 + k] - f0[9 + k]) * G[2 * n];
                     for (k = 0; k < 3; ++k)
                         G[(3 + k) * n] -= hf__dot3(m, f0 + 3 + 3 * k) / h;
+                    v2 = (G[3 * n] * G[3 * n] + G[4 * n] * G[4 * n] +
+                          G[5 * n] * G[5 * n]) * T * T;
+                    if (!(v2 <= vmax2)) { /* NaN too */
+                        const float c = v2 > 0.0f && hf__finitef(v2)
+                                            ? HF_SQRTF(vmax2 / v2) : 0.0f;
+                        for (k = 3; k < 6; ++k) G[(size_t)k * n] *= c;
+                    }
                 }
                 if (u < 1.0f) {
                     for (k = 0; k < 3; ++k) {
@@ -5630,6 +5644,7 @@ HF__PRIVATE void hf__ropes_glide_run(hf_ropes *ro, int a, int b,
         ro->last_h[r] = h;
         ro->time[r] += (double)h * st->n;
     }
+    hf__ropes_safety_net(ro, a, b, h); /* never an output that is NaN */
 }
 
 /* ---- the simulated rope step: one driver, named steps ---- */
