@@ -30,7 +30,8 @@
    Scene Mc (M's strands on a coarse head, whose tessellation adds LOD
    guides) at LOD 0.25 measures lod_guides: LOD guides interpolated from
    the pure guides instead of simulated.
-   Usage: bench [--frames N] [--scene S|M|L|Mc] */
+   --scaling instead: how cost grows with strands and guides (bench_scaling).
+   Usage: bench [--frames N] [--scene S|M|L|Mc] [--scaling] */
 #define _POSIX_C_SOURCE 200809L
 #define HAIRFUR_IMPLEMENTATION
 #include "../hairfur.h"
@@ -594,6 +595,89 @@ static void bench_lod_guides(scene *s, int frames)
     free(t);
 }
 
+/* How cost grows (--scaling): strands from 1,000 to 1,000,000 on about
+   1,000 guides, then guides from about 100 to 100,000 under 100,000
+   strands; median ms per stage over a few frames, 1 and 2 threads. One
+   machine line per configuration:
+     bench stage=scaling vary=strands|guides strands=N guides=G threads=T
+           roots=.. ropes=.. strands_ms=.. ribbons=.. points=.. */
+static void scene_free(scene *s)
+{
+    hf_fur_destroy(s->fur);
+    hm_free(&s->head);
+    free(s->skin);
+    free(s->vbuf);
+    free(s->pbuf);
+    free(s->cbuf);
+}
+
+static void bench_scaling(int frames)
+{
+    static const int strands[4] = {1000, 10000, 100000, 1000000};
+    /* sphere resolutions for about 100, 1,000, 10,000 and 100,000 guides */
+    static const int rings[4] = {7, 26, 80, 250}, segs[4] = {12, 40, 125, 400};
+    enum { K = 5 };
+    job jobs[K];
+    static const char *names[K] = {"roots", "ropes", "strands", "ribbons",
+                                   "points"};
+    void (*fns[K])(job *, int, int) = {j_roots, j_ropes, j_interp, j_ribbons,
+                                       j_points};
+    int vary, i, th, k, f;
+    double *t = (double *)malloc(sizeof(double) * (size_t)frames * K);
+    printf("scaling: median ms per stage, %d frames after 3 warm-up "
+           "frames\n", frames);
+    for (vary = 0; vary < 2; ++vary)
+        for (i = 0; i < 4; ++i) {
+            static scene sc;
+            memset(&sc, 0, sizeof sc);
+            if (vary == 0)
+                scene_init(&sc, "scale", 26, 40, strands[i], 0.0f);
+            else
+                scene_init(&sc, "scale", rings[i], segs[i], 100000, 0.0f);
+            g_sc = &sc;
+            memset(&g_view, 0, sizeof g_view);
+            g_view.eye[2] = 0.6f;
+            memset(&g_out, 0, sizeof g_out);
+            g_out.position.data = sc.vbuf;
+            g_out.tangent.data = sc.vbuf + 3;
+            g_out.texcoord.data = sc.vbuf + 6;
+            g_out.position.stride = g_out.tangent.stride =
+                g_out.texcoord.stride = 36;
+            for (k = 0; k < K; ++k) {
+                jobs[k].fn = fns[k];
+                jobs[k].total = k < 2 ? sc.info.guide_count
+                                      : sc.info.strand_count;
+            }
+            for (th = 1; th <= MAX_THREADS; ++th) {
+                double med[K];
+                g_threads = th;
+                for (f = -3; f < frames; ++f) {
+                    scene_pose(&sc, sc.frame++);
+                    for (k = 0; k < K; ++k) {
+                        double t0 = now_ms();
+                        run_job(&jobs[k]);
+                        if (f >= 0) t[k * frames + f] = now_ms() - t0;
+                    }
+                }
+                for (k = 0; k < K; ++k)
+                    med[k] = stats(t + k * frames, frames).med;
+                printf("  %-7s strands %7d guides %6d %dT:", vary ? "guides"
+                       : "strands", sc.info.strand_count,
+                       sc.info.guide_count, th);
+                for (k = 0; k < K; ++k) printf("  %s %8.3f", names[k], med[k]);
+                printf("\n");
+                fprintf(stderr, "bench stage=scaling vary=%s strands=%d "
+                        "guides=%d threads=%d roots=%.4f ropes=%.4f "
+                        "strands_ms=%.4f ribbons=%.4f points=%.4f\n",
+                        vary ? "guides" : "strands", sc.info.strand_count,
+                        sc.info.guide_count, th, med[0], med[1], med[2],
+                        med[3], med[4]);
+            }
+            scene_free(&sc);
+        }
+    free(t);
+}
+
 static void bench_lut(int reps)
 {
     hf_lut_params p;
@@ -643,14 +727,17 @@ static void bench_bandwidth(void)
 
 int main(int argc, char **argv)
 {
-    int frames = 30, i, th;
+    int frames = 30, i, th, scaling = 0;
     const char *only = NULL;
     static scene sc[3];
     pthread_t workers[MAX_THREADS];
     double frame_ms[3][MAX_THREADS + 1];
-    for (i = 1; i + 1 < argc; i += 2) {
-        if (!strcmp(argv[i], "--frames")) frames = atoi(argv[i + 1]);
-        else if (!strcmp(argv[i], "--scene")) only = argv[i + 1];
+    for (i = 1; i < argc; ++i) {
+        if (!strcmp(argv[i], "--scaling")) scaling = 1;
+        else if (i + 1 < argc && !strcmp(argv[i], "--frames"))
+            frames = atoi(argv[++i]);
+        else if (i + 1 < argc && !strcmp(argv[i], "--scene"))
+            only = argv[++i];
     }
     if (frames < 3) frames = 3;
     setvbuf(stdout, NULL, _IOLBF, 0);
@@ -663,6 +750,14 @@ int main(int argc, char **argv)
     for (i = 1; i < MAX_THREADS; ++i)
         pthread_create(&workers[i], NULL, worker, (void *)(size_t)i);
 
+    if (scaling) {
+        bench_scaling(frames < 30 ? frames : 5);
+        g_quit = 1;
+        g_threads = 1;
+        pthread_barrier_wait(&g_start);
+        for (i = 1; i < MAX_THREADS; ++i) pthread_join(workers[i], NULL);
+        return 0;
+    }
     bench_bandwidth();
     /* sphere resolutions chosen for about 360, 3,700 and 1,000 guides */
     scene_init(&sc[0], "S", 16, 24, 3670, 0.0f);   /* 362 guides */
