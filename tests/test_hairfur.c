@@ -8514,9 +8514,6 @@ static void test_fur_roots_inside_count(void)
     hf_fur_destroy(f);
 }
 
-/* Per-frame control: new rope parameters take effect at the next
-   simulate (no gravity: the guides stay at rest), bad ones change
-   nothing; guides switched to animated follow their rest shape. */
 /* Rope parameters on a range: weightless guides stay at rest while the
    others sag; split calls give the bytes of one call; up to
    HF_FUR_ROPE_SETS different sets, equal ones shared. */
@@ -8587,6 +8584,9 @@ static void test_fur_rope_params_range(void)
     hf_fur_destroy(b);
 }
 
+/* Per-frame control: new rope parameters take effect at the next
+   simulate (no gravity: the guides stay at rest), bad ones change
+   nothing; guides switched to animated follow their rest shape. */
 static void test_fur_set_rope_params_and_mode(void)
 {
     t_fur_scene sc;
