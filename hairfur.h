@@ -121,8 +121,9 @@
        no alignment attribute is needed); AVX2 and AVX-512 kernels only
        where the compiler targets them (/arch:AVX2, /arch:AVX512 define
        __AVX2__, __AVX512F__): there is no run-time CPU detection on MSVC
-       yet (gcc and clang use __builtin_cpu_supports). tests/msvc_check.sh parses that branch
-       with clang as MSVC; MSVC itself is not run here (unverified).
+       yet (gcc and clang use __builtin_cpu_supports). tests/msvc_check.sh
+       parses that branch with clang as MSVC; MSVC itself is not run here
+       (unverified).
 
    CONVENTIONS
 
@@ -1165,12 +1166,12 @@ HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
    the fly, without a jump in position or velocity. To HF_ROPE_SIMULATED:
    immediate; the rope keeps the velocity it has (an animated rope that of
    its animated motion, a gliding one that of its glide). To
-   HF_ROPE_ANIMATED: the rope glides, kinematically (no constraints, no
-   colliders), over params->mode_blend_time: each sub-step it keeps its
-   inertia and moves part of the way to its animated pose, the animated
-   share growing as a smoothstep (flat at both ends), so its velocity
-   turns smoothly from the simulation's to the animation's; then it is
-   carried rigidly. The same mode again changes nothing. `mode` is an
+   HF_ROPE_ANIMATED: the rope glides, kinematically (no colliders), over
+   params->mode_blend_time: each point follows, in root-frame coordinates,
+   the cubic Hermite curve from the pose and velocity it had to its rest
+   place, reached at rest, the rope kept at its rest lengths; so its
+   velocity turns smoothly from the simulation's to the animation's; then
+   it is carried rigidly. The same mode again changes nothing. `mode` is an
    hf_rope_mode (an int so that a bad value is defined in C++). Errors:
    HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE, HF_ERROR_BAD_PARAMETER
    (unknown mode). */
@@ -1238,7 +1239,8 @@ typedef struct hf_interp_params {
     int simd; /* hf_simd_level; 0 = the best the CPU runs (same bytes) */
     /* 1: streaming (non-temporal) stores, which skip the cache: for
        outputs far larger than it, so they do not push the guides out
-       (measured: 1.5-2x faster for 100,000 strands); 0: ordinary stores.
+       (measured: 1.3-1.4x faster for 100,000 strands, nothing for
+       37,000); 0: ordinary stores.
        Same bytes either way. */
     int nontemporal;
 } hf_interp_params;
@@ -1987,7 +1989,7 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
    beside its scalar reference hf__<name>_ref; every level uses the same
    IEEE operations in the same order (no FMA), so all give the same bytes,
    and one function per stage picks between them (the dispatch) with the
-   level hf__simd resolves. SSE2 is the baseline wherever the compiler
+   level hf_simd_resolve gives. SSE2 is the baseline wherever the compiler
    targets it. AVX2 and AVX-512 kernels are compiled with target
    attributes on gcc and clang for x86 (so a default -O2 build has them)
    and picked at run time by CPUID (__builtin_cpu_supports); elsewhere
@@ -2123,8 +2125,8 @@ HF__PRIVATE int hf__cpu_simd(void)
 #if HF__X86_DISPATCH
     /* libgcc (or compiler-rt) reads CPUID and XCR0 at load time, so this
        also knows whether the OS saves the wide registers */
-    if (__builtin_cpu_supports("avx512f") && HF__AVX512) return HF_SIMD_AVX512;
-    if (__builtin_cpu_supports("avx2") && HF__AVX2) return HF_SIMD_AVX2;
+    if (__builtin_cpu_supports("avx512f")) return HF_SIMD_AVX512;
+    if (__builtin_cpu_supports("avx2")) return HF_SIMD_AVX2;
     return HF_SIMD_SSE2;
 #elif HF__AVX512
     return HF_SIMD_AVX512;
@@ -5561,9 +5563,10 @@ HF__PRIVATE void hf__ropes_collide(hf_ropes *ro, const float *F, int a, int b,
    two poses is shorter than either, so the rope is rebuilt from the root
    out along the curve's segments at their rest lengths; the curve is a
    function of time alone, so that keeps it smooth (for poses less than a
-   half turn apart: a rope exactly reversed has no smooth way round). At w = 1 the rope is
-   exactly animated. x and px stay world positions (px the last sub-step's
-   place), so switching back to simulation mid-glide keeps the velocity. */
+   half turn apart: a rope exactly reversed has no smooth way round). At
+   w = 1 the rope is exactly animated. x and px stay world positions (px
+   the last sub-step's place), so switching back to simulation mid-glide
+   keeps the velocity. */
 HF__PRIVATE void hf__ropes_safety_net(hf_ropes *ro, int a, int b, float h);
 
 HF__PRIVATE void hf__ropes_glide_run(hf_ropes *ro, int a, int b,
@@ -8136,44 +8139,44 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
 
 /* Streaming stores for ribbons (hf_ribbon_params.nontemporal) go through
    a stage: a strand's vertices are written there by the usual kernels,
-   then copied out in 16-byte streaming stores. That needs the streams to
-   be one interleaved block whose vertices leave no byte unwritten (the
-   copy writes whole blocks), and a strand's block to fit the stage.
-   Returns 1 with the vertex size and the block's first byte when so. */
+   then copied out in 16-byte streaming stores. The copy writes whole
+   blocks, so the streams must tile one interleaved vertex exactly (one
+   stride, each element inside it, none overlapping, their sizes adding
+   up to it), and a strand's vertices must fit the stage. Returns 1 with
+   the vertex size and the block's first byte when so. */
 #define HF__STAGE_BYTES 8192
 HF__PRIVATE int hf__ribbon_stage(const hf__rout *ro, int P, size_t *block,
                                  unsigned char **first)
 {
     unsigned char *lo = NULL;
-    size_t stride = 0, bytes = 0, end = 0;
+    size_t size[5], stride = 0, bytes = 0;
     int k, q;
+    if (!HF__SSE) return 0;
     for (k = 0; k < 5; ++k) {
+        size[k] = (size_t)hf_format_bytes(ro->fmt[k]) * (size_t)hf__stream_nc[k];
         if (!ro->base[k]) continue;
         if (!lo || ro->base[k] < lo) lo = ro->base[k];
         if (stride && ro->stride[k] != stride) return 0;
         stride = ro->stride[k];
-        bytes += (size_t)hf_format_bytes(ro->fmt[k]) * (size_t)hf__stream_nc[k];
+        bytes += size[k];
     }
     if (!lo || bytes != stride || 2u * (size_t)P * stride > HF__STAGE_BYTES)
         return 0;
-    for (k = 0; k < 5; ++k) { /* inside one vertex, and not overlapping */
-        size_t a, e;
+    for (k = 0; k < 5; ++k) {
+        size_t a;
         if (!ro->base[k]) continue;
         a = (size_t)(ro->base[k] - lo);
-        e = a + (size_t)hf_format_bytes(ro->fmt[k]) * (size_t)hf__stream_nc[k];
-        if (e > stride) return 0;
+        if (a + size[k] > stride) return 0;
         for (q = 0; q < k; ++q) {
-            size_t b, f;
+            size_t b;
             if (!ro->base[q]) continue;
             b = (size_t)(ro->base[q] - lo);
-            f = b + (size_t)hf_format_bytes(ro->fmt[q]) * (size_t)hf__stream_nc[q];
-            if (a < f && b < e) return 0;
+            if (a < b + size[q] && b < a + size[k]) return 0;
         }
-        end = e > end ? e : end;
     }
     *block = stride;
     *first = lo;
-    return HF__SSE && end == stride;
+    return 1;
 }
 
 /* n bytes from src to dst: streaming 16-byte stores from dst's first
@@ -9271,6 +9274,14 @@ HF__PRIVATE void hf__fur_build_free(const hf_allocator *a, hf__fur_build *b)
     hf__free(a, b->guide_of);
 }
 
+/* An hf_simd_level and a 0 or 1 for streaming stores: the kernel choice
+   of hf_fur_desc and hf_fur_set_kernels. */
+HF__PRIVATE int hf__kernels_ok(int simd, int nontemporal)
+{
+    return simd >= HF_SIMD_AUTO && simd <= HF_SIMD_AVX512 &&
+           (nontemporal == 0 || nontemporal == 1);
+}
+
 /* The resolved description's own fields (the stages check the rest). */
 /* Guide curves and styling: counts, points and values. */
 HF__PRIVATE hf_result hf__fur_style_check(const hf_fur_desc *d, hf_diag *diag)
@@ -9359,8 +9370,7 @@ HF__PRIVATE hf_result hf__fur_desc_check(const hf_fur_desc *d, hf_diag *diag)
                         "clump or lod_simulate_threshold outside [0, 1], "
                         "or max_length or tess_factor negative or "
                         "non-finite");
-    if (d->simd < HF_SIMD_AUTO || d->simd > HF_SIMD_AVX512 ||
-        d->nontemporal < 0 || d->nontemporal > 1)
+    if (!hf__kernels_ok(d->simd, d->nontemporal))
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "simd", -1,
                         "simd %d is not an hf_simd_level (0..4), or "
                         "nontemporal %d is not 0 or 1",
@@ -9937,13 +9947,13 @@ HF__PRIVATE hf_result hf__fur_clumps(hf_fur *f, hf__fur_build *b)
         const float *q = root + 3 * i;
         long long c[3];
         double best = (double)size * size;
+        uint32_t lead = 0xffffffffu, h;
+        int dx, dy, dz;
         if (b->desc.clump_size_map) {
             float m = hf__map_at(b->desc.clump_size_map, f->strands[i].uv);
             m = m > 0.0f ? (m < 1.0f ? m : 1.0f) : 0.0f; /* NaN: 0 */
             best = ((double)size * m) * ((double)size * m);
         }
-        uint32_t lead = 0xffffffffu, h;
-        int dx, dy, dz;
         for (k = 0; k < 3; ++k) c[k] = (long long)HF_FLOOR(q[k] * inv);
         for (dx = -1; dx <= 1; ++dx)
             for (dy = -1; dy <= 1; ++dy)
@@ -10806,8 +10816,6 @@ HFDEF hf_result hf_fur_simulate(hf_fur *f, int first, int count, float dt,
     if (!f) return HF_ERROR_NULL_POINTER;
     if (!hf__range_ok(first, count) || first + count > f->guide_count)
         return HF_ERROR_BAD_RANGE;
-    /* LOD guides asleep (animated, drawn interpolated) keep sleeping and
-       take the mode when they wake */
     end = first + count;
     if (!f->lod_sim && end > f->pure_count) {
         /* sleeping LOD guides are still carried by their roots, so they
@@ -10964,9 +10972,7 @@ HFDEF hf_result hf_fur_set_mode(hf_fur *f, int first, int count, int mode)
 HFDEF hf_result hf_fur_set_kernels(hf_fur *f, int simd, int nontemporal)
 {
     if (!f) return HF_ERROR_NULL_POINTER;
-    if (simd < HF_SIMD_AUTO || simd > HF_SIMD_AVX512 || nontemporal < 0 ||
-        nontemporal > 1)
-        return HF_ERROR_BAD_PARAMETER;
+    if (!hf__kernels_ok(simd, nontemporal)) return HF_ERROR_BAD_PARAMETER;
     f->simd = simd;
     f->nontemporal = nontemporal;
     return HF_OK;
