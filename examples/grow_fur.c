@@ -208,43 +208,65 @@ bad:
     return 0;
 }
 
-/* n comma-separated finite numbers (x,y,z), the whole string. */
-static int parse_reals(const char *opt, const char *v, int n, float *out,
-                       const char *form)
+/* n comma-separated finite numbers within +-limit, from p to the end of
+   the option's value v. The message names the field that is wrong, so a
+   typo is found at once. */
+static int parse_reals(const char *opt, const char *v, const char *p, int n,
+                       double limit, float *out, const char *form)
 {
-    const char *p = v;
-    char *end;
     int k;
     for (k = 0; k < n; ++k) {
+        size_t len = strcspn(p, ",");
+        char buf[64], *end;
         double x;
-        if (!*p || isspace((unsigned char)*p)) goto bad;
-        x = strtod(p, &end);
-        if (end == p || !isfinite(x) || fabs(x) > 1e30) goto bad;
+        if (len == 0 || len >= sizeof buf) {
+            fprintf(stderr, "grow_fur: %s '%s': field %d is %s "
+                            "(expected %d numbers: %s)\n", opt, v, k + 1,
+                    len ? "too long" : "empty", n, form);
+            return 0;
+        }
+        memcpy(buf, p, len);
+        buf[len] = '\0';
+        x = strtod(buf, &end);
+        if (isspace((unsigned char)buf[0]) || end == buf || *end != '\0' ||
+            !isfinite(x)) {
+            fprintf(stderr, "grow_fur: %s '%s': '%s' is not a number\n", opt,
+                    v, buf);
+            return 0;
+        }
+        if (fabs(x) > limit) {
+            fprintf(stderr, "grow_fur: %s '%s': '%s' is beyond +-%g\n", opt,
+                    v, buf, limit);
+            return 0;
+        }
         out[k] = (float)x;
-        p = end;
+        p += len;
         if (k + 1 < n) {
-            if (*p != ',') goto bad;
+            if (*p != ',') {
+                fprintf(stderr, "grow_fur: %s '%s': %d numbers given, %d "
+                                "expected (%s)\n", opt, v, k + 1, n, form);
+                return 0;
+            }
             ++p;
         }
     }
-    if (*p != '\0') goto bad;
+    if (*p != '\0') {
+        fprintf(stderr, "grow_fur: %s '%s': more than %d numbers (%s)\n",
+                opt, v, n, form);
+        return 0;
+    }
     return 1;
-bad:
-    fprintf(stderr, "grow_fur: %s '%s': expected %s (numbers)\n", opt, v,
-            form);
-    return 0;
 }
 
 /* One --collider shape: sphere:X,Y,Z,R, capsule:X0,Y0,Z0,X1,Y1,Z1,R or
-   X,Y,Z,R (a sphere). Each field, all of it, must be a finite number;
-   the message names the field that is not, so a typo is found at once. */
+   X,Y,Z,R (a sphere), within the ropes' coordinate range. */
 static int parse_collider(const char *v, hf_collider *c)
 {
     const char *form = "none, auto, sphere:X,Y,Z,R or "
                        "capsule:X0,Y0,Z0,X1,Y1,Z1,R";
     const char *p = v;
     float f[7];
-    int n, k;
+    int n;
     memset(c, 0, sizeof *c);
     if (!strncmp(v, "capsule:", 8)) {
         c->type = HF_COLLIDER_CAPSULE;
@@ -260,47 +282,8 @@ static int parse_collider(const char *v, hf_collider *c)
             return 0;
         }
     }
-    for (k = 0; k < n; ++k) {
-        size_t len = strcspn(p, ",");
-        char buf[64], *end;
-        double x;
-        if (len == 0 || len >= sizeof buf) {
-            fprintf(stderr, "grow_fur: --collider '%s': field %d is %s "
-                            "(expected %d numbers: %s)\n", v, k + 1,
-                    len ? "too long" : "empty", n, form);
-            return 0;
-        }
-        memcpy(buf, p, len);
-        buf[len] = '\0';
-        x = strtod(buf, &end);
-        if (isspace((unsigned char)buf[0]) || end == buf || *end != '\0' ||
-            !isfinite(x)) {
-            fprintf(stderr, "grow_fur: --collider '%s': '%s' is not a "
-                            "number\n", v, buf);
-            return 0;
-        }
-        if (fabs(x) > HF_ROPE_MAX_COORD) { /* the ropes' coordinate range */
-            fprintf(stderr, "grow_fur: --collider '%s': '%s' is beyond "
-                            "+-%g\n", v, buf, (double)HF_ROPE_MAX_COORD);
-            return 0;
-        }
-        f[k] = (float)x;
-        p += len;
-        if (k + 1 < n) {
-            if (*p != ',') {
-                fprintf(stderr, "grow_fur: --collider '%s': %d numbers "
-                                "given, %d expected (%s)\n", v, k + 1, n,
-                        form);
-                return 0;
-            }
-            ++p;
-        }
-    }
-    if (*p != '\0') {
-        fprintf(stderr, "grow_fur: --collider '%s': more than %d numbers "
-                        "(%s)\n", v, n, form);
+    if (!parse_reals("--collider", v, p, n, HF_ROPE_MAX_COORD, f, form))
         return 0;
-    }
     memcpy(c->a, f, sizeof c->a);
     if (n == 7) memcpy(c->b, f + 3, sizeof c->b);
     c->radius = f[n - 1];
@@ -668,7 +651,7 @@ int main(int argc, char **argv)
                 ok = 0;
             }
         } else if (!strcmp(a, "--eye")) {
-            ok = parse_reals(a, v, 3, eye, "x,y,z");
+            ok = parse_reals(a, v, v, 3, 1e30, eye, "x,y,z");
             have_eye = 1;
         } else {
             fprintf(stderr, "grow_fur: unknown option '%s' (--help lists "
