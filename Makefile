@@ -663,12 +663,15 @@ $(BUILD)/replay_%: $(FUZZ_DIR)/fuzz_%.c $(FUZZ_DIR)/fuzz_main.c $(FUZZ_DEPS) | $
 	$(REPLAY_CC) $(FUZZ_DIR)/fuzz_main.c $< -o $@ -lm
 
 # fuzz_curves reads the examples' curve files (examples/curves.h).
-$(BUILD)/fuzz_curves $(BUILD)/replay_curves: examples/curves.h
+$(BUILD)/fuzz_curves $(BUILD)/replay_curves: examples/curves.h \
+    $(FUZZ_DIR)/fuzz_curves_contract.h
 # fuzz_obj reads OBJ polylines with the same header, through assimp
 # (Debian's libassimp-dev).
-$(BUILD)/fuzz_obj: $(FUZZ_DIR)/fuzz_obj.c examples/curves.h | $(BUILD)
+$(BUILD)/fuzz_obj: $(FUZZ_DIR)/fuzz_obj.c examples/curves.h \
+    $(FUZZ_DIR)/fuzz_curves_contract.h | $(BUILD)
 	$(FUZZ_CC) $< -o $@ -lassimp -lm
-$(BUILD)/replay_obj: $(FUZZ_DIR)/fuzz_obj.c $(FUZZ_DIR)/fuzz_main.c examples/curves.h | $(BUILD)
+$(BUILD)/replay_obj: $(FUZZ_DIR)/fuzz_obj.c $(FUZZ_DIR)/fuzz_main.c examples/curves.h \
+    $(FUZZ_DIR)/fuzz_curves_contract.h | $(BUILD)
 	$(REPLAY_CC) $(FUZZ_DIR)/fuzz_main.c $< -o $@ -lassimp -lm
 
 fuzz-build: $(addprefix $(BUILD)/fuzz_,$(FUZZ_TARGETS))
