@@ -6812,8 +6812,9 @@ HF__PRIVATE void hf__interp_range_sse(const hf__irun *run, int first,
         i = hf__interp_strand_sse(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o,
                                   run->P, t.w0, t.w1, t.w2, t.sc, t.rb,
                                   run->nt && ((uintptr_t)t.o & 15u) == 0);
-        hf__interp_strand_ref(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, i,
-                              run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
+        if (i < 3 * run->P)
+            hf__interp_strand_ref(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, i,
+                                  run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
     }
 }
 #endif
@@ -8312,26 +8313,28 @@ HF__PRIVATE void hf__points_strand_ref(const float *p, const float *hw,
    and shifts, so nothing past the strand is read and every point is
    written here (a scalar store into a line being streamed would stall).
    Streaming stores where asked and aligned. P >= 2. */
+HF__INLINE void hf__point_put_sse(float *o, __m128 v, float w, int nt)
+{
+    const __m128 xyz = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
+    v = _mm_or_ps(_mm_and_ps(v, xyz), _mm_set_ps(w, 0.0f, 0.0f, 0.0f));
+    if (nt)
+        _mm_stream_ps(o, v);
+    else
+        _mm_storeu_ps(o, v);
+}
+
 HF__PRIVATE void hf__points_strand_sse(const float *p, const float *hw,
                                        float ws, float *o, int j, int P,
                                        int nt)
 {
-    const __m128 xyz = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
     nt = nt && ((uintptr_t)o & 15u) == 0;
-    for (; j < P; ++j) {
-        __m128 v;
-        if (j + 1 < P) {
-            v = _mm_loadu_ps(p + 3 * j);
-        } else { /* (z', x, y, z) to (x, y, z, z') */
-            v = _mm_loadu_ps(p + 3 * j - 1);
-            v = _mm_shuffle_ps(v, v, _MM_SHUFFLE(0, 3, 2, 1));
-        }
-        v = _mm_or_ps(_mm_and_ps(v, xyz),
-                      _mm_set_ps(hw[j] * ws, 0.0f, 0.0f, 0.0f));
-        if (nt)
-            _mm_stream_ps(o + 4 * j, v);
-        else
-            _mm_storeu_ps(o + 4 * j, v);
+    for (; j + 1 < P; ++j)
+        hf__point_put_sse(o + 4 * j, _mm_loadu_ps(p + 3 * j), hw[j] * ws, nt);
+    if (j < P) { /* the last: (z', x, y, z) to (x, y, z, z') */
+        const __m128 v = _mm_loadu_ps(p + 3 * j - 1);
+        hf__point_put_sse(o + 4 * j,
+                          _mm_shuffle_ps(v, v, _MM_SHUFFLE(0, 3, 2, 1)),
+                          hw[j] * ws, nt);
     }
 }
 #endif
@@ -8342,15 +8345,12 @@ HF__TARGET_NEON HF__PRIVATE void
 hf__points_strand_neon(const float *p, const float *hw, float ws, float *o,
                        int j, int P)
 {
-    for (; j < P; ++j) {
-        float32x4_t v;
-        if (j + 1 < P) {
-            v = vld1q_f32(p + 3 * j);
-        } else { /* (z', x, y, z) to (x, y, z, z') */
-            v = vld1q_f32(p + 3 * j - 1);
-            v = vextq_f32(v, v, 1);
-        }
-        vst1q_f32(o + 4 * j, vsetq_lane_f32(hw[j] * ws, v, 3));
+    for (; j + 1 < P; ++j)
+        vst1q_f32(o + 4 * j,
+                  vsetq_lane_f32(hw[j] * ws, vld1q_f32(p + 3 * j), 3));
+    if (j < P) { /* the last: (z', x, y, z) to (x, y, z, z') */
+        const float32x4_t v = vld1q_f32(p + 3 * j - 1);
+        vst1q_f32(o + 4 * j, vsetq_lane_f32(hw[j] * ws, vextq_f32(v, v, 1), 3));
     }
 }
 #endif
