@@ -7332,7 +7332,8 @@ HF__PRIVATE float hf__strand_width(const hf_ribbon_strands *st, int s)
    vector: in every row, point j is at index 4 + j. The point rows repeat
    point 0 before it and point P - 1 after it (one-sided differences at the
    ends then fall out of the central ones); entries past P - 1 in the other
-   rows hold copies, so a partial group of four computes on finite values. */
+   rows hold copies, so a partial group of four or eight computes on
+   finite values. */
 #define HF__RROW (HF_MAX_POINTS + 12)
 typedef struct hf__rframe {
     float p[3][HF__RROW]; /* points */
@@ -7402,7 +7403,7 @@ HF__PRIVATE void hf__strand_frame_ref(const float *pts, int P,
 {
     float d[HF_MAX_POINTS * 3], l2[HF_MAX_POINTS], inv[HF_MAX_POINTS];
     float last[3] = {0.0f, 1.0f, 0.0f};
-    const int ortho = params->orthographic != 0, end = ((P + 3) & ~3) + 8;
+    const int ortho = params->orthographic != 0, end = ((P + 7) & ~7) + 8;
     int j, k, first_t = -1, first_ok = -1;
     if (P < 2 || P > HF_MAX_POINTS) return; /* checked by the callers */
     for (k = 0; k < 3; ++k) {
@@ -7597,6 +7598,156 @@ HF__PRIVATE int hf__strand_frame_sse(const float *pts, int P,
             _mm_storeu_ps(fr->t[c] + o, t[c]);
             _mm_storeu_ps(fr->s[c] + o, _mm_mul_ps(s[c], inv));
         }
+    }
+    return bad == 0;
+}
+#endif
+
+#if HF__AVX2
+/* Lanes (p7, c0 .. c6) and (c1 .. c7, n0): each point's neighbours across
+   two groups of eight. */
+HF__TARGET_AVX2 HF__INLINE __m256 hf__prev_avx2(__m256 p, __m256 c)
+{
+    const __m256 t = _mm256_permute2f128_ps(p, c, 0x21);
+    return _mm256_castsi256_ps(_mm256_alignr_epi8(
+        _mm256_castps_si256(c), _mm256_castps_si256(t), 12));
+}
+HF__TARGET_AVX2 HF__INLINE __m256 hf__next_avx2(__m256 c, __m256 n)
+{
+    const __m256 t = _mm256_permute2f128_ps(c, n, 0x21);
+    return _mm256_castsi256_ps(_mm256_alignr_epi8(
+        _mm256_castps_si256(t), _mm256_castps_si256(c), 4));
+}
+
+/* One coordinate's central differences for the group whose values `cur`
+   sit at row[0..8): the next group follows in the row, or the tip
+   repeats after the last; *prev carries the group before. */
+HF__TARGET_AVX2 HF__INLINE __m256 hf__diff_avx2(const float *row, int last,
+                                               float tip, __m256 cur,
+                                               __m256 *prev)
+{
+    const __m256 next =
+        last ? _mm256_set1_ps(tip) : _mm256_loadu_ps(row + 8);
+    const __m256 d =
+        _mm256_sub_ps(hf__next_avx2(cur, next), hf__prev_avx2(*prev, cur));
+    *prev = cur;
+    return d;
+}
+
+/* hf__strand_frame_sse eight points at a time, with the same IEEE
+   operations per point, and the same cases left to the reference. */
+HF__TARGET_AVX2 HF__PRIVATE int
+hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
+                      hf__rframe *fr, int *finite)
+{
+    const int G = (P + 7) >> 3, ortho = params->orthographic != 0;
+    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
+    const __m256 tiny = _mm256_set1_ps(1e-30f);
+    const __m256 side_sin2 = _mm256_set1_ps(HF__SIDE_SIN2);
+    const __m256 big = _mm256_set1_ps(3.40282347e+38f);
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    __m256 acc = zero, px, py, pz, ex, ey, ez;
+    float e[3], tip[3];
+    int k, c, bad = 0;
+    /* rows: eight points (24 floats) deinterleaved by shuffles */
+    for (k = 0; k < G; ++k) {
+        __m256 X, Y, Z;
+        if (8 * k + 8 <= P) {
+            const float *q = pts + 24 * k;
+#define HF__LD2(a, b)                                                          \
+    _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(q + (a))),      \
+                         _mm_loadu_ps(q + (b)), 1)
+            /* halves: points 0-3 and 4-7, as x0 y0 z0 x1 | y1 z1 x2 y2 |
+               z2 x3 y3 z3 */
+            const __m256 m03 = HF__LD2(0, 12), m14 = HF__LD2(4, 16),
+                         m25 = HF__LD2(8, 20);
+#undef HF__LD2
+            const __m256 xy = _mm256_shuffle_ps(m14, m25, _MM_SHUFFLE(2, 1, 3, 2));
+            const __m256 yz = _mm256_shuffle_ps(m03, m14, _MM_SHUFFLE(1, 0, 2, 1));
+            X = _mm256_shuffle_ps(m03, xy, _MM_SHUFFLE(2, 0, 3, 0));
+            Y = _mm256_shuffle_ps(yz, xy, _MM_SHUFFLE(3, 1, 2, 0));
+            Z = _mm256_shuffle_ps(yz, m25, _MM_SHUFFLE(3, 0, 3, 1));
+        } else { /* the last, partial group repeats the tip */
+            const int n = P - 8 * k;
+            float r[3][8];
+            int i;
+            for (i = 0; i < 8; ++i)
+                for (c = 0; c < 3; ++c)
+                    r[c][i] = pts[3 * (8 * k + (i < n ? i : n - 1)) + c];
+            X = _mm256_loadu_ps(r[0]);
+            Y = _mm256_loadu_ps(r[1]);
+            Z = _mm256_loadu_ps(r[2]);
+        }
+        /* x * 0 is NaN for NaN or infinity */
+        acc = _mm256_add_ps(
+            acc, _mm256_add_ps(_mm256_mul_ps(X, zero),
+                               _mm256_add_ps(_mm256_mul_ps(Y, zero),
+                                             _mm256_mul_ps(Z, zero))));
+        _mm256_storeu_ps(fr->p[0] + 4 + 8 * k, X);
+        _mm256_storeu_ps(fr->p[1] + 4 + 8 * k, Y);
+        _mm256_storeu_ps(fr->p[2] + 4 + 8 * k, Z);
+    }
+    if (_mm256_movemask_ps(_mm256_cmp_ps(acc, zero, _CMP_EQ_OQ)) != 0xff) {
+        *finite = 0;
+        return 0;
+    }
+    *finite = 1;
+    for (c = 0; c < 3; ++c) {
+        _mm_storeu_ps(fr->p[c], _mm_set1_ps(pts[c]));
+        tip[c] = pts[3 * (P - 1) + c];
+        e[c] = ortho ? -params->view_dir[c] : params->eye[c];
+    }
+    px = _mm256_set1_ps(pts[0]);
+    py = _mm256_set1_ps(pts[1]);
+    pz = _mm256_set1_ps(pts[2]);
+    ex = _mm256_set1_ps(e[0]);
+    ey = _mm256_set1_ps(e[1]);
+    ez = _mm256_set1_ps(e[2]);
+    for (k = 0; k < G; ++k) {
+        const int o = 4 + 8 * k, last = k + 1 == G;
+        const __m256 live = _mm256_castsi256_ps(
+            _mm256_cmpgt_epi32(_mm256_set1_epi32(P - 8 * k), lane));
+        const __m256 cx = _mm256_loadu_ps(fr->p[0] + o),
+                     cy = _mm256_loadu_ps(fr->p[1] + o),
+                     cz = _mm256_loadu_ps(fr->p[2] + o);
+        const __m256 dx = hf__diff_avx2(fr->p[0] + o, last, tip[0], cx, &px),
+                     dy = hf__diff_avx2(fr->p[1] + o, last, tip[1], cy, &py),
+                     dz = hf__diff_avx2(fr->p[2] + o, last, tip[2], cz, &pz);
+        const __m256 vx = ortho ? ex : _mm256_sub_ps(ex, cx),
+                     vy = ortho ? ey : _mm256_sub_ps(ey, cy),
+                     vz = ortho ? ez : _mm256_sub_ps(ez, cz);
+        const __m256 l2 = _mm256_add_ps(
+            _mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)),
+            _mm256_mul_ps(dz, dz));
+        const __m256 ok = _mm256_and_ps(_mm256_cmp_ps(l2, tiny, _CMP_GT_OQ),
+                                        _mm256_cmp_ps(l2, big, _CMP_LE_OQ));
+        /* 1 where undefined: no division by zero for any lane */
+        const __m256 inv = _mm256_div_ps(
+            one, _mm256_sqrt_ps(_mm256_blendv_ps(one, l2, ok)));
+        const __m256 tx = _mm256_mul_ps(dx, inv), ty = _mm256_mul_ps(dy, inv),
+                     tz = _mm256_mul_ps(dz, inv);
+        const __m256 sx = _mm256_sub_ps(_mm256_mul_ps(ty, vz), _mm256_mul_ps(tz, vy)),
+                     sy = _mm256_sub_ps(_mm256_mul_ps(tz, vx), _mm256_mul_ps(tx, vz)),
+                     sz = _mm256_sub_ps(_mm256_mul_ps(tx, vy), _mm256_mul_ps(ty, vx));
+        const __m256 c2 = _mm256_add_ps(
+            _mm256_add_ps(_mm256_mul_ps(sx, sx), _mm256_mul_ps(sy, sy)),
+            _mm256_mul_ps(sz, sz));
+        const __m256 vv = _mm256_add_ps(
+            _mm256_add_ps(_mm256_mul_ps(vx, vx), _mm256_mul_ps(vy, vy)),
+            _mm256_mul_ps(vz, vz));
+        const __m256 ok2 = _mm256_and_ps(
+            _mm256_cmp_ps(c2, _mm256_mul_ps(side_sin2, vv), _CMP_GT_OQ),
+            _mm256_and_ps(_mm256_cmp_ps(c2, tiny, _CMP_GT_OQ),
+                          _mm256_cmp_ps(c2, big, _CMP_LE_OQ)));
+        const __m256 inv2 = _mm256_div_ps(
+            one, _mm256_sqrt_ps(_mm256_blendv_ps(one, c2, ok2)));
+        bad |= _mm256_movemask_ps(_mm256_andnot_ps(_mm256_and_ps(ok, ok2), live));
+        _mm256_storeu_ps(fr->t[0] + o, tx);
+        _mm256_storeu_ps(fr->t[1] + o, ty);
+        _mm256_storeu_ps(fr->t[2] + o, tz);
+        _mm256_storeu_ps(fr->s[0] + o, _mm256_mul_ps(sx, inv2));
+        _mm256_storeu_ps(fr->s[1] + o, _mm256_mul_ps(sy, inv2));
+        _mm256_storeu_ps(fr->s[2] + o, _mm256_mul_ps(sz, inv2));
     }
     return bad == 0;
 }
@@ -8106,20 +8257,146 @@ HF__PRIVATE void hf__ribbon_write_sse(const hf__rframe *fr, int P,
 }
 #endif
 
-/* The dispatch of the ribbon kernels: one strand's frame (tangents and
-   sides; a strand with a non-finite point is framed collapsed, wscale 0),
-   then its vertices. */
+#if HF__AVX2
+/* One side's vertices of a group of eight points in the 36-byte float run:
+   x y z tx of points i and i + 4 (the two halves) joined to B[i] (ty tz
+   u v) make a vertex's first eight floats, one store; t follows them.
+   Vertex i is at o + i * st2. */
+HF__TARGET_AVX2 HF__INLINE void
+hf__put_side_avx2(unsigned char *o, size_t st2, int n, __m256 x, __m256 y,
+                  __m256 z, __m256 tx, const __m256 *B, const float *tt)
+{
+    const __m256 xy0 = _mm256_unpacklo_ps(x, y), xy1 = _mm256_unpackhi_ps(x, y),
+                 zt0 = _mm256_unpacklo_ps(z, tx), zt1 = _mm256_unpackhi_ps(z, tx);
+    const __m256 a0 = _mm256_shuffle_ps(xy0, zt0, _MM_SHUFFLE(1, 0, 1, 0)),
+                 a1 = _mm256_shuffle_ps(xy0, zt0, _MM_SHUFFLE(3, 2, 3, 2)),
+                 a2 = _mm256_shuffle_ps(xy1, zt1, _MM_SHUFFLE(1, 0, 1, 0)),
+                 a3 = _mm256_shuffle_ps(xy1, zt1, _MM_SHUFFLE(3, 2, 3, 2));
+    const __m256 v0 = _mm256_permute2f128_ps(a0, B[0], 0x20),
+                 v1 = _mm256_permute2f128_ps(a1, B[1], 0x20),
+                 v2 = _mm256_permute2f128_ps(a2, B[2], 0x20),
+                 v3 = _mm256_permute2f128_ps(a3, B[3], 0x20),
+                 v4 = _mm256_permute2f128_ps(a0, B[0], 0x31),
+                 v5 = _mm256_permute2f128_ps(a1, B[1], 0x31),
+                 v6 = _mm256_permute2f128_ps(a2, B[2], 0x31),
+                 v7 = _mm256_permute2f128_ps(a3, B[3], 0x31);
+    if (n == 8) { /* straight stores: nothing goes through the stack */
+        _mm256_storeu_ps((float *)(void *)o, v0);
+        HF_MEMCPY(o + 32, tt, 4);
+        _mm256_storeu_ps((float *)(void *)(o + st2), v1);
+        HF_MEMCPY(o + st2 + 32, tt + 1, 4);
+        _mm256_storeu_ps((float *)(void *)(o + 2 * st2), v2);
+        HF_MEMCPY(o + 2 * st2 + 32, tt + 2, 4);
+        _mm256_storeu_ps((float *)(void *)(o + 3 * st2), v3);
+        HF_MEMCPY(o + 3 * st2 + 32, tt + 3, 4);
+        _mm256_storeu_ps((float *)(void *)(o + 4 * st2), v4);
+        HF_MEMCPY(o + 4 * st2 + 32, tt + 4, 4);
+        _mm256_storeu_ps((float *)(void *)(o + 5 * st2), v5);
+        HF_MEMCPY(o + 5 * st2 + 32, tt + 5, 4);
+        _mm256_storeu_ps((float *)(void *)(o + 6 * st2), v6);
+        HF_MEMCPY(o + 6 * st2 + 32, tt + 6, 4);
+        _mm256_storeu_ps((float *)(void *)(o + 7 * st2), v7);
+        HF_MEMCPY(o + 7 * st2 + 32, tt + 7, 4);
+    } else { /* the last, partial group */
+        float f[8][8];
+        int i;
+        _mm256_storeu_ps(f[0], v0);
+        _mm256_storeu_ps(f[1], v1);
+        _mm256_storeu_ps(f[2], v2);
+        _mm256_storeu_ps(f[3], v3);
+        _mm256_storeu_ps(f[4], v4);
+        _mm256_storeu_ps(f[5], v5);
+        _mm256_storeu_ps(f[6], v6);
+        _mm256_storeu_ps(f[7], v7);
+        for (i = 0; i < n; ++i, o += st2) {
+            HF_MEMCPY(o, f[i], 32);
+            HF_MEMCPY(o + 32, tt + i, 4);
+        }
+    }
+}
+
+/* hf__ribbon_write_sse eight points at a time for the 36-byte float run
+   (position, tangent, texcoord); other layouts take the SSE writer. */
+HF__TARGET_AVX2 HF__PRIVATE void
+hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
+                      const hf__rstrand *str, const hf__rout *ro, size_t v0)
+{
+    const size_t st = ro->stride[HF__S_POS];
+    const __m256 ws = _mm256_set1_ps(str->wscale);
+    const __m256 is = _mm256_set1_ps(ro->inv_scale);
+    const __m256 ox = _mm256_set1_ps(ro->origin[0]),
+                 oy = _mm256_set1_ps(ro->origin[1]),
+                 oz = _mm256_set1_ps(ro->origin[2]);
+    const __m256 uv = _mm256_setr_ps(str->uv[0], str->uv[1], str->uv[0],
+                                     str->uv[1], str->uv[0], str->uv[1],
+                                     str->uv[0], str->uv[1]);
+    unsigned char *b;
+    int k;
+    if (hf__float_run_sse(ro) != 3) {
+        hf__ribbon_write_sse(fr, P, K, str, ro, v0);
+        return;
+    }
+    b = ro->base[HF__S_POS] + v0 * st;
+    for (k = 0; 8 * k < P; ++k, b += 16 * st) {
+        const int o = 4 + 8 * k, n = P - 8 * k < 8 ? P - 8 * k : 8;
+        const __m256 w = _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws);
+        const __m256 ty = _mm256_loadu_ps(fr->t[1] + o),
+                     tz = _mm256_loadu_ps(fr->t[2] + o);
+        const __m256 lo = _mm256_unpacklo_ps(ty, tz),
+                     hi = _mm256_unpackhi_ps(ty, tz);
+        const __m256 x = _mm256_loadu_ps(fr->p[0] + o),
+                     y = _mm256_loadu_ps(fr->p[1] + o),
+                     z = _mm256_loadu_ps(fr->p[2] + o);
+        const __m256 swx = _mm256_mul_ps(_mm256_loadu_ps(fr->s[0] + o), w),
+                     swy = _mm256_mul_ps(_mm256_loadu_ps(fr->s[1] + o), w),
+                     swz = _mm256_mul_ps(_mm256_loadu_ps(fr->s[2] + o), w);
+        __m256 B[4];
+        /* ty tz u v of points i and i + 4: the same on both sides */
+        B[0] = _mm256_shuffle_ps(lo, uv, _MM_SHUFFLE(1, 0, 1, 0));
+        B[1] = _mm256_shuffle_ps(lo, uv, _MM_SHUFFLE(1, 0, 3, 2));
+        B[2] = _mm256_shuffle_ps(hi, uv, _MM_SHUFFLE(1, 0, 1, 0));
+        B[3] = _mm256_shuffle_ps(hi, uv, _MM_SHUFFLE(1, 0, 3, 2));
+        /* L = p - s w, R = p + s w, relative to the origin and scale */
+        hf__put_side_avx2(
+            b, 2 * st, n,
+            _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(x, swx), ox), is),
+            _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(y, swy), oy), is),
+            _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(z, swz), oz), is),
+            _mm256_loadu_ps(fr->t[0] + o), B, K->tt + 8 * k);
+        hf__put_side_avx2(
+            b + st, 2 * st, n,
+            _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(x, swx), ox), is),
+            _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(y, swy), oy), is),
+            _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(z, swz), oz), is),
+            _mm256_loadu_ps(fr->t[0] + o), B, K->tt + 8 * k);
+    }
+    if (ro->base[HF__S_COL]) hf__stream_sse(HF__S_COL, 4, fr, P, K, str, ro, v0);
+    if (ro->base[HF__S_C3D]) hf__stream_sse(HF__S_C3D, 2, fr, P, K, str, ro, v0);
+}
+#endif
+
+/* The dispatch of the ribbon kernels at SIMD level `level`: one strand's
+   frame (tangents and sides; a strand with a non-finite point is framed
+   collapsed, wscale 0), then its vertices. The AVX-512 level runs the
+   AVX2 kernels. */
 HF__PRIVATE void hf__strand_frame(const float *pts, int P,
                                   const hf_ribbon_params *params,
-                                  hf__rframe *fr, float *wscale)
+                                  hf__rframe *fr, float *wscale, int level)
 {
-    int finite;
+    int finite = -1;
     *wscale = 1.0f;
-#if HF__SSE
-    if (hf__strand_frame_sse(pts, P, params, fr, &finite)) return;
-#else
-    finite = hf__points_finite(pts, 3 * P);
+#if HF__AVX2
+    if (level >= HF_SIMD_AVX2) {
+        if (hf__strand_frame_avx2(pts, P, params, fr, &finite)) return;
+    } else
 #endif
+#if HF__SSE
+    if (level >= HF_SIMD_SSE2) {
+        if (hf__strand_frame_sse(pts, P, params, fr, &finite)) return;
+    }
+#endif
+    (void)level;
+    if (finite < 0) finite = hf__points_finite(pts, 3 * P);
     if (!finite) {
         pts = hf__zero_points;
         *wscale = 0.0f;
@@ -8129,13 +8406,22 @@ HF__PRIVATE void hf__strand_frame(const float *pts, int P,
 
 HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
                                   const hf__rconst *K, const hf__rstrand *str,
-                                  const hf__rout *ro, size_t v0)
+                                  const hf__rout *ro, size_t v0, int level)
 {
-#if HF__SSE
-    hf__ribbon_write_sse(fr, P, K, str, ro, v0);
-#else
-    hf__ribbon_write_ref(fr, P, K, str, ro, v0);
+#if HF__AVX2
+    if (level >= HF_SIMD_AVX2) {
+        hf__ribbon_write_avx2(fr, P, K, str, ro, v0);
+        return;
+    }
 #endif
+#if HF__SSE
+    if (level >= HF_SIMD_SSE2) {
+        hf__ribbon_write_sse(fr, P, K, str, ro, v0);
+        return;
+    }
+#endif
+    (void)level;
+    hf__ribbon_write_ref(fr, P, K, str, ro, v0);
 }
 
 /* Streaming stores for ribbons (hf_ribbon_params.nontemporal) go through
@@ -8211,7 +8497,7 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
     float stage_buf[HF__STAGE_BYTES / 4];
     unsigned char *dst0 = NULL;
     size_t block = 0;
-    int s, j, k, P, stage;
+    int s, j, k, P, stage, level;
     hf_result r = hf__ribbon_check(strands, first, count, view, &prm);
     if (r != HF_OK) return r;
     if (!out) return HF_ERROR_NULL_POINTER;
@@ -8250,6 +8536,7 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
         out->position_scale != 0.0f ? 1.0f / out->position_scale : 1.0f;
 
     P = params->points_per_strand;
+    level = hf_simd_resolve(params->simd);
     HF_MEMSET(&K, 0, sizeof K);
     hf__half_widths(params, K.hw);
     for (j = 0; j < P; ++j) {
@@ -8264,7 +8551,7 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
         const float *pts = strands->points + (size_t)s * (size_t)P * 3u;
         const size_t v0 = (size_t)(s - params->out_first) * (size_t)P * 2u;
         hf__rstrand str;
-        hf__strand_frame(pts, P, params, &fr, &str.wscale);
+        hf__strand_frame(pts, P, params, &fr, &str.wscale, level);
         str.wscale *= hf__strand_width(strands, s);
         for (k = 0; k < 2; ++k)
             str.uv[k] = strands->root_uv
@@ -8283,10 +8570,10 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
                 if (ro.base[k])
                     so.base[k] = (unsigned char *)stage_buf +
                                  (ro.base[k] - dst0);
-            hf__ribbon_write(&fr, P, &K, &str, &so, 0);
+            hf__ribbon_write(&fr, P, &K, &str, &so, 0, level);
             hf__stream_copy(dst0 + v0 * block, stage_buf, 2u * (size_t)P * block);
         } else {
-            hf__ribbon_write(&fr, P, &K, &str, &ro, v0);
+            hf__ribbon_write(&fr, P, &K, &str, &ro, v0, level);
         }
     }
 #if HF__SSE

@@ -466,75 +466,50 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
 
 /* The stages with SIMD kernels, per level (hf_simd_level), one thread:
    what each level buys on this CPU, and what streaming stores buy
-   (strands_nt: hf_fur_set_kernels' nontemporal; points_nt:
+   (strands_nt: hf_fur_set_kernels' nontemporal; points_nt and ribbons_nt:
    hf_ribbon_params.nontemporal, meant for mapped GPU buffers). Levels the
    CPU lacks are skipped (they would run as the best it has). */
 static const char *level_name[] = {"auto", "scalar", "sse2", "avx2",
                                    "avx512"};
-enum { LV_STRANDS, LV_STRANDS_NT, LV_POINTS, LV_POINTS_NT, LV_N };
+enum {
+    LV_STRANDS, LV_STRANDS_NT, LV_POINTS, LV_POINTS_NT, LV_RIBBONS,
+    LV_RIBBONS_NT, LV_N
+};
 
 static void bench_levels(scene *s, int frames)
 {
     static const char *what[LV_N] = {"strands", "strands_nt", "points",
-                                     "points_nt"};
-    job ji, jp;
+                                     "points_nt", "ribbons", "ribbons_nt"};
+    job jobs[3];
     double *t[LV_N], bytes[LV_N];
     int f, level, k, best = hf_simd_resolve(HF_SIMD_AUTO);
-    size_t big = (size_t)s->info.strand_count * P * 16u;
+    size_t big = (size_t)s->info.strand_count * P * 2u * 36u;
     float *dst = (float *)malloc(big);
     g_sc = s;
     g_threads = 1;
-    ji.fn = j_interp;
-    ji.total = s->info.strand_count;
-    jp.fn = j_points;
-    jp.total = s->info.strand_count;
+    jobs[0].fn = j_interp;
+    jobs[1].fn = j_points;
+    jobs[2].fn = j_ribbons;
+    for (k = 0; k < 3; ++k) jobs[k].total = s->info.strand_count;
     bytes[LV_STRANDS] = bytes[LV_STRANDS_NT] =
         (double)s->info.strand_count * P * 12.0;
     bytes[LV_POINTS] = bytes[LV_POINTS_NT] =
         (double)s->info.strand_count * P * 16.0;
+    bytes[LV_RIBBONS] = bytes[LV_RIBBONS_NT] = (double)big;
     memset(dst, 1, big);
     for (k = 0; k < LV_N; ++k)
         t[k] = (double *)malloc(sizeof(double) * (size_t)frames);
-    { /* ribbons (SSE2 kernels at every level), ordinary and streaming */
-        job jr;
-        double *tr[2];
-        size_t rb = (size_t)s->info.strand_count * P * 2u * 36u;
-        float *rdst = (float *)malloc(rb);
-        jr.fn = j_ribbons;
-        jr.total = s->info.strand_count;
-        memset(rdst, 1, rb);
-        for (k = 0; k < 2; ++k)
-            tr[k] = (double *)malloc(sizeof(double) * (size_t)frames);
-        for (f = -5; f < frames; ++f) {
-            scene_pose(s, s->frame++);
-            for (k = 0; k < 2; ++k) {
-                double t0;
-                g_view.nontemporal = k;
-                t0 = now_ms();
-                run_job(&jr);
-                if (f >= 0) tr[k][f] = now_ms() - t0;
-            }
-        }
-        g_view.nontemporal = 0;
-        for (k = 0; k < 2; ++k) {
-            report(k ? "ribbons_nt" : "ribbons", s->name, 1,
-                   stats(tr[k], frames), (double)rb, limit_gbps(rdst, rb, 7),
-                   -1);
-            free(tr[k]);
-        }
-        free(rdst);
-    }
     for (level = HF_SIMD_SCALAR; level <= best; ++level) {
         g_view.simd = level;
         for (f = -5; f < frames; ++f) {
             scene_pose(s, s->frame++);
             for (k = 0; k < LV_N; ++k) {
-                const int nt = k == LV_STRANDS_NT || k == LV_POINTS_NT;
+                const int nt = k & 1;
                 double t0;
                 check("kernels", hf_fur_set_kernels(s->fur, level, nt));
                 g_view.nontemporal = nt;
                 t0 = now_ms();
-                run_job(k <= LV_STRANDS_NT ? &ji : &jp);
+                run_job(&jobs[k / 2]);
                 if (f >= 0) t[k][f] = now_ms() - t0;
             }
         }

@@ -5571,18 +5571,16 @@ static void t_random_strands(float *pts, int n, int P, hf_rng *rng)
     }
 }
 
-static void test_ribbons_sse_matches_reference(void)
+static void test_ribbons_every_level_matches_reference(void)
 {
-    /* Every P from 2 to 13 (partial groups of four), both camera kinds:
-       the SSE frame and writer give the reference's bytes. Without SSE the
-       reference runs alone and this checks nothing more. */
-    enum { NS = 40, PM = 13 };
+    /* Every P from 2 to 21 (partial groups of four and eight), both camera
+       kinds: the SSE and AVX2 frames and every level's writer give the
+       reference's bytes. A level the CPU or build lacks checks nothing
+       more. */
+    enum { NS = 40, PM = 21, PW = 19 };
     float pts[NS * PM * 3];
     hf_rng rng;
-    int P, s, ortho, handled = 0;
-#if HF__SSE
-    int declined = 0;
-#endif
+    int P, s, ortho, kind, handled[2] = {0, 0}, declined[2] = {0, 0};
     hf_rng_seed(&rng, 99, 1);
     for (P = 2; P <= PM; ++P)
         for (ortho = 0; ortho < 2; ++ortho) {
@@ -5591,16 +5589,27 @@ static void test_ribbons_sse_matches_reference(void)
             p.orthographic = ortho;
             p.view_dir[0] = 0.1f; p.view_dir[1] = -0.2f; p.view_dir[2] = -1.0f;
             t_random_strands(pts, NS, P, &rng);
-            for (s = 0; s < NS; ++s) {
-                const float *q = pts + (size_t)s * P * 3;
-                hf__rframe a, b;
-                int finite = -1, c, j;
-                memset(&a, 0, sizeof a);
-                memset(&b, 0, sizeof b);
-                hf__strand_frame_ref(q, P, &p, &a);
+            for (s = 0; s < NS; ++s)
+                for (kind = 0; kind < 2; ++kind) {
+                    const float *q = pts + (size_t)s * P * 3;
+                    hf__rframe a, b;
+                    int finite = -1, c, j, took = -1;
+                    memset(&a, 0, sizeof a);
+                    memset(&b, 0, sizeof b);
+                    hf__strand_frame_ref(q, P, &p, &a);
 #if HF__SSE
-                if (hf__strand_frame_sse(q, P, &p, &b, &finite)) {
-                    ++handled;
+                    if (kind == 0) took = hf__strand_frame_sse(q, P, &p, &b, &finite);
+#endif
+#if HF__AVX2
+                    if (kind == 1 && hf_simd_resolve(HF_SIMD_AVX2) == HF_SIMD_AVX2)
+                        took = hf__strand_frame_avx2(q, P, &p, &b, &finite);
+#endif
+                    if (took < 0) continue; /* not in this build or CPU */
+                    if (!took) {
+                        ++declined[kind];
+                        continue;
+                    }
+                    ++handled[kind];
                     CHECK_EQ_INT(finite, 1);
                     for (c = 0; c < 3; ++c)
                         for (j = 0; j < P; ++j) {
@@ -5608,26 +5617,17 @@ static void test_ribbons_sse_matches_reference(void)
                             CHECK(memcmp(&a.s[c][4 + j], &b.s[c][4 + j], 4) == 0);
                             CHECK(memcmp(&a.p[c][4 + j], &b.p[c][4 + j], 4) == 0);
                         }
-                } else {
-                    ++declined;
                 }
-#else
-                (void)b; (void)finite; (void)c; (void)j;
-                ++handled;
-#endif
-            }
         }
-    /* both paths were exercised */
-    CHECK(handled > 300);
-#if HF__SSE
-    CHECK(declined > 50);
-#endif
-    /* the writers: every format, interleaved streams, P = 7 (a partial
-       group) on random frames */
+    /* both paths of each kernel were exercised */
+    if (HF__SSE) CHECK(handled[0] > 500 && declined[0] > 50);
+    if (HF__AVX2 && hf_simd_resolve(HF_SIMD_AVX2) == HF_SIMD_AVX2)
+        CHECK(handled[1] > 500 && declined[1] > 50);
+    /* the writers at every level: every format, interleaved streams, P = 7
+       and 19 (partial groups) on random frames */
     {
-        enum { P7 = 7, STRIDE = 64 };
-        unsigned char va[P7 * 2 * STRIDE], vb[P7 * 2 * STRIDE];
-        hf_ribbon_params p = t_rparams();
+        enum { STRIDE = 64 };
+        static unsigned char va[PW * 2 * STRIDE], vb[PW * 2 * STRIDE];
         hf__rconst K;
         hf__rstrand S;
         hf__rout ro;
@@ -5638,46 +5638,54 @@ static void test_ribbons_sse_matches_reference(void)
         static const int offs[3][5] = {{0, 12, 24, 36, 52},
                                        {0, 12, 24, 36, 52},
                                        {0, 12, 40, 24, 52}};
-        int fmt, q, j;
-        p.points_per_strand = P7;
-        p.alpha_root = 0.9f;
-        p.alpha_tip = 0.1f;
-        memset(&K, 0, sizeof K);
-        hf__half_widths(&p, K.hw);
-        for (j = 0; j < P7; ++j) {
-            K.tt[j] = (float)j / (float)(P7 - 1);
-            K.fade[j] = (1.0f - K.tt[j]) * p.alpha_root + K.tt[j] * p.alpha_tip;
-        }
-        t_random_strands(pts, 8, P7, &rng);
-        for (fmt = 0; fmt < 8; ++fmt)
-            for (s = 0; s < 8; ++s) {
-                const int *off = offs[fmt < 6 ? 0 : fmt - 5];
-                hf__rframe fr;
-                const float *q7 = pts + (size_t)s * P7 * 3;
-                /* as hf_ribbons: a strand with a NaN is drawn collapsed */
-                const int fin = hf__points_finite(q7, 3 * P7);
-                memset(&fr, 0, sizeof fr);
-                hf__strand_frame_ref(fin ? q7 : hf__zero_points, P7, &p, &fr);
-                S.uv[0] = hf_rng_float(&rng);
-                S.uv[1] = hf_rng_float(&rng) * 3.0f - 1.0f; /* out of range too */
-                for (j = 0; j < 4; ++j) S.rgba[j] = hf_rng_float(&rng);
-                S.c3x = hf_rng_float(&rng);
-                S.wscale = fin ? 1.0f : 0.0f;
-                memset(&ro, 0, sizeof ro);
-                for (q = 0; q < 5; ++q) {
-                    ro.stride[q] = STRIDE;
-                    ro.fmt[q] = fmt < 6 ? (fmt + q) % 6 : HF_FORMAT_F32;
-                }
-                ro.origin[0] = 0.1f; ro.origin[1] = -0.2f; ro.origin[2] = 0.3f;
-                ro.inv_scale = 0.5f;
-                memset(va, 0xa5, sizeof va);
-                memset(vb, 0xa5, sizeof vb);
-                for (q = 0; q < 5; ++q) ro.base[q] = va + off[q];
-                hf__ribbon_write_ref(&fr, P7, &K, &S, &ro, 0);
-                for (q = 0; q < 5; ++q) ro.base[q] = vb + off[q];
-                hf__ribbon_write(&fr, P7, &K, &S, &ro, 0);
-                CHECK(memcmp(va, vb, sizeof va) == 0);
+        static const int Ps[2] = {7, PW};
+        int fmt, q, j, pi, level;
+        for (pi = 0; pi < 2; ++pi) {
+            hf_ribbon_params p = t_rparams();
+            P = Ps[pi];
+            p.points_per_strand = P;
+            p.alpha_root = 0.9f;
+            p.alpha_tip = 0.1f;
+            memset(&K, 0, sizeof K);
+            hf__half_widths(&p, K.hw);
+            for (j = 0; j < P; ++j) {
+                K.tt[j] = (float)j / (float)(P - 1);
+                K.fade[j] = (1.0f - K.tt[j]) * p.alpha_root + K.tt[j] * p.alpha_tip;
             }
+            t_random_strands(pts, 8, P, &rng);
+            for (fmt = 0; fmt < 8; ++fmt)
+                for (s = 0; s < 8; ++s) {
+                    const int *off = offs[fmt < 6 ? 0 : fmt - 5];
+                    hf__rframe fr;
+                    const float *qs = pts + (size_t)s * P * 3;
+                    /* as hf_ribbons: a strand with a NaN is drawn collapsed */
+                    const int fin = hf__points_finite(qs, 3 * P);
+                    memset(&fr, 0, sizeof fr);
+                    hf__strand_frame_ref(fin ? qs : hf__zero_points, P, &p, &fr);
+                    S.uv[0] = hf_rng_float(&rng);
+                    S.uv[1] = hf_rng_float(&rng) * 3.0f - 1.0f; /* out of range too */
+                    for (j = 0; j < 4; ++j) S.rgba[j] = hf_rng_float(&rng);
+                    S.c3x = hf_rng_float(&rng);
+                    S.wscale = fin ? 1.0f : 0.0f;
+                    memset(&ro, 0, sizeof ro);
+                    for (q = 0; q < 5; ++q) {
+                        ro.stride[q] = STRIDE;
+                        ro.fmt[q] = fmt < 6 ? (fmt + q) % 6 : HF_FORMAT_F32;
+                    }
+                    ro.origin[0] = 0.1f; ro.origin[1] = -0.2f; ro.origin[2] = 0.3f;
+                    ro.inv_scale = 0.5f;
+                    memset(va, 0xa5, sizeof va);
+                    for (q = 0; q < 5; ++q) ro.base[q] = va + off[q];
+                    hf__ribbon_write_ref(&fr, P, &K, &S, &ro, 0);
+                    for (level = HF_SIMD_SSE2; level <= HF_SIMD_AVX512; ++level) {
+                        memset(vb, 0xa5, sizeof vb);
+                        for (q = 0; q < 5; ++q) ro.base[q] = vb + off[q];
+                        hf__ribbon_write(&fr, P, &K, &S, &ro, 0,
+                                         hf_simd_resolve(level));
+                        CHECK(memcmp(va, vb, sizeof va) == 0);
+                    }
+                }
+        }
     }
 }
 
@@ -6002,7 +6010,7 @@ static void test_ribbon_sides_never_twist(void)
             const int at = (int)hf_rng_below(&rng, TP);
             float ws;
             double t[3], a[3], v[3], len, sn = sins[q];
-            hf__strand_frame(pts, TP, &p, &fr, &ws); /* tangents first */
+            hf__strand_frame(pts, TP, &p, &fr, &ws, hf_simd_resolve(0)); /* tangents first */
             for (k = 0; k < 3; ++k) t[k] = fr.t[k][4 + at];
             /* a unit axis perpendicular to t */
             a[0] = t[1]; a[1] = -t[0]; a[2] = 0.0;
@@ -6015,7 +6023,7 @@ static void test_ribbon_sides_never_twist(void)
                               : 1.5 * (sqrt(1.0 - sn * sn) * t[k] + sn * a[k]);
                 p.eye[k] = (float)((double)pts[3 * at + k] + v[k]);
             }
-            hf__strand_frame(pts, TP, &p, &fr, &ws);
+            hf__strand_frame(pts, TP, &p, &fr, &ws, hf_simd_resolve(0));
             for (j = 0; j < TP; ++j) {
                 float sj[3], tj[3];
                 double dv[3], dl, st, sv, n;
@@ -6061,7 +6069,7 @@ static void test_ribbon_sides_never_twist(void)
     p.view_dir[0] = 0.0f; p.view_dir[1] = -1.0f; p.view_dir[2] = 0.0f;
     {
         float ws;
-        hf__strand_frame(pts, TP, &p, &fr, &ws);
+        hf__strand_frame(pts, TP, &p, &fr, &ws, hf_simd_resolve(0));
         for (j = 0; j < TP; ++j) {
             CHECK(fabsf(fr.s[1][4 + j]) <= 1e-6f);
             CHECK(fabsf(fr.s[0][4 + j] * fr.s[0][4 + j] +
@@ -9071,7 +9079,7 @@ int main(void)
     RUN(test_ribbons_separate_streams_and_skips);
     RUN(test_ribbons_errors_write_nothing);
     RUN(test_ribbons_leading_tangent);
-    RUN(test_ribbons_sse_matches_reference);
+    RUN(test_ribbons_every_level_matches_reference);
     RUN(test_format_encoders);
     RUN(test_points_every_level);
     RUN(test_ribbons_compact_formats);
