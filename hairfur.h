@@ -2097,6 +2097,77 @@ HF__INLINE __m128 hf__sel_sse(__m128 m, __m128 a, __m128 b)
 }
 #endif
 
+/* The four-lane kernels (the rope step) are written once, for SSE2 and
+   NEON, in these: hf__v4 holds four floats, a mask is a vector whose
+   lanes have every bit set or clear, HF__MASK gives bit i for lane i.
+   Each is the IEEE operation of the scalar code, so both ISAs give its
+   bytes; HF__MAX is SSE's maxps, x > y ? x : y (y when either is NaN).
+   Each macro argument is used once. */
+#define HF__V4 (HF__SSE || HF__NEON)
+#if HF__SSE
+typedef __m128 hf__v4;
+#define HF__TARGET_V4
+#define HF__LD(p) _mm_loadu_ps(p)
+#define HF__ST(p, v) _mm_storeu_ps(p, v)
+#define HF__SET1(x) _mm_set1_ps(x)
+#define HF__ADD(x, y) _mm_add_ps(x, y)
+#define HF__SUB(x, y) _mm_sub_ps(x, y)
+#define HF__MUL(x, y) _mm_mul_ps(x, y)
+#define HF__DIV(x, y) _mm_div_ps(x, y)
+#define HF__SQRT(x) _mm_sqrt_ps(x)
+#define HF__MAX(x, y) _mm_max_ps(x, y)
+#define HF__GT(x, y) _mm_cmpgt_ps(x, y)
+#define HF__LT(x, y) _mm_cmplt_ps(x, y)
+#define HF__LE(x, y) _mm_cmple_ps(x, y)
+#define HF__AND(x, y) _mm_and_ps(x, y)
+#define HF__SEL(m, a, b) hf__sel_sse(m, a, b)
+#define HF__MASK(m) _mm_movemask_ps(m)
+#define HF__PREFETCH(p) _mm_prefetch((const char *)(p), _MM_HINT_T0)
+#elif HF__NEON
+typedef float32x4_t hf__v4;
+#define HF__TARGET_V4 HF__TARGET_NEON
+#define HF__LD(p) vld1q_f32(p)
+#define HF__ST(p, v) vst1q_f32(p, v)
+#define HF__SET1(x) vdupq_n_f32(x)
+#define HF__ADD(x, y) vaddq_f32(x, y)
+#define HF__SUB(x, y) vsubq_f32(x, y)
+#define HF__MUL(x, y) vmulq_f32(x, y)
+#define HF__DIV(x, y) vdivq_f32(x, y)
+#define HF__SQRT(x) vsqrtq_f32(x)
+#define HF__MAX(x, y) hf__max_neon(x, y)
+#define HF__GT(x, y) vreinterpretq_f32_u32(vcgtq_f32(x, y))
+#define HF__LT(x, y) vreinterpretq_f32_u32(vcltq_f32(x, y))
+#define HF__LE(x, y) vreinterpretq_f32_u32(vcleq_f32(x, y))
+#define HF__AND(x, y)                                                          \
+    vreinterpretq_f32_u32(                                                     \
+        vandq_u32(vreinterpretq_u32_f32(x), vreinterpretq_u32_f32(y)))
+#define HF__SEL(m, a, b) vbslq_f32(vreinterpretq_u32_f32(m), a, b)
+#define HF__MASK(m) hf__mask_neon(m)
+#if defined(__GNUC__) || defined(__clang__)
+#define HF__PREFETCH(p) __builtin_prefetch(p)
+#else
+#define HF__PREFETCH(p) ((void)(p))
+#endif
+HF__TARGET_NEON HF__INLINE float32x4_t hf__max_neon(float32x4_t x,
+                                                   float32x4_t y)
+{
+    return vbslq_f32(vcgtq_f32(x, y), x, y);
+}
+HF__TARGET_NEON HF__INLINE int hf__mask_neon(float32x4_t m)
+{
+    static const uint32_t bit[4] = {1u, 2u, 4u, 8u};
+    return (int)vaddvq_u32(vandq_u32(vreinterpretq_u32_f32(m), vld1q_u32(bit)));
+}
+#endif
+#if HF__V4
+/* a x + b y + c z, added left to right as the scalar code does */
+#define HF__DOT3(a, b, c, x, y, z)                                             \
+    HF__ADD(HF__ADD(HF__MUL(a, x), HF__MUL(b, y)), HF__MUL(c, z))
+/* o + a x + b y + c z, likewise */
+#define HF__POSE(o, a, b, c, x, y, z)                                          \
+    HF__ADD(HF__ADD(HF__ADD(o, HF__MUL(a, x)), HF__MUL(b, y)), HF__MUL(c, z))
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -5031,20 +5102,6 @@ HF__PRIVATE float hf__rope_kl(const hf__rope_step *st, int j, int P)
    row. */
 #define HF__ROW(base, row, stride) ((base) + (size_t)(row) * (stride))
 
-#if HF__SSE
-/* Shorthands for the four-rope kernels; each argument is used once. */
-#define HF__LD(p) _mm_loadu_ps(p)
-#define HF__ST(p, v) _mm_storeu_ps(p, v)
-#define HF__ADD(x, y) _mm_add_ps(x, y)
-#define HF__SUB(x, y) _mm_sub_ps(x, y)
-#define HF__MUL(x, y) _mm_mul_ps(x, y)
-/* a x + b y + c z, added left to right as the scalar code does */
-#define HF__DOT3(a, b, c, x, y, z)                                             \
-    HF__ADD(HF__ADD(HF__MUL(a, x), HF__MUL(b, y)), HF__MUL(c, z))
-/* o + a x + b y + c z, likewise */
-#define HF__POSE(o, a, b, c, x, y, z)                                          \
-    HF__ADD(HF__ADD(HF__ADD(o, HF__MUL(a, x)), HF__MUL(b, y)), HF__MUL(c, z))
-#endif
 
 /* The 12 rows of a frame block (position, tangent, normal, bitangent;
    x, y, z each), `stride` floats apart. */
@@ -5056,7 +5113,7 @@ HF__PRIVATE void hf__frame_rows(const float *fr, size_t stride,
 }
 
 /* Point row j of ropes [a, b) at frame rows fr (12 rows) times rest:
-   the scalar reference, the SSE kernel (whole groups of four from a,
+   the scalar reference, the four-lane kernel (whole groups from a,
    returns where they end) and their dispatch. */
 HF__PRIVATE void hf__rope_pose_row_ref(const hf_ropes *ro, int j, int a,
                                        int b, const float *fr,
@@ -5077,12 +5134,11 @@ HF__PRIVATE void hf__rope_pose_row_ref(const hf_ropes *ro, int j, int a,
     }
 }
 
-#if HF__SSE
-HF__PRIVATE int hf__rope_pose_row_sse(const hf_ropes *ro, int j, int a,
-                                      int b, const float *fr,
-                                      float *HF__RESTRICT ox,
-                                      float *HF__RESTRICT oy,
-                                      float *HF__RESTRICT oz)
+#if HF__V4
+HF__TARGET_V4 HF__PRIVATE int
+hf__rope_pose_row_v4(const hf_ropes *ro, int j, int a, int b, const float *fr,
+                     float *HF__RESTRICT ox, float *HF__RESTRICT oy,
+                     float *HF__RESTRICT oz)
 {
     const size_t R = (size_t)ro->rope_count;
     const float *u = HF__ROW(ro->rest_u, j, R), *v = HF__ROW(ro->rest_v, j, R),
@@ -5091,14 +5147,16 @@ HF__PRIVATE int hf__rope_pose_row_sse(const hf_ropes *ro, int j, int a,
     int r = a;
     hf__frame_rows(fr, R, f);
     for (; r + 4 <= b; r += 4) {
-        const __m128 uu = HF__LD(u + r), vv = HF__LD(v + r),
-                     ww = HF__LD(w + r);
-        HF__ST(ox + r, HF__POSE(HF__LD(f[0] + r), HF__LD(f[3] + r), HF__LD(f[6] + r),
-                                HF__LD(f[9] + r), uu, vv, ww));
-        HF__ST(oy + r, HF__POSE(HF__LD(f[1] + r), HF__LD(f[4] + r), HF__LD(f[7] + r),
-                                HF__LD(f[10] + r), uu, vv, ww));
-        HF__ST(oz + r, HF__POSE(HF__LD(f[2] + r), HF__LD(f[5] + r), HF__LD(f[8] + r),
-                                HF__LD(f[11] + r), uu, vv, ww));
+        const hf__v4 uu = HF__LD(u + r), vv = HF__LD(v + r), ww = HF__LD(w + r);
+        HF__ST(ox + r,
+               HF__POSE(HF__LD(f[0] + r), HF__LD(f[3] + r), HF__LD(f[6] + r),
+                        HF__LD(f[9] + r), uu, vv, ww));
+        HF__ST(oy + r,
+               HF__POSE(HF__LD(f[1] + r), HF__LD(f[4] + r), HF__LD(f[7] + r),
+                        HF__LD(f[10] + r), uu, vv, ww));
+        HF__ST(oz + r,
+               HF__POSE(HF__LD(f[2] + r), HF__LD(f[5] + r), HF__LD(f[8] + r),
+                        HF__LD(f[11] + r), uu, vv, ww));
     }
     return r;
 }
@@ -5109,8 +5167,8 @@ HF__PRIVATE void hf__rope_pose_row(const hf_ropes *ro, int j, int a, int b,
                                    float *HF__RESTRICT oy,
                                    float *HF__RESTRICT oz)
 {
-#if HF__SSE
-    a = hf__rope_pose_row_sse(ro, j, a, b, fr, ox, oy, oz);
+#if HF__V4
+    a = hf__rope_pose_row_v4(ro, j, a, b, fr, ox, oy, oz);
 #endif
     hf__rope_pose_row_ref(ro, j, a, b, fr, ox, oy, oz);
 }
@@ -5187,23 +5245,24 @@ HF__PRIVATE float hf__col_closest(const hf__col_prep *k, float x, float y,
     return d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
 }
 
-#if HF__SSE
+#if HF__V4
 /* A prepared collider in every lane, rr^2, and whether its axis is a point
    (e == 0: a sphere or a zero-length capsule). */
 typedef struct hf__col_prep4 {
-    __m128 a[3], e[3], inv, rr2;
+    hf__v4 a[3], e[3], inv, rr2;
     int point;
 } hf__col_prep4;
 
-HF__PRIVATE void hf__col_prep_sse(const hf__col_prep *k, hf__col_prep4 *v)
+HF__TARGET_V4 HF__PRIVATE void hf__col_prep_v4(const hf__col_prep *k,
+                                               hf__col_prep4 *v)
 {
     int i;
     for (i = 0; i < 3; ++i) {
-        v->a[i] = _mm_set1_ps(k->a[i]);
-        v->e[i] = _mm_set1_ps(k->e[i]);
+        v->a[i] = HF__SET1(k->a[i]);
+        v->e[i] = HF__SET1(k->e[i]);
     }
-    v->inv = _mm_set1_ps(k->inv);
-    v->rr2 = _mm_set1_ps(k->rr * k->rr);
+    v->inv = HF__SET1(k->inv);
+    v->rr2 = HF__SET1(k->rr * k->rr);
     v->point = k->e[0] == 0.0f && k->e[1] == 0.0f && k->e[2] == 0.0f;
 }
 
@@ -5213,28 +5272,27 @@ HF__PRIVATE void hf__col_prep_sse(const hf__col_prep *k, hf__col_prep4 *v)
    For a point axis, c = a + 0 * t equals a up to the sign of a zero (or is
    NaN only where x - a already is infinite or NaN), so |x - a|^2 is the
    same |d|^2 and the same decision. */
-HF__INLINE int hf__col_hits_sse(const hf__col_prep4 *k, __m128 x, __m128 y,
-                              __m128 z)
+HF__TARGET_V4 HF__INLINE int hf__col_hits_v4(const hf__col_prep4 *k, hf__v4 x,
+                                             hf__v4 y, hf__v4 z)
 {
-    __m128 t, dx, dy, dz;
+    hf__v4 t, dx, dy, dz;
     if (k->point) {
         dx = HF__SUB(x, k->a[0]);
         dy = HF__SUB(y, k->a[1]);
         dz = HF__SUB(z, k->a[2]);
     } else {
-        const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+        const hf__v4 zero = HF__SET1(0.0f), one = HF__SET1(1.0f);
         t = HF__MUL(HF__DOT3(HF__SUB(x, k->a[0]), HF__SUB(y, k->a[1]),
                              HF__SUB(z, k->a[2]), k->e[0], k->e[1], k->e[2]),
                     k->inv);
         /* t < 0 ? 0 : (t > 1 ? 1 : t), NaN and -0 kept as the scalar does */
-        t = hf__sel_sse(_mm_cmplt_ps(t, zero), zero,
-                          hf__sel_sse(_mm_cmpgt_ps(t, one), one, t));
+        t = HF__SEL(HF__LT(t, zero), zero, HF__SEL(HF__GT(t, one), one, t));
         dx = HF__SUB(x, HF__ADD(k->a[0], HF__MUL(k->e[0], t)));
         dy = HF__SUB(y, HF__ADD(k->a[1], HF__MUL(k->e[1], t)));
         dz = HF__SUB(z, HF__ADD(k->a[2], HF__MUL(k->e[2], t)));
     }
     t = HF__DOT3(dx, dy, dz, dx, dy, dz);
-    return _mm_movemask_ps(_mm_cmplt_ps(t, k->rr2));
+    return HF__MASK(HF__LT(t, k->rr2));
 }
 #endif
 
@@ -5968,24 +6026,23 @@ HF__PRIVATE void hf__ropes_mark_far_ref(const hf_ropes *ro, int j, int a,
     }
 }
 
-#if HF__SSE
-
+#if HF__V4
 
 /* Which colliders hold a point of four (bit i: lane i), every collider
-   tested with hf__col_hits_sse. */
-HF__PRIVATE int hf__col_any_sse(const hf_collider *col, int ncol,
-                                const hf__col_prep4 *pre, float margin,
-                                const __m128 *xyz)
+   tested with hf__col_hits_v4. */
+HF__TARGET_V4 HF__PRIVATE int hf__col_any_v4(const hf_collider *col, int ncol,
+                                             const hf__col_prep4 *pre,
+                                             float margin, const hf__v4 *xyz)
 {
     int c, m = 0;
     for (c = 0; c < ncol && m != 15; ++c) {
         if (c < HF__ROPE_PREP) {
-            m |= hf__col_hits_sse(pre + c, xyz[0], xyz[1], xyz[2]);
+            m |= hf__col_hits_v4(pre + c, xyz[0], xyz[1], xyz[2]);
         } else {
             const hf__col_prep k = hf__collider_prep(col + c, margin);
             hf__col_prep4 k4;
-            hf__col_prep_sse(&k, &k4);
-            m |= hf__col_hits_sse(&k4, xyz[0], xyz[1], xyz[2]);
+            hf__col_prep_v4(&k, &k4);
+            m |= hf__col_hits_v4(&k4, xyz[0], xyz[1], xyz[2]);
         }
     }
     return m;
@@ -5995,19 +6052,20 @@ HF__PRIVATE int hf__col_any_sse(const hf_collider *col, int ncol,
    that some collider holds goes through the scalar kernel on its own
    (ftl: hf__ropes_collide_ftl_row with every collider; else the radial
    push of each collider in order). xyz is read back after a hit. */
-HF__PRIVATE void hf__col_row_sse(hf_ropes *ro, const float *F, int j, int r,
-                                 int ftl, const hf_collider *col, int ncol,
-                                 const hf__col_prep4 *pre, float margin,
-                                 __m128 *xyz)
+HF__TARGET_V4 HF__PRIVATE void hf__col_row_v4(hf_ropes *ro, const float *F,
+                                              int j, int r, int ftl,
+                                              const hf_collider *col, int ncol,
+                                              const hf__col_prep4 *pre,
+                                              float margin, hf__v4 *xyz)
 {
     const size_t o = (size_t)j * (size_t)ro->rope_count + (size_t)r;
     int c, m, i;
     if (ftl) {
-        m = hf__col_any_sse(col, ncol, pre, margin, xyz);
+        m = hf__col_any_v4(col, ncol, pre, margin, xyz);
         for (i = 0; i < 4; ++i)
             if ((m >> i) & 1)
-                hf__ropes_collide_ftl_row(ro, F, j, r + i, r + i + 1, col,
-                                          ncol, margin);
+                hf__ropes_collide_ftl_row(ro, F, j, r + i, r + i + 1, col, ncol,
+                                          margin);
         if (m) {
             xyz[0] = HF__LD(ro->x + o);
             xyz[1] = HF__LD(ro->y + o);
@@ -6017,12 +6075,12 @@ HF__PRIVATE void hf__col_row_sse(hf_ropes *ro, const float *F, int j, int r,
     }
     for (c = 0; c < ncol; ++c) {
         if (c < HF__ROPE_PREP) {
-            m = hf__col_hits_sse(pre + c, xyz[0], xyz[1], xyz[2]);
+            m = hf__col_hits_v4(pre + c, xyz[0], xyz[1], xyz[2]);
         } else {
             const hf__col_prep k = hf__collider_prep(col + c, margin);
             hf__col_prep4 k4;
-            hf__col_prep_sse(&k, &k4);
-            m = hf__col_hits_sse(&k4, xyz[0], xyz[1], xyz[2]);
+            hf__col_prep_v4(&k, &k4);
+            m = hf__col_hits_v4(&k4, xyz[0], xyz[1], xyz[2]);
         }
         if (!m) continue;
         for (i = 0; i < 4; ++i)
@@ -6036,29 +6094,30 @@ HF__PRIVATE void hf__col_row_sse(hf_ropes *ro, const float *F, int j, int r,
 }
 
 /* hf__ropes_collide for ropes [a, b), b - a a multiple of 4. */
-HF__PRIVATE void hf__ropes_collide_sse(hf_ropes *ro, const float *F, int a,
-                                    int b, const hf_collider *col, int ncol,
-                                    const hf__col_prep4 *pre, float margin)
+HF__TARGET_V4 HF__PRIVATE void
+hf__ropes_collide_v4(hf_ropes *ro, const float *F, int a, int b,
+                     const hf_collider *col, int ncol, const hf__col_prep4 *pre,
+                     float margin)
 {
     size_t R = (size_t)ro->rope_count;
     int j, r;
     for (j = 1; j < ro->points; ++j)
         for (r = a; r < b; r += 4) {
             size_t o = (size_t)j * R + (size_t)r;
-            __m128 xyz[3];
+            hf__v4 xyz[3];
             xyz[0] = HF__LD(ro->x + o);
             xyz[1] = HF__LD(ro->y + o);
             xyz[2] = HF__LD(ro->z + o);
-            hf__col_row_sse(ro, F, j, r, 0, col, ncol, pre, margin, xyz);
+            hf__col_row_v4(ro, F, j, r, 0, col, ncol, pre, margin, xyz);
         }
 }
 
-/* Row kernels of the SSE sub-step (ropes [a, b), b - a a multiple of 4,
+/* Row kernels of the four-lane sub-step (ropes [a, b), b - a a multiple of 4,
    a rope per lane), each with the operations of its scalar reference. */
 
 /* The root pinned to the frame F (hf__ropes_integrate_ref's last loop). */
-HF__PRIVATE void hf__ropes_pin_root_sse(hf_ropes *ro, const float *F, int a,
-                                        int b)
+HF__TARGET_V4 HF__PRIVATE void
+hf__ropes_pin_root_v4(hf_ropes *ro, const float *F, int a, int b)
 {
     const size_t R = (size_t)ro->rope_count;
     const float *F0 = HF__ROW(F, 0, R), *F1 = HF__ROW(F, 1, R),
@@ -6069,7 +6128,7 @@ HF__PRIVATE void hf__ropes_pin_root_sse(hf_ropes *ro, const float *F, int a,
                 *F10 = HF__ROW(F, 10, R), *F11 = HF__ROW(F, 11, R);
     int r;
     for (r = a; r < b; r += 4) {
-        const __m128 u = HF__LD(ro->rest_u + r), v = HF__LD(ro->rest_v + r),
+        const hf__v4 u = HF__LD(ro->rest_u + r), v = HF__LD(ro->rest_v + r),
                      w = HF__LD(ro->rest_w + r);
         HF__ST(ro->px + r, HF__LD(ro->x + r));
         HF__ST(ro->py + r, HF__LD(ro->y + r));
@@ -6084,9 +6143,9 @@ HF__PRIVATE void hf__ropes_pin_root_sse(hf_ropes *ro, const float *F, int a,
 }
 
 /* Row j: Verlet integration and the global pull toward the rest place. */
-HF__PRIVATE void hf__ropes_integrate_row_sse(hf_ropes *ro, const float *F,
-                                             int j, int a, int b,
-                                             const hf__rope_step *st)
+HF__TARGET_V4 HF__PRIVATE void
+hf__ropes_integrate_row_v4(hf_ropes *ro, const float *F, int j, int a, int b,
+                           const hf__rope_step *st)
 {
     const size_t R = (size_t)ro->rope_count;
     const int P = ro->points;
@@ -6104,17 +6163,16 @@ HF__PRIVATE void hf__ropes_integrate_row_sse(hf_ropes *ro, const float *F,
           *Z = HF__ROW(ro->z, j, R);
     float *PX = HF__ROW(ro->px, j, R), *PY = HF__ROW(ro->py, j, R),
           *PZ = HF__ROW(ro->pz, j, R);
-    const float *u = HF__ROW(ro->rest_u, j, R),
-                *v = HF__ROW(ro->rest_v, j, R),
+    const float *u = HF__ROW(ro->rest_u, j, R), *v = HF__ROW(ro->rest_v, j, R),
                 *w = HF__ROW(ro->rest_w, j, R);
     const float kgj = st->ktab ? st->kg[j] : hf__rope_kg(st, j, P);
     const int pull = (st->k_root > 0.0f || st->global_on) && !(kgj <= 0.0f);
-    const __m128 kg = _mm_set1_ps(kgj);
+    const hf__v4 kg = HF__SET1(kgj);
     int r;
     for (r = a; r < b; r += 4) {
-        const __m128 vf = HF__LD(VF + r);
-        __m128 x = HF__LD(X + r), y = HF__LD(Y + r), z = HF__LD(Z + r);
-        const __m128 vx = HF__MUL(HF__SUB(x, HF__LD(PX + r)), vf),
+        const hf__v4 vf = HF__LD(VF + r);
+        hf__v4 x = HF__LD(X + r), y = HF__LD(Y + r), z = HF__LD(Z + r);
+        const hf__v4 vx = HF__MUL(HF__SUB(x, HF__LD(PX + r)), vf),
                      vy = HF__MUL(HF__SUB(y, HF__LD(PY + r)), vf),
                      vz = HF__MUL(HF__SUB(z, HF__LD(PZ + r)), vf);
         HF__ST(PX + r, x);
@@ -6124,9 +6182,9 @@ HF__PRIVATE void hf__ropes_integrate_row_sse(hf_ropes *ro, const float *F,
         y = HF__ADD(y, HF__ADD(vy, HF__LD(AY + r)));
         z = HF__ADD(z, HF__ADD(vz, HF__LD(AZ + r)));
         if (pull) {
-            const __m128 uu = HF__LD(u + r), vv = HF__LD(v + r),
+            const hf__v4 uu = HF__LD(u + r), vv = HF__LD(v + r),
                          ww = HF__LD(w + r);
-            __m128 g;
+            hf__v4 g;
             g = HF__POSE(HF__LD(F0 + r), HF__LD(F3 + r), HF__LD(F6 + r),
                          HF__LD(F9 + r), uu, vv, ww);
             x = HF__ADD(x, HF__MUL(kg, HF__SUB(g, x)));
@@ -6147,10 +6205,9 @@ HF__PRIVATE void hf__ropes_integrate_row_sse(hf_ropes *ro, const float *F,
    scratch rows Q[m & 1] (the child direction q of point j + 1's turn, the
    parent direction p of point j + 2's), then point j turned as in
    hf__ropes_local_shape_ref at its j = m; the next row is prefetched. */
-HF__PRIVATE void hf__ropes_local_row_sse(hf_ropes *ro, const float *F, int j,
-                                         int a, int b,
-                                         const hf__rope_step *st,
-                                         float *Q[2][3])
+HF__TARGET_V4 HF__PRIVATE void
+hf__ropes_local_row_v4(hf_ropes *ro, const float *F, int j, int a, int b,
+                       const hf__rope_step *st, float *Q[2][3])
 {
     const size_t R = (size_t)ro->rope_count;
     const int P = ro->points;
@@ -6159,15 +6216,15 @@ HF__PRIVATE void hf__ropes_local_row_sse(hf_ropes *ro, const float *F, int j,
                 *F7 = HF__ROW(F, 7, R), *F8 = HF__ROW(F, 8, R),
                 *F9 = HF__ROW(F, 9, R), *F10 = HF__ROW(F, 10, R),
                 *F11 = HF__ROW(F, 11, R);
-    const float *u = HF__ROW(ro->rest_u, j, R),
-                *v = HF__ROW(ro->rest_v, j, R),
+    const float *u = HF__ROW(ro->rest_u, j, R), *v = HF__ROW(ro->rest_v, j, R),
                 *w = HF__ROW(ro->rest_w, j, R);
     float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
           *Z = HF__ROW(ro->z, j, R);
-    const __m128 one = _mm_set1_ps(1.0f);
+    const hf__v4 one = HF__SET1(1.0f);
     const int m = j - 1;
-    const float klm =
-        m < 1 ? 0.0f : st->ktab ? st->kl[m] : hf__rope_kl(st, m, P);
+    const float klm = m < 1      ? 0.0f
+                      : st->ktab ? st->kl[m]
+                                 : hf__rope_kl(st, m, P);
     int r;
     {
         /* q of segment m */
@@ -6176,7 +6233,7 @@ HF__PRIVATE void hf__ropes_local_row_sse(hf_ropes *ro, const float *F, int j,
                     *w1 = HF__ROW(ro->rest_w, m, R);
         float *QX = Q[m & 1][0], *QY = Q[m & 1][1], *QZ = Q[m & 1][2];
         for (r = a; r < b; r += 4) {
-            const __m128 qu = HF__SUB(HF__LD(u + r), HF__LD(u1 + r)),
+            const hf__v4 qu = HF__SUB(HF__LD(u + r), HF__LD(u1 + r)),
                          qv = HF__SUB(HF__LD(v + r), HF__LD(v1 + r)),
                          qw = HF__SUB(HF__LD(w + r), HF__LD(w1 + r));
             HF__ST(QX + r, HF__DOT3(HF__LD(F3 + r), HF__LD(F6 + r),
@@ -6195,47 +6252,45 @@ HF__PRIVATE void hf__ropes_local_row_sse(hf_ropes *ro, const float *F, int j,
         const float *X1 = HF__ROW(ro->x, m, R), *Y1 = HF__ROW(ro->y, m, R),
                     *Z1 = HF__ROW(ro->z, m, R);
         const float *L = HF__ROW(ro->rest_length, m - 1, R);
-        const float *QX = Q[m & 1][0], *QY = Q[m & 1][1],
-                    *QZ = Q[m & 1][2];
+        const float *QX = Q[m & 1][0], *QY = Q[m & 1][1], *QZ = Q[m & 1][2];
         const float *PX_ = Q[(m + 1) & 1][0], *PY_ = Q[(m + 1) & 1][1],
                     *PZ_ = Q[(m + 1) & 1][2];
-        const __m128 kl = _mm_set1_ps(klm);
+        const hf__v4 kl = HF__SET1(klm);
         const int pf = j + 1 < P;
         for (r = a; r < b; r += 4) {
-            const __m128 x1 = HF__LD(X1 + r), y1 = HF__LD(Y1 + r),
+            const hf__v4 x1 = HF__LD(X1 + r), y1 = HF__LD(Y1 + r),
                          z1 = HF__LD(Z1 + r), l = HF__LD(L + r);
-            const __m128 qx = HF__LD(QX + r), qy = HF__LD(QY + r),
+            const hf__v4 qx = HF__LD(QX + r), qy = HF__LD(QY + r),
                          qz = HF__LD(QZ + r);
-            __m128 px_, py_, pz_, bx, by, bz, b2, ok, ia, ib, cc, kx, ky,
-                kz, kd, den, rx, ry, rz, x2, y2, z2;
+            hf__v4 px_, py_, pz_, bx, by, bz, b2, ok, ia, ib, cc, kx, ky, kz,
+                kd, den, rx, ry, rz, x2, y2, z2;
             int all_ok;
             if (pf && ((r - a) & 15) == 0) {
                 /* the next row, a cache line (16 ropes) at a time */
                 const size_t o = (size_t)(j + 1) * R + (size_t)r;
-                _mm_prefetch((const char *)(ro->x + o), _MM_HINT_T0);
-                _mm_prefetch((const char *)(ro->y + o), _MM_HINT_T0);
-                _mm_prefetch((const char *)(ro->z + o), _MM_HINT_T0);
-                _mm_prefetch((const char *)(ro->px + o), _MM_HINT_T0);
-                _mm_prefetch((const char *)(ro->py + o), _MM_HINT_T0);
-                _mm_prefetch((const char *)(ro->pz + o), _MM_HINT_T0);
-                _mm_prefetch((const char *)(ro->rest_u + o), _MM_HINT_T0);
-                _mm_prefetch((const char *)(ro->rest_v + o), _MM_HINT_T0);
-                _mm_prefetch((const char *)(ro->rest_w + o), _MM_HINT_T0);
-                _mm_prefetch((const char *)(ro->rest_length + o - R),
-                             _MM_HINT_T0);
+                HF__PREFETCH(ro->x + o);
+                HF__PREFETCH(ro->y + o);
+                HF__PREFETCH(ro->z + o);
+                HF__PREFETCH(ro->px + o);
+                HF__PREFETCH(ro->py + o);
+                HF__PREFETCH(ro->pz + o);
+                HF__PREFETCH(ro->rest_u + o);
+                HF__PREFETCH(ro->rest_v + o);
+                HF__PREFETCH(ro->rest_w + o);
+                HF__PREFETCH(ro->rest_length + o - R);
             }
             bx = HF__SUB(x1, HF__LD(X0 + r));
             by = HF__SUB(y1, HF__LD(Y0 + r));
             bz = HF__SUB(z1, HF__LD(Z0 + r));
             b2 = HF__DOT3(bx, by, bz, bx, by, bz);
-            ok = _mm_and_ps(_mm_cmpgt_ps(l, _mm_set1_ps(1e-12f)),
-                            _mm_cmpgt_ps(b2, _mm_set1_ps(1e-24f)));
-            all_ok = _mm_movemask_ps(ok) == 15;
-            ia = _mm_div_ps(one, l);
-            ib = _mm_div_ps(one, _mm_sqrt_ps(b2));
+            ok = HF__AND(HF__GT(l, HF__SET1(1e-12f)),
+                         HF__GT(b2, HF__SET1(1e-24f)));
+            all_ok = HF__MASK(ok) == 15;
+            ia = HF__DIV(one, l);
+            ib = HF__DIV(one, HF__SQRT(b2));
             if (!all_ok) { /* the scalar's 0 (lanes may divide by 0) */
-                ia = _mm_and_ps(ok, ia);
-                ib = _mm_and_ps(ok, ib);
+                ia = HF__AND(ok, ia);
+                ib = HF__AND(ok, ib);
             }
             px_ = HF__MUL(HF__LD(PX_ + r), ia);
             py_ = HF__MUL(HF__LD(PY_ + r), ia);
@@ -6244,14 +6299,13 @@ HF__PRIVATE void hf__ropes_local_row_sse(hf_ropes *ro, const float *F, int j,
             by = HF__MUL(by, ib);
             bz = HF__MUL(bz, ib);
             cc = HF__DOT3(px_, py_, pz_, bx, by, bz);
-            if (!all_ok) cc = hf__sel_sse(ok, cc, one);
+            if (!all_ok) cc = HF__SEL(ok, cc, one);
             kx = HF__SUB(HF__MUL(py_, bz), HF__MUL(pz_, by));
             ky = HF__SUB(HF__MUL(pz_, bx), HF__MUL(px_, bz));
             kz = HF__SUB(HF__MUL(px_, by), HF__MUL(py_, bx));
             kd = HF__DOT3(kx, ky, kz, qx, qy, qz);
             /* maxps(a, b) is a > b ? a : b, NaN included: the scalar's */
-            den = _mm_div_ps(kd, _mm_max_ps(HF__ADD(one, cc),
-                                            _mm_set1_ps(1e-6f)));
+            den = HF__DIV(kd, HF__MAX(HF__ADD(one, cc), HF__SET1(1e-6f)));
             /* r = q cc + k x q + k den, turned q */
             rx = HF__ADD(HF__ADD(HF__MUL(qx, cc),
                                  HF__SUB(HF__MUL(ky, qz), HF__MUL(kz, qy))),
@@ -6278,10 +6332,10 @@ HF__PRIVATE void hf__ropes_local_row_sse(hf_ropes *ro, const float *F, int j,
 /* Row j's follow-the-leader placement (or, for the distance solver, the
    root segment), then its collisions (the first collider's test inline; a
    hit goes through the scalar kernel). */
-HF__PRIVATE void hf__ropes_ftl_row_sse(hf_ropes *ro, const float *F, int j,
-                                       int a, int b, const hf__rope_step *st,
-                                       const hf_collider *col, int ncol,
-                                       const hf__col_prep4 *pre)
+HF__TARGET_V4 HF__PRIVATE void
+hf__ropes_ftl_row_v4(hf_ropes *ro, const float *F, int j, int a, int b,
+                     const hf__rope_step *st, const hf_collider *col, int ncol,
+                     const hf__col_prep4 *pre)
 {
     const size_t R = (size_t)ro->rope_count;
     const float *F6 = HF__ROW(F, 6, R), *F7 = HF__ROW(F, 7, R),
@@ -6293,26 +6347,26 @@ HF__PRIVATE void hf__ropes_ftl_row_sse(hf_ropes *ro, const float *F, int j,
     float *PX0 = HF__ROW(ro->px, j - 1, R), *PY0 = HF__ROW(ro->py, j - 1, R),
           *PZ0 = HF__ROW(ro->pz, j - 1, R);
     const float *L = HF__ROW(ro->rest_length, j - 1, R);
-    const __m128 one = _mm_set1_ps(1.0f);
-    const __m128 sd = _mm_set1_ps(j >= 2 ? st->ftl_damping : 0.0f);
+    const hf__v4 one = HF__SET1(1.0f);
+    const hf__v4 sd = HF__SET1(j >= 2 ? st->ftl_damping : 0.0f);
     int r;
     for (r = a; r < b; r += 4) {
-        const __m128 x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),
+        const hf__v4 x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),
                      z0 = HF__LD(Z0 + r);
-        const __m128 ox = HF__LD(X1 + r), oy = HF__LD(Y1 + r),
+        const hf__v4 ox = HF__LD(X1 + r), oy = HF__LD(Y1 + r),
                      oz = HF__LD(Z1 + r);
-        __m128 dx = HF__SUB(ox, x0), dy = HF__SUB(oy, y0),
-               dz = HF__SUB(oz, z0), d2, deg, sc, xyz[3];
+        hf__v4 dx = HF__SUB(ox, x0), dy = HF__SUB(oy, y0), dz = HF__SUB(oz, z0),
+               d2, deg, sc, xyz[3];
         d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);
         /* coincident points: grow along the root normal */
-        deg = _mm_cmplt_ps(d2, _mm_set1_ps(1e-24f));
-        if (_mm_movemask_ps(deg)) { /* rare: the selects */
-            dx = hf__sel_sse(deg, HF__LD(F6 + r), dx);
-            dy = hf__sel_sse(deg, HF__LD(F7 + r), dy);
-            dz = hf__sel_sse(deg, HF__LD(F8 + r), dz);
-            d2 = hf__sel_sse(deg, one, d2);
+        deg = HF__LT(d2, HF__SET1(1e-24f));
+        if (HF__MASK(deg)) { /* rare: the selects */
+            dx = HF__SEL(deg, HF__LD(F6 + r), dx);
+            dy = HF__SEL(deg, HF__LD(F7 + r), dy);
+            dz = HF__SEL(deg, HF__LD(F8 + r), dz);
+            d2 = HF__SEL(deg, one, d2);
         }
-        sc = _mm_div_ps(HF__LD(L + r), _mm_sqrt_ps(d2));
+        sc = HF__DIV(HF__LD(L + r), HF__SQRT(d2));
         xyz[0] = HF__ADD(x0, HF__MUL(dx, sc));
         xyz[1] = HF__ADD(y0, HF__MUL(dy, sc));
         xyz[2] = HF__ADD(z0, HF__MUL(dz, sc));
@@ -6320,23 +6374,21 @@ HF__PRIVATE void hf__ropes_ftl_row_sse(hf_ropes *ro, const float *F, int j,
         HF__ST(Y1 + r, xyz[1]);
         HF__ST(Z1 + r, xyz[2]);
         if (!st->ftl) continue;
-        HF__ST(PX0 + r, HF__ADD(HF__LD(PX0 + r),
-                                HF__MUL(sd, HF__SUB(xyz[0], ox))));
-        HF__ST(PY0 + r, HF__ADD(HF__LD(PY0 + r),
-                                HF__MUL(sd, HF__SUB(xyz[1], oy))));
-        HF__ST(PZ0 + r, HF__ADD(HF__LD(PZ0 + r),
-                                HF__MUL(sd, HF__SUB(xyz[2], oz))));
+        HF__ST(PX0 + r,
+               HF__ADD(HF__LD(PX0 + r), HF__MUL(sd, HF__SUB(xyz[0], ox))));
+        HF__ST(PY0 + r,
+               HF__ADD(HF__LD(PY0 + r), HF__MUL(sd, HF__SUB(xyz[1], oy))));
+        HF__ST(PZ0 + r,
+               HF__ADD(HF__LD(PZ0 + r), HF__MUL(sd, HF__SUB(xyz[2], oz))));
         if (ncol > 1 ||
-            (ncol == 1 &&
-             hf__col_hits_sse(pre, xyz[0], xyz[1], xyz[2])))
-            hf__col_row_sse(ro, F, j, r, 1, col, ncol, pre,
-                         st->margin, xyz);
+            (ncol == 1 && hf__col_hits_v4(pre, xyz[0], xyz[1], xyz[2])))
+            hf__col_row_v4(ro, F, j, r, 1, col, ncol, pre, st->margin, xyz);
     }
 }
 
 /* Row j of a distance pass: half the error to each end (equal masses). */
-HF__PRIVATE void hf__ropes_distance_row_sse(hf_ropes *ro, int j, int a,
-                                            int b)
+HF__TARGET_V4 HF__PRIVATE void hf__ropes_distance_row_v4(hf_ropes *ro, int j,
+                                                         int a, int b)
 {
     const size_t R = (size_t)ro->rope_count;
     float *X0 = HF__ROW(ro->x, j - 1, R), *Y0 = HF__ROW(ro->y, j - 1, R),
@@ -6344,19 +6396,19 @@ HF__PRIVATE void hf__ropes_distance_row_sse(hf_ropes *ro, int j, int a,
     float *X1 = HF__ROW(ro->x, j, R), *Y1 = HF__ROW(ro->y, j, R),
           *Z1 = HF__ROW(ro->z, j, R);
     const float *L = HF__ROW(ro->rest_length, j - 1, R);
-    const __m128 half = _mm_set1_ps(0.5f);
+    const hf__v4 half = HF__SET1(0.5f);
     int r;
     for (r = a; r < b; r += 4) {
-        const __m128 x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),
+        const hf__v4 x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),
                      z0 = HF__LD(Z0 + r), x1 = HF__LD(X1 + r),
                      y1 = HF__LD(Y1 + r), z1 = HF__LD(Z1 + r);
-        const __m128 dx = HF__SUB(x1, x0), dy = HF__SUB(y1, y0),
+        const hf__v4 dx = HF__SUB(x1, x0), dy = HF__SUB(y1, y0),
                      dz = HF__SUB(z1, z0);
-        const __m128 d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);
-        const __m128 e = _mm_and_ps(
-            _mm_cmpgt_ps(d2, _mm_set1_ps(1e-24f)),
-            HF__SUB(half, _mm_div_ps(HF__MUL(half, HF__LD(L + r)),
-                                     _mm_sqrt_ps(d2))));
+        const hf__v4 d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);
+        const hf__v4 e =
+            HF__AND(HF__GT(d2, HF__SET1(1e-24f)),
+                    HF__SUB(half, HF__DIV(HF__MUL(half, HF__LD(L + r)),
+                                          HF__SQRT(d2))));
         HF__ST(X0 + r, HF__ADD(x0, HF__MUL(dx, e)));
         HF__ST(Y0 + r, HF__ADD(y0, HF__MUL(dy, e)));
         HF__ST(Z0 + r, HF__ADD(z0, HF__MUL(dz, e)));
@@ -6366,7 +6418,7 @@ HF__PRIVATE void hf__ropes_distance_row_sse(hf_ropes *ro, int j, int a,
     }
 }
 
-/* One sub-step, SSE: what hf__ropes_substep_ref does, with the same
+/* One sub-step, four lanes: what hf__ropes_substep_ref does, with the same
    operations per rope. Loops still run across ropes (a chain of dependent
    square roots and divisions per rope, point after point, leaves no
    parallelism otherwise), but rows are fused where the order between them
@@ -6374,10 +6426,10 @@ HF__PRIVATE void hf__ropes_distance_row_sse(hf_ropes *ro, int j, int a,
    the local shape); then per row, integration with the global pull, and
    the local shape of the point before, which reads rows up to j only;
    each FTL placement, then its collisions. */
-HF__PRIVATE void hf__ropes_substep_sse(hf_ropes *ro, const float *F, int a,
-                                       int b, const hf__rope_step *st,
-                                       const hf_collider *col, int ncol,
-                                       const hf__col_prep4 *pre)
+HF__TARGET_V4 HF__PRIVATE void
+hf__ropes_substep_v4(hf_ropes *ro, const float *F, int a, int b,
+                     const hf__rope_step *st, const hf_collider *col, int ncol,
+                     const hf__col_prep4 *pre)
 {
     const size_t R = (size_t)ro->rope_count;
     const int P = ro->points;
@@ -6387,59 +6439,60 @@ HF__PRIVATE void hf__ropes_substep_sse(hf_ropes *ro, const float *F, int a,
         Q[0][j] = HF__ROW(ro->scratch, HF__RS_G + j, R);
         Q[1][j] = HF__ROW(ro->scratch, HF__RS_G + 3 + j, R);
     }
-    hf__ropes_pin_root_sse(ro, F, a, b);
+    hf__ropes_pin_root_v4(ro, F, a, b);
     for (j = 1; j < P; ++j) {
-        hf__ropes_integrate_row_sse(ro, F, j, a, b, st);
-        if (st->local_on) hf__ropes_local_row_sse(ro, F, j, a, b, st, Q);
+        hf__ropes_integrate_row_v4(ro, F, j, a, b, st);
+        if (st->local_on) hf__ropes_local_row_v4(ro, F, j, a, b, st, Q);
     }
     for (it = 0; it < st->iterations; ++it) {
         for (j = 1; j < P; ++j)
             if (st->ftl || j == 1)
-                hf__ropes_ftl_row_sse(ro, F, j, a, b, st, col, ncol, pre);
+                hf__ropes_ftl_row_v4(ro, F, j, a, b, st, col, ncol, pre);
             else
-                hf__ropes_distance_row_sse(ro, j, a, b);
+                hf__ropes_distance_row_v4(ro, j, a, b);
         if (!st->ftl && ncol > 0)
-            hf__ropes_collide_sse(ro, F, a, b, col, ncol, pre, st->margin);
+            hf__ropes_collide_v4(ro, F, a, b, col, ncol, pre, st->margin);
     }
     if (st->iterations == 0 && ncol > 0)
-        hf__ropes_collide_sse(ro, F, a, b, col, ncol, pre, st->margin);
+        hf__ropes_collide_v4(ro, F, a, b, col, ncol, pre, st->margin);
 }
-
 
 /* hf__ropes_mark_far_ref on whole groups of four from a; returns where
    the groups end. */
-HF__PRIVATE int hf__ropes_mark_far_sse(const hf_ropes *ro, int j, int a,
-                                       int b, const float *KB, float *VF)
+HF__TARGET_V4 HF__PRIVATE int hf__ropes_mark_far_v4(const hf_ropes *ro, int j,
+                                                    int a, int b,
+                                                    const float *KB, float *VF)
 {
     const size_t R = (size_t)ro->rope_count;
     const float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
                 *Z = HF__ROW(ro->z, j, R);
     int r = a;
     for (; r + 4 <= b; r += 4) {
-        const __m128 dx = HF__SUB(HF__LD(X + r), HF__LD(ro->x + r)),
+        const hf__v4 dx = HF__SUB(HF__LD(X + r), HF__LD(ro->x + r)),
                      dy = HF__SUB(HF__LD(Y + r), HF__LD(ro->y + r)),
                      dz = HF__SUB(HF__LD(Z + r), HF__LD(ro->z + r));
-        const __m128 in =
-            _mm_cmple_ps(HF__DOT3(dx, dy, dz, dx, dy, dz), HF__LD(KB + r));
-        HF__ST(VF + r, hf__sel_sse(in, HF__LD(VF + r), _mm_set1_ps(1.0f)));
+        const hf__v4 in =
+            HF__LE(HF__DOT3(dx, dy, dz, dx, dy, dz), HF__LD(KB + r));
+        HF__ST(VF + r, HF__SEL(in, HF__LD(VF + r), HF__SET1(1.0f)));
     }
     return r;
 }
 #endif
 
-/* The dispatch of the simulated rope kernels: the SSE kernel takes whole
-   groups of four ropes from a, the scalar reference the rest. */
+/* The dispatch of the simulated rope kernels: the four-lane kernel (SSE2
+   or NEON) takes whole groups of four ropes from a, the scalar reference
+   the rest. */
 HF__PRIVATE void hf__ropes_substep(hf_ropes *ro, const float *F, int a, int b,
                                    const hf__rope_step *st,
                                    const hf_collider *col, int ncol,
                                    const void *lanes)
 {
     int a4 = a;
-#if HF__SSE
+#if HF__V4
     a4 = a + (b - a) / 4 * 4;
     if (a4 > a)
-        hf__ropes_substep_sse(ro, F, a, a4, st, col, ncol,
-                              (const hf__col_prep4 *)lanes);
+        hf__ropes_substep_v4(ro, F, a, a4, st, col, ncol,
+                             (const hf__col_prep4 *)lanes);
 #else
     (void)lanes;
 #endif
@@ -6449,8 +6502,8 @@ HF__PRIVATE void hf__ropes_substep(hf_ropes *ro, const float *F, int a, int b,
 HF__PRIVATE void hf__ropes_mark_far(const hf_ropes *ro, int j, int a, int b,
                                     const float *KB, float *VF)
 {
-#if HF__SSE
-    a = hf__ropes_mark_far_sse(ro, j, a, b, KB, VF);
+#if HF__V4
+    a = hf__ropes_mark_far_v4(ro, j, a, b, KB, VF);
 #endif
     hf__ropes_mark_far_ref(ro, j, a, b, KB, VF);
 }
@@ -6486,13 +6539,13 @@ HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
 {
     const void *lanes = NULL;
     int s;
-#if HF__SSE
+#if HF__V4
     /* lane copies of the first colliders, made once per call */
     hf__col_prep4 pre[HF__ROPE_PREP];
     int c;
     for (c = 0; c < ncol && c < HF__ROPE_PREP; ++c) {
         const hf__col_prep k = hf__collider_prep(col + c, st->margin);
-        hf__col_prep_sse(&k, pre + c);
+        hf__col_prep_v4(&k, pre + c);
     }
     lanes = pre;
 #endif
@@ -6502,7 +6555,6 @@ HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
     }
     hf__ropes_safety_net(ro, a, b, st->h);
 }
-
 
 HF__PRIVATE int hf__rope_kind(const hf_ropes *ro, int r)
 {
