@@ -107,6 +107,13 @@ TEST_gcc_c99_san  := gcc -std=c99 $(SAN)
 TEST_gcc_cxx11_san:= g++ -std=c++11 -x c++ $(SAN)
 TEST_gcc_c99_scalar := gcc -std=c99 -O2 -DHF_NO_SIMD
 TEST_NAMES := gcc_c99 gcc_cxx11 gcc_c99_san gcc_cxx11_san gcc_c99_scalar
+# GNU C with FMA in the target, where gcc fuses a * b + c unless the
+# header's pragma stops it: every kernel must still give the scalar
+# reference's bytes. Run where the CPU has AVX2 and FMA.
+ifneq ($(shell grep -qw fma /proc/cpuinfo 2>/dev/null && grep -qw avx2 /proc/cpuinfo 2>/dev/null && echo y),)
+TEST_gcc_gnu11_fma := gcc -std=gnu11 -O2 -mavx2 -mfma
+TEST_NAMES += gcc_gnu11_fma
+endif
 ifneq ($(CLANG),)
 TEST_clang_c99      := clang -std=c99 -O2
 TEST_clang_c99_san  := clang -std=c99 $(SAN)
@@ -235,7 +242,8 @@ quickstart: $(QS_BINS)
 
 # ==== Other platforms ========================================================
 # The test suite cross-built with the strict warnings as errors and run
-# where this machine can run it: ARM64 under qemu-aarch64, Windows x64 (C
+# where this machine can run it: ARM64 (ISO and GNU C, where gcc fuses
+# a * b + c unless the header stops it) under qemu-aarch64, Windows x64 (C
 # and C++) under wine, 32-bit x86 (SSE2 math) under qemu-i386. A step whose
 # tools are missing says which packages to install and is skipped; so is
 # one whose emulator cannot start here (the reason is printed).
@@ -269,9 +277,13 @@ cross-arm64: | $(BUILD)
 	  echo "cross-test: ARM64 skipped: install gcc-aarch64-linux-gnu," \
 	       "libc6-dev-arm64-cross, qemu-user (make deps)"; exit 0; fi; \
 	aarch64-linux-gnu-gcc -std=c99 $(CROSS_WARN) tests/test_hairfur.c \
-	  -o $(BUILD)/test_arm64 -lm
+	  -o $(BUILD)/test_arm64 -lm && \
+	aarch64-linux-gnu-gcc -std=gnu11 $(CROSS_WARN) tests/test_hairfur.c \
+	  -o $(BUILD)/test_arm64_gnu -lm
 	@if command -v qemu-aarch64 >/dev/null 2>&1 && [ -x $(BUILD)/test_arm64 ]; then :; else exit 0; fi
 	$(call cross_run,test_arm64_qemu,QEMU_LD_PREFIX=/usr/aarch64-linux-gnu qemu-aarch64 $(BUILD)/test_arm64)
+	@if [ -x $(BUILD)/test_arm64_gnu ]; then :; else exit 0; fi
+	$(call cross_run,test_arm64_gnu_qemu,QEMU_LD_PREFIX=/usr/aarch64-linux-gnu qemu-aarch64 $(BUILD)/test_arm64_gnu)
 
 cross-win64: | $(BUILD)
 	@if ! command -v x86_64-w64-mingw32-gcc >/dev/null 2>&1 || \

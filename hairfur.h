@@ -2010,13 +2010,6 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
     (defined(__aarch64__) || defined(_M_ARM64))
 #define HF__NEON 1
 #include <arm_neon.h>
-#if defined(__GNUC__) && !defined(__clang__)
-/* gcc fuses a * b + c into FMLA in C++ and GNU C modes: not in kernels
-   whose bytes must equal the scalar reference's */
-#define HF__TARGET_NEON __attribute__((optimize("fp-contract=off")))
-#else
-#define HF__TARGET_NEON
-#endif
 #else
 #define HF__NEON 0
 #endif
@@ -2025,17 +2018,8 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 #define HF__X86_DISPATCH 1 /* kernels by target attribute, CPUID */
 #define HF__AVX2 1
 #define HF__AVX512 1
-#if defined(__clang__) /* clang never fuses separate intrinsics */
 #define HF__TARGET_AVX2 __attribute__((target("avx2")))
 #define HF__TARGET_AVX512 __attribute__((target("avx512f")))
-#else /* gcc fuses a * b + c into an FMA where the target has one (AVX-512F
-         does) unless told not to, in C++ and GNU C modes: that would
-         change the bytes */
-#define HF__TARGET_AVX2                                                        \
-    __attribute__((target("avx2"), optimize("fp-contract=off")))
-#define HF__TARGET_AVX512                                                      \
-    __attribute__((target("avx512f"), optimize("fp-contract=off")))
-#endif
 #else
 #define HF__X86_DISPATCH 0
 #if HF__SSE && defined(__AVX2__)
@@ -2056,6 +2040,22 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 #endif
 #ifndef HF_SIMD_MAX
 #define HF_SIMD_MAX HF_SIMD_AVX512
+#endif
+
+/* Every kernel gives its scalar reference's bytes only where no compiler
+   fuses a * b + c into one FMA (one rounding instead of two), and a range
+   split sends different strands through different kernels: contraction
+   is off for the whole implementation, whatever -ffp-contract, -march or
+   the language mode (gcc fuses by default in GNU C and C++) says, and is
+   restored after it. clang's -ffp-contract=fast ignores the pragma (its
+   fast-honor-pragmas does not); MSVC fuses only with /fp:contract or
+   /fp:fast, which the header does not override. */
+#if defined(__clang__)
+#pragma float_control(push)
+#pragma clang fp contract(off)
+#elif defined(__GNUC__)
+#pragma GCC push_options
+#pragma GCC optimize("fp-contract=off")
 #endif
 
 /* Compiler words, each with a plain fallback:
@@ -2106,7 +2106,6 @@ HF__INLINE __m128 hf__sel_sse(__m128 m, __m128 a, __m128 b)
 #define HF__V4 (HF__SSE || HF__NEON)
 #if HF__SSE
 typedef __m128 hf__v4;
-#define HF__TARGET_V4
 #define HF__LD(p) _mm_loadu_ps(p)
 #define HF__ST(p, v) _mm_storeu_ps(p, v)
 #define HF__SET1(x) _mm_set1_ps(x)
@@ -2118,6 +2117,7 @@ typedef __m128 hf__v4;
 #define HF__MAX(x, y) _mm_max_ps(x, y)
 #define HF__GT(x, y) _mm_cmpgt_ps(x, y)
 #define HF__LT(x, y) _mm_cmplt_ps(x, y)
+#define HF__EQ(x, y) _mm_cmpeq_ps(x, y)
 #define HF__LE(x, y) _mm_cmple_ps(x, y)
 #define HF__AND(x, y) _mm_and_ps(x, y)
 #define HF__SEL(m, a, b) hf__sel_sse(m, a, b)
@@ -2125,7 +2125,6 @@ typedef __m128 hf__v4;
 #define HF__PREFETCH(p) _mm_prefetch((const char *)(p), _MM_HINT_T0)
 #elif HF__NEON
 typedef float32x4_t hf__v4;
-#define HF__TARGET_V4 HF__TARGET_NEON
 #define HF__LD(p) vld1q_f32(p)
 #define HF__ST(p, v) vst1q_f32(p, v)
 #define HF__SET1(x) vdupq_n_f32(x)
@@ -2137,6 +2136,7 @@ typedef float32x4_t hf__v4;
 #define HF__MAX(x, y) hf__max_neon(x, y)
 #define HF__GT(x, y) vreinterpretq_f32_u32(vcgtq_f32(x, y))
 #define HF__LT(x, y) vreinterpretq_f32_u32(vcltq_f32(x, y))
+#define HF__EQ(x, y) vreinterpretq_f32_u32(vceqq_f32(x, y))
 #define HF__LE(x, y) vreinterpretq_f32_u32(vcleq_f32(x, y))
 #define HF__AND(x, y)                                                          \
     vreinterpretq_f32_u32(                                                     \
@@ -2148,12 +2148,12 @@ typedef float32x4_t hf__v4;
 #else
 #define HF__PREFETCH(p) ((void)(p))
 #endif
-HF__TARGET_NEON HF__INLINE float32x4_t hf__max_neon(float32x4_t x,
+HF__INLINE float32x4_t hf__max_neon(float32x4_t x,
                                                    float32x4_t y)
 {
     return vbslq_f32(vcgtq_f32(x, y), x, y);
 }
-HF__TARGET_NEON HF__INLINE int hf__mask_neon(float32x4_t m)
+HF__INLINE int hf__mask_neon(float32x4_t m)
 {
     static const uint32_t bit[4] = {1u, 2u, 4u, 8u};
     return (int)vaddvq_u32(vandq_u32(vreinterpretq_u32_f32(m), vld1q_u32(bit)));
@@ -5135,7 +5135,7 @@ HF__PRIVATE void hf__rope_pose_row_ref(const hf_ropes *ro, int j, int a,
 }
 
 #if HF__V4
-HF__TARGET_V4 HF__PRIVATE int
+HF__PRIVATE int
 hf__rope_pose_row_v4(const hf_ropes *ro, int j, int a, int b, const float *fr,
                      float *HF__RESTRICT ox, float *HF__RESTRICT oy,
                      float *HF__RESTRICT oz)
@@ -5253,7 +5253,7 @@ typedef struct hf__col_prep4 {
     int point;
 } hf__col_prep4;
 
-HF__TARGET_V4 HF__PRIVATE void hf__col_prep_v4(const hf__col_prep *k,
+HF__PRIVATE void hf__col_prep_v4(const hf__col_prep *k,
                                                hf__col_prep4 *v)
 {
     int i;
@@ -5272,7 +5272,7 @@ HF__TARGET_V4 HF__PRIVATE void hf__col_prep_v4(const hf__col_prep *k,
    For a point axis, c = a + 0 * t equals a up to the sign of a zero (or is
    NaN only where x - a already is infinite or NaN), so |x - a|^2 is the
    same |d|^2 and the same decision. */
-HF__TARGET_V4 HF__INLINE int hf__col_hits_v4(const hf__col_prep4 *k, hf__v4 x,
+HF__INLINE int hf__col_hits_v4(const hf__col_prep4 *k, hf__v4 x,
                                              hf__v4 y, hf__v4 z)
 {
     hf__v4 t, dx, dy, dz;
@@ -6030,7 +6030,7 @@ HF__PRIVATE void hf__ropes_mark_far_ref(const hf_ropes *ro, int j, int a,
 
 /* Which colliders hold a point of four (bit i: lane i), every collider
    tested with hf__col_hits_v4. */
-HF__TARGET_V4 HF__PRIVATE int hf__col_any_v4(const hf_collider *col, int ncol,
+HF__PRIVATE int hf__col_any_v4(const hf_collider *col, int ncol,
                                              const hf__col_prep4 *pre,
                                              float margin, const hf__v4 *xyz)
 {
@@ -6052,7 +6052,7 @@ HF__TARGET_V4 HF__PRIVATE int hf__col_any_v4(const hf_collider *col, int ncol,
    that some collider holds goes through the scalar kernel on its own
    (ftl: hf__ropes_collide_ftl_row with every collider; else the radial
    push of each collider in order). xyz is read back after a hit. */
-HF__TARGET_V4 HF__PRIVATE void hf__col_row_v4(hf_ropes *ro, const float *F,
+HF__PRIVATE void hf__col_row_v4(hf_ropes *ro, const float *F,
                                               int j, int r, int ftl,
                                               const hf_collider *col, int ncol,
                                               const hf__col_prep4 *pre,
@@ -6094,7 +6094,7 @@ HF__TARGET_V4 HF__PRIVATE void hf__col_row_v4(hf_ropes *ro, const float *F,
 }
 
 /* hf__ropes_collide for ropes [a, b), b - a a multiple of 4. */
-HF__TARGET_V4 HF__PRIVATE void
+HF__PRIVATE void
 hf__ropes_collide_v4(hf_ropes *ro, const float *F, int a, int b,
                      const hf_collider *col, int ncol, const hf__col_prep4 *pre,
                      float margin)
@@ -6116,7 +6116,7 @@ hf__ropes_collide_v4(hf_ropes *ro, const float *F, int a, int b,
    a rope per lane), each with the operations of its scalar reference. */
 
 /* The root pinned to the frame F (hf__ropes_integrate_ref's last loop). */
-HF__TARGET_V4 HF__PRIVATE void
+HF__PRIVATE void
 hf__ropes_pin_root_v4(hf_ropes *ro, const float *F, int a, int b)
 {
     const size_t R = (size_t)ro->rope_count;
@@ -6143,7 +6143,7 @@ hf__ropes_pin_root_v4(hf_ropes *ro, const float *F, int a, int b)
 }
 
 /* Row j: Verlet integration and the global pull toward the rest place. */
-HF__TARGET_V4 HF__PRIVATE void
+HF__PRIVATE void
 hf__ropes_integrate_row_v4(hf_ropes *ro, const float *F, int j, int a, int b,
                            const hf__rope_step *st)
 {
@@ -6205,7 +6205,7 @@ hf__ropes_integrate_row_v4(hf_ropes *ro, const float *F, int j, int a, int b,
    scratch rows Q[m & 1] (the child direction q of point j + 1's turn, the
    parent direction p of point j + 2's), then point j turned as in
    hf__ropes_local_shape_ref at its j = m; the next row is prefetched. */
-HF__TARGET_V4 HF__PRIVATE void
+HF__PRIVATE void
 hf__ropes_local_row_v4(hf_ropes *ro, const float *F, int j, int a, int b,
                        const hf__rope_step *st, float *Q[2][3])
 {
@@ -6332,7 +6332,7 @@ hf__ropes_local_row_v4(hf_ropes *ro, const float *F, int j, int a, int b,
 /* Row j's follow-the-leader placement (or, for the distance solver, the
    root segment), then its collisions (the first collider's test inline; a
    hit goes through the scalar kernel). */
-HF__TARGET_V4 HF__PRIVATE void
+HF__PRIVATE void
 hf__ropes_ftl_row_v4(hf_ropes *ro, const float *F, int j, int a, int b,
                      const hf__rope_step *st, const hf_collider *col, int ncol,
                      const hf__col_prep4 *pre)
@@ -6387,7 +6387,7 @@ hf__ropes_ftl_row_v4(hf_ropes *ro, const float *F, int j, int a, int b,
 }
 
 /* Row j of a distance pass: half the error to each end (equal masses). */
-HF__TARGET_V4 HF__PRIVATE void hf__ropes_distance_row_v4(hf_ropes *ro, int j,
+HF__PRIVATE void hf__ropes_distance_row_v4(hf_ropes *ro, int j,
                                                          int a, int b)
 {
     const size_t R = (size_t)ro->rope_count;
@@ -6426,7 +6426,7 @@ HF__TARGET_V4 HF__PRIVATE void hf__ropes_distance_row_v4(hf_ropes *ro, int j,
    the local shape); then per row, integration with the global pull, and
    the local shape of the point before, which reads rows up to j only;
    each FTL placement, then its collisions. */
-HF__TARGET_V4 HF__PRIVATE void
+HF__PRIVATE void
 hf__ropes_substep_v4(hf_ropes *ro, const float *F, int a, int b,
                      const hf__rope_step *st, const hf_collider *col, int ncol,
                      const hf__col_prep4 *pre)
@@ -6459,7 +6459,7 @@ hf__ropes_substep_v4(hf_ropes *ro, const float *F, int a, int b,
 
 /* hf__ropes_mark_far_ref on whole groups of four from a; returns where
    the groups end. */
-HF__TARGET_V4 HF__PRIVATE int hf__ropes_mark_far_v4(const hf_ropes *ro, int j,
+HF__PRIVATE int hf__ropes_mark_far_v4(const hf_ropes *ro, int j,
                                                     int a, int b,
                                                     const float *KB, float *VF)
 {
@@ -6701,15 +6701,6 @@ HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
 }
 
 #undef HF__ROW
-#if HF__SSE
-#undef HF__LD
-#undef HF__ST
-#undef HF__ADD
-#undef HF__SUB
-#undef HF__MUL
-#undef HF__DOT3
-#undef HF__POSE
-#endif
 
 /* ---- 7. interpolation and LOD ------------------------------------------- */
 
@@ -6871,9 +6862,8 @@ HF__PRIVATE void hf__interp_range_sse(const hf__irun *run, int first,
 }
 #endif
 
-/* The last floats of a strand, from float i, in scalar code compiled for
-   the baseline target: inlined into an AVX-512 function, clang would fuse
-   its a * b + c into FMAs (which AVX-512F has) and change the bytes. */
+/* The last floats of a strand, from float i, in scalar code: cold, so
+   kept out of the vector loops. */
 HF__NOINLINE HF__PRIVATE void hf__interp_tail(const hf__irun *run,
                                              hf__istrand *t, int i)
 {
@@ -6885,7 +6875,7 @@ HF__NOINLINE HF__PRIVATE void hf__interp_tail(const hf__irun *run,
 #if HF__NEON
 /* hf__interp_strand_sse on ARM64: four floats a vector, the same
    operations in the same order, so the same bytes. */
-HF__TARGET_NEON HF__INLINE void
+HF__INLINE void
 hf__interp_neon(const hf__istrand *t, const float *ctab, int i,
                 float32x4_t W0, float32x4_t W1, float32x4_t W2,
                 float32x4_t SC, float32x4_t R)
@@ -6900,7 +6890,7 @@ hf__interp_neon(const hf__istrand *t, const float *ctab, int i,
     vst1q_f32(t->o + i, p);
 }
 
-HF__TARGET_NEON HF__PRIVATE void
+HF__PRIVATE void
 hf__interp_range_neon(const hf__irun *run, int first, int count)
 {
     const int n = 3 * run->P;
@@ -7538,117 +7528,136 @@ HF__PRIVATE void hf__strand_frame_ref(const float *pts, int P,
         }
 }
 
+#if HF__V4
+/* (p3, c0, c1, c2) and (c1, c2, c3, n0): each point's neighbours; and
+   four points (12 floats at q) as their x, y and z. */
 #if HF__SSE
-/* (p3, c0, c1, c2) and (c1, c2, c3, n0): each point's neighbours. */
-HF__PRIVATE __m128 hf__prev_sse(__m128 p, __m128 c)
+HF__INLINE __m128 hf__prev_v4(__m128 p, __m128 c)
 {
     return _mm_shuffle_ps(_mm_shuffle_ps(p, c, _MM_SHUFFLE(0, 0, 3, 3)), c,
                           _MM_SHUFFLE(2, 1, 2, 0));
 }
-HF__PRIVATE __m128 hf__next_sse(__m128 c, __m128 n)
+HF__INLINE __m128 hf__next_v4(__m128 c, __m128 n)
 {
     return _mm_shuffle_ps(c, _mm_shuffle_ps(c, n, _MM_SHUFFLE(0, 0, 3, 3)),
                           _MM_SHUFFLE(2, 0, 2, 1));
 }
-
-
-/* hf__strand_frame_ref four points at a time, with the same IEEE operations
-   per point. Returns 0 and leaves the strand to the reference when a point
-   is not finite (*finite = 0), has no tangent, or sees the view within
-   HF__SIDE_SIN2 of its tangent: the rare cases whose rules look along the
-   strand or need double precision. */
-HF__PRIVATE int hf__strand_frame_sse(const float *pts, int P,
-                                     const hf_ribbon_params *params,
-                                     hf__rframe *fr, int *finite)
+/* by shuffles, so no load waits on the narrow stores of a just-written
+   array */
+HF__INLINE void hf__load3_v4(const float *q, __m128 *X, __m128 *Y, __m128 *Z)
 {
+    const __m128 a0 = _mm_loadu_ps(q), a1 = _mm_loadu_ps(q + 4),
+                 a2 = _mm_loadu_ps(q + 8);
+    /* a0 = x0 y0 z0 x1, a1 = y1 z1 x2 y2, a2 = z2 x3 y3 z3 */
+    const __m128 u = _mm_shuffle_ps(a1, a2, _MM_SHUFFLE(0, 1, 3, 2));
+    const __m128 v = _mm_shuffle_ps(a0, a1, _MM_SHUFFLE(1, 0, 2, 1));
+    const __m128 w = _mm_shuffle_ps(a1, a2, _MM_SHUFFLE(3, 2, 2, 3));
+    *X = _mm_shuffle_ps(a0, u, _MM_SHUFFLE(2, 0, 3, 0));
+    *Y = _mm_shuffle_ps(v, w, _MM_SHUFFLE(2, 0, 2, 0));
+    *Z = _mm_shuffle_ps(v, _mm_shuffle_ps(u, w, _MM_SHUFFLE(3, 0, 0, 3)),
+                        _MM_SHUFFLE(3, 0, 3, 1));
+}
+#else
+HF__INLINE float32x4_t hf__prev_v4(float32x4_t p,
+                                                  float32x4_t c)
+{
+    return vextq_f32(p, c, 3);
+}
+HF__INLINE float32x4_t hf__next_v4(float32x4_t c,
+                                                  float32x4_t n)
+{
+    return vextq_f32(c, n, 1);
+}
+HF__INLINE void hf__load3_v4(const float *q, float32x4_t *X,
+                                            float32x4_t *Y, float32x4_t *Z)
+{
+    const float32x4x3_t v = vld3q_f32(q);
+    *X = v.val[0];
+    *Y = v.val[1];
+    *Z = v.val[2];
+}
+#endif
+
+/* hf__strand_frame_ref four points at a time (SSE2 or NEON), with the same
+   IEEE operations per point. Returns 0 and leaves the strand to the
+   reference when a point is not finite (*finite = 0), has no tangent, or
+   sees the view within HF__SIDE_SIN2 of its tangent: the rare cases whose
+   rules look along the strand or need double precision. */
+HF__PRIVATE int hf__strand_frame_v4(const float *pts, int P,
+                                                 const hf_ribbon_params *params,
+                                                 hf__rframe *fr, int *finite)
+{
+    static const float lanes[4] = {0.0f, 1.0f, 2.0f, 3.0f};
     const int G = (P + 3) >> 2, ortho = params->orthographic != 0;
-    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
-    const __m128 tiny = _mm_set1_ps(1e-30f);
-    const __m128 side_sin2 = _mm_set1_ps(HF__SIDE_SIN2);
-    const __m128 big = _mm_set1_ps(3.40282347e+38f);
-    const __m128i lane = _mm_setr_epi32(0, 1, 2, 3);
-    __m128 acc = zero, e[3];
+    const hf__v4 zero = HF__SET1(0.0f), one = HF__SET1(1.0f);
+    const hf__v4 tiny = HF__SET1(1e-30f);
+    const hf__v4 side_sin2 = HF__SET1(HF__SIDE_SIN2);
+    const hf__v4 big = HF__SET1(3.40282347e+38f);
+    const hf__v4 lane = HF__LD(lanes);
+    hf__v4 acc = zero, e[3];
     float *px = fr->p[0], *py = fr->p[1], *pz = fr->p[2];
     int k, c, bad = 0;
-    /* rows: four points (12 floats) deinterleaved by shuffles, so no load
-       waits on the narrow stores of a just-written array */
+    /* rows: four points a group, deinterleaved */
     for (k = 0; k < G; ++k) {
-        __m128 X, Y, Z;
+        hf__v4 X, Y, Z;
         if (4 * k + 4 <= P) {
-            const float *q = pts + 12 * k;
-            const __m128 a0 = _mm_loadu_ps(q), a1 = _mm_loadu_ps(q + 4),
-                         a2 = _mm_loadu_ps(q + 8);
-            /* a0 = x0 y0 z0 x1, a1 = y1 z1 x2 y2, a2 = z2 x3 y3 z3 */
-            const __m128 u = _mm_shuffle_ps(a1, a2, _MM_SHUFFLE(0, 1, 3, 2));
-            const __m128 v = _mm_shuffle_ps(a0, a1, _MM_SHUFFLE(1, 0, 2, 1));
-            const __m128 w = _mm_shuffle_ps(a1, a2, _MM_SHUFFLE(3, 2, 2, 3));
-            X = _mm_shuffle_ps(a0, u, _MM_SHUFFLE(2, 0, 3, 0));
-            Y = _mm_shuffle_ps(v, w, _MM_SHUFFLE(2, 0, 2, 0));
-            Z = _mm_shuffle_ps(v, _mm_shuffle_ps(u, w, _MM_SHUFFLE(3, 0, 0, 3)),
-                               _MM_SHUFFLE(3, 0, 3, 1));
+            hf__load3_v4(pts + 12 * k, &X, &Y, &Z);
         } else { /* the last, partial group repeats the tip */
             const int n = P - 4 * k;
-            const float *q0 = pts + 12 * k, *q1 = q0 + 3 * (n > 1 ? 1 : 0),
-                        *q2 = q0 + 3 * (n > 2 ? 2 : n - 1),
-                        *q3 = q0 + 3 * (n - 1);
-            X = _mm_setr_ps(q0[0], q1[0], q2[0], q3[0]);
-            Y = _mm_setr_ps(q0[1], q1[1], q2[1], q3[1]);
-            Z = _mm_setr_ps(q0[2], q1[2], q2[2], q3[2]);
+            float r[3][4];
+            int i;
+            for (i = 0; i < 4; ++i)
+                for (c = 0; c < 3; ++c)
+                    r[c][i] = pts[3 * (4 * k + (i < n ? i : n - 1)) + c];
+            X = HF__LD(r[0]);
+            Y = HF__LD(r[1]);
+            Z = HF__LD(r[2]);
         }
         /* x * 0 is NaN for NaN or infinity */
-        acc = _mm_add_ps(acc, _mm_add_ps(_mm_mul_ps(X, zero),
-                                         _mm_add_ps(_mm_mul_ps(Y, zero),
-                                                    _mm_mul_ps(Z, zero))));
-        _mm_storeu_ps(px + 4 + 4 * k, X);
-        _mm_storeu_ps(py + 4 + 4 * k, Y);
-        _mm_storeu_ps(pz + 4 + 4 * k, Z);
+        acc = HF__ADD(acc, HF__ADD(HF__MUL(X, zero),
+                                   HF__ADD(HF__MUL(Y, zero), HF__MUL(Z, zero))));
+        HF__ST(px + 4 + 4 * k, X);
+        HF__ST(py + 4 + 4 * k, Y);
+        HF__ST(pz + 4 + 4 * k, Z);
     }
-    if (_mm_movemask_ps(_mm_cmpeq_ps(acc, zero)) != 0xf) {
+    if (HF__MASK(HF__EQ(acc, zero)) != 0xf) {
         *finite = 0;
         return 0;
     }
     *finite = 1;
     for (c = 0; c < 3; ++c) {
-        _mm_storeu_ps(fr->p[c], _mm_set1_ps(pts[c]));
-        _mm_storeu_ps(fr->p[c] + 4 + 4 * G, _mm_set1_ps(pts[3 * (P - 1) + c]));
-        e[c] = _mm_set1_ps(ortho ? -params->view_dir[c] : params->eye[c]);
+        HF__ST(fr->p[c], HF__SET1(pts[c]));
+        HF__ST(fr->p[c] + 4 + 4 * G, HF__SET1(pts[3 * (P - 1) + c]));
+        e[c] = HF__SET1(ortho ? -params->view_dir[c] : params->eye[c]);
     }
     for (k = 0; k < G; ++k) {
         const int o = 4 + 4 * k;
-        const __m128 live = _mm_castsi128_ps(
-            _mm_cmplt_epi32(lane, _mm_set1_epi32(P - 4 * k)));
-        __m128 d[3], t[3], v[3], s[3], l2, c2, vv, ok, ok2, inv;
+        const int live = HF__MASK(HF__LT(lane, HF__SET1((float)(P - 4 * k))));
+        hf__v4 d[3], t[3], v[3], s[3], l2, c2, vv, ok, ok2, inv;
         for (c = 0; c < 3; ++c) {
             const float *r = fr->p[c] + o;
-            const __m128 cur = _mm_loadu_ps(r);
-            d[c] = _mm_sub_ps(hf__next_sse(cur, _mm_loadu_ps(r + 4)),
-                              hf__prev_sse(_mm_loadu_ps(r - 4), cur));
-            v[c] = ortho ? e[c] : _mm_sub_ps(e[c], cur);
+            const hf__v4 cur = HF__LD(r);
+            d[c] = HF__SUB(hf__next_v4(cur, HF__LD(r + 4)),
+                           hf__prev_v4(HF__LD(r - 4), cur));
+            v[c] = ortho ? e[c] : HF__SUB(e[c], cur);
         }
-        l2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(d[0], d[0]),
-                                   _mm_mul_ps(d[1], d[1])),
-                        _mm_mul_ps(d[2], d[2]));
-        ok = _mm_and_ps(_mm_cmpgt_ps(l2, tiny), _mm_cmple_ps(l2, big));
+        l2 = HF__DOT3(d[0], d[1], d[2], d[0], d[1], d[2]);
+        ok = HF__AND(HF__GT(l2, tiny), HF__LE(l2, big));
         /* 1 where undefined: no division by zero for any lane */
-        inv = _mm_div_ps(one, _mm_sqrt_ps(hf__sel_sse(ok, l2, one)));
-        for (c = 0; c < 3; ++c) t[c] = _mm_mul_ps(d[c], inv);
-        s[0] = _mm_sub_ps(_mm_mul_ps(t[1], v[2]), _mm_mul_ps(t[2], v[1]));
-        s[1] = _mm_sub_ps(_mm_mul_ps(t[2], v[0]), _mm_mul_ps(t[0], v[2]));
-        s[2] = _mm_sub_ps(_mm_mul_ps(t[0], v[1]), _mm_mul_ps(t[1], v[0]));
-        c2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(s[0], s[0]),
-                                   _mm_mul_ps(s[1], s[1])),
-                        _mm_mul_ps(s[2], s[2]));
-        vv = _mm_add_ps(_mm_add_ps(_mm_mul_ps(v[0], v[0]),
-                                   _mm_mul_ps(v[1], v[1])),
-                        _mm_mul_ps(v[2], v[2]));
-        ok2 = _mm_and_ps(_mm_cmpgt_ps(c2, _mm_mul_ps(side_sin2, vv)),
-                         _mm_and_ps(_mm_cmpgt_ps(c2, tiny),
-                                    _mm_cmple_ps(c2, big)));
-        bad |= _mm_movemask_ps(_mm_andnot_ps(_mm_and_ps(ok, ok2), live));
-        inv = _mm_div_ps(one, _mm_sqrt_ps(hf__sel_sse(ok2, c2, one)));
+        inv = HF__DIV(one, HF__SQRT(HF__SEL(ok, l2, one)));
+        for (c = 0; c < 3; ++c) t[c] = HF__MUL(d[c], inv);
+        s[0] = HF__SUB(HF__MUL(t[1], v[2]), HF__MUL(t[2], v[1]));
+        s[1] = HF__SUB(HF__MUL(t[2], v[0]), HF__MUL(t[0], v[2]));
+        s[2] = HF__SUB(HF__MUL(t[0], v[1]), HF__MUL(t[1], v[0]));
+        c2 = HF__DOT3(s[0], s[1], s[2], s[0], s[1], s[2]);
+        vv = HF__DOT3(v[0], v[1], v[2], v[0], v[1], v[2]);
+        ok2 = HF__AND(HF__GT(c2, HF__MUL(side_sin2, vv)),
+                      HF__AND(HF__GT(c2, tiny), HF__LE(c2, big)));
+        bad |= live & ~HF__MASK(HF__AND(ok, ok2));
+        inv = HF__DIV(one, HF__SQRT(HF__SEL(ok2, c2, one)));
         for (c = 0; c < 3; ++c) {
-            _mm_storeu_ps(fr->t[c] + o, t[c]);
-            _mm_storeu_ps(fr->s[c] + o, _mm_mul_ps(s[c], inv));
+            HF__ST(fr->t[c] + o, t[c]);
+            HF__ST(fr->s[c] + o, HF__MUL(s[c], inv));
         }
     }
     return bad == 0;
@@ -7686,7 +7695,7 @@ HF__TARGET_AVX2 HF__INLINE __m256 hf__diff_avx2(const float *row, int last,
     return d;
 }
 
-/* hf__strand_frame_sse eight points at a time, with the same IEEE
+/* hf__strand_frame_v4 eight points at a time, with the same IEEE
    operations per point, and the same cases left to the reference. */
 HF__TARGET_AVX2 HF__PRIVATE int
 hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
@@ -8138,10 +8147,9 @@ HF__PRIVATE void hf__ribbon_write_ref(const hf__rframe *fr, int P,
     }
 }
 
-#if HF__SSE
 /* 2 when position and tangent are floats side by side in one vertex, 3
    when the texcoord follows them too (the usual 36-byte layout); else 0. */
-HF__PRIVATE int hf__float_run_sse(const hf__rout *ro)
+HF__PRIVATE int hf__float_run(const hf__rout *ro)
 {
     const unsigned char *p = ro->base[HF__S_POS];
     const size_t st = ro->stride[HF__S_POS];
@@ -8155,7 +8163,8 @@ HF__PRIVATE int hf__float_run_sse(const hf__rout *ro)
                : 2;
 }
 
-/* A float run (see hf__float_run_sse) for points i < n of a group: left
+#if HF__SSE
+/* A float run (see hf__float_run) for points i < n of a group: left
    position L, right position R, tangent T, and with uv the texcoord
    (uv, t). Each vertex takes two or three stores instead of six. */
 HF__INLINE void hf__put_run_sse(unsigned char *o, size_t st, int n,
@@ -8270,7 +8279,7 @@ HF__PRIVATE void hf__ribbon_write_sse(const hf__rframe *fr, int P,
     /* stream by stream, as the scalar loop per point writes: the first
        stream touches every cache line of the strand with few stores, so
        the misses that bring the lines in overlap */
-    const int G = (P + 3) >> 2, run = hf__float_run_sse(ro);
+    const int G = (P + 3) >> 2, run = hf__float_run(ro);
     const __m128 ws = _mm_set1_ps(str->wscale), is = _mm_set1_ps(ro->inv_scale);
     __m128 L[4], R[4];
     size_t st;
@@ -8384,7 +8393,7 @@ hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
                                      str->uv[0], str->uv[1]);
     unsigned char *b;
     int k;
-    if (hf__float_run_sse(ro) != 3) {
+    if (hf__float_run(ro) != 3) {
         hf__ribbon_write_sse(fr, P, K, str, ro, v0);
         return;
     }
@@ -8427,6 +8436,72 @@ hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
 }
 #endif
 
+#if HF__NEON
+/* NEON writes the float runs (see hf__float_run) four points at a time:
+   x y z tx and ty tz u v of each vertex by a 4 x 4 transpose, as
+   hf__put_run_sse does; every other stream goes through the reference. */
+HF__INLINE void hf__transpose4_neon(float32x4_t *r)
+{
+    const float32x4x2_t a = vtrnq_f32(r[0], r[1]), b = vtrnq_f32(r[2], r[3]);
+    r[0] = vcombine_f32(vget_low_f32(a.val[0]), vget_low_f32(b.val[0]));
+    r[1] = vcombine_f32(vget_low_f32(a.val[1]), vget_low_f32(b.val[1]));
+    r[2] = vcombine_f32(vget_high_f32(a.val[0]), vget_high_f32(b.val[0]));
+    r[3] = vcombine_f32(vget_high_f32(a.val[1]), vget_high_f32(b.val[1]));
+}
+
+HF__PRIVATE void
+hf__ribbon_write_neon(const hf__rframe *fr, int P, const hf__rconst *K,
+                      const hf__rstrand *str, const hf__rout *ro, size_t v0)
+{
+    const int run = hf__float_run(ro);
+    const size_t st = run ? ro->stride[HF__S_POS] : 0;
+    const float32x4_t ws = vdupq_n_f32(str->wscale);
+    const float32x4_t is = vdupq_n_f32(ro->inv_scale);
+    hf__rout rest = *ro;
+    unsigned char *b = run ? ro->base[HF__S_POS] + v0 * st : NULL;
+    int k, c, i;
+    for (k = 0; run && 4 * k < P; ++k, b += 8 * st) {
+        const int o = 4 + 4 * k, n = P - 4 * k < 4 ? P - 4 * k : 4;
+        const float32x4_t w = vmulq_f32(vld1q_f32(K->hw + 4 * k), ws);
+        float32x4_t L[4], R[4], Q[4];
+        for (c = 0; c < 3; ++c) {
+            const float32x4_t p = vld1q_f32(fr->p[c] + o);
+            const float32x4_t sw = vmulq_f32(vld1q_f32(fr->s[c] + o), w);
+            const float32x4_t og = vdupq_n_f32(ro->origin[c]);
+            L[c] = vmulq_f32(vsubq_f32(vsubq_f32(p, sw), og), is);
+            R[c] = vmulq_f32(vsubq_f32(vaddq_f32(p, sw), og), is);
+        }
+        L[3] = R[3] = vld1q_f32(fr->t[0] + o);
+        Q[0] = vld1q_f32(fr->t[1] + o);
+        Q[1] = vld1q_f32(fr->t[2] + o);
+        Q[2] = vdupq_n_f32(str->uv[0]);
+        Q[3] = vdupq_n_f32(str->uv[1]);
+        hf__transpose4_neon(L); /* x y z tx of each left vertex */
+        hf__transpose4_neon(R);
+        hf__transpose4_neon(Q); /* ty tz u v */
+        for (i = 0; i < n; ++i) {
+            unsigned char *q = b + 2u * (size_t)i * st;
+            vst1q_f32((float *)(void *)q, L[i]);
+            vst1q_f32((float *)(void *)(q + st), R[i]);
+            if (run == 3) {
+                vst1q_f32((float *)(void *)(q + 16), Q[i]);
+                vst1q_f32((float *)(void *)(q + st + 16), Q[i]);
+                HF_MEMCPY(q + 32, K->tt + 4 * k + i, 4);
+                HF_MEMCPY(q + st + 32, K->tt + 4 * k + i, 4);
+            } else {
+                vst1_f32((float *)(void *)(q + 16), vget_low_f32(Q[i]));
+                vst1_f32((float *)(void *)(q + st + 16), vget_low_f32(Q[i]));
+            }
+        }
+    }
+    if (run) { /* the streams left */
+        rest.base[HF__S_POS] = rest.base[HF__S_TAN] = NULL;
+        if (run == 3) rest.base[HF__S_TEX] = NULL;
+    }
+    hf__ribbon_write_ref(fr, P, K, str, &rest, v0);
+}
+#endif
+
 /* The dispatch of the ribbon kernels at SIMD level `level`: one strand's
    frame (tangents and sides; a strand with a non-finite point is framed
    collapsed, wscale 0), then its vertices. The AVX-512 level runs the
@@ -8442,9 +8517,9 @@ HF__PRIVATE void hf__strand_frame(const float *pts, int P,
         if (hf__strand_frame_avx2(pts, P, params, fr, &finite)) return;
     } else
 #endif
-#if HF__SSE
+#if HF__V4
     if (level >= HF_SIMD_SSE2) {
-        if (hf__strand_frame_sse(pts, P, params, fr, &finite)) return;
+        if (hf__strand_frame_v4(pts, P, params, fr, &finite)) return;
     }
 #endif
     (void)level;
@@ -8469,6 +8544,12 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
 #if HF__SSE
     if (level >= HF_SIMD_SSE2) {
         hf__ribbon_write_sse(fr, P, K, str, ro, v0);
+        return;
+    }
+#endif
+#if HF__NEON
+    if (level >= HF_SIMD_NEON) {
+        hf__ribbon_write_neon(fr, P, K, str, ro, v0);
         return;
     }
 #endif
@@ -8680,7 +8761,7 @@ HF__PRIVATE void hf__points_strand_sse(const float *p, const float *hw,
 
 #if HF__NEON
 /* hf__points_strand_sse on ARM64 (no streaming stores there). */
-HF__TARGET_NEON HF__PRIVATE void
+HF__PRIVATE void
 hf__points_strand_neon(const float *p, const float *hw, float ws, float *o,
                        int j, int P)
 {
@@ -11337,6 +11418,12 @@ HFDEF hf_result hf_fur_max_stretch(const hf_fur *f, float *out_stretch)
 
 #ifdef __cplusplus
 }
+#endif
+
+#if defined(__clang__)
+#pragma float_control(pop)
+#elif defined(__GNUC__)
+#pragma GCC pop_options
 #endif
 
 #endif /* HAIRFUR_IMPLEMENTATION */
