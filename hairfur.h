@@ -118,12 +118,14 @@
        __declspec(noinline), HF__RESTRICT __restrict, HF__UNUSED and
        HF__PRINTF empty; SSE2 is used when _M_X64 is defined or
        _M_IX86_FP >= 2 (<emmintrin.h>, unaligned loads and stores only, so
-       no alignment attribute is needed); AVX2 and AVX-512 kernels only
-       where the compiler targets them (/arch:AVX2, /arch:AVX512 define
-       __AVX2__, __AVX512F__): there is no run-time CPU detection on MSVC
-       yet (gcc and clang use __builtin_cpu_supports). tests/msvc_check.sh
-       parses that branch with clang as MSVC; MSVC itself is not run here
-       (unverified).
+       no alignment attribute is needed); the AVX2 and AVX-512 kernels
+       need no attribute there (MSVC compiles any intrinsic anywhere) and
+       are chosen at run time from __cpuid, __cpuidex and _xgetbv, as gcc
+       and clang do with __builtin_cpu_supports. Contraction of a * b + c
+       into FMA is off in the implementation (pragmas for gcc and clang;
+       MSVC does not contract unless /fp:contract or /fp:fast).
+       tests/msvc_check.sh parses that branch with clang as MSVC; MSVC
+       itself is not run here (unverified).
 
    CONVENTIONS
 
@@ -1985,16 +1987,15 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 #define HF_MEMSET(d, v, n) memset(d, v, n)
 #endif
 
-/* SIMD levels. A kernel named hf__<name>_sse (or _avx2, _avx512) sits
-   beside its scalar reference hf__<name>_ref; every level uses the same
-   IEEE operations in the same order (no FMA), so all give the same bytes,
-   and one function per stage picks between them (the dispatch) with the
-   level hf_simd_resolve gives. SSE2 is the baseline wherever the compiler
-   targets it. AVX2 and AVX-512 kernels are compiled with target
-   attributes on gcc and clang for x86 (so a default -O2 build has them)
-   and picked at run time by CPUID (__builtin_cpu_supports); elsewhere
-   (MSVC) only when the compiler already targets them (__AVX2__,
-   __AVX512F__). HF_NO_SIMD forces the scalar references; HF_SIMD_MAX
+/* SIMD levels. A kernel named hf__<name>_sse (or _neon, _v4 for one
+   written once for both, _avx2, _avx512) sits beside its scalar reference
+   hf__<name>_ref; every level uses the same IEEE operations in the same
+   order (no FMA), so all give the same bytes, and one function per stage
+   picks between them (the dispatch) with the level hf_simd_resolve gives.
+   SSE2 is the baseline wherever the compiler targets it, NEON on ARM64.
+   AVX2 and AVX-512 kernels are compiled into any x86 build (target
+   attributes on gcc and clang, none needed on MSVC) and picked at run
+   time by CPUID. HF_NO_SIMD forces the scalar references; HF_SIMD_MAX
    (an hf_simd_level) caps the level at compile time. */
 #if !defined(HF_NO_SIMD) &&                                                    \
     (defined(__SSE2__) || defined(_M_X64) ||                                   \
@@ -2020,6 +2021,15 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 #define HF__AVX512 1
 #define HF__TARGET_AVX2 __attribute__((target("avx2")))
 #define HF__TARGET_AVX512 __attribute__((target("avx512f")))
+#elif HF__SSE && defined(_MSC_VER) && (defined(_M_X64) || defined(_M_IX86))
+/* MSVC compiles any intrinsic in any function: the kernels need no
+   attribute, and hf__cpu_simd asks CPUID (__cpuid, __cpuidex, _xgetbv) */
+#define HF__X86_DISPATCH 1
+#define HF__AVX2 1
+#define HF__AVX512 1
+#define HF__TARGET_AVX2
+#define HF__TARGET_AVX512
+#include <intrin.h>
 #else
 #define HF__X86_DISPATCH 0
 #if HF__SSE && defined(__AVX2__)
@@ -2193,7 +2203,23 @@ HFDEF const char *hf_version_string(void) { return HAIRFUR_VERSION_STRING; }
 /* The best level the CPU runs in this build. */
 HF__PRIVATE int hf__cpu_simd(void)
 {
-#if HF__X86_DISPATCH
+#if HF__X86_DISPATCH && defined(_MSC_VER) && !defined(__clang__) &&          \
+    !defined(__GNUC__)
+    /* the ISA bits (leaf 7: EBX bit 5 AVX2, bit 16 AVX-512F) count only
+       where the OS saves the registers (XCR0: bits 1-2 for 256 bits, and
+       5-7 as well for 512) */
+    int r[4];
+    unsigned long long xcr0 = 0;
+    __cpuid(r, 0);
+    if (r[0] < 7) return HF_SIMD_SSE2;
+    __cpuid(r, 1);
+    if (((r[2] >> 27) & 1) == 0) return HF_SIMD_SSE2; /* no OSXSAVE */
+    xcr0 = _xgetbv(0);
+    __cpuidex(r, 7, 0);
+    if ((r[1] >> 16 & 1) && (xcr0 & 0xe6) == 0xe6) return HF_SIMD_AVX512;
+    if ((r[1] >> 5 & 1) && (xcr0 & 6) == 6) return HF_SIMD_AVX2;
+    return HF_SIMD_SSE2;
+#elif HF__X86_DISPATCH
     /* libgcc (or compiler-rt) reads CPUID and XCR0 at load time, so this
        also knows whether the OS saves the wide registers */
     if (__builtin_cpu_supports("avx512f")) return HF_SIMD_AVX512;

@@ -7,7 +7,8 @@
 # library functions the header uses, and clang's own headers give stdint.h,
 # stdarg.h and the SSE2 intrinsics. What it proves: the header's compiler
 # words (HF__INLINE as __forceinline, HF__RESTRICT as __restrict,
-# __declspec(noinline)) and its SSE2 path (_M_X64) parse as MSVC-flavoured
+# __declspec(noinline)), its SSE2 path (_M_X64) and its CPUID dispatch
+# (__cpuid, __cpuidex, _xgetbv, the AVX kernels) parse as MSVC-flavoured
 # C and C++, and no GNU-only word (__attribute__, __builtin_*, ...) reaches
 # MSVC from the header. What it does not: MSVC's own front end, its CRT or
 # its code generation (unverified).
@@ -19,11 +20,15 @@ fi
 RES=$("$CLANG" -print-resource-dir)/include
 src=${TMPDIR:-/tmp}/hf_msvc_check_$$.c
 printf '#define HAIRFUR_IMPLEMENTATION\n#include "hairfur.h"\nint main(void) { return hf_version() > 0 ? 0 : 1; }\n' >"$src"
+# clang's immintrin.h, in MSVC mode, declares the AVX types and intrinsics
+# only for a target that has them (MSVC's always does): -mavx2 -mavx512f
+# let it parse the run-time dispatched kernels
+AVX="-mavx2 -mavx512f"
 fail=0
 for lang in "c -std=c99" "c++ -std=c++14"; do
     # shellcheck disable=SC2086
     if out=$("$CLANG" --target=x86_64-pc-windows-msvc -fms-extensions \
-            -fms-compatibility -fsyntax-only -Wall -Wextra \
+            -fms-compatibility -fsyntax-only -Wall -Wextra $AVX \
             -Wno-builtin-macro-redefined -Wno-unused-function -U__clang__ \
             -nostdlibinc -isystem tests/msvc_stub -isystem "$RES" -I. \
             -Werror -x $lang "$src" 2>&1); then
