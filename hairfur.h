@@ -7028,7 +7028,12 @@ hf__interp_range_avx2(const hf__irun *run, int first, int count)
             hf__interp_avx2(&t, run->ctab, i, W0, W1, W2, SC, R1, nt);
             i += 8;
         }
-        if (i < n) hf__interp_tail(run, &t, i);
+        if (i < n) {
+            /* the tail is SSE code: with the upper halves dirty it would
+               run at half speed or worse */
+            _mm256_zeroupper();
+            hf__interp_tail(run, &t, i);
+        }
     }
 }
 #endif
@@ -7106,7 +7111,12 @@ hf__interp_range_avx512(const hf__irun *run, int first, int count)
             hf__interp_avx512(&t, run->ctab, i, W0, W1, W2, SC, R1, nt);
             i += 16;
         }
-        if (i < n) hf__interp_tail(run, &t, i);
+        if (i < n) {
+            /* the tail is SSE code: with the upper halves dirty it would
+               run at half speed or worse */
+            _mm256_zeroupper();
+            hf__interp_tail(run, &t, i);
+        }
     }
 }
 #endif
@@ -8403,7 +8413,9 @@ hf__put_side_avx2(unsigned char *o, size_t st2, int n, __m256 x, __m256 y,
 }
 
 /* hf__ribbon_write_sse eight points at a time for the 36-byte float run
-   (position, tangent, texcoord); other layouts take the SSE writer. */
+   (position, tangent, texcoord: hf__float_run 3); the dispatch gives other
+   layouts to the SSE writer (calling it from here would run SSE code with
+   the upper halves of the registers dirty, at twice its time or more). */
 HF__TARGET_AVX2 HF__PRIVATE void
 hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
                       const hf__rstrand *str, const hf__rout *ro, size_t v0)
@@ -8417,13 +8429,8 @@ hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
     const __m256 uv = _mm256_setr_ps(str->uv[0], str->uv[1], str->uv[0],
                                      str->uv[1], str->uv[0], str->uv[1],
                                      str->uv[0], str->uv[1]);
-    unsigned char *b;
+    unsigned char *b = ro->base[HF__S_POS] + v0 * st;
     int k;
-    if (hf__float_run(ro) != 3) {
-        hf__ribbon_write_sse(fr, P, K, str, ro, v0);
-        return;
-    }
-    b = ro->base[HF__S_POS] + v0 * st;
     for (k = 0; 8 * k < P; ++k, b += 16 * st) {
         const int o = 4 + 8 * k, n = P - 8 * k < 8 ? P - 8 * k : 8;
         const __m256 w = _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws);
@@ -8562,7 +8569,7 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
                                   const hf__rout *ro, size_t v0, int level)
 {
 #if HF__AVX2
-    if (level >= HF_SIMD_AVX2) {
+    if (level >= HF_SIMD_AVX2 && hf__float_run(ro) == 3) {
         hf__ribbon_write_avx2(fr, P, K, str, ro, v0);
         return;
     }
