@@ -2019,6 +2019,10 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 #define HF__X86_DISPATCH 1 /* kernels by target attribute, CPUID */
 #define HF__AVX2 1
 #define HF__AVX512 1
+/* Every AVX kernel ends with _mm256_zeroupper: SSE code that runs while
+   the upper halves of the vector registers are dirty runs 2x or more
+   slower on current x86 (all of it, the caller's too), and gcc leaves
+   them dirty below -O2. */
 #define HF__TARGET_AVX2 __attribute__((target("avx2")))
 #define HF__TARGET_AVX512 __attribute__((target("avx512f")))
 #elif HF__SSE && defined(_MSC_VER) && (defined(_M_X64) || defined(_M_IX86))
@@ -7035,6 +7039,7 @@ hf__interp_range_avx2(const hf__irun *run, int first, int count)
             hf__interp_tail(run, &t, i);
         }
     }
+    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 #endif
 
@@ -7118,6 +7123,7 @@ hf__interp_range_avx512(const hf__irun *run, int first, int count)
             hf__interp_tail(run, &t, i);
         }
     }
+    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 #endif
 
@@ -7786,6 +7792,7 @@ hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
     }
     if (_mm256_movemask_ps(_mm256_cmp_ps(acc, zero, _CMP_EQ_OQ)) != 0xff) {
         *finite = 0;
+        _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
         return 0;
     }
     *finite = 1;
@@ -7846,6 +7853,7 @@ hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
         _mm256_storeu_ps(fr->s[1] + o, _mm256_mul_ps(sy, inv2));
         _mm256_storeu_ps(fr->s[2] + o, _mm256_mul_ps(sz, inv2));
     }
+    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
     return bad == 0;
 }
 #endif
@@ -8466,6 +8474,7 @@ hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
     }
     if (ro->base[HF__S_COL]) hf__stream_sse(HF__S_COL, 4, fr, P, K, str, ro, v0);
     if (ro->base[HF__S_C3D]) hf__stream_sse(HF__S_C3D, 2, fr, P, K, str, ro, v0);
+    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 #endif
 
@@ -8834,6 +8843,7 @@ hf__points_strand_avx2(const float *p, const float *hw, float ws, float *o,
             _mm256_storeu_ps(o + 4 * j, q);
         }
     }
+    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
     return j;
 }
 #endif
