@@ -8479,9 +8479,31 @@ hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
 #endif
 
 #if HF__NEON
-/* NEON writes the float runs (see hf__float_run) four points at a time:
-   x y z tx and ty tz u v of each vertex by a 4 x 4 transpose, as
-   hf__put_run_sse does; every other stream goes through the reference. */
+/* hf__encode_sse in NEON: the same clamps and rounding (vcvt_f16_f32
+   rounds to nearest even, subnormal halves included, as hf__encode1 does
+   by hand), so the same codes. */
+HF__INLINE uint32x4_t hf__encode_neon(float32x4_t x, int fmt)
+{
+    const float32x4_t m = vdupq_n_f32(12582912.0f);
+    float lo = -1.0f, scale;
+    float32x4_t v;
+    if (fmt == HF_FORMAT_F16) {
+        const float32x4_t c = vminq_f32(vmaxq_f32(x, vdupq_n_f32(-65504.0f)),
+                                        vdupq_n_f32(65504.0f));
+        return vmovl_u16(vreinterpret_u16_f16(vcvt_f16_f32(c)));
+    }
+    switch (fmt) {
+    case HF_FORMAT_SNORM16: scale = 32767.0f; break;
+    case HF_FORMAT_UNORM16: scale = 65535.0f; lo = 0.0f; break;
+    case HF_FORMAT_SNORM8: scale = 127.0f; break;
+    default: scale = 255.0f; lo = 0.0f; break;
+    }
+    v = vminq_f32(vmaxq_f32(x, vdupq_n_f32(lo)), vdupq_n_f32(1.0f));
+    v = vsubq_f32(vaddq_f32(vmulq_f32(v, vdupq_n_f32(scale)), m), m);
+    return vandq_u32(vreinterpretq_u32_s32(vcvtq_s32_f32(v)),
+                     vdupq_n_u32(hf_format_bytes(fmt) == 2 ? 0xffffu : 0xffu));
+}
+
 HF__INLINE void hf__transpose4_neon(float32x4_t *r)
 {
     const float32x4x2_t a = vtrnq_f32(r[0], r[1]), b = vtrnq_f32(r[2], r[3]);
@@ -8491,56 +8513,123 @@ HF__INLINE void hf__transpose4_neon(float32x4_t *r)
     r[3] = vcombine_f32(vget_high_f32(a.val[1]), vget_high_f32(b.val[1]));
 }
 
+/* Components c[0, nc) of n < 5 points at o, both vertices of each (L at
+   o + 2 i st, R a stride later; R may be L), in format fmt: floats as
+   they are, other formats encoded four lanes at a time, then each
+   vertex's bytes copied out in component order. */
+HF__PRIVATE void hf__emit_pair_neon(unsigned char *o, size_t st, int n,
+                                    const float32x4_t *L,
+                                    const float32x4_t *R, int nc, int fmt)
+{
+    const int size = hf_format_bytes(fmt);
+    int side, i, c;
+    for (side = 0; side < 2; ++side) {
+        const float32x4_t *v = side ? R : L;
+        uint32_t lane[4][4];
+        for (c = 0; c < nc; ++c)
+            vst1q_u32(lane[c], fmt == HF_FORMAT_F32
+                                   ? vreinterpretq_u32_f32(v[c])
+                                   : hf__encode_neon(v[c], fmt));
+        for (i = 0; i < n; ++i) {
+            unsigned char *q = o + (2u * (size_t)i + (size_t)side) * st;
+            for (c = 0; c < nc; ++c, q += size) {
+                if (size == 4) {
+                    HF_MEMCPY(q, &lane[c][i], 4);
+                } else if (size == 2) {
+                    const uint16_t h = (uint16_t)lane[c][i];
+                    HF_MEMCPY(q, &h, 2);
+                } else {
+                    *q = (unsigned char)lane[c][i];
+                }
+            }
+        }
+    }
+}
+
+/* hf__ribbon_write_sse in NEON, four points at a time: the float runs
+   (see hf__float_run) by a 4 x 4 transpose, x y z tx and ty tz u v of
+   each vertex, as hf__put_run_sse does; every other stream component by
+   component in its format. */
 HF__PRIVATE void
 hf__ribbon_write_neon(const hf__rframe *fr, int P, const hf__rconst *K,
                       const hf__rstrand *str, const hf__rout *ro, size_t v0)
 {
     const int run = hf__float_run(ro);
-    const size_t st = run ? ro->stride[HF__S_POS] : 0;
     const float32x4_t ws = vdupq_n_f32(str->wscale);
     const float32x4_t is = vdupq_n_f32(ro->inv_scale);
-    hf__rout rest = *ro;
-    unsigned char *b = run ? ro->base[HF__S_POS] + v0 * st : NULL;
-    int k, c, i;
-    for (k = 0; run && 4 * k < P; ++k, b += 8 * st) {
+    int k, c, i, q;
+    for (k = 0; 4 * k < P; ++k) {
         const int o = 4 + 4 * k, n = P - 4 * k < 4 ? P - 4 * k : 4;
+        const size_t v = v0 + 8u * (size_t)k;
         const float32x4_t w = vmulq_f32(vld1q_f32(K->hw + 4 * k), ws);
-        float32x4_t L[4], R[4], Q[4];
+        const float32x4_t tt = vld1q_f32(K->tt + 4 * k);
+        float32x4_t L[4], R[4], T[4], V[4];
         for (c = 0; c < 3; ++c) {
             const float32x4_t p = vld1q_f32(fr->p[c] + o);
             const float32x4_t sw = vmulq_f32(vld1q_f32(fr->s[c] + o), w);
             const float32x4_t og = vdupq_n_f32(ro->origin[c]);
             L[c] = vmulq_f32(vsubq_f32(vsubq_f32(p, sw), og), is);
             R[c] = vmulq_f32(vsubq_f32(vaddq_f32(p, sw), og), is);
+            T[c] = vld1q_f32(fr->t[c] + o);
         }
-        L[3] = R[3] = vld1q_f32(fr->t[0] + o);
-        Q[0] = vld1q_f32(fr->t[1] + o);
-        Q[1] = vld1q_f32(fr->t[2] + o);
-        Q[2] = vdupq_n_f32(str->uv[0]);
-        Q[3] = vdupq_n_f32(str->uv[1]);
-        hf__transpose4_neon(L); /* x y z tx of each left vertex */
-        hf__transpose4_neon(R);
-        hf__transpose4_neon(Q); /* ty tz u v */
-        for (i = 0; i < n; ++i) {
-            unsigned char *q = b + 2u * (size_t)i * st;
-            vst1q_f32((float *)(void *)q, L[i]);
-            vst1q_f32((float *)(void *)(q + st), R[i]);
-            if (run == 3) {
-                vst1q_f32((float *)(void *)(q + 16), Q[i]);
-                vst1q_f32((float *)(void *)(q + st + 16), Q[i]);
-                HF_MEMCPY(q + 32, K->tt + 4 * k + i, 4);
-                HF_MEMCPY(q + st + 32, K->tt + 4 * k + i, 4);
-            } else {
-                vst1_f32((float *)(void *)(q + 16), vget_low_f32(Q[i]));
-                vst1_f32((float *)(void *)(q + st + 16), vget_low_f32(Q[i]));
+        if (run) {
+            const size_t st = ro->stride[HF__S_POS];
+            unsigned char *b = ro->base[HF__S_POS] + v * st;
+            L[3] = R[3] = T[0];
+            V[0] = T[1];
+            V[1] = T[2];
+            V[2] = vdupq_n_f32(str->uv[0]);
+            V[3] = vdupq_n_f32(str->uv[1]);
+            hf__transpose4_neon(L); /* x y z tx of each left vertex */
+            hf__transpose4_neon(R);
+            hf__transpose4_neon(V); /* ty tz u v */
+            for (i = 0; i < n; ++i, b += 2 * st) {
+                vst1q_f32((float *)(void *)b, L[i]);
+                vst1q_f32((float *)(void *)(b + st), R[i]);
+                if (run == 3) {
+                    vst1q_f32((float *)(void *)(b + 16), V[i]);
+                    vst1q_f32((float *)(void *)(b + st + 16), V[i]);
+                    HF_MEMCPY(b + 32, K->tt + 4 * k + i, 4);
+                    HF_MEMCPY(b + st + 32, K->tt + 4 * k + i, 4);
+                } else {
+                    vst1_f32((float *)(void *)(b + 16), vget_low_f32(V[i]));
+                    vst1_f32((float *)(void *)(b + st + 16), vget_low_f32(V[i]));
+                }
             }
+        } else if (ro->base[HF__S_POS]) {
+            hf__emit_pair_neon(ro->base[HF__S_POS] + v * ro->stride[HF__S_POS],
+                               ro->stride[HF__S_POS], n, L, R, 3,
+                               ro->fmt[HF__S_POS]);
+        }
+        for (q = HF__S_TAN; q <= HF__S_C3D; ++q) {
+            if (!ro->base[q] || (q == HF__S_TAN && run) ||
+                (q == HF__S_TEX && run == 3))
+                continue;
+            switch (q) { /* the same on both sides, as the reference */
+            case HF__S_TAN:
+                V[0] = T[0];
+                V[1] = T[1];
+                V[2] = T[2];
+                break;
+            case HF__S_TEX:
+                V[0] = vdupq_n_f32(str->uv[0]);
+                V[1] = vdupq_n_f32(str->uv[1]);
+                V[2] = tt;
+                break;
+            case HF__S_COL:
+                for (c = 0; c < 3; ++c) V[c] = vdupq_n_f32(str->rgba[c]);
+                V[3] = vmulq_f32(vdupq_n_f32(str->rgba[3]),
+                                 vld1q_f32(K->fade + 4 * k));
+                break;
+            default: /* HF__S_C3D */
+                V[0] = vdupq_n_f32(str->c3x);
+                V[1] = tt;
+                break;
+            }
+            hf__emit_pair_neon(ro->base[q] + v * ro->stride[q], ro->stride[q],
+                               n, V, V, hf__stream_nc[q], ro->fmt[q]);
         }
     }
-    if (run) { /* the streams left */
-        rest.base[HF__S_POS] = rest.base[HF__S_TAN] = NULL;
-        if (run == 3) rest.base[HF__S_TEX] = NULL;
-    }
-    hf__ribbon_write_ref(fr, P, K, str, &rest, v0);
 }
 #endif
 

@@ -5701,7 +5701,7 @@ static void test_ribbons_every_level_matches_reference(void)
 
 static void test_format_encoders(void)
 {
-    /* Scalar and SSE encoders agree bit for bit; each code is the nearest
+    /* Scalar, SSE and NEON encoders agree bit for bit; each code is the nearest
        (ties to even) to the clamped value, and decodes within half a step. */
     static const float edge[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, 2.0f, -2.0f,
         65504.0f, 65519.0f, 65520.0f, 1e30f, -1e30f, 6.0e-8f, 2.9e-8f, 3.0e-8f,
@@ -5736,6 +5736,15 @@ static void test_format_encoders(void)
                 uint32_t lanes[4];
                 _mm_storeu_si128((__m128i *)(void *)lanes,
                                  hf__encode_sse(_mm_set_ps(1.0f, x, -x, x), fmt));
+                if (lanes[0] != code || lanes[2] != code) ++bad;
+                if (lanes[1] != hf__encode1(-x, fmt)) ++bad;
+            }
+#endif
+#if HF__NEON
+            {
+                const float in[4] = {x, -x, x, 1.0f};
+                uint32_t lanes[4];
+                vst1q_u32(lanes, hf__encode_neon(vld1q_f32(in), fmt));
                 if (lanes[0] != code || lanes[2] != code) ++bad;
                 if (lanes[1] != hf__encode1(-x, fmt)) ++bad;
             }
