@@ -232,9 +232,13 @@
                            chosen at run time (hf_simd_level,
                            hf_simd_resolve, HF_SIMD_MAX, the simd fields,
                            hf_fur_set_kernels) with AVX2 and AVX-512
-                           interpolation and AVX2 points, the same bytes
-                           at every level; streaming stores as an option
-                           (nontemporal).
+                           interpolation, AVX2 points and ribbons (CPUID
+                           on gcc, clang and MSVC), NEON on ARM64 for
+                           every per-frame stage (interpolation, points,
+                           ribbons in every format, ropes), the same
+                           bytes at every level, FMA contraction off in
+                           the implementation whatever the flags;
+                           streaming stores as an option (nontemporal).
        0.1.0 (2026-11-22)  first release: maps and meshes, density
                            tessellation, guides, placement, Verlet ropes,
                            interpolation, LOD, ribbons, Marschner LUTs,
@@ -1387,7 +1391,10 @@ typedef struct hf_ribbon_params {
        take at most 8 KiB, else it uses ordinary stores. 0: ordinary
        stores. Same bytes either way. */
     int nontemporal;
-    int simd; /* hf_simd_level; 0 = the best the CPU runs (same bytes) */
+    /* hf_simd_level of hf_ribbons and hf_ribbon_points; 0 = the best
+       the CPU runs (same bytes). Ribbons: SSE2 or NEON, AVX2 (the
+       AVX-512 level runs it) for the 36-byte float vertex, else SSE2. */
+    int simd;
 } hf_ribbon_params;
 
 /* Ribbon widths a zeroed hf_ribbon_params gets, in metres: fur on a head
