@@ -1033,6 +1033,10 @@ typedef struct hf_rope_params {
                           HF_ROPE_ZERO_BLEND_TIME */
     int explicit_zero;      /* 0: hf_rope_zero bits, fields whose 0 is
                                literal */
+    int simd; /* 0: hf_simd_level of the rope step, 0 = the best the CPU
+                 runs (SSE2 or NEON, AVX2; the AVX-512 level runs AVX2);
+                 every level gives the same bytes. A fur uses its own
+                 (hf_fur_desc.simd, hf_fur_set_kernels) */
 } hf_rope_params;
 
 /* Fill params with the defaults listed above (what a zeroed struct means).
@@ -1720,9 +1724,10 @@ typedef struct hf_fur_desc {
                                to [0, 1] at each strand's root UV, scales
                                clump_size there (0: the strand stands
                                alone, no clumping) */
-    int simd;               /* hf_simd_level of the interpolation; 0 = the
-                               best the CPU runs (every level gives the
-                               same bytes); hf_fur_set_kernels changes it */
+    int simd;               /* hf_simd_level of the rope step and the
+                               interpolation; 0 = the best the CPU runs
+                               (every level gives the same bytes);
+                               hf_fur_set_kernels changes it */
     int nontemporal;        /* 1: strands interpolated with streaming
                                stores (hf_interp_params.nontemporal), for
                                furs whose strands outgrow the cache */
@@ -1905,11 +1910,12 @@ HFDEF hf_result hf_fur_set_rope_params_range(hf_fur *fur, int first,
    animated then. Errors:
    HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE, HF_ERROR_BAD_PARAMETER. */
 HFDEF hf_result hf_fur_set_mode(hf_fur *fur, int first, int count, int mode);
-/* The kernels of the fur's interpolation: the SIMD level (hf_simd_level;
-   0 = the best the CPU runs) and streaming stores (nontemporal 1, as
-   hf_fur_desc.nontemporal). Every choice gives the same bytes; for tests,
-   benchmarks and tuning. Ribbons and points take theirs from
-   hf_ribbon_params. Errors: HF_ERROR_NULL_POINTER, HF_ERROR_BAD_PARAMETER
+/* The kernels of the fur's rope step and interpolation: the SIMD level
+   (hf_simd_level; 0 = the best the CPU runs; it replaces the simd of the
+   fur's rope parameters) and streaming stores for the interpolation
+   (nontemporal 1, as hf_fur_desc.nontemporal). Every choice gives the
+   same bytes; for tests, benchmarks and tuning. Ribbons and points take
+   theirs from hf_ribbon_params. Errors: HF_ERROR_NULL_POINTER, HF_ERROR_BAD_PARAMETER
    (not an hf_simd_level, or nontemporal not 0 or 1). */
 HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 
@@ -4386,6 +4392,7 @@ typedef struct hf__rope_step {
     float gs_root, gs_tip, ls_root, ls_tip; /* per 1/60 s */
     int global_on, local_on;
     int ktab; /* kg, kl hold hf__rope_kg, hf__rope_kl */
+    int level; /* hf_simd_resolve(params->simd) */
     float kg[HF__ROPE_KTAB], kl[HF__ROPE_KTAB];
 } hf__rope_step;
 
@@ -4462,6 +4469,10 @@ HF__PRIVATE hf_result hf__rope_params_check(const hf_rope_params *p,
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "solver", -1,
                         "params.solver = %d is not a hf_rope_solver",
                         p->solver);
+    if (p->simd < HF_SIMD_AUTO || p->simd > HF_SIMD_AVX512)
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "simd", -1,
+                        "params.simd = %d is not an hf_simd_level (0..4)",
+                        p->simd);
     hf__ok(diag);
     return HF_OK;
 }
@@ -6516,8 +6527,386 @@ HF__PRIVATE int hf__ropes_mark_far_v4(const hf_ropes *ro, int j,
 }
 #endif
 
-/* The dispatch of the simulated rope kernels: the four-lane kernel (SSE2
-   or NEON) takes whole groups of four ropes from a, the scalar reference
+#if HF__AVX2
+/* The four-lane sub-step's row kernels eight ropes a vector (AVX2), with
+   the same operations per rope; the collision tests of the FTL rows take
+   each half through the four-lane test inline, and a hit through the
+   four-lane kernel after _mm256_zeroupper (see HF__TARGET_AVX2). */
+#define HF__L8(p) _mm256_loadu_ps(p)
+#define HF__S8(p, v) _mm256_storeu_ps(p, v)
+#define HF__A8(x, y) _mm256_add_ps(x, y)
+#define HF__D8(x, y) _mm256_sub_ps(x, y)
+#define HF__M8(x, y) _mm256_mul_ps(x, y)
+#define HF__DOT3_8(a, b, c, x, y, z)                                           \
+    HF__A8(HF__A8(HF__M8(a, x), HF__M8(b, y)), HF__M8(c, z))
+#define HF__POSE_8(o, a, b, c, x, y, z)                                        \
+    HF__A8(HF__A8(HF__A8(o, HF__M8(a, x)), HF__M8(b, y)), HF__M8(c, z))
+#define HF__SEL8(m, a, b) _mm256_blendv_ps(b, a, m)
+
+HF__TARGET_AVX2 HF__PRIVATE void hf__ropes_pin_root_avx2(hf_ropes *ro,
+                                                        const float *F,
+                                                        int a, int b)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const float *f[12];
+    int r;
+    hf__frame_rows(F, R, f);
+    for (r = a; r < b; r += 8) {
+        const __m256 u = HF__L8(ro->rest_u + r), v = HF__L8(ro->rest_v + r),
+                     w = HF__L8(ro->rest_w + r);
+        HF__S8(ro->px + r, HF__L8(ro->x + r));
+        HF__S8(ro->py + r, HF__L8(ro->y + r));
+        HF__S8(ro->pz + r, HF__L8(ro->z + r));
+        HF__S8(ro->x + r, HF__POSE_8(HF__L8(f[0] + r), HF__L8(f[3] + r),
+                                     HF__L8(f[6] + r), HF__L8(f[9] + r), u,
+                                     v, w));
+        HF__S8(ro->y + r, HF__POSE_8(HF__L8(f[1] + r), HF__L8(f[4] + r),
+                                     HF__L8(f[7] + r), HF__L8(f[10] + r), u,
+                                     v, w));
+        HF__S8(ro->z + r, HF__POSE_8(HF__L8(f[2] + r), HF__L8(f[5] + r),
+                                     HF__L8(f[8] + r), HF__L8(f[11] + r), u,
+                                     v, w));
+    }
+    _mm256_zeroupper();
+}
+
+HF__TARGET_AVX2 HF__PRIVATE void
+hf__ropes_integrate_row_avx2(hf_ropes *ro, const float *F, int j, int a,
+                             int b, const hf__rope_step *st)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const int P = ro->points;
+    const float *AX = HF__ROW(ro->scratch, HF__RS_A, R),
+                *AY = HF__ROW(ro->scratch, HF__RS_A + 1, R),
+                *AZ = HF__ROW(ro->scratch, HF__RS_A + 2, R),
+                *VF = HF__ROW(ro->scratch, HF__RS_VF, R);
+    float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
+          *Z = HF__ROW(ro->z, j, R);
+    float *PX = HF__ROW(ro->px, j, R), *PY = HF__ROW(ro->py, j, R),
+          *PZ = HF__ROW(ro->pz, j, R);
+    const float *u = HF__ROW(ro->rest_u, j, R),
+                *v = HF__ROW(ro->rest_v, j, R),
+                *w = HF__ROW(ro->rest_w, j, R);
+    const float kgj = st->ktab ? st->kg[j] : hf__rope_kg(st, j, P);
+    const int pull = (st->k_root > 0.0f || st->global_on) && !(kgj <= 0.0f);
+    const __m256 kg = _mm256_set1_ps(kgj);
+    const float *f[12];
+    int r;
+    hf__frame_rows(F, R, f);
+    for (r = a; r < b; r += 8) {
+        const __m256 vf = HF__L8(VF + r);
+        __m256 x = HF__L8(X + r), y = HF__L8(Y + r), z = HF__L8(Z + r);
+        const __m256 vx = HF__M8(HF__D8(x, HF__L8(PX + r)), vf),
+                     vy = HF__M8(HF__D8(y, HF__L8(PY + r)), vf),
+                     vz = HF__M8(HF__D8(z, HF__L8(PZ + r)), vf);
+        HF__S8(PX + r, x);
+        HF__S8(PY + r, y);
+        HF__S8(PZ + r, z);
+        x = HF__A8(x, HF__A8(vx, HF__L8(AX + r)));
+        y = HF__A8(y, HF__A8(vy, HF__L8(AY + r)));
+        z = HF__A8(z, HF__A8(vz, HF__L8(AZ + r)));
+        if (pull) {
+            const __m256 uu = HF__L8(u + r), vv = HF__L8(v + r),
+                         ww = HF__L8(w + r);
+            __m256 g;
+            g = HF__POSE_8(HF__L8(f[0] + r), HF__L8(f[3] + r),
+                           HF__L8(f[6] + r), HF__L8(f[9] + r), uu, vv, ww);
+            x = HF__A8(x, HF__M8(kg, HF__D8(g, x)));
+            g = HF__POSE_8(HF__L8(f[1] + r), HF__L8(f[4] + r),
+                           HF__L8(f[7] + r), HF__L8(f[10] + r), uu, vv, ww);
+            y = HF__A8(y, HF__M8(kg, HF__D8(g, y)));
+            g = HF__POSE_8(HF__L8(f[2] + r), HF__L8(f[5] + r),
+                           HF__L8(f[8] + r), HF__L8(f[11] + r), uu, vv, ww);
+            z = HF__A8(z, HF__M8(kg, HF__D8(g, z)));
+        }
+        HF__S8(X + r, x);
+        HF__S8(Y + r, y);
+        HF__S8(Z + r, z);
+    }
+    _mm256_zeroupper();
+}
+
+/* hf__ropes_local_row_v4, eight ropes a vector. */
+HF__TARGET_AVX2 HF__PRIVATE void
+hf__ropes_local_row_avx2(hf_ropes *ro, const float *F, int j, int a, int b,
+                         const hf__rope_step *st, float *Q[2][3])
+{
+    const size_t R = (size_t)ro->rope_count;
+    const int P = ro->points;
+    const float *u = HF__ROW(ro->rest_u, j, R),
+                *v = HF__ROW(ro->rest_v, j, R),
+                *w = HF__ROW(ro->rest_w, j, R);
+    float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
+          *Z = HF__ROW(ro->z, j, R);
+    const __m256 one = _mm256_set1_ps(1.0f);
+    const int m = j - 1;
+    const float klm =
+        m < 1 ? 0.0f : st->ktab ? st->kl[m] : hf__rope_kl(st, m, P);
+    const float *f[12];
+    int r;
+    hf__frame_rows(F, R, f);
+    {
+        /* q of segment m */
+        const float *u1 = HF__ROW(ro->rest_u, m, R),
+                    *v1 = HF__ROW(ro->rest_v, m, R),
+                    *w1 = HF__ROW(ro->rest_w, m, R);
+        float *QX = Q[m & 1][0], *QY = Q[m & 1][1], *QZ = Q[m & 1][2];
+        for (r = a; r < b; r += 8) {
+            const __m256 qu = HF__D8(HF__L8(u + r), HF__L8(u1 + r)),
+                         qv = HF__D8(HF__L8(v + r), HF__L8(v1 + r)),
+                         qw = HF__D8(HF__L8(w + r), HF__L8(w1 + r));
+            HF__S8(QX + r, HF__DOT3_8(HF__L8(f[3] + r), HF__L8(f[6] + r),
+                                      HF__L8(f[9] + r), qu, qv, qw));
+            HF__S8(QY + r, HF__DOT3_8(HF__L8(f[4] + r), HF__L8(f[7] + r),
+                                      HF__L8(f[10] + r), qu, qv, qw));
+            HF__S8(QZ + r, HF__DOT3_8(HF__L8(f[5] + r), HF__L8(f[8] + r),
+                                      HF__L8(f[11] + r), qu, qv, qw));
+        }
+    }
+    if (m >= 1 && !(klm <= 0.0f)) {
+        const float *X0 = HF__ROW(ro->x, m - 1, R),
+                    *Y0 = HF__ROW(ro->y, m - 1, R),
+                    *Z0 = HF__ROW(ro->z, m - 1, R);
+        const float *X1 = HF__ROW(ro->x, m, R), *Y1 = HF__ROW(ro->y, m, R),
+                    *Z1 = HF__ROW(ro->z, m, R);
+        const float *L = HF__ROW(ro->rest_length, m - 1, R);
+        const float *QX = Q[m & 1][0], *QY = Q[m & 1][1],
+                    *QZ = Q[m & 1][2];
+        const float *PX_ = Q[(m + 1) & 1][0], *PY_ = Q[(m + 1) & 1][1],
+                    *PZ_ = Q[(m + 1) & 1][2];
+        const __m256 kl = _mm256_set1_ps(klm);
+        const int pf = j + 1 < P;
+        for (r = a; r < b; r += 8) {
+            const __m256 x1 = HF__L8(X1 + r), y1 = HF__L8(Y1 + r),
+                         z1 = HF__L8(Z1 + r), l = HF__L8(L + r);
+            const __m256 qx = HF__L8(QX + r), qy = HF__L8(QY + r),
+                         qz = HF__L8(QZ + r);
+            __m256 px_, py_, pz_, bx, by, bz, b2, ok, ia, ib, cc, kx, ky,
+                kz, kd, den, rx, ry, rz, x2, y2, z2;
+            int all_ok;
+            if (pf && ((r - a) & 15) == 0) {
+                /* the next row, a cache line (16 ropes) at a time */
+                const size_t o = (size_t)(j + 1) * R + (size_t)r;
+                HF__PREFETCH(ro->x + o);
+                HF__PREFETCH(ro->y + o);
+                HF__PREFETCH(ro->z + o);
+                HF__PREFETCH(ro->px + o);
+                HF__PREFETCH(ro->py + o);
+                HF__PREFETCH(ro->pz + o);
+                HF__PREFETCH(ro->rest_u + o);
+                HF__PREFETCH(ro->rest_v + o);
+                HF__PREFETCH(ro->rest_w + o);
+                HF__PREFETCH(ro->rest_length + o - R);
+            }
+            bx = HF__D8(x1, HF__L8(X0 + r));
+            by = HF__D8(y1, HF__L8(Y0 + r));
+            bz = HF__D8(z1, HF__L8(Z0 + r));
+            b2 = HF__DOT3_8(bx, by, bz, bx, by, bz);
+            ok = _mm256_and_ps(
+                _mm256_cmp_ps(l, _mm256_set1_ps(1e-12f), _CMP_GT_OQ),
+                _mm256_cmp_ps(b2, _mm256_set1_ps(1e-24f), _CMP_GT_OQ));
+            all_ok = _mm256_movemask_ps(ok) == 0xff;
+            ia = _mm256_div_ps(one, l);
+            ib = _mm256_div_ps(one, _mm256_sqrt_ps(b2));
+            if (!all_ok) { /* the scalar's 0 (lanes may divide by 0) */
+                ia = _mm256_and_ps(ok, ia);
+                ib = _mm256_and_ps(ok, ib);
+            }
+            px_ = HF__M8(HF__L8(PX_ + r), ia);
+            py_ = HF__M8(HF__L8(PY_ + r), ia);
+            pz_ = HF__M8(HF__L8(PZ_ + r), ia);
+            bx = HF__M8(bx, ib);
+            by = HF__M8(by, ib);
+            bz = HF__M8(bz, ib);
+            cc = HF__DOT3_8(px_, py_, pz_, bx, by, bz);
+            if (!all_ok) cc = HF__SEL8(ok, cc, one);
+            kx = HF__D8(HF__M8(py_, bz), HF__M8(pz_, by));
+            ky = HF__D8(HF__M8(pz_, bx), HF__M8(px_, bz));
+            kz = HF__D8(HF__M8(px_, by), HF__M8(py_, bx));
+            kd = HF__DOT3_8(kx, ky, kz, qx, qy, qz);
+            /* maxps(a, b) is a > b ? a : b, NaN included: the scalar's */
+            den = _mm256_div_ps(kd, _mm256_max_ps(HF__A8(one, cc),
+                                                  _mm256_set1_ps(1e-6f)));
+            /* r = q cc + k x q + k den, turned q */
+            rx = HF__A8(HF__A8(HF__M8(qx, cc),
+                               HF__D8(HF__M8(ky, qz), HF__M8(kz, qy))),
+                        HF__M8(kx, den));
+            ry = HF__A8(HF__A8(HF__M8(qy, cc),
+                               HF__D8(HF__M8(kz, qx), HF__M8(kx, qz))),
+                        HF__M8(ky, den));
+            rz = HF__A8(HF__A8(HF__M8(qz, cc),
+                               HF__D8(HF__M8(kx, qy), HF__M8(ky, qx))),
+                        HF__M8(kz, den));
+            x2 = HF__L8(X + r);
+            y2 = HF__L8(Y + r);
+            z2 = HF__L8(Z + r);
+            x2 = HF__A8(x2, HF__M8(kl, HF__D8(HF__A8(x1, rx), x2)));
+            y2 = HF__A8(y2, HF__M8(kl, HF__D8(HF__A8(y1, ry), y2)));
+            z2 = HF__A8(z2, HF__M8(kl, HF__D8(HF__A8(z1, rz), z2)));
+            HF__S8(X + r, x2);
+            HF__S8(Y + r, y2);
+            HF__S8(Z + r, z2);
+        }
+    }
+    _mm256_zeroupper();
+}
+
+/* hf__ropes_ftl_row_v4, eight ropes a vector. */
+HF__TARGET_AVX2 HF__PRIVATE void
+hf__ropes_ftl_row_avx2(hf_ropes *ro, const float *F, int j, int a, int b,
+                       const hf__rope_step *st, const hf_collider *col,
+                       int ncol, const hf__col_prep4 *pre)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const float *F6 = HF__ROW(F, 6, R), *F7 = HF__ROW(F, 7, R),
+                *F8 = HF__ROW(F, 8, R);
+    float *X0 = HF__ROW(ro->x, j - 1, R), *Y0 = HF__ROW(ro->y, j - 1, R),
+          *Z0 = HF__ROW(ro->z, j - 1, R);
+    float *X1 = HF__ROW(ro->x, j, R), *Y1 = HF__ROW(ro->y, j, R),
+          *Z1 = HF__ROW(ro->z, j, R);
+    float *PX0 = HF__ROW(ro->px, j - 1, R), *PY0 = HF__ROW(ro->py, j - 1, R),
+          *PZ0 = HF__ROW(ro->pz, j - 1, R);
+    const float *L = HF__ROW(ro->rest_length, j - 1, R);
+    const float sdj = j >= 2 ? st->ftl_damping : 0.0f;
+    const int test = st->ftl && ncol > 0;
+    int r;
+    for (r = a; r < b; r += 8) {
+        const __m256 one = _mm256_set1_ps(1.0f), sd = _mm256_set1_ps(sdj);
+        const __m256 x0 = HF__L8(X0 + r), y0 = HF__L8(Y0 + r),
+                     z0 = HF__L8(Z0 + r);
+        const __m256 ox = HF__L8(X1 + r), oy = HF__L8(Y1 + r),
+                     oz = HF__L8(Z1 + r);
+        __m256 dx = HF__D8(ox, x0), dy = HF__D8(oy, y0), dz = HF__D8(oz, z0),
+               d2, deg, sc, nx, ny, nz;
+        int hits = 0, h;
+        d2 = HF__DOT3_8(dx, dy, dz, dx, dy, dz);
+        /* coincident points: grow along the root normal */
+        deg = _mm256_cmp_ps(d2, _mm256_set1_ps(1e-24f), _CMP_LT_OQ);
+        if (_mm256_movemask_ps(deg)) { /* rare: the selects */
+            dx = HF__SEL8(deg, HF__L8(F6 + r), dx);
+            dy = HF__SEL8(deg, HF__L8(F7 + r), dy);
+            dz = HF__SEL8(deg, HF__L8(F8 + r), dz);
+            d2 = HF__SEL8(deg, one, d2);
+        }
+        sc = _mm256_div_ps(HF__L8(L + r), _mm256_sqrt_ps(d2));
+        nx = HF__A8(x0, HF__M8(dx, sc));
+        ny = HF__A8(y0, HF__M8(dy, sc));
+        nz = HF__A8(z0, HF__M8(dz, sc));
+        HF__S8(X1 + r, nx);
+        HF__S8(Y1 + r, ny);
+        HF__S8(Z1 + r, nz);
+        if (!st->ftl) continue;
+        HF__S8(PX0 + r, HF__A8(HF__L8(PX0 + r), HF__M8(sd, HF__D8(nx, ox))));
+        HF__S8(PY0 + r, HF__A8(HF__L8(PY0 + r), HF__M8(sd, HF__D8(ny, oy))));
+        HF__S8(PZ0 + r, HF__A8(HF__L8(PZ0 + r), HF__M8(sd, HF__D8(nz, oz))));
+        if (!test) continue;
+        /* the first collider's test on each half, as the four-lane row */
+        for (h = 0; h < 2; ++h) {
+            const __m128 hx = h ? _mm256_extractf128_ps(nx, 1)
+                                : _mm256_castps256_ps128(nx);
+            const __m128 hy = h ? _mm256_extractf128_ps(ny, 1)
+                                : _mm256_castps256_ps128(ny);
+            const __m128 hz = h ? _mm256_extractf128_ps(nz, 1)
+                                : _mm256_castps256_ps128(nz);
+            if (ncol > 1 || hf__col_hits_v4(pre, hx, hy, hz)) hits |= 1 << h;
+        }
+        if (hits) {
+            _mm256_zeroupper(); /* SSE code next */
+            for (h = 0; h < 2; ++h)
+                if ((hits >> h) & 1) {
+                    const size_t o = (size_t)j * R + (size_t)(r + 4 * h);
+                    __m128 xyz[3];
+                    xyz[0] = _mm_loadu_ps(ro->x + o);
+                    xyz[1] = _mm_loadu_ps(ro->y + o);
+                    xyz[2] = _mm_loadu_ps(ro->z + o);
+                    hf__col_row_v4(ro, F, j, r + 4 * h, 1, col, ncol, pre,
+                                   st->margin, xyz);
+                }
+        }
+    }
+    _mm256_zeroupper();
+}
+
+HF__TARGET_AVX2 HF__PRIVATE void hf__ropes_distance_row_avx2(hf_ropes *ro,
+                                                            int j, int a,
+                                                            int b)
+{
+    const size_t R = (size_t)ro->rope_count;
+    float *X0 = HF__ROW(ro->x, j - 1, R), *Y0 = HF__ROW(ro->y, j - 1, R),
+          *Z0 = HF__ROW(ro->z, j - 1, R);
+    float *X1 = HF__ROW(ro->x, j, R), *Y1 = HF__ROW(ro->y, j, R),
+          *Z1 = HF__ROW(ro->z, j, R);
+    const float *L = HF__ROW(ro->rest_length, j - 1, R);
+    const __m256 half = _mm256_set1_ps(0.5f);
+    int r;
+    for (r = a; r < b; r += 8) {
+        const __m256 x0 = HF__L8(X0 + r), y0 = HF__L8(Y0 + r),
+                     z0 = HF__L8(Z0 + r), x1 = HF__L8(X1 + r),
+                     y1 = HF__L8(Y1 + r), z1 = HF__L8(Z1 + r);
+        const __m256 dx = HF__D8(x1, x0), dy = HF__D8(y1, y0),
+                     dz = HF__D8(z1, z0);
+        const __m256 d2 = HF__DOT3_8(dx, dy, dz, dx, dy, dz);
+        const __m256 e = _mm256_and_ps(
+            _mm256_cmp_ps(d2, _mm256_set1_ps(1e-24f), _CMP_GT_OQ),
+            HF__D8(half, _mm256_div_ps(HF__M8(half, HF__L8(L + r)),
+                                       _mm256_sqrt_ps(d2))));
+        HF__S8(X0 + r, HF__A8(x0, HF__M8(dx, e)));
+        HF__S8(Y0 + r, HF__A8(y0, HF__M8(dy, e)));
+        HF__S8(Z0 + r, HF__A8(z0, HF__M8(dz, e)));
+        HF__S8(X1 + r, HF__D8(x1, HF__M8(dx, e)));
+        HF__S8(Y1 + r, HF__D8(y1, HF__M8(dy, e)));
+        HF__S8(Z1 + r, HF__D8(z1, HF__M8(dz, e)));
+    }
+    _mm256_zeroupper();
+}
+#undef HF__L8
+#undef HF__S8
+#undef HF__A8
+#undef HF__D8
+#undef HF__M8
+#undef HF__DOT3_8
+#undef HF__POSE_8
+#undef HF__SEL8
+
+/* hf__ropes_substep_v4 eight ropes a vector: ropes [a, b), b - a a
+   multiple of 8. The rows are separate calls, so no SSE code runs between
+   them with the upper halves dirty; the non-FTL collisions take the
+   four-lane kernel. */
+HF__PRIVATE void hf__ropes_substep_avx2(hf_ropes *ro, const float *F, int a,
+                                        int b, const hf__rope_step *st,
+                                        const hf_collider *col, int ncol,
+                                        const hf__col_prep4 *pre)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const int P = ro->points;
+    float *Q[2][3];
+    int j, it;
+    for (j = 0; j < 3; ++j) { /* scratch rows G: unused by simulated ropes */
+        Q[0][j] = HF__ROW(ro->scratch, HF__RS_G + j, R);
+        Q[1][j] = HF__ROW(ro->scratch, HF__RS_G + 3 + j, R);
+    }
+    hf__ropes_pin_root_avx2(ro, F, a, b);
+    for (j = 1; j < P; ++j) {
+        hf__ropes_integrate_row_avx2(ro, F, j, a, b, st);
+        if (st->local_on) hf__ropes_local_row_avx2(ro, F, j, a, b, st, Q);
+    }
+    for (it = 0; it < st->iterations; ++it) {
+        for (j = 1; j < P; ++j)
+            if (st->ftl || j == 1)
+                hf__ropes_ftl_row_avx2(ro, F, j, a, b, st, col, ncol, pre);
+            else
+                hf__ropes_distance_row_avx2(ro, j, a, b);
+        if (!st->ftl && ncol > 0)
+            hf__ropes_collide_v4(ro, F, a, b, col, ncol, pre, st->margin);
+    }
+    if (st->iterations == 0 && ncol > 0)
+        hf__ropes_collide_v4(ro, F, a, b, col, ncol, pre, st->margin);
+}
+#endif
+
+/* The dispatch of the simulated rope kernels: at AVX2 and above the AVX2
+   kernel takes whole groups of eight ropes from a; the four-lane kernel
+   (SSE2 or NEON) whole groups of four from there, the scalar reference
    the rest. */
 HF__PRIVATE void hf__ropes_substep(hf_ropes *ro, const float *F, int a, int b,
                                    const hf__rope_step *st,
@@ -6525,11 +6914,22 @@ HF__PRIVATE void hf__ropes_substep(hf_ropes *ro, const float *F, int a, int b,
                                    const void *lanes)
 {
     int a4 = a;
+#if HF__AVX2
+    if (st->level >= HF_SIMD_AVX2) {
+        a4 = a + (b - a) / 8 * 8;
+        if (a4 > a)
+            hf__ropes_substep_avx2(ro, F, a, a4, st, col, ncol,
+                                   (const hf__col_prep4 *)lanes);
+        a = a4;
+    }
+#endif
 #if HF__V4
-    a4 = a + (b - a) / 4 * 4;
-    if (a4 > a)
-        hf__ropes_substep_v4(ro, F, a, a4, st, col, ncol,
-                             (const hf__col_prep4 *)lanes);
+    if (st->level >= HF_SIMD_SSE2) {
+        a4 = a + (b - a) / 4 * 4;
+        if (a4 > a)
+            hf__ropes_substep_v4(ro, F, a, a4, st, col, ncol,
+                                 (const hf__col_prep4 *)lanes);
+    }
 #else
     (void)lanes;
 #endif
@@ -6656,6 +7056,7 @@ HF__PRIVATE void hf__rope_step_setup(hf__rope_step *st,
     st->ls_tip = params->local_stiffness_tip;
     st->global_on = st->gs_root > 0.0f || st->gs_tip > 0.0f;
     st->local_on = st->ls_root > 0.0f || st->ls_tip > 0.0f;
+    st->level = hf_simd_resolve(params->simd);
     st->ktab = points <= HF__ROPE_KTAB;
     if (st->ktab)
         for (k = 1; k < points; ++k) {
@@ -11357,9 +11758,11 @@ HF__PRIVATE hf_result hf__fur_step_runs(hf_fur *f, int first, int end,
     while (a < end) {
         int b = a + 1;
         hf_result r;
+        hf_rope_params p = f->rope[f->rope_of[a]];
         while (b < end && f->rope_of[b] == f->rope_of[a]) ++b;
-        r = hf_ropes_step(f->ropes, a, b - a, dt, &f->rope[f->rope_of[a]],
-                          colliders, collider_count);
+        p.simd = f->simd; /* the fur's kernel level (hf_fur_set_kernels) */
+        r = hf_ropes_step(f->ropes, a, b - a, dt, &p, colliders,
+                          collider_count);
         if (r != HF_OK) return r;
         a = b;
     }

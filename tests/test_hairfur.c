@@ -3434,6 +3434,13 @@ static void test_ropes_params_defaults_and_validation(void)
     CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_BAD_PARAMETER);
     q = p; q.solver = 7;
     CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_BAD_PARAMETER);
+    q = p; q.simd = HF_SIMD_AVX512 + 1;
+    CHECK_EQ_INT(hf_rope_params_validate(&q, &d), HF_ERROR_BAD_PARAMETER);
+    CHECK(strcmp(d.field, "simd") == 0);
+    q = p; q.simd = -1;
+    CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_BAD_PARAMETER);
+    q = p; q.simd = HF_SIMD_SCALAR;
+    CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_OK);
     q = p; q.global_stiffness_tip = -0.1f;
     CHECK_EQ_INT(hf_rope_params_validate(&q, NULL), HF_ERROR_BAD_PARAMETER);
     q = p; q.max_dt = (float)INFINITY;
@@ -4325,16 +4332,22 @@ static void test_ropes_get_positions(void)
    segments or a first point off the root; some frames take several
    sub-steps; a last phase without forces has zero-length ropes, whose
    points coincide (the degenerate placement). */
-static void test_ropes_simd_lanes_match_scalar(void)
+/* One solver's run for test_ropes_simd_lanes_match_scalar: set 0 steps
+   every rope at once at the best level (AVX2 groups of eight where the CPU
+   has it, then four-lane groups, then the scalar tail), set 1 in ranges of
+   1, 3, 5 and 7 (four-lane groups and scalar), set 2 a rope at a time (the
+   scalar reference), sets 3 and 4 every rope at once at the SSE2 (NEON)
+   and scalar levels. */
+static void t_ropes_lanes(int solver)
 {
-    enum { R = 45, P = 9, FRAMES = 90 };
+    enum { R = 45, P = 9, FRAMES = 90, NSET = 5 };
     static float rest[3 * R * P], pos[3][3 * R * P];
     float root[3 * R], nrm[3 * R], tan[3 * R], dirs[3 * R];
     hf_collider col[2];
-    hf_rope_params p;
-    tr_set s[3];
+    hf_rope_params p, pl;
+    tr_set s[NSET];
     int r, j, f, k, same = 1, on_surface = 0;
-    for (k = 0; k < 3; ++k)
+    for (k = 0; k < NSET; ++k)
         if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
     for (r = 0; r < R; ++r) {
         double el = 0.2 + 1.3 * (r + 0.5) / R, az = 2.39996 * r;
@@ -4351,12 +4364,13 @@ static void test_ropes_simd_lanes_match_scalar(void)
     p.global_stiffness_tip = 0.02f;
     p.local_stiffness_root = 0.2f;
     p.root_stiffness = 0.3f;
+    p.solver = solver;
     memset(col, 0, sizeof col);
     col[0].type = HF_COLLIDER_SPHERE;
     col[0].radius = 0.097f;
     col[1].type = HF_COLLIDER_CAPSULE;
     col[1].radius = 0.02f;
-    for (k = 0; k < 3; ++k)
+    for (k = 0; k < NSET; ++k)
         hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm, tan, 0);
     for (f = 0; f < FRAMES + 5; ++f) {
         float cx = (float)(0.15 * sin(2 * T_PI * f / 60.0));
@@ -4368,7 +4382,7 @@ static void test_ropes_simd_lanes_match_scalar(void)
             for (r = 0; r < R; r += 6)
                 for (j = 0; j < 3 * P; ++j)
                     rest[3 * (size_t)r * P + j] = root[3 * r + j % 3];
-            for (k = 0; k < 3; ++k)
+            for (k = 0; k < NSET; ++k)
                 hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm, tan, 0);
         }
         if (f < FRAMES)
@@ -4376,7 +4390,7 @@ static void test_ropes_simd_lanes_match_scalar(void)
         col[0].a[0] = cx;
         col[1].a[0] = cx - 0.2f; col[1].a[1] = -0.12f; col[1].a[2] = 0.0f;
         col[1].b[0] = cx + 0.2f; col[1].b[1] = -0.12f; col[1].b[2] = 0.05f;
-        for (k = 0; k < 3; ++k)
+        for (k = 0; k < NSET; ++k)
             hf_ropes_set_roots(&s[k].ro, 0, R, root, nrm, tan, 0);
         CHECK_EQ_INT(hf_ropes_step(&s[0].ro, 0, R, dt, &p, col, 2), HF_OK);
         while (first < R) { /* sizes 1, 3, 5, 7 in turn, shifting */
@@ -4388,7 +4402,12 @@ static void test_ropes_simd_lanes_match_scalar(void)
         }
         for (r = 0; r < R; ++r)
             hf_ropes_step(&s[2].ro, r, 1, dt, &p, col, 2);
-        for (k = 1; k < 3; ++k) {
+        for (k = 3; k < NSET; ++k) {
+            pl = p;
+            pl.simd = k == 3 ? HF_SIMD_SSE2 : HF_SIMD_SCALAR;
+            CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, dt, &pl, col, 2), HF_OK);
+        }
+        for (k = 1; k < NSET; ++k) {
             size_t n = sizeof(float) * R * P;
             same &= memcmp(s[0].ro.x, s[k].ro.x, n) == 0;
             same &= memcmp(s[0].ro.y, s[k].ro.y, n) == 0;
@@ -4420,7 +4439,13 @@ static void test_ropes_simd_lanes_match_scalar(void)
                  sizeof(float) * 3 * P * (R - 2)) == 0);
     for (j = 0; j < 3 * P; ++j)
         CHECK(pos[2][j] == 0.0f && pos[2][3 * P * (R - 1) + j] == 0.0f);
-    for (k = 0; k < 3; ++k) tr_close(&s[k]);
+    for (k = 0; k < NSET; ++k) tr_close(&s[k]);
+}
+
+static void test_ropes_simd_lanes_match_scalar(void)
+{
+    t_ropes_lanes(HF_ROPE_SOLVER_FTL);
+    t_ropes_lanes(HF_ROPE_SOLVER_DISTANCE);
 }
 
 static void test_defaults_zeroed_rope_params_are_init(void)
@@ -5853,7 +5878,8 @@ static void test_points_every_level(void)
    runs 2x or more slower otherwise (measured: every later stage of a
    frame), and nothing else shows it. XGETBV with ECX = 1 reads which state
    is in use: bit 2 the upper halves of ymm0-15, bit 6 those of zmm0-15.
-   Every kernel that runs at AVX2 or AVX-512, in every layout and tail. */
+   Every kernel that runs at AVX2 or AVX-512, in every layout and tail,
+   and the rope step with its collisions. */
 #if HF__AVX2 && defined(__GNUC__) && defined(__x86_64__)
 static unsigned t_dirty_upper(void)
 {
@@ -5920,8 +5946,51 @@ static void test_simd_kernels_leave_upper_clean(void)
                 dirty |= t_dirty_upper();
                 ++runs;
             }
+    { /* the rope step: 13 ropes (eight lanes, four, one), both solvers,
+         through a sphere so the collision path runs too */
+        enum { RR = 13, RP = 6 };
+        static float rest[RR * RP * 3];
+        float root[RR * 3], nrm[RR * 3], tng[RR * 3];
+        hf_ropes *ro = NULL;
+        hf_rope_params rp;
+        hf_collider col;
+        int solver, step;
+        for (s = 0; s < RR; ++s) {
+            for (i = 0; i < 3; ++i) {
+                root[3 * s + i] = i == 0 ? 0.01f * (float)s : 0.0f;
+                nrm[3 * s + i] = i == 1 ? 1.0f : 0.0f;
+                tng[3 * s + i] = i == 0 ? 1.0f : 0.0f;
+            }
+            for (i = 0; i < RP; ++i) {
+                rest[3 * (s * RP + i)] = root[3 * s];
+                rest[3 * (s * RP + i) + 1] = 0.02f * (float)i;
+                rest[3 * (s * RP + i) + 2] = 0.0f;
+            }
+        }
+        CHECK_EQ_INT(hf_ropes_create(RR, RP, NULL, &ro), HF_OK);
+        if (!ro) return;
+        CHECK_EQ_INT(hf_ropes_set_rest(ro, 0, RR, rest, 0, root, nrm, tng, 0), HF_OK);
+        memset(&col, 0, sizeof col);
+        col.type = HF_COLLIDER_SPHERE;
+        col.a[1] = 0.08f;
+        col.a[2] = 0.02f;
+        col.radius = 0.03f;
+        for (solver = 0; solver < 2; ++solver)
+            for (level = HF_SIMD_AVX2; level <= HF_SIMD_AVX512; ++level)
+                for (step = 0; step < 3; ++step) {
+                    hf_rope_params_init(&rp);
+                    rp.solver = solver ? HF_ROPE_SOLVER_DISTANCE : HF_ROPE_SOLVER_FTL;
+                    rp.local_stiffness_root = 0.3f;
+                    rp.global_stiffness_root = 0.1f;
+                    rp.simd = level;
+                    CHECK_EQ_INT(hf_ropes_step(ro, 0, RR, 1.0f / 60.0f, &rp, &col, 1), HF_OK);
+                    dirty |= t_dirty_upper();
+                    ++runs;
+                }
+        hf_ropes_destroy(ro);
+    }
     CHECK_EQ_INT((int)dirty, 0);
-    CHECK(runs == 18);
+    CHECK(runs == 18 + 12);
 #endif
 }
 
