@@ -473,14 +473,15 @@ static const char *level_name[] = {"auto", "scalar", "sse2", "avx2",
                                    "avx512"};
 enum {
     LV_STRANDS, LV_STRANDS_NT, LV_POINTS, LV_POINTS_NT, LV_RIBBONS,
-    LV_RIBBONS_NT, LV_N
+    LV_RIBBONS_NT, LV_ROPES, LV_N
 };
 
 static void bench_levels(scene *s, int frames)
 {
     static const char *what[LV_N] = {"strands", "strands_nt", "points",
-                                     "points_nt", "ribbons", "ribbons_nt"};
-    job jobs[3];
+                                     "points_nt", "ribbons", "ribbons_nt",
+                                     "ropes"};
+    job jobs[4];
     double *t[LV_N], bytes[LV_N];
     int f, level, k, best = hf_simd_resolve(HF_SIMD_AUTO);
     size_t big = (size_t)s->info.strand_count * P * 2u * 36u;
@@ -490,12 +491,15 @@ static void bench_levels(scene *s, int frames)
     jobs[0].fn = j_interp;
     jobs[1].fn = j_points;
     jobs[2].fn = j_ribbons;
+    jobs[3].fn = j_ropes;
     for (k = 0; k < 3; ++k) jobs[k].total = s->info.strand_count;
+    jobs[3].total = s->info.guide_count;
     bytes[LV_STRANDS] = bytes[LV_STRANDS_NT] =
         (double)s->info.strand_count * P * 12.0;
     bytes[LV_POINTS] = bytes[LV_POINTS_NT] =
         (double)s->info.strand_count * P * 16.0;
     bytes[LV_RIBBONS] = bytes[LV_RIBBONS_NT] = (double)big;
+    bytes[LV_ROPES] = (double)s->info.guide_count * P * 12.0;
     memset(dst, 1, big);
     for (k = 0; k < LV_N; ++k)
         t[k] = (double *)malloc(sizeof(double) * (size_t)frames);
@@ -504,7 +508,7 @@ static void bench_levels(scene *s, int frames)
         for (f = -5; f < frames; ++f) {
             scene_pose(s, s->frame++);
             for (k = 0; k < LV_N; ++k) {
-                const int nt = k & 1;
+                const int nt = k < LV_ROPES && (k & 1);
                 double t0;
                 check("kernels", hf_fur_set_kernels(s->fur, level, nt));
                 g_view.nontemporal = nt;
