@@ -1246,12 +1246,14 @@ typedef struct hf_interp_params {
        it to `first` to write a range into a buffer that holds exactly that
        range (first < out_first is HF_ERROR_BAD_RANGE). */
     int out_first;
-    int simd; /* hf_simd_level; 0 = the best the CPU runs (same bytes) */
+    int simd; /* hf_simd_level (0..4); 0 = the best the CPU runs (same
+                 bytes) */
     /* 1: streaming (non-temporal) stores, which skip the cache: for
        outputs far larger than it, so they do not push the guides out
        (measured: 1.3-1.4x faster for 100,000 strands, nothing for
        37,000); 0: ordinary stores.
-       Same bytes either way. */
+       Same bytes either way. Another value, or a simd outside 0..4, is
+       HF_ERROR_BAD_PARAMETER. */
     int nontemporal;
 } hf_interp_params;
 
@@ -1268,8 +1270,9 @@ typedef struct hf_interp_params {
    the written range. No allocation. Errors: NULL pointers, P < 2, count <
    0, first < 0, a guide index >= guide_count (HF_ERROR_INDEX_OUT_OF_RANGE),
    non-finite weights, scale, clump or guide point (HF_ERROR_NON_FINITE),
-   clump outside [0, 1] or a scale or guide coordinate beyond +-HF_MAX_ABS
-   (HF_ERROR_BAD_PARAMETER), first < out_first (HF_ERROR_BAD_RANGE);
+   clump outside [0, 1], a scale or guide coordinate beyond +-HF_MAX_ABS, or
+   a simd or nontemporal that is not one (HF_ERROR_BAD_PARAMETER), first <
+   out_first (HF_ERROR_BAD_RANGE);
    nothing written then. The caller sizes out_points for strand
    first + count - 1 - out_first. */
 HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
@@ -1393,7 +1396,8 @@ typedef struct hf_ribbon_params {
        are one interleaved buffer whose vertex they fill exactly (the
        usual layout: position, tangent, texcoord) and a strand's vertices
        take at most 8 KiB, else it uses ordinary stores. 0: ordinary
-       stores. Same bytes either way. */
+       stores. Same bytes either way. Another value, or a simd outside
+       0..4, is HF_ERROR_BAD_PARAMETER. */
     int nontemporal;
     /* hf_simd_level of hf_ribbons and hf_ribbon_points; 0 = the best
        the CPU runs (same bytes). Ribbons: SSE2 or NEON, AVX2 (the
@@ -1424,8 +1428,8 @@ typedef struct hf_ribbon_params {
    into each non-NULL stream, in its format; no allocation. Errors: NULL
    params, points or out, P < 2, first < 0, count < 0, negative or
    non-finite widths, non-finite eye, view_dir, scale or alpha, a zero
-   view_dir in orthographic mode, first < out_first (those as for every
-   call); an unknown
+   view_dir in orthographic mode, a simd or nontemporal that is not one,
+   first < out_first (those as for every call); an unknown
    stream format (HF_ERROR_BAD_FORMAT), a negative stride or one smaller
    than the stream's element (HF_ERROR_BAD_STRIDE), a bad position origin
    or scale; nothing written then. */
@@ -2251,6 +2255,15 @@ HF__PRIVATE int hf__cpu_simd(void)
 #else
     return HF_SIMD_SCALAR;
 #endif
+}
+
+/* An hf_simd_level and a 0 or 1 for streaming stores: every kernel
+   choice (the simd and nontemporal fields, hf_fur_set_kernels) is
+   checked here, and anything else is HF_ERROR_BAD_PARAMETER. */
+HF__PRIVATE int hf__kernels_ok(int simd, int nontemporal)
+{
+    return simd >= HF_SIMD_AUTO && simd <= HF_SIMD_AVX512 &&
+           (nontemporal == 0 || nontemporal == 1);
 }
 
 HFDEF int hf_simd_resolve(int requested)
@@ -4469,7 +4482,7 @@ HF__PRIVATE hf_result hf__rope_params_check(const hf_rope_params *p,
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "solver", -1,
                         "params.solver = %d is not a hf_rope_solver",
                         p->solver);
-    if (p->simd < HF_SIMD_AUTO || p->simd > HF_SIMD_AVX512)
+    if (!hf__kernels_ok(p->simd, 0))
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "simd", -1,
                         "params.simd = %d is not an hf_simd_level (0..4)",
                         p->simd);
@@ -7602,7 +7615,9 @@ HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
         return HF_ERROR_BAD_RANGE;
     clump = params->clump;
     if (!hf__finitef(clump)) return HF_ERROR_NON_FINITE;
-    if (clump < 0.0f || clump > 1.0f) return HF_ERROR_BAD_PARAMETER;
+    if (clump < 0.0f || clump > 1.0f ||
+        !hf__kernels_ok(params->simd, params->nontemporal))
+        return HF_ERROR_BAD_PARAMETER;
     /* validate the whole range before writing anything */
     for (s = first; s < first + count; ++s) {
         const hf_strand_binding *b = &bindings[s];
@@ -7700,7 +7715,8 @@ HF__PRIVATE hf_result hf__ribbon_check(const hf_ribbon_strands *strands,
         p->taper_power < 0.0f || p->width_scale < 0.0f ||
         p->root_width > HF_MAX_ABS || p->tip_width > HF_MAX_ABS ||
         p->width_scale > HF_MAX_ABS || p->alpha_root < 0.0f ||
-        p->alpha_root > 1.0f || p->alpha_tip < 0.0f || p->alpha_tip > 1.0f)
+        p->alpha_root > 1.0f || p->alpha_tip < 0.0f || p->alpha_tip > 1.0f ||
+        !hf__kernels_ok(p->simd, p->nontemporal))
         return HF_ERROR_BAD_PARAMETER;
     if (p->orthographic && hf__dot3(p->view_dir, p->view_dir) == 0.0f)
         return HF_ERROR_DEGENERATE;
@@ -10232,14 +10248,6 @@ HF__PRIVATE void hf__fur_build_free(const hf_allocator *a, hf__fur_build *b)
     hf__free(a, b->guide_len);
     hf__free(a, b->guide_nrm);
     hf__free(a, b->guide_of);
-}
-
-/* An hf_simd_level and a 0 or 1 for streaming stores: the kernel choice
-   of hf_fur_desc and hf_fur_set_kernels. */
-HF__PRIVATE int hf__kernels_ok(int simd, int nontemporal)
-{
-    return simd >= HF_SIMD_AUTO && simd <= HF_SIMD_AVX512 &&
-           (nontemporal == 0 || nontemporal == 1);
 }
 
 /* The resolved description's own fields (the stages check the rest). */

@@ -5265,6 +5265,11 @@ static void test_bad_interpolate_and_lod(void)
     ip.clump = 1.5f; TB_INTERP(g, 2, 0, 2, HF_ERROR_BAD_PARAMETER);
     ip.clump = -0.1f; TB_INTERP(g, 2, 0, 2, HF_ERROR_BAD_PARAMETER);
     ip.clump = 0.0f;
+    ip.simd = HF_SIMD_AVX512 + 1; TB_INTERP(g, 2, 0, 2, HF_ERROR_BAD_PARAMETER);
+    ip.simd = -1; TB_INTERP(g, 2, 0, 2, HF_ERROR_BAD_PARAMETER);
+    ip.simd = 0;
+    ip.nontemporal = 2; TB_INTERP(g, 2, 0, 2, HF_ERROR_BAD_PARAMETER);
+    ip.nontemporal = 0;
     /* NaN guide points: never NaN in the output */
     g[4] = TB_NAN;
     tb_fill(out, sizeof out);
@@ -6280,6 +6285,10 @@ static void test_bad_ribbons(void)
     b = rp; b.width_scale = TB_INF; TB_RIB(b, 0, 2, HF_ERROR_NON_FINITE);
     b = rp; b.alpha_tip = TB_NAN; TB_RIB(b, 0, 2, HF_ERROR_NON_FINITE);
     b = rp; b.orthographic = 1; TB_RIB(b, 0, 2, HF_ERROR_DEGENERATE); /* zero view_dir */
+    /* a kernel choice that is none: refused as everywhere */
+    b = rp; b.simd = HF_SIMD_AVX512 + 1; TB_RIB(b, 0, 2, HF_ERROR_BAD_PARAMETER);
+    b = rp; b.simd = -1; TB_RIB(b, 0, 2, HF_ERROR_BAD_PARAMETER);
+    b = rp; b.nontemporal = 2; TB_RIB(b, 0, 2, HF_ERROR_BAD_PARAMETER);
     st.points = NULL; TB_RIB(rp, 0, 2, HF_ERROR_NULL_POINTER); st.points = pts;
     CHECK_EQ_INT(hf_ribbons(NULL, 0, 2, &rp, &o), HF_ERROR_NULL_POINTER);
     CHECK_EQ_INT(hf_ribbons(&st, 0, 2, NULL, &o), HF_ERROR_NULL_POINTER);
