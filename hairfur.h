@@ -2081,9 +2081,8 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
    restored after it. clang's -ffp-contract=fast ignores the pragma (its
    fast-honor-pragmas does not); MSVC fuses only with /fp:contract or
    /fp:fast, which the header does not override. */
-#if defined(__clang__)
-#pragma float_control(push)
-#pragma clang fp contract(off)
+#if defined(__clang__) /* the standard pragma: every clang version */
+#pragma STDC FP_CONTRACT OFF
 #elif defined(__GNUC__)
 #pragma GCC push_options
 #pragma GCC optimize("fp-contract=off")
@@ -11970,8 +11969,8 @@ HFDEF hf_result hf_fur_max_stretch(const hf_fur *f, float *out_stretch)
 }
 #endif
 
-#if defined(__clang__)
-#pragma float_control(pop)
+#if defined(__clang__) /* back to the command line's setting */
+#pragma STDC FP_CONTRACT DEFAULT
 #elif defined(__GNUC__)
 #pragma GCC pop_options
 #endif

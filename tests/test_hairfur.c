@@ -27,7 +27,7 @@
    kernels inline, so this file rounds as the implementation does: no
    a * b + c fused into an FMA, whatever -march or the language mode. */
 #if defined(__clang__)
-#pragma clang fp contract(off)
+#pragma STDC FP_CONTRACT OFF
 #elif defined(__GNUC__)
 #pragma GCC optimize("fp-contract=off")
 #endif
