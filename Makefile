@@ -665,6 +665,8 @@ FUZZ_CC     := $(if $(CLANG),$(CLANG),clang) -std=c99 -g -O1 \
 REPLAY_CC   := gcc -std=c99 -O1 -g -Wall -Wextra -Wpedantic -Werror \
                -fsanitize=address,undefined -fno-sanitize-recover=all
 FUZZ_DEPS   := $(FUZZ_DIR)/fuzz_common.h $(HDR)
+# leaks inside assimp itself are not ours (see the file)
+FUZZ_ENV    := LSAN_OPTIONS=suppressions=$(abspath $(FUZZ_DIR)/lsan.supp)
 
 .PHONY: fuzz fuzz-smoke fuzz-replay fuzz-build soak
 
@@ -696,7 +698,7 @@ define fuzz_run
 	@fail=0; for t in $(FUZZ_TARGETS); do \
 	  mkdir -p $(BUILD)/fuzz-corpus/$$t; \
 	  log=$(BUILD)/fuzz-$$t.log; \
-	  $(BUILD)/fuzz_$$t $(FUZZ_FLAGS) -max_total_time=$(1) \
+	  $(FUZZ_ENV) $(BUILD)/fuzz_$$t $(FUZZ_FLAGS) -max_total_time=$(1) \
 	    -artifact_prefix=$(BUILD)/fuzz-artifacts/$$t- \
 	    $(BUILD)/fuzz-corpus/$$t $(FUZZ_DIR)/corpus/$$t > $$log 2>&1; rc=$$?; \
 	  done_line=$$(grep -E '^#[0-9]+[[:space:]]+DONE' $$log | tail -n 1); \
@@ -718,7 +720,7 @@ fuzz-replay: $(addprefix $(BUILD)/replay_,$(FUZZ_TARGETS))
 	@fail=0; for t in $(FUZZ_TARGETS); do \
 	  regs=$$(ls $(FUZZ_DIR)/regressions/$$t-* 2>/dev/null); \
 	  printf '%-8s ' "$$t:"; \
-	  $(BUILD)/replay_$$t $(FUZZ_DIR)/corpus/$$t $$regs || fail=1; \
+	  $(FUZZ_ENV) $(BUILD)/replay_$$t $(FUZZ_DIR)/corpus/$$t $$regs || fail=1; \
 	done; \
 	if [ $$fail -ne 0 ]; then echo "fuzz-replay: FAILED"; exit 1; fi
 
