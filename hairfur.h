@@ -1100,7 +1100,7 @@ HFDEF hf_result hf_ropes_memory_size(int rope_count, int points,
    (tangent x, normal y), simulated: call hf_ropes_set_rest next. The
    memory holds the ropes' state and the `scratch` rows, temporaries of one
    call: after a step the state is the same bytes however the ropes were
-   split into ranges, the scratch rows are not (the SSE lanes and the
+   split into ranges, the scratch rows are not (the SIMD lanes and the
    scalar tail keep different temporaries there). Errors:
    HF_ERROR_NULL_POINTER, HF_ERROR_BAD_COUNT, HF_ERROR_OVERFLOW,
    HF_ERROR_BUFFER_TOO_SMALL; *ropes is untouched then. */
@@ -7902,8 +7902,8 @@ HF__PRIVATE void hf__side_borrow(hf__rframe *fr, int j, int from)
 }
 
 /* The reference: unit tangents and sides of one strand, a point at a time
-   (see hf_ribbons for the rules on degenerate points). The SSE kernel
-   below gives the same bytes where it applies. */
+   (see hf_ribbons for the rules on degenerate points). The four-lane
+   and AVX2 kernels below give the same bytes where they apply. */
 HF__PRIVATE void hf__strand_frame_ref(const float *pts, int P,
                                       const hf_ribbon_params *params,
                                       hf__rframe *fr)
