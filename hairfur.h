@@ -6482,18 +6482,35 @@ HF__PRIVATE void hf__ropes_distance_row_v4(hf_ropes *ro, int j,
     }
 }
 
-/* One sub-step, four lanes: what hf__ropes_substep_ref does, with the same
+/* The row kernels of one SIMD width: the four-lane ones, and the AVX2
+   ones below. */
+typedef struct hf__rope_rows {
+    void (*pin_root)(hf_ropes *, const float *, int, int);
+    void (*integrate)(hf_ropes *, const float *, int, int, int,
+                      const hf__rope_step *);
+    void (*local)(hf_ropes *, const float *, int, int, int,
+                  const hf__rope_step *, float *[2][3]);
+    void (*ftl)(hf_ropes *, const float *, int, int, int,
+                const hf__rope_step *, const hf_collider *, int,
+                const hf__col_prep4 *);
+    void (*distance)(hf_ropes *, int, int, int);
+} hf__rope_rows;
+
+/* One sub-step with the row kernels k (ropes [a, b), whole groups of the
+   kernels' width): what hf__ropes_substep_ref does, with the same
    operations per rope. Loops still run across ropes (a chain of dependent
    square roots and divisions per rope, point after point, leaves no
    parallelism otherwise), but rows are fused where the order between them
    does not matter: the root pin first (rows 1.. never read row 0 before
    the local shape); then per row, integration with the global pull, and
    the local shape of the point before, which reads rows up to j only;
-   each FTL placement, then its collisions. */
-HF__PRIVATE void
-hf__ropes_substep_v4(hf_ropes *ro, const float *F, int a, int b,
-                     const hf__rope_step *st, const hf_collider *col, int ncol,
-                     const hf__col_prep4 *pre)
+   each FTL placement, then its collisions (the non-FTL ones through the
+   four-lane kernel at every width). */
+HF__PRIVATE void hf__ropes_substep_rows(hf_ropes *ro, const float *F, int a,
+                                        int b, const hf__rope_step *st,
+                                        const hf_collider *col, int ncol,
+                                        const hf__col_prep4 *pre,
+                                        const hf__rope_rows *k)
 {
     const size_t R = (size_t)ro->rope_count;
     const int P = ro->points;
@@ -6503,23 +6520,27 @@ hf__ropes_substep_v4(hf_ropes *ro, const float *F, int a, int b,
         Q[0][j] = HF__ROW(ro->scratch, HF__RS_G + j, R);
         Q[1][j] = HF__ROW(ro->scratch, HF__RS_G + 3 + j, R);
     }
-    hf__ropes_pin_root_v4(ro, F, a, b);
+    k->pin_root(ro, F, a, b);
     for (j = 1; j < P; ++j) {
-        hf__ropes_integrate_row_v4(ro, F, j, a, b, st);
-        if (st->local_on) hf__ropes_local_row_v4(ro, F, j, a, b, st, Q);
+        k->integrate(ro, F, j, a, b, st);
+        if (st->local_on) k->local(ro, F, j, a, b, st, Q);
     }
     for (it = 0; it < st->iterations; ++it) {
         for (j = 1; j < P; ++j)
             if (st->ftl || j == 1)
-                hf__ropes_ftl_row_v4(ro, F, j, a, b, st, col, ncol, pre);
+                k->ftl(ro, F, j, a, b, st, col, ncol, pre);
             else
-                hf__ropes_distance_row_v4(ro, j, a, b);
+                k->distance(ro, j, a, b);
         if (!st->ftl && ncol > 0)
             hf__ropes_collide_v4(ro, F, a, b, col, ncol, pre, st->margin);
     }
     if (st->iterations == 0 && ncol > 0)
         hf__ropes_collide_v4(ro, F, a, b, col, ncol, pre, st->margin);
 }
+
+static const hf__rope_rows hf__rope_rows_v4 = {
+    hf__ropes_pin_root_v4, hf__ropes_integrate_row_v4,
+    hf__ropes_local_row_v4, hf__ropes_ftl_row_v4, hf__ropes_distance_row_v4};
 
 /* hf__ropes_mark_far_ref on whole groups of four from a; returns where
    the groups end. */
@@ -6884,40 +6905,13 @@ HF__TARGET_AVX2 HF__PRIVATE void hf__ropes_distance_row_avx2(hf_ropes *ro,
 #undef HF__POSE_8
 #undef HF__SEL8
 
-/* hf__ropes_substep_v4 eight ropes a vector: ropes [a, b), b - a a
-   multiple of 8. The rows are separate calls, so no SSE code runs between
-   them with the upper halves dirty; the non-FTL collisions take the
-   four-lane kernel. */
-HF__PRIVATE void hf__ropes_substep_avx2(hf_ropes *ro, const float *F, int a,
-                                        int b, const hf__rope_step *st,
-                                        const hf_collider *col, int ncol,
-                                        const hf__col_prep4 *pre)
-{
-    const size_t R = (size_t)ro->rope_count;
-    const int P = ro->points;
-    float *Q[2][3];
-    int j, it;
-    for (j = 0; j < 3; ++j) { /* scratch rows G: unused by simulated ropes */
-        Q[0][j] = HF__ROW(ro->scratch, HF__RS_G + j, R);
-        Q[1][j] = HF__ROW(ro->scratch, HF__RS_G + 3 + j, R);
-    }
-    hf__ropes_pin_root_avx2(ro, F, a, b);
-    for (j = 1; j < P; ++j) {
-        hf__ropes_integrate_row_avx2(ro, F, j, a, b, st);
-        if (st->local_on) hf__ropes_local_row_avx2(ro, F, j, a, b, st, Q);
-    }
-    for (it = 0; it < st->iterations; ++it) {
-        for (j = 1; j < P; ++j)
-            if (st->ftl || j == 1)
-                hf__ropes_ftl_row_avx2(ro, F, j, a, b, st, col, ncol, pre);
-            else
-                hf__ropes_distance_row_avx2(ro, j, a, b);
-        if (!st->ftl && ncol > 0)
-            hf__ropes_collide_v4(ro, F, a, b, col, ncol, pre, st->margin);
-    }
-    if (st->iterations == 0 && ncol > 0)
-        hf__ropes_collide_v4(ro, F, a, b, col, ncol, pre, st->margin);
-}
+/* The rows eight ropes a vector, for hf__ropes_substep_rows. Each is a
+   function of its own, so no SSE code runs between them with the upper
+   halves dirty. */
+static const hf__rope_rows hf__rope_rows_avx2 = {
+    hf__ropes_pin_root_avx2, hf__ropes_integrate_row_avx2,
+    hf__ropes_local_row_avx2, hf__ropes_ftl_row_avx2,
+    hf__ropes_distance_row_avx2};
 #endif
 
 /* The dispatch of the simulated rope kernels: at AVX2 and above the AVX2
@@ -6934,8 +6928,9 @@ HF__PRIVATE void hf__ropes_substep(hf_ropes *ro, const float *F, int a, int b,
     if (st->level >= HF_SIMD_AVX2) {
         a4 = a + (b - a) / 8 * 8;
         if (a4 > a)
-            hf__ropes_substep_avx2(ro, F, a, a4, st, col, ncol,
-                                   (const hf__col_prep4 *)lanes);
+            hf__ropes_substep_rows(ro, F, a, a4, st, col, ncol,
+                                   (const hf__col_prep4 *)lanes,
+                                   &hf__rope_rows_avx2);
         a = a4;
     }
 #endif
@@ -6943,8 +6938,9 @@ HF__PRIVATE void hf__ropes_substep(hf_ropes *ro, const float *F, int a, int b,
     if (st->level >= HF_SIMD_SSE2) {
         a4 = a + (b - a) / 4 * 4;
         if (a4 > a)
-            hf__ropes_substep_v4(ro, F, a, a4, st, col, ncol,
-                                 (const hf__col_prep4 *)lanes);
+            hf__ropes_substep_rows(ro, F, a, a4, st, col, ncol,
+                                   (const hf__col_prep4 *)lanes,
+                                   &hf__rope_rows_v4);
     }
 #else
     (void)lanes;
