@@ -8543,6 +8543,7 @@ typedef struct hf__rout {
     size_t stride[5];
     int fmt[5];
     float origin[3], inv_scale;
+    int run; /* hf__float_run of the streams, once per call */
 } hf__rout;
 
 enum { HF__S_POS, HF__S_TAN, HF__S_TEX, HF__S_COL, HF__S_C3D };
@@ -8746,7 +8747,7 @@ HF__PRIVATE void hf__ribbon_write_sse(const hf__rframe *fr, int P,
     /* stream by stream, as the scalar loop per point writes: the first
        stream touches every cache line of the strand with few stores, so
        the misses that bring the lines in overlap */
-    const int G = (P + 3) >> 2, run = hf__float_run(ro);
+    const int G = (P + 3) >> 2, run = ro->run;
     const __m128 ws = _mm_set1_ps(str->wscale), is = _mm_set1_ps(ro->inv_scale);
     __m128 L[4], R[4];
     size_t st;
@@ -8977,7 +8978,7 @@ HF__PRIVATE void
 hf__ribbon_write_neon(const hf__rframe *fr, int P, const hf__rconst *K,
                       const hf__rstrand *str, const hf__rout *ro, size_t v0)
 {
-    const int run = hf__float_run(ro);
+    const int run = ro->run;
     const float32x4_t ws = vdupq_n_f32(str->wscale);
     const float32x4_t is = vdupq_n_f32(ro->inv_scale);
     int k, c, i, q;
@@ -9090,7 +9091,7 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
                                   const hf__rout *ro, size_t v0, int level)
 {
 #if HF__AVX2
-    if (level >= HF_SIMD_AVX2 && hf__float_run(ro) == 3) {
+    if (level >= HF_SIMD_AVX2 && ro->run == 3) {
         hf__ribbon_write_avx2(fr, P, K, str, ro, v0);
         return;
     }
@@ -9289,6 +9290,7 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
         return HF_ERROR_BAD_PARAMETER;
     ro.inv_scale =
         out->position_scale != 0.0f ? 1.0f / out->position_scale : 1.0f;
+    ro.run = hf__float_run(&ro); /* the stage keeps the layout: the same */
 
     P = params->points_per_strand;
     level = hf_simd_resolve(params->simd);

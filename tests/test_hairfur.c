@@ -5716,10 +5716,12 @@ static void test_ribbons_every_level_matches_reference(void)
                     ro.inv_scale = 0.5f;
                     memset(va, 0xa5, sizeof va);
                     for (q = 0; q < 5; ++q) ro.base[q] = va + off[q];
+                    ro.run = hf__float_run(&ro);
                     hf__ribbon_write_ref(&fr, P, &K, &S, &ro, 0);
                     for (level = HF_SIMD_SSE2; level <= HF_SIMD_AVX512; ++level) {
                         memset(vb, 0xa5, sizeof vb);
                         for (q = 0; q < 5; ++q) ro.base[q] = vb + off[q];
+                        ro.run = hf__float_run(&ro);
                         hf__ribbon_write(&fr, P, &K, &S, &ro, 0,
                                          hf_simd_resolve(level));
                         CHECK(memcmp(va, vb, sizeof va) == 0);
