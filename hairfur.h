@@ -2041,9 +2041,9 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 #define HF__AVX2 1
 #define HF__AVX512 1
 /* Every AVX kernel ends with _mm256_zeroupper: SSE code that runs while
-   the upper halves of the vector registers are dirty runs 2x or more
-   slower on current x86 (all of it, the caller's too), and gcc leaves
-   them dirty below -O2. */
+   the upper halves of the vector registers are dirty ran 2.1-2.4x slower
+   on the Zen 4 measured here (all of it, the caller's too; Intel cores
+   have their own penalty), and gcc leaves them dirty below -O2. */
 #define HF__TARGET_AVX2 __attribute__((target("avx2")))
 #define HF__TARGET_AVX512 __attribute__((target("avx512f")))
 #elif HF__SSE && defined(_MSC_VER) && (defined(_M_X64) || defined(_M_IX86))

@@ -5881,9 +5881,9 @@ static void test_points_every_level(void)
 }
 
 /* The wide kernels leave the upper halves of the vector registers clean
-   (vzeroupper) before any SSE code runs: on x86 the SSE code after them
-   runs 2x or more slower otherwise (measured: every later stage of a
-   frame), and nothing else shows it. XGETBV with ECX = 1 reads which state
+   (vzeroupper) before any SSE code runs: otherwise the SSE code after them
+   runs slower (measured on Zen 4: every later stage of a frame, 2.1-2.4x),
+   and nothing else shows it. XGETBV with ECX = 1 reads which state
    is in use: bit 2 the upper halves of ymm0-15, bit 6 those of zmm0-15.
    Every kernel that runs at AVX2 or AVX-512, in every layout and tail,
    and the rope step with its collisions. Not in a build for an AVX target
