@@ -481,6 +481,9 @@ static void bench_levels(scene *s, int frames)
     static const char *what[LV_N] = {"strands", "strands_nt", "points",
                                      "points_nt", "ribbons", "ribbons_nt",
                                      "ropes"};
+    /* each measure's job (jobs[]) and whether it streams */
+    static const int job_of[LV_N] = {0, 0, 1, 1, 2, 2, 3};
+    static const int nt_of[LV_N] = {0, 1, 0, 1, 0, 1, 0};
     job jobs[4];
     double *t[LV_N], bytes[LV_N];
     int f, level, k, best = hf_simd_resolve(HF_SIMD_AUTO);
@@ -508,12 +511,12 @@ static void bench_levels(scene *s, int frames)
         for (f = -5; f < frames; ++f) {
             scene_pose(s, s->frame++);
             for (k = 0; k < LV_N; ++k) {
-                const int nt = k < LV_ROPES && (k & 1);
+                const int nt = nt_of[k];
                 double t0;
                 check("kernels", hf_fur_set_kernels(s->fur, level, nt));
                 g_view.nontemporal = nt;
                 t0 = now_ms();
-                run_job(&jobs[k / 2]);
+                run_job(&jobs[job_of[k]]);
                 if (f >= 0) t[k][f] = now_ms() - t0;
             }
         }
