@@ -167,9 +167,9 @@
          exactly that range (hf_ropes_copy_range for rope positions; the
          growth-time range outputs are indexed absolutely).
        - Stack (gcc -O2, x86-64, -fstack-usage, callees added): hf_ribbons
-         needs about 19 KiB (a strand's rows sized for HF_MAX_POINTS), 27
-         KiB with streaming stores (an 8 KiB stage), the other per-frame
-         calls under 8 KiB: size worker and fiber stacks for it.
+         needs about 28 KiB (a strand's rows sized for HF_MAX_POINTS, and
+         an 8 KiB stage for streaming stores), the other per-frame calls
+         under 8 KiB: size worker and fiber stacks for it.
 
    SECTIONS (in the order the data flows)
 
@@ -9172,88 +9172,20 @@ HF__PRIVATE void hf__stream_copy(unsigned char *dst, const float *src,
     HF_MEMCPY(dst + i, from + i, n - i);
 }
 
-/* Strand s's frame into *fr and its per-strand inputs into *str. */
-HF__PRIVATE void hf__ribbon_strand(const hf_ribbon_strands *strands, int s,
-                                   const hf_ribbon_params *params, int level,
-                                   hf__rframe *fr, hf__rstrand *str)
-{
-    const int P = params->points_per_strand;
-    const float *pts = strands->points + (size_t)s * (size_t)P * 3u;
-    int k;
-    hf__strand_frame(pts, P, params, fr, &str->wscale, level);
-    str->wscale *= hf__strand_width(strands, s);
-    for (k = 0; k < 2; ++k)
-        str->uv[k] = strands->root_uv
-                         ? hf__fin0(strands->root_uv[2 * (size_t)s + k])
-                         : 0.0f;
-    for (k = 0; k < 4; ++k)
-        str->rgba[k] = strands->color
-                           ? hf__fin0(strands->color[4 * (size_t)s + k])
-                           : 1.0f;
-    str->c3x = strands->color3d_x ? hf__fin0(strands->color3d_x[s]) : 0.0f;
-}
-
-/* The strand loop of hf_ribbons (resolved params, streams in *ro). Each
-   loop is a function of its own, so the 8 KiB stage of the streaming one
-   is on the stack only when it runs. */
-HF__NOINLINE HF__PRIVATE void
-hf__ribbons_direct(const hf_ribbon_strands *strands, int first, int count,
-                   const hf_ribbon_params *params, const hf__rconst *K,
-                   const hf__rout *ro, int level)
-{
-    const int P = params->points_per_strand;
-    hf__rframe fr;
-    int s;
-    for (s = first; s < first + count; ++s) {
-        hf__rstrand str;
-        hf__ribbon_strand(strands, s, params, level, &fr, &str);
-        hf__ribbon_write(&fr, P, K, &str, ro,
-                         (size_t)(s - params->out_first) * (size_t)P * 2u,
-                         level);
-    }
-}
-
-/* Streaming stores: each strand's vertices into the stage (in L1), then
-   out to its block (block bytes a vertex from dst0) with streaming
-   stores (see hf__ribbon_stage). */
-HF__NOINLINE HF__PRIVATE void
-hf__ribbons_staged(const hf_ribbon_strands *strands, int first, int count,
-                   const hf_ribbon_params *params, const hf__rconst *K,
-                   const hf__rout *ro, int level, unsigned char *dst0,
-                   size_t block)
-{
-    const int P = params->points_per_strand;
-    float stage_buf[HF__STAGE_BYTES / 4];
-    hf__rframe fr;
-    hf__rout so = *ro;
-    int s, k;
-    for (k = 0; k < 5; ++k)
-        if (ro->base[k])
-            so.base[k] = (unsigned char *)stage_buf + (ro->base[k] - dst0);
-    for (s = first; s < first + count; ++s) {
-        const size_t v0 = (size_t)(s - params->out_first) * (size_t)P * 2u;
-        hf__rstrand str;
-        hf__ribbon_strand(strands, s, params, level, &fr, &str);
-        hf__ribbon_write(&fr, P, K, &str, &so, 0, level);
-        hf__stream_copy(dst0 + v0 * block, stage_buf, 2u * (size_t)P * block);
-    }
-#if HF__SSE
-    _mm_sfence(); /* streamed stores visible before we return */
-#endif
-}
-
 HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
                            int count, const hf_ribbon_params *view,
                            const hf_ribbon_output *out)
 {
+    hf__rframe fr;
     hf__rconst K;
     hf__rout ro;
     hf_ribbon_params prm;
     const hf_ribbon_params *params = &prm;
     const hf_stream *streams[5];
+    float stage_buf[HF__STAGE_BYTES / 4];
     unsigned char *dst0 = NULL;
     size_t block = 0;
-    int j, k, P, level;
+    int s, j, k, P, stage, level;
     hf_result r = hf__ribbon_check(strands, first, count, view, &prm);
     if (r != HF_OK) return r;
     if (!out) return HF_ERROR_NULL_POINTER;
@@ -9302,11 +9234,40 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
                     K.tt[j] * params->alpha_tip;
     }
 
-    if (params->nontemporal && hf__ribbon_stage(&ro, P, &block, &dst0))
-        hf__ribbons_staged(strands, first, count, params, &K, &ro, level,
-                           dst0, block);
-    else
-        hf__ribbons_direct(strands, first, count, params, &K, &ro, level);
+    stage = params->nontemporal ? hf__ribbon_stage(&ro, P, &block, &dst0)
+                                : 0;
+    for (s = first; s < first + count; ++s) {
+        const float *pts = strands->points + (size_t)s * (size_t)P * 3u;
+        const size_t v0 = (size_t)(s - params->out_first) * (size_t)P * 2u;
+        hf__rstrand str;
+        hf__strand_frame(pts, P, params, &fr, &str.wscale, level);
+        str.wscale *= hf__strand_width(strands, s);
+        for (k = 0; k < 2; ++k)
+            str.uv[k] = strands->root_uv
+                          ? hf__fin0(strands->root_uv[2 * (size_t)s + k])
+                          : 0.0f;
+        for (k = 0; k < 4; ++k)
+            str.rgba[k] = strands->color
+                            ? hf__fin0(strands->color[4 * (size_t)s + k])
+                            : 1.0f;
+        str.c3x = strands->color3d_x ? hf__fin0(strands->color3d_x[s]) : 0.0f;
+        if (stage) {
+            /* the strand's vertices into the stage (in L1), then out to
+               its block with streaming stores */
+            hf__rout so = ro;
+            for (k = 0; k < 5; ++k)
+                if (ro.base[k])
+                    so.base[k] = (unsigned char *)stage_buf +
+                                 (ro.base[k] - dst0);
+            hf__ribbon_write(&fr, P, &K, &str, &so, 0, level);
+            hf__stream_copy(dst0 + v0 * block, stage_buf, 2u * (size_t)P * block);
+        } else {
+            hf__ribbon_write(&fr, P, &K, &str, &ro, v0, level);
+        }
+    }
+#if HF__SSE
+    if (stage) _mm_sfence(); /* streamed stores visible before we return */
+#endif
     return HF_OK;
 }
 
