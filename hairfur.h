@@ -9271,11 +9271,12 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
     return HF_OK;
 }
 
-/* GPU points of one strand, from point j: (x, y, z, hw[j] * ws). */
+/* GPU points of one strand: (x, y, z, hw[j] * ws) for point j. */
 HF__PRIVATE void hf__points_strand_ref(const float *p, const float *hw,
-                                       float ws, float *o, int j, int P)
+                                       float ws, float *o, int P)
 {
-    for (; j < P; ++j) {
+    int j;
+    for (j = 0; j < P; ++j) {
         o[4 * j] = p[3 * j];
         o[4 * j + 1] = p[3 * j + 1];
         o[4 * j + 2] = p[3 * j + 2];
@@ -9284,7 +9285,7 @@ HF__PRIVATE void hf__points_strand_ref(const float *p, const float *hw,
 }
 
 #if HF__SSE
-/* A point a vector, from point j: xyz loaded with the next point's x,
+/* A point a vector: xyz loaded with the next point's x,
    which the width replaces; the last point loads from one float earlier
    and shifts, so nothing past the strand is read and every point is
    written here (a scalar store into a line being streamed would stall).
@@ -9300,11 +9301,11 @@ HF__INLINE void hf__point_put_sse(float *o, __m128 v, float w, int nt)
 }
 
 HF__PRIVATE void hf__points_strand_sse(const float *p, const float *hw,
-                                       float ws, float *o, int j, int P,
-                                       int nt)
+                                       float ws, float *o, int P, int nt)
 {
+    int j;
     nt = nt && ((uintptr_t)o & 15u) == 0;
-    for (; j + 1 < P; ++j)
+    for (j = 0; j + 1 < P; ++j)
         hf__point_put_sse(o + 4 * j, _mm_loadu_ps(p + 3 * j), hw[j] * ws, nt);
     if (j < P) { /* the last: (z', x, y, z) to (x, y, z, z') */
         const __m128 v = _mm_loadu_ps(p + 3 * j - 1);
@@ -9319,9 +9320,10 @@ HF__PRIVATE void hf__points_strand_sse(const float *p, const float *hw,
 /* hf__points_strand_sse on ARM64 (no streaming stores there). */
 HF__PRIVATE void
 hf__points_strand_neon(const float *p, const float *hw, float ws, float *o,
-                       int j, int P)
+                       int P)
 {
-    for (; j + 1 < P; ++j)
+    int j;
+    for (j = 0; j + 1 < P; ++j)
         vst1q_f32(o + 4 * j,
                   vsetq_lane_f32(hw[j] * ws, vld1q_f32(p + 3 * j), 3));
     if (j < P) { /* the last: (z', x, y, z) to (x, y, z, z') */
@@ -9332,33 +9334,83 @@ hf__points_strand_neon(const float *p, const float *hw, float ws, float *o,
 #endif
 
 #if HF__AVX2
-/* Two points a vector: eight floats from point j (x0 .. y2) spread to
-   x0 y0 z0 . x1 y1 z1 ., the widths blended in. */
+/* The widths of two points a vector, as the AVX2 points kernel blends
+   them in: (0, 0, 0, hw[j], 0, 0, 0, hw[j + 1]) at pair j / 2 (j even),
+   and at pair (P + 1) / 2 the last two points'. Built once a call. */
+typedef struct hf__pair_widths {
+    float v[(HF_MAX_POINTS / 2 + 2) * 8];
+} hf__pair_widths;
+
+HF__PRIVATE void hf__pair_widths_init(hf__pair_widths *pw, const float *hw,
+                                      int P)
+{
+    int i, j;
+    HF_MEMSET(pw->v, 0, sizeof(float) * 8u * (size_t)(P / 2 + 2));
+    for (i = 0; i <= (P + 1) / 2; ++i) {
+        j = i == (P + 1) / 2 ? P - 2 : 2 * i;
+        if (j + 1 >= P && i != (P + 1) / 2) continue;
+        pw->v[8 * i + 3] = hw[j];
+        pw->v[8 * i + 7] = hw[j + 1];
+    }
+}
+
+/* Two points (x y z w x y z w) at o: a plain store, two streaming
+   halves (16-byte aligned) or one streaming store (32-byte aligned). */
+HF__TARGET_AVX2 HF__INLINE void hf__point_pair_put(float *o, __m256 q,
+                                                   int mode)
+{
+    if (mode == 2) {
+        _mm256_stream_ps(o, q);
+    } else if (mode == 1) {
+        _mm_stream_ps(o, _mm256_castps256_ps128(q));
+        _mm_stream_ps(o + 4, _mm256_extractf128_ps(q, 1));
+    } else {
+        _mm256_storeu_ps(o, q);
+    }
+}
+
+/* One strand's GPU points, two a vector: eight floats from point j
+   (x0 .. y2) spread to x0 y0 z0 . x1 y1 z1 ., the widths blended in; the
+   last one or two points from the strand's last eight floats, so nothing
+   past the strand is read and no point is written twice. The finiteness
+   test rides on the same vectors (x * 0 is NaN for NaN or infinity):
+   returns 0 when a point is not finite, with the strand written from
+   its points as they are (the caller writes it again, collapsed). P >= 3. */
 HF__TARGET_AVX2 HF__PRIVATE int
-hf__points_strand_avx2(const float *p, const float *hw, float ws, float *o,
-                       int P, int nt)
+hf__points_strand_avx2(const float *p, const hf__pair_widths *pw, float ws,
+                       float *o, int P, int nt)
 {
     const __m256i spread = _mm256_setr_epi32(0, 1, 2, 0, 3, 4, 5, 0);
-    const __m256 W = _mm256_set1_ps(ws);
-    int j;
-    nt = nt && ((uintptr_t)o & 15u) == 0;
+    const __m256i spread_last = _mm256_setr_epi32(2, 3, 4, 0, 5, 6, 7, 0);
+    const __m256 W = _mm256_set1_ps(ws), zero = _mm256_setzero_ps();
+    const int mode = !nt ? 0 : ((uintptr_t)o & 31u) == 0 ? 2
+                               : ((uintptr_t)o & 15u) == 0 ? 1 : 0;
+    __m256 acc = zero, q;
+    int j, ok;
     for (j = 0; 3 * j + 8 <= 3 * P; j += 2) {
-        const __m256 v =
-            _mm256_permutevar8x32_ps(_mm256_loadu_ps(p + 3 * j), spread);
-        const __m256 w = _mm256_mul_ps(
-            _mm256_setr_ps(0.0f, 0.0f, 0.0f, hw[j], 0.0f, 0.0f, 0.0f,
-                           hw[j + 1]),
-            W);
-        const __m256 q = _mm256_blend_ps(v, w, 0x88);
-        if (nt) { /* 16-byte aligned: two streaming halves */
-            _mm_stream_ps(o + 4 * j, _mm256_castps256_ps128(q));
-            _mm_stream_ps(o + 4 * j + 4, _mm256_extractf128_ps(q, 1));
-        } else {
-            _mm256_storeu_ps(o + 4 * j, q);
-        }
+        q = _mm256_blend_ps(
+            _mm256_permutevar8x32_ps(_mm256_loadu_ps(p + 3 * j), spread),
+            _mm256_mul_ps(_mm256_loadu_ps(pw->v + 4 * j), W), 0x88);
+        acc = _mm256_add_ps(acc, _mm256_mul_ps(q, zero));
+        hf__point_pair_put(o + 4 * j, q, mode);
     }
+    if (j < P) { /* points P - 2 and P - 1: one or both still to write */
+        q = _mm256_blend_ps(
+            _mm256_permutevar8x32_ps(_mm256_loadu_ps(p + 3 * P - 8),
+                                     spread_last),
+            _mm256_mul_ps(_mm256_loadu_ps(pw->v + 8 * ((P + 1) / 2)), W),
+            0x88);
+        acc = _mm256_add_ps(acc, _mm256_mul_ps(q, zero));
+        if (j == P - 2) /* P even: at o + 32 (P / 2 - 1) bytes */
+            hf__point_pair_put(o + 4 * j, q, mode);
+        else if (mode)
+            _mm_stream_ps(o + 4 * j, _mm256_extractf128_ps(q, 1));
+        else
+            _mm_storeu_ps(o + 4 * j, _mm256_extractf128_ps(q, 1));
+    }
+    ok = _mm256_movemask_ps(_mm256_cmp_ps(acc, zero, _CMP_EQ_OQ)) == 0xff;
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
-    return j;
+    return ok;
 }
 #endif
 
@@ -9367,6 +9419,9 @@ HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
                                  float *out4)
 {
     float hw[HF_MAX_POINTS];
+#if HF__AVX2
+    hf__pair_widths pw;
+#endif
     hf_ribbon_params prm;
     const hf_ribbon_params *params = &prm;
     int s, P, level, nt;
@@ -9377,32 +9432,42 @@ HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
     level = hf_simd_resolve(params->simd);
     nt = params->nontemporal != 0;
     hf__half_widths(params, hw);
+#if HF__AVX2
+    if (level >= HF_SIMD_AVX2 && P >= 3) hf__pair_widths_init(&pw, hw, P);
+#endif
     for (s = first; s < first + count; ++s) {
         const float *p = strands->points + (size_t)s * (size_t)P * 3u;
         float *o = out4 + (size_t)(s - params->out_first) * (size_t)P * 4u;
         float wscale = 0.0f;
-        int j = 0;
+#if HF__AVX2
+        if (level >= HF_SIMD_AVX2 && P >= 3) {
+            /* finiteness found on the way: a strand that is not is
+               written again, collapsed (streamed stores ordered first) */
+            if (!hf__points_strand_avx2(p, &pw, hf__strand_width(strands, s),
+                                        o, P, nt)) {
+                if (nt) _mm_sfence();
+                hf__points_strand_avx2(hf__zero_points, &pw, 0.0f, o, P, nt);
+            }
+            continue;
+        }
+#endif
         if (hf__points_finite(p, 3 * P))
             wscale = hf__strand_width(strands, s);
         else
             p = hf__zero_points; /* collapsed, as hf_ribbons */
-#if HF__AVX2
-        if (level >= HF_SIMD_AVX2)
-            j = hf__points_strand_avx2(p, hw, wscale, o, P, nt);
-#endif
 #if HF__SSE
         if (level >= HF_SIMD_SSE2) {
-            hf__points_strand_sse(p, hw, wscale, o, j, P, nt);
+            hf__points_strand_sse(p, hw, wscale, o, P, nt);
             continue;
         }
 #endif
 #if HF__NEON
         if (level >= HF_SIMD_NEON) {
-            hf__points_strand_neon(p, hw, wscale, o, j, P);
+            hf__points_strand_neon(p, hw, wscale, o, P);
             continue;
         }
 #endif
-        hf__points_strand_ref(p, hw, wscale, o, j, P);
+        hf__points_strand_ref(p, hw, wscale, o, P);
     }
 #if HF__SSE
     if (nt) _mm_sfence(); /* streamed stores visible before we return */
