@@ -7941,22 +7941,27 @@ HF__PRIVATE void hf__strand_frame_ref(const float *pts, int P,
     /* points before the first that has a tangent take that one */
     for (j = first_t - 1; j >= 0; --j)
         for (k = 0; k < 3; ++k) fr->t[k][4 + j] = fr->t[k][5 + j];
-    /* sides: cross(t, v), v = eye - p or -view_dir; d now holds the cross
-       products and inv their reciprocal lengths. In float where the view
-       is at least HF__SIDE_SIN2 off the tangent (|c|^2 = |v|^2 sin^2, as
-       |t| = 1); nearer, float cancellation would tilt the side, so those
-       points are marked (-2) and done in double below */
+    /* sides: cross(a, v), v = eye - p or -view_dir, a the difference d
+       where the point has a tangent of its own (so the side need not wait
+       for the tangent's normalisation: the kernels run both at once), else
+       its borrowed unit tangent; d now holds the cross products and inv
+       their reciprocal lengths. In float where the view is at least
+       HF__SIDE_SIN2 off the tangent (|c|^2 = |v|^2 |a|^2 sin^2); nearer,
+       float cancellation would tilt the side, so those points are marked
+       (-2) and done in double below */
     for (j = 0; j < P; ++j) {
-        float v[3], t[3];
+        const int own = l2[j] > 1e-30f && hf__finitef(l2[j]);
+        const float a2 = own ? l2[j] : 1.0f;
+        float v[3], a[3];
         for (k = 0; k < 3; ++k) {
-            t[k] = fr->t[k][4 + j];
+            a[k] = own ? d[3 * j + k] : fr->t[k][4 + j];
             v[k] = ortho ? -params->view_dir[k]
                          : params->eye[k] - pts[3 * j + k];
         }
-        hf__cross3(d + 3 * j, t, v);
+        hf__cross3(d + 3 * j, a, v);
         l2[j] = hf__dot3(d + 3 * j, d + 3 * j);
         inv[j] = hf__dot3(v, v); /* parked: |v|^2 */
-        if (!(l2[j] > HF__SIDE_SIN2 * inv[j] && l2[j] > 1e-30f &&
+        if (!(l2[j] > HF__SIDE_SIN2 * inv[j] * a2 && l2[j] > 1e-30f &&
               hf__finitef(l2[j])))
             l2[j] = -2.0f;
     }
@@ -8111,12 +8116,12 @@ HF__PRIVATE int hf__strand_frame_v4(const float *pts, int P,
         /* 1 where undefined: no division by zero for any lane */
         inv = HF__DIV(one, HF__SQRT(HF__SEL(ok, l2, one)));
         for (c = 0; c < 3; ++c) t[c] = HF__MUL(d[c], inv);
-        s[0] = HF__SUB(HF__MUL(t[1], v[2]), HF__MUL(t[2], v[1]));
-        s[1] = HF__SUB(HF__MUL(t[2], v[0]), HF__MUL(t[0], v[2]));
-        s[2] = HF__SUB(HF__MUL(t[0], v[1]), HF__MUL(t[1], v[0]));
+        s[0] = HF__SUB(HF__MUL(d[1], v[2]), HF__MUL(d[2], v[1]));
+        s[1] = HF__SUB(HF__MUL(d[2], v[0]), HF__MUL(d[0], v[2]));
+        s[2] = HF__SUB(HF__MUL(d[0], v[1]), HF__MUL(d[1], v[0]));
         c2 = HF__DOT3(s[0], s[1], s[2], s[0], s[1], s[2]);
         vv = HF__DOT3(v[0], v[1], v[2], v[0], v[1], v[2]);
-        ok2 = HF__AND(HF__GT(c2, HF__MUL(side_sin2, vv)),
+        ok2 = HF__AND(HF__GT(c2, HF__MUL(HF__MUL(side_sin2, vv), l2)),
                       HF__AND(HF__GT(c2, tiny), HF__LE(c2, big)));
         bad |= live & ~HF__MASK(HF__AND(ok, ok2));
         inv = HF__DIV(one, HF__SQRT(HF__SEL(ok2, c2, one)));
@@ -8253,9 +8258,9 @@ hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
             one, _mm256_sqrt_ps(_mm256_blendv_ps(one, l2, ok)));
         const __m256 tx = _mm256_mul_ps(dx, inv), ty = _mm256_mul_ps(dy, inv),
                      tz = _mm256_mul_ps(dz, inv);
-        const __m256 sx = _mm256_sub_ps(_mm256_mul_ps(ty, vz), _mm256_mul_ps(tz, vy)),
-                     sy = _mm256_sub_ps(_mm256_mul_ps(tz, vx), _mm256_mul_ps(tx, vz)),
-                     sz = _mm256_sub_ps(_mm256_mul_ps(tx, vy), _mm256_mul_ps(ty, vx));
+        const __m256 sx = _mm256_sub_ps(_mm256_mul_ps(dy, vz), _mm256_mul_ps(dz, vy)),
+                     sy = _mm256_sub_ps(_mm256_mul_ps(dz, vx), _mm256_mul_ps(dx, vz)),
+                     sz = _mm256_sub_ps(_mm256_mul_ps(dx, vy), _mm256_mul_ps(dy, vx));
         const __m256 c2 = _mm256_add_ps(
             _mm256_add_ps(_mm256_mul_ps(sx, sx), _mm256_mul_ps(sy, sy)),
             _mm256_mul_ps(sz, sz));
@@ -8263,7 +8268,8 @@ hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
             _mm256_add_ps(_mm256_mul_ps(vx, vx), _mm256_mul_ps(vy, vy)),
             _mm256_mul_ps(vz, vz));
         const __m256 ok2 = _mm256_and_ps(
-            _mm256_cmp_ps(c2, _mm256_mul_ps(side_sin2, vv), _CMP_GT_OQ),
+            _mm256_cmp_ps(c2, _mm256_mul_ps(_mm256_mul_ps(side_sin2, vv), l2),
+                          _CMP_GT_OQ),
             _mm256_and_ps(_mm256_cmp_ps(c2, tiny, _CMP_GT_OQ),
                           _mm256_cmp_ps(c2, big, _CMP_LE_OQ)));
         const __m256 inv2 = _mm256_div_ps(
