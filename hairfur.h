@@ -7396,6 +7396,8 @@ hf__interp_avx2(const hf__istrand *t, const float *ctab, int i, __m256 W0,
                              _mm256_sub_ps(_mm256_loadu_ps(t->gn + i), p)));
     if (!nt) {
         _mm256_storeu_ps(t->o + i, p);
+    } else if (nt == 2) { /* 32-byte aligned: one streaming store */
+        _mm256_stream_ps(t->o + i, p);
     } else { /* 16-byte aligned: two streaming halves */
         _mm_stream_ps(t->o + i, _mm256_castps256_ps128(p));
         _mm_stream_ps(t->o + i + 4, _mm256_extractf128_ps(p, 1));
@@ -7427,7 +7429,10 @@ hf__interp_range_avx2(const hf__irun *run, int first, int count)
         __m256 W0, W1, W2, SC, R0, R1, R2;
         int nt;
         hf__interp_setup(run, s, &t);
-        nt = run->nt && ((uintptr_t)t.o & 15u) == 0;
+        /* streaming: whole vectors where the strand is aligned to them,
+           else 16-byte pieces */
+        nt = !run->nt ? 0 : ((uintptr_t)t.o & 31u) == 0 ? 2
+           : ((uintptr_t)t.o & 15u) == 0;
         W0 = _mm256_set1_ps(t.w0);
         W1 = _mm256_set1_ps(t.w1);
         W2 = _mm256_set1_ps(t.w2);
@@ -7480,6 +7485,8 @@ hf__interp_avx512(const hf__istrand *t, const float *ctab, int i, __m512 W0,
                              _mm512_sub_ps(_mm512_loadu_ps(t->gn + i), p)));
     if (!nt) {
         _mm512_storeu_ps(t->o + i, p);
+    } else if (nt == 2) { /* 64-byte aligned: one streaming store */
+        _mm512_stream_ps(t->o + i, p);
     } else { /* 16-byte aligned: four streaming quarters */
         _mm_stream_ps(t->o + i, _mm512_maskz_extractf32x4_ps(0xf, p, 0));
         _mm_stream_ps(t->o + i + 4, _mm512_maskz_extractf32x4_ps(0xf, p, 1));
@@ -7511,7 +7518,10 @@ hf__interp_range_avx512(const hf__irun *run, int first, int count)
         __m512 W0, W1, W2, SC, R0, R1, R2;
         int nt;
         hf__interp_setup(run, s, &t);
-        nt = run->nt && ((uintptr_t)t.o & 15u) == 0;
+        /* streaming: whole vectors where the strand is aligned to them,
+           else 16-byte pieces */
+        nt = !run->nt ? 0 : ((uintptr_t)t.o & 63u) == 0 ? 2
+           : ((uintptr_t)t.o & 15u) == 0;
         W0 = _mm512_set1_ps(t.w0);
         W1 = _mm512_set1_ps(t.w1);
         W2 = _mm512_set1_ps(t.w2);

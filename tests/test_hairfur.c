@@ -5086,13 +5086,17 @@ static void test_interp_simd_matches_scalar_reference(void)
        order; every SIMD level (those this CPU lacks resolve lower) must
        give the same bytes. The point counts put every remainder past the
        groups of 12 (SSE), 24 (AVX2) and 48 (AVX-512) floats, so every tail
-       runs; clump 0 skips the clump term; streaming stores too. make test
-       also builds with HF_NO_SIMD. */
+       runs; clump 0 skips the clump term; streaming stores too, into an
+       output at 64, 32, 16 and 4 bytes past a 64-byte boundary (whole
+       vectors, halves or quarters, and plain stores). make test also
+       builds with HF_NO_SIMD. */
     enum { QM = 40, G = 5, N = 40 };
     static const int qs[] = {2, 3, 5, 8, 13, 14, 15, 16, 17, 19, 21, 24,
                              32, 33, 40};
-    int qi, level;
-    float g[G * QM * 3], out[N * QM * 3], ref[N * QM * 3];
+    static const int shifts[] = {0, 8, 4, 1};
+    static float outbuf[N * QM * 3 + 32];
+    int qi, level, sh;
+    float g[G * QM * 3], ref[N * QM * 3], *out;
     hf_strand_binding b[N];
     hf_interp_params ip;
     hf_rng r;
@@ -5108,7 +5112,10 @@ static void test_interp_simd_matches_scalar_reference(void)
         b[s].length_scale = 0.5f + hf_rng_float(&r);
     }
     for (qi = 0; qi < (int)(sizeof qs / sizeof qs[0]); ++qi)
-        for (cl = 0; cl < 2 * 5 * 2; ++cl) {
+        for (cl = 0; cl < 2 * 5 * 2; ++cl)
+        for (sh = 0; sh < (cl >= 10 ? 4 : 1); ++sh) {
+            out = (float *)(void *)(((uintptr_t)outbuf + 63u) & ~(uintptr_t)63u) +
+                  shifts[sh];
             Q = qs[qi];
             level = cl / 2 % 5; /* 0 (auto), scalar, SSE2, AVX2, AVX-512 */
             memset(&ip, 0, sizeof ip);
@@ -5116,7 +5123,7 @@ static void test_interp_simd_matches_scalar_reference(void)
             ip.simd = level;
             ip.nontemporal = cl >= 10; /* streaming stores */
             ip.clump = cl % 2 ? 0.35f : 0.0f;
-            memset(out, 0, sizeof out);
+            memset(out, 0, sizeof ref);
             memset(ref, 0, sizeof ref);
             CHECK_EQ_INT(hf_interpolate(g, G, b, 0, N, &ip, out), HF_OK);
             for (s = 0; s < N; ++s) {
@@ -5135,7 +5142,7 @@ static void test_interp_simd_matches_scalar_reference(void)
                     ref[s * Q * 3 + i] = ip.clump != 0.0f ? p + c * (gn[i] - p) : p;
                 }
             }
-            CHECK(memcmp(out, ref, sizeof out) == 0);
+            CHECK(memcmp(out, ref, sizeof ref) == 0);
         }
 }
 
