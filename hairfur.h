@@ -7378,6 +7378,18 @@ hf__interp_range_neon(const hf__irun *run, int first, int count)
 }
 #endif
 
+#if HF__AVX2 || HF__AVX512
+/* How a wide kernel writes to o when streaming (nt) is asked: 2, whole
+   vectors (o aligned to them: `whole` is their size - 1); 1, 16-byte
+   pieces (o 16-byte aligned); 0, plain stores. */
+HF__INLINE int hf__stream_mode(int nt, const void *o, uintptr_t whole)
+{
+    if (!nt) return 0;
+    if (((uintptr_t)o & whole) == 0) return 2;
+    return ((uintptr_t)o & 15u) == 0;
+}
+#endif
+
 #if HF__AVX2
 /* hf__interp_strand_sse, eight floats a vector: the same operations in
    the same order (no FMA), so the same bytes. */
@@ -7429,10 +7441,7 @@ hf__interp_range_avx2(const hf__irun *run, int first, int count)
         __m256 W0, W1, W2, SC, R0, R1, R2;
         int nt;
         hf__interp_setup(run, s, &t);
-        /* streaming: whole vectors where the strand is aligned to them,
-           else 16-byte pieces */
-        nt = !run->nt ? 0 : ((uintptr_t)t.o & 31u) == 0 ? 2
-           : ((uintptr_t)t.o & 15u) == 0;
+        nt = hf__stream_mode(run->nt, t.o, 31u);
         W0 = _mm256_set1_ps(t.w0);
         W1 = _mm256_set1_ps(t.w1);
         W2 = _mm256_set1_ps(t.w2);
@@ -7518,10 +7527,7 @@ hf__interp_range_avx512(const hf__irun *run, int first, int count)
         __m512 W0, W1, W2, SC, R0, R1, R2;
         int nt;
         hf__interp_setup(run, s, &t);
-        /* streaming: whole vectors where the strand is aligned to them,
-           else 16-byte pieces */
-        nt = !run->nt ? 0 : ((uintptr_t)t.o & 63u) == 0 ? 2
-           : ((uintptr_t)t.o & 15u) == 0;
+        nt = hf__stream_mode(run->nt, t.o, 63u);
         W0 = _mm512_set1_ps(t.w0);
         W1 = _mm512_set1_ps(t.w1);
         W2 = _mm512_set1_ps(t.w2);
@@ -9362,14 +9368,15 @@ typedef struct hf__pair_widths {
 HF__PRIVATE void hf__pair_widths_init(hf__pair_widths *pw, const float *hw,
                                       int P)
 {
-    int i, j;
+    float *last = pw->v + 8 * ((P + 1) / 2);
+    int j;
     HF_MEMSET(pw->v, 0, sizeof(float) * 8u * (size_t)(P / 2 + 2));
-    for (i = 0; i <= (P + 1) / 2; ++i) {
-        j = i == (P + 1) / 2 ? P - 2 : 2 * i;
-        if (j + 1 >= P && i != (P + 1) / 2) continue;
-        pw->v[8 * i + 3] = hw[j];
-        pw->v[8 * i + 7] = hw[j + 1];
+    for (j = 0; j + 1 < P; j += 2) {
+        pw->v[4 * j + 3] = hw[j];
+        pw->v[4 * j + 7] = hw[j + 1];
     }
+    last[3] = hw[P - 2];
+    last[7] = hw[P - 1];
 }
 
 /* Two points (x y z w x y z w) at o: a plain store, two streaming
@@ -9401,8 +9408,7 @@ hf__points_strand_avx2(const float *p, const hf__pair_widths *pw, float ws,
     const __m256i spread = _mm256_setr_epi32(0, 1, 2, 0, 3, 4, 5, 0);
     const __m256i spread_last = _mm256_setr_epi32(2, 3, 4, 0, 5, 6, 7, 0);
     const __m256 W = _mm256_set1_ps(ws), zero = _mm256_setzero_ps();
-    const int mode = !nt ? 0 : ((uintptr_t)o & 31u) == 0 ? 2
-                               : ((uintptr_t)o & 15u) == 0 ? 1 : 0;
+    const int mode = hf__stream_mode(nt, o, 31u);
     __m256 acc = zero, q;
     int j, ok;
     for (j = 0; 3 * j + 8 <= 3 * P; j += 2) {
@@ -9439,6 +9445,7 @@ HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
     float hw[HF_MAX_POINTS];
 #if HF__AVX2
     hf__pair_widths pw;
+    int wide;
 #endif
     hf_ribbon_params prm;
     const hf_ribbon_params *params = &prm;
@@ -9451,14 +9458,15 @@ HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
     nt = params->nontemporal != 0;
     hf__half_widths(params, hw);
 #if HF__AVX2
-    if (level >= HF_SIMD_AVX2 && P >= 3) hf__pair_widths_init(&pw, hw, P);
+    wide = level >= HF_SIMD_AVX2 && P >= 3; /* the AVX2 kernel needs P >= 3 */
+    if (wide) hf__pair_widths_init(&pw, hw, P);
 #endif
     for (s = first; s < first + count; ++s) {
         const float *p = strands->points + (size_t)s * (size_t)P * 3u;
         float *o = out4 + (size_t)(s - params->out_first) * (size_t)P * 4u;
         float wscale = 0.0f;
 #if HF__AVX2
-        if (level >= HF_SIMD_AVX2 && P >= 3) {
+        if (wide) {
             /* finiteness found on the way: a strand that is not is
                written again, collapsed (streamed stores ordered first) */
             if (!hf__points_strand_avx2(p, &pw, hf__strand_width(strands, s),

@@ -298,51 +298,45 @@ static double memset_gbps(float *dst, size_t bytes, int reps, int zeros)
    vectors, so the loop waits on no addition (one vector added to itself
    per store would hold it to a store per add latency: 19 GB/s here).
    `stream`: non-temporal stores from the first 16-byte boundary (then an
-   sfence). The last n % 4 vectors are not written: under 64 bytes. */
+   sfence). The last (bytes - skip) % 64 bytes are not written. */
+#define VECTOR_LINES(STORE)                                                    \
+    for (i = 0; i < n; ++i) {                                                  \
+        STORE(a + 16 * i, v0);                                                 \
+        STORE(a + 16 * i + 4, v1);                                             \
+        STORE(a + 16 * i + 8, v2);                                             \
+        STORE(a + 16 * i + 12, v3);                                            \
+        v0 = _mm_add_ps(v0, four);                                             \
+        v1 = _mm_add_ps(v1, four);                                             \
+        v2 = _mm_add_ps(v2, four);                                             \
+        v3 = _mm_add_ps(v3, four);                                             \
+    }
 static double vector_stores_gbps(float *dst, size_t bytes, int reps,
                                  int stream)
 {
     size_t skip = stream ? (16u - ((size_t)(uintptr_t)dst & 15u)) & 15u : 0;
     float *a = (float *)((unsigned char *)dst + skip);
     size_t n = (bytes - skip) / 64, i;
+    const __m128 four = _mm_set1_ps(4.0f);
     double best = 1e30;
     int r;
     for (r = 0; r < reps; ++r) {
+        __m128 v0 = _mm_set1_ps((float)r + 1.0f), v1 = _mm_add_ps(v0, v0),
+               v2 = _mm_add_ps(v1, v0), v3 = _mm_add_ps(v1, v1);
         double t0, t;
         evict();
         t0 = now_ms();
-        const __m128 four = _mm_set1_ps(4.0f);
-        __m128 v0 = _mm_set1_ps((float)r + 1.0f), v1 = _mm_add_ps(v0, v0),
-               v2 = _mm_add_ps(v1, v0), v3 = _mm_add_ps(v1, v1);
         if (stream) {
-            for (i = 0; i < n; ++i) {
-                _mm_stream_ps(a + 16 * i, v0);
-                _mm_stream_ps(a + 16 * i + 4, v1);
-                _mm_stream_ps(a + 16 * i + 8, v2);
-                _mm_stream_ps(a + 16 * i + 12, v3);
-                v0 = _mm_add_ps(v0, four);
-                v1 = _mm_add_ps(v1, four);
-                v2 = _mm_add_ps(v2, four);
-                v3 = _mm_add_ps(v3, four);
-            }
+            VECTOR_LINES(_mm_stream_ps)
             _mm_sfence();
         } else {
-            for (i = 0; i < n; ++i) {
-                _mm_storeu_ps(a + 16 * i, v0);
-                _mm_storeu_ps(a + 16 * i + 4, v1);
-                _mm_storeu_ps(a + 16 * i + 8, v2);
-                _mm_storeu_ps(a + 16 * i + 12, v3);
-                v0 = _mm_add_ps(v0, four);
-                v1 = _mm_add_ps(v1, four);
-                v2 = _mm_add_ps(v2, four);
-                v3 = _mm_add_ps(v3, four);
-            }
+            VECTOR_LINES(_mm_storeu_ps)
         }
         t = now_ms() - t0;
         best = t < best ? t : best;
     }
     return (double)(n * 64) / best / 1e6;
 }
+#undef VECTOR_LINES
 #endif
 
 /* The best of the ways to write `bytes`: the limit of a write-bound
