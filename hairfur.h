@@ -5313,8 +5313,8 @@ HF__PRIVATE float hf__col_closest(const hf__col_prep *k, float x, float y,
 /* A prepared collider in every lane, rr^2, and whether its axis is a point
    (e == 0: a sphere or a zero-length capsule). */
 typedef struct hf__col_prep4 {
-    hf__v4 a[3], e[3], inv, rr2;
-    int point;
+    hf__v4 a[3], e[3], inv, rr2, rr, inner;
+    int point, capsule, shrink;
 } hf__col_prep4;
 
 HF__PRIVATE void hf__col_prep_v4(const hf__col_prep *k,
@@ -5327,7 +5327,11 @@ HF__PRIVATE void hf__col_prep_v4(const hf__col_prep *k,
     }
     v->inv = HF__SET1(k->inv);
     v->rr2 = HF__SET1(k->rr * k->rr);
+    v->rr = HF__SET1(k->rr);
+    v->inner = HF__SET1(k->inner);
     v->point = k->e[0] == 0.0f && k->e[1] == 0.0f && k->e[2] == 0.0f;
+    v->capsule = k->inv > 0.0f;
+    v->shrink = k->inner > 0.0f;
 }
 
 /* Which of four points hf__col_closest finds inside radius rr (bit i:
@@ -5465,6 +5469,17 @@ HF__PRIVATE float hf__perp_part(float *v, const float *m)
     return hf__dot3(v, v);
 }
 
+/* A fixed perpendicular of unit m: m crossed with the axis least aligned
+   with it, in v; returns |v|^2. */
+HF__PRIVATE float hf__perp_fixed(const float *m, float *v)
+{
+    const float ax = HF_FABS(m[0]), ay = HF_FABS(m[1]), az = HF_FABS(m[2]);
+    float e[3] = {0.0f, 0.0f, 0.0f};
+    e[(ax <= ay && ax <= az) ? 0 : (ay <= az ? 1 : 2)] = 1.0f;
+    hf__cross3(v, m, e);
+    return hf__perp_part(v, m);
+}
+
 /* The unit direction nearest u on the cap's edge d . m = cmin: u's
    sideways part kept; where u has none (to 1e-4), the root tangent t's;
    where t has none either, a fixed perpendicular of m. */
@@ -5478,15 +5493,7 @@ HF__PRIVATE void hf__ftl_onto_cap(const float *u, const float *m, float cmin,
     if (v2 < 1e-8f) {
         for (k = 0; k < 3; ++k) v[k] = t[k];
         v2 = hf__perp_part(v, m);
-        if (v2 < 1e-8f) {
-            /* m crossed with the axis least aligned with it */
-            const float ax = HF_FABS(m[0]), ay = HF_FABS(m[1]),
-                        az = HF_FABS(m[2]);
-            float e[3] = {0.0f, 0.0f, 0.0f};
-            e[(ax <= ay && ax <= az) ? 0 : (ay <= az ? 1 : 2)] = 1.0f;
-            hf__cross3(v, m, e);
-            v2 = hf__perp_part(v, m);
-        }
+        if (v2 < 1e-8f) v2 = hf__perp_fixed(m, v);
     }
     s = HF_SQRTF(1.0f - cmin * cmin) / HF_SQRTF(v2);
     for (k = 0; k < 3; ++k) d[k] = m[k] * cmin + v[k] * s;
@@ -5583,8 +5590,10 @@ HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
         float from[3];
         const float pen0 = best_pen;
         /* the current best direction: turning it, not u, walks along a
-           capsule instead of back into the part it left */
-        for (c = 0; c < 3; ++c) from[c] = (best[c] - p[c]) / l;
+           capsule instead of back into the part it left; in the first
+           round the best is q itself, whose direction is u */
+        for (c = 0; c < 3; ++c)
+            from[c] = round == 0 ? u[c] : (best[c] - p[c]) / l;
         ncap = 0;
         for (c = 0; c < ncol; ++c) {
             float cc[3], dd[3];
@@ -5603,10 +5612,13 @@ HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
             for (e = c; e < ncap; ++e) {
                 float d[6];
                 int nd, i, w;
-                if (e == c) {
+                if (e == c) { /* from, and u where it differs */
                     hf__ftl_onto_cap(from, m[c], cmin[c], t, d);
-                    hf__ftl_onto_cap(u, m[c], cmin[c], t, d + 3);
-                    nd = 2;
+                    nd = 1;
+                    if (round > 0) {
+                        hf__ftl_onto_cap(u, m[c], cmin[c], t, d + 3);
+                        nd = 2;
+                    }
                 } else {
                     nd = hf__ftl_cap_pair(m[c], cmin[c], m[e], cmin[e], d);
                 }
@@ -6092,6 +6104,308 @@ HF__PRIVATE void hf__ropes_mark_far_ref(const hf_ropes *ro, int j, int a,
 
 #if HF__V4
 
+/* The follow-the-leader collision of hf__ftl_collide_point on four ropes
+   at once, the same operations in the same order per lane, so every lane
+   gets the scalar kernel's bytes: the steps that branch in the scalar code
+   run on every lane and a select keeps each lane's own branch; a lane
+   whose point is outside, or done, keeps its value. Points in contact are
+   a few percent of a row, but each costs the scalar kernel a chain of
+   some twenty square roots and divisions, so four at a time pays. */
+#define HF__OR4(a, b) HF__SEL(a, a, b) /* masks only */
+
+/* hf__col_closest on four points */
+HF__INLINE hf__v4 hf__col_closest_v4(const hf__col_prep4 *k, const hf__v4 *x,
+                                     hf__v4 *c)
+{
+    const hf__v4 zero = HF__SET1(0.0f), one = HF__SET1(1.0f);
+    hf__v4 t = HF__MUL(HF__DOT3(HF__SUB(x[0], k->a[0]),
+                                HF__SUB(x[1], k->a[1]),
+                                HF__SUB(x[2], k->a[2]), k->e[0], k->e[1],
+                                k->e[2]),
+                       k->inv),
+           d[3];
+    int i;
+    t = HF__SEL(HF__LT(t, zero), zero, HF__SEL(HF__GT(t, one), one, t));
+    for (i = 0; i < 3; ++i) {
+        c[i] = HF__ADD(k->a[i], HF__MUL(k->e[i], t));
+        d[i] = HF__SUB(x[i], c[i]);
+    }
+    return HF__DOT3(d[0], d[1], d[2], d[0], d[1], d[2]);
+}
+
+/* hf__ftl_penetration on four points; *any: the lanes some collider holds */
+HF__PRIVATE hf__v4 hf__ftl_penetration_v4(const hf__col_prep4 *k,
+                                          const hf__v4 *rr, int ncol,
+                                          const hf__v4 *q, hf__v4 *any)
+{
+    hf__v4 worst = HF__SET1(0.0f), hit_any = HF__LT(worst, worst), c3[3];
+    int c;
+    for (c = 0; c < ncol; ++c) {
+        const hf__v4 d2 = hf__col_closest_v4(k + c, q, c3);
+        const hf__v4 hit = HF__LT(d2, HF__MUL(rr[c], rr[c]));
+        const hf__v4 pen = HF__SUB(rr[c], HF__SQRT(d2));
+        const hf__v4 up =
+            HF__SEL(hit_any, HF__AND(hit, HF__GT(pen, worst)), hit);
+        worst = HF__SEL(up, pen, worst);
+        hit_any = HF__OR4(hit, hit_any);
+    }
+    *any = hit_any;
+    return worst;
+}
+
+/* hf__ftl_cap on four lanes */
+HF__PRIVATE void hf__ftl_cap_v4(const hf__v4 *p, hf__v4 l, const hf__v4 *c,
+                                hf__v4 rr, const hf__v4 *n, hf__v4 *m,
+                                hf__v4 *cmin)
+{
+    const hf__v4 zero = HF__SET1(0.0f), one = HF__SET1(1.0f);
+    hf__v4 rho2, rho, big, cm;
+    int k;
+    for (k = 0; k < 3; ++k) m[k] = HF__SUB(p[k], c[k]);
+    rho2 = HF__DOT3(m[0], m[1], m[2], m[0], m[1], m[2]);
+    big = HF__GT(rho2, HF__SET1(1e-24f));
+    rho = HF__SEL(big, HF__SQRT(rho2), zero);
+    for (k = 0; k < 3; ++k) m[k] = HF__SEL(big, HF__DIV(m[k], rho), n[k]);
+    rr = HF__ADD(rr, HF__MUL(HF__SET1(1e-6f), HF__ADD(rr, l)));
+    cm = HF__DIV(HF__SUB(HF__SUB(HF__MUL(rr, rr), HF__MUL(rho, rho)),
+                         HF__MUL(l, l)),
+                 HF__MUL(HF__MUL(HF__SET1(2.0f), l), rho));
+    cm = HF__SEL(HF__GT(rho, zero), cm, one);
+    *cmin = HF__SEL(HF__GT(cm, one), one,
+                    HF__SEL(HF__LT(cm, HF__SET1(-1.0f)), HF__SET1(-1.0f), cm));
+}
+
+/* hf__perp_part on four lanes */
+HF__INLINE hf__v4 hf__perp_part_v4(hf__v4 *v, const hf__v4 *m)
+{
+    int pass, k;
+    for (pass = 0; pass < 2; ++pass) {
+        const hf__v4 vm = HF__DOT3(v[0], v[1], v[2], m[0], m[1], m[2]);
+        for (k = 0; k < 3; ++k) v[k] = HF__SUB(v[k], HF__MUL(m[k], vm));
+    }
+    return HF__DOT3(v[0], v[1], v[2], v[0], v[1], v[2]);
+}
+
+/* hf__ftl_onto_cap on four lanes; the fixed perpendicular, rare, lane by
+   lane through the scalar code */
+HF__PRIVATE void hf__ftl_onto_cap_v4(const hf__v4 *u, const hf__v4 *m,
+                                     hf__v4 cmin, const hf__v4 *t, hf__v4 *d)
+{
+    const hf__v4 tiny = HF__SET1(1e-8f);
+    hf__v4 v[3], w[3], v2, w2, low, s;
+    int k, lanes;
+    for (k = 0; k < 3; ++k) v[k] = u[k];
+    v2 = hf__perp_part_v4(v, m);
+    low = HF__LT(v2, tiny);
+    if (HF__MASK(low)) {
+        for (k = 0; k < 3; ++k) w[k] = t[k];
+        w2 = hf__perp_part_v4(w, m);
+        for (k = 0; k < 3; ++k) v[k] = HF__SEL(low, w[k], v[k]);
+        v2 = HF__SEL(low, w2, v2);
+        lanes = HF__MASK(HF__AND(low, HF__LT(w2, tiny)));
+        if (lanes) {
+            float mm[3][4], vv[3][4], vv2[4], ml[3], vl[3];
+            int i;
+            for (k = 0; k < 3; ++k) {
+                HF__ST(mm[k], m[k]);
+                HF__ST(vv[k], v[k]);
+            }
+            HF__ST(vv2, v2);
+            for (i = 0; i < 4; ++i)
+                if ((lanes >> i) & 1) {
+                    for (k = 0; k < 3; ++k) ml[k] = mm[k][i];
+                    vv2[i] = hf__perp_fixed(ml, vl);
+                    for (k = 0; k < 3; ++k) vv[k][i] = vl[k];
+                }
+            for (k = 0; k < 3; ++k) v[k] = HF__LD(vv[k]);
+            v2 = HF__LD(vv2);
+        }
+    }
+    s = HF__DIV(HF__SQRT(HF__SUB(HF__SET1(1.0f), HF__MUL(cmin, cmin))),
+                HF__SQRT(v2));
+    for (k = 0; k < 3; ++k)
+        d[k] = HF__ADD(HF__MUL(m[k], cmin), HF__MUL(v[k], s));
+}
+
+/* hf__ftl_cap_pair on four lanes: both crossings in d[0..5]; returns the
+   lanes where the scalar code returns 2 */
+HF__PRIVATE hf__v4 hf__ftl_cap_pair_v4(const hf__v4 *m1, hf__v4 c1,
+                                       const hf__v4 *m2, hf__v4 c2, hf__v4 *d)
+{
+    const hf__v4 one = HF__SET1(1.0f);
+    const hf__v4 mu = HF__DOT3(m1[0], m1[1], m1[2], m2[0], m2[1], m2[2]);
+    const hf__v4 det = HF__SUB(one, HF__MUL(mu, mu));
+    const hf__v4 al = HF__DIV(HF__SUB(c1, HF__MUL(mu, c2)), det),
+                 be = HF__DIV(HF__SUB(c2, HF__MUL(mu, c1)), det);
+    hf__v4 x[3], h2, g2, ok = HF__GT(det, HF__SET1(1e-8f));
+    int k;
+    x[0] = HF__SUB(HF__MUL(m1[1], m2[2]), HF__MUL(m1[2], m2[1]));
+    x[1] = HF__SUB(HF__MUL(m1[2], m2[0]), HF__MUL(m1[0], m2[2]));
+    x[2] = HF__SUB(HF__MUL(m1[0], m2[1]), HF__MUL(m1[1], m2[0]));
+    h2 = HF__ADD(HF__ADD(HF__MUL(al, al), HF__MUL(be, be)),
+                 HF__MUL(HF__MUL(HF__MUL(HF__SET1(2.0f), al), be), mu));
+    g2 = HF__DIV(HF__SUB(one, h2), det);
+    ok = HF__AND(ok, HF__LE(HF__SET1(0.0f), g2));
+    g2 = HF__SQRT(g2);
+    for (k = 0; k < 3; ++k) {
+        const hf__v4 b = HF__ADD(HF__MUL(al, m1[k]), HF__MUL(be, m2[k]));
+        d[k] = HF__ADD(b, HF__MUL(g2, x[k]));
+        d[3 + k] = HF__SUB(b, HF__MUL(g2, x[k]));
+    }
+    for (k = 0; k < 2; ++k) {
+        hf__v4 *dk = d + 3 * k,
+               n2 = HF__DOT3(dk[0], dk[1], dk[2], dk[0], dk[1], dk[2]);
+        ok = HF__AND(ok, HF__AND(HF__GT(n2, HF__SET1(0.25f)),
+                                 HF__LT(n2, HF__SET1(4.0f))));
+        n2 = HF__DIV(one, HF__SQRT(n2));
+        dk[0] = HF__MUL(dk[0], n2);
+        dk[1] = HF__MUL(dk[1], n2);
+        dk[2] = HF__MUL(dk[2], n2);
+    }
+    return ok;
+}
+
+/* hf__ropes_collide_ftl_row for point row j of ropes idx[0 .. 4) (any
+   ropes: the points in contact, gathered) against colliders k[0 .. ncol),
+   ncol <= HF__ROPE_PREP. */
+HF__PRIVATE void hf__ftl_collide_v4(hf_ropes *ro, const float *F, int j,
+                                    const int *idx, const hf__col_prep4 *k,
+                                    int ncol)
+{
+    const size_t R = (size_t)ro->rope_count, o0 = (size_t)(j - 1) * R;
+    const hf__v4 zero = HF__SET1(0.0f);
+    float g[16][4];
+    hf__v4 l, p[3], q[3], root[3], n[3], t[3], u[3], best[3],
+        rr[HF__ROPE_PREP], m[2 * HF__ROPE_PREP][3], cmin[2 * HF__ROPE_PREP],
+        act, best_pen, best_dot, bd, big;
+    int c, e, i, w, round, ncap;
+    for (i = 0; i < 4; ++i) {
+        const size_t r = (size_t)idx[i];
+        for (c = 0; c < 3; ++c) {
+            const float *X = c == 0 ? ro->x : c == 1 ? ro->y : ro->z;
+            g[c][i] = X[o0 + r];
+            g[3 + c][i] = X[o0 + R + r];
+            g[6 + c][i] = X[r];
+            g[9 + c][i] = F[(size_t)(3 + c) * R + r];
+            g[12 + c][i] = F[(size_t)(6 + c) * R + r];
+        }
+        g[15][i] = ro->rest_length[o0 + r];
+    }
+    for (i = 0; i < 3; ++i) {
+        p[i] = HF__LD(g[i]);
+        q[i] = HF__LD(g[3 + i]);
+        root[i] = HF__LD(g[6 + i]);
+        t[i] = HF__LD(g[9 + i]);
+        n[i] = HF__LD(g[12 + i]);
+    }
+    l = HF__LD(g[15]);
+    /* hf__col_radius_for */
+    for (c = 0; c < ncol; ++c) {
+        hf__v4 cc[3];
+        const hf__v4 d2 = hf__col_closest_v4(k + c, root, cc);
+        rr[c] = k[c].rr;
+        if (k[c].shrink)
+            rr[c] = HF__SEL(HF__LT(d2, HF__MUL(k[c].inner, k[c].inner)),
+                            HF__SQRT(d2), rr[c]);
+    }
+    best_pen = hf__ftl_penetration_v4(k, rr, ncol, q, &act);
+    act = HF__AND(act, HF__GT(l, zero));
+    if (!HF__MASK(act)) return;
+    for (i = 0; i < 3; ++i) u[i] = HF__SUB(q[i], p[i]);
+    bd = HF__DOT3(u[0], u[1], u[2], u[0], u[1], u[2]);
+    big = HF__GT(bd, HF__SET1(1e-24f));
+    bd = HF__DIV(HF__SET1(1.0f), HF__SQRT(bd));
+    for (i = 0; i < 3; ++i) {
+        u[i] = HF__SEL(big, HF__MUL(u[i], bd), n[i]);
+        best[i] = q[i];
+    }
+    best_dot = HF__SET1(-2.0f);
+    for (round = 0; round < HF__FTL_ROUNDS; ++round) {
+        hf__v4 from[3];
+        const hf__v4 pen0 = best_pen;
+        act = HF__AND(act, HF__GT(best_pen, zero));
+        if (!HF__MASK(act)) break;
+        for (i = 0; i < 3; ++i)
+            from[i] = round == 0 ? u[i] : HF__DIV(HF__SUB(best[i], p[i]), l);
+        ncap = 0;
+        for (c = 0; c < ncol; ++c) {
+            hf__v4 cc[3];
+            hf__col_closest_v4(k + c, best, cc);
+            hf__ftl_cap_v4(p, l, cc, rr[c], n, m[ncap], &cmin[ncap]);
+            ++ncap;
+            if (k[c].capsule) {
+                hf__col_closest_v4(k + c, p, cc);
+                hf__ftl_cap_v4(p, l, cc, rr[c], n, m[ncap], &cmin[ncap]);
+                ++ncap;
+            }
+        }
+        for (c = 0; c < ncap; ++c)
+            for (e = c; e < ncap; ++e) {
+                hf__v4 d[6], valid = HF__EQ(zero, zero);
+                int nd;
+                if (e == c) {
+                    hf__ftl_onto_cap_v4(from, m[c], cmin[c], t, d);
+                    nd = 1;
+                    if (round > 0) {
+                        hf__ftl_onto_cap_v4(u, m[c], cmin[c], t, d + 3);
+                        nd = 2;
+                    }
+                } else {
+                    valid = hf__ftl_cap_pair_v4(m[c], cmin[c], m[e], cmin[e],
+                                                d);
+                    if (!HF__MASK(HF__AND(act, valid))) continue;
+                    nd = 2;
+                }
+                for (i = 0; i < nd; ++i) {
+                    const hf__v4 *di = d + 3 * i;
+                    hf__v4 cand[3], pen, dot, up, hold;
+                    for (w = 0; w < 3; ++w)
+                        cand[w] = HF__ADD(p[w], HF__MUL(l, di[w]));
+                    pen = hf__ftl_penetration_v4(k, rr, ncol, cand, &hold);
+                    dot = HF__DOT3(di[0], di[1], di[2], u[0], u[1], u[2]);
+                    up = HF__OR4(HF__LT(pen, best_pen),
+                                 HF__AND(HF__EQ(pen, best_pen),
+                                         HF__GT(dot, best_dot)));
+                    up = HF__AND(HF__AND(act, valid), up);
+                    best_pen = HF__SEL(up, pen, best_pen);
+                    best_dot = HF__SEL(up, dot, best_dot);
+                    for (w = 0; w < 3; ++w)
+                        best[w] = HF__SEL(up, cand[w], best[w]);
+                }
+            }
+        act = HF__AND(act, HF__LT(best_pen, pen0)); /* no progress: done */
+    }
+    for (c = 0; c < 3; ++c) HF__ST(g[c], best[c]);
+    for (i = 0; i < 4; ++i) {
+        const size_t o = o0 + R + (size_t)idx[i];
+        ro->x[o] = g[0][i];
+        ro->y[o] = g[1][i];
+        ro->z[o] = g[2][i];
+    }
+}
+
+/* The points of a row in contact, resolved four at a time when the list
+   fills and when the row ends (they are independent: a point's collision
+   moves nothing the row reads again). */
+#define HF__FTL_HITS 64
+typedef struct hf__ftl_hits {
+    int n, r[HF__FTL_HITS];
+} hf__ftl_hits;
+
+HF__PRIVATE void hf__ftl_hits_flush(hf_ropes *ro, const float *F, int j,
+                                    hf__ftl_hits *h, const hf__col_prep4 *k,
+                                    int ncol)
+{
+    int g, i, idx[4];
+    for (g = 0; g < h->n; g += 4) {
+        for (i = 0; i < 4; ++i) /* a short last group repeats its last */
+            idx[i] = h->r[g + i < h->n ? g + i : h->n - 1];
+        hf__ftl_collide_v4(ro, F, j, idx, k, ncol);
+    }
+    h->n = 0;
+}
+#undef HF__OR4
+
 /* Which colliders hold a point of four (bit i: lane i), every collider
    tested with hf__col_hits_v4. */
 HF__PRIVATE int hf__col_any_v4(const hf_collider *col, int ncol,
@@ -6112,29 +6426,32 @@ HF__PRIVATE int hf__col_any_v4(const hf_collider *col, int ncol,
     return m;
 }
 
-/* Collisions of point row j of ropes [r, r + 4), at xyz[0..2]: a lane
-   that some collider holds goes through the scalar kernel on its own
-   (ftl: hf__ropes_collide_ftl_row with every collider; else the radial
-   push of each collider in order). xyz is read back after a hit. */
+/* Collisions of point row j of ropes [r, r + 4), at xyz[0..2]. With
+   hits (FTL), a lane that some collider holds joins the row's list for
+   hf__ftl_collide_v4 (beyond HF__ROPE_PREP colliders it goes through
+   hf__ropes_collide_ftl_row on its own, at once); without, through the
+   radial push of each collider in order, xyz read back after a hit. */
 HF__PRIVATE void hf__col_row_v4(hf_ropes *ro, const float *F,
-                                              int j, int r, int ftl,
+                                              int j, int r, hf__ftl_hits *hits,
                                               const hf_collider *col, int ncol,
                                               const hf__col_prep4 *pre,
                                               float margin, hf__v4 *xyz)
 {
     const size_t o = (size_t)j * (size_t)ro->rope_count + (size_t)r;
     int c, m, i;
-    if (ftl) {
+    if (hits) {
         m = hf__col_any_v4(col, ncol, pre, margin, xyz);
         for (i = 0; i < 4; ++i)
-            if ((m >> i) & 1)
-                hf__ropes_collide_ftl_row(ro, F, j, r + i, r + i + 1, col, ncol,
-                                          margin);
-        if (m) {
-            xyz[0] = HF__LD(ro->x + o);
-            xyz[1] = HF__LD(ro->y + o);
-            xyz[2] = HF__LD(ro->z + o);
-        }
+            if ((m >> i) & 1) {
+                if (ncol > HF__ROPE_PREP) {
+                    hf__ropes_collide_ftl_row(ro, F, j, r + i, r + i + 1, col,
+                                              ncol, margin);
+                    continue;
+                }
+                hits->r[hits->n++] = r + i;
+                if (hits->n == HF__FTL_HITS)
+                    hf__ftl_hits_flush(ro, F, j, hits, pre, ncol);
+            }
         return;
     }
     for (c = 0; c < ncol; ++c) {
@@ -6172,7 +6489,7 @@ hf__ropes_collide_v4(hf_ropes *ro, const float *F, int a, int b,
             xyz[0] = HF__LD(ro->x + o);
             xyz[1] = HF__LD(ro->y + o);
             xyz[2] = HF__LD(ro->z + o);
-            hf__col_row_v4(ro, F, j, r, 0, col, ncol, pre, margin, xyz);
+            hf__col_row_v4(ro, F, j, r, NULL, col, ncol, pre, margin, xyz);
         }
 }
 
@@ -6413,7 +6730,9 @@ hf__ropes_ftl_row_v4(hf_ropes *ro, const float *F, int j, int a, int b,
     const float *L = HF__ROW(ro->rest_length, j - 1, R);
     const hf__v4 one = HF__SET1(1.0f);
     const hf__v4 sd = HF__SET1(j >= 2 ? st->ftl_damping : 0.0f);
+    hf__ftl_hits hits;
     int r;
+    hits.n = 0;
     for (r = a; r < b; r += 4) {
         const hf__v4 x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),
                      z0 = HF__LD(Z0 + r);
@@ -6446,8 +6765,10 @@ hf__ropes_ftl_row_v4(hf_ropes *ro, const float *F, int j, int a, int b,
                HF__ADD(HF__LD(PZ0 + r), HF__MUL(sd, HF__SUB(xyz[2], oz))));
         if (ncol > 1 ||
             (ncol == 1 && hf__col_hits_v4(pre, xyz[0], xyz[1], xyz[2])))
-            hf__col_row_v4(ro, F, j, r, 1, col, ncol, pre, st->margin, xyz);
+            hf__col_row_v4(ro, F, j, r, &hits, col, ncol, pre, st->margin,
+                           xyz);
     }
+    hf__ftl_hits_flush(ro, F, j, &hits, pre, ncol);
 }
 
 /* Row j of a distance pass: half the error to each end (equal masses). */
@@ -6806,7 +7127,9 @@ hf__ropes_ftl_row_avx2(hf_ropes *ro, const float *F, int j, int a, int b,
     const float *L = HF__ROW(ro->rest_length, j - 1, R);
     const float sdj = j >= 2 ? st->ftl_damping : 0.0f;
     const int test = st->ftl && ncol > 0;
+    hf__ftl_hits list;
     int r;
+    list.n = 0;
     for (r = a; r < b; r += 8) {
         const __m256 one = _mm256_set1_ps(1.0f), sd = _mm256_set1_ps(sdj);
         const __m256 x0 = HF__L8(X0 + r), y0 = HF__L8(Y0 + r),
@@ -6856,12 +7179,13 @@ hf__ropes_ftl_row_avx2(hf_ropes *ro, const float *F, int j, int a, int b,
                     xyz[0] = _mm_loadu_ps(ro->x + o);
                     xyz[1] = _mm_loadu_ps(ro->y + o);
                     xyz[2] = _mm_loadu_ps(ro->z + o);
-                    hf__col_row_v4(ro, F, j, r + 4 * h, 1, col, ncol, pre,
-                                   st->margin, xyz);
+                    hf__col_row_v4(ro, F, j, r + 4 * h, &list, col, ncol,
+                                   pre, st->margin, xyz);
                 }
         }
     }
     _mm256_zeroupper();
+    hf__ftl_hits_flush(ro, F, j, &list, pre, ncol);
 }
 
 HF__TARGET_AVX2 HF__PRIVATE void hf__ropes_distance_row_avx2(hf_ropes *ro,

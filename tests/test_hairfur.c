@@ -4442,6 +4442,93 @@ static void t_ropes_lanes(int solver)
     for (k = 0; k < NSET; ++k) tr_close(&s[k]);
 }
 
+/* Contacts at every level: ropes hanging through random spheres and
+   capsules (one to four, overlapping; some roots inside; a twelve-collider
+   case that takes the batched scalar walk), stepped whole at the best
+   level, at SSE2 (NEON) and scalar: the same bytes. The four-lane contact
+   kernel resolves the points in contact four at a time, gathered from
+   the row, with every branch of the scalar kernel as a select. */
+static void test_ropes_contacts_match_scalar(void)
+{
+    enum { R = 83, P = 8, NSET = 3, TRIALS = 40 };
+    static float rest[3 * R * P];
+    float root[3 * R], nrm[3 * R], tan[3 * R], dir[3];
+    hf_collider col[12];
+    hf_rope_params p;
+    tr_set s[NSET];
+    uint32_t seed = 12345u;
+    int r, k, c, f, trial, same = 1, touching = 0;
+    for (k = 0; k < NSET; ++k)
+        if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
+    hf_rope_params_init(&p);
+    p.local_stiffness_root = 0.2f;
+    p.collision_margin = 0.002f;
+    for (trial = 0; trial < TRIALS; ++trial) {
+        const int ncol = trial == TRIALS - 1 ? 12 : 1 + trial % 4;
+#define T_RND()                                                                \
+    ((float)((seed = seed * 1664525u + 1013904223u) >> 8) * (1.0f / 16777216.0f))
+        for (r = 0; r < R; ++r) {
+            root[3 * r] = 0.2f * T_RND() - 0.1f;
+            root[3 * r + 1] = 0.0f;
+            root[3 * r + 2] = 0.2f * T_RND() - 0.1f;
+            nrm[3 * r] = 0.0f; nrm[3 * r + 1] = -1.0f; nrm[3 * r + 2] = 0.0f;
+            tan[3 * r] = 1.0f; tan[3 * r + 1] = 0.0f; tan[3 * r + 2] = 0.0f;
+            dir[0] = 0.6f * T_RND() - 0.3f;
+            dir[1] = -1.0f;
+            dir[2] = 0.6f * T_RND() - 0.3f;
+            tr_straight(rest, r, P, root + 3 * r, dir, 0.12f);
+        }
+        memset(col, 0, sizeof col);
+        for (c = 0; c < ncol; ++c) {
+            /* about a random point of a random rope, so points start
+               inside; the first point of a rope is its root */
+            const float *q = rest + 3 * ((size_t)(seed % R) * P + seed % P);
+            col[c].type = T_RND() < 0.5f ? HF_COLLIDER_SPHERE
+                                         : HF_COLLIDER_CAPSULE;
+            col[c].radius = 0.01f + 0.04f * T_RND();
+            for (k = 0; k < 3; ++k) {
+                col[c].a[k] = q[k] + 0.02f * T_RND() - 0.01f;
+                col[c].b[k] = col[c].a[k] + 0.16f * T_RND() - 0.08f;
+            }
+            (void)T_RND();
+        }
+#undef T_RND
+        for (k = 0; k < NSET; ++k)
+            CHECK_EQ_INT(hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root,
+                                           nrm, tan, 0),
+                         HF_OK);
+        for (f = 0; f < 4; ++f) {
+            for (r = 0; r < R; ++r) root[3 * r] += 0.01f;
+            for (k = 0; k < NSET; ++k) {
+                hf_rope_params pl = p;
+                pl.simd = k == 0 ? HF_SIMD_AUTO
+                                 : k == 1 ? HF_SIMD_SSE2 : HF_SIMD_SCALAR;
+                hf_ropes_set_roots(&s[k].ro, 0, R, root, nrm, tan, 0);
+                CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, 1.0f / 60.0f, &pl,
+                                           col, ncol),
+                             HF_OK);
+            }
+            for (k = 1; k < NSET; ++k) {
+                size_t n = sizeof(float) * R * P;
+                same &= memcmp(s[0].ro.x, s[k].ro.x, n) == 0;
+                same &= memcmp(s[0].ro.y, s[k].ro.y, n) == 0;
+                same &= memcmp(s[0].ro.z, s[k].ro.z, n) == 0;
+            }
+        }
+        for (r = 0; r < R * P; ++r) /* points left on a surface */
+            for (c = 0; c < ncol; ++c) {
+                const float q[3] = {s[0].ro.x[r], s[0].ro.y[r], s[0].ro.z[r]};
+                if (fabs(tr_dist_seg(q, &col[c]) - col[c].radius -
+                         p.collision_margin) < 1e-4)
+                    ++touching;
+            }
+    }
+    CHECK(same);
+    CHECK(touching > 500);
+    for (k = 0; k < NSET; ++k) CHECK(tr_finite(&s[k].ro));
+    for (k = 0; k < NSET; ++k) tr_close(&s[k]);
+}
+
 static void test_ropes_simd_lanes_match_scalar(void)
 {
     t_ropes_lanes(HF_ROPE_SOLVER_FTL);
@@ -9236,6 +9323,7 @@ int main(void)
     RUN(test_ropes_distance_solver_iterations);
     RUN(test_ropes_get_positions);
     RUN(test_ropes_simd_lanes_match_scalar);
+    RUN(test_ropes_contacts_match_scalar);
     RUN(test_defaults_zeroed_rope_params_are_init);
     RUN(test_defaults_explicit_zero);
     RUN(test_ropes_capsule_keeps_length);
