@@ -5701,7 +5701,8 @@ HF__PRIVATE void hf__ropes_collide(hf_ropes *ro, const float *F, int a, int b,
    w = 1 the rope is exactly animated. x and px stay world positions (px
    the last sub-step's place), so switching back to simulation mid-glide
    keeps the velocity. */
-HF__PRIVATE void hf__ropes_safety_net(hf_ropes *ro, int a, int b, float h);
+HF__PRIVATE void hf__ropes_safety_net(hf_ropes *ro, int a, int b,
+                                      const hf__rope_step *st);
 
 HF__PRIVATE void hf__ropes_glide_run(hf_ropes *ro, int a, int b,
                                      const hf__rope_step *st)
@@ -5781,7 +5782,7 @@ HF__PRIVATE void hf__ropes_glide_run(hf_ropes *ro, int a, int b,
         ro->last_h[r] = h;
         ro->time[r] += (double)h * st->n;
     }
-    hf__ropes_safety_net(ro, a, b, h); /* never an output that is NaN */
+    hf__ropes_safety_net(ro, a, b, st); /* never an output that is NaN */
 }
 
 /* ---- the simulated rope step: one driver, named steps ---- */
@@ -7272,31 +7273,79 @@ HF__PRIVATE void hf__ropes_substep(hf_ropes *ro, const float *F, int a, int b,
     hf__ropes_substep_ref(ro, F, a4, b, st, col, ncol);
 }
 
-HF__PRIVATE void hf__ropes_mark_far(const hf_ropes *ro, int j, int a, int b,
-                                    const float *KB, float *VF)
+#if HF__AVX2
+/* hf__ropes_mark_far_ref for every point row, on whole groups of eight
+   ropes from a; returns where the groups end. */
+HF__TARGET_AVX2 HF__PRIVATE int hf__ropes_mark_far_avx2(const hf_ropes *ro,
+                                                       int a, int b,
+                                                       const float *KB,
+                                                       float *VF)
 {
-#if HF__V4
-    a = hf__ropes_mark_far_v4(ro, j, a, b, KB, VF);
+    const size_t R = (size_t)ro->rope_count;
+    int r = a, j;
+    for (; r + 8 <= b; r += 8) {
+        const __m256 x0 = _mm256_loadu_ps(ro->x + r),
+                     y0 = _mm256_loadu_ps(ro->y + r),
+                     z0 = _mm256_loadu_ps(ro->z + r),
+                     kb = _mm256_loadu_ps(KB + r);
+        __m256 far = _mm256_setzero_ps();
+        for (j = 1; j < ro->points; ++j) {
+            const size_t o = (size_t)j * R + (size_t)r;
+            const __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(ro->x + o), x0),
+                         dy = _mm256_sub_ps(_mm256_loadu_ps(ro->y + o), y0),
+                         dz = _mm256_sub_ps(_mm256_loadu_ps(ro->z + o), z0);
+            const __m256 d2 = _mm256_add_ps(
+                _mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)),
+                _mm256_mul_ps(dz, dz));
+            /* not d2 <= KB: NaN too */
+            far = _mm256_or_ps(far, _mm256_cmp_ps(d2, kb, _CMP_NLE_UQ));
+        }
+        _mm256_storeu_ps(VF + r,
+                         _mm256_blendv_ps(_mm256_loadu_ps(VF + r),
+                                          _mm256_set1_ps(1.0f), far));
+    }
+    _mm256_zeroupper();
+    return r;
+}
 #endif
-    hf__ropes_mark_far_ref(ro, j, a, b, KB, VF);
+
+/* hf__ropes_mark_far_ref for every point row of ropes [a, b). */
+HF__PRIVATE void hf__ropes_mark_far(const hf_ropes *ro, int a, int b,
+                                    const float *KB, float *VF, int level)
+{
+    int j, a4;
+#if HF__AVX2
+    if (level >= HF_SIMD_AVX2) a = hf__ropes_mark_far_avx2(ro, a, b, KB, VF);
+#else
+    (void)level;
+#endif
+    for (j = 1; j < ro->points; ++j) {
+        a4 = a;
+#if HF__V4
+        a4 = hf__ropes_mark_far_v4(ro, j, a, b, KB, VF);
+#endif
+        hf__ropes_mark_far_ref(ro, j, a4, b, KB, VF);
+    }
 }
 
 /* After the sub-steps: remember the sub-step length, and reset a rope
    that an unstable setting threw further than 8 * length + 0.01 m from
    its root (the safety net that keeps every output finite). */
-HF__PRIVATE void hf__ropes_safety_net(hf_ropes *ro, int a, int b, float h)
+HF__PRIVATE void hf__ropes_safety_net(hf_ropes *ro, int a, int b,
+                                      const hf__rope_step *st)
 {
     const size_t R = (size_t)ro->rope_count;
+    const float h = st->h;
     float *VF = HF__ROW(ro->scratch, HF__RS_VF, R),
           *KB = HF__ROW(ro->scratch, HF__RS_KB, R);
-    int j, r;
+    int r;
     for (r = a; r < b; ++r) {
         float lim = 8.0f * ro->length[r] + 0.01f;
         ro->last_h[r] = h;
         KB[r] = lim * lim; /* reuse the row: squared limit */
         VF[r] = 0.0f;      /* reuse: 1 if the rope went bad */
     }
-    for (j = 1; j < ro->points; ++j) hf__ropes_mark_far(ro, j, a, b, KB, VF);
+    hf__ropes_mark_far(ro, a, b, KB, VF, st->level);
     for (r = a; r < b; ++r)
         if (VF[r] != 0.0f) {
             float keep = ro->blend[r];
@@ -7326,7 +7375,7 @@ HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
         const float *F = hf__ropes_substep_prep(ro, a, b, st, s);
         hf__ropes_substep(ro, F, a, b, st, col, ncol, lanes);
     }
-    hf__ropes_safety_net(ro, a, b, st->h);
+    hf__ropes_safety_net(ro, a, b, st);
 }
 
 HF__PRIVATE int hf__rope_kind(const hf_ropes *ro, int r)

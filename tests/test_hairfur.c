@@ -4442,6 +4442,77 @@ static void t_ropes_lanes(int solver)
     for (k = 0; k < NSET; ++k) tr_close(&s[k]);
 }
 
+/* The safety net: a rope with a point that is NaN or thrown beyond
+   8 * length + 0.01 m of its root is reset whole, at every level and in
+   every lane (groups of eight, four, the tail); every other rope goes on
+   as if nothing happened. */
+static void test_ropes_safety_net_resets(void)
+{
+    enum { R = 29, P = 6, NSET = 4 };
+    static float rest[3 * R * P];
+    static const int bad[] = {0, 3, 5, 9, 13, 17, 26, 28};
+    float root[3 * R], nrm[3 * R], tan[3 * R], dirs[3 * R];
+    hf_rope_params p;
+    tr_set s[NSET];
+    int r, j, k, i, same = 1, untouched = 1, near = 1;
+    for (k = 0; k < NSET; ++k)
+        if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
+    for (r = 0; r < R; ++r) {
+        tr_on_head(r, 0.3 + 1.2 * (r + 0.5) / R, 2.39996 * r, dirs, nrm, tan,
+                   root);
+        tr_straight(rest, r, P, root + 3 * r, dirs + 3 * r, 0.1f);
+    }
+    hf_rope_params_init(&p);
+    for (k = 0; k < NSET; ++k) {
+        hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm, tan, 0);
+        CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, 1.0f / 60.0f, &p, NULL, 0),
+                     HF_OK);
+    }
+    /* sets 0..2 broken, set 3 the run without */
+    for (k = 0; k < 3; ++k)
+        for (i = 0; i < (int)(sizeof bad / sizeof bad[0]); ++i) {
+            const size_t o = (size_t)(1 + i % (P - 1)) * R + (size_t)bad[i];
+            if (i % 2)
+                s[k].ro.y[o] = (float)NAN;
+            else
+                s[k].ro.x[o] += 2.0f;
+        }
+    for (k = 0; k < NSET; ++k) {
+        hf_rope_params pl = p;
+        pl.simd = k == 1 ? HF_SIMD_SSE2 : k == 2 ? HF_SIMD_SCALAR
+                                                 : HF_SIMD_AUTO;
+        CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, 1.0f / 60.0f, &pl, NULL, 0),
+                     HF_OK);
+    }
+    for (k = 1; k < 3; ++k) {
+        size_t n = sizeof(float) * R * P;
+        same &= memcmp(s[0].ro.x, s[k].ro.x, n) == 0;
+        same &= memcmp(s[0].ro.y, s[k].ro.y, n) == 0;
+        same &= memcmp(s[0].ro.z, s[k].ro.z, n) == 0;
+    }
+    for (r = 0; r < R; ++r) {
+        int broken = 0;
+        for (i = 0; i < (int)(sizeof bad / sizeof bad[0]); ++i)
+            broken |= bad[i] == r;
+        for (j = 0; j < P; ++j) {
+            const size_t o = (size_t)j * R + (size_t)r;
+            const double dx = s[0].ro.x[o] - s[0].ro.x[r],
+                         dy = s[0].ro.y[o] - s[0].ro.y[r],
+                         dz = s[0].ro.z[o] - s[0].ro.z[r];
+            near &= sqrt(dx * dx + dy * dy + dz * dz) < 0.11;
+            if (!broken)
+                untouched &= s[0].ro.x[o] == s[3].ro.x[o] &&
+                             s[0].ro.y[o] == s[3].ro.y[o] &&
+                             s[0].ro.z[o] == s[3].ro.z[o];
+        }
+    }
+    CHECK(same);
+    CHECK(near);
+    CHECK(untouched);
+    for (k = 0; k < NSET; ++k) CHECK(tr_finite(&s[k].ro));
+    for (k = 0; k < NSET; ++k) tr_close(&s[k]);
+}
+
 /* Contacts at every level: ropes hanging through random spheres and
    capsules (one to four, overlapping; some roots inside; a twelve-collider
    case that takes the batched scalar walk), stepped whole at the best
@@ -9324,6 +9395,7 @@ int main(void)
     RUN(test_ropes_get_positions);
     RUN(test_ropes_simd_lanes_match_scalar);
     RUN(test_ropes_contacts_match_scalar);
+    RUN(test_ropes_safety_net_resets);
     RUN(test_defaults_zeroed_rope_params_are_init);
     RUN(test_defaults_explicit_zero);
     RUN(test_ropes_capsule_keeps_length);
