@@ -5340,27 +5340,43 @@ HF__PRIVATE void hf__col_prep_v4(const hf__col_prep *k,
    For a point axis, c = a + 0 * t equals a up to the sign of a zero (or is
    NaN only where x - a already is infinite or NaN), so |x - a|^2 is the
    same |d|^2 and the same decision. */
+/* hf__col_closest on four points */
+HF__INLINE hf__v4 hf__col_closest_v4(const hf__col_prep4 *k, const hf__v4 *x,
+                                     hf__v4 *c)
+{
+    const hf__v4 zero = HF__SET1(0.0f), one = HF__SET1(1.0f);
+    hf__v4 t = HF__MUL(HF__DOT3(HF__SUB(x[0], k->a[0]),
+                                HF__SUB(x[1], k->a[1]),
+                                HF__SUB(x[2], k->a[2]), k->e[0], k->e[1],
+                                k->e[2]),
+                       k->inv),
+           d[3];
+    int i;
+    /* t < 0 ? 0 : (t > 1 ? 1 : t), NaN and -0 kept as the scalar does */
+    t = HF__SEL(HF__LT(t, zero), zero, HF__SEL(HF__GT(t, one), one, t));
+    for (i = 0; i < 3; ++i) {
+        c[i] = HF__ADD(k->a[i], HF__MUL(k->e[i], t));
+        d[i] = HF__SUB(x[i], c[i]);
+    }
+    return HF__DOT3(d[0], d[1], d[2], d[0], d[1], d[2]);
+}
+
 HF__INLINE int hf__col_hits_v4(const hf__col_prep4 *k, hf__v4 x,
                                              hf__v4 y, hf__v4 z)
 {
-    hf__v4 t, dx, dy, dz;
+    hf__v4 d2;
     if (k->point) {
-        dx = HF__SUB(x, k->a[0]);
-        dy = HF__SUB(y, k->a[1]);
-        dz = HF__SUB(z, k->a[2]);
+        const hf__v4 dx = HF__SUB(x, k->a[0]), dy = HF__SUB(y, k->a[1]),
+                     dz = HF__SUB(z, k->a[2]);
+        d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);
     } else {
-        const hf__v4 zero = HF__SET1(0.0f), one = HF__SET1(1.0f);
-        t = HF__MUL(HF__DOT3(HF__SUB(x, k->a[0]), HF__SUB(y, k->a[1]),
-                             HF__SUB(z, k->a[2]), k->e[0], k->e[1], k->e[2]),
-                    k->inv);
-        /* t < 0 ? 0 : (t > 1 ? 1 : t), NaN and -0 kept as the scalar does */
-        t = HF__SEL(HF__LT(t, zero), zero, HF__SEL(HF__GT(t, one), one, t));
-        dx = HF__SUB(x, HF__ADD(k->a[0], HF__MUL(k->e[0], t)));
-        dy = HF__SUB(y, HF__ADD(k->a[1], HF__MUL(k->e[1], t)));
-        dz = HF__SUB(z, HF__ADD(k->a[2], HF__MUL(k->e[2], t)));
+        hf__v4 p[3], c[3];
+        p[0] = x;
+        p[1] = y;
+        p[2] = z;
+        d2 = hf__col_closest_v4(k, p, c);
     }
-    t = HF__DOT3(dx, dy, dz, dx, dy, dz);
-    return HF__MASK(HF__LT(t, k->rr2));
+    return HF__MASK(HF__LT(d2, k->rr2));
 }
 #endif
 
@@ -6113,26 +6129,6 @@ HF__PRIVATE void hf__ropes_mark_far_ref(const hf_ropes *ro, int j, int a,
    a few percent of a row, but each costs the scalar kernel a chain of
    some twenty square roots and divisions, so four at a time pays. */
 #define HF__OR4(a, b) HF__SEL(a, a, b) /* masks only */
-
-/* hf__col_closest on four points */
-HF__INLINE hf__v4 hf__col_closest_v4(const hf__col_prep4 *k, const hf__v4 *x,
-                                     hf__v4 *c)
-{
-    const hf__v4 zero = HF__SET1(0.0f), one = HF__SET1(1.0f);
-    hf__v4 t = HF__MUL(HF__DOT3(HF__SUB(x[0], k->a[0]),
-                                HF__SUB(x[1], k->a[1]),
-                                HF__SUB(x[2], k->a[2]), k->e[0], k->e[1],
-                                k->e[2]),
-                       k->inv),
-           d[3];
-    int i;
-    t = HF__SEL(HF__LT(t, zero), zero, HF__SEL(HF__GT(t, one), one, t));
-    for (i = 0; i < 3; ++i) {
-        c[i] = HF__ADD(k->a[i], HF__MUL(k->e[i], t));
-        d[i] = HF__SUB(x[i], c[i]);
-    }
-    return HF__DOT3(d[0], d[1], d[2], d[0], d[1], d[2]);
-}
 
 /* hf__ftl_penetration on four points; *any: the lanes some collider holds */
 HF__PRIVATE hf__v4 hf__ftl_penetration_v4(const hf__col_prep4 *k,
