@@ -6579,6 +6579,23 @@ hf__ropes_integrate_row_v4(hf_ropes *ro, const float *F, int j, int a, int b,
     }
 }
 
+/* Prefetch of what row j's integration and local shape read, for the 16
+   ropes (a cache line) from r. */
+HF__INLINE void hf__ropes_prefetch_row(const hf_ropes *ro, int j, int r)
+{
+    const size_t R = (size_t)ro->rope_count, o = (size_t)j * R + (size_t)r;
+    HF__PREFETCH(ro->x + o);
+    HF__PREFETCH(ro->y + o);
+    HF__PREFETCH(ro->z + o);
+    HF__PREFETCH(ro->px + o);
+    HF__PREFETCH(ro->py + o);
+    HF__PREFETCH(ro->pz + o);
+    HF__PREFETCH(ro->rest_u + o);
+    HF__PREFETCH(ro->rest_v + o);
+    HF__PREFETCH(ro->rest_w + o);
+    HF__PREFETCH(ro->rest_length + o - R);
+}
+
 /* Row j's local shape: segment m = j - 1's world rest direction into the
    scratch rows Q[m & 1] (the child direction q of point j + 1's turn, the
    parent direction p of point j + 2's), then point j turned as in
@@ -6643,20 +6660,8 @@ hf__ropes_local_row_v4(hf_ropes *ro, const float *F, int j, int a, int b,
             hf__v4 px_, py_, pz_, bx, by, bz, b2, ok, ia, ib, cc, kx, ky, kz,
                 kd, den, rx, ry, rz, x2, y2, z2;
             int all_ok;
-            if (pf && ((r - a) & 15) == 0) {
-                /* the next row, a cache line (16 ropes) at a time */
-                const size_t o = (size_t)(j + 1) * R + (size_t)r;
-                HF__PREFETCH(ro->x + o);
-                HF__PREFETCH(ro->y + o);
-                HF__PREFETCH(ro->z + o);
-                HF__PREFETCH(ro->px + o);
-                HF__PREFETCH(ro->py + o);
-                HF__PREFETCH(ro->pz + o);
-                HF__PREFETCH(ro->rest_u + o);
-                HF__PREFETCH(ro->rest_v + o);
-                HF__PREFETCH(ro->rest_w + o);
-                HF__PREFETCH(ro->rest_length + o - R);
-            }
+            if (pf && ((r - a) & 15) == 0) /* the next row */
+                hf__ropes_prefetch_row(ro, j + 1, r);
             bx = HF__SUB(x1, HF__LD(X0 + r));
             by = HF__SUB(y1, HF__LD(Y0 + r));
             bz = HF__SUB(z1, HF__LD(Z0 + r));
@@ -7039,20 +7044,8 @@ hf__ropes_local_row_avx2(hf_ropes *ro, const float *F, int j, int a, int b,
             __m256 px_, py_, pz_, bx, by, bz, b2, ok, ia, ib, cc, kx, ky,
                 kz, kd, den, rx, ry, rz, x2, y2, z2;
             int all_ok;
-            if (pf && ((r - a) & 15) == 0) {
-                /* the next row, a cache line (16 ropes) at a time */
-                const size_t o = (size_t)(j + 1) * R + (size_t)r;
-                HF__PREFETCH(ro->x + o);
-                HF__PREFETCH(ro->y + o);
-                HF__PREFETCH(ro->z + o);
-                HF__PREFETCH(ro->px + o);
-                HF__PREFETCH(ro->py + o);
-                HF__PREFETCH(ro->pz + o);
-                HF__PREFETCH(ro->rest_u + o);
-                HF__PREFETCH(ro->rest_v + o);
-                HF__PREFETCH(ro->rest_w + o);
-                HF__PREFETCH(ro->rest_length + o - R);
-            }
+            if (pf && ((r - a) & 15) == 0) /* the next row */
+                hf__ropes_prefetch_row(ro, j + 1, r);
             bx = HF__D8(x1, HF__L8(X0 + r));
             by = HF__D8(y1, HF__L8(Y0 + r));
             bz = HF__D8(z1, HF__L8(Z0 + r));

@@ -4561,7 +4561,6 @@ static void test_ropes_contacts_match_scalar(void)
                 col[c].a[k] = q[k] + 0.02f * T_RND() - 0.01f;
                 col[c].b[k] = col[c].a[k] + 0.16f * T_RND() - 0.08f;
             }
-            (void)T_RND();
         }
 #undef T_RND
         for (k = 0; k < NSET; ++k)
