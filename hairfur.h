@@ -2156,6 +2156,7 @@ typedef __m128 hf__v4;
 #define HF__AND(x, y) _mm_and_ps(x, y)
 #define HF__SEL(m, a, b) hf__sel_sse(m, a, b)
 #define HF__MASK(m) _mm_movemask_ps(m)
+#define HF__SET4(a, b, c, d) _mm_setr_ps(a, b, c, d) /* lanes 0..3 */
 #define HF__PREFETCH(p) _mm_prefetch((const char *)(p), _MM_HINT_T0)
 #elif HF__NEON
 typedef float32x4_t hf__v4;
@@ -2177,6 +2178,7 @@ typedef float32x4_t hf__v4;
         vandq_u32(vreinterpretq_u32_f32(x), vreinterpretq_u32_f32(y)))
 #define HF__SEL(m, a, b) vbslq_f32(vreinterpretq_u32_f32(m), a, b)
 #define HF__MASK(m) hf__mask_neon(m)
+#define HF__SET4(a, b, c, d) hf__set4_neon(a, b, c, d)
 #if defined(__GNUC__) || defined(__clang__)
 #define HF__PREFETCH(p) __builtin_prefetch(p)
 #else
@@ -2186,6 +2188,13 @@ HF__INLINE float32x4_t hf__max_neon(float32x4_t x,
                                                    float32x4_t y)
 {
     return vbslq_f32(vcgtq_f32(x, y), x, y);
+}
+HF__INLINE float32x4_t hf__set4_neon(float a, float b, float c, float d)
+{
+    float32x4_t v = vdupq_n_f32(a);
+    v = vsetq_lane_f32(b, v, 1);
+    v = vsetq_lane_f32(c, v, 2);
+    return vsetq_lane_f32(d, v, 3);
 }
 HF__INLINE int hf__mask_neon(float32x4_t m)
 {
@@ -4749,13 +4758,16 @@ HF__PRIVATE hf_result hf__ropes_check_roots(int first, int count,
         const float *p = hf__rope_at(pos, stride, (size_t)r);
         const float *n = hf__rope_at(nrm, stride, (size_t)r);
         const float *t = hf__rope_at(tan, stride, (size_t)r);
-        float u[3];
+        float u[1];
         for (k = 0; k < 3; ++k)
             if (!hf__finitef(p[k]) || !hf__finitef(n[k]) ||
                 !hf__finitef(t[k]))
                 return HF_ERROR_NON_FINITE;
         if (!hf__rope_coord_ok(p)) return HF_ERROR_BAD_PARAMETER;
-        if (!hf__rope_unit(n, u)) return HF_ERROR_DEGENERATE;
+        /* hf__rope_unit's zero test, without its divisions */
+        u[0] = HF_FABS(n[0]) > HF_FABS(n[1]) ? HF_FABS(n[0]) : HF_FABS(n[1]);
+        if (!((u[0] > HF_FABS(n[2]) ? u[0] : HF_FABS(n[2])) > 1e-30f))
+            return HF_ERROR_DEGENERATE;
     }
     return HF_OK;
 }
@@ -4777,12 +4789,100 @@ HF__PRIVATE void hf__rope_get_frame(const hf_ropes *ro, int row0, int r,
     for (k = 0; k < 12; ++k) f[k] = ro->frame[(size_t)(row0 + k) * R + r];
 }
 
+#if HF__V4
+/* hf__rope_unit on four vectors; returns the lanes it returns 1 for (the
+   others: anything in out) */
+HF__PRIVATE hf__v4 hf__rope_unit_v4(const hf__v4 *v, hf__v4 *out)
+{
+    const hf__v4 zero = HF__SET1(0.0f);
+    hf__v4 a[3], m, l2;
+    int k;
+    for (k = 0; k < 3; ++k) /* |v| (a -0 stays -0: only a zero m sees it) */
+        a[k] = HF__SEL(HF__LT(v[k], zero), HF__SUB(zero, v[k]), v[k]);
+    m = a[0];
+    m = HF__SEL(HF__GT(a[1], m), a[1], m);
+    m = HF__SEL(HF__GT(a[2], m), a[2], m);
+    for (k = 0; k < 3; ++k) out[k] = HF__DIV(v[k], m);
+    l2 = HF__DIV(HF__SET1(1.0f),
+                 HF__SQRT(HF__DOT3(out[0], out[1], out[2], out[0], out[1],
+                                   out[2])));
+    for (k = 0; k < 3; ++k) out[k] = HF__MUL(out[k], l2);
+    return HF__GT(m, HF__SET1(1e-30f));
+}
+
+/* hf__ropes_write_roots for ropes [r, r + 4): the same operations lane by
+   lane, so the same bytes; a degenerate tangent, rare, through
+   hf__rope_perp lane by lane. */
+HF__PRIVATE void hf__ropes_write_roots_v4(hf_ropes *ro, int r,
+                                          const float *pos, const float *nrm,
+                                          const float *tan, int stride)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const hf__v4 zero = HF__SET1(0.0f);
+    const float *in[3][4];
+    float g[6][4];
+    hf__v4 p[3], n[3], t[3], v[3], d, l2, ok;
+    int i, k, lanes;
+    for (i = 0; i < 4; ++i) {
+        in[0][i] = hf__rope_at(pos, stride, (size_t)(r + i));
+        in[1][i] = hf__rope_at(nrm, stride, (size_t)(r + i));
+        in[2][i] = hf__rope_at(tan, stride, (size_t)(r + i));
+    }
+#define HF__ROOT4(a, k) HF__SET4(in[a][0][k], in[a][1][k], in[a][2][k], in[a][3][k])
+    for (k = 0; k < 3; ++k) {
+        p[k] = HF__ROOT4(0, k);
+        v[k] = HF__ROOT4(1, k);
+    }
+    hf__rope_unit_v4(v, n); /* checked: not zero */
+    for (k = 0; k < 3; ++k) v[k] = HF__ROOT4(2, k);
+#undef HF__ROOT4
+    ok = hf__rope_unit_v4(v, t);
+    for (k = 0; k < 3; ++k) t[k] = HF__AND(ok, t[k]);
+    /* hf__rope_basis */
+    d = HF__DOT3(n[0], n[1], n[2], t[0], t[1], t[2]);
+    for (k = 0; k < 3; ++k) t[k] = HF__SUB(t[k], HF__MUL(n[k], d));
+    l2 = HF__DOT3(t[0], t[1], t[2], t[0], t[1], t[2]);
+    ok = HF__GT(l2, HF__SET1(1e-10f));
+    l2 = HF__DIV(HF__SET1(1.0f), HF__SQRT(l2));
+    for (k = 0; k < 3; ++k) t[k] = HF__SEL(ok, HF__MUL(t[k], l2), zero);
+    lanes = HF__MASK(ok) ^ 15;
+    if (lanes) {
+        for (k = 0; k < 3; ++k) {
+            HF__ST(g[k], n[k]);
+            HF__ST(g[3 + k], t[k]);
+        }
+        for (i = 0; i < 4; ++i)
+            if ((lanes >> i) & 1) {
+                float nl[3], tl[3];
+                for (k = 0; k < 3; ++k) nl[k] = g[k][i];
+                hf__rope_perp(nl, tl);
+                for (k = 0; k < 3; ++k) g[3 + k][i] = tl[k];
+            }
+        for (k = 0; k < 3; ++k) t[k] = HF__LD(g[3 + k]);
+    }
+    /* f = p, t, n, t x n */
+    v[0] = HF__SUB(HF__MUL(t[1], n[2]), HF__MUL(t[2], n[1]));
+    v[1] = HF__SUB(HF__MUL(t[2], n[0]), HF__MUL(t[0], n[2]));
+    v[2] = HF__SUB(HF__MUL(t[0], n[1]), HF__MUL(t[1], n[0]));
+    for (k = 0; k < 3; ++k) {
+        HF__ST(ro->frame + (size_t)k * R + (size_t)r, p[k]);
+        HF__ST(ro->frame + (size_t)(3 + k) * R + (size_t)r, t[k]);
+        HF__ST(ro->frame + (size_t)(6 + k) * R + (size_t)r, n[k]);
+        HF__ST(ro->frame + (size_t)(9 + k) * R + (size_t)r, v[k]);
+    }
+}
+#endif
+
 HF__PRIVATE void hf__ropes_write_roots(hf_ropes *ro, int first, int count,
                                        const float *pos, const float *nrm,
                                        const float *tan, int stride)
 {
-    int r;
-    for (r = first; r < first + count; ++r) {
+    int r = first;
+#if HF__V4
+    for (; r + 4 <= first + count; r += 4)
+        hf__ropes_write_roots_v4(ro, r, pos, nrm, tan, stride);
+#endif
+    for (; r < first + count; ++r) {
         float n[3], t[3], f[12];
         const float *tin = hf__rope_at(tan, stride, (size_t)r);
         hf__rope_unit(hf__rope_at(nrm, stride, (size_t)r), n);

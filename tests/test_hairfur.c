@@ -4446,6 +4446,71 @@ static void t_ropes_lanes(int solver)
    8 * length + 0.01 m of its root is reset whole, at every level and in
    every lane (groups of eight, four, the tail); every other rope goes on
    as if nothing happened. */
+/* hf_ropes_set_roots writes four ropes at a time: every lane must give
+   the bytes the one-rope path gives, for normals and tangents of any
+   scale, tangents zero, tiny or along the normal, and a byte stride. */
+static void test_ropes_set_roots_lanes(void)
+{
+    enum { R = 23, P = 3, S = 7 }; /* stride S floats */
+    static float rest[3 * R * P];
+    float root[S * R], nrm[S * R], tan[S * R];
+    tr_set s[2];
+    uint32_t seed = 12345u;
+    int r, k, row, same = 1, unit = 1;
+#define TR_RND() \
+    ((float)((seed = seed * 1664525u + 1013904223u) >> 8) * (1.0f / 16777216.0f))
+    for (k = 0; k < 2; ++k)
+        if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
+    for (r = 0; r < R; ++r) {
+        const float scale = r % 5 == 0 ? 1e-20f : (r % 5 == 1 ? 3e20f : 1.0f);
+        for (k = 0; k < 3; ++k) {
+            root[S * r + k] = 2.0f * TR_RND() - 1.0f;
+            nrm[S * r + k] = scale * (2.0f * TR_RND() - 1.0f);
+            tan[S * r + k] = 2.0f * TR_RND() - 1.0f;
+        }
+        switch (r % 6) {
+        case 0: tan[S * r] = tan[S * r + 1] = tan[S * r + 2] = 0.0f; break;
+        case 2: /* along the normal */
+            for (k = 0; k < 3; ++k) tan[S * r + k] = -4.0f * nrm[S * r + k];
+            break;
+        case 4: for (k = 0; k < 3; ++k) tan[S * r + k] *= 1e-30f; break;
+        case 5: /* nearly along it: about the 1e-10 cut of the basis */
+            for (k = 0; k < 3; ++k)
+                tan[S * r + k] = nrm[S * r + k] * (1.0f + 4e-6f * tan[S * r + k]);
+            break;
+        default: break;
+        }
+        nrm[S * r + r % 3] = r % 7 == 3 ? 0.0f : nrm[S * r + r % 3];
+    }
+    for (r = 0; r < R; ++r)
+        for (k = 0; k < 3 * P; ++k) rest[3 * r * P + k] = root[S * r + k % 3];
+    for (k = 0; k < 2; ++k)
+        CHECK_EQ_INT(hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm,
+                                       tan, S * 4),
+                     HF_OK);
+    CHECK_EQ_INT(hf_ropes_set_roots(&s[0].ro, 0, R, root, nrm, tan, S * 4),
+                 HF_OK);
+    for (r = R - 1; r >= 0; --r)
+        CHECK_EQ_INT(hf_ropes_set_roots(&s[1].ro, r, 1, root, nrm, tan, S * 4),
+                     HF_OK);
+    for (row = 0; row < 12; ++row)
+        same &= memcmp(s[0].ro.frame + row * R, s[1].ro.frame + row * R,
+                       sizeof(float) * R) == 0;
+    for (r = 0; r < R; ++r) { /* t, n, b orthonormal */
+        float f[12];
+        for (row = 0; row < 12; ++row) f[row] = s[0].ro.frame[row * R + r];
+        for (k = 3; k < 12; k += 3) {
+            const float l = f[k] * f[k] + f[k + 1] * f[k + 1] + f[k + 2] * f[k + 2];
+            unit &= fabsf(l - 1.0f) < 1e-5f;
+        }
+        unit &= fabsf(f[3] * f[6] + f[4] * f[7] + f[5] * f[8]) < 1e-5f;
+    }
+#undef TR_RND
+    CHECK(same);
+    CHECK(unit);
+    for (k = 0; k < 2; ++k) tr_close(&s[k]);
+}
+
 static void test_ropes_safety_net_resets(void)
 {
     enum { R = 29, P = 6, NSET = 4 };
@@ -9394,6 +9459,7 @@ int main(void)
     RUN(test_ropes_get_positions);
     RUN(test_ropes_simd_lanes_match_scalar);
     RUN(test_ropes_contacts_match_scalar);
+    RUN(test_ropes_set_roots_lanes);
     RUN(test_ropes_safety_net_resets);
     RUN(test_defaults_zeroed_rope_params_are_init);
     RUN(test_defaults_explicit_zero);
