@@ -2099,7 +2099,11 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
    HF__INLINE              small kernels whose arguments must stay in
                            registers (forced inline);
    HF__NOINLINE            cold paths kept out of a hot loop;
-   HF__RESTRICT            the rope kernels' non-aliasing rows. */
+   HF__RESTRICT            the rope kernels' non-aliasing rows;
+   HF__UNROLL              before a kernel's short loop over x, y, z:
+                           gcc -O2 unrolls a loop only where the code does
+                           not grow, and a loop kept leaves its vectors on
+                           the stack (the rope contacts ran 1.3x slower). */
 #if defined(__GNUC__) || defined(__clang__)
 #define HF__UNUSED __attribute__((unused))
 #define HF__PRINTF(f, a) __attribute__((format(printf, f, a)))
@@ -2117,6 +2121,13 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 #define HF__NOINLINE
 #endif
 #define HF__PRIVATE static HF__UNUSED
+#if defined(__clang__)
+#define HF__UNROLL _Pragma("unroll")
+#elif defined(__GNUC__) && __GNUC__ >= 8
+#define HF__UNROLL _Pragma("GCC unroll 4")
+#else
+#define HF__UNROLL
+#endif
 #if defined(__GNUC__) || defined(__clang__) || defined(_MSC_VER)
 #define HF__RESTRICT __restrict
 #else
@@ -5390,19 +5401,26 @@ HF__PRIVATE hf__col_prep hf__collider_prep(const hf_collider *c, float margin)
     return k;
 }
 
-/* The point c of the collider's axis closest to (x, y, z) (the centre for
-   a sphere), and the offset d = p - c; returns |d|^2. One definition for
-   every collision kernel, so they agree to the bit. */
+/* The point c of the collider's axis closest to (x, y, z) (the centre a
+   for a point axis: a sphere, or a capsule of zero length), and the offset
+   d = p - c; returns |d|^2. One definition for every collision kernel, so
+   they agree to the bit. */
 HF__PRIVATE float hf__col_closest(const hf__col_prep *k, float x, float y,
                                   float z, float *c, float *d)
 {
-    float t = ((x - k->a[0]) * k->e[0] + (y - k->a[1]) * k->e[1] +
-               (z - k->a[2]) * k->e[2]) *
-              k->inv;
-    t = t < 0.0f ? 0.0f : (t > 1.0f ? 1.0f : t);
-    c[0] = k->a[0] + k->e[0] * t;
-    c[1] = k->a[1] + k->e[1] * t;
-    c[2] = k->a[2] + k->e[2] * t;
+    if (k->e[0] == 0.0f && k->e[1] == 0.0f && k->e[2] == 0.0f) {
+        c[0] = k->a[0];
+        c[1] = k->a[1];
+        c[2] = k->a[2];
+    } else {
+        float t = ((x - k->a[0]) * k->e[0] + (y - k->a[1]) * k->e[1] +
+                   (z - k->a[2]) * k->e[2]) *
+                  k->inv;
+        t = t < 0.0f ? 0.0f : (t > 1.0f ? 1.0f : t);
+        c[0] = k->a[0] + k->e[0] * t;
+        c[1] = k->a[1] + k->e[1] * t;
+        c[2] = k->a[2] + k->e[2] * t;
+    }
     d[0] = x - c[0];
     d[1] = y - c[1];
     d[2] = z - c[2];
@@ -5434,38 +5452,36 @@ HF__PRIVATE void hf__col_prep_v4(const hf__col_prep *k,
     v->shrink = k->inner > 0.0f;
 }
 
-/* Which of four points hf__col_closest finds inside radius rr (bit i:
-   lane i), from its |d|^2: the kernels run the scalar code on exactly the
-   points it would act on, and skip the rest (most points, most steps).
-   For a point axis, c = a + 0 * t equals a up to the sign of a zero (or is
-   NaN only where x - a already is infinite or NaN), so |x - a|^2 is the
-   same |d|^2 and the same decision. */
 /* hf__col_closest on four points */
 HF__INLINE hf__v4 hf__col_closest_v4(const hf__col_prep4 *k, const hf__v4 *x,
                                      hf__v4 *c)
 {
     const hf__v4 zero = HF__SET1(0.0f), one = HF__SET1(1.0f);
-    hf__v4 t = HF__MUL(HF__DOT3(HF__SUB(x[0], k->a[0]),
-                                HF__SUB(x[1], k->a[1]),
-                                HF__SUB(x[2], k->a[2]), k->e[0], k->e[1],
-                                k->e[2]),
-                       k->inv),
-           d[3];
+    hf__v4 t, d[3];
     int i;
-    /* t < 0 ? 0 : (t > 1 ? 1 : t), NaN and -0 kept as the scalar does */
-    t = HF__SEL(HF__LT(t, zero), zero, HF__SEL(HF__GT(t, one), one, t));
-    for (i = 0; i < 3; ++i) {
-        c[i] = HF__ADD(k->a[i], HF__MUL(k->e[i], t));
-        d[i] = HF__SUB(x[i], c[i]);
+    if (k->point) {
+        HF__UNROLL for (i = 0; i < 3; ++i) c[i] = k->a[i];
+    } else {
+        t = HF__MUL(HF__DOT3(HF__SUB(x[0], k->a[0]), HF__SUB(x[1], k->a[1]),
+                             HF__SUB(x[2], k->a[2]), k->e[0], k->e[1],
+                             k->e[2]),
+                    k->inv);
+        /* t < 0 ? 0 : (t > 1 ? 1 : t), NaN and -0 kept as the scalar does */
+        t = HF__SEL(HF__LT(t, zero), zero, HF__SEL(HF__GT(t, one), one, t));
+        HF__UNROLL for (i = 0; i < 3; ++i) c[i] = HF__ADD(k->a[i], HF__MUL(k->e[i], t));
     }
+    HF__UNROLL for (i = 0; i < 3; ++i) d[i] = HF__SUB(x[i], c[i]);
     return HF__DOT3(d[0], d[1], d[2], d[0], d[1], d[2]);
 }
 
+/* Which of four points hf__col_closest finds inside radius rr (bit i:
+   lane i), from its |d|^2: the kernels run the scalar code on exactly the
+   points it would act on, and skip the rest (most points, most steps). */
 HF__INLINE int hf__col_hits_v4(const hf__col_prep4 *k, hf__v4 x,
                                              hf__v4 y, hf__v4 z)
 {
     hf__v4 d2;
-    if (k->point) {
+    if (k->point) { /* hf__col_closest_v4 without its c */
         const hf__v4 dx = HF__SUB(x, k->a[0]), dy = HF__SUB(y, k->a[1]),
                      dz = HF__SUB(z, k->a[2]);
         d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);
@@ -6231,7 +6247,7 @@ HF__PRIVATE void hf__ropes_mark_far_ref(const hf_ropes *ro, int j, int a,
 #define HF__OR4(a, b) HF__SEL(a, a, b) /* masks only */
 
 /* hf__ftl_penetration on four points; *any: the lanes some collider holds */
-HF__PRIVATE hf__v4 hf__ftl_penetration_v4(const hf__col_prep4 *k,
+HF__INLINE hf__v4 hf__ftl_penetration_v4(const hf__col_prep4 *k,
                                           const hf__v4 *rr, int ncol,
                                           const hf__v4 *q, hf__v4 *any)
 {
@@ -6258,11 +6274,11 @@ HF__PRIVATE void hf__ftl_cap_v4(const hf__v4 *p, hf__v4 l, const hf__v4 *c,
     const hf__v4 zero = HF__SET1(0.0f), one = HF__SET1(1.0f);
     hf__v4 rho2, rho, big, cm;
     int k;
-    for (k = 0; k < 3; ++k) m[k] = HF__SUB(p[k], c[k]);
+    HF__UNROLL for (k = 0; k < 3; ++k) m[k] = HF__SUB(p[k], c[k]);
     rho2 = HF__DOT3(m[0], m[1], m[2], m[0], m[1], m[2]);
     big = HF__GT(rho2, HF__SET1(1e-24f));
     rho = HF__SEL(big, HF__SQRT(rho2), zero);
-    for (k = 0; k < 3; ++k) m[k] = HF__SEL(big, HF__DIV(m[k], rho), n[k]);
+    HF__UNROLL for (k = 0; k < 3; ++k) m[k] = HF__SEL(big, HF__DIV(m[k], rho), n[k]);
     rr = HF__ADD(rr, HF__MUL(HF__SET1(1e-6f), HF__ADD(rr, l)));
     cm = HF__DIV(HF__SUB(HF__SUB(HF__MUL(rr, rr), HF__MUL(rho, rho)),
                          HF__MUL(l, l)),
@@ -6276,9 +6292,9 @@ HF__PRIVATE void hf__ftl_cap_v4(const hf__v4 *p, hf__v4 l, const hf__v4 *c,
 HF__INLINE hf__v4 hf__perp_part_v4(hf__v4 *v, const hf__v4 *m)
 {
     int pass, k;
-    for (pass = 0; pass < 2; ++pass) {
+    HF__UNROLL for (pass = 0; pass < 2; ++pass) {
         const hf__v4 vm = HF__DOT3(v[0], v[1], v[2], m[0], m[1], m[2]);
-        for (k = 0; k < 3; ++k) v[k] = HF__SUB(v[k], HF__MUL(m[k], vm));
+        HF__UNROLL for (k = 0; k < 3; ++k) v[k] = HF__SUB(v[k], HF__MUL(m[k], vm));
     }
     return HF__DOT3(v[0], v[1], v[2], v[0], v[1], v[2]);
 }
@@ -6291,13 +6307,13 @@ HF__PRIVATE void hf__ftl_onto_cap_v4(const hf__v4 *u, const hf__v4 *m,
     const hf__v4 tiny = HF__SET1(1e-8f);
     hf__v4 v[3], w[3], v2, w2, low, s;
     int k, lanes;
-    for (k = 0; k < 3; ++k) v[k] = u[k];
+    HF__UNROLL for (k = 0; k < 3; ++k) v[k] = u[k];
     v2 = hf__perp_part_v4(v, m);
     low = HF__LT(v2, tiny);
     if (HF__MASK(low)) {
-        for (k = 0; k < 3; ++k) w[k] = t[k];
+        HF__UNROLL for (k = 0; k < 3; ++k) w[k] = t[k];
         w2 = hf__perp_part_v4(w, m);
-        for (k = 0; k < 3; ++k) v[k] = HF__SEL(low, w[k], v[k]);
+        HF__UNROLL for (k = 0; k < 3; ++k) v[k] = HF__SEL(low, w[k], v[k]);
         v2 = HF__SEL(low, w2, v2);
         lanes = HF__MASK(HF__AND(low, HF__LT(w2, tiny)));
         if (lanes) {
@@ -6320,7 +6336,7 @@ HF__PRIVATE void hf__ftl_onto_cap_v4(const hf__v4 *u, const hf__v4 *m,
     }
     s = HF__DIV(HF__SQRT(HF__SUB(HF__SET1(1.0f), HF__MUL(cmin, cmin))),
                 HF__SQRT(v2));
-    for (k = 0; k < 3; ++k)
+    HF__UNROLL for (k = 0; k < 3; ++k)
         d[k] = HF__ADD(HF__MUL(m[k], cmin), HF__MUL(v[k], s));
 }
 
@@ -6344,12 +6360,12 @@ HF__PRIVATE hf__v4 hf__ftl_cap_pair_v4(const hf__v4 *m1, hf__v4 c1,
     g2 = HF__DIV(HF__SUB(one, h2), det);
     ok = HF__AND(ok, HF__LE(HF__SET1(0.0f), g2));
     g2 = HF__SQRT(g2);
-    for (k = 0; k < 3; ++k) {
+    HF__UNROLL for (k = 0; k < 3; ++k) {
         const hf__v4 b = HF__ADD(HF__MUL(al, m1[k]), HF__MUL(be, m2[k]));
         d[k] = HF__ADD(b, HF__MUL(g2, x[k]));
         d[3 + k] = HF__SUB(b, HF__MUL(g2, x[k]));
     }
-    for (k = 0; k < 2; ++k) {
+    HF__UNROLL for (k = 0; k < 2; ++k) {
         hf__v4 *dk = d + 3 * k,
                n2 = HF__DOT3(dk[0], dk[1], dk[2], dk[0], dk[1], dk[2]);
         ok = HF__AND(ok, HF__AND(HF__GT(n2, HF__SET1(0.25f)),
@@ -6365,37 +6381,29 @@ HF__PRIVATE hf__v4 hf__ftl_cap_pair_v4(const hf__v4 *m1, hf__v4 c1,
 /* hf__ropes_collide_ftl_row for point row j of ropes idx[0 .. 4) (any
    ropes: the points in contact, gathered) against colliders k[0 .. ncol),
    ncol <= HF__ROPE_PREP. */
-HF__PRIVATE void hf__ftl_collide_v4(hf_ropes *ro, const float *F, int j,
-                                    const int *idx, const hf__col_prep4 *k,
-                                    int ncol)
+HF__INLINE void hf__ftl_collide_v4_in(hf_ropes *ro, const float *F, int j,
+                                      const int *idx, const hf__col_prep4 *k,
+                                      int ncol)
 {
     const size_t R = (size_t)ro->rope_count, o0 = (size_t)(j - 1) * R;
     const hf__v4 zero = HF__SET1(0.0f);
-    float g[16][4];
+    float g[3][4];
     hf__v4 l, p[3], q[3], root[3], n[3], t[3], u[3], best[3],
         rr[HF__ROPE_PREP], m[2 * HF__ROPE_PREP][3], cmin[2 * HF__ROPE_PREP],
         act, best_pen, best_dot, bd, big;
     int c, e, i, w, round, ncap;
-    for (i = 0; i < 4; ++i) {
-        const size_t r = (size_t)idx[i];
-        for (c = 0; c < 3; ++c) {
-            const float *X = c == 0 ? ro->x : c == 1 ? ro->y : ro->z;
-            g[c][i] = X[o0 + r];
-            g[3 + c][i] = X[o0 + R + r];
-            g[6 + c][i] = X[r];
-            g[9 + c][i] = F[(size_t)(3 + c) * R + r];
-            g[12 + c][i] = F[(size_t)(6 + c) * R + r];
-        }
-        g[15][i] = ro->rest_length[o0 + r];
+#define HF__GATHER4(row) HF__SET4((row)[idx[0]], (row)[idx[1]], (row)[idx[2]], \
+                                  (row)[idx[3]])
+    HF__UNROLL for (c = 0; c < 3; ++c) {
+        const float *X = c == 0 ? ro->x : c == 1 ? ro->y : ro->z;
+        p[c] = HF__GATHER4(X + o0);
+        q[c] = HF__GATHER4(X + o0 + R);
+        root[c] = HF__GATHER4(X);
+        t[c] = HF__GATHER4(F + (size_t)(3 + c) * R);
+        n[c] = HF__GATHER4(F + (size_t)(6 + c) * R);
     }
-    for (i = 0; i < 3; ++i) {
-        p[i] = HF__LD(g[i]);
-        q[i] = HF__LD(g[3 + i]);
-        root[i] = HF__LD(g[6 + i]);
-        t[i] = HF__LD(g[9 + i]);
-        n[i] = HF__LD(g[12 + i]);
-    }
-    l = HF__LD(g[15]);
+    l = HF__GATHER4(ro->rest_length + o0);
+#undef HF__GATHER4
     /* hf__col_radius_for */
     for (c = 0; c < ncol; ++c) {
         hf__v4 cc[3];
@@ -6408,11 +6416,11 @@ HF__PRIVATE void hf__ftl_collide_v4(hf_ropes *ro, const float *F, int j,
     best_pen = hf__ftl_penetration_v4(k, rr, ncol, q, &act);
     act = HF__AND(act, HF__GT(l, zero));
     if (!HF__MASK(act)) return;
-    for (i = 0; i < 3; ++i) u[i] = HF__SUB(q[i], p[i]);
+    HF__UNROLL for (i = 0; i < 3; ++i) u[i] = HF__SUB(q[i], p[i]);
     bd = HF__DOT3(u[0], u[1], u[2], u[0], u[1], u[2]);
     big = HF__GT(bd, HF__SET1(1e-24f));
     bd = HF__DIV(HF__SET1(1.0f), HF__SQRT(bd));
-    for (i = 0; i < 3; ++i) {
+    HF__UNROLL for (i = 0; i < 3; ++i) {
         u[i] = HF__SEL(big, HF__MUL(u[i], bd), n[i]);
         best[i] = q[i];
     }
@@ -6422,7 +6430,7 @@ HF__PRIVATE void hf__ftl_collide_v4(hf_ropes *ro, const float *F, int j,
         const hf__v4 pen0 = best_pen;
         act = HF__AND(act, HF__GT(best_pen, zero));
         if (!HF__MASK(act)) break;
-        for (i = 0; i < 3; ++i)
+        HF__UNROLL for (i = 0; i < 3; ++i)
             from[i] = round == 0 ? u[i] : HF__DIV(HF__SUB(best[i], p[i]), l);
         ncap = 0;
         for (c = 0; c < ncol; ++c) {
@@ -6456,7 +6464,7 @@ HF__PRIVATE void hf__ftl_collide_v4(hf_ropes *ro, const float *F, int j,
                 for (i = 0; i < nd; ++i) {
                     const hf__v4 *di = d + 3 * i;
                     hf__v4 cand[3], pen, dot, up, hold;
-                    for (w = 0; w < 3; ++w)
+                    HF__UNROLL for (w = 0; w < 3; ++w)
                         cand[w] = HF__ADD(p[w], HF__MUL(l, di[w]));
                     pen = hf__ftl_penetration_v4(k, rr, ncol, cand, &hold);
                     dot = HF__DOT3(di[0], di[1], di[2], u[0], u[1], u[2]);
@@ -6466,19 +6474,33 @@ HF__PRIVATE void hf__ftl_collide_v4(hf_ropes *ro, const float *F, int j,
                     up = HF__AND(HF__AND(act, valid), up);
                     best_pen = HF__SEL(up, pen, best_pen);
                     best_dot = HF__SEL(up, dot, best_dot);
-                    for (w = 0; w < 3; ++w)
+                    HF__UNROLL for (w = 0; w < 3; ++w)
                         best[w] = HF__SEL(up, cand[w], best[w]);
                 }
             }
         act = HF__AND(act, HF__LT(best_pen, pen0)); /* no progress: done */
     }
-    for (c = 0; c < 3; ++c) HF__ST(g[c], best[c]);
+    HF__UNROLL for (c = 0; c < 3; ++c) HF__ST(g[c], best[c]);
     for (i = 0; i < 4; ++i) {
         const size_t o = o0 + R + (size_t)idx[i];
         ro->x[o] = g[0][i];
         ro->y[o] = g[1][i];
         ro->z[o] = g[2][i];
     }
+}
+
+/* One and two colliders, the common cases, as constants: the compiler
+   unrolls the collider loops and keeps the caps in registers. */
+HF__PRIVATE void hf__ftl_collide_v4(hf_ropes *ro, const float *F, int j,
+                                    const int *idx, const hf__col_prep4 *k,
+                                    int ncol)
+{
+    if (ncol == 1)
+        hf__ftl_collide_v4_in(ro, F, j, idx, k, 1);
+    else if (ncol == 2)
+        hf__ftl_collide_v4_in(ro, F, j, idx, k, 2);
+    else
+        hf__ftl_collide_v4_in(ro, F, j, idx, k, ncol);
 }
 
 /* The points of a row in contact, resolved four at a time when the list
