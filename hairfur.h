@@ -4770,7 +4770,7 @@ HF__PRIVATE hf_result hf__ropes_check_roots(int first, int count,
         const float *n = hf__rope_at(nrm, stride, (size_t)r);
         const float *t = hf__rope_at(tan, stride, (size_t)r);
         float u[1];
-        for (k = 0; k < 3; ++k)
+        HF__UNROLL for (k = 0; k < 3; ++k)
             if (!hf__finitef(p[k]) || !hf__finitef(n[k]) ||
                 !hf__finitef(t[k]))
                 return HF_ERROR_NON_FINITE;
@@ -4808,16 +4808,16 @@ HF__PRIVATE hf__v4 hf__rope_unit_v4(const hf__v4 *v, hf__v4 *out)
     const hf__v4 zero = HF__SET1(0.0f);
     hf__v4 a[3], m, l2;
     int k;
-    for (k = 0; k < 3; ++k) /* |v| (a -0 stays -0: only a zero m sees it) */
+    HF__UNROLL for (k = 0; k < 3; ++k) /* |v| (a -0 stays -0: only a zero m sees it) */
         a[k] = HF__SEL(HF__LT(v[k], zero), HF__SUB(zero, v[k]), v[k]);
     m = a[0];
     m = HF__SEL(HF__GT(a[1], m), a[1], m);
     m = HF__SEL(HF__GT(a[2], m), a[2], m);
-    for (k = 0; k < 3; ++k) out[k] = HF__DIV(v[k], m);
+    HF__UNROLL for (k = 0; k < 3; ++k) out[k] = HF__DIV(v[k], m);
     l2 = HF__DIV(HF__SET1(1.0f),
                  HF__SQRT(HF__DOT3(out[0], out[1], out[2], out[0], out[1],
                                    out[2])));
-    for (k = 0; k < 3; ++k) out[k] = HF__MUL(out[k], l2);
+    HF__UNROLL for (k = 0; k < 3; ++k) out[k] = HF__MUL(out[k], l2);
     return HF__GT(m, HF__SET1(1e-30f));
 }
 
@@ -4834,28 +4834,28 @@ HF__PRIVATE void hf__ropes_write_roots_v4(hf_ropes *ro, int r,
     float g[6][4];
     hf__v4 p[3], n[3], t[3], v[3], d, l2, ok;
     int i, k, lanes;
-    for (i = 0; i < 4; ++i) {
+    HF__UNROLL for (i = 0; i < 4; ++i) {
         in[0][i] = hf__rope_at(pos, stride, (size_t)(r + i));
         in[1][i] = hf__rope_at(nrm, stride, (size_t)(r + i));
         in[2][i] = hf__rope_at(tan, stride, (size_t)(r + i));
     }
 #define HF__ROOT4(a, k) HF__SET4(in[a][0][k], in[a][1][k], in[a][2][k], in[a][3][k])
-    for (k = 0; k < 3; ++k) {
+    HF__UNROLL for (k = 0; k < 3; ++k) {
         p[k] = HF__ROOT4(0, k);
         v[k] = HF__ROOT4(1, k);
     }
     hf__rope_unit_v4(v, n); /* checked: not zero */
-    for (k = 0; k < 3; ++k) v[k] = HF__ROOT4(2, k);
+    HF__UNROLL for (k = 0; k < 3; ++k) v[k] = HF__ROOT4(2, k);
 #undef HF__ROOT4
     ok = hf__rope_unit_v4(v, t);
-    for (k = 0; k < 3; ++k) t[k] = HF__AND(ok, t[k]);
+    HF__UNROLL for (k = 0; k < 3; ++k) t[k] = HF__AND(ok, t[k]);
     /* hf__rope_basis */
     d = HF__DOT3(n[0], n[1], n[2], t[0], t[1], t[2]);
-    for (k = 0; k < 3; ++k) t[k] = HF__SUB(t[k], HF__MUL(n[k], d));
+    HF__UNROLL for (k = 0; k < 3; ++k) t[k] = HF__SUB(t[k], HF__MUL(n[k], d));
     l2 = HF__DOT3(t[0], t[1], t[2], t[0], t[1], t[2]);
     ok = HF__GT(l2, HF__SET1(1e-10f));
     l2 = HF__DIV(HF__SET1(1.0f), HF__SQRT(l2));
-    for (k = 0; k < 3; ++k) t[k] = HF__SEL(ok, HF__MUL(t[k], l2), zero);
+    HF__UNROLL for (k = 0; k < 3; ++k) t[k] = HF__SEL(ok, HF__MUL(t[k], l2), zero);
     lanes = HF__MASK(ok) ^ 15;
     if (lanes) {
         for (k = 0; k < 3; ++k) {
@@ -4875,7 +4875,7 @@ HF__PRIVATE void hf__ropes_write_roots_v4(hf_ropes *ro, int r,
     v[0] = HF__SUB(HF__MUL(t[1], n[2]), HF__MUL(t[2], n[1]));
     v[1] = HF__SUB(HF__MUL(t[2], n[0]), HF__MUL(t[0], n[2]));
     v[2] = HF__SUB(HF__MUL(t[0], n[1]), HF__MUL(t[1], n[0]));
-    for (k = 0; k < 3; ++k) {
+    HF__UNROLL for (k = 0; k < 3; ++k) {
         HF__ST(ro->frame + (size_t)k * R + (size_t)r, p[k]);
         HF__ST(ro->frame + (size_t)(3 + k) * R + (size_t)r, t[k]);
         HF__ST(ro->frame + (size_t)(6 + k) * R + (size_t)r, n[k]);
@@ -8201,7 +8201,7 @@ HF__PRIVATE hf_result hf__ribbon_check(const hf_ribbon_strands *strands,
     if (!hf__range_ok(first, count) || p->out_first < 0 ||
         first < p->out_first)
         return HF_ERROR_BAD_RANGE;
-    for (k = 0; k < 3; ++k)
+    HF__UNROLL for (k = 0; k < 3; ++k)
         if (!hf__finitef(p->eye[k]) || !hf__finitef(p->view_dir[k]))
             return HF_ERROR_NON_FINITE;
     if (!hf__finitef(p->root_width) || !hf__finitef(p->tip_width) ||
@@ -8361,7 +8361,7 @@ HF__PRIVATE int hf__side_precise(hf__rframe *fr, const float *pts, int j,
 {
     double t[3], v[3], c[3], c2, v2;
     int k;
-    for (k = 0; k < 3; ++k) {
+    HF__UNROLL for (k = 0; k < 3; ++k) {
         t[k] = (double)fr->t[k][4 + j];
         v[k] = params->orthographic
                    ? -(double)params->view_dir[k]
@@ -8374,7 +8374,7 @@ HF__PRIVATE int hf__side_precise(hf__rframe *fr, const float *pts, int j,
     v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
     if (!(c2 > 1e-12 * v2 && c2 > 1e-300 && c2 < 1e300)) return 0;
     c2 = 1.0 / HF_SQRT(c2);
-    for (k = 0; k < 3; ++k) fr->s[k][4 + j] = (float)(c[k] * c2);
+    HF__UNROLL for (k = 0; k < 3; ++k) fr->s[k][4 + j] = (float)(c[k] * c2);
     return 1;
 }
 
@@ -8385,20 +8385,20 @@ HF__PRIVATE void hf__side_borrow(hf__rframe *fr, int j, int from)
 {
     float t[3], s[3], st, l2;
     int k;
-    for (k = 0; k < 3; ++k) {
+    HF__UNROLL for (k = 0; k < 3; ++k) {
         t[k] = fr->t[k][4 + j];
         s[k] = fr->s[k][4 + from];
     }
     st = hf__dot3(s, t);
-    for (k = 0; k < 3; ++k) s[k] -= st * t[k];
+    HF__UNROLL for (k = 0; k < 3; ++k) s[k] -= st * t[k];
     l2 = hf__dot3(s, s);
     if (l2 > 1e-12f) {
         l2 = 1.0f / HF_SQRTF(l2);
-        for (k = 0; k < 3; ++k) s[k] *= l2;
+        HF__UNROLL for (k = 0; k < 3; ++k) s[k] *= l2;
     } else {
         hf__any_perp(t, s);
     }
-    for (k = 0; k < 3; ++k) fr->s[k][4 + j] = s[k];
+    HF__UNROLL for (k = 0; k < 3; ++k) fr->s[k][4 + j] = s[k];
 }
 
 /* The reference: unit tangents and sides of one strand, a point at a time
@@ -8413,9 +8413,9 @@ HF__PRIVATE void hf__strand_frame_ref(const float *pts, int P,
     const int ortho = params->orthographic != 0, end = ((P + 7) & ~7) + 8;
     int j, k, first_t = -1, first_ok = -1;
     if (P < 2 || P > HF_MAX_POINTS) return; /* checked by the callers */
-    for (k = 0; k < 3; ++k) {
+    HF__UNROLL for (k = 0; k < 3; ++k) {
         float *row = fr->p[k];
-        for (j = 0; j < 4; ++j) row[j] = pts[k];
+        HF__UNROLL for (j = 0; j < 4; ++j) row[j] = pts[k];
         for (j = 0; j < P; ++j) row[4 + j] = pts[3 * j + k];
         for (j = 4 + P; j < end; ++j) row[j] = pts[3 * (P - 1) + k];
     }
@@ -8436,11 +8436,11 @@ HF__PRIVATE void hf__strand_frame_ref(const float *pts, int P,
             last[2] = d[3 * j + 2] * inv[j];
             if (first_t < 0) first_t = j;
         }
-        for (k = 0; k < 3; ++k) fr->t[k][4 + j] = last[k];
+        HF__UNROLL for (k = 0; k < 3; ++k) fr->t[k][4 + j] = last[k];
     }
     /* points before the first that has a tangent take that one */
     for (j = first_t - 1; j >= 0; --j)
-        for (k = 0; k < 3; ++k) fr->t[k][4 + j] = fr->t[k][5 + j];
+        HF__UNROLL for (k = 0; k < 3; ++k) fr->t[k][4 + j] = fr->t[k][5 + j];
     /* sides: cross(a, v), v = eye - p or -view_dir, a the difference d
        where the point has a tangent of its own (so the side need not wait
        for the tangent's normalisation: the kernels run both at once), else
@@ -8453,7 +8453,7 @@ HF__PRIVATE void hf__strand_frame_ref(const float *pts, int P,
         const int own = l2[j] > 1e-30f && hf__finitef(l2[j]);
         const float a2 = own ? l2[j] : 1.0f;
         float v[3], a[3];
-        for (k = 0; k < 3; ++k) {
+        HF__UNROLL for (k = 0; k < 3; ++k) {
             a[k] = own ? d[3 * j + k] : fr->t[k][4 + j];
             v[k] = ortho ? -params->view_dir[k]
                          : params->eye[k] - pts[3 * j + k];
@@ -8469,7 +8469,7 @@ HF__PRIVATE void hf__strand_frame_ref(const float *pts, int P,
     hf__inv_sqrt_n(inv, inv, P);
     for (j = 0; j < P; ++j) {
         if (l2[j] > 0.0f)
-            for (k = 0; k < 3; ++k) fr->s[k][4 + j] = d[3 * j + k] * inv[j];
+            HF__UNROLL for (k = 0; k < 3; ++k) fr->s[k][4 + j] = d[3 * j + k] * inv[j];
         else if (hf__side_precise(fr, pts, j, params))
             l2[j] = 1.0f;
         else
@@ -8479,9 +8479,9 @@ HF__PRIVATE void hf__strand_frame_ref(const float *pts, int P,
     if (first_ok < 0) {
         /* no point has a side: a fixed perpendicular of the tangent */
         float t0[3], s0[3];
-        for (k = 0; k < 3; ++k) t0[k] = fr->t[k][4];
+        HF__UNROLL for (k = 0; k < 3; ++k) t0[k] = fr->t[k][4];
         hf__any_perp(t0, s0);
-        for (k = 0; k < 3; ++k) fr->s[k][4] = s0[k];
+        HF__UNROLL for (k = 0; k < 3; ++k) fr->s[k][4] = s0[k];
         first_ok = 0;
         l2[0] = 1.0f;
     }
@@ -8492,7 +8492,7 @@ HF__PRIVATE void hf__strand_frame_ref(const float *pts, int P,
         if (l2[j] < 0.0f) hf__side_borrow(fr, j, j - 1);
     for (j = first_ok - 1; j >= 0; --j) hf__side_borrow(fr, j, j + 1);
     for (j = 4 + P; j < end - 4; ++j)
-        for (k = 0; k < 3; ++k) {
+        HF__UNROLL for (k = 0; k < 3; ++k) {
             fr->t[k][j] = fr->t[k][3 + P];
             fr->s[k][j] = fr->s[k][3 + P];
         }
@@ -8576,8 +8576,8 @@ HF__PRIVATE int hf__strand_frame_v4(const float *pts, int P,
             const int n = P - 4 * k;
             float r[3][4];
             int i;
-            for (i = 0; i < 4; ++i)
-                for (c = 0; c < 3; ++c)
+            HF__UNROLL for (i = 0; i < 4; ++i)
+                HF__UNROLL for (c = 0; c < 3; ++c)
                     r[c][i] = pts[3 * (4 * k + (i < n ? i : n - 1)) + c];
             X = HF__LD(r[0]);
             Y = HF__LD(r[1]);
@@ -8595,7 +8595,7 @@ HF__PRIVATE int hf__strand_frame_v4(const float *pts, int P,
         return 0;
     }
     *finite = 1;
-    for (c = 0; c < 3; ++c) {
+    HF__UNROLL for (c = 0; c < 3; ++c) {
         HF__ST(fr->p[c], HF__SET1(pts[c]));
         HF__ST(fr->p[c] + 4 + 4 * G, HF__SET1(pts[3 * (P - 1) + c]));
         e[c] = HF__SET1(ortho ? -params->view_dir[c] : params->eye[c]);
@@ -8604,7 +8604,7 @@ HF__PRIVATE int hf__strand_frame_v4(const float *pts, int P,
         const int o = 4 + 4 * k;
         const int live = HF__MASK(HF__LT(lane, HF__SET1((float)(P - 4 * k))));
         hf__v4 d[3], t[3], v[3], s[3], l2, c2, vv, ok, ok2, inv;
-        for (c = 0; c < 3; ++c) {
+        HF__UNROLL for (c = 0; c < 3; ++c) {
             const float *r = fr->p[c] + o;
             const hf__v4 cur = HF__LD(r);
             d[c] = HF__SUB(hf__next_v4(cur, HF__LD(r + 4)),
@@ -8615,7 +8615,7 @@ HF__PRIVATE int hf__strand_frame_v4(const float *pts, int P,
         ok = HF__AND(HF__GT(l2, tiny), HF__LE(l2, big));
         /* 1 where undefined: no division by zero for any lane */
         inv = HF__DIV(one, HF__SQRT(HF__SEL(ok, l2, one)));
-        for (c = 0; c < 3; ++c) t[c] = HF__MUL(d[c], inv);
+        HF__UNROLL for (c = 0; c < 3; ++c) t[c] = HF__MUL(d[c], inv);
         s[0] = HF__SUB(HF__MUL(d[1], v[2]), HF__MUL(d[2], v[1]));
         s[1] = HF__SUB(HF__MUL(d[2], v[0]), HF__MUL(d[0], v[2]));
         s[2] = HF__SUB(HF__MUL(d[0], v[1]), HF__MUL(d[1], v[0]));
@@ -8625,7 +8625,7 @@ HF__PRIVATE int hf__strand_frame_v4(const float *pts, int P,
                       HF__AND(HF__GT(c2, tiny), HF__LE(c2, big)));
         bad |= live & ~HF__MASK(HF__AND(ok, ok2));
         inv = HF__DIV(one, HF__SQRT(HF__SEL(ok2, c2, one)));
-        for (c = 0; c < 3; ++c) {
+        HF__UNROLL for (c = 0; c < 3; ++c) {
             HF__ST(fr->t[c] + o, t[c]);
             HF__ST(fr->s[c] + o, HF__MUL(s[c], inv));
         }
@@ -8703,7 +8703,7 @@ hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
             float r[3][8];
             int i;
             for (i = 0; i < 8; ++i)
-                for (c = 0; c < 3; ++c)
+                HF__UNROLL for (c = 0; c < 3; ++c)
                     r[c][i] = pts[3 * (8 * k + (i < n ? i : n - 1)) + c];
             X = _mm256_loadu_ps(r[0]);
             Y = _mm256_loadu_ps(r[1]);
@@ -8724,7 +8724,7 @@ hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
         return 0;
     }
     *finite = 1;
-    for (c = 0; c < 3; ++c) {
+    HF__UNROLL for (c = 0; c < 3; ++c) {
         _mm_storeu_ps(fr->p[c], _mm_set1_ps(pts[c]));
         tip[c] = pts[3 * (P - 1) + c];
         e[c] = ortho ? -params->view_dir[c] : params->eye[c];
@@ -9009,7 +9009,7 @@ HF__INLINE void hf__emit_pair_sse(unsigned char *o, size_t st, int n,
 {
     int i, side;
     if (fmt == HF_FORMAT_F32) {
-        for (side = 0; side < 2; ++side) {
+        HF__UNROLL for (side = 0; side < 2; ++side) {
             const __m128 *c = side ? R : L;
             unsigned char *b = o + (size_t)side * st;
             if (nc < 4) {
@@ -9089,7 +9089,7 @@ HF__PRIVATE void hf__ribbon_write_ref(const hf__rframe *fr, int P,
         float a[4], b[4];
         if (ro->base[HF__S_POS]) {
             const float w = K->hw[j] * str->wscale;
-            for (c = 0; c < 3; ++c) {
+            HF__UNROLL for (c = 0; c < 3; ++c) {
                 const float p = fr->p[c][4 + j], sw = fr->s[c][4 + j] * w;
                 a[c] = ((p - sw) - ro->origin[c]) * ro->inv_scale;
                 b[c] = ((p + sw) - ro->origin[c]) * ro->inv_scale;
@@ -9100,7 +9100,7 @@ HF__PRIVATE void hf__ribbon_write_ref(const hf__rframe *fr, int P,
             if (!ro->base[q]) continue;
             switch (q) { /* the same on both sides */
             case HF__S_TAN:
-                for (c = 0; c < 3; ++c) a[c] = fr->t[c][4 + j];
+                HF__UNROLL for (c = 0; c < 3; ++c) a[c] = fr->t[c][4 + j];
                 break;
             case HF__S_TEX:
                 a[0] = str->uv[0];
@@ -9108,7 +9108,7 @@ HF__PRIVATE void hf__ribbon_write_ref(const hf__rframe *fr, int P,
                 a[2] = K->tt[j];
                 break;
             case HF__S_COL:
-                for (c = 0; c < 3; ++c) a[c] = str->rgba[c];
+                HF__UNROLL for (c = 0; c < 3; ++c) a[c] = str->rgba[c];
                 a[3] = str->rgba[3] * K->fade[j];
                 break;
             default: /* HF__S_C3D */
@@ -9189,7 +9189,7 @@ HF__INLINE void hf__ribbon_sides_sse(const hf__rframe *fr, int o, __m128 w,
                                   __m128 *R)
 {
     int c;
-    for (c = 0; c < 3; ++c) {
+    HF__UNROLL for (c = 0; c < 3; ++c) {
         const __m128 p = _mm_loadu_ps(fr->p[c] + o);
         const __m128 sw = _mm_mul_ps(_mm_loadu_ps(fr->s[c] + o), w);
         const __m128 og = _mm_set1_ps(ro->origin[c]);
@@ -9208,7 +9208,7 @@ HF__INLINE void hf__stream_values_sse(int q, const hf__rframe *fr,
     int c;
     switch (q) {
     case HF__S_TAN:
-        for (c = 0; c < 3; ++c) v[c] = _mm_loadu_ps(fr->t[c] + 4 + 4 * k);
+        HF__UNROLL for (c = 0; c < 3; ++c) v[c] = _mm_loadu_ps(fr->t[c] + 4 + 4 * k);
         break;
     case HF__S_TEX:
         v[0] = _mm_set1_ps(str->uv[0]);
@@ -9216,7 +9216,7 @@ HF__INLINE void hf__stream_values_sse(int q, const hf__rframe *fr,
         v[2] = tt;
         break;
     case HF__S_COL:
-        for (c = 0; c < 3; ++c) v[c] = _mm_set1_ps(str->rgba[c]);
+        HF__UNROLL for (c = 0; c < 3; ++c) v[c] = _mm_set1_ps(str->rgba[c]);
         v[3] = _mm_mul_ps(_mm_set1_ps(str->rgba[3]),
                           _mm_loadu_ps(K->fade + 4 * k));
         break;
@@ -9267,7 +9267,7 @@ HF__PRIVATE void hf__ribbon_write_sse(const hf__rframe *fr, int P,
             const __m128 w = _mm_mul_ps(_mm_loadu_ps(K->hw + 4 * k), ws);
             __m128 T[3];
             hf__ribbon_sides_sse(fr, o, w, ro, is, L, R);
-            for (c = 0; c < 3; ++c) T[c] = _mm_loadu_ps(fr->t[c] + o);
+            HF__UNROLL for (c = 0; c < 3; ++c) T[c] = _mm_loadu_ps(fr->t[c] + o);
             hf__put_run_sse(b, st, n, L, R, T, run == 3 ? str->uv : NULL,
                         K->tt + 4 * k);
         }
@@ -9455,7 +9455,7 @@ HF__PRIVATE void hf__emit_pair_neon(unsigned char *o, size_t st, int n,
 {
     const int size = hf_format_bytes(fmt);
     int side, i, c;
-    for (side = 0; side < 2; ++side) {
+    HF__UNROLL for (side = 0; side < 2; ++side) {
         const float32x4_t *v = side ? R : L;
         uint32_t lane[4][4];
         for (c = 0; c < nc; ++c)
@@ -9496,7 +9496,7 @@ hf__ribbon_write_neon(const hf__rframe *fr, int P, const hf__rconst *K,
         const float32x4_t w = vmulq_f32(vld1q_f32(K->hw + 4 * k), ws);
         const float32x4_t tt = vld1q_f32(K->tt + 4 * k);
         float32x4_t L[4], R[4], T[4], V[4];
-        for (c = 0; c < 3; ++c) {
+        HF__UNROLL for (c = 0; c < 3; ++c) {
             const float32x4_t p = vld1q_f32(fr->p[c] + o);
             const float32x4_t sw = vmulq_f32(vld1q_f32(fr->s[c] + o), w);
             const float32x4_t og = vdupq_n_f32(ro->origin[c]);
@@ -9549,7 +9549,7 @@ hf__ribbon_write_neon(const hf__rframe *fr, int P, const hf__rconst *K,
                 V[2] = tt;
                 break;
             case HF__S_COL:
-                for (c = 0; c < 3; ++c) V[c] = vdupq_n_f32(str->rgba[c]);
+                HF__UNROLL for (c = 0; c < 3; ++c) V[c] = vdupq_n_f32(str->rgba[c]);
                 V[3] = vmulq_f32(vdupq_n_f32(str->rgba[3]),
                                  vld1q_f32(K->fade + 4 * k));
                 break;
@@ -9715,7 +9715,7 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
                                                    : size * hf__stream_nc[k]);
         ro.fmt[k] = streams[k]->format;
     }
-    for (k = 0; k < 3; ++k) {
+    HF__UNROLL for (k = 0; k < 3; ++k) {
         if (!hf__finitef(out->position_origin[k])) return HF_ERROR_NON_FINITE;
         if (out->position_origin[k] > HF_MAX_ABS ||
             out->position_origin[k] < -HF_MAX_ABS)
@@ -9750,11 +9750,11 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
         hf__rstrand str;
         hf__strand_frame(pts, P, params, &fr, &str.wscale, level);
         str.wscale *= hf__strand_width(strands, s);
-        for (k = 0; k < 2; ++k)
+        HF__UNROLL for (k = 0; k < 2; ++k)
             str.uv[k] = strands->root_uv
                           ? hf__fin0(strands->root_uv[2 * (size_t)s + k])
                           : 0.0f;
-        for (k = 0; k < 4; ++k)
+        HF__UNROLL for (k = 0; k < 4; ++k)
             str.rgba[k] = strands->color
                             ? hf__fin0(strands->color[4 * (size_t)s + k])
                             : 1.0f;
