@@ -2217,6 +2217,13 @@ HF__INLINE int hf__mask_neon(float32x4_t m)
 /* a x + b y + c z, added left to right as the scalar code does */
 #define HF__DOT3(a, b, c, x, y, z)                                             \
     HF__ADD(HF__ADD(HF__MUL(a, x), HF__MUL(b, y)), HF__MUL(c, z))
+/* o = a x b on three rows of lanes, in hf__cross3's order */
+#define HF__CROSS3(o, a, b)                                                    \
+    do {                                                                       \
+        (o)[0] = HF__SUB(HF__MUL((a)[1], (b)[2]), HF__MUL((a)[2], (b)[1]));    \
+        (o)[1] = HF__SUB(HF__MUL((a)[2], (b)[0]), HF__MUL((a)[0], (b)[2]));    \
+        (o)[2] = HF__SUB(HF__MUL((a)[0], (b)[1]), HF__MUL((a)[1], (b)[0]));    \
+    } while (0)
 /* o + a x + b y + c z, likewise */
 #define HF__POSE(o, a, b, c, x, y, z)                                          \
     HF__ADD(HF__ADD(HF__ADD(o, HF__MUL(a, x)), HF__MUL(b, y)), HF__MUL(c, z))
@@ -4691,13 +4698,22 @@ HF__PRIVATE void hf__rope_perp(const float *n, float *out)
     out[2] *= d;
 }
 
+/* The largest |v[k]|; hf__rope_unit takes v as zero where it is not above
+   1e-30. */
+HF__PRIVATE float hf__rope_absmax(const float *v)
+{
+    float m = HF_FABS(v[0]);
+    if (HF_FABS(v[1]) > m) m = HF_FABS(v[1]);
+    if (HF_FABS(v[2]) > m) m = HF_FABS(v[2]);
+    return m;
+}
+
 /* Normalise v (finite) into out, scaling first so no square overflows.
    Returns 0 (out untouched) for a zero vector. */
 HF__PRIVATE int hf__rope_unit(const float *v, float *out)
 {
-    float m = HF_FABS(v[0]), s[3], l2;
-    if (HF_FABS(v[1]) > m) m = HF_FABS(v[1]);
-    if (HF_FABS(v[2]) > m) m = HF_FABS(v[2]);
+    const float m = hf__rope_absmax(v);
+    float s[3], l2;
     if (!(m > 1e-30f)) return 0;
     s[0] = v[0] / m;
     s[1] = v[1] / m;
@@ -4769,16 +4785,13 @@ HF__PRIVATE hf_result hf__ropes_check_roots(int first, int count,
         const float *p = hf__rope_at(pos, stride, (size_t)r);
         const float *n = hf__rope_at(nrm, stride, (size_t)r);
         const float *t = hf__rope_at(tan, stride, (size_t)r);
-        float u[1];
         HF__UNROLL for (k = 0; k < 3; ++k)
             if (!hf__finitef(p[k]) || !hf__finitef(n[k]) ||
                 !hf__finitef(t[k]))
                 return HF_ERROR_NON_FINITE;
         if (!hf__rope_coord_ok(p)) return HF_ERROR_BAD_PARAMETER;
         /* hf__rope_unit's zero test, without its divisions */
-        u[0] = HF_FABS(n[0]) > HF_FABS(n[1]) ? HF_FABS(n[0]) : HF_FABS(n[1]);
-        if (!((u[0] > HF_FABS(n[2]) ? u[0] : HF_FABS(n[2])) > 1e-30f))
-            return HF_ERROR_DEGENERATE;
+        if (!(hf__rope_absmax(n) > 1e-30f)) return HF_ERROR_DEGENERATE;
     }
     return HF_OK;
 }
@@ -4871,10 +4884,7 @@ HF__PRIVATE void hf__ropes_write_roots_v4(hf_ropes *ro, int r,
             }
         for (k = 0; k < 3; ++k) t[k] = HF__LD(g[3 + k]);
     }
-    /* f = p, t, n, t x n */
-    v[0] = HF__SUB(HF__MUL(t[1], n[2]), HF__MUL(t[2], n[1]));
-    v[1] = HF__SUB(HF__MUL(t[2], n[0]), HF__MUL(t[0], n[2]));
-    v[2] = HF__SUB(HF__MUL(t[0], n[1]), HF__MUL(t[1], n[0]));
+    HF__CROSS3(v, t, n); /* f = p, t, n, t x n */
     HF__UNROLL for (k = 0; k < 3; ++k) {
         HF__ST(ro->frame + (size_t)k * R + (size_t)r, p[k]);
         HF__ST(ro->frame + (size_t)(3 + k) * R + (size_t)r, t[k]);
@@ -6352,9 +6362,7 @@ HF__PRIVATE hf__v4 hf__ftl_cap_pair_v4(const hf__v4 *m1, hf__v4 c1,
                  be = HF__DIV(HF__SUB(c2, HF__MUL(mu, c1)), det);
     hf__v4 x[3], h2, g2, ok = HF__GT(det, HF__SET1(1e-8f));
     int k;
-    x[0] = HF__SUB(HF__MUL(m1[1], m2[2]), HF__MUL(m1[2], m2[1]));
-    x[1] = HF__SUB(HF__MUL(m1[2], m2[0]), HF__MUL(m1[0], m2[2]));
-    x[2] = HF__SUB(HF__MUL(m1[0], m2[1]), HF__MUL(m1[1], m2[0]));
+    HF__CROSS3(x, m1, m2);
     h2 = HF__ADD(HF__ADD(HF__MUL(al, al), HF__MUL(be, be)),
                  HF__MUL(HF__MUL(HF__MUL(HF__SET1(2.0f), al), be), mu));
     g2 = HF__DIV(HF__SUB(one, h2), det);
@@ -8201,7 +8209,7 @@ HF__PRIVATE hf_result hf__ribbon_check(const hf_ribbon_strands *strands,
     if (!hf__range_ok(first, count) || p->out_first < 0 ||
         first < p->out_first)
         return HF_ERROR_BAD_RANGE;
-    HF__UNROLL for (k = 0; k < 3; ++k)
+    for (k = 0; k < 3; ++k)
         if (!hf__finitef(p->eye[k]) || !hf__finitef(p->view_dir[k]))
             return HF_ERROR_NON_FINITE;
     if (!hf__finitef(p->root_width) || !hf__finitef(p->tip_width) ||
@@ -8361,7 +8369,7 @@ HF__PRIVATE int hf__side_precise(hf__rframe *fr, const float *pts, int j,
 {
     double t[3], v[3], c[3], c2, v2;
     int k;
-    HF__UNROLL for (k = 0; k < 3; ++k) {
+    for (k = 0; k < 3; ++k) {
         t[k] = (double)fr->t[k][4 + j];
         v[k] = params->orthographic
                    ? -(double)params->view_dir[k]
@@ -8374,7 +8382,7 @@ HF__PRIVATE int hf__side_precise(hf__rframe *fr, const float *pts, int j,
     v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
     if (!(c2 > 1e-12 * v2 && c2 > 1e-300 && c2 < 1e300)) return 0;
     c2 = 1.0 / HF_SQRT(c2);
-    HF__UNROLL for (k = 0; k < 3; ++k) fr->s[k][4 + j] = (float)(c[k] * c2);
+    for (k = 0; k < 3; ++k) fr->s[k][4 + j] = (float)(c[k] * c2);
     return 1;
 }
 
@@ -8385,20 +8393,20 @@ HF__PRIVATE void hf__side_borrow(hf__rframe *fr, int j, int from)
 {
     float t[3], s[3], st, l2;
     int k;
-    HF__UNROLL for (k = 0; k < 3; ++k) {
+    for (k = 0; k < 3; ++k) {
         t[k] = fr->t[k][4 + j];
         s[k] = fr->s[k][4 + from];
     }
     st = hf__dot3(s, t);
-    HF__UNROLL for (k = 0; k < 3; ++k) s[k] -= st * t[k];
+    for (k = 0; k < 3; ++k) s[k] -= st * t[k];
     l2 = hf__dot3(s, s);
     if (l2 > 1e-12f) {
         l2 = 1.0f / HF_SQRTF(l2);
-        HF__UNROLL for (k = 0; k < 3; ++k) s[k] *= l2;
+        for (k = 0; k < 3; ++k) s[k] *= l2;
     } else {
         hf__any_perp(t, s);
     }
-    HF__UNROLL for (k = 0; k < 3; ++k) fr->s[k][4 + j] = s[k];
+    for (k = 0; k < 3; ++k) fr->s[k][4 + j] = s[k];
 }
 
 /* The reference: unit tangents and sides of one strand, a point at a time
@@ -8479,9 +8487,9 @@ HF__PRIVATE void hf__strand_frame_ref(const float *pts, int P,
     if (first_ok < 0) {
         /* no point has a side: a fixed perpendicular of the tangent */
         float t0[3], s0[3];
-        HF__UNROLL for (k = 0; k < 3; ++k) t0[k] = fr->t[k][4];
+        for (k = 0; k < 3; ++k) t0[k] = fr->t[k][4];
         hf__any_perp(t0, s0);
-        HF__UNROLL for (k = 0; k < 3; ++k) fr->s[k][4] = s0[k];
+        for (k = 0; k < 3; ++k) fr->s[k][4] = s0[k];
         first_ok = 0;
         l2[0] = 1.0f;
     }
@@ -8616,9 +8624,7 @@ HF__PRIVATE int hf__strand_frame_v4(const float *pts, int P,
         /* 1 where undefined: no division by zero for any lane */
         inv = HF__DIV(one, HF__SQRT(HF__SEL(ok, l2, one)));
         HF__UNROLL for (c = 0; c < 3; ++c) t[c] = HF__MUL(d[c], inv);
-        s[0] = HF__SUB(HF__MUL(d[1], v[2]), HF__MUL(d[2], v[1]));
-        s[1] = HF__SUB(HF__MUL(d[2], v[0]), HF__MUL(d[0], v[2]));
-        s[2] = HF__SUB(HF__MUL(d[0], v[1]), HF__MUL(d[1], v[0]));
+        HF__CROSS3(s, d, v);
         c2 = HF__DOT3(s[0], s[1], s[2], s[0], s[1], s[2]);
         vv = HF__DOT3(v[0], v[1], v[2], v[0], v[1], v[2]);
         ok2 = HF__AND(HF__GT(c2, HF__MUL(HF__MUL(side_sin2, vv), l2)),
