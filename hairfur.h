@@ -5437,75 +5437,6 @@ HF__PRIVATE float hf__col_closest(const hf__col_prep *k, float x, float y,
     return d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
 }
 
-#if HF__V4
-/* A prepared collider in every lane, rr^2, and whether its axis is a point
-   (e == 0: a sphere or a zero-length capsule). */
-typedef struct hf__col_prep4 {
-    hf__v4 a[3], e[3], inv, rr2, rr, inner;
-    int point, capsule, shrink;
-} hf__col_prep4;
-
-HF__PRIVATE void hf__col_prep_v4(const hf__col_prep *k,
-                                               hf__col_prep4 *v)
-{
-    int i;
-    for (i = 0; i < 3; ++i) {
-        v->a[i] = HF__SET1(k->a[i]);
-        v->e[i] = HF__SET1(k->e[i]);
-    }
-    v->inv = HF__SET1(k->inv);
-    v->rr2 = HF__SET1(k->rr * k->rr);
-    v->rr = HF__SET1(k->rr);
-    v->inner = HF__SET1(k->inner);
-    v->point = k->e[0] == 0.0f && k->e[1] == 0.0f && k->e[2] == 0.0f;
-    v->capsule = k->inv > 0.0f;
-    v->shrink = k->inner > 0.0f;
-}
-
-/* hf__col_closest on four points */
-HF__INLINE hf__v4 hf__col_closest_v4(const hf__col_prep4 *k, const hf__v4 *x,
-                                     hf__v4 *c)
-{
-    const hf__v4 zero = HF__SET1(0.0f), one = HF__SET1(1.0f);
-    hf__v4 t, d[3];
-    int i;
-    if (k->point) {
-        HF__UNROLL for (i = 0; i < 3; ++i) c[i] = k->a[i];
-    } else {
-        t = HF__MUL(HF__DOT3(HF__SUB(x[0], k->a[0]), HF__SUB(x[1], k->a[1]),
-                             HF__SUB(x[2], k->a[2]), k->e[0], k->e[1],
-                             k->e[2]),
-                    k->inv);
-        /* t < 0 ? 0 : (t > 1 ? 1 : t), NaN and -0 kept as the scalar does */
-        t = HF__SEL(HF__LT(t, zero), zero, HF__SEL(HF__GT(t, one), one, t));
-        HF__UNROLL for (i = 0; i < 3; ++i) c[i] = HF__ADD(k->a[i], HF__MUL(k->e[i], t));
-    }
-    HF__UNROLL for (i = 0; i < 3; ++i) d[i] = HF__SUB(x[i], c[i]);
-    return HF__DOT3(d[0], d[1], d[2], d[0], d[1], d[2]);
-}
-
-/* Which of four points hf__col_closest finds inside radius rr (bit i:
-   lane i), from its |d|^2: the kernels run the scalar code on exactly the
-   points it would act on, and skip the rest (most points, most steps). */
-HF__INLINE int hf__col_hits_v4(const hf__col_prep4 *k, hf__v4 x,
-                                             hf__v4 y, hf__v4 z)
-{
-    hf__v4 d2;
-    if (k->point) { /* hf__col_closest_v4 without its c */
-        const hf__v4 dx = HF__SUB(x, k->a[0]), dy = HF__SUB(y, k->a[1]),
-                     dz = HF__SUB(z, k->a[2]);
-        d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);
-    } else {
-        hf__v4 p[3], c[3];
-        p[0] = x;
-        p[1] = y;
-        p[2] = z;
-        d2 = hf__col_closest_v4(k, p, c);
-    }
-    return HF__MASK(HF__LT(d2, k->rr2));
-}
-#endif
-
 /* A point inside the collider goes straight out to its surface: along
    the offset from the closest axis point, or at the very axis along the
    root normal n (any fixed choice; this one is the rope's). */
@@ -6247,376 +6178,436 @@ HF__PRIVATE void hf__ropes_mark_far_ref(const hf_ropes *ro, int j, int a,
 
 #if HF__V4
 
-/* The follow-the-leader collision of hf__ftl_collide_point on four ropes
-   at once, the same operations in the same order per lane, so every lane
+/* The follow-the-leader collision of hf__ftl_collide_point on W ropes at
+   once, the same operations in the same order per lane, so every lane
    gets the scalar kernel's bytes: the steps that branch in the scalar code
    run on every lane and a select keeps each lane's own branch; a lane
    whose point is outside, or done, keeps its value. Points in contact are
    a few percent of a row, but each costs the scalar kernel a chain of
-   some twenty square roots and divisions, so four at a time pays. */
-#define HF__OR4(a, b) HF__SEL(a, a, b) /* masks only */
+   some twenty square roots and divisions, so W at a time pays.
 
-/* hf__ftl_penetration on four points; *any: the lanes some collider holds */
-HF__INLINE hf__v4 hf__ftl_penetration_v4(const hf__col_prep4 *k,
-                                          const hf__v4 *rr, int ncol,
-                                          const hf__v4 *q, hf__v4 *any)
-{
-    hf__v4 worst = HF__SET1(0.0f), hit_any = HF__LT(worst, worst), c3[3];
-    int c;
-    for (c = 0; c < ncol; ++c) {
-        const hf__v4 d2 = hf__col_closest_v4(k + c, q, c3);
-        const hf__v4 hit = HF__LT(d2, HF__MUL(rr[c], rr[c]));
-        const hf__v4 pen = HF__SUB(rr[c], HF__SQRT(d2));
-        const hf__v4 up =
-            HF__SEL(hit_any, HF__AND(hit, HF__GT(pen, worst)), hit);
-        worst = HF__SEL(up, pen, worst);
-        hit_any = HF__OR4(hit, hit_any);
-    }
-    *any = hit_any;
-    return worst;
-}
+   These kernels are written once, for any lane width, in HF__FTL_KERNELS,
+   and built for four lanes below (hf__v4: SSE2, NEON) and for eight in
+   the AVX2 section. S names the width in every name (v4, v8), V is its
+   vector, W its lanes, T its functions' target attribute, G(row, idx)
+   gathers row[idx[0 .. W)] into a vector, and Z readies the registers for
+   the scalar code of the rare paths. They use the four-lane operations'
+   names (HF__ADD, ...), which the eight-lane build maps to AVX2 while it
+   expands. */
+#define HF__OR(a, b) HF__SEL(a, a, b) /* masks only */
 
-/* hf__ftl_cap on four lanes */
-HF__PRIVATE void hf__ftl_cap_v4(const hf__v4 *p, hf__v4 l, const hf__v4 *c,
-                                hf__v4 rr, const hf__v4 *n, hf__v4 *m,
-                                hf__v4 *cmin)
-{
-    const hf__v4 zero = HF__SET1(0.0f), one = HF__SET1(1.0f);
-    hf__v4 rho2, rho, big, cm;
-    int k;
-    HF__UNROLL for (k = 0; k < 3; ++k) m[k] = HF__SUB(p[k], c[k]);
-    rho2 = HF__DOT3(m[0], m[1], m[2], m[0], m[1], m[2]);
-    big = HF__GT(rho2, HF__SET1(1e-24f));
-    rho = HF__SEL(big, HF__SQRT(rho2), zero);
-    HF__UNROLL for (k = 0; k < 3; ++k) m[k] = HF__SEL(big, HF__DIV(m[k], rho), n[k]);
-    rr = HF__ADD(rr, HF__MUL(HF__SET1(1e-6f), HF__ADD(rr, l)));
-    cm = HF__DIV(HF__SUB(HF__SUB(HF__MUL(rr, rr), HF__MUL(rho, rho)),
-                         HF__MUL(l, l)),
-                 HF__MUL(HF__MUL(HF__SET1(2.0f), l), rho));
-    cm = HF__SEL(HF__GT(rho, zero), cm, one);
-    *cmin = HF__SEL(HF__GT(cm, one), one,
-                    HF__SEL(HF__LT(cm, HF__SET1(-1.0f)), HF__SET1(-1.0f), cm));
-}
-
-/* hf__perp_part on four lanes */
-HF__INLINE hf__v4 hf__perp_part_v4(hf__v4 *v, const hf__v4 *m)
-{
-    int pass, k;
-    HF__UNROLL for (pass = 0; pass < 2; ++pass) {
-        const hf__v4 vm = HF__DOT3(v[0], v[1], v[2], m[0], m[1], m[2]);
-        HF__UNROLL for (k = 0; k < 3; ++k) v[k] = HF__SUB(v[k], HF__MUL(m[k], vm));
-    }
-    return HF__DOT3(v[0], v[1], v[2], v[0], v[1], v[2]);
-}
-
-/* hf__ftl_onto_cap on four lanes; the fixed perpendicular, rare, lane by
-   lane through the scalar code */
-HF__PRIVATE void hf__ftl_onto_cap_v4(const hf__v4 *u, const hf__v4 *m,
-                                     hf__v4 cmin, const hf__v4 *t, hf__v4 *d)
-{
-    const hf__v4 tiny = HF__SET1(1e-8f);
-    hf__v4 v[3], w[3], v2, w2, low, s;
-    int k, lanes;
-    HF__UNROLL for (k = 0; k < 3; ++k) v[k] = u[k];
-    v2 = hf__perp_part_v4(v, m);
-    low = HF__LT(v2, tiny);
-    if (HF__MASK(low)) {
-        HF__UNROLL for (k = 0; k < 3; ++k) w[k] = t[k];
-        w2 = hf__perp_part_v4(w, m);
-        HF__UNROLL for (k = 0; k < 3; ++k) v[k] = HF__SEL(low, w[k], v[k]);
-        v2 = HF__SEL(low, w2, v2);
-        lanes = HF__MASK(HF__AND(low, HF__LT(w2, tiny)));
-        if (lanes) {
-            float mm[3][4], vv[3][4], vv2[4], ml[3], vl[3];
-            int i;
-            for (k = 0; k < 3; ++k) {
-                HF__ST(mm[k], m[k]);
-                HF__ST(vv[k], v[k]);
-            }
-            HF__ST(vv2, v2);
-            for (i = 0; i < 4; ++i)
-                if ((lanes >> i) & 1) {
-                    for (k = 0; k < 3; ++k) ml[k] = mm[k][i];
-                    vv2[i] = hf__perp_fixed(ml, vl);
-                    for (k = 0; k < 3; ++k) vv[k][i] = vl[k];
-                }
-            for (k = 0; k < 3; ++k) v[k] = HF__LD(vv[k]);
-            v2 = HF__LD(vv2);
-        }
-    }
-    s = HF__DIV(HF__SQRT(HF__SUB(HF__SET1(1.0f), HF__MUL(cmin, cmin))),
-                HF__SQRT(v2));
-    HF__UNROLL for (k = 0; k < 3; ++k)
-        d[k] = HF__ADD(HF__MUL(m[k], cmin), HF__MUL(v[k], s));
-}
-
-/* hf__ftl_cap_pair on four lanes: both crossings in d[0..5]; returns the
-   lanes where the scalar code returns 2 */
-HF__PRIVATE hf__v4 hf__ftl_cap_pair_v4(const hf__v4 *m1, hf__v4 c1,
-                                       const hf__v4 *m2, hf__v4 c2, hf__v4 *d)
-{
-    const hf__v4 one = HF__SET1(1.0f);
-    const hf__v4 mu = HF__DOT3(m1[0], m1[1], m1[2], m2[0], m2[1], m2[2]);
-    const hf__v4 det = HF__SUB(one, HF__MUL(mu, mu));
-    const hf__v4 al = HF__DIV(HF__SUB(c1, HF__MUL(mu, c2)), det),
-                 be = HF__DIV(HF__SUB(c2, HF__MUL(mu, c1)), det);
-    hf__v4 x[3], h2, g2, ok = HF__GT(det, HF__SET1(1e-8f));
-    int k;
-    HF__CROSS3(x, m1, m2);
-    h2 = HF__ADD(HF__ADD(HF__MUL(al, al), HF__MUL(be, be)),
-                 HF__MUL(HF__MUL(HF__MUL(HF__SET1(2.0f), al), be), mu));
-    g2 = HF__DIV(HF__SUB(one, h2), det);
-    ok = HF__AND(ok, HF__LE(HF__SET1(0.0f), g2));
-    g2 = HF__SQRT(g2);
-    HF__UNROLL for (k = 0; k < 3; ++k) {
-        const hf__v4 b = HF__ADD(HF__MUL(al, m1[k]), HF__MUL(be, m2[k]));
-        d[k] = HF__ADD(b, HF__MUL(g2, x[k]));
-        d[3 + k] = HF__SUB(b, HF__MUL(g2, x[k]));
-    }
-    HF__UNROLL for (k = 0; k < 2; ++k) {
-        hf__v4 *dk = d + 3 * k,
-               n2 = HF__DOT3(dk[0], dk[1], dk[2], dk[0], dk[1], dk[2]);
-        ok = HF__AND(ok, HF__AND(HF__GT(n2, HF__SET1(0.25f)),
-                                 HF__LT(n2, HF__SET1(4.0f))));
-        n2 = HF__DIV(one, HF__SQRT(n2));
-        dk[0] = HF__MUL(dk[0], n2);
-        dk[1] = HF__MUL(dk[1], n2);
-        dk[2] = HF__MUL(dk[2], n2);
-    }
-    return ok;
-}
-
-/* hf__ropes_collide_ftl_row for point row j of ropes idx[0 .. 4) (any
-   ropes: the points in contact, gathered) against colliders k[0 .. ncol),
-   ncol <= HF__ROPE_PREP. */
-HF__INLINE void hf__ftl_collide_v4_in(hf_ropes *ro, const float *F, int j,
-                                      const int *idx, const hf__col_prep4 *k,
-                                      int ncol)
-{
-    const size_t R = (size_t)ro->rope_count, o0 = (size_t)(j - 1) * R;
-    const hf__v4 zero = HF__SET1(0.0f);
-    float g[3][4];
-    hf__v4 l, p[3], q[3], root[3], n[3], t[3], u[3], best[3],
-        rr[HF__ROPE_PREP], m[2 * HF__ROPE_PREP][3], cmin[2 * HF__ROPE_PREP],
-        act, best_pen, best_dot, bd, big;
-    int c, e, i, w, round, ncap;
-#define HF__GATHER4(row) HF__SET4((row)[idx[0]], (row)[idx[1]], (row)[idx[2]], \
-                                  (row)[idx[3]])
-    HF__UNROLL for (c = 0; c < 3; ++c) {
-        const float *X = c == 0 ? ro->x : c == 1 ? ro->y : ro->z;
-        p[c] = HF__GATHER4(X + o0);
-        q[c] = HF__GATHER4(X + o0 + R);
-        root[c] = HF__GATHER4(X);
-        t[c] = HF__GATHER4(F + (size_t)(3 + c) * R);
-        n[c] = HF__GATHER4(F + (size_t)(6 + c) * R);
-    }
-    l = HF__GATHER4(ro->rest_length + o0);
-#undef HF__GATHER4
-    /* hf__col_radius_for */
-    for (c = 0; c < ncol; ++c) {
-        hf__v4 cc[3];
-        const hf__v4 d2 = hf__col_closest_v4(k + c, root, cc);
-        rr[c] = k[c].rr;
-        if (k[c].shrink)
-            rr[c] = HF__SEL(HF__LT(d2, HF__MUL(k[c].inner, k[c].inner)),
-                            HF__SQRT(d2), rr[c]);
-    }
-    best_pen = hf__ftl_penetration_v4(k, rr, ncol, q, &act);
-    act = HF__AND(act, HF__GT(l, zero));
-    if (!HF__MASK(act)) return;
-    HF__UNROLL for (i = 0; i < 3; ++i) u[i] = HF__SUB(q[i], p[i]);
-    bd = HF__DOT3(u[0], u[1], u[2], u[0], u[1], u[2]);
-    big = HF__GT(bd, HF__SET1(1e-24f));
-    bd = HF__DIV(HF__SET1(1.0f), HF__SQRT(bd));
-    HF__UNROLL for (i = 0; i < 3; ++i) {
-        u[i] = HF__SEL(big, HF__MUL(u[i], bd), n[i]);
-        best[i] = q[i];
-    }
-    best_dot = HF__SET1(-2.0f);
-    for (round = 0; round < HF__FTL_ROUNDS; ++round) {
-        hf__v4 from[3];
-        const hf__v4 pen0 = best_pen;
-        act = HF__AND(act, HF__GT(best_pen, zero));
-        if (!HF__MASK(act)) break;
-        HF__UNROLL for (i = 0; i < 3; ++i)
-            from[i] = round == 0 ? u[i] : HF__DIV(HF__SUB(best[i], p[i]), l);
-        ncap = 0;
-        for (c = 0; c < ncol; ++c) {
-            hf__v4 cc[3];
-            hf__col_closest_v4(k + c, best, cc);
-            hf__ftl_cap_v4(p, l, cc, rr[c], n, m[ncap], &cmin[ncap]);
-            ++ncap;
-            if (k[c].capsule) {
-                hf__col_closest_v4(k + c, p, cc);
-                hf__ftl_cap_v4(p, l, cc, rr[c], n, m[ncap], &cmin[ncap]);
-                ++ncap;
-            }
-        }
-        for (c = 0; c < ncap; ++c)
-            for (e = c; e < ncap; ++e) {
-                hf__v4 d[6], valid = HF__EQ(zero, zero);
-                int nd;
-                if (e == c) {
-                    hf__ftl_onto_cap_v4(from, m[c], cmin[c], t, d);
-                    nd = 1;
-                    if (round > 0) {
-                        hf__ftl_onto_cap_v4(u, m[c], cmin[c], t, d + 3);
-                        nd = 2;
-                    }
-                } else {
-                    valid = hf__ftl_cap_pair_v4(m[c], cmin[c], m[e], cmin[e],
-                                                d);
-                    if (!HF__MASK(HF__AND(act, valid))) continue;
-                    nd = 2;
-                }
-                for (i = 0; i < nd; ++i) {
-                    const hf__v4 *di = d + 3 * i;
-                    hf__v4 cand[3], pen, dot, up, hold;
-                    HF__UNROLL for (w = 0; w < 3; ++w)
-                        cand[w] = HF__ADD(p[w], HF__MUL(l, di[w]));
-                    pen = hf__ftl_penetration_v4(k, rr, ncol, cand, &hold);
-                    dot = HF__DOT3(di[0], di[1], di[2], u[0], u[1], u[2]);
-                    up = HF__OR4(HF__LT(pen, best_pen),
-                                 HF__AND(HF__EQ(pen, best_pen),
-                                         HF__GT(dot, best_dot)));
-                    up = HF__AND(HF__AND(act, valid), up);
-                    best_pen = HF__SEL(up, pen, best_pen);
-                    best_dot = HF__SEL(up, dot, best_dot);
-                    HF__UNROLL for (w = 0; w < 3; ++w)
-                        best[w] = HF__SEL(up, cand[w], best[w]);
-                }
-            }
-        act = HF__AND(act, HF__LT(best_pen, pen0)); /* no progress: done */
-    }
-    HF__UNROLL for (c = 0; c < 3; ++c) HF__ST(g[c], best[c]);
-    for (i = 0; i < 4; ++i) {
-        const size_t o = o0 + R + (size_t)idx[i];
-        ro->x[o] = g[0][i];
-        ro->y[o] = g[1][i];
-        ro->z[o] = g[2][i];
-    }
-}
-
-/* One and two colliders, the common cases, as constants: the compiler
-   unrolls the collider loops and keeps the caps in registers. */
-HF__PRIVATE void hf__ftl_collide_v4(hf_ropes *ro, const float *F, int j,
-                                    const int *idx, const hf__col_prep4 *k,
-                                    int ncol)
-{
-    if (ncol == 1)
-        hf__ftl_collide_v4_in(ro, F, j, idx, k, 1);
-    else if (ncol == 2)
-        hf__ftl_collide_v4_in(ro, F, j, idx, k, 2);
-    else
-        hf__ftl_collide_v4_in(ro, F, j, idx, k, ncol);
-}
-
-/* The points of a row in contact, resolved four at a time when the list
-   fills and when the row ends (they are independent: a point's collision
-   moves nothing the row reads again). */
+/* A row's points in contact, listed for the kernel (they are independent:
+   a point's collision moves nothing the row reads again). */
 #define HF__FTL_HITS 64
 typedef struct hf__ftl_hits {
     int n, r[HF__FTL_HITS];
 } hf__ftl_hits;
 
-HF__PRIVATE void hf__ftl_hits_flush(hf_ropes *ro, const float *F, int j,
-                                    hf__ftl_hits *h, const hf__col_prep4 *k,
-                                    int ncol)
-{
-    int g, i, idx[4];
-    for (g = 0; g < h->n; g += 4) {
-        for (i = 0; i < 4; ++i) /* a short last group repeats its last */
-            idx[i] = h->r[g + i < h->n ? g + i : h->n - 1];
-        hf__ftl_collide_v4(ro, F, j, idx, k, ncol);
-    }
-    h->n = 0;
+#define HF__FTL_KERNELS(S, V, W, T, G, Z)                                     \
+/* A prepared collider in every lane, rr^2, and whether its axis is a point    \
+   (e == 0: a sphere or a zero-length capsule). */                             \
+typedef struct hf__col_##S {                                                   \
+    V a[3], e[3], inv, rr2, rr, inner;                                         \
+    int point, capsule, shrink;                                                \
+} hf__col_##S;                                                                 \
+                                                                               \
+T HF__PRIVATE void hf__col_prep_##S(const hf__col_prep *k, hf__col_##S *v)     \
+{                                                                              \
+    int i;                                                                     \
+    for (i = 0; i < 3; ++i) {                                                  \
+        v->a[i] = HF__SET1(k->a[i]);                                           \
+        v->e[i] = HF__SET1(k->e[i]);                                           \
+    }                                                                          \
+    v->inv = HF__SET1(k->inv);                                                 \
+    v->rr2 = HF__SET1(k->rr * k->rr);                                          \
+    v->rr = HF__SET1(k->rr);                                                   \
+    v->inner = HF__SET1(k->inner);                                             \
+    v->point = k->e[0] == 0.0f && k->e[1] == 0.0f && k->e[2] == 0.0f;          \
+    v->capsule = k->inv > 0.0f;                                                \
+    v->shrink = k->inner > 0.0f;                                               \
+}                                                                              \
+                                                                               \
+/* hf__col_closest on W points */                                              \
+T HF__INLINE V hf__col_closest_##S(const hf__col_##S *k, const V *x, V *c)     \
+{                                                                              \
+    const V zero = HF__SET1(0.0f), one = HF__SET1(1.0f);                       \
+    V t, d[3];                                                                 \
+    int i;                                                                     \
+    if (k->point) {                                                            \
+        HF__UNROLL for (i = 0; i < 3; ++i) c[i] = k->a[i];                     \
+    } else {                                                                   \
+        t = HF__MUL(HF__DOT3(HF__SUB(x[0], k->a[0]), HF__SUB(x[1], k->a[1]),   \
+                             HF__SUB(x[2], k->a[2]), k->e[0], k->e[1],         \
+                             k->e[2]),                                         \
+                    k->inv);                                                   \
+        /* t < 0 ? 0 : (t > 1 ? 1 : t), NaN and -0 kept as the scalar does */  \
+        t = HF__SEL(HF__LT(t, zero), zero, HF__SEL(HF__GT(t, one), one, t));   \
+        HF__UNROLL for (i = 0; i < 3; ++i)                                     \
+            c[i] = HF__ADD(k->a[i], HF__MUL(k->e[i], t));                      \
+    }                                                                          \
+    HF__UNROLL for (i = 0; i < 3; ++i) d[i] = HF__SUB(x[i], c[i]);             \
+    return HF__DOT3(d[0], d[1], d[2], d[0], d[1], d[2]);                       \
+}                                                                              \
+                                                                               \
+/* Which of W points hf__col_closest finds inside radius rr (bit i: lane       \
+   i), from its |d|^2: the kernels run the scalar code on exactly the          \
+   points it would act on, and skip the rest (most points, most steps). */     \
+T HF__INLINE int hf__col_hits_##S(const hf__col_##S *k, const V *x)            \
+{                                                                              \
+    V d2;                                                                      \
+    if (k->point) { /* hf__col_closest without its c */                        \
+        const V dx = HF__SUB(x[0], k->a[0]), dy = HF__SUB(x[1], k->a[1]),      \
+                dz = HF__SUB(x[2], k->a[2]);                                   \
+        d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);                                 \
+    } else {                                                                   \
+        V c[3];                                                                \
+        d2 = hf__col_closest_##S(k, x, c);                                     \
+    }                                                                          \
+    return HF__MASK(HF__LT(d2, k->rr2));                                       \
+}                                                                              \
+                                                                               \
+/* Which colliders hold a point of W (bit i: lane i): the first                \
+   HF__ROPE_PREP prepared in pre, any further one here. */                     \
+T HF__INLINE int hf__col_any_##S(const hf_collider *col, int ncol,             \
+                                 const hf__col_##S *pre, float margin,         \
+                                 const V *xyz)                                 \
+{                                                                              \
+    int c, m = 0;                                                              \
+    for (c = 0; c < ncol && m != (1 << W) - 1; ++c) {                          \
+        if (c < HF__ROPE_PREP) {                                               \
+            m |= hf__col_hits_##S(pre + c, xyz);                               \
+        } else {                                                               \
+            const hf__col_prep k = hf__collider_prep(col + c, margin);         \
+            hf__col_##S kw;                                                    \
+            hf__col_prep_##S(&k, &kw);                                         \
+            m |= hf__col_hits_##S(&kw, xyz);                                   \
+        }                                                                      \
+    }                                                                          \
+    return m;                                                                  \
+}                                                                              \
+                                                                               \
+/* hf__ftl_penetration on W points; *any: the lanes some collider holds */     \
+T HF__INLINE V hf__ftl_penetration_##S(const hf__col_##S *k, const V *rr,      \
+                                       int ncol, const V *q, V *any)           \
+{                                                                              \
+    V worst = HF__SET1(0.0f), hit_any = HF__LT(worst, worst), c3[3];           \
+    int c;                                                                     \
+    for (c = 0; c < ncol; ++c) {                                               \
+        const V d2 = hf__col_closest_##S(k + c, q, c3);                        \
+        const V hit = HF__LT(d2, HF__MUL(rr[c], rr[c]));                       \
+        const V pen = HF__SUB(rr[c], HF__SQRT(d2));                            \
+        const V up = HF__SEL(hit_any, HF__AND(hit, HF__GT(pen, worst)), hit);  \
+        worst = HF__SEL(up, pen, worst);                                       \
+        hit_any = HF__OR(hit, hit_any);                                        \
+    }                                                                          \
+    *any = hit_any;                                                            \
+    return worst;                                                              \
+}                                                                              \
+                                                                               \
+/* hf__ftl_cap on W lanes */                                                   \
+T HF__PRIVATE void hf__ftl_cap_##S(const V *p, V l, const V *c, V rr,          \
+                                   const V *n, V *m, V *cmin)                  \
+{                                                                              \
+    const V zero = HF__SET1(0.0f), one = HF__SET1(1.0f);                       \
+    V rho2, rho, big, cm;                                                      \
+    int k;                                                                     \
+    HF__UNROLL for (k = 0; k < 3; ++k) m[k] = HF__SUB(p[k], c[k]);             \
+    rho2 = HF__DOT3(m[0], m[1], m[2], m[0], m[1], m[2]);                       \
+    big = HF__GT(rho2, HF__SET1(1e-24f));                                      \
+    rho = HF__SEL(big, HF__SQRT(rho2), zero);                                  \
+    HF__UNROLL for (k = 0; k < 3; ++k)                                         \
+        m[k] = HF__SEL(big, HF__DIV(m[k], rho), n[k]);                         \
+    rr = HF__ADD(rr, HF__MUL(HF__SET1(1e-6f), HF__ADD(rr, l)));                \
+    cm = HF__DIV(HF__SUB(HF__SUB(HF__MUL(rr, rr), HF__MUL(rho, rho)),          \
+                         HF__MUL(l, l)),                                       \
+                 HF__MUL(HF__MUL(HF__SET1(2.0f), l), rho));                    \
+    cm = HF__SEL(HF__GT(rho, zero), cm, one);                                  \
+    *cmin = HF__SEL(HF__GT(cm, one), one,                                      \
+                    HF__SEL(HF__LT(cm, HF__SET1(-1.0f)), HF__SET1(-1.0f),      \
+                            cm));                                              \
+}                                                                              \
+                                                                               \
+/* hf__perp_part on W lanes */                                                 \
+T HF__INLINE V hf__perp_part_##S(V *v, const V *m)                             \
+{                                                                              \
+    int pass, k;                                                               \
+    HF__UNROLL for (pass = 0; pass < 2; ++pass) {                              \
+        const V vm = HF__DOT3(v[0], v[1], v[2], m[0], m[1], m[2]);             \
+        HF__UNROLL for (k = 0; k < 3; ++k)                                     \
+            v[k] = HF__SUB(v[k], HF__MUL(m[k], vm));                           \
+    }                                                                          \
+    return HF__DOT3(v[0], v[1], v[2], v[0], v[1], v[2]);                       \
+}                                                                              \
+                                                                               \
+/* hf__ftl_onto_cap on W lanes; the fixed perpendicular, rare, lane by         \
+   lane through the scalar code */                                             \
+T HF__PRIVATE void hf__ftl_onto_cap_##S(const V *u, const V *m, V cmin,        \
+                                        const V *t, V *d)                      \
+{                                                                              \
+    const V tiny = HF__SET1(1e-8f);                                            \
+    V v[3], w[3], v2, w2, low, s;                                              \
+    int k, lanes;                                                              \
+    HF__UNROLL for (k = 0; k < 3; ++k) v[k] = u[k];                            \
+    v2 = hf__perp_part_##S(v, m);                                              \
+    low = HF__LT(v2, tiny);                                                    \
+    if (HF__MASK(low)) {                                                       \
+        HF__UNROLL for (k = 0; k < 3; ++k) w[k] = t[k];                        \
+        w2 = hf__perp_part_##S(w, m);                                          \
+        HF__UNROLL for (k = 0; k < 3; ++k) v[k] = HF__SEL(low, w[k], v[k]);    \
+        v2 = HF__SEL(low, w2, v2);                                             \
+        lanes = HF__MASK(HF__AND(low, HF__LT(w2, tiny)));                      \
+        if (lanes) {                                                           \
+            float mm[3][W], vv[3][W], vv2[W], ml[3], vl[3];                    \
+            int i;                                                             \
+            for (k = 0; k < 3; ++k) {                                          \
+                HF__ST(mm[k], m[k]);                                           \
+                HF__ST(vv[k], v[k]);                                           \
+            }                                                                  \
+            HF__ST(vv2, v2);                                                   \
+            for (i = 0; i < W; ++i)                                            \
+                if ((lanes >> i) & 1) {                                        \
+                    for (k = 0; k < 3; ++k) ml[k] = mm[k][i];                  \
+                    Z;                                                         \
+                    vv2[i] = hf__perp_fixed(ml, vl);                           \
+                    for (k = 0; k < 3; ++k) vv[k][i] = vl[k];                  \
+                }                                                              \
+            for (k = 0; k < 3; ++k) v[k] = HF__LD(vv[k]);                      \
+            v2 = HF__LD(vv2);                                                  \
+        }                                                                      \
+    }                                                                          \
+    s = HF__DIV(HF__SQRT(HF__SUB(HF__SET1(1.0f), HF__MUL(cmin, cmin))),        \
+                HF__SQRT(v2));                                                 \
+    HF__UNROLL for (k = 0; k < 3; ++k)                                         \
+        d[k] = HF__ADD(HF__MUL(m[k], cmin), HF__MUL(v[k], s));                 \
+}                                                                              \
+                                                                               \
+/* hf__ftl_cap_pair on W lanes: both crossings in d[0..5]; returns the         \
+   lanes where the scalar code returns 2 */                                    \
+T HF__PRIVATE V hf__ftl_cap_pair_##S(const V *m1, V c1, const V *m2, V c2,     \
+                                     V *d)                                     \
+{                                                                              \
+    const V one = HF__SET1(1.0f);                                              \
+    const V mu = HF__DOT3(m1[0], m1[1], m1[2], m2[0], m2[1], m2[2]);           \
+    const V det = HF__SUB(one, HF__MUL(mu, mu));                               \
+    const V al = HF__DIV(HF__SUB(c1, HF__MUL(mu, c2)), det),                   \
+            be = HF__DIV(HF__SUB(c2, HF__MUL(mu, c1)), det);                   \
+    V x[3], h2, g2, ok = HF__GT(det, HF__SET1(1e-8f));                         \
+    int k;                                                                     \
+    HF__CROSS3(x, m1, m2);                                                     \
+    h2 = HF__ADD(HF__ADD(HF__MUL(al, al), HF__MUL(be, be)),                    \
+                 HF__MUL(HF__MUL(HF__MUL(HF__SET1(2.0f), al), be), mu));       \
+    g2 = HF__DIV(HF__SUB(one, h2), det);                                       \
+    ok = HF__AND(ok, HF__LE(HF__SET1(0.0f), g2));                              \
+    g2 = HF__SQRT(g2);                                                         \
+    HF__UNROLL for (k = 0; k < 3; ++k) {                                       \
+        const V b = HF__ADD(HF__MUL(al, m1[k]), HF__MUL(be, m2[k]));           \
+        d[k] = HF__ADD(b, HF__MUL(g2, x[k]));                                  \
+        d[3 + k] = HF__SUB(b, HF__MUL(g2, x[k]));                              \
+    }                                                                          \
+    HF__UNROLL for (k = 0; k < 2; ++k) {                                       \
+        V *dk = d + 3 * k,                                                     \
+          n2 = HF__DOT3(dk[0], dk[1], dk[2], dk[0], dk[1], dk[2]);             \
+        ok = HF__AND(ok, HF__AND(HF__GT(n2, HF__SET1(0.25f)),                  \
+                                 HF__LT(n2, HF__SET1(4.0f))));                 \
+        n2 = HF__DIV(one, HF__SQRT(n2));                                       \
+        dk[0] = HF__MUL(dk[0], n2);                                            \
+        dk[1] = HF__MUL(dk[1], n2);                                            \
+        dk[2] = HF__MUL(dk[2], n2);                                            \
+    }                                                                          \
+    return ok;                                                                 \
+}                                                                              \
+                                                                               \
+/* hf__ropes_collide_ftl_row for point row j of ropes idx[0 .. W) (any         \
+   ropes: the points in contact, gathered) against colliders k[0 .. ncol),     \
+   ncol <= HF__ROPE_PREP. */                                                   \
+T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
+                                         const int *idx, const hf__col_##S *k, \
+                                         int ncol)                             \
+{                                                                              \
+    const size_t R = (size_t)ro->rope_count, o0 = (size_t)(j - 1) * R;         \
+    const V zero = HF__SET1(0.0f);                                             \
+    float g[3][W];                                                             \
+    V l, p[3], q[3], root[3], n[3], t[3], u[3], best[3], rr[HF__ROPE_PREP],    \
+        m[2 * HF__ROPE_PREP][3], cmin[2 * HF__ROPE_PREP], act, best_pen,       \
+        best_dot, bd, big;                                                     \
+    int c, e, i, w, round, ncap;                                               \
+    HF__UNROLL for (c = 0; c < 3; ++c) {                                       \
+        const float *X = c == 0 ? ro->x : c == 1 ? ro->y : ro->z;              \
+        p[c] = G(X + o0, idx);                                                 \
+        q[c] = G(X + o0 + R, idx);                                             \
+        root[c] = G(X, idx);                                                   \
+        t[c] = G(F + (size_t)(3 + c) * R, idx);                                \
+        n[c] = G(F + (size_t)(6 + c) * R, idx);                                \
+    }                                                                          \
+    l = G(ro->rest_length + o0, idx);                                          \
+    /* hf__col_radius_for */                                                   \
+    for (c = 0; c < ncol; ++c) {                                               \
+        V cc[3];                                                               \
+        const V d2 = hf__col_closest_##S(k + c, root, cc);                     \
+        rr[c] = k[c].rr;                                                       \
+        if (k[c].shrink)                                                       \
+            rr[c] = HF__SEL(HF__LT(d2, HF__MUL(k[c].inner, k[c].inner)),       \
+                            HF__SQRT(d2), rr[c]);                              \
+    }                                                                          \
+    best_pen = hf__ftl_penetration_##S(k, rr, ncol, q, &act);                  \
+    act = HF__AND(act, HF__GT(l, zero));                                       \
+    if (!HF__MASK(act)) return;                                                \
+    HF__UNROLL for (i = 0; i < 3; ++i) u[i] = HF__SUB(q[i], p[i]);             \
+    bd = HF__DOT3(u[0], u[1], u[2], u[0], u[1], u[2]);                         \
+    big = HF__GT(bd, HF__SET1(1e-24f));                                        \
+    bd = HF__DIV(HF__SET1(1.0f), HF__SQRT(bd));                                \
+    HF__UNROLL for (i = 0; i < 3; ++i) {                                       \
+        u[i] = HF__SEL(big, HF__MUL(u[i], bd), n[i]);                          \
+        best[i] = q[i];                                                        \
+    }                                                                          \
+    best_dot = HF__SET1(-2.0f);                                                \
+    for (round = 0; round < HF__FTL_ROUNDS; ++round) {                         \
+        V from[3];                                                             \
+        const V pen0 = best_pen;                                               \
+        act = HF__AND(act, HF__GT(best_pen, zero));                            \
+        if (!HF__MASK(act)) break;                                             \
+        HF__UNROLL for (i = 0; i < 3; ++i)                                     \
+            from[i] = round == 0 ? u[i] : HF__DIV(HF__SUB(best[i], p[i]), l);  \
+        ncap = 0;                                                              \
+        for (c = 0; c < ncol; ++c) {                                           \
+            V cc[3];                                                           \
+            hf__col_closest_##S(k + c, best, cc);                              \
+            hf__ftl_cap_##S(p, l, cc, rr[c], n, m[ncap], &cmin[ncap]);         \
+            ++ncap;                                                            \
+            if (k[c].capsule) {                                                \
+                hf__col_closest_##S(k + c, p, cc);                             \
+                hf__ftl_cap_##S(p, l, cc, rr[c], n, m[ncap], &cmin[ncap]);     \
+                ++ncap;                                                        \
+            }                                                                  \
+        }                                                                      \
+        for (c = 0; c < ncap; ++c)                                             \
+            for (e = c; e < ncap; ++e) {                                       \
+                V d[6], valid = HF__EQ(zero, zero);                            \
+                int nd;                                                        \
+                if (e == c) {                                                  \
+                    hf__ftl_onto_cap_##S(from, m[c], cmin[c], t, d);           \
+                    nd = 1;                                                    \
+                    if (round > 0) {                                           \
+                        hf__ftl_onto_cap_##S(u, m[c], cmin[c], t, d + 3);      \
+                        nd = 2;                                                \
+                    }                                                          \
+                } else {                                                       \
+                    valid = hf__ftl_cap_pair_##S(m[c], cmin[c], m[e], cmin[e], \
+                                                 d);                           \
+                    if (!HF__MASK(HF__AND(act, valid))) continue;              \
+                    nd = 2;                                                    \
+                }                                                              \
+                for (i = 0; i < nd; ++i) {                                     \
+                    const V *di = d + 3 * i;                                   \
+                    V cand[3], pen, dot, up, hold;                             \
+                    HF__UNROLL for (w = 0; w < 3; ++w)                         \
+                        cand[w] = HF__ADD(p[w], HF__MUL(l, di[w]));            \
+                    pen = hf__ftl_penetration_##S(k, rr, ncol, cand, &hold);   \
+                    dot = HF__DOT3(di[0], di[1], di[2], u[0], u[1], u[2]);     \
+                    up = HF__OR(HF__LT(pen, best_pen),                         \
+                                HF__AND(HF__EQ(pen, best_pen),                 \
+                                        HF__GT(dot, best_dot)));               \
+                    up = HF__AND(HF__AND(act, valid), up);                     \
+                    best_pen = HF__SEL(up, pen, best_pen);                     \
+                    best_dot = HF__SEL(up, dot, best_dot);                     \
+                    HF__UNROLL for (w = 0; w < 3; ++w)                         \
+                        best[w] = HF__SEL(up, cand[w], best[w]);               \
+                }                                                              \
+            }                                                                  \
+        act = HF__AND(act, HF__LT(best_pen, pen0)); /* no progress: done */    \
+    }                                                                          \
+    HF__UNROLL for (c = 0; c < 3; ++c) HF__ST(g[c], best[c]);                  \
+    for (i = 0; i < W; ++i) {                                                  \
+        const size_t o = o0 + R + (size_t)idx[i];                              \
+        ro->x[o] = g[0][i];                                                    \
+        ro->y[o] = g[1][i];                                                    \
+        ro->z[o] = g[2][i];                                                    \
+    }                                                                          \
+}                                                                              \
+                                                                               \
+/* The points of row j in contact, resolved W at a time when the list          \
+   fills and when the row ends; one and two colliders, the common cases,       \
+   as constants, so the compiler unrolls the collider loops and keeps the      \
+   caps in registers. */                                                       \
+T HF__PRIVATE void hf__ftl_flush_##S(hf_ropes *ro, const float *F, int j,      \
+                                     hf__ftl_hits *h, const hf__col_##S *k,    \
+                                     int ncol)                                 \
+{                                                                              \
+    int g, i, idx[W];                                                          \
+    for (g = 0; g < h->n; g += W) {                                            \
+        for (i = 0; i < W; ++i) /* a short last group repeats its last */      \
+            idx[i] = h->r[g + i < h->n ? g + i : h->n - 1];                    \
+        if (ncol == 1)                                                         \
+            hf__ftl_collide_in_##S(ro, F, j, idx, k, 1);                       \
+        else if (ncol == 2)                                                    \
+            hf__ftl_collide_in_##S(ro, F, j, idx, k, 2);                       \
+        else                                                                   \
+            hf__ftl_collide_in_##S(ro, F, j, idx, k, ncol);                    \
+    }                                                                          \
+    h->n = 0;                                                                  \
+}                                                                              \
+                                                                               \
+/* Row j's points r + i for the bits i of m, which some collider holds:        \
+   onto the list (flushed when full), or, beyond HF__ROPE_PREP colliders,      \
+   through the scalar kernel at once. */                                       \
+T HF__INLINE void hf__ftl_list_##S(hf_ropes *ro, const float *F, int j,        \
+                                   int r, int m, hf__ftl_hits *h,              \
+                                   const hf_collider *col, int ncol,           \
+                                   const hf__col_##S *pre, float margin)       \
+{                                                                              \
+    int i;                                                                     \
+    for (i = r; m; ++i, m >>= 1) {                                             \
+        if (!(m & 1)) continue;                                                \
+        if (ncol > HF__ROPE_PREP) {                                            \
+            Z;                                                                 \
+            hf__ropes_collide_ftl_row(ro, F, j, i, i + 1, col, ncol, margin);  \
+            continue;                                                          \
+        }                                                                      \
+        h->r[h->n++] = i;                                                      \
+        if (h->n == HF__FTL_HITS) hf__ftl_flush_##S(ro, F, j, h, pre, ncol);   \
+    }                                                                          \
 }
-#undef HF__OR4
 
-/* Which colliders hold a point of four (bit i: lane i), every collider
-   tested with hf__col_hits_v4. */
-HF__PRIVATE int hf__col_any_v4(const hf_collider *col, int ncol,
-                                             const hf__col_prep4 *pre,
-                                             float margin, const hf__v4 *xyz)
-{
-    int c, m = 0;
-    for (c = 0; c < ncol && m != 15; ++c) {
-        if (c < HF__ROPE_PREP) {
-            m |= hf__col_hits_v4(pre + c, xyz[0], xyz[1], xyz[2]);
-        } else {
-            const hf__col_prep k = hf__collider_prep(col + c, margin);
-            hf__col_prep4 k4;
-            hf__col_prep_v4(&k, &k4);
-            m |= hf__col_hits_v4(&k4, xyz[0], xyz[1], xyz[2]);
-        }
-    }
-    return m;
-}
+#define HF__GATHER4(row, idx)                                                  \
+    HF__SET4((row)[(idx)[0]], (row)[(idx)[1]], (row)[(idx)[2]], (row)[(idx)[3]])
+HF__FTL_KERNELS(v4, hf__v4, 4, , HF__GATHER4, (void)0)
+#undef HF__GATHER4
 
-/* Collisions of point row j of ropes [r, r + 4), at xyz[0..2]. With
-   hits (FTL), a lane that some collider holds joins the row's list for
-   hf__ftl_collide_v4 (beyond HF__ROPE_PREP colliders it goes through
-   hf__ropes_collide_ftl_row on its own, at once); without, through the
-   radial push of each collider in order, xyz read back after a hit. */
-HF__PRIVATE void hf__col_row_v4(hf_ropes *ro, const float *F,
-                                              int j, int r, hf__ftl_hits *hits,
-                                              const hf_collider *col, int ncol,
-                                              const hf__col_prep4 *pre,
-                                              float margin, hf__v4 *xyz)
-{
-    const size_t o = (size_t)j * (size_t)ro->rope_count + (size_t)r;
-    int c, m, i;
-    if (hits) {
-        m = hf__col_any_v4(col, ncol, pre, margin, xyz);
-        for (i = 0; i < 4; ++i)
-            if ((m >> i) & 1) {
-                if (ncol > HF__ROPE_PREP) {
-                    hf__ropes_collide_ftl_row(ro, F, j, r + i, r + i + 1, col,
-                                              ncol, margin);
-                    continue;
-                }
-                hits->r[hits->n++] = r + i;
-                if (hits->n == HF__FTL_HITS)
-                    hf__ftl_hits_flush(ro, F, j, hits, pre, ncol);
-            }
-        return;
-    }
-    for (c = 0; c < ncol; ++c) {
-        if (c < HF__ROPE_PREP) {
-            m = hf__col_hits_v4(pre + c, xyz[0], xyz[1], xyz[2]);
-        } else {
-            const hf__col_prep k = hf__collider_prep(col + c, margin);
-            hf__col_prep4 k4;
-            hf__col_prep_v4(&k, &k4);
-            m = hf__col_hits_v4(&k4, xyz[0], xyz[1], xyz[2]);
-        }
-        if (!m) continue;
-        for (i = 0; i < 4; ++i)
-            if ((m >> i) & 1)
-                hf__ropes_collide_row(ro, F, j, r + i, r + i + 1, col + c,
-                                      margin);
-        xyz[0] = HF__LD(ro->x + o);
-        xyz[1] = HF__LD(ro->y + o);
-        xyz[2] = HF__LD(ro->z + o);
-    }
-}
-
-/* hf__ropes_collide for ropes [a, b), b - a a multiple of 4. */
+/* hf__ropes_collide for ropes [a, b), b - a a multiple of 4: the radial
+   push of each collider in order, on the lanes it holds, the row read
+   back after a hit. */
 HF__PRIVATE void
 hf__ropes_collide_v4(hf_ropes *ro, const float *F, int a, int b,
-                     const hf_collider *col, int ncol, const hf__col_prep4 *pre,
+                     const hf_collider *col, int ncol, const hf__col_v4 *pre,
                      float margin)
 {
     size_t R = (size_t)ro->rope_count;
-    int j, r;
+    int j, r, c, m, i;
     for (j = 1; j < ro->points; ++j)
         for (r = a; r < b; r += 4) {
-            size_t o = (size_t)j * R + (size_t)r;
+            const size_t o = (size_t)j * R + (size_t)r;
             hf__v4 xyz[3];
             xyz[0] = HF__LD(ro->x + o);
             xyz[1] = HF__LD(ro->y + o);
             xyz[2] = HF__LD(ro->z + o);
-            hf__col_row_v4(ro, F, j, r, NULL, col, ncol, pre, margin, xyz);
+            for (c = 0; c < ncol; ++c) {
+                if (c < HF__ROPE_PREP) {
+                    m = hf__col_hits_v4(pre + c, xyz);
+                } else {
+                    const hf__col_prep k = hf__collider_prep(col + c, margin);
+                    hf__col_v4 kw;
+                    hf__col_prep_v4(&k, &kw);
+                    m = hf__col_hits_v4(&kw, xyz);
+                }
+                if (!m) continue;
+                for (i = 0; i < 4; ++i)
+                    if ((m >> i) & 1)
+                        hf__ropes_collide_row(ro, F, j, r + i, r + i + 1,
+                                              col + c, margin);
+                xyz[0] = HF__LD(ro->x + o);
+                xyz[1] = HF__LD(ro->y + o);
+                xyz[2] = HF__LD(ro->z + o);
+            }
         }
 }
 
@@ -6848,7 +6839,7 @@ hf__ropes_local_row_v4(hf_ropes *ro, const float *F, int j, int a, int b,
 HF__PRIVATE void
 hf__ropes_ftl_row_v4(hf_ropes *ro, const float *F, int j, int a, int b,
                      const hf__rope_step *st, const hf_collider *col, int ncol,
-                     const hf__col_prep4 *pre)
+                     const hf__col_v4 *pre)
 {
     const size_t R = (size_t)ro->rope_count;
     const float *F6 = HF__ROW(F, 6, R), *F7 = HF__ROW(F, 7, R),
@@ -6895,12 +6886,14 @@ hf__ropes_ftl_row_v4(hf_ropes *ro, const float *F, int j, int a, int b,
                HF__ADD(HF__LD(PY0 + r), HF__MUL(sd, HF__SUB(xyz[1], oy))));
         HF__ST(PZ0 + r,
                HF__ADD(HF__LD(PZ0 + r), HF__MUL(sd, HF__SUB(xyz[2], oz))));
-        if (ncol > 1 ||
-            (ncol == 1 && hf__col_hits_v4(pre, xyz[0], xyz[1], xyz[2])))
-            hf__col_row_v4(ro, F, j, r, &hits, col, ncol, pre, st->margin,
-                           xyz);
+        if (ncol > 0) {
+            const int m = hf__col_any_v4(col, ncol, pre, st->margin, xyz);
+            if (m)
+                hf__ftl_list_v4(ro, F, j, r, m, &hits, col, ncol, pre,
+                                st->margin);
+        }
     }
-    hf__ftl_hits_flush(ro, F, j, &hits, pre, ncol);
+    hf__ftl_flush_v4(ro, F, j, &hits, pre, ncol);
 }
 
 /* Row j of a distance pass: half the error to each end (equal masses). */
@@ -6945,7 +6938,7 @@ typedef struct hf__rope_rows {
                   const hf__rope_step *, float *[2][3]);
     void (*ftl)(hf_ropes *, const float *, int, int, int,
                 const hf__rope_step *, const hf_collider *, int,
-                const hf__col_prep4 *);
+                const hf__col_v4 *);
     void (*distance)(hf_ropes *, int, int, int);
 } hf__rope_rows;
 
@@ -6962,7 +6955,7 @@ typedef struct hf__rope_rows {
 HF__PRIVATE void hf__ropes_substep_rows(hf_ropes *ro, const float *F, int a,
                                         int b, const hf__rope_step *st,
                                         const hf_collider *col, int ncol,
-                                        const hf__col_prep4 *pre,
+                                        const hf__col_v4 *pre,
                                         const hf__rope_rows *k)
 {
     const size_t R = (size_t)ro->rope_count;
@@ -7019,9 +7012,8 @@ HF__PRIVATE int hf__ropes_mark_far_v4(const hf_ropes *ro, int j,
 
 #if HF__AVX2
 /* The four-lane sub-step's row kernels eight ropes a vector (AVX2), with
-   the same operations per rope; the collision tests of the FTL rows take
-   each half through the four-lane test inline, and a hit through the
-   four-lane kernel after _mm256_zeroupper (see HF__TARGET_AVX2). */
+   the same operations per rope; the FTL rows' contacts go through the
+   contact kernels built at eight lanes. */
 #define HF__L8(p) _mm256_loadu_ps(p)
 #define HF__S8(p, v) _mm256_storeu_ps(p, v)
 #define HF__A8(x, y) _mm256_add_ps(x, y)
@@ -7229,11 +7221,82 @@ hf__ropes_local_row_avx2(hf_ropes *ro, const float *F, int j, int a, int b,
     _mm256_zeroupper();
 }
 
+/* The contact kernels at eight lanes (HF__FTL_KERNELS): the four-lane
+   operations' names stand for their AVX forms while they expand (the
+   compares false on NaN, as SSE's, so each lane keeps the scalar bytes). */
+#pragma push_macro("HF__LD")
+#pragma push_macro("HF__ST")
+#pragma push_macro("HF__SET1")
+#pragma push_macro("HF__ADD")
+#pragma push_macro("HF__SUB")
+#pragma push_macro("HF__MUL")
+#pragma push_macro("HF__DIV")
+#pragma push_macro("HF__SQRT")
+#pragma push_macro("HF__GT")
+#pragma push_macro("HF__LT")
+#pragma push_macro("HF__EQ")
+#pragma push_macro("HF__LE")
+#pragma push_macro("HF__AND")
+#pragma push_macro("HF__SEL")
+#pragma push_macro("HF__MASK")
+#undef HF__LD
+#undef HF__ST
+#undef HF__SET1
+#undef HF__ADD
+#undef HF__SUB
+#undef HF__MUL
+#undef HF__DIV
+#undef HF__SQRT
+#undef HF__GT
+#undef HF__LT
+#undef HF__EQ
+#undef HF__LE
+#undef HF__AND
+#undef HF__SEL
+#undef HF__MASK
+#define HF__LD(p) _mm256_loadu_ps(p)
+#define HF__ST(p, v) _mm256_storeu_ps(p, v)
+#define HF__SET1(x) _mm256_set1_ps(x)
+#define HF__ADD(x, y) _mm256_add_ps(x, y)
+#define HF__SUB(x, y) _mm256_sub_ps(x, y)
+#define HF__MUL(x, y) _mm256_mul_ps(x, y)
+#define HF__DIV(x, y) _mm256_div_ps(x, y)
+#define HF__SQRT(x) _mm256_sqrt_ps(x)
+#define HF__GT(x, y) _mm256_cmp_ps(x, y, _CMP_GT_OQ)
+#define HF__LT(x, y) _mm256_cmp_ps(x, y, _CMP_LT_OQ)
+#define HF__EQ(x, y) _mm256_cmp_ps(x, y, _CMP_EQ_OQ)
+#define HF__LE(x, y) _mm256_cmp_ps(x, y, _CMP_LE_OQ)
+#define HF__AND(x, y) _mm256_and_ps(x, y)
+#define HF__SEL(m, a, b) _mm256_blendv_ps(b, a, m)
+#define HF__MASK(m) _mm256_movemask_ps(m)
+#define HF__GATHER8(row, idx)                                                  \
+    _mm256_setr_ps((row)[(idx)[0]], (row)[(idx)[1]], (row)[(idx)[2]],         \
+                   (row)[(idx)[3]], (row)[(idx)[4]], (row)[(idx)[5]],         \
+                   (row)[(idx)[6]], (row)[(idx)[7]])
+HF__FTL_KERNELS(v8, __m256, 8, HF__TARGET_AVX2, HF__GATHER8,
+                _mm256_zeroupper())
+#undef HF__GATHER8
+#pragma pop_macro("HF__LD")
+#pragma pop_macro("HF__ST")
+#pragma pop_macro("HF__SET1")
+#pragma pop_macro("HF__ADD")
+#pragma pop_macro("HF__SUB")
+#pragma pop_macro("HF__MUL")
+#pragma pop_macro("HF__DIV")
+#pragma pop_macro("HF__SQRT")
+#pragma pop_macro("HF__GT")
+#pragma pop_macro("HF__LT")
+#pragma pop_macro("HF__EQ")
+#pragma pop_macro("HF__LE")
+#pragma pop_macro("HF__AND")
+#pragma pop_macro("HF__SEL")
+#pragma pop_macro("HF__MASK")
+
 /* hf__ropes_ftl_row_v4, eight ropes a vector. */
 HF__TARGET_AVX2 HF__PRIVATE void
 hf__ropes_ftl_row_avx2(hf_ropes *ro, const float *F, int j, int a, int b,
                        const hf__rope_step *st, const hf_collider *col,
-                       int ncol, const hf__col_prep4 *pre)
+                       int ncol, const hf__col_v4 *pre)
 {
     const size_t R = (size_t)ro->rope_count;
     const float *F6 = HF__ROW(F, 6, R), *F7 = HF__ROW(F, 7, R),
@@ -7248,8 +7311,14 @@ hf__ropes_ftl_row_avx2(hf_ropes *ro, const float *F, int j, int a, int b,
     const float sdj = j >= 2 ? st->ftl_damping : 0.0f;
     const int test = st->ftl && ncol > 0;
     hf__ftl_hits list;
-    int r;
+    hf__col_v8 pre8[HF__ROPE_PREP]; /* the lane copies, at eight lanes */
+    int r, m;
+    (void)pre;
     list.n = 0;
+    for (r = 0; test && r < ncol && r < HF__ROPE_PREP; ++r) {
+        const hf__col_prep k = hf__collider_prep(col + r, st->margin);
+        hf__col_prep_v8(&k, pre8 + r);
+    }
     for (r = a; r < b; r += 8) {
         const __m256 one = _mm256_set1_ps(1.0f), sd = _mm256_set1_ps(sdj);
         const __m256 x0 = HF__L8(X0 + r), y0 = HF__L8(Y0 + r),
@@ -7257,8 +7326,7 @@ hf__ropes_ftl_row_avx2(hf_ropes *ro, const float *F, int j, int a, int b,
         const __m256 ox = HF__L8(X1 + r), oy = HF__L8(Y1 + r),
                      oz = HF__L8(Z1 + r);
         __m256 dx = HF__D8(ox, x0), dy = HF__D8(oy, y0), dz = HF__D8(oz, z0),
-               d2, deg, sc, nx, ny, nz;
-        int hits = 0, h;
+               d2, deg, sc, nx, ny, nz, xyz[3];
         d2 = HF__DOT3_8(dx, dy, dz, dx, dy, dz);
         /* coincident points: grow along the root normal */
         deg = _mm256_cmp_ps(d2, _mm256_set1_ps(1e-24f), _CMP_LT_OQ);
@@ -7280,32 +7348,16 @@ hf__ropes_ftl_row_avx2(hf_ropes *ro, const float *F, int j, int a, int b,
         HF__S8(PY0 + r, HF__A8(HF__L8(PY0 + r), HF__M8(sd, HF__D8(ny, oy))));
         HF__S8(PZ0 + r, HF__A8(HF__L8(PZ0 + r), HF__M8(sd, HF__D8(nz, oz))));
         if (!test) continue;
-        /* the first collider's test on each half, as the four-lane row */
-        for (h = 0; h < 2; ++h) {
-            const __m128 hx = h ? _mm256_extractf128_ps(nx, 1)
-                                : _mm256_castps256_ps128(nx);
-            const __m128 hy = h ? _mm256_extractf128_ps(ny, 1)
-                                : _mm256_castps256_ps128(ny);
-            const __m128 hz = h ? _mm256_extractf128_ps(nz, 1)
-                                : _mm256_castps256_ps128(nz);
-            if (ncol > 1 || hf__col_hits_v4(pre, hx, hy, hz)) hits |= 1 << h;
-        }
-        if (hits) {
-            _mm256_zeroupper(); /* SSE code next */
-            for (h = 0; h < 2; ++h)
-                if ((hits >> h) & 1) {
-                    const size_t o = (size_t)j * R + (size_t)(r + 4 * h);
-                    __m128 xyz[3];
-                    xyz[0] = _mm_loadu_ps(ro->x + o);
-                    xyz[1] = _mm_loadu_ps(ro->y + o);
-                    xyz[2] = _mm_loadu_ps(ro->z + o);
-                    hf__col_row_v4(ro, F, j, r + 4 * h, &list, col, ncol,
-                                   pre, st->margin, xyz);
-                }
-        }
+        xyz[0] = nx;
+        xyz[1] = ny;
+        xyz[2] = nz;
+        m = hf__col_any_v8(col, ncol, pre8, st->margin, xyz);
+        if (m)
+            hf__ftl_list_v8(ro, F, j, r, m, &list, col, ncol, pre8,
+                            st->margin);
     }
+    if (test) hf__ftl_flush_v8(ro, F, j, &list, pre8, ncol);
     _mm256_zeroupper();
-    hf__ftl_hits_flush(ro, F, j, &list, pre, ncol);
 }
 
 HF__TARGET_AVX2 HF__PRIVATE void hf__ropes_distance_row_avx2(hf_ropes *ro,
@@ -7357,6 +7409,7 @@ static const hf__rope_rows hf__rope_rows_avx2 = {
     hf__ropes_local_row_avx2, hf__ropes_ftl_row_avx2,
     hf__ropes_distance_row_avx2};
 #endif
+#undef HF__OR
 
 /* The dispatch of the simulated rope kernels: at AVX2 and above the AVX2
    kernel takes whole groups of eight ropes from a; the four-lane kernel
@@ -7373,7 +7426,7 @@ HF__PRIVATE void hf__ropes_substep(hf_ropes *ro, const float *F, int a, int b,
         a4 = a + (b - a) / 8 * 8;
         if (a4 > a)
             hf__ropes_substep_rows(ro, F, a, a4, st, col, ncol,
-                                   (const hf__col_prep4 *)lanes,
+                                   (const hf__col_v4 *)lanes,
                                    &hf__rope_rows_avx2);
         a = a4;
     }
@@ -7383,7 +7436,7 @@ HF__PRIVATE void hf__ropes_substep(hf_ropes *ro, const float *F, int a, int b,
         a4 = a + (b - a) / 4 * 4;
         if (a4 > a)
             hf__ropes_substep_rows(ro, F, a, a4, st, col, ncol,
-                                   (const hf__col_prep4 *)lanes,
+                                   (const hf__col_v4 *)lanes,
                                    &hf__rope_rows_v4);
     }
 #else
@@ -7482,7 +7535,7 @@ HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
     int s;
 #if HF__V4
     /* lane copies of the first colliders, made once per call */
-    hf__col_prep4 pre[HF__ROPE_PREP];
+    hf__col_v4 pre[HF__ROPE_PREP];
     int c;
     for (c = 0; c < ncol && c < HF__ROPE_PREP; ++c) {
         const hf__col_prep k = hf__collider_prep(col + c, st->margin);

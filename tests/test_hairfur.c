@@ -4664,6 +4664,73 @@ static void test_ropes_contacts_match_scalar(void)
     for (k = 0; k < NSET; ++k) tr_close(&s[k]);
 }
 
+/* Ropes lying along their root tangent straight at a capsule's axis: the
+   turn out of the capsule has no direction of its own (the rope and its
+   tangent both lie along the cap's axis), so every kernel takes its rare
+   fixed perpendicular, lane by lane at every width. Each level gives the
+   scalar bytes; every rope in contact is turned aside, finite and out. */
+static void test_ropes_contacts_degenerate_lanes(void)
+{
+    enum { R = 45, P = 6, NSET = 3 };
+    static float rest[3 * R * P];
+    float root[3 * R], nrm[3 * R], tan[3 * R];
+    hf_collider col;
+    hf_rope_params p;
+    tr_set s[NSET];
+    int r, k, j, same = 1, turned = 0, touching = 0;
+    for (k = 0; k < NSET; ++k)
+        if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
+    hf_rope_params_init(&p);
+    p.gravity[1] = 0.0f;
+    p.explicit_zero = HF_ROPE_ZERO_GRAVITY;
+    memset(&col, 0, sizeof col);
+    col.type = HF_COLLIDER_CAPSULE;
+    col.a[0] = col.b[0] = 0.05f;
+    col.a[2] = -1.0f;
+    col.b[2] = 1.0f;
+    col.radius = 0.02f;
+    for (r = 0; r < R; ++r) {
+        /* every third rope points away: the contacts are gathered */
+        const float dir[3] = {r % 3 == 2 ? -1.0f : 1.0f, 0.0f, 0.0f};
+        root[3 * r] = 0.0f;
+        root[3 * r + 1] = 0.0f;
+        root[3 * r + 2] = 0.01f * (float)r - 0.2f;
+        nrm[3 * r] = 0.0f; nrm[3 * r + 1] = 1.0f; nrm[3 * r + 2] = 0.0f;
+        tan[3 * r] = 1.0f; tan[3 * r + 1] = 0.0f; tan[3 * r + 2] = 0.0f;
+        tr_straight(rest, r, P, root + 3 * r, dir, 0.1f);
+        touching += r % 3 != 2;
+    }
+    for (k = 0; k < NSET; ++k) {
+        hf_rope_params pl = p;
+        pl.simd = k == 0 ? HF_SIMD_AUTO : k == 1 ? HF_SIMD_SSE2
+                                                 : HF_SIMD_SCALAR;
+        CHECK_EQ_INT(hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm,
+                                       tan, 0),
+                     HF_OK);
+        CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, 1.0f / 60.0f, &pl, &col, 1),
+                     HF_OK);
+    }
+    for (k = 1; k < NSET; ++k) {
+        size_t n = sizeof(float) * R * P;
+        same &= memcmp(s[0].ro.x, s[k].ro.x, n) == 0;
+        same &= memcmp(s[0].ro.y, s[k].ro.y, n) == 0;
+        same &= memcmp(s[0].ro.z, s[k].ro.z, n) == 0;
+    }
+    CHECK(same);
+    for (r = 0; r < R; ++r) {
+        const size_t o = (size_t)2 * R + (size_t)r; /* row 2: was inside */
+        turned += fabsf(s[0].ro.z[o] - root[3 * r + 2]) > 1e-3f;
+        for (j = 1; j < P; ++j) {
+            const size_t q = (size_t)j * R + (size_t)r;
+            const float x[3] = {s[0].ro.x[q], s[0].ro.y[q], s[0].ro.z[q]};
+            CHECK(tr_dist_seg(x, &col) > col.radius * 0.999);
+        }
+    }
+    CHECK_EQ_INT(turned, touching);
+    for (k = 0; k < NSET; ++k) CHECK(tr_finite(&s[k].ro));
+    for (k = 0; k < NSET; ++k) tr_close(&s[k]);
+}
+
 static void test_ropes_simd_lanes_match_scalar(void)
 {
     t_ropes_lanes(HF_ROPE_SOLVER_FTL);
@@ -9459,6 +9526,7 @@ int main(void)
     RUN(test_ropes_get_positions);
     RUN(test_ropes_simd_lanes_match_scalar);
     RUN(test_ropes_contacts_match_scalar);
+    RUN(test_ropes_contacts_degenerate_lanes);
     RUN(test_ropes_set_roots_lanes);
     RUN(test_ropes_safety_net_resets);
     RUN(test_defaults_zeroed_rope_params_are_init);
