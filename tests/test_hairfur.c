@@ -387,6 +387,18 @@ static int tr_finite(const hf_ropes *ro)
     return 1;
 }
 
+/* The same points, bytes and all (with prev: the previous ones too). */
+static int tr_same(const hf_ropes *a, const hf_ropes *b, int prev)
+{
+    const size_t n = sizeof(float) * (size_t)a->rope_count * a->points;
+    int same = memcmp(a->x, b->x, n) == 0 && memcmp(a->y, b->y, n) == 0 &&
+               memcmp(a->z, b->z, n) == 0;
+    if (prev)
+        same = same && memcmp(a->px, b->px, n) == 0 &&
+               memcmp(a->py, b->py, n) == 0 && memcmp(a->pz, b->pz, n) == 0;
+    return same;
+}
+
 static void tr_snapshot(const hf_ropes *ro, float *out)
 {
     hf_ropes_get_positions(ro, 0, ro->rope_count, out, 0);
@@ -3962,13 +3974,7 @@ static void test_ropes_ranges_byte_identical(void)
             hf_ropes_step(&s[2].ro, r, 1, 1.0f / 60.0f, &p, col, 2);
         }
         for (k = 1; k < 3; ++k) {
-            size_t n = sizeof(float) * R * P;
-            same &= memcmp(s[0].ro.x, s[k].ro.x, n) == 0;
-            same &= memcmp(s[0].ro.y, s[k].ro.y, n) == 0;
-            same &= memcmp(s[0].ro.z, s[k].ro.z, n) == 0;
-            same &= memcmp(s[0].ro.px, s[k].ro.px, n) == 0;
-            same &= memcmp(s[0].ro.py, s[k].ro.py, n) == 0;
-            same &= memcmp(s[0].ro.pz, s[k].ro.pz, n) == 0;
+            same &= tr_same(&s[0].ro, &s[k].ro, 1);
             same &= memcmp(s[0].ro.blend, s[k].ro.blend, 4 * R) == 0;
             same &= memcmp(s[0].ro.time, s[k].ro.time, 8 * R) == 0;
         }
@@ -4407,15 +4413,8 @@ static void t_ropes_lanes(int solver)
             pl.simd = k == 3 ? HF_SIMD_SSE2 : HF_SIMD_SCALAR;
             CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, dt, &pl, col, 2), HF_OK);
         }
-        for (k = 1; k < NSET; ++k) {
-            size_t n = sizeof(float) * R * P;
-            same &= memcmp(s[0].ro.x, s[k].ro.x, n) == 0;
-            same &= memcmp(s[0].ro.y, s[k].ro.y, n) == 0;
-            same &= memcmp(s[0].ro.z, s[k].ro.z, n) == 0;
-            same &= memcmp(s[0].ro.px, s[k].ro.px, n) == 0;
-            same &= memcmp(s[0].ro.py, s[k].ro.py, n) == 0;
-            same &= memcmp(s[0].ro.pz, s[k].ro.pz, n) == 0;
-        }
+        for (k = 1; k < NSET; ++k)
+            same &= tr_same(&s[0].ro, &s[k].ro, 1);
         /* the collider was met: points pushed onto its inflated surface */
         for (r = 0; r < R; ++r)
             for (j = 1; j < P; ++j) {
@@ -4549,12 +4548,8 @@ static void test_ropes_safety_net_resets(void)
         CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, 1.0f / 60.0f, &pl, NULL, 0),
                      HF_OK);
     }
-    for (k = 1; k < 3; ++k) {
-        size_t n = sizeof(float) * R * P;
-        same &= memcmp(s[0].ro.x, s[k].ro.x, n) == 0;
-        same &= memcmp(s[0].ro.y, s[k].ro.y, n) == 0;
-        same &= memcmp(s[0].ro.z, s[k].ro.z, n) == 0;
-    }
+    for (k = 1; k < 3; ++k)
+        same &= tr_same(&s[0].ro, &s[k].ro, 0);
     for (r = 0; r < R; ++r) {
         int broken = 0;
         for (i = 0; i < (int)(sizeof bad / sizeof bad[0]); ++i)
@@ -4643,12 +4638,8 @@ static void test_ropes_contacts_match_scalar(void)
                                            col, ncol),
                              HF_OK);
             }
-            for (k = 1; k < NSET; ++k) {
-                size_t n = sizeof(float) * R * P;
-                same &= memcmp(s[0].ro.x, s[k].ro.x, n) == 0;
-                same &= memcmp(s[0].ro.y, s[k].ro.y, n) == 0;
-                same &= memcmp(s[0].ro.z, s[k].ro.z, n) == 0;
-            }
+            for (k = 1; k < NSET; ++k)
+                same &= tr_same(&s[0].ro, &s[k].ro, 0);
         }
         for (r = 0; r < R * P; ++r) /* points left on a surface */
             for (c = 0; c < ncol; ++c) {
@@ -4710,12 +4701,8 @@ static void test_ropes_contacts_degenerate_lanes(void)
         CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, 1.0f / 60.0f, &pl, &col, 1),
                      HF_OK);
     }
-    for (k = 1; k < NSET; ++k) {
-        size_t n = sizeof(float) * R * P;
-        same &= memcmp(s[0].ro.x, s[k].ro.x, n) == 0;
-        same &= memcmp(s[0].ro.y, s[k].ro.y, n) == 0;
-        same &= memcmp(s[0].ro.z, s[k].ro.z, n) == 0;
-    }
+    for (k = 1; k < NSET; ++k)
+        same &= tr_same(&s[0].ro, &s[k].ro, 0);
     CHECK(same);
     for (r = 0; r < R; ++r) {
         const size_t o = (size_t)2 * R + (size_t)r; /* row 2: was inside */
