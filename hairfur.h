@@ -2147,7 +2147,8 @@ HF__INLINE __m128 hf__sel_sse(__m128 m, __m128 a, __m128 b)
    lanes have every bit set or clear, HF__MASK gives bit i for lane i.
    Each is the IEEE operation of the scalar code, so both ISAs give its
    bytes; HF__MAX is SSE's maxps, x > y ? x : y (y when either is NaN).
-   Each macro argument is used once. */
+   Each macro argument is used once. The contact kernels are also built at
+   eight lanes under these names (HF__FTL_KERNELS, in the AVX2 section). */
 #define HF__V4 (HF__SSE || HF__NEON)
 #if HF__SSE
 typedef __m128 hf__v4;
