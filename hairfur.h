@@ -6191,7 +6191,7 @@ HF__PRIVATE void hf__ropes_mark_far_ref(const hf_ropes *ro, int j, int a,
    and built for four lanes below (hf__v4: SSE2, NEON) and for eight in
    the AVX2 section. S names the width in every name (v4, v8), V is its
    vector, W its lanes, T its functions' target attribute, G(row, idx)
-   gathers row[idx[0 .. W)] into a vector, and Z readies the registers for
+   gathers row[idx[0 .. W)] into a vector, and ZU readies the registers for
    the scalar code of the rare paths. They use the four-lane operations'
    names (HF__ADD, ...), which the eight-lane build maps to AVX2 while it
    expands. */
@@ -6204,7 +6204,7 @@ typedef struct hf__ftl_hits {
     int n, r[HF__FTL_HITS];
 } hf__ftl_hits;
 
-#define HF__FTL_KERNELS(S, V, W, T, G, Z)                                     \
+#define HF__FTL_KERNELS(S, V, W, T, G, ZU)                                    \
 /* A prepared collider in every lane, rr^2, and whether its axis is a point    \
    (e == 0: a sphere or a zero-length capsule). */                             \
 typedef struct hf__col_##S {                                                   \
@@ -6368,7 +6368,7 @@ T HF__PRIVATE void hf__ftl_onto_cap_##S(const V *u, const V *m, V cmin,        \
             for (i = 0; i < W; ++i)                                            \
                 if ((lanes >> i) & 1) {                                        \
                     for (k = 0; k < 3; ++k) ml[k] = mm[k][i];                  \
-                    Z;                                                         \
+                    ZU;                                                        \
                     vv2[i] = hf__perp_fixed(ml, vl);                           \
                     for (k = 0; k < 3; ++k) vv[k][i] = vl[k];                  \
                 }                                                              \
@@ -6560,7 +6560,7 @@ T HF__INLINE void hf__ftl_list_##S(hf_ropes *ro, const float *F, int j,        \
     for (i = r; m; ++i, m >>= 1) {                                             \
         if (!(m & 1)) continue;                                                \
         if (ncol > HF__ROPE_PREP) {                                            \
-            Z;                                                                 \
+            ZU;                                                                \
             hf__ropes_collide_ftl_row(ro, F, j, i, i + 1, col, ncol, margin);  \
             continue;                                                          \
         }                                                                      \
@@ -6612,94 +6612,11 @@ hf__ropes_collide_v4(hf_ropes *ro, const float *F, int a, int b,
         }
 }
 
-/* Row kernels of the four-lane sub-step (ropes [a, b), b - a a multiple of 4,
-   a rope per lane), each with the operations of its scalar reference. */
-
-/* The root pinned to the frame F (hf__ropes_integrate_ref's last loop). */
-HF__PRIVATE void
-hf__ropes_pin_root_v4(hf_ropes *ro, const float *F, int a, int b)
-{
-    const size_t R = (size_t)ro->rope_count;
-    const float *F0 = HF__ROW(F, 0, R), *F1 = HF__ROW(F, 1, R),
-                *F2 = HF__ROW(F, 2, R), *F3 = HF__ROW(F, 3, R),
-                *F4 = HF__ROW(F, 4, R), *F5 = HF__ROW(F, 5, R),
-                *F6 = HF__ROW(F, 6, R), *F7 = HF__ROW(F, 7, R),
-                *F8 = HF__ROW(F, 8, R), *F9 = HF__ROW(F, 9, R),
-                *F10 = HF__ROW(F, 10, R), *F11 = HF__ROW(F, 11, R);
-    int r;
-    for (r = a; r < b; r += 4) {
-        const hf__v4 u = HF__LD(ro->rest_u + r), v = HF__LD(ro->rest_v + r),
-                     w = HF__LD(ro->rest_w + r);
-        HF__ST(ro->px + r, HF__LD(ro->x + r));
-        HF__ST(ro->py + r, HF__LD(ro->y + r));
-        HF__ST(ro->pz + r, HF__LD(ro->z + r));
-        HF__ST(ro->x + r, HF__POSE(HF__LD(F0 + r), HF__LD(F3 + r),
-                                   HF__LD(F6 + r), HF__LD(F9 + r), u, v, w));
-        HF__ST(ro->y + r, HF__POSE(HF__LD(F1 + r), HF__LD(F4 + r),
-                                   HF__LD(F7 + r), HF__LD(F10 + r), u, v, w));
-        HF__ST(ro->z + r, HF__POSE(HF__LD(F2 + r), HF__LD(F5 + r),
-                                   HF__LD(F8 + r), HF__LD(F11 + r), u, v, w));
-    }
-}
-
-/* Row j: Verlet integration and the global pull toward the rest place. */
-HF__PRIVATE void
-hf__ropes_integrate_row_v4(hf_ropes *ro, const float *F, int j, int a, int b,
-                           const hf__rope_step *st)
-{
-    const size_t R = (size_t)ro->rope_count;
-    const int P = ro->points;
-    const float *AX = HF__ROW(ro->scratch, HF__RS_A, R),
-                *AY = HF__ROW(ro->scratch, HF__RS_A + 1, R),
-                *AZ = HF__ROW(ro->scratch, HF__RS_A + 2, R),
-                *VF = HF__ROW(ro->scratch, HF__RS_VF, R);
-    const float *F0 = HF__ROW(F, 0, R), *F1 = HF__ROW(F, 1, R),
-                *F2 = HF__ROW(F, 2, R), *F3 = HF__ROW(F, 3, R),
-                *F4 = HF__ROW(F, 4, R), *F5 = HF__ROW(F, 5, R),
-                *F6 = HF__ROW(F, 6, R), *F7 = HF__ROW(F, 7, R),
-                *F8 = HF__ROW(F, 8, R), *F9 = HF__ROW(F, 9, R),
-                *F10 = HF__ROW(F, 10, R), *F11 = HF__ROW(F, 11, R);
-    float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
-          *Z = HF__ROW(ro->z, j, R);
-    float *PX = HF__ROW(ro->px, j, R), *PY = HF__ROW(ro->py, j, R),
-          *PZ = HF__ROW(ro->pz, j, R);
-    const float *u = HF__ROW(ro->rest_u, j, R), *v = HF__ROW(ro->rest_v, j, R),
-                *w = HF__ROW(ro->rest_w, j, R);
-    const float kgj = st->ktab ? st->kg[j] : hf__rope_kg(st, j, P);
-    const int pull = (st->k_root > 0.0f || st->global_on) && !(kgj <= 0.0f);
-    const hf__v4 kg = HF__SET1(kgj);
-    int r;
-    for (r = a; r < b; r += 4) {
-        const hf__v4 vf = HF__LD(VF + r);
-        hf__v4 x = HF__LD(X + r), y = HF__LD(Y + r), z = HF__LD(Z + r);
-        const hf__v4 vx = HF__MUL(HF__SUB(x, HF__LD(PX + r)), vf),
-                     vy = HF__MUL(HF__SUB(y, HF__LD(PY + r)), vf),
-                     vz = HF__MUL(HF__SUB(z, HF__LD(PZ + r)), vf);
-        HF__ST(PX + r, x);
-        HF__ST(PY + r, y);
-        HF__ST(PZ + r, z);
-        x = HF__ADD(x, HF__ADD(vx, HF__LD(AX + r)));
-        y = HF__ADD(y, HF__ADD(vy, HF__LD(AY + r)));
-        z = HF__ADD(z, HF__ADD(vz, HF__LD(AZ + r)));
-        if (pull) {
-            const hf__v4 uu = HF__LD(u + r), vv = HF__LD(v + r),
-                         ww = HF__LD(w + r);
-            hf__v4 g;
-            g = HF__POSE(HF__LD(F0 + r), HF__LD(F3 + r), HF__LD(F6 + r),
-                         HF__LD(F9 + r), uu, vv, ww);
-            x = HF__ADD(x, HF__MUL(kg, HF__SUB(g, x)));
-            g = HF__POSE(HF__LD(F1 + r), HF__LD(F4 + r), HF__LD(F7 + r),
-                         HF__LD(F10 + r), uu, vv, ww);
-            y = HF__ADD(y, HF__MUL(kg, HF__SUB(g, y)));
-            g = HF__POSE(HF__LD(F2 + r), HF__LD(F5 + r), HF__LD(F8 + r),
-                         HF__LD(F11 + r), uu, vv, ww);
-            z = HF__ADD(z, HF__MUL(kg, HF__SUB(g, z)));
-        }
-        HF__ST(X + r, x);
-        HF__ST(Y + r, y);
-        HF__ST(Z + r, z);
-    }
-}
+/* The sub-step's row kernels (ropes [a, b), b - a a multiple of W, a rope
+   per lane), each with the operations of its scalar reference: written
+   once, like the contact kernels, in HF__ROPE_ROWS(S, V, W, T, ZU), and
+   built for four lanes here and for eight in the AVX2 section. ZU ends
+   each (the AVX build's _mm256_zeroupper, see HF__TARGET_AVX2). */
 
 /* Prefetch of what row j's integration and local shape read, for the 16
    ropes (a cache line) from r. */
@@ -6718,216 +6635,310 @@ HF__INLINE void hf__ropes_prefetch_row(const hf_ropes *ro, int j, int r)
     HF__PREFETCH(ro->rest_length + o - R);
 }
 
-/* Row j's local shape: segment m = j - 1's world rest direction into the
-   scratch rows Q[m & 1] (the child direction q of point j + 1's turn, the
-   parent direction p of point j + 2's), then point j turned as in
-   hf__ropes_local_shape_ref at its j = m; the next row is prefetched. */
-HF__PRIVATE void
-hf__ropes_local_row_v4(hf_ropes *ro, const float *F, int j, int a, int b,
-                       const hf__rope_step *st, float *Q[2][3])
-{
-    const size_t R = (size_t)ro->rope_count;
-    const int P = ro->points;
-    const float *F3 = HF__ROW(F, 3, R), *F4 = HF__ROW(F, 4, R),
-                *F5 = HF__ROW(F, 5, R), *F6 = HF__ROW(F, 6, R),
-                *F7 = HF__ROW(F, 7, R), *F8 = HF__ROW(F, 8, R),
-                *F9 = HF__ROW(F, 9, R), *F10 = HF__ROW(F, 10, R),
-                *F11 = HF__ROW(F, 11, R);
-    const float *u = HF__ROW(ro->rest_u, j, R), *v = HF__ROW(ro->rest_v, j, R),
-                *w = HF__ROW(ro->rest_w, j, R);
-    float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
-          *Z = HF__ROW(ro->z, j, R);
-    const hf__v4 one = HF__SET1(1.0f);
-    const int m = j - 1;
-    const float klm = m < 1      ? 0.0f
-                      : st->ktab ? st->kl[m]
-                                 : hf__rope_kl(st, m, P);
-    int r;
-    {
-        /* q of segment m */
-        const float *u1 = HF__ROW(ro->rest_u, m, R),
-                    *v1 = HF__ROW(ro->rest_v, m, R),
-                    *w1 = HF__ROW(ro->rest_w, m, R);
-        float *QX = Q[m & 1][0], *QY = Q[m & 1][1], *QZ = Q[m & 1][2];
-        for (r = a; r < b; r += 4) {
-            const hf__v4 qu = HF__SUB(HF__LD(u + r), HF__LD(u1 + r)),
-                         qv = HF__SUB(HF__LD(v + r), HF__LD(v1 + r)),
-                         qw = HF__SUB(HF__LD(w + r), HF__LD(w1 + r));
-            HF__ST(QX + r, HF__DOT3(HF__LD(F3 + r), HF__LD(F6 + r),
-                                    HF__LD(F9 + r), qu, qv, qw));
-            HF__ST(QY + r, HF__DOT3(HF__LD(F4 + r), HF__LD(F7 + r),
-                                    HF__LD(F10 + r), qu, qv, qw));
-            HF__ST(QZ + r, HF__DOT3(HF__LD(F5 + r), HF__LD(F8 + r),
-                                    HF__LD(F11 + r), qu, qv, qw));
-        }
-    }
-    if (m >= 1 && !(klm <= 0.0f)) {
-        /* the local shape of hf__ropes_sim_run at its j = m */
-        const float *X0 = HF__ROW(ro->x, m - 1, R),
-                    *Y0 = HF__ROW(ro->y, m - 1, R),
-                    *Z0 = HF__ROW(ro->z, m - 1, R);
-        const float *X1 = HF__ROW(ro->x, m, R), *Y1 = HF__ROW(ro->y, m, R),
-                    *Z1 = HF__ROW(ro->z, m, R);
-        const float *L = HF__ROW(ro->rest_length, m - 1, R);
-        const float *QX = Q[m & 1][0], *QY = Q[m & 1][1], *QZ = Q[m & 1][2];
-        const float *PX_ = Q[(m + 1) & 1][0], *PY_ = Q[(m + 1) & 1][1],
-                    *PZ_ = Q[(m + 1) & 1][2];
-        const hf__v4 kl = HF__SET1(klm);
-        const int pf = j + 1 < P;
-        for (r = a; r < b; r += 4) {
-            const hf__v4 x1 = HF__LD(X1 + r), y1 = HF__LD(Y1 + r),
-                         z1 = HF__LD(Z1 + r), l = HF__LD(L + r);
-            const hf__v4 qx = HF__LD(QX + r), qy = HF__LD(QY + r),
-                         qz = HF__LD(QZ + r);
-            hf__v4 px_, py_, pz_, bx, by, bz, b2, ok, ia, ib, cc, kx, ky, kz,
-                kd, den, rx, ry, rz, x2, y2, z2;
-            int all_ok;
-            if (pf && ((r - a) & 15) == 0) /* the next row */
-                hf__ropes_prefetch_row(ro, j + 1, r);
-            bx = HF__SUB(x1, HF__LD(X0 + r));
-            by = HF__SUB(y1, HF__LD(Y0 + r));
-            bz = HF__SUB(z1, HF__LD(Z0 + r));
-            b2 = HF__DOT3(bx, by, bz, bx, by, bz);
-            ok = HF__AND(HF__GT(l, HF__SET1(1e-12f)),
-                         HF__GT(b2, HF__SET1(1e-24f)));
-            all_ok = HF__MASK(ok) == 15;
-            ia = HF__DIV(one, l);
-            ib = HF__DIV(one, HF__SQRT(b2));
-            if (!all_ok) { /* the scalar's 0 (lanes may divide by 0) */
-                ia = HF__AND(ok, ia);
-                ib = HF__AND(ok, ib);
-            }
-            px_ = HF__MUL(HF__LD(PX_ + r), ia);
-            py_ = HF__MUL(HF__LD(PY_ + r), ia);
-            pz_ = HF__MUL(HF__LD(PZ_ + r), ia);
-            bx = HF__MUL(bx, ib);
-            by = HF__MUL(by, ib);
-            bz = HF__MUL(bz, ib);
-            cc = HF__DOT3(px_, py_, pz_, bx, by, bz);
-            if (!all_ok) cc = HF__SEL(ok, cc, one);
-            kx = HF__SUB(HF__MUL(py_, bz), HF__MUL(pz_, by));
-            ky = HF__SUB(HF__MUL(pz_, bx), HF__MUL(px_, bz));
-            kz = HF__SUB(HF__MUL(px_, by), HF__MUL(py_, bx));
-            kd = HF__DOT3(kx, ky, kz, qx, qy, qz);
-            /* maxps(a, b) is a > b ? a : b, NaN included: the scalar's */
-            den = HF__DIV(kd, HF__MAX(HF__ADD(one, cc), HF__SET1(1e-6f)));
-            /* r = q cc + k x q + k den, turned q */
-            rx = HF__ADD(HF__ADD(HF__MUL(qx, cc),
-                                 HF__SUB(HF__MUL(ky, qz), HF__MUL(kz, qy))),
-                         HF__MUL(kx, den));
-            ry = HF__ADD(HF__ADD(HF__MUL(qy, cc),
-                                 HF__SUB(HF__MUL(kz, qx), HF__MUL(kx, qz))),
-                         HF__MUL(ky, den));
-            rz = HF__ADD(HF__ADD(HF__MUL(qz, cc),
-                                 HF__SUB(HF__MUL(kx, qy), HF__MUL(ky, qx))),
-                         HF__MUL(kz, den));
-            x2 = HF__LD(X + r);
-            y2 = HF__LD(Y + r);
-            z2 = HF__LD(Z + r);
-            x2 = HF__ADD(x2, HF__MUL(kl, HF__SUB(HF__ADD(x1, rx), x2)));
-            y2 = HF__ADD(y2, HF__MUL(kl, HF__SUB(HF__ADD(y1, ry), y2)));
-            z2 = HF__ADD(z2, HF__MUL(kl, HF__SUB(HF__ADD(z1, rz), z2)));
-            HF__ST(X + r, x2);
-            HF__ST(Y + r, y2);
-            HF__ST(Z + r, z2);
-        }
-    }
+#define HF__ROPE_ROWS(S, V, W, T, ZU)                                          \
+/* The root pinned to the frame F (hf__ropes_integrate_ref's last loop). */    \
+T HF__PRIVATE void hf__ropes_pin_root_##S(hf_ropes *ro, const float *F,        \
+                                          int a, int b)                        \
+{                                                                              \
+    const size_t R = (size_t)ro->rope_count;                                   \
+    const float *f[12];                                                        \
+    int r;                                                                     \
+    hf__frame_rows(F, R, f);                                                   \
+    for (r = a; r < b; r += W) {                                               \
+        const V u = HF__LD(ro->rest_u + r), v = HF__LD(ro->rest_v + r),        \
+                w = HF__LD(ro->rest_w + r);                                    \
+        HF__ST(ro->px + r, HF__LD(ro->x + r));                                 \
+        HF__ST(ro->py + r, HF__LD(ro->y + r));                                 \
+        HF__ST(ro->pz + r, HF__LD(ro->z + r));                                 \
+        HF__ST(ro->x + r,                                                      \
+               HF__POSE(HF__LD(f[0] + r), HF__LD(f[3] + r), HF__LD(f[6] + r),  \
+                        HF__LD(f[9] + r), u, v, w));                           \
+        HF__ST(ro->y + r,                                                      \
+               HF__POSE(HF__LD(f[1] + r), HF__LD(f[4] + r), HF__LD(f[7] + r),  \
+                        HF__LD(f[10] + r), u, v, w));                          \
+        HF__ST(ro->z + r,                                                      \
+               HF__POSE(HF__LD(f[2] + r), HF__LD(f[5] + r), HF__LD(f[8] + r),  \
+                        HF__LD(f[11] + r), u, v, w));                          \
+    }                                                                          \
+    ZU;                                                                        \
+}                                                                              \
+                                                                               \
+/* Row j: Verlet integration and the global pull toward the rest place. */     \
+T HF__PRIVATE void hf__ropes_integrate_row_##S(hf_ropes *ro, const float *F,   \
+                                               int j, int a, int b,            \
+                                               const hf__rope_step *st)        \
+{                                                                              \
+    const size_t R = (size_t)ro->rope_count;                                   \
+    const int P = ro->points;                                                  \
+    const float *AX = HF__ROW(ro->scratch, HF__RS_A, R),                       \
+                *AY = HF__ROW(ro->scratch, HF__RS_A + 1, R),                   \
+                *AZ = HF__ROW(ro->scratch, HF__RS_A + 2, R),                   \
+                *VF = HF__ROW(ro->scratch, HF__RS_VF, R);                      \
+    const float *f[12];                                                        \
+    float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),                \
+          *Z = HF__ROW(ro->z, j, R);                                           \
+    float *PX = HF__ROW(ro->px, j, R), *PY = HF__ROW(ro->py, j, R),            \
+          *PZ = HF__ROW(ro->pz, j, R);                                         \
+    const float *u = HF__ROW(ro->rest_u, j, R),                                \
+                *v = HF__ROW(ro->rest_v, j, R),                                \
+                *w = HF__ROW(ro->rest_w, j, R);                                \
+    const float kgj = st->ktab ? st->kg[j] : hf__rope_kg(st, j, P);            \
+    const int pull = (st->k_root > 0.0f || st->global_on) && !(kgj <= 0.0f);   \
+    const V kg = HF__SET1(kgj);                                                \
+    int r;                                                                     \
+    hf__frame_rows(F, R, f);                                                   \
+    for (r = a; r < b; r += W) {                                               \
+        const V vf = HF__LD(VF + r);                                           \
+        V x = HF__LD(X + r), y = HF__LD(Y + r), z = HF__LD(Z + r);             \
+        const V vx = HF__MUL(HF__SUB(x, HF__LD(PX + r)), vf),                  \
+                vy = HF__MUL(HF__SUB(y, HF__LD(PY + r)), vf),                  \
+                vz = HF__MUL(HF__SUB(z, HF__LD(PZ + r)), vf);                  \
+        HF__ST(PX + r, x);                                                     \
+        HF__ST(PY + r, y);                                                     \
+        HF__ST(PZ + r, z);                                                     \
+        x = HF__ADD(x, HF__ADD(vx, HF__LD(AX + r)));                           \
+        y = HF__ADD(y, HF__ADD(vy, HF__LD(AY + r)));                           \
+        z = HF__ADD(z, HF__ADD(vz, HF__LD(AZ + r)));                           \
+        if (pull) {                                                            \
+            const V uu = HF__LD(u + r), vv = HF__LD(v + r),                    \
+                    ww = HF__LD(w + r);                                        \
+            V g;                                                               \
+            g = HF__POSE(HF__LD(f[0] + r), HF__LD(f[3] + r),                   \
+                         HF__LD(f[6] + r), HF__LD(f[9] + r), uu, vv, ww);      \
+            x = HF__ADD(x, HF__MUL(kg, HF__SUB(g, x)));                        \
+            g = HF__POSE(HF__LD(f[1] + r), HF__LD(f[4] + r),                   \
+                         HF__LD(f[7] + r), HF__LD(f[10] + r), uu, vv, ww);     \
+            y = HF__ADD(y, HF__MUL(kg, HF__SUB(g, y)));                        \
+            g = HF__POSE(HF__LD(f[2] + r), HF__LD(f[5] + r),                   \
+                         HF__LD(f[8] + r), HF__LD(f[11] + r), uu, vv, ww);     \
+            z = HF__ADD(z, HF__MUL(kg, HF__SUB(g, z)));                        \
+        }                                                                      \
+        HF__ST(X + r, x);                                                      \
+        HF__ST(Y + r, y);                                                      \
+        HF__ST(Z + r, z);                                                      \
+    }                                                                          \
+    ZU;                                                                        \
+}                                                                              \
+                                                                               \
+/* Row j's local shape: segment m = j - 1's world rest direction into the      \
+   scratch rows Q[m & 1] (the child direction q of point j + 1's turn, the     \
+   parent direction p of point j + 2's), then point j turned as in             \
+   hf__ropes_local_shape_ref at its j = m; the next row is prefetched. */      \
+T HF__PRIVATE void hf__ropes_local_row_##S(hf_ropes *ro, const float *F,       \
+                                           int j, int a, int b,                \
+                                           const hf__rope_step *st,            \
+                                           float *Q[2][3])                     \
+{                                                                              \
+    const size_t R = (size_t)ro->rope_count;                                   \
+    const int P = ro->points;                                                  \
+    const float *f[12];                                                        \
+    const float *u = HF__ROW(ro->rest_u, j, R),                                \
+                *v = HF__ROW(ro->rest_v, j, R),                                \
+                *w = HF__ROW(ro->rest_w, j, R);                                \
+    float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),                \
+          *Z = HF__ROW(ro->z, j, R);                                           \
+    const V one = HF__SET1(1.0f);                                              \
+    const int m = j - 1;                                                       \
+    const float klm = m < 1      ? 0.0f                                        \
+                      : st->ktab ? st->kl[m]                                   \
+                                 : hf__rope_kl(st, m, P);                      \
+    int r;                                                                     \
+    hf__frame_rows(F, R, f);                                                   \
+    {                                                                          \
+        /* q of segment m */                                                   \
+        const float *u1 = HF__ROW(ro->rest_u, m, R),                           \
+                    *v1 = HF__ROW(ro->rest_v, m, R),                           \
+                    *w1 = HF__ROW(ro->rest_w, m, R);                           \
+        float *QX = Q[m & 1][0], *QY = Q[m & 1][1], *QZ = Q[m & 1][2];         \
+        for (r = a; r < b; r += W) {                                           \
+            const V qu = HF__SUB(HF__LD(u + r), HF__LD(u1 + r)),               \
+                    qv = HF__SUB(HF__LD(v + r), HF__LD(v1 + r)),               \
+                    qw = HF__SUB(HF__LD(w + r), HF__LD(w1 + r));               \
+            HF__ST(QX + r, HF__DOT3(HF__LD(f[3] + r), HF__LD(f[6] + r),        \
+                                    HF__LD(f[9] + r), qu, qv, qw));            \
+            HF__ST(QY + r, HF__DOT3(HF__LD(f[4] + r), HF__LD(f[7] + r),        \
+                                    HF__LD(f[10] + r), qu, qv, qw));           \
+            HF__ST(QZ + r, HF__DOT3(HF__LD(f[5] + r), HF__LD(f[8] + r),        \
+                                    HF__LD(f[11] + r), qu, qv, qw));           \
+        }                                                                      \
+    }                                                                          \
+    if (m >= 1 && !(klm <= 0.0f)) {                                            \
+        /* the local shape of hf__ropes_sim_run at its j = m */                \
+        const float *X0 = HF__ROW(ro->x, m - 1, R),                            \
+                    *Y0 = HF__ROW(ro->y, m - 1, R),                            \
+                    *Z0 = HF__ROW(ro->z, m - 1, R);                            \
+        const float *X1 = HF__ROW(ro->x, m, R), *Y1 = HF__ROW(ro->y, m, R),    \
+                    *Z1 = HF__ROW(ro->z, m, R);                                \
+        const float *L = HF__ROW(ro->rest_length, m - 1, R);                   \
+        const float *QX = Q[m & 1][0], *QY = Q[m & 1][1], *QZ = Q[m & 1][2];   \
+        const float *PX_ = Q[(m + 1) & 1][0], *PY_ = Q[(m + 1) & 1][1],        \
+                    *PZ_ = Q[(m + 1) & 1][2];                                  \
+        const V kl = HF__SET1(klm);                                            \
+        const int pf = j + 1 < P;                                              \
+        for (r = a; r < b; r += W) {                                           \
+            const V x1 = HF__LD(X1 + r), y1 = HF__LD(Y1 + r),                  \
+                    z1 = HF__LD(Z1 + r), l = HF__LD(L + r);                    \
+            const V qx = HF__LD(QX + r), qy = HF__LD(QY + r),                  \
+                    qz = HF__LD(QZ + r);                                       \
+            V px_, py_, pz_, bx, by, bz, b2, ok, ia, ib, cc, kx, ky, kz, kd,   \
+                den, rx, ry, rz, x2, y2, z2;                                   \
+            int all_ok;                                                        \
+            if (pf && ((r - a) & 15) == 0) /* the next row */                  \
+                hf__ropes_prefetch_row(ro, j + 1, r);                          \
+            bx = HF__SUB(x1, HF__LD(X0 + r));                                  \
+            by = HF__SUB(y1, HF__LD(Y0 + r));                                  \
+            bz = HF__SUB(z1, HF__LD(Z0 + r));                                  \
+            b2 = HF__DOT3(bx, by, bz, bx, by, bz);                             \
+            ok = HF__AND(HF__GT(l, HF__SET1(1e-12f)),                          \
+                         HF__GT(b2, HF__SET1(1e-24f)));                        \
+            all_ok = HF__MASK(ok) == (1 << W) - 1;                             \
+            ia = HF__DIV(one, l);                                              \
+            ib = HF__DIV(one, HF__SQRT(b2));                                   \
+            if (!all_ok) { /* the scalar's 0 (lanes may divide by 0) */        \
+                ia = HF__AND(ok, ia);                                          \
+                ib = HF__AND(ok, ib);                                          \
+            }                                                                  \
+            px_ = HF__MUL(HF__LD(PX_ + r), ia);                                \
+            py_ = HF__MUL(HF__LD(PY_ + r), ia);                                \
+            pz_ = HF__MUL(HF__LD(PZ_ + r), ia);                                \
+            bx = HF__MUL(bx, ib);                                              \
+            by = HF__MUL(by, ib);                                              \
+            bz = HF__MUL(bz, ib);                                              \
+            cc = HF__DOT3(px_, py_, pz_, bx, by, bz);                          \
+            if (!all_ok) cc = HF__SEL(ok, cc, one);                            \
+            kx = HF__SUB(HF__MUL(py_, bz), HF__MUL(pz_, by));                  \
+            ky = HF__SUB(HF__MUL(pz_, bx), HF__MUL(px_, bz));                  \
+            kz = HF__SUB(HF__MUL(px_, by), HF__MUL(py_, bx));                  \
+            kd = HF__DOT3(kx, ky, kz, qx, qy, qz);                             \
+            /* maxps(a, b) is a > b ? a : b, NaN included: the scalar's */     \
+            den = HF__DIV(kd, HF__MAX(HF__ADD(one, cc), HF__SET1(1e-6f)));     \
+            /* r = q cc + k x q + k den, turned q */                           \
+            rx = HF__ADD(HF__ADD(HF__MUL(qx, cc),                              \
+                                 HF__SUB(HF__MUL(ky, qz), HF__MUL(kz, qy))),   \
+                         HF__MUL(kx, den));                                    \
+            ry = HF__ADD(HF__ADD(HF__MUL(qy, cc),                              \
+                                 HF__SUB(HF__MUL(kz, qx), HF__MUL(kx, qz))),   \
+                         HF__MUL(ky, den));                                    \
+            rz = HF__ADD(HF__ADD(HF__MUL(qz, cc),                              \
+                                 HF__SUB(HF__MUL(kx, qy), HF__MUL(ky, qx))),   \
+                         HF__MUL(kz, den));                                    \
+            x2 = HF__LD(X + r);                                                \
+            y2 = HF__LD(Y + r);                                                \
+            z2 = HF__LD(Z + r);                                                \
+            x2 = HF__ADD(x2, HF__MUL(kl, HF__SUB(HF__ADD(x1, rx), x2)));       \
+            y2 = HF__ADD(y2, HF__MUL(kl, HF__SUB(HF__ADD(y1, ry), y2)));       \
+            z2 = HF__ADD(z2, HF__MUL(kl, HF__SUB(HF__ADD(z1, rz), z2)));       \
+            HF__ST(X + r, x2);                                                 \
+            HF__ST(Y + r, y2);                                                 \
+            HF__ST(Z + r, z2);                                                 \
+        }                                                                      \
+    }                                                                          \
+    ZU;                                                                        \
+}                                                                              \
+                                                                               \
+/* Row j's follow-the-leader placement (or, for the distance solver, the       \
+   root segment), then its collisions: the points some collider holds are      \
+   listed, and resolved W at a time by the contact kernel. */                  \
+T HF__PRIVATE void hf__ropes_ftl_row_##S(hf_ropes *ro, const float *F, int j,  \
+                                         int a, int b,                         \
+                                         const hf__rope_step *st,              \
+                                         const hf_collider *col, int ncol)     \
+{                                                                              \
+    const size_t R = (size_t)ro->rope_count;                                   \
+    const float *f[12];                                                        \
+    float *X0 = HF__ROW(ro->x, j - 1, R), *Y0 = HF__ROW(ro->y, j - 1, R),      \
+          *Z0 = HF__ROW(ro->z, j - 1, R);                                      \
+    float *X1 = HF__ROW(ro->x, j, R), *Y1 = HF__ROW(ro->y, j, R),              \
+          *Z1 = HF__ROW(ro->z, j, R);                                          \
+    float *PX0 = HF__ROW(ro->px, j - 1, R), *PY0 = HF__ROW(ro->py, j - 1, R),  \
+          *PZ0 = HF__ROW(ro->pz, j - 1, R);                                    \
+    const float *L = HF__ROW(ro->rest_length, j - 1, R);                       \
+    const V one = HF__SET1(1.0f);                                              \
+    const V sd = HF__SET1(j >= 2 ? st->ftl_damping : 0.0f);                    \
+    hf__ftl_hits hits;                                                         \
+    hf__col_##S pre[HF__ROPE_PREP]; /* the first colliders, in lanes */        \
+    int r;                                                                     \
+    hf__frame_rows(F, R, f);                                                   \
+    hits.n = 0;                                                                \
+    for (r = 0; st->ftl && r < ncol && r < HF__ROPE_PREP; ++r) {               \
+        const hf__col_prep k = hf__collider_prep(col + r, st->margin);         \
+        hf__col_prep_##S(&k, pre + r);                                         \
+    }                                                                          \
+    for (r = a; r < b; r += W) {                                               \
+        const V x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),                      \
+                z0 = HF__LD(Z0 + r);                                           \
+        const V ox = HF__LD(X1 + r), oy = HF__LD(Y1 + r),                      \
+                oz = HF__LD(Z1 + r);                                           \
+        V dx = HF__SUB(ox, x0), dy = HF__SUB(oy, y0), dz = HF__SUB(oz, z0),    \
+          d2, deg, sc, xyz[3];                                                 \
+        d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);                                 \
+        /* coincident points: grow along the root normal */                    \
+        deg = HF__LT(d2, HF__SET1(1e-24f));                                    \
+        if (HF__MASK(deg)) { /* rare: the selects */                           \
+            dx = HF__SEL(deg, HF__LD(f[6] + r), dx);                           \
+            dy = HF__SEL(deg, HF__LD(f[7] + r), dy);                           \
+            dz = HF__SEL(deg, HF__LD(f[8] + r), dz);                           \
+            d2 = HF__SEL(deg, one, d2);                                        \
+        }                                                                      \
+        sc = HF__DIV(HF__LD(L + r), HF__SQRT(d2));                             \
+        xyz[0] = HF__ADD(x0, HF__MUL(dx, sc));                                 \
+        xyz[1] = HF__ADD(y0, HF__MUL(dy, sc));                                 \
+        xyz[2] = HF__ADD(z0, HF__MUL(dz, sc));                                 \
+        HF__ST(X1 + r, xyz[0]);                                                \
+        HF__ST(Y1 + r, xyz[1]);                                                \
+        HF__ST(Z1 + r, xyz[2]);                                                \
+        if (!st->ftl) continue;                                                \
+        HF__ST(PX0 + r,                                                        \
+               HF__ADD(HF__LD(PX0 + r), HF__MUL(sd, HF__SUB(xyz[0], ox))));    \
+        HF__ST(PY0 + r,                                                        \
+               HF__ADD(HF__LD(PY0 + r), HF__MUL(sd, HF__SUB(xyz[1], oy))));    \
+        HF__ST(PZ0 + r,                                                        \
+               HF__ADD(HF__LD(PZ0 + r), HF__MUL(sd, HF__SUB(xyz[2], oz))));    \
+        if (ncol > 0) {                                                        \
+            const int m = hf__col_any_##S(col, ncol, pre, st->margin, xyz);    \
+            if (m)                                                             \
+                hf__ftl_list_##S(ro, F, j, r, m, &hits, col, ncol, pre,        \
+                                 st->margin);                                  \
+        }                                                                      \
+    }                                                                          \
+    if (st->ftl) hf__ftl_flush_##S(ro, F, j, &hits, pre, ncol);                \
+    ZU;                                                                        \
+}                                                                              \
+                                                                               \
+/* Row j of a distance pass: half the error to each end (equal masses). */     \
+T HF__PRIVATE void hf__ropes_distance_row_##S(hf_ropes *ro, int j, int a,      \
+                                              int b)                           \
+{                                                                              \
+    const size_t R = (size_t)ro->rope_count;                                   \
+    float *X0 = HF__ROW(ro->x, j - 1, R), *Y0 = HF__ROW(ro->y, j - 1, R),      \
+          *Z0 = HF__ROW(ro->z, j - 1, R);                                      \
+    float *X1 = HF__ROW(ro->x, j, R), *Y1 = HF__ROW(ro->y, j, R),              \
+          *Z1 = HF__ROW(ro->z, j, R);                                          \
+    const float *L = HF__ROW(ro->rest_length, j - 1, R);                       \
+    const V half = HF__SET1(0.5f);                                             \
+    int r;                                                                     \
+    for (r = a; r < b; r += W) {                                               \
+        const V x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),                      \
+                z0 = HF__LD(Z0 + r), x1 = HF__LD(X1 + r),                      \
+                y1 = HF__LD(Y1 + r), z1 = HF__LD(Z1 + r);                      \
+        const V dx = HF__SUB(x1, x0), dy = HF__SUB(y1, y0),                    \
+                dz = HF__SUB(z1, z0);                                          \
+        const V d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);                         \
+        const V e =                                                            \
+            HF__AND(HF__GT(d2, HF__SET1(1e-24f)),                              \
+                    HF__SUB(half, HF__DIV(HF__MUL(half, HF__LD(L + r)),        \
+                                          HF__SQRT(d2))));                     \
+        HF__ST(X0 + r, HF__ADD(x0, HF__MUL(dx, e)));                           \
+        HF__ST(Y0 + r, HF__ADD(y0, HF__MUL(dy, e)));                           \
+        HF__ST(Z0 + r, HF__ADD(z0, HF__MUL(dz, e)));                           \
+        HF__ST(X1 + r, HF__SUB(x1, HF__MUL(dx, e)));                           \
+        HF__ST(Y1 + r, HF__SUB(y1, HF__MUL(dy, e)));                           \
+        HF__ST(Z1 + r, HF__SUB(z1, HF__MUL(dz, e)));                           \
+    }                                                                          \
+    ZU;                                                                        \
 }
 
-/* Row j's follow-the-leader placement (or, for the distance solver, the
-   root segment), then its collisions (the first collider's test inline; a
-   hit goes through the scalar kernel). */
-HF__PRIVATE void
-hf__ropes_ftl_row_v4(hf_ropes *ro, const float *F, int j, int a, int b,
-                     const hf__rope_step *st, const hf_collider *col, int ncol,
-                     const hf__col_v4 *pre)
-{
-    const size_t R = (size_t)ro->rope_count;
-    const float *F6 = HF__ROW(F, 6, R), *F7 = HF__ROW(F, 7, R),
-                *F8 = HF__ROW(F, 8, R);
-    float *X0 = HF__ROW(ro->x, j - 1, R), *Y0 = HF__ROW(ro->y, j - 1, R),
-          *Z0 = HF__ROW(ro->z, j - 1, R);
-    float *X1 = HF__ROW(ro->x, j, R), *Y1 = HF__ROW(ro->y, j, R),
-          *Z1 = HF__ROW(ro->z, j, R);
-    float *PX0 = HF__ROW(ro->px, j - 1, R), *PY0 = HF__ROW(ro->py, j - 1, R),
-          *PZ0 = HF__ROW(ro->pz, j - 1, R);
-    const float *L = HF__ROW(ro->rest_length, j - 1, R);
-    const hf__v4 one = HF__SET1(1.0f);
-    const hf__v4 sd = HF__SET1(j >= 2 ? st->ftl_damping : 0.0f);
-    hf__ftl_hits hits;
-    int r;
-    hits.n = 0;
-    for (r = a; r < b; r += 4) {
-        const hf__v4 x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),
-                     z0 = HF__LD(Z0 + r);
-        const hf__v4 ox = HF__LD(X1 + r), oy = HF__LD(Y1 + r),
-                     oz = HF__LD(Z1 + r);
-        hf__v4 dx = HF__SUB(ox, x0), dy = HF__SUB(oy, y0), dz = HF__SUB(oz, z0),
-               d2, deg, sc, xyz[3];
-        d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);
-        /* coincident points: grow along the root normal */
-        deg = HF__LT(d2, HF__SET1(1e-24f));
-        if (HF__MASK(deg)) { /* rare: the selects */
-            dx = HF__SEL(deg, HF__LD(F6 + r), dx);
-            dy = HF__SEL(deg, HF__LD(F7 + r), dy);
-            dz = HF__SEL(deg, HF__LD(F8 + r), dz);
-            d2 = HF__SEL(deg, one, d2);
-        }
-        sc = HF__DIV(HF__LD(L + r), HF__SQRT(d2));
-        xyz[0] = HF__ADD(x0, HF__MUL(dx, sc));
-        xyz[1] = HF__ADD(y0, HF__MUL(dy, sc));
-        xyz[2] = HF__ADD(z0, HF__MUL(dz, sc));
-        HF__ST(X1 + r, xyz[0]);
-        HF__ST(Y1 + r, xyz[1]);
-        HF__ST(Z1 + r, xyz[2]);
-        if (!st->ftl) continue;
-        HF__ST(PX0 + r,
-               HF__ADD(HF__LD(PX0 + r), HF__MUL(sd, HF__SUB(xyz[0], ox))));
-        HF__ST(PY0 + r,
-               HF__ADD(HF__LD(PY0 + r), HF__MUL(sd, HF__SUB(xyz[1], oy))));
-        HF__ST(PZ0 + r,
-               HF__ADD(HF__LD(PZ0 + r), HF__MUL(sd, HF__SUB(xyz[2], oz))));
-        if (ncol > 0) {
-            const int m = hf__col_any_v4(col, ncol, pre, st->margin, xyz);
-            if (m)
-                hf__ftl_list_v4(ro, F, j, r, m, &hits, col, ncol, pre,
-                                st->margin);
-        }
-    }
-    hf__ftl_flush_v4(ro, F, j, &hits, pre, ncol);
-}
-
-/* Row j of a distance pass: half the error to each end (equal masses). */
-HF__PRIVATE void hf__ropes_distance_row_v4(hf_ropes *ro, int j,
-                                                         int a, int b)
-{
-    const size_t R = (size_t)ro->rope_count;
-    float *X0 = HF__ROW(ro->x, j - 1, R), *Y0 = HF__ROW(ro->y, j - 1, R),
-          *Z0 = HF__ROW(ro->z, j - 1, R);
-    float *X1 = HF__ROW(ro->x, j, R), *Y1 = HF__ROW(ro->y, j, R),
-          *Z1 = HF__ROW(ro->z, j, R);
-    const float *L = HF__ROW(ro->rest_length, j - 1, R);
-    const hf__v4 half = HF__SET1(0.5f);
-    int r;
-    for (r = a; r < b; r += 4) {
-        const hf__v4 x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),
-                     z0 = HF__LD(Z0 + r), x1 = HF__LD(X1 + r),
-                     y1 = HF__LD(Y1 + r), z1 = HF__LD(Z1 + r);
-        const hf__v4 dx = HF__SUB(x1, x0), dy = HF__SUB(y1, y0),
-                     dz = HF__SUB(z1, z0);
-        const hf__v4 d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);
-        const hf__v4 e =
-            HF__AND(HF__GT(d2, HF__SET1(1e-24f)),
-                    HF__SUB(half, HF__DIV(HF__MUL(half, HF__LD(L + r)),
-                                          HF__SQRT(d2))));
-        HF__ST(X0 + r, HF__ADD(x0, HF__MUL(dx, e)));
-        HF__ST(Y0 + r, HF__ADD(y0, HF__MUL(dy, e)));
-        HF__ST(Z0 + r, HF__ADD(z0, HF__MUL(dz, e)));
-        HF__ST(X1 + r, HF__SUB(x1, HF__MUL(dx, e)));
-        HF__ST(Y1 + r, HF__SUB(y1, HF__MUL(dy, e)));
-        HF__ST(Z1 + r, HF__SUB(z1, HF__MUL(dz, e)));
-    }
-}
+HF__ROPE_ROWS(v4, hf__v4, 4, , (void)0)
 
 /* The row kernels of one SIMD width: the four-lane ones, and the AVX2
    ones below. */
@@ -6938,8 +6949,7 @@ typedef struct hf__rope_rows {
     void (*local)(hf_ropes *, const float *, int, int, int,
                   const hf__rope_step *, float *[2][3]);
     void (*ftl)(hf_ropes *, const float *, int, int, int,
-                const hf__rope_step *, const hf_collider *, int,
-                const hf__col_v4 *);
+                const hf__rope_step *, const hf_collider *, int);
     void (*distance)(hf_ropes *, int, int, int);
 } hf__rope_rows;
 
@@ -6975,7 +6985,7 @@ HF__PRIVATE void hf__ropes_substep_rows(hf_ropes *ro, const float *F, int a,
     for (it = 0; it < st->iterations; ++it) {
         for (j = 1; j < P; ++j)
             if (st->ftl || j == 1)
-                k->ftl(ro, F, j, a, b, st, col, ncol, pre);
+                k->ftl(ro, F, j, a, b, st, col, ncol);
             else
                 k->distance(ro, j, a, b);
         if (!st->ftl && ncol > 0)
@@ -7012,219 +7022,11 @@ HF__PRIVATE int hf__ropes_mark_far_v4(const hf_ropes *ro, int j,
 #endif
 
 #if HF__AVX2
-/* The four-lane sub-step's row kernels eight ropes a vector (AVX2), with
-   the same operations per rope; the FTL rows' contacts go through the
-   contact kernels built at eight lanes. */
-#define HF__L8(p) _mm256_loadu_ps(p)
-#define HF__S8(p, v) _mm256_storeu_ps(p, v)
-#define HF__A8(x, y) _mm256_add_ps(x, y)
-#define HF__D8(x, y) _mm256_sub_ps(x, y)
-#define HF__M8(x, y) _mm256_mul_ps(x, y)
-#define HF__DOT3_8(a, b, c, x, y, z)                                           \
-    HF__A8(HF__A8(HF__M8(a, x), HF__M8(b, y)), HF__M8(c, z))
-#define HF__POSE_8(o, a, b, c, x, y, z)                                        \
-    HF__A8(HF__A8(HF__A8(o, HF__M8(a, x)), HF__M8(b, y)), HF__M8(c, z))
-#define HF__SEL8(m, a, b) _mm256_blendv_ps(b, a, m)
-
-HF__TARGET_AVX2 HF__PRIVATE void hf__ropes_pin_root_avx2(hf_ropes *ro,
-                                                        const float *F,
-                                                        int a, int b)
-{
-    const size_t R = (size_t)ro->rope_count;
-    const float *f[12];
-    int r;
-    hf__frame_rows(F, R, f);
-    for (r = a; r < b; r += 8) {
-        const __m256 u = HF__L8(ro->rest_u + r), v = HF__L8(ro->rest_v + r),
-                     w = HF__L8(ro->rest_w + r);
-        HF__S8(ro->px + r, HF__L8(ro->x + r));
-        HF__S8(ro->py + r, HF__L8(ro->y + r));
-        HF__S8(ro->pz + r, HF__L8(ro->z + r));
-        HF__S8(ro->x + r, HF__POSE_8(HF__L8(f[0] + r), HF__L8(f[3] + r),
-                                     HF__L8(f[6] + r), HF__L8(f[9] + r), u,
-                                     v, w));
-        HF__S8(ro->y + r, HF__POSE_8(HF__L8(f[1] + r), HF__L8(f[4] + r),
-                                     HF__L8(f[7] + r), HF__L8(f[10] + r), u,
-                                     v, w));
-        HF__S8(ro->z + r, HF__POSE_8(HF__L8(f[2] + r), HF__L8(f[5] + r),
-                                     HF__L8(f[8] + r), HF__L8(f[11] + r), u,
-                                     v, w));
-    }
-    _mm256_zeroupper();
-}
-
-HF__TARGET_AVX2 HF__PRIVATE void
-hf__ropes_integrate_row_avx2(hf_ropes *ro, const float *F, int j, int a,
-                             int b, const hf__rope_step *st)
-{
-    const size_t R = (size_t)ro->rope_count;
-    const int P = ro->points;
-    const float *AX = HF__ROW(ro->scratch, HF__RS_A, R),
-                *AY = HF__ROW(ro->scratch, HF__RS_A + 1, R),
-                *AZ = HF__ROW(ro->scratch, HF__RS_A + 2, R),
-                *VF = HF__ROW(ro->scratch, HF__RS_VF, R);
-    float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
-          *Z = HF__ROW(ro->z, j, R);
-    float *PX = HF__ROW(ro->px, j, R), *PY = HF__ROW(ro->py, j, R),
-          *PZ = HF__ROW(ro->pz, j, R);
-    const float *u = HF__ROW(ro->rest_u, j, R),
-                *v = HF__ROW(ro->rest_v, j, R),
-                *w = HF__ROW(ro->rest_w, j, R);
-    const float kgj = st->ktab ? st->kg[j] : hf__rope_kg(st, j, P);
-    const int pull = (st->k_root > 0.0f || st->global_on) && !(kgj <= 0.0f);
-    const __m256 kg = _mm256_set1_ps(kgj);
-    const float *f[12];
-    int r;
-    hf__frame_rows(F, R, f);
-    for (r = a; r < b; r += 8) {
-        const __m256 vf = HF__L8(VF + r);
-        __m256 x = HF__L8(X + r), y = HF__L8(Y + r), z = HF__L8(Z + r);
-        const __m256 vx = HF__M8(HF__D8(x, HF__L8(PX + r)), vf),
-                     vy = HF__M8(HF__D8(y, HF__L8(PY + r)), vf),
-                     vz = HF__M8(HF__D8(z, HF__L8(PZ + r)), vf);
-        HF__S8(PX + r, x);
-        HF__S8(PY + r, y);
-        HF__S8(PZ + r, z);
-        x = HF__A8(x, HF__A8(vx, HF__L8(AX + r)));
-        y = HF__A8(y, HF__A8(vy, HF__L8(AY + r)));
-        z = HF__A8(z, HF__A8(vz, HF__L8(AZ + r)));
-        if (pull) {
-            const __m256 uu = HF__L8(u + r), vv = HF__L8(v + r),
-                         ww = HF__L8(w + r);
-            __m256 g;
-            g = HF__POSE_8(HF__L8(f[0] + r), HF__L8(f[3] + r),
-                           HF__L8(f[6] + r), HF__L8(f[9] + r), uu, vv, ww);
-            x = HF__A8(x, HF__M8(kg, HF__D8(g, x)));
-            g = HF__POSE_8(HF__L8(f[1] + r), HF__L8(f[4] + r),
-                           HF__L8(f[7] + r), HF__L8(f[10] + r), uu, vv, ww);
-            y = HF__A8(y, HF__M8(kg, HF__D8(g, y)));
-            g = HF__POSE_8(HF__L8(f[2] + r), HF__L8(f[5] + r),
-                           HF__L8(f[8] + r), HF__L8(f[11] + r), uu, vv, ww);
-            z = HF__A8(z, HF__M8(kg, HF__D8(g, z)));
-        }
-        HF__S8(X + r, x);
-        HF__S8(Y + r, y);
-        HF__S8(Z + r, z);
-    }
-    _mm256_zeroupper();
-}
-
-/* hf__ropes_local_row_v4, eight ropes a vector. */
-HF__TARGET_AVX2 HF__PRIVATE void
-hf__ropes_local_row_avx2(hf_ropes *ro, const float *F, int j, int a, int b,
-                         const hf__rope_step *st, float *Q[2][3])
-{
-    const size_t R = (size_t)ro->rope_count;
-    const int P = ro->points;
-    const float *u = HF__ROW(ro->rest_u, j, R),
-                *v = HF__ROW(ro->rest_v, j, R),
-                *w = HF__ROW(ro->rest_w, j, R);
-    float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
-          *Z = HF__ROW(ro->z, j, R);
-    const __m256 one = _mm256_set1_ps(1.0f);
-    const int m = j - 1;
-    const float klm =
-        m < 1 ? 0.0f : st->ktab ? st->kl[m] : hf__rope_kl(st, m, P);
-    const float *f[12];
-    int r;
-    hf__frame_rows(F, R, f);
-    {
-        /* q of segment m */
-        const float *u1 = HF__ROW(ro->rest_u, m, R),
-                    *v1 = HF__ROW(ro->rest_v, m, R),
-                    *w1 = HF__ROW(ro->rest_w, m, R);
-        float *QX = Q[m & 1][0], *QY = Q[m & 1][1], *QZ = Q[m & 1][2];
-        for (r = a; r < b; r += 8) {
-            const __m256 qu = HF__D8(HF__L8(u + r), HF__L8(u1 + r)),
-                         qv = HF__D8(HF__L8(v + r), HF__L8(v1 + r)),
-                         qw = HF__D8(HF__L8(w + r), HF__L8(w1 + r));
-            HF__S8(QX + r, HF__DOT3_8(HF__L8(f[3] + r), HF__L8(f[6] + r),
-                                      HF__L8(f[9] + r), qu, qv, qw));
-            HF__S8(QY + r, HF__DOT3_8(HF__L8(f[4] + r), HF__L8(f[7] + r),
-                                      HF__L8(f[10] + r), qu, qv, qw));
-            HF__S8(QZ + r, HF__DOT3_8(HF__L8(f[5] + r), HF__L8(f[8] + r),
-                                      HF__L8(f[11] + r), qu, qv, qw));
-        }
-    }
-    if (m >= 1 && !(klm <= 0.0f)) {
-        const float *X0 = HF__ROW(ro->x, m - 1, R),
-                    *Y0 = HF__ROW(ro->y, m - 1, R),
-                    *Z0 = HF__ROW(ro->z, m - 1, R);
-        const float *X1 = HF__ROW(ro->x, m, R), *Y1 = HF__ROW(ro->y, m, R),
-                    *Z1 = HF__ROW(ro->z, m, R);
-        const float *L = HF__ROW(ro->rest_length, m - 1, R);
-        const float *QX = Q[m & 1][0], *QY = Q[m & 1][1],
-                    *QZ = Q[m & 1][2];
-        const float *PX_ = Q[(m + 1) & 1][0], *PY_ = Q[(m + 1) & 1][1],
-                    *PZ_ = Q[(m + 1) & 1][2];
-        const __m256 kl = _mm256_set1_ps(klm);
-        const int pf = j + 1 < P;
-        for (r = a; r < b; r += 8) {
-            const __m256 x1 = HF__L8(X1 + r), y1 = HF__L8(Y1 + r),
-                         z1 = HF__L8(Z1 + r), l = HF__L8(L + r);
-            const __m256 qx = HF__L8(QX + r), qy = HF__L8(QY + r),
-                         qz = HF__L8(QZ + r);
-            __m256 px_, py_, pz_, bx, by, bz, b2, ok, ia, ib, cc, kx, ky,
-                kz, kd, den, rx, ry, rz, x2, y2, z2;
-            int all_ok;
-            if (pf && ((r - a) & 15) == 0) /* the next row */
-                hf__ropes_prefetch_row(ro, j + 1, r);
-            bx = HF__D8(x1, HF__L8(X0 + r));
-            by = HF__D8(y1, HF__L8(Y0 + r));
-            bz = HF__D8(z1, HF__L8(Z0 + r));
-            b2 = HF__DOT3_8(bx, by, bz, bx, by, bz);
-            ok = _mm256_and_ps(
-                _mm256_cmp_ps(l, _mm256_set1_ps(1e-12f), _CMP_GT_OQ),
-                _mm256_cmp_ps(b2, _mm256_set1_ps(1e-24f), _CMP_GT_OQ));
-            all_ok = _mm256_movemask_ps(ok) == 0xff;
-            ia = _mm256_div_ps(one, l);
-            ib = _mm256_div_ps(one, _mm256_sqrt_ps(b2));
-            if (!all_ok) { /* the scalar's 0 (lanes may divide by 0) */
-                ia = _mm256_and_ps(ok, ia);
-                ib = _mm256_and_ps(ok, ib);
-            }
-            px_ = HF__M8(HF__L8(PX_ + r), ia);
-            py_ = HF__M8(HF__L8(PY_ + r), ia);
-            pz_ = HF__M8(HF__L8(PZ_ + r), ia);
-            bx = HF__M8(bx, ib);
-            by = HF__M8(by, ib);
-            bz = HF__M8(bz, ib);
-            cc = HF__DOT3_8(px_, py_, pz_, bx, by, bz);
-            if (!all_ok) cc = HF__SEL8(ok, cc, one);
-            kx = HF__D8(HF__M8(py_, bz), HF__M8(pz_, by));
-            ky = HF__D8(HF__M8(pz_, bx), HF__M8(px_, bz));
-            kz = HF__D8(HF__M8(px_, by), HF__M8(py_, bx));
-            kd = HF__DOT3_8(kx, ky, kz, qx, qy, qz);
-            /* maxps(a, b) is a > b ? a : b, NaN included: the scalar's */
-            den = _mm256_div_ps(kd, _mm256_max_ps(HF__A8(one, cc),
-                                                  _mm256_set1_ps(1e-6f)));
-            /* r = q cc + k x q + k den, turned q */
-            rx = HF__A8(HF__A8(HF__M8(qx, cc),
-                               HF__D8(HF__M8(ky, qz), HF__M8(kz, qy))),
-                        HF__M8(kx, den));
-            ry = HF__A8(HF__A8(HF__M8(qy, cc),
-                               HF__D8(HF__M8(kz, qx), HF__M8(kx, qz))),
-                        HF__M8(ky, den));
-            rz = HF__A8(HF__A8(HF__M8(qz, cc),
-                               HF__D8(HF__M8(kx, qy), HF__M8(ky, qx))),
-                        HF__M8(kz, den));
-            x2 = HF__L8(X + r);
-            y2 = HF__L8(Y + r);
-            z2 = HF__L8(Z + r);
-            x2 = HF__A8(x2, HF__M8(kl, HF__D8(HF__A8(x1, rx), x2)));
-            y2 = HF__A8(y2, HF__M8(kl, HF__D8(HF__A8(y1, ry), y2)));
-            z2 = HF__A8(z2, HF__M8(kl, HF__D8(HF__A8(z1, rz), z2)));
-            HF__S8(X + r, x2);
-            HF__S8(Y + r, y2);
-            HF__S8(Z + r, z2);
-        }
-    }
-    _mm256_zeroupper();
-}
-
-/* The contact kernels at eight lanes (HF__FTL_KERNELS): the four-lane
-   operations' names stand for their AVX forms while they expand (the
-   compares false on NaN, as SSE's, so each lane keeps the scalar bytes). */
+/* The rope kernels at eight lanes (AVX2): the contact kernels
+   (HF__FTL_KERNELS) and the sub-step's rows (HF__ROPE_ROWS), with the
+   four-lane operations' names standing for their AVX forms while they
+   expand: the same operations per rope, so the same bytes (the compares
+   false on NaN and maxps's order, as SSE's). */
 #pragma push_macro("HF__LD")
 #pragma push_macro("HF__ST")
 #pragma push_macro("HF__SET1")
@@ -7240,6 +7042,7 @@ hf__ropes_local_row_avx2(hf_ropes *ro, const float *F, int j, int a, int b,
 #pragma push_macro("HF__AND")
 #pragma push_macro("HF__SEL")
 #pragma push_macro("HF__MASK")
+#pragma push_macro("HF__MAX")
 #undef HF__LD
 #undef HF__ST
 #undef HF__SET1
@@ -7255,6 +7058,7 @@ hf__ropes_local_row_avx2(hf_ropes *ro, const float *F, int j, int a, int b,
 #undef HF__AND
 #undef HF__SEL
 #undef HF__MASK
+#undef HF__MAX
 #define HF__LD(p) _mm256_loadu_ps(p)
 #define HF__ST(p, v) _mm256_storeu_ps(p, v)
 #define HF__SET1(x) _mm256_set1_ps(x)
@@ -7270,6 +7074,7 @@ hf__ropes_local_row_avx2(hf_ropes *ro, const float *F, int j, int a, int b,
 #define HF__AND(x, y) _mm256_and_ps(x, y)
 #define HF__SEL(m, a, b) _mm256_blendv_ps(b, a, m)
 #define HF__MASK(m) _mm256_movemask_ps(m)
+#define HF__MAX(x, y) _mm256_max_ps(x, y)
 #define HF__GATHER8(row, idx)                                                  \
     _mm256_setr_ps((row)[(idx)[0]], (row)[(idx)[1]], (row)[(idx)[2]],         \
                    (row)[(idx)[3]], (row)[(idx)[4]], (row)[(idx)[5]],         \
@@ -7277,6 +7082,7 @@ hf__ropes_local_row_avx2(hf_ropes *ro, const float *F, int j, int a, int b,
 HF__FTL_KERNELS(v8, __m256, 8, HF__TARGET_AVX2, HF__GATHER8,
                 _mm256_zeroupper())
 #undef HF__GATHER8
+HF__ROPE_ROWS(v8, __m256, 8, HF__TARGET_AVX2, _mm256_zeroupper())
 #pragma pop_macro("HF__LD")
 #pragma pop_macro("HF__ST")
 #pragma pop_macro("HF__SET1")
@@ -7292,123 +7098,15 @@ HF__FTL_KERNELS(v8, __m256, 8, HF__TARGET_AVX2, HF__GATHER8,
 #pragma pop_macro("HF__AND")
 #pragma pop_macro("HF__SEL")
 #pragma pop_macro("HF__MASK")
-
-/* hf__ropes_ftl_row_v4, eight ropes a vector. */
-HF__TARGET_AVX2 HF__PRIVATE void
-hf__ropes_ftl_row_avx2(hf_ropes *ro, const float *F, int j, int a, int b,
-                       const hf__rope_step *st, const hf_collider *col,
-                       int ncol, const hf__col_v4 *pre)
-{
-    const size_t R = (size_t)ro->rope_count;
-    const float *F6 = HF__ROW(F, 6, R), *F7 = HF__ROW(F, 7, R),
-                *F8 = HF__ROW(F, 8, R);
-    float *X0 = HF__ROW(ro->x, j - 1, R), *Y0 = HF__ROW(ro->y, j - 1, R),
-          *Z0 = HF__ROW(ro->z, j - 1, R);
-    float *X1 = HF__ROW(ro->x, j, R), *Y1 = HF__ROW(ro->y, j, R),
-          *Z1 = HF__ROW(ro->z, j, R);
-    float *PX0 = HF__ROW(ro->px, j - 1, R), *PY0 = HF__ROW(ro->py, j - 1, R),
-          *PZ0 = HF__ROW(ro->pz, j - 1, R);
-    const float *L = HF__ROW(ro->rest_length, j - 1, R);
-    const float sdj = j >= 2 ? st->ftl_damping : 0.0f;
-    const int test = st->ftl && ncol > 0;
-    hf__ftl_hits list;
-    hf__col_v8 pre8[HF__ROPE_PREP]; /* the lane copies, at eight lanes */
-    int r, m;
-    (void)pre;
-    list.n = 0;
-    for (r = 0; test && r < ncol && r < HF__ROPE_PREP; ++r) {
-        const hf__col_prep k = hf__collider_prep(col + r, st->margin);
-        hf__col_prep_v8(&k, pre8 + r);
-    }
-    for (r = a; r < b; r += 8) {
-        const __m256 one = _mm256_set1_ps(1.0f), sd = _mm256_set1_ps(sdj);
-        const __m256 x0 = HF__L8(X0 + r), y0 = HF__L8(Y0 + r),
-                     z0 = HF__L8(Z0 + r);
-        const __m256 ox = HF__L8(X1 + r), oy = HF__L8(Y1 + r),
-                     oz = HF__L8(Z1 + r);
-        __m256 dx = HF__D8(ox, x0), dy = HF__D8(oy, y0), dz = HF__D8(oz, z0),
-               d2, deg, sc, nx, ny, nz, xyz[3];
-        d2 = HF__DOT3_8(dx, dy, dz, dx, dy, dz);
-        /* coincident points: grow along the root normal */
-        deg = _mm256_cmp_ps(d2, _mm256_set1_ps(1e-24f), _CMP_LT_OQ);
-        if (_mm256_movemask_ps(deg)) { /* rare: the selects */
-            dx = HF__SEL8(deg, HF__L8(F6 + r), dx);
-            dy = HF__SEL8(deg, HF__L8(F7 + r), dy);
-            dz = HF__SEL8(deg, HF__L8(F8 + r), dz);
-            d2 = HF__SEL8(deg, one, d2);
-        }
-        sc = _mm256_div_ps(HF__L8(L + r), _mm256_sqrt_ps(d2));
-        nx = HF__A8(x0, HF__M8(dx, sc));
-        ny = HF__A8(y0, HF__M8(dy, sc));
-        nz = HF__A8(z0, HF__M8(dz, sc));
-        HF__S8(X1 + r, nx);
-        HF__S8(Y1 + r, ny);
-        HF__S8(Z1 + r, nz);
-        if (!st->ftl) continue;
-        HF__S8(PX0 + r, HF__A8(HF__L8(PX0 + r), HF__M8(sd, HF__D8(nx, ox))));
-        HF__S8(PY0 + r, HF__A8(HF__L8(PY0 + r), HF__M8(sd, HF__D8(ny, oy))));
-        HF__S8(PZ0 + r, HF__A8(HF__L8(PZ0 + r), HF__M8(sd, HF__D8(nz, oz))));
-        if (!test) continue;
-        xyz[0] = nx;
-        xyz[1] = ny;
-        xyz[2] = nz;
-        m = hf__col_any_v8(col, ncol, pre8, st->margin, xyz);
-        if (m)
-            hf__ftl_list_v8(ro, F, j, r, m, &list, col, ncol, pre8,
-                            st->margin);
-    }
-    if (test) hf__ftl_flush_v8(ro, F, j, &list, pre8, ncol);
-    _mm256_zeroupper();
-}
-
-HF__TARGET_AVX2 HF__PRIVATE void hf__ropes_distance_row_avx2(hf_ropes *ro,
-                                                            int j, int a,
-                                                            int b)
-{
-    const size_t R = (size_t)ro->rope_count;
-    float *X0 = HF__ROW(ro->x, j - 1, R), *Y0 = HF__ROW(ro->y, j - 1, R),
-          *Z0 = HF__ROW(ro->z, j - 1, R);
-    float *X1 = HF__ROW(ro->x, j, R), *Y1 = HF__ROW(ro->y, j, R),
-          *Z1 = HF__ROW(ro->z, j, R);
-    const float *L = HF__ROW(ro->rest_length, j - 1, R);
-    const __m256 half = _mm256_set1_ps(0.5f);
-    int r;
-    for (r = a; r < b; r += 8) {
-        const __m256 x0 = HF__L8(X0 + r), y0 = HF__L8(Y0 + r),
-                     z0 = HF__L8(Z0 + r), x1 = HF__L8(X1 + r),
-                     y1 = HF__L8(Y1 + r), z1 = HF__L8(Z1 + r);
-        const __m256 dx = HF__D8(x1, x0), dy = HF__D8(y1, y0),
-                     dz = HF__D8(z1, z0);
-        const __m256 d2 = HF__DOT3_8(dx, dy, dz, dx, dy, dz);
-        const __m256 e = _mm256_and_ps(
-            _mm256_cmp_ps(d2, _mm256_set1_ps(1e-24f), _CMP_GT_OQ),
-            HF__D8(half, _mm256_div_ps(HF__M8(half, HF__L8(L + r)),
-                                       _mm256_sqrt_ps(d2))));
-        HF__S8(X0 + r, HF__A8(x0, HF__M8(dx, e)));
-        HF__S8(Y0 + r, HF__A8(y0, HF__M8(dy, e)));
-        HF__S8(Z0 + r, HF__A8(z0, HF__M8(dz, e)));
-        HF__S8(X1 + r, HF__D8(x1, HF__M8(dx, e)));
-        HF__S8(Y1 + r, HF__D8(y1, HF__M8(dy, e)));
-        HF__S8(Z1 + r, HF__D8(z1, HF__M8(dz, e)));
-    }
-    _mm256_zeroupper();
-}
-#undef HF__L8
-#undef HF__S8
-#undef HF__A8
-#undef HF__D8
-#undef HF__M8
-#undef HF__DOT3_8
-#undef HF__POSE_8
-#undef HF__SEL8
+#pragma pop_macro("HF__MAX")
 
 /* The rows eight ropes a vector, for hf__ropes_substep_rows. Each is a
    function of its own, so no SSE code runs between them with the upper
    halves dirty. */
 static const hf__rope_rows hf__rope_rows_avx2 = {
-    hf__ropes_pin_root_avx2, hf__ropes_integrate_row_avx2,
-    hf__ropes_local_row_avx2, hf__ropes_ftl_row_avx2,
-    hf__ropes_distance_row_avx2};
+    hf__ropes_pin_root_v8, hf__ropes_integrate_row_v8,
+    hf__ropes_local_row_v8, hf__ropes_ftl_row_v8,
+    hf__ropes_distance_row_v8};
 #endif
 #undef HF__OR
 
