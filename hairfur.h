@@ -6579,11 +6579,15 @@ HF__FTL_KERNELS(v4, hf__v4, 4, , HF__GATHER4, (void)0)
    back after a hit. */
 HF__PRIVATE void
 hf__ropes_collide_v4(hf_ropes *ro, const float *F, int a, int b,
-                     const hf_collider *col, int ncol, const hf__col_v4 *pre,
-                     float margin)
+                     const hf_collider *col, int ncol, float margin)
 {
     size_t R = (size_t)ro->rope_count;
+    hf__col_v4 pre[HF__ROPE_PREP]; /* the first colliders, in lanes */
     int j, r, c, m, i;
+    for (c = 0; c < ncol && c < HF__ROPE_PREP; ++c) {
+        const hf__col_prep k = hf__collider_prep(col + c, margin);
+        hf__col_prep_v4(&k, pre + c);
+    }
     for (j = 1; j < ro->points; ++j)
         for (r = a; r < b; r += 4) {
             const size_t o = (size_t)j * R + (size_t)r;
@@ -6966,7 +6970,6 @@ typedef struct hf__rope_rows {
 HF__PRIVATE void hf__ropes_substep_rows(hf_ropes *ro, const float *F, int a,
                                         int b, const hf__rope_step *st,
                                         const hf_collider *col, int ncol,
-                                        const hf__col_v4 *pre,
                                         const hf__rope_rows *k)
 {
     const size_t R = (size_t)ro->rope_count;
@@ -6989,10 +6992,10 @@ HF__PRIVATE void hf__ropes_substep_rows(hf_ropes *ro, const float *F, int a,
             else
                 k->distance(ro, j, a, b);
         if (!st->ftl && ncol > 0)
-            hf__ropes_collide_v4(ro, F, a, b, col, ncol, pre, st->margin);
+            hf__ropes_collide_v4(ro, F, a, b, col, ncol, st->margin);
     }
     if (st->iterations == 0 && ncol > 0)
-        hf__ropes_collide_v4(ro, F, a, b, col, ncol, pre, st->margin);
+        hf__ropes_collide_v4(ro, F, a, b, col, ncol, st->margin);
 }
 
 static const hf__rope_rows hf__rope_rows_v4 = {
@@ -7116,8 +7119,7 @@ static const hf__rope_rows hf__rope_rows_avx2 = {
    the rest. */
 HF__PRIVATE void hf__ropes_substep(hf_ropes *ro, const float *F, int a, int b,
                                    const hf__rope_step *st,
-                                   const hf_collider *col, int ncol,
-                                   const void *lanes)
+                                   const hf_collider *col, int ncol)
 {
     int a4 = a;
 #if HF__AVX2
@@ -7125,7 +7127,6 @@ HF__PRIVATE void hf__ropes_substep(hf_ropes *ro, const float *F, int a, int b,
         a4 = a + (b - a) / 8 * 8;
         if (a4 > a)
             hf__ropes_substep_rows(ro, F, a, a4, st, col, ncol,
-                                   (const hf__col_v4 *)lanes,
                                    &hf__rope_rows_avx2);
         a = a4;
     }
@@ -7135,11 +7136,8 @@ HF__PRIVATE void hf__ropes_substep(hf_ropes *ro, const float *F, int a, int b,
         a4 = a + (b - a) / 4 * 4;
         if (a4 > a)
             hf__ropes_substep_rows(ro, F, a, a4, st, col, ncol,
-                                   (const hf__col_v4 *)lanes,
                                    &hf__rope_rows_v4);
     }
-#else
-    (void)lanes;
 #endif
     hf__ropes_substep_ref(ro, F, a4, b, st, col, ncol);
 }
@@ -7230,21 +7228,10 @@ HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
                                    const hf__rope_step *st,
                                    const hf_collider *col, int ncol)
 {
-    const void *lanes = NULL;
     int s;
-#if HF__V4
-    /* lane copies of the first colliders, made once per call */
-    hf__col_v4 pre[HF__ROPE_PREP];
-    int c;
-    for (c = 0; c < ncol && c < HF__ROPE_PREP; ++c) {
-        const hf__col_prep k = hf__collider_prep(col + c, st->margin);
-        hf__col_prep_v4(&k, pre + c);
-    }
-    lanes = pre;
-#endif
     for (s = 0; s < st->n; ++s) {
         const float *F = hf__ropes_substep_prep(ro, a, b, st, s);
-        hf__ropes_substep(ro, F, a, b, st, col, ncol, lanes);
+        hf__ropes_substep(ro, F, a, b, st, col, ncol);
     }
     hf__ropes_safety_net(ro, a, b, st);
 }
