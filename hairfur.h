@@ -8748,7 +8748,7 @@ HF__INLINE void hf__put_packed_sse(unsigned char *o, uint32_t w0, uint32_t w1,
 /* Both vertices of points i < n of a group of four: lane i of L at
    o + 2 i st, of R at o + (2 i + 1) st. R may be L (tangents, texcoords,
    colours): then it is encoded once. */
-HF__INLINE void hf__emit_pair_sse(unsigned char *o, size_t st, int n,
+HF__INLINE void hf__emit_pair_fmt_sse(unsigned char *o, size_t st, int n,
                               const __m128 *L, const __m128 *R, int nc,
                               int fmt)
 {
@@ -8779,6 +8779,15 @@ HF__INLINE void hf__emit_pair_sse(unsigned char *o, size_t st, int n,
             r0 = l0;
             r1 = l1;
         }
+        if (n == 4) { /* whole groups: the lanes constants */
+            HF__UNROLL for (i = 0; i < 4; ++i, o += 2 * st) {
+                hf__put_packed_sse(o, hf__lane_sse(l0, i), hf__lane_sse(l1, i),
+                                   nc, size);
+                hf__put_packed_sse(o + st, hf__lane_sse(r0, i),
+                                   hf__lane_sse(r1, i), nc, size);
+            }
+            return;
+        }
         for (i = 0; i < n; ++i, o += 2 * st) {
             hf__put_packed_sse(o, hf__lane_sse(l0, i), hf__lane_sse(l1, i), nc, size);
             hf__put_packed_sse(o + st, hf__lane_sse(r0, i), hf__lane_sse(r1, i), nc,
@@ -8786,7 +8795,35 @@ HF__INLINE void hf__emit_pair_sse(unsigned char *o, size_t st, int n,
         }
     }
 }
+/* hf__emit_pair_fmt_sse with the format a constant in each copy, so its
+   tests on the format fold away. */
+HF__INLINE void hf__emit_pair_sse(unsigned char *o, size_t st, int n,
+                                  const __m128 *L, const __m128 *R, int nc,
+                                  int fmt)
+{
+    switch (fmt) {
+    case HF_FORMAT_F32:
+        hf__emit_pair_fmt_sse(o, st, n, L, R, nc, HF_FORMAT_F32);
+        break;
+    case HF_FORMAT_F16:
+        hf__emit_pair_fmt_sse(o, st, n, L, R, nc, HF_FORMAT_F16);
+        break;
+    case HF_FORMAT_SNORM16:
+        hf__emit_pair_fmt_sse(o, st, n, L, R, nc, HF_FORMAT_SNORM16);
+        break;
+    case HF_FORMAT_UNORM16:
+        hf__emit_pair_fmt_sse(o, st, n, L, R, nc, HF_FORMAT_UNORM16);
+        break;
+    case HF_FORMAT_SNORM8:
+        hf__emit_pair_fmt_sse(o, st, n, L, R, nc, HF_FORMAT_SNORM8);
+        break;
+    default:
+        hf__emit_pair_fmt_sse(o, st, n, L, R, nc, HF_FORMAT_UNORM8);
+        break;
+    }
+}
 #endif
+
 
 /* Where each stream goes, resolved once per call. */
 typedef struct hf__rout {
