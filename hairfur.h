@@ -4822,7 +4822,8 @@ HF__PRIVATE hf__v4 hf__rope_unit_v4(const hf__v4 *v, hf__v4 *out)
     const hf__v4 zero = HF__SET1(0.0f);
     hf__v4 a[3], m, l2;
     int k;
-    HF__UNROLL for (k = 0; k < 3; ++k) /* |v| (a -0 stays -0: only a zero m sees it) */
+    /* |v| (a -0 stays -0: only a zero m sees it) */
+    HF__UNROLL for (k = 0; k < 3; ++k)
         a[k] = HF__SEL(HF__LT(v[k], zero), HF__SUB(zero, v[k]), v[k]);
     m = a[0];
     m = HF__SEL(HF__GT(a[1], m), a[1], m);
@@ -4853,7 +4854,8 @@ HF__PRIVATE void hf__ropes_write_roots_v4(hf_ropes *ro, int r,
         in[1][i] = hf__rope_at(nrm, stride, (size_t)(r + i));
         in[2][i] = hf__rope_at(tan, stride, (size_t)(r + i));
     }
-#define HF__ROOT4(a, k) HF__SET4(in[a][0][k], in[a][1][k], in[a][2][k], in[a][3][k])
+#define HF__ROOT4(a, k)                                                        \
+    HF__SET4(in[a][0][k], in[a][1][k], in[a][2][k], in[a][3][k])
     HF__UNROLL for (k = 0; k < 3; ++k) {
         p[k] = HF__ROOT4(0, k);
         v[k] = HF__ROOT4(1, k);
@@ -4869,7 +4871,8 @@ HF__PRIVATE void hf__ropes_write_roots_v4(hf_ropes *ro, int r,
     l2 = HF__DOT3(t[0], t[1], t[2], t[0], t[1], t[2]);
     ok = HF__GT(l2, HF__SET1(1e-10f));
     l2 = HF__DIV(HF__SET1(1.0f), HF__SQRT(l2));
-    HF__UNROLL for (k = 0; k < 3; ++k) t[k] = HF__SEL(ok, HF__MUL(t[k], l2), zero);
+    HF__UNROLL for (k = 0; k < 3; ++k)
+        t[k] = HF__SEL(ok, HF__MUL(t[k], l2), zero);
     lanes = HF__MASK(ok) ^ 15;
     if (lanes) {
         for (k = 0; k < 3; ++k) {
@@ -6267,23 +6270,40 @@ T HF__INLINE int hf__col_hits_##S(const hf__col_##S *k, const V *x)            \
     return HF__MASK(HF__LT(d2, k->rr2));                                       \
 }                                                                              \
                                                                                \
-/* Which colliders hold a point of W (bit i: lane i): the first                \
-   HF__ROPE_PREP prepared in pre, any further one here. */                     \
+/* The first HF__ROPE_PREP colliders in lanes, once per row or pass. */        \
+T HF__PRIVATE void hf__col_prep_first_##S(const hf_collider *col, int ncol,    \
+                                          float margin, hf__col_##S *pre)      \
+{                                                                              \
+    int c;                                                                     \
+    for (c = 0; c < ncol && c < HF__ROPE_PREP; ++c) {                          \
+        const hf__col_prep k = hf__collider_prep(col + c, margin);             \
+        hf__col_prep_##S(&k, pre + c);                                         \
+    }                                                                          \
+}                                                                              \
+                                                                               \
+/* Collider c in lanes: pre + c, or, beyond HF__ROPE_PREP, made in *spare. */  \
+T HF__INLINE const hf__col_##S *hf__col_at_##S(const hf_collider *col, int c,  \
+                                               const hf__col_##S *pre,         \
+                                               float margin,                   \
+                                               hf__col_##S *spare)             \
+{                                                                              \
+    hf__col_prep k;                                                            \
+    if (c < HF__ROPE_PREP) return pre + c;                                     \
+    k = hf__collider_prep(col + c, margin);                                    \
+    hf__col_prep_##S(&k, spare);                                               \
+    return spare;                                                              \
+}                                                                              \
+                                                                               \
+/* Which colliders hold a point of W (bit i: lane i). */                       \
 T HF__INLINE int hf__col_any_##S(const hf_collider *col, int ncol,             \
                                  const hf__col_##S *pre, float margin,         \
                                  const V *xyz)                                 \
 {                                                                              \
+    hf__col_##S spare;                                                         \
     int c, m = 0;                                                              \
-    for (c = 0; c < ncol && m != (1 << W) - 1; ++c) {                          \
-        if (c < HF__ROPE_PREP) {                                               \
-            m |= hf__col_hits_##S(pre + c, xyz);                               \
-        } else {                                                               \
-            const hf__col_prep k = hf__collider_prep(col + c, margin);         \
-            hf__col_##S kw;                                                    \
-            hf__col_prep_##S(&k, &kw);                                         \
-            m |= hf__col_hits_##S(&kw, xyz);                                   \
-        }                                                                      \
-    }                                                                          \
+    for (c = 0; c < ncol && m != (1 << W) - 1; ++c)                            \
+        m |= hf__col_hits_##S(hf__col_at_##S(col, c, pre, margin, &spare),     \
+                              xyz);                                            \
     return m;                                                                  \
 }                                                                              \
                                                                                \
@@ -6582,12 +6602,9 @@ hf__ropes_collide_v4(hf_ropes *ro, const float *F, int a, int b,
                      const hf_collider *col, int ncol, float margin)
 {
     size_t R = (size_t)ro->rope_count;
-    hf__col_v4 pre[HF__ROPE_PREP]; /* the first colliders, in lanes */
+    hf__col_v4 pre[HF__ROPE_PREP], spare;
     int j, r, c, m, i;
-    for (c = 0; c < ncol && c < HF__ROPE_PREP; ++c) {
-        const hf__col_prep k = hf__collider_prep(col + c, margin);
-        hf__col_prep_v4(&k, pre + c);
-    }
+    hf__col_prep_first_v4(col, ncol, margin, pre);
     for (j = 1; j < ro->points; ++j)
         for (r = a; r < b; r += 4) {
             const size_t o = (size_t)j * R + (size_t)r;
@@ -6596,14 +6613,8 @@ hf__ropes_collide_v4(hf_ropes *ro, const float *F, int a, int b,
             xyz[1] = HF__LD(ro->y + o);
             xyz[2] = HF__LD(ro->z + o);
             for (c = 0; c < ncol; ++c) {
-                if (c < HF__ROPE_PREP) {
-                    m = hf__col_hits_v4(pre + c, xyz);
-                } else {
-                    const hf__col_prep k = hf__collider_prep(col + c, margin);
-                    hf__col_v4 kw;
-                    hf__col_prep_v4(&k, &kw);
-                    m = hf__col_hits_v4(&kw, xyz);
-                }
+                m = hf__col_hits_v4(
+                    hf__col_at_v4(col, c, pre, margin, &spare), xyz);
                 if (!m) continue;
                 for (i = 0; i < 4; ++i)
                     if ((m >> i) & 1)
@@ -6618,9 +6629,11 @@ hf__ropes_collide_v4(hf_ropes *ro, const float *F, int a, int b,
 
 /* The sub-step's row kernels (ropes [a, b), b - a a multiple of W, a rope
    per lane), each with the operations of its scalar reference: written
-   once, like the contact kernels, in HF__ROPE_ROWS(S, V, W, T, ZU), and
-   built for four lanes here and for eight in the AVX2 section. ZU ends
-   each (the AVX build's _mm256_zeroupper, see HF__TARGET_AVX2). */
+   once, like the contact kernels, in HF__ROPE_ROWS(S, V, W, T, ZU), with
+   the safety net's test of every point row (hf__ropes_mark_far_##S, whole
+   groups from a), and built for four lanes here and for eight in the AVX2
+   section. ZU ends each (the AVX build's _mm256_zeroupper, see
+   HF__TARGET_AVX2). */
 
 /* Prefetch of what row j's integration and local shape read, for the 16
    ropes (a cache line) from r. */
@@ -6864,10 +6877,7 @@ T HF__PRIVATE void hf__ropes_ftl_row_##S(hf_ropes *ro, const float *F, int j,  \
     int r;                                                                     \
     hf__frame_rows(F, R, f);                                                   \
     hits.n = 0;                                                                \
-    for (r = 0; st->ftl && r < ncol && r < HF__ROPE_PREP; ++r) {               \
-        const hf__col_prep k = hf__collider_prep(col + r, st->margin);         \
-        hf__col_prep_##S(&k, pre + r);                                         \
-    }                                                                          \
+    if (st->ftl) hf__col_prep_first_##S(col, ncol, st->margin, pre);           \
     for (r = a; r < b; r += W) {                                               \
         const V x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),                      \
                 z0 = HF__LD(Z0 + r);                                           \
@@ -6940,6 +6950,30 @@ T HF__PRIVATE void hf__ropes_distance_row_##S(hf_ropes *ro, int j, int a,      \
         HF__ST(Z1 + r, HF__SUB(z1, HF__MUL(dz, e)));                           \
     }                                                                          \
     ZU;                                                                        \
+}                                                                              \
+                                                                               \
+/* hf__ropes_mark_far_ref for every point row, on whole groups of W ropes      \
+   from a; returns where the groups end. */                                    \
+T HF__PRIVATE int hf__ropes_mark_far_##S(const hf_ropes *ro, int a, int b,     \
+                                         const float *KB, float *VF)           \
+{                                                                              \
+    const size_t R = (size_t)ro->rope_count;                                   \
+    int r = a, j;                                                              \
+    for (; r + W <= b; r += W) {                                               \
+        const V x0 = HF__LD(ro->x + r), y0 = HF__LD(ro->y + r),                \
+                z0 = HF__LD(ro->z + r), kb = HF__LD(KB + r);                   \
+        V in = HF__EQ(kb, kb); /* each row's d2 <= KB: false for NaN too */    \
+        for (j = 1; j < ro->points; ++j) {                                     \
+            const size_t o = (size_t)j * R + (size_t)r;                        \
+            const V dx = HF__SUB(HF__LD(ro->x + o), x0),                       \
+                    dy = HF__SUB(HF__LD(ro->y + o), y0),                       \
+                    dz = HF__SUB(HF__LD(ro->z + o), z0);                       \
+            in = HF__AND(in, HF__LE(HF__DOT3(dx, dy, dz, dx, dy, dz), kb));    \
+        }                                                                      \
+        HF__ST(VF + r, HF__SEL(in, HF__LD(VF + r), HF__SET1(1.0f)));           \
+    }                                                                          \
+    ZU;                                                                        \
+    return r;                                                                  \
 }
 
 HF__ROPE_ROWS(v4, hf__v4, 4, , (void)0)
@@ -7002,26 +7036,6 @@ static const hf__rope_rows hf__rope_rows_v4 = {
     hf__ropes_pin_root_v4, hf__ropes_integrate_row_v4,
     hf__ropes_local_row_v4, hf__ropes_ftl_row_v4, hf__ropes_distance_row_v4};
 
-/* hf__ropes_mark_far_ref on whole groups of four from a; returns where
-   the groups end. */
-HF__PRIVATE int hf__ropes_mark_far_v4(const hf_ropes *ro, int j,
-                                                    int a, int b,
-                                                    const float *KB, float *VF)
-{
-    const size_t R = (size_t)ro->rope_count;
-    const float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
-                *Z = HF__ROW(ro->z, j, R);
-    int r = a;
-    for (; r + 4 <= b; r += 4) {
-        const hf__v4 dx = HF__SUB(HF__LD(X + r), HF__LD(ro->x + r)),
-                     dy = HF__SUB(HF__LD(Y + r), HF__LD(ro->y + r)),
-                     dz = HF__SUB(HF__LD(Z + r), HF__LD(ro->z + r));
-        const hf__v4 in =
-            HF__LE(HF__DOT3(dx, dy, dz, dx, dy, dz), HF__LD(KB + r));
-        HF__ST(VF + r, HF__SEL(in, HF__LD(VF + r), HF__SET1(1.0f)));
-    }
-    return r;
-}
 #endif
 
 #if HF__AVX2
@@ -7142,59 +7156,21 @@ HF__PRIVATE void hf__ropes_substep(hf_ropes *ro, const float *F, int a, int b,
     hf__ropes_substep_ref(ro, F, a4, b, st, col, ncol);
 }
 
-#if HF__AVX2
-/* hf__ropes_mark_far_ref for every point row, on whole groups of eight
-   ropes from a; returns where the groups end. */
-HF__TARGET_AVX2 HF__PRIVATE int hf__ropes_mark_far_avx2(const hf_ropes *ro,
-                                                       int a, int b,
-                                                       const float *KB,
-                                                       float *VF)
-{
-    const size_t R = (size_t)ro->rope_count;
-    int r = a, j;
-    for (; r + 8 <= b; r += 8) {
-        const __m256 x0 = _mm256_loadu_ps(ro->x + r),
-                     y0 = _mm256_loadu_ps(ro->y + r),
-                     z0 = _mm256_loadu_ps(ro->z + r),
-                     kb = _mm256_loadu_ps(KB + r);
-        __m256 far = _mm256_setzero_ps();
-        for (j = 1; j < ro->points; ++j) {
-            const size_t o = (size_t)j * R + (size_t)r;
-            const __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(ro->x + o), x0),
-                         dy = _mm256_sub_ps(_mm256_loadu_ps(ro->y + o), y0),
-                         dz = _mm256_sub_ps(_mm256_loadu_ps(ro->z + o), z0);
-            const __m256 d2 = _mm256_add_ps(
-                _mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)),
-                _mm256_mul_ps(dz, dz));
-            /* not d2 <= KB: NaN too */
-            far = _mm256_or_ps(far, _mm256_cmp_ps(d2, kb, _CMP_NLE_UQ));
-        }
-        _mm256_storeu_ps(VF + r,
-                         _mm256_blendv_ps(_mm256_loadu_ps(VF + r),
-                                          _mm256_set1_ps(1.0f), far));
-    }
-    _mm256_zeroupper();
-    return r;
-}
-#endif
 
 /* hf__ropes_mark_far_ref for every point row of ropes [a, b). */
 HF__PRIVATE void hf__ropes_mark_far(const hf_ropes *ro, int a, int b,
                                     const float *KB, float *VF, int level)
 {
-    int j, a4;
+    int j;
 #if HF__AVX2
-    if (level >= HF_SIMD_AVX2) a = hf__ropes_mark_far_avx2(ro, a, b, KB, VF);
-#else
-    (void)level;
+    if (level >= HF_SIMD_AVX2) a = hf__ropes_mark_far_v8(ro, a, b, KB, VF);
 #endif
-    for (j = 1; j < ro->points; ++j) {
-        a4 = a;
 #if HF__V4
-        a4 = hf__ropes_mark_far_v4(ro, j, a, b, KB, VF);
+    if (level >= HF_SIMD_SSE2) a = hf__ropes_mark_far_v4(ro, a, b, KB, VF);
 #endif
-        hf__ropes_mark_far_ref(ro, j, a4, b, KB, VF);
-    }
+    (void)level;
+    for (j = 1; j < ro->points; ++j)
+        hf__ropes_mark_far_ref(ro, j, a, b, KB, VF);
 }
 
 /* After the sub-steps: remember the sub-step length, and reset a rope
@@ -8216,7 +8192,8 @@ HF__PRIVATE void hf__strand_frame_ref(const float *pts, int P,
     hf__inv_sqrt_n(inv, inv, P);
     for (j = 0; j < P; ++j) {
         if (l2[j] > 0.0f)
-            HF__UNROLL for (k = 0; k < 3; ++k) fr->s[k][4 + j] = d[3 * j + k] * inv[j];
+            HF__UNROLL for (k = 0; k < 3; ++k)
+                fr->s[k][4 + j] = d[3 * j + k] * inv[j];
         else if (hf__side_precise(fr, pts, j, params))
             l2[j] = 1.0f;
         else
@@ -8990,7 +8967,8 @@ HF__INLINE void hf__stream_values_sse(int q, const hf__rframe *fr,
     int c;
     switch (q) {
     case HF__S_TAN:
-        HF__UNROLL for (c = 0; c < 3; ++c) v[c] = _mm_loadu_ps(fr->t[c] + 4 + 4 * k);
+        HF__UNROLL for (c = 0; c < 3; ++c)
+            v[c] = _mm_loadu_ps(fr->t[c] + 4 + 4 * k);
         break;
     case HF__S_TEX:
         v[0] = _mm_set1_ps(str->uv[0]);
@@ -9049,7 +9027,8 @@ HF__PRIVATE void hf__ribbon_write_sse(const hf__rframe *fr, int P,
             const __m128 w = _mm_mul_ps(_mm_loadu_ps(K->hw + 4 * k), ws);
             __m128 T[3];
             hf__ribbon_sides_sse(fr, o, w, ro, is, L, R);
-            HF__UNROLL for (c = 0; c < 3; ++c) T[c] = _mm_loadu_ps(fr->t[c] + o);
+            HF__UNROLL for (c = 0; c < 3; ++c)
+                T[c] = _mm_loadu_ps(fr->t[c] + o);
             hf__put_run_sse(b, st, n, L, R, T, run == 3 ? str->uv : NULL,
                         K->tt + 4 * k);
         }
@@ -9331,7 +9310,8 @@ hf__ribbon_write_neon(const hf__rframe *fr, int P, const hf__rconst *K,
                 V[2] = tt;
                 break;
             case HF__S_COL:
-                HF__UNROLL for (c = 0; c < 3; ++c) V[c] = vdupq_n_f32(str->rgba[c]);
+                HF__UNROLL for (c = 0; c < 3; ++c)
+                    V[c] = vdupq_n_f32(str->rgba[c]);
                 V[3] = vmulq_f32(vdupq_n_f32(str->rgba[3]),
                                  vld1q_f32(K->fade + 4 * k));
                 break;
