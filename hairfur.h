@@ -2147,8 +2147,9 @@ HF__INLINE __m128 hf__sel_sse(__m128 m, __m128 a, __m128 b)
    lanes have every bit set or clear, HF__MASK gives bit i for lane i.
    Each is the IEEE operation of the scalar code, so both ISAs give its
    bytes; HF__MAX is SSE's maxps, x > y ? x : y (y when either is NaN).
-   Each macro argument is used once. The contact kernels are also built at
-   eight lanes under these names (HF__FTL_KERNELS, in the AVX2 section). */
+   Each macro argument is used once. The rope kernels are also built at
+   eight and sixteen lanes under these names (HF__FTL_KERNELS and
+   HF__ROPE_ROWS, in the AVX2 section). */
 #define HF__V4 (HF__SSE || HF__NEON)
 #if HF__SSE
 typedef __m128 hf__v4;
@@ -6191,13 +6192,14 @@ HF__PRIVATE void hf__ropes_mark_far_ref(const hf_ropes *ro, int j, int a,
    some twenty square roots and divisions, so W at a time pays.
 
    These kernels are written once, for any lane width, in HF__FTL_KERNELS,
-   and built for four lanes below (hf__v4: SSE2, NEON) and for eight in
-   the AVX2 section. S names the width in every name (v4, v8), V is its
+   and built for four lanes below (hf__v4: SSE2, NEON) and for eight and
+   sixteen in the AVX2 section. S names the width in every name (v4, v8,
+   v16), V is its
    vector, W its lanes, T its functions' target attribute, G(row, idx)
    gathers row[idx[0 .. W)] into a vector, and ZU readies the registers for
    the scalar code of the rare paths. They use the four-lane operations'
-   names (HF__ADD, ...), which the eight-lane build maps to AVX2 while it
-   expands. */
+   names (HF__ADD, ...), which the wider builds map to AVX2 and AVX-512
+   while they expand. */
 #define HF__OR(a, b) HF__SEL(a, a, b) /* masks only */
 
 /* A row's points in contact, listed for the kernel (they are independent:
@@ -6631,8 +6633,8 @@ hf__ropes_collide_v4(hf_ropes *ro, const float *F, int a, int b,
    per lane), each with the operations of its scalar reference: written
    once, like the contact kernels, in HF__ROPE_ROWS(S, V, W, T, ZU), with
    the safety net's test of every point row (hf__ropes_mark_far_##S, whole
-   groups from a), and built for four lanes here and for eight in the AVX2
-   section. ZU ends each (the AVX build's _mm256_zeroupper, see
+   groups from a), and built for four lanes here and for eight and sixteen
+   in the AVX2 section. ZU ends each (the AVX build's _mm256_zeroupper, see
    HF__TARGET_AVX2). */
 
 /* Prefetch of what row j's integration and local shape read, for the 16
@@ -7039,11 +7041,11 @@ static const hf__rope_rows hf__rope_rows_v4 = {
 #endif
 
 #if HF__AVX2
-/* The rope kernels at eight lanes (AVX2): the contact kernels
-   (HF__FTL_KERNELS) and the sub-step's rows (HF__ROPE_ROWS), with the
-   four-lane operations' names standing for their AVX forms while they
-   expand: the same operations per rope, so the same bytes (the compares
-   false on NaN and maxps's order, as SSE's). */
+/* The rope kernels at eight lanes (AVX2), then sixteen (AVX-512F): the
+   contact kernels (HF__FTL_KERNELS) and the sub-step's rows
+   (HF__ROPE_ROWS), with the four-lane operations' names standing for
+   their AVX forms while they expand: the same operations per rope, so the
+   same bytes (the compares false on NaN and maxps's order, as SSE's). */
 #pragma push_macro("HF__LD")
 #pragma push_macro("HF__ST")
 #pragma push_macro("HF__SET1")
@@ -7100,6 +7102,77 @@ HF__FTL_KERNELS(v8, __m256, 8, HF__TARGET_AVX2, HF__GATHER8,
                 _mm256_zeroupper())
 #undef HF__GATHER8
 HF__ROPE_ROWS(v8, __m256, 8, HF__TARGET_AVX2, _mm256_zeroupper())
+#if HF__AVX512
+/* At sixteen lanes (AVX-512F), the same text again. A mask stays a
+   vector of all-set or all-clear lanes, as the text expects: a compare's
+   mask register is widened to one (hf__m16), and a select is a bitwise
+   one (vpternlogd). */
+HF__TARGET_AVX512 HF__INLINE __m512 hf__m16(__mmask16 k)
+{
+    return _mm512_castsi512_ps(_mm512_maskz_set1_epi32(k, -1));
+}
+HF__TARGET_AVX512 HF__INLINE __m512 hf__and16(__m512 x, __m512 y)
+{
+    return _mm512_castsi512_ps(
+        _mm512_and_si512(_mm512_castps_si512(x), _mm512_castps_si512(y)));
+}
+HF__TARGET_AVX512 HF__INLINE __m512 hf__sel16(__m512 m, __m512 a, __m512 b)
+{
+    /* 0xCA: m ? a : b, bit by bit */
+    return _mm512_castsi512_ps(_mm512_ternarylogic_epi32(
+        _mm512_castps_si512(m), _mm512_castps_si512(a),
+        _mm512_castps_si512(b), 0xCA));
+}
+HF__TARGET_AVX512 HF__INLINE int hf__mask16(__m512 m)
+{
+    /* the sign bits, as movemask */
+    return (int)_mm512_cmplt_epi32_mask(_mm512_castps_si512(m),
+                                        _mm512_setzero_si512());
+}
+#undef HF__LD
+#undef HF__ST
+#undef HF__SET1
+#undef HF__ADD
+#undef HF__SUB
+#undef HF__MUL
+#undef HF__DIV
+#undef HF__SQRT
+#undef HF__GT
+#undef HF__LT
+#undef HF__EQ
+#undef HF__LE
+#undef HF__AND
+#undef HF__SEL
+#undef HF__MASK
+#undef HF__MAX
+#define HF__LD(p) _mm512_loadu_ps(p)
+#define HF__ST(p, v) _mm512_storeu_ps(p, v)
+#define HF__SET1(x) _mm512_set1_ps(x)
+#define HF__ADD(x, y) _mm512_add_ps(x, y)
+#define HF__SUB(x, y) _mm512_sub_ps(x, y)
+#define HF__MUL(x, y) _mm512_mul_ps(x, y)
+#define HF__DIV(x, y) _mm512_div_ps(x, y)
+#define HF__SQRT(x) _mm512_maskz_sqrt_ps(0xffff, x) /* see hf__xyz16 */
+#define HF__GT(x, y) hf__m16(_mm512_cmp_ps_mask(x, y, _CMP_GT_OQ))
+#define HF__LT(x, y) hf__m16(_mm512_cmp_ps_mask(x, y, _CMP_LT_OQ))
+#define HF__EQ(x, y) hf__m16(_mm512_cmp_ps_mask(x, y, _CMP_EQ_OQ))
+#define HF__LE(x, y) hf__m16(_mm512_cmp_ps_mask(x, y, _CMP_LE_OQ))
+#define HF__AND(x, y) hf__and16(x, y)
+#define HF__SEL(m, a, b) hf__sel16(m, a, b)
+#define HF__MASK(m) hf__mask16(m)
+#define HF__MAX(x, y) _mm512_maskz_max_ps(0xffff, x, y)
+#define HF__GATHER16(row, idx)                                                 \
+    _mm512_setr_ps((row)[(idx)[0]], (row)[(idx)[1]], (row)[(idx)[2]],         \
+                   (row)[(idx)[3]], (row)[(idx)[4]], (row)[(idx)[5]],         \
+                   (row)[(idx)[6]], (row)[(idx)[7]], (row)[(idx)[8]],         \
+                   (row)[(idx)[9]], (row)[(idx)[10]], (row)[(idx)[11]],       \
+                   (row)[(idx)[12]], (row)[(idx)[13]], (row)[(idx)[14]],      \
+                   (row)[(idx)[15]])
+HF__FTL_KERNELS(v16, __m512, 16, HF__TARGET_AVX512, HF__GATHER16,
+                _mm256_zeroupper())
+#undef HF__GATHER16
+HF__ROPE_ROWS(v16, __m512, 16, HF__TARGET_AVX512, _mm256_zeroupper())
+#endif
 #pragma pop_macro("HF__LD")
 #pragma pop_macro("HF__ST")
 #pragma pop_macro("HF__SET1")
@@ -7117,25 +7190,40 @@ HF__ROPE_ROWS(v8, __m256, 8, HF__TARGET_AVX2, _mm256_zeroupper())
 #pragma pop_macro("HF__MASK")
 #pragma pop_macro("HF__MAX")
 
-/* The rows eight ropes a vector, for hf__ropes_substep_rows. Each is a
-   function of its own, so no SSE code runs between them with the upper
-   halves dirty. */
+/* The rows eight (sixteen) ropes a vector, for hf__ropes_substep_rows.
+   Each is a function of its own, so no SSE code runs between them with
+   the upper halves dirty. */
 static const hf__rope_rows hf__rope_rows_avx2 = {
     hf__ropes_pin_root_v8, hf__ropes_integrate_row_v8,
     hf__ropes_local_row_v8, hf__ropes_ftl_row_v8,
     hf__ropes_distance_row_v8};
+#if HF__AVX512
+static const hf__rope_rows hf__rope_rows_avx512 = {
+    hf__ropes_pin_root_v16, hf__ropes_integrate_row_v16,
+    hf__ropes_local_row_v16, hf__ropes_ftl_row_v16,
+    hf__ropes_distance_row_v16};
+#endif
 #endif
 #undef HF__OR
 
-/* The dispatch of the simulated rope kernels: at AVX2 and above the AVX2
-   kernel takes whole groups of eight ropes from a; the four-lane kernel
-   (SSE2 or NEON) whole groups of four from there, the scalar reference
-   the rest. */
+/* The dispatch of the simulated rope kernels: at AVX-512 the sixteen-lane
+   kernel takes whole groups of sixteen ropes from a; at AVX2 and above the
+   eight-lane kernel whole groups of eight from there; the four-lane kernel
+   (SSE2 or NEON) whole groups of four, the scalar reference the rest. */
 HF__PRIVATE void hf__ropes_substep(hf_ropes *ro, const float *F, int a, int b,
                                    const hf__rope_step *st,
                                    const hf_collider *col, int ncol)
 {
     int a4 = a;
+#if HF__AVX512
+    if (st->level >= HF_SIMD_AVX512) {
+        a4 = a + (b - a) / 16 * 16;
+        if (a4 > a)
+            hf__ropes_substep_rows(ro, F, a, a4, st, col, ncol,
+                                   &hf__rope_rows_avx512);
+        a = a4;
+    }
+#endif
 #if HF__AVX2
     if (st->level >= HF_SIMD_AVX2) {
         a4 = a + (b - a) / 8 * 8;
@@ -7162,6 +7250,9 @@ HF__PRIVATE void hf__ropes_mark_far(const hf_ropes *ro, int a, int b,
                                     const float *KB, float *VF, int level)
 {
     int j;
+#if HF__AVX512
+    if (level >= HF_SIMD_AVX512) a = hf__ropes_mark_far_v16(ro, a, b, KB, VF);
+#endif
 #if HF__AVX2
     if (level >= HF_SIMD_AVX2) a = hf__ropes_mark_far_v8(ro, a, b, KB, VF);
 #endif

@@ -4344,9 +4344,16 @@ static void test_ropes_get_positions(void)
    1, 3, 5 and 7 (four-lane groups and scalar), set 2 a rope at a time (the
    scalar reference), sets 3 and 4 every rope at once at the SSE2 (NEON)
    and scalar levels. */
+/* The levels the rope tests step at, each widest kernel first: the best
+   the CPU has (with AVX-512: groups of sixteen, then eight, four and the
+   scalar tail in one call), AVX2 (eight), SSE2 or NEON (four) and the
+   scalar reference. A level the CPU lacks resolves to the best below. */
+static const int tr_levels[4] = {HF_SIMD_AUTO, HF_SIMD_AVX2, HF_SIMD_SSE2,
+                                 HF_SIMD_SCALAR};
+
 static void t_ropes_lanes(int solver)
 {
-    enum { R = 45, P = 9, FRAMES = 90, NSET = 5 };
+    enum { R = 45, P = 9, FRAMES = 90, NSET = 6 };
     static float rest[3 * R * P], pos[3][3 * R * P];
     float root[3 * R], nrm[3 * R], tan[3 * R], dirs[3 * R];
     hf_collider col[2];
@@ -4410,7 +4417,7 @@ static void t_ropes_lanes(int solver)
             hf_ropes_step(&s[2].ro, r, 1, dt, &p, col, 2);
         for (k = 3; k < NSET; ++k) {
             pl = p;
-            pl.simd = k == 3 ? HF_SIMD_SSE2 : HF_SIMD_SCALAR;
+            pl.simd = tr_levels[k - 2];
             CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, dt, &pl, col, 2), HF_OK);
         }
         for (k = 1; k < NSET; ++k)
@@ -4443,7 +4450,7 @@ static void t_ropes_lanes(int solver)
 
 /* The safety net: a rope with a point that is NaN or thrown beyond
    8 * length + 0.01 m of its root is reset whole, at every level and in
-   every lane (groups of eight, four, the tail); every other rope goes on
+   every lane (groups of sixteen, eight, four, the tail); every other rope goes on
    as if nothing happened. */
 /* hf_ropes_set_roots writes four ropes at a time: every lane must give
    the bytes the one-rope path gives, for normals and tangents of any
@@ -4512,7 +4519,7 @@ static void test_ropes_set_roots_lanes(void)
 
 static void test_ropes_safety_net_resets(void)
 {
-    enum { R = 29, P = 6, NSET = 4 };
+    enum { R = 29, P = 6, NSET = 5 };
     static float rest[3 * R * P];
     static const int bad[] = {0, 3, 5, 9, 13, 17, 26, 28};
     float root[3 * R], nrm[3 * R], tan[3 * R], dirs[3 * R];
@@ -4532,8 +4539,8 @@ static void test_ropes_safety_net_resets(void)
         CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, 1.0f / 60.0f, &p, NULL, 0),
                      HF_OK);
     }
-    /* sets 0..2 broken, set 3 the run without */
-    for (k = 0; k < 3; ++k)
+    /* sets 0..3 broken, one per level; set 4 the run without */
+    for (k = 0; k < 4; ++k)
         for (i = 0; i < (int)(sizeof bad / sizeof bad[0]); ++i) {
             const size_t o = (size_t)(1 + i % (P - 1)) * R + (size_t)bad[i];
             if (i % 2)
@@ -4543,12 +4550,11 @@ static void test_ropes_safety_net_resets(void)
         }
     for (k = 0; k < NSET; ++k) {
         hf_rope_params pl = p;
-        pl.simd = k == 1 ? HF_SIMD_SSE2 : k == 2 ? HF_SIMD_SCALAR
-                                                 : HF_SIMD_AUTO;
+        pl.simd = tr_levels[k % 4];
         CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, 1.0f / 60.0f, &pl, NULL, 0),
                      HF_OK);
     }
-    for (k = 1; k < 3; ++k)
+    for (k = 1; k < 4; ++k)
         same &= tr_same(&s[0].ro, &s[k].ro, 0);
     for (r = 0; r < R; ++r) {
         int broken = 0;
@@ -4561,9 +4567,9 @@ static void test_ropes_safety_net_resets(void)
                          dz = s[0].ro.z[o] - s[0].ro.z[r];
             near &= sqrt(dx * dx + dy * dy + dz * dz) < 0.11;
             if (!broken)
-                untouched &= s[0].ro.x[o] == s[3].ro.x[o] &&
-                             s[0].ro.y[o] == s[3].ro.y[o] &&
-                             s[0].ro.z[o] == s[3].ro.z[o];
+                untouched &= s[0].ro.x[o] == s[4].ro.x[o] &&
+                             s[0].ro.y[o] == s[4].ro.y[o] &&
+                             s[0].ro.z[o] == s[4].ro.z[o];
         }
     }
     CHECK(same);
@@ -4575,13 +4581,13 @@ static void test_ropes_safety_net_resets(void)
 
 /* Contacts at every level: ropes hanging through random spheres and
    capsules (one to four, overlapping; some roots inside; a twelve-collider
-   case that takes the batched scalar walk), stepped whole at the best
-   level, at SSE2 (NEON) and scalar: the same bytes. The four-lane contact
+   case that takes the batched scalar walk), stepped whole at each of
+   tr_levels: the same bytes. The four-lane contact
    kernel resolves the points in contact four at a time, gathered from
    the row, with every branch of the scalar kernel as a select. */
 static void test_ropes_contacts_match_scalar(void)
 {
-    enum { R = 83, P = 8, NSET = 3, TRIALS = 40 };
+    enum { R = 83, P = 8, NSET = 4, TRIALS = 40 };
     static float rest[3 * R * P];
     float root[3 * R], nrm[3 * R], tan[3 * R], dir[3];
     hf_collider col[12];
@@ -4631,8 +4637,7 @@ static void test_ropes_contacts_match_scalar(void)
             for (r = 0; r < R; ++r) root[3 * r] += 0.01f;
             for (k = 0; k < NSET; ++k) {
                 hf_rope_params pl = p;
-                pl.simd = k == 0 ? HF_SIMD_AUTO
-                                 : k == 1 ? HF_SIMD_SSE2 : HF_SIMD_SCALAR;
+                pl.simd = tr_levels[k];
                 hf_ropes_set_roots(&s[k].ro, 0, R, root, nrm, tan, 0);
                 CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, 1.0f / 60.0f, &pl,
                                            col, ncol),
@@ -4662,7 +4667,7 @@ static void test_ropes_contacts_match_scalar(void)
    scalar bytes; every rope in contact is turned aside, finite and out. */
 static void test_ropes_contacts_degenerate_lanes(void)
 {
-    enum { R = 45, P = 6, NSET = 3 };
+    enum { R = 45, P = 6, NSET = 4 };
     static float rest[3 * R * P];
     float root[3 * R], nrm[3 * R], tan[3 * R];
     hf_collider col;
@@ -4693,8 +4698,7 @@ static void test_ropes_contacts_degenerate_lanes(void)
     }
     for (k = 0; k < NSET; ++k) {
         hf_rope_params pl = p;
-        pl.simd = k == 0 ? HF_SIMD_AUTO : k == 1 ? HF_SIMD_SSE2
-                                                 : HF_SIMD_SCALAR;
+        pl.simd = tr_levels[k];
         CHECK_EQ_INT(hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm,
                                        tan, 0),
                      HF_OK);
