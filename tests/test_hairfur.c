@@ -6245,9 +6245,10 @@ static void test_simd_kernels_leave_upper_clean(void)
                 dirty |= t_dirty_upper();
                 ++runs;
             }
-    { /* the rope step: 13 ropes (eight lanes, four, one), both solvers,
-         through a sphere so the collision path runs too */
-        enum { RR = 13, RP = 6 };
+    { /* the rope step: 21 ropes (sixteen lanes or twice eight, then four
+         and one: no wider kernel after the widest to clean up for it),
+         both solvers, through a sphere so the collision path runs too */
+        enum { RR = 21, RP = 6 };
         static float rest[RR * RP * 3];
         float root[RR * 3], nrm[RR * 3], tng[RR * 3];
         hf_ropes *ro = NULL;
