@@ -1038,7 +1038,7 @@ typedef struct hf_rope_params {
     int explicit_zero;      /* 0: hf_rope_zero bits, fields whose 0 is
                                literal */
     int simd; /* 0: hf_simd_level of the rope step, 0 = the best the CPU
-                 runs (SSE2 or NEON, AVX2; the AVX-512 level runs AVX2);
+                 runs (SSE2 or NEON, AVX2, AVX-512);
                  every level gives the same bytes. A fur uses its own
                  (hf_fur_desc.simd, hf_fur_set_kernels) */
 } hf_rope_params;
