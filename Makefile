@@ -153,7 +153,12 @@ define run_tests
 	echo "make $(2): all builds passed"
 endef
 
-test: check-build
+# The suite's builds are independent: built JOBS at a time (default: the
+# machine's cores), one at a time they were half of make test's time.
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+
+test:
+	@$(MAKE) --no-print-directory -j$(JOBS) check-build
 	@$(BUILD)/cpp_compile
 	@$(BUILD)/link_check
 	$(call run_tests,$(TEST_BINS),test)
@@ -713,7 +718,8 @@ endef
 fuzz: fuzz-build
 	$(call fuzz_run,$(FUZZ_SECONDS))
 
-fuzz-smoke: fuzz-build
+fuzz-smoke:
+	@$(MAKE) --no-print-directory -j$(JOBS) fuzz-build
 	$(call fuzz_run,$(FUZZ_SMOKE_SECONDS))
 
 fuzz-replay: $(addprefix $(BUILD)/replay_,$(FUZZ_TARGETS))
