@@ -6194,10 +6194,9 @@ HF__PRIVATE void hf__ropes_mark_far_ref(const hf_ropes *ro, int j, int a,
    These kernels are written once, for any lane width, in HF__FTL_KERNELS,
    and built for four lanes below (hf__v4: SSE2, NEON) and for eight and
    sixteen in the AVX2 section. S names the width in every name (v4, v8,
-   v16), V is its
-   vector, W its lanes, T its functions' target attribute, G(row, idx)
-   gathers row[idx[0 .. W)] into a vector, and ZU readies the registers for
-   the scalar code of the rare paths. They use the four-lane operations'
+   v16), V is its vector, W its lanes, T its functions' target attribute,
+   G(row, idx) gathers row[idx[0 .. W)] into a vector, and ZU readies the
+   registers for the scalar code of the rare paths. They use the four-lane operations'
    names (HF__ADD, ...), which the wider builds map to AVX2 and AVX-512
    while they expand. */
 #define HF__OR(a, b) HF__SEL(a, a, b) /* masks only */
