@@ -6979,9 +6979,11 @@ T HF__PRIVATE int hf__ropes_mark_far_##S(const hf_ropes *ro, int a, int b,     \
 
 HF__ROPE_ROWS(v4, hf__v4, 4, , (void)0)
 
-/* The row kernels of one SIMD width: the four-lane ones, and the AVX2
-   ones below. */
+/* The row kernels of one SIMD width (the four-lane ones, and the eight-
+   and sixteen-lane ones below), for whole groups of `lanes` ropes at
+   `level` and above. */
 typedef struct hf__rope_rows {
+    int lanes, level;
     void (*pin_root)(hf_ropes *, const float *, int, int);
     void (*integrate)(hf_ropes *, const float *, int, int, int,
                       const hf__rope_step *);
@@ -6990,6 +6992,7 @@ typedef struct hf__rope_rows {
     void (*ftl)(hf_ropes *, const float *, int, int, int,
                 const hf__rope_step *, const hf_collider *, int);
     void (*distance)(hf_ropes *, int, int, int);
+    int (*mark_far)(const hf_ropes *, int, int, const float *, float *);
 } hf__rope_rows;
 
 /* One sub-step with the row kernels k (ropes [a, b), whole groups of the
@@ -7034,8 +7037,9 @@ HF__PRIVATE void hf__ropes_substep_rows(hf_ropes *ro, const float *F, int a,
 }
 
 static const hf__rope_rows hf__rope_rows_v4 = {
-    hf__ropes_pin_root_v4, hf__ropes_integrate_row_v4,
-    hf__ropes_local_row_v4, hf__ropes_ftl_row_v4, hf__ropes_distance_row_v4};
+    4, HF_SIMD_SSE2, hf__ropes_pin_root_v4, hf__ropes_integrate_row_v4,
+    hf__ropes_local_row_v4, hf__ropes_ftl_row_v4, hf__ropes_distance_row_v4,
+    hf__ropes_mark_far_v4};
 
 #endif
 
@@ -7192,54 +7196,47 @@ HF__ROPE_ROWS(v16, __m512, 16, HF__TARGET_AVX512, _mm256_zeroupper())
    Each is a function of its own, so no SSE code runs between them with
    the upper halves dirty. */
 static const hf__rope_rows hf__rope_rows_avx2 = {
-    hf__ropes_pin_root_v8, hf__ropes_integrate_row_v8,
-    hf__ropes_local_row_v8, hf__ropes_ftl_row_v8,
-    hf__ropes_distance_row_v8};
+    8, HF_SIMD_AVX2, hf__ropes_pin_root_v8, hf__ropes_integrate_row_v8,
+    hf__ropes_local_row_v8, hf__ropes_ftl_row_v8, hf__ropes_distance_row_v8,
+    hf__ropes_mark_far_v8};
 #if HF__AVX512
 static const hf__rope_rows hf__rope_rows_avx512 = {
-    hf__ropes_pin_root_v16, hf__ropes_integrate_row_v16,
+    16, HF_SIMD_AVX512, hf__ropes_pin_root_v16, hf__ropes_integrate_row_v16,
     hf__ropes_local_row_v16, hf__ropes_ftl_row_v16,
-    hf__ropes_distance_row_v16};
+    hf__ropes_distance_row_v16, hf__ropes_mark_far_v16};
 #endif
 #endif
 #undef HF__OR
 
-/* The dispatch of the simulated rope kernels: at AVX-512 the sixteen-lane
-   kernel takes whole groups of sixteen ropes from a; at AVX2 and above the
-   eight-lane kernel whole groups of eight from there; the four-lane kernel
-   (SSE2 or NEON) whole groups of four, the scalar reference the rest. */
+#if HF__V4
+/* The row kernels this build has, widest first: each takes whole groups
+   of its lanes from where the wider ones stopped, at its level and above;
+   the scalar reference takes the rest. */
+static const hf__rope_rows *const hf__rope_widths[] = {
+#if HF__AVX512
+    &hf__rope_rows_avx512,
+#endif
+#if HF__AVX2
+    &hf__rope_rows_avx2,
+#endif
+    &hf__rope_rows_v4, NULL};
+#endif
+
+/* The dispatch of the simulated rope kernels (hf__rope_widths). */
 HF__PRIVATE void hf__ropes_substep(hf_ropes *ro, const float *F, int a, int b,
                                    const hf__rope_step *st,
                                    const hf_collider *col, int ncol)
 {
-    int a4 = a;
-#if HF__AVX512
-    if (st->level >= HF_SIMD_AVX512) {
-        a4 = a + (b - a) / 16 * 16;
-        if (a4 > a)
-            hf__ropes_substep_rows(ro, F, a, a4, st, col, ncol,
-                                   &hf__rope_rows_avx512);
-        a = a4;
-    }
-#endif
-#if HF__AVX2
-    if (st->level >= HF_SIMD_AVX2) {
-        a4 = a + (b - a) / 8 * 8;
-        if (a4 > a)
-            hf__ropes_substep_rows(ro, F, a, a4, st, col, ncol,
-                                   &hf__rope_rows_avx2);
-        a = a4;
-    }
-#endif
 #if HF__V4
-    if (st->level >= HF_SIMD_SSE2) {
-        a4 = a + (b - a) / 4 * 4;
-        if (a4 > a)
-            hf__ropes_substep_rows(ro, F, a, a4, st, col, ncol,
-                                   &hf__rope_rows_v4);
+    const hf__rope_rows *const *k;
+    for (k = hf__rope_widths; *k; ++k) {
+        const int e = a + (b - a) / (*k)->lanes * (*k)->lanes;
+        if (st->level < (*k)->level) continue;
+        if (e > a) hf__ropes_substep_rows(ro, F, a, e, st, col, ncol, *k);
+        a = e;
     }
 #endif
-    hf__ropes_substep_ref(ro, F, a4, b, st, col, ncol);
+    hf__ropes_substep_ref(ro, F, a, b, st, col, ncol);
 }
 
 
@@ -7248,14 +7245,10 @@ HF__PRIVATE void hf__ropes_mark_far(const hf_ropes *ro, int a, int b,
                                     const float *KB, float *VF, int level)
 {
     int j;
-#if HF__AVX512
-    if (level >= HF_SIMD_AVX512) a = hf__ropes_mark_far_v16(ro, a, b, KB, VF);
-#endif
-#if HF__AVX2
-    if (level >= HF_SIMD_AVX2) a = hf__ropes_mark_far_v8(ro, a, b, KB, VF);
-#endif
 #if HF__V4
-    if (level >= HF_SIMD_SSE2) a = hf__ropes_mark_far_v4(ro, a, b, KB, VF);
+    const hf__rope_rows *const *k;
+    for (k = hf__rope_widths; *k; ++k)
+        if (level >= (*k)->level) a = (*k)->mark_far(ro, a, b, KB, VF);
 #endif
     (void)level;
     for (j = 1; j < ro->points; ++j)
