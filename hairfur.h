@@ -1884,6 +1884,17 @@ HFDEF hf_result hf_fur_ribbons(const hf_fur *fur, int first, int count,
    hf_ribbon_points; widths as hf_fur_ribbons. */
 HFDEF hf_result hf_fur_points(const hf_fur *fur, int first, int count,
                               const hf_ribbon_params *view, float *out4);
+/* hf_fur_interpolate and hf_fur_points of strands [first, first + count)
+   in one pass, for the GPU-expansion path: the same bytes in out4 as the
+   two calls, without writing the strands' points to the fur and reading
+   them back (a block of strands at a time through a buffer on the
+   stack, 8 KiB). The fur's strand points (hf_fur_info.strand_points) are
+   left as they were. Needs every guide updated first; errors as
+   hf_fur_points, nothing written then. */
+HFDEF hf_result hf_fur_interpolate_points(const hf_fur *fur, int first,
+                                          int count,
+                                          const hf_ribbon_params *view,
+                                          float *out4);
 
 /* The largest relative segment stretch of the simulated guides (see
    hf_ropes_max_stretch). Errors: HF_ERROR_NULL_POINTER. */
@@ -7682,9 +7693,11 @@ HF__INLINE int hf__stream_mode(int nt, const void *o, uintptr_t whole)
 #if HF__AVX2
 /* hf__interp_strand_sse, eight floats a vector: the same operations in
    the same order (no FMA), so the same bytes. */
-HF__TARGET_AVX2 HF__INLINE void
-hf__interp_avx2(const hf__istrand *t, const float *ctab, int i, __m256 W0,
-                __m256 W1, __m256 W2, __m256 SC, __m256 R, int nt)
+HF__TARGET_AVX2 HF__INLINE __m256 hf__interp_v8(const hf__istrand *t,
+                                                const float *ctab, int i,
+                                                __m256 W0, __m256 W1,
+                                                __m256 W2, __m256 SC,
+                                                __m256 R)
 {
     __m256 p = _mm256_add_ps(
         _mm256_add_ps(_mm256_mul_ps(W0, _mm256_loadu_ps(t->g0 + i)),
@@ -7695,6 +7708,15 @@ hf__interp_avx2(const hf__istrand *t, const float *ctab, int i, __m256 W0,
         p = _mm256_add_ps(
             p, _mm256_mul_ps(_mm256_loadu_ps(ctab + i),
                              _mm256_sub_ps(_mm256_loadu_ps(t->gn + i), p)));
+    return p;
+}
+
+/* hf__interp_v8, stored */
+HF__TARGET_AVX2 HF__INLINE void
+hf__interp_avx2(const hf__istrand *t, const float *ctab, int i, __m256 W0,
+                __m256 W1, __m256 W2, __m256 SC, __m256 R, int nt)
+{
+    const __m256 p = hf__interp_v8(t, ctab, i, W0, W1, W2, SC, R);
     if (!nt) {
         _mm256_storeu_ps(t->o + i, p);
     } else if (nt == 2) { /* 32-byte aligned: one streaming store */
@@ -7713,35 +7735,49 @@ HF__TARGET_AVX2 HF__INLINE __m256 hf__xyz8(const float *g, __m256i x)
         _mm256_insertf128_ps(_mm256_castps128_ps256(v), v, 1), x);
 }
 
-/* The strands of a range in one target function (no call per strand).
-   (1 - sc) root repeats every 3 floats: the vectors at floats 0, 8, 16
-   have phases 0, 2, 1, built from the first point of each guide by lane
+/* A strand's weights, scale and root terms, eight lanes each. (1 - sc)
+   root repeats every 3 floats: the vectors at floats 0, 8, 16 have phases
+   0, 2, 1 (R0, R1, R2), built from the first point of each guide by lane
    permutes, in the scalar root's order. */
-HF__TARGET_AVX2 HF__PRIVATE void
-hf__interp_range_avx2(const hf__irun *run, int first, int count)
+typedef struct hf__iv8 {
+    __m256 W0, W1, W2, SC, R0, R1, R2;
+} hf__iv8;
+
+HF__TARGET_AVX2 HF__INLINE void hf__interp_prep8(const hf__istrand *t,
+                                                 hf__iv8 *v)
 {
     const __m256i x0 = _mm256_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1);
     const __m256i x2 = _mm256_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0);
     const __m256i x1 = _mm256_setr_epi32(1, 2, 0, 1, 2, 0, 1, 2);
+    v->W0 = _mm256_set1_ps(t->w0);
+    v->W1 = _mm256_set1_ps(t->w1);
+    v->W2 = _mm256_set1_ps(t->w2);
+    v->SC = _mm256_set1_ps(t->sc);
+    v->R0 = _mm256_add_ps(
+        _mm256_add_ps(_mm256_mul_ps(v->W0, hf__xyz8(t->g0, x0)),
+                      _mm256_mul_ps(v->W1, hf__xyz8(t->g1, x0))),
+        _mm256_mul_ps(v->W2, hf__xyz8(t->g2, x0)));
+    v->R0 = _mm256_mul_ps(_mm256_set1_ps(1.0f - t->sc), v->R0);
+    v->R1 = _mm256_permutevar8x32_ps(v->R0, x2);
+    v->R2 = _mm256_permutevar8x32_ps(v->R0, x1);
+}
+
+/* The strands of a range in one target function (no call per strand). */
+HF__TARGET_AVX2 HF__PRIVATE void
+hf__interp_range_avx2(const hf__irun *run, int first, int count)
+{
     const int n = 3 * run->P;
     hf__istrand t;
     int s, i;
     for (s = first; s < first + count; ++s) {
+        hf__iv8 v;
         __m256 W0, W1, W2, SC, R0, R1, R2;
         int nt;
         hf__interp_setup(run, s, &t);
         nt = hf__stream_mode(run->nt, t.o, 31u);
-        W0 = _mm256_set1_ps(t.w0);
-        W1 = _mm256_set1_ps(t.w1);
-        W2 = _mm256_set1_ps(t.w2);
-        SC = _mm256_set1_ps(t.sc);
-        R0 = _mm256_add_ps(
-            _mm256_add_ps(_mm256_mul_ps(W0, hf__xyz8(t.g0, x0)),
-                          _mm256_mul_ps(W1, hf__xyz8(t.g1, x0))),
-            _mm256_mul_ps(W2, hf__xyz8(t.g2, x0)));
-        R0 = _mm256_mul_ps(_mm256_set1_ps(1.0f - t.sc), R0);
-        R1 = _mm256_permutevar8x32_ps(R0, x2);
-        R2 = _mm256_permutevar8x32_ps(R0, x1);
+        hf__interp_prep8(&t, &v);
+        W0 = v.W0, W1 = v.W1, W2 = v.W2, SC = v.SC;
+        R0 = v.R0, R1 = v.R1, R2 = v.R2;
         for (i = 0; i + 24 <= n; i += 24) {
             hf__interp_avx2(&t, run->ctab, i, W0, W1, W2, SC, R0, nt);
             hf__interp_avx2(&t, run->ctab, i + 8, W0, W1, W2, SC, R1, nt);
@@ -7852,6 +7888,26 @@ hf__interp_range_avx512(const hf__irun *run, int first, int count)
 }
 #endif
 
+/* A run's fields; ctab (3 P floats) filled here */
+HF__PRIVATE void hf__irun_init(hf__irun *run, const float *guide_points,
+                               const hf_strand_binding *bindings, int P,
+                               float clump, float *ctab, float *out_points,
+                               int out_first, int nt)
+{
+    int i;
+    /* clump weight of float i of a strand: clump * (i / 3) / (P - 1) */
+    for (i = 0; i < 3 * P; ++i)
+        ctab[i] = clump / (float)(P - 1) * (float)(i / 3);
+    run->guides = guide_points;
+    run->bindings = bindings;
+    run->ctab = ctab;
+    run->out = out_points;
+    run->P = P;
+    run->out_first = out_first;
+    run->clump = clump != 0.0f;
+    run->nt = nt;
+}
+
 /* Strands [first, first + count) from inputs already checked: the loop of
    hf_interpolate, at SIMD level `level`. */
 HF__PRIVATE void hf__interpolate_run(const float *guide_points,
@@ -7862,18 +7918,8 @@ HF__PRIVATE void hf__interpolate_run(const float *guide_points,
 {
     float ctab[3 * HF_MAX_POINTS];
     hf__irun run;
-    int i;
-    /* clump weight of float i of a strand: clump * (i / 3) / (P - 1) */
-    for (i = 0; i < 3 * P; ++i)
-        ctab[i] = clump / (float)(P - 1) * (float)(i / 3);
-    run.guides = guide_points;
-    run.bindings = bindings;
-    run.ctab = ctab;
-    run.out = out_points;
-    run.P = P;
-    run.out_first = out_first;
-    run.clump = clump != 0.0f;
-    run.nt = nt;
+    hf__irun_init(&run, guide_points, bindings, P, clump, ctab, out_points,
+                  out_first, nt);
 #if HF__AVX512
     if (level >= HF_SIMD_AVX512)
         hf__interp_range_avx512(&run, first, count);
@@ -9766,41 +9812,55 @@ hf__points_strand_avx2(const float *p, const hf__pair_widths *pw, float ws,
 }
 #endif
 
-HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
-                                 int count, const hf_ribbon_params *view,
-                                 float *out4)
-{
+/* What a points call works out once: the half widths of the points and
+   the kernel. */
+typedef struct hf__points_kit {
     float hw[HF_MAX_POINTS];
 #if HF__AVX2
     hf__pair_widths pw;
-    int wide;
 #endif
-    hf_ribbon_params prm;
-    const hf_ribbon_params *params = &prm;
-    int s, P, level, nt;
-    hf_result r = hf__ribbon_check(strands, first, count, view, &prm);
-    if (r != HF_OK) return r;
-    if (!out4) return HF_ERROR_NULL_POINTER;
-    P = params->points_per_strand;
-    level = hf_simd_resolve(params->simd);
-    nt = params->nontemporal != 0;
-    hf__half_widths(params, hw);
+    int P, level, nt, wide;
+} hf__points_kit;
+
+HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
+                                     const hf_ribbon_params *params)
+{
+    k->P = params->points_per_strand;
+    k->level = hf_simd_resolve(params->simd);
+    k->nt = params->nontemporal != 0;
+    hf__half_widths(params, k->hw);
+    k->wide = 0;
 #if HF__AVX2
-    wide = level >= HF_SIMD_AVX2 && P >= 3; /* the AVX2 kernel needs P >= 3 */
-    if (wide) hf__pair_widths_init(&pw, hw, P);
+    /* the AVX2 kernel needs P >= 3 */
+    k->wide = k->level >= HF_SIMD_AVX2 && k->P >= 3;
+    if (k->wide) hf__pair_widths_init(&k->pw, k->hw, k->P);
 #endif
+}
+
+/* GPU points of strands [first, first + count): strand s's points at
+   pts + (s - pts_first) * 3 P, written to out4 + (s - out_first) * 4 P.
+   The caller fences streamed stores. */
+HF__PRIVATE void hf__points_run(const hf__points_kit *k,
+                                const hf_ribbon_strands *strands,
+                                const float *pts, int pts_first, int first,
+                                int count, int out_first, float *out4)
+{
+    const int P = k->P;
+    int s;
     for (s = first; s < first + count; ++s) {
-        const float *p = strands->points + (size_t)s * (size_t)P * 3u;
-        float *o = out4 + (size_t)(s - params->out_first) * (size_t)P * 4u;
+        const float *p = pts + (size_t)(s - pts_first) * (size_t)P * 3u;
+        float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
         float wscale = 0.0f;
 #if HF__AVX2
-        if (wide) {
+        if (k->wide) {
             /* finiteness found on the way: a strand that is not is
                written again, collapsed (streamed stores ordered first) */
-            if (!hf__points_strand_avx2(p, &pw, hf__strand_width(strands, s),
-                                        o, P, nt)) {
-                if (nt) _mm_sfence();
-                hf__points_strand_avx2(hf__zero_points, &pw, 0.0f, o, P, nt);
+            if (!hf__points_strand_avx2(p, &k->pw,
+                                        hf__strand_width(strands, s), o, P,
+                                        k->nt)) {
+                if (k->nt) _mm_sfence();
+                hf__points_strand_avx2(hf__zero_points, &k->pw, 0.0f, o, P,
+                                       k->nt);
             }
             continue;
         }
@@ -9810,24 +9870,99 @@ HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
         else
             p = hf__zero_points; /* collapsed, as hf_ribbons */
 #if HF__SSE
-        if (level >= HF_SIMD_SSE2) {
-            hf__points_strand_sse(p, hw, wscale, o, P, nt);
+        if (k->level >= HF_SIMD_SSE2) {
+            hf__points_strand_sse(p, k->hw, wscale, o, P, k->nt);
             continue;
         }
 #endif
 #if HF__NEON
-        if (level >= HF_SIMD_NEON) {
-            hf__points_strand_neon(p, hw, wscale, o, P);
+        if (k->level >= HF_SIMD_NEON) {
+            hf__points_strand_neon(p, k->hw, wscale, o, P);
             continue;
         }
 #endif
-        hf__points_strand_ref(p, hw, wscale, o, P);
+        hf__points_strand_ref(p, k->hw, wscale, o, P);
     }
-#if HF__SSE
-    if (nt) _mm_sfence(); /* streamed stores visible before we return */
+}
+
+#if HF__AVX2
+/* hf__interp_range_avx2 and hf__points_strand_avx2 in one, for P a
+   multiple of 8: three vectors of a strand's floats (eight points) stay
+   in registers and go out as four vectors of two points each, the same
+   values in the same order as the two kernels write them. A strand that
+   is not finite is written again, collapsed, as hf__points_run does. */
+HF__TARGET_AVX2 HF__PRIVATE void
+hf__interp_points_avx2(const hf__irun *run, const hf__points_kit *k,
+                       const hf_ribbon_strands *st, int first, int count,
+                       int out_first, float *out4)
+{
+    const __m256i lo = _mm256_setr_epi32(0, 1, 2, 0, 3, 4, 5, 0);
+    const __m256i hi = _mm256_setr_epi32(2, 3, 4, 0, 5, 6, 7, 0);
+    const __m256 zero = _mm256_setzero_ps();
+    const int P = run->P;
+    hf__istrand t;
+    int s, i, j, m;
+    for (s = first; s < first + count; ++s) {
+        float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
+        const float ws = hf__strand_width(st, s);
+        const __m256 WS = _mm256_set1_ps(ws);
+        const int mode = hf__stream_mode(k->nt, o, 31u);
+        __m256 acc = zero;
+        hf__iv8 v;
+        hf__interp_setup(run, s, &t);
+        hf__interp_prep8(&t, &v);
+        for (i = 0, j = 0; j < P; i += 24, j += 8) {
+            const __m256 a = hf__interp_v8(&t, run->ctab, i, v.W0, v.W1,
+                                           v.W2, v.SC, v.R0);
+            const __m256 b = hf__interp_v8(&t, run->ctab, i + 8, v.W0, v.W1,
+                                           v.W2, v.SC, v.R1);
+            const __m256 c = hf__interp_v8(&t, run->ctab, i + 16, v.W0, v.W1,
+                                           v.W2, v.SC, v.R2);
+            __m256 q[4];
+            acc = _mm256_add_ps(acc, _mm256_mul_ps(a, zero));
+            acc = _mm256_add_ps(acc, _mm256_mul_ps(b, zero));
+            acc = _mm256_add_ps(acc, _mm256_mul_ps(c, zero));
+            /* points j .. j + 7: x y z of two points per vector */
+            q[0] = _mm256_permutevar8x32_ps(a, lo);
+            q[1] = _mm256_permutevar8x32_ps(
+                _mm256_permute2f128_ps(a, b, 0x21), hi);
+            q[2] = _mm256_permutevar8x32_ps(
+                _mm256_permute2f128_ps(b, c, 0x21), lo);
+            q[3] = _mm256_permutevar8x32_ps(c, hi);
+            for (m = 0; m < 4; ++m)
+                hf__point_pair_put(
+                    o + 4 * (j + 2 * m),
+                    _mm256_blend_ps(
+                        q[m],
+                        _mm256_mul_ps(
+                            _mm256_loadu_ps(k->pw.v + 4 * (j + 2 * m)), WS),
+                        0x88),
+                    mode);
+        }
+        if (_mm256_movemask_ps(_mm256_cmp_ps(acc, zero, _CMP_EQ_OQ)) != 0xff) {
+            if (mode) _mm_sfence();
+            hf__points_strand_avx2(hf__zero_points, &k->pw, 0.0f, o, P, k->nt);
+        }
+    }
+    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
+}
 #endif
-    (void)level; /* HF_NO_SIMD */
-    (void)nt;
+
+HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
+                                 int count, const hf_ribbon_params *view,
+                                 float *out4)
+{
+    hf__points_kit kit;
+    hf_ribbon_params prm;
+    hf_result r = hf__ribbon_check(strands, first, count, view, &prm);
+    if (r != HF_OK) return r;
+    if (!out4) return HF_ERROR_NULL_POINTER;
+    hf__points_kit_init(&kit, &prm);
+    hf__points_run(&kit, strands, strands->points, 0, first, count,
+                   prm.out_first, out4);
+#if HF__SSE
+    if (kit.nt) _mm_sfence(); /* streamed stores visible before we return */
+#endif
     return HF_OK;
 }
 
@@ -11379,14 +11514,15 @@ done:
    clump * j / (P - 1) of the way to the leader's point j (the leader's
    blend of its guides, unclumped), or without leaders to its main guide's
    point j, as the interpolation kernel does; the strength per strand with
-   a clump map. */
-HF__PRIVATE void hf__fur_clump_pass(const hf_fur *f, int first, int count)
+   a clump map. Strand s's points are at pts + (s - pts_first) * 3 P. */
+HF__PRIVATE void hf__fur_clump_pass(const hf_fur *f, int first, int count,
+                                    float *pts, int pts_first)
 {
     const int P = f->P;
     int s, j, k;
     for (s = first; s < first + count; ++s) {
         const float strength = f->strand_clump ? f->strand_clump[s] : f->clump;
-        float *o = f->strand_points + (size_t)s * (size_t)P * 3u;
+        float *o = pts + (size_t)(s - pts_first) * (size_t)P * 3u;
         if (strength == 0.0f) continue;
         if (f->leader) {
             const uint32_t l = f->leader[s];
@@ -11607,15 +11743,17 @@ HF__PRIVATE void hf__groom_frame(const float *n, const float *t, double *o)
 
 /* Groom strands [first, first + count): add each strand's rest offsets,
    turned by the blend of its guides' rotations from rest (current frame
-   times rest frame transposed). Runs after the blend of guide points. */
-HF__PRIVATE void hf__groom_offsets(const hf_fur *f, int first, int count)
+   times rest frame transposed). Runs after the blend of guide points, on
+   points laid out as hf__fur_clump_pass's. */
+HF__PRIVATE void hf__groom_offsets(const hf_fur *f, int first, int count,
+                                   float *pts, int pts_first)
 {
     const int P = f->P;
     int s, k, i, j, c;
     for (s = first; s < first + count; ++s) {
         const hf_strand_binding *b = &f->bindings[s];
         const float *off = f->offsets + (size_t)s * (size_t)P * 3u;
-        float *out = f->strand_points + (size_t)s * (size_t)P * 3u;
+        float *out = pts + (size_t)(s - pts_first) * (size_t)P * 3u;
         double R[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
         for (k = 0; k < 3; ++k) {
             const uint32_t g = b->guide[k];
@@ -12239,17 +12377,25 @@ HFDEF hf_result hf_fur_interpolate_guides(hf_fur *f, int first, int count)
     return HF_OK;
 }
 
+/* Strands [first, first + count) blended from the guides, clumped and
+   groomed, into pts + (s - pts_first) * 3 P. */
+HF__PRIVATE void hf__fur_strands(const hf_fur *f, int first, int count,
+                                 float *pts, int pts_first, int nt)
+{
+    hf__interpolate_run(f->guide_points, f->bindings, first, count, f->P,
+                        f->leader || f->strand_clump ? 0.0f : f->clump, pts,
+                        pts_first, hf_simd_resolve(f->simd), nt);
+    if (f->leader || f->strand_clump)
+        hf__fur_clump_pass(f, first, count, pts, pts_first);
+    if (f->offsets) hf__groom_offsets(f, first, count, pts, pts_first);
+}
+
 HFDEF hf_result hf_fur_interpolate(hf_fur *f, int first, int count)
 {
     if (!f) return HF_ERROR_NULL_POINTER;
     if (!hf__range_ok(first, count) || first + count > f->strand_count)
         return HF_ERROR_BAD_RANGE;
-    hf__interpolate_run(f->guide_points, f->bindings, first, count, f->P,
-                        f->leader || f->strand_clump ? 0.0f : f->clump,
-                        f->strand_points, 0, hf_simd_resolve(f->simd),
-                        f->nontemporal);
-    if (f->leader || f->strand_clump) hf__fur_clump_pass(f, first, count);
-    if (f->offsets) hf__groom_offsets(f, first, count);
+    hf__fur_strands(f, first, count, f->strand_points, 0, f->nontemporal);
     return HF_OK;
 }
 
@@ -12289,6 +12435,50 @@ HFDEF hf_result hf_fur_points(const hf_fur *f, int first, int count,
     hf_ribbon_strands s;
     hf_result r = hf__fur_view(f, first, count, view, &p, &s);
     return r != HF_OK ? r : hf_ribbon_points(&s, first, count, &p, out4);
+}
+
+/* hf_fur_interpolate_points' strands go through a buffer of this many
+   floats (8 KiB, in L1 while it is read back), a block at a time */
+#define HF__POINTS_BLOCK (8 * HF_MAX_POINTS)
+
+HFDEF hf_result hf_fur_interpolate_points(const hf_fur *f, int first,
+                                          int count,
+                                          const hf_ribbon_params *view,
+                                          float *out4)
+{
+    float buf[HF__POINTS_BLOCK];
+    hf__points_kit kit;
+    hf_ribbon_params p, prm;
+    hf_ribbon_strands st;
+    int s, n, per;
+    hf_result r = hf__fur_view(f, first, count, view, &p, &st);
+    if (r == HF_OK) r = hf__ribbon_check(&st, first, count, &p, &prm);
+    if (r != HF_OK) return r;
+    if (!out4) return HF_ERROR_NULL_POINTER;
+    hf__points_kit_init(&kit, &prm);
+#if HF__AVX2
+    if (kit.wide && f->P % 8 == 0 && !f->leader && !f->strand_clump &&
+        !f->offsets && hf_simd_resolve(f->simd) >= HF_SIMD_AVX2) {
+        /* in registers, nothing through memory */
+        float ctab[3 * HF_MAX_POINTS];
+        hf__irun run;
+        hf__irun_init(&run, f->guide_points, f->bindings, f->P, f->clump,
+                      ctab, out4, first, 0);
+        hf__interp_points_avx2(&run, &kit, &st, first, count, prm.out_first,
+                               out4);
+        count = 0;
+    }
+#endif
+    per = HF__POINTS_BLOCK / (3 * f->P);
+    for (s = first; s < first + count; s += n) {
+        n = first + count - s < per ? first + count - s : per;
+        hf__fur_strands(f, s, n, buf, s, 0);
+        hf__points_run(&kit, &st, buf, s, s, n, prm.out_first, out4);
+    }
+#if HF__SSE
+    if (kit.nt) _mm_sfence(); /* streamed stores visible before we return */
+#endif
+    return HF_OK;
 }
 
 HFDEF hf_result hf_fur_set_rope_params(hf_fur *f,

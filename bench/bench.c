@@ -9,9 +9,12 @@
    Stages: roots, ropes, lod_guides, strands (interpolation), ribbons
    (36-byte float vertices: position, tangent, texcoord), points (the GPU
    path, 16 bytes a point), ribbons16 (the same attributes in 16 bytes:
-   SNORM16 position, UNORM16 texcoord, SNORM8 tangent), frame (roots to
-   ribbons), frame16 (the same with ribbons16) and frame_points (the same
-   with points: the GPU expands the ribbons, examples/ribbon_expand.glsl).
+   SNORM16 position, UNORM16 texcoord, SNORM8 tangent), interp_points
+   (hf_fur_interpolate_points: strands and points in one pass, with
+   streaming stores, as into a mapped GPU buffer; it runs right after the
+   guides), frame (roots to ribbons), frame16 (the same with ribbons16)
+   and frame_points (roots, ropes, LOD guides and interp_points: the GPU
+   expands the ribbons, examples/ribbon_expand.glsl).
    For each stage: the median, min and max milliseconds over FRAMES frames
    after a warm-up, the bytes the stage writes per second, and in the same
    run the write limit for the same number of bytes: the best of 16-byte
@@ -154,6 +157,10 @@ static hf_ribbon_params g_view;
 static hf_ribbon_output g_out;
 static void j_ribbons(job *j, int f, int c) { (void)j; check("ribbons", hf_fur_ribbons(g_sc->fur, f, c, &g_view, &g_out)); }
 static void j_points(job *j, int f, int c) { (void)j; check("points", hf_fur_points(g_sc->fur, f, c, &g_view, g_sc->pbuf)); }
+/* the GPU path writes a mapped (write-combined) buffer, where streaming
+   stores are the right ones (hf_ribbon_params.nontemporal) */
+static hf_ribbon_params g_view_gpu;
+static void j_ipoints(job *j, int f, int c) { (void)j; check("interp_points", hf_fur_interpolate_points(g_sc->fur, f, c, &g_view_gpu, g_sc->pbuf)); }
 static hf_ribbon_output g_out16;
 static void j_ribbons16(job *j, int f, int c) { (void)j; check("ribbons16", hf_fur_ribbons(g_sc->fur, f, c, &g_view, &g_out16)); }
 
@@ -389,10 +396,11 @@ static void report(const char *stage, const char *scene_name, int threads,
 }
 
 enum { ST_ROOTS, ST_ROPES, ST_LODG, ST_INTERP, ST_RIBBONS, ST_POINTS,
-       ST_RIBBONS16, ST_FRAME, ST_FRAME16, ST_FRAMEP, ST_N };
+       ST_RIBBONS16, ST_IPOINTS, ST_FRAME, ST_FRAME16, ST_FRAMEP, ST_N };
 static const char *st_name[ST_N] = {"roots", "ropes", "lod_guides", "strands",
-                                    "ribbons", "points", "ribbons16", "frame",
-                                    "frame16", "frame_points"};
+                                    "ribbons", "points", "ribbons16",
+                                    "interp_points", "frame", "frame16",
+                                    "frame_points"};
 
 static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
 {
@@ -407,6 +415,8 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
     g_view.eye[2] = 0.6f;
     g_view.root_width = 0.001f;
     g_view.tip_width = 0.0002f;
+    g_view_gpu = g_view;
+    g_view_gpu.nontemporal = 1;
     memset(&g_out, 0, sizeof g_out);
     /* a common engine layout: position, tangent, texcoord interleaved */
     g_out.position.data = s->vbuf;
@@ -442,6 +452,8 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
     jobs[ST_POINTS].total = s->info.strand_count;
     jobs[ST_RIBBONS16].fn = j_ribbons16;
     jobs[ST_RIBBONS16].total = s->info.strand_count;
+    jobs[ST_IPOINTS].fn = j_ipoints;
+    jobs[ST_IPOINTS].total = s->info.strand_count;
     bytes[ST_ROOTS] = (double)s->info.guide_count * 36.0;
     bytes[ST_ROPES] = (double)s->info.guide_count * P * 12.0;
     bytes[ST_LODG] = (double)s->info.lod_guide_count * P * 12.0;
@@ -449,11 +461,12 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
     bytes[ST_RIBBONS] = (double)s->info.strand_count * P * 2.0 * 36.0;
     bytes[ST_POINTS] = (double)s->info.strand_count * P * 16.0;
     bytes[ST_RIBBONS16] = (double)s->info.strand_count * P * 2.0 * 16.0;
+    bytes[ST_IPOINTS] = bytes[ST_POINTS];
     bytes[ST_FRAME] = bytes[ST_FRAME16] = bytes[ST_FRAMEP] = 0;
 
     allocs0 = g_allocs;
     for (f = -warm; f < frames; ++f) {
-        double t0, t1, t2, t3, t4, t5, t6, t7;
+        double t0, t1, t2, t3, t4, t5, t6, t7, t8;
         scene_pose(s, s->frame++);
         t0 = now_ms();
         run_job(&jobs[ST_ROOTS]);
@@ -462,6 +475,10 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
         t2 = now_ms();
         run_job(&jobs[ST_LODG]);
         t3 = now_ms();
+        /* the GPU path's pass first, where its frame would run it: right
+           after the guides */
+        run_job(&jobs[ST_IPOINTS]);
+        t8 = now_ms();
         run_job(&jobs[ST_INTERP]);
         t4 = now_ms();
         run_job(&jobs[ST_RIBBONS]);
@@ -474,13 +491,17 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
         t[ST_ROOTS][f] = t1 - t0;
         t[ST_ROPES][f] = t2 - t1;
         t[ST_LODG][f] = t3 - t2;
-        t[ST_INTERP][f] = t4 - t3;
+        t[ST_INTERP][f] = t4 - t8;
         t[ST_RIBBONS][f] = t5 - t4;
         t[ST_POINTS][f] = t6 - t5;
         t[ST_RIBBONS16][f] = t7 - t6;
-        t[ST_FRAME][f] = t5 - t0; /* roots .. ribbons: what a frame needs */
-        t[ST_FRAME16][f] = (t4 - t0) + (t7 - t6); /* with 16-byte vertices */
-        t[ST_FRAMEP][f] = (t4 - t0) + (t6 - t5); /* ribbons built on the GPU */
+        t[ST_IPOINTS][f] = t8 - t3;
+        /* roots .. ribbons: what a frame needs */
+        t[ST_FRAME][f] = (t3 - t0) + (t5 - t8);
+        t[ST_FRAME16][f] = (t3 - t0) + (t4 - t8) + (t7 - t6); /* 16-byte vertices */
+        /* ribbons built on the GPU: roots, ropes, LOD guides, then strands
+           and their points in one pass */
+        t[ST_FRAMEP][f] = t8 - t0;
     }
     {
         long allocs = g_allocs - allocs0;
@@ -761,8 +782,29 @@ int main(int argc, char **argv)
         if (!strcmp(argv[i], "--scaling")) scaling = 1;
         else if (i + 1 < argc && !strcmp(argv[i], "--frames"))
             frames = atoi(argv[++i]);
-        else if (i + 1 < argc && !strcmp(argv[i], "--scene"))
+        else if (i + 1 < argc && !strcmp(argv[i], "--scene") &&
+                 (!strcmp(argv[i + 1], "S") || !strcmp(argv[i + 1], "M") ||
+                  !strcmp(argv[i + 1], "L") || !strcmp(argv[i + 1], "Mc")))
             only = argv[++i];
+        else {
+            int help = !strcmp(argv[i], "--help") || !strcmp(argv[i], "-h");
+            if (!help)
+                fprintf(stderr, "bench: %s %s: %s\n", argv[i],
+                        i + 1 < argc ? argv[i + 1] : "",
+                        i + 1 < argc ? "unknown option or value"
+                                     : "unknown option or missing value");
+            fprintf(help ? stdout : stderr,
+                    "usage: bench [--frames N] [--scene S|M|L|Mc] "
+                    "[--scaling]\n"
+                    "  --frames N   frames measured after a 10-frame "
+                    "warm-up (default 30, at least 3)\n"
+                    "  --scene X    only scene X (S, M, L; Mc: LOD guides)\n"
+                    "  --scaling    how cost grows with strands and guides "
+                    "instead\n"
+                    "The table goes to stdout, one machine line per figure "
+                    "to stderr.\n");
+            return help ? 0 : 2;
+        }
     }
     if (frames < 3) frames = 3;
     setvbuf(stdout, NULL, _IOLBF, 0);

@@ -1518,8 +1518,9 @@ static int glm_simulate(glm_app *a, double t, float dt)
     return 1;
 }
 
-/* The drawn strands of this frame: interpolation, then CPU ribbons or GPU
-   points, and the upload. Only frames that are drawn need it. */
+/* The drawn strands of this frame: interpolation, then CPU ribbons, or
+   GPU points straight from the guides (hf_fur_interpolate_points), and
+   the upload. Only frames that are drawn need it. */
 static int glm_build(glm_app *a)
 {
     hf_ribbon_params v;
@@ -1527,10 +1528,10 @@ static int glm_build(glm_app *a)
     const int n = a->drawn;
     double t0 = glm_now_ms();
     glm_ribbon_view(a, &v);
-    r = hf_fur_interpolate(a->fur, 0, n);
-    if (!r && a->o.gpu_expand) {
-        r = hf_fur_points(a->fur, 0, n, &v, a->points4);
-    } else if (!r && a->o.compact) {
+    if (a->o.gpu_expand) {
+        r = hf_fur_interpolate_points(a->fur, 0, n, &v, a->points4);
+    } else if ((r = hf_fur_interpolate(a->fur, 0, n)) == HF_OK &&
+               a->o.compact) {
         /* position and tangent only: the texcoords from init stay in
            cdyn. The origin follows the head, so the hair stays well inside
            the +-GLM_COMPACT_SCALE box however far the head moves. */
@@ -1549,7 +1550,7 @@ static int glm_build(glm_app *a)
         memcpy(out.position_origin, a->corigin, sizeof a->corigin);
         out.position_scale = a->cscale;
         r = hf_fur_ribbons(a->fur, 0, n, &v, &out);
-    } else if (!r) {
+    } else if (r == HF_OK) {
         hf_ribbon_output out;
         memset(&out, 0, sizeof out);
         out.position.data = a->dyn[0].pos;
@@ -1936,7 +1937,7 @@ static void glm_usage(FILE *fp)
 "  --kajiya           Kajiya-Kay instead of Marschner\n"
 "  --no-shadows       no self-shadowing (default: a deep shadow map)\n"
 "  --no-specular      diffuse and ambient only\n"
-"  --gpu-expand       ribbons expanded on the GPU from hf_fur_points\n"
+"  --gpu-expand       ribbons expanded on the GPU from hf_fur_interpolate_points\n"
 "  --compact          CPU ribbons in the 16-byte vertex\n"
 "  --color3d          the 3D colour scheme (a ramp with dyed tips)\n"
 "  --colliders        draw the colliders\n"
@@ -2265,9 +2266,11 @@ static void glm_report(const glm_app *a, int drawn_frames)
         printf("gl_marschner: (for those guides the collider is shrunk to "
                "the root's depth; if a proxy is larger than the body there, "
                "shrink it)\n");
-    /* the drawn strands of the last built frame */
+    /* the drawn strands of the last built frame (with --gpu-expand only
+       its points were written) */
     for (q = 0; q < 3L * a->drawn * a->P; ++q)
-        bad_strand += !isfinite(info.strand_points[q]);
+        bad_strand += a->o.gpu_expand ? !isfinite(a->points4[q / 3 * 4 + q % 3])
+                                      : !isfinite(info.strand_points[q]);
     printf("gl_marschner: non-finite coordinates: %ld in the guides over "
            "every simulated frame, %ld in the %d drawn strands of the last "
            "frame\n", a->nonfinite, bad_strand, a->drawn);

@@ -8038,6 +8038,65 @@ static double t_groom_worst(const hf_fur_info *info, const float *pts,
     return worst;
 }
 
+/* hf_fur_interpolate_points against hf_fur_interpolate then
+   hf_fur_points: the same bytes at every interpolation and points level,
+   with and without streaming stores, over split ranges written from
+   out_first; the fur's strand points are left as they were. Returns the
+   number of mismatching configurations. */
+static int t_ipoints_same(hf_fur *f, const hf_ribbon_params *view0)
+{
+    static const int lv[3] = {HF_SIMD_AUTO, HF_SIMD_SSE2, HF_SIMD_SCALAR};
+    hf_fur_info info;
+    hf_ribbon_params view = *view0;
+    float *ref, *got, *keep;
+    size_t n4, n3;
+    int a, b, nt, sp, bad = 0;
+    hf_fur_get_info(f, &info);
+    n4 = (size_t)info.strand_count * (size_t)info.points_per_strand * 4u;
+    n3 = (size_t)info.strand_count * (size_t)info.points_per_strand * 3u;
+    ref = (float *)malloc(sizeof(float) * n4);
+    got = (float *)malloc(sizeof(float) * n4);
+    keep = (float *)malloc(sizeof(float) * n3);
+    if (!ref || !got || !keep) return 1;
+    /* the reference at the fur's default kernels */
+    hf_fur_set_kernels(f, HF_SIMD_AUTO, 0);
+    memset(ref, 0xab, sizeof(float) * n4);
+    if (hf_fur_interpolate(f, 0, info.strand_count) != HF_OK ||
+        hf_fur_points(f, 0, info.strand_count, &view, ref) != HF_OK)
+        ++bad;
+    /* the fur's strand points stale, so that a write to them shows */
+    memcpy(keep, info.strand_points, sizeof(float) * n3);
+    for (a = 0; a < 4; ++a) { /* interpolation level */
+        hf_fur_set_kernels(f, tr_levels[a], 0);
+        for (b = 0; b < 3; ++b)     /* points level */
+            for (nt = 0; nt < 2; ++nt)
+                for (sp = 1; sp <= 3; sp += 2) { /* 1 and 3 ranges */
+                    int k, first = 0;
+                    view.simd = lv[b];
+                    view.nontemporal = nt;
+                    memset(got, 0xcd, sizeof(float) * n4);
+                    for (k = 0; k < sp; ++k) {
+                        const int cnt = info.strand_count * (k + 1) / sp - first;
+                        /* each range into its own part of the buffer */
+                        view.out_first = first;
+                        if (hf_fur_interpolate_points(
+                                f, first, cnt, &view,
+                                got + (size_t)first * (size_t)info.points_per_strand * 4u) !=
+                            HF_OK)
+                            ++bad;
+                        first += cnt;
+                    }
+                    if (memcmp(ref, got, sizeof(float) * n4) != 0) ++bad;
+                }
+    }
+    if (memcmp(keep, info.strand_points, sizeof(float) * n3) != 0) ++bad;
+    hf_fur_set_kernels(f, HF_SIMD_AUTO, 0);
+    free(ref);
+    free(got);
+    free(keep);
+    return bad;
+}
+
 static void test_fur_groom(void)
 {
     static float pts[TG_S * TG_P * 3];
@@ -8095,6 +8154,13 @@ static void test_fur_groom(void)
     CHECK_EQ_INT(hf_fur_interpolate(f, 0, 123), HF_OK);
     CHECK_EQ_INT(hf_fur_interpolate(f, 123, TG_S - 123), HF_OK);
     CHECK(memcmp(whole, info.strand_points, sizeof whole) == 0);
+    /* its GPU path in one pass, offsets included: the same bytes */
+    {
+        hf_ribbon_params view;
+        memset(&view, 0, sizeof view);
+        view.root_width = 0.003f;
+        CHECK_EQ_INT(t_ipoints_same(f, &view), 0);
+    }
     /* a groom has no mesh */
     {
         t_fur_scene sc;
@@ -8582,6 +8648,100 @@ static void test_fur_ranges_byte_identical(void)
 {
     t_fur_ranges(0);
     t_fur_ranges(1);
+}
+
+/* The GPU path in one pass: on fur of 8, 16 and 6 points (the first two
+   through registers, 6 through the buffer), with clumping to the main
+   guide (in the kernel), to leaders and with every styling option (after
+   it), thinner at a lower LOD; after the ropes moved, so the strand points
+   the call leaves alone differ from what it writes. Bad input: an error
+   and nothing written. */
+static void test_fur_interpolate_points(void)
+{
+    static const int pts[3] = {8, 16, 6};
+    int c;
+    for (c = 0; c < 6; ++c) {
+        t_fur_scene sc;
+        hf_fur *f = NULL;
+        hf_fur_info info;
+        hf_result worst = HF_OK;
+        hf_ribbon_params view;
+        void *vbuf = calloc(24u * 2u * 16u * 500u, 1);
+        t_fur_scene_init(&sc, 1.0f);
+        sc.desc.points_per_strand = pts[c % 3];
+        if (c == 3) sc.desc.clump = 0.6f;
+        if (c == 4) {
+            sc.desc.clump = 0.5f;
+            sc.desc.clump_size = 0.2f;
+        }
+        if (c == 5) {
+            sc.desc.curl_radius = 0.02f;
+            sc.desc.curl_turns = 2.0f;
+            sc.desc.wave_amplitude = 0.01f;
+            sc.desc.wave_count = 3.0f;
+            sc.desc.frizz = 0.2f;
+            sc.desc.clump = 0.5f;
+            sc.desc.clump_size = 0.2f;
+            sc.desc.width_variation = 0.4f;
+        }
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+        if (!f || !vbuf) return;
+        if (c == 2) hf_fur_set_lod(f, 0.6f);
+        t_fur_frame(f, &sc, 0.0f, 1, vbuf, &worst);
+        t_fur_frame(f, &sc, 0.1f, 1, vbuf, &worst);
+        CHECK_EQ_INT(worst, HF_OK);
+        /* the ropes move on; the fur's strand points stay as they were */
+        hf_fur_get_info(f, &info);
+        CHECK_EQ_INT(hf_fur_simulate(f, 0, info.guide_count, 1.0f / 60.0f,
+                                     NULL, 0), HF_OK);
+        CHECK_EQ_INT(hf_fur_interpolate_guides(f, 0, info.lod_guide_count),
+                     HF_OK);
+        memset(&view, 0, sizeof view);
+        view.root_width = 0.01f;
+        view.tip_width = 0.002f;
+        view.taper_power = 1.5f;
+        CHECK_EQ_INT(t_ipoints_same(f, &view), 0);
+        if (c == 0) { /* bad input */
+            float *o = (float *)malloc(sizeof(float) * 4u * 8u * 500u);
+            float *z = (float *)malloc(sizeof(float) * 4u * 8u * 500u);
+            hf_ribbon_params bad = view;
+            memset(o, 0x5a, sizeof(float) * 4u * 8u * 500u);
+            memcpy(z, o, sizeof(float) * 4u * 8u * 500u);
+            CHECK_EQ_INT(hf_fur_interpolate_points(NULL, 0, 1, &view, o),
+                         HF_ERROR_NULL_POINTER);
+            CHECK_EQ_INT(hf_fur_interpolate_points(f, 0, 1, NULL, o),
+                         HF_ERROR_NULL_POINTER);
+            CHECK_EQ_INT(hf_fur_interpolate_points(f, 0, 1, &view, NULL),
+                         HF_ERROR_NULL_POINTER);
+            CHECK_EQ_INT(hf_fur_interpolate_points(f, -1, 1, &view, o),
+                         HF_ERROR_BAD_RANGE);
+            CHECK_EQ_INT(hf_fur_interpolate_points(f, 0, info.strand_count + 1,
+                                                   &view, o),
+                         HF_ERROR_BAD_RANGE);
+            bad.out_first = 5;
+            CHECK_EQ_INT(hf_fur_interpolate_points(f, 0, 10, &bad, o),
+                         HF_ERROR_BAD_RANGE);
+            bad = view;
+            bad.root_width = -1.0f;
+            CHECK_EQ_INT(hf_fur_interpolate_points(f, 0, 10, &bad, o),
+                         HF_ERROR_BAD_PARAMETER);
+            bad = view;
+            bad.tip_width = (float)NAN;
+            CHECK_EQ_INT(hf_fur_interpolate_points(f, 0, 10, &bad, o),
+                         HF_ERROR_NON_FINITE);
+            bad = view;
+            bad.simd = 9;
+            CHECK_EQ_INT(hf_fur_interpolate_points(f, 0, 10, &bad, o),
+                         HF_ERROR_BAD_PARAMETER);
+            CHECK(memcmp(o, z, sizeof(float) * 4u * 8u * 500u) == 0);
+            CHECK_EQ_INT(hf_fur_interpolate_points(f, 3, 0, &view, o), HF_OK);
+            CHECK(memcmp(o, z, sizeof(float) * 4u * 8u * 500u) == 0);
+            free(o);
+            free(z);
+        }
+        hf_fur_destroy(f);
+        free(vbuf);
+    }
 }
 
 static void test_fur_lod_prefix_and_width(void)
@@ -9604,6 +9764,7 @@ int main(void)
     RUN(test_diagnostics_read_back);
     RUN(test_fur_no_allocation_per_frame);
     RUN(test_fur_ranges_byte_identical);
+    RUN(test_fur_interpolate_points);
     RUN(test_fur_lod_prefix_and_width);
     RUN(test_fur_lod_guides_wake_without_jump);
     RUN(test_fur_bad_desc_and_out_of_memory);

@@ -37,7 +37,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     hf_fur *fur = (hf_fur *)(uintptr_t)0x1234, *const untouched = fur;
     hf_diag diag;
     hf_result rv;
-    float *skinned = NULL, *vbuf = NULL, *pbuf = NULL, *comb = NULL;
+    float *skinned = NULL, *vbuf = NULL, *pbuf = NULL, *pbuf2 = NULL, *comb = NULL;
     float *curves = NULL;
     int curve_points[6] = {0, 0, 0, 0, 0, 0}, curve_total = 0, curve_n = 0;
     int has_density, has_length, has_color, has_comb_map, frame, k;
@@ -162,8 +162,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
               (size_t)info.points_per_strand;
         vbuf = (float *)malloc(sizeof(float) * 6u * nvb);
         pbuf = (float *)malloc(sizeof(float) * 4u * nvb);
+        pbuf2 = (float *)malloc(sizeof(float) * 4u * nvb);
         skinned = (float *)malloc(sizeof(float) * 8u * (size_t)m.mesh.vertex_count);
-        if (!vbuf || !pbuf || !skinned) abort();
+        if (!vbuf || !pbuf || !pbuf2 || !skinned) abort();
         nc = fz_int(&r, 0, 3);
         for (k = 0; k < nc; ++k) {
             int c;
@@ -238,10 +239,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             view.out_first = fz_chance(&r, 128) ? first : 0;
             rs = hf_fur_points(fur, first, count, &view, pbuf);
             FZ_REQUIRE(fz_known_result(rs));
-            if (rs == HF_OK)
-                FZ_REQUIRE(fz_all_finite(pbuf + (size_t)(first - view.out_first) *
-                                                    (size_t)info.points_per_strand * 4u,
-                                         (size_t)count * (size_t)info.points_per_strand * 4u));
+            if (rs == HF_OK) {
+                const size_t at = (size_t)(first - view.out_first) *
+                                  (size_t)info.points_per_strand * 4u,
+                             n4 = (size_t)count * (size_t)info.points_per_strand * 4u;
+                FZ_REQUIRE(fz_all_finite(pbuf + at, n4));
+                /* the one-pass path: the same bytes, at any kernels */
+                view.nontemporal = fz_chance(&r, 128);
+                hf_fur_set_kernels(fur, fz_int(&r, 0, 4), fz_chance(&r, 128));
+                FZ_REQUIRE(hf_fur_interpolate_points(fur, first, count, &view,
+                                                     pbuf2) == HF_OK);
+                FZ_REQUIRE(memcmp(pbuf + at, pbuf2 + at, sizeof(float) * n4) == 0);
+            }
             FZ_REQUIRE(hf_fur_get_info(fur, &info) == HF_OK);
             FZ_REQUIRE(info.roots_inside >= 0 && info.roots_inside <= info.guide_count);
         }
@@ -301,6 +310,7 @@ done:
     free(skinned);
     free(vbuf);
     free(pbuf);
+    free(pbuf2);
     if (has_density) free(density.data);
     if (has_length) free(length.data);
     if (has_color) free(color.data);
