@@ -7166,7 +7166,9 @@ HF__TARGET_AVX512 HF__INLINE int hf__mask16(__m512 m)
 #define HF__SUB(x, y) _mm512_sub_ps(x, y)
 #define HF__MUL(x, y) _mm512_mul_ps(x, y)
 #define HF__DIV(x, y) _mm512_div_ps(x, y)
-#define HF__SQRT(x) _mm512_maskz_sqrt_ps(0xffff, x) /* see hf__xyz16 */
+/* the masked forms: gcc's plain ones leave lanes "undefined", which its
+   C++ front end warns about */
+#define HF__SQRT(x) _mm512_maskz_sqrt_ps(0xffff, x)
 #define HF__GT(x, y) hf__m16(_mm512_cmp_ps_mask(x, y, _CMP_GT_OQ))
 #define HF__LT(x, y) hf__m16(_mm512_cmp_ps_mask(x, y, _CMP_LT_OQ))
 #define HF__EQ(x, y) hf__m16(_mm512_cmp_ps_mask(x, y, _CMP_EQ_OQ))
@@ -7177,7 +7179,7 @@ HF__TARGET_AVX512 HF__INLINE int hf__mask16(__m512 m)
 #define HF__MAX(x, y) _mm512_maskz_max_ps(0xffff, x, y)
 /* a hardware gather: steadier here than sixteen scalar loads (3 % faster,
    where code placement made those 0.089-0.101 ms a step; at eight lanes
-   the scalar loads win); the masked form, as hf__xyz16 */
+   the scalar loads win); the masked form, as HF__SQRT */
 #define HF__GATHER16(row, idx)                                                 \
     _mm512_mask_i32gather_ps(_mm512_setzero_ps(), 0xffff,                     \
                              _mm512_loadu_si512((const void *)(idx)), (row), 4)
@@ -7727,14 +7729,6 @@ hf__interp_avx2(const hf__istrand *t, const float *ctab, int i, __m256 W0,
     }
 }
 
-/* The first point of a guide, xyz repeated along 8 lanes from lane k%3 */
-HF__TARGET_AVX2 HF__INLINE __m256 hf__xyz8(const float *g, __m256i x)
-{
-    const __m128 v = _mm_loadu_ps(g);
-    return _mm256_permutevar8x32_ps(
-        _mm256_insertf128_ps(_mm256_castps128_ps256(v), v, 1), x);
-}
-
 /* A strand's weights, scale and root terms, eight lanes each. (1 - sc)
    root repeats every 3 floats: the vectors at floats 0, 8, 16 have phases
    0, 2, 1 (R0, R1, R2), built from the first point of each guide by lane
@@ -7749,17 +7743,23 @@ HF__TARGET_AVX2 HF__INLINE void hf__interp_prep8(const hf__istrand *t,
     const __m256i x0 = _mm256_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1);
     const __m256i x2 = _mm256_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0);
     const __m256i x1 = _mm256_setr_epi32(1, 2, 0, 1, 2, 0, 1, 2);
+    /* the root in four lanes (the same operations as in eight, at half
+       the width), then spread in its three phases */
+    const __m128 w0 = _mm_set1_ps(t->w0), w1 = _mm_set1_ps(t->w1);
+    const __m128 w2 = _mm_set1_ps(t->w2);
+    const __m128 r4 = _mm_mul_ps(
+        _mm_set1_ps(1.0f - t->sc),
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(w0, _mm_loadu_ps(t->g0)),
+                              _mm_mul_ps(w1, _mm_loadu_ps(t->g1))),
+                   _mm_mul_ps(w2, _mm_loadu_ps(t->g2))));
+    const __m256 r = _mm256_insertf128_ps(_mm256_castps128_ps256(r4), r4, 1);
     v->W0 = _mm256_set1_ps(t->w0);
     v->W1 = _mm256_set1_ps(t->w1);
     v->W2 = _mm256_set1_ps(t->w2);
     v->SC = _mm256_set1_ps(t->sc);
-    v->R0 = _mm256_add_ps(
-        _mm256_add_ps(_mm256_mul_ps(v->W0, hf__xyz8(t->g0, x0)),
-                      _mm256_mul_ps(v->W1, hf__xyz8(t->g1, x0))),
-        _mm256_mul_ps(v->W2, hf__xyz8(t->g2, x0)));
-    v->R0 = _mm256_mul_ps(_mm256_set1_ps(1.0f - t->sc), v->R0);
-    v->R1 = _mm256_permutevar8x32_ps(v->R0, x2);
-    v->R2 = _mm256_permutevar8x32_ps(v->R0, x1);
+    v->R0 = _mm256_permutevar8x32_ps(r, x0);
+    v->R1 = _mm256_permutevar8x32_ps(r, x2);
+    v->R2 = _mm256_permutevar8x32_ps(r, x1);
 }
 
 /* The strands of a range in one target function (no call per strand). */
@@ -7803,10 +7803,12 @@ hf__interp_range_avx2(const hf__irun *run, int first, int count)
 #endif
 
 #if HF__AVX512
-/* Sixteen floats a vector: phases 0, 1, 2 at floats 0, 16, 32. */
-HF__TARGET_AVX512 HF__INLINE void
-hf__interp_avx512(const hf__istrand *t, const float *ctab, int i, __m512 W0,
-                  __m512 W1, __m512 W2, __m512 SC, __m512 R, int nt)
+/* Sixteen floats a vector: the operations of hf__interp_v8. */
+HF__TARGET_AVX512 HF__INLINE __m512 hf__interp_v16(const hf__istrand *t,
+                                                   const float *ctab, int i,
+                                                   __m512 W0, __m512 W1,
+                                                   __m512 W2, __m512 SC,
+                                                   __m512 R)
 {
     __m512 p = _mm512_add_ps(
         _mm512_add_ps(_mm512_mul_ps(W0, _mm512_loadu_ps(t->g0 + i)),
@@ -7817,27 +7819,32 @@ hf__interp_avx512(const hf__istrand *t, const float *ctab, int i, __m512 W0,
         p = _mm512_add_ps(
             p, _mm512_mul_ps(_mm512_loadu_ps(ctab + i),
                              _mm512_sub_ps(_mm512_loadu_ps(t->gn + i), p)));
-    if (!nt) {
-        _mm512_storeu_ps(t->o + i, p);
-    } else if (nt == 2) { /* 64-byte aligned: one streaming store */
-        _mm512_stream_ps(t->o + i, p);
-    } else { /* 16-byte aligned: four streaming quarters */
-        _mm_stream_ps(t->o + i, _mm512_maskz_extractf32x4_ps(0xf, p, 0));
-        _mm_stream_ps(t->o + i + 4, _mm512_maskz_extractf32x4_ps(0xf, p, 1));
-        _mm_stream_ps(t->o + i + 8, _mm512_maskz_extractf32x4_ps(0xf, p, 2));
-        _mm_stream_ps(t->o + i + 12, _mm512_maskz_extractf32x4_ps(0xf, p, 3));
+    return p;
+}
+
+/* Sixteen floats at o: a plain store, four streaming quarters (16-byte
+   aligned) or one streaming store (64-byte aligned). */
+HF__TARGET_AVX512 HF__INLINE void hf__put16(float *o, __m512 p, int mode)
+{
+    if (!mode) {
+        _mm512_storeu_ps(o, p);
+    } else if (mode == 2) {
+        _mm512_stream_ps(o, p);
+    } else {
+        _mm_stream_ps(o, _mm512_maskz_extractf32x4_ps(0xf, p, 0));
+        _mm_stream_ps(o + 4, _mm512_maskz_extractf32x4_ps(0xf, p, 1));
+        _mm_stream_ps(o + 8, _mm512_maskz_extractf32x4_ps(0xf, p, 2));
+        _mm_stream_ps(o + 12, _mm512_maskz_extractf32x4_ps(0xf, p, 3));
     }
 }
 
-HF__TARGET_AVX512 HF__INLINE __m512 hf__xyz16(const float *g, __m512i x)
-{
-    /* the masked forms: gcc's plain ones leave lanes "undefined", which
-       its C++ front end warns about */
-    return _mm512_maskz_permutexvar_ps(0xffff, x, _mm512_maskz_loadu_ps(7, g));
-}
+/* hf__iv8 at sixteen lanes: phases 0, 1, 2 at floats 0, 16, 32. */
+typedef struct hf__iv16 {
+    __m512 W0, W1, W2, SC, R0, R1, R2;
+} hf__iv16;
 
-HF__TARGET_AVX512 HF__PRIVATE void
-hf__interp_range_avx512(const hf__irun *run, int first, int count)
+HF__TARGET_AVX512 HF__INLINE void hf__interp_prep16(const hf__istrand *t,
+                                                   hf__iv16 *v)
 {
     const __m512i x0 = _mm512_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,
                                          0, 1, 2, 0);
@@ -7845,36 +7852,62 @@ hf__interp_range_avx512(const hf__irun *run, int first, int count)
                                          1, 2, 0, 1);
     const __m512i x2 = _mm512_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1,
                                          2, 0, 1, 2);
+    /* the root in four lanes (the same operations as in sixteen, at a
+       quarter of the width), then spread in its three phases */
+    const __m128 w0 = _mm_set1_ps(t->w0), w1 = _mm_set1_ps(t->w1);
+    const __m128 w2 = _mm_set1_ps(t->w2);
+    const __m512 r = _mm512_castps128_ps512(_mm_mul_ps(
+        _mm_set1_ps(1.0f - t->sc),
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(w0, _mm_loadu_ps(t->g0)),
+                              _mm_mul_ps(w1, _mm_loadu_ps(t->g1))),
+                   _mm_mul_ps(w2, _mm_loadu_ps(t->g2)))));
+    v->W0 = _mm512_set1_ps(t->w0);
+    v->W1 = _mm512_set1_ps(t->w1);
+    v->W2 = _mm512_set1_ps(t->w2);
+    v->SC = _mm512_set1_ps(t->sc);
+    v->R0 = _mm512_maskz_permutexvar_ps(0xffff, x0, r);
+    v->R1 = _mm512_maskz_permutexvar_ps(0xffff, x1, r);
+    v->R2 = _mm512_maskz_permutexvar_ps(0xffff, x2, r);
+}
+
+HF__TARGET_AVX512 HF__PRIVATE void
+hf__interp_range_avx512(const hf__irun *run, int first, int count)
+{
     const int n = 3 * run->P;
     hf__istrand t;
     int s, i;
     for (s = first; s < first + count; ++s) {
-        __m512 W0, W1, W2, SC, R0, R1, R2;
+        hf__iv16 v;
         int nt;
         hf__interp_setup(run, s, &t);
         nt = hf__stream_mode(run->nt, t.o, 63u);
-        W0 = _mm512_set1_ps(t.w0);
-        W1 = _mm512_set1_ps(t.w1);
-        W2 = _mm512_set1_ps(t.w2);
-        SC = _mm512_set1_ps(t.sc);
-        R0 = _mm512_add_ps(
-            _mm512_add_ps(_mm512_mul_ps(W0, hf__xyz16(t.g0, x0)),
-                          _mm512_mul_ps(W1, hf__xyz16(t.g1, x0))),
-            _mm512_mul_ps(W2, hf__xyz16(t.g2, x0)));
-        R0 = _mm512_mul_ps(_mm512_set1_ps(1.0f - t.sc), R0);
-        R1 = _mm512_maskz_permutexvar_ps(0xffff, x1, R0);
-        R2 = _mm512_maskz_permutexvar_ps(0xffff, x2, R0);
+        hf__interp_prep16(&t, &v);
         for (i = 0; i + 48 <= n; i += 48) {
-            hf__interp_avx512(&t, run->ctab, i, W0, W1, W2, SC, R0, nt);
-            hf__interp_avx512(&t, run->ctab, i + 16, W0, W1, W2, SC, R1, nt);
-            hf__interp_avx512(&t, run->ctab, i + 32, W0, W1, W2, SC, R2, nt);
+            hf__put16(t.o + i,
+                      hf__interp_v16(&t, run->ctab, i, v.W0, v.W1, v.W2,
+                                     v.SC, v.R0),
+                      nt);
+            hf__put16(t.o + i + 16,
+                      hf__interp_v16(&t, run->ctab, i + 16, v.W0, v.W1, v.W2,
+                                     v.SC, v.R1),
+                      nt);
+            hf__put16(t.o + i + 32,
+                      hf__interp_v16(&t, run->ctab, i + 32, v.W0, v.W1, v.W2,
+                                     v.SC, v.R2),
+                      nt);
         }
         if (i + 16 <= n) {
-            hf__interp_avx512(&t, run->ctab, i, W0, W1, W2, SC, R0, nt);
+            hf__put16(t.o + i,
+                      hf__interp_v16(&t, run->ctab, i, v.W0, v.W1, v.W2,
+                                     v.SC, v.R0),
+                      nt);
             i += 16;
         }
         if (i + 16 <= n) {
-            hf__interp_avx512(&t, run->ctab, i, W0, W1, W2, SC, R1, nt);
+            hf__put16(t.o + i,
+                      hf__interp_v16(&t, run->ctab, i, v.W0, v.W1, v.W2,
+                                     v.SC, v.R1),
+                      nt);
             i += 16;
         }
         if (i < n) {
@@ -9886,6 +9919,17 @@ HF__PRIVATE void hf__points_run(const hf__points_kit *k,
 }
 
 #if HF__AVX2
+/* Two points' x y z in q, their widths (pw, as hf__pair_widths) times ws
+   blended in, out at o */
+HF__TARGET_AVX2 HF__INLINE void hf__point_pair_w(float *o, __m256 q,
+                                                 const float *pw, __m256 ws,
+                                                 int mode)
+{
+    hf__point_pair_put(
+        o, _mm256_blend_ps(q, _mm256_mul_ps(_mm256_loadu_ps(pw), ws), 0x88),
+        mode);
+}
+
 /* hf__interp_range_avx2 and hf__points_strand_avx2 in one, for P a
    multiple of 8: three vectors of a strand's floats (eight points) stay
    in registers and go out as four vectors of two points each, the same
@@ -9901,7 +9945,7 @@ hf__interp_points_avx2(const hf__irun *run, const hf__points_kit *k,
     const __m256 zero = _mm256_setzero_ps();
     const int P = run->P;
     hf__istrand t;
-    int s, i, j, m;
+    int s, i, j;
     for (s = first; s < first + count; ++s) {
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
         const float ws = hf__strand_width(st, s);
@@ -9918,29 +9962,109 @@ hf__interp_points_avx2(const hf__irun *run, const hf__points_kit *k,
                                            v.W2, v.SC, v.R1);
             const __m256 c = hf__interp_v8(&t, run->ctab, i + 16, v.W0, v.W1,
                                            v.W2, v.SC, v.R2);
-            __m256 q[4];
             acc = _mm256_add_ps(acc, _mm256_mul_ps(a, zero));
             acc = _mm256_add_ps(acc, _mm256_mul_ps(b, zero));
             acc = _mm256_add_ps(acc, _mm256_mul_ps(c, zero));
-            /* points j .. j + 7: x y z of two points per vector */
-            q[0] = _mm256_permutevar8x32_ps(a, lo);
-            q[1] = _mm256_permutevar8x32_ps(
-                _mm256_permute2f128_ps(a, b, 0x21), hi);
-            q[2] = _mm256_permutevar8x32_ps(
-                _mm256_permute2f128_ps(b, c, 0x21), lo);
-            q[3] = _mm256_permutevar8x32_ps(c, hi);
-            for (m = 0; m < 4; ++m)
-                hf__point_pair_put(
-                    o + 4 * (j + 2 * m),
-                    _mm256_blend_ps(
-                        q[m],
-                        _mm256_mul_ps(
-                            _mm256_loadu_ps(k->pw.v + 4 * (j + 2 * m)), WS),
-                        0x88),
-                    mode);
+            /* points j .. j + 7, two a vector (written out, not looped:
+               an array of the four would go through the stack) */
+            hf__point_pair_w(o + 4 * j, _mm256_permutevar8x32_ps(a, lo),
+                             k->pw.v + 4 * j, WS, mode);
+            hf__point_pair_w(o + 4 * j + 8,
+                             _mm256_permutevar8x32_ps(
+                                 _mm256_permute2f128_ps(a, b, 0x21), hi),
+                             k->pw.v + 4 * j + 8, WS, mode);
+            hf__point_pair_w(o + 4 * j + 16,
+                             _mm256_permutevar8x32_ps(
+                                 _mm256_permute2f128_ps(b, c, 0x21), lo),
+                             k->pw.v + 4 * j + 16, WS, mode);
+            hf__point_pair_w(o + 4 * j + 24, _mm256_permutevar8x32_ps(c, hi),
+                             k->pw.v + 4 * j + 24, WS, mode);
         }
         if (_mm256_movemask_ps(_mm256_cmp_ps(acc, zero, _CMP_EQ_OQ)) != 0xff) {
             if (mode) _mm_sfence();
+            hf__points_strand_avx2(hf__zero_points, &k->pw, 0.0f, o, P, k->nt);
+        }
+    }
+    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
+}
+#endif
+
+#if HF__AVX512
+/* Four points' x y z in q, their widths (pw, as hf__pair_widths) times ws
+   in lanes 3, 7, 11 and 15 */
+HF__TARGET_AVX512 HF__INLINE __m512 hf__point_quad_w(__m512 q, const float *pw,
+                                                     __m512 ws)
+{
+    return _mm512_mask_mov_ps(q, 0x8888,
+                              _mm512_mul_ps(_mm512_loadu_ps(pw), ws));
+}
+#endif
+
+#if HF__AVX512
+/* hf__interp_points_avx2 at sixteen lanes, for P a multiple of 16: three
+   vectors of a strand's floats (sixteen points) go out as four vectors of
+   four points each, one 64-byte line a store where the output is aligned
+   so. The widths of four points are four entries of hf__pair_widths. */
+HF__TARGET_AVX512 HF__PRIVATE void
+hf__interp_points_avx512(const hf__irun *run, const hf__points_kit *k,
+                         const hf_ribbon_strands *st, int first, int count,
+                         int out_first, float *out4)
+{
+    /* x y z of points 4 q .. 4 q + 3 from floats 0, 12, 24 and 36 of
+       the sixteen points' 48: in one vector, or across two (index >= 16:
+       the second) */
+    const __m512i i0 = _mm512_setr_epi32(0, 1, 2, 0, 3, 4, 5, 0, 6, 7, 8, 0,
+                                         9, 10, 11, 0);
+    const __m512i i1 = _mm512_setr_epi32(12, 13, 14, 0, 15, 16, 17, 0, 18,
+                                         19, 20, 0, 21, 22, 23, 0);
+    const __m512i i2 = _mm512_setr_epi32(8, 9, 10, 0, 11, 12, 13, 0, 14, 15,
+                                         16, 0, 17, 18, 19, 0);
+    const __m512i i3 = _mm512_setr_epi32(4, 5, 6, 0, 7, 8, 9, 0, 10, 11, 12,
+                                         0, 13, 14, 15, 0);
+    const __m512 zero = _mm512_setzero_ps();
+    const int P = run->P;
+    hf__istrand t;
+    int s, i, j;
+    for (s = first; s < first + count; ++s) {
+        float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
+        const __m512 WS = _mm512_set1_ps(hf__strand_width(st, s));
+        const int mode = hf__stream_mode(k->nt, o, 63u);
+        __m512 acc = zero;
+        hf__iv16 v;
+        hf__interp_setup(run, s, &t);
+        hf__interp_prep16(&t, &v);
+        for (i = 0, j = 0; j < P; i += 48, j += 16) {
+            const __m512 a = hf__interp_v16(&t, run->ctab, i, v.W0, v.W1,
+                                            v.W2, v.SC, v.R0);
+            const __m512 b = hf__interp_v16(&t, run->ctab, i + 16, v.W0,
+                                            v.W1, v.W2, v.SC, v.R1);
+            const __m512 c = hf__interp_v16(&t, run->ctab, i + 32, v.W0,
+                                            v.W1, v.W2, v.SC, v.R2);
+            acc = _mm512_add_ps(acc, _mm512_mul_ps(a, zero));
+            acc = _mm512_add_ps(acc, _mm512_mul_ps(b, zero));
+            acc = _mm512_add_ps(acc, _mm512_mul_ps(c, zero));
+            hf__put16(o + 4 * j,
+                      hf__point_quad_w(_mm512_maskz_permutexvar_ps(0xffff, i0, a),
+                                       k->pw.v + 4 * j, WS),
+                      mode);
+            hf__put16(o + 4 * j + 16,
+                      hf__point_quad_w(
+                          _mm512_maskz_permutex2var_ps(0xffff, a, i1, b),
+                          k->pw.v + 4 * j + 16, WS),
+                      mode);
+            hf__put16(o + 4 * j + 32,
+                      hf__point_quad_w(
+                          _mm512_maskz_permutex2var_ps(0xffff, b, i2, c),
+                          k->pw.v + 4 * j + 32, WS),
+                      mode);
+            hf__put16(o + 4 * j + 48,
+                      hf__point_quad_w(_mm512_maskz_permutexvar_ps(0xffff, i3, c),
+                                       k->pw.v + 4 * j + 48, WS),
+                      mode);
+        }
+        if (_mm512_cmp_ps_mask(acc, zero, _CMP_EQ_OQ) != 0xffff) {
+            if (mode) _mm_sfence();
+            _mm256_zeroupper();
             hf__points_strand_avx2(hf__zero_points, &k->pw, 0.0f, o, P, k->nt);
         }
     }
@@ -12451,21 +12575,32 @@ HFDEF hf_result hf_fur_interpolate_points(const hf_fur *f, int first,
     hf_ribbon_params p, prm;
     hf_ribbon_strands st;
     int s, n, per;
+#if HF__AVX2
+    int lv;
+#endif
     hf_result r = hf__fur_view(f, first, count, view, &p, &st);
     if (r == HF_OK) r = hf__ribbon_check(&st, first, count, &p, &prm);
     if (r != HF_OK) return r;
     if (!out4) return HF_ERROR_NULL_POINTER;
     hf__points_kit_init(&kit, &prm);
 #if HF__AVX2
-    if (kit.wide && f->P % 8 == 0 && !f->leader && !f->strand_clump &&
-        !f->offsets && hf_simd_resolve(f->simd) >= HF_SIMD_AVX2) {
+    lv = hf_simd_resolve(f->simd);
+    lv = lv < kit.level ? lv : kit.level;
+    if (kit.wide && lv >= HF_SIMD_AVX2 && f->P % 8 == 0 && !f->leader &&
+        !f->strand_clump && !f->offsets) {
         /* in registers, nothing through memory */
         float ctab[3 * HF_MAX_POINTS];
         hf__irun run;
         hf__irun_init(&run, f->guide_points, f->bindings, f->P, f->clump,
                       ctab, out4, first, 0);
-        hf__interp_points_avx2(&run, &kit, &st, first, count, prm.out_first,
-                               out4);
+#if HF__AVX512
+        if (lv >= HF_SIMD_AVX512 && f->P % 16 == 0)
+            hf__interp_points_avx512(&run, &kit, &st, first, count,
+                                     prm.out_first, out4);
+        else
+#endif
+            hf__interp_points_avx2(&run, &kit, &st, first, count,
+                                   prm.out_first, out4);
         count = 0;
     }
 #endif

@@ -8650,6 +8650,84 @@ static void test_fur_ranges_byte_identical(void)
     t_fur_ranges(1);
 }
 
+/* The one-pass kernels against interpolation then points, on guides with
+   a point that is not finite (the strands on it written collapsed, which
+   hf_fur cannot reach: its guides are finite), with and without
+   clumping, streaming or not, into outputs aligned to 64 and to 16
+   bytes. */
+static void test_interp_points_kernels(void)
+{
+#if HF__AVX2
+    enum { G = 12, S = 40 };
+    static float guides[G * 32 * 3], mid[S * 32 * 3];
+    static float ref[S * 32 * 4 + 16], got[S * 32 * 4 + 16];
+    float width[S], ctab[3 * HF_MAX_POINTS];
+    hf_strand_binding b[S];
+    hf_ribbon_strands st;
+    hf_ribbon_params in, prm;
+    hf__points_kit kit;
+    hf__irun run;
+    hf_rng r;
+    int P, i, k, clump, nt, off, wide;
+    hf_rng_seed(&r, 7, 1);
+    memset(&st, 0, sizeof st);
+    st.width = width;
+    for (i = 0; i < S; ++i) width[i] = 0.5f + hf_rng_float(&r);
+    for (P = 8; P <= 32; P += 8)
+        for (wide = 0; wide < 2; ++wide) {
+            if (wide && (P % 16 || hf_simd_resolve(HF_SIMD_AVX512) < HF_SIMD_AVX512))
+                continue;
+            if (!wide && hf_simd_resolve(HF_SIMD_AVX2) < HF_SIMD_AVX2) continue;
+            for (i = 0; i < G * P * 3; ++i) guides[i] = hf_rng_float(&r) - 0.5f;
+            guides[3 * P * 3 + 3 * 5 + 1] = INFINITY; /* guide 3, point 5 */
+            guides[7 * P * 3 + 3 * (P - 1)] = NAN;    /* guide 7, the tip */
+            for (i = 0; i < S; ++i) {
+                const float a = hf_rng_float(&r), c = hf_rng_float(&r) * (1 - a);
+                for (k = 0; k < 3; ++k) b[i].guide[k] = hf_rng_below(&r, G);
+                b[i].weight[0] = a;
+                b[i].weight[1] = c;
+                b[i].weight[2] = 1 - a - c;
+                b[i].length_scale = 0.8f + 0.4f * hf_rng_float(&r);
+            }
+            memset(&in, 0, sizeof in);
+            in.points_per_strand = P;
+            in.root_width = 0.01f;
+            in.tip_width = 0.002f;
+            for (clump = 0; clump < 2; ++clump)
+                for (nt = 0; nt < 2; ++nt)
+                    for (off = 0; off <= 4; off += 4) {
+                        int collapsed = 0;
+                        in.nontemporal = nt;
+                        hf__ribbon_params_resolve(&in, &prm);
+                        hf__points_kit_init(&kit, &prm);
+                        hf__irun_init(&run, guides, b, P, clump ? 0.4f : 0.0f,
+                                      ctab, mid, 0, 0);
+                        hf__interpolate_run(guides, b, 0, S, P,
+                                            clump ? 0.4f : 0.0f, mid, 0,
+                                            HF_SIMD_SCALAR, 0);
+                        memset(ref, 0x11, sizeof ref);
+                        memset(got, 0x22, sizeof got);
+                        hf__points_run(&kit, &st, mid, 0, 0, S, 0, ref + off);
+                        if (wide) {
+#if HF__AVX512
+                            hf__interp_points_avx512(&run, &kit, &st, 0, S, 0,
+                                                     got + off);
+#endif
+                        } else {
+                            hf__interp_points_avx2(&run, &kit, &st, 0, S, 0,
+                                                   got + off);
+                        }
+                        if (nt) _mm_sfence();
+                        CHECK(memcmp(ref + off, got + off,
+                                     sizeof(float) * 4u * (size_t)(S * P)) == 0);
+                        for (i = 0; i < S; ++i)
+                            collapsed += ref[off + 4 * i * P + 3] == 0.0f;
+                        CHECK(collapsed > 0 && collapsed < S);
+                    }
+        }
+#endif
+}
+
 /* The GPU path in one pass: on fur of 8, 16 and 6 points (the first two
    through registers, 6 through the buffer), with clumping to the main
    guide (in the kernel), to leaders and with every styling option (after
@@ -9765,6 +9843,7 @@ int main(void)
     RUN(test_fur_no_allocation_per_frame);
     RUN(test_fur_ranges_byte_identical);
     RUN(test_fur_interpolate_points);
+    RUN(test_interp_points_kernels);
     RUN(test_fur_lod_prefix_and_width);
     RUN(test_fur_lod_guides_wake_without_jump);
     RUN(test_fur_bad_desc_and_out_of_memory);
