@@ -30,6 +30,7 @@
      bench stage=write_limit method=vector|stream|memset|scalar|zeros gbps=...
    Per SIMD level (scenes M and L, one thread): strands_LEVEL,
    strands_nt_LEVEL (streaming stores), points_LEVEL and points_nt_LEVEL,
+   interp_points_LEVEL,
    LEVEL scalar, sse2, avx2, avx512 up to what the CPU has.
    Scene Mc (M's strands on a coarse head, whose tessellation adds LOD
    guides) at LOD 0.25 measures lod_guides: LOD guides interpolated from
@@ -549,18 +550,19 @@ static const char *level_name[] = {"auto", "scalar", "sse2", "avx2",
                                    "avx512"};
 enum {
     LV_STRANDS, LV_STRANDS_NT, LV_POINTS, LV_POINTS_NT, LV_RIBBONS,
-    LV_RIBBONS_NT, LV_ROPES, LV_N
+    LV_RIBBONS_NT, LV_ROPES, LV_IPOINTS, LV_N
 };
 
 static void bench_levels(scene *s, int frames)
 {
     static const char *what[LV_N] = {"strands", "strands_nt", "points",
                                      "points_nt", "ribbons", "ribbons_nt",
-                                     "ropes"};
-    /* each measure's job (jobs[]) and whether it streams */
-    static const int job_of[LV_N] = {0, 0, 1, 1, 2, 2, 3};
-    static const int nt_of[LV_N] = {0, 1, 0, 1, 0, 1, 0};
-    job jobs[4];
+                                     "ropes", "interp_points"};
+    /* each measure's job (jobs[]) and whether it streams (interp_points
+       always does, as in its stage) */
+    static const int job_of[LV_N] = {0, 0, 1, 1, 2, 2, 3, 4};
+    static const int nt_of[LV_N] = {0, 1, 0, 1, 0, 1, 0, 1};
+    job jobs[5];
     double *t[LV_N], bytes[LV_N];
     int f, level, k, best = hf_simd_resolve(HF_SIMD_AUTO);
     size_t big = (size_t)s->info.strand_count * P * 2u * 36u;
@@ -571,7 +573,8 @@ static void bench_levels(scene *s, int frames)
     jobs[1].fn = j_points;
     jobs[2].fn = j_ribbons;
     jobs[3].fn = j_ropes;
-    for (k = 0; k < 3; ++k) jobs[k].total = s->info.strand_count;
+    jobs[4].fn = j_ipoints;
+    for (k = 0; k < 5; ++k) jobs[k].total = s->info.strand_count;
     jobs[3].total = s->info.guide_count;
     bytes[LV_STRANDS] = bytes[LV_STRANDS_NT] =
         (double)s->info.strand_count * P * 12.0;
@@ -579,11 +582,12 @@ static void bench_levels(scene *s, int frames)
         (double)s->info.strand_count * P * 16.0;
     bytes[LV_RIBBONS] = bytes[LV_RIBBONS_NT] = (double)big;
     bytes[LV_ROPES] = (double)s->info.guide_count * P * 12.0;
+    bytes[LV_IPOINTS] = bytes[LV_POINTS];
     memset(dst, 1, big);
     for (k = 0; k < LV_N; ++k)
         t[k] = (double *)malloc(sizeof(double) * (size_t)frames);
     for (level = HF_SIMD_SCALAR; level <= best; ++level) {
-        g_view.simd = level;
+        g_view.simd = g_view_gpu.simd = level;
         for (f = -5; f < frames; ++f) {
             scene_pose(s, s->frame++);
             for (k = 0; k < LV_N; ++k) {
@@ -604,7 +608,7 @@ static void bench_levels(scene *s, int frames)
         }
     }
     check("kernels", hf_fur_set_kernels(s->fur, HF_SIMD_AUTO, 0));
-    g_view.simd = HF_SIMD_AUTO;
+    g_view.simd = g_view_gpu.simd = HF_SIMD_AUTO;
     g_view.nontemporal = 0;
     for (k = 0; k < LV_N; ++k) free(t[k]);
     free(dst);
