@@ -8589,6 +8589,20 @@ static void test_fur_no_allocation_per_frame(void)
     free(vbuf);
 }
 
+/* Every styling option of hf_fur_desc at once */
+static void t_fur_style_all(hf_fur_desc *d)
+{
+    d->curl_radius = 0.02f;
+    d->curl_turns = 2.0f;
+    d->wave_amplitude = 0.01f;
+    d->wave_count = 3.0f;
+    d->frizz = 0.2f;
+    d->clump = 0.5f;
+    d->clump_size = 0.2f;
+    d->color_variation = 0.3f;
+    d->width_variation = 0.4f;
+}
+
 static void t_fur_ranges(int styled)
 {
     t_fur_scene sc;
@@ -8599,17 +8613,7 @@ static void t_fur_ranges(int styled)
     hf_result worst = HF_OK;
     hf_fur_info info[3];
     t_fur_scene_init(&sc, 1.0f);
-    if (styled) { /* every styling option at once */
-        sc.desc.curl_radius = 0.02f;
-        sc.desc.curl_turns = 2.0f;
-        sc.desc.wave_amplitude = 0.01f;
-        sc.desc.wave_count = 3.0f;
-        sc.desc.frizz = 0.2f;
-        sc.desc.clump = 0.5f;
-        sc.desc.clump_size = 0.2f;
-        sc.desc.color_variation = 0.3f;
-        sc.desc.width_variation = 0.4f;
-    }
+    if (styled) t_fur_style_all(&sc.desc);
     for (k = 0; k < 3; ++k) {
         v[k] = (unsigned char *)calloc(1, bytes);
         CHECK_EQ_INT(hf_fur_create(&sc.desc, &f[k], NULL), HF_OK);
@@ -8752,16 +8756,7 @@ static void test_fur_interpolate_points(void)
             sc.desc.clump = 0.5f;
             sc.desc.clump_size = 0.2f;
         }
-        if (c == 5) {
-            sc.desc.curl_radius = 0.02f;
-            sc.desc.curl_turns = 2.0f;
-            sc.desc.wave_amplitude = 0.01f;
-            sc.desc.wave_count = 3.0f;
-            sc.desc.frizz = 0.2f;
-            sc.desc.clump = 0.5f;
-            sc.desc.clump_size = 0.2f;
-            sc.desc.width_variation = 0.4f;
-        }
+        if (c == 5) t_fur_style_all(&sc.desc);
         CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
         if (!f || !vbuf) return;
         if (c == 2) hf_fur_set_lod(f, 0.6f);
