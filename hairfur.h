@@ -7693,46 +7693,23 @@ HF__INLINE int hf__stream_mode(int nt, const void *o, uintptr_t whole)
 #endif
 
 #if HF__AVX2
-/* hf__interp_strand_sse, eight floats a vector: the same operations in
-   the same order (no FMA), so the same bytes. */
-HF__TARGET_AVX2 HF__INLINE __m256 hf__interp_v8(const hf__istrand *t,
-                                                const float *ctab, int i,
-                                                __m256 W0, __m256 W1,
-                                                __m256 W2, __m256 SC,
-                                                __m256 R)
+/* (1 - sc) root of a strand in lanes 0-2 (lane 3: unused), the scalar
+   root's operations in its order; the wide kernels spread it in its
+   phases with one permute each. */
+HF__INLINE __m128 hf__interp_root4(const hf__istrand *t)
 {
-    __m256 p = _mm256_add_ps(
-        _mm256_add_ps(_mm256_mul_ps(W0, _mm256_loadu_ps(t->g0 + i)),
-                      _mm256_mul_ps(W1, _mm256_loadu_ps(t->g1 + i))),
-        _mm256_mul_ps(W2, _mm256_loadu_ps(t->g2 + i)));
-    p = _mm256_add_ps(_mm256_mul_ps(SC, p), R);
-    if (t->gn)
-        p = _mm256_add_ps(
-            p, _mm256_mul_ps(_mm256_loadu_ps(ctab + i),
-                             _mm256_sub_ps(_mm256_loadu_ps(t->gn + i), p)));
-    return p;
-}
-
-/* hf__interp_v8, stored */
-HF__TARGET_AVX2 HF__INLINE void
-hf__interp_avx2(const hf__istrand *t, const float *ctab, int i, __m256 W0,
-                __m256 W1, __m256 W2, __m256 SC, __m256 R, int nt)
-{
-    const __m256 p = hf__interp_v8(t, ctab, i, W0, W1, W2, SC, R);
-    if (!nt) {
-        _mm256_storeu_ps(t->o + i, p);
-    } else if (nt == 2) { /* 32-byte aligned: one streaming store */
-        _mm256_stream_ps(t->o + i, p);
-    } else { /* 16-byte aligned: two streaming halves */
-        _mm_stream_ps(t->o + i, _mm256_castps256_ps128(p));
-        _mm_stream_ps(t->o + i + 4, _mm256_extractf128_ps(p, 1));
-    }
+    const __m128 w0 = _mm_set1_ps(t->w0), w1 = _mm_set1_ps(t->w1);
+    const __m128 w2 = _mm_set1_ps(t->w2);
+    return _mm_mul_ps(
+        _mm_set1_ps(1.0f - t->sc),
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(w0, _mm_loadu_ps(t->g0)),
+                              _mm_mul_ps(w1, _mm_loadu_ps(t->g1))),
+                   _mm_mul_ps(w2, _mm_loadu_ps(t->g2))));
 }
 
 /* A strand's weights, scale and root terms, eight lanes each. (1 - sc)
    root repeats every 3 floats: the vectors at floats 0, 8, 16 have phases
-   0, 2, 1 (R0, R1, R2), built from the first point of each guide by lane
-   permutes, in the scalar root's order. */
+   0, 2, 1 (R0, R1, R2), spread from hf__interp_root4 by lane permutes. */
 typedef struct hf__iv8 {
     __m256 W0, W1, W2, SC, R0, R1, R2;
 } hf__iv8;
@@ -7743,15 +7720,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__interp_prep8(const hf__istrand *t,
     const __m256i x0 = _mm256_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1);
     const __m256i x2 = _mm256_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0);
     const __m256i x1 = _mm256_setr_epi32(1, 2, 0, 1, 2, 0, 1, 2);
-    /* the root in four lanes (the same operations as in eight, at half
-       the width), then spread in its three phases */
-    const __m128 w0 = _mm_set1_ps(t->w0), w1 = _mm_set1_ps(t->w1);
-    const __m128 w2 = _mm_set1_ps(t->w2);
-    const __m128 r4 = _mm_mul_ps(
-        _mm_set1_ps(1.0f - t->sc),
-        _mm_add_ps(_mm_add_ps(_mm_mul_ps(w0, _mm_loadu_ps(t->g0)),
-                              _mm_mul_ps(w1, _mm_loadu_ps(t->g1))),
-                   _mm_mul_ps(w2, _mm_loadu_ps(t->g2))));
+    const __m128 r4 = hf__interp_root4(t);
     const __m256 r = _mm256_insertf128_ps(_mm256_castps128_ps256(r4), r4, 1);
     v->W0 = _mm256_set1_ps(t->w0);
     v->W1 = _mm256_set1_ps(t->w1);
@@ -7760,6 +7729,41 @@ HF__TARGET_AVX2 HF__INLINE void hf__interp_prep8(const hf__istrand *t,
     v->R0 = _mm256_permutevar8x32_ps(r, x0);
     v->R1 = _mm256_permutevar8x32_ps(r, x2);
     v->R2 = _mm256_permutevar8x32_ps(r, x1);
+}
+
+/* hf__interp_strand_sse, eight floats a vector: the same operations in
+   the same order (no FMA), so the same bytes. */
+HF__TARGET_AVX2 HF__INLINE __m256 hf__interp_v8(const hf__istrand *t,
+                                                const float *ctab, int i,
+                                                const hf__iv8 *v, __m256 R)
+{
+    __m256 p = _mm256_add_ps(
+        _mm256_add_ps(_mm256_mul_ps(v->W0, _mm256_loadu_ps(t->g0 + i)),
+                      _mm256_mul_ps(v->W1, _mm256_loadu_ps(t->g1 + i))),
+        _mm256_mul_ps(v->W2, _mm256_loadu_ps(t->g2 + i)));
+    p = _mm256_add_ps(_mm256_mul_ps(v->SC, p), R);
+    if (t->gn)
+        p = _mm256_add_ps(
+            p, _mm256_mul_ps(_mm256_loadu_ps(ctab + i),
+                             _mm256_sub_ps(_mm256_loadu_ps(t->gn + i), p)));
+    return p;
+}
+
+/* hf__interp_v8, stored */
+HF__TARGET_AVX2 HF__INLINE void hf__interp_avx2(const hf__istrand *t,
+                                                const float *ctab, int i,
+                                                const hf__iv8 *v,
+                                                __m256 R, int nt)
+{
+    const __m256 p = hf__interp_v8(t, ctab, i, v, R);
+    if (!nt) {
+        _mm256_storeu_ps(t->o + i, p);
+    } else if (nt == 2) { /* 32-byte aligned: one streaming store */
+        _mm256_stream_ps(t->o + i, p);
+    } else { /* 16-byte aligned: two streaming halves */
+        _mm_stream_ps(t->o + i, _mm256_castps256_ps128(p));
+        _mm_stream_ps(t->o + i + 4, _mm256_extractf128_ps(p, 1));
+    }
 }
 
 /* The strands of a range in one target function (no call per strand). */
@@ -7771,24 +7775,21 @@ hf__interp_range_avx2(const hf__irun *run, int first, int count)
     int s, i;
     for (s = first; s < first + count; ++s) {
         hf__iv8 v;
-        __m256 W0, W1, W2, SC, R0, R1, R2;
         int nt;
         hf__interp_setup(run, s, &t);
         nt = hf__stream_mode(run->nt, t.o, 31u);
         hf__interp_prep8(&t, &v);
-        W0 = v.W0, W1 = v.W1, W2 = v.W2, SC = v.SC;
-        R0 = v.R0, R1 = v.R1, R2 = v.R2;
         for (i = 0; i + 24 <= n; i += 24) {
-            hf__interp_avx2(&t, run->ctab, i, W0, W1, W2, SC, R0, nt);
-            hf__interp_avx2(&t, run->ctab, i + 8, W0, W1, W2, SC, R1, nt);
-            hf__interp_avx2(&t, run->ctab, i + 16, W0, W1, W2, SC, R2, nt);
+            hf__interp_avx2(&t, run->ctab, i, &v, v.R0, nt);
+            hf__interp_avx2(&t, run->ctab, i + 8, &v, v.R1, nt);
+            hf__interp_avx2(&t, run->ctab, i + 16, &v, v.R2, nt);
         }
         if (i + 8 <= n) {
-            hf__interp_avx2(&t, run->ctab, i, W0, W1, W2, SC, R0, nt);
+            hf__interp_avx2(&t, run->ctab, i, &v, v.R0, nt);
             i += 8;
         }
         if (i + 8 <= n) {
-            hf__interp_avx2(&t, run->ctab, i, W0, W1, W2, SC, R1, nt);
+            hf__interp_avx2(&t, run->ctab, i, &v, v.R1, nt);
             i += 8;
         }
         if (i < n) {
@@ -7803,18 +7804,41 @@ hf__interp_range_avx2(const hf__irun *run, int first, int count)
 #endif
 
 #if HF__AVX512
+/* hf__iv8 at sixteen lanes: phases 0, 1, 2 at floats 0, 16, 32. */
+typedef struct hf__iv16 {
+    __m512 W0, W1, W2, SC, R0, R1, R2;
+} hf__iv16;
+
+HF__TARGET_AVX512 HF__INLINE void hf__interp_prep16(const hf__istrand *t,
+                                                   hf__iv16 *v)
+{
+    const __m512i x0 = _mm512_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,
+                                         0, 1, 2, 0);
+    const __m512i x1 = _mm512_setr_epi32(1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0,
+                                         1, 2, 0, 1);
+    const __m512i x2 = _mm512_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1,
+                                         2, 0, 1, 2);
+    const __m512 r = _mm512_castps128_ps512(hf__interp_root4(t));
+    v->W0 = _mm512_set1_ps(t->w0);
+    v->W1 = _mm512_set1_ps(t->w1);
+    v->W2 = _mm512_set1_ps(t->w2);
+    v->SC = _mm512_set1_ps(t->sc);
+    v->R0 = _mm512_maskz_permutexvar_ps(0xffff, x0, r);
+    v->R1 = _mm512_maskz_permutexvar_ps(0xffff, x1, r);
+    v->R2 = _mm512_maskz_permutexvar_ps(0xffff, x2, r);
+}
+
 /* Sixteen floats a vector: the operations of hf__interp_v8. */
 HF__TARGET_AVX512 HF__INLINE __m512 hf__interp_v16(const hf__istrand *t,
                                                    const float *ctab, int i,
-                                                   __m512 W0, __m512 W1,
-                                                   __m512 W2, __m512 SC,
+                                                   const hf__iv16 *v,
                                                    __m512 R)
 {
     __m512 p = _mm512_add_ps(
-        _mm512_add_ps(_mm512_mul_ps(W0, _mm512_loadu_ps(t->g0 + i)),
-                      _mm512_mul_ps(W1, _mm512_loadu_ps(t->g1 + i))),
-        _mm512_mul_ps(W2, _mm512_loadu_ps(t->g2 + i)));
-    p = _mm512_add_ps(_mm512_mul_ps(SC, p), R);
+        _mm512_add_ps(_mm512_mul_ps(v->W0, _mm512_loadu_ps(t->g0 + i)),
+                      _mm512_mul_ps(v->W1, _mm512_loadu_ps(t->g1 + i))),
+        _mm512_mul_ps(v->W2, _mm512_loadu_ps(t->g2 + i)));
+    p = _mm512_add_ps(_mm512_mul_ps(v->SC, p), R);
     if (t->gn)
         p = _mm512_add_ps(
             p, _mm512_mul_ps(_mm512_loadu_ps(ctab + i),
@@ -7838,38 +7862,6 @@ HF__TARGET_AVX512 HF__INLINE void hf__put16(float *o, __m512 p, int mode)
     }
 }
 
-/* hf__iv8 at sixteen lanes: phases 0, 1, 2 at floats 0, 16, 32. */
-typedef struct hf__iv16 {
-    __m512 W0, W1, W2, SC, R0, R1, R2;
-} hf__iv16;
-
-HF__TARGET_AVX512 HF__INLINE void hf__interp_prep16(const hf__istrand *t,
-                                                   hf__iv16 *v)
-{
-    const __m512i x0 = _mm512_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,
-                                         0, 1, 2, 0);
-    const __m512i x1 = _mm512_setr_epi32(1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0,
-                                         1, 2, 0, 1);
-    const __m512i x2 = _mm512_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1,
-                                         2, 0, 1, 2);
-    /* the root in four lanes (the same operations as in sixteen, at a
-       quarter of the width), then spread in its three phases */
-    const __m128 w0 = _mm_set1_ps(t->w0), w1 = _mm_set1_ps(t->w1);
-    const __m128 w2 = _mm_set1_ps(t->w2);
-    const __m512 r = _mm512_castps128_ps512(_mm_mul_ps(
-        _mm_set1_ps(1.0f - t->sc),
-        _mm_add_ps(_mm_add_ps(_mm_mul_ps(w0, _mm_loadu_ps(t->g0)),
-                              _mm_mul_ps(w1, _mm_loadu_ps(t->g1))),
-                   _mm_mul_ps(w2, _mm_loadu_ps(t->g2)))));
-    v->W0 = _mm512_set1_ps(t->w0);
-    v->W1 = _mm512_set1_ps(t->w1);
-    v->W2 = _mm512_set1_ps(t->w2);
-    v->SC = _mm512_set1_ps(t->sc);
-    v->R0 = _mm512_maskz_permutexvar_ps(0xffff, x0, r);
-    v->R1 = _mm512_maskz_permutexvar_ps(0xffff, x1, r);
-    v->R2 = _mm512_maskz_permutexvar_ps(0xffff, x2, r);
-}
-
 HF__TARGET_AVX512 HF__PRIVATE void
 hf__interp_range_avx512(const hf__irun *run, int first, int count)
 {
@@ -7883,31 +7875,18 @@ hf__interp_range_avx512(const hf__irun *run, int first, int count)
         nt = hf__stream_mode(run->nt, t.o, 63u);
         hf__interp_prep16(&t, &v);
         for (i = 0; i + 48 <= n; i += 48) {
-            hf__put16(t.o + i,
-                      hf__interp_v16(&t, run->ctab, i, v.W0, v.W1, v.W2,
-                                     v.SC, v.R0),
-                      nt);
+            hf__put16(t.o + i, hf__interp_v16(&t, run->ctab, i, &v, v.R0), nt);
             hf__put16(t.o + i + 16,
-                      hf__interp_v16(&t, run->ctab, i + 16, v.W0, v.W1, v.W2,
-                                     v.SC, v.R1),
-                      nt);
+                      hf__interp_v16(&t, run->ctab, i + 16, &v, v.R1), nt);
             hf__put16(t.o + i + 32,
-                      hf__interp_v16(&t, run->ctab, i + 32, v.W0, v.W1, v.W2,
-                                     v.SC, v.R2),
-                      nt);
+                      hf__interp_v16(&t, run->ctab, i + 32, &v, v.R2), nt);
         }
         if (i + 16 <= n) {
-            hf__put16(t.o + i,
-                      hf__interp_v16(&t, run->ctab, i, v.W0, v.W1, v.W2,
-                                     v.SC, v.R0),
-                      nt);
+            hf__put16(t.o + i, hf__interp_v16(&t, run->ctab, i, &v, v.R0), nt);
             i += 16;
         }
         if (i + 16 <= n) {
-            hf__put16(t.o + i,
-                      hf__interp_v16(&t, run->ctab, i, v.W0, v.W1, v.W2,
-                                     v.SC, v.R1),
-                      nt);
+            hf__put16(t.o + i, hf__interp_v16(&t, run->ctab, i, &v, v.R1), nt);
             i += 16;
         }
         if (i < n) {
@@ -9948,20 +9927,16 @@ hf__interp_points_avx2(const hf__irun *run, const hf__points_kit *k,
     int s, i, j;
     for (s = first; s < first + count; ++s) {
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
-        const float ws = hf__strand_width(st, s);
-        const __m256 WS = _mm256_set1_ps(ws);
+        const __m256 WS = _mm256_set1_ps(hf__strand_width(st, s));
         const int mode = hf__stream_mode(k->nt, o, 31u);
         __m256 acc = zero;
         hf__iv8 v;
         hf__interp_setup(run, s, &t);
         hf__interp_prep8(&t, &v);
         for (i = 0, j = 0; j < P; i += 24, j += 8) {
-            const __m256 a = hf__interp_v8(&t, run->ctab, i, v.W0, v.W1,
-                                           v.W2, v.SC, v.R0);
-            const __m256 b = hf__interp_v8(&t, run->ctab, i + 8, v.W0, v.W1,
-                                           v.W2, v.SC, v.R1);
-            const __m256 c = hf__interp_v8(&t, run->ctab, i + 16, v.W0, v.W1,
-                                           v.W2, v.SC, v.R2);
+            const __m256 a = hf__interp_v8(&t, run->ctab, i, &v, v.R0);
+            const __m256 b = hf__interp_v8(&t, run->ctab, i + 8, &v, v.R1);
+            const __m256 c = hf__interp_v8(&t, run->ctab, i + 16, &v, v.R2);
             acc = _mm256_add_ps(acc, _mm256_mul_ps(a, zero));
             acc = _mm256_add_ps(acc, _mm256_mul_ps(b, zero));
             acc = _mm256_add_ps(acc, _mm256_mul_ps(c, zero));
@@ -9998,9 +9973,7 @@ HF__TARGET_AVX512 HF__INLINE __m512 hf__point_quad_w(__m512 q, const float *pw,
     return _mm512_mask_mov_ps(q, 0x8888,
                               _mm512_mul_ps(_mm512_loadu_ps(pw), ws));
 }
-#endif
 
-#if HF__AVX512
 /* hf__interp_points_avx2 at sixteen lanes, for P a multiple of 16: three
    vectors of a strand's floats (sixteen points) go out as four vectors of
    four points each, one 64-byte line a store where the output is aligned
@@ -10034,12 +10007,9 @@ hf__interp_points_avx512(const hf__irun *run, const hf__points_kit *k,
         hf__interp_setup(run, s, &t);
         hf__interp_prep16(&t, &v);
         for (i = 0, j = 0; j < P; i += 48, j += 16) {
-            const __m512 a = hf__interp_v16(&t, run->ctab, i, v.W0, v.W1,
-                                            v.W2, v.SC, v.R0);
-            const __m512 b = hf__interp_v16(&t, run->ctab, i + 16, v.W0,
-                                            v.W1, v.W2, v.SC, v.R1);
-            const __m512 c = hf__interp_v16(&t, run->ctab, i + 32, v.W0,
-                                            v.W1, v.W2, v.SC, v.R2);
+            const __m512 a = hf__interp_v16(&t, run->ctab, i, &v, v.R0);
+            const __m512 b = hf__interp_v16(&t, run->ctab, i + 16, &v, v.R1);
+            const __m512 c = hf__interp_v16(&t, run->ctab, i + 32, &v, v.R2);
             acc = _mm512_add_ps(acc, _mm512_mul_ps(a, zero));
             acc = _mm512_add_ps(acc, _mm512_mul_ps(b, zero));
             acc = _mm512_add_ps(acc, _mm512_mul_ps(c, zero));
@@ -10064,7 +10034,6 @@ hf__interp_points_avx512(const hf__irun *run, const hf__points_kit *k,
         }
         if (_mm512_cmp_ps_mask(acc, zero, _CMP_EQ_OQ) != 0xffff) {
             if (mode) _mm_sfence();
-            _mm256_zeroupper();
             hf__points_strand_avx2(hf__zero_points, &k->pw, 0.0f, o, P, k->nt);
         }
     }
