@@ -47,6 +47,7 @@
            hf_fur_get_info, hf_fur_set_lod, hf_fur_set_roots,
            hf_fur_set_transform, hf_fur_simulate, hf_fur_interpolate_guides,
            hf_fur_interpolate, hf_fur_ribbons, hf_fur_points,
+           hf_fur_interpolate_points (the GPU path in one pass),
            hf_fur_max_stretch, hf_fur_reset, hf_fur_set_rope_params,
            hf_fur_set_rope_params_range, hf_fur_set_mode, hf_fur_set_kernels
        Drawing (section 8): hf_ribbon_index_count, hf_ribbon_indices,
@@ -1887,9 +1888,8 @@ HFDEF hf_result hf_fur_points(const hf_fur *fur, int first, int count,
 /* hf_fur_interpolate and hf_fur_points of strands [first, first + count)
    in one pass, for the GPU-expansion path: the same bytes in out4 as the
    two calls, without writing the strands' points to the fur and reading
-   them back (a block of strands at a time through a buffer on the
-   stack, 8 KiB). The fur's strand points (hf_fur_info.strand_points) are
-   left as they were. Needs every guide updated first; errors as
+   them back (about 16 KiB of stack). The fur's strand points
+   (hf_fur_info.strand_points) are left as they were. Needs every guide updated first; errors as
    hf_fur_points, nothing written then. */
 HFDEF hf_result hf_fur_interpolate_points(const hf_fur *fur, int first,
                                           int count,
