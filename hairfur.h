@@ -1888,7 +1888,7 @@ HFDEF hf_result hf_fur_points(const hf_fur *fur, int first, int count,
 /* hf_fur_interpolate and hf_fur_points of strands [first, first + count)
    in one pass, for the GPU-expansion path: the same bytes in out4 as the
    two calls, without writing the strands' points to the fur and reading
-   them back (about 16 KiB of stack). The fur's strand points
+   them back (about 18 KiB of stack). The fur's strand points
    (hf_fur_info.strand_points) are left as they were. Needs every guide updated first; errors as
    hf_fur_points, nothing written then. */
 HFDEF hf_result hf_fur_interpolate_points(const hf_fur *fur, int first,
