@@ -7749,20 +7749,18 @@ HF__TARGET_AVX2 HF__INLINE __m256 hf__interp_v8(const hf__istrand *t,
     return p;
 }
 
-/* hf__interp_v8, stored */
-HF__TARGET_AVX2 HF__INLINE void hf__interp_avx2(const hf__istrand *t,
-                                                const float *ctab, int i,
-                                                const hf__iv8 *v,
-                                                __m256 R, int nt)
+/* Eight floats at o, as hf__stream_mode says: a plain store (0), two
+   streaming halves (1: 16-byte aligned) or one streaming store (2:
+   32-byte aligned). */
+HF__TARGET_AVX2 HF__INLINE void hf__put8(float *o, __m256 q, int mode)
 {
-    const __m256 p = hf__interp_v8(t, ctab, i, v, R);
-    if (!nt) {
-        _mm256_storeu_ps(t->o + i, p);
-    } else if (nt == 2) { /* 32-byte aligned: one streaming store */
-        _mm256_stream_ps(t->o + i, p);
-    } else { /* 16-byte aligned: two streaming halves */
-        _mm_stream_ps(t->o + i, _mm256_castps256_ps128(p));
-        _mm_stream_ps(t->o + i + 4, _mm256_extractf128_ps(p, 1));
+    if (mode == 2) {
+        _mm256_stream_ps(o, q);
+    } else if (mode == 1) {
+        _mm_stream_ps(o, _mm256_castps256_ps128(q));
+        _mm_stream_ps(o + 4, _mm256_extractf128_ps(q, 1));
+    } else {
+        _mm256_storeu_ps(o, q);
     }
 }
 
@@ -7780,16 +7778,18 @@ hf__interp_range_avx2(const hf__irun *run, int first, int count)
         nt = hf__stream_mode(run->nt, t.o, 31u);
         hf__interp_prep8(&t, &v);
         for (i = 0; i + 24 <= n; i += 24) {
-            hf__interp_avx2(&t, run->ctab, i, &v, v.R0, nt);
-            hf__interp_avx2(&t, run->ctab, i + 8, &v, v.R1, nt);
-            hf__interp_avx2(&t, run->ctab, i + 16, &v, v.R2, nt);
+            hf__put8(t.o + i, hf__interp_v8(&t, run->ctab, i, &v, v.R0), nt);
+            hf__put8(t.o + i + 8,
+                     hf__interp_v8(&t, run->ctab, i + 8, &v, v.R1), nt);
+            hf__put8(t.o + i + 16,
+                     hf__interp_v8(&t, run->ctab, i + 16, &v, v.R2), nt);
         }
         if (i + 8 <= n) {
-            hf__interp_avx2(&t, run->ctab, i, &v, v.R0, nt);
+            hf__put8(t.o + i, hf__interp_v8(&t, run->ctab, i, &v, v.R0), nt);
             i += 8;
         }
         if (i + 8 <= n) {
-            hf__interp_avx2(&t, run->ctab, i, &v, v.R1, nt);
+            hf__put8(t.o + i, hf__interp_v8(&t, run->ctab, i, &v, v.R1), nt);
             i += 8;
         }
         if (i < n) {
@@ -7846,8 +7846,8 @@ HF__TARGET_AVX512 HF__INLINE __m512 hf__interp_v16(const hf__istrand *t,
     return p;
 }
 
-/* Sixteen floats at o: a plain store, four streaming quarters (16-byte
-   aligned) or one streaming store (64-byte aligned). */
+/* Sixteen floats at o, as hf__put8: a plain store, four streaming
+   quarters (16-byte aligned) or one streaming store (64-byte aligned). */
 HF__TARGET_AVX512 HF__INLINE void hf__put16(float *o, __m512 p, int mode)
 {
     if (!mode) {
@@ -9765,21 +9765,6 @@ HF__PRIVATE void hf__pair_widths_init(hf__pair_widths *pw, const float *hw,
     last[7] = hw[P - 1];
 }
 
-/* Two points (x y z w x y z w) at o: a plain store, two streaming
-   halves (16-byte aligned) or one streaming store (32-byte aligned). */
-HF__TARGET_AVX2 HF__INLINE void hf__point_pair_put(float *o, __m256 q,
-                                                   int mode)
-{
-    if (mode == 2) {
-        _mm256_stream_ps(o, q);
-    } else if (mode == 1) {
-        _mm_stream_ps(o, _mm256_castps256_ps128(q));
-        _mm_stream_ps(o + 4, _mm256_extractf128_ps(q, 1));
-    } else {
-        _mm256_storeu_ps(o, q);
-    }
-}
-
 /* One strand's GPU points, two a vector: eight floats from point j
    (x0 .. y2) spread to x0 y0 z0 . x1 y1 z1 ., the widths blended in; the
    last one or two points from the strand's last eight floats, so nothing
@@ -9802,7 +9787,7 @@ hf__points_strand_avx2(const float *p, const hf__pair_widths *pw, float ws,
             _mm256_permutevar8x32_ps(_mm256_loadu_ps(p + 3 * j), spread),
             _mm256_mul_ps(_mm256_loadu_ps(pw->v + 4 * j), W), 0x88);
         acc = _mm256_add_ps(acc, _mm256_mul_ps(q, zero));
-        hf__point_pair_put(o + 4 * j, q, mode);
+        hf__put8(o + 4 * j, q, mode);
     }
     if (j < P) { /* points P - 2 and P - 1: one or both still to write */
         q = _mm256_blend_ps(
@@ -9812,7 +9797,7 @@ hf__points_strand_avx2(const float *p, const hf__pair_widths *pw, float ws,
             0x88);
         acc = _mm256_add_ps(acc, _mm256_mul_ps(q, zero));
         if (j == P - 2) /* P even: at o + 32 (P / 2 - 1) bytes */
-            hf__point_pair_put(o + 4 * j, q, mode);
+            hf__put8(o + 4 * j, q, mode);
         else if (mode)
             _mm_stream_ps(o + 4 * j, _mm256_extractf128_ps(q, 1));
         else
@@ -9833,6 +9818,17 @@ typedef struct hf__points_kit {
 #endif
     int P, level, nt, wide;
 } hf__points_kit;
+
+#if HF__AVX2
+/* A strand at o that is not finite, written again collapsed (every point
+   at the origin, width 0) by the AVX2 points kernel, after the streamed
+   stores already made; rare, so a call of its own. */
+HF__PRIVATE void hf__points_collapse_avx2(const hf__points_kit *k, float *o)
+{
+    if (k->nt) _mm_sfence();
+    hf__points_strand_avx2(hf__zero_points, &k->pw, 0.0f, o, k->P, k->nt);
+}
+#endif
 
 HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
                                      const hf_ribbon_params *params)
@@ -9869,11 +9865,8 @@ HF__PRIVATE void hf__points_run(const hf__points_kit *k,
                written again, collapsed (streamed stores ordered first) */
             if (!hf__points_strand_avx2(p, &k->pw,
                                         hf__strand_width(strands, s), o, P,
-                                        k->nt)) {
-                if (k->nt) _mm_sfence();
-                hf__points_strand_avx2(hf__zero_points, &k->pw, 0.0f, o, P,
-                                       k->nt);
-            }
+                                        k->nt))
+                hf__points_collapse_avx2(k, o);
             continue;
         }
 #endif
@@ -9904,7 +9897,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__point_pair_w(float *o, __m256 q,
                                                  const float *pw, __m256 ws,
                                                  int mode)
 {
-    hf__point_pair_put(
+    hf__put8(
         o, _mm256_blend_ps(q, _mm256_mul_ps(_mm256_loadu_ps(pw), ws), 0x88),
         mode);
 }
@@ -9955,10 +9948,8 @@ hf__interp_points_avx2(const hf__irun *run, const hf__points_kit *k,
             hf__point_pair_w(o + 4 * j + 24, _mm256_permutevar8x32_ps(c, hi),
                              k->pw.v + 4 * j + 24, WS, mode);
         }
-        if (_mm256_movemask_ps(_mm256_cmp_ps(acc, zero, _CMP_EQ_OQ)) != 0xff) {
-            if (mode) _mm_sfence();
-            hf__points_strand_avx2(hf__zero_points, &k->pw, 0.0f, o, P, k->nt);
-        }
+        if (_mm256_movemask_ps(_mm256_cmp_ps(acc, zero, _CMP_EQ_OQ)) != 0xff)
+            hf__points_collapse_avx2(k, o);
     }
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
@@ -10032,10 +10023,8 @@ hf__interp_points_avx512(const hf__irun *run, const hf__points_kit *k,
                                        k->pw.v + 4 * j + 48, WS),
                       mode);
         }
-        if (_mm512_cmp_ps_mask(acc, zero, _CMP_EQ_OQ) != 0xffff) {
-            if (mode) _mm_sfence();
-            hf__points_strand_avx2(hf__zero_points, &k->pw, 0.0f, o, P, k->nt);
-        }
+        if (_mm512_cmp_ps_mask(acc, zero, _CMP_EQ_OQ) != 0xffff)
+            hf__points_collapse_avx2(k, o);
     }
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
@@ -12557,7 +12546,8 @@ HFDEF hf_result hf_fur_interpolate_points(const hf_fur *f, int first,
     lv = lv < kit.level ? lv : kit.level;
     if (kit.wide && lv >= HF_SIMD_AVX2 && f->P % 8 == 0 && !f->leader &&
         !f->strand_clump && !f->offsets) {
-        /* in registers, nothing through memory */
+        /* in registers, nothing through memory (the run's own output is
+           not written: the kernels write points to out4) */
         float ctab[3 * HF_MAX_POINTS];
         hf__irun run;
         hf__irun_init(&run, f->guide_points, f->bindings, f->P, f->clump,
