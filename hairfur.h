@@ -5146,57 +5146,121 @@ HFDEF hf_result hf_ropes_max_stretch(const hf_ropes *ropes, int first,
 }
 
 #if HF__SSE
-/* Ropes [r, r + 4) into packed output that starts at rope `base`: four
-   points of the four ropes at a time, transposed in registers. */
-HF__PRIVATE void hf__ropes_get_sse(const hf_ropes *ro, int r, float *out,
-                                   int base)
+/* The rows of points [j, j + n) of ropes from r, in the order they go out:
+   x, y, z of point j, of point j + 1, ... Read n at a time across the
+   ropes, every n consecutive rows are a square block whose transpose is n
+   consecutive output floats of each rope: no shuffle beyond the
+   transposes. */
+HF__INLINE void hf__ropes_out_rows(const hf_ropes *ro, size_t j, int n,
+                                   int r, const float **row)
+{
+    const size_t R = (size_t)ro->rope_count;
+    size_t o = j * R + (size_t)r;
+    int k;
+    for (k = 0; k < n; ++k, o += R) {
+        row[3 * k] = ro->x + o;
+        row[3 * k + 1] = ro->y + o;
+        row[3 * k + 2] = ro->z + o;
+    }
+}
+
+/* Points [j, P) of ropes [r, r + n), where the kernels' blocks end. */
+HF__PRIVATE void hf__ropes_get_tail(const hf_ropes *ro, int r, int n,
+                                    size_t j, float *out, int base)
 {
     const size_t R = (size_t)ro->rope_count, P = (size_t)ro->points;
-    size_t j, i;
     int k;
-    for (j = 0; j + 4 <= P; j += 4) {
-        __m128 xs[4], ys[4], zs[4];
-        for (k = 0; k < 4; ++k) {
-            i = (j + (size_t)k) * R + (size_t)r;
-            xs[k] = _mm_loadu_ps(ro->x + i);
-            ys[k] = _mm_loadu_ps(ro->y + i);
-            zs[k] = _mm_loadu_ps(ro->z + i);
-        }
-        /* now xs[k]: x of points j .. j + 3 of rope r + k */
-        _MM_TRANSPOSE4_PS(xs[0], xs[1], xs[2], xs[3]);
-        _MM_TRANSPOSE4_PS(ys[0], ys[1], ys[2], ys[3]);
-        _MM_TRANSPOSE4_PS(zs[0], zs[1], zs[2], zs[3]);
-        for (k = 0; k < 4; ++k) {
-            /* x y z x | y z x y | z x y z */
-            float *o = out + ((size_t)(r + k - base) * P + j) * 3u;
-            const __m128 xy = _mm_unpacklo_ps(xs[k], ys[k]),
-                         zx = _mm_unpacklo_ps(zs[k], xs[k]),
-                         yz = _mm_unpacklo_ps(ys[k], zs[k]),
-                         xyh = _mm_unpackhi_ps(xs[k], ys[k]),
-                         zxh = _mm_unpackhi_ps(zs[k], xs[k]),
-                         yzh = _mm_unpackhi_ps(ys[k], zs[k]);
-            _mm_storeu_ps(o, _mm_shuffle_ps(xy, zx, _MM_SHUFFLE(3, 0, 1, 0)));
-            _mm_storeu_ps(o + 4,
-                          _mm_shuffle_ps(yz, xyh, _MM_SHUFFLE(1, 0, 3, 2)));
-            _mm_storeu_ps(o + 8,
-                          _mm_shuffle_ps(zxh, yzh, _MM_SHUFFLE(3, 2, 3, 0)));
-        }
-    }
     for (; j < P; ++j)
-        for (k = 0; k < 4; ++k) {
+        for (k = 0; k < n; ++k) {
             float *o = out + ((size_t)(r + k - base) * P + j) * 3u;
-            i = j * R + (size_t)(r + k);
+            const size_t i = j * R + (size_t)(r + k);
             o[0] = ro->x[i];
             o[1] = ro->y[i];
             o[2] = ro->z[i];
         }
 }
+
+/* Ropes [r, r + 4) into packed output that starts at rope `base`: four
+   points at a time, three 4 x 4 transposes (hf__ropes_out_rows). */
+HF__PRIVATE void hf__ropes_get_sse(const hf_ropes *ro, int r, float *out,
+                                   int base)
+{
+    const size_t P = (size_t)ro->points;
+    size_t j, i;
+    int g;
+    for (j = 0; j + 4 <= P; j += 4) {
+        const float *row[12];
+        hf__ropes_out_rows(ro, j, 4, r, row);
+        for (g = 0; g < 3; ++g) {
+            __m128 v0 = _mm_loadu_ps(row[4 * g]),
+                   v1 = _mm_loadu_ps(row[4 * g + 1]),
+                   v2 = _mm_loadu_ps(row[4 * g + 2]),
+                   v3 = _mm_loadu_ps(row[4 * g + 3]);
+            _MM_TRANSPOSE4_PS(v0, v1, v2, v3);
+            /* vk: floats 4 g .. 4 g + 3 of rope r + k's points j.. */
+            i = ((size_t)(r - base) * P + j) * 3u + 4u * (size_t)g;
+            _mm_storeu_ps(out + i, v0);
+            _mm_storeu_ps(out + i + 3 * P, v1);
+            _mm_storeu_ps(out + i + 6 * P, v2);
+            _mm_storeu_ps(out + i + 9 * P, v3);
+        }
+    }
+    hf__ropes_get_tail(ro, r, 4, j, out, base);
+}
+#endif
+
+#if HF__AVX2
+/* Rows q[0..8) of ropes [h, h + 4) transposed: rope h + k's eight floats
+   at o + k step. Rows k and k + 4 sit side by side in the 128-bit lanes,
+   so two 4 x 4 transposes in the lanes make the 8 x 4 one. */
+HF__TARGET_AVX2 HF__INLINE void hf__ropes_t8x4(const float *const *q,
+                                               size_t h, float *o,
+                                               size_t step)
+{
+#define HF__PAIR(k)                                                            \
+    _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(q[k] + h)),       \
+                         _mm_loadu_ps(q[k + 4] + h), 1)
+    const __m256 t0 = HF__PAIR(0), t1 = HF__PAIR(1), t2 = HF__PAIR(2),
+                 t3 = HF__PAIR(3);
+#undef HF__PAIR
+    const __m256 a0 = _mm256_unpacklo_ps(t0, t1),
+                 a1 = _mm256_unpackhi_ps(t0, t1),
+                 a2 = _mm256_unpacklo_ps(t2, t3),
+                 a3 = _mm256_unpackhi_ps(t2, t3);
+    _mm256_storeu_ps(o, _mm256_shuffle_ps(a0, a2, 0x44));
+    _mm256_storeu_ps(o + step, _mm256_shuffle_ps(a0, a2, 0xee));
+    _mm256_storeu_ps(o + 2 * step, _mm256_shuffle_ps(a1, a3, 0x44));
+    _mm256_storeu_ps(o + 3 * step, _mm256_shuffle_ps(a1, a3, 0xee));
+}
+
+/* hf__ropes_get_sse for ropes [r, r + 8), eight points at a time: three
+   8 x 8 transposes (hf__ropes_out_rows). */
+HF__TARGET_AVX2 HF__PRIVATE void hf__ropes_get_avx2(const hf_ropes *ro,
+                                                   int r, float *out,
+                                                   int base)
+{
+    const size_t P = (size_t)ro->points;
+    size_t j;
+    for (j = 0; j + 8 <= P; j += 8) {
+        const float *row[24];
+        float *o = out + ((size_t)(r - base) * P + j) * 3u;
+        hf__ropes_out_rows(ro, j, 8, r, row);
+        hf__ropes_t8x4(row, 0, o, 3 * P);
+        hf__ropes_t8x4(row, 4, o + 12 * P, 3 * P);
+        hf__ropes_t8x4(row + 8, 0, o + 8, 3 * P);
+        hf__ropes_t8x4(row + 8, 4, o + 8 + 12 * P, 3 * P);
+        hf__ropes_t8x4(row + 16, 0, o + 16, 3 * P);
+        hf__ropes_t8x4(row + 16, 4, o + 16 + 12 * P, 3 * P);
+    }
+    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
+    hf__ropes_get_tail(ro, r, 8, j, out, base);
+}
 #endif
 
 /* Rope-major copies of ropes [a, b) into `out`, which starts at rope
    `base` (a for a buffer of exactly the range, 0 for absolute indexing):
-   the reference (any stride) and its dispatch (the SSE kernel above takes
-   packed groups of four). */
+   the reference (any stride) and its dispatch (the kernels above take
+   packed groups of eight and four ropes at `level` and above). */
 HF__PRIVATE void hf__ropes_copy_ref(const hf_ropes *ro, int a, int b,
                                     float *out, size_t stride, int base)
 {
@@ -5215,12 +5279,17 @@ HF__PRIVATE void hf__ropes_copy_ref(const hf_ropes *ro, int a, int b,
 }
 
 HF__PRIVATE void hf__ropes_copy(const hf_ropes *ro, int a, int b, float *out,
-                                size_t stride, int base)
+                                size_t stride, int base, int level)
 {
+#if HF__AVX2
+    if (stride == 12 && level >= HF_SIMD_AVX2)
+        for (; a + 8 <= b; a += 8) hf__ropes_get_avx2(ro, a, out, base);
+#endif
 #if HF__SSE
-    if (stride == 12)
+    if (stride == 12 && level >= HF_SIMD_SSE2)
         for (; a + 4 <= b; a += 4) hf__ropes_get_sse(ro, a, out, base);
 #endif
+    (void)level;
     hf__ropes_copy_ref(ro, a, b, out, stride, base);
 }
 
@@ -5231,7 +5300,8 @@ HFDEF hf_result hf_ropes_get_positions(const hf_ropes *ropes, int first,
     if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
     if (!hf__stride_ok(out, stride, 12)) return HF_ERROR_BAD_STRIDE;
     hf__ropes_copy(ropes, first, first + count, out,
-                   (size_t)(stride ? stride : 12), 0);
+                   (size_t)(stride ? stride : 12), 0,
+                   hf_simd_resolve(HF_SIMD_AUTO));
     return HF_OK;
 }
 
@@ -5242,7 +5312,8 @@ HFDEF hf_result hf_ropes_copy_range(const hf_ropes *ropes, int first,
     if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
     if (!hf__stride_ok(out, stride, 12)) return HF_ERROR_BAD_STRIDE;
     hf__ropes_copy(ropes, first, first + count, out,
-                   (size_t)(stride ? stride : 12), first);
+                   (size_t)(stride ? stride : 12), first,
+                   hf_simd_resolve(HF_SIMD_AUTO));
     return HF_OK;
 }
 
@@ -12438,8 +12509,9 @@ HFDEF hf_result hf_fur_simulate(hf_fur *f, int first, int count, float dt,
     if (end <= first) return HF_OK;
     r = hf__fur_step_runs(f, first, end, dt, colliders, collider_count);
     if (r != HF_OK) return r;
-    return hf_ropes_get_positions(f->ropes, first, end - first,
-                                  f->guide_points, 0);
+    hf__ropes_copy(f->ropes, first, end, f->guide_points, 12, 0,
+                   hf_simd_resolve(f->simd));
+    return HF_OK;
 }
 
 /* The fur's guides, bindings and parameters are valid by construction

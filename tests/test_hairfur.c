@@ -4985,46 +4985,69 @@ static void test_ropes_collision_soak(void)
 }
 
 /* hf_ropes_copy_range: a range into a buffer of exactly that range, the
-   same bytes as the slice of hf_ropes_get_positions (SSE groups and the
-   scalar tail, packed and strided). */
+   same bytes as the slice of hf_ropes_get_positions; and both, packed (the
+   kernels: groups of eight and four ropes, blocks of eight and four
+   points, the scalar tails) or strided (the scalar copy), the ropes'
+   points exactly. */
 static void test_ropes_copy_range(void)
 {
-    enum { R = 11, P = 6 };
-    float pos[3 * R * P], root[3 * R], nrm[3 * R], tan[3 * R];
-    float whole[4 * R * P], part[4 * R * P];
+    enum { R = 21, PMAX = 17 };
+    static const int Ps[] = {2, 6, 8, 13, 16, 17};
+    static float pos[3 * R * PMAX], whole[4 * R * PMAX], part[4 * R * PMAX];
+    float root[3 * R], nrm[3 * R], tan[3 * R];
     hf_rope_params p;
     tr_set s;
-    int r, k, first, count, stride;
-    if (!tr_open(&s, R, P)) { CHECK(0); return; }
-    for (r = 0; r < R; ++r) {
-        for (k = 0; k < 3; ++k) {
-            root[3 * r + k] = k == 0 ? 0.1f * (float)r : 0.0f;
-            nrm[3 * r + k] = k == 1 ? 1.0f : 0.0f;
-            tan[3 * r + k] = k == 0 ? 1.0f : 0.0f;
-        }
-        tr_straight(pos, r, P, root + 3 * r, tan + 3 * r, 0.2f);
-    }
-    hf_ropes_set_rest(&s.ro, 0, R, pos, 0, root, nrm, tan, 0);
-    memset(&p, 0, sizeof p);
-    hf_ropes_step(&s.ro, 0, R, 1.0f / 60.0f, &p, NULL, 0);
-    for (stride = 12; stride <= 16; stride += 4)
-        for (first = 0; first < R; first += 3)
-            for (count = 0; first + count <= R; count += 5) {
-                memset(whole, 0, sizeof whole);
-                tb_fill(part, sizeof part);
-                CHECK_EQ_INT(hf_ropes_get_positions(&s.ro, 0, R, whole, stride), HF_OK);
-                CHECK_EQ_INT(hf_ropes_copy_range(&s.ro, first, count, part, stride), HF_OK);
-                for (k = 0; k < count * P; ++k) /* each x, y, z */
-                    CHECK(memcmp((unsigned char *)part + (size_t)k * stride,
-                                 (unsigned char *)whole +
-                                     ((size_t)first * P + (size_t)k) * stride,
-                                 12) == 0);
-                CHECK(tb_untouched((unsigned char *)part + (size_t)count * P * stride,
-                                   sizeof part - (size_t)count * P * (size_t)stride));
+    int r, k, j, first, count, stride, pi;
+    for (pi = 0; pi < (int)(sizeof Ps / sizeof Ps[0]); ++pi) {
+        const int P = Ps[pi];
+        if (!tr_open(&s, R, P)) { CHECK(0); return; }
+        for (r = 0; r < R; ++r) {
+            for (k = 0; k < 3; ++k) {
+                root[3 * r + k] = k == 0 ? 0.1f * (float)r : 0.0f;
+                nrm[3 * r + k] = k == 1 ? 1.0f : 0.0f;
+                tan[3 * r + k] = k == 0 ? 1.0f : 0.0f;
             }
-    CHECK_EQ_INT(hf_ropes_copy_range(&s.ro, 5, R, part, 0), HF_ERROR_BAD_RANGE);
-    CHECK_EQ_INT(hf_ropes_copy_range(&s.ro, 0, 1, NULL, 0), HF_ERROR_NULL_POINTER);
-    tr_close(&s);
+            tr_straight(pos, r, P, root + 3 * r, tan + 3 * r, 0.2f);
+        }
+        hf_ropes_set_rest(&s.ro, 0, R, pos, 0, root, nrm, tan, 0);
+        memset(&p, 0, sizeof p);
+        hf_ropes_step(&s.ro, 0, R, 1.0f / 60.0f, &p, NULL, 0);
+        for (stride = 12; stride <= 16; stride += 4) {
+            /* every point where it belongs, at any first rope */
+            for (first = 0; first < 3; ++first) {
+                memset(whole, 0, sizeof whole);
+                CHECK_EQ_INT(hf_ropes_get_positions(&s.ro, first, R - first,
+                                                    whole, stride),
+                             HF_OK);
+                for (r = first; r < R; ++r)
+                    for (j = 0; j < P; ++j) {
+                        const float *o =
+                            (const float *)((const unsigned char *)whole +
+                                            ((size_t)r * P + j) * stride);
+                        const size_t i = (size_t)j * R + r;
+                        CHECK(o[0] == s.ro.x[i] && o[1] == s.ro.y[i] &&
+                              o[2] == s.ro.z[i]);
+                    }
+            }
+            for (first = 0; first < R; first += 3)
+                for (count = 0; first + count <= R; count += 5) {
+                    memset(whole, 0, sizeof whole);
+                    tb_fill(part, sizeof part);
+                    CHECK_EQ_INT(hf_ropes_get_positions(&s.ro, 0, R, whole, stride), HF_OK);
+                    CHECK_EQ_INT(hf_ropes_copy_range(&s.ro, first, count, part, stride), HF_OK);
+                    for (k = 0; k < count * P; ++k) /* each x, y, z */
+                        CHECK(memcmp((unsigned char *)part + (size_t)k * stride,
+                                     (unsigned char *)whole +
+                                         ((size_t)first * P + (size_t)k) * stride,
+                                     12) == 0);
+                    CHECK(tb_untouched((unsigned char *)part + (size_t)count * P * stride,
+                                       sizeof part - (size_t)count * P * (size_t)stride));
+                }
+        }
+        CHECK_EQ_INT(hf_ropes_copy_range(&s.ro, 5, R, part, 0), HF_ERROR_BAD_RANGE);
+        CHECK_EQ_INT(hf_ropes_copy_range(&s.ro, 0, 1, NULL, 0), HF_ERROR_NULL_POINTER);
+        tr_close(&s);
+    }
 }
 
 /* More colliders than one batch of the collision kernel (8): a turn out
