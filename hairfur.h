@@ -2473,6 +2473,29 @@ HF__PRIVATE void hf__free(const hf_allocator *a, void *ptr)
     HF_FREE(ptr, a ? a->user : NULL);
 }
 
+/* Arrays the wide kernels stream through, on 64-byte boundaries (a cache
+   line, a sixteen-float vector: no load or store split across two lines)
+   whatever the allocator's alignment: the byte before the array says how
+   far it was moved. */
+HF__PRIVATE void *hf__alloc64(const hf_allocator *a, size_t size)
+{
+    unsigned char *p;
+    size_t k;
+    if (size > (size_t)-1 - 64) return NULL;
+    p = (unsigned char *)hf__alloc(a, size + 64);
+    if (!p) return NULL;
+    k = 64u - ((uintptr_t)p & 63u); /* 1 .. 64 */
+    p += k;
+    p[-1] = (unsigned char)k;
+    return p;
+}
+
+HF__PRIVATE void hf__free64(const hf_allocator *a, void *ptr)
+{
+    unsigned char *p = (unsigned char *)ptr;
+    if (p) hf__free(a, p - p[-1]);
+}
+
 /* first >= 0, count >= 0 and first + count representable */
 HF__PRIVATE int hf__range_ok(int first, int count)
 {
@@ -10868,9 +10891,10 @@ struct hf_fur {
 
 /* Allocation that remembers nothing: hf_fur_destroy frees each array by
    name, and every pointer starts NULL, so a failed create unwinds by
-   calling destroy. */
-HF__PRIVATE void *hf__fur_array(hf_fur *f, size_t count, size_t size,
-                                hf_result *r)
+   calling destroy. hf__fur_lines: the guide and strand points, which the
+   interpolation reads and writes sixteen floats at a time (hf__alloc64). */
+HF__PRIVATE void *hf__fur_alloc(hf_fur *f, size_t count, size_t size,
+                                int lines, hf_result *r)
 {
     size_t bytes;
     void *p;
@@ -10879,9 +10903,20 @@ HF__PRIVATE void *hf__fur_array(hf_fur *f, size_t count, size_t size,
         *r = HF_ERROR_OVERFLOW;
         return NULL;
     }
-    p = hf__alloc(&f->alloc, bytes);
+    p = lines ? hf__alloc64(&f->alloc, bytes) : hf__alloc(&f->alloc, bytes);
     if (!p) *r = HF_ERROR_OUT_OF_MEMORY;
     return p;
+}
+
+HF__PRIVATE void *hf__fur_array(hf_fur *f, size_t count, size_t size,
+                                hf_result *r)
+{
+    return hf__fur_alloc(f, count, size, 0, r);
+}
+
+HF__PRIVATE float *hf__fur_lines(hf_fur *f, size_t count, hf_result *r)
+{
+    return (float *)hf__fur_alloc(f, count, sizeof(float), 1, r);
 }
 
 HFDEF void hf_fur_destroy(hf_fur *f)
@@ -10890,8 +10925,8 @@ HFDEF void hf_fur_destroy(hf_fur *f)
     if (!f) return;
     a = f->alloc;
     hf_ropes_destroy(f->ropes);
-    hf__free(&a, f->guide_points);
-    hf__free(&a, f->strand_points);
+    hf__free64(&a, f->guide_points);
+    hf__free64(&a, f->strand_points);
     hf__free(&a, f->strands);
     hf__free(&a, f->bindings);
     hf__free(&a, f->lod_bindings);
@@ -11783,8 +11818,8 @@ HF__PRIVATE hf_result hf__fur_ropes(hf_fur *f, hf__fur_build *b)
     f->root_pos = (float *)hf__fur_array(f, G * 3u, sizeof(float), &r);
     f->root_nrm = (float *)hf__fur_array(f, G * 3u, sizeof(float), &r);
     f->root_tan = (float *)hf__fur_array(f, G * 3u, sizeof(float), &r);
-    f->guide_points = (float *)hf__fur_array(f, G * P * 3u, sizeof(float), &r);
-    f->strand_points = (float *)hf__fur_array(f, n_strands * P * 3u, sizeof(float), &r);
+    f->guide_points = hf__fur_lines(f, G * P * 3u, &r);
+    f->strand_points = hf__fur_lines(f, n_strands * P * 3u, &r);
     if (r != HF_OK) return r;
     HF_MEMCPY(f->guide_points, b->rest_points, sizeof(float) * G * P * 3u);
     if ((r = hf_ropes_create(f->guide_count, f->P, &f->alloc, &f->ropes)) !=
@@ -12141,10 +12176,9 @@ HF__PRIVATE hf_result hf__groom_build(hf_fur *f, const hf_groom_desc *d,
     f->strand_rgba = (float *)hf__fur_array(f, (size_t)S * 4u, sizeof(float), &r);
     f->strand_uv = (float *)hf__fur_array(f, (size_t)S * 2u, sizeof(float), &r);
     f->strand_c3x = (float *)hf__fur_array(f, (size_t)S, sizeof(float), &r);
-    f->strand_points = (float *)hf__fur_array(f, SP3, sizeof(float), &r);
+    f->strand_points = hf__fur_lines(f, SP3, &r);
     f->offsets = (float *)hf__fur_array(f, SP3, sizeof(float), &r);
-    f->guide_points = (float *)hf__fur_array(f, (size_t)G * (size_t)P * 3u,
-                                             sizeof(float), &r);
+    f->guide_points = hf__fur_lines(f, (size_t)G * (size_t)P * 3u, &r);
     f->root_pos = (float *)hf__fur_array(f, (size_t)G * 3u, sizeof(float), &r);
     f->root_nrm = (float *)hf__fur_array(f, (size_t)G * 3u, sizeof(float), &r);
     f->root_tan = (float *)hf__fur_array(f, (size_t)G * 3u, sizeof(float), &r);

@@ -8612,6 +8612,71 @@ static void test_fur_no_allocation_per_frame(void)
     free(vbuf);
 }
 
+/* An allocator whose blocks start 16 bytes past a 64-byte boundary (as
+   malloc's may): the fur still puts its guide and strand points on 64-byte
+   boundaries, and frees what it was given (ASan checks the frees). */
+static void *t_skew_alloc(size_t size, void *user)
+{
+    unsigned char *raw = (unsigned char *)malloc(size + 144), *p;
+    (void)user;
+    if (!raw) return NULL;
+    p = (unsigned char *)(((uintptr_t)raw + 63) & ~(uintptr_t)63) + 80;
+    memcpy(p - sizeof raw, &raw, sizeof raw);
+    return p;
+}
+static void t_skew_free(void *p, void *user)
+{
+    unsigned char *raw;
+    (void)user;
+    if (!p) return;
+    memcpy(&raw, (unsigned char *)p - sizeof raw, sizeof raw);
+    free(raw);
+}
+
+static void test_fur_points_aligned(void)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    hf_groom_desc gd;
+    float pts[TG_S * TG_P * 3];
+    int npts[TG_S];
+    hf_allocator a;
+    void *probe;
+    a.alloc = t_skew_alloc;
+    a.realloc = NULL;
+    a.free = t_skew_free;
+    a.user = NULL;
+    probe = t_skew_alloc(16, NULL);
+    CHECK(((uintptr_t)probe & 63u) == 16u);
+    t_skew_free(probe, NULL);
+    t_fur_scene_init(&sc, 1.0f);
+    sc.desc.allocator = &a;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (f) {
+        CHECK_EQ_INT(hf_fur_get_info(f, &info), HF_OK);
+        CHECK(((uintptr_t)info.guide_points & 63u) == 0);
+        CHECK(((uintptr_t)info.strand_points & 63u) == 0);
+        CHECK_EQ_INT(hf_fur_interpolate(f, 0, info.strand_count), HF_OK);
+        hf_fur_destroy(f);
+    }
+    t_groom_make(pts, npts);
+    memset(&gd, 0, sizeof gd);
+    gd.points = pts;
+    gd.strand_points = npts;
+    gd.strand_count = TG_S;
+    gd.guide_fraction = 0.2f;
+    gd.allocator = &a;
+    f = NULL;
+    CHECK_EQ_INT(hf_fur_create_groom(&gd, &f, NULL), HF_OK);
+    if (f) {
+        CHECK_EQ_INT(hf_fur_get_info(f, &info), HF_OK);
+        CHECK(((uintptr_t)info.guide_points & 63u) == 0);
+        CHECK(((uintptr_t)info.strand_points & 63u) == 0);
+        hf_fur_destroy(f);
+    }
+}
+
 /* Every styling option of hf_fur_desc at once */
 static void t_fur_style_all(hf_fur_desc *d)
 {
@@ -9859,6 +9924,7 @@ int main(void)
     RUN(test_fur_control_maps);
     RUN(test_diagnostics_read_back);
     RUN(test_fur_no_allocation_per_frame);
+    RUN(test_fur_points_aligned);
     RUN(test_fur_ranges_byte_identical);
     RUN(test_fur_interpolate_points);
     RUN(test_interp_points_kernels);
