@@ -6,7 +6,9 @@
      S  about 367 guides, 3,670 strands (the 2010 plugin's Krystal)
      M  ten times S
      L  100,000 strands on about 1,000 guides
-   Stages: roots, ropes, lod_guides, strands (interpolation), ribbons
+   Stages: roots, ropes, lod_guides, strands (interpolation, with the
+   fur's default stores: streaming for M and L, whose strand points are
+   larger than HF_STREAM_MIN_BYTES, ordinary for S), ribbons
    (36-byte float vertices: position, tangent, texcoord), points (the GPU
    path, 16 bytes a point), ribbons16 (the same attributes in 16 bytes:
    SNORM16 position, UNORM16 texcoord, SNORM8 tangent), interp_points
@@ -177,6 +179,18 @@ static void scene_pose(scene *s, int frame)
     s->col.a[0] = dx;
 }
 
+/* A buffer aligned as a mapped OpenGL buffer is (and the write limit's,
+   so that both are measured alike). */
+static void *mapped_like(size_t bytes)
+{
+    void *q = NULL;
+    if (posix_memalign(&q, 64, bytes)) {
+        fprintf(stderr, "bench: out of memory (%zu bytes)\n", bytes);
+        exit(1);
+    }
+    return q;
+}
+
 static void scene_init(scene *s, const char *name, int rings, int segments,
                        int strands, float tess_factor)
 {
@@ -226,17 +240,12 @@ static void scene_init(scene *s, const char *name, int rings, int segments,
     hf_fur_get_info(s->fur, &s->info);
     s->skin = (hm_vertex *)malloc(sizeof(hm_vertex) * (size_t)s->head.vertex_count);
     nv = (size_t)s->info.strand_count * P * 2u;
-    s->vbuf = (float *)malloc(nv * 36u);
-    {
-        /* the GPU path's points go to a mapped buffer, which OpenGL
-           aligns to at least 64 bytes (GL_MIN_MAP_BUFFER_ALIGNMENT) */
-        void *q = NULL;
-        if (posix_memalign(&q, 64, (size_t)s->info.strand_count * P * 16u))
-            q = NULL;
-        s->pbuf = (float *)q;
-    }
-    s->cbuf = (unsigned char *)malloc(nv * 16u);
-    if (!s->skin || !s->vbuf || !s->pbuf || !s->cbuf) exit(1);
+    /* the vertices go to mapped buffers, which OpenGL aligns to at least
+       64 bytes (GL_MIN_MAP_BUFFER_ALIGNMENT) */
+    s->vbuf = (float *)mapped_like(nv * 36u);
+    s->pbuf = (float *)mapped_like((size_t)s->info.strand_count * P * 16u);
+    s->cbuf = (unsigned char *)mapped_like(nv * 16u);
+    if (!s->skin) exit(1);
     memset(s->vbuf, 0, nv * 36u); /* fault the pages in before timing */
     memset(s->cbuf, 0, nv * 16u);
     memset(s->pbuf, 0, (size_t)s->info.strand_count * P * 16u);
@@ -522,7 +531,7 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
     {
         long allocs = g_allocs - allocs0;
         size_t big = (size_t)s->info.strand_count * P * 2u * 36u;
-        float *dst = (float *)malloc(big);
+        float *dst = (float *)mapped_like(big);
         memset(dst, 1, big);
         for (k = 0; k < ST_N; ++k) {
             figure fg = stats(t[k], frames);
@@ -543,7 +552,8 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
 
 /* The stages with SIMD kernels, per level (hf_simd_level), one thread:
    what each level buys on this CPU, and what streaming stores buy
-   (strands_nt: hf_fur_set_kernels' nontemporal; points_nt and ribbons_nt:
+   (strands: ordinary stores, strands_nt: streaming, hf_fur_set_kernels'
+   nontemporal 2 and 1; points_nt and ribbons_nt:
    hf_ribbon_params.nontemporal, meant for mapped GPU buffers). Levels the
    CPU lacks are skipped (they would run as the best it has). */
 static const char *level_name[] = {"auto", "scalar", "sse2", "avx2",
@@ -566,7 +576,7 @@ static void bench_levels(scene *s, int frames)
     double *t[LV_N], bytes[LV_N];
     int f, level, k, best = hf_simd_resolve(HF_SIMD_AUTO);
     size_t big = (size_t)s->info.strand_count * P * 2u * 36u;
-    float *dst = (float *)malloc(big);
+    float *dst = (float *)mapped_like(big);
     g_sc = s;
     g_threads = 1;
     jobs[0].fn = j_interp;
@@ -593,7 +603,9 @@ static void bench_levels(scene *s, int frames)
             for (k = 0; k < LV_N; ++k) {
                 const int nt = nt_of[k];
                 double t0;
-                check("kernels", hf_fur_set_kernels(s->fur, level, nt));
+                /* the fur's 2: ordinary stores (its 0 chooses by size) */
+                check("kernels",
+                      hf_fur_set_kernels(s->fur, level, nt ? 1 : 2));
                 g_view.nontemporal = nt;
                 t0 = now_ms();
                 run_job(&jobs[job_of[k]]);
@@ -638,7 +650,7 @@ static void bench_lod_guides(scene *s, int frames)
     for (th = 1; th <= MAX_THREADS; ++th) {
         double bytes = (double)s->info.lod_guide_count * P * 12.0, limit;
         size_t b = (size_t)bytes;
-        float *dst = (float *)malloc(b);
+        float *dst = (float *)mapped_like(b);
         g_threads = th;
         for (f = -10; f < frames; ++f) {
             double t0;
@@ -765,7 +777,7 @@ static void bench_bandwidth(void)
 {
     /* the write limit for scene L's ribbons, each way, printed on its own */
     size_t bytes = (size_t)100000 * P * 2u * 36u;
-    float *dst = (float *)malloc(bytes);
+    float *dst = (float *)mapped_like(bytes);
     double sc, ms, zs, vec = 0.0, str = 0.0, best;
     memset(dst, 1, bytes);
     sc = store_gbps(dst, bytes, 7);

@@ -9709,9 +9709,9 @@ static void test_fur_teleport(void)
     hf_fur_destroy(ref);
 }
 
-/* hf_fur_set_kernels: every SIMD level, with and without streaming
-   stores, gives the fur's strands the same bytes (styled, clumped); bad
-   choices are refused and change nothing. */
+/* hf_fur_set_kernels: every SIMD level, with stores by size, streaming or
+   ordinary, gives the fur's strands the same bytes (styled, clumped); bad
+   choices are refused and change nothing, at creation with a message. */
 static void test_fur_kernels_same_bytes(void)
 {
     t_fur_scene sc;
@@ -9735,7 +9735,7 @@ static void test_fur_kernels_same_bytes(void)
     hf_fur_interpolate(f, 0, info.strand_count);
     memcpy(ref, info.strand_points, n * sizeof(float));
     for (level = HF_SIMD_AUTO; level <= HF_SIMD_AVX512; ++level)
-        for (nt = 0; nt < 2; ++nt) {
+        for (nt = 0; nt <= 2; ++nt) {
             memset((float *)info.strand_points, 0, n * sizeof(float));
             CHECK_EQ_INT(hf_fur_set_kernels(f, level, nt), HF_OK);
             hf_fur_interpolate(f, 0, info.strand_count);
@@ -9743,8 +9743,20 @@ static void test_fur_kernels_same_bytes(void)
         }
     CHECK_EQ_INT(hf_fur_set_kernels(f, 5, 0), HF_ERROR_BAD_PARAMETER);
     CHECK_EQ_INT(hf_fur_set_kernels(f, -1, 0), HF_ERROR_BAD_PARAMETER);
-    CHECK_EQ_INT(hf_fur_set_kernels(f, 0, 2), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_fur_set_kernels(f, 0, 3), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_fur_set_kernels(f, 0, -1), HF_ERROR_BAD_PARAMETER);
     CHECK_EQ_INT(hf_fur_set_kernels(NULL, 0, 0), HF_ERROR_NULL_POINTER);
+    {
+        hf_fur *g = NULL;
+        hf_diag d;
+        sc.desc.nontemporal = 3;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &g, &d), HF_ERROR_BAD_PARAMETER);
+        CHECK(g == NULL && strstr(d.message, "nontemporal 3") != NULL);
+        sc.desc.nontemporal = 2;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &g, &d), HF_OK);
+        hf_fur_destroy(g);
+        sc.desc.nontemporal = 0;
+    }
     /* hf_simd_resolve: auto is the best, a request is never raised */
     CHECK(hf_simd_resolve(HF_SIMD_AUTO) >= HF_SIMD_SCALAR);
     CHECK(hf_simd_resolve(HF_SIMD_SCALAR) == HF_SIMD_SCALAR);
