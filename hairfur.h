@@ -7809,56 +7809,69 @@ HF__INLINE int hf__stream_mode(int nt, const void *o, uintptr_t whole)
 /* (1 - sc) root of a strand in lanes 0-2 (lane 3: unused), the scalar
    root's operations in its order; the wide kernels spread it in its
    phases with one permute each. */
-HF__INLINE __m128 hf__interp_root4(const hf__istrand *t)
+HF__INLINE __m128 hf__interp_root4(const hf_strand_binding *b,
+                                   const float *g0, const float *g1,
+                                   const float *g2)
 {
-    const __m128 w0 = _mm_set1_ps(t->w0), w1 = _mm_set1_ps(t->w1);
-    const __m128 w2 = _mm_set1_ps(t->w2);
     return _mm_mul_ps(
-        _mm_set1_ps(1.0f - t->sc),
-        _mm_add_ps(_mm_add_ps(_mm_mul_ps(w0, _mm_loadu_ps(t->g0)),
-                              _mm_mul_ps(w1, _mm_loadu_ps(t->g1))),
-                   _mm_mul_ps(w2, _mm_loadu_ps(t->g2))));
+        _mm_set1_ps(1.0f - b->length_scale),
+        _mm_add_ps(
+            _mm_add_ps(_mm_mul_ps(_mm_set1_ps(b->weight[0]), _mm_loadu_ps(g0)),
+                       _mm_mul_ps(_mm_set1_ps(b->weight[1]), _mm_loadu_ps(g1))),
+            _mm_mul_ps(_mm_set1_ps(b->weight[2]), _mm_loadu_ps(g2))));
 }
 
-/* A strand's weights, scale and root terms, eight lanes each. (1 - sc)
-   root repeats every 3 floats: the vectors at floats 0, 8, 16 have phases
-   0, 2, 1 (R0, R1, R2), spread from hf__interp_root4 by lane permutes. */
-typedef struct hf__iv8 {
-    __m256 W0, W1, W2, SC, R0, R1, R2;
-} hf__iv8;
+/* One strand's inputs at eight lanes, straight from its binding (through
+   hf__istrand, spilled to the stack, the strands ran 1.3x slower): its
+   guides (gn: the one it clumps to, NULL without clumping), weights,
+   scale, and (1 - sc) root in its phases at floats 0, 8, 16 (0, 2, 1;
+   it repeats every 3 floats). The kernels pass the run's fields in:
+   their vector stores may alias anything, so fields read through the run
+   would be read again after each. */
+typedef struct hf__is8 {
+    const float *g0, *g1, *g2, *gn;
+    __m256 W0, W1, W2, SC, R[3];
+} hf__is8;
 
-HF__TARGET_AVX2 HF__INLINE void hf__interp_prep8(const hf__istrand *t,
-                                                 hf__iv8 *v)
+HF__TARGET_AVX2 HF__INLINE void hf__strand8(const float *G, int clump,
+                                            const hf_strand_binding *b,
+                                            size_t n, hf__is8 *v)
 {
     const __m256i x0 = _mm256_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1);
     const __m256i x2 = _mm256_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0);
     const __m256i x1 = _mm256_setr_epi32(1, 2, 0, 1, 2, 0, 1, 2);
-    const __m128 r4 = hf__interp_root4(t);
-    const __m256 r = _mm256_insertf128_ps(_mm256_castps128_ps256(r4), r4, 1);
-    v->W0 = _mm256_set1_ps(t->w0);
-    v->W1 = _mm256_set1_ps(t->w1);
-    v->W2 = _mm256_set1_ps(t->w2);
-    v->SC = _mm256_set1_ps(t->sc);
-    v->R0 = _mm256_permutevar8x32_ps(r, x0);
-    v->R1 = _mm256_permutevar8x32_ps(r, x2);
-    v->R2 = _mm256_permutevar8x32_ps(r, x1);
+    __m128 r4;
+    __m256 r;
+    v->g0 = G + (size_t)b->guide[0] * n;
+    v->g1 = G + (size_t)b->guide[1] * n;
+    v->g2 = G + (size_t)b->guide[2] * n;
+    v->gn = clump ? G + hf__clump_guide(b) * n : NULL;
+    r4 = hf__interp_root4(b, v->g0, v->g1, v->g2);
+    r = _mm256_insertf128_ps(_mm256_castps128_ps256(r4), r4, 1);
+    v->R[0] = _mm256_permutevar8x32_ps(r, x0);
+    v->R[1] = _mm256_permutevar8x32_ps(r, x2);
+    v->R[2] = _mm256_permutevar8x32_ps(r, x1);
+    v->W0 = _mm256_set1_ps(b->weight[0]);
+    v->W1 = _mm256_set1_ps(b->weight[1]);
+    v->W2 = _mm256_set1_ps(b->weight[2]);
+    v->SC = _mm256_set1_ps(b->length_scale);
 }
 
-/* hf__interp_strand_sse, eight floats a vector: the same operations in
-   the same order (no FMA), so the same bytes. */
-HF__TARGET_AVX2 HF__INLINE __m256 hf__interp_v8(const hf__istrand *t,
-                                                const float *ctab, int i,
-                                                const hf__iv8 *v, __m256 R)
+/* Floats [q, q + 8) of the strand, in root phase R[k]: the operations of
+   hf__interp_strand_ref in its order (no FMA), so the same bytes. */
+HF__TARGET_AVX2 HF__INLINE __m256 hf__blend8(const hf__is8 *v,
+                                             const float *ctab, size_t q,
+                                             int k)
 {
     __m256 p = _mm256_add_ps(
-        _mm256_add_ps(_mm256_mul_ps(v->W0, _mm256_loadu_ps(t->g0 + i)),
-                      _mm256_mul_ps(v->W1, _mm256_loadu_ps(t->g1 + i))),
-        _mm256_mul_ps(v->W2, _mm256_loadu_ps(t->g2 + i)));
-    p = _mm256_add_ps(_mm256_mul_ps(v->SC, p), R);
-    if (t->gn)
+        _mm256_add_ps(_mm256_mul_ps(v->W0, _mm256_loadu_ps(v->g0 + q)),
+                      _mm256_mul_ps(v->W1, _mm256_loadu_ps(v->g1 + q))),
+        _mm256_mul_ps(v->W2, _mm256_loadu_ps(v->g2 + q)));
+    p = _mm256_add_ps(_mm256_mul_ps(v->SC, p), v->R[k]);
+    if (v->gn)
         p = _mm256_add_ps(
-            p, _mm256_mul_ps(_mm256_loadu_ps(ctab + i),
-                             _mm256_sub_ps(_mm256_loadu_ps(t->gn + i), p)));
+            p, _mm256_mul_ps(_mm256_loadu_ps(ctab + q),
+                             _mm256_sub_ps(_mm256_loadu_ps(v->gn + q), p)));
     return p;
 }
 
@@ -7877,98 +7890,70 @@ HF__TARGET_AVX2 HF__INLINE void hf__put8(float *o, __m256 q, int mode)
     }
 }
 
-/* hf__interp_groups_avx512 at eight lanes, for P a multiple of 8 (three
-   vectors a turn at floats 0, 8, 16: root phases 0, 2, 1, as
-   hf__interp_prep8). */
+/* The strands of a range whose strands are whole groups of three vectors
+   (P a multiple of 8), in one target function (no call per strand): the
+   stream mode once, since every strand's 12 P bytes keep the first's
+   alignment, and no tail (with one, the loop measured 1.1x slower). */
 HF__TARGET_AVX2 HF__PRIVATE void
 hf__interp_groups_avx2(const hf__irun *run, int first, int count)
 {
-    const __m256i x0 = _mm256_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1);
-    const __m256i x2 = _mm256_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0);
-    const __m256i x1 = _mm256_setr_epi32(1, 2, 0, 1, 2, 0, 1, 2);
     const size_t n = 3u * (size_t)run->P;
     const hf_strand_binding *b = run->bindings + first;
     const float *G = run->guides, *ctab = run->ctab;
+    const int clump = run->clump;
     float *o = run->out + (size_t)(first - run->out_first) * n;
     const int nt = hf__stream_mode(run->nt, o, 31u);
-    int s;
+    int s, k;
     for (s = 0; s < count; ++s, ++b, o += n) {
-        const float *g0 = G + (size_t)b->guide[0] * n,
-                    *g1 = G + (size_t)b->guide[1] * n,
-                    *g2 = G + (size_t)b->guide[2] * n, *gn = NULL;
-        const float w0 = b->weight[0], w1 = b->weight[1], w2 = b->weight[2];
-        const float sc = b->length_scale;
-        const __m128 r4 = _mm_mul_ps(
-            _mm_set1_ps(1.0f - sc),
-            _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(w0), _mm_loadu_ps(g0)),
-                                  _mm_mul_ps(_mm_set1_ps(w1), _mm_loadu_ps(g1))),
-                       _mm_mul_ps(_mm_set1_ps(w2), _mm_loadu_ps(g2))));
-        const __m256 r =
-            _mm256_insertf128_ps(_mm256_castps128_ps256(r4), r4, 1);
-        const __m256 R[3] = {_mm256_permutevar8x32_ps(r, x0),
-                             _mm256_permutevar8x32_ps(r, x2),
-                             _mm256_permutevar8x32_ps(r, x1)};
-        const __m256 W0 = _mm256_set1_ps(w0), W1 = _mm256_set1_ps(w1),
-                     W2 = _mm256_set1_ps(w2), SC = _mm256_set1_ps(sc);
+        hf__is8 v;
         size_t i;
-        int k;
-        if (run->clump) gn = G + hf__clump_guide(b) * n;
+        hf__strand8(G, clump, b, n, &v);
         for (i = 0; i < n; i += 24)
-            HF__UNROLL for (k = 0; k < 3; ++k) {
-                const size_t q = i + 8u * (size_t)k;
-                __m256 p = _mm256_add_ps(
-                    _mm256_add_ps(_mm256_mul_ps(W0, _mm256_loadu_ps(g0 + q)),
-                                  _mm256_mul_ps(W1, _mm256_loadu_ps(g1 + q))),
-                    _mm256_mul_ps(W2, _mm256_loadu_ps(g2 + q)));
-                p = _mm256_add_ps(_mm256_mul_ps(SC, p), R[k]);
-                if (gn)
-                    p = _mm256_add_ps(
-                        p, _mm256_mul_ps(_mm256_loadu_ps(ctab + q),
-                                         _mm256_sub_ps(_mm256_loadu_ps(gn + q),
-                                                       p)));
-                hf__put8(o + q, p, nt);
-            }
+            HF__UNROLL for (k = 0; k < 3; ++k)
+                hf__put8(o + i + 8u * (size_t)k,
+                         hf__blend8(&v, ctab, i + 8u * (size_t)k, k), nt);
     }
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 
-/* The strands of a range in one target function (no call per strand). */
+/* Any P: three vectors a turn, then one or two, then the scalar tail. */
 HF__TARGET_AVX2 HF__PRIVATE void
 hf__interp_range_avx2(const hf__irun *run, int first, int count)
 {
-    const int n = 3 * run->P;
-    hf__istrand t;
-    int s, i;
+    const size_t n = 3u * (size_t)run->P;
+    const hf_strand_binding *b = run->bindings + first;
+    const float *G = run->guides, *ctab = run->ctab;
+    const int clump = run->clump;
+    float *o = run->out + (size_t)(first - run->out_first) * n;
+    int s, k;
     if (n % 24 == 0) {
         hf__interp_groups_avx2(run, first, count);
         return;
     }
-    for (s = first; s < first + count; ++s) {
-        hf__iv8 v;
-        int nt;
-        hf__interp_setup(run, s, &t);
-        nt = hf__stream_mode(run->nt, t.o, 31u);
-        hf__interp_prep8(&t, &v);
-        for (i = 0; i + 24 <= n; i += 24) {
-            hf__put8(t.o + i, hf__interp_v8(&t, run->ctab, i, &v, v.R0), nt);
-            hf__put8(t.o + i + 8,
-                     hf__interp_v8(&t, run->ctab, i + 8, &v, v.R1), nt);
-            hf__put8(t.o + i + 16,
-                     hf__interp_v8(&t, run->ctab, i + 16, &v, v.R2), nt);
-        }
-        if (i + 8 <= n) {
-            hf__put8(t.o + i, hf__interp_v8(&t, run->ctab, i, &v, v.R0), nt);
+    for (s = first; s < first + count; ++s, ++b, o += n) {
+        const int nt = hf__stream_mode(run->nt, o, 31u);
+        hf__is8 v;
+        size_t i;
+        hf__strand8(G, clump, b, n, &v);
+        for (i = 0; i + 24 <= n; i += 24)
+            HF__UNROLL for (k = 0; k < 3; ++k)
+                hf__put8(o + i + 8u * (size_t)k,
+                         hf__blend8(&v, ctab, i + 8u * (size_t)k, k), nt);
+        if (i + 8 <= n) { /* the phases by constants: v stays in registers */
+            hf__put8(o + i, hf__blend8(&v, ctab, i, 0), nt);
             i += 8;
         }
         if (i + 8 <= n) {
-            hf__put8(t.o + i, hf__interp_v8(&t, run->ctab, i, &v, v.R1), nt);
+            hf__put8(o + i, hf__blend8(&v, ctab, i, 1), nt);
             i += 8;
         }
         if (i < n) {
+            hf__istrand t;
             /* the tail is SSE code: with the upper halves dirty it would
                run at half speed or worse */
             _mm256_zeroupper();
-            hf__interp_tail(run, &t, i);
+            hf__interp_setup(run, s, &t);
+            hf__interp_tail(run, &t, (int)i);
         }
     }
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
@@ -7976,13 +7961,15 @@ hf__interp_range_avx2(const hf__irun *run, int first, int count)
 #endif
 
 #if HF__AVX512
-/* hf__iv8 at sixteen lanes: phases 0, 1, 2 at floats 0, 16, 32. */
-typedef struct hf__iv16 {
-    __m512 W0, W1, W2, SC, R0, R1, R2;
-} hf__iv16;
+/* hf__is8 at sixteen lanes: root phases 0, 1, 2 at floats 0, 16, 32. */
+typedef struct hf__is16 {
+    const float *g0, *g1, *g2, *gn;
+    __m512 W0, W1, W2, SC, R[3];
+} hf__is16;
 
-HF__TARGET_AVX512 HF__INLINE void hf__interp_prep16(const hf__istrand *t,
-                                                   hf__iv16 *v)
+HF__TARGET_AVX512 HF__INLINE void hf__strand16(const float *G, int clump,
+                                              const hf_strand_binding *b,
+                                              size_t n, hf__is16 *v)
 {
     const __m512i x0 = _mm512_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,
                                          0, 1, 2, 0);
@@ -7990,31 +7977,35 @@ HF__TARGET_AVX512 HF__INLINE void hf__interp_prep16(const hf__istrand *t,
                                          1, 2, 0, 1);
     const __m512i x2 = _mm512_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1,
                                          2, 0, 1, 2);
-    const __m512 r = _mm512_castps128_ps512(hf__interp_root4(t));
-    v->W0 = _mm512_set1_ps(t->w0);
-    v->W1 = _mm512_set1_ps(t->w1);
-    v->W2 = _mm512_set1_ps(t->w2);
-    v->SC = _mm512_set1_ps(t->sc);
-    v->R0 = _mm512_maskz_permutexvar_ps(0xffff, x0, r);
-    v->R1 = _mm512_maskz_permutexvar_ps(0xffff, x1, r);
-    v->R2 = _mm512_maskz_permutexvar_ps(0xffff, x2, r);
+    __m512 r;
+    v->g0 = G + (size_t)b->guide[0] * n;
+    v->g1 = G + (size_t)b->guide[1] * n;
+    v->g2 = G + (size_t)b->guide[2] * n;
+    v->gn = clump ? G + hf__clump_guide(b) * n : NULL;
+    r = _mm512_castps128_ps512(hf__interp_root4(b, v->g0, v->g1, v->g2));
+    v->R[0] = _mm512_maskz_permutexvar_ps(0xffff, x0, r);
+    v->R[1] = _mm512_maskz_permutexvar_ps(0xffff, x1, r);
+    v->R[2] = _mm512_maskz_permutexvar_ps(0xffff, x2, r);
+    v->W0 = _mm512_set1_ps(b->weight[0]);
+    v->W1 = _mm512_set1_ps(b->weight[1]);
+    v->W2 = _mm512_set1_ps(b->weight[2]);
+    v->SC = _mm512_set1_ps(b->length_scale);
 }
 
-/* Sixteen floats a vector: the operations of hf__interp_v8. */
-HF__TARGET_AVX512 HF__INLINE __m512 hf__interp_v16(const hf__istrand *t,
-                                                   const float *ctab, int i,
-                                                   const hf__iv16 *v,
-                                                   __m512 R)
+/* Sixteen floats a vector: the operations of hf__blend8. */
+HF__TARGET_AVX512 HF__INLINE __m512 hf__blend16(const hf__is16 *v,
+                                               const float *ctab, size_t q,
+                                               int k)
 {
     __m512 p = _mm512_add_ps(
-        _mm512_add_ps(_mm512_mul_ps(v->W0, _mm512_loadu_ps(t->g0 + i)),
-                      _mm512_mul_ps(v->W1, _mm512_loadu_ps(t->g1 + i))),
-        _mm512_mul_ps(v->W2, _mm512_loadu_ps(t->g2 + i)));
-    p = _mm512_add_ps(_mm512_mul_ps(v->SC, p), R);
-    if (t->gn)
+        _mm512_add_ps(_mm512_mul_ps(v->W0, _mm512_loadu_ps(v->g0 + q)),
+                      _mm512_mul_ps(v->W1, _mm512_loadu_ps(v->g1 + q))),
+        _mm512_mul_ps(v->W2, _mm512_loadu_ps(v->g2 + q)));
+    p = _mm512_add_ps(_mm512_mul_ps(v->SC, p), v->R[k]);
+    if (v->gn)
         p = _mm512_add_ps(
-            p, _mm512_mul_ps(_mm512_loadu_ps(ctab + i),
-                             _mm512_sub_ps(_mm512_loadu_ps(t->gn + i), p)));
+            p, _mm512_mul_ps(_mm512_loadu_ps(ctab + q),
+                             _mm512_sub_ps(_mm512_loadu_ps(v->gn + q), p)));
     return p;
 }
 
@@ -8034,102 +8025,67 @@ HF__TARGET_AVX512 HF__INLINE void hf__put16(float *o, __m512 p, int mode)
     }
 }
 
-/* hf__interp_range_avx512 for P a multiple of 16, a strand three whole
-   vectors a turn: its set-up in locals straight from the binding, and the
-   stream mode once (every strand's 12 P bytes are whole lines, so all
-   share the first's alignment). The same operations as hf__interp_v16;
-   measured on 100,000 strands of 16 points, its work (stores taken out)
-   0.71 to 0.55 ms against the general loop below. */
+/* hf__interp_groups_avx2 at sixteen lanes (P a multiple of 16). */
 HF__TARGET_AVX512 HF__PRIVATE void
 hf__interp_groups_avx512(const hf__irun *run, int first, int count)
 {
-    const __m512i x0 = _mm512_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,
-                                         0, 1, 2, 0);
-    const __m512i x1 = _mm512_setr_epi32(1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0,
-                                         1, 2, 0, 1);
-    const __m512i x2 = _mm512_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1,
-                                         2, 0, 1, 2);
     const size_t n = 3u * (size_t)run->P;
     const hf_strand_binding *b = run->bindings + first;
     const float *G = run->guides, *ctab = run->ctab;
+    const int clump = run->clump;
     float *o = run->out + (size_t)(first - run->out_first) * n;
     const int nt = hf__stream_mode(run->nt, o, 63u);
-    int s;
+    int s, k;
     for (s = 0; s < count; ++s, ++b, o += n) {
-        const float *g0 = G + (size_t)b->guide[0] * n,
-                    *g1 = G + (size_t)b->guide[1] * n,
-                    *g2 = G + (size_t)b->guide[2] * n, *gn = NULL;
-        const float w0 = b->weight[0], w1 = b->weight[1], w2 = b->weight[2];
-        const float sc = b->length_scale;
-        /* hf__interp_root4, and its three phases */
-        const __m512 r = _mm512_castps128_ps512(_mm_mul_ps(
-            _mm_set1_ps(1.0f - sc),
-            _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(w0), _mm_loadu_ps(g0)),
-                                  _mm_mul_ps(_mm_set1_ps(w1), _mm_loadu_ps(g1))),
-                       _mm_mul_ps(_mm_set1_ps(w2), _mm_loadu_ps(g2)))));
-        const __m512 R[3] = {_mm512_maskz_permutexvar_ps(0xffff, x0, r),
-                             _mm512_maskz_permutexvar_ps(0xffff, x1, r),
-                             _mm512_maskz_permutexvar_ps(0xffff, x2, r)};
-        const __m512 W0 = _mm512_set1_ps(w0), W1 = _mm512_set1_ps(w1),
-                     W2 = _mm512_set1_ps(w2), SC = _mm512_set1_ps(sc);
+        hf__is16 v;
         size_t i;
-        int k;
-        if (run->clump) gn = G + hf__clump_guide(b) * n;
+        hf__strand16(G, clump, b, n, &v);
         for (i = 0; i < n; i += 48)
-            HF__UNROLL for (k = 0; k < 3; ++k) {
-                const size_t q = i + 16u * (size_t)k;
-                __m512 p = _mm512_add_ps(
-                    _mm512_add_ps(_mm512_mul_ps(W0, _mm512_loadu_ps(g0 + q)),
-                                  _mm512_mul_ps(W1, _mm512_loadu_ps(g1 + q))),
-                    _mm512_mul_ps(W2, _mm512_loadu_ps(g2 + q)));
-                p = _mm512_add_ps(_mm512_mul_ps(SC, p), R[k]);
-                if (gn)
-                    p = _mm512_add_ps(
-                        p, _mm512_mul_ps(_mm512_loadu_ps(ctab + q),
-                                         _mm512_sub_ps(_mm512_loadu_ps(gn + q),
-                                                       p)));
-                hf__put16(o + q, p, nt);
-            }
+            HF__UNROLL for (k = 0; k < 3; ++k)
+                hf__put16(o + i + 16u * (size_t)k,
+                          hf__blend16(&v, ctab, i + 16u * (size_t)k, k), nt);
     }
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 
+/* hf__interp_range_avx2 at sixteen lanes. */
 HF__TARGET_AVX512 HF__PRIVATE void
 hf__interp_range_avx512(const hf__irun *run, int first, int count)
 {
-    const int n = 3 * run->P;
-    hf__istrand t;
-    int s, i;
+    const size_t n = 3u * (size_t)run->P;
+    const hf_strand_binding *b = run->bindings + first;
+    const float *G = run->guides, *ctab = run->ctab;
+    const int clump = run->clump;
+    float *o = run->out + (size_t)(first - run->out_first) * n;
+    int s, k;
     if (n % 48 == 0) {
         hf__interp_groups_avx512(run, first, count);
         return;
     }
-    for (s = first; s < first + count; ++s) {
-        hf__iv16 v;
-        int nt;
-        hf__interp_setup(run, s, &t);
-        nt = hf__stream_mode(run->nt, t.o, 63u);
-        hf__interp_prep16(&t, &v);
-        for (i = 0; i + 48 <= n; i += 48) {
-            hf__put16(t.o + i, hf__interp_v16(&t, run->ctab, i, &v, v.R0), nt);
-            hf__put16(t.o + i + 16,
-                      hf__interp_v16(&t, run->ctab, i + 16, &v, v.R1), nt);
-            hf__put16(t.o + i + 32,
-                      hf__interp_v16(&t, run->ctab, i + 32, &v, v.R2), nt);
-        }
-        if (i + 16 <= n) {
-            hf__put16(t.o + i, hf__interp_v16(&t, run->ctab, i, &v, v.R0), nt);
+    for (s = first; s < first + count; ++s, ++b, o += n) {
+        const int nt = hf__stream_mode(run->nt, o, 63u);
+        hf__is16 v;
+        size_t i;
+        hf__strand16(G, clump, b, n, &v);
+        for (i = 0; i + 48 <= n; i += 48)
+            HF__UNROLL for (k = 0; k < 3; ++k)
+                hf__put16(o + i + 16u * (size_t)k,
+                          hf__blend16(&v, ctab, i + 16u * (size_t)k, k), nt);
+        if (i + 16 <= n) { /* the phases by constants: v stays in registers */
+            hf__put16(o + i, hf__blend16(&v, ctab, i, 0), nt);
             i += 16;
         }
         if (i + 16 <= n) {
-            hf__put16(t.o + i, hf__interp_v16(&t, run->ctab, i, &v, v.R1), nt);
+            hf__put16(o + i, hf__blend16(&v, ctab, i, 1), nt);
             i += 16;
         }
         if (i < n) {
+            hf__istrand t;
             /* the tail is SSE code: with the upper halves dirty it would
                run at half speed or worse */
             _mm256_zeroupper();
-            hf__interp_tail(run, &t, i);
+            hf__interp_setup(run, s, &t);
+            hf__interp_tail(run, &t, (int)i);
         }
     }
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
@@ -10152,20 +10108,21 @@ hf__interp_points_avx2(const hf__irun *run, const hf__points_kit *k,
     const __m256i hi = _mm256_setr_epi32(2, 3, 4, 0, 5, 6, 7, 0);
     const __m256 zero = _mm256_setzero_ps();
     const int P = run->P;
-    hf__istrand t;
+    const size_t n = 3u * (size_t)P;
+    const float *G = run->guides, *ctab = run->ctab;
+    const int clump = run->clump;
     int s, i, j;
     for (s = first; s < first + count; ++s) {
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
         const __m256 WS = _mm256_set1_ps(hf__strand_width(st, s));
         const int mode = hf__stream_mode(k->nt, o, 31u);
         __m256 acc = zero;
-        hf__iv8 v;
-        hf__interp_setup(run, s, &t);
-        hf__interp_prep8(&t, &v);
+        hf__is8 v;
+        hf__strand8(G, clump, run->bindings + s, n, &v);
         for (i = 0, j = 0; j < P; i += 24, j += 8) {
-            const __m256 a = hf__interp_v8(&t, run->ctab, i, &v, v.R0);
-            const __m256 b = hf__interp_v8(&t, run->ctab, i + 8, &v, v.R1);
-            const __m256 c = hf__interp_v8(&t, run->ctab, i + 16, &v, v.R2);
+            const __m256 a = hf__blend8(&v, ctab, (size_t)i, 0);
+            const __m256 b = hf__blend8(&v, ctab, (size_t)i + 8, 1);
+            const __m256 c = hf__blend8(&v, ctab, (size_t)i + 16, 2);
             acc = _mm256_add_ps(acc, _mm256_mul_ps(a, zero));
             acc = _mm256_add_ps(acc, _mm256_mul_ps(b, zero));
             acc = _mm256_add_ps(acc, _mm256_mul_ps(c, zero));
@@ -10223,20 +10180,21 @@ hf__interp_points_avx512(const hf__irun *run, const hf__points_kit *k,
                                          0, 13, 14, 15, 0);
     const __m512 zero = _mm512_setzero_ps();
     const int P = run->P;
-    hf__istrand t;
+    const size_t n = 3u * (size_t)P;
+    const float *G = run->guides, *ctab = run->ctab;
+    const int clump = run->clump;
     int s, i, j;
     for (s = first; s < first + count; ++s) {
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
         const __m512 WS = _mm512_set1_ps(hf__strand_width(st, s));
         const int mode = hf__stream_mode(k->nt, o, 63u);
         __m512 acc = zero;
-        hf__iv16 v;
-        hf__interp_setup(run, s, &t);
-        hf__interp_prep16(&t, &v);
+        hf__is16 v;
+        hf__strand16(G, clump, run->bindings + s, n, &v);
         for (i = 0, j = 0; j < P; i += 48, j += 16) {
-            const __m512 a = hf__interp_v16(&t, run->ctab, i, &v, v.R0);
-            const __m512 b = hf__interp_v16(&t, run->ctab, i + 16, &v, v.R1);
-            const __m512 c = hf__interp_v16(&t, run->ctab, i + 32, &v, v.R2);
+            const __m512 a = hf__blend16(&v, ctab, (size_t)i, 0);
+            const __m512 b = hf__blend16(&v, ctab, (size_t)i + 16, 1);
+            const __m512 c = hf__blend16(&v, ctab, (size_t)i + 32, 2);
             acc = _mm512_add_ps(acc, _mm512_mul_ps(a, zero));
             acc = _mm512_add_ps(acc, _mm512_mul_ps(b, zero));
             acc = _mm512_add_ps(acc, _mm512_mul_ps(c, zero));
