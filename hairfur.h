@@ -11725,78 +11725,116 @@ HF__PRIVATE hf_result hf__fur_bind(hf_fur *f, hf__fur_build *b)
 }
 
 /* Clump leaders (hf_fur_desc.clump_size): in LOD order, a strand whose
-   root has no leader within its clump size (clump_size, times the
+   root has no leader within its clump radius (clump_size, times the
    clump_size_map there) becomes one; every other strand clumps to its
-   nearest leader. A hash grid of clump_size cells keeps it linear (a
-   strand's own size is never larger). */
+   nearest leader. A hash grid of cells as wide as the largest radius in
+   use keeps it linear, and a cell (a hash bucket) takes at most
+   HF__CLUMP_CELL leaders: where a map makes radii far smaller than the
+   largest, leaders would crowd a cell and every strand near it would
+   test them all (906,642 strands took minutes); a strand that would
+   lead one more there stands alone instead. Leaders are at least a
+   radius apart, so with radii within a factor of about 3 of the largest
+   a cell never fills. */
+#define HF__CLUMP_CELL 16
+HF__PRIVATE long long hf__clump_cell(double x)
+{
+    x = HF_FLOOR(x); /* clamped: the cast of a larger one is undefined */
+    return (long long)(x > 4e18 ? 4e18 : x < -4e18 ? -4e18 : x);
+}
+
 HF__PRIVATE hf_result hf__fur_clumps(hf_fur *f, hf__fur_build *b)
 {
     const int S = f->strand_count, P = f->P;
     const float size = b->desc.clump_size;
-    const double inv = size > 0.0f ? 1.0 / size : 0.0;
+    double inv, rmax = 0.0;
     hf_result r = HF_OK;
-    float *root;
+    float *root, *r2;
     uint32_t *head, *next, cap = 1;
+    unsigned char *fill;
     int i, k;
     if (!(size > 0.0f) || b->desc.clump == 0.0f || S == 0) return HF_OK;
     while (cap < 2u * (uint32_t)S && cap < (1u << 30)) cap <<= 1;
     f->leader = (uint32_t *)hf__fur_array(f, (size_t)S, sizeof(uint32_t), &r);
     root = (float *)hf__fur_array(f, (size_t)S * 3u, sizeof(float), &r);
+    r2 = (float *)hf__fur_array(f, (size_t)S, sizeof(float), &r);
     head = (uint32_t *)hf__fur_array(f, cap, sizeof(uint32_t), &r);
+    fill = (unsigned char *)hf__fur_array(f, cap, 1, &r);
     next = (uint32_t *)hf__fur_array(f, (size_t)S, sizeof(uint32_t), &r);
     if (r != HF_OK) goto done;
-    for (i = 0; i < (int)cap; ++i) head[i] = 0xffffffffu;
-    for (i = 0; i < S; ++i) { /* rest roots: the blend of the guides' */
+    for (i = 0; i < (int)cap; ++i) {
+        head[i] = 0xffffffffu;
+        fill[i] = 0;
+    }
+    for (i = 0; i < S; ++i) { /* rest roots (the blend of the guides'), radii */
         const hf_strand_binding *bd = &f->bindings[i];
+        double ri = size;
         for (k = 0; k < 3; ++k)
             root[3 * i + k] =
                 bd->weight[0] * b->rest_points[(size_t)bd->guide[0] * (size_t)P * 3u + (size_t)k] +
                 bd->weight[1] * b->rest_points[(size_t)bd->guide[1] * (size_t)P * 3u + (size_t)k] +
                 bd->weight[2] * b->rest_points[(size_t)bd->guide[2] * (size_t)P * 3u + (size_t)k];
-    }
-    for (i = 0; i < S; ++i) {
-        const float *q = root + 3 * i;
-        long long c[3];
-        double best = (double)size * size;
-        uint32_t lead = 0xffffffffu, h;
-        int dx, dy, dz;
         if (b->desc.clump_size_map) {
             float m = hf__map_at(b->desc.clump_size_map, f->strands[i].uv);
             m = m > 0.0f ? (m < 1.0f ? m : 1.0f) : 0.0f; /* NaN: 0 */
-            best = ((double)size * m) * ((double)size * m);
+            ri = (double)size * m;
         }
-        for (k = 0; k < 3; ++k) c[k] = (long long)HF_FLOOR(q[k] * inv);
-        for (dx = -1; dx <= 1; ++dx)
-            for (dy = -1; dy <= 1; ++dy)
-                for (dz = -1; dz <= 1; ++dz) {
-                    uint64_t key = (uint64_t)(c[0] + dx) * 73856093u ^
-                                   (uint64_t)(c[1] + dy) * 19349663u ^
-                                   (uint64_t)(c[2] + dz) * 83492791u;
-                    uint32_t j = head[(uint32_t)(key ^ (key >> 29)) & (cap - 1)];
-                    for (; j != 0xffffffffu; j = next[j]) {
-                        const float *p = root + 3 * j;
-                        double e = ((double)p[0] - q[0]) * ((double)p[0] - q[0]) +
-                                   ((double)p[1] - q[1]) * ((double)p[1] - q[1]) +
-                                   ((double)p[2] - q[2]) * ((double)p[2] - q[2]);
-                        if (e < best) { best = e; lead = j; }
+        r2[i] = (float)(ri * ri);
+        if (ri > rmax) rmax = ri;
+    }
+    inv = rmax > 0.0 ? 1.0 / rmax : 0.0;
+    for (i = 0; i < S; ++i) {
+        const float *q = root + 3 * i;
+        long long c[3];
+        double best = r2[i];
+        const double ri = HF_SQRT(best);
+        uint32_t lead = 0xffffffffu, h;
+        int dx, dy, dz, lo[3], hi[3];
+        for (k = 0; k < 3; ++k) {
+            c[k] = hf__clump_cell(q[k] * inv);
+            /* the neighbour cells the radius reaches (all of them for the
+               largest radius): the same candidates in the same order as
+               all 27, fewer where radii are small */
+            lo[k] = hf__clump_cell((q[k] - ri) * inv) < c[k] ? -1 : 0;
+            hi[k] = hf__clump_cell((q[k] + ri) * inv) > c[k] ? 1 : 0;
+        }
+        if (best > 0.0)
+            for (dx = lo[0]; dx <= hi[0]; ++dx)
+                for (dy = lo[1]; dy <= hi[1]; ++dy)
+                    for (dz = lo[2]; dz <= hi[2]; ++dz) {
+                        uint64_t key = (uint64_t)(c[0] + dx) * 73856093u ^
+                                       (uint64_t)(c[1] + dy) * 19349663u ^
+                                       (uint64_t)(c[2] + dz) * 83492791u;
+                        uint32_t j = head[(uint32_t)(key ^ (key >> 29)) & (cap - 1)];
+                        for (; j != 0xffffffffu; j = next[j]) {
+                            const float *p = root + 3 * j;
+                            double e = ((double)p[0] - q[0]) * ((double)p[0] - q[0]) +
+                                       ((double)p[1] - q[1]) * ((double)p[1] - q[1]) +
+                                       ((double)p[2] - q[2]) * ((double)p[2] - q[2]);
+                            if (e < best) { best = e; lead = j; }
+                        }
                     }
-                }
         if (lead == 0xffffffffu) { /* a new leader, into its cell */
             uint64_t key = (uint64_t)c[0] * 73856093u ^ (uint64_t)c[1] * 19349663u ^
                            (uint64_t)c[2] * 83492791u;
             h = (uint32_t)(key ^ (key >> 29)) & (cap - 1);
-            next[i] = head[h];
-            head[h] = (uint32_t)i;
+            if (r2[i] > 0.0f && fill[h] < HF__CLUMP_CELL) {
+                next[i] = head[h];
+                head[h] = (uint32_t)i;
+                ++fill[h];
+            }
             lead = (uint32_t)i;
         }
         f->leader[i] = lead;
     }
 done:
     hf__free(&f->alloc, root);
+    hf__free(&f->alloc, r2);
     hf__free(&f->alloc, head);
+    hf__free(&f->alloc, fill);
     hf__free(&f->alloc, next);
     return r;
 }
+#undef HF__CLUMP_CELL
 
 /* Clumping strand by strand (clump_size or clump_map): point j moves
    clump * j / (P - 1) of the way to the leader's point j (the leader's

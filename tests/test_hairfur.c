@@ -8243,6 +8243,77 @@ static int t_distinct_tips(const hf_fur_info *info)
 /* clump_size: with clump 1 every tip lands on its leader's, so there are
    as many distinct tips as leaders: few for large clumps, more for small
    ones; leaders are clump_size apart. Ranges give the same bytes. */
+/* Clump leaders against a brute-force search (the library's own fields:
+   this file builds the implementation): in strand order, a strand with
+   no earlier leader within its radius leads, every other one follows
+   the nearest earlier leader, which lies within its radius. Radii from
+   no map and from a grey one (the grid's cells follow the largest radius
+   in use); roots recomputed here, so distances compare within 1e-5. */
+static void test_fur_clump_leaders_nearest(void)
+{
+    unsigned char grey = 170;
+    hf_map mg;
+    int pass;
+    memset(&mg, 0, sizeof mg);
+    mg.data = &grey;
+    mg.width = mg.height = mg.channels = 1;
+    for (pass = 0; pass < 2; ++pass) {
+        t_fur_scene sc;
+        hf_fur *f = NULL;
+        hf_fur_info info;
+        float *root;
+        double r, r2;
+        int S, P, i, j, bad = 0, leaders = 0;
+        t_fur_scene_init(&sc, 1.0f);
+        sc.desc.clump = 1.0f;
+        sc.desc.clump_size = 0.25f;
+        sc.desc.clump_size_map = pass ? &mg : NULL;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+        if (!f) return;
+        hf_fur_get_info(f, &info);
+        S = info.strand_count;
+        P = info.points_per_strand;
+        r = 0.25 * (pass ? 170.0 / 255.0 : 1.0);
+        r2 = r * r;
+        root = (float *)malloc(sizeof(float) * 3u * (size_t)S);
+        CHECK(f->leader != NULL);
+        for (i = 0; i < S && root && f->leader; ++i) {
+            const hf_strand_binding *b = &f->bindings[i];
+            int k;
+            for (k = 0; k < 3; ++k)
+                root[3 * i + k] =
+                    b->weight[0] * info.guide_points[(size_t)b->guide[0] * P * 3u + k] +
+                    b->weight[1] * info.guide_points[(size_t)b->guide[1] * P * 3u + k] +
+                    b->weight[2] * info.guide_points[(size_t)b->guide[2] * P * 3u + k];
+        }
+        for (i = 0; i < S && root && f->leader; ++i) {
+            const int L = (int)f->leader[i];
+            double near = 1e30, dl;
+#define T_D2(a, c)                                                             \
+    (((double)root[3 * (a)] - root[3 * (c)]) * ((double)root[3 * (a)] - root[3 * (c)]) + \
+     ((double)root[3 * (a) + 1] - root[3 * (c) + 1]) *                         \
+         ((double)root[3 * (a) + 1] - root[3 * (c) + 1]) +                      \
+     ((double)root[3 * (a) + 2] - root[3 * (c) + 2]) *                          \
+         ((double)root[3 * (a) + 2] - root[3 * (c) + 2]))
+            for (j = 0; j < i; ++j)
+                if ((int)f->leader[j] == j && T_D2(i, j) < near) near = T_D2(i, j);
+            if (L == i) {
+                ++leaders;
+                bad += near < r2 * (1.0 - 1e-5); /* a leader was within reach */
+            } else {
+                dl = T_D2(i, L);
+                bad += L > i || (int)f->leader[L] != L || dl > r2 * (1.0 + 1e-5) ||
+                       dl > near * (1.0 + 1e-5) + 1e-12;
+            }
+#undef T_D2
+        }
+        CHECK_EQ_INT(bad, 0);
+        CHECK(leaders > 8 && leaders < S / 2);
+        free(root);
+        hf_fur_destroy(f);
+    }
+}
+
 static void test_fur_clump_size(void)
 {
     t_fur_scene sc;
@@ -9932,6 +10003,7 @@ int main(void)
     RUN(test_fur_groom);
     RUN(test_fur_groom_scalp);
     RUN(test_fur_clump_size);
+    RUN(test_fur_clump_leaders_nearest);
     RUN(test_ribbon_strand_widths);
     RUN(test_fur_control_maps);
     RUN(test_diagnostics_read_back);
