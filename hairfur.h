@@ -1736,7 +1736,10 @@ typedef struct hf_fur_desc {
     const hf_map *clump_size_map; /* NULL = 1: its first channel, clamped
                                to [0, 1] at each strand's root UV, scales
                                clump_size there (0: the strand stands
-                               alone, no clumping) */
+                               alone, follows and leads no clump); where
+                               it makes clumps far smaller than the
+                               largest, at most 16 lead in a cell of the
+                               largest size and the rest stand alone */
     int simd;               /* hf_simd_level of the rope step and the
                                interpolation; 0 = the best the CPU runs
                                (every level gives the same bytes);
