@@ -5188,6 +5188,28 @@ HFDEF hf_result hf_ropes_max_stretch(const hf_ropes *ropes, int first,
     return HF_OK;
 }
 
+/* Rope-major copies of points [j0, P) of ropes [a, b) into `out`, which
+   starts at rope `base` (a for a buffer of exactly the range, 0 for
+   absolute indexing), at any stride: the reference, and the kernels'
+   tails where their blocks of points end. */
+HF__PRIVATE void hf__ropes_copy_ref(const hf_ropes *ro, int a, int b,
+                                    size_t j0, float *out, size_t stride,
+                                    int base)
+{
+    const size_t R = (size_t)ro->rope_count, P = (size_t)ro->points;
+    size_t j;
+    int r;
+    for (r = a; r < b; ++r)
+        for (j = j0; j < P; ++j) {
+            const size_t i = j * R + (size_t)r;
+            float *o = (float *)((unsigned char *)out +
+                                 ((size_t)(r - base) * P + j) * stride);
+            o[0] = ro->x[i];
+            o[1] = ro->y[i];
+            o[2] = ro->z[i];
+        }
+}
+
 #if HF__SSE
 /* The rows of points [j, j + n) of ropes from r, in the order they go out:
    x, y, z of point j, of point j + 1, ... Read n at a time across the
@@ -5205,22 +5227,6 @@ HF__INLINE void hf__ropes_out_rows(const hf_ropes *ro, size_t j, int n,
         row[3 * k + 1] = ro->y + o;
         row[3 * k + 2] = ro->z + o;
     }
-}
-
-/* Points [j, P) of ropes [r, r + n), where the kernels' blocks end. */
-HF__PRIVATE void hf__ropes_get_tail(const hf_ropes *ro, int r, int n,
-                                    size_t j, float *out, int base)
-{
-    const size_t R = (size_t)ro->rope_count, P = (size_t)ro->points;
-    int k;
-    for (; j < P; ++j)
-        for (k = 0; k < n; ++k) {
-            float *o = out + ((size_t)(r + k - base) * P + j) * 3u;
-            const size_t i = j * R + (size_t)(r + k);
-            o[0] = ro->x[i];
-            o[1] = ro->y[i];
-            o[2] = ro->z[i];
-        }
 }
 
 /* Ropes [r, r + 4) into packed output that starts at rope `base`: four
@@ -5248,7 +5254,7 @@ HF__PRIVATE void hf__ropes_get_sse(const hf_ropes *ro, int r, float *out,
             _mm_storeu_ps(out + i + 9 * P, v3);
         }
     }
-    hf__ropes_get_tail(ro, r, 4, j, out, base);
+    hf__ropes_copy_ref(ro, r, r + 4, j, out, 12, base);
 }
 #endif
 
@@ -5296,31 +5302,13 @@ HF__TARGET_AVX2 HF__PRIVATE void hf__ropes_get_avx2(const hf_ropes *ro,
         hf__ropes_t8x4(row + 16, 4, o + 16 + 12 * P, 3 * P);
     }
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
-    hf__ropes_get_tail(ro, r, 8, j, out, base);
+    hf__ropes_copy_ref(ro, r, r + 8, j, out, 12, base);
 }
 #endif
 
-/* Rope-major copies of ropes [a, b) into `out`, which starts at rope
-   `base` (a for a buffer of exactly the range, 0 for absolute indexing):
-   the reference (any stride) and its dispatch (the kernels above take
-   packed groups of eight and four ropes at `level` and above). */
-HF__PRIVATE void hf__ropes_copy_ref(const hf_ropes *ro, int a, int b,
-                                    float *out, size_t stride, int base)
-{
-    const size_t R = (size_t)ro->rope_count, P = (size_t)ro->points;
-    size_t j;
-    int r;
-    for (r = a; r < b; ++r)
-        for (j = 0; j < P; ++j) {
-            const size_t i = j * R + (size_t)r;
-            float *o = (float *)((unsigned char *)out +
-                                 ((size_t)(r - base) * P + j) * stride);
-            o[0] = ro->x[i];
-            o[1] = ro->y[i];
-            o[2] = ro->z[i];
-        }
-}
-
+/* The dispatch of the rope-major copies: the kernels above take packed
+   groups of eight and four ropes at `level` and above, the reference the
+   rest, at any stride. */
 HF__PRIVATE void hf__ropes_copy(const hf_ropes *ro, int a, int b, float *out,
                                 size_t stride, int base, int level)
 {
@@ -5333,7 +5321,7 @@ HF__PRIVATE void hf__ropes_copy(const hf_ropes *ro, int a, int b, float *out,
         for (; a + 4 <= b; a += 4) hf__ropes_get_sse(ro, a, out, base);
 #endif
     (void)level;
-    hf__ropes_copy_ref(ro, a, b, out, stride, base);
+    hf__ropes_copy_ref(ro, a, b, 0, out, stride, base);
 }
 
 HFDEF hf_result hf_ropes_get_positions(const hf_ropes *ropes, int first,
@@ -7824,8 +7812,9 @@ HF__INLINE __m128 hf__interp_root4(const hf_strand_binding *b,
             _mm_mul_ps(_mm_set1_ps(b->weight[2]), _mm_loadu_ps(g2))));
 }
 
-/* One strand's inputs at eight lanes, straight from its binding (through
-   hf__istrand, spilled to the stack, the strands ran 1.3x slower): its
+/* One strand's inputs at eight lanes, straight from its binding (taken
+   through hf__istrand and a record of its vectors, the sixteen-lane
+   kernel ran 1.3x slower on 100,000 strands): its
    guides (gn: the one it clumps to, NULL without clumping), weights,
    scale, and (1 - sc) root in its phases at floats 0, 8, 16 (0, 2, 1;
    it repeats every 3 floats). The kernels pass the run's fields in:
@@ -7893,74 +7882,82 @@ HF__TARGET_AVX2 HF__INLINE void hf__put8(float *o, __m256 q, int mode)
     }
 }
 
-/* The strands of a range whose strands are whole groups of three vectors
-   (P a multiple of 8), in one target function (no call per strand): the
-   stream mode once, since every strand's 12 P bytes keep the first's
-   alignment, and no tail (with one, the loop measured 1.1x slower). */
-HF__TARGET_AVX2 HF__PRIVATE void
-hf__interp_groups_avx2(const hf__irun *run, int first, int count)
-{
-    const size_t n = 3u * (size_t)run->P;
-    const hf_strand_binding *b = run->bindings + first;
-    const float *G = run->guides, *ctab = run->ctab;
-    const int clump = run->clump;
-    float *o = run->out + (size_t)(first - run->out_first) * n;
-    const int nt = hf__stream_mode(run->nt, o, 31u);
-    int s, k;
-    for (s = 0; s < count; ++s, ++b, o += n) {
-        hf__is8 v;
-        size_t i;
-        hf__strand8(G, clump, b, n, &v);
-        for (i = 0; i < n; i += 24)
-            HF__UNROLL for (k = 0; k < 3; ++k)
-                hf__put8(o + i + 8u * (size_t)k,
-                         hf__blend8(&v, ctab, i + 8u * (size_t)k, k), nt);
-    }
-    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
+/* The strands of a range, W floats a vector, in one target function
+   (attribute T; no call per strand), as two kernels built from one text.
+   hf__interp_groups<W>: P a multiple of W, a strand whole groups of three
+   vectors: the stream mode once, since every strand's 12 P bytes keep the
+   first's alignment, and no tail (with one, the sixteen-lane loop
+   measured 1.1x slower). hf__interp_range<W>: any P, three vectors a
+   turn, then one or two, then the scalar tail. */
+#define HF__INTERP_RANGES(W, T)                                                \
+T HF__PRIVATE void hf__interp_groups##W(const hf__irun *run, int first,        \
+                                        int count)                             \
+{                                                                              \
+    const size_t n = 3u * (size_t)run->P;                                      \
+    const hf_strand_binding *b = run->bindings + first;                        \
+    const float *G = run->guides, *ctab = run->ctab;                           \
+    const int clump = run->clump;                                              \
+    float *o = run->out + (size_t)(first - run->out_first) * n;                \
+    const int nt = hf__stream_mode(run->nt, o, 4u * W - 1u);                   \
+    int s, k;                                                                  \
+    for (s = 0; s < count; ++s, ++b, o += n) {                                 \
+        hf__is##W v;                                                           \
+        size_t i;                                                              \
+        hf__strand##W(G, clump, b, n, &v);                                     \
+        for (i = 0; i < n; i += 3 * W)                                         \
+            HF__UNROLL for (k = 0; k < 3; ++k)                                 \
+                hf__put##W(o + i + (size_t)(W * k),                            \
+                           hf__blend##W(&v, ctab, i + (size_t)(W * k), k),     \
+                           nt);                                                \
+    }                                                                          \
+    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */                              \
+}                                                                              \
+                                                                               \
+T HF__PRIVATE void hf__interp_range##W(const hf__irun *run, int first,         \
+                                       int count)                              \
+{                                                                              \
+    const size_t n = 3u * (size_t)run->P;                                      \
+    const hf_strand_binding *b = run->bindings + first;                        \
+    const float *G = run->guides, *ctab = run->ctab;                           \
+    const int clump = run->clump;                                              \
+    float *o = run->out + (size_t)(first - run->out_first) * n;                \
+    int s, k;                                                                  \
+    if (n % (3 * W) == 0) {                                                    \
+        hf__interp_groups##W(run, first, count);                               \
+        return;                                                                \
+    }                                                                          \
+    for (s = first; s < first + count; ++s, ++b, o += n) {                     \
+        const int nt = hf__stream_mode(run->nt, o, 4u * W - 1u);               \
+        hf__is##W v;                                                           \
+        size_t i;                                                              \
+        hf__strand##W(G, clump, b, n, &v);                                     \
+        for (i = 0; i + 3 * W <= n; i += 3 * W)                                \
+            HF__UNROLL for (k = 0; k < 3; ++k)                                 \
+                hf__put##W(o + i + (size_t)(W * k),                            \
+                           hf__blend##W(&v, ctab, i + (size_t)(W * k), k),     \
+                           nt);                                                \
+        /* the phases by constants: v stays in registers */                    \
+        if (i + W <= n) {                                                      \
+            hf__put##W(o + i, hf__blend##W(&v, ctab, i, 0), nt);               \
+            i += W;                                                            \
+        }                                                                      \
+        if (i + W <= n) {                                                      \
+            hf__put##W(o + i, hf__blend##W(&v, ctab, i, 1), nt);               \
+            i += W;                                                            \
+        }                                                                      \
+        if (i < n) {                                                           \
+            hf__istrand t;                                                     \
+            /* the tail is SSE code: with the upper halves dirty it would      \
+               run at half speed or worse */                                   \
+            _mm256_zeroupper();                                                \
+            hf__interp_setup(run, s, &t);                                      \
+            hf__interp_tail(run, &t, (int)i);                                  \
+        }                                                                      \
+    }                                                                          \
+    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */                              \
 }
 
-/* Any P: three vectors a turn, then one or two, then the scalar tail. */
-HF__TARGET_AVX2 HF__PRIVATE void
-hf__interp_range_avx2(const hf__irun *run, int first, int count)
-{
-    const size_t n = 3u * (size_t)run->P;
-    const hf_strand_binding *b = run->bindings + first;
-    const float *G = run->guides, *ctab = run->ctab;
-    const int clump = run->clump;
-    float *o = run->out + (size_t)(first - run->out_first) * n;
-    int s, k;
-    if (n % 24 == 0) {
-        hf__interp_groups_avx2(run, first, count);
-        return;
-    }
-    for (s = first; s < first + count; ++s, ++b, o += n) {
-        const int nt = hf__stream_mode(run->nt, o, 31u);
-        hf__is8 v;
-        size_t i;
-        hf__strand8(G, clump, b, n, &v);
-        for (i = 0; i + 24 <= n; i += 24)
-            HF__UNROLL for (k = 0; k < 3; ++k)
-                hf__put8(o + i + 8u * (size_t)k,
-                         hf__blend8(&v, ctab, i + 8u * (size_t)k, k), nt);
-        if (i + 8 <= n) { /* the phases by constants: v stays in registers */
-            hf__put8(o + i, hf__blend8(&v, ctab, i, 0), nt);
-            i += 8;
-        }
-        if (i + 8 <= n) {
-            hf__put8(o + i, hf__blend8(&v, ctab, i, 1), nt);
-            i += 8;
-        }
-        if (i < n) {
-            hf__istrand t;
-            /* the tail is SSE code: with the upper halves dirty it would
-               run at half speed or worse */
-            _mm256_zeroupper();
-            hf__interp_setup(run, s, &t);
-            hf__interp_tail(run, &t, (int)i);
-        }
-    }
-    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
-}
+HF__INTERP_RANGES(8, HF__TARGET_AVX2)
 #endif
 
 #if HF__AVX512
@@ -8028,72 +8025,9 @@ HF__TARGET_AVX512 HF__INLINE void hf__put16(float *o, __m512 p, int mode)
     }
 }
 
-/* hf__interp_groups_avx2 at sixteen lanes (P a multiple of 16). */
-HF__TARGET_AVX512 HF__PRIVATE void
-hf__interp_groups_avx512(const hf__irun *run, int first, int count)
-{
-    const size_t n = 3u * (size_t)run->P;
-    const hf_strand_binding *b = run->bindings + first;
-    const float *G = run->guides, *ctab = run->ctab;
-    const int clump = run->clump;
-    float *o = run->out + (size_t)(first - run->out_first) * n;
-    const int nt = hf__stream_mode(run->nt, o, 63u);
-    int s, k;
-    for (s = 0; s < count; ++s, ++b, o += n) {
-        hf__is16 v;
-        size_t i;
-        hf__strand16(G, clump, b, n, &v);
-        for (i = 0; i < n; i += 48)
-            HF__UNROLL for (k = 0; k < 3; ++k)
-                hf__put16(o + i + 16u * (size_t)k,
-                          hf__blend16(&v, ctab, i + 16u * (size_t)k, k), nt);
-    }
-    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
-}
-
-/* hf__interp_range_avx2 at sixteen lanes. */
-HF__TARGET_AVX512 HF__PRIVATE void
-hf__interp_range_avx512(const hf__irun *run, int first, int count)
-{
-    const size_t n = 3u * (size_t)run->P;
-    const hf_strand_binding *b = run->bindings + first;
-    const float *G = run->guides, *ctab = run->ctab;
-    const int clump = run->clump;
-    float *o = run->out + (size_t)(first - run->out_first) * n;
-    int s, k;
-    if (n % 48 == 0) {
-        hf__interp_groups_avx512(run, first, count);
-        return;
-    }
-    for (s = first; s < first + count; ++s, ++b, o += n) {
-        const int nt = hf__stream_mode(run->nt, o, 63u);
-        hf__is16 v;
-        size_t i;
-        hf__strand16(G, clump, b, n, &v);
-        for (i = 0; i + 48 <= n; i += 48)
-            HF__UNROLL for (k = 0; k < 3; ++k)
-                hf__put16(o + i + 16u * (size_t)k,
-                          hf__blend16(&v, ctab, i + 16u * (size_t)k, k), nt);
-        if (i + 16 <= n) { /* the phases by constants: v stays in registers */
-            hf__put16(o + i, hf__blend16(&v, ctab, i, 0), nt);
-            i += 16;
-        }
-        if (i + 16 <= n) {
-            hf__put16(o + i, hf__blend16(&v, ctab, i, 1), nt);
-            i += 16;
-        }
-        if (i < n) {
-            hf__istrand t;
-            /* the tail is SSE code: with the upper halves dirty it would
-               run at half speed or worse */
-            _mm256_zeroupper();
-            hf__interp_setup(run, s, &t);
-            hf__interp_tail(run, &t, (int)i);
-        }
-    }
-    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
-}
+HF__INTERP_RANGES(16, HF__TARGET_AVX512)
 #endif
+#undef HF__INTERP_RANGES
 
 /* A run's fields; ctab (3 P floats) filled here */
 HF__PRIVATE void hf__irun_init(hf__irun *run, const float *guide_points,
@@ -8129,12 +8063,12 @@ HF__PRIVATE void hf__interpolate_run(const float *guide_points,
                   out_first, nt);
 #if HF__AVX512
     if (level >= HF_SIMD_AVX512)
-        hf__interp_range_avx512(&run, first, count);
+        hf__interp_range16(&run, first, count);
     else
 #endif
 #if HF__AVX2
     if (level >= HF_SIMD_AVX2)
-        hf__interp_range_avx2(&run, first, count);
+        hf__interp_range8(&run, first, count);
     else
 #endif
 #if HF__SSE
@@ -10097,7 +10031,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__point_pair_w(float *o, __m256 q,
         mode);
 }
 
-/* hf__interp_range_avx2 and hf__points_strand_avx2 in one, for P a
+/* hf__interp_range8 and hf__points_strand_avx2 in one, for P a
    multiple of 8: three vectors of a strand's floats (eight points) stay
    in registers and go out as four vectors of two points each, the same
    values in the same order as the two kernels write them. A strand that
@@ -12707,16 +12641,23 @@ HFDEF hf_result hf_fur_interpolate_guides(hf_fur *f, int first, int count)
     return HF_OK;
 }
 
+/* Whether a fur's strands are the guides' blend alone (clumped to the
+   main guide at most): no clump pass or groom offsets follow it. */
+HF__PRIVATE int hf__fur_blend_only(const hf_fur *f)
+{
+    return !f->leader && !f->strand_clump && !f->offsets;
+}
+
 /* Strands [first, first + count) blended from the guides, clumped and
    groomed, into pts + (s - pts_first) * 3 P. */
 HF__PRIVATE void hf__fur_strands(const hf_fur *f, int first, int count,
                                  float *pts, int pts_first, int nt)
 {
+    const int pass = f->leader || f->strand_clump; /* clumps of their own */
     hf__interpolate_run(f->guide_points, f->bindings, first, count, f->P,
-                        f->leader || f->strand_clump ? 0.0f : f->clump, pts,
-                        pts_first, hf_simd_resolve(f->simd), nt);
-    if (f->leader || f->strand_clump)
-        hf__fur_clump_pass(f, first, count, pts, pts_first);
+                        pass ? 0.0f : f->clump, pts, pts_first,
+                        hf_simd_resolve(f->simd), nt);
+    if (pass) hf__fur_clump_pass(f, first, count, pts, pts_first);
     if (f->offsets) hf__groom_offsets(f, first, count, pts, pts_first);
 }
 
@@ -12805,8 +12746,8 @@ HFDEF hf_result hf_fur_interpolate_points(const hf_fur *f, int first,
 #if HF__AVX2
     lv = hf_simd_resolve(f->simd);
     lv = lv < kit.level ? lv : kit.level;
-    if (kit.wide && lv >= HF_SIMD_AVX2 && f->P % 8 == 0 && !f->leader &&
-        !f->strand_clump && !f->offsets) {
+    if (kit.wide && lv >= HF_SIMD_AVX2 && f->P % 8 == 0 &&
+        hf__fur_blend_only(f)) {
         /* in registers, nothing through memory (the run's own output is
            not written: the kernels write points to out4) */
         float ctab[3 * HF_MAX_POINTS];

@@ -8027,6 +8027,17 @@ static void t_groom_make(float *pts, int *npts)
     }
 }
 
+/* A groom description of t_groom_make's strands, a fifth of them guides. */
+static void t_groom_desc(hf_groom_desc *gd, float *pts, int *npts)
+{
+    t_groom_make(pts, npts);
+    memset(gd, 0, sizeof *gd);
+    gd->points = pts;
+    gd->strand_points = npts;
+    gd->strand_count = TG_S;
+    gd->guide_fraction = 0.2f;
+}
+
 /* The largest distance between the fur's strands and the groom's own,
    moved by m (rows of 3x4; NULL: not moved), each matched by the nearest
    root. */
@@ -8145,12 +8156,7 @@ static void test_fur_groom(void)
             }
         m[3] = 0.3f; m[7] = -0.2f; m[11] = 0.5f;
     }
-    t_groom_make(pts, npts);
-    memset(&gd, 0, sizeof gd);
-    gd.points = pts;
-    gd.strand_points = npts;
-    gd.strand_count = TG_S;
-    gd.guide_fraction = 0.2f;
+    t_groom_desc(&gd, pts, npts);
     gd.seed = 3;
     hf_rope_params_init(&rp);
     rp.explicit_zero = HF_ROPE_ZERO_BLEND_TIME;
@@ -8458,13 +8464,8 @@ static void test_fur_groom_scalp(void)
         mm[3] = 0.2f; mm[7] = 0.1f; mm[11] = -0.3f;
         memcpy(m, mm, sizeof m);
     }
-    t_groom_make(pts, npts);
     t_fur_scene_init(&sc, 1.0f);
-    memset(&gd, 0, sizeof gd);
-    gd.points = pts;
-    gd.strand_points = npts;
-    gd.strand_count = TG_S;
-    gd.guide_fraction = 0.2f;
+    t_groom_desc(&gd, pts, npts);
     gd.scalp = &sc.desc.mesh;
     hf_rope_params_init(&rp);
     rp.explicit_zero = HF_ROPE_ZERO_BLEND_TIME;
@@ -8731,12 +8732,7 @@ static void test_fur_points_aligned(void)
         CHECK_EQ_INT(hf_fur_interpolate(f, 0, info.strand_count), HF_OK);
         hf_fur_destroy(f);
     }
-    t_groom_make(pts, npts);
-    memset(&gd, 0, sizeof gd);
-    gd.points = pts;
-    gd.strand_points = npts;
-    gd.strand_count = TG_S;
-    gd.guide_fraction = 0.2f;
+    t_groom_desc(&gd, pts, npts);
     gd.allocator = &a;
     f = NULL;
     CHECK_EQ_INT(hf_fur_create_groom(&gd, &f, NULL), HF_OK);
