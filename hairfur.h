@@ -1409,8 +1409,10 @@ typedef struct hf_ribbon_params {
        0..4, is HF_ERROR_BAD_PARAMETER. */
     int nontemporal;
     /* hf_simd_level of hf_ribbons and hf_ribbon_points; 0 = the best
-       the CPU runs (same bytes). Ribbons: SSE2 or NEON, AVX2 (the
-       AVX-512 level runs it) for the 36-byte float vertex, else SSE2. */
+       the CPU runs (same bytes). Ribbons: SSE2 or NEON; AVX2 (the
+       AVX-512 level runs it) for the 36-byte float vertex and for every
+       layout whose streams do not overlap inside a vertex, but position
+       and tangent as floats side by side (SSE2). */
     int simd;
 } hf_ribbon_params;
 
@@ -9078,6 +9080,20 @@ typedef struct hf__rout {
     int fmt[5];
     float origin[3], inv_scale;
     int run; /* hf__float_run of the streams, once per call */
+    /* The table writer's plan (hf__rout_layout): nw streams in address
+       order, wq[m] the stream and wb[m] the bytes each copy writes (its
+       element, or the next power of two where the bytes past it belong to
+       streams stored after it in the same vertex); nw 0 where streams of
+       one stride overlap inside a vertex. */
+    int nw;
+    unsigned char wq[5], wb[5];
+    /* Where every stream's element sits in one run of wl = 9..16 bytes
+       from the first (same stride, no gaps): the run is assembled in a
+       register, byte k from element byte wm[q][k] of stream q (0x80:
+       none), and stored in two 8-byte stores (the second from bytes
+       wsh[0..8)). wl 0 otherwise. */
+    int wl;
+    unsigned char wm[5][16], wsh[16];
 } hf__rout;
 
 enum { HF__S_POS, HF__S_TAN, HF__S_TEX, HF__S_COL, HF__S_C3D };
@@ -9164,6 +9180,116 @@ HF__PRIVATE int hf__float_run(const hf__rout *ro)
                ? 3
                : 2;
 }
+
+/* The float run and the table writer's plan of ro's streams (see
+   hf__rout), once per call. */
+HF__PRIVATE void hf__rout_layout(hf__rout *ro)
+{
+    size_t z[5];
+    int q, m, r, n = 0;
+    ro->run = hf__float_run(ro);
+    for (q = 0; q < 5; ++q) {
+        z[q] = (size_t)hf_format_bytes(ro->fmt[q]) * (size_t)hf__stream_nc[q];
+        if (!ro->base[q]) continue;
+        for (m = n++; m > 0 && ro->base[ro->wq[m - 1]] > ro->base[q]; --m)
+            ro->wq[m] = ro->wq[m - 1];
+        ro->wq[m] = (unsigned char)q;
+    }
+    ro->nw = n;
+    for (m = 0; m < n; ++m) {
+        const int a = ro->wq[m];
+        const size_t st = ro->stride[a];
+        /* 3, 6 and 12 bytes take two copies unless widened to 4, 8, 16 */
+        const size_t w = z[a] == 3 ? 4 : z[a] == 6 ? 8 : z[a] == 12 ? 16 : z[a];
+        size_t b, covered = z[a];
+        for (r = m + 1; r < n; ++r) {
+            const int c = ro->wq[r];
+            const size_t d = (size_t)(ro->base[c] - ro->base[a]);
+            if (ro->stride[c] != st || d >= st) continue;
+            if (d < z[a] || d + z[c] > st) { /* overlap in one vertex */
+                ro->nw = 0;
+                return;
+            }
+        }
+        /* the widened copy's extra bytes, each inside a later element of
+           the same vertex (rewritten after it) */
+        for (b = z[a]; b < w; ++b)
+            for (r = m + 1; r < n; ++r) {
+                const int c = ro->wq[r];
+                const size_t d = (size_t)(ro->base[c] - ro->base[a]);
+                if (ro->stride[c] == st && d <= b && b < d + z[c]) {
+                    ++covered;
+                    break;
+                }
+            }
+        ro->wb[m] = (unsigned char)(covered == w ? w : z[a]);
+    }
+    /* the register run: every stream of one stride, elements abutting */
+    ro->wl = 0;
+    if (n > 0) {
+        const unsigned char *b0 = ro->base[ro->wq[0]];
+        const size_t st = ro->stride[ro->wq[0]];
+        size_t end = 0;
+        for (m = 0; m < n; ++m) {
+            const int a = ro->wq[m];
+            if (ro->stride[a] != st || (size_t)(ro->base[a] - b0) != end) return;
+            end += z[a];
+        }
+        if (end < 9 || end > 16 || end > st) return;
+        for (q = 0; q < 5; ++q) {
+            const size_t d = ro->base[q] ? (size_t)(ro->base[q] - b0) : 0;
+            for (m = 0; m < 16; ++m)
+                ro->wm[q][m] = (unsigned char)(ro->base[q] && (size_t)m >= d &&
+                                                       (size_t)m < d + z[q]
+                                                   ? (size_t)m - d
+                                                   : 0x80);
+        }
+        for (m = 0; m < 16; ++m)
+            ro->wsh[m] = (unsigned char)((size_t)m + end - 8 < 16
+                                             ? (size_t)m + end - 8
+                                             : 0x80);
+        ro->wl = (int)end;
+    }
+}
+
+/* One stream's elements of points i < n at o + 2 i st (side 0, from
+   table slot L + i ts) and a stride later (side 1, from R + i ts; R == L
+   for the streams both sides share, read once): each in `wb` bytes
+   (hf__rout's wb) as a head of N0 bytes and a tail of N1, constants in
+   each loop. */
+#define HF__ELEMS_LOOP(N0, N1)                                                 \
+    for (i = 0; i < n; ++i, o += 2 * st, L += ts, R += ts) {                   \
+        uint64_t x0 = 0, y0 = 0, x1, y1;                                       \
+        HF_MEMCPY(&x0, L, N0);                                                 \
+        HF_MEMCPY(&y0, L + N0, N1);                                            \
+        x1 = x0;                                                               \
+        y1 = y0;                                                               \
+        if (R != L) {                                                          \
+            HF_MEMCPY(&x1, R, N0);                                             \
+            HF_MEMCPY(&y1, R + N0, N1);                                        \
+        }                                                                      \
+        HF_MEMCPY(o, &x0, N0);                                                 \
+        HF_MEMCPY(o + N0, &y0, N1);                                            \
+        HF_MEMCPY(o + st, &x1, N0);                                            \
+        HF_MEMCPY(o + st + N0, &y1, N1);                                       \
+    }                                                                          \
+    break
+HF__INLINE void hf__elems_put(unsigned char *o, size_t st, int n,
+                              const unsigned char *L, const unsigned char *R,
+                              size_t ts, int wb)
+{
+    int i;
+    switch (wb) {
+    case 2: HF__ELEMS_LOOP(2, 0);
+    case 3: HF__ELEMS_LOOP(2, 1);
+    case 4: HF__ELEMS_LOOP(4, 0);
+    case 6: HF__ELEMS_LOOP(4, 2);
+    case 8: HF__ELEMS_LOOP(8, 0);
+    case 12: HF__ELEMS_LOOP(8, 4);
+    default: HF__ELEMS_LOOP(8, 8);
+    }
+}
+#undef HF__ELEMS_LOOP
 
 #if HF__SSE
 /* A float run (see hf__float_run) for points i < n of a group: left
@@ -9438,6 +9564,276 @@ hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
     if (ro->base[HF__S_C3D]) hf__stream_sse(HF__S_C3D, 2, fr, P, K, str, ro, v0);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
+
+/* hf__encode_sse at eight lanes: the same operations. */
+HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_avx2(__m256 x, int fmt)
+{
+    const __m256 m = _mm256_set1_ps(12582912.0f);
+    float lo = -1.0f, scale;
+    __m256 v;
+    if (fmt == HF_FORMAT_F16) {
+        const __m256i u0 = _mm256_castps_si256(_mm256_min_ps(
+            _mm256_max_ps(x, _mm256_set1_ps(-65504.0f)),
+            _mm256_set1_ps(65504.0f)));
+        const __m256i sign = _mm256_and_si256(_mm256_srli_epi32(u0, 16),
+                                              _mm256_set1_epi32(0x8000));
+        const __m256i u = _mm256_and_si256(u0, _mm256_set1_epi32(0x7fffffff));
+        const __m256i sub = _mm256_sub_epi32(
+            _mm256_castps_si256(_mm256_add_ps(_mm256_castsi256_ps(u),
+                                              _mm256_set1_ps(0.5f))),
+            _mm256_set1_epi32(0x3f000000));
+        const __m256i odd =
+            _mm256_and_si256(_mm256_srli_epi32(u, 13), _mm256_set1_epi32(1));
+        const __m256i nrm = _mm256_srli_epi32(
+            _mm256_add_epi32(
+                _mm256_add_epi32(u, _mm256_set1_epi32(-939520001)), odd),
+            13);
+        const __m256i is_sub =
+            _mm256_cmpgt_epi32(_mm256_set1_epi32(0x38800000), u);
+        return _mm256_or_si256(_mm256_blendv_epi8(nrm, sub, is_sub), sign);
+    }
+    switch (fmt) {
+    case HF_FORMAT_SNORM16: scale = 32767.0f; break;
+    case HF_FORMAT_UNORM16: scale = 65535.0f; lo = 0.0f; break;
+    case HF_FORMAT_SNORM8: scale = 127.0f; break;
+    default: scale = 255.0f; lo = 0.0f; break;
+    }
+    v = _mm256_min_ps(_mm256_max_ps(x, _mm256_set1_ps(lo)), _mm256_set1_ps(1.0f));
+    v = _mm256_sub_ps(_mm256_add_ps(_mm256_mul_ps(v, _mm256_set1_ps(scale)), m),
+                      m);
+    return _mm256_and_si256(
+        _mm256_cvttps_epi32(v),
+        _mm256_set1_epi32(hf_format_bytes(fmt) == 2 ? 0xffff : 0xff));
+}
+
+/* One stream's components c[0, nc) of eight points into table t, a slot
+   of 16 (float), 8 (2-byte formats) or 4 bytes (1-byte) a point holding
+   the point's element as the vertex stores it, then zeros or spare
+   bytes. */
+HF__TARGET_AVX2 HF__INLINE void hf__table_fmt_avx2(unsigned char *t,
+                                                  const __m256 *c, int nc,
+                                                  int fmt)
+{
+    const int size = hf_format_bytes(fmt);
+    __m256i e[4], w0, w1;
+    int i;
+    if (fmt == HF_FORMAT_F32) {
+        const __m256 z = _mm256_setzero_ps();
+        const __m256 c2 = nc > 2 ? c[2] : z, c3 = nc > 3 ? c[3] : z;
+        const __m256 a = _mm256_unpacklo_ps(c[0], c[1]),
+                     b = _mm256_unpackhi_ps(c[0], c[1]),
+                     g = _mm256_unpacklo_ps(c2, c3),
+                     h = _mm256_unpackhi_ps(c2, c3);
+        /* points 0 and 4, 1 and 5, 2 and 6, 3 and 7 */
+        const __m256 r0 = _mm256_shuffle_ps(a, g, _MM_SHUFFLE(1, 0, 1, 0)),
+                     r1 = _mm256_shuffle_ps(a, g, _MM_SHUFFLE(3, 2, 3, 2)),
+                     r2 = _mm256_shuffle_ps(b, h, _MM_SHUFFLE(1, 0, 1, 0)),
+                     r3 = _mm256_shuffle_ps(b, h, _MM_SHUFFLE(3, 2, 3, 2));
+        float *f = (float *)(void *)t;
+        _mm256_storeu_ps(f, _mm256_permute2f128_ps(r0, r1, 0x20));
+        _mm256_storeu_ps(f + 8, _mm256_permute2f128_ps(r2, r3, 0x20));
+        _mm256_storeu_ps(f + 16, _mm256_permute2f128_ps(r0, r1, 0x31));
+        _mm256_storeu_ps(f + 24, _mm256_permute2f128_ps(r2, r3, 0x31));
+        return;
+    }
+    HF__UNROLL for (i = 0; i < 4; ++i)
+        e[i] = i < nc ? hf__encode_avx2(c[i], fmt) : _mm256_setzero_si256();
+    if (size == 2) {
+        w0 = _mm256_or_si256(e[0], _mm256_slli_epi32(e[1], 16));
+        w1 = _mm256_or_si256(e[2], _mm256_slli_epi32(e[3], 16));
+        /* points 0 1 | 4 5 and 2 3 | 6 7, eight bytes each */
+        e[0] = _mm256_unpacklo_epi32(w0, w1);
+        e[1] = _mm256_unpackhi_epi32(w0, w1);
+        _mm256_storeu_si256((__m256i *)(void *)t,
+                            _mm256_permute2x128_si256(e[0], e[1], 0x20));
+        _mm256_storeu_si256((__m256i *)(void *)(t + 32),
+                            _mm256_permute2x128_si256(e[0], e[1], 0x31));
+    } else {
+        w0 = _mm256_or_si256(_mm256_or_si256(e[0], _mm256_slli_epi32(e[1], 8)),
+                             _mm256_or_si256(_mm256_slli_epi32(e[2], 16),
+                                             _mm256_slli_epi32(e[3], 24)));
+        _mm256_storeu_si256((__m256i *)(void *)t, w0);
+    }
+}
+
+/* hf__table_fmt_avx2 with the format a constant in each copy. */
+HF__TARGET_AVX2 HF__INLINE void hf__table_avx2(unsigned char *t,
+                                              const __m256 *c, int nc,
+                                              int fmt)
+{
+    switch (fmt) {
+    case HF_FORMAT_F32: hf__table_fmt_avx2(t, c, nc, HF_FORMAT_F32); break;
+    case HF_FORMAT_F16: hf__table_fmt_avx2(t, c, nc, HF_FORMAT_F16); break;
+    case HF_FORMAT_SNORM16:
+        hf__table_fmt_avx2(t, c, nc, HF_FORMAT_SNORM16);
+        break;
+    case HF_FORMAT_UNORM16:
+        hf__table_fmt_avx2(t, c, nc, HF_FORMAT_UNORM16);
+        break;
+    case HF_FORMAT_SNORM8:
+        hf__table_fmt_avx2(t, c, nc, HF_FORMAT_SNORM8);
+        break;
+    default: hf__table_fmt_avx2(t, c, nc, HF_FORMAT_UNORM8); break;
+    }
+}
+
+#define HF__TB 32 /* points a block of the table writer's tables */
+
+/* Points i < n of a block from the tables (see hf__ribbon_write_table_avx2)
+   when every element abuts in one run (hf__rout wl): each vertex's run
+   assembled by byte shuffles, the streams both sides share once a point,
+   then two 8-byte stores (overlapping when the run is under 16 bytes). */
+HF__TARGET_AVX2 HF__INLINE __m128i hf__slot_avx2(const unsigned char *t,
+                                                 size_t ts, int i,
+                                                 __m128i mask)
+{
+    return _mm_shuffle_epi8(
+        _mm_loadu_si128((const __m128i *)(const void *)(t + (size_t)i * ts)),
+        mask);
+}
+
+HF__TARGET_AVX2 HF__INLINE void
+hf__window_put_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
+                    const size_t *tsq, size_t v, int n)
+{
+    const int q0 = ro->wq[0], L = ro->wl;
+    const size_t st = ro->stride[q0];
+    const __m128i sh = _mm_loadu_si128((const __m128i *)(const void *)ro->wsh);
+    const int pos = ro->base[HF__S_POS] != NULL;
+    const __m128i mp =
+        _mm_loadu_si128((const __m128i *)(const void *)ro->wm[HF__S_POS]);
+    const size_t tp = tsq[HF__S_POS];
+    const unsigned char *t[4];
+    __m128i mk[4];
+    size_t ts[4];
+    unsigned char *o = ro->base[q0] + v * st;
+    int i, q, ns = 0;
+    for (q = HF__S_TAN; q <= HF__S_C3D; ++q) {
+        if (!ro->base[q]) continue;
+        t[ns] = tab[q];
+        ts[ns] = tsq[q];
+        mk[ns++] = _mm_loadu_si128((const __m128i *)(const void *)ro->wm[q]);
+    }
+#define HF__WIN_LOOP(SHARED)                                                   \
+    for (i = 0; i < n; ++i, o += 2 * st) {                                     \
+        __m128i a = SHARED, b = a;                                             \
+        if (pos) {                                                             \
+            a = _mm_or_si128(a, hf__slot_avx2(tab[HF__S_POS], tp, i, mp));     \
+            b = _mm_or_si128(b, hf__slot_avx2(tab[5], tp, i, mp));             \
+        }                                                                      \
+        _mm_storel_epi64((__m128i *)(void *)o, a);                             \
+        _mm_storel_epi64((__m128i *)(void *)(o + L - 8),                       \
+                         _mm_shuffle_epi8(a, sh));                             \
+        _mm_storel_epi64((__m128i *)(void *)(o + st), b);                      \
+        _mm_storel_epi64((__m128i *)(void *)(o + st + L - 8),                  \
+                         _mm_shuffle_epi8(b, sh));                             \
+    }                                                                          \
+    break
+#define HF__WIN_S(k) hf__slot_avx2(t[k], ts[k], i, mk[k])
+    switch (ns) {
+    case 0: HF__WIN_LOOP(_mm_setzero_si128());
+    case 1: HF__WIN_LOOP(HF__WIN_S(0));
+    case 2: HF__WIN_LOOP(_mm_or_si128(HF__WIN_S(0), HF__WIN_S(1)));
+    case 3:
+        HF__WIN_LOOP(_mm_or_si128(_mm_or_si128(HF__WIN_S(0), HF__WIN_S(1)),
+                                  HF__WIN_S(2)));
+    default:
+        HF__WIN_LOOP(_mm_or_si128(_mm_or_si128(HF__WIN_S(0), HF__WIN_S(1)),
+                                  _mm_or_si128(HF__WIN_S(2), HF__WIN_S(3))));
+    }
+#undef HF__WIN_S
+#undef HF__WIN_LOOP
+}
+
+/* Every stream of a layout the table writer takes (hf__rout nw > 0),
+   eight points at a time: each stream's values encoded into a table a
+   vector at a time (hf__table_avx2), then copied out stream by stream
+   in address order, an element in one or two scalar stores
+   (hf__elems_put). Same values, same operations: the same bytes as the
+   reference. */
+HF__TARGET_AVX2 HF__PRIVATE void
+hf__ribbon_write_table_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
+                            const hf__rstrand *str, const hf__rout *ro,
+                            size_t v0)
+{
+    /* rows: the five streams, then the right side's positions; blocks of
+       up to HF__TB points, so the copies' set-up is shared */
+    unsigned char tab[6][HF__TB * 16];
+    const __m256 ws = _mm256_set1_ps(str->wscale);
+    const __m256 is = _mm256_set1_ps(ro->inv_scale);
+    const __m256 u = _mm256_set1_ps(str->uv[0]), v = _mm256_set1_ps(str->uv[1]);
+    size_t ts[5];
+    int j0, k, c, m, q;
+    for (q = 0; q < 5; ++q) {
+        const int size = hf_format_bytes(ro->fmt[q]);
+        ts[q] = (size_t)(size == 4 ? 16 : 4 * size);
+    }
+    for (j0 = 0; j0 < P; j0 += HF__TB) {
+        const int n = P - j0 < HF__TB ? P - j0 : HF__TB;
+        for (k = j0 / 8; 8 * k < j0 + n; ++k) {
+            const int o = 4 + 8 * k;
+            const size_t g = 8u * (size_t)(k - j0 / 8);
+            const __m256 tt = _mm256_loadu_ps(K->tt + 8 * k);
+            __m256 L[4], R[4];
+            if (ro->base[HF__S_POS]) {
+                const __m256 w =
+                    _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws);
+                HF__UNROLL for (c = 0; c < 3; ++c) {
+                    const __m256 p = _mm256_loadu_ps(fr->p[c] + o);
+                    const __m256 sw =
+                        _mm256_mul_ps(_mm256_loadu_ps(fr->s[c] + o), w);
+                    const __m256 og = _mm256_set1_ps(ro->origin[c]);
+                    L[c] = _mm256_mul_ps(
+                        _mm256_sub_ps(_mm256_sub_ps(p, sw), og), is);
+                    R[c] = _mm256_mul_ps(
+                        _mm256_sub_ps(_mm256_add_ps(p, sw), og), is);
+                }
+                hf__table_avx2(tab[HF__S_POS] + g * ts[HF__S_POS], L, 3,
+                               ro->fmt[HF__S_POS]);
+                hf__table_avx2(tab[5] + g * ts[HF__S_POS], R, 3,
+                               ro->fmt[HF__S_POS]);
+            }
+            if (ro->base[HF__S_TAN]) {
+                HF__UNROLL for (c = 0; c < 3; ++c)
+                    L[c] = _mm256_loadu_ps(fr->t[c] + o);
+                hf__table_avx2(tab[HF__S_TAN] + g * ts[HF__S_TAN], L, 3,
+                               ro->fmt[HF__S_TAN]);
+            }
+            if (ro->base[HF__S_TEX]) {
+                L[0] = u;
+                L[1] = v;
+                L[2] = tt;
+                hf__table_avx2(tab[HF__S_TEX] + g * ts[HF__S_TEX], L, 3,
+                               ro->fmt[HF__S_TEX]);
+            }
+            if (ro->base[HF__S_COL]) {
+                HF__UNROLL for (c = 0; c < 3; ++c)
+                    L[c] = _mm256_set1_ps(str->rgba[c]);
+                L[3] = _mm256_mul_ps(_mm256_set1_ps(str->rgba[3]),
+                                     _mm256_loadu_ps(K->fade + 8 * k));
+                hf__table_avx2(tab[HF__S_COL] + g * ts[HF__S_COL], L, 4,
+                               ro->fmt[HF__S_COL]);
+            }
+            if (ro->base[HF__S_C3D]) {
+                L[0] = _mm256_set1_ps(str->c3x);
+                L[1] = tt;
+                hf__table_avx2(tab[HF__S_C3D] + g * ts[HF__S_C3D], L, 2,
+                               ro->fmt[HF__S_C3D]);
+            }
+        }
+        if (ro->wl) {
+            hf__window_put_avx2(ro, tab, ts, v0 + 2u * (size_t)j0, n);
+            continue;
+        }
+        for (m = 0; m < ro->nw; ++m) {
+            const size_t st = ro->stride[q = ro->wq[m]];
+            hf__elems_put(ro->base[q] + (v0 + 2u * (size_t)j0) * st, st, n,
+                          tab[q], tab[q == HF__S_POS ? 5 : q], ts[q],
+                          ro->wb[m]);
+        }
+    }
+    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
+}
 #endif
 
 #if HF__NEON
@@ -9634,6 +10030,10 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
         hf__ribbon_write_avx2(fr, P, K, str, ro, v0);
         return;
     }
+    if (level >= HF_SIMD_AVX2 && ro->nw && !ro->run) {
+        hf__ribbon_write_table_avx2(fr, P, K, str, ro, v0);
+        return;
+    }
 #endif
 #if HF__SSE
     if (level >= HF_SIMD_SSE2) {
@@ -9761,7 +10161,7 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
         return HF_ERROR_BAD_PARAMETER;
     ro.inv_scale =
         out->position_scale != 0.0f ? 1.0f / out->position_scale : 1.0f;
-    ro.run = hf__float_run(&ro); /* the stage keeps the layout: the same */
+    hf__rout_layout(&ro); /* the stage keeps the layout: the same */
 
     P = params->points_per_strand;
     level = hf_simd_resolve(params->simd);

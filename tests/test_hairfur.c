@@ -6026,18 +6026,127 @@ static void test_ribbons_every_level_matches_reference(void)
                     ro.inv_scale = 0.5f;
                     memset(va, 0xa5, sizeof va);
                     for (q = 0; q < 5; ++q) ro.base[q] = va + off[q];
-                    ro.run = hf__float_run(&ro);
+                    hf__rout_layout(&ro);
                     hf__ribbon_write_ref(&fr, P, &K, &S, &ro, 0);
                     for (level = HF_SIMD_SSE2; level <= HF_SIMD_AVX512; ++level) {
                         memset(vb, 0xa5, sizeof vb);
                         for (q = 0; q < 5; ++q) ro.base[q] = vb + off[q];
-                        ro.run = hf__float_run(&ro);
+                        hf__rout_layout(&ro);
                         hf__ribbon_write(&fr, P, &K, &S, &ro, 0,
                                          hf_simd_resolve(level));
                         CHECK(memcmp(va, vb, sizeof va) == 0);
                     }
                 }
         }
+    }
+}
+
+static void test_ribbons_table_layouts(void)
+{
+    /* Vertices whose streams abut or share a buffer, as compact layouts
+       do: every level writes the reference's bytes, and no byte outside
+       the streams (padding, gaps, the buffer around them) changes. Each
+       layout is (offset, format) per stream, -1 for none, with one stride
+       (0: each stream packed in its own part of the buffer). They take
+       the register run (9..16 abutting bytes, with and without padding),
+       widened copies (3, 6 and 12 bytes followed by a later stream's) and
+       exact ones; P = 5, 19 and 40 (past one block of the writer). */
+    enum { NL = 8, PM = 40, NS = 3, BUF = 2 * PM * NS * 64 };
+    static const int lay[NL][11] = {
+        /* pos off, fmt; tan; tex; col; c3d; stride */
+        {0, HF_FORMAT_SNORM16, 12, HF_FORMAT_SNORM8, 6, HF_FORMAT_UNORM16, -1, 0, -1, 0, 16},
+        {0, HF_FORMAT_F16, -1, 0, 6, HF_FORMAT_UNORM16, 12, HF_FORMAT_UNORM8, -1, 0, 16},
+        {13, HF_FORMAT_SNORM8, 4, HF_FORMAT_SNORM8, 7, HF_FORMAT_UNORM16, 16, HF_FORMAT_UNORM8, 0, HF_FORMAT_F16, 20},
+        {0, HF_FORMAT_F32, 16, HF_FORMAT_SNORM8, 19, HF_FORMAT_SNORM16, 12, HF_FORMAT_UNORM8, 25, HF_FORMAT_UNORM8, 28},
+        {0, HF_FORMAT_F32, 12, HF_FORMAT_SNORM8, 16, HF_FORMAT_UNORM16, -1, 0, 22, HF_FORMAT_UNORM8, 24},
+        {4, HF_FORMAT_SNORM16, 10, HF_FORMAT_F32, 22, HF_FORMAT_F16, 28, HF_FORMAT_F32, 44, HF_FORMAT_SNORM16, 52},
+        {0, HF_FORMAT_F16, 2400, HF_FORMAT_SNORM8, 4000, HF_FORMAT_F32, -1, 0, -1, 0, 0},
+        {2, HF_FORMAT_UNORM8, 5, HF_FORMAT_UNORM8, 8, HF_FORMAT_SNORM8, 11, HF_FORMAT_SNORM8, 15, HF_FORMAT_UNORM8, 19}};
+    static const int Ps[3] = {5, 19, PM};
+    static unsigned char va[BUF], vb[BUF];
+    float pts[NS * PM * 3];
+    hf_rng rng;
+    int L, pi, s, j, q, level, windows = 0, widened = 0;
+    hf_rng_seed(&rng, 7, 3);
+    for (L = 0; L < NL; ++L)
+        for (pi = 0; pi < 3; ++pi) {
+            const int P = Ps[pi];
+            hf_ribbon_params p = t_rparams();
+            hf__rconst K;
+            hf__rout ro;
+            p.points_per_strand = P;
+            p.alpha_root = 0.8f;
+            p.alpha_tip = 0.3f;
+            memset(&K, 0, sizeof K);
+            hf__half_widths(&p, K.hw);
+            for (j = 0; j < P; ++j) {
+                K.tt[j] = (float)j / (float)(P - 1);
+                K.fade[j] = (1.0f - K.tt[j]) * p.alpha_root + K.tt[j] * p.alpha_tip;
+            }
+            t_random_strands(pts, NS, P, &rng);
+            memset(&ro, 0, sizeof ro);
+            for (q = 0; q < 5; ++q) {
+                const int fmt = lay[L][2 * q + 1];
+                ro.fmt[q] = fmt;
+                ro.stride[q] = lay[L][10] ? (size_t)lay[L][10]
+                                          : (size_t)(hf_format_bytes(fmt) * hf__stream_nc[q]);
+            }
+            ro.origin[0] = 0.05f; ro.origin[1] = 0.1f; ro.origin[2] = -0.2f;
+            ro.inv_scale = 2.0f;
+            for (s = 0; s < NS; ++s) {
+                const float *qs = pts + (size_t)s * P * 3;
+                const size_t v0 = 2u * (size_t)P * (size_t)s;
+                hf__rframe fr;
+                hf__rstrand S;
+                /* as hf_ribbons: a strand with a NaN is drawn collapsed */
+                const int fin = hf__points_finite(qs, 3 * P);
+                memset(&fr, 0, sizeof fr);
+                hf__strand_frame_ref(fin ? qs : hf__zero_points, P, &p, &fr);
+                S.uv[0] = hf_rng_float(&rng);
+                S.uv[1] = hf_rng_float(&rng) * 3.0f - 1.0f;
+                for (j = 0; j < 4; ++j) S.rgba[j] = hf_rng_float(&rng) * 1.2f - 0.1f;
+                S.c3x = hf_rng_float(&rng);
+                S.wscale = fin ? 1.0f : 0.0f;
+                memset(va, 0xa5, sizeof va);
+                for (q = 0; q < 5; ++q)
+                    ro.base[q] = lay[L][2 * q] < 0 ? NULL : va + lay[L][2 * q];
+                hf__rout_layout(&ro);
+                CHECK(ro.nw > 0);
+                windows += ro.wl > 0;
+                for (q = 0; q < ro.nw; ++q)
+                    widened += ro.wb[q] != hf_format_bytes(ro.fmt[ro.wq[q]]) *
+                                               hf__stream_nc[ro.wq[q]];
+                hf__ribbon_write_ref(&fr, P, &K, &S, &ro, v0);
+                for (level = HF_SIMD_SSE2; level <= HF_SIMD_AVX512; ++level) {
+                    memset(vb, 0xa5, sizeof vb);
+                    for (q = 0; q < 5; ++q)
+                        ro.base[q] = lay[L][2 * q] < 0 ? NULL : vb + lay[L][2 * q];
+                    hf__rout_layout(&ro);
+                    hf__ribbon_write(&fr, P, &K, &S, &ro, v0,
+                                     hf_simd_resolve(level));
+                    CHECK(memcmp(va, vb, sizeof va) == 0);
+                }
+            }
+        }
+    /* the register run and widened copies were both taken */
+    CHECK(windows >= 3 * 3 * 3);
+    CHECK(widened >= 3 * 3 * 3);
+    {
+        /* overlapping streams in one vertex: no plan */
+        hf__rout ro;
+        memset(&ro, 0, sizeof ro);
+        for (q = 0; q < 5; ++q) {
+            ro.fmt[q] = HF_FORMAT_SNORM16;
+            ro.stride[q] = 32;
+        }
+        ro.base[HF__S_POS] = va;
+        ro.base[HF__S_TEX] = va + 4;
+        hf__rout_layout(&ro);
+        CHECK_EQ_INT(ro.nw, 0);
+        ro.base[HF__S_TEX] = va + 6;
+        hf__rout_layout(&ro);
+        CHECK_EQ_INT(ro.nw, 2);
+        CHECK_EQ_INT(ro.wl, 12);
     }
 }
 
@@ -9953,6 +10062,7 @@ int main(void)
     RUN(test_ribbons_errors_write_nothing);
     RUN(test_ribbons_leading_tangent);
     RUN(test_ribbons_every_level_matches_reference);
+    RUN(test_ribbons_table_layouts);
     RUN(test_format_encoders);
     RUN(test_points_every_level);
     RUN(test_simd_kernels_leave_upper_clean);
