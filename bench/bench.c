@@ -32,8 +32,8 @@
      bench stage=write_limit method=vector|stream|memset|scalar|zeros gbps=...
    Per SIMD level (scenes M and L, one thread): strands_LEVEL,
    strands_nt_LEVEL (streaming stores), points_LEVEL and points_nt_LEVEL,
-   interp_points_LEVEL,
-   LEVEL scalar, sse2, avx2, avx512 up to what the CPU has.
+   interp_points_LEVEL, ribbons_LEVEL, ribbons_nt_LEVEL, ribbons16_LEVEL
+   and ropes_LEVEL, LEVEL scalar, sse2, avx2, avx512 up to what the CPU has.
    Scene Mc (M's strands on a coarse head, whose tessellation adds LOD
    guides) at LOD 0.25 measures lod_guides: LOD guides interpolated from
    the pure guides instead of simulated.
@@ -560,19 +560,19 @@ static const char *level_name[] = {"auto", "scalar", "sse2", "avx2",
                                    "avx512"};
 enum {
     LV_STRANDS, LV_STRANDS_NT, LV_POINTS, LV_POINTS_NT, LV_RIBBONS,
-    LV_RIBBONS_NT, LV_ROPES, LV_IPOINTS, LV_N
+    LV_RIBBONS_NT, LV_ROPES, LV_IPOINTS, LV_RIBBONS16, LV_N
 };
 
 static void bench_levels(scene *s, int frames)
 {
     static const char *what[LV_N] = {"strands", "strands_nt", "points",
                                      "points_nt", "ribbons", "ribbons_nt",
-                                     "ropes", "interp_points"};
+                                     "ropes", "interp_points", "ribbons16"};
     /* each measure's job (jobs[]) and whether it streams (interp_points
        always does, as in its stage) */
-    static const int job_of[LV_N] = {0, 0, 1, 1, 2, 2, 3, 4};
-    static const int nt_of[LV_N] = {0, 1, 0, 1, 0, 1, 0, 1};
-    job jobs[5];
+    static const int job_of[LV_N] = {0, 0, 1, 1, 2, 2, 3, 4, 5};
+    static const int nt_of[LV_N] = {0, 1, 0, 1, 0, 1, 0, 1, 0};
+    job jobs[6];
     double *t[LV_N], bytes[LV_N];
     int f, level, k, best = hf_simd_resolve(HF_SIMD_AUTO);
     size_t big = (size_t)s->info.strand_count * P * 2u * 36u;
@@ -584,7 +584,8 @@ static void bench_levels(scene *s, int frames)
     jobs[2].fn = j_ribbons;
     jobs[3].fn = j_ropes;
     jobs[4].fn = j_ipoints;
-    for (k = 0; k < 5; ++k) jobs[k].total = s->info.strand_count;
+    jobs[5].fn = j_ribbons16;
+    for (k = 0; k < 6; ++k) jobs[k].total = s->info.strand_count;
     jobs[3].total = s->info.guide_count;
     bytes[LV_STRANDS] = bytes[LV_STRANDS_NT] =
         (double)s->info.strand_count * P * 12.0;
@@ -593,6 +594,7 @@ static void bench_levels(scene *s, int frames)
     bytes[LV_RIBBONS] = bytes[LV_RIBBONS_NT] = (double)big;
     bytes[LV_ROPES] = (double)s->info.guide_count * P * 12.0;
     bytes[LV_IPOINTS] = bytes[LV_POINTS];
+    bytes[LV_RIBBONS16] = (double)s->info.strand_count * P * 2.0 * 16.0;
     memset(dst, 1, big);
     for (k = 0; k < LV_N; ++k)
         t[k] = (double *)malloc(sizeof(double) * (size_t)frames);
