@@ -9105,6 +9105,18 @@ typedef struct hf__rconst {
     float fade[HF_MAX_POINTS + 4];
 } hf__rconst;
 
+HF__PRIVATE void hf__rconst_init(hf__rconst *K, const hf_ribbon_params *p)
+{
+    const int P = p->points_per_strand;
+    int j;
+    HF_MEMSET(K, 0, sizeof *K);
+    hf__half_widths(p, K->hw);
+    for (j = 0; j < P; ++j) {
+        K->tt[j] = (float)j / (float)(P - 1);
+        K->fade[j] = (1.0f - K->tt[j]) * p->alpha_root + K->tt[j] * p->alpha_tip;
+    }
+}
+
 /* Per strand: the optional inputs, already made finite. */
 typedef struct hf__rstrand {
     float uv[2], rgba[4], c3x, wscale;
@@ -10124,7 +10136,7 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
     float stage_buf[HF__STAGE_BYTES / 4];
     unsigned char *dst0 = NULL;
     size_t block = 0;
-    int s, j, k, P, stage, level;
+    int s, k, P, stage, level;
     hf_result r = hf__ribbon_check(strands, first, count, view, &prm);
     if (r != HF_OK) return r;
     if (!out) return HF_ERROR_NULL_POINTER;
@@ -10165,13 +10177,7 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
 
     P = params->points_per_strand;
     level = hf_simd_resolve(params->simd);
-    HF_MEMSET(&K, 0, sizeof K);
-    hf__half_widths(params, K.hw);
-    for (j = 0; j < P; ++j) {
-        K.tt[j] = (float)j / (float)(P - 1);
-        K.fade[j] = (1.0f - K.tt[j]) * params->alpha_root +
-                    K.tt[j] * params->alpha_tip;
-    }
+    hf__rconst_init(&K, params);
 
     stage = params->nontemporal ? hf__ribbon_stage(&ro, P, &block, &dst0)
                                 : 0;

@@ -5996,12 +5996,7 @@ static void test_ribbons_every_level_matches_reference(void)
             p.points_per_strand = P;
             p.alpha_root = 0.9f;
             p.alpha_tip = 0.1f;
-            memset(&K, 0, sizeof K);
-            hf__half_widths(&p, K.hw);
-            for (j = 0; j < P; ++j) {
-                K.tt[j] = (float)j / (float)(P - 1);
-                K.fade[j] = (1.0f - K.tt[j]) * p.alpha_root + K.tt[j] * p.alpha_tip;
-            }
+            hf__rconst_init(&K, &p);
             t_random_strands(pts, 8, P, &rng);
             for (fmt = 0; fmt < 8; ++fmt)
                 for (s = 0; s < 8; ++s) {
@@ -6077,12 +6072,7 @@ static void test_ribbons_table_layouts(void)
             p.points_per_strand = P;
             p.alpha_root = 0.8f;
             p.alpha_tip = 0.3f;
-            memset(&K, 0, sizeof K);
-            hf__half_widths(&p, K.hw);
-            for (j = 0; j < P; ++j) {
-                K.tt[j] = (float)j / (float)(P - 1);
-                K.fade[j] = (1.0f - K.tt[j]) * p.alpha_root + K.tt[j] * p.alpha_tip;
-            }
+            hf__rconst_init(&K, &p);
             t_random_strands(pts, NS, P, &rng);
             memset(&ro, 0, sizeof ro);
             for (q = 0; q < 5; ++q) {
