@@ -9,7 +9,8 @@
    on success the range's vertices are written and nothing else, tangents
    are unit, every written value is finite (the library promises: never NaN in the
    output; see FZ_SKIP_KNOWN), and a split of the range gives the same
-   bytes; indices are in range.
+   bytes; a fuzz-built vertex layout gets the same bytes at the CPU's SIMD
+   level as at the scalar one; indices are in range.
 
    libFuzzer: clang -g -O1 -fsanitize=fuzzer,address,undefined fuzz_ribbons.c
    replay:    gcc -O1 -g fuzz_main.c fuzz_ribbons.c -lm (see the Makefile) */
@@ -231,6 +232,64 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 free(c2);
             }
         }
+    }
+
+    /* ---- hf_ribbons into a fuzz-built vertex ---------------------------
+       Streams in a fuzz-chosen order and formats, abutting or with gaps,
+       one stride with or without padding, streaming stores or not: the
+       CPU's level and the scalar one give the same result and the same
+       bytes, gaps and padding included (both buffers start as
+       sentinels). */
+    {
+        static const int comps[5] = {3, 3, 3, 4, 2};
+        hf_ribbon_output ol;
+        hf_ribbon_params lp = rp;
+        hf_stream *sl[5];
+        unsigned char *la, *lb;
+        size_t stride, lbytes;
+        int order[5], offs[5], end = 0, lmask = fz_u8(&r) & 31, ra, rb2;
+        memset(&ol, 0, sizeof ol);
+        sl[0] = &ol.position; sl[1] = &ol.tangent; sl[2] = &ol.texcoord;
+        sl[3] = &ol.color; sl[4] = &ol.color3d;
+        for (k = 0; k < 5; ++k) order[k] = k;
+        for (k = 4; k > 0; --k) {
+            int j = fz_int(&r, 0, k), t = order[k];
+            order[k] = order[j];
+            order[j] = t;
+        }
+        for (k = 0; k < 5; ++k) {
+            const int q = order[k];
+            offs[q] = -1;
+            if (!(lmask & (1 << q))) continue;
+            sl[q]->format = fz_int(&r, 0, 5);
+            if (!fz_chance(&r, 200)) end += fz_int(&r, 1, 3); /* a gap */
+            offs[q] = end;
+            end += comps[q] * hf_format_bytes(sl[q]->format);
+        }
+        stride = (size_t)end + (fz_chance(&r, 128) ? 0u : (size_t)fz_int(&r, 1, 4));
+        lbytes = nv * stride + 1u;
+        la = (unsigned char *)fz_sentinel_alloc(lbytes);
+        lb = (unsigned char *)fz_sentinel_alloc(lbytes);
+        for (k = 0; k < 5; ++k)
+            if (offs[k] >= 0) {
+                sl[k]->data = la + offs[k];
+                sl[k]->stride = (int)stride;
+            }
+        ol.position_scale = fz_chance(&r, 128) ? 0.0f : fz_float_in(&r, 0.05f, 4.0f);
+        lp.nontemporal = fz_int(&r, 0, 1);
+        lp.simd = HF_SIMD_AUTO;
+        fz_range_untotalled(&r, S, &first, &count);
+        ra = hf_ribbons(&st, first, count, &lp, &ol);
+        FZ_REQUIRE(fz_known_result(ra));
+        for (k = 0; k < 5; ++k)
+            if (offs[k] >= 0) sl[k]->data = lb + offs[k];
+        lp.simd = HF_SIMD_SCALAR;
+        rb2 = hf_ribbons(&st, first, count, &lp, &ol);
+        FZ_REQUIRE(ra == rb2);
+        FZ_REQUIRE(memcmp(la, lb, lbytes) == 0);
+        if (ra != HF_OK) FZ_REQUIRE(fz_untouched(la, lbytes));
+        free(la);
+        free(lb);
     }
 
     /* ---- hf_ribbon_points ---------------------------------------------- */
