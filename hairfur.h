@@ -9520,8 +9520,9 @@ hf__put_side_avx2(unsigned char *o, size_t st2, int n, __m256 x, __m256 y,
 
 /* hf__ribbon_write_sse eight points at a time for the 36-byte float run
    (position, tangent, texcoord: hf__float_run 3); the dispatch gives other
-   layouts to the SSE writer (calling it from here would run SSE code with
-   the upper halves of the registers dirty, at twice its time or more). */
+   layouts to the table writer below or the SSE one (calling the SSE
+   writer from here would run SSE code with the upper halves of the
+   registers dirty, at twice its time or more). */
 HF__TARGET_AVX2 HF__PRIVATE void
 hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
                       const hf__rstrand *str, const hf__rout *ro, size_t v0)
@@ -9757,12 +9758,13 @@ hf__window_put_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
 #undef HF__WIN_LOOP
 }
 
-/* Every stream of a layout the table writer takes (hf__rout nw > 0),
-   eight points at a time: each stream's values encoded into a table a
-   vector at a time (hf__table_avx2), then copied out stream by stream
-   in address order, an element in one or two scalar stores
-   (hf__elems_put). Same values, same operations: the same bytes as the
-   reference. */
+/* Every stream of a layout the table writer takes (hf__rout nw > 0), in
+   blocks of up to HF__TB points: each stream's values encoded into a
+   table eight points at a time (hf__table_avx2), then written out, as a
+   run assembled in a register a vertex where the elements abut
+   (hf__window_put_avx2), else stream by stream in address order, an
+   element in one or two scalar stores (hf__elems_put). Same values, same
+   operations: the same bytes as the reference. */
 HF__TARGET_AVX2 HF__PRIVATE void
 hf__ribbon_write_table_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
                             const hf__rstrand *str, const hf__rout *ro,
