@@ -1410,9 +1410,8 @@ typedef struct hf_ribbon_params {
     int nontemporal;
     /* hf_simd_level of hf_ribbons and hf_ribbon_points; 0 = the best
        the CPU runs (same bytes). Ribbons: SSE2 or NEON; AVX2 (the
-       AVX-512 level runs it) for the 36-byte float vertex and for every
-       layout whose streams do not overlap inside a vertex, but position
-       and tangent as floats side by side (SSE2). */
+       AVX-512 level runs it) for every layout whose streams do not
+       overlap inside a vertex, else SSE2. */
     int simd;
 } hf_ribbon_params;
 
@@ -9461,13 +9460,15 @@ HF__PRIVATE void hf__ribbon_write_sse(const hf__rframe *fr, int P,
 #endif
 
 #if HF__AVX2
-/* One side's vertices of a group of eight points in the 36-byte float run:
-   x y z tx of points i and i + 4 (the two halves) joined to B[i] (ty tz
-   u v) make a vertex's first eight floats, one store; t follows them.
-   Vertex i is at o + i * st2. */
+/* One side's vertices of a group of eight points in a float run (run 3:
+   the 36-byte vertex): x y z tx of points i and i + 4 (the two halves)
+   joined to B[i] (ty tz u v) make a vertex's first eight floats, one
+   store; t follows them. Run 2 (position and tangent, 24 bytes): x y z
+   tx in one store, ty tz in another. Vertex i is at o + i * st2. */
 HF__TARGET_AVX2 HF__INLINE void
-hf__put_side_avx2(unsigned char *o, size_t st2, int n, __m256 x, __m256 y,
-                  __m256 z, __m256 tx, const __m256 *B, const float *tt)
+hf__put_side_avx2(unsigned char *o, size_t st2, int n, int run, __m256 x,
+                  __m256 y, __m256 z, __m256 tx, const __m256 *B,
+                  const float *tt)
 {
     const __m256 xy0 = _mm256_unpacklo_ps(x, y), xy1 = _mm256_unpackhi_ps(x, y),
                  zt0 = _mm256_unpacklo_ps(z, tx), zt1 = _mm256_unpackhi_ps(z, tx);
@@ -9483,7 +9484,19 @@ hf__put_side_avx2(unsigned char *o, size_t st2, int n, __m256 x, __m256 y,
                  v5 = _mm256_permute2f128_ps(a1, B[1], 0x31),
                  v6 = _mm256_permute2f128_ps(a2, B[2], 0x31),
                  v7 = _mm256_permute2f128_ps(a3, B[3], 0x31);
-    if (n == 8) { /* straight stores: nothing goes through the stack */
+    if (n == 8 && run == 2) {
+        const __m256 a[4] = {a0, a1, a2, a3};
+        int k;
+        HF__UNROLL for (k = 0; k < 4; ++k) {
+            unsigned char *lo = o + (size_t)k * st2, *hi = lo + 4 * st2;
+            _mm_storeu_ps((float *)(void *)lo, _mm256_castps256_ps128(a[k]));
+            _mm_storel_pi((__m64 *)(void *)(lo + 16),
+                          _mm256_castps256_ps128(B[k]));
+            _mm_storeu_ps((float *)(void *)hi, _mm256_extractf128_ps(a[k], 1));
+            _mm_storel_pi((__m64 *)(void *)(hi + 16),
+                          _mm256_extractf128_ps(B[k], 1));
+        }
+    } else if (n == 8) { /* straight stores: nothing goes through the stack */
         _mm256_storeu_ps((float *)(void *)o, v0);
         HF_MEMCPY(o + 32, tt, 4);
         _mm256_storeu_ps((float *)(void *)(o + st2), v1);
@@ -9512,14 +9525,20 @@ hf__put_side_avx2(unsigned char *o, size_t st2, int n, __m256 x, __m256 y,
         _mm256_storeu_ps(f[6], v6);
         _mm256_storeu_ps(f[7], v7);
         for (i = 0; i < n; ++i, o += st2) {
+            if (run == 2) {
+                HF_MEMCPY(o, f[i], 24);
+                continue;
+            }
             HF_MEMCPY(o, f[i], 32);
             HF_MEMCPY(o + 32, tt + i, 4);
         }
     }
 }
 
-/* hf__ribbon_write_sse eight points at a time for the 36-byte float run
-   (position, tangent, texcoord: hf__float_run 3); the dispatch gives other
+/* hf__ribbon_write_sse eight points at a time for the float runs
+   (position, tangent and texcoord, the 36-byte vertex: hf__float_run 3;
+   position and tangent: 2, the other streams as the SSE writer writes
+   them); the dispatch gives other
    layouts to the table writer below or the SSE one (calling the SSE
    writer from here would run SSE code with the upper halves of the
    registers dirty, at twice its time or more). */
@@ -9561,18 +9580,20 @@ hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
         B[3] = _mm256_shuffle_ps(hi, uv, _MM_SHUFFLE(1, 0, 3, 2));
         /* L = p - s w, R = p + s w, relative to the origin and scale */
         hf__put_side_avx2(
-            b, 2 * st, n,
+            b, 2 * st, n, ro->run,
             _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(x, swx), ox), is),
             _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(y, swy), oy), is),
             _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(z, swz), oz), is),
             _mm256_loadu_ps(fr->t[0] + o), B, K->tt + 8 * k);
         hf__put_side_avx2(
-            b + st, 2 * st, n,
+            b + st, 2 * st, n, ro->run,
             _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(x, swx), ox), is),
             _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(y, swy), oy), is),
             _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(z, swz), oz), is),
             _mm256_loadu_ps(fr->t[0] + o), B, K->tt + 8 * k);
     }
+    if (ro->base[HF__S_TEX] && ro->run == 2)
+        hf__stream_sse(HF__S_TEX, 3, fr, P, K, str, ro, v0);
     if (ro->base[HF__S_COL]) hf__stream_sse(HF__S_COL, 4, fr, P, K, str, ro, v0);
     if (ro->base[HF__S_C3D]) hf__stream_sse(HF__S_C3D, 2, fr, P, K, str, ro, v0);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
@@ -10040,7 +10061,7 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
                                   const hf__rout *ro, size_t v0, int level)
 {
 #if HF__AVX2
-    if (level >= HF_SIMD_AVX2 && ro->run == 3) {
+    if (level >= HF_SIMD_AVX2 && ro->run) {
         hf__ribbon_write_avx2(fr, P, K, str, ro, v0);
         return;
     }
