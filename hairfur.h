@@ -9093,6 +9093,10 @@ typedef struct hf__rout {
        wsh[0..8)). wl 0 otherwise. */
     int wl;
     unsigned char wm[5][16], wsh[16];
+    /* The vertex size where the streams tile one interleaved vertex
+       exactly (one stride, no gaps, no overlap), else 0: what streaming
+       ribbons copy out whole (hf__ribbon_stage). */
+    size_t tile;
 } hf__rout;
 
 enum { HF__S_POS, HF__S_TAN, HF__S_TEX, HF__S_COL, HF__S_C3D };
@@ -9192,42 +9196,43 @@ HF__PRIVATE int hf__float_run(const hf__rout *ro)
                : 2;
 }
 
-/* The float run and the table writer's plan of ro's streams (see
-   hf__rout), once per call. */
+/* The float run, the table writer's plan and the stage's block of ro's
+   streams (see hf__rout), once per call. Addresses are compared as
+   integers: the streams may be in different buffers. */
 HF__PRIVATE void hf__rout_layout(hf__rout *ro)
 {
-    size_t z[5];
+    uintptr_t at[5];
+    size_t z[5], end = 0, st;
     int q, m, r, n = 0;
     ro->run = hf__float_run(ro);
+    ro->nw = ro->wl = 0;
+    ro->tile = 0;
     for (q = 0; q < 5; ++q) {
         z[q] = (size_t)hf_format_bytes(ro->fmt[q]) * (size_t)hf__stream_nc[q];
+        at[q] = (uintptr_t)ro->base[q];
         if (!ro->base[q]) continue;
-        for (m = n++; m > 0 && ro->base[ro->wq[m - 1]] > ro->base[q]; --m)
+        for (m = n++; m > 0 && at[ro->wq[m - 1]] > at[q]; --m)
             ro->wq[m] = ro->wq[m - 1];
         ro->wq[m] = (unsigned char)q;
     }
-    ro->nw = n;
     for (m = 0; m < n; ++m) {
         const int a = ro->wq[m];
-        const size_t st = ro->stride[a];
         /* 3, 6 and 12 bytes take two copies unless widened to 4, 8, 16 */
         const size_t w = z[a] == 3 ? 4 : z[a] == 6 ? 8 : z[a] == 12 ? 16 : z[a];
         size_t b, covered = z[a];
+        st = ro->stride[a];
         for (r = m + 1; r < n; ++r) {
             const int c = ro->wq[r];
-            const size_t d = (size_t)(ro->base[c] - ro->base[a]);
+            const size_t d = (size_t)(at[c] - at[a]);
             if (ro->stride[c] != st || d >= st) continue;
-            if (d < z[a] || d + z[c] > st) { /* overlap in one vertex */
-                ro->nw = 0;
-                return;
-            }
+            if (d < z[a] || d + z[c] > st) return; /* overlap in one vertex */
         }
         /* the widened copy's extra bytes, each inside a later element of
            the same vertex (rewritten after it) */
         for (b = z[a]; b < w; ++b)
             for (r = m + 1; r < n; ++r) {
                 const int c = ro->wq[r];
-                const size_t d = (size_t)(ro->base[c] - ro->base[a]);
+                const size_t d = (size_t)(at[c] - at[a]);
                 if (ro->stride[c] == st && d <= b && b < d + z[c]) {
                     ++covered;
                     break;
@@ -9235,32 +9240,31 @@ HF__PRIVATE void hf__rout_layout(hf__rout *ro)
             }
         ro->wb[m] = (unsigned char)(covered == w ? w : z[a]);
     }
-    /* the register run: every stream of one stride, elements abutting */
-    ro->wl = 0;
-    if (n > 0) {
-        const unsigned char *b0 = ro->base[ro->wq[0]];
-        const size_t st = ro->stride[ro->wq[0]];
-        size_t end = 0;
-        for (m = 0; m < n; ++m) {
-            const int a = ro->wq[m];
-            if (ro->stride[a] != st || (size_t)(ro->base[a] - b0) != end) return;
-            end += z[a];
-        }
-        if (end < 9 || end > 16 || end > st) return;
-        for (q = 0; q < 5; ++q) {
-            const size_t d = ro->base[q] ? (size_t)(ro->base[q] - b0) : 0;
-            for (m = 0; m < 16; ++m)
-                ro->wm[q][m] = (unsigned char)(ro->base[q] && (size_t)m >= d &&
-                                                       (size_t)m < d + z[q]
-                                                   ? (size_t)m - d
-                                                   : 0x80);
-        }
-        for (m = 0; m < 16; ++m)
-            ro->wsh[m] = (unsigned char)((size_t)m + end - 8 < 16
-                                             ? (size_t)m + end - 8
-                                             : 0x80);
-        ro->wl = (int)end;
+    ro->nw = n;
+    /* every stream of one stride, elements abutting from the first: the
+       stage's block where they fill the stride, the register run where
+       they take 9 to 16 bytes */
+    if (n == 0) return;
+    st = ro->stride[ro->wq[0]];
+    for (m = 0; m < n; ++m) {
+        const int a = ro->wq[m];
+        if (ro->stride[a] != st || at[a] - at[ro->wq[0]] != end) return;
+        end += z[a];
     }
+    if (end == st) ro->tile = st;
+    if (end < 9 || end > 16 || end > st) return;
+    for (q = 0; q < 5; ++q) {
+        const size_t d = ro->base[q] ? (size_t)(at[q] - at[ro->wq[0]]) : 0;
+        for (m = 0; m < 16; ++m)
+            ro->wm[q][m] = (unsigned char)(ro->base[q] && (size_t)m >= d &&
+                                                   (size_t)m < d + z[q]
+                                               ? (size_t)m - d
+                                               : 0x80);
+    }
+    for (m = 0; m < 16; ++m)
+        ro->wsh[m] =
+            (unsigned char)((size_t)m + end - 8 < 16 ? (size_t)m + end - 8 : 0x80);
+    ro->wl = (int)end;
 }
 
 /* One stream's elements of points i < n at o + 2 i st (side 0, from
@@ -9538,10 +9542,9 @@ hf__put_side_avx2(unsigned char *o, size_t st2, int n, int run, __m256 x,
 /* hf__ribbon_write_sse eight points at a time for the float runs
    (position, tangent and texcoord, the 36-byte vertex: hf__float_run 3;
    position and tangent: 2, the other streams as the SSE writer writes
-   them); the dispatch gives other
-   layouts to the table writer below or the SSE one (calling the SSE
-   writer from here would run SSE code with the upper halves of the
-   registers dirty, at twice its time or more). */
+   them); the dispatch gives other layouts to the table writer below or
+   the SSE one (calling the SSE writer from here would run SSE code with
+   the upper halves of the registers dirty, at twice its time or more). */
 HF__TARGET_AVX2 HF__PRIVATE void
 hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
                       const hf__rstrand *str, const hf__rout *ro, size_t v0)
@@ -10065,7 +10068,7 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
         hf__ribbon_write_avx2(fr, P, K, str, ro, v0);
         return;
     }
-    if (level >= HF_SIMD_AVX2 && ro->nw && !ro->run) {
+    if (level >= HF_SIMD_AVX2 && ro->nw) {
         hf__ribbon_write_table_avx2(fr, P, K, str, ro, v0);
         return;
     }
@@ -10089,42 +10092,17 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
 /* Streaming stores for ribbons (hf_ribbon_params.nontemporal) go through
    a stage: a strand's vertices are written there by the usual kernels,
    then copied out in 16-byte streaming stores. The copy writes whole
-   blocks, so the streams must tile one interleaved vertex exactly (one
-   stride, each element inside it, none overlapping, their sizes adding
-   up to it), and a strand's vertices must fit the stage. Returns 1 with
-   the vertex size and the block's first byte when so. */
+   blocks, so the streams must tile one interleaved vertex exactly
+   (hf__rout's tile), and a strand's vertices must fit the stage. Returns
+   1 with the vertex size and the block's first byte when so. */
 #define HF__STAGE_BYTES 8192
 HF__PRIVATE int hf__ribbon_stage(const hf__rout *ro, int P, size_t *block,
                                  unsigned char **first)
 {
-    unsigned char *lo = NULL;
-    size_t size[5], stride = 0, bytes = 0;
-    int k, q;
-    if (!HF__SSE) return 0;
-    for (k = 0; k < 5; ++k) {
-        size[k] = (size_t)hf_format_bytes(ro->fmt[k]) * (size_t)hf__stream_nc[k];
-        if (!ro->base[k]) continue;
-        if (!lo || ro->base[k] < lo) lo = ro->base[k];
-        if (stride && ro->stride[k] != stride) return 0;
-        stride = ro->stride[k];
-        bytes += size[k];
-    }
-    if (!lo || bytes != stride || 2u * (size_t)P * stride > HF__STAGE_BYTES)
+    if (!HF__SSE || !ro->tile || 2u * (size_t)P * ro->tile > HF__STAGE_BYTES)
         return 0;
-    for (k = 0; k < 5; ++k) {
-        size_t a;
-        if (!ro->base[k]) continue;
-        a = (size_t)(ro->base[k] - lo);
-        if (a + size[k] > stride) return 0;
-        for (q = 0; q < k; ++q) {
-            size_t b;
-            if (!ro->base[q]) continue;
-            b = (size_t)(ro->base[q] - lo);
-            if (a < b + size[q] && b < a + size[k]) return 0;
-        }
-    }
-    *block = stride;
-    *first = lo;
+    *block = ro->tile;
+    *first = ro->base[ro->wq[0]];
     return 1;
 }
 

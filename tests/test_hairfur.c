@@ -6122,7 +6122,8 @@ static void test_ribbons_table_layouts(void)
     CHECK(windows >= 3 * 3 * 3);
     CHECK(widened >= 3 * 3 * 3);
     {
-        /* overlapping streams in one vertex: no plan */
+        /* overlapping streams in one vertex: no plan; the streaming
+           stage's block only where the streams fill the vertex */
         hf__rout ro;
         memset(&ro, 0, sizeof ro);
         for (q = 0; q < 5; ++q) {
@@ -6137,6 +6138,10 @@ static void test_ribbons_table_layouts(void)
         hf__rout_layout(&ro);
         CHECK_EQ_INT(ro.nw, 2);
         CHECK_EQ_INT(ro.wl, 12);
+        CHECK_EQ_INT((int)ro.tile, 0); /* 12 of 32 bytes: no whole blocks */
+        ro.stride[HF__S_POS] = ro.stride[HF__S_TEX] = 12;
+        hf__rout_layout(&ro);
+        CHECK_EQ_INT((int)ro.tile, 12); /* the stage copies whole vertices */
     }
 }
 
