@@ -10426,7 +10426,63 @@ HF__PRIVATE void hf__points_run(const hf__points_kit *k,
     }
 }
 
+/* hf__interp_range<W> and the GPU points kernel in one, for P a
+   multiple of W (8 at AVX2, 16 at AVX-512), one text built at both
+   widths: three vectors of a strand's floats (W points) stay in
+   registers and go out as four vectors of points (hf__points_out<W>),
+   the same values in the same order as the two kernels write them. The
+   finiteness test rides on the same vectors (x * 0 is NaN for NaN or
+   infinity); a strand that is not finite is written again, collapsed,
+   as hf__points_run does. */
+#define HF__INTERP_POINTS(W, T)                                                \
+T HF__PRIVATE void hf__interp_points##W(                                       \
+    const hf__irun *run, const hf__points_kit *k,                              \
+    const hf_ribbon_strands *st, int first, int count, int out_first,          \
+    float *out4)                                                               \
+{                                                                              \
+    const int P = run->P;                                                      \
+    const size_t n = 3u * (size_t)P;                                           \
+    const float *G = run->guides, *ctab = run->ctab;                           \
+    const int clump = run->clump;                                              \
+    int s, i, j;                                                               \
+    for (s = first; s < first + count; ++s) {                                  \
+        float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;            \
+        const hf__f##W WS = hf__set1_##W(hf__strand_width(st, s));             \
+        const int mode = hf__stream_mode(k->nt, o, 4u * W - 1u);               \
+        hf__f##W acc = hf__set1_##W(0.0f);                                     \
+        hf__is##W v;                                                           \
+        hf__strand##W(G, clump, run->bindings + s, n, &v);                     \
+        for (i = 0, j = 0; j < P; i += 3 * W, j += W) {                        \
+            const hf__f##W a = hf__blend##W(&v, ctab, (size_t)i, 0);           \
+            const hf__f##W b = hf__blend##W(&v, ctab, (size_t)i + W, 1);       \
+            const hf__f##W c = hf__blend##W(&v, ctab, (size_t)i + 2 * W, 2);   \
+            acc = hf__nan_acc##W(acc, a);                                      \
+            acc = hf__nan_acc##W(acc, b);                                      \
+            acc = hf__nan_acc##W(acc, c);                                      \
+            hf__points_out##W(o + 4 * j, a, b, c, k->pw.v + 4 * j, WS, mode);  \
+        }                                                                      \
+        if (!hf__all_zero##W(acc)) hf__points_collapse_avx2(k, o);             \
+    }                                                                          \
+    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */                              \
+}
+
 #if HF__AVX2
+typedef __m256 hf__f8;
+HF__TARGET_AVX2 HF__INLINE __m256 hf__set1_8(float x)
+{
+    return _mm256_set1_ps(x);
+}
+/* acc + q * 0: stays zero while every lane of q is finite */
+HF__TARGET_AVX2 HF__INLINE __m256 hf__nan_acc8(__m256 acc, __m256 q)
+{
+    return _mm256_add_ps(acc, _mm256_mul_ps(q, _mm256_setzero_ps()));
+}
+HF__TARGET_AVX2 HF__INLINE int hf__all_zero8(__m256 acc)
+{
+    return _mm256_movemask_ps(_mm256_cmp_ps(acc, _mm256_setzero_ps(),
+                                            _CMP_EQ_OQ)) == 0xff;
+}
+
 /* Two points' x y z in q, their widths (pw, as hf__pair_widths) times ws
    blended in, out at o */
 HF__TARGET_AVX2 HF__INLINE void hf__point_pair_w(float *o, __m256 q,
@@ -10438,61 +10494,45 @@ HF__TARGET_AVX2 HF__INLINE void hf__point_pair_w(float *o, __m256 q,
         mode);
 }
 
-/* hf__interp_range8 and hf__points_strand_avx2 in one, for P a
-   multiple of 8: three vectors of a strand's floats (eight points) stay
-   in registers and go out as four vectors of two points each, the same
-   values in the same order as the two kernels write them. A strand that
-   is not finite is written again, collapsed, as hf__points_run does. */
-HF__TARGET_AVX2 HF__PRIVATE void
-hf__interp_points_avx2(const hf__irun *run, const hf__points_kit *k,
-                       const hf_ribbon_strands *st, int first, int count,
-                       int out_first, float *out4)
+/* Points j .. j + 7 out at o from a strand's floats 3 j .. 3 j + 24 in a,
+   b, c, two a vector; pw: the pair widths from point j (written out, not
+   looped: an array of the four would go through the stack) */
+HF__TARGET_AVX2 HF__INLINE void hf__points_out8(float *o, __m256 a, __m256 b,
+                                                __m256 c, const float *pw,
+                                                __m256 ws, int mode)
 {
     const __m256i lo = _mm256_setr_epi32(0, 1, 2, 0, 3, 4, 5, 0);
     const __m256i hi = _mm256_setr_epi32(2, 3, 4, 0, 5, 6, 7, 0);
-    const __m256 zero = _mm256_setzero_ps();
-    const int P = run->P;
-    const size_t n = 3u * (size_t)P;
-    const float *G = run->guides, *ctab = run->ctab;
-    const int clump = run->clump;
-    int s, i, j;
-    for (s = first; s < first + count; ++s) {
-        float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
-        const __m256 WS = _mm256_set1_ps(hf__strand_width(st, s));
-        const int mode = hf__stream_mode(k->nt, o, 31u);
-        __m256 acc = zero;
-        hf__is8 v;
-        hf__strand8(G, clump, run->bindings + s, n, &v);
-        for (i = 0, j = 0; j < P; i += 24, j += 8) {
-            const __m256 a = hf__blend8(&v, ctab, (size_t)i, 0);
-            const __m256 b = hf__blend8(&v, ctab, (size_t)i + 8, 1);
-            const __m256 c = hf__blend8(&v, ctab, (size_t)i + 16, 2);
-            acc = _mm256_add_ps(acc, _mm256_mul_ps(a, zero));
-            acc = _mm256_add_ps(acc, _mm256_mul_ps(b, zero));
-            acc = _mm256_add_ps(acc, _mm256_mul_ps(c, zero));
-            /* points j .. j + 7, two a vector (written out, not looped:
-               an array of the four would go through the stack) */
-            hf__point_pair_w(o + 4 * j, _mm256_permutevar8x32_ps(a, lo),
-                             k->pw.v + 4 * j, WS, mode);
-            hf__point_pair_w(o + 4 * j + 8,
-                             _mm256_permutevar8x32_ps(
-                                 _mm256_permute2f128_ps(a, b, 0x21), hi),
-                             k->pw.v + 4 * j + 8, WS, mode);
-            hf__point_pair_w(o + 4 * j + 16,
-                             _mm256_permutevar8x32_ps(
-                                 _mm256_permute2f128_ps(b, c, 0x21), lo),
-                             k->pw.v + 4 * j + 16, WS, mode);
-            hf__point_pair_w(o + 4 * j + 24, _mm256_permutevar8x32_ps(c, hi),
-                             k->pw.v + 4 * j + 24, WS, mode);
-        }
-        if (_mm256_movemask_ps(_mm256_cmp_ps(acc, zero, _CMP_EQ_OQ)) != 0xff)
-            hf__points_collapse_avx2(k, o);
-    }
-    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
+    hf__point_pair_w(o, _mm256_permutevar8x32_ps(a, lo), pw, ws, mode);
+    hf__point_pair_w(
+        o + 8, _mm256_permutevar8x32_ps(_mm256_permute2f128_ps(a, b, 0x21), hi),
+        pw + 8, ws, mode);
+    hf__point_pair_w(
+        o + 16,
+        _mm256_permutevar8x32_ps(_mm256_permute2f128_ps(b, c, 0x21), lo),
+        pw + 16, ws, mode);
+    hf__point_pair_w(o + 24, _mm256_permutevar8x32_ps(c, hi), pw + 24, ws,
+                     mode);
 }
+
+HF__INTERP_POINTS(8, HF__TARGET_AVX2)
 #endif
 
 #if HF__AVX512
+typedef __m512 hf__f16;
+HF__TARGET_AVX512 HF__INLINE __m512 hf__set1_16(float x)
+{
+    return _mm512_set1_ps(x);
+}
+HF__TARGET_AVX512 HF__INLINE __m512 hf__nan_acc16(__m512 acc, __m512 q)
+{
+    return _mm512_add_ps(acc, _mm512_mul_ps(q, _mm512_setzero_ps()));
+}
+HF__TARGET_AVX512 HF__INLINE int hf__all_zero16(__m512 acc)
+{
+    return _mm512_cmp_ps_mask(acc, _mm512_setzero_ps(), _CMP_EQ_OQ) == 0xffff;
+}
+
 /* Four points' x y z in q, their widths (pw, as hf__pair_widths) times ws
    in lanes 3, 7, 11 and 15 */
 HF__TARGET_AVX512 HF__INLINE __m512 hf__point_quad_w(__m512 q, const float *pw,
@@ -10502,14 +10542,13 @@ HF__TARGET_AVX512 HF__INLINE __m512 hf__point_quad_w(__m512 q, const float *pw,
                               _mm512_mul_ps(_mm512_loadu_ps(pw), ws));
 }
 
-/* hf__interp_points_avx2 at sixteen lanes, for P a multiple of 16: three
-   vectors of a strand's floats (sixteen points) go out as four vectors of
-   four points each, one 64-byte line a store where the output is aligned
-   so. The widths of four points are four entries of hf__pair_widths. */
-HF__TARGET_AVX512 HF__PRIVATE void
-hf__interp_points_avx512(const hf__irun *run, const hf__points_kit *k,
-                         const hf_ribbon_strands *st, int first, int count,
-                         int out_first, float *out4)
+/* hf__points_out8 at sixteen points: four vectors of four points, one
+   64-byte line a store where the output is aligned so; the widths of
+   four points are four entries of hf__pair_widths */
+HF__TARGET_AVX512 HF__INLINE void hf__points_out16(float *o, __m512 a,
+                                                   __m512 b, __m512 c,
+                                                   const float *pw,
+                                                   __m512 ws, int mode)
 {
     /* x y z of points 4 q .. 4 q + 3 from floats 0, 12, 24 and 36 of
        the sixteen points' 48: in one vector, or across two (index >= 16:
@@ -10522,51 +10561,27 @@ hf__interp_points_avx512(const hf__irun *run, const hf__points_kit *k,
                                          16, 0, 17, 18, 19, 0);
     const __m512i i3 = _mm512_setr_epi32(4, 5, 6, 0, 7, 8, 9, 0, 10, 11, 12,
                                          0, 13, 14, 15, 0);
-    const __m512 zero = _mm512_setzero_ps();
-    const int P = run->P;
-    const size_t n = 3u * (size_t)P;
-    const float *G = run->guides, *ctab = run->ctab;
-    const int clump = run->clump;
-    int s, i, j;
-    for (s = first; s < first + count; ++s) {
-        float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
-        const __m512 WS = _mm512_set1_ps(hf__strand_width(st, s));
-        const int mode = hf__stream_mode(k->nt, o, 63u);
-        __m512 acc = zero;
-        hf__is16 v;
-        hf__strand16(G, clump, run->bindings + s, n, &v);
-        for (i = 0, j = 0; j < P; i += 48, j += 16) {
-            const __m512 a = hf__blend16(&v, ctab, (size_t)i, 0);
-            const __m512 b = hf__blend16(&v, ctab, (size_t)i + 16, 1);
-            const __m512 c = hf__blend16(&v, ctab, (size_t)i + 32, 2);
-            acc = _mm512_add_ps(acc, _mm512_mul_ps(a, zero));
-            acc = _mm512_add_ps(acc, _mm512_mul_ps(b, zero));
-            acc = _mm512_add_ps(acc, _mm512_mul_ps(c, zero));
-            hf__put16(o + 4 * j,
-                      hf__point_quad_w(_mm512_maskz_permutexvar_ps(0xffff, i0, a),
-                                       k->pw.v + 4 * j, WS),
-                      mode);
-            hf__put16(o + 4 * j + 16,
-                      hf__point_quad_w(
-                          _mm512_maskz_permutex2var_ps(0xffff, a, i1, b),
-                          k->pw.v + 4 * j + 16, WS),
-                      mode);
-            hf__put16(o + 4 * j + 32,
-                      hf__point_quad_w(
-                          _mm512_maskz_permutex2var_ps(0xffff, b, i2, c),
-                          k->pw.v + 4 * j + 32, WS),
-                      mode);
-            hf__put16(o + 4 * j + 48,
-                      hf__point_quad_w(_mm512_maskz_permutexvar_ps(0xffff, i3, c),
-                                       k->pw.v + 4 * j + 48, WS),
-                      mode);
-        }
-        if (_mm512_cmp_ps_mask(acc, zero, _CMP_EQ_OQ) != 0xffff)
-            hf__points_collapse_avx2(k, o);
-    }
-    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
+    hf__put16(o,
+              hf__point_quad_w(_mm512_maskz_permutexvar_ps(0xffff, i0, a), pw,
+                               ws),
+              mode);
+    hf__put16(o + 16,
+              hf__point_quad_w(_mm512_maskz_permutex2var_ps(0xffff, a, i1, b),
+                               pw + 16, ws),
+              mode);
+    hf__put16(o + 32,
+              hf__point_quad_w(_mm512_maskz_permutex2var_ps(0xffff, b, i2, c),
+                               pw + 32, ws),
+              mode);
+    hf__put16(o + 48,
+              hf__point_quad_w(_mm512_maskz_permutexvar_ps(0xffff, i3, c),
+                               pw + 48, ws),
+              mode);
 }
+
+HF__INTERP_POINTS(16, HF__TARGET_AVX512)
 #endif
+#undef HF__INTERP_POINTS
 
 HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
                                  int count, const hf_ribbon_params *view,
@@ -13163,12 +13178,12 @@ HFDEF hf_result hf_fur_interpolate_points(const hf_fur *f, int first,
                       ctab, out4, first, 0);
 #if HF__AVX512
         if (lv >= HF_SIMD_AVX512 && f->P % 16 == 0)
-            hf__interp_points_avx512(&run, &kit, &st, first, count,
-                                     prm.out_first, out4);
+            hf__interp_points16(&run, &kit, &st, first, count,
+                                prm.out_first, out4);
         else
 #endif
-            hf__interp_points_avx2(&run, &kit, &st, first, count,
-                                   prm.out_first, out4);
+            hf__interp_points8(&run, &kit, &st, first, count,
+                               prm.out_first, out4);
         count = 0;
     }
 #endif
