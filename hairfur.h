@@ -8657,6 +8657,70 @@ HF__TARGET_AVX2 HF__INLINE __m256 hf__diff_avx2(const float *row, int last,
     return d;
 }
 
+/* Group k of the AVX2 frame (points 8 k ..): tangents and sides into
+   fr; returns the live lanes whose tangent or side is left to the
+   reference. last: the tip repeats after it; ortho: e is the view
+   direction (negated), else the eye. Inlined with both as constants. */
+HF__TARGET_AVX2 HF__INLINE int
+hf__frame_group_avx2(hf__rframe *fr, int k, int P, int last, int ortho,
+                     const float *tip, __m256 ex, __m256 ey, __m256 ez,
+                     __m256 *px, __m256 *py, __m256 *pz)
+{
+    const __m256 one = _mm256_set1_ps(1.0f);
+    const __m256 tiny = _mm256_set1_ps(1e-30f);
+    const __m256 side_sin2 = _mm256_set1_ps(HF__SIDE_SIN2);
+    const __m256 big = _mm256_set1_ps(3.40282347e+38f);
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    const int o = 4 + 8 * k;
+    /* lanes of points that exist: all but in the last group */
+    const __m256 live =
+        last ? _mm256_castsi256_ps(
+                   _mm256_cmpgt_epi32(_mm256_set1_epi32(P - 8 * k), lane))
+             : _mm256_castsi256_ps(_mm256_set1_epi32(-1));
+    const __m256 cx = _mm256_loadu_ps(fr->p[0] + o),
+                 cy = _mm256_loadu_ps(fr->p[1] + o),
+                 cz = _mm256_loadu_ps(fr->p[2] + o);
+    const __m256 dx = hf__diff_avx2(fr->p[0] + o, last, tip[0], cx, px),
+                 dy = hf__diff_avx2(fr->p[1] + o, last, tip[1], cy, py),
+                 dz = hf__diff_avx2(fr->p[2] + o, last, tip[2], cz, pz);
+    const __m256 vx = ortho ? ex : _mm256_sub_ps(ex, cx),
+                 vy = ortho ? ey : _mm256_sub_ps(ey, cy),
+                 vz = ortho ? ez : _mm256_sub_ps(ez, cz);
+    const __m256 l2 = _mm256_add_ps(
+        _mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)),
+        _mm256_mul_ps(dz, dz));
+    const __m256 ok = _mm256_and_ps(_mm256_cmp_ps(l2, tiny, _CMP_GT_OQ),
+                                    _mm256_cmp_ps(l2, big, _CMP_LE_OQ));
+    /* 1 where undefined: no division by zero for any lane */
+    const __m256 inv = _mm256_div_ps(
+        one, _mm256_sqrt_ps(_mm256_blendv_ps(one, l2, ok)));
+    const __m256 tx = _mm256_mul_ps(dx, inv), ty = _mm256_mul_ps(dy, inv),
+                 tz = _mm256_mul_ps(dz, inv);
+    const __m256 sx = _mm256_sub_ps(_mm256_mul_ps(dy, vz), _mm256_mul_ps(dz, vy)),
+                 sy = _mm256_sub_ps(_mm256_mul_ps(dz, vx), _mm256_mul_ps(dx, vz)),
+                 sz = _mm256_sub_ps(_mm256_mul_ps(dx, vy), _mm256_mul_ps(dy, vx));
+    const __m256 c2 = _mm256_add_ps(
+        _mm256_add_ps(_mm256_mul_ps(sx, sx), _mm256_mul_ps(sy, sy)),
+        _mm256_mul_ps(sz, sz));
+    const __m256 vv = _mm256_add_ps(
+        _mm256_add_ps(_mm256_mul_ps(vx, vx), _mm256_mul_ps(vy, vy)),
+        _mm256_mul_ps(vz, vz));
+    const __m256 ok2 = _mm256_and_ps(
+        _mm256_cmp_ps(c2, _mm256_mul_ps(_mm256_mul_ps(side_sin2, vv), l2),
+                      _CMP_GT_OQ),
+        _mm256_and_ps(_mm256_cmp_ps(c2, tiny, _CMP_GT_OQ),
+                      _mm256_cmp_ps(c2, big, _CMP_LE_OQ)));
+    const __m256 inv2 = _mm256_div_ps(
+        one, _mm256_sqrt_ps(_mm256_blendv_ps(one, c2, ok2)));
+    _mm256_storeu_ps(fr->t[0] + o, tx);
+    _mm256_storeu_ps(fr->t[1] + o, ty);
+    _mm256_storeu_ps(fr->t[2] + o, tz);
+    _mm256_storeu_ps(fr->s[0] + o, _mm256_mul_ps(sx, inv2));
+    _mm256_storeu_ps(fr->s[1] + o, _mm256_mul_ps(sy, inv2));
+    _mm256_storeu_ps(fr->s[2] + o, _mm256_mul_ps(sz, inv2));
+    return _mm256_movemask_ps(_mm256_andnot_ps(_mm256_and_ps(ok, ok2), live));
+}
+
 /* hf__strand_frame_v4 eight points at a time, with the same IEEE
    operations per point, and the same cases left to the reference. */
 HF__TARGET_AVX2 HF__PRIVATE int
@@ -8664,11 +8728,7 @@ hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
                       hf__rframe *fr, int *finite)
 {
     const int G = (P + 7) >> 3, ortho = params->orthographic != 0;
-    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
-    const __m256 tiny = _mm256_set1_ps(1e-30f);
-    const __m256 side_sin2 = _mm256_set1_ps(HF__SIDE_SIN2);
-    const __m256 big = _mm256_set1_ps(3.40282347e+38f);
-    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    const __m256 zero = _mm256_setzero_ps();
     __m256 acc = zero, px, py, pz, ex, ey, ez;
     float e[3], tip[3];
     int k, c, bad = 0;
@@ -8727,52 +8787,20 @@ hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
     ex = _mm256_set1_ps(e[0]);
     ey = _mm256_set1_ps(e[1]);
     ez = _mm256_set1_ps(e[2]);
-    for (k = 0; k < G; ++k) {
-        const int o = 4 + 8 * k, last = k + 1 == G;
-        const __m256 live = _mm256_castsi256_ps(
-            _mm256_cmpgt_epi32(_mm256_set1_epi32(P - 8 * k), lane));
-        const __m256 cx = _mm256_loadu_ps(fr->p[0] + o),
-                     cy = _mm256_loadu_ps(fr->p[1] + o),
-                     cz = _mm256_loadu_ps(fr->p[2] + o);
-        const __m256 dx = hf__diff_avx2(fr->p[0] + o, last, tip[0], cx, &px),
-                     dy = hf__diff_avx2(fr->p[1] + o, last, tip[1], cy, &py),
-                     dz = hf__diff_avx2(fr->p[2] + o, last, tip[2], cz, &pz);
-        const __m256 vx = ortho ? ex : _mm256_sub_ps(ex, cx),
-                     vy = ortho ? ey : _mm256_sub_ps(ey, cy),
-                     vz = ortho ? ez : _mm256_sub_ps(ez, cz);
-        const __m256 l2 = _mm256_add_ps(
-            _mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)),
-            _mm256_mul_ps(dz, dz));
-        const __m256 ok = _mm256_and_ps(_mm256_cmp_ps(l2, tiny, _CMP_GT_OQ),
-                                        _mm256_cmp_ps(l2, big, _CMP_LE_OQ));
-        /* 1 where undefined: no division by zero for any lane */
-        const __m256 inv = _mm256_div_ps(
-            one, _mm256_sqrt_ps(_mm256_blendv_ps(one, l2, ok)));
-        const __m256 tx = _mm256_mul_ps(dx, inv), ty = _mm256_mul_ps(dy, inv),
-                     tz = _mm256_mul_ps(dz, inv);
-        const __m256 sx = _mm256_sub_ps(_mm256_mul_ps(dy, vz), _mm256_mul_ps(dz, vy)),
-                     sy = _mm256_sub_ps(_mm256_mul_ps(dz, vx), _mm256_mul_ps(dx, vz)),
-                     sz = _mm256_sub_ps(_mm256_mul_ps(dx, vy), _mm256_mul_ps(dy, vx));
-        const __m256 c2 = _mm256_add_ps(
-            _mm256_add_ps(_mm256_mul_ps(sx, sx), _mm256_mul_ps(sy, sy)),
-            _mm256_mul_ps(sz, sz));
-        const __m256 vv = _mm256_add_ps(
-            _mm256_add_ps(_mm256_mul_ps(vx, vx), _mm256_mul_ps(vy, vy)),
-            _mm256_mul_ps(vz, vz));
-        const __m256 ok2 = _mm256_and_ps(
-            _mm256_cmp_ps(c2, _mm256_mul_ps(_mm256_mul_ps(side_sin2, vv), l2),
-                          _CMP_GT_OQ),
-            _mm256_and_ps(_mm256_cmp_ps(c2, tiny, _CMP_GT_OQ),
-                          _mm256_cmp_ps(c2, big, _CMP_LE_OQ)));
-        const __m256 inv2 = _mm256_div_ps(
-            one, _mm256_sqrt_ps(_mm256_blendv_ps(one, c2, ok2)));
-        bad |= _mm256_movemask_ps(_mm256_andnot_ps(_mm256_and_ps(ok, ok2), live));
-        _mm256_storeu_ps(fr->t[0] + o, tx);
-        _mm256_storeu_ps(fr->t[1] + o, ty);
-        _mm256_storeu_ps(fr->t[2] + o, tz);
-        _mm256_storeu_ps(fr->s[0] + o, _mm256_mul_ps(sx, inv2));
-        _mm256_storeu_ps(fr->s[1] + o, _mm256_mul_ps(sy, inv2));
-        _mm256_storeu_ps(fr->s[2] + o, _mm256_mul_ps(sz, inv2));
+    /* every group but the last reads its next neighbours from the row;
+       the perspective and orthographic bodies apart: no test per group */
+    if (ortho) {
+        for (k = 0; k + 1 < G; ++k)
+            bad |= hf__frame_group_avx2(fr, k, P, 0, 1, tip, ex, ey, ez, &px,
+                                        &py, &pz);
+        bad |= hf__frame_group_avx2(fr, k, P, 1, 1, tip, ex, ey, ez, &px,
+                                    &py, &pz);
+    } else {
+        for (k = 0; k + 1 < G; ++k)
+            bad |= hf__frame_group_avx2(fr, k, P, 0, 0, tip, ex, ey, ez, &px,
+                                        &py, &pz);
+        bad |= hf__frame_group_avx2(fr, k, P, 1, 0, tip, ex, ey, ez, &px,
+                                    &py, &pz);
     }
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
     return bad == 0;
@@ -9539,6 +9567,49 @@ hf__put_side_avx2(unsigned char *o, size_t st2, int n, int run, __m256 x,
     }
 }
 
+/* One group of n points (8 but for the last), the run's vertices from
+   point 8 k on at b: the writer's loop body, inlined with n and run as
+   constants where it can (the common groups then take no branch) */
+HF__TARGET_AVX2 HF__INLINE void
+hf__ribbon_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k,
+                      int n, int run, unsigned char *b, size_t st,
+                      __m256 ws, __m256 is, __m256 ox, __m256 oy, __m256 oz,
+                      __m256 uv)
+{
+    const int o = 4 + 8 * k;
+    const __m256 w = _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws);
+    const __m256 ty = _mm256_loadu_ps(fr->t[1] + o),
+                 tz = _mm256_loadu_ps(fr->t[2] + o);
+    const __m256 lo = _mm256_unpacklo_ps(ty, tz),
+                 hi = _mm256_unpackhi_ps(ty, tz);
+    const __m256 x = _mm256_loadu_ps(fr->p[0] + o),
+                 y = _mm256_loadu_ps(fr->p[1] + o),
+                 z = _mm256_loadu_ps(fr->p[2] + o);
+    const __m256 swx = _mm256_mul_ps(_mm256_loadu_ps(fr->s[0] + o), w),
+                 swy = _mm256_mul_ps(_mm256_loadu_ps(fr->s[1] + o), w),
+                 swz = _mm256_mul_ps(_mm256_loadu_ps(fr->s[2] + o), w);
+    const __m256 tx = _mm256_loadu_ps(fr->t[0] + o);
+    __m256 B[4];
+    /* ty tz u v of points i and i + 4: the same on both sides */
+    B[0] = _mm256_shuffle_ps(lo, uv, _MM_SHUFFLE(1, 0, 1, 0));
+    B[1] = _mm256_shuffle_ps(lo, uv, _MM_SHUFFLE(1, 0, 3, 2));
+    B[2] = _mm256_shuffle_ps(hi, uv, _MM_SHUFFLE(1, 0, 1, 0));
+    B[3] = _mm256_shuffle_ps(hi, uv, _MM_SHUFFLE(1, 0, 3, 2));
+    /* L = p - s w, R = p + s w, relative to the origin and scale */
+    hf__put_side_avx2(
+        b, 2 * st, n, run,
+        _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(x, swx), ox), is),
+        _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(y, swy), oy), is),
+        _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(z, swz), oz), is), tx, B,
+        K->tt + 8 * k);
+    hf__put_side_avx2(
+        b + st, 2 * st, n, run,
+        _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(x, swx), ox), is),
+        _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(y, swy), oy), is),
+        _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(z, swz), oz), is), tx, B,
+        K->tt + 8 * k);
+}
+
 /* hf__ribbon_write_sse eight points at a time for the float runs
    (position, tangent and texcoord, the 36-byte vertex: hf__float_run 3;
    position and tangent: 2, the other streams as the SSE writer writes
@@ -9562,39 +9633,18 @@ hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
                                          _mm256_set1_ps(str->uv[1]));
     unsigned char *b = ro->base[HF__S_POS] + v0 * st;
     int k;
-    for (k = 0; 8 * k < P; ++k, b += 16 * st) {
-        const int o = 4 + 8 * k, n = P - 8 * k < 8 ? P - 8 * k : 8;
-        const __m256 w = _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws);
-        const __m256 ty = _mm256_loadu_ps(fr->t[1] + o),
-                     tz = _mm256_loadu_ps(fr->t[2] + o);
-        const __m256 lo = _mm256_unpacklo_ps(ty, tz),
-                     hi = _mm256_unpackhi_ps(ty, tz);
-        const __m256 x = _mm256_loadu_ps(fr->p[0] + o),
-                     y = _mm256_loadu_ps(fr->p[1] + o),
-                     z = _mm256_loadu_ps(fr->p[2] + o);
-        const __m256 swx = _mm256_mul_ps(_mm256_loadu_ps(fr->s[0] + o), w),
-                     swy = _mm256_mul_ps(_mm256_loadu_ps(fr->s[1] + o), w),
-                     swz = _mm256_mul_ps(_mm256_loadu_ps(fr->s[2] + o), w);
-        __m256 B[4];
-        /* ty tz u v of points i and i + 4: the same on both sides */
-        B[0] = _mm256_shuffle_ps(lo, uv, _MM_SHUFFLE(1, 0, 1, 0));
-        B[1] = _mm256_shuffle_ps(lo, uv, _MM_SHUFFLE(1, 0, 3, 2));
-        B[2] = _mm256_shuffle_ps(hi, uv, _MM_SHUFFLE(1, 0, 1, 0));
-        B[3] = _mm256_shuffle_ps(hi, uv, _MM_SHUFFLE(1, 0, 3, 2));
-        /* L = p - s w, R = p + s w, relative to the origin and scale */
-        hf__put_side_avx2(
-            b, 2 * st, n, ro->run,
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(x, swx), ox), is),
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(y, swy), oy), is),
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(z, swz), oz), is),
-            _mm256_loadu_ps(fr->t[0] + o), B, K->tt + 8 * k);
-        hf__put_side_avx2(
-            b + st, 2 * st, n, ro->run,
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(x, swx), ox), is),
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(y, swy), oy), is),
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(z, swz), oz), is),
-            _mm256_loadu_ps(fr->t[0] + o), B, K->tt + 8 * k);
+    if (ro->run == 3) {
+        for (k = 0; 8 * k + 8 <= P; ++k, b += 16 * st)
+            hf__ribbon_group_avx2(fr, K, k, 8, 3, b, st, ws, is, ox, oy, oz,
+                                  uv);
+    } else {
+        for (k = 0; 8 * k + 8 <= P; ++k, b += 16 * st)
+            hf__ribbon_group_avx2(fr, K, k, 8, 2, b, st, ws, is, ox, oy, oz,
+                                  uv);
     }
+    if (8 * k < P)
+        hf__ribbon_group_avx2(fr, K, k, P - 8 * k, ro->run, b, st, ws, is, ox,
+                              oy, oz, uv);
     if (ro->base[HF__S_TEX] && ro->run == 2)
         hf__stream_sse(HF__S_TEX, 3, fr, P, K, str, ro, v0);
     if (ro->base[HF__S_COL]) hf__stream_sse(HF__S_COL, 4, fr, P, K, str, ro, v0);
