@@ -55,6 +55,9 @@
 #                      (BENCH_CFLAGS, BENCH_ARGS)
 #   make bench-peers   hairfur ropes against Bullet soft-body ropes
 #                      (BENCH_PEERS_ARGS)
+#   make bench-ab      this hairfur.h against the one of git revision BASE
+#                      (default HEAD), stage by stage, in one program
+#                      (BENCH_AB_ARGS)
 #
 # Housekeeping
 #   make deps          install every Debian package of mk/packages.txt (as
@@ -85,7 +88,7 @@ CLANG   := $(shell command -v clang 2>/dev/null)
 CLANGXX := $(shell command -v clang++ 2>/dev/null)
 
 .PHONY: all test check check-build quickstart api-doc-check grow-fur-check demo demo-deps \
-        examples deps clean help gl-test-or-skip bench valgrind FORCE
+        examples deps clean help gl-test-or-skip bench bench-ab valgrind FORCE
 
 all: test
 
@@ -622,11 +625,35 @@ demo-deps:
 # The benchmark: per-stage figures against the store-loop bandwidth limit.
 # BENCH_CFLAGS picks the optimisation level (a plain -O2, as users build).
 BENCH_CFLAGS ?= -O2
-$(BUILD)/bench: bench/bench.c examples/head_mesh.h $(HDR) | $(BUILD)
+$(BUILD)/bench: bench/bench.c bench/bench_fur.h bench/bench_time.h examples/head_mesh.h \
+    $(HDR) | $(BUILD)
 	gcc -std=c99 $(BENCH_CFLAGS) -Wall -Wextra -Wpedantic $< -o $@ -lpthread -lm
 
 bench: $(BUILD)/bench
 	$(BUILD)/bench $(BENCH_ARGS)
+
+# Two versions of the header in one program (bench/bench_ab.c): each stage
+# on scene L, the hairfur.h of git revision BASE (default HEAD; WORKTREE:
+# the working tree's own, to see the method's noise) against the working
+# tree's, call by call. Both built with BENCH_CFLAGS.
+BASE ?= HEAD
+BENCH_AB_ARGS ?=
+AB_CC := gcc -std=c99 $(BENCH_CFLAGS) -Wall -Wextra -Wpedantic
+bench-ab: bench/bench_ab.c bench/ab_side.c bench/bench_ab.h bench/bench_fur.h \
+    bench/bench_time.h \
+    examples/head_mesh.h $(HDR) | $(BUILD)
+	@mkdir -p $(BUILD)/ab
+	@if [ "$(BASE)" = WORKTREE ]; then cp $(HDR) $(BUILD)/ab/hairfur_base.h; \
+	elif ! git show "$(BASE):hairfur.h" > $(BUILD)/ab/hairfur_base.h; then \
+	  echo "bench-ab: no hairfur.h at revision '$(BASE)' (BASE=REV or WORKTREE)"; \
+	  exit 1; fi
+	$(AB_CC) -I$(BUILD)/ab -DAB_HEADER='"hairfur_base.h"' -DAB_SIDE=ab_base \
+	  -c bench/ab_side.c -o $(BUILD)/ab/base.o
+	$(AB_CC) -I. -DAB_HEADER='"hairfur.h"' -DAB_SIDE=ab_new \
+	  -c bench/ab_side.c -o $(BUILD)/ab/new.o
+	$(AB_CC) bench/bench_ab.c $(BUILD)/ab/base.o $(BUILD)/ab/new.o \
+	  -o $(BUILD)/bench_ab -lm
+	$(BUILD)/bench_ab $(BENCH_AB_ARGS)
 
 # Against other libraries: hairfur.h ropes against Bullet soft-body ropes
 # (367, 1,000, 5,000 ropes); prints a table and `bench ...` lines. Needs

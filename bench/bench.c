@@ -52,21 +52,11 @@
 #include <string.h>
 #include <time.h>
 
-#define P 16
+#include "bench_fur.h"
+#include "bench_time.h"
+#define P BENCH_P
 #define MAX_THREADS 2
 
-static double now_ms(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 /* ---- counting allocator ------------------------------------------------ */
 
@@ -204,35 +194,13 @@ static void scene_init(scene *s, const char *name, int rings, int segments,
     s->name = name;
     if (!hm_sphere(rings, segments, 0.1f, &s->head)) exit(1);
     hm_hairline_density(s->density, 256, 256);
-    memset(&density, 0, sizeof density);
-    density.data = s->density;
-    density.width = density.height = 256;
-    density.channels = 1;
-    memset(&d, 0, sizeof d);
-    d.mesh.positions = s->head.vertices[0].pos;
-    d.mesh.normals = s->head.vertices[0].normal;
-    d.mesh.uvs = s->head.vertices[0].uv;
-    d.mesh.position_stride = d.mesh.normal_stride = d.mesh.uv_stride =
-        (int)sizeof(hm_vertex);
-    d.mesh.vertex_count = s->head.vertex_count;
-    d.mesh.indices = s->head.indices;
-    d.mesh.triangle_count = s->head.triangle_count;
-    d.density_map = &density;
-    d.points_per_strand = P;
-    d.max_length = 0.25f;
-    d.total_strands = strands;
-    d.tess_factor = tess_factor;
-    d.seed = 1;
+    bench_fur_desc(&d, &density, &rp, &s->head, s->density, strands,
+                   tess_factor);
     a.alloc = c_alloc;
     a.realloc = c_realloc;
     a.free = c_free;
     a.user = NULL;
     d.allocator = &a;
-    hf_rope_params_init(&rp);
-    rp.global_stiffness_root = 0.2f;
-    rp.local_stiffness_root = 0.3f;
-    rp.root_stiffness = 0.5f;
-    d.rope_params = &rp;
     if (hf_fur_create(&d, &s->fur, &diag) != HF_OK) {
         fprintf(stderr, "bench: %s\n", diag.message);
         exit(1);
