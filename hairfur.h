@@ -10183,11 +10183,12 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
     hf__rout ro;
     hf_ribbon_params prm;
     const hf_ribbon_params *params = &prm;
+    hf_ribbon_strands sv;
     const hf_stream *streams[5];
     float stage_buf[HF__STAGE_BYTES / 4];
     unsigned char *dst0 = NULL;
     size_t block = 0;
-    int s, k, P, stage, level;
+    int s, k, P, stage, level, out_first;
     hf_result r = hf__ribbon_check(strands, first, count, view, &prm);
     if (r != HF_OK) return r;
     if (!out) return HF_ERROR_NULL_POINTER;
@@ -10232,21 +10233,23 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
 
     stage = params->nontemporal ? hf__ribbon_stage(&ro, P, &block, &dst0)
                                 : 0;
+    /* the inputs in locals, read once: the kernels are calls whose
+       stores may alias anything reached through a pointer */
+    sv = *strands;
+    out_first = params->out_first;
     for (s = first; s < first + count; ++s) {
-        const float *pts = strands->points + (size_t)s * (size_t)P * 3u;
-        const size_t v0 = (size_t)(s - params->out_first) * (size_t)P * 2u;
+        const float *pts = sv.points + (size_t)s * (size_t)P * 3u;
+        const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
         hf__rstrand str;
         hf__strand_frame(pts, P, params, &fr, &str.wscale, level);
-        str.wscale *= hf__strand_width(strands, s);
+        str.wscale *= hf__strand_width(&sv, s);
         HF__UNROLL for (k = 0; k < 2; ++k)
-            str.uv[k] = strands->root_uv
-                          ? hf__fin0(strands->root_uv[2 * (size_t)s + k])
-                          : 0.0f;
+            str.uv[k] =
+                sv.root_uv ? hf__fin0(sv.root_uv[2 * (size_t)s + k]) : 0.0f;
         HF__UNROLL for (k = 0; k < 4; ++k)
-            str.rgba[k] = strands->color
-                            ? hf__fin0(strands->color[4 * (size_t)s + k])
-                            : 1.0f;
-        str.c3x = strands->color3d_x ? hf__fin0(strands->color3d_x[s]) : 0.0f;
+            str.rgba[k] =
+                sv.color ? hf__fin0(sv.color[4 * (size_t)s + k]) : 1.0f;
+        str.c3x = sv.color3d_x ? hf__fin0(sv.color3d_x[s]) : 0.0f;
         if (stage) {
             /* the strand's vertices into the stage (in L1), then out to
                its block with streaming stores */
