@@ -8723,9 +8723,10 @@ hf__frame_group_avx2(hf__rframe *fr, int k, int P, int last, int ortho,
 
 /* hf__strand_frame_v4 eight points at a time, with the same IEEE
    operations per point, and the same cases left to the reference. */
-HF__TARGET_AVX2 HF__PRIVATE int
-hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
-                      hf__rframe *fr, int *finite)
+HF__TARGET_AVX2 HF__INLINE int
+hf__strand_frame_avx2_in(const float *pts, int P,
+                         const hf_ribbon_params *params, hf__rframe *fr,
+                         int *finite)
 {
     const int G = (P + 7) >> 3, ortho = params->orthographic != 0;
     const __m256 zero = _mm256_setzero_ps();
@@ -8804,6 +8805,14 @@ hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
     }
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
     return bad == 0;
+}
+
+/* the frame above as a call, for the dispatch of one strand */
+HF__TARGET_AVX2 HF__PRIVATE int
+hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
+                      hf__rframe *fr, int *finite)
+{
+    return hf__strand_frame_avx2_in(pts, P, params, fr, finite);
 }
 #endif
 
@@ -9616,9 +9625,10 @@ hf__ribbon_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k,
    them); the dispatch gives other layouts to the table writer below or
    the SSE one (calling the SSE writer from here would run SSE code with
    the upper halves of the registers dirty, at twice its time or more). */
-HF__TARGET_AVX2 HF__PRIVATE void
-hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
-                      const hf__rstrand *str, const hf__rout *ro, size_t v0)
+HF__TARGET_AVX2 HF__INLINE void
+hf__ribbon_write_avx2_in(const hf__rframe *fr, int P, const hf__rconst *K,
+                         const hf__rstrand *str, const hf__rout *ro,
+                         size_t v0)
 {
     const size_t st = ro->stride[HF__S_POS];
     const __m256 ws = _mm256_set1_ps(str->wscale);
@@ -9650,6 +9660,13 @@ hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
     if (ro->base[HF__S_COL]) hf__stream_sse(HF__S_COL, 4, fr, P, K, str, ro, v0);
     if (ro->base[HF__S_C3D]) hf__stream_sse(HF__S_C3D, 2, fr, P, K, str, ro, v0);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
+}
+
+HF__TARGET_AVX2 HF__PRIVATE void
+hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
+                      const hf__rstrand *str, const hf__rout *ro, size_t v0)
+{
+    hf__ribbon_write_avx2_in(fr, P, K, str, ro, v0);
 }
 
 /* hf__encode_sse at eight lanes: the same operations. */
@@ -10174,6 +10191,54 @@ HF__PRIVATE void hf__stream_copy(unsigned char *dst, const float *src,
     HF_MEMCPY(dst + i, from + i, n - i);
 }
 
+/* Strand s's width multiplier (times the frame's), root UV, colour and
+   3D-colour x, non-finite inputs read as 0 */
+HF__INLINE void hf__rstrand_fill(const hf_ribbon_strands *sv, int s,
+                                 hf__rstrand *str)
+{
+    int k;
+    str->wscale *= hf__strand_width(sv, s);
+    HF__UNROLL for (k = 0; k < 2; ++k)
+        str->uv[k] =
+            sv->root_uv ? hf__fin0(sv->root_uv[2 * (size_t)s + k]) : 0.0f;
+    HF__UNROLL for (k = 0; k < 4; ++k)
+        str->rgba[k] =
+            sv->color ? hf__fin0(sv->color[4 * (size_t)s + k]) : 1.0f;
+    str->c3x = sv->color3d_x ? hf__fin0(sv->color3d_x[s]) : 0.0f;
+}
+
+#if HF__AVX2
+/* hf_ribbons' strands at AVX2 for the float runs, in one target function:
+   each strand's frame and vertices inlined, where a call each, with
+   their set-up, took an eighth of the instructions; a strand the AVX2
+   frame leaves to the reference goes there as in hf__strand_frame. */
+HF__TARGET_AVX2 HF__PRIVATE void
+hf__ribbons_run_avx2(const hf_ribbon_strands *sv, int first, int count,
+                     const hf_ribbon_params *params, const hf__rconst *K,
+                     const hf__rout *ro, int out_first, hf__rframe *fr)
+{
+    const int P = params->points_per_strand;
+    int s, finite;
+    for (s = first; s < first + count; ++s) {
+        const float *pts = sv->points + (size_t)s * (size_t)P * 3u;
+        const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
+        hf__rstrand str;
+        str.wscale = 1.0f;
+        if (!hf__strand_frame_avx2_in(pts, P, params, fr, &finite)) {
+            /* to the reference, the upper halves cleared by the frame */
+            if (!finite) {
+                pts = hf__zero_points;
+                str.wscale = 0.0f;
+            }
+            hf__strand_frame_ref(pts, P, params, fr);
+        }
+        hf__rstrand_fill(sv, s, &str);
+        hf__ribbon_write_avx2_in(fr, P, K, &str, ro, v0);
+    }
+    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
+}
+#endif
+
 HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
                            int count, const hf_ribbon_params *view,
                            const hf_ribbon_output *out)
@@ -10237,19 +10302,19 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
        stores may alias anything reached through a pointer */
     sv = *strands;
     out_first = params->out_first;
+#if HF__AVX2
+    if (level >= HF_SIMD_AVX2 && ro.run && !stage) {
+        hf__ribbons_run_avx2(&sv, first, count, params, &K, &ro, out_first,
+                             &fr);
+        return HF_OK;
+    }
+#endif
     for (s = first; s < first + count; ++s) {
         const float *pts = sv.points + (size_t)s * (size_t)P * 3u;
         const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
         hf__rstrand str;
         hf__strand_frame(pts, P, params, &fr, &str.wscale, level);
-        str.wscale *= hf__strand_width(&sv, s);
-        HF__UNROLL for (k = 0; k < 2; ++k)
-            str.uv[k] =
-                sv.root_uv ? hf__fin0(sv.root_uv[2 * (size_t)s + k]) : 0.0f;
-        HF__UNROLL for (k = 0; k < 4; ++k)
-            str.rgba[k] =
-                sv.color ? hf__fin0(sv.color[4 * (size_t)s + k]) : 1.0f;
-        str.c3x = sv.color3d_x ? hf__fin0(sv.color3d_x[s]) : 0.0f;
+        hf__rstrand_fill(&sv, s, &str);
         if (stage) {
             /* the strand's vertices into the stage (in L1), then out to
                its block with streaming stores */
