@@ -10101,6 +10101,22 @@ hf__ribbon_write_neon(const hf__rframe *fr, int P, const hf__rconst *K,
    frame (tangents and sides; a strand with a non-finite point is framed
    collapsed, wscale 0), then its vertices. The AVX-512 level runs the
    AVX2 kernels. */
+/* A strand's frame by the reference, where a vector frame left it (or
+   none ran): finite says whether its points are (-1: not known yet); one
+   that is not is framed collapsed, wscale 0. */
+HF__PRIVATE void hf__strand_frame_rest(const float *pts, int P,
+                                       const hf_ribbon_params *params,
+                                       hf__rframe *fr, int finite,
+                                       float *wscale)
+{
+    if (finite < 0) finite = hf__points_finite(pts, 3 * P);
+    if (!finite) {
+        pts = hf__zero_points;
+        *wscale = 0.0f;
+    }
+    hf__strand_frame_ref(pts, P, params, fr);
+}
+
 HF__PRIVATE void hf__strand_frame(const float *pts, int P,
                                   const hf_ribbon_params *params,
                                   hf__rframe *fr, float *wscale, int level)
@@ -10118,12 +10134,7 @@ HF__PRIVATE void hf__strand_frame(const float *pts, int P,
     }
 #endif
     (void)level;
-    if (finite < 0) finite = hf__points_finite(pts, 3 * P);
-    if (!finite) {
-        pts = hf__zero_points;
-        *wscale = 0.0f;
-    }
-    hf__strand_frame_ref(pts, P, params, fr);
+    hf__strand_frame_rest(pts, P, params, fr, finite, wscale);
 }
 
 HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
@@ -10224,14 +10235,9 @@ hf__ribbons_run_avx2(const hf_ribbon_strands *sv, int first, int count,
         const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
         hf__rstrand str;
         str.wscale = 1.0f;
-        if (!hf__strand_frame_avx2_in(pts, P, params, fr, &finite)) {
-            /* to the reference, the upper halves cleared by the frame */
-            if (!finite) {
-                pts = hf__zero_points;
-                str.wscale = 0.0f;
-            }
-            hf__strand_frame_ref(pts, P, params, fr);
-        }
+        /* to the reference with the upper halves cleared by the frame */
+        if (!hf__strand_frame_avx2_in(pts, P, params, fr, &finite))
+            hf__strand_frame_rest(pts, P, params, fr, finite, &str.wscale);
         hf__rstrand_fill(sv, s, &str);
         hf__ribbon_write_avx2_in(fr, P, K, &str, ro, v0);
     }

@@ -72,28 +72,9 @@ static void *ab_make(const hm_mesh *head, const unsigned char *px,
         ab_free(s);
         return NULL;
     }
-    /* bench.c's views and layouts */
-    s->view.eye[2] = 0.6f;
-    s->view.root_width = 0.001f;
-    s->view.tip_width = 0.0002f;
-    s->view_gpu = s->view;
-    s->view_gpu.nontemporal = 1;
-    s->out.position.data = s->vbuf;
-    s->out.tangent.data = s->vbuf + 3;
-    s->out.texcoord.data = s->vbuf + 6;
-    s->out.position.stride = s->out.tangent.stride = s->out.texcoord.stride =
-        36;
-    s->out16.position.data = s->cbuf;
-    s->out16.position.format = HF_FORMAT_SNORM16;
-    s->out16.texcoord.data = s->cbuf + 6;
-    s->out16.texcoord.format = HF_FORMAT_UNORM16;
-    s->out16.tangent.data = s->cbuf + 12;
-    s->out16.tangent.format = HF_FORMAT_SNORM8;
-    s->out16.position.stride = s->out16.tangent.stride =
-        s->out16.texcoord.stride = 16;
-    s->out16.position_scale = 0.5f;
-    s->col.type = HF_COLLIDER_SPHERE;
-    s->col.radius = 0.097f;
+    bench_views(&s->view, &s->view_gpu, &s->out, s->vbuf, &s->out16,
+                s->cbuf);
+    bench_collider(&s->col);
     return s;
 }
 

@@ -192,7 +192,7 @@ static void scene_init(scene *s, const char *name, int rings, int segments,
     size_t nv;
     memset(s, 0, sizeof *s);
     s->name = name;
-    if (!hm_sphere(rings, segments, 0.1f, &s->head)) exit(1);
+    if (!hm_sphere(rings, segments, BENCH_HEAD_RADIUS, &s->head)) exit(1);
     hm_hairline_density(s->density, 256, 256);
     bench_fur_desc(&d, &density, &rp, &s->head, s->density, strands,
                    tess_factor);
@@ -221,8 +221,7 @@ static void scene_init(scene *s, const char *name, int rings, int segments,
     s->skinned.positions = s->skin[0].pos;
     s->skinned.normals = s->skin[0].normal;
     s->skinned.uvs = s->skin[0].uv;
-    s->col.type = HF_COLLIDER_SPHERE;
-    s->col.radius = 0.097f;
+    bench_collider(&s->col);
     s->dt = 1.0f / 60.0f;
 }
 
@@ -396,29 +395,7 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
     double bytes[ST_N];
     g_sc = s;
     g_threads = threads;
-    memset(&g_view, 0, sizeof g_view);
-    g_view.eye[2] = 0.6f;
-    g_view.root_width = 0.001f;
-    g_view.tip_width = 0.0002f;
-    g_view_gpu = g_view;
-    g_view_gpu.nontemporal = 1;
-    memset(&g_out, 0, sizeof g_out);
-    /* a common engine layout: position, tangent, texcoord interleaved */
-    g_out.position.data = s->vbuf;
-    g_out.tangent.data = s->vbuf + 3;
-    g_out.texcoord.data = s->vbuf + 6;
-    g_out.position.stride = g_out.tangent.stride = g_out.texcoord.stride = 36;
-    /* the same attributes in 16 bytes: position SNORM16 x3 in a 0.5 m box
-       around the head, texcoord UNORM16 x3, tangent SNORM8 x3, one pad */
-    memset(&g_out16, 0, sizeof g_out16);
-    g_out16.position.data = s->cbuf;
-    g_out16.position.format = HF_FORMAT_SNORM16;
-    g_out16.texcoord.data = s->cbuf + 6;
-    g_out16.texcoord.format = HF_FORMAT_UNORM16;
-    g_out16.tangent.data = s->cbuf + 12;
-    g_out16.tangent.format = HF_FORMAT_SNORM8;
-    g_out16.position.stride = g_out16.tangent.stride = g_out16.texcoord.stride = 16;
-    g_out16.position_scale = 0.5f;
+    bench_views(&g_view, &g_view_gpu, &g_out, s->vbuf, &g_out16, s->cbuf);
     for (k = 0; k < ST_N; ++k) {
         t[k] = (double *)malloc(sizeof(double) * (size_t)frames);
         jobs[k].total = 0;
@@ -679,14 +656,8 @@ static void bench_scaling(int frames)
             else
                 scene_init(&sc, "scale", rings[i], segs[i], 100000, 0.0f);
             g_sc = &sc;
-            memset(&g_view, 0, sizeof g_view);
-            g_view.eye[2] = 0.6f;
-            memset(&g_out, 0, sizeof g_out);
-            g_out.position.data = sc.vbuf;
-            g_out.tangent.data = sc.vbuf + 3;
-            g_out.texcoord.data = sc.vbuf + 6;
-            g_out.position.stride = g_out.tangent.stride =
-                g_out.texcoord.stride = 36;
+            bench_views(&g_view, &g_view_gpu, &g_out, sc.vbuf, &g_out16,
+                        sc.cbuf);
             for (k = 0; k < K; ++k) {
                 jobs[k].fn = fns[k];
                 jobs[k].total = k < 2 ? sc.info.guide_count
@@ -830,7 +801,8 @@ int main(int argc, char **argv)
     /* sphere resolutions chosen for about 360, 3,700 and 1,000 guides */
     scene_init(&sc[0], "S", 16, 24, 3670, 0.0f);   /* 362 guides */
     scene_init(&sc[1], "M", 52, 72, 36700, 0.0f);  /* 3,674 guides */
-    scene_init(&sc[2], "L", 26, 40, 100000, 0.0f); /* 1,002 guides */
+    scene_init(&sc[2], "L", BENCH_L_RINGS, BENCH_L_SEGMENTS, BENCH_L_STRANDS,
+               0.0f); /* 1,002 guides */
     for (i = 0; i < 3; ++i) {
         if (only && strcmp(only, sc[i].name)) continue;
         printf("scene %s: %d guides, %d strands, %d points each\n",

@@ -14,8 +14,9 @@
      bench_ab stage=NAME base_ms=... new_ms=... ratio=...
    (medians; ratio = new / base: below 1, the new version is faster). Run
    it with the same header on both sides (make bench-ab BASE=WORKTREE)
-   to see the noise of the method itself: on this machine 1.00 in a quiet
-   hour (ribbons, 40 calls), 0.94-1.02 a stage in a noisy one.
+   to see the noise of the method itself: on this machine 0.94-1.02 a
+   stage in a noisy hour (the method in a test program, ribbons only:
+   1.00 in a quiet one).
    Usage: bench_ab [--frames N] [--strands N] */
 #define _POSIX_C_SOURCE 200809L
 #define HEAD_MESH_IMPLEMENTATION
@@ -27,6 +28,7 @@
 #include <time.h>
 
 #include "bench_ab.h"
+#include "bench_fur.h"
 #include "bench_time.h"
 
 
@@ -38,7 +40,7 @@ int main(int argc, char **argv)
                                       "points", "interp_points", "ropes"};
     static unsigned char px[256 * 256];
     const ab_side *side[2] = {&ab_base, &ab_new};
-    int frames = 40, strands = 100000, i, k, f, w;
+    int frames = 40, strands = BENCH_L_STRANDS, i, k, f, w;
     void *scene[2];
     double *t[2];
     unsigned char *evict;
@@ -66,7 +68,8 @@ int main(int argc, char **argv)
     }
     if (frames < 3) frames = 3;
     if (strands < 1) strands = 1;
-    if (!hm_sphere(26, 40, 0.1f, &head)) return 1;
+    if (!hm_sphere(BENCH_L_RINGS, BENCH_L_SEGMENTS, BENCH_HEAD_RADIUS, &head))
+        return 1;
     hm_hairline_density(px, 256, 256);
     evict = (unsigned char *)malloc(EVICT_BYTES);
     t[0] = (double *)malloc(sizeof(double) * (size_t)frames);
