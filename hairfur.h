@@ -7888,18 +7888,18 @@ HF__TARGET_AVX2 HF__INLINE void hf__put8(float *o, __m256 q, int mode)
    hf__interp_groups<W>: P a multiple of W, a strand whole groups of three
    vectors: the stream mode once, since every strand's 12 P bytes keep the
    first's alignment, and no tail (with one, the sixteen-lane loop
-   measured 1.1x slower). hf__interp_range<W>: any P, three vectors a
+   measured 1.1x slower). Its loop is inlined once for each clumping and
+   stream mode, passed as constants: tested in every vector, they took a
+   fifth of its instructions. hf__interp_range<W>: any P, three vectors a
    turn, then one or two, then the scalar tail. */
 #define HF__INTERP_RANGES(W, T)                                                \
-T HF__PRIVATE void hf__interp_groups##W(const hf__irun *run, int first,        \
-                                        int count)                             \
+T HF__INLINE void hf__interp_whole##W(const hf__irun *run, int first,          \
+                                      int count, int clump, int nt)            \
 {                                                                              \
     const size_t n = 3u * (size_t)run->P;                                      \
     const hf_strand_binding *b = run->bindings + first;                        \
     const float *G = run->guides, *ctab = run->ctab;                           \
-    const int clump = run->clump;                                              \
     float *o = run->out + (size_t)(first - run->out_first) * n;                \
-    const int nt = hf__stream_mode(run->nt, o, 4u * W - 1u);                   \
     int s, k;                                                                  \
     for (s = 0; s < count; ++s, ++b, o += n) {                                 \
         hf__is##W v;                                                           \
@@ -7910,6 +7910,23 @@ T HF__PRIVATE void hf__interp_groups##W(const hf__irun *run, int first,        \
                 hf__put##W(o + i + (size_t)(W * k),                            \
                            hf__blend##W(&v, ctab, i + (size_t)(W * k), k),     \
                            nt);                                                \
+    }                                                                          \
+}                                                                              \
+                                                                               \
+T HF__PRIVATE void hf__interp_groups##W(const hf__irun *run, int first,        \
+                                        int count)                             \
+{                                                                              \
+    const float *o = run->out + (size_t)(first - run->out_first) *             \
+                                    (3u * (size_t)run->P);                     \
+    const int nt = hf__stream_mode(run->nt, o, 4u * W - 1u);                   \
+    if (run->clump) {                                                          \
+        if (nt == 2) hf__interp_whole##W(run, first, count, 1, 2);             \
+        else if (nt) hf__interp_whole##W(run, first, count, 1, 1);             \
+        else hf__interp_whole##W(run, first, count, 1, 0);                     \
+    } else {                                                                   \
+        if (nt == 2) hf__interp_whole##W(run, first, count, 0, 2);             \
+        else if (nt) hf__interp_whole##W(run, first, count, 0, 1);             \
+        else hf__interp_whole##W(run, first, count, 0, 0);                     \
     }                                                                          \
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */                              \
 }                                                                              \
@@ -10559,20 +10576,18 @@ HF__PRIVATE void hf__points_run(const hf__points_kit *k,
    infinity); a strand that is not finite is written again, collapsed,
    as hf__points_run does. */
 #define HF__INTERP_POINTS(W, T)                                                \
-T HF__PRIVATE void hf__interp_points##W(                                       \
+T HF__INLINE void hf__interp_points_whole##W(                                  \
     const hf__irun *run, const hf__points_kit *k,                              \
     const hf_ribbon_strands *st, int first, int count, int out_first,          \
-    float *out4)                                                               \
+    float *out4, int clump, int mode)                                          \
 {                                                                              \
     const int P = run->P;                                                      \
     const size_t n = 3u * (size_t)P;                                           \
     const float *G = run->guides, *ctab = run->ctab;                           \
-    const int clump = run->clump;                                              \
     int s, i, j;                                                               \
     for (s = first; s < first + count; ++s) {                                  \
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;            \
         const hf__f##W WS = hf__set1_##W(hf__strand_width(st, s));             \
-        const int mode = hf__stream_mode(k->nt, o, 4u * W - 1u);               \
         hf__f##W acc = hf__set1_##W(0.0f);                                     \
         hf__is##W v;                                                           \
         hf__strand##W(G, clump, run->bindings + s, n, &v);                     \
@@ -10586,6 +10601,40 @@ T HF__PRIVATE void hf__interp_points##W(                                       \
             hf__points_out##W(o + 4 * j, a, b, c, k->pw.v + 4 * j, WS, mode);  \
         }                                                                      \
         if (!hf__all_zero##W(acc)) hf__points_collapse_avx2(k, o);             \
+    }                                                                          \
+}                                                                              \
+                                                                               \
+/* every strand's 16 P bytes keep the first's alignment (P a multiple of       \
+   W), so the stream mode, like the clumping, is one for the call: both        \
+   passed to the loop as constants */                                          \
+T HF__PRIVATE void hf__interp_points##W(                                       \
+    const hf__irun *run, const hf__points_kit *k,                              \
+    const hf_ribbon_strands *st, int first, int count, int out_first,          \
+    float *out4)                                                               \
+{                                                                              \
+    const int mode = hf__stream_mode(                                          \
+        k->nt, out4 + (size_t)(first - out_first) * (size_t)run->P * 4u,       \
+        4u * W - 1u);                                                          \
+    if (run->clump) {                                                          \
+        if (mode == 2)                                                         \
+            hf__interp_points_whole##W(run, k, st, first, count, out_first,    \
+                                       out4, 1, 2);                            \
+        else if (mode)                                                         \
+            hf__interp_points_whole##W(run, k, st, first, count, out_first,    \
+                                       out4, 1, 1);                            \
+        else                                                                   \
+            hf__interp_points_whole##W(run, k, st, first, count, out_first,    \
+                                       out4, 1, 0);                            \
+    } else {                                                                   \
+        if (mode == 2)                                                         \
+            hf__interp_points_whole##W(run, k, st, first, count, out_first,    \
+                                       out4, 0, 2);                            \
+        else if (mode)                                                         \
+            hf__interp_points_whole##W(run, k, st, first, count, out_first,    \
+                                       out4, 0, 1);                            \
+        else                                                                   \
+            hf__interp_points_whole##W(run, k, st, first, count, out_first,    \
+                                       out4, 0, 0);                            \
     }                                                                          \
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */                              \
 }
