@@ -10449,14 +10449,13 @@ HF__PRIVATE void hf__pair_widths_init(hf__pair_widths *pw, const float *hw,
    test rides on the same vectors (x * 0 is NaN for NaN or infinity):
    returns 0 when a point is not finite, with the strand written from
    its points as they are (the caller writes it again, collapsed). P >= 3. */
-HF__TARGET_AVX2 HF__PRIVATE int
-hf__points_strand_avx2(const float *p, const hf__pair_widths *pw, float ws,
-                       float *o, int P, int nt)
+HF__TARGET_AVX2 HF__INLINE int
+hf__points_strand_avx2_in(const float *p, const hf__pair_widths *pw, float ws,
+                          float *o, int P, int mode)
 {
     const __m256i spread = _mm256_setr_epi32(0, 1, 2, 0, 3, 4, 5, 0);
     const __m256i spread_last = _mm256_setr_epi32(2, 3, 4, 0, 5, 6, 7, 0);
     const __m256 W = _mm256_set1_ps(ws), zero = _mm256_setzero_ps();
-    const int mode = hf__stream_mode(nt, o, 31u);
     __m256 acc = zero, q;
     int j, ok;
     for (j = 0; 3 * j + 8 <= 3 * P; j += 2) {
@@ -10481,6 +10480,16 @@ hf__points_strand_avx2(const float *p, const hf__pair_widths *pw, float ws,
             _mm_storeu_ps(o + 4 * j, _mm256_extractf128_ps(q, 1));
     }
     ok = _mm256_movemask_ps(_mm256_cmp_ps(acc, zero, _CMP_EQ_OQ)) == 0xff;
+    return ok;
+}
+
+/* the strand above as a call (mode: hf__stream_mode's) */
+HF__TARGET_AVX2 HF__PRIVATE int
+hf__points_strand_avx2(const float *p, const hf__pair_widths *pw, float ws,
+                       float *o, int P, int nt)
+{
+    const int ok = hf__points_strand_avx2_in(p, pw, ws, o, P,
+                                             hf__stream_mode(nt, o, 31u));
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
     return ok;
 }
@@ -10504,6 +10513,52 @@ HF__PRIVATE void hf__points_collapse_avx2(const hf__points_kit *k, float *o)
 {
     if (k->nt) _mm_sfence();
     hf__points_strand_avx2(hf__zero_points, &k->pw, 0.0f, o, k->P, k->nt);
+}
+
+/* The strands of a points call at AVX2 in one target function, the
+   strand inlined: a call each, with its stream mode and vzeroupper, took
+   a sixth of the instructions. With P even every strand's 16 P bytes
+   keep the first's alignment, so the mode is one for the call and a
+   constant in the loop; with P odd it alternates, found per strand. */
+HF__TARGET_AVX2 HF__INLINE void
+hf__points_loop_avx2(const hf__points_kit *k, const hf_ribbon_strands *strands,
+                     const float *pts, int pts_first, int first, int count,
+                     int out_first, float *out4, int mode)
+{
+    const int P = k->P;
+    int s;
+    for (s = first; s < first + count; ++s) {
+        const float *p = pts + (size_t)(s - pts_first) * (size_t)P * 3u;
+        float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
+        if (!hf__points_strand_avx2_in(
+                p, &k->pw, hf__strand_width(strands, s), o, P,
+                mode >= 0 ? mode : hf__stream_mode(k->nt, o, 31u))) {
+            _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
+            hf__points_collapse_avx2(k, o);
+        }
+    }
+}
+
+HF__TARGET_AVX2 HF__PRIVATE void
+hf__points_run_avx2(const hf__points_kit *k, const hf_ribbon_strands *strands,
+                    const float *pts, int pts_first, int first, int count,
+                    int out_first, float *out4)
+{
+    const int mode = hf__stream_mode(
+        k->nt, out4 + (size_t)(first - out_first) * (size_t)k->P * 4u, 31u);
+    if (k->P % 2)
+        hf__points_loop_avx2(k, strands, pts, pts_first, first, count,
+                             out_first, out4, -1);
+    else if (mode == 2)
+        hf__points_loop_avx2(k, strands, pts, pts_first, first, count,
+                             out_first, out4, 2);
+    else if (mode)
+        hf__points_loop_avx2(k, strands, pts, pts_first, first, count,
+                             out_first, out4, 1);
+    else
+        hf__points_loop_avx2(k, strands, pts, pts_first, first, count,
+                             out_first, out4, 0);
+    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 #endif
 
@@ -10532,21 +10587,19 @@ HF__PRIVATE void hf__points_run(const hf__points_kit *k,
 {
     const int P = k->P;
     int s;
+#if HF__AVX2
+    if (k->wide) {
+        /* finiteness found on the way: a strand that is not is written
+           again, collapsed (streamed stores ordered first) */
+        hf__points_run_avx2(k, strands, pts, pts_first, first, count,
+                            out_first, out4);
+        return;
+    }
+#endif
     for (s = first; s < first + count; ++s) {
         const float *p = pts + (size_t)(s - pts_first) * (size_t)P * 3u;
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
         float wscale = 0.0f;
-#if HF__AVX2
-        if (k->wide) {
-            /* finiteness found on the way: a strand that is not is
-               written again, collapsed (streamed stores ordered first) */
-            if (!hf__points_strand_avx2(p, &k->pw,
-                                        hf__strand_width(strands, s), o, P,
-                                        k->nt))
-                hf__points_collapse_avx2(k, o);
-            continue;
-        }
-#endif
         if (hf__points_finite(p, 3 * P))
             wscale = hf__strand_width(strands, s);
         else
