@@ -10517,7 +10517,7 @@ HF__PRIVATE void hf__points_collapse_avx2(const hf__points_kit *k, float *o)
 
 /* The strands of a points call at AVX2 in one target function, the
    strand inlined: a call each, with its stream mode and vzeroupper, took
-   a sixth of the instructions. With P even every strand's 16 P bytes
+   two fifths of the instructions. With P even every strand's 16 P bytes
    keep the first's alignment, so the mode is one for the call and a
    constant in the loop; with P odd it alternates, found per strand. */
 HF__TARGET_AVX2 HF__INLINE void
