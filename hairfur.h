@@ -9873,10 +9873,10 @@ hf__window_put_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
    (hf__window_put_avx2), else stream by stream in address order, an
    element in one or two scalar stores (hf__elems_put). Same values, same
    operations: the same bytes as the reference. */
-HF__TARGET_AVX2 HF__PRIVATE void
-hf__ribbon_write_table_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
-                            const hf__rstrand *str, const hf__rout *ro,
-                            size_t v0)
+HF__TARGET_AVX2 HF__INLINE void
+hf__ribbon_write_table_avx2_in(const hf__rframe *fr, int P,
+                               const hf__rconst *K, const hf__rstrand *str,
+                               const hf__rout *ro, size_t v0)
 {
     /* rows: the five streams, then the right side's positions; blocks of
        up to HF__TB points, so the copies' set-up is shared */
@@ -9954,6 +9954,15 @@ hf__ribbon_write_table_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
                           ro->wb[m]);
         }
     }
+}
+
+/* the writer above as a call, for the dispatch of one strand */
+HF__TARGET_AVX2 HF__PRIVATE void
+hf__ribbon_write_table_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
+                            const hf__rstrand *str, const hf__rout *ro,
+                            size_t v0)
+{
+    hf__ribbon_write_table_avx2_in(fr, P, K, str, ro, v0);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 #endif
@@ -10236,14 +10245,17 @@ HF__INLINE void hf__rstrand_fill(const hf_ribbon_strands *sv, int s,
 }
 
 #if HF__AVX2
-/* hf_ribbons' strands at AVX2 for the float runs, in one target function:
-   each strand's frame and vertices inlined, where a call each, with
-   their set-up, took an eighth of the instructions; a strand the AVX2
-   frame leaves to the reference goes there as in hf__strand_frame. */
-HF__TARGET_AVX2 HF__PRIVATE void
-hf__ribbons_run_avx2(const hf_ribbon_strands *sv, int first, int count,
-                     const hf_ribbon_params *params, const hf__rconst *K,
-                     const hf__rout *ro, int out_first, hf__rframe *fr)
+/* hf_ribbons' strands at AVX2 in one target function, for the float runs
+   (table 0) and the layouts of the table writer (1): each strand's frame
+   and vertices inlined, where a call each, with their set-up, took an
+   eighth of the instructions of the float runs (a tenth of the table
+   writer's); a strand the AVX2 frame leaves to the reference goes there
+   as in hf__strand_frame. */
+HF__TARGET_AVX2 HF__INLINE void
+hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
+                      const hf_ribbon_params *params, const hf__rconst *K,
+                      const hf__rout *ro, int out_first, hf__rframe *fr,
+                      int table)
 {
     const int P = params->points_per_strand;
     int s, finite;
@@ -10256,8 +10268,24 @@ hf__ribbons_run_avx2(const hf_ribbon_strands *sv, int first, int count,
         if (!hf__strand_frame_avx2_in(pts, P, params, fr, &finite))
             hf__strand_frame_rest(pts, P, params, fr, finite, &str.wscale);
         hf__rstrand_fill(sv, s, &str);
-        hf__ribbon_write_avx2_in(fr, P, K, &str, ro, v0);
+        if (table)
+            hf__ribbon_write_table_avx2_in(fr, P, K, &str, ro, v0);
+        else
+            hf__ribbon_write_avx2_in(fr, P, K, &str, ro, v0);
     }
+}
+
+HF__TARGET_AVX2 HF__PRIVATE void
+hf__ribbons_run_avx2(const hf_ribbon_strands *sv, int first, int count,
+                     const hf_ribbon_params *params, const hf__rconst *K,
+                     const hf__rout *ro, int out_first, hf__rframe *fr)
+{
+    if (ro->run)
+        hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
+                              0);
+    else
+        hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
+                              1);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 #endif
@@ -10326,7 +10354,7 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
     sv = *strands;
     out_first = params->out_first;
 #if HF__AVX2
-    if (level >= HF_SIMD_AVX2 && ro.run && !stage) {
+    if (level >= HF_SIMD_AVX2 && (ro.run || ro.nw) && !stage) {
         hf__ribbons_run_avx2(&sv, first, count, params, &K, &ro, out_first,
                              &fr);
         return HF_OK;
