@@ -15,8 +15,9 @@
    everything.
 
    libFuzzer: clang -g -O1 -fsanitize=fuzzer,address,undefined fuzz_fur.c
-   replay:    gcc -O1 -g fuzz_main.c fuzz_fur.c -lm (see the Makefile) */
-#define HAIRFUR_IMPLEMENTATION
+              fuzz_impl.c (the header's implementation)
+   replay:    gcc -O1 -g fuzz_main.c fuzz_fur.c fuzz_impl.c -lm (see the
+              Makefile) */
 #include "../../hairfur.h"
 #include "fuzz_common.h"
 

@@ -13,8 +13,9 @@
    the same bytes, and every block from the allocator is freed.
 
    libFuzzer: clang -g -O1 -fsanitize=fuzzer,address,undefined fuzz_grow.c
-   replay:    gcc -O1 -g fuzz_main.c fuzz_grow.c -lm (see the Makefile) */
-#define HAIRFUR_IMPLEMENTATION
+              fuzz_impl.c (the header's implementation)
+   replay:    gcc -O1 -g fuzz_main.c fuzz_grow.c fuzz_impl.c -lm (see the
+              Makefile) */
 #include "../../hairfur.h"
 #include "fuzz_common.h"
 

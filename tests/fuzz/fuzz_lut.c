@@ -11,8 +11,9 @@
    values or nothing.
 
    libFuzzer: clang -g -O1 -fsanitize=fuzzer,address,undefined fuzz_lut.c
-   replay:    gcc -O1 -g fuzz_main.c fuzz_lut.c -lm (see the Makefile) */
-#define HAIRFUR_IMPLEMENTATION
+              fuzz_impl.c (the header's implementation)
+   replay:    gcc -O1 -g fuzz_main.c fuzz_lut.c fuzz_impl.c -lm (see the
+              Makefile) */
 #include "../../hairfur.h"
 #include "fuzz_common.h"
 

@@ -13,8 +13,9 @@
    level as at the scalar one; indices are in range.
 
    libFuzzer: clang -g -O1 -fsanitize=fuzzer,address,undefined fuzz_ribbons.c
-   replay:    gcc -O1 -g fuzz_main.c fuzz_ribbons.c -lm (see the Makefile) */
-#define HAIRFUR_IMPLEMENTATION
+              fuzz_impl.c (the header's implementation)
+   replay:    gcc -O1 -g fuzz_main.c fuzz_ribbons.c fuzz_impl.c -lm (see the
+              Makefile) */
 #include "../../hairfur.h"
 #include "fuzz_common.h"
 
