@@ -7883,6 +7883,22 @@ HF__TARGET_AVX2 HF__INLINE void hf__put8(float *o, __m256 q, int mode)
     }
 }
 
+/* F(..., c, m) with a call's clumping c (0 or 1) and stream mode m (0, 1,
+   2: hf__stream_mode's) as constants: one inlined copy of the loop F for
+   each, with no test of either in it. */
+#define HF__CLUMP_MODE_CASES(c, m, F, ...)                                     \
+    do {                                                                       \
+        if (c) {                                                               \
+            if ((m) == 2) F(__VA_ARGS__, 1, 2);                                \
+            else if (m) F(__VA_ARGS__, 1, 1);                                  \
+            else F(__VA_ARGS__, 1, 0);                                         \
+        } else {                                                               \
+            if ((m) == 2) F(__VA_ARGS__, 0, 2);                                \
+            else if (m) F(__VA_ARGS__, 0, 1);                                  \
+            else F(__VA_ARGS__, 0, 0);                                         \
+        }                                                                      \
+    } while (0)
+
 /* The strands of a range, W floats a vector, in one target function
    (attribute T; no call per strand), as two kernels built from one text.
    hf__interp_groups<W>: P a multiple of W, a strand whole groups of three
@@ -7919,15 +7935,8 @@ T HF__PRIVATE void hf__interp_groups##W(const hf__irun *run, int first,        \
     const float *o = run->out + (size_t)(first - run->out_first) *             \
                                     (3u * (size_t)run->P);                     \
     const int nt = hf__stream_mode(run->nt, o, 4u * W - 1u);                   \
-    if (run->clump) {                                                          \
-        if (nt == 2) hf__interp_whole##W(run, first, count, 1, 2);             \
-        else if (nt) hf__interp_whole##W(run, first, count, 1, 1);             \
-        else hf__interp_whole##W(run, first, count, 1, 0);                     \
-    } else {                                                                   \
-        if (nt == 2) hf__interp_whole##W(run, first, count, 0, 2);             \
-        else if (nt) hf__interp_whole##W(run, first, count, 0, 1);             \
-        else hf__interp_whole##W(run, first, count, 0, 0);                     \
-    }                                                                          \
+    HF__CLUMP_MODE_CASES(run->clump, nt, hf__interp_whole##W, run, first,      \
+                         count);                                               \
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */                              \
 }                                                                              \
                                                                                \
@@ -10696,27 +10705,8 @@ T HF__PRIVATE void hf__interp_points##W(                                       \
     const int mode = hf__stream_mode(                                          \
         k->nt, out4 + (size_t)(first - out_first) * (size_t)run->P * 4u,       \
         4u * W - 1u);                                                          \
-    if (run->clump) {                                                          \
-        if (mode == 2)                                                         \
-            hf__interp_points_whole##W(run, k, st, first, count, out_first,    \
-                                       out4, 1, 2);                            \
-        else if (mode)                                                         \
-            hf__interp_points_whole##W(run, k, st, first, count, out_first,    \
-                                       out4, 1, 1);                            \
-        else                                                                   \
-            hf__interp_points_whole##W(run, k, st, first, count, out_first,    \
-                                       out4, 1, 0);                            \
-    } else {                                                                   \
-        if (mode == 2)                                                         \
-            hf__interp_points_whole##W(run, k, st, first, count, out_first,    \
-                                       out4, 0, 2);                            \
-        else if (mode)                                                         \
-            hf__interp_points_whole##W(run, k, st, first, count, out_first,    \
-                                       out4, 0, 1);                            \
-        else                                                                   \
-            hf__interp_points_whole##W(run, k, st, first, count, out_first,    \
-                                       out4, 0, 0);                            \
-    }                                                                          \
+    HF__CLUMP_MODE_CASES(run->clump, mode, hf__interp_points_whole##W, run, k, \
+                         st, first, count, out_first, out4);                   \
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */                              \
 }
 
@@ -10836,6 +10826,7 @@ HF__TARGET_AVX512 HF__INLINE void hf__points_out16(float *o, __m512 a,
 HF__INTERP_POINTS(16, HF__TARGET_AVX512)
 #endif
 #undef HF__INTERP_POINTS
+#undef HF__CLUMP_MODE_CASES
 
 HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
                                  int count, const hf_ribbon_params *view,
