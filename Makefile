@@ -705,10 +705,9 @@ FUZZ_DIR           := tests/fuzz
 FUZZ_FLAGS         := -max_len=4096 -timeout=10 -rss_limit_mb=2048 \
                       -print_final_stats=1
 FUZZ_SAN    := -fsanitize=address,undefined -fno-sanitize-recover=all
-FUZZ_CC     := $(if $(CLANG),$(CLANG),clang) -std=c99 -g -O1 \
-               -fsanitize=fuzzer $(FUZZ_SAN)
-REPLAY_CC   := gcc -std=c99 -O1 -g -Wall -Wextra -Wpedantic -Werror \
-               -fsanitize=address,undefined -fno-sanitize-recover=all
+FUZZ_CLANG  := $(if $(CLANG),$(CLANG),clang) -std=c99 -g -O1
+FUZZ_CC     := $(FUZZ_CLANG) -fsanitize=fuzzer $(FUZZ_SAN)
+REPLAY_CC   := gcc -std=c99 -O1 -g -Wall -Wextra -Wpedantic -Werror $(FUZZ_SAN)
 FUZZ_DEPS   := $(FUZZ_DIR)/fuzz_common.h $(HDR)
 # leaks inside assimp itself are not ours (see the file)
 FUZZ_ENV    := LSAN_OPTIONS=suppressions=$(abspath $(FUZZ_DIR)/lsan.supp)
@@ -727,8 +726,7 @@ $(BUILD)/replay_%: $(FUZZ_DIR)/fuzz_%.c $(FUZZ_DIR)/fuzz_main.c $(FUZZ_DEPS) | $
 # compiles its own: it reads the ropes' internal layout.
 FUZZ_LIB := grow ribbons lut fur
 $(BUILD)/fuzz_impl.o: $(FUZZ_DIR)/fuzz_impl.c $(HDR) | $(BUILD)
-	$(if $(CLANG),$(CLANG),clang) -std=c99 -g -O1 -fsanitize=fuzzer-no-link \
-	  $(FUZZ_SAN) -c $< -o $@
+	$(FUZZ_CLANG) -fsanitize=fuzzer-no-link $(FUZZ_SAN) -c $< -o $@
 $(BUILD)/replay_impl.o: $(FUZZ_DIR)/fuzz_impl.c $(HDR) | $(BUILD)
 	$(REPLAY_CC) -c $< -o $@
 $(addprefix $(BUILD)/fuzz_,$(FUZZ_LIB)): $(BUILD)/fuzz_impl.o

@@ -7906,8 +7906,8 @@ HF__TARGET_AVX2 HF__INLINE void hf__put8(float *o, __m256 q, int mode)
    first's alignment, and no tail (with one, the sixteen-lane loop
    measured 1.1x slower). Its loop is inlined once for each clumping and
    stream mode, passed as constants: tested in every vector, they took a
-   fifth of its instructions. hf__interp_range<W>: any P, three vectors a
-   turn, then one or two, then the scalar tail. */
+   third of its instructions at AVX2. hf__interp_range<W>: any P, three
+   vectors a turn, then one or two, then the scalar tail. */
 #define HF__INTERP_RANGES(W, T)                                                \
 T HF__INLINE void hf__interp_whole##W(const hf__irun *run, int first,          \
                                       int count, int clump, int nt)            \
@@ -8799,7 +8799,6 @@ hf__strand_frame_avx2_in(const float *pts, int P,
     }
     if (_mm256_movemask_ps(_mm256_cmp_ps(acc, zero, _CMP_EQ_OQ)) != 0xff) {
         *finite = 0;
-        _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
         return 0;
     }
     *finite = 1;
@@ -8829,16 +8828,19 @@ hf__strand_frame_avx2_in(const float *pts, int P,
         bad |= hf__frame_group_avx2(fr, k, P, 1, 0, tip, ex, ey, ez, &px,
                                     &py, &pz);
     }
-    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
     return bad == 0;
 }
 
-/* the frame above as a call, for the dispatch of one strand */
+/* the frame above as a call, for the dispatch of one strand (the inline
+   bodies, *_avx2_in, leave the upper halves to the function they are
+   inlined in: its calls and its return clear them) */
 HF__TARGET_AVX2 HF__PRIVATE int
 hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
                       hf__rframe *fr, int *finite)
 {
-    return hf__strand_frame_avx2_in(pts, P, params, fr, finite);
+    const int ok = hf__strand_frame_avx2_in(pts, P, params, fr, finite);
+    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
+    return ok;
 }
 #endif
 
@@ -9685,14 +9687,15 @@ hf__ribbon_write_avx2_in(const hf__rframe *fr, int P, const hf__rconst *K,
         hf__stream_sse(HF__S_TEX, 3, fr, P, K, str, ro, v0);
     if (ro->base[HF__S_COL]) hf__stream_sse(HF__S_COL, 4, fr, P, K, str, ro, v0);
     if (ro->base[HF__S_C3D]) hf__stream_sse(HF__S_C3D, 2, fr, P, K, str, ro, v0);
-    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 
+/* the writer above as a call, for the dispatch of one strand */
 HF__TARGET_AVX2 HF__PRIVATE void
 hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
                       const hf__rstrand *str, const hf__rout *ro, size_t v0)
 {
     hf__ribbon_write_avx2_in(fr, P, K, str, ro, v0);
+    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 
 /* hf__encode_sse at eight lanes: the same operations. */
@@ -10257,7 +10260,7 @@ HF__INLINE void hf__rstrand_fill(const hf_ribbon_strands *sv, int s,
 /* hf_ribbons' strands at AVX2 in one target function, for the float runs
    (table 0) and the layouts of the table writer (1): each strand's frame
    and vertices inlined, where a call each, with their set-up, took an
-   eighth of the instructions of the float runs (a tenth of the table
+   eighth of the instructions of the float runs (7 % of the table
    writer's); a strand the AVX2 frame leaves to the reference goes there
    as in hf__strand_frame. */
 HF__TARGET_AVX2 HF__INLINE void
@@ -10273,9 +10276,10 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
         const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
         hf__rstrand str;
         str.wscale = 1.0f;
-        /* to the reference with the upper halves cleared by the frame */
-        if (!hf__strand_frame_avx2_in(pts, P, params, fr, &finite))
+        if (!hf__strand_frame_avx2_in(pts, P, params, fr, &finite)) {
+            _mm256_zeroupper(); /* the reference is SSE code */
             hf__strand_frame_rest(pts, P, params, fr, finite, &str.wscale);
+        }
         hf__rstrand_fill(sv, s, &str);
         if (table)
             hf__ribbon_write_table_avx2_in(fr, P, K, &str, ro, v0);

@@ -57,7 +57,6 @@
 #define P BENCH_P
 #define MAX_THREADS 2
 
-
 /* ---- counting allocator ------------------------------------------------ */
 
 static long g_allocs;
