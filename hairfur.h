@@ -8747,17 +8747,28 @@ hf__frame_group_avx2(hf__rframe *fr, int k, int P, int last, int ortho,
     return _mm256_movemask_ps(_mm256_andnot_ps(_mm256_and_ps(ok, ok2), live));
 }
 
-/* hf__strand_frame_v4 eight points at a time, with the same IEEE
-   operations per point, and the same cases left to the reference. */
-HF__TARGET_AVX2 HF__INLINE int
-hf__strand_frame_avx2_in(const float *pts, int P,
-                         const hf_ribbon_params *params, hf__rframe *fr,
-                         int *finite)
+/* The frame's e in every lane: the view direction, negated, for an
+   orthographic view, else the eye; once per call. */
+HF__TARGET_AVX2 HF__INLINE void
+hf__frame_eye_avx2(const hf_ribbon_params *params, __m256 *e)
 {
-    const int G = (P + 7) >> 3, ortho = params->orthographic != 0;
+    int c;
+    HF__UNROLL for (c = 0; c < 3; ++c)
+        e[c] = _mm256_set1_ps(params->orthographic ? -params->view_dir[c]
+                                                   : params->eye[c]);
+}
+
+/* hf__strand_frame_v4 eight points at a time, with the same IEEE
+   operations per point, and the same cases left to the reference;
+   ortho and e (ex ey ez) as hf__frame_eye_avx2 gives them. */
+HF__TARGET_AVX2 HF__INLINE int
+hf__strand_frame_avx2_in(const float *pts, int P, int ortho, __m256 ex,
+                         __m256 ey, __m256 ez, hf__rframe *fr, int *finite)
+{
+    const int G = (P + 7) >> 3;
     const __m256 zero = _mm256_setzero_ps();
-    __m256 acc = zero, px, py, pz, ex, ey, ez;
-    float e[3], tip[3];
+    __m256 acc = zero, px, py, pz;
+    float tip[3];
     int k, c, bad = 0;
     /* rows: eight points (24 floats) deinterleaved by shuffles */
     for (k = 0; k < G; ++k) {
@@ -8805,14 +8816,10 @@ hf__strand_frame_avx2_in(const float *pts, int P,
     HF__UNROLL for (c = 0; c < 3; ++c) {
         _mm_storeu_ps(fr->p[c], _mm_set1_ps(pts[c]));
         tip[c] = pts[3 * (P - 1) + c];
-        e[c] = ortho ? -params->view_dir[c] : params->eye[c];
     }
     px = _mm256_set1_ps(pts[0]);
     py = _mm256_set1_ps(pts[1]);
     pz = _mm256_set1_ps(pts[2]);
-    ex = _mm256_set1_ps(e[0]);
-    ey = _mm256_set1_ps(e[1]);
-    ez = _mm256_set1_ps(e[2]);
     /* every group but the last reads its next neighbours from the row;
        the perspective and orthographic bodies apart: no test per group */
     if (ortho) {
@@ -8838,7 +8845,11 @@ HF__TARGET_AVX2 HF__PRIVATE int
 hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
                       hf__rframe *fr, int *finite)
 {
-    const int ok = hf__strand_frame_avx2_in(pts, P, params, fr, finite);
+    __m256 e[3];
+    int ok;
+    hf__frame_eye_avx2(params, e);
+    ok = hf__strand_frame_avx2_in(pts, P, params->orthographic != 0, e[0],
+                                  e[1], e[2], fr, finite);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
     return ok;
 }
@@ -9671,7 +9682,12 @@ hf__ribbon_write_avx2_in(const hf__rframe *fr, int P, const hf__rconst *K,
                                          _mm256_set1_ps(str->uv[1]));
     unsigned char *b = ro->base[HF__S_POS] + v0 * st;
     int k;
-    if (ro->run == 3) {
+    if (ro->run == 3 && st == 36) {
+        /* the packed vertex: every store's offset a constant */
+        for (k = 0; 8 * k + 8 <= P; ++k, b += 16 * 36)
+            hf__ribbon_group_avx2(fr, K, k, 8, 3, b, 36, ws, is, ox, oy, oz,
+                                  uv);
+    } else if (ro->run == 3) {
         for (k = 0; 8 * k + 8 <= P; ++k, b += 16 * st)
             hf__ribbon_group_avx2(fr, K, k, 8, 3, b, st, ws, is, ox, oy, oz,
                                   uv);
@@ -10269,18 +10285,23 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
                       const hf__rout *ro, int out_first, hf__rframe *fr,
                       int table)
 {
-    const int P = params->points_per_strand;
+    const int P = params->points_per_strand,
+              ortho = params->orthographic != 0;
+    const hf_ribbon_strands svl = *sv; /* no reload after every store */
+    __m256 e[3];
     int s, finite;
+    hf__frame_eye_avx2(params, e);
     for (s = first; s < first + count; ++s) {
-        const float *pts = sv->points + (size_t)s * (size_t)P * 3u;
+        const float *pts = svl.points + (size_t)s * (size_t)P * 3u;
         const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
         hf__rstrand str;
         str.wscale = 1.0f;
-        if (!hf__strand_frame_avx2_in(pts, P, params, fr, &finite)) {
+        if (!hf__strand_frame_avx2_in(pts, P, ortho, e[0], e[1], e[2], fr,
+                                      &finite)) {
             _mm256_zeroupper(); /* the reference is SSE code */
             hf__strand_frame_rest(pts, P, params, fr, finite, &str.wscale);
         }
-        hf__rstrand_fill(sv, s, &str);
+        hf__rstrand_fill(&svl, s, &str);
         if (table)
             hf__ribbon_write_table_avx2_in(fr, P, K, &str, ro, v0);
         else
@@ -10365,6 +10386,10 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
     /* the inputs in locals, read once: the kernels are calls whose
        stores may alias anything reached through a pointer */
     sv = *strands;
+    /* the inputs of the streams not written are not read */
+    if (!ro.base[HF__S_TEX]) sv.root_uv = NULL;
+    if (!ro.base[HF__S_COL]) sv.color = NULL;
+    if (!ro.base[HF__S_C3D]) sv.color3d_x = NULL;
     out_first = params->out_first;
 #if HF__AVX2
     if (level >= HF_SIMD_AVX2 && (ro.run || ro.nw) && !stage) {
