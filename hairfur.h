@@ -9556,14 +9556,6 @@ hf__put_side_avx2(unsigned char *o, size_t st2, int n, int run, __m256 x,
                  a1 = _mm256_shuffle_ps(xy0, zt0, _MM_SHUFFLE(3, 2, 3, 2)),
                  a2 = _mm256_shuffle_ps(xy1, zt1, _MM_SHUFFLE(1, 0, 1, 0)),
                  a3 = _mm256_shuffle_ps(xy1, zt1, _MM_SHUFFLE(3, 2, 3, 2));
-    const __m256 v0 = _mm256_permute2f128_ps(a0, B[0], 0x20),
-                 v1 = _mm256_permute2f128_ps(a1, B[1], 0x20),
-                 v2 = _mm256_permute2f128_ps(a2, B[2], 0x20),
-                 v3 = _mm256_permute2f128_ps(a3, B[3], 0x20),
-                 v4 = _mm256_permute2f128_ps(a0, B[0], 0x31),
-                 v5 = _mm256_permute2f128_ps(a1, B[1], 0x31),
-                 v6 = _mm256_permute2f128_ps(a2, B[2], 0x31),
-                 v7 = _mm256_permute2f128_ps(a3, B[3], 0x31);
     if (n == 8 && run == 2) {
         const __m256 a[4] = {a0, a1, a2, a3};
         int k;
@@ -9576,34 +9568,33 @@ hf__put_side_avx2(unsigned char *o, size_t st2, int n, int run, __m256 x,
             _mm_storel_pi((__m64 *)(void *)(hi + 16),
                           _mm256_extractf128_ps(B[k], 1));
         }
-    } else if (n == 8) { /* straight stores: nothing goes through the stack */
-        _mm256_storeu_ps((float *)(void *)o, v0);
-        HF_MEMCPY(o + 32, tt, 4);
-        _mm256_storeu_ps((float *)(void *)(o + st2), v1);
-        HF_MEMCPY(o + st2 + 32, tt + 1, 4);
-        _mm256_storeu_ps((float *)(void *)(o + 2 * st2), v2);
-        HF_MEMCPY(o + 2 * st2 + 32, tt + 2, 4);
-        _mm256_storeu_ps((float *)(void *)(o + 3 * st2), v3);
-        HF_MEMCPY(o + 3 * st2 + 32, tt + 3, 4);
-        _mm256_storeu_ps((float *)(void *)(o + 4 * st2), v4);
-        HF_MEMCPY(o + 4 * st2 + 32, tt + 4, 4);
-        _mm256_storeu_ps((float *)(void *)(o + 5 * st2), v5);
-        HF_MEMCPY(o + 5 * st2 + 32, tt + 5, 4);
-        _mm256_storeu_ps((float *)(void *)(o + 6 * st2), v6);
-        HF_MEMCPY(o + 6 * st2 + 32, tt + 6, 4);
-        _mm256_storeu_ps((float *)(void *)(o + 7 * st2), v7);
-        HF_MEMCPY(o + 7 * st2 + 32, tt + 7, 4);
+    } else if (n == 8) {
+        /* straight stores, each vertex built just before its store (built
+           all first, gcc spilled three of the eight) */
+#define HF__PUT_V(i, a, h)                                                     \
+    _mm256_storeu_ps((float *)(void *)(o + (i) * st2),                         \
+                     _mm256_permute2f128_ps(a, B[(i) & 3], h));                \
+    HF_MEMCPY(o + (i) * st2 + 32, tt + (i), 4)
+        HF__PUT_V(0, a0, 0x20);
+        HF__PUT_V(1, a1, 0x20);
+        HF__PUT_V(2, a2, 0x20);
+        HF__PUT_V(3, a3, 0x20);
+        HF__PUT_V(4, a0, 0x31);
+        HF__PUT_V(5, a1, 0x31);
+        HF__PUT_V(6, a2, 0x31);
+        HF__PUT_V(7, a3, 0x31);
+#undef HF__PUT_V
     } else { /* the last, partial group */
         float f[8][8];
         int i;
-        _mm256_storeu_ps(f[0], v0);
-        _mm256_storeu_ps(f[1], v1);
-        _mm256_storeu_ps(f[2], v2);
-        _mm256_storeu_ps(f[3], v3);
-        _mm256_storeu_ps(f[4], v4);
-        _mm256_storeu_ps(f[5], v5);
-        _mm256_storeu_ps(f[6], v6);
-        _mm256_storeu_ps(f[7], v7);
+        _mm256_storeu_ps(f[0], _mm256_permute2f128_ps(a0, B[0], 0x20));
+        _mm256_storeu_ps(f[1], _mm256_permute2f128_ps(a1, B[1], 0x20));
+        _mm256_storeu_ps(f[2], _mm256_permute2f128_ps(a2, B[2], 0x20));
+        _mm256_storeu_ps(f[3], _mm256_permute2f128_ps(a3, B[3], 0x20));
+        _mm256_storeu_ps(f[4], _mm256_permute2f128_ps(a0, B[0], 0x31));
+        _mm256_storeu_ps(f[5], _mm256_permute2f128_ps(a1, B[1], 0x31));
+        _mm256_storeu_ps(f[6], _mm256_permute2f128_ps(a2, B[2], 0x31));
+        _mm256_storeu_ps(f[7], _mm256_permute2f128_ps(a3, B[3], 0x31));
         for (i = 0; i < n; ++i, o += st2) {
             if (run == 2) {
                 HF_MEMCPY(o, f[i], 24);
