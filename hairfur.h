@@ -9649,6 +9649,15 @@ hf__ribbon_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k,
         K->tt + 8 * k);
 }
 
+/* 1 / scale and the origin in every lane, once per call: ov[0..4) */
+HF__TARGET_AVX2 HF__INLINE void hf__rout_vec_avx2(const hf__rout *ro,
+                                                  __m256 *ov)
+{
+    int c;
+    ov[0] = _mm256_set1_ps(ro->inv_scale);
+    HF__UNROLL for (c = 0; c < 3; ++c) ov[1 + c] = _mm256_set1_ps(ro->origin[c]);
+}
+
 /* hf__ribbon_write_sse eight points at a time for the float runs
    (position, tangent and texcoord, the 36-byte vertex: hf__float_run 3;
    position and tangent: 2, the other streams as the SSE writer writes
@@ -9658,14 +9667,11 @@ hf__ribbon_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k,
 HF__TARGET_AVX2 HF__INLINE void
 hf__ribbon_write_avx2_in(const hf__rframe *fr, int P, const hf__rconst *K,
                          const hf__rstrand *str, const hf__rout *ro,
-                         size_t v0)
+                         size_t v0, const __m256 *ov)
 {
     const size_t st = ro->stride[HF__S_POS];
     const __m256 ws = _mm256_set1_ps(str->wscale);
-    const __m256 is = _mm256_set1_ps(ro->inv_scale);
-    const __m256 ox = _mm256_set1_ps(ro->origin[0]),
-                 oy = _mm256_set1_ps(ro->origin[1]),
-                 oz = _mm256_set1_ps(ro->origin[2]);
+    const __m256 is = ov[0], ox = ov[1], oy = ov[2], oz = ov[3];
     /* u v u v ..: from two scalar loads (gcc made the set one 32-byte
        load of *str, which waits for the scalar stores that just filled it
        to drain: a failed store forward, 14 % of this writer's time) */
@@ -9701,7 +9707,9 @@ HF__TARGET_AVX2 HF__PRIVATE void
 hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
                       const hf__rstrand *str, const hf__rout *ro, size_t v0)
 {
-    hf__ribbon_write_avx2_in(fr, P, K, str, ro, v0);
+    __m256 ov[4];
+    hf__rout_vec_avx2(ro, ov);
+    hf__ribbon_write_avx2_in(fr, P, K, str, ro, v0, ov);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 
@@ -10279,9 +10287,10 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
     const int P = params->points_per_strand,
               ortho = params->orthographic != 0;
     const hf_ribbon_strands svl = *sv; /* no reload after every store */
-    __m256 e[3];
+    __m256 e[3], ov[4];
     int s, finite;
     hf__frame_eye_avx2(params, e);
+    hf__rout_vec_avx2(ro, ov);
     for (s = first; s < first + count; ++s) {
         const float *pts = svl.points + (size_t)s * (size_t)P * 3u;
         const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
@@ -10296,7 +10305,7 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
         if (table)
             hf__ribbon_write_table_avx2_in(fr, P, K, &str, ro, v0);
         else
-            hf__ribbon_write_avx2_in(fr, P, K, &str, ro, v0);
+            hf__ribbon_write_avx2_in(fr, P, K, &str, ro, v0, ov);
     }
 }
 
