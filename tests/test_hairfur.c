@@ -6036,6 +6036,126 @@ static void test_ribbons_every_level_matches_reference(void)
     }
 }
 
+static void test_ribbons_float_runs_every_level(void)
+{
+    /* hf_ribbons itself, at every level the CPU runs, in the float layouts
+       its fastest paths take: the packed 36-byte vertex (position,
+       tangent, texcoord), the same run in a wider vertex with colours
+       after it, and position with tangent (texcoord elsewhere). P from 2
+       to 33 (partial groups of four and eight, one and several full
+       groups), both camera kinds, strands that go to the reference (a
+       NaN point, all points equal, one along the view) beside ordinary
+       ones, optional inputs with a NaN among them: every level writes the
+       scalar reference's bytes, however the range is split, and no byte
+       outside the streams changes. */
+    enum { NS = 12, PM = 33, VM = 52, BUF = NS * PM * 2 * VM + 64 };
+    /* pos, tan, tex, col, c3d offsets (-1: none), col format, stride */
+    static const int lay[4][7] = {{0, 12, 24, -1, -1, 0, 36},
+                                  {0, 12, 24, 36, 40, HF_FORMAT_UNORM8, 44},
+                                  {0, 12, 24, 36, -1, HF_FORMAT_F32, 52},
+                                  {0, 12, 28, 24, -1, HF_FORMAT_UNORM8, 40}};
+    static const int Ps[8] = {2, 7, 8, 9, 16, 17, 24, PM};
+    static unsigned char ref[BUF], got[BUF];
+    static float pts[NS * PM * 3];
+    float uv[2 * NS], col[4 * NS], c3[NS], wid[NS];
+    hf_rng rng;
+    int L, pi, ortho, s, j, level, split, levels = 0;
+    hf_rng_seed(&rng, 36, 9);
+    for (s = 0; s < NS; ++s) {
+        uv[2 * s] = hf_rng_float(&rng);
+        uv[2 * s + 1] = hf_rng_float(&rng);
+        for (j = 0; j < 4; ++j) col[4 * s + j] = hf_rng_float(&rng);
+        c3[s] = hf_rng_float(&rng);
+        wid[s] = 0.5f + hf_rng_float(&rng);
+    }
+    uv[3] = NAN;
+    col[9] = NAN;
+    wid[4] = NAN;
+    for (L = 0; L < 4; ++L)
+        for (pi = 0; pi < 8; ++pi)
+            for (ortho = 0; ortho < 2; ++ortho) {
+                const int P = Ps[pi], st = lay[L][6];
+                const size_t bytes = (size_t)NS * P * 2 * st;
+                hf_ribbon_params p = t_rparams();
+                hf_ribbon_strands sv;
+                hf_ribbon_output o;
+                t_random_strands(pts, NS, P, &rng);
+                /* strand 1: a NaN; 2: one point; 3: along the view */
+                pts[(size_t)1 * P * 3 + 3 * (P / 2) + 1] = NAN;
+                for (j = 1; j < P; ++j) {
+                    memcpy(pts + (size_t)2 * P * 3 + 3 * j,
+                           pts + (size_t)2 * P * 3, 12);
+                    pts[(size_t)3 * P * 3 + 3 * j + 0] = 0.0f;
+                    pts[(size_t)3 * P * 3 + 3 * j + 1] = 0.0f;
+                    pts[(size_t)3 * P * 3 + 3 * j + 2] = 4.0f - 0.1f * (float)j;
+                }
+                memset(pts + (size_t)3 * P * 3, 0, 8);
+                pts[(size_t)3 * P * 3 + 2] = 4.0f;
+                p.points_per_strand = P;
+                p.orthographic = ortho;
+                p.eye[0] = p.eye[1] = 0.0f;
+                p.eye[2] = 6.0f;
+                p.view_dir[0] = 0.0f; p.view_dir[1] = 0.0f; p.view_dir[2] = -1.0f;
+                if (!ortho) p.eye[0] = 1e-9f; /* strand 3 along the view */
+                p.alpha_root = 0.8f;
+                p.alpha_tip = 0.2f;
+                memset(&sv, 0, sizeof sv);
+                sv.points = pts;
+                sv.root_uv = uv;
+                sv.color = col;
+                sv.color3d_x = c3;
+                sv.width = wid;
+                for (level = HF_SIMD_SCALAR; level <= HF_SIMD_AVX512; ++level) {
+                    unsigned char *buf = level == HF_SIMD_SCALAR ? ref : got;
+                    if (hf_simd_resolve(level) != level) continue;
+                    for (split = 0; split < 2; ++split) {
+                        unsigned char *d = buf + 16;
+                        memset(buf, 0xa5, BUF);
+                        memset(&o, 0, sizeof o);
+                        o.position.data = d + lay[L][0];
+                        o.tangent.data = d + lay[L][1];
+                        if (L == 3) {
+                            /* texcoord as F16 after the run */
+                            o.texcoord.data = d + lay[L][2];
+                            o.texcoord.format = HF_FORMAT_F16;
+                        } else {
+                            o.texcoord.data = d + lay[L][2];
+                        }
+                        if (lay[L][3] >= 0) {
+                            o.color.data = d + lay[L][3];
+                            o.color.format = lay[L][5];
+                        }
+                        if (lay[L][4] >= 0) {
+                            o.color3d.data = d + lay[L][4];
+                            o.color3d.format = HF_FORMAT_UNORM8;
+                        }
+                        o.position.stride = o.tangent.stride = o.texcoord.stride =
+                            o.color.stride = o.color3d.stride = st;
+                        o.position_origin[0] = 0.25f;
+                        o.position_scale = 2.0f;
+                        p.simd = level;
+                        if (!split) {
+                            CHECK_EQ_INT(hf_ribbons(&sv, 0, NS, &p, &o), HF_OK);
+                        } else {
+                            CHECK_EQ_INT(hf_ribbons(&sv, 0, 5, &p, &o), HF_OK);
+                            CHECK_EQ_INT(hf_ribbons(&sv, 5, NS - 5, &p, &o),
+                                         HF_OK);
+                        }
+                        if (level == HF_SIMD_SCALAR) break;
+                        CHECK(memcmp(ref, got, BUF) == 0);
+                        ++levels;
+                    }
+                    /* the padding of a wider vertex keeps its bytes */
+                    if (L == 3)
+                        for (j = 0; j < NS * P * 2; ++j)
+                            CHECK(buf[16 + (size_t)j * st + 36] == 0xa5);
+                    CHECK(buf[16 + bytes] == 0xa5 && buf[15] == 0xa5);
+                }
+            }
+    /* at least SSE2 or NEON took part (every 64-bit build has it) */
+    if (HF__SSE || HF__NEON) CHECK(levels > 0);
+}
+
 static void test_ribbons_table_layouts(void)
 {
     /* Vertices whose streams abut or share a buffer, as compact layouts
@@ -10057,6 +10177,7 @@ int main(void)
     RUN(test_ribbons_errors_write_nothing);
     RUN(test_ribbons_leading_tangent);
     RUN(test_ribbons_every_level_matches_reference);
+    RUN(test_ribbons_float_runs_every_level);
     RUN(test_ribbons_table_layouts);
     RUN(test_format_encoders);
     RUN(test_points_every_level);
