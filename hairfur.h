@@ -9173,6 +9173,10 @@ typedef struct hf__rout {
        exactly (one stride, no gaps, no overlap), else 0: what streaming
        ribbons copy out whole (hf__ribbon_stage). */
     size_t tile;
+    /* 1 for the compact vertex: position and texcoord in 2-byte formats,
+       tangent in a 1-byte one, abutting at 0, 6 and 12 of one stride (15
+       bytes), no other stream; written by a kernel of its own at AVX2 */
+    int c16;
 } hf__rout;
 
 enum { HF__S_POS, HF__S_TAN, HF__S_TEX, HF__S_COL, HF__S_C3D };
@@ -9283,6 +9287,7 @@ HF__PRIVATE void hf__rout_layout(hf__rout *ro)
     ro->run = hf__float_run(ro);
     ro->nw = ro->wl = 0;
     ro->tile = 0;
+    ro->c16 = 0;
     for (q = 0; q < 5; ++q) {
         z[q] = (size_t)hf_format_bytes(ro->fmt[q]) * (size_t)hf__stream_nc[q];
         at[q] = (uintptr_t)ro->base[q];
@@ -9341,6 +9346,9 @@ HF__PRIVATE void hf__rout_layout(hf__rout *ro)
         ro->wsh[m] =
             (unsigned char)((size_t)m + end - 8 < 16 ? (size_t)m + end - 8 : 0x80);
     ro->wl = (int)end;
+    ro->c16 = end == 15 && n == 3 && z[HF__S_POS] == 6 &&
+              z[HF__S_TEX] == 6 && z[HF__S_TAN] == 3 &&
+              ro->wq[0] == HF__S_POS && at[HF__S_TEX] - at[HF__S_POS] == 6;
 }
 
 /* One stream's elements of points i < n at o + 2 i st (side 0, from
@@ -9992,6 +10000,163 @@ hf__ribbon_write_table_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
     hf__ribbon_write_table_avx2_in(fr, P, K, str, ro, v0);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
+
+/* A format's encoding as per-call vectors, for a kernel that meets the
+   format at run time: the clamp's bounds, the scale and the code's mask
+   (hf__encode_avx2 with them in registers; f16: the half encoder). */
+typedef struct hf__enc8 {
+    __m256 lo, scale, one, round;
+    __m256i mask;
+    int f16;
+} hf__enc8;
+
+HF__TARGET_AVX2 HF__INLINE void hf__enc8_init(hf__enc8 *e, int fmt)
+{
+    const int sgn = fmt == HF_FORMAT_SNORM16 || fmt == HF_FORMAT_SNORM8;
+    const float scale = fmt == HF_FORMAT_SNORM16   ? 32767.0f
+                        : fmt == HF_FORMAT_UNORM16 ? 65535.0f
+                        : fmt == HF_FORMAT_SNORM8  ? 127.0f
+                                                   : 255.0f;
+    e->lo = _mm256_set1_ps(sgn ? -1.0f : 0.0f);
+    e->scale = _mm256_set1_ps(scale);
+    /* in memory beside them, so that each use is an operand, not a
+       broadcast */
+    e->one = _mm256_set1_ps(1.0f);
+    e->round = _mm256_set1_ps(12582912.0f);
+    e->mask = _mm256_set1_epi32(hf_format_bytes(fmt) == 2 ? 0xffff : 0xff);
+    e->f16 = fmt == HF_FORMAT_F16;
+}
+
+/* hf__encode_avx2's operations, the format from e; f16 0 (a constant
+   where inlined) when no half format is among those e may hold */
+HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_var_avx2(__m256 x,
+                                                      const hf__enc8 *e,
+                                                      int f16)
+{
+    __m256 v;
+    if (f16 && e->f16) return hf__encode_avx2(x, HF_FORMAT_F16);
+    v = _mm256_min_ps(_mm256_max_ps(x, e->lo), e->one);
+    v = _mm256_sub_ps(_mm256_add_ps(_mm256_mul_ps(v, e->scale), e->round),
+                      e->round);
+    return _mm256_and_si256(_mm256_cvttps_epi32(v), e->mask);
+}
+
+/* One side's compact vertices of a group of n points at o (vertex i at
+   o + i st2) from its words: d0 = x y, d1 = z u, and the words both sides
+   share, v t and the tangent, already interleaved (s02: points 0 1 | 4 5,
+   s13: 2 3 | 6 7). Two 8-byte stores a vertex, the second over bytes
+   7..14: the pad byte is never written. */
+HF__TARGET_AVX2 HF__INLINE void hf__c16_put_avx2(unsigned char *o,
+                                                 size_t st2, int n,
+                                                 __m256i d0, __m256i d1,
+                                                 __m256i s02, __m256i s13)
+{
+    const __m256i a = _mm256_unpacklo_epi32(d0, d1),
+                  b = _mm256_unpackhi_epi32(d0, d1);
+    __m256i v[4];
+    int k;
+    /* vertices i | i + 4, i = 0..3 */
+    v[0] = _mm256_unpacklo_epi64(a, s02);
+    v[1] = _mm256_unpackhi_epi64(a, s02);
+    v[2] = _mm256_unpacklo_epi64(b, s13);
+    v[3] = _mm256_unpackhi_epi64(b, s13);
+    if (n == 8) {
+        HF__UNROLL for (k = 0; k < 4; ++k) {
+            const __m256i sh = _mm256_srli_si256(v[k], 7);
+            unsigned char *lo = o + (size_t)k * st2, *hi = lo + 4 * st2;
+            _mm_storel_epi64((__m128i *)(void *)lo, _mm256_castsi256_si128(v[k]));
+            _mm_storel_epi64((__m128i *)(void *)(lo + 7),
+                             _mm256_castsi256_si128(sh));
+            _mm_storel_epi64((__m128i *)(void *)hi,
+                             _mm256_extracti128_si256(v[k], 1));
+            _mm_storel_epi64((__m128i *)(void *)(hi + 7),
+                             _mm256_extracti128_si256(sh, 1));
+        }
+    } else { /* the last, partial group */
+        unsigned char f[8][16];
+        int i;
+        HF__UNROLL for (k = 0; k < 4; ++k) {
+            _mm_storeu_si128((__m128i *)(void *)f[k],
+                             _mm256_castsi256_si128(v[k]));
+            _mm_storeu_si128((__m128i *)(void *)f[k + 4],
+                             _mm256_extracti128_si256(v[k], 1));
+        }
+        for (i = 0; i < n; ++i) HF_MEMCPY(o + (size_t)i * st2, f[i], 15);
+    }
+}
+
+/* Group k of the compact vertex's writer below: n points (8 but for the
+   last, a constant where inlined) at b. */
+HF__TARGET_AVX2 HF__INLINE void
+hf__c16_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k, int n,
+                   unsigned char *b, size_t st, __m256 ws, __m256i eu,
+                   __m256i ev, const __m256 *ov, const hf__enc8 *enc,
+                   int f16)
+{
+    const int o = 4 + 8 * k;
+    const __m256 w = _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws);
+    __m256i eL[3], eR[3], et[3], d2, d3, s02, s13;
+    int c;
+    HF__UNROLL for (c = 0; c < 3; ++c) {
+        const __m256 p = _mm256_loadu_ps(fr->p[c] + o);
+        const __m256 sw = _mm256_mul_ps(_mm256_loadu_ps(fr->s[c] + o), w);
+        eL[c] = hf__encode_var_avx2(
+            _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(p, sw), ov[1 + c]),
+                          ov[0]),
+            &enc[0], f16);
+        eR[c] = hf__encode_var_avx2(
+            _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(p, sw), ov[1 + c]),
+                          ov[0]),
+            &enc[0], f16);
+        /* a 1-byte format: never half */
+        et[c] = hf__encode_var_avx2(_mm256_loadu_ps(fr->t[c] + o), &enc[2],
+                                    0);
+    }
+    d2 = _mm256_or_si256(
+        ev, _mm256_slli_epi32(
+                hf__encode_var_avx2(_mm256_loadu_ps(K->tt + 8 * k), &enc[1],
+                                    f16),
+                16));
+    d3 = _mm256_or_si256(_mm256_or_si256(et[0], _mm256_slli_epi32(et[1], 8)),
+                         _mm256_slli_epi32(et[2], 16));
+    s02 = _mm256_unpacklo_epi32(d2, d3);
+    s13 = _mm256_unpackhi_epi32(d2, d3);
+    hf__c16_put_avx2(b, 2 * st, n,
+                     _mm256_or_si256(eL[0], _mm256_slli_epi32(eL[1], 16)),
+                     _mm256_or_si256(eL[2], eu), s02, s13);
+    hf__c16_put_avx2(b + st, 2 * st, n,
+                     _mm256_or_si256(eR[0], _mm256_slli_epi32(eR[1], 16)),
+                     _mm256_or_si256(eR[2], eu), s02, s13);
+}
+
+/* The compact vertex (hf__rout c16) eight points at a time without the
+   tables: the table writer's values and encodings (so the same bytes),
+   packed into four 32-bit words a vertex (x y | z u | v t | tangent),
+   transposed in registers and stored. enc: the position's, texcoord's
+   and tangent's formats (hf__enc8_init); f16: whether a half format is
+   among them (a constant in each inlined copy); ov as
+   hf__rout_vec_avx2. */
+HF__TARGET_AVX2 HF__INLINE void
+hf__ribbon_write_c16_avx2_in(const hf__rframe *fr, int P, const hf__rconst *K,
+                             const hf__rstrand *str, const hf__rout *ro,
+                             size_t v0, const __m256 *ov,
+                             const hf__enc8 *enc, int f16)
+{
+    const size_t st = ro->stride[HF__S_POS];
+    const __m256 ws = _mm256_set1_ps(str->wscale);
+    /* u and v are the strand's: encoded once */
+    const __m256i eu = _mm256_slli_epi32(
+        hf__encode_var_avx2(_mm256_set1_ps(str->uv[0]), &enc[1], f16), 16);
+    const __m256i ev =
+        hf__encode_var_avx2(_mm256_set1_ps(str->uv[1]), &enc[1], f16);
+    unsigned char *b = ro->base[HF__S_POS] + v0 * st;
+    int k;
+    for (k = 0; 8 * k + 8 <= P; ++k, b += 16 * st)
+        hf__c16_group_avx2(fr, K, k, 8, b, st, ws, eu, ev, ov, enc, f16);
+    if (8 * k < P)
+        hf__c16_group_avx2(fr, K, k, P - 8 * k, b, st, ws, eu, ev, ov, enc,
+                           f16);
+}
 #endif
 
 #if HF__NEON
@@ -10273,7 +10438,8 @@ HF__INLINE void hf__rstrand_fill(const hf_ribbon_strands *sv, int s,
 
 #if HF__AVX2
 /* hf_ribbons' strands at AVX2 in one target function, for the float runs
-   (table 0) and the layouts of the table writer (1): each strand's frame
+   (mode 0), the layouts of the table writer (1) and the compact vertex
+   (hf__rout c16; 2 without a half format, 3 with): each strand's frame
    and vertices inlined, where a call each, with their set-up, took an
    eighth of the instructions of the float runs (7 % of the table
    writer's); a strand the AVX2 frame leaves to the reference goes there
@@ -10282,15 +10448,21 @@ HF__TARGET_AVX2 HF__INLINE void
 hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
                       const hf_ribbon_params *params, const hf__rconst *K,
                       const hf__rout *ro, int out_first, hf__rframe *fr,
-                      int table)
+                      int mode)
 {
     const int P = params->points_per_strand,
               ortho = params->orthographic != 0;
     const hf_ribbon_strands svl = *sv; /* no reload after every store */
     __m256 e[3], ov[4];
+    hf__enc8 enc[3];
     int s, finite;
     hf__frame_eye_avx2(params, e);
     hf__rout_vec_avx2(ro, ov);
+    if (mode >= 2) {
+        hf__enc8_init(&enc[0], ro->fmt[HF__S_POS]);
+        hf__enc8_init(&enc[1], ro->fmt[HF__S_TEX]);
+        hf__enc8_init(&enc[2], ro->fmt[HF__S_TAN]);
+    }
     for (s = first; s < first + count; ++s) {
         const float *pts = svl.points + (size_t)s * (size_t)P * 3u;
         const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
@@ -10302,7 +10474,10 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
             hf__strand_frame_rest(pts, P, params, fr, finite, &str.wscale);
         }
         hf__rstrand_fill(&svl, s, &str);
-        if (table)
+        if (mode >= 2)
+            hf__ribbon_write_c16_avx2_in(fr, P, K, &str, ro, v0, ov, enc,
+                                         mode == 3);
+        else if (mode == 1)
             hf__ribbon_write_table_avx2_in(fr, P, K, &str, ro, v0);
         else
             hf__ribbon_write_avx2_in(fr, P, K, &str, ro, v0, ov);
@@ -10317,6 +10492,13 @@ hf__ribbons_run_avx2(const hf_ribbon_strands *sv, int first, int count,
     if (ro->run)
         hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
                               0);
+    else if (ro->c16 && ro->fmt[HF__S_POS] != HF_FORMAT_F16 &&
+             ro->fmt[HF__S_TEX] != HF_FORMAT_F16)
+        hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
+                              2);
+    else if (ro->c16)
+        hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
+                              3);
     else
         hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
                               1);

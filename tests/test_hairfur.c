@@ -6036,34 +6036,43 @@ static void test_ribbons_every_level_matches_reference(void)
     }
 }
 
-static void test_ribbons_float_runs_every_level(void)
+static void test_ribbons_run_layouts_every_level(void)
 {
-    /* hf_ribbons itself, at every level the CPU runs, in the float layouts
-       its fastest paths take: the packed 36-byte vertex (position,
-       tangent, texcoord), the same run in a wider vertex with colours
-       after it, and position with tangent (texcoord elsewhere). P from 2
-       to 33 (partial groups of four and eight, one and several full
-       groups), both camera kinds, strands that go to the reference (a
-       NaN point, all points equal, one along the view) beside ordinary
-       ones, optional inputs with a NaN among them: every level writes the
-       scalar reference's bytes, however the range is split, and no byte
-       outside the streams changes. */
-    enum { NS = 12, PM = 33, VM = 52, BUF = NS * PM * 2 * VM + 64 };
-    /* pos, tan, tex, col, c3d offsets (-1: none), col format, stride */
-    static const int lay[4][7] = {{0, 12, 24, -1, -1, 0, 36},
-                                  {0, 12, 24, 36, 40, HF_FORMAT_UNORM8, 44},
-                                  {0, 12, 24, 36, -1, HF_FORMAT_F32, 52},
-                                  {0, 12, 28, 24, -1, HF_FORMAT_UNORM8, 40}};
+    /* hf_ribbons itself, at every level the CPU runs, in the layouts its
+       kernels of their own take: the packed 36-byte vertex (position,
+       tangent, texcoord as floats), the same run in a wider vertex with
+       colours after it, position with tangent (texcoord elsewhere), and
+       the compact vertex (2-byte position and texcoord, 1-byte tangent
+       in 15 bytes) in each of its formats, with and without padding. P
+       from 2 to 33 (partial groups of four and eight, one and several
+       full groups), both camera kinds, strands the frames leave to the
+       reference (a NaN point, all points equal, one along the view)
+       beside ordinary ones, optional inputs with a NaN among them: every
+       level writes the scalar reference's bytes, however the range is
+       split, and no byte outside the streams changes. */
+    enum { NS = 12, PM = 33, VM = 52, NL = 8, BUF = NS * PM * 2 * VM + 64 };
+    /* offset and format of position, tangent, texcoord, colour and 3D
+       colour (offset -1: none), then the stride */
+    static const int lay[NL][11] = {
+        {0, HF_FORMAT_F32, 12, HF_FORMAT_F32, 24, HF_FORMAT_F32, -1, 0, -1, 0, 36},
+        {0, HF_FORMAT_F32, 12, HF_FORMAT_F32, 24, HF_FORMAT_F32, 36, HF_FORMAT_UNORM8, 40, HF_FORMAT_UNORM8, 44},
+        {0, HF_FORMAT_F32, 12, HF_FORMAT_F32, 24, HF_FORMAT_F32, 36, HF_FORMAT_F32, -1, 0, 52},
+        {0, HF_FORMAT_F32, 12, HF_FORMAT_F32, 28, HF_FORMAT_F16, 24, HF_FORMAT_UNORM8, -1, 0, 40},
+        {0, HF_FORMAT_SNORM16, 12, HF_FORMAT_SNORM8, 6, HF_FORMAT_UNORM16, -1, 0, -1, 0, 16},
+        {0, HF_FORMAT_F16, 12, HF_FORMAT_UNORM8, 6, HF_FORMAT_F16, -1, 0, -1, 0, 20},
+        {0, HF_FORMAT_UNORM16, 12, HF_FORMAT_SNORM8, 6, HF_FORMAT_SNORM16, -1, 0, -1, 0, 15},
+        {4, HF_FORMAT_SNORM16, 16, HF_FORMAT_SNORM8, 10, HF_FORMAT_F16, -1, 0, -1, 0, 24}};
+    static const int nc[5] = {3, 3, 3, 4, 2};
     static const int Ps[8] = {2, 7, 8, 9, 16, 17, 24, PM};
     static unsigned char ref[BUF], got[BUF];
     static float pts[NS * PM * 3];
     float uv[2 * NS], col[4 * NS], c3[NS], wid[NS];
     hf_rng rng;
-    int L, pi, ortho, s, j, level, split, levels = 0;
+    int L, pi, ortho, s, j, q, level, split, levels = 0;
     hf_rng_seed(&rng, 36, 9);
     for (s = 0; s < NS; ++s) {
         uv[2 * s] = hf_rng_float(&rng);
-        uv[2 * s + 1] = hf_rng_float(&rng);
+        uv[2 * s + 1] = hf_rng_float(&rng) * 3.0f - 1.0f; /* out of range too */
         for (j = 0; j < 4; ++j) col[4 * s + j] = hf_rng_float(&rng);
         c3[s] = hf_rng_float(&rng);
         wid[s] = 0.5f + hf_rng_float(&rng);
@@ -6071,14 +6080,26 @@ static void test_ribbons_float_runs_every_level(void)
     uv[3] = NAN;
     col[9] = NAN;
     wid[4] = NAN;
-    for (L = 0; L < 4; ++L)
+    for (L = 0; L < NL; ++L)
         for (pi = 0; pi < 8; ++pi)
             for (ortho = 0; ortho < 2; ++ortho) {
-                const int P = Ps[pi], st = lay[L][6];
+                const int P = Ps[pi], st = lay[L][10];
                 const size_t bytes = (size_t)NS * P * 2 * st;
+                unsigned char covered[VM];
                 hf_ribbon_params p = t_rparams();
                 hf_ribbon_strands sv;
                 hf_ribbon_output o;
+                hf_stream *sm[5];
+                sm[0] = &o.position;
+                sm[1] = &o.tangent;
+                sm[2] = &o.texcoord;
+                sm[3] = &o.color;
+                sm[4] = &o.color3d;
+                memset(covered, 0, sizeof covered);
+                for (q = 0; q < 5; ++q)
+                    if (lay[L][2 * q] >= 0)
+                        memset(covered + lay[L][2 * q], 1,
+                               (size_t)hf_format_bytes(lay[L][2 * q + 1]) * nc[q]);
                 t_random_strands(pts, NS, P, &rng);
                 /* strand 1: a NaN; 2: one point; 3: along the view */
                 pts[(size_t)1 * P * 3 + 3 * (P / 2) + 1] = NAN;
@@ -6093,10 +6114,10 @@ static void test_ribbons_float_runs_every_level(void)
                 pts[(size_t)3 * P * 3 + 2] = 4.0f;
                 p.points_per_strand = P;
                 p.orthographic = ortho;
-                p.eye[0] = p.eye[1] = 0.0f;
+                p.eye[0] = 1e-9f; /* strand 3 along the view */
+                p.eye[1] = 0.0f;
                 p.eye[2] = 6.0f;
                 p.view_dir[0] = 0.0f; p.view_dir[1] = 0.0f; p.view_dir[2] = -1.0f;
-                if (!ortho) p.eye[0] = 1e-9f; /* strand 3 along the view */
                 p.alpha_root = 0.8f;
                 p.alpha_tip = 0.2f;
                 memset(&sv, 0, sizeof sv);
@@ -6112,25 +6133,13 @@ static void test_ribbons_float_runs_every_level(void)
                         unsigned char *d = buf + 16;
                         memset(buf, 0xa5, BUF);
                         memset(&o, 0, sizeof o);
-                        o.position.data = d + lay[L][0];
-                        o.tangent.data = d + lay[L][1];
-                        if (L == 3) {
-                            /* texcoord as F16 after the run */
-                            o.texcoord.data = d + lay[L][2];
-                            o.texcoord.format = HF_FORMAT_F16;
-                        } else {
-                            o.texcoord.data = d + lay[L][2];
+                        for (q = 0; q < 5; ++q) {
+                            if (lay[L][2 * q] < 0) continue;
+                            sm[q]->data = d + lay[L][2 * q];
+                            sm[q]->format = lay[L][2 * q + 1];
+                            sm[q]->stride = st;
                         }
-                        if (lay[L][3] >= 0) {
-                            o.color.data = d + lay[L][3];
-                            o.color.format = lay[L][5];
-                        }
-                        if (lay[L][4] >= 0) {
-                            o.color3d.data = d + lay[L][4];
-                            o.color3d.format = HF_FORMAT_UNORM8;
-                        }
-                        o.position.stride = o.tangent.stride = o.texcoord.stride =
-                            o.color.stride = o.color3d.stride = st;
+                        /* compact positions in a box of 2 about the origin */
                         o.position_origin[0] = 0.25f;
                         o.position_scale = 2.0f;
                         p.simd = level;
@@ -6145,10 +6154,11 @@ static void test_ribbons_float_runs_every_level(void)
                         CHECK(memcmp(ref, got, BUF) == 0);
                         ++levels;
                     }
-                    /* the padding of a wider vertex keeps its bytes */
-                    if (L == 3)
-                        for (j = 0; j < NS * P * 2; ++j)
-                            CHECK(buf[16 + (size_t)j * st + 36] == 0xa5);
+                    /* padding and the bytes around the vertices keep theirs */
+                    for (j = 0; j < NS * P * 2; ++j)
+                        for (q = 0; q < st; ++q)
+                            if (!covered[q])
+                                CHECK(buf[16 + (size_t)j * st + q] == 0xa5);
                     CHECK(buf[16 + bytes] == 0xa5 && buf[15] == 0xa5);
                 }
             }
@@ -10177,7 +10187,7 @@ int main(void)
     RUN(test_ribbons_errors_write_nothing);
     RUN(test_ribbons_leading_tangent);
     RUN(test_ribbons_every_level_matches_reference);
-    RUN(test_ribbons_float_runs_every_level);
+    RUN(test_ribbons_run_layouts_every_level);
     RUN(test_ribbons_table_layouts);
     RUN(test_format_encoders);
     RUN(test_points_every_level);
