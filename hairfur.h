@@ -9155,6 +9155,7 @@ typedef struct hf__rout {
     int fmt[5];
     float origin[3], inv_scale;
     int run; /* hf__float_run of the streams, once per call */
+    int rest; /* 1 where a stream is left after the float run */
     /* The table writer's plan (hf__rout_layout): nw streams in address
        order, wq[m] the stream and wb[m] the bytes each copy writes (its
        element, or the next power of two where the bytes past it belong to
@@ -9285,6 +9286,8 @@ HF__PRIVATE void hf__rout_layout(hf__rout *ro)
     size_t z[5], end = 0, st;
     int q, m, r, n = 0;
     ro->run = hf__float_run(ro);
+    ro->rest = (ro->base[HF__S_TEX] && ro->run == 2) ||
+               ro->base[HF__S_COL] || ro->base[HF__S_C3D];
     ro->nw = ro->wl = 0;
     ro->tile = 0;
     ro->c16 = 0;
@@ -9704,6 +9707,7 @@ hf__ribbon_write_avx2_in(const hf__rframe *fr, int P, const hf__rconst *K,
     if (8 * k < P)
         hf__ribbon_group_avx2(fr, K, k, P - 8 * k, ro->run, b, st, ws, is, ox,
                               oy, oz, uv);
+    if (!ro->rest) return; /* one test a strand for the three below */
     if (ro->base[HF__S_TEX] && ro->run == 2)
         hf__stream_sse(HF__S_TEX, 3, fr, P, K, str, ro, v0);
     if (ro->base[HF__S_COL]) hf__stream_sse(HF__S_COL, 4, fr, P, K, str, ro, v0);
