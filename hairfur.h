@@ -9174,9 +9174,10 @@ typedef struct hf__rout {
        exactly (one stride, no gaps, no overlap), else 0: what streaming
        ribbons copy out whole (hf__ribbon_stage). */
     size_t tile;
-    /* 1 for the compact vertex: position and texcoord in 2-byte formats,
-       tangent in a 1-byte one, abutting at 0, 6 and 12 of one stride (15
-       bytes), no other stream; written by a kernel of its own at AVX2 */
+    /* 1 for the compact vertex: position and texcoord in 16-bit
+       normalized formats, tangent in an 8-bit one, abutting at 0, 6 and
+       12 of one stride (15 bytes), no other stream; written by a kernel
+       of its own at AVX2 (a half format takes the table writer) */
     int c16;
 } hf__rout;
 
@@ -9351,7 +9352,9 @@ HF__PRIVATE void hf__rout_layout(hf__rout *ro)
     ro->wl = (int)end;
     ro->c16 = end == 15 && n == 3 && z[HF__S_POS] == 6 &&
               z[HF__S_TEX] == 6 && z[HF__S_TAN] == 3 &&
-              ro->wq[0] == HF__S_POS && at[HF__S_TEX] - at[HF__S_POS] == 6;
+              ro->wq[0] == HF__S_POS && at[HF__S_TEX] - at[HF__S_POS] == 6 &&
+              ro->fmt[HF__S_POS] != HF_FORMAT_F16 &&
+              ro->fmt[HF__S_TEX] != HF_FORMAT_F16;
 }
 
 /* One stream's elements of points i < n at o + 2 i st (side 0, from
@@ -10005,13 +10008,12 @@ hf__ribbon_write_table_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 
-/* A format's encoding as per-call vectors, for a kernel that meets the
-   format at run time: the clamp's bounds, the scale and the code's mask
-   (hf__encode_avx2 with them in registers; f16: the half encoder). */
+/* A normalized format's encoding as per-call vectors, for a kernel that
+   meets the format at run time: the clamp's bounds, the scale and the
+   code's mask (hf__encode_avx2's operations with them in memory). */
 typedef struct hf__enc8 {
     __m256 lo, scale, one, round;
     __m256i mask;
-    int f16;
 } hf__enc8;
 
 HF__TARGET_AVX2 HF__INLINE void hf__enc8_init(hf__enc8 *e, int fmt)
@@ -10028,18 +10030,13 @@ HF__TARGET_AVX2 HF__INLINE void hf__enc8_init(hf__enc8 *e, int fmt)
     e->one = _mm256_set1_ps(1.0f);
     e->round = _mm256_set1_ps(12582912.0f);
     e->mask = _mm256_set1_epi32(hf_format_bytes(fmt) == 2 ? 0xffff : 0xff);
-    e->f16 = fmt == HF_FORMAT_F16;
 }
 
-/* hf__encode_avx2's operations, the format from e; f16 0 (a constant
-   where inlined) when no half format is among those e may hold */
+/* hf__encode_avx2's operations, the format from e */
 HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_var_avx2(__m256 x,
-                                                      const hf__enc8 *e,
-                                                      int f16)
+                                                      const hf__enc8 *e)
 {
-    __m256 v;
-    if (f16 && e->f16) return hf__encode_avx2(x, HF_FORMAT_F16);
-    v = _mm256_min_ps(_mm256_max_ps(x, e->lo), e->one);
+    __m256 v = _mm256_min_ps(_mm256_max_ps(x, e->lo), e->one);
     v = _mm256_sub_ps(_mm256_add_ps(_mm256_mul_ps(v, e->scale), e->round),
                       e->round);
     return _mm256_and_si256(_mm256_cvttps_epi32(v), e->mask);
@@ -10094,8 +10091,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__c16_put_avx2(unsigned char *o,
 HF__TARGET_AVX2 HF__INLINE void
 hf__c16_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k, int n,
                    unsigned char *b, size_t st, __m256 ws, __m256i eu,
-                   __m256i ev, const __m256 *ov, const hf__enc8 *enc,
-                   int f16)
+                   __m256i ev, const __m256 *ov, const hf__enc8 *enc)
 {
     const int o = 4 + 8 * k;
     const __m256 w = _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws);
@@ -10107,19 +10103,16 @@ hf__c16_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k, int n,
         eL[c] = hf__encode_var_avx2(
             _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(p, sw), ov[1 + c]),
                           ov[0]),
-            &enc[0], f16);
+            &enc[0]);
         eR[c] = hf__encode_var_avx2(
             _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(p, sw), ov[1 + c]),
                           ov[0]),
-            &enc[0], f16);
-        /* a 1-byte format: never half */
-        et[c] = hf__encode_var_avx2(_mm256_loadu_ps(fr->t[c] + o), &enc[2],
-                                    0);
+            &enc[0]);
+        et[c] = hf__encode_var_avx2(_mm256_loadu_ps(fr->t[c] + o), &enc[2]);
     }
     d2 = _mm256_or_si256(
         ev, _mm256_slli_epi32(
-                hf__encode_var_avx2(_mm256_loadu_ps(K->tt + 8 * k), &enc[1],
-                                    f16),
+                hf__encode_var_avx2(_mm256_loadu_ps(K->tt + 8 * k), &enc[1]),
                 16));
     d3 = _mm256_or_si256(_mm256_or_si256(et[0], _mm256_slli_epi32(et[1], 8)),
                          _mm256_slli_epi32(et[2], 16));
@@ -10137,29 +10130,26 @@ hf__c16_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k, int n,
    tables: the table writer's values and encodings (so the same bytes),
    packed into four 32-bit words a vertex (x y | z u | v t | tangent),
    transposed in registers and stored. enc: the position's, texcoord's
-   and tangent's formats (hf__enc8_init); f16: whether a half format is
-   among them (a constant in each inlined copy); ov as
-   hf__rout_vec_avx2. */
+   and tangent's formats (hf__enc8_init); ov as hf__rout_vec_avx2. */
 HF__TARGET_AVX2 HF__INLINE void
 hf__ribbon_write_c16_avx2_in(const hf__rframe *fr, int P, const hf__rconst *K,
                              const hf__rstrand *str, const hf__rout *ro,
                              size_t v0, const __m256 *ov,
-                             const hf__enc8 *enc, int f16)
+                             const hf__enc8 *enc)
 {
     const size_t st = ro->stride[HF__S_POS];
     const __m256 ws = _mm256_set1_ps(str->wscale);
     /* u and v are the strand's: encoded once */
     const __m256i eu = _mm256_slli_epi32(
-        hf__encode_var_avx2(_mm256_set1_ps(str->uv[0]), &enc[1], f16), 16);
+        hf__encode_var_avx2(_mm256_set1_ps(str->uv[0]), &enc[1]), 16);
     const __m256i ev =
-        hf__encode_var_avx2(_mm256_set1_ps(str->uv[1]), &enc[1], f16);
+        hf__encode_var_avx2(_mm256_set1_ps(str->uv[1]), &enc[1]);
     unsigned char *b = ro->base[HF__S_POS] + v0 * st;
     int k;
     for (k = 0; 8 * k + 8 <= P; ++k, b += 16 * st)
-        hf__c16_group_avx2(fr, K, k, 8, b, st, ws, eu, ev, ov, enc, f16);
+        hf__c16_group_avx2(fr, K, k, 8, b, st, ws, eu, ev, ov, enc);
     if (8 * k < P)
-        hf__c16_group_avx2(fr, K, k, P - 8 * k, b, st, ws, eu, ev, ov, enc,
-                           f16);
+        hf__c16_group_avx2(fr, K, k, P - 8 * k, b, st, ws, eu, ev, ov, enc);
 }
 #endif
 
@@ -10443,7 +10433,7 @@ HF__INLINE void hf__rstrand_fill(const hf_ribbon_strands *sv, int s,
 #if HF__AVX2
 /* hf_ribbons' strands at AVX2 in one target function, for the float runs
    (mode 0), the layouts of the table writer (1) and the compact vertex
-   (hf__rout c16; 2 without a half format, 3 with): each strand's frame
+   (2, hf__rout c16): each strand's frame
    and vertices inlined, where a call each, with their set-up, took an
    eighth of the instructions of the float runs (7 % of the table
    writer's); a strand the AVX2 frame leaves to the reference goes there
@@ -10462,7 +10452,7 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
     int s, finite;
     hf__frame_eye_avx2(params, e);
     hf__rout_vec_avx2(ro, ov);
-    if (mode >= 2) {
+    if (mode == 2) {
         hf__enc8_init(&enc[0], ro->fmt[HF__S_POS]);
         hf__enc8_init(&enc[1], ro->fmt[HF__S_TEX]);
         hf__enc8_init(&enc[2], ro->fmt[HF__S_TAN]);
@@ -10478,9 +10468,8 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
             hf__strand_frame_rest(pts, P, params, fr, finite, &str.wscale);
         }
         hf__rstrand_fill(&svl, s, &str);
-        if (mode >= 2)
-            hf__ribbon_write_c16_avx2_in(fr, P, K, &str, ro, v0, ov, enc,
-                                         mode == 3);
+        if (mode == 2)
+            hf__ribbon_write_c16_avx2_in(fr, P, K, &str, ro, v0, ov, enc);
         else if (mode == 1)
             hf__ribbon_write_table_avx2_in(fr, P, K, &str, ro, v0);
         else
@@ -10496,13 +10485,9 @@ hf__ribbons_run_avx2(const hf_ribbon_strands *sv, int first, int count,
     if (ro->run)
         hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
                               0);
-    else if (ro->c16 && ro->fmt[HF__S_POS] != HF_FORMAT_F16 &&
-             ro->fmt[HF__S_TEX] != HF_FORMAT_F16)
-        hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
-                              2);
     else if (ro->c16)
         hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
-                              3);
+                              2);
     else
         hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
                               1);
