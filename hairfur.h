@@ -8747,6 +8747,22 @@ hf__frame_group_avx2(hf__rframe *fr, int k, int P, int last, int ortho,
     return _mm256_movemask_ps(_mm256_andnot_ps(_mm256_and_ps(ok, ok2), live));
 }
 
+/* One group's point rows into fr, their finiteness added to *acc (x * 0
+   is NaN for NaN or infinity). */
+HF__TARGET_AVX2 HF__INLINE void hf__row_put_avx2(hf__rframe *fr, int k,
+                                                 __m256 X, __m256 Y,
+                                                 __m256 Z, __m256 *acc)
+{
+    const __m256 zero = _mm256_setzero_ps();
+    *acc = _mm256_add_ps(
+        *acc, _mm256_add_ps(_mm256_mul_ps(X, zero),
+                            _mm256_add_ps(_mm256_mul_ps(Y, zero),
+                                          _mm256_mul_ps(Z, zero))));
+    _mm256_storeu_ps(fr->p[0] + 4 + 8 * k, X);
+    _mm256_storeu_ps(fr->p[1] + 4 + 8 * k, Y);
+    _mm256_storeu_ps(fr->p[2] + 4 + 8 * k, Z);
+}
+
 /* The frame's e in every lane: the view direction, negated, for an
    orthographic view, else the eye; once per call. */
 HF__TARGET_AVX2 HF__INLINE void
@@ -8770,43 +8786,35 @@ hf__strand_frame_avx2_in(const float *pts, int P, int ortho, __m256 ex,
     __m256 acc = zero, px, py, pz;
     float tip[3];
     int k, c, bad = 0;
-    /* rows: eight points (24 floats) deinterleaved by shuffles */
-    for (k = 0; k < G; ++k) {
-        __m256 X, Y, Z;
-        if (8 * k + 8 <= P) {
-            const float *q = pts + 24 * k;
+    /* rows: eight points (24 floats) deinterleaved by shuffles; the
+       whole groups in a loop of their own (no test for the last) */
+    for (k = 0; 8 * k + 8 <= P; ++k) {
+        const float *q = pts + 24 * k;
 #define HF__LD2(a, b)                                                          \
     _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(q + (a))),      \
                          _mm_loadu_ps(q + (b)), 1)
-            /* halves: points 0-3 and 4-7, as x0 y0 z0 x1 | y1 z1 x2 y2 |
-               z2 x3 y3 z3 */
-            const __m256 m03 = HF__LD2(0, 12), m14 = HF__LD2(4, 16),
-                         m25 = HF__LD2(8, 20);
+        /* halves: points 0-3 and 4-7, as x0 y0 z0 x1 | y1 z1 x2 y2 |
+           z2 x3 y3 z3 */
+        const __m256 m03 = HF__LD2(0, 12), m14 = HF__LD2(4, 16),
+                     m25 = HF__LD2(8, 20);
 #undef HF__LD2
-            const __m256 xy = _mm256_shuffle_ps(m14, m25, _MM_SHUFFLE(2, 1, 3, 2));
-            const __m256 yz = _mm256_shuffle_ps(m03, m14, _MM_SHUFFLE(1, 0, 2, 1));
-            X = _mm256_shuffle_ps(m03, xy, _MM_SHUFFLE(2, 0, 3, 0));
-            Y = _mm256_shuffle_ps(yz, xy, _MM_SHUFFLE(3, 1, 2, 0));
-            Z = _mm256_shuffle_ps(yz, m25, _MM_SHUFFLE(3, 0, 3, 1));
-        } else { /* the last, partial group repeats the tip */
-            const int n = P - 8 * k;
-            float r[3][8];
-            int i;
-            for (i = 0; i < 8; ++i)
-                HF__UNROLL for (c = 0; c < 3; ++c)
-                    r[c][i] = pts[3 * (8 * k + (i < n ? i : n - 1)) + c];
-            X = _mm256_loadu_ps(r[0]);
-            Y = _mm256_loadu_ps(r[1]);
-            Z = _mm256_loadu_ps(r[2]);
-        }
-        /* x * 0 is NaN for NaN or infinity */
-        acc = _mm256_add_ps(
-            acc, _mm256_add_ps(_mm256_mul_ps(X, zero),
-                               _mm256_add_ps(_mm256_mul_ps(Y, zero),
-                                             _mm256_mul_ps(Z, zero))));
-        _mm256_storeu_ps(fr->p[0] + 4 + 8 * k, X);
-        _mm256_storeu_ps(fr->p[1] + 4 + 8 * k, Y);
-        _mm256_storeu_ps(fr->p[2] + 4 + 8 * k, Z);
+        const __m256 xy = _mm256_shuffle_ps(m14, m25, _MM_SHUFFLE(2, 1, 3, 2));
+        const __m256 yz = _mm256_shuffle_ps(m03, m14, _MM_SHUFFLE(1, 0, 2, 1));
+        hf__row_put_avx2(fr, k,
+                         _mm256_shuffle_ps(m03, xy, _MM_SHUFFLE(2, 0, 3, 0)),
+                         _mm256_shuffle_ps(yz, xy, _MM_SHUFFLE(3, 1, 2, 0)),
+                         _mm256_shuffle_ps(yz, m25, _MM_SHUFFLE(3, 0, 3, 1)),
+                         &acc);
+    }
+    if (8 * k < P) { /* the last, partial group repeats the tip */
+        const int n = P - 8 * k;
+        float r[3][8];
+        int i;
+        for (i = 0; i < 8; ++i)
+            HF__UNROLL for (c = 0; c < 3; ++c)
+                r[c][i] = pts[3 * (8 * k + (i < n ? i : n - 1)) + c];
+        hf__row_put_avx2(fr, k, _mm256_loadu_ps(r[0]), _mm256_loadu_ps(r[1]),
+                         _mm256_loadu_ps(r[2]), &acc);
     }
     if (_mm256_movemask_ps(_mm256_cmp_ps(acc, zero, _CMP_EQ_OQ)) != 0xff) {
         *finite = 0;
