@@ -9677,7 +9677,8 @@ HF__TARGET_AVX2 HF__INLINE void hf__rout_vec_avx2(const hf__rout *ro,
 {
     int c;
     ov[0] = _mm256_set1_ps(ro->inv_scale);
-    HF__UNROLL for (c = 0; c < 3; ++c) ov[1 + c] = _mm256_set1_ps(ro->origin[c]);
+    HF__UNROLL for (c = 0; c < 3; ++c)
+        ov[1 + c] = _mm256_set1_ps(ro->origin[c]);
 }
 
 /* hf__ribbon_write_sse eight points at a time for the float runs
@@ -10073,7 +10074,8 @@ HF__TARGET_AVX2 HF__INLINE void hf__c16_put_avx2(unsigned char *o,
         HF__UNROLL for (k = 0; k < 4; ++k) {
             const __m256i sh = _mm256_srli_si256(v[k], 7);
             unsigned char *lo = o + (size_t)k * st2, *hi = lo + 4 * st2;
-            _mm_storel_epi64((__m128i *)(void *)lo, _mm256_castsi256_si128(v[k]));
+            _mm_storel_epi64((__m128i *)(void *)lo,
+                             _mm256_castsi256_si128(v[k]));
             _mm_storel_epi64((__m128i *)(void *)(lo + 7),
                              _mm256_castsi256_si128(sh));
             _mm_storel_epi64((__m128i *)(void *)hi,
