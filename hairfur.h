@@ -8776,11 +8776,12 @@ hf__frame_eye_avx2(const hf_ribbon_params *params, __m256 *e)
 
 /* hf__strand_frame_v4 eight points at a time, with the same IEEE
    operations per point, and the same cases left to the reference;
-   ortho and e (ex ey ez) as hf__frame_eye_avx2 gives them. */
+   ortho and e as hf__frame_eye_avx2 gives them. */
 HF__TARGET_AVX2 HF__INLINE int
-hf__strand_frame_avx2_in(const float *pts, int P, int ortho, __m256 ex,
-                         __m256 ey, __m256 ez, hf__rframe *fr, int *finite)
+hf__strand_frame_avx2_in(const float *pts, int P, int ortho, const __m256 *e,
+                         hf__rframe *fr, int *finite)
 {
+    const __m256 ex = e[0], ey = e[1], ez = e[2];
     const int G = (P + 7) >> 3;
     const __m256 zero = _mm256_setzero_ps();
     __m256 acc = zero, px, py, pz;
@@ -8856,8 +8857,8 @@ hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
     __m256 e[3];
     int ok;
     hf__frame_eye_avx2(params, e);
-    ok = hf__strand_frame_avx2_in(pts, P, params->orthographic != 0, e[0],
-                                  e[1], e[2], fr, finite);
+    ok = hf__strand_frame_avx2_in(pts, P, params->orthographic != 0, e, fr,
+                                  finite);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
     return ok;
 }
@@ -8945,11 +8946,24 @@ HF__PRIVATE void hf__emit1(unsigned char *o, const float *c, int nc, int fmt)
     }
 }
 
+/* A normalized format's clamp floor (-1 signed, 0 unsigned, in *lo) and
+   scale: the constants of the vector encoders below, one table for all of
+   them. */
+HF__INLINE float hf__norm_scale(int fmt, float *lo)
+{
+    switch (fmt) {
+    case HF_FORMAT_SNORM16: *lo = -1.0f; return 32767.0f;
+    case HF_FORMAT_UNORM16: *lo = 0.0f; return 65535.0f;
+    case HF_FORMAT_SNORM8: *lo = -1.0f; return 127.0f;
+    default: *lo = 0.0f; return 255.0f;
+    }
+}
+
 #if HF__SSE
 HF__INLINE __m128i hf__encode_sse(__m128 x, int fmt)
 {
     const __m128 m = _mm_set1_ps(12582912.0f);
-    float lo = -1.0f, scale;
+    float lo, scale;
     __m128 v;
     if (fmt == HF_FORMAT_F16) {
         const __m128i u0 = _mm_castps_si128(_mm_min_ps(
@@ -8974,12 +8988,7 @@ HF__INLINE __m128i hf__encode_sse(__m128 x, int fmt)
                                          _mm_andnot_si128(is_sub, nrm)),
                             sign);
     }
-    switch (fmt) {
-    case HF_FORMAT_SNORM16: scale = 32767.0f; break;
-    case HF_FORMAT_UNORM16: scale = 65535.0f; lo = 0.0f; break;
-    case HF_FORMAT_SNORM8: scale = 127.0f; break;
-    default: scale = 255.0f; lo = 0.0f; break;
-    }
+    scale = hf__norm_scale(fmt, &lo);
     v = _mm_min_ps(_mm_max_ps(x, _mm_set1_ps(lo)), _mm_set1_ps(1.0f));
     v = _mm_sub_ps(_mm_add_ps(_mm_mul_ps(v, _mm_set1_ps(scale)), m), m);
     return _mm_and_si128(_mm_cvttps_epi32(v),
@@ -9741,7 +9750,7 @@ hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
 HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_avx2(__m256 x, int fmt)
 {
     const __m256 m = _mm256_set1_ps(12582912.0f);
-    float lo = -1.0f, scale;
+    float lo, scale;
     __m256 v;
     if (fmt == HF_FORMAT_F16) {
         const __m256i u0 = _mm256_castps_si256(_mm256_min_ps(
@@ -9764,12 +9773,7 @@ HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_avx2(__m256 x, int fmt)
             _mm256_cmpgt_epi32(_mm256_set1_epi32(0x38800000), u);
         return _mm256_or_si256(_mm256_blendv_epi8(nrm, sub, is_sub), sign);
     }
-    switch (fmt) {
-    case HF_FORMAT_SNORM16: scale = 32767.0f; break;
-    case HF_FORMAT_UNORM16: scale = 65535.0f; lo = 0.0f; break;
-    case HF_FORMAT_SNORM8: scale = 127.0f; break;
-    default: scale = 255.0f; lo = 0.0f; break;
-    }
+    scale = hf__norm_scale(fmt, &lo);
     v = _mm256_min_ps(_mm256_max_ps(x, _mm256_set1_ps(lo)), _mm256_set1_ps(1.0f));
     v = _mm256_sub_ps(_mm256_add_ps(_mm256_mul_ps(v, _mm256_set1_ps(scale)), m),
                       m);
@@ -9927,13 +9931,13 @@ hf__window_put_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
 HF__TARGET_AVX2 HF__INLINE void
 hf__ribbon_write_table_avx2_in(const hf__rframe *fr, int P,
                                const hf__rconst *K, const hf__rstrand *str,
-                               const hf__rout *ro, size_t v0)
+                               const hf__rout *ro, size_t v0,
+                               const __m256 *ov)
 {
     /* rows: the five streams, then the right side's positions; blocks of
        up to HF__TB points, so the copies' set-up is shared */
     unsigned char tab[6][HF__TB * 16];
     const __m256 ws = _mm256_set1_ps(str->wscale);
-    const __m256 is = _mm256_set1_ps(ro->inv_scale);
     const __m256 u = _mm256_set1_ps(str->uv[0]), v = _mm256_set1_ps(str->uv[1]);
     size_t ts[5];
     int j0, k, c, m, q;
@@ -9955,11 +9959,12 @@ hf__ribbon_write_table_avx2_in(const hf__rframe *fr, int P,
                     const __m256 p = _mm256_loadu_ps(fr->p[c] + o);
                     const __m256 sw =
                         _mm256_mul_ps(_mm256_loadu_ps(fr->s[c] + o), w);
-                    const __m256 og = _mm256_set1_ps(ro->origin[c]);
                     L[c] = _mm256_mul_ps(
-                        _mm256_sub_ps(_mm256_sub_ps(p, sw), og), is);
+                        _mm256_sub_ps(_mm256_sub_ps(p, sw), ov[1 + c]),
+                        ov[0]);
                     R[c] = _mm256_mul_ps(
-                        _mm256_sub_ps(_mm256_add_ps(p, sw), og), is);
+                        _mm256_sub_ps(_mm256_add_ps(p, sw), ov[1 + c]),
+                        ov[0]);
                 }
                 hf__table_avx2(tab[HF__S_POS] + g * ts[HF__S_POS], L, 3,
                                ro->fmt[HF__S_POS]);
@@ -10013,7 +10018,9 @@ hf__ribbon_write_table_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
                             const hf__rstrand *str, const hf__rout *ro,
                             size_t v0)
 {
-    hf__ribbon_write_table_avx2_in(fr, P, K, str, ro, v0);
+    __m256 ov[4];
+    hf__rout_vec_avx2(ro, ov);
+    hf__ribbon_write_table_avx2_in(fr, P, K, str, ro, v0, ov);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 
@@ -10027,13 +10034,9 @@ typedef struct hf__enc8 {
 
 HF__TARGET_AVX2 HF__INLINE void hf__enc8_init(hf__enc8 *e, int fmt)
 {
-    const int sgn = fmt == HF_FORMAT_SNORM16 || fmt == HF_FORMAT_SNORM8;
-    const float scale = fmt == HF_FORMAT_SNORM16   ? 32767.0f
-                        : fmt == HF_FORMAT_UNORM16 ? 65535.0f
-                        : fmt == HF_FORMAT_SNORM8  ? 127.0f
-                                                   : 255.0f;
-    e->lo = _mm256_set1_ps(sgn ? -1.0f : 0.0f);
-    e->scale = _mm256_set1_ps(scale);
+    float lo;
+    e->scale = _mm256_set1_ps(hf__norm_scale(fmt, &lo));
+    e->lo = _mm256_set1_ps(lo);
     /* in memory beside them, so that each use is an operand, not a
        broadcast */
     e->one = _mm256_set1_ps(1.0f);
@@ -10170,19 +10173,14 @@ hf__ribbon_write_c16_avx2_in(const hf__rframe *fr, int P, const hf__rconst *K,
 HF__INLINE uint32x4_t hf__encode_neon(float32x4_t x, int fmt)
 {
     const float32x4_t m = vdupq_n_f32(12582912.0f);
-    float lo = -1.0f, scale;
+    float lo, scale;
     float32x4_t v;
     if (fmt == HF_FORMAT_F16) {
         const float32x4_t c = vminq_f32(vmaxq_f32(x, vdupq_n_f32(-65504.0f)),
                                         vdupq_n_f32(65504.0f));
         return vmovl_u16(vreinterpret_u16_f16(vcvt_f16_f32(c)));
     }
-    switch (fmt) {
-    case HF_FORMAT_SNORM16: scale = 32767.0f; break;
-    case HF_FORMAT_UNORM16: scale = 65535.0f; lo = 0.0f; break;
-    case HF_FORMAT_SNORM8: scale = 127.0f; break;
-    default: scale = 255.0f; lo = 0.0f; break;
-    }
+    scale = hf__norm_scale(fmt, &lo);
     v = vminq_f32(vmaxq_f32(x, vdupq_n_f32(lo)), vdupq_n_f32(1.0f));
     v = vsubq_f32(vaddq_f32(vmulq_f32(v, vdupq_n_f32(scale)), m), m);
     return vandq_u32(vreinterpretq_u32_s32(vcvtq_s32_f32(v)),
@@ -10472,8 +10470,7 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
         const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
         hf__rstrand str;
         str.wscale = 1.0f;
-        if (!hf__strand_frame_avx2_in(pts, P, ortho, e[0], e[1], e[2], fr,
-                                      &finite)) {
+        if (!hf__strand_frame_avx2_in(pts, P, ortho, e, fr, &finite)) {
             _mm256_zeroupper(); /* the reference is SSE code */
             hf__strand_frame_rest(pts, P, params, fr, finite, &str.wscale);
         }
@@ -10481,7 +10478,7 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
         if (mode == 2)
             hf__ribbon_write_c16_avx2_in(fr, P, K, &str, ro, v0, ov, enc);
         else if (mode == 1)
-            hf__ribbon_write_table_avx2_in(fr, P, K, &str, ro, v0);
+            hf__ribbon_write_table_avx2_in(fr, P, K, &str, ro, v0, ov);
         else
             hf__ribbon_write_avx2_in(fr, P, K, &str, ro, v0, ov);
     }
