@@ -9576,17 +9576,63 @@ HF__PRIVATE void hf__ribbon_write_sse(const hf__rframe *fr, int P,
    joined to B[i] (ty tz u v) make a vertex's first eight floats, one
    store; t follows them. Run 2 (position and tangent, 24 bytes): x y z
    tx in one store, ty tz in another. Vertex i is at o + i * st2. */
+HF__TARGET_AVX2 HF__INLINE void hf__side_rows_avx2(__m256 x, __m256 y,
+                                                   __m256 z, __m256 tx,
+                                                   __m256 *a)
+{
+    const __m256 xy0 = _mm256_unpacklo_ps(x, y), xy1 = _mm256_unpackhi_ps(x, y),
+                 zt0 = _mm256_unpacklo_ps(z, tx), zt1 = _mm256_unpackhi_ps(z, tx);
+    a[0] = _mm256_shuffle_ps(xy0, zt0, _MM_SHUFFLE(1, 0, 1, 0));
+    a[1] = _mm256_shuffle_ps(xy0, zt0, _MM_SHUFFLE(3, 2, 3, 2));
+    a[2] = _mm256_shuffle_ps(xy1, zt1, _MM_SHUFFLE(1, 0, 1, 0));
+    a[3] = _mm256_shuffle_ps(xy1, zt1, _MM_SHUFFLE(3, 2, 3, 2));
+}
+
+/* A whole group's vertices in a float run of 3, both sides, in address
+   order: point i's left vertex at o + 2 i st, its right one st after,
+   each point's t read once for both (read per side, gcc loaded it again
+   after every store). */
+HF__TARGET_AVX2 HF__INLINE void
+hf__put_pair_avx2(unsigned char *o, size_t st, __m256 xl, __m256 yl,
+                  __m256 zl, __m256 xr, __m256 yr, __m256 zr, __m256 tx,
+                  const __m256 *B, const float *tt)
+{
+    __m256 l[4], r[4];
+    hf__side_rows_avx2(xl, yl, zl, tx, l);
+    hf__side_rows_avx2(xr, yr, zr, tx, r);
+#define HF__PUT_P(i, h)                                                        \
+    do {                                                                       \
+        unsigned char *v = o + 2u * (i) * st;                                  \
+        const float t = tt[i];                                                 \
+        _mm256_storeu_ps((float *)(void *)v,                                   \
+                         _mm256_permute2f128_ps(l[(i) & 3], B[(i) & 3], h));   \
+        HF_MEMCPY(v + 32, &t, 4);                                              \
+        _mm256_storeu_ps((float *)(void *)(v + st),                            \
+                         _mm256_permute2f128_ps(r[(i) & 3], B[(i) & 3], h));   \
+        HF_MEMCPY(v + st + 32, &t, 4);                                         \
+    } while (0)
+    HF__PUT_P(0, 0x20);
+    HF__PUT_P(1, 0x20);
+    HF__PUT_P(2, 0x20);
+    HF__PUT_P(3, 0x20);
+    HF__PUT_P(4, 0x31);
+    HF__PUT_P(5, 0x31);
+    HF__PUT_P(6, 0x31);
+    HF__PUT_P(7, 0x31);
+#undef HF__PUT_P
+}
+
 HF__TARGET_AVX2 HF__INLINE void
 hf__put_side_avx2(unsigned char *o, size_t st2, int n, int run, __m256 x,
                   __m256 y, __m256 z, __m256 tx, const __m256 *B,
                   const float *tt)
 {
-    const __m256 xy0 = _mm256_unpacklo_ps(x, y), xy1 = _mm256_unpackhi_ps(x, y),
-                 zt0 = _mm256_unpacklo_ps(z, tx), zt1 = _mm256_unpackhi_ps(z, tx);
-    const __m256 a0 = _mm256_shuffle_ps(xy0, zt0, _MM_SHUFFLE(1, 0, 1, 0)),
-                 a1 = _mm256_shuffle_ps(xy0, zt0, _MM_SHUFFLE(3, 2, 3, 2)),
-                 a2 = _mm256_shuffle_ps(xy1, zt1, _MM_SHUFFLE(1, 0, 1, 0)),
-                 a3 = _mm256_shuffle_ps(xy1, zt1, _MM_SHUFFLE(3, 2, 3, 2));
+    __m256 a[4], a0, a1, a2, a3;
+    hf__side_rows_avx2(x, y, z, tx, a);
+    a0 = a[0];
+    a1 = a[1];
+    a2 = a[2];
+    a3 = a[3];
     if (n == 8 && run == 2) {
         const __m256 a[4] = {a0, a1, a2, a3};
         int k;
@@ -9666,6 +9712,18 @@ hf__ribbon_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k,
     B[2] = _mm256_shuffle_ps(hi, uv, _MM_SHUFFLE(1, 0, 1, 0));
     B[3] = _mm256_shuffle_ps(hi, uv, _MM_SHUFFLE(1, 0, 3, 2));
     /* L = p - s w, R = p + s w, relative to the origin and scale */
+    if (n == 8 && run == 3) {
+        hf__put_pair_avx2(
+            b, st,
+            _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(x, swx), ox), is),
+            _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(y, swy), oy), is),
+            _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(z, swz), oz), is),
+            _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(x, swx), ox), is),
+            _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(y, swy), oy), is),
+            _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(z, swz), oz), is), tx,
+            B, K->tt + 8 * k);
+        return;
+    }
     hf__put_side_avx2(
         b, 2 * st, n, run,
         _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(x, swx), ox), is),
