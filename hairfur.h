@@ -10497,25 +10497,45 @@ HF__INLINE void hf__rstrand_fill(const hf_ribbon_strands *sv, int s,
 }
 
 #if HF__AVX2
+/* Strand pts's frame into fr at AVX2, or by the reference where the
+   vector frame leaves it (as in hf__strand_frame); *wscale 0 for a strand
+   framed collapsed */
+HF__TARGET_AVX2 HF__INLINE void
+hf__frame_strand_avx2(const float *pts, int P, int ortho, const __m256 *e,
+                      const hf_ribbon_params *params, hf__rframe *fr,
+                      float *wscale)
+{
+    int finite;
+    *wscale = 1.0f;
+    if (!hf__strand_frame_avx2_in(pts, P, ortho, e, fr, &finite)) {
+        _mm256_zeroupper(); /* the reference is SSE code */
+        hf__strand_frame_rest(pts, P, params, fr, finite, wscale);
+    }
+}
+
 /* hf_ribbons' strands at AVX2 in one target function, for the float runs
    (mode 0), the layouts of the table writer (1) and the compact vertex
-   (2, hf__rout c16): each strand's frame
-   and vertices inlined, where a call each, with their set-up, took an
-   eighth of the instructions of the float runs (7 % of the table
-   writer's); a strand the AVX2 frame leaves to the reference goes there
-   as in hf__strand_frame. */
+   (2, hf__rout c16): each strand's frame and vertices inlined, where a
+   call each, with their set-up, took an eighth of the instructions of the
+   float runs (7 % of the table writer's). A strand's frame is made one
+   strand ahead of its vertices, in two frames by turns (fr, fr2): the
+   frame's chains of square roots and divisions then run beside the stores
+   of the strand before. */
 HF__TARGET_AVX2 HF__INLINE void
 hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
                       const hf_ribbon_params *params, const hf__rconst *K,
                       const hf__rout *ro, int out_first, hf__rframe *fr,
-                      int mode)
+                      hf__rframe *fr2, int mode)
 {
     const int P = params->points_per_strand,
               ortho = params->orthographic != 0;
+    const size_t n = (size_t)P * 3u;
     const hf_ribbon_strands svl = *sv; /* no reload after every store */
+    hf__rframe *F[2];
+    float wsc[2];
     __m256 e[3], ov[4];
     hf__enc8 enc[3];
-    int s, finite;
+    int s;
     hf__frame_eye_avx2(params, e);
     hf__rout_vec_avx2(ro, ov);
     if (mode == 2) {
@@ -10523,39 +10543,44 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
         hf__enc8_init(&enc[1], ro->fmt[HF__S_TEX]);
         hf__enc8_init(&enc[2], ro->fmt[HF__S_TAN]);
     }
+    F[0] = fr;
+    F[1] = fr2;
+    if (count > 0)
+        hf__frame_strand_avx2(svl.points + (size_t)first * n, P, ortho, e,
+                              params, F[0], &wsc[0]);
     for (s = first; s < first + count; ++s) {
-        const float *pts = svl.points + (size_t)s * (size_t)P * 3u;
+        const int j = (s - first) & 1;
         const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
         hf__rstrand str;
-        str.wscale = 1.0f;
-        if (!hf__strand_frame_avx2_in(pts, P, ortho, e, fr, &finite)) {
-            _mm256_zeroupper(); /* the reference is SSE code */
-            hf__strand_frame_rest(pts, P, params, fr, finite, &str.wscale);
-        }
+        if (s + 1 < first + count)
+            hf__frame_strand_avx2(svl.points + (size_t)(s + 1) * n, P, ortho,
+                                  e, params, F[j ^ 1], &wsc[j ^ 1]);
+        str.wscale = wsc[j];
         hf__rstrand_fill(&svl, s, &str);
         if (mode == 2)
-            hf__ribbon_write_c16_avx2_in(fr, P, K, &str, ro, v0, ov, enc);
+            hf__ribbon_write_c16_avx2_in(F[j], P, K, &str, ro, v0, ov, enc);
         else if (mode == 1)
-            hf__ribbon_write_table_avx2_in(fr, P, K, &str, ro, v0, ov);
+            hf__ribbon_write_table_avx2_in(F[j], P, K, &str, ro, v0, ov);
         else
-            hf__ribbon_write_avx2_in(fr, P, K, &str, ro, v0, ov);
+            hf__ribbon_write_avx2_in(F[j], P, K, &str, ro, v0, ov);
     }
 }
 
 HF__TARGET_AVX2 HF__PRIVATE void
 hf__ribbons_run_avx2(const hf_ribbon_strands *sv, int first, int count,
                      const hf_ribbon_params *params, const hf__rconst *K,
-                     const hf__rout *ro, int out_first, hf__rframe *fr)
+                     const hf__rout *ro, int out_first, hf__rframe *fr,
+                     hf__rframe *fr2)
 {
     if (ro->run)
         hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
-                              0);
+                              fr2, 0);
     else if (ro->c16)
         hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
-                              2);
+                              fr2, 2);
     else
         hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
-                              1);
+                              fr2, 1);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 #endif
@@ -10571,7 +10596,11 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
     const hf_ribbon_params *params = &prm;
     hf_ribbon_strands sv;
     const hf_stream *streams[5];
-    float stage_buf[HF__STAGE_BYTES / 4];
+    union { /* the stage, or the AVX2 run's second frame */
+        float stage[HF__STAGE_BYTES / 4];
+        hf__rframe fr2;
+    } mem;
+    float *const stage_buf = mem.stage;
     unsigned char *dst0 = NULL;
     size_t block = 0;
     int s, k, P, stage, level, out_first;
@@ -10630,7 +10659,7 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
 #if HF__AVX2
     if (level >= HF_SIMD_AVX2 && (ro.run || ro.nw) && !stage) {
         hf__ribbons_run_avx2(&sv, first, count, params, &K, &ro, out_first,
-                             &fr);
+                             &fr, &mem.fr2);
         return HF_OK;
     }
 #endif
