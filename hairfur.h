@@ -171,9 +171,10 @@
          exactly that range (hf_ropes_copy_range for rope positions; the
          growth-time range outputs are indexed absolutely).
        - Stack (gcc -O2, x86-64, -fstack-usage, callees added): hf_ribbons
-         needs about 28 KiB (a strand's rows sized for HF_MAX_POINTS, and
-         an 8 KiB stage for streaming stores), the other per-frame calls
-         under 8 KiB: size worker and fiber stacks for it.
+         needs about 28 KiB (two strands' rows sized for HF_MAX_POINTS,
+         the second sharing an 8 KiB stage for streaming stores), the
+         other per-frame calls under 8 KiB: size worker and fiber stacks
+         for it.
 
    SECTIONS (in the order the data flows)
 
