@@ -9572,11 +9572,8 @@ HF__PRIVATE void hf__ribbon_write_sse(const hf__rframe *fr, int P,
 #endif
 
 #if HF__AVX2
-/* One side's vertices of a group of eight points in a float run (run 3:
-   the 36-byte vertex): x y z tx of points i and i + 4 (the two halves)
-   joined to B[i] (ty tz u v) make a vertex's first eight floats, one
-   store; t follows them. Run 2 (position and tangent, 24 bytes): x y z
-   tx in one store, ty tz in another. Vertex i is at o + i * st2. */
+/* A group's x y z tx of points i and i + 4 (the two halves) in a[i],
+   which joined to ty tz u v (B[i]) make a float run's vertex */
 HF__TARGET_AVX2 HF__INLINE void hf__side_rows_avx2(__m256 x, __m256 y,
                                                    __m256 z, __m256 tx,
                                                    __m256 *a)
@@ -9589,10 +9586,12 @@ HF__TARGET_AVX2 HF__INLINE void hf__side_rows_avx2(__m256 x, __m256 y,
     a[3] = _mm256_shuffle_ps(xy1, zt1, _MM_SHUFFLE(3, 2, 3, 2));
 }
 
-/* A whole group's vertices in a float run of 3, both sides, in address
+/* A whole group of the 36-byte vertex (run 3), both sides, in address
    order: point i's left vertex at o + 2 i st, its right one st after,
-   each point's t read once for both (read per side, gcc loaded it again
-   after every store). */
+   each its first eight floats in one store and t after them. Each point's
+   t is read once for both (read per side, gcc loaded it again after
+   every store), and the stores go through the output in order (a side
+   at a time measured 5 % slower). */
 HF__TARGET_AVX2 HF__INLINE void
 hf__put_pair_avx2(unsigned char *o, size_t st, __m256 xl, __m256 yl,
                   __m256 zl, __m256 xr, __m256 yr, __m256 zr, __m256 tx,
@@ -9601,6 +9600,8 @@ hf__put_pair_avx2(unsigned char *o, size_t st, __m256 xl, __m256 yl,
     __m256 l[4], r[4];
     hf__side_rows_avx2(xl, yl, zl, tx, l);
     hf__side_rows_avx2(xr, yr, zr, tx, r);
+    /* each vertex built just before its store (built all first, gcc
+       spilled some) */
 #define HF__PUT_P(i, h)                                                        \
     do {                                                                       \
         unsigned char *v = o + 2u * (i) * st;                                  \
@@ -9623,19 +9624,17 @@ hf__put_pair_avx2(unsigned char *o, size_t st, __m256 xl, __m256 yl,
 #undef HF__PUT_P
 }
 
+/* One side's vertices of a group (vertex i at o + i * st2): whole groups
+   of the 24-byte run (run 2: position and tangent, x y z tx in one store,
+   ty tz in another), and the last, partial group of either run. */
 HF__TARGET_AVX2 HF__INLINE void
 hf__put_side_avx2(unsigned char *o, size_t st2, int n, int run, __m256 x,
                   __m256 y, __m256 z, __m256 tx, const __m256 *B,
                   const float *tt)
 {
-    __m256 a[4], a0, a1, a2, a3;
+    __m256 a[4];
     hf__side_rows_avx2(x, y, z, tx, a);
-    a0 = a[0];
-    a1 = a[1];
-    a2 = a[2];
-    a3 = a[3];
-    if (n == 8 && run == 2) {
-        const __m256 a[4] = {a0, a1, a2, a3};
+    if (n == 8) {
         int k;
         HF__UNROLL for (k = 0; k < 4; ++k) {
             unsigned char *lo = o + (size_t)k * st2, *hi = lo + 4 * st2;
@@ -9646,33 +9645,14 @@ hf__put_side_avx2(unsigned char *o, size_t st2, int n, int run, __m256 x,
             _mm_storel_pi((__m64 *)(void *)(hi + 16),
                           _mm256_extractf128_ps(B[k], 1));
         }
-    } else if (n == 8) {
-        /* straight stores, each vertex built just before its store (built
-           all first, gcc spilled three of the eight) */
-#define HF__PUT_V(i, a, h)                                                     \
-    _mm256_storeu_ps((float *)(void *)(o + (i) * st2),                         \
-                     _mm256_permute2f128_ps(a, B[(i) & 3], h));                \
-    HF_MEMCPY(o + (i) * st2 + 32, tt + (i), 4)
-        HF__PUT_V(0, a0, 0x20);
-        HF__PUT_V(1, a1, 0x20);
-        HF__PUT_V(2, a2, 0x20);
-        HF__PUT_V(3, a3, 0x20);
-        HF__PUT_V(4, a0, 0x31);
-        HF__PUT_V(5, a1, 0x31);
-        HF__PUT_V(6, a2, 0x31);
-        HF__PUT_V(7, a3, 0x31);
-#undef HF__PUT_V
-    } else { /* the last, partial group */
+    } else {
         float f[8][8];
         int i;
-        _mm256_storeu_ps(f[0], _mm256_permute2f128_ps(a0, B[0], 0x20));
-        _mm256_storeu_ps(f[1], _mm256_permute2f128_ps(a1, B[1], 0x20));
-        _mm256_storeu_ps(f[2], _mm256_permute2f128_ps(a2, B[2], 0x20));
-        _mm256_storeu_ps(f[3], _mm256_permute2f128_ps(a3, B[3], 0x20));
-        _mm256_storeu_ps(f[4], _mm256_permute2f128_ps(a0, B[0], 0x31));
-        _mm256_storeu_ps(f[5], _mm256_permute2f128_ps(a1, B[1], 0x31));
-        _mm256_storeu_ps(f[6], _mm256_permute2f128_ps(a2, B[2], 0x31));
-        _mm256_storeu_ps(f[7], _mm256_permute2f128_ps(a3, B[3], 0x31));
+        for (i = 0; i < 4; ++i) {
+            _mm256_storeu_ps(f[i], _mm256_permute2f128_ps(a[i], B[i], 0x20));
+            _mm256_storeu_ps(f[i + 4],
+                             _mm256_permute2f128_ps(a[i], B[i], 0x31));
+        }
         for (i = 0; i < n; ++i, o += st2) {
             if (run == 2) {
                 HF_MEMCPY(o, f[i], 24);
