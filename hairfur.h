@@ -9670,8 +9670,7 @@ hf__put_side_avx2(unsigned char *o, size_t st2, int n, int run, __m256 x,
 HF__TARGET_AVX2 HF__INLINE void
 hf__ribbon_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k,
                       int n, int run, unsigned char *b, size_t st,
-                      __m256 ws, __m256 is, __m256 ox, __m256 oy, __m256 oz,
-                      __m256 uv)
+                      __m256 ws, const __m256 *ov, __m256 uv)
 {
     const int o = 4 + 8 * k;
     const __m256 w = _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws);
@@ -9679,44 +9678,33 @@ hf__ribbon_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k,
                  tz = _mm256_loadu_ps(fr->t[2] + o);
     const __m256 lo = _mm256_unpacklo_ps(ty, tz),
                  hi = _mm256_unpackhi_ps(ty, tz);
-    const __m256 x = _mm256_loadu_ps(fr->p[0] + o),
-                 y = _mm256_loadu_ps(fr->p[1] + o),
-                 z = _mm256_loadu_ps(fr->p[2] + o);
-    const __m256 swx = _mm256_mul_ps(_mm256_loadu_ps(fr->s[0] + o), w),
-                 swy = _mm256_mul_ps(_mm256_loadu_ps(fr->s[1] + o), w),
-                 swz = _mm256_mul_ps(_mm256_loadu_ps(fr->s[2] + o), w);
     const __m256 tx = _mm256_loadu_ps(fr->t[0] + o);
-    __m256 B[4];
+    __m256 B[4], L[3], R[3];
+    int c;
     /* ty tz u v of points i and i + 4: the same on both sides */
     B[0] = _mm256_shuffle_ps(lo, uv, _MM_SHUFFLE(1, 0, 1, 0));
     B[1] = _mm256_shuffle_ps(lo, uv, _MM_SHUFFLE(1, 0, 3, 2));
     B[2] = _mm256_shuffle_ps(hi, uv, _MM_SHUFFLE(1, 0, 1, 0));
     B[3] = _mm256_shuffle_ps(hi, uv, _MM_SHUFFLE(1, 0, 3, 2));
-    /* L = p - s w, R = p + s w, relative to the origin and scale */
+    /* L = p - s w, R = p + s w, relative to the origin and scale (ov as
+       hf__rout_vec_avx2) */
+    HF__UNROLL for (c = 0; c < 3; ++c) {
+        const __m256 p = _mm256_loadu_ps(fr->p[c] + o);
+        const __m256 sw = _mm256_mul_ps(_mm256_loadu_ps(fr->s[c] + o), w);
+        L[c] = _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(p, sw), ov[1 + c]),
+                             ov[0]);
+        R[c] = _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(p, sw), ov[1 + c]),
+                             ov[0]);
+    }
     if (n == 8 && run == 3) {
-        hf__put_pair_avx2(
-            b, st,
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(x, swx), ox), is),
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(y, swy), oy), is),
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(z, swz), oz), is),
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(x, swx), ox), is),
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(y, swy), oy), is),
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(z, swz), oz), is), tx,
-            B, K->tt + 8 * k);
+        hf__put_pair_avx2(b, st, L[0], L[1], L[2], R[0], R[1], R[2], tx, B,
+                          K->tt + 8 * k);
         return;
     }
-    hf__put_side_avx2(
-        b, 2 * st, n, run,
-        _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(x, swx), ox), is),
-        _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(y, swy), oy), is),
-        _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(z, swz), oz), is), tx, B,
-        K->tt + 8 * k);
-    hf__put_side_avx2(
-        b + st, 2 * st, n, run,
-        _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(x, swx), ox), is),
-        _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(y, swy), oy), is),
-        _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(z, swz), oz), is), tx, B,
-        K->tt + 8 * k);
+    hf__put_side_avx2(b, 2 * st, n, run, L[0], L[1], L[2], tx, B,
+                      K->tt + 8 * k);
+    hf__put_side_avx2(b + st, 2 * st, n, run, R[0], R[1], R[2], tx, B,
+                      K->tt + 8 * k);
 }
 
 /* 1 / scale and the origin in every lane, once per call: ov[0..4) */
@@ -9742,7 +9730,6 @@ hf__ribbon_write_avx2_in(const hf__rframe *fr, int P, const hf__rconst *K,
 {
     const size_t st = ro->stride[HF__S_POS];
     const __m256 ws = _mm256_set1_ps(str->wscale);
-    const __m256 is = ov[0], ox = ov[1], oy = ov[2], oz = ov[3];
     /* u v u v ..: from two scalar loads (gcc made the set one 32-byte
        load of *str, which waits for the scalar stores that just filled it
        to drain: a failed store forward, 14 % of this writer's time) */
@@ -9753,20 +9740,17 @@ hf__ribbon_write_avx2_in(const hf__rframe *fr, int P, const hf__rconst *K,
     if (ro->run == 3 && st == 36) {
         /* the packed vertex: every store's offset a constant */
         for (k = 0; 8 * k + 8 <= P; ++k, b += 16 * 36)
-            hf__ribbon_group_avx2(fr, K, k, 8, 3, b, 36, ws, is, ox, oy, oz,
-                                  uv);
+            hf__ribbon_group_avx2(fr, K, k, 8, 3, b, 36, ws, ov, uv);
     } else if (ro->run == 3) {
         for (k = 0; 8 * k + 8 <= P; ++k, b += 16 * st)
-            hf__ribbon_group_avx2(fr, K, k, 8, 3, b, st, ws, is, ox, oy, oz,
-                                  uv);
+            hf__ribbon_group_avx2(fr, K, k, 8, 3, b, st, ws, ov, uv);
     } else {
         for (k = 0; 8 * k + 8 <= P; ++k, b += 16 * st)
-            hf__ribbon_group_avx2(fr, K, k, 8, 2, b, st, ws, is, ox, oy, oz,
-                                  uv);
+            hf__ribbon_group_avx2(fr, K, k, 8, 2, b, st, ws, ov, uv);
     }
     if (8 * k < P)
-        hf__ribbon_group_avx2(fr, K, k, P - 8 * k, ro->run, b, st, ws, is, ox,
-                              oy, oz, uv);
+        hf__ribbon_group_avx2(fr, K, k, P - 8 * k, ro->run, b, st, ws, ov,
+                              uv);
     if (!ro->rest) return; /* one test a strand for the three below */
     if (ro->base[HF__S_TEX] && ro->run == 2)
         hf__stream_sse(HF__S_TEX, 3, fr, P, K, str, ro, v0);
