@@ -10447,6 +10447,18 @@ HF__PRIVATE int hf__ribbon_stage(const hf__rout *ro, int P, size_t *block,
     return 1;
 }
 
+/* The layout ro with its streams moved into the stage: a strand's
+   vertices are written there as the strand at vertex 0. */
+HF__PRIVATE void hf__rout_staged(const hf__rout *ro, float *stage,
+                                 const unsigned char *dst0, hf__rout *so)
+{
+    int k;
+    *so = *ro;
+    for (k = 0; k < 5; ++k)
+        if (ro->base[k])
+            so->base[k] = (unsigned char *)stage + (ro->base[k] - dst0);
+}
+
 /* n bytes from src to dst: streaming 16-byte stores from dst's first
    16-byte boundary, plain copies for the ends. */
 HF__PRIVATE void hf__stream_copy(unsigned char *dst, const float *src,
@@ -10465,6 +10477,24 @@ HF__PRIVATE void hf__stream_copy(unsigned char *dst, const float *src,
 #endif
     HF_MEMCPY(dst + i, from + i, n - i);
 }
+
+#if HF__AVX2
+/* hf__stream_copy in 32-byte streaming stores where dst is aligned to
+   them (a strand's block is, in a buffer aligned as a mapped one) */
+HF__TARGET_AVX2 HF__INLINE void hf__stream_copy_avx2(unsigned char *dst,
+                                                     const float *src,
+                                                     size_t n)
+{
+    size_t i = 0;
+    if (((uintptr_t)dst & 31u) == 0) {
+        hf__page_ahead(dst, n);
+        for (; i + 32 <= n; i += 32)
+            _mm256_stream_ps((float *)(void *)(dst + i),
+                             _mm256_loadu_ps(src + i / 4));
+    }
+    if (i < n) hf__stream_copy(dst + i, src + i / 4, n - i);
+}
+#endif
 
 /* Strand s's width multiplier (times the frame's), root UV, colour and
    3D-colour x, non-finite inputs read as 0 */
@@ -10506,22 +10536,33 @@ hf__frame_strand_avx2(const float *pts, int P, int ortho, const __m256 *e,
    float runs (7 % of the table writer's). A strand's frame is made one
    strand ahead of its vertices, in two frames by turns (fr, fr2): the
    frame's chains of square roots and divisions then run beside the stores
-   of the strand before. */
+   of the strand before. Streaming (stage, hf__ribbon_stage's block and
+   first byte dst0; NULL or not, a constant in each inlined copy) writes
+   each strand into the stage, which takes fr2's place on the stack (one
+   frame, made after the strand before is written), then out with
+   hf__stream_copy_avx2. */
 HF__TARGET_AVX2 HF__INLINE void
 hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
                       const hf_ribbon_params *params, const hf__rconst *K,
-                      const hf__rout *ro, int out_first, hf__rframe *fr,
-                      hf__rframe *fr2, int mode)
+                      const hf__rout *out, int out_first, hf__rframe *fr,
+                      hf__rframe *fr2, int mode, float *stage,
+                      unsigned char *dst0, size_t block)
 {
     const int P = params->points_per_strand,
               ortho = params->orthographic != 0;
-    const size_t n = (size_t)P * 3u;
+    const size_t n = (size_t)P * 3u, sb = 2u * (size_t)P * block;
     const hf_ribbon_strands svl = *sv; /* no reload after every store */
     hf__rframe *F[2];
     float wsc[2];
     __m256 e[3], ov[4];
     hf__enc8 enc[3];
+    hf__rout so;
+    const hf__rout *ro = out;
     int s;
+    if (stage) {
+        hf__rout_staged(out, stage, dst0, &so);
+        ro = &so;
+    }
     hf__frame_eye_avx2(params, e);
     hf__rout_vec_avx2(ro, ov);
     if (mode == 2) {
@@ -10535,20 +10576,25 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
         hf__frame_strand_avx2(svl.points + (size_t)first * n, P, ortho, e,
                               params, F[0], &wsc[0]);
     for (s = first; s < first + count; ++s) {
-        const int j = (s - first) & 1;
-        const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
+        const int j = stage ? 0 : (s - first) & 1;
+        const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u,
+                     w0 = stage ? 0 : v0;
         hf__rstrand str;
-        if (s + 1 < first + count)
+        if (!stage && s + 1 < first + count)
             hf__frame_strand_avx2(svl.points + (size_t)(s + 1) * n, P, ortho,
                                   e, params, F[j ^ 1], &wsc[j ^ 1]);
         str.wscale = wsc[j];
         hf__rstrand_fill(&svl, s, &str);
         if (mode == 2)
-            hf__ribbon_write_c16_avx2_in(F[j], P, K, &str, ro, v0, ov, enc);
+            hf__ribbon_write_c16_avx2_in(F[j], P, K, &str, ro, w0, ov, enc);
         else if (mode == 1)
-            hf__ribbon_write_table_avx2_in(F[j], P, K, &str, ro, v0, ov);
+            hf__ribbon_write_table_avx2_in(F[j], P, K, &str, ro, w0, ov);
         else
-            hf__ribbon_write_avx2_in(F[j], P, K, &str, ro, v0, ov);
+            hf__ribbon_write_avx2_in(F[j], P, K, &str, ro, w0, ov);
+        if (stage) hf__stream_copy_avx2(dst0 + v0 * block, stage, sb);
+        if (stage && s + 1 < first + count)
+            hf__frame_strand_avx2(svl.points + (size_t)(s + 1) * n, P, ortho,
+                                  e, params, F[0], &wsc[0]);
     }
 }
 
@@ -10556,17 +10602,27 @@ HF__TARGET_AVX2 HF__PRIVATE void
 hf__ribbons_run_avx2(const hf_ribbon_strands *sv, int first, int count,
                      const hf_ribbon_params *params, const hf__rconst *K,
                      const hf__rout *ro, int out_first, hf__rframe *fr,
-                     hf__rframe *fr2)
+                     hf__rframe *fr2, float *stage, unsigned char *dst0,
+                     size_t block)
 {
-    if (ro->run)
+    /* (the compact vertex leaves a byte of its stride: never staged) */
+    if (stage) {
+        if (ro->run)
+            hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first,
+                                  fr, NULL, 0, stage, dst0, block);
+        else
+            hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first,
+                                  fr, NULL, 1, stage, dst0, block);
+        _mm_sfence(); /* streamed stores visible before we return */
+    } else if (ro->run)
         hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
-                              fr2, 0);
+                              fr2, 0, NULL, NULL, 0);
     else if (ro->c16)
         hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
-                              fr2, 2);
+                              fr2, 2, NULL, NULL, 0);
     else
         hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
-                              fr2, 1);
+                              fr2, 1, NULL, NULL, 0);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 #endif
@@ -10577,7 +10633,7 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
 {
     hf__rframe fr;
     hf__rconst K;
-    hf__rout ro;
+    hf__rout ro, so;
     hf_ribbon_params prm;
     const hf_ribbon_params *params = &prm;
     hf_ribbon_strands sv;
@@ -10643,12 +10699,14 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
     if (!ro.base[HF__S_C3D]) sv.color3d_x = NULL;
     out_first = params->out_first;
 #if HF__AVX2
-    if (level >= HF_SIMD_AVX2 && (ro.run || ro.nw) && !stage) {
+    if (level >= HF_SIMD_AVX2 && (ro.run || ro.nw)) {
         hf__ribbons_run_avx2(&sv, first, count, params, &K, &ro, out_first,
-                             &fr, &mem.fr2);
+                             &fr, stage ? NULL : &mem.fr2,
+                             stage ? stage_buf : NULL, dst0, block);
         return HF_OK;
     }
 #endif
+    if (stage) hf__rout_staged(&ro, stage_buf, dst0, &so);
     for (s = first; s < first + count; ++s) {
         const float *pts = sv.points + (size_t)s * (size_t)P * 3u;
         const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
@@ -10658,11 +10716,6 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
         if (stage) {
             /* the strand's vertices into the stage (in L1), then out to
                its block with streaming stores */
-            hf__rout so = ro;
-            for (k = 0; k < 5; ++k)
-                if (ro.base[k])
-                    so.base[k] = (unsigned char *)stage_buf +
-                                 (ro.base[k] - dst0);
             hf__ribbon_write(&fr, P, &K, &str, &so, 0, level);
             hf__stream_copy(dst0 + v0 * block, stage_buf, 2u * (size_t)P * block);
         } else {

@@ -5780,15 +5780,18 @@ static void test_ribbons_ranges_byte_identical(void)
 
 /* Streaming stores (hf_ribbon_params.nontemporal) give the same bytes:
    through the stage for an interleaved buffer the vertex fills exactly,
-   at every byte offset of the buffer (the copy's unaligned ends), across
-   range splits; with ordinary stores when the streams leave a gap (no
-   colour) or split into separate buffers. Bytes around the output stay. */
+   at byte offsets 0 to 32 of a buffer aligned to 64 (the copy's
+   unaligned ends, and its 32-byte stores at AVX2), across range splits;
+   with ordinary stores when the streams leave a gap (no colour) or split
+   into separate buffers. Bytes around the output stay. */
 static void test_ribbons_nontemporal(void)
 {
     enum { N = 9, V = sizeof(t_rvert), BYTES = N * TP * 2 * V };
     float *pts = (float *)malloc(sizeof(float) * N * TP * 3);
-    unsigned char *a = (unsigned char *)malloc(BYTES + 64);
-    unsigned char *b = (unsigned char *)malloc(BYTES + 64);
+    unsigned char *a0 = (unsigned char *)malloc(BYTES + 128);
+    unsigned char *b0 = (unsigned char *)malloc(BYTES + 128);
+    unsigned char *a = a0 + ((64u - ((uintptr_t)a0 & 63u)) & 63u);
+    unsigned char *b = b0 + ((64u - ((uintptr_t)b0 & 63u)) & 63u);
     hf_ribbon_strands st;
     hf_ribbon_params p = t_rparams();
     hf_ribbon_output o;
@@ -5799,7 +5802,7 @@ static void test_ribbons_nontemporal(void)
     memset(&st, 0, sizeof st);
     st.points = pts;
     for (gap = 0; gap < 2; ++gap)
-        for (off = 0; off < 20; off += 4)
+        for (off = 0; off <= 32; off += 4)
             for (split = 1; split <= 2; ++split) {
                 unsigned char *buf[2];
                 int k;
@@ -5827,8 +5830,8 @@ static void test_ribbons_nontemporal(void)
                 CHECK(memcmp(a, b, BYTES + 64) == 0);
             }
     free(pts);
-    free(a);
-    free(b);
+    free(a0);
+    free(b0);
 }
 
 static void test_ribbons_separate_streams_and_skips(void)
