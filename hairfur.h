@@ -7561,21 +7561,20 @@ HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
 /* ---- 7. interpolation and LOD ------------------------------------------- */
 
 #if HF__SSE
-/* A store into a page the TLB does not hold waits for the page's walk,
-   and the walk for page tables the frame's other stages have pushed out
-   of the cache. The large outputs (strands, points, ribbons) call this
-   for each strand's stores at p .. p + bytes: a prefetch (to L2) for each
-   page they enter, HF__PAGE_AHEAD bytes ahead, walks it early. Measured
-   on scene L after a frame's other stages: streamed strands 1.19 to 0.65
-   ms, ribbons 5.65 to 4.8 ms (16-64 KiB ahead measured alike; 8 KiB made
-   the ribbons 1.3x slower, and a prefetch of every line instead of one a
-   page 1.4x). Any address will do: a prefetch does not fault. */
-#define HF__PAGE_AHEAD 24576u
+/* A streaming store into a page the TLB does not hold waits for the
+   page's walk, and the walk for page tables the frame's other stages
+   have pushed out of the cache (measured: scene L's strands, 19 MB
+   streamed after a frame's ribbons, 1.1 ms, 0.6 with their pages walked
+   ahead; ordinary stores gained nothing). The streaming kernels call
+   this for each strand's stores at p .. p + bytes: a prefetch for each
+   page they enter, HF__PAGE_AHEAD bytes ahead, walks it early. Any
+   address will do: a prefetch does not fault. */
+#define HF__PAGE_AHEAD 16384u
 HF__INLINE void hf__page_ahead(const void *p, size_t bytes)
 {
     uintptr_t q = ((uintptr_t)p + 4095u) & ~(uintptr_t)4095u;
     for (; q < (uintptr_t)p + bytes; q += 4096u) /* each page start once */
-        _mm_prefetch((const char *)(q + HF__PAGE_AHEAD), _MM_HINT_T2);
+        _mm_prefetch((const char *)(q + HF__PAGE_AHEAD), _MM_HINT_T0);
 }
 
 /* Floats [i, i + 4) of a strand; R is (1 - sc) root in the phase of i. The
@@ -10448,51 +10447,6 @@ HF__PRIVATE int hf__ribbon_stage(const hf__rout *ro, int P, size_t *block,
     return 1;
 }
 
-/* The streams whose pages a ribbons call walks ahead (hf__page_ahead):
-   one of each set that shares a vertex (the same stride, bases less than
-   a stride apart), so an interleaved vertex is one. Only the float runs
-   walk ahead with ordinary stores: the compact vertex, 16 bytes where
-   the float one is 36 in about the same time, measured 1.03-1.09x slower
-   with it (scene L, make bench-ab). */
-typedef struct hf__rpages {
-    const unsigned char *base[5];
-    size_t stride[5];
-    int n;
-} hf__rpages;
-
-HF__PRIVATE void hf__rpages_init(hf__rpages *pg, const hf__rout *ro)
-{
-    int k, j;
-    pg->n = 0;
-    for (k = 0; k < 5; ++k) {
-        const uintptr_t b = (uintptr_t)ro->base[k];
-        if (!b) continue;
-        for (j = 0; j < pg->n; ++j) {
-            const uintptr_t a = (uintptr_t)pg->base[j];
-            if (pg->stride[j] == ro->stride[k] &&
-                (b > a ? b - a : a - b) < ro->stride[k])
-                break;
-        }
-        if (j == pg->n) {
-            pg->base[pg->n] = ro->base[k];
-            pg->stride[pg->n++] = ro->stride[k];
-        }
-    }
-}
-
-/* The pages of a strand's vertices from vertex v0, walked ahead */
-HF__INLINE void hf__rpages_ahead(const hf__rpages *pg, size_t v0, int P)
-{
-#if HF__SSE
-    int j;
-    for (j = 0; j < pg->n; ++j)
-        hf__page_ahead(pg->base[j] + v0 * pg->stride[j],
-                       2u * (size_t)P * pg->stride[j]);
-#else
-    (void)pg, (void)v0, (void)P;
-#endif
-}
-
 /* The layout ro with its streams moved into the stage: a strand's
    vertices are written there as the strand at vertex 0. */
 HF__PRIVATE void hf__rout_staged(const hf__rout *ro, float *stage,
@@ -10604,9 +10558,7 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
     hf__enc8 enc[3];
     hf__rout so;
     const hf__rout *ro = out;
-    hf__rpages pg;
     int s;
-    hf__rpages_init(&pg, out);
     if (stage) {
         hf__rout_staged(out, stage, dst0, &so);
         ro = &so;
@@ -10632,7 +10584,6 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
             hf__frame_strand_avx2(svl.points + (size_t)(s + 1) * n, P, ortho,
                                   e, params, F[j ^ 1], &wsc[j ^ 1]);
         str.wscale = wsc[j];
-        if (!stage && mode == 0) hf__rpages_ahead(&pg, v0, P);
         hf__rstrand_fill(&svl, s, &str);
         if (mode == 2)
             hf__ribbon_write_c16_avx2_in(F[j], P, K, &str, ro, w0, ov, enc);
@@ -10683,7 +10634,6 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
     hf__rframe fr;
     hf__rconst K;
     hf__rout ro, so;
-    hf__rpages pg;
     hf_ribbon_params prm;
     const hf_ribbon_params *params = &prm;
     hf_ribbon_strands sv;
@@ -10757,7 +10707,6 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
     }
 #endif
     if (stage) hf__rout_staged(&ro, stage_buf, dst0, &so);
-    hf__rpages_init(&pg, &ro);
     for (s = first; s < first + count; ++s) {
         const float *pts = sv.points + (size_t)s * (size_t)P * 3u;
         const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
@@ -10770,7 +10719,6 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
             hf__ribbon_write(&fr, P, &K, &str, &so, 0, level);
             hf__stream_copy(dst0 + v0 * block, stage_buf, 2u * (size_t)P * block);
         } else {
-            if (ro.run) hf__rpages_ahead(&pg, v0, P);
             hf__ribbon_write(&fr, P, &K, &str, &ro, v0, level);
         }
     }
