@@ -10481,19 +10481,20 @@ HF__PRIVATE void hf__stream_copy(unsigned char *dst, const float *src,
 
 #if HF__AVX2
 /* hf__stream_copy in 32-byte streaming stores where dst is aligned to
-   them (a strand's block is, in a buffer aligned as a mapped one) */
+   them (a strand's block is, in a buffer aligned as a mapped one); the
+   rest, and a block that is not aligned, by hf__stream_copy (each part's
+   pages walked ahead once) */
 HF__TARGET_AVX2 HF__INLINE void hf__stream_copy_avx2(unsigned char *dst,
                                                      const float *src,
                                                      size_t n)
 {
-    size_t i = 0;
-    if (((uintptr_t)dst & 31u) == 0) {
-        hf__page_ahead(dst, n);
-        for (; i + 32 <= n; i += 32)
-            _mm256_stream_ps((float *)(void *)(dst + i),
-                             _mm256_loadu_ps(src + i / 4));
-    }
-    if (i < n) hf__stream_copy(dst + i, src + i / 4, n - i);
+    const size_t m = ((uintptr_t)dst & 31u) == 0 ? n & ~(size_t)31u : 0;
+    size_t i;
+    hf__page_ahead(dst, m);
+    for (i = 0; i < m; i += 32)
+        _mm256_stream_ps((float *)(void *)(dst + i),
+                         _mm256_loadu_ps(src + i / 4));
+    if (m < n) hf__stream_copy(dst + m, src + m / 4, n - m);
 }
 #endif
 
@@ -10902,10 +10903,10 @@ hf__points_loop_avx2(const hf__points_kit *k, const hf_ribbon_strands *strands,
     for (s = first; s < first + count; ++s) {
         const float *p = pts + (size_t)(s - pts_first) * (size_t)P * 3u;
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
-        if (mode != 0 && k->nt) hf__page_ahead(o, 16u * (size_t)P);
-        if (!hf__points_strand_avx2_in(
-                p, &k->pw, hf__strand_width(strands, s), o, P,
-                mode >= 0 ? mode : hf__stream_mode(k->nt, o, 31u))) {
+        const int m = mode >= 0 ? mode : hf__stream_mode(k->nt, o, 31u);
+        if (m) hf__page_ahead(o, 16u * (size_t)P);
+        if (!hf__points_strand_avx2_in(p, &k->pw, hf__strand_width(strands, s),
+                                       o, P, m)) {
             _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
             hf__points_collapse_avx2(k, o);
         }
