@@ -5781,7 +5781,8 @@ static void test_ribbons_ranges_byte_identical(void)
 /* Streaming stores (hf_ribbon_params.nontemporal) give the same bytes:
    through the stage for an interleaved buffer the vertex fills exactly,
    at byte offsets 0 to 32 of a buffer aligned to 64 (the copy's
-   unaligned ends, and its 32-byte stores at AVX2), across range splits;
+   unaligned ends, and its 32-byte stores at AVX2), at every level (the
+   generic loop's stage and the AVX2 run's), across range splits;
    with ordinary stores when the streams leave a gap (no colour) or split
    into separate buffers. Bytes around the output stay. */
 static void test_ribbons_nontemporal(void)
@@ -5796,39 +5797,43 @@ static void test_ribbons_nontemporal(void)
     hf_ribbon_params p = t_rparams();
     hf_ribbon_output o;
     hf_rng r;
-    int i, off, gap, split;
+    int i, off, gap, split, level;
     hf_rng_seed(&r, 19u, 0u);
     for (i = 0; i < N * TP * 3; ++i) pts[i] = hf_rng_float(&r) - 0.5f;
     memset(&st, 0, sizeof st);
     st.points = pts;
-    for (gap = 0; gap < 2; ++gap)
-        for (off = 0; off <= 32; off += 4)
-            for (split = 1; split <= 2; ++split) {
-                unsigned char *buf[2];
-                int k;
-                buf[0] = a;
-                buf[1] = b;
-                for (k = 0; k < 2; ++k) {
-                    unsigned char *d = buf[k] + off;
-                    memset(buf[k], 0x5a, BYTES + 64);
-                    memset(&o, 0, sizeof o);
-                    o.position.data = d;
-                    o.tangent.data = d + 12;
-                    o.texcoord.data = d + 24;
-                    o.color.data = gap ? NULL : (void *)(d + 36);
-                    o.color3d.data = d + 52;
-                    o.position.stride = o.tangent.stride = o.texcoord.stride =
-                        o.color.stride = o.color3d.stride = V;
-                    p.nontemporal = k;
-                    if (split == 1) {
-                        CHECK_EQ_INT(hf_ribbons(&st, 0, N, &p, &o), HF_OK);
-                    } else {
-                        CHECK_EQ_INT(hf_ribbons(&st, 0, 4, &p, &o), HF_OK);
-                        CHECK_EQ_INT(hf_ribbons(&st, 4, N - 4, &p, &o), HF_OK);
+    for (level = HF_SIMD_SCALAR; level <= HF_SIMD_AVX512; ++level)
+        for (gap = 0; gap < 2; ++gap)
+            for (off = 0; off <= 32; off += 4)
+                for (split = 1; split <= 2; ++split) {
+                    unsigned char *buf[2];
+                    int k;
+                    buf[0] = a;
+                    buf[1] = b;
+                    for (k = 0; k < 2; ++k) {
+                        unsigned char *d = buf[k] + off;
+                        memset(buf[k], 0x5a, BYTES + 64);
+                        memset(&o, 0, sizeof o);
+                        o.position.data = d;
+                        o.tangent.data = d + 12;
+                        o.texcoord.data = d + 24;
+                        o.color.data = gap ? NULL : (void *)(d + 36);
+                        o.color3d.data = d + 52;
+                        o.position.stride = o.tangent.stride =
+                            o.texcoord.stride = o.color.stride =
+                                o.color3d.stride = V;
+                        p.nontemporal = k;
+                        p.simd = level;
+                        if (split == 1) {
+                            CHECK_EQ_INT(hf_ribbons(&st, 0, N, &p, &o), HF_OK);
+                        } else {
+                            CHECK_EQ_INT(hf_ribbons(&st, 0, 4, &p, &o), HF_OK);
+                            CHECK_EQ_INT(hf_ribbons(&st, 4, N - 4, &p, &o),
+                                         HF_OK);
+                        }
                     }
+                    CHECK(memcmp(a, b, BYTES + 64) == 0);
                 }
-                CHECK(memcmp(a, b, BYTES + 64) == 0);
-            }
     free(pts);
     free(a0);
     free(b0);
