@@ -170,11 +170,15 @@
          out_first, so that a range can go into a buffer that holds
          exactly that range (hf_ropes_copy_range for rope positions; the
          growth-time range outputs are indexed absolutely).
-       - Stack (gcc -O2, x86-64, -fstack-usage, callees added): hf_ribbons
-         needs about 28 KiB (two strands' rows sized for HF_MAX_POINTS,
-         the second sharing an 8 KiB stage for streaming stores), the
-         other per-frame calls under 8 KiB: size worker and fiber stacks
-         for it.
+       - Stack (gcc, x86-64, -fcallgraph-info=su, callees added, at -O2
+         and at -O0): hf_ribbons and hf_fur_ribbons about 34 KiB (two
+         strands' rows sized for HF_MAX_POINTS, the second sharing an
+         8 KiB stage for streaming stores), hf_fur_interpolate_points 18
+         KiB (23 at -O0), hf_ropes_step 21 KiB with the AVX-512 kernel
+         (36 at -O0), the other per-frame calls under 8 KiB: size worker
+         and fiber stacks for it. Kernels are forced inline only where
+         the compiler optimizes, so a debug build needs no more. The test
+         suite runs every build on a 256 KiB stack.
 
    SECTIONS (in the order the data flows)
 
@@ -2124,7 +2128,9 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
                            diagnostic formats;
    HF__PRIVATE             every internal function: static, maybe idle;
    HF__INLINE              small kernels whose arguments must stay in
-                           registers (forced inline);
+                           registers (forced inline where the compiler
+                           optimizes: at -O0 each inlined copy kept its
+                           own stack slots, and hf_ribbons took 2.5 MB);
    HF__NOINLINE            cold paths kept out of a hot loop;
    HF__RESTRICT            the rope kernels' non-aliasing rows;
    HF__UNROLL              before a kernel's short loop over x, y, z:
@@ -2134,7 +2140,11 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 #if defined(__GNUC__) || defined(__clang__)
 #define HF__UNUSED __attribute__((unused))
 #define HF__PRINTF(f, a) __attribute__((format(printf, f, a)))
+#if defined(__OPTIMIZE__)
 #define HF__INLINE static __inline__ __attribute__((always_inline, unused))
+#else
+#define HF__INLINE static __inline__ __attribute__((unused))
+#endif
 #define HF__NOINLINE __attribute__((noinline))
 #elif defined(_MSC_VER)
 #define HF__UNUSED
