@@ -147,7 +147,10 @@ $(BUILD)/link_impl.o: tests/link_impl.c $(HDR) | $(BUILD)
 $(BUILD)/link_check: tests/link_main.cpp $(BUILD)/link_impl.o $(HDR) | $(BUILD)
 	g++ -std=c++11 -O1 $(WARN) $< $(BUILD)/link_impl.o -o $@ -lm
 
-check-build: $(TEST_BINS) $(BUILD)/cpp_compile $(BUILD)/link_check
+# the sanitizer builds at -O1 first: they take minutes where the others
+# take seconds, and make -j starts the prerequisites in this order
+check-build: $(filter %clang_c99_san,$(TEST_BINS)) $(filter %_san,$(TEST_BINS)) \
+             $(TEST_BINS) $(BUILD)/cpp_compile $(BUILD)/link_check
 
 # $(1) = test binaries to run, $(2) = the target's name. Prints each
 # binary's last line (N passed, N failed), and the failures. Each runs on
@@ -482,7 +485,7 @@ gl-test-or-skip:
 	@if command -v glad >/dev/null 2>&1 && \
 	   printf '#include <EGL/egl.h>\n#include <GLFW/glfw3.h>\n#include <stb/stb_image_write.h>\n#include <assimp/cimport.h>\n' | \
 	   $(CC) -E -x c - >/dev/null 2>&1; then \
-	  $(MAKE) --no-print-directory gl-test; \
+	  $(MAKE) --no-print-directory -j$(JOBS) gl-test; \
 	else \
 	  echo "GL tests skipped: need python3-glad, libegl-dev, libglfw3-dev, libstb-dev, libassimp-dev (make deps)"; \
 	fi
@@ -755,17 +758,22 @@ $(BUILD)/replay_obj: $(FUZZ_DIR)/fuzz_obj.c $(FUZZ_DIR)/fuzz_main.c examples/cur
 
 fuzz-build: $(addprefix $(BUILD)/fuzz_,$(FUZZ_TARGETS))
 
-# $(1) = seconds per target
+# $(1) = seconds per target; JOBS targets at a time, each on a core of its
+# own, then their lines in the order of FUZZ_TARGETS
 define fuzz_run
 	@command -v $(if $(CLANG),$(CLANG),clang) >/dev/null 2>&1 || \
 	  { echo "make fuzz needs clang with libFuzzer (Debian: clang, libclang-rt-14-dev)"; exit 1; }
 	@mkdir -p $(BUILD)/fuzz-artifacts
-	@fail=0; for t in $(FUZZ_TARGETS); do \
+	@rm -f $(BUILD)/fuzz-*.rc; i=0; for t in $(FUZZ_TARGETS); do \
 	  mkdir -p $(BUILD)/fuzz-corpus/$$t; \
-	  log=$(BUILD)/fuzz-$$t.log; \
-	  $(FUZZ_ENV) $(BUILD)/fuzz_$$t $(FUZZ_FLAGS) -max_total_time=$(1) \
+	  ( $(FUZZ_ENV) $(BUILD)/fuzz_$$t $(FUZZ_FLAGS) -max_total_time=$(1) \
 	    -artifact_prefix=$(BUILD)/fuzz-artifacts/$$t- \
-	    $(BUILD)/fuzz-corpus/$$t $(FUZZ_DIR)/corpus/$$t > $$log 2>&1; rc=$$?; \
+	    $(BUILD)/fuzz-corpus/$$t $(FUZZ_DIR)/corpus/$$t \
+	    > $(BUILD)/fuzz-$$t.log 2>&1; echo $$? > $(BUILD)/fuzz-$$t.rc ) & \
+	  i=$$((i + 1)); if [ $$((i % $(JOBS))) -eq 0 ]; then wait; fi; \
+	done; wait; \
+	fail=0; for t in $(FUZZ_TARGETS); do \
+	  log=$(BUILD)/fuzz-$$t.log; rc=$$(cat $(BUILD)/fuzz-$$t.rc); \
 	  done_line=$$(grep -E '^#[0-9]+[[:space:]]+DONE' $$log | tail -n 1); \
 	  printf '%-8s %s\n' "$$t:" "$${done_line:-(no DONE line: see $$log)}"; \
 	  if [ $$rc -ne 0 ]; then fail=1; \
