@@ -3,9 +3,10 @@
 # make (all) is make test; make build/<name> builds one program.
 #
 # Tests
-#   make test          the unit tests in 9 builds (gcc and, where installed,
-#                      clang; C99 and C++11; -O2 and ASan+UBSan; the scalar
-#                      HF_NO_SIMD build), the C++ compile and C/C++ link
+#   make test          the unit tests in up to 10 builds (gcc and, where
+#                      installed, clang; C99 and C++11; -O2, ASan+UBSan at
+#                      -O1 and -O0; the scalar HF_NO_SIMD build; GNU C with
+#                      -mavx2 -mfma), the C++ compile and C/C++ link
 #                      checks, the API doc check, the quick start check,
 #                      then the GL checks when headless EGL is there
 #   make check         the fast loop: the unit tests built once (gcc -std=c99
@@ -71,7 +72,7 @@
 #
 # Helper files in mk/ (no make fragments: this Makefile is the whole build)
 #   mk/packages.txt    the Debian packages, in groups (build, examples, gl,
-#                      fuzz, peers); the one list, also read by .ci/run
+#                      cross, fuzz, peers); the one list, also read by .ci/run
 #   mk/packages.sh     prints the packages of the groups it is given
 #   mk/quickstart.sh   extracts README.md's quick start program and checks
 #                      its output
@@ -332,7 +333,7 @@ cross-win64: | $(BUILD)
 	@if [ -n "$(WINE)" ] && [ -f $(BUILD)/test_win64_cxx.exe ]; then :; else exit 0; fi
 	$(call cross_run,test_win64_cxx_wine,$(WINE_ENV) $(WINE) $(BUILD)/test_win64_cxx.exe)
 
-# 32-bit x86 with SSE2 math: with x87 math (no -mfpmath=sse) ten tests
+# 32-bit x86 with SSE2 math: with x87 math (no -mfpmath=sse) 11 tests
 # fail, range splits included (x87 keeps 80-bit intermediates and rounds
 # where it spills), so the header needs SSE2 floating point there.
 cross-i686: | $(BUILD)
