@@ -174,11 +174,11 @@
          and at -O0): hf_ribbons and hf_fur_ribbons about 34 KiB (two
          strands' rows sized for HF_MAX_POINTS, the second sharing an
          8 KiB stage for streaming stores), hf_fur_interpolate_points 18
-         KiB (23 at -O0), hf_ropes_step 21 KiB with the AVX-512 kernel
-         (36 at -O0), the other per-frame calls under 8 KiB: size worker
-         and fiber stacks for it. Kernels are forced inline only where
-         the compiler optimizes, so a debug build needs no more. The test
-         suite runs every build on a 256 KiB stack.
+         KiB (23 at -O0), hf_ropes_step about 21 KiB with the AVX-512
+         kernel (33 at -O0), the other per-frame calls under 8 KiB: size
+         worker and fiber stacks for it. Kernels are forced inline only
+         where the compiler optimizes, so a debug build needs no more.
+         make test runs its native builds on a 256 KiB stack.
 
    SECTIONS (in the order the data flows)
 
