@@ -33,7 +33,9 @@
    Per SIMD level (scenes M and L, one thread): strands_LEVEL,
    strands_nt_LEVEL (streaming stores), points_LEVEL and points_nt_LEVEL,
    interp_points_LEVEL, ribbons_LEVEL, ribbons_nt_LEVEL, ribbons16_LEVEL
-   and ropes_LEVEL, LEVEL scalar, sse2, avx2, avx512 up to what the CPU has.
+   and ropes_LEVEL, and whole frames at the level, frame_LEVEL and
+   frame_points_LEVEL; LEVEL scalar, sse2, avx2, avx512 up to what the CPU
+   has.
    Scene Mc (M's strands on a coarse head, whose tessellation adds LOD
    guides) at LOD 0.25 measures lod_guides: LOD guides interpolated from
    the pure guides instead of simulated.
@@ -494,6 +496,45 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
     for (k = 0; k < ST_N; ++k) free(t[k]);
 }
 
+/* Whole frames at one level, one thread, as bench_scene times them: the
+   frame with CPU ribbons (roots, ropes, LOD guides, strands streamed by
+   size, ribbons) in tf, the GPU path's (roots, ropes, LOD guides, then
+   strands and points in one pass) in tp: what a level buys a frame. */
+static void level_frames(scene *s, int level, int frames, double *tf,
+                         double *tp)
+{
+    job jr, jg, jl, ji, jb, jp;
+    int f, gpu;
+    jr.fn = j_roots;
+    jg.fn = j_ropes;
+    jl.fn = j_lodg;
+    ji.fn = j_interp;
+    jb.fn = j_ribbons;
+    jp.fn = j_ipoints;
+    jr.total = jg.total = s->info.guide_count;
+    jl.total = s->info.lod_guide_count;
+    ji.total = jb.total = jp.total = s->info.strand_count;
+    g_view.simd = g_view_gpu.simd = level;
+    g_view.nontemporal = 0;
+    check("kernels", hf_fur_set_kernels(s->fur, level, 0));
+    for (gpu = 0; gpu < 2; ++gpu)
+        for (f = -5; f < frames; ++f) {
+            double t0;
+            scene_pose(s, s->frame++);
+            t0 = now_ms();
+            run_job(&jr);
+            run_job(&jg);
+            run_job(&jl);
+            if (gpu) {
+                run_job(&jp);
+            } else {
+                run_job(&ji);
+                run_job(&jb);
+            }
+            if (f >= 0) (gpu ? tp : tf)[f] = now_ms() - t0;
+        }
+}
+
 /* The stages with SIMD kernels, per level (hf_simd_level), one thread:
    what each level buys on this CPU, and what streaming stores buy
    (strands: ordinary stores, strands_nt: streaming, hf_fur_set_kernels'
@@ -517,7 +558,7 @@ static void bench_levels(scene *s, int frames)
     static const int job_of[LV_N] = {0, 0, 1, 1, 2, 2, 3, 4, 5};
     static const int nt_of[LV_N] = {0, 1, 0, 1, 0, 1, 0, 1, 0};
     job jobs[6];
-    double *t[LV_N], bytes[LV_N];
+    double *t[LV_N], bytes[LV_N], *tf, *tp;
     int f, level, k, best = hf_simd_resolve(HF_SIMD_AUTO);
     size_t big = (size_t)s->info.strand_count * P * 2u * 36u;
     float *dst = (float *)mapped_like(big);
@@ -542,6 +583,8 @@ static void bench_levels(scene *s, int frames)
     memset(dst, 1, big);
     for (k = 0; k < LV_N; ++k)
         t[k] = (double *)malloc(sizeof(double) * (size_t)frames);
+    tf = (double *)malloc(sizeof(double) * (size_t)frames);
+    tp = (double *)malloc(sizeof(double) * (size_t)frames);
     for (level = HF_SIMD_SCALAR; level <= best; ++level) {
         g_view.simd = g_view_gpu.simd = level;
         for (f = -5; f < frames; ++f) {
@@ -564,11 +607,21 @@ static void bench_levels(scene *s, int frames)
             report(name, s->name, 1, stats(t[k], frames), bytes[k],
                    limit_gbps(dst, (size_t)bytes[k], 7), -1);
         }
+        level_frames(s, level, frames, tf, tp);
+        {
+            char name[32];
+            sprintf(name, "frame_%s", level_name[level]);
+            report(name, s->name, 1, stats(tf, frames), 0, 0, -1);
+            sprintf(name, "frame_points_%s", level_name[level]);
+            report(name, s->name, 1, stats(tp, frames), 0, 0, -1);
+        }
     }
     check("kernels", hf_fur_set_kernels(s->fur, HF_SIMD_AUTO, 0));
     g_view.simd = g_view_gpu.simd = HF_SIMD_AUTO;
     g_view.nontemporal = 0;
     for (k = 0; k < LV_N; ++k) free(t[k]);
+    free(tf);
+    free(tp);
     free(dst);
 }
 
