@@ -366,8 +366,9 @@ typedef struct hf_allocator {
 HFDEF int hf_version(void);
 HFDEF const char *hf_version_string(void);
 
-/* SIMD levels of the per-frame kernels (interpolation, GPU points). Every
-   level gives the same bytes; they differ only in speed. */
+/* SIMD levels of the per-frame kernels (interpolation, LOD guides, GPU
+   points, ribbons, the rope step). Every level gives the same bytes; they
+   differ only in speed. */
 typedef enum hf_simd_level {
     HF_SIMD_AUTO = 0,   /* the best this CPU and build run (the default) */
     HF_SIMD_SCALAR = 1, /* the scalar references */
