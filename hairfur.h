@@ -1377,7 +1377,9 @@ typedef struct hf_ribbon_strands {
                                 layout hf_strand_colors writes) */
     const float *color3d_x;  /* 1 per strand [0] */
     const float *width;      /* 1 per strand: a width multiplier [1];
-                                negative or non-finite reads as 0 */
+                                negative or non-finite reads as 0, and
+                                a vertex's half width (times the
+                                multiplier) is at most HF_MAX_ABS */
 } hf_ribbon_strands;
 
 typedef struct hf_ribbon_params {
@@ -8378,13 +8380,25 @@ static const float hf__zero_points[3 * HF_MAX_POINTS] = {0.0f};
 HF__PRIVATE float hf__fin0(float x) { return hf__finitef(x) ? x : 0.0f; }
 
 /* A strand's width multiplier: 1 without the array, else the value,
-   with negative or non-finite read as 0 and the top clamped. */
-HF__PRIVATE float hf__strand_width(const hf_ribbon_strands *st, int s)
+   with negative or non-finite read as 0, and at most cap
+   (hf__width_cap). */
+HF__PRIVATE float hf__strand_width(const hf_ribbon_strands *st, int s,
+                                   float cap)
 {
-    float w;
-    if (!st->width) return 1.0f;
-    w = hf__fin0(st->width[s]);
-    return w > 0.0f ? (w < HF_MAX_ABS ? w : HF_MAX_ABS) : 0.0f;
+    const float w = st->width ? hf__fin0(st->width[s]) : 1.0f;
+    return w > 0.0f ? (w < cap ? w : cap) : 0.0f;
+}
+
+/* The largest strand multiplier for the half widths hw[0..P): the
+   product, a vertex's half width, stays within HF_MAX_ABS (each factor
+   may reach it: their product would overflow to infinity, and a side's
+   zero component times infinity is NaN). */
+HF__PRIVATE float hf__width_cap(const float *hw, int P)
+{
+    float m = 1.0f;
+    int j;
+    for (j = 0; j < P; ++j) m = hw[j] > m ? hw[j] : m;
+    return HF_MAX_ABS / m;
 }
 
 /* One strand in structure-of-arrays rows, so that four points load as one
@@ -9238,6 +9252,7 @@ static const int hf__stream_nc[5] = {3, 3, 3, 4, 2};
 typedef struct hf__rconst {
     float hw[HF_MAX_POINTS + 4], tt[HF_MAX_POINTS + 4];
     float fade[HF_MAX_POINTS + 4];
+    float wcap; /* hf__width_cap of hw */
 } hf__rconst;
 
 HF__PRIVATE void hf__rconst_init(hf__rconst *K, const hf_ribbon_params *p)
@@ -9246,6 +9261,7 @@ HF__PRIVATE void hf__rconst_init(hf__rconst *K, const hf_ribbon_params *p)
     int j;
     HF_MEMSET(K, 0, sizeof *K);
     hf__half_widths(p, K->hw);
+    K->wcap = hf__width_cap(K->hw, P);
     for (j = 0; j < P; ++j) {
         K->tt[j] = (float)j / (float)(P - 1);
         K->fade[j] = (1.0f - K->tt[j]) * p->alpha_root + K->tt[j] * p->alpha_tip;
@@ -10509,13 +10525,13 @@ HF__TARGET_AVX2 HF__INLINE void hf__stream_copy_avx2(unsigned char *dst,
 }
 #endif
 
-/* Strand s's width multiplier (times the frame's), root UV, colour and
-   3D-colour x, non-finite inputs read as 0 */
+/* Strand s's width multiplier (times the frame's; at most cap), root
+   UV, colour and 3D-colour x, non-finite inputs read as 0 */
 HF__INLINE void hf__rstrand_fill(const hf_ribbon_strands *sv, int s,
-                                 hf__rstrand *str)
+                                 float cap, hf__rstrand *str)
 {
     int k;
-    str->wscale *= hf__strand_width(sv, s);
+    str->wscale *= hf__strand_width(sv, s, cap);
     HF__UNROLL for (k = 0; k < 2; ++k)
         str->uv[k] =
             sv->root_uv ? hf__fin0(sv->root_uv[2 * (size_t)s + k]) : 0.0f;
@@ -10597,7 +10613,7 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
             hf__frame_strand_avx2(svl.points + (size_t)(s + 1) * n, P, ortho,
                                   e, params, F[j ^ 1], &wsc[j ^ 1]);
         str.wscale = wsc[j];
-        hf__rstrand_fill(&svl, s, &str);
+        hf__rstrand_fill(&svl, s, K->wcap, &str);
         if (mode == 2)
             hf__ribbon_write_c16_avx2_in(F[j], P, K, &str, ro, w0, ov, enc);
         else if (mode == 1)
@@ -10725,7 +10741,7 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
         const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
         hf__rstrand str;
         hf__strand_frame(pts, P, params, &fr, &str.wscale, level);
-        hf__rstrand_fill(&sv, s, &str);
+        hf__rstrand_fill(&sv, s, K.wcap, &str);
         if (stage) {
             /* the strand's vertices into the stage (in L1), then out to
                its block with streaming stores */
@@ -10886,6 +10902,7 @@ typedef struct hf__points_kit {
 #if HF__AVX2
     hf__pair_widths pw;
 #endif
+    float wcap; /* hf__width_cap of hw */
     int P, level, nt, wide;
 } hf__points_kit;
 
@@ -10916,7 +10933,8 @@ hf__points_loop_avx2(const hf__points_kit *k, const hf_ribbon_strands *strands,
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
         const int m = mode >= 0 ? mode : hf__stream_mode(k->nt, o, 31u);
         if (m) hf__page_ahead(o, 16u * (size_t)P);
-        if (!hf__points_strand_avx2_in(p, &k->pw, hf__strand_width(strands, s),
+        if (!hf__points_strand_avx2_in(p, &k->pw,
+                                       hf__strand_width(strands, s, k->wcap),
                                        o, P, m)) {
             _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
             hf__points_collapse_avx2(k, o);
@@ -10954,6 +10972,7 @@ HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
     k->level = hf_simd_resolve(params->simd);
     k->nt = params->nontemporal != 0;
     hf__half_widths(params, k->hw);
+    k->wcap = hf__width_cap(k->hw, k->P);
     k->wide = 0;
 #if HF__AVX2
     /* the AVX2 kernel needs P >= 3 */
@@ -10986,7 +11005,7 @@ HF__PRIVATE void hf__points_run(const hf__points_kit *k,
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
         float wscale = 0.0f;
         if (hf__points_finite(p, 3 * P))
-            wscale = hf__strand_width(strands, s);
+            wscale = hf__strand_width(strands, s, k->wcap);
         else
             p = hf__zero_points; /* collapsed, as hf_ribbons */
 #if HF__SSE
@@ -11025,7 +11044,7 @@ T HF__INLINE void hf__interp_points_whole##W(                                  \
     int s, i, j;                                                               \
     for (s = first; s < first + count; ++s) {                                  \
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;            \
-        const hf__f##W WS = hf__set1_##W(hf__strand_width(st, s));             \
+        const hf__f##W WS = hf__set1_##W(hf__strand_width(st, s, k->wcap));    \
         hf__f##W acc = hf__set1_##W(0.0f);                                     \
         hf__is##W v;                                                           \
         if (mode) hf__page_ahead(o, 16u * (size_t)P);                          \
@@ -13708,7 +13727,12 @@ HF__PRIVATE hf_result hf__fur_view(const hf_fur *f, int first, int count,
         return HF_ERROR_BAD_RANGE;
     hf__ribbon_params_resolve(view, p);
     p->points_per_strand = f->P;
-    p->width_scale *= f->width_scale;
+    /* a valid view stays valid whatever the LOD's scale (the product is
+       clamped); an invalid one is left for hf_ribbons to reject */
+    if (p->width_scale >= 0.0f && p->width_scale <= HF_MAX_ABS) {
+        p->width_scale *= f->width_scale;
+        if (p->width_scale > HF_MAX_ABS) p->width_scale = HF_MAX_ABS;
+    }
     HF_MEMSET(s, 0, sizeof *s);
     s->points = f->strand_points;
     s->root_uv = f->strand_uv;

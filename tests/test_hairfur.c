@@ -6450,6 +6450,110 @@ static void test_points_every_level(void)
     }
 }
 
+/* Widths at their bounds: root and tip width, width_scale and a strand's
+   multiplier may each reach HF_MAX_ABS, and their product would overflow
+   float. A vertex's half width is then held to HF_MAX_ABS: no NaN (a
+   side's zero component times an infinite width), the same bytes at
+   every level, in float and compact positions and in GPU points; a fur's
+   LOD scale on top of a view at the bound is clamped, not refused. */
+static void test_widths_at_the_bound(void)
+{
+    enum { N = 5, PM = 19 };
+    static float pts[N * PM * 3], f32[N * PM * 2 * 9], f32r[N * PM * 2 * 9];
+    static short s16[N * PM * 2 * 3], s16r[N * PM * 2 * 3];
+    static float g[N * PM * 4], gr[N * PM * 4];
+    static const float mult[N] = {1000.0f, 1e18f, 1.0f, 0.5f, 3e-30f};
+    static const int Ps[3] = {3, 16, 19};
+    hf_ribbon_strands st;
+    hf_ribbon_params rp;
+    hf_ribbon_output o, o16;
+    int pi, s, j, i, level, nt;
+    for (pi = 0; pi < 3; ++pi) {
+        const int P = Ps[pi];
+        const size_t nv = (size_t)N * (size_t)P * 2u;
+        const size_t ng = (size_t)N * (size_t)P * 4u;
+        for (s = 0; s < N; ++s)
+            for (j = 0; j < P; ++j) {
+                float *q = pts + (s * P + j) * 3;
+                /* strand 0 straight along y (its side (1, 0, 0) has two
+                   zero components), the others bent */
+                q[0] = s == 0 ? 0.0f : 0.01f * (float)(j * j) + 0.1f * (float)s;
+                q[1] = 0.1f * (float)j;
+                q[2] = s == 0 ? 0.0f : 0.02f * (float)j;
+            }
+        memset(&st, 0, sizeof st);
+        st.points = pts;
+        st.width = mult;
+        memset(&rp, 0, sizeof rp);
+        rp.points_per_strand = P;
+        rp.eye[2] = 5.0f;
+        rp.root_width = rp.tip_width = rp.width_scale = HF_MAX_ABS;
+        memset(&o, 0, sizeof o);
+        o.position.data = f32;
+        o.position.stride = 36;
+        o.tangent.data = f32 + 3;
+        o.tangent.stride = 36;
+        o.texcoord.data = f32 + 6;
+        o.texcoord.stride = 36;
+        memset(&o16, 0, sizeof o16);
+        o16.position.data = s16;
+        o16.position.format = HF_FORMAT_SNORM16;
+        o16.position_scale = 1e18f;
+        for (level = HF_SIMD_SCALAR; level <= HF_SIMD_AVX512; ++level)
+            for (nt = 0; nt < 2; ++nt) {
+                rp.simd = level;
+                rp.nontemporal = nt;
+                CHECK_EQ_INT(hf_ribbons(&st, 0, N, &rp, &o), HF_OK);
+                CHECK_EQ_INT(hf_ribbons(&st, 0, N, &rp, &o16), HF_OK);
+                CHECK_EQ_INT(hf_ribbon_points(&st, 0, N, &rp, g), HF_OK);
+                if (level == HF_SIMD_SCALAR && nt == 0) {
+                    memcpy(f32r, f32, sizeof(float) * nv * 9u);
+                    memcpy(s16r, s16, sizeof(short) * nv * 3u);
+                    memcpy(gr, g, sizeof(float) * ng);
+                    for (i = 0; i < (int)nv * 9; ++i) CHECK(f32[i] == f32[i]);
+                    /* half widths held to the bound, the small ones kept */
+                    for (i = 0; i < N * P; ++i)
+                        CHECK(g[4 * i + 3] > 0.0f &&
+                              g[4 * i + 3] <= HF_MAX_ABS * 1.000001f);
+                    /* 1 and 0.5 both beyond the cap; 3e-30 below it */
+                    CHECK(g[4 * 3 * P + 3] == g[4 * 2 * P + 3] &&
+                          g[4 * 2 * P + 3] > 0.99f * HF_MAX_ABS);
+                    CHECK(g[4 * 4 * P + 3] > 1e6f && g[4 * 4 * P + 3] < 2e6f);
+                    /* the straight strand's vertices at x = -+ the width */
+                    CHECK(f32[0] < -1e17f && f32[9] > 1e17f &&
+                          f32[1] == 0.0f && f32[10] == 0.0f);
+                    continue;
+                }
+                CHECK(memcmp(f32, f32r, sizeof(float) * nv * 9u) == 0);
+                CHECK(memcmp(s16, s16r, sizeof(short) * nv * 3u) == 0);
+                CHECK(memcmp(g, gr, sizeof(float) * ng) == 0);
+            }
+    }
+    {
+        t_fur_scene sc;
+        hf_fur *f = NULL;
+        hf_fur_info info;
+        float *buf;
+        t_fur_scene_init(&sc, 1.0f);
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+        if (!f) return;
+        CHECK_EQ_INT(hf_fur_set_lod(f, 0.25f), HF_OK);
+        hf_fur_get_info(f, &info);
+        CHECK(info.width_scale > 1.0f);
+        buf = (float *)malloc(sizeof(float) * 4u * (size_t)info.strand_count *
+                              (size_t)info.points_per_strand);
+        memset(&rp, 0, sizeof rp);
+        rp.width_scale = HF_MAX_ABS;
+        CHECK_EQ_INT(hf_fur_points(f, 0, info.strand_count, &rp, buf), HF_OK);
+        CHECK(buf[3] > 0.0f && buf[3] <= HF_MAX_ABS * 1.000001f);
+        rp.width_scale = 2e18f; /* beyond the bound: still refused */
+        CHECK_EQ_INT(hf_fur_points(f, 0, info.strand_count, &rp, buf),
+                     HF_ERROR_BAD_PARAMETER);
+        free(buf);
+        hf_fur_destroy(f);
+    }
+}
+
 /* The wide kernels leave the upper halves of the vector registers clean
    (vzeroupper) before any SSE code runs: otherwise the SSE code after them
    runs slower (measured on Zen 4: every later stage of a frame, 2.1-2.4x),
@@ -10214,6 +10318,7 @@ int main(void)
     RUN(test_ribbons_table_layouts);
     RUN(test_format_encoders);
     RUN(test_points_every_level);
+    RUN(test_widths_at_the_bound);
     RUN(test_simd_kernels_leave_upper_clean);
     RUN(test_ribbons_compact_formats);
     RUN(test_ribbon_indices);
