@@ -1449,8 +1449,10 @@ typedef struct hf_ribbon_params {
    view_dir in orthographic mode, a simd or nontemporal that is not one,
    first < out_first (those as for every call); an unknown
    stream format (HF_ERROR_BAD_FORMAT), a negative stride or one smaller
-   than the stream's element (HF_ERROR_BAD_STRIDE), a bad position origin
-   or scale; nothing written then. */
+   than the stream's element, or two streams that share a byte between
+   different vertices (HF_ERROR_BAD_STRIDE; sharing inside a vertex is
+   allowed, the later stream's bytes win), a bad position origin or
+   scale; nothing written then. */
 HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
                            int count, const hf_ribbon_params *params,
                            const hf_ribbon_output *out);
@@ -8247,7 +8249,7 @@ HF__PRIVATE hf_result hf__ribbon_check(const hf_ribbon_strands *strands,
                                        const hf_ribbon_params *in,
                                        hf_ribbon_params *p)
 {
-    int k;
+    int k, c;
     if (!strands || !in || !strands->points) return HF_ERROR_NULL_POINTER;
     hf__ribbon_params_resolve(in, p);
     if (p->points_per_strand < 2 || p->points_per_strand > HF_MAX_POINTS)
@@ -8271,6 +8273,12 @@ HF__PRIVATE hf_result hf__ribbon_check(const hf_ribbon_strands *strands,
         p->alpha_root > 1.0f || p->alpha_tip < 0.0f || p->alpha_tip > 1.0f ||
         !hf__kernels_ok(p->simd, p->nontemporal))
         return HF_ERROR_BAD_PARAMETER;
+    /* a view_dir too short to square in float is scaled up by a power of
+       two: exact, so the sides are those of its direction */
+    for (k = 0; p->orthographic && k < 4 &&
+                hf__dot3(p->view_dir, p->view_dir) < 1e-30f;
+         ++k)
+        HF__UNROLL for (c = 0; c < 3; ++c) p->view_dir[c] *= 1099511627776.0f;
     if (p->orthographic && hf__dot3(p->view_dir, p->view_dir) == 0.0f)
         return HF_ERROR_DEGENERATE;
     return HF_OK;
@@ -10656,6 +10664,35 @@ hf__ribbons_run_avx2(const hf_ribbon_strands *sv, int first, int count,
 }
 #endif
 
+/* Whether vertex v of one stream (at a + v sa, ea bytes) and vertex w
+   != v of another (b + w sb, eb bytes) share a byte, for v and w among
+   the n vertices from v0 this call writes. Such streams would make the
+   bytes depend on the order of the stores (the level, the split), so
+   they are refused; streams that share bytes inside one vertex are
+   allowed (the later stream's bytes win at every level). Different
+   strides whose spans meet count as sharing. */
+HF__PRIVATE int hf__streams_cross(uintptr_t a, size_t sa, size_t ea,
+                                  uintptr_t b, size_t sb, size_t eb,
+                                  size_t v0, size_t n)
+{
+    const uintptr_t a0 = a + v0 * sa, b0 = b + v0 * sb;
+    /* d: b's vertex v0 relative to a's, S the stride; vertex v + k of b
+       meets vertex v of a where d + k S lies in (-eb, ea) */
+    long long d, S, k;
+    if (n == 0 || a0 + (n - 1) * sa + ea <= b0 ||
+        b0 + (n - 1) * sb + eb <= a0)
+        return 0; /* the spans do not meet */
+    if (sa != sb) return 1;
+    S = (long long)sa;
+    d = b0 >= a0 ? (long long)(b0 - a0) : -(long long)(a0 - b0);
+    /* the spans meet, so |d| < n S + S: the k below are at most n + 1 */
+    for (k = (-(long long)eb - d) / S - 1; k * S + d < (long long)ea; ++k)
+        if (k != 0 && k * S + d > -(long long)eb &&
+            (k < 0 ? -k : k) < (long long)n)
+            return 1;
+    return 0;
+}
+
 HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
                            int count, const hf_ribbon_params *view,
                            const hf_ribbon_output *out)
@@ -10695,6 +10732,21 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
         ro.stride[k] = (size_t)(streams[k]->stride ? streams[k]->stride
                                                    : size * hf__stream_nc[k]);
         ro.fmt[k] = streams[k]->format;
+    }
+    {
+        const size_t nv = 2u * (size_t)prm.points_per_strand,
+                     v0 = (size_t)(first - prm.out_first) * nv;
+        int m;
+        for (k = 0; k < 5; ++k)
+            for (m = k + 1; m < 5; ++m)
+                if (ro.base[k] && ro.base[m] &&
+                    hf__streams_cross(
+                        (uintptr_t)ro.base[k], ro.stride[k],
+                        (size_t)hf_format_bytes(ro.fmt[k]) * hf__stream_nc[k],
+                        (uintptr_t)ro.base[m], ro.stride[m],
+                        (size_t)hf_format_bytes(ro.fmt[m]) * hf__stream_nc[m],
+                        v0, (size_t)count * nv))
+                    return HF_ERROR_BAD_STRIDE;
     }
     HF__UNROLL for (k = 0; k < 3; ++k) {
         if (!hf__finitef(out->position_origin[k])) return HF_ERROR_NON_FINITE;

@@ -5675,6 +5675,22 @@ static void test_ribbons_perpendicular_and_widths(void)
     p.view_dir[0] = 0.2f; p.view_dir[1] = -0.3f; p.view_dir[2] = -1.0f;
     CHECK_EQ_INT(hf_ribbons(&st, 0, 3, &p, &o), HF_OK);
     t_check_ribbon(v, g, 3, &p, 1);
+    /* a view_dir whose square underflows is a direction all the same: 2^-100
+       times the one above gives its bytes (a power of two scales exactly) */
+    {
+        static t_rvert w[3 * TP * 2];
+        hf_ribbon_params q = p;
+        hf_ribbon_output ow = t_interleaved(w);
+        float pt[TP * 4];
+        int k;
+        for (k = 0; k < 3; ++k) q.view_dir[k] = ldexpf(p.view_dir[k], -100);
+        CHECK(hf__dot3(q.view_dir, q.view_dir) == 0.0f);
+        CHECK_EQ_INT(hf_ribbons(&st, 0, 3, &q, &ow), HF_OK);
+        CHECK(memcmp(w, v, sizeof(t_rvert) * 3 * TP * 2) == 0);
+        CHECK_EQ_INT(hf_ribbon_points(&st, 0, 1, &q, pt), HF_OK);
+        q.view_dir[0] = q.view_dir[1] = q.view_dir[2] = 0.0f;
+        CHECK_EQ_INT(hf_ribbons(&st, 0, 3, &q, &ow), HF_ERROR_DEGENERATE);
+    }
 }
 
 static void test_ribbons_degenerate_never_nan(void)
@@ -5891,6 +5907,34 @@ static void test_ribbons_errors_write_nothing(void)
     CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &p, NULL), HF_ERROR_NULL_POINTER);
     o.color.stride = -16;
     CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &p, &o), HF_ERROR_BAD_STRIDE);
+    /* streams that share bytes between vertices: the tangent of vertex v
+       on the position of v + 1; the colour over the position array */
+    {
+        hf_ribbon_output x;
+        float *f = &v[0].pos[0];
+        int level;
+        memset(&x, 0, sizeof x);
+        x.position.data = f;
+        x.position.stride = 12;
+        x.tangent.data = f + 3;
+        x.tangent.stride = 12;
+        for (level = HF_SIMD_SCALAR; level <= HF_SIMD_AVX512; ++level) {
+            b = p;
+            b.simd = level;
+            CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &b, &x), HF_ERROR_BAD_STRIDE);
+        }
+        x.tangent.data = NULL;
+        x.color.data = f + 2 * TP; /* packed: 16 bytes a vertex */
+        CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &p, &x), HF_ERROR_BAD_STRIDE);
+        CHECK(memcmp(v, keep, sizeof v) == 0);
+        /* inside one vertex is allowed: the later stream's bytes win */
+        x.color.data = NULL;
+        x.position.stride = 24;
+        x.tangent.data = f + 2;
+        x.tangent.stride = 24;
+        CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &p, &x), HF_OK);
+        memcpy(v, keep, sizeof v);
+    }
     st.points = NULL;
     CHECK_EQ_INT(hf_ribbon_points(&st, 0, 1, &p, &v[0].pos[0]),
                  HF_ERROR_NULL_POINTER);
