@@ -10664,32 +10664,56 @@ hf__ribbons_run_avx2(const hf_ribbon_strands *sv, int first, int count,
 }
 #endif
 
+/* floor(x / y) for y > 0 */
+HF__PRIVATE long long hf__floordiv(long long x, long long y)
+{
+    return x >= 0 ? x / y : -((-x + y - 1) / y);
+}
+
 /* Whether vertex v of one stream (at a + v sa, ea bytes) and vertex w
    != v of another (b + w sb, eb bytes) share a byte, for v and w among
    the n vertices from v0 this call writes. Such streams would make the
    bytes depend on the order of the stores (the level, the split), so
    they are refused; streams that share bytes inside one vertex are
-   allowed (the later stream's bytes win at every level). Different
-   strides whose spans meet count as sharing. */
+   allowed (the later stream's bytes win at every level). Pairs (v, w)
+   that meet come in families (v + t pa, w + t pb), pa sa = pb sb the
+   strides' least common multiple, so the v of one period of a suffice;
+   w - v changes along a family unless the strides are equal. */
 HF__PRIVATE int hf__streams_cross(uintptr_t a, size_t sa, size_t ea,
                                   uintptr_t b, size_t sb, size_t eb,
                                   size_t v0, size_t n)
 {
     const uintptr_t a0 = a + v0 * sa, b0 = b + v0 * sb;
-    /* d: b's vertex v0 relative to a's, S the stride; vertex v + k of b
-       meets vertex v of a where d + k S lies in (-eb, ea) */
-    long long d, S, k;
+    const long long end = (long long)n; /* vertices counted from v0 */
+    long long g = (long long)sa, h = (long long)sb, pa, pb, v, w;
     if (n == 0 || a0 + (n - 1) * sa + ea <= b0 ||
         b0 + (n - 1) * sb + eb <= a0)
         return 0; /* the spans do not meet */
-    if (sa != sb) return 1;
-    S = (long long)sa;
-    d = b0 >= a0 ? (long long)(b0 - a0) : -(long long)(a0 - b0);
-    /* the spans meet, so |d| < n S + S: the k below are at most n + 1 */
-    for (k = (-(long long)eb - d) / S - 1; k * S + d < (long long)ea; ++k)
-        if (k != 0 && k * S + d > -(long long)eb &&
-            (k < 0 ? -k : k) < (long long)n)
-            return 1;
+    while (h) { /* g = gcd(sa, sb) */
+        const long long t = g % h;
+        g = h;
+        h = t;
+    }
+    pa = (long long)sb / g;
+    pb = (long long)sa / g;
+    for (v = 0; v < end && v < pa; ++v) {
+        /* a's vertex v from b's vertex 0, in bytes: w meets it where
+           x - eb < w sb < x + ea */
+        const long long x = (a0 >= b0 ? (long long)(a0 - b0)
+                                       : -(long long)(b0 - a0)) +
+                            v * (long long)sa;
+        for (w = hf__floordiv(x - (long long)eb, (long long)sb) + 1;
+             w * (long long)sb < x + (long long)ea; ++w) {
+            /* the family's members with both vertices in [0, end) */
+            long long lo = w >= 0 ? 0 : (-w + pb - 1) / pb, hi;
+            if (w > end - 1) continue;
+            hi = (end - 1 - v) / pa;
+            if ((end - 1 - w) / pb < hi) hi = (end - 1 - w) / pb;
+            if (lo > hi) continue;
+            if (pa == pb ? w != v : hi > lo || v + lo * pa != w + lo * pb)
+                return 1;
+        }
+    }
     return 0;
 }
 

@@ -5927,8 +5927,23 @@ static void test_ribbons_errors_write_nothing(void)
         x.color.data = f + 2 * TP; /* packed: 16 bytes a vertex */
         CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &p, &x), HF_ERROR_BAD_STRIDE);
         CHECK(memcmp(v, keep, sizeof v) == 0);
+        /* strides of 8 and 16 that interleave without sharing a byte are
+           allowed; moved by two bytes they share */
+        memset(&x, 0, sizeof x);
+        x.color3d.data = f;
+        x.color3d.format = HF_FORMAT_F16;
+        x.color3d.stride = 8;
+        x.texcoord.data = (unsigned char *)(void *)f + 4;
+        x.texcoord.format = HF_FORMAT_UNORM8;
+        x.texcoord.stride = 16;
+        CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &p, &x), HF_OK);
+        memcpy(v, keep, sizeof v);
+        x.texcoord.data = (unsigned char *)(void *)f + 2;
+        CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &p, &x), HF_ERROR_BAD_STRIDE);
+        CHECK(memcmp(v, keep, sizeof v) == 0);
         /* inside one vertex is allowed: the later stream's bytes win */
-        x.color.data = NULL;
+        memset(&x, 0, sizeof x);
+        x.position.data = f;
         x.position.stride = 24;
         x.tangent.data = f + 2;
         x.tangent.stride = 24;
