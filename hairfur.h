@@ -11117,10 +11117,11 @@ T HF__INLINE void hf__interp_points_whole##W(                                  \
     const int P = run->P;                                                      \
     const size_t n = 3u * (size_t)P;                                           \
     const float *G = run->guides, *ctab = run->ctab;                           \
+    const float wcap = k->wcap; /* read once: the stores may alias k */      \
     int s, i, j;                                                               \
     for (s = first; s < first + count; ++s) {                                  \
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;            \
-        const hf__f##W WS = hf__set1_##W(hf__strand_width(st, s, k->wcap));    \
+        const hf__f##W WS = hf__set1_##W(hf__strand_width(st, s, wcap));       \
         hf__f##W acc = hf__set1_##W(0.0f);                                     \
         hf__is##W v;                                                           \
         if (mode) hf__page_ahead(o, 16u * (size_t)P);                          \
