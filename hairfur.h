@@ -8274,23 +8274,31 @@ HF__PRIVATE hf_result hf__ribbon_check(const hf_ribbon_strands *strands,
         p->alpha_root > 1.0f || p->alpha_tip < 0.0f || p->alpha_tip > 1.0f ||
         !hf__kernels_ok(p->simd, p->nontemporal))
         return HF_ERROR_BAD_PARAMETER;
-    /* a view_dir too short to square in float is scaled up by a power of
-       two: exact, so the sides are those of its direction */
-    for (k = 0; p->orthographic && k < 4 &&
-                hf__dot3(p->view_dir, p->view_dir) < 1e-30f;
-         ++k)
-        HF__UNROLL for (c = 0; c < 3; ++c) p->view_dir[c] *= 1099511627776.0f;
-    if (p->orthographic && hf__dot3(p->view_dir, p->view_dir) == 0.0f)
-        return HF_ERROR_DEGENERATE;
+    if (p->orthographic) {
+        /* a view_dir too short to square in float is scaled up by a
+           power of two: exact, so the sides are those of its direction */
+        float v2 = hf__dot3(p->view_dir, p->view_dir);
+        for (k = 0; k < 4 && v2 < 1e-30f; ++k) {
+            HF__UNROLL for (c = 0; c < 3; ++c)
+                p->view_dir[c] *= 1099511627776.0f;
+            v2 = hf__dot3(p->view_dir, p->view_dir);
+        }
+        if (v2 == 0.0f) return HF_ERROR_DEGENERATE;
+    }
     return HF_OK;
 }
 
-/* Half width at t = j / (P - 1), with the taper curve (resolved p). */
-HF__PRIVATE void hf__half_widths(const hf_ribbon_params *p, float *hw)
+/* Half width at t = j / (P - 1), with the taper curve (resolved p).
+   Returns the largest strand multiplier for them: the product, a
+   vertex's half width, stays within HF_MAX_ABS (each factor may reach
+   it: their product would overflow to infinity, and a side's zero
+   component times infinity is NaN). */
+HF__PRIVATE float hf__half_widths(const hf_ribbon_params *p, float *hw)
 {
     const int P = p->points_per_strand;
     const float scale = p->width_scale;
     const float power = p->taper_power;
+    float m = 1.0f;
     int j;
     for (j = 0; j < P; ++j) {
         float t = (float)j / (float)(P - 1);
@@ -8298,7 +8306,9 @@ HF__PRIVATE void hf__half_widths(const hf_ribbon_params *p, float *hw)
         if (j == P - 1) f = 1.0f; /* exact tip width whatever pow rounds */
         /* this form gives root and tip widths exactly at f = 0 and 1 */
         hw[j] = 0.5f * scale * ((1.0f - f) * p->root_width + f * p->tip_width);
+        m = hw[j] > m ? hw[j] : m;
     }
+    return HF_MAX_ABS / m;
 }
 
 /* A unit vector perpendicular to unit t, chosen deterministically. */
@@ -8389,25 +8399,13 @@ static const float hf__zero_points[3 * HF_MAX_POINTS] = {0.0f};
 HF__PRIVATE float hf__fin0(float x) { return hf__finitef(x) ? x : 0.0f; }
 
 /* A strand's width multiplier: 1 without the array, else the value,
-   with negative or non-finite read as 0, and at most cap
-   (hf__width_cap). */
+   with negative or non-finite read as 0, and at most cap (what
+   hf__half_widths returns). */
 HF__PRIVATE float hf__strand_width(const hf_ribbon_strands *st, int s,
                                    float cap)
 {
     const float w = st->width ? hf__fin0(st->width[s]) : 1.0f;
     return w > 0.0f ? (w < cap ? w : cap) : 0.0f;
-}
-
-/* The largest strand multiplier for the half widths hw[0..P): the
-   product, a vertex's half width, stays within HF_MAX_ABS (each factor
-   may reach it: their product would overflow to infinity, and a side's
-   zero component times infinity is NaN). */
-HF__PRIVATE float hf__width_cap(const float *hw, int P)
-{
-    float m = 1.0f;
-    int j;
-    for (j = 0; j < P; ++j) m = hw[j] > m ? hw[j] : m;
-    return HF_MAX_ABS / m;
 }
 
 /* One strand in structure-of-arrays rows, so that four points load as one
@@ -9261,7 +9259,7 @@ static const int hf__stream_nc[5] = {3, 3, 3, 4, 2};
 typedef struct hf__rconst {
     float hw[HF_MAX_POINTS + 4], tt[HF_MAX_POINTS + 4];
     float fade[HF_MAX_POINTS + 4];
-    float wcap; /* hf__width_cap of hw */
+    float wcap; /* the cap of the strand multiplier (hf__half_widths) */
 } hf__rconst;
 
 HF__PRIVATE void hf__rconst_init(hf__rconst *K, const hf_ribbon_params *p)
@@ -9269,8 +9267,7 @@ HF__PRIVATE void hf__rconst_init(hf__rconst *K, const hf_ribbon_params *p)
     const int P = p->points_per_strand;
     int j;
     HF_MEMSET(K, 0, sizeof *K);
-    hf__half_widths(p, K->hw);
-    K->wcap = hf__width_cap(K->hw, P);
+    K->wcap = hf__half_widths(p, K->hw);
     for (j = 0; j < P; ++j) {
         K->tt[j] = (float)j / (float)(P - 1);
         K->fade[j] = (1.0f - K->tt[j]) * p->alpha_root + K->tt[j] * p->alpha_tip;
@@ -10735,7 +10732,7 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
     } mem;
     float *const stage_buf = mem.stage;
     unsigned char *dst0 = NULL;
-    size_t block = 0;
+    size_t block = 0, elem[5];
     int s, k, P, stage, level, out_first;
     hf_result r = hf__ribbon_check(strands, first, count, view, &prm);
     if (r != HF_OK) return r;
@@ -10753,9 +10750,10 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
             (streams[k]->stride > 0 &&
              streams[k]->stride < size * hf__stream_nc[k]))
             return HF_ERROR_BAD_STRIDE;
+        elem[k] = (size_t)size * (size_t)hf__stream_nc[k];
         ro.base[k] = (unsigned char *)streams[k]->data;
-        ro.stride[k] = (size_t)(streams[k]->stride ? streams[k]->stride
-                                                   : size * hf__stream_nc[k]);
+        ro.stride[k] =
+            streams[k]->stride ? (size_t)streams[k]->stride : elem[k];
         ro.fmt[k] = streams[k]->format;
     }
     {
@@ -10765,12 +10763,10 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
         for (k = 0; k < 5; ++k)
             for (m = k + 1; m < 5; ++m)
                 if (ro.base[k] && ro.base[m] &&
-                    hf__streams_cross(
-                        (uintptr_t)ro.base[k], ro.stride[k],
-                        (size_t)hf_format_bytes(ro.fmt[k]) * hf__stream_nc[k],
-                        (uintptr_t)ro.base[m], ro.stride[m],
-                        (size_t)hf_format_bytes(ro.fmt[m]) * hf__stream_nc[m],
-                        v0, (size_t)count * nv))
+                    hf__streams_cross((uintptr_t)ro.base[k], ro.stride[k],
+                                      elem[k], (uintptr_t)ro.base[m],
+                                      ro.stride[m], elem[m], v0,
+                                      (size_t)count * nv))
                     return HF_ERROR_BAD_STRIDE;
     }
     HF__UNROLL for (k = 0; k < 3; ++k) {
@@ -10979,7 +10975,7 @@ typedef struct hf__points_kit {
 #if HF__AVX2
     hf__pair_widths pw;
 #endif
-    float wcap; /* hf__width_cap of hw */
+    float wcap; /* the cap of the strand multiplier (hf__half_widths) */
     int P, level, nt, wide;
 } hf__points_kit;
 
@@ -11048,8 +11044,7 @@ HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
     k->P = params->points_per_strand;
     k->level = hf_simd_resolve(params->simd);
     k->nt = params->nontemporal != 0;
-    hf__half_widths(params, k->hw);
-    k->wcap = hf__width_cap(k->hw, k->P);
+    k->wcap = hf__half_widths(params, k->hw);
     k->wide = 0;
 #if HF__AVX2
     /* the AVX2 kernel needs P >= 3 */

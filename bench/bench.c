@@ -387,6 +387,22 @@ static const char *st_name[ST_N] = {"roots", "ropes", "lod_guides", "strands",
                                     "interp_points", "frame", "frame16",
                                     "frame_points"};
 
+/* Each stage's job over the whole scene (the frames' entries left empty) */
+static void stage_jobs(const scene *s, job *jobs)
+{
+    static const job_fn fn[ST_FRAME] = {
+        j_roots, j_ropes, j_lodg, j_interp, j_ribbons, j_points,
+        j_ribbons16, j_ipoints};
+    int k;
+    for (k = 0; k < ST_N; ++k) {
+        jobs[k].fn = k < ST_FRAME ? fn[k] : NULL;
+        jobs[k].total = k == ST_ROOTS || k == ST_ROPES ? s->info.guide_count
+                        : k == ST_LODG                 ? s->info.lod_guide_count
+                        : k < ST_FRAME                 ? s->info.strand_count
+                                                       : 0;
+    }
+}
+
 static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
 {
     double *t[ST_N];
@@ -397,26 +413,9 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
     g_sc = s;
     g_threads = threads;
     bench_views(&g_view, &g_view_gpu, &g_out, s->vbuf, &g_out16, s->cbuf);
-    for (k = 0; k < ST_N; ++k) {
+    for (k = 0; k < ST_N; ++k)
         t[k] = (double *)malloc(sizeof(double) * (size_t)frames);
-        jobs[k].total = 0;
-    }
-    jobs[ST_ROOTS].fn = j_roots;
-    jobs[ST_ROOTS].total = s->info.guide_count;
-    jobs[ST_ROPES].fn = j_ropes;
-    jobs[ST_ROPES].total = s->info.guide_count;
-    jobs[ST_LODG].fn = j_lodg;
-    jobs[ST_LODG].total = s->info.lod_guide_count;
-    jobs[ST_INTERP].fn = j_interp;
-    jobs[ST_INTERP].total = s->info.strand_count;
-    jobs[ST_RIBBONS].fn = j_ribbons;
-    jobs[ST_RIBBONS].total = s->info.strand_count;
-    jobs[ST_POINTS].fn = j_points;
-    jobs[ST_POINTS].total = s->info.strand_count;
-    jobs[ST_RIBBONS16].fn = j_ribbons16;
-    jobs[ST_RIBBONS16].total = s->info.strand_count;
-    jobs[ST_IPOINTS].fn = j_ipoints;
-    jobs[ST_IPOINTS].total = s->info.strand_count;
+    stage_jobs(s, jobs);
     bytes[ST_ROOTS] = (double)s->info.guide_count * 36.0;
     bytes[ST_ROPES] = (double)s->info.guide_count * P * 12.0;
     bytes[ST_LODG] = (double)s->info.lod_guide_count * P * 12.0;
@@ -503,17 +502,9 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
 static void level_frames(scene *s, int level, int frames, double *tf,
                          double *tp)
 {
-    job jr, jg, jl, ji, jb, jp;
+    job jobs[ST_N];
     int f, gpu;
-    jr.fn = j_roots;
-    jg.fn = j_ropes;
-    jl.fn = j_lodg;
-    ji.fn = j_interp;
-    jb.fn = j_ribbons;
-    jp.fn = j_ipoints;
-    jr.total = jg.total = s->info.guide_count;
-    jl.total = s->info.lod_guide_count;
-    ji.total = jb.total = jp.total = s->info.strand_count;
+    stage_jobs(s, jobs);
     g_view.simd = g_view_gpu.simd = level;
     g_view.nontemporal = 0;
     check("kernels", hf_fur_set_kernels(s->fur, level, 0));
@@ -522,14 +513,14 @@ static void level_frames(scene *s, int level, int frames, double *tf,
             double t0;
             scene_pose(s, s->frame++);
             t0 = now_ms();
-            run_job(&jr);
-            run_job(&jg);
-            run_job(&jl);
+            run_job(&jobs[ST_ROOTS]);
+            run_job(&jobs[ST_ROPES]);
+            run_job(&jobs[ST_LODG]);
             if (gpu) {
-                run_job(&jp);
+                run_job(&jobs[ST_IPOINTS]);
             } else {
-                run_job(&ji);
-                run_job(&jb);
+                run_job(&jobs[ST_INTERP]);
+                run_job(&jobs[ST_RIBBONS]);
             }
             if (f >= 0) (gpu ? tp : tf)[f] = now_ms() - t0;
         }
