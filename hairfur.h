@@ -10668,22 +10668,40 @@ HF__PRIVATE long long hf__floordiv(long long x, long long y)
     return x >= 0 ? x / y : -((-x + y - 1) / y);
 }
 
+/* x^-1 modulo m, for x and m > 0 coprime (extended Euclid; 0 for m 1) */
+HF__PRIVATE long long hf__inverse_mod(long long x, long long m)
+{
+    long long r0 = m, r1 = x % m, s0 = 0, s1 = 1;
+    while (r1) {
+        const long long q = r0 / r1, r = r0 - q * r1, s = s0 - q * s1;
+        r0 = r1;
+        r1 = r;
+        s0 = s1;
+        s1 = s;
+    }
+    return m == 1 ? 0 : (s0 % m + m) % m;
+}
+
 /* Whether vertex v of one stream (at a + v sa, ea bytes) and vertex w
    != v of another (b + w sb, eb bytes) share a byte, for v and w among
    the n vertices from v0 this call writes. Such streams would make the
    bytes depend on the order of the stores (the level, the split), so
    they are refused; streams that share bytes inside one vertex are
-   allowed (the later stream's bytes win at every level). Pairs (v, w)
-   that meet come in families (v + t pa, w + t pb), pa sa = pb sb the
-   strides' least common multiple, so the v of one period of a suffice;
-   w - v changes along a family unless the strides are equal. */
+   allowed (the later stream's bytes win at every level). They meet
+   where y = a0 - b0 + v sa - w sb lies in (-ea, eb), a multiple of g =
+   gcd(sa, sb) away from a0 - b0: for each such y (at most ea + eb of
+   them) the pairs (v, w) form one family (v + t pa, w + t pb), pa =
+   sb / g, pb = sa / g, whose members in [0, n) are a range of t; v - w
+   changes along it unless the strides are equal. */
 HF__PRIVATE int hf__streams_cross(uintptr_t a, size_t sa, size_t ea,
                                   uintptr_t b, size_t sb, size_t eb,
                                   size_t v0, size_t n)
 {
     const uintptr_t a0 = a + v0 * sa, b0 = b + v0 * sb;
     const long long end = (long long)n; /* vertices counted from v0 */
-    long long g = (long long)sa, h = (long long)sb, pa, pb, v, w;
+    const long long d = a0 >= b0 ? (long long)(a0 - b0)
+                                 : -(long long)(b0 - a0);
+    long long g = (long long)sa, h = (long long)sb, pa, pb, inv, y;
     if (n == 0 || a0 + (n - 1) * sa + ea <= b0 ||
         b0 + (n - 1) * sb + eb <= a0)
         return 0; /* the spans do not meet */
@@ -10694,23 +10712,22 @@ HF__PRIVATE int hf__streams_cross(uintptr_t a, size_t sa, size_t ea,
     }
     pa = (long long)sb / g;
     pb = (long long)sa / g;
-    for (v = 0; v < end && v < pa; ++v) {
-        /* a's vertex v from b's vertex 0, in bytes: w meets it where
-           x - eb < w sb < x + ea */
-        const long long x = (a0 >= b0 ? (long long)(a0 - b0)
-                                       : -(long long)(b0 - a0)) +
-                            v * (long long)sa;
-        for (w = hf__floordiv(x - (long long)eb, (long long)sb) + 1;
-             w * (long long)sb < x + (long long)ea; ++w) {
-            /* the family's members with both vertices in [0, end) */
-            long long lo = w >= 0 ? 0 : (-w + pb - 1) / pb, hi;
-            if (w > end - 1) continue;
-            hi = (end - 1 - v) / pa;
-            if ((end - 1 - w) / pb < hi) hi = (end - 1 - w) / pb;
-            if (lo > hi) continue;
-            if (pa == pb ? w != v : hi > lo || v + lo * pa != w + lo * pb)
-                return 1;
-        }
+    inv = hf__inverse_mod(pb, pa);
+    /* the first y above -ea that is d modulo g */
+    y = -(long long)ea + 1;
+    y += ((d - y) % g + g) % g;
+    for (; y < (long long)eb; y += g) {
+        /* v pb - w pa = r: v = vs + t pa, w = ws + t pb */
+        const long long r = (y - d) / g;
+        const long long vs = ((r % pa + pa) % pa) * inv % pa;
+        const long long ws = (vs * pb - r) / pa;
+        long long lo = ws >= 0 ? 0 : hf__floordiv(-ws + pb - 1, pb),
+                  hi = (end - 1 - vs) >= 0 ? (end - 1 - vs) / pa : -1;
+        if (hf__floordiv(end - 1 - ws, pb) < hi)
+            hi = hf__floordiv(end - 1 - ws, pb);
+        if (lo > hi) continue;
+        if (pa == pb ? vs != ws : hi > lo || vs + lo * pa != ws + lo * pb)
+            return 1;
     }
     return 0;
 }

@@ -5941,6 +5941,21 @@ static void test_ribbons_errors_write_nothing(void)
         x.texcoord.data = (unsigned char *)(void *)f + 2;
         CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &p, &x), HF_ERROR_BAD_STRIDE);
         CHECK(memcmp(v, keep, sizeof v) == 0);
+        /* strides of 1031 and 1033 bytes (coprime): the position of
+           vertex 5 on the color3d of vertex 0 is refused; four bytes on,
+           no two vertices meet */
+        {
+            static unsigned char big[24 * 1024];
+            memset(&x, 0, sizeof x);
+            x.position.data = big;
+            x.position.stride = 1031;
+            x.color3d.data = big + 5163;
+            x.color3d.format = HF_FORMAT_F16;
+            x.color3d.stride = 1033;
+            CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &p, &x), HF_ERROR_BAD_STRIDE);
+            x.color3d.data = big + 5167;
+            CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &p, &x), HF_OK);
+        }
         /* inside one vertex is allowed: the later stream's bytes win */
         memset(&x, 0, sizeof x);
         x.position.data = f;
