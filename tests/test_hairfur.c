@@ -535,6 +535,19 @@ static hf_ribbon_output t_interleaved(t_rvert *v)
     return o;
 }
 
+/* The packed 36-byte vertex: position, tangent and texcoord as floats */
+static hf_ribbon_output t_packed36(void *base)
+{
+    unsigned char *b = (unsigned char *)base;
+    hf_ribbon_output o;
+    memset(&o, 0, sizeof o);
+    o.position.data = b;
+    o.tangent.data = b + 12;
+    o.texcoord.data = b + 24;
+    o.position.stride = o.tangent.stride = o.texcoord.stride = 36;
+    return o;
+}
+
 static hf_ribbon_params t_rparams(void)
 {
     hf_ribbon_params p;
@@ -6562,13 +6575,7 @@ static void test_widths_at_the_bound(void)
         rp.points_per_strand = P;
         rp.eye[2] = 5.0f;
         rp.root_width = rp.tip_width = rp.width_scale = HF_MAX_ABS;
-        memset(&o, 0, sizeof o);
-        o.position.data = f32;
-        o.position.stride = 36;
-        o.tangent.data = f32 + 3;
-        o.tangent.stride = 36;
-        o.texcoord.data = f32 + 6;
-        o.texcoord.stride = 36;
+        o = t_packed36(f32);
         memset(&o16, 0, sizeof o16);
         o16.position.data = s16;
         o16.position.format = HF_FORMAT_SNORM16;
@@ -6683,11 +6690,7 @@ static void test_simd_kernels_leave_upper_clean(void)
                 rp.points_per_strand = Q;
                 rp.simd = level;
                 rp.nontemporal = layout == 2;
-                memset(&ro, 0, sizeof ro);
-                ro.position.data = vb;
-                ro.tangent.data = vb + 12;
-                ro.texcoord.data = vb + 24;
-                ro.position.stride = ro.tangent.stride = ro.texcoord.stride = 36;
+                ro = t_packed36(vb);
                 /* the 36-byte float run, half floats, and streaming */
                 if (layout == 1) ro.position.format = HF_FORMAT_F16;
                 CHECK_EQ_INT(hf_ribbons(&st, 0, N, &rp, &ro), HF_OK);
