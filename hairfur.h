@@ -1450,10 +1450,10 @@ typedef struct hf_ribbon_params {
    first < out_first (those as for every call); an unknown
    stream format (HF_ERROR_BAD_FORMAT), a negative stride or one smaller
    than the stream's element, or two streams that share a byte between
-   different vertices (HF_ERROR_BAD_STRIDE; sharing inside a vertex is
-   allowed, the later stream's bytes win in the order position, tangent,
-   texcoord, color, color3d), a bad position origin or scale; nothing
-   written then. */
+   different vertices of the call (HF_ERROR_BAD_STRIDE; sharing inside a
+   vertex is allowed, the later stream's bytes win in the order position,
+   tangent, texcoord, color, color3d), a bad position origin or scale;
+   nothing written then. */
 HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
                            int count, const hf_ribbon_params *params,
                            const hf_ribbon_output *out);
