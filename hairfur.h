@@ -10721,10 +10721,11 @@ HF__PRIVATE int hf__streams_cross(uintptr_t a, size_t sa, size_t ea,
         const long long r = (y - d) / g;
         const long long vs = ((r % pa + pa) % pa) * inv % pa;
         const long long ws = (vs * pb - r) / pa;
-        long long lo = ws >= 0 ? 0 : hf__floordiv(-ws + pb - 1, pb),
-                  hi = (end - 1 - vs) >= 0 ? (end - 1 - vs) / pa : -1;
-        if (hf__floordiv(end - 1 - ws, pb) < hi)
-            hi = hf__floordiv(end - 1 - ws, pb);
+        /* t >= 0 keeps v >= 0 (vs < pa); the rest bound t by floors */
+        const long long lo = ws >= 0 ? 0 : -hf__floordiv(ws, pb),
+                        hv = hf__floordiv(end - 1 - vs, pa),
+                        hw = hf__floordiv(end - 1 - ws, pb),
+                        hi = hv < hw ? hv : hw;
         if (lo > hi) continue;
         if (pa == pb ? vs != ws : hi > lo || vs + lo * pa != ws + lo * pb)
             return 1;

@@ -403,6 +403,14 @@ static void stage_jobs(const scene *s, job *jobs)
     }
 }
 
+/* A frame's simulation, before its strands: roots, ropes, LOD guides */
+static void run_simulation(job *jobs)
+{
+    run_job(&jobs[ST_ROOTS]);
+    run_job(&jobs[ST_ROPES]);
+    run_job(&jobs[ST_LODG]);
+}
+
 static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
 {
     double *t[ST_N];
@@ -463,9 +471,7 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
         double t0, t3, t8;
         scene_pose(s, s->frame++);
         t0 = now_ms();
-        run_job(&jobs[ST_ROOTS]);
-        run_job(&jobs[ST_ROPES]);
-        run_job(&jobs[ST_LODG]);
+        run_simulation(jobs);
         t3 = now_ms();
         run_job(&jobs[ST_IPOINTS]);
         t8 = now_ms();
@@ -513,9 +519,7 @@ static void level_frames(scene *s, int level, int frames, double *tf,
             double t0;
             scene_pose(s, s->frame++);
             t0 = now_ms();
-            run_job(&jobs[ST_ROOTS]);
-            run_job(&jobs[ST_ROPES]);
-            run_job(&jobs[ST_LODG]);
+            run_simulation(jobs);
             if (gpu) {
                 run_job(&jobs[ST_IPOINTS]);
             } else {
