@@ -28,7 +28,9 @@
      - two ways to feed the GPU: CPU ribbons (hf_fur_ribbons, the dynamic
        position + tangent streams only) or GPU expansion (hf_fur_points into
        a GL_RGBA32F texture buffer, expanded by examples/ribbon_expand.glsl),
-       both drawn with the same hf_ribbon_indices buffer;
+       both drawn with the same hf_ribbon_indices buffer, and both
+       written straight into the mapped GL buffer with streaming stores
+       (--copy: written into our memory, then glBufferSubData);
      - compact CPU ribbons (--compact): 16-byte vertices, position SNORM16
        around the camera target, texcoord UNORM16, tangent SNORM8, read by
        GL as normalized integers (docs/rendering.md "Compact vertices").
@@ -91,6 +93,8 @@ typedef struct glm_options {
     const char *out, *expand_shader;
     int kajiya, gpu_expand, color3d, colliders, still, a2c, draw_all;
     int compact;      /* CPU ribbons as glm_compact vertices */
+    int copy;         /* 1: strands written into our memory, then
+                         copied; 0: into the mapped GL buffers */
     float specular;   /* 1 = on; 0 = diffuse + ambient only */
     float distance;   /* camera distance to the head centre (m) */
     float lod;        /* < 0: from the distance */
@@ -187,7 +191,7 @@ typedef struct glm_app {
     float *groom_rgb;     /* per groom strand: --hair-color */
     double stretch_max, stretch_sum;
     long stretch_frames;
-    double ms_skin, ms_sim, ms_build, ms_draw; /* sums over frames */
+    double ms_skin, ms_sim, ms_build, ms_upload, ms_draw; /* sums */
     long ms_frames, build_frames;
     unsigned char *density_px, *length_px, *color_px, *index_px;
     hf_map density, length, color, index;
@@ -1518,74 +1522,124 @@ static int glm_simulate(glm_app *a, double t, float dt)
     return 1;
 }
 
+/* The GL buffer this frame's strands go to (bound), its size for every
+   strand, and the bytes of the drawn prefix. */
+static GLenum glm_stream_buffer(glm_app *a, size_t *all, size_t *bytes)
+{
+    const size_t n = (size_t)a->drawn * (size_t)a->P,
+                 S = (size_t)a->info.strand_count * (size_t)a->P;
+    const size_t vsize = a->o.gpu_expand ? 4u * sizeof(float)
+                         : a->o.compact  ? 2u * sizeof(glm_compact)
+                                         : 2u * sizeof(glm_dyn);
+    const GLenum target =
+        a->o.gpu_expand ? GL_TEXTURE_BUFFER : GL_ARRAY_BUFFER;
+    glBindBuffer(target, a->o.gpu_expand ? a->vbo_points
+                         : a->o.compact  ? a->vbo_dyn16
+                                         : a->vbo_dyn);
+    *all = vsize * S;
+    *bytes = vsize * n;
+    return target;
+}
+
 /* The drawn strands of this frame: interpolation, then CPU ribbons, or
    GPU points straight from the guides (hf_fur_interpolate_points), and
-   the upload. Only frames that are drawn need it. */
+   the upload. Only frames that are drawn need it. They are written
+   straight into the mapped GL buffer with streaming stores (the stores
+   for write-combined memory), and nothing is copied; with --copy, or
+   where the buffer cannot be mapped, into memory of our own, then
+   glBufferSubData. */
 static int glm_build(glm_app *a)
 {
     hf_ribbon_params v;
     hf_result r;
     const int n = a->drawn;
-    double t0 = glm_now_ms();
+    double t0 = glm_now_ms(), t1;
+    unsigned char *map = NULL;
+    size_t all, bytes;
+    GLenum target = 0;
     glm_ribbon_view(a, &v);
+    if (!a->o.copy) {
+        /* the whole buffer invalidated: the driver need not wait for the
+           GPU to finish reading last frame's data */
+        target = glm_stream_buffer(a, &all, &bytes);
+        if (bytes > 0)
+            map = (unsigned char *)glMapBufferRange(
+                target, 0, (GLsizeiptr)bytes,
+                GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT);
+        if (bytes > 0 && !map) {
+            fprintf(stderr, "gl_marschner: glMapBufferRange failed (GL "
+                    "error 0x%x): the strands are copied from now on, as "
+                    "with --copy\n", (unsigned)glGetError());
+            a->o.copy = 1;
+        }
+        v.nontemporal = map != NULL;
+    }
     if (a->o.gpu_expand) {
-        r = hf_fur_interpolate_points(a->fur, 0, n, &v, a->points4);
+        r = hf_fur_interpolate_points(a->fur, 0, n, &v,
+                                      map ? (float *)(void *)map
+                                          : a->points4);
     } else if ((r = hf_fur_interpolate(a->fur, 0, n)) == HF_OK &&
                a->o.compact) {
         /* position and tangent only: the texcoords from init stay in
-           cdyn. The origin follows the head, so the hair stays well inside
-           the +-GLM_COMPACT_SCALE box however far the head moves. */
+           cdyn (a mapped buffer is invalidated: they are written too).
+           The origin follows the head, so the hair stays well inside the
+           +-GLM_COMPACT_SCALE box however far the head moves. */
+        glm_compact *c = map ? (glm_compact *)(void *)map : a->cdyn;
         hf_ribbon_output out;
         memset(&out, 0, sizeof out);
         memcpy(a->corigin, a->target, sizeof a->corigin);
         a->cscale = a->ch.vertex_count > 0
                         ? 0.6f * a->ch_diag + 2.0f * a->hair_len
                         : GLM_COMPACT_SCALE;
-        out.position.data = a->cdyn[0].pos;
+        out.position.data = c[0].pos;
         out.position.stride = sizeof(glm_compact);
         out.position.format = HF_FORMAT_SNORM16;
-        out.tangent.data = a->cdyn[0].tan;
+        out.tangent.data = c[0].tan;
         out.tangent.stride = sizeof(glm_compact);
         out.tangent.format = HF_FORMAT_SNORM8;
+        if (map) {
+            out.texcoord.data = c[0].uv_t;
+            out.texcoord.stride = sizeof(glm_compact);
+            out.texcoord.format = HF_FORMAT_UNORM16;
+        }
         memcpy(out.position_origin, a->corigin, sizeof a->corigin);
         out.position_scale = a->cscale;
         r = hf_fur_ribbons(a->fur, 0, n, &v, &out);
     } else if (r == HF_OK) {
+        glm_dyn *d = map ? (glm_dyn *)(void *)map : a->dyn;
         hf_ribbon_output out;
         memset(&out, 0, sizeof out);
-        out.position.data = a->dyn[0].pos;
+        out.position.data = d[0].pos;
         out.position.stride = sizeof(glm_dyn);
-        out.tangent.data = a->dyn[0].tan;
+        out.tangent.data = d[0].tan;
         out.tangent.stride = sizeof(glm_dyn);
         r = hf_fur_ribbons(a->fur, 0, n, &v, &out);
+    }
+    t1 = glm_now_ms();
+    if (map && glUnmapBuffer(target) != GL_TRUE && r == HF_OK) {
+        /* the contents were lost (a display mode switch): this frame
+           may draw wrongly, the next one writes them again */
+        fprintf(stderr, "gl_marschner: glUnmapBuffer: the "
+                "buffer's contents were lost this frame\n");
     }
     if (r != HF_OK) {
         fprintf(stderr, "gl_marschner: strands: %s\n", hf_result_string(r));
         return 0;
     }
-    a->cpu_ms += glm_now_ms() - t0;
-    a->ms_build += glm_now_ms() - t0;
+    a->cpu_ms += t1 - t0;
+    a->ms_build += t1 - t0;
     ++a->build_frames;
-    /* orphan, then write the drawn prefix: the driver need not wait for
-       the GPU to finish reading last frame's data */
-    if (a->o.gpu_expand) {
-        size_t bytes = sizeof(float) * 4u * (size_t)n * (size_t)a->P;
-        glBindBuffer(GL_TEXTURE_BUFFER, a->vbo_points);
-        glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)(sizeof(float) * 4u *
-                     (size_t)a->info.strand_count * (size_t)a->P), NULL,
-                     GL_STREAM_DRAW);
-        glBufferSubData(GL_TEXTURE_BUFFER, 0, (GLsizeiptr)bytes, a->points4);
-    } else {
-        size_t vsize = a->o.compact ? sizeof(glm_compact) : sizeof(glm_dyn);
-        size_t bytes = vsize * 2u * (size_t)n * (size_t)a->P;
-        glBindBuffer(GL_ARRAY_BUFFER, a->o.compact ? a->vbo_dyn16 : a->vbo_dyn);
-        glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(vsize * 2u *
-                     (size_t)a->info.strand_count * (size_t)a->P), NULL,
-                     GL_STREAM_DRAW);
-        glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)bytes,
-                        a->o.compact ? (const void *)a->cdyn
-                                     : (const void *)a->dyn);
+    if (!map) {
+        /* orphan, then write the drawn prefix: the driver need not wait
+           for the GPU to finish reading last frame's data */
+        target = glm_stream_buffer(a, &all, &bytes);
+        glBufferData(target, (GLsizeiptr)all, NULL, GL_STREAM_DRAW);
+        glBufferSubData(target, 0, (GLsizeiptr)bytes,
+                        a->o.gpu_expand ? (const void *)a->points4
+                        : a->o.compact  ? (const void *)a->cdyn
+                                        : (const void *)a->dyn);
     }
+    a->ms_upload += glm_now_ms() - t1;
     glBindBuffer(GL_ARRAY_BUFFER, a->vbo_head);
     glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(sizeof(ch_vertex) *
                     (size_t)a->nv), a->skin);
@@ -1939,6 +1993,9 @@ static void glm_usage(FILE *fp)
 "  --no-specular      diffuse and ambient only\n"
 "  --gpu-expand       ribbons expanded on the GPU from hf_fur_interpolate_points\n"
 "  --compact          CPU ribbons in the 16-byte vertex\n"
+"  --copy             strands written into memory of the program's, then\n"
+"                     copied (glBufferSubData); default: straight into the\n"
+"                     mapped GL buffers, with streaming stores\n"
 "  --color3d          the 3D colour scheme (a ramp with dyed tips)\n"
 "  --colliders        draw the colliders\n"
 "  --no-hair          draw the body alone (hair still simulated): a control\n"
@@ -2047,6 +2104,7 @@ static int glm_parse(int argc, char **argv, glm_options *o)
         else if (!strcmp(s, "--a2c")) o->a2c = 1;
         else if (!strcmp(s, "--draw-all")) o->draw_all = 1;
         else if (!strcmp(s, "--compact")) o->compact = 1;
+        else if (!strcmp(s, "--copy")) o->copy = 1;
         else if (!strcmp(s, "--no-specular")) o->specular = 0.0f;
         else if (!strcmp(s, "--no-shadows")) o->no_shadows = 1;
         else if (!strcmp(s, "--no-hair")) o->no_hair = 1;
@@ -2267,7 +2325,14 @@ static void glm_report(const glm_app *a, int drawn_frames)
                "the root's depth; if a proxy is larger than the body there, "
                "shrink it)\n");
     /* the drawn strands of the last built frame (with --gpu-expand only
-       its points were written) */
+       its points were written, into the mapped GL buffer but with
+       --copy: they are written again here for the check) */
+    if (a->o.gpu_expand && !a->o.copy) {
+        hf_ribbon_params v;
+        glm_ribbon_view(a, &v);
+        if (hf_fur_interpolate_points(a->fur, 0, a->drawn, &v, a->points4))
+            bad_strand = 3L * a->drawn * a->P;
+    }
     for (q = 0; q < 3L * a->drawn * a->P; ++q)
         bad_strand += a->o.gpu_expand ? !isfinite(a->points4[q / 3 * 4 + q % 3])
                                       : !isfinite(info.strand_points[q]);
@@ -2287,11 +2352,13 @@ static void glm_report(const glm_app *a, int drawn_frames)
     }
     if (a->ms_frames > 0)
         printf("gl_marschner: ms per frame: skin and colliders %.2f, roots + "
-               "ropes + LOD guides %.2f, strands + %s %.2f (%ld drawn "
-               "frames), GL draw %.1f\n", a->ms_skin / a->ms_frames,
-               a->ms_sim / a->ms_frames,
+               "ropes + LOD guides %.2f, strands + %s %.2f%s and upload "
+               "%.2f (%ld drawn frames), GL draw %.1f\n",
+               a->ms_skin / a->ms_frames, a->ms_sim / a->ms_frames,
                a->o.gpu_expand ? "GPU points" : "ribbons",
                a->build_frames ? a->ms_build / a->build_frames : 0.0,
+               a->o.copy ? "" : " (into the mapped buffer)",
+               a->build_frames ? a->ms_upload / a->build_frames : 0.0,
                a->build_frames, drawn_frames ? a->ms_draw / drawn_frames : 0.0);
 }
 

@@ -14,18 +14,22 @@
  *   4. compact vertices: the --compact render (16-byte vertices, position
  *      SNORM16 around the head centre) matches the float one over hair
  *      pixels (mean difference and fraction of pixels off by more than 8).
+ *   5. mapped buffers: the strands written straight into the mapped GL
+ *      buffers (the default) and copied (--copy) draw the same picture,
+ *      byte for byte, for CPU ribbons, compact ones and GPU points.
  * Each check also runs on negative controls (a blank image, the
  * diffuse-only render compared with itself, the head-only render as if it
- * were hair, the compact render drawn with a scale 1 % off) and must reject
- * them, so the checks are shown to be able to fail every time the test
+ * were hair, the compact render drawn with a scale 1 % off, the compact
+ * render against the float one byte for byte) and must reject them, so the checks are shown to be able to fail every time the test
  * runs.
  *
- * Usage: gl_fur_check [--out-dir DIR] [--sabotage blank|nospec|scale]
+ * Usage: gl_fur_check [--out-dir DIR] [--sabotage blank|nospec|scale|copy]
  *   --out-dir DIR  also write DIR/fur_check_{spec,diffuse,head,gpu,
  *                  compact}.png
  *   --sabotage     feed a blank image / the diffuse-only render in place of
  *                  the Marschner one, or the wrong-scale compact render in
- *                  place of the compact one: the test must then FAIL
+ *                  place of the compact one, or the compact render in place
+ *                  of the copied float one: the test must then FAIL
  *                  (exit 1)
  * Exit 0 all checks passed, 1 a check failed, 2 "SKIP: reason" (no headless
  * GL). Build: see the Makefile (needs examples/ribbon_expand.glsl only for the
@@ -195,7 +199,7 @@ int main(int argc, char **argv)
     glm_options o;
     static glm_app app;
     glm_app *a = &app;
-    unsigned char *spec, *diff, *head, *gpu, *blank, *cmp, *cmp_bad;
+    unsigned char *spec, *diff, *head, *gpu, *blank, *cmp, *cmp_bad, *cpy;
     region g;
     double v1, v2, t0;
     int f, i;
@@ -205,7 +209,7 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--sabotage") && i + 1 < argc) sabotage = argv[++i];
         else {
             fprintf(stderr, "usage: gl_fur_check [--out-dir DIR] "
-                            "[--sabotage blank|nospec|scale]\n");
+                            "[--sabotage blank|nospec|scale|copy]\n");
             return 2;
         }
     }
@@ -231,7 +235,7 @@ int main(int argc, char **argv)
         return 1;
     }
     glc_set_quiet(0);
-    spec = (unsigned char *)malloc((size_t)W * H * 4 * 7);
+    spec = (unsigned char *)malloc((size_t)W * H * 4 * 8);
     if (!spec) return 1;
     diff = spec + (size_t)W * H * 4;
     head = diff + (size_t)W * H * 4;
@@ -239,6 +243,7 @@ int main(int argc, char **argv)
     blank = gpu + (size_t)W * H * 4;
     cmp = blank + (size_t)W * H * 4;
     cmp_bad = cmp + (size_t)W * H * 4;
+    cpy = cmp_bad + (size_t)W * H * 4;
 
     /* 45 frames of physics, the last one with ribbons and uploads */
     for (f = 1; f <= 45; ++f)
@@ -355,6 +360,46 @@ int main(int argc, char **argv)
     i = !check_compact(cmp_bad, gpu, head, &v1, &v2);
     expect(i, "scale 1 % off: rejected (mean |compact - float|)", v1);
     expect(i, "scale 1 % off: rejected (fraction off by more than 8)", v2);
+
+    /* the strands copied (--copy) draw the same picture, byte for byte,
+       as written straight into the mapped buffers (the same bytes, with
+       streaming stores); without self-shadowing, as above. Control: the
+       compact render against the float one is told apart. */
+    printf("mapped buffers (the default) against copies (--copy):\n");
+    a->o.no_shadows = 1;
+    for (f = 0; f < 3; ++f) {
+        static const char *what[3] = {
+            "CPU ribbons: the same bytes mapped and copied",
+            "compact CPU ribbons: the same bytes mapped and copied",
+            "GPU points: the same bytes mapped and copied"};
+        if (f == 2 && !a->prog_gpu) continue;
+        a->o.compact = f == 1;
+        a->o.gpu_expand = f == 2;
+        a->o.copy = 0;
+        if (!glm_build(a)) return 1;
+        glm_draw(a);
+        glc_read_rgba(cmp_bad);
+        a->o.copy = 1;
+        if (!glm_build(a)) return 1;
+        glm_draw(a);
+        glc_read_rgba(cpy);
+        if (f == 0 && sabotage && !strcmp(sabotage, "copy")) {
+            printf("  SABOTAGE: the compact render replaces the copied "
+                   "float one\n");
+            memcpy(cpy, cmp, (size_t)W * H * 4);
+        }
+        i = memcmp(cmp_bad, cpy, (size_t)W * H * 4) == 0;
+        expect(i, what[f], i);
+        if (f == 0) {
+            i = memcmp(gpu, cmp, (size_t)W * H * 4) != 0;
+            expect(i, "control: the compact render differs from the float "
+                   "one", i);
+        }
+    }
+    a->o.compact = 0;
+    a->o.gpu_expand = 0;
+    a->o.copy = 0;
+    a->o.no_shadows = 0;
     glm_shutdown(a);
     glc_close();
     free(spec);
