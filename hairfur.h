@@ -100,9 +100,10 @@
        HF_SIMD_MAX          an hf_simd_level: the highest level used
                             (e.g. HF_SIMD_SSE2 keeps the wide kernels out
                             of use).
-       HF_STREAM_MIN_BYTES  a fur's strand points larger than this are
-                            written with streaming stores by default
-                            (hf_fur_desc.nontemporal 0); default 4 MiB.
+       HF_STREAM_MIN_BYTES  outputs larger than this (a call's ribbons,
+                            points or strand points; a fur's strand
+                            points) are written with streaming stores by
+                            default (nontemporal 0); default 4 MiB.
        HF_ASSERT(x)         the library's own invariants (default: assert).
                             Never used on caller input: that gets a result.
        HF_SQRTF, HF_FLOORF, HF_SQRT, HF_EXP, HF_POW, HF_SIN, HF_COS,
@@ -251,7 +252,8 @@
                            ribbons in every format, ropes), the same
                            bytes at every level, FMA contraction off in
                            the implementation whatever the flags;
-                           streaming stores as an option (nontemporal).
+                           streaming stores (nontemporal) for outputs
+                           past HF_STREAM_MIN_BYTES by default.
        0.1.0 (2026-11-22)  first release: maps and meshes, density
                            tessellation, guides, placement, Verlet ropes,
                            interpolation, LOD, ribbons, Marschner LUTs,
@@ -1262,13 +1264,14 @@ typedef struct hf_interp_params {
     int out_first;
     int simd; /* hf_simd_level (0..4); 0 = the best the CPU runs (same
                  bytes) */
-    /* 1: streaming (non-temporal) stores, which skip the cache: for
-       outputs larger than it, which ordinary stores would read in first
-       and push the guides out for (measured, into 64-byte aligned
+    /* The stores: 0 = by size, streaming (non-temporal) stores, which
+       skip the cache, where the call writes more than
+       HF_STREAM_MIN_BYTES (4 MiB): ordinary stores would read each line
+       in first and push the guides out (measured, into 64-byte aligned
        buffers: 1.7x faster for 36,700 strands of 16 points, 2x for
-       100,000; 3 % slower for 3,670); 0: ordinary stores.
-       Same bytes either way. Another value, or a simd outside 0..4, is
-       HF_ERROR_BAD_PARAMETER. */
+       100,000; 3 % slower for 3,670); 1 = streaming; 2 = ordinary
+       stores. Same bytes either way. Another value, or a simd outside
+       0..4, is HF_ERROR_BAD_PARAMETER. */
     int nontemporal;
 } hf_interp_params;
 
@@ -1406,15 +1409,18 @@ typedef struct hf_ribbon_params {
        strand. Set it to `first` to write a range into a buffer that holds
        exactly that range; first < out_first is HF_ERROR_BAD_RANGE. */
     int out_first;
-    /* 1: write with streaming (non-temporal) stores, which skip the
-       cache: the right stores for write-combined memory (a mapped GPU
-       buffer, where vertices usually go) and for outputs far larger than
-       the cache. hf_ribbon_points always can; hf_ribbons when its streams
-       are one interleaved buffer whose vertex they fill exactly (the
-       usual layout: position, tangent, texcoord) and a strand's vertices
-       take at most 8 KiB, else it uses ordinary stores. 0: ordinary
-       stores. Same bytes either way. Another value, or a simd outside
-       0..4, is HF_ERROR_BAD_PARAMETER. */
+    /* The stores: streaming (non-temporal) stores skip the cache, the
+       right stores for write-combined memory (a mapped GPU buffer, where
+       vertices usually go) and for outputs far larger than the cache.
+       0 = by size: streaming where the call writes more than
+       HF_STREAM_MIN_BYTES (4 MiB), ordinary stores below; 1 = streaming
+       (set it for a mapped buffer whatever the size); 2 = ordinary
+       stores. hf_ribbon_points can always stream; hf_ribbons when its
+       streams are one interleaved buffer whose vertex they fill exactly
+       (the usual layout: position, tangent, texcoord) and a strand's
+       vertices take at most 8 KiB, else it uses ordinary stores. Same
+       bytes either way. Another value, or a simd outside 0..4, is
+       HF_ERROR_BAD_PARAMETER. */
     int nontemporal;
     /* hf_simd_level of hf_ribbons and hf_ribbon_points; 0 = the best
        the CPU runs (same bytes). Ribbons: SSE2 or NEON; AVX2 (the
@@ -2332,19 +2338,27 @@ HF__PRIVATE int hf__cpu_simd(void)
 #endif
 }
 
-/* An hf_simd_level and a 0 or 1 for streaming stores: every kernel
-   choice (the simd and nontemporal fields, hf_fur_set_kernels) is
-   checked here, and anything else is HF_ERROR_BAD_PARAMETER. */
+/* An hf_simd_level and a choice of stores (0 by size, 1 streaming, 2
+   ordinary): every kernel choice (the simd and nontemporal fields,
+   hf_fur_set_kernels) is checked here, and anything else is
+   HF_ERROR_BAD_PARAMETER. */
 HF__PRIVATE int hf__kernels_ok(int simd, int nontemporal)
 {
     return simd >= HF_SIMD_AUTO && simd <= HF_SIMD_AVX512 &&
-           (nontemporal == 0 || nontemporal == 1);
+           nontemporal >= 0 && nontemporal <= 2;
 }
 
-/* A fur's choice (hf_fur_desc.nontemporal) has a third value, 2: plain. */
-HF__PRIVATE int hf__fur_kernels_ok(int simd, int nontemporal)
+/* Streaming stores for an output of `bytes`: asked for (1), or by size
+   (0): past HF_STREAM_MIN_BYTES the cache does not keep an output for
+   whatever reads it next (the GPU, the next stage), and ordinary stores
+   would read each line in first. Measured (make bench, one core of a Zen
+   5 and of a Xeon): 36-byte ribbons 1.04-1.10x and 1.75x faster than
+   with ordinary stores, GPU points 1.4-1.5x and 1.13-1.17x, a fur's
+   strand points 1.7x for 7 MB (Zen 4), 3 % slower for 0.7 MB. */
+HF__PRIVATE int hf__streaming(int nontemporal, size_t bytes)
 {
-    return hf__kernels_ok(simd, 0) && nontemporal >= 0 && nontemporal <= 2;
+    return nontemporal == 1 ||
+           (nontemporal == 0 && bytes > HF_STREAM_MIN_BYTES);
 }
 
 HFDEF int hf_simd_resolve(int requested)
@@ -8196,7 +8210,9 @@ HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
     }
     hf__interpolate_run(guide_points, bindings, first, count, P, clump,
                         out_points, params->out_first,
-                        hf_simd_resolve(params->simd), params->nontemporal);
+                        hf_simd_resolve(params->simd),
+                        hf__streaming(params->nontemporal,
+                                      (size_t)count * (size_t)P * 12u));
     return HF_OK;
 }
 
@@ -10808,8 +10824,10 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
     level = hf_simd_resolve(params->simd);
     hf__rconst_init(&K, params);
 
-    stage = params->nontemporal ? hf__ribbon_stage(&ro, P, &block, &dst0)
-                                : 0;
+    stage = hf__streaming(params->nontemporal, (size_t)count * 2u *
+                                                   (size_t)P * ro.tile)
+                ? hf__ribbon_stage(&ro, P, &block, &dst0)
+                : 0;
     /* the inputs in locals, read once: the kernels are calls whose
        stores may alias anything reached through a pointer */
     sv = *strands;
@@ -11057,11 +11075,13 @@ hf__points_run_avx2(const hf__points_kit *k, const hf_ribbon_strands *strands,
 #endif
 
 HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
-                                     const hf_ribbon_params *params)
+                                     const hf_ribbon_params *params,
+                                     int count)
 {
     k->P = params->points_per_strand;
     k->level = hf_simd_resolve(params->simd);
-    k->nt = params->nontemporal != 0;
+    k->nt = hf__streaming(params->nontemporal,
+                          (size_t)count * (size_t)k->P * 16u);
     k->wcap = hf__half_widths(params, k->hw);
     k->wide = 0;
 #if HF__AVX2
@@ -11296,7 +11316,7 @@ HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
     hf_result r = hf__ribbon_check(strands, first, count, view, &prm);
     if (r != HF_OK) return r;
     if (!out4) return HF_ERROR_NULL_POINTER;
-    hf__points_kit_init(&kit, &prm);
+    hf__points_kit_init(&kit, &prm, count);
     hf__points_run(&kit, strands, strands->points, 0, first, count,
                    prm.out_first, out4);
 #if HF__SSE
@@ -12244,7 +12264,7 @@ HF__PRIVATE hf_result hf__fur_desc_check(const hf_fur_desc *d, hf_diag *diag)
                         "clump or lod_simulate_threshold outside [0, 1], "
                         "or max_length or tess_factor negative or "
                         "non-finite");
-    if (!hf__fur_kernels_ok(d->simd, d->nontemporal))
+    if (!hf__kernels_ok(d->simd, d->nontemporal))
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "simd", -1,
                         "simd %d is not an hf_simd_level (0..4), or "
                         "nontemporal %d is not 0, 1 or 2",
@@ -13787,16 +13807,12 @@ HF__PRIVATE void hf__fur_strands(const hf_fur *f, int first, int count,
     if (f->offsets) hf__groom_offsets(f, first, count, pts, pts_first);
 }
 
-/* Streaming stores for the fur's strand points: asked for (1), or by size
-   (0): past HF_STREAM_MIN_BYTES the cache does not keep them for the pass
-   that reads them, and ordinary stores would read each line in first
-   (measured: 36,700 strands of 16 points, 7 MB, interpolated 1.7x faster
-   and their ribbons no slower; 3,670, 0.7 MB, 3 % slower). */
+/* Streaming stores for the fur's strand points (hf__streaming), by the
+   size of all of them, so that every range of a split chooses alike. */
 HF__PRIVATE int hf__fur_stream(const hf_fur *f)
 {
-    const size_t bytes = (size_t)f->strand_count * (size_t)f->P * 12u;
-    return f->nontemporal == 1 ||
-           (f->nontemporal == 0 && bytes > HF_STREAM_MIN_BYTES);
+    return hf__streaming(f->nontemporal,
+                         (size_t)f->strand_count * (size_t)f->P * 12u);
 }
 
 HFDEF hf_result hf_fur_interpolate(hf_fur *f, int first, int count)
@@ -13873,7 +13889,7 @@ HFDEF hf_result hf_fur_interpolate_points(const hf_fur *f, int first,
     if (r == HF_OK) r = hf__ribbon_check(&st, first, count, &p, &prm);
     if (r != HF_OK) return r;
     if (!out4) return HF_ERROR_NULL_POINTER;
-    hf__points_kit_init(&kit, &prm);
+    hf__points_kit_init(&kit, &prm, count);
 #if HF__AVX2
     lv = hf_simd_resolve(f->simd);
     lv = lv < kit.level ? lv : kit.level;
@@ -13979,7 +13995,7 @@ HFDEF hf_result hf_fur_set_mode(hf_fur *f, int first, int count, int mode)
 HFDEF hf_result hf_fur_set_kernels(hf_fur *f, int simd, int nontemporal)
 {
     if (!f) return HF_ERROR_NULL_POINTER;
-    if (!hf__fur_kernels_ok(simd, nontemporal))
+    if (!hf__kernels_ok(simd, nontemporal))
         return HF_ERROR_BAD_PARAMETER;
     f->simd = simd;
     f->nontemporal = nontemporal;

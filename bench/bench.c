@@ -502,8 +502,8 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
 }
 
 /* Whole frames at one level, one thread, as bench_scene times them: the
-   frame with CPU ribbons (roots, ropes, LOD guides, strands streamed by
-   size, ribbons) in tf, the GPU path's (roots, ropes, LOD guides, then
+   frame with CPU ribbons (roots, ropes, LOD guides, strands and ribbons
+   streamed by size) in tf, the GPU path's (roots, ropes, LOD guides, then
    strands and points in one pass) in tp: what a level buys a frame. */
 static void level_frames(scene *s, int level, int frames, double *tf,
                          double *tp)
@@ -532,10 +532,11 @@ static void level_frames(scene *s, int level, int frames, double *tf,
 
 /* The stages with SIMD kernels, per level (hf_simd_level), one thread:
    what each level buys on this CPU, and what streaming stores buy
-   (strands: ordinary stores, strands_nt: streaming, hf_fur_set_kernels'
-   nontemporal 2 and 1; points_nt and ribbons_nt:
-   hf_ribbon_params.nontemporal, meant for mapped GPU buffers). Levels the
-   CPU lacks are skipped (they would run as the best it has). */
+   (strands, points and ribbons: ordinary stores; strands_nt, points_nt
+   and ribbons_nt: streaming; hf_fur_set_kernels' and
+   hf_ribbon_params.nontemporal 2 and 1, where the stage rows take the
+   default, 0, which streams past HF_STREAM_MIN_BYTES). Levels the CPU
+   lacks are skipped (they would run as the best it has). */
 static const char *level_name[] = {"auto", "scalar", "sse2", "avx2",
                                    "avx512"};
 enum {
@@ -587,10 +588,10 @@ static void bench_levels(scene *s, int frames)
             for (k = 0; k < LV_N; ++k) {
                 const int nt = nt_of[k];
                 double t0;
-                /* the fur's 2: ordinary stores (its 0 chooses by size) */
+                /* 2: ordinary stores (0 chooses by size) */
                 check("kernels",
                       hf_fur_set_kernels(s->fur, level, nt ? 1 : 2));
-                g_view.nontemporal = nt;
+                g_view.nontemporal = nt ? 1 : 2;
                 t0 = now_ms();
                 run_job(&jobs[job_of[k]]);
                 if (f >= 0) t[k][f] = now_ms() - t0;

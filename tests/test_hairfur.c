@@ -5606,7 +5606,8 @@ static void test_bad_interpolate_and_lod(void)
     ip.simd = HF_SIMD_AVX512 + 1; TB_INTERP(g, 2, 0, 2, HF_ERROR_BAD_PARAMETER);
     ip.simd = -1; TB_INTERP(g, 2, 0, 2, HF_ERROR_BAD_PARAMETER);
     ip.simd = 0;
-    ip.nontemporal = 2; TB_INTERP(g, 2, 0, 2, HF_ERROR_BAD_PARAMETER);
+    ip.nontemporal = 3; TB_INTERP(g, 2, 0, 2, HF_ERROR_BAD_PARAMETER);
+    ip.nontemporal = -1; TB_INTERP(g, 2, 0, 2, HF_ERROR_BAD_PARAMETER);
     ip.nontemporal = 0;
     /* NaN guide points: never NaN in the output */
     g[4] = TB_NAN;
@@ -5807,6 +5808,95 @@ static void test_ribbons_ranges_byte_identical(void)
     free(pts); free(a); free(b); free(pa); free(pb);
 }
 
+/* nontemporal 0 (by size): a call that writes more than
+   HF_STREAM_MIN_BYTES streams, a smaller one does not; either way the
+   bytes are those of streaming (1) and of ordinary stores (2), for
+   ribbons (the 36-byte vertex, which streams through the stage), points
+   and interpolation, whole and split in two calls below the threshold.
+   Bytes around the output stay. */
+static void test_streaming_by_size(void)
+{
+    enum { Q = 16, G = 40 };
+    const size_t min = HF_STREAM_MIN_BYTES;
+    /* strands whose output just passes the threshold, per kind */
+    const int nr = (int)(min / (2u * Q * 36u)) + 8,
+              np = (int)(min / (Q * 16u)) + 8, ni = (int)(min / (Q * 12u)) + 8;
+    const size_t big = min + 64u * 1024u; /* each output, and a margin */
+    float *pts = (float *)malloc(sizeof(float) * 3u * Q * (size_t)np);
+    float *guides = (float *)malloc(sizeof(float) * 3u * Q * G);
+    hf_strand_binding *b =
+        (hf_strand_binding *)malloc(sizeof(hf_strand_binding) * (size_t)ni);
+    unsigned char *buf[3], *at[3];
+    hf_ribbon_strands st;
+    hf_ribbon_params rp = t_rparams();
+    hf_interp_params ip;
+    hf_rng r;
+    int i, k, kind, split;
+    CHECK(nr * 2 * Q * 36 > (int)min && np * Q * 16 > (int)min &&
+          ni * Q * 12 > (int)min);
+    for (k = 0; k < 3; ++k) buf[k] = (unsigned char *)malloc(big + 128);
+    if (!pts || !guides || !b || !buf[0] || !buf[1] || !buf[2]) {
+        CHECK(0);
+        goto done;
+    }
+    hf_rng_seed(&r, 23u, 0u);
+    for (i = 0; i < 3 * Q * np; ++i) pts[i] = hf_rng_float(&r) - 0.5f;
+    for (i = 0; i < 3 * Q * G; ++i) guides[i] = hf_rng_float(&r) - 0.5f;
+    for (i = 0; i < ni; ++i) {
+        const float a = hf_rng_float(&r), c = hf_rng_float(&r) * (1 - a);
+        for (k = 0; k < 3; ++k) b[i].guide[k] = hf_rng_below(&r, G);
+        b[i].weight[0] = a;
+        b[i].weight[1] = c;
+        b[i].weight[2] = 1 - a - c;
+        b[i].length_scale = 0.9f;
+    }
+    memset(&st, 0, sizeof st);
+    st.points = pts;
+    rp.points_per_strand = Q;
+    memset(&ip, 0, sizeof ip);
+    ip.points_per_strand = Q;
+    for (kind = 0; kind < 3; ++kind)
+        for (split = 1; split <= 2; ++split) {
+            const int n = kind == 0 ? nr : kind == 1 ? np : ni;
+            for (k = 0; k < 3; ++k) { /* by size, streaming, ordinary */
+                /* 64-byte aligned plus 4: the stage's unaligned ends */
+                unsigned char *o = at[k] =
+                    buf[k] + ((64u - ((uintptr_t)buf[k] & 63u)) & 63u) + 4;
+                const int h = split == 1 ? n : n / 2;
+                memset(buf[k], 0x5a, big + 128);
+                rp.nontemporal = ip.nontemporal = k;
+                if (kind == 0) {
+                    hf_ribbon_output out = t_packed36(o);
+                    CHECK_EQ_INT(hf_ribbons(&st, 0, h, &rp, &out), HF_OK);
+                    if (h < n)
+                        CHECK_EQ_INT(hf_ribbons(&st, h, n - h, &rp, &out), HF_OK);
+                } else if (kind == 1) {
+                    CHECK_EQ_INT(hf_ribbon_points(&st, 0, h, &rp, (float *)(void *)o),
+                                 HF_OK);
+                    if (h < n)
+                        CHECK_EQ_INT(hf_ribbon_points(&st, h, n - h, &rp,
+                                                      (float *)(void *)o), HF_OK);
+                } else {
+                    CHECK_EQ_INT(hf_interpolate(guides, G, b, 0, h, &ip,
+                                                (float *)(void *)o), HF_OK);
+                    if (h < n)
+                        CHECK_EQ_INT(hf_interpolate(guides, G, b, h, n - h, &ip,
+                                                    (float *)(void *)o), HF_OK);
+                }
+            }
+            /* the output (at most 9 KiB past the threshold) and 4 bytes
+               before it */
+            CHECK(memcmp(at[0] - 4, at[1] - 4, min + 16384u) == 0);
+            CHECK(memcmp(at[0] - 4, at[2] - 4, min + 16384u) == 0);
+            CHECK(at[0][-1] == 0x5a && at[0][min + 16380u] == 0x5a);
+        }
+done:
+    for (k = 0; k < 3; ++k) free(buf[k]);
+    free(pts);
+    free(guides);
+    free(b);
+}
+
 /* Streaming stores (hf_ribbon_params.nontemporal) give the same bytes:
    through the stage for an interleaved buffer the vertex fills exactly,
    at byte offsets 0 to 32 of a buffer aligned to 64 (the copy's
@@ -5851,7 +5941,7 @@ static void test_ribbons_nontemporal(void)
                         o.position.stride = o.tangent.stride =
                             o.texcoord.stride = o.color.stride =
                                 o.color3d.stride = V;
-                        p.nontemporal = k;
+                        p.nontemporal = k ? 1 : 2; /* streaming, ordinary */
                         p.simd = level;
                         if (split == 1) {
                             CHECK_EQ_INT(hf_ribbons(&st, 0, N, &p, &o), HF_OK);
@@ -6524,7 +6614,7 @@ static void test_points_every_level(void)
                              : fabs(q[3] / wid[s] - ref[j * 4 + 3] / wid[0]) < 1e-7);
             }
         for (level = 0; level <= HF_SIMD_AVX512; ++level)
-            for (nt = 0; nt < 2; ++nt)
+            for (nt = 0; nt < 3; ++nt) /* by size, streaming, ordinary */
                 for (shift = 0; shift < 2; ++shift) {
                     float *o = buf + 4 * shift + (((uintptr_t)buf & 31u) ? 4 : 0) % 8;
                     memset(buf, 0xab, sizeof buf);
@@ -6581,7 +6671,7 @@ static void test_widths_at_the_bound(void)
         o16.position.format = HF_FORMAT_SNORM16;
         o16.position_scale = 1e18f;
         for (level = HF_SIMD_SCALAR; level <= HF_SIMD_AVX512; ++level)
-            for (nt = 0; nt < 2; ++nt) {
+            for (nt = 0; nt < 3; ++nt) { /* by size, streaming, ordinary */
                 rp.simd = level;
                 rp.nontemporal = nt;
                 CHECK_EQ_INT(hf_ribbons(&st, 0, N, &rp, &o), HF_OK);
@@ -7044,7 +7134,8 @@ static void test_bad_ribbons(void)
     /* a kernel choice that is none: refused as everywhere */
     b = rp; b.simd = HF_SIMD_AVX512 + 1; TB_RIB(b, 0, 2, HF_ERROR_BAD_PARAMETER);
     b = rp; b.simd = -1; TB_RIB(b, 0, 2, HF_ERROR_BAD_PARAMETER);
-    b = rp; b.nontemporal = 2; TB_RIB(b, 0, 2, HF_ERROR_BAD_PARAMETER);
+    b = rp; b.nontemporal = 3; TB_RIB(b, 0, 2, HF_ERROR_BAD_PARAMETER);
+    b = rp; b.nontemporal = -1; TB_RIB(b, 0, 2, HF_ERROR_BAD_PARAMETER);
     st.points = NULL; TB_RIB(rp, 0, 2, HF_ERROR_NULL_POINTER); st.points = pts;
     CHECK_EQ_INT(hf_ribbons(NULL, 0, 2, &rp, &o), HF_ERROR_NULL_POINTER);
     CHECK_EQ_INT(hf_ribbons(&st, 0, 2, NULL, &o), HF_ERROR_NULL_POINTER);
@@ -9296,7 +9387,7 @@ static void test_interp_points_kernels(void)
                         int collapsed = 0;
                         in.nontemporal = nt;
                         hf__ribbon_params_resolve(&in, &prm);
-                        hf__points_kit_init(&kit, &prm);
+                        hf__points_kit_init(&kit, &prm, S);
                         hf__irun_init(&run, guides, b, P, clump ? 0.4f : 0.0f,
                                       ctab, mid, 0, 0);
                         hf__interpolate_run(guides, b, 0, S, P,
@@ -10387,6 +10478,7 @@ int main(void)
     RUN(test_ribbons_nonfinite_strand_collapses);
     RUN(test_ribbons_ranges_byte_identical);
     RUN(test_ribbons_nontemporal);
+    RUN(test_streaming_by_size);
     RUN(test_ribbons_separate_streams_and_skips);
     RUN(test_ribbons_errors_write_nothing);
     RUN(test_ribbons_leading_tangent);

@@ -246,7 +246,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                              n4 = (size_t)count * (size_t)info.points_per_strand * 4u;
                 FZ_REQUIRE(fz_all_finite(pbuf + at, n4));
                 /* the one-pass path: the same bytes, at any kernels */
-                view.nontemporal = fz_chance(&r, 128);
+                view.nontemporal = fz_int(&r, 0, 2);
                 hf_fur_set_kernels(fur, fz_int(&r, 0, 4), fz_int(&r, 0, 2));
                 FZ_REQUIRE(hf_fur_interpolate_points(fur, first, count, &view,
                                                      pbuf2) == HF_OK);

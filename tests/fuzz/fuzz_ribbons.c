@@ -277,7 +277,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 sl[k]->stride = (int)stride;
             }
         ol.position_scale = fz_chance(&r, 128) ? 0.0f : fz_float_in(&r, 0.05f, 4.0f);
-        lp.nontemporal = fz_int(&r, 0, 1);
+        lp.nontemporal = fz_int(&r, 0, 2);
         lp.simd = HF_SIMD_AUTO;
         fz_range_untotalled(&r, S, &first, &count);
         ra = hf_ribbons(&st, first, count, &lp, &ol);
