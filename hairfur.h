@@ -100,10 +100,11 @@
        HF_SIMD_MAX          an hf_simd_level: the highest level used
                             (e.g. HF_SIMD_SSE2 keeps the wide kernels out
                             of use).
-       HF_STREAM_MIN_BYTES  outputs larger than this (a call's ribbons,
-                            points or strand points; a fur's strand
-                            points) are written with streaming stores by
-                            default (nontemporal 0); default 4 MiB.
+       HF_STREAM_MIN_BYTES  strand points larger than this (a call's, or
+                            a fur's) are written with streaming stores
+                            by default (nontemporal 0); default 4 MiB.
+       HF_STREAM_MIN_VERTEX_BYTES  the same for a call's ribbon vertices
+                            or GPU points; default 8 MiB.
        HF_ASSERT(x)         the library's own invariants (default: assert).
                             Never used on caller input: that gets a result.
        HF_SQRTF, HF_FLOORF, HF_SQRT, HF_EXP, HF_POW, HF_SIN, HF_COS,
@@ -253,7 +254,9 @@
                            bytes at every level, FMA contraction off in
                            the implementation whatever the flags;
                            streaming stores (nontemporal) for outputs
-                           past HF_STREAM_MIN_BYTES by default.
+                           past HF_STREAM_MIN_BYTES (strand points) and
+                           HF_STREAM_MIN_VERTEX_BYTES (vertices, points)
+                           by default.
        0.1.0 (2026-11-22)  first release: maps and meshes, density
                            tessellation, guides, placement, Verlet ropes,
                            interpolation, LOD, ribbons, Marschner LUTs,
@@ -1413,7 +1416,8 @@ typedef struct hf_ribbon_params {
        right stores for write-combined memory (a mapped GPU buffer, where
        vertices usually go) and for outputs far larger than the cache.
        0 = by size: streaming where the call writes more than
-       HF_STREAM_MIN_BYTES (4 MiB), ordinary stores below; 1 = streaming
+       HF_STREAM_MIN_VERTEX_BYTES (8 MiB), ordinary stores below, which
+       leave a smaller output in the cache; 1 = streaming
        (set it for a mapped buffer whatever the size); 2 = ordinary
        stores. hf_ribbon_points can always stream; hf_ribbons when its
        streams are one interleaved buffer whose vertex they fill exactly
@@ -2119,6 +2123,9 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 #ifndef HF_STREAM_MIN_BYTES
 #define HF_STREAM_MIN_BYTES ((size_t)4 << 20)
 #endif
+#ifndef HF_STREAM_MIN_VERTEX_BYTES
+#define HF_STREAM_MIN_VERTEX_BYTES ((size_t)8 << 20)
+#endif
 
 /* Every kernel gives its scalar reference's bytes only where no compiler
    fuses a * b + c into one FMA (one rounding instead of two), and a range
@@ -2349,16 +2356,18 @@ HF__PRIVATE int hf__kernels_ok(int simd, int nontemporal)
 }
 
 /* Streaming stores for an output of `bytes`: asked for (1), or by size
-   (0): past HF_STREAM_MIN_BYTES the cache does not keep an output for
-   whatever reads it next (the GPU, the next stage), and ordinary stores
-   would read each line in first. Measured (make bench, one core of a Zen
-   5 and of a Xeon): 36-byte ribbons 1.04-1.10x and 1.75x faster than
-   with ordinary stores, GPU points 1.4-1.5x and 1.13-1.17x, a fur's
-   strand points 1.7x for 7 MB (Zen 4), 3 % slower for 0.7 MB. */
-HF__PRIVATE int hf__streaming(int nontemporal, size_t bytes)
+   (0), past `min`: there the cache does not keep an output for whatever
+   reads it next (the GPU, the next stage), and ordinary stores would read
+   each line in first; below it they leave the lines in the cache to be
+   written back later. Measured (make bench, one core of a Zen 5 and of a
+   Xeon, streaming against ordinary stores): strand points 1.7x faster
+   for 7 MB (Zen 4), 3 % slower for 0.7 MB (HF_STREAM_MIN_BYTES); 36-byte
+   ribbons 1.04-1.10x and 1.8x faster for 42 and 115 MB, 1.4-1.5x slower
+   for 4.2 MB, GPU points 1.4x and 1.15x faster for 9.4 MB
+   (HF_STREAM_MIN_VERTEX_BYTES, between those). */
+HF__PRIVATE int hf__streaming(int nontemporal, size_t bytes, size_t min)
 {
-    return nontemporal == 1 ||
-           (nontemporal == 0 && bytes > HF_STREAM_MIN_BYTES);
+    return nontemporal == 1 || (nontemporal == 0 && bytes > min);
 }
 
 HFDEF int hf_simd_resolve(int requested)
@@ -8212,7 +8221,8 @@ HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
                         out_points, params->out_first,
                         hf_simd_resolve(params->simd),
                         hf__streaming(params->nontemporal,
-                                      (size_t)count * (size_t)P * 12u));
+                                      (size_t)count * (size_t)P * 12u,
+                                      HF_STREAM_MIN_BYTES));
     return HF_OK;
 }
 
@@ -10824,8 +10834,9 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
     level = hf_simd_resolve(params->simd);
     hf__rconst_init(&K, params);
 
-    stage = hf__streaming(params->nontemporal, (size_t)count * 2u *
-                                                   (size_t)P * ro.tile)
+    stage = hf__streaming(params->nontemporal,
+                          (size_t)count * 2u * (size_t)P * ro.tile,
+                          HF_STREAM_MIN_VERTEX_BYTES)
                 ? hf__ribbon_stage(&ro, P, &block, &dst0)
                 : 0;
     /* the inputs in locals, read once: the kernels are calls whose
@@ -11081,7 +11092,8 @@ HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
     k->P = params->points_per_strand;
     k->level = hf_simd_resolve(params->simd);
     k->nt = hf__streaming(params->nontemporal,
-                          (size_t)count * (size_t)k->P * 16u);
+                          (size_t)count * (size_t)k->P * 16u,
+                          HF_STREAM_MIN_VERTEX_BYTES);
     k->wcap = hf__half_widths(params, k->hw);
     k->wide = 0;
 #if HF__AVX2
@@ -13812,7 +13824,8 @@ HF__PRIVATE void hf__fur_strands(const hf_fur *f, int first, int count,
 HF__PRIVATE int hf__fur_stream(const hf_fur *f)
 {
     return hf__streaming(f->nontemporal,
-                         (size_t)f->strand_count * (size_t)f->P * 12u);
+                         (size_t)f->strand_count * (size_t)f->P * 12u,
+                         HF_STREAM_MIN_BYTES);
 }
 
 HFDEF hf_result hf_fur_interpolate(hf_fur *f, int first, int count)

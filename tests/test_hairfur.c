@@ -5809,7 +5809,8 @@ static void test_ribbons_ranges_byte_identical(void)
 }
 
 /* nontemporal 0 (by size): a call that writes more than
-   HF_STREAM_MIN_BYTES streams, a smaller one does not; either way the
+   HF_STREAM_MIN_VERTEX_BYTES of vertices or points, or HF_STREAM_MIN_BYTES
+   of strand points, streams, a smaller one does not; either way the
    bytes are those of streaming (1) and of ordinary stores (2), for
    ribbons (the 36-byte vertex, which streams through the stage), points
    and interpolation, whole and split in two calls below the threshold.
@@ -5817,11 +5818,11 @@ static void test_ribbons_ranges_byte_identical(void)
 static void test_streaming_by_size(void)
 {
     enum { Q = 16, G = 40 };
-    const size_t min = HF_STREAM_MIN_BYTES;
+    const size_t vmin = HF_STREAM_MIN_VERTEX_BYTES, smin = HF_STREAM_MIN_BYTES;
     /* strands whose output just passes the threshold, per kind */
-    const int nr = (int)(min / (2u * Q * 36u)) + 8,
-              np = (int)(min / (Q * 16u)) + 8, ni = (int)(min / (Q * 12u)) + 8;
-    const size_t big = min + 64u * 1024u; /* each output, and a margin */
+    const int nr = (int)(vmin / (2u * Q * 36u)) + 8,
+              np = (int)(vmin / (Q * 16u)) + 8, ni = (int)(smin / (Q * 12u)) + 8;
+    const size_t big = (vmin > smin ? vmin : smin) + 64u * 1024u;
     float *pts = (float *)malloc(sizeof(float) * 3u * Q * (size_t)np);
     float *guides = (float *)malloc(sizeof(float) * 3u * Q * G);
     hf_strand_binding *b =
@@ -5832,8 +5833,8 @@ static void test_streaming_by_size(void)
     hf_interp_params ip;
     hf_rng r;
     int i, k, kind, split;
-    CHECK(nr * 2 * Q * 36 > (int)min && np * Q * 16 > (int)min &&
-          ni * Q * 12 > (int)min);
+    CHECK((size_t)nr * 2 * Q * 36 > vmin && (size_t)np * Q * 16 > vmin &&
+          (size_t)ni * Q * 12 > smin);
     for (k = 0; k < 3; ++k) buf[k] = (unsigned char *)malloc(big + 128);
     if (!pts || !guides || !b || !buf[0] || !buf[1] || !buf[2]) {
         CHECK(0);
@@ -5858,6 +5859,7 @@ static void test_streaming_by_size(void)
     for (kind = 0; kind < 3; ++kind)
         for (split = 1; split <= 2; ++split) {
             const int n = kind == 0 ? nr : kind == 1 ? np : ni;
+            const size_t min = kind == 2 ? smin : vmin;
             for (k = 0; k < 3; ++k) { /* by size, streaming, ordinary */
                 /* 64-byte aligned plus 4: the stage's unaligned ends */
                 unsigned char *o = at[k] =
