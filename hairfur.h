@@ -1417,7 +1417,10 @@ typedef struct hf_ribbon_params {
        vertices usually go) and for outputs far larger than the cache.
        0 = by size: streaming where the call writes more than
        HF_STREAM_MIN_VERTEX_BYTES (8 MiB), ordinary stores below, which
-       leave a smaller output in the cache; 1 = streaming
+       leave a smaller output in the cache (the hf_fur_* calls: where the
+       fur's drawn strands would, so every range of a split frame
+       chooses alike; for hf_ribbons and hf_ribbon_points split into
+       small calls, set 1 or 2); 1 = streaming
        (set it for a mapped buffer whatever the size); 2 = ordinary
        stores. hf_ribbon_points can always stream; hf_ribbons when its
        streams are one interleaved buffer whose vertex they fill exactly
@@ -10759,9 +10762,12 @@ HF__PRIVATE int hf__streams_cross(uintptr_t a, size_t sa, size_t ea,
     return 0;
 }
 
-HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
-                           int count, const hf_ribbon_params *view,
-                           const hf_ribbon_output *out)
+/* hf_ribbons, with streaming stores by size (nontemporal 0) chosen as
+   for `sized` strands: the call's count, or a fur's drawn strands */
+HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
+                                  int first, int count,
+                                  const hf_ribbon_params *view,
+                                  const hf_ribbon_output *out, int sized)
 {
     hf__rframe fr;
     hf__rconst K;
@@ -10835,7 +10841,7 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
     hf__rconst_init(&K, params);
 
     stage = hf__streaming(params->nontemporal,
-                          (size_t)count * 2u * (size_t)P * ro.tile,
+                          (size_t)sized * 2u * (size_t)P * ro.tile,
                           HF_STREAM_MIN_VERTEX_BYTES)
                 ? hf__ribbon_stage(&ro, P, &block, &dst0)
                 : 0;
@@ -10875,6 +10881,13 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
     if (stage) _mm_sfence(); /* streamed stores visible before we return */
 #endif
     return HF_OK;
+}
+
+HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
+                           int count, const hf_ribbon_params *view,
+                           const hf_ribbon_output *out)
+{
+    return hf__ribbons(strands, first, count, view, out, count);
 }
 
 /* GPU points of one strand: (x, y, z, hw[j] * ws) for point j. */
@@ -11319,22 +11332,32 @@ HF__INTERP_POINTS(16, HF__TARGET_AVX512)
 #undef HF__INTERP_POINTS
 #undef HF__CLUMP_MODE_CASES
 
-HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
-                                 int count, const hf_ribbon_params *view,
-                                 float *out4)
+/* hf_ribbon_points, with the stores chosen as for `sized` strands (as
+   hf__ribbons) */
+HF__PRIVATE hf_result hf__ribbon_points(const hf_ribbon_strands *strands,
+                                        int first, int count,
+                                        const hf_ribbon_params *view,
+                                        float *out4, int sized)
 {
     hf__points_kit kit;
     hf_ribbon_params prm;
     hf_result r = hf__ribbon_check(strands, first, count, view, &prm);
     if (r != HF_OK) return r;
     if (!out4) return HF_ERROR_NULL_POINTER;
-    hf__points_kit_init(&kit, &prm, count);
+    hf__points_kit_init(&kit, &prm, sized);
     hf__points_run(&kit, strands, strands->points, 0, first, count,
                    prm.out_first, out4);
 #if HF__SSE
     if (kit.nt) _mm_sfence(); /* streamed stores visible before we return */
 #endif
     return HF_OK;
+}
+
+HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
+                                 int count, const hf_ribbon_params *view,
+                                 float *out4)
+{
+    return hf__ribbon_points(strands, first, count, view, out4, count);
 }
 
 HFDEF long long hf_ribbon_index_count(int strand_count, int points_per_strand,
@@ -13862,6 +13885,14 @@ HF__PRIVATE hf_result hf__fur_view(const hf_fur *f, int first, int count,
     return HF_OK;
 }
 
+/* The strands a fur call's streaming stores are chosen for
+   (nontemporal 0): the LOD's drawn strands, or the call's if more, so
+   that every range of a frame split over threads or jobs chooses alike */
+HF__PRIVATE int hf__fur_sized(const hf_fur *f, int count)
+{
+    return count > f->drawn ? count : f->drawn;
+}
+
 HFDEF hf_result hf_fur_ribbons(const hf_fur *f, int first, int count,
                                const hf_ribbon_params *view,
                                const hf_ribbon_output *out)
@@ -13869,7 +13900,9 @@ HFDEF hf_result hf_fur_ribbons(const hf_fur *f, int first, int count,
     hf_ribbon_params p;
     hf_ribbon_strands s;
     hf_result r = hf__fur_view(f, first, count, view, &p, &s);
-    return r != HF_OK ? r : hf_ribbons(&s, first, count, &p, out);
+    return r != HF_OK ? r
+                      : hf__ribbons(&s, first, count, &p, out,
+                                    hf__fur_sized(f, count));
 }
 
 HFDEF hf_result hf_fur_points(const hf_fur *f, int first, int count,
@@ -13878,7 +13911,9 @@ HFDEF hf_result hf_fur_points(const hf_fur *f, int first, int count,
     hf_ribbon_params p;
     hf_ribbon_strands s;
     hf_result r = hf__fur_view(f, first, count, view, &p, &s);
-    return r != HF_OK ? r : hf_ribbon_points(&s, first, count, &p, out4);
+    return r != HF_OK ? r
+                      : hf__ribbon_points(&s, first, count, &p, out4,
+                                          hf__fur_sized(f, count));
 }
 
 /* hf_fur_interpolate_points' strands go through a buffer of this many
@@ -13902,7 +13937,7 @@ HFDEF hf_result hf_fur_interpolate_points(const hf_fur *f, int first,
     if (r == HF_OK) r = hf__ribbon_check(&st, first, count, &p, &prm);
     if (r != HF_OK) return r;
     if (!out4) return HF_ERROR_NULL_POINTER;
-    hf__points_kit_init(&kit, &prm, count);
+    hf__points_kit_init(&kit, &prm, hf__fur_sized(f, count));
 #if HF__AVX2
     lv = hf_simd_resolve(f->simd);
     lv = lv < kit.level ? lv : kit.level;
