@@ -1272,8 +1272,9 @@ typedef struct hf_interp_params {
        HF_STREAM_MIN_BYTES (4 MiB): ordinary stores would read each line
        in first and push the guides out (measured, into 64-byte aligned
        buffers: 1.7x faster for 36,700 strands of 16 points, 2x for
-       100,000; 3 % slower for 3,670); 1 = streaming; 2 = ordinary
-       stores. Same bytes either way. Another value, or a simd outside
+       100,000; 3 % slower for 3,670; a frame split into small calls:
+       set 1 or 2); 1 = streaming; 2 = ordinary stores. Same bytes
+       either way. Another value, or a simd outside
        0..4, is HF_ERROR_BAD_PARAMETER. */
     int nontemporal;
 } hf_interp_params;
