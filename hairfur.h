@@ -1274,8 +1274,8 @@ typedef struct hf_interp_params {
        buffers: 1.7x faster for 36,700 strands of 16 points, 2x for
        100,000; 3 % slower for 3,670; a frame split into small calls:
        set 1 or 2); 1 = streaming; 2 = ordinary stores. Same bytes
-       either way. Another value, or a simd outside
-       0..4, is HF_ERROR_BAD_PARAMETER. */
+       either way. Another value, or a simd outside 0..4, is
+       HF_ERROR_BAD_PARAMETER. */
     int nontemporal;
 } hf_interp_params;
 
@@ -1421,9 +1421,8 @@ typedef struct hf_ribbon_params {
        leave a smaller output in the cache (the hf_fur_* calls: where the
        fur's drawn strands would, so every range of a split frame
        chooses alike; for hf_ribbons and hf_ribbon_points split into
-       small calls, set 1 or 2); 1 = streaming
-       (set it for a mapped buffer whatever the size); 2 = ordinary
-       stores. hf_ribbon_points can always stream; hf_ribbons when its
+       small calls, set 1 or 2); 1 = streaming (set it for a mapped
+       buffer whatever the size); 2 = ordinary stores. hf_ribbon_points can always stream; hf_ribbons when its
        streams are one interleaved buffer whose vertex they fill exactly
        (the usual layout: position, tangent, texcoord) and a strand's
        vertices take at most 8 KiB, else it uses ordinary stores. Same

@@ -535,7 +535,8 @@ static void level_frames(scene *s, int level, int frames, double *tf,
    (strands, points and ribbons: ordinary stores; strands_nt, points_nt
    and ribbons_nt: streaming; hf_fur_set_kernels' and
    hf_ribbon_params.nontemporal 2 and 1, where the stage rows take the
-   default, 0, which streams past HF_STREAM_MIN_BYTES). Levels the CPU
+   default, 0, which streams past HF_STREAM_MIN_BYTES of strand points
+   and HF_STREAM_MIN_VERTEX_BYTES of vertices or points). Levels the CPU
    lacks are skipped (they would run as the best it has). */
 static const char *level_name[] = {"auto", "scalar", "sse2", "avx2",
                                    "avx512"};

@@ -20,8 +20,8 @@
  * Each check also runs on negative controls (a blank image, the
  * diffuse-only render compared with itself, the head-only render as if it
  * were hair, the compact render drawn with a scale 1 % off, the compact
- * render against the float one byte for byte) and must reject them, so the checks are shown to be able to fail every time the test
- * runs.
+ * render against the float one byte for byte) and must reject them, so
+ * the checks are shown to be able to fail every time the test runs.
  *
  * Usage: gl_fur_check [--out-dir DIR] [--sabotage blank|nospec|scale|copy]
  *   --out-dir DIR  also write DIR/fur_check_{spec,diffuse,head,gpu,
@@ -55,6 +55,16 @@ static void expect(int cond, const char *what, double value)
 static double lum(const unsigned char *p)
 {
     return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+}
+
+/* This frame's strands built, drawn and read back into img; 0 when the
+   build failed */
+static int build_draw_read(glm_app *a, unsigned char *img)
+{
+    if (!glm_build(a)) return 0;
+    glm_draw(a);
+    glc_read_rgba(img);
+    return 1;
 }
 
 static int differs(const unsigned char *a, const unsigned char *b)
@@ -199,7 +209,8 @@ int main(int argc, char **argv)
     glm_options o;
     static glm_app app;
     glm_app *a = &app;
-    unsigned char *spec, *diff, *head, *gpu, *blank, *cmp, *cmp_bad, *cpy;
+    unsigned char *spec, *diff, *head, *gpu, *blank, *cmp, *cmp_bad;
+    unsigned char *mapped, *copied;
     region g;
     double v1, v2, t0;
     int f, i;
@@ -235,7 +246,7 @@ int main(int argc, char **argv)
         return 1;
     }
     glc_set_quiet(0);
-    spec = (unsigned char *)malloc((size_t)W * H * 4 * 8);
+    spec = (unsigned char *)malloc((size_t)W * H * 4 * 9);
     if (!spec) return 1;
     diff = spec + (size_t)W * H * 4;
     head = diff + (size_t)W * H * 4;
@@ -243,7 +254,8 @@ int main(int argc, char **argv)
     blank = gpu + (size_t)W * H * 4;
     cmp = blank + (size_t)W * H * 4;
     cmp_bad = cmp + (size_t)W * H * 4;
-    cpy = cmp_bad + (size_t)W * H * 4;
+    mapped = cmp_bad + (size_t)W * H * 4;
+    copied = mapped + (size_t)W * H * 4;
 
     /* 45 frames of physics, the last one with ribbons and uploads */
     for (f = 1; f <= 45; ++f)
@@ -303,9 +315,7 @@ int main(int argc, char **argv)
     if (a->prog_gpu) {
         long n = 0, same = 0;
         a->o.gpu_expand = 1;
-        if (!glm_build(a)) return 1;
-        glm_draw(a);
-        glc_read_rgba(gpu);
+        if (!build_draw_read(a, gpu)) return 1;
         a->o.gpu_expand = 0;
         for (i = 0; i < W * H; ++i) {
             if (!differs(spec + 4 * i, head + 4 * i) &&
@@ -333,13 +343,9 @@ int main(int argc, char **argv)
        would hide the vertex encoding this compares (the float render is
        redrawn for the reference, into gpu, saved above) */
     a->o.no_shadows = 1;
-    if (!glm_build(a)) return 1;
-    glm_draw(a);
-    glc_read_rgba(gpu);
+    if (!build_draw_read(a, gpu)) return 1;
     a->o.compact = 1;
-    if (!glm_build(a)) return 1;
-    glm_draw(a);
-    glc_read_rgba(cmp);
+    if (!build_draw_read(a, cmp)) return 1;
     a->cscale *= 1.01f;
     glm_draw(a);
     glc_read_rgba(cmp_bad);
@@ -376,19 +382,15 @@ int main(int argc, char **argv)
         a->o.compact = f == 1;
         a->o.gpu_expand = f == 2;
         a->o.copy = 0;
-        if (!glm_build(a)) return 1;
-        glm_draw(a);
-        glc_read_rgba(cmp_bad);
+        if (!build_draw_read(a, mapped)) return 1;
         a->o.copy = 1;
-        if (!glm_build(a)) return 1;
-        glm_draw(a);
-        glc_read_rgba(cpy);
+        if (!build_draw_read(a, copied)) return 1;
         if (f == 0 && sabotage && !strcmp(sabotage, "copy")) {
             printf("  SABOTAGE: the compact render replaces the copied "
                    "float one\n");
-            memcpy(cpy, cmp, (size_t)W * H * 4);
+            memcpy(copied, cmp, (size_t)W * H * 4);
         }
-        i = memcmp(cmp_bad, cpy, (size_t)W * H * 4) == 0;
+        i = memcmp(mapped, copied, (size_t)W * H * 4) == 0;
         expect(i, what[f], i);
         if (f == 0) {
             i = memcmp(gpu, cmp, (size_t)W * H * 4) != 0;

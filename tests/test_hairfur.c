@@ -561,6 +561,22 @@ static hf_ribbon_params t_rparams(void)
     return p;
 }
 
+/* n bindings to random guides below G with random weights summing to 1;
+   length scale lo, plus span times a random number where span > 0 */
+static void t_random_bindings(hf_strand_binding *b, int n, int G, hf_rng *r,
+                              float lo, float span)
+{
+    int i, k;
+    for (i = 0; i < n; ++i) {
+        const float a = hf_rng_float(r), c = hf_rng_float(r) * (1.0f - a);
+        for (k = 0; k < 3; ++k) b[i].guide[k] = hf_rng_below(r, (uint32_t)G);
+        b[i].weight[0] = a;
+        b[i].weight[1] = c;
+        b[i].weight[2] = (1.0f - a) - c;
+        b[i].length_scale = span > 0.0f ? lo + span * hf_rng_float(r) : lo;
+    }
+}
+
 static float t_len3(const float *a) { return sqrtf(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
 
 /* Side vectors perpendicular to tangent and view; widths exact at the ends;
@@ -5434,14 +5450,7 @@ static void test_interp_simd_matches_scalar_reference(void)
     int s, i, k, Q, cl;
     hf_rng_seed(&r, 77u, 3u);
     for (i = 0; i < G * QM * 3; ++i) g[i] = hf_rng_float(&r) * 2.0f - 1.0f;
-    for (s = 0; s < N; ++s) {
-        float a = hf_rng_float(&r), c = hf_rng_float(&r) * (1.0f - a);
-        for (k = 0; k < 3; ++k) b[s].guide[k] = hf_rng_below(&r, G);
-        b[s].weight[0] = a;
-        b[s].weight[1] = c;
-        b[s].weight[2] = (1.0f - a) - c;
-        b[s].length_scale = 0.5f + hf_rng_float(&r);
-    }
+    t_random_bindings(b, N, G, &r, 0.5f, 1.0f);
     for (qi = 0; qi < (int)(sizeof qs / sizeof qs[0]); ++qi)
         for (cl = 0; cl < 2 * 5 * 2; ++cl)
         for (sh = 0; sh < (cl >= 10 ? 4 : 1); ++sh) {
@@ -5843,14 +5852,7 @@ static void test_streaming_by_size(void)
     hf_rng_seed(&r, 23u, 0u);
     for (i = 0; i < 3 * Q * np; ++i) pts[i] = hf_rng_float(&r) - 0.5f;
     for (i = 0; i < 3 * Q * G; ++i) guides[i] = hf_rng_float(&r) - 0.5f;
-    for (i = 0; i < ni; ++i) {
-        const float a = hf_rng_float(&r), c = hf_rng_float(&r) * (1 - a);
-        for (k = 0; k < 3; ++k) b[i].guide[k] = hf_rng_below(&r, G);
-        b[i].weight[0] = a;
-        b[i].weight[1] = c;
-        b[i].weight[2] = 1 - a - c;
-        b[i].length_scale = 0.9f;
-    }
+    t_random_bindings(b, ni, G, &r, 0.9f, 0.0f);
     memset(&st, 0, sizeof st);
     st.points = pts;
     rp.points_per_strand = Q;
@@ -5864,26 +5866,20 @@ static void test_streaming_by_size(void)
                 /* 64-byte aligned plus 4: the stage's unaligned ends */
                 unsigned char *o = at[k] =
                     buf[k] + ((64u - ((uintptr_t)buf[k] & 63u)) & 63u) + 4;
-                const int h = split == 1 ? n : n / 2;
+                const hf_ribbon_output out = t_packed36(o);
+                float *const o4 = (float *)(void *)o;
+                int part;
                 memset(buf[k], 0x5a, big + 128);
                 rp.nontemporal = ip.nontemporal = k;
-                if (kind == 0) {
-                    hf_ribbon_output out = t_packed36(o);
-                    CHECK_EQ_INT(hf_ribbons(&st, 0, h, &rp, &out), HF_OK);
-                    if (h < n)
-                        CHECK_EQ_INT(hf_ribbons(&st, h, n - h, &rp, &out), HF_OK);
-                } else if (kind == 1) {
-                    CHECK_EQ_INT(hf_ribbon_points(&st, 0, h, &rp, (float *)(void *)o),
+                for (part = 0; part < split; ++part) {
+                    /* the whole, or its halves */
+                    const int f0 = part ? n / 2 : 0,
+                              c = split == 1 ? n : part ? n - n / 2 : n / 2;
+                    CHECK_EQ_INT(kind == 0 ? hf_ribbons(&st, f0, c, &rp, &out)
+                                 : kind == 1
+                                     ? hf_ribbon_points(&st, f0, c, &rp, o4)
+                                     : hf_interpolate(guides, G, b, f0, c, &ip, o4),
                                  HF_OK);
-                    if (h < n)
-                        CHECK_EQ_INT(hf_ribbon_points(&st, h, n - h, &rp,
-                                                      (float *)(void *)o), HF_OK);
-                } else {
-                    CHECK_EQ_INT(hf_interpolate(guides, G, b, 0, h, &ip,
-                                                (float *)(void *)o), HF_OK);
-                    if (h < n)
-                        CHECK_EQ_INT(hf_interpolate(guides, G, b, h, n - h, &ip,
-                                                    (float *)(void *)o), HF_OK);
                 }
             }
             /* the output (at most 9 KiB past the threshold) and 4 bytes
@@ -9358,7 +9354,7 @@ static void test_interp_points_kernels(void)
     hf__points_kit kit;
     hf__irun run;
     hf_rng r;
-    int P, i, k, clump, nt, off, wide;
+    int P, i, clump, nt, off, wide;
     hf_rng_seed(&r, 7, 1);
     memset(&st, 0, sizeof st);
     st.width = width;
@@ -9371,14 +9367,7 @@ static void test_interp_points_kernels(void)
             for (i = 0; i < G * P * 3; ++i) guides[i] = hf_rng_float(&r) - 0.5f;
             guides[3 * P * 3 + 3 * 5 + 1] = INFINITY; /* guide 3, point 5 */
             guides[7 * P * 3 + 3 * (P - 1)] = NAN;    /* guide 7, the tip */
-            for (i = 0; i < S; ++i) {
-                const float a = hf_rng_float(&r), c = hf_rng_float(&r) * (1 - a);
-                for (k = 0; k < 3; ++k) b[i].guide[k] = hf_rng_below(&r, G);
-                b[i].weight[0] = a;
-                b[i].weight[1] = c;
-                b[i].weight[2] = 1 - a - c;
-                b[i].length_scale = 0.8f + 0.4f * hf_rng_float(&r);
-            }
+            t_random_bindings(b, S, G, &r, 0.8f, 0.4f);
             memset(&in, 0, sizeof in);
             in.points_per_strand = P;
             in.root_width = 0.01f;
