@@ -101,10 +101,11 @@
                             (e.g. HF_SIMD_SSE2 keeps the wide kernels out
                             of use).
        HF_STREAM_MIN_BYTES  strand points larger than this (a call's, or
-                            a fur's) are written with streaming stores
-                            by default (nontemporal 0); default 4 MiB.
-       HF_STREAM_MIN_VERTEX_BYTES  the same for a call's ribbon vertices
-                            or GPU points; default 8 MiB.
+                            a fur's drawn strands') are written with
+                            streaming stores by default (nontemporal
+                            0); default 4 MiB.
+       HF_STREAM_MIN_VERTEX_BYTES  the same for ribbon vertices or GPU
+                            points; default 8 MiB.
        HF_ASSERT(x)         the library's own invariants (default: assert).
                             Never used on caller input: that gets a result.
        HF_SQRTF, HF_FLOORF, HF_SQRT, HF_EXP, HF_POW, HF_SIN, HF_COS,
@@ -1771,9 +1772,10 @@ typedef struct hf_fur_desc {
                                hf_fur_set_kernels changes it */
     int nontemporal;        /* the stores of the fur's strand points
                                (hf_interp_params.nontemporal): 0 = by
-                               size, streaming where they are larger
-                               than HF_STREAM_MIN_BYTES (4 MiB), which
-                               they outgrow the cache at; 1 = streaming;
+                               size, streaming where the drawn strands'
+                               (hf_fur_set_lod) are larger than
+                               HF_STREAM_MIN_BYTES (4 MiB), which they
+                               outgrow the cache at; 1 = streaming;
                                2 = ordinary stores */
     float lod_simulate_threshold; /* 0 = 0.5: LOD guides simulated at
                                      lod >= this */
@@ -13842,13 +13844,12 @@ HF__PRIVATE void hf__fur_strands(const hf_fur *f, int first, int count,
     if (f->offsets) hf__groom_offsets(f, first, count, pts, pts_first);
 }
 
-/* Streaming stores for the fur's strand points (hf__streaming), by the
-   size of all of them, so that every range of a split chooses alike. */
-HF__PRIVATE int hf__fur_stream(const hf_fur *f)
+/* The strands a fur call's streaming stores are chosen for
+   (nontemporal 0): the LOD's drawn strands, or the call's if more, so
+   that every range of a frame split over threads or jobs chooses alike */
+HF__PRIVATE int hf__fur_sized(const hf_fur *f, int count)
 {
-    return hf__streaming(f->nontemporal,
-                         (size_t)f->strand_count * (size_t)f->P * 12u,
-                         HF_STREAM_MIN_BYTES);
+    return count > f->drawn ? count : f->drawn;
 }
 
 HFDEF hf_result hf_fur_interpolate(hf_fur *f, int first, int count)
@@ -13857,7 +13858,10 @@ HFDEF hf_result hf_fur_interpolate(hf_fur *f, int first, int count)
     if (!hf__range_ok(first, count) || first + count > f->strand_count)
         return HF_ERROR_BAD_RANGE;
     hf__fur_strands(f, first, count, f->strand_points, 0,
-                    hf__fur_stream(f));
+                    hf__streaming(f->nontemporal,
+                                  (size_t)hf__fur_sized(f, count) *
+                                      (size_t)f->P * 12u,
+                                  HF_STREAM_MIN_BYTES));
     return HF_OK;
 }
 
@@ -13883,14 +13887,6 @@ HF__PRIVATE hf_result hf__fur_view(const hf_fur *f, int first, int count,
     s->color3d_x = f->strand_c3x;
     s->width = f->strand_width;
     return HF_OK;
-}
-
-/* The strands a fur call's streaming stores are chosen for
-   (nontemporal 0): the LOD's drawn strands, or the call's if more, so
-   that every range of a frame split over threads or jobs chooses alike */
-HF__PRIVATE int hf__fur_sized(const hf_fur *f, int count)
-{
-    return count > f->drawn ? count : f->drawn;
 }
 
 HFDEF hf_result hf_fur_ribbons(const hf_fur *f, int first, int count,
