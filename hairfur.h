@@ -10693,6 +10693,156 @@ hf__ribbons_run_avx2(const hf_ribbon_strands *sv, int first, int count,
 }
 #endif
 
+#if HF__AVX512
+/* Streamed float runs at AVX-512 without the stage: a group of eight
+   points is 16 vertices of F = 9 floats (the 36-byte vertex, run 3) or
+   6 (24 bytes, run 2), so F whole lines where the strand's block starts
+   a line (P a multiple of 8, the output aligned). Each line is gathered
+   in a register from six sources of sixteen floats (left and right x, y,
+   z; tx ty; tz and t; u v) by three two-source permutes and two blends,
+   and written with one 64-byte streaming store: no stage written and
+   read back, no partial line. The same values in the same operations as
+   hf__ribbon_group_avx2, so the same bytes. Scene L's streamed ribbons:
+   0.86-0.94x the staged AVX2 run's time (docs/performance.md). */
+typedef struct hf__lines {
+    __m512i idx[9][3];   /* line c's lanes from source pair q */
+    __mmask16 m[9][2];   /* lanes from pair 1, from pair 2 */
+    int F;
+} hf__lines;
+
+/* The permutes' indices for F floats a vertex: float f of vertex w
+   (point w / 2, left or right by w % 2) at 9 w + f of the group's
+   stream. Pairs: (x, y), (z, tx ty), (tz t, u v), each source's lanes
+   0-7 left or tx or tz, 8-15 right or ty or t. */
+HF__TARGET_AVX512 HF__INLINE void hf__lines_init(hf__lines *t, int F)
+{
+    static const signed char pair[9] = {0, 0, 1, 1, 1, 2, 2, 2, 2};
+    static const signed char base[9] = {0, 16, 0, 16, 24, 0, 16, 17, 8};
+    int c, l, q;
+    t->F = F;
+    for (c = 0; c < F; ++c) {
+        int ix[3][16];
+        unsigned m[3] = {0, 0, 0};
+        HF_MEMSET(ix, 0, sizeof ix);
+        for (l = 0; l < 16; ++l) {
+            const int g = 16 * c + l, w = g / F, f = g % F, i = w >> 1;
+            /* x y z: left or right; u v: one lane; the rest by point */
+            ix[pair[f]][l] = base[f] + (f < 3 ? 8 * (w & 1) + i
+                                        : f == 6 || f == 7 ? 0 : i);
+            m[pair[f]] |= 1u << l;
+        }
+        for (q = 0; q < 3; ++q)
+            t->idx[c][q] = _mm512_loadu_si512((const void *)ix[q]);
+        t->m[c][0] = (__mmask16)m[1];
+        t->m[c][1] = (__mmask16)m[2];
+    }
+}
+
+HF__TARGET_AVX512 HF__INLINE __m512 hf__join16(__m256 lo, __m256 hi)
+{
+    return _mm512_castpd_ps(_mm512_insertf64x4(
+        _mm512_castpd256_pd512(_mm256_castps_pd(lo)), _mm256_castps_pd(hi),
+        1));
+}
+
+/* One strand's vertices at ro's position base + v0 vertices, as lines */
+HF__TARGET_AVX512 HF__INLINE void
+hf__ribbon_lines_avx512(const hf__rframe *fr, int P, const hf__rconst *K,
+                        const hf__rstrand *str, const hf__rout *ro, size_t v0,
+                        const __m256 *ov, const hf__lines *t)
+{
+    const int F = t->F;
+    unsigned char *b = ro->base[HF__S_POS] + v0 * 4u * (size_t)F;
+    const __m256 ws = _mm256_set1_ps(str->wscale);
+    const __m512 uv = _mm512_castps128_ps512(
+        _mm_unpacklo_ps(_mm_set1_ps(str->uv[0]), _mm_set1_ps(str->uv[1])));
+    int k, c;
+    hf__page_ahead(b, 8u * (size_t)P * (size_t)F);
+    for (k = 0; 8 * k < P; ++k, b += 64 * F) {
+        const int o = 4 + 8 * k;
+        const __m256 w = _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws);
+        __m512 S[5];
+        HF__UNROLL for (c = 0; c < 3; ++c) { /* as hf__ribbon_group_avx2 */
+            const __m256 p = _mm256_loadu_ps(fr->p[c] + o);
+            const __m256 sw = _mm256_mul_ps(_mm256_loadu_ps(fr->s[c] + o), w);
+            S[c] = hf__join16(
+                _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(p, sw), ov[1 + c]),
+                              ov[0]),
+                _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(p, sw), ov[1 + c]),
+                              ov[0]));
+        }
+        S[3] = hf__join16(_mm256_loadu_ps(fr->t[0] + o),
+                          _mm256_loadu_ps(fr->t[1] + o));
+        S[4] = hf__join16(_mm256_loadu_ps(fr->t[2] + o),
+                          _mm256_loadu_ps(K->tt + 8 * k));
+        for (c = 0; c < F; ++c) {
+            const __m512 a = _mm512_permutex2var_ps(S[0], t->idx[c][0], S[1]),
+                         d = _mm512_permutex2var_ps(S[2], t->idx[c][1], S[3]),
+                         e = _mm512_permutex2var_ps(S[4], t->idx[c][2], uv);
+            _mm512_stream_ps(
+                (float *)(void *)(b + 64 * c),
+                _mm512_mask_blend_ps(t->m[c][1],
+                                     _mm512_mask_blend_ps(t->m[c][0], a, d),
+                                     e));
+        }
+    }
+}
+
+/* Whether ro's streams go out as lines at `level` for strands from
+   `first` (the stage's vertex, dst0 its first byte; see above) */
+HF__PRIVATE int hf__lines_fit(const hf__rout *ro, int P, int level,
+                              const unsigned char *dst0, size_t block,
+                              int first, int out_first)
+{
+    const size_t F = ro->run == 3 ? 9u : 6u;
+    return level >= HF_SIMD_AVX512 && ro->run && !ro->rest &&
+           block == 4u * F && ro->stride[HF__S_POS] == block && P % 8 == 0 &&
+           (((uintptr_t)dst0 + (size_t)(first - out_first) * 2u *
+                                   (size_t)P * block) & 63u) == 0;
+}
+
+/* hf__ribbons_loop_avx2's plain path (each frame a strand ahead, in fr
+   and fr2 by turns) with the lines above for the writer */
+HF__TARGET_AVX512 HF__PRIVATE void
+hf__ribbons_lines_avx512(const hf_ribbon_strands *sv, int first, int count,
+                         const hf_ribbon_params *params, const hf__rconst *K,
+                         const hf__rout *ro, int out_first, hf__rframe *fr,
+                         hf__rframe *fr2)
+{
+    const int P = params->points_per_strand,
+              ortho = params->orthographic != 0;
+    const size_t n = (size_t)P * 3u;
+    const hf_ribbon_strands svl = *sv; /* no reload after every store */
+    hf__rframe *F[2];
+    float wsc[2];
+    __m256 e[3], ov[4];
+    hf__lines t;
+    int s;
+    hf__lines_init(&t, ro->run == 3 ? 9 : 6);
+    hf__frame_eye_avx2(params, e);
+    hf__rout_vec_avx2(ro, ov);
+    F[0] = fr;
+    F[1] = fr2;
+    if (count > 0)
+        hf__frame_strand_avx2(svl.points + (size_t)first * n, P, ortho, e,
+                              params, F[0], &wsc[0]);
+    for (s = first; s < first + count; ++s) {
+        const int j = (s - first) & 1;
+        hf__rstrand str;
+        if (s + 1 < first + count)
+            hf__frame_strand_avx2(svl.points + (size_t)(s + 1) * n, P, ortho,
+                                  e, params, F[j ^ 1], &wsc[j ^ 1]);
+        str.wscale = wsc[j];
+        hf__rstrand_fill(&svl, s, K->wcap, &str);
+        hf__ribbon_lines_avx512(F[j], P, K, &str, ro,
+                                (size_t)(s - out_first) * (size_t)P * 2u, ov,
+                                &t);
+    }
+    _mm_sfence(); /* streamed stores visible before we return */
+    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
+}
+#endif
+
 /* floor(x / y) for y > 0 */
 HF__PRIVATE long long hf__floordiv(long long x, long long y)
 {
@@ -10855,6 +11005,13 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
     if (!ro.base[HF__S_COL]) sv.color = NULL;
     if (!ro.base[HF__S_C3D]) sv.color3d_x = NULL;
     out_first = params->out_first;
+#if HF__AVX512
+    if (stage && hf__lines_fit(&ro, P, level, dst0, block, first, out_first)) {
+        hf__ribbons_lines_avx512(&sv, first, count, params, &K, &ro,
+                                 out_first, &fr, &mem.fr2);
+        return HF_OK;
+    }
+#endif
 #if HF__AVX2
     if (level >= HF_SIMD_AVX2 && (ro.run || ro.nw)) {
         hf__ribbons_run_avx2(&sv, first, count, params, &K, &ro, out_first,

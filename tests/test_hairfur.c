@@ -5956,6 +5956,93 @@ static void test_ribbons_nontemporal(void)
     free(b0);
 }
 
+/* The packed float vertex, 36 bytes (position, tangent, texcoord) or 24
+   (position, tangent), at b, with an origin and scale */
+static hf_ribbon_output t_packed_run(unsigned char *b, int bytes)
+{
+    hf_ribbon_output o = t_packed36(b);
+    if (bytes == 24) {
+        o.texcoord.data = NULL;
+        o.position.stride = o.tangent.stride = 24;
+    }
+    o.position_origin[0] = 0.25f;
+    o.position_scale = 2.0f;
+    return o;
+}
+
+/* A packed float vertex streamed (nontemporal 1) gives the bytes of
+   ordinary stores at the scalar level, at every level: whole groups of
+   eight points go out as whole lines where the output is aligned to
+   them (AVX-512), the stage takes the rest. The 36- and 24-byte
+   vertices, P a multiple of 8 and not, the output at byte offsets
+   aligned to a line and not, range splits whose first strand starts a
+   line and not, perspective and orthographic, strand UVs and widths, a
+   strand with a zero-length segment and one with a NaN. Bytes around
+   stay. */
+static void test_ribbons_streamed_lines(void)
+{
+    enum { N = 7, PM = 24, BYTES = N * PM * 2 * 36 };
+    static const int Ps[4] = {8, 16, 24, 13}, offs[4] = {0, 64, 4, 36};
+    static const int cuts[3][2] = {{N, N}, {3, N}, {1, 4}};
+    float *pts = (float *)malloc(sizeof(float) * N * PM * 3);
+    unsigned char *ref0 = (unsigned char *)malloc(BYTES + 192);
+    unsigned char *got0 = (unsigned char *)malloc(BYTES + 192);
+    unsigned char *ref = ref0 + ((64u - ((uintptr_t)ref0 & 63u)) & 63u);
+    unsigned char *got = got0 + ((64u - ((uintptr_t)got0 & 63u)) & 63u);
+    float uv[2 * N], width[N];
+    hf_ribbon_strands st;
+    hf_rng r;
+    int pi, oi, ci, vb, ortho, level, i;
+    hf_rng_seed(&r, 23u, 0u);
+    for (i = 0; i < N * PM * 3; ++i) pts[i] = hf_rng_float(&r) - 0.5f;
+    for (i = 0; i < N; ++i) {
+        uv[2 * i] = hf_rng_float(&r);
+        uv[2 * i + 1] = hf_rng_float(&r);
+        width[i] = 0.5f + hf_rng_float(&r);
+    }
+    memset(&st, 0, sizeof st);
+    st.points = pts;
+    st.root_uv = uv;
+    st.width = width;
+    for (pi = 0; pi < 4; ++pi) {
+        const int P = Ps[pi];
+        /* strand 2: a zero-length segment; strand 5: a NaN */
+        memcpy(pts + (2 * P + 4) * 3, pts + (2 * P + 3) * 3, 12);
+        pts[(5 * P + 1) * 3 + 1] = (float)NAN;
+        for (vb = 24; vb <= 36; vb += 12)
+            for (ortho = 0; ortho < 2; ++ortho)
+                for (oi = 0; oi < 4; ++oi)
+                    for (ci = 0; ci < 3; ++ci) {
+                        hf_ribbon_params p = t_rparams();
+                        hf_ribbon_output o = t_packed_run(ref + offs[oi], vb);
+                        p.points_per_strand = P;
+                        p.orthographic = ortho;
+                        p.view_dir[2] = -1.0f;
+                        memset(ref, 0x5a, BYTES + 128);
+                        p.simd = HF_SIMD_SCALAR;
+                        p.nontemporal = 2;
+                        CHECK_EQ_INT(hf_ribbons(&st, 0, N, &p, &o), HF_OK);
+                        for (level = HF_SIMD_SSE2; level <= HF_SIMD_AVX512;
+                             ++level) {
+                            const int a = cuts[ci][0], b = cuts[ci][1];
+                            memset(got, 0x5a, BYTES + 128);
+                            o = t_packed_run(got + offs[oi], vb);
+                            p.simd = level;
+                            p.nontemporal = 1;
+                            CHECK_EQ_INT(hf_ribbons(&st, 0, a, &p, &o), HF_OK);
+                            CHECK_EQ_INT(hf_ribbons(&st, a, b - a, &p, &o),
+                                         HF_OK);
+                            CHECK_EQ_INT(hf_ribbons(&st, b, N - b, &p, &o),
+                                         HF_OK);
+                            CHECK(memcmp(got, ref, BYTES + 128) == 0);
+                        }
+                    }
+    }
+    free(pts);
+    free(ref0);
+    free(got0);
+}
+
 static void test_ribbons_separate_streams_and_skips(void)
 {
     float g[TP * 3], pos[TP * 2 * 3], tanb[TP * 2 * 4];
@@ -10471,6 +10558,7 @@ int main(void)
     RUN(test_ribbons_nonfinite_strand_collapses);
     RUN(test_ribbons_ranges_byte_identical);
     RUN(test_ribbons_nontemporal);
+    RUN(test_ribbons_streamed_lines);
     RUN(test_streaming_by_size);
     RUN(test_ribbons_separate_streams_and_skips);
     RUN(test_ribbons_errors_write_nothing);
