@@ -1423,17 +1423,21 @@ typedef struct hf_ribbon_params {
        fur's drawn strands would, so every range of a split frame
        chooses alike; for hf_ribbons and hf_ribbon_points split into
        small calls, set 1 or 2); 1 = streaming (set it for a mapped
-       buffer whatever the size); 2 = ordinary stores. hf_ribbon_points can always stream; hf_ribbons when its
-       streams are one interleaved buffer whose vertex they fill exactly
-       (the usual layout: position, tangent, texcoord) and a strand's
+       buffer whatever the size); 2 = ordinary stores.
+       hf_ribbon_points can always stream; hf_ribbons when its streams
+       are one interleaved buffer whose vertex they fill exactly (the
+       usual layout: position, tangent, texcoord) and a strand's
        vertices take at most 8 KiB, else it uses ordinary stores. Same
        bytes either way. Another value, or a simd outside 0..4, is
        HF_ERROR_BAD_PARAMETER. */
     int nontemporal;
     /* hf_simd_level of hf_ribbons and hf_ribbon_points; 0 = the best
-       the CPU runs (same bytes). Ribbons: SSE2 or NEON; AVX2 (the
-       AVX-512 level runs it) for every layout whose streams do not
-       overlap inside a vertex, else SSE2. */
+       the CPU runs (same bytes). Ribbons: SSE2 or NEON; AVX2 for every
+       layout whose streams do not overlap inside a vertex, else SSE2;
+       the AVX-512 level runs AVX2 but for streamed float vertices of
+       36 or 24 bytes (position, tangent and texcoord, or the first two)
+       in a buffer aligned to 64 bytes with points_per_strand a multiple
+       of 8, which it writes in whole 64-byte lines. */
     int simd;
 } hf_ribbon_params;
 
@@ -10703,7 +10707,7 @@ hf__ribbons_run_avx2(const hf_ribbon_strands *sv, int first, int count,
    and written with one 64-byte streaming store: no stage written and
    read back, no partial line. The same values in the same operations as
    hf__ribbon_group_avx2, so the same bytes. Scene L's streamed ribbons:
-   0.86-0.94x the staged AVX2 run's time (docs/performance.md). */
+   0.81-0.94x the staged AVX2 run's time (docs/performance.md). */
 typedef struct hf__lines {
     __m512i idx[9][3];   /* line c's lanes from source pair q */
     __mmask16 m[9][2];   /* lanes from pair 1, from pair 2 */
