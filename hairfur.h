@@ -10599,6 +10599,18 @@ hf__frame_strand_avx2(const float *pts, int P, int ortho, const __m256 *e,
     }
 }
 
+/* Strand s's frame (hf__frame_strand_avx2) where s < end: the runs make
+   each strand's frame while the strand before is written */
+HF__TARGET_AVX2 HF__INLINE void
+hf__frame_at_avx2(const hf_ribbon_strands *sv, int s, int end, int P,
+                  int ortho, const __m256 *e, const hf_ribbon_params *params,
+                  hf__rframe *fr, float *wscale)
+{
+    if (s < end)
+        hf__frame_strand_avx2(sv->points + (size_t)s * (size_t)P * 3u, P,
+                              ortho, e, params, fr, wscale);
+}
+
 /* hf_ribbons' strands at AVX2 in one target function, for the float runs
    (mode 0), the layouts of the table writer (1) and the compact vertex
    (2, hf__rout c16): each strand's frame and vertices inlined, where a
@@ -10619,8 +10631,8 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
                       unsigned char *dst0, size_t block)
 {
     const int P = params->points_per_strand,
-              ortho = params->orthographic != 0;
-    const size_t n = (size_t)P * 3u, sb = 2u * (size_t)P * block;
+              ortho = params->orthographic != 0, end = first + count;
+    const size_t sb = 2u * (size_t)P * block;
     const hf_ribbon_strands svl = *sv; /* no reload after every store */
     hf__rframe *F[2];
     float wsc[2];
@@ -10642,17 +10654,15 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
     }
     F[0] = fr;
     F[1] = fr2;
-    if (count > 0)
-        hf__frame_strand_avx2(svl.points + (size_t)first * n, P, ortho, e,
-                              params, F[0], &wsc[0]);
-    for (s = first; s < first + count; ++s) {
+    hf__frame_at_avx2(&svl, first, end, P, ortho, e, params, F[0], &wsc[0]);
+    for (s = first; s < end; ++s) {
         const int j = stage ? 0 : (s - first) & 1;
         const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u,
                      w0 = stage ? 0 : v0;
         hf__rstrand str;
-        if (!stage && s + 1 < first + count)
-            hf__frame_strand_avx2(svl.points + (size_t)(s + 1) * n, P, ortho,
-                                  e, params, F[j ^ 1], &wsc[j ^ 1]);
+        if (!stage)
+            hf__frame_at_avx2(&svl, s + 1, end, P, ortho, e, params,
+                              F[j ^ 1], &wsc[j ^ 1]);
         str.wscale = wsc[j];
         hf__rstrand_fill(&svl, s, K->wcap, &str);
         if (mode == 2)
@@ -10661,10 +10671,11 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
             hf__ribbon_write_table_avx2_in(F[j], P, K, &str, ro, w0, ov);
         else
             hf__ribbon_write_avx2_in(F[j], P, K, &str, ro, w0, ov);
-        if (stage) hf__stream_copy_avx2(dst0 + v0 * block, stage, sb);
-        if (stage && s + 1 < first + count)
-            hf__frame_strand_avx2(svl.points + (size_t)(s + 1) * n, P, ortho,
-                                  e, params, F[0], &wsc[0]);
+        if (stage) {
+            hf__stream_copy_avx2(dst0 + v0 * block, stage, sb);
+            hf__frame_at_avx2(&svl, s + 1, end, P, ortho, e, params, F[0],
+                              &wsc[0]);
+        }
     }
 }
 
@@ -10814,8 +10825,7 @@ hf__ribbons_lines_avx512(const hf_ribbon_strands *sv, int first, int count,
                          hf__rframe *fr2)
 {
     const int P = params->points_per_strand,
-              ortho = params->orthographic != 0;
-    const size_t n = (size_t)P * 3u;
+              ortho = params->orthographic != 0, end = first + count;
     const hf_ribbon_strands svl = *sv; /* no reload after every store */
     hf__rframe *F[2];
     float wsc[2];
@@ -10827,15 +10837,12 @@ hf__ribbons_lines_avx512(const hf_ribbon_strands *sv, int first, int count,
     hf__rout_vec_avx2(ro, ov);
     F[0] = fr;
     F[1] = fr2;
-    if (count > 0)
-        hf__frame_strand_avx2(svl.points + (size_t)first * n, P, ortho, e,
-                              params, F[0], &wsc[0]);
-    for (s = first; s < first + count; ++s) {
+    hf__frame_at_avx2(&svl, first, end, P, ortho, e, params, F[0], &wsc[0]);
+    for (s = first; s < end; ++s) {
         const int j = (s - first) & 1;
         hf__rstrand str;
-        if (s + 1 < first + count)
-            hf__frame_strand_avx2(svl.points + (size_t)(s + 1) * n, P, ortho,
-                                  e, params, F[j ^ 1], &wsc[j ^ 1]);
+        hf__frame_at_avx2(&svl, s + 1, end, P, ortho, e, params, F[j ^ 1],
+                          &wsc[j ^ 1]);
         str.wscale = wsc[j];
         hf__rstrand_fill(&svl, s, K->wcap, &str);
         hf__ribbon_lines_avx512(F[j], P, K, &str, ro,
