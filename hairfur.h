@@ -10753,11 +10753,13 @@ HF__TARGET_AVX512 HF__INLINE void hf__lines_init(hf__lines *t, int F)
     }
 }
 
+/* lo in lanes 0-7, hi in 8-15 (the masked form: gcc's plain one takes
+   an "undefined" operand, which its C++ front end warns about) */
 HF__TARGET_AVX512 HF__INLINE __m512 hf__join16(__m256 lo, __m256 hi)
 {
-    return _mm512_castpd_ps(_mm512_insertf64x4(
-        _mm512_castpd256_pd512(_mm256_castps_pd(lo)), _mm256_castps_pd(hi),
-        1));
+    return _mm512_castpd_ps(_mm512_maskz_insertf64x4(
+        0xff, _mm512_castpd256_pd512(_mm256_castps_pd(lo)),
+        _mm256_castps_pd(hi), 1));
 }
 
 /* One strand's vertices at ro's position base + v0 vertices, as lines */
