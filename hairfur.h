@@ -10805,8 +10805,11 @@ hf__ribbon_lines_avx512(const hf__rframe *fr, int P, const hf__rconst *K,
     }
 }
 
-/* Whether ro's streams go out as lines at `level` for strands from
-   `first` (the stage's vertex, dst0 its first byte; see above) */
+/* Whether a streamed call goes out as lines (above) at `level`: the
+   stage's vertex (block bytes, dst0 the first byte of vertex 0) is a
+   packed float run alone, P a multiple of 8 (so every strand's block
+   keeps the first's alignment) and strand `first`'s block starts a
+   line */
 HF__PRIVATE int hf__lines_fit(const hf__rout *ro, int P, int level,
                               const unsigned char *dst0, size_t block,
                               int first, int out_first)
