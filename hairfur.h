@@ -10805,6 +10805,166 @@ hf__ribbon_lines_avx512(const hf__rframe *fr, int P, const hf__rconst *K,
     }
 }
 
+/* Sixteen points' x y z (floats 0-47 of q) as rows */
+HF__TARGET_AVX512 HF__INLINE void hf__rows16(const float *q, __m512 *X,
+                                             __m512 *Y, __m512 *Z)
+{
+    const __m512 a = _mm512_loadu_ps(q), b = _mm512_loadu_ps(q + 16),
+                 c = _mm512_loadu_ps(q + 32);
+    /* lanes from a and b by one permute, the last five (z: six) from c */
+    *X = _mm512_mask_permutexvar_ps(
+        _mm512_permutex2var_ps(a, _mm512_setr_epi32(0, 3, 6, 9, 12, 15, 18,
+                                                    21, 24, 27, 30, 0, 0, 0,
+                                                    0, 0), b),
+        0xf800, _mm512_setr_epi32(0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 4, 7,
+                                  10, 13), c);
+    *Y = _mm512_mask_permutexvar_ps(
+        _mm512_permutex2var_ps(a, _mm512_setr_epi32(1, 4, 7, 10, 13, 16, 19,
+                                                    22, 25, 28, 31, 0, 0, 0,
+                                                    0, 0), b),
+        0xf800, _mm512_setr_epi32(0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 5, 8,
+                                  11, 14), c);
+    *Z = _mm512_mask_permutexvar_ps(
+        _mm512_permutex2var_ps(a, _mm512_setr_epi32(2, 5, 8, 11, 14, 17, 20,
+                                                    23, 26, 29, 0, 0, 0, 0,
+                                                    0, 0), b),
+        0xfc00, _mm512_setr_epi32(0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 3, 6, 9,
+                                  12, 15), c);
+}
+
+/* A strand's frame and lines in registers, sixteen points a turn (P a
+   multiple of 16), for hf__ribbons_lines_avx512: hf__frame_group_avx2's
+   operations on sixteen lanes (a 512-bit square root or division costs
+   what a 256-bit one does on the cores measured), no frame rows written
+   and read back. Returns 0, with lines perhaps written, where a point is
+   not finite or a lane is left to the reference: the caller writes the
+   strand again from hf__strand_frame_rest's frame. */
+HF__TARGET_AVX512 HF__INLINE int
+hf__ribbon_fused_avx512(const float *pts, int P, int ortho, const __m512 *e,
+                        const hf__rconst *K, const hf__rstrand *str,
+                        const hf__rout *ro, size_t v0, const __m512 *ov,
+                        const hf__lines *t)
+{
+    const int F = t->F;
+    const __m512 one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps(),
+                 tiny = _mm512_set1_ps(1e-30f),
+                 big = _mm512_set1_ps(3.40282347e+38f),
+                 side_sin2 = _mm512_set1_ps(HF__SIDE_SIN2),
+                 ws = _mm512_set1_ps(str->wscale);
+    const __m512 uv = _mm512_castps128_ps512(
+        _mm_unpacklo_ps(_mm_set1_ps(str->uv[0]), _mm_set1_ps(str->uv[1])));
+    unsigned char *b = ro->base[HF__S_POS] + v0 * 4u * (size_t)F;
+    __m512 cx, cy, cz, nx, ny, nz, px, py, pz;
+    int g, c, h;
+    hf__page_ahead(b, 8u * (size_t)P * (size_t)F);
+    hf__rows16(pts, &cx, &cy, &cz);
+    px = _mm512_set1_ps(pts[0]); /* the root repeats before it */
+    py = _mm512_set1_ps(pts[1]);
+    pz = _mm512_set1_ps(pts[2]);
+    for (g = 0; 16 * g < P; ++g) {
+        __m512 T[3], L[3], R[3], S[5], acc, dx, dy, dz, vx, vy, vz, l2, sx,
+            sy, sz, c2, vv, inv, inv2, w;
+        __mmask16 ok, ok2;
+        if (16 * g + 16 < P) {
+            hf__rows16(pts + 48 * (g + 1), &nx, &ny, &nz);
+        } else { /* the tip repeats after it */
+            nx = _mm512_set1_ps(pts[3 * (P - 1)]);
+            ny = _mm512_set1_ps(pts[3 * (P - 1) + 1]);
+            nz = _mm512_set1_ps(pts[3 * (P - 1) + 2]);
+        }
+        acc = _mm512_add_ps(_mm512_mul_ps(cx, zero),
+                            _mm512_add_ps(_mm512_mul_ps(cy, zero),
+                                          _mm512_mul_ps(cz, zero)));
+        if (_mm512_cmp_ps_mask(acc, zero, _CMP_EQ_OQ) != 0xffff) return 0;
+#define HF__D(c, n, p)                                                         \
+    _mm512_sub_ps(                                                             \
+        _mm512_castsi512_ps(_mm512_maskz_alignr_epi32(                         \
+            0xffff, _mm512_castps_si512(n), _mm512_castps_si512(c), 1)),       \
+        _mm512_castsi512_ps(_mm512_maskz_alignr_epi32(                         \
+            0xffff, _mm512_castps_si512(c), _mm512_castps_si512(p), 15)))
+        dx = HF__D(cx, nx, px);
+        dy = HF__D(cy, ny, py);
+        dz = HF__D(cz, nz, pz);
+#undef HF__D
+        vx = ortho ? e[0] : _mm512_sub_ps(e[0], cx);
+        vy = ortho ? e[1] : _mm512_sub_ps(e[1], cy);
+        vz = ortho ? e[2] : _mm512_sub_ps(e[2], cz);
+        l2 = _mm512_add_ps(
+            _mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy)),
+            _mm512_mul_ps(dz, dz));
+        ok = _mm512_cmp_ps_mask(l2, tiny, _CMP_GT_OQ) &
+             _mm512_cmp_ps_mask(l2, big, _CMP_LE_OQ);
+        /* 1 where undefined: no division by zero for any lane */
+        inv = _mm512_div_ps(
+            one, _mm512_maskz_sqrt_ps(0xffff,
+                                      _mm512_mask_blend_ps(ok, one, l2)));
+        T[0] = _mm512_mul_ps(dx, inv);
+        T[1] = _mm512_mul_ps(dy, inv);
+        T[2] = _mm512_mul_ps(dz, inv);
+        sx = _mm512_sub_ps(_mm512_mul_ps(dy, vz), _mm512_mul_ps(dz, vy));
+        sy = _mm512_sub_ps(_mm512_mul_ps(dz, vx), _mm512_mul_ps(dx, vz));
+        sz = _mm512_sub_ps(_mm512_mul_ps(dx, vy), _mm512_mul_ps(dy, vx));
+        c2 = _mm512_add_ps(
+            _mm512_add_ps(_mm512_mul_ps(sx, sx), _mm512_mul_ps(sy, sy)),
+            _mm512_mul_ps(sz, sz));
+        vv = _mm512_add_ps(
+            _mm512_add_ps(_mm512_mul_ps(vx, vx), _mm512_mul_ps(vy, vy)),
+            _mm512_mul_ps(vz, vz));
+        ok2 = _mm512_cmp_ps_mask(
+                  c2, _mm512_mul_ps(_mm512_mul_ps(side_sin2, vv), l2),
+                  _CMP_GT_OQ) &
+              _mm512_cmp_ps_mask(c2, tiny, _CMP_GT_OQ) &
+              _mm512_cmp_ps_mask(c2, big, _CMP_LE_OQ);
+        if ((ok & ok2) != 0xffff) return 0;
+        inv2 = _mm512_div_ps(
+            one, _mm512_maskz_sqrt_ps(0xffff,
+                                      _mm512_mask_blend_ps(ok2, one, c2)));
+        /* L = p - s w, R = p + s w, relative to the origin and scale, as
+           hf__ribbon_group_avx2 */
+        w = _mm512_mul_ps(_mm512_loadu_ps(K->hw + 16 * g), ws);
+        {
+            const __m512 cc[3] = {cx, cy, cz}, ss[3] = {sx, sy, sz};
+            HF__UNROLL for (c = 0; c < 3; ++c) {
+                const __m512 sw = _mm512_mul_ps(_mm512_mul_ps(ss[c], inv2), w);
+                L[c] = _mm512_mul_ps(
+                    _mm512_sub_ps(_mm512_sub_ps(cc[c], sw), ov[1 + c]), ov[0]);
+                R[c] = _mm512_mul_ps(
+                    _mm512_sub_ps(_mm512_add_ps(cc[c], sw), ov[1 + c]), ov[0]);
+            }
+        }
+        for (h = 0; h < 2; ++h, b += 64 * F) {
+            const __m512 tt = _mm512_loadu_ps(K->tt + 16 * g);
+#define HF__HALF(a, b2)                                                        \
+    (h ? _mm512_maskz_shuffle_f32x4(0xffff, a, b2, 0xee)                       \
+       : _mm512_maskz_shuffle_f32x4(0xffff, a, b2, 0x44))
+            S[0] = HF__HALF(L[0], R[0]);
+            S[1] = HF__HALF(L[1], R[1]);
+            S[2] = HF__HALF(L[2], R[2]);
+            S[3] = HF__HALF(T[0], T[1]);
+            S[4] = HF__HALF(T[2], tt);
+#undef HF__HALF
+            for (c = 0; c < F; ++c) {
+                const __m512i *ix = t->idx[c];
+                const __m512 a = _mm512_permutex2var_ps(S[0], ix[0], S[1]),
+                             d = _mm512_permutex2var_ps(S[2], ix[1], S[3]),
+                             f = _mm512_permutex2var_ps(S[4], ix[2], uv);
+                _mm512_stream_ps(
+                    (float *)(void *)(b + 64 * c),
+                    _mm512_mask_blend_ps(
+                        t->m[c][1], _mm512_mask_blend_ps(t->m[c][0], a, d),
+                        f));
+            }
+        }
+        px = cx;
+        py = cy;
+        pz = cz;
+        cx = nx;
+        cy = ny;
+        cz = nz;
+    }
+    return 1;
+}
+
 /* Whether a streamed call goes out as lines (above) at `level`: the
    stage's vertex (block bytes, dst0 the first byte of vertex 0) is a
    packed float run alone, P a multiple of 8 (so every strand's block
@@ -10821,8 +10981,11 @@ HF__PRIVATE int hf__lines_fit(const hf__rout *ro, int P, int level,
                                    (size_t)P * block) & 63u) == 0;
 }
 
-/* hf__ribbons_loop_avx2's plain path (each frame a strand ahead, in fr
-   and fr2 by turns) with the lines above for the writer */
+/* The strands of a streamed call as lines (hf__lines_fit). P a multiple
+   of 16: each strand's frame in registers (hf__ribbon_fused_avx512), a
+   strand it leaves framed by hf__frame_strand_avx2 and written from the
+   rows. Else hf__ribbons_loop_avx2's plain path (each frame a strand
+   ahead, in fr and fr2 by turns) with the lines for the writer. */
 HF__TARGET_AVX512 HF__PRIVATE void
 hf__ribbons_lines_avx512(const hf_ribbon_strands *sv, int first, int count,
                          const hf_ribbon_params *params, const hf__rconst *K,
@@ -10835,24 +10998,47 @@ hf__ribbons_lines_avx512(const hf_ribbon_strands *sv, int first, int count,
     hf__rframe *F[2];
     float wsc[2];
     __m256 e[3], ov[4];
+    __m512 e16[3], ov16[4];
     hf__lines t;
-    int s;
+    int s, c;
     hf__lines_init(&t, ro->run == 3 ? 9 : 6);
     hf__frame_eye_avx2(params, e);
     hf__rout_vec_avx2(ro, ov);
+    HF__UNROLL for (c = 0; c < 4; ++c) { /* the same in every lane */
+        if (c < 3) e16[c] = hf__join16(e[c], e[c]);
+        ov16[c] = hf__join16(ov[c], ov[c]);
+    }
     F[0] = fr;
     F[1] = fr2;
-    hf__frame_at_avx2(&svl, first, end, P, ortho, e, params, F[0], &wsc[0]);
-    for (s = first; s < end; ++s) {
-        const int j = (s - first) & 1;
-        hf__rstrand str;
-        hf__frame_at_avx2(&svl, s + 1, end, P, ortho, e, params, F[j ^ 1],
-                          &wsc[j ^ 1]);
-        str.wscale = wsc[j];
-        hf__rstrand_fill(&svl, s, K->wcap, &str);
-        hf__ribbon_lines_avx512(F[j], P, K, &str, ro,
-                                (size_t)(s - out_first) * (size_t)P * 2u, ov,
-                                &t);
+    if (P % 16 == 0) {
+        for (s = first; s < end; ++s) {
+            const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
+            hf__rstrand str;
+            str.wscale = 1.0f;
+            hf__rstrand_fill(&svl, s, K->wcap, &str);
+            if (hf__ribbon_fused_avx512(svl.points + (size_t)s * (size_t)P * 3u,
+                                        P, ortho, e16, K, &str, ro, v0, ov16,
+                                        &t))
+                continue;
+            hf__frame_at_avx2(&svl, s, end, P, ortho, e, params, fr, &wsc[0]);
+            str.wscale = wsc[0];
+            hf__rstrand_fill(&svl, s, K->wcap, &str);
+            hf__ribbon_lines_avx512(fr, P, K, &str, ro, v0, ov, &t);
+        }
+    } else {
+        hf__frame_at_avx2(&svl, first, end, P, ortho, e, params, F[0],
+                          &wsc[0]);
+        for (s = first; s < end; ++s) {
+            const int j = (s - first) & 1;
+            hf__rstrand str;
+            hf__frame_at_avx2(&svl, s + 1, end, P, ortho, e, params,
+                              F[j ^ 1], &wsc[j ^ 1]);
+            str.wscale = wsc[j];
+            hf__rstrand_fill(&svl, s, K->wcap, &str);
+            hf__ribbon_lines_avx512(F[j], P, K, &str, ro,
+                                    (size_t)(s - out_first) * (size_t)P * 2u,
+                                    ov, &t);
+        }
     }
     _mm_sfence(); /* streamed stores visible before we return */
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */

@@ -5973,16 +5973,17 @@ static hf_ribbon_output t_packed_run(unsigned char *b, int bytes)
 /* A packed float vertex streamed (nontemporal 1) gives the bytes of
    ordinary stores at the scalar level, at every level: whole groups of
    eight points go out as whole lines where the output is aligned to
-   them (AVX-512), the stage takes the rest. The 36- and 24-byte
-   vertices, P a multiple of 8 and not, the output at byte offsets
+   them (AVX-512; P a multiple of 16 with the frame in registers), the
+   stage takes the rest. The 36- and 24-byte vertices, P a multiple of
+   16, of 8 and neither, the output at byte offsets
    aligned to a line and not, range splits whose first strand starts a
    line and not, perspective and orthographic, strand UVs and widths, a
    strand with a zero-length segment and one with a NaN. Bytes around
    stay. */
 static void test_ribbons_streamed_lines(void)
 {
-    enum { N = 7, PM = 24, BYTES = N * PM * 2 * 36 };
-    static const int Ps[4] = {8, 16, 24, 13}, offs[4] = {0, 64, 4, 36};
+    enum { N = 7, PM = 32, BYTES = N * PM * 2 * 36 };
+    static const int Ps[5] = {8, 16, 24, 32, 13}, offs[4] = {0, 64, 4, 36};
     static const int cuts[3][2] = {{N, N}, {3, N}, {1, 4}};
     float *pts = (float *)malloc(sizeof(float) * N * PM * 3);
     unsigned char *ref0 = (unsigned char *)malloc(BYTES + 192);
@@ -6004,7 +6005,7 @@ static void test_ribbons_streamed_lines(void)
     st.points = pts;
     st.root_uv = uv;
     st.width = width;
-    for (pi = 0; pi < 4; ++pi) {
+    for (pi = 0; pi < 5; ++pi) {
         const int P = Ps[pi];
         /* strand 2: a zero-length segment; strand 5: a NaN */
         memcpy(pts + (2 * P + 4) * 3, pts + (2 * P + 3) * 3, 12);
