@@ -1437,7 +1437,8 @@ typedef struct hf_ribbon_params {
        the AVX-512 level runs AVX2 but for streamed float vertices of
        36 or 24 bytes (position, tangent and texcoord, or the first two)
        in a buffer aligned to 64 bytes with points_per_strand a multiple
-       of 8, which it writes in whole 64-byte lines. */
+       of 8, which it writes in whole 64-byte lines (with a multiple of
+       16, their frames sixteen points at a time). */
     int simd;
 } hf_ribbon_params;
 
@@ -10718,7 +10719,9 @@ hf__ribbons_run_avx2(const hf_ribbon_strands *sv, int first, int count,
    and written with one 64-byte streaming store: no stage written and
    read back, no partial line. The same values in the same operations as
    hf__ribbon_group_avx2, so the same bytes. Scene L's streamed ribbons:
-   0.81-0.94x the staged AVX2 run's time (docs/performance.md). */
+   0.81-0.94x the staged AVX2 run's time, and 0.875-0.927x of that with
+   the frame in registers too (hf__ribbon_fused_avx512;
+   docs/performance.md). */
 typedef struct hf__lines {
     __m512i idx[9][3];   /* line c's lanes from source pair q */
     __mmask16 m[9][2];   /* lanes from pair 1, from pair 2 */
