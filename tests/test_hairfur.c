@@ -5977,9 +5977,9 @@ static hf_ribbon_output t_packed_run(unsigned char *b, int bytes)
    stage takes the rest. The 36- and 24-byte vertices, P a multiple of
    16, of 8 and neither, the output at byte offsets
    aligned to a line and not, range splits whose first strand starts a
-   line and not, perspective and orthographic, strand UVs and widths, a
-   strand with a zero-length segment and one with a NaN. Bytes around
-   stay. */
+   line and not, perspective and orthographic, strand UVs and widths,
+   strands with a zero-length segment or a NaN near the root and near
+   the tip. Bytes around stay. */
 static void test_ribbons_streamed_lines(void)
 {
     enum { N = 7, PM = 32, BYTES = N * PM * 2 * 36 };
@@ -6007,9 +6007,13 @@ static void test_ribbons_streamed_lines(void)
     st.width = width;
     for (pi = 0; pi < 5; ++pi) {
         const int P = Ps[pi];
-        /* strand 2: a zero-length segment; strand 5: a NaN */
+        /* strand 2: a zero-length segment; strand 5: a NaN; strands 4
+           and 3 the same at their tip (past the first sixteen points
+           where P is 32) */
         memcpy(pts + (2 * P + 4) * 3, pts + (2 * P + 3) * 3, 12);
         pts[(5 * P + 1) * 3 + 1] = (float)NAN;
+        memcpy(pts + (4 * P + P - 2) * 3, pts + (4 * P + P - 3) * 3, 12);
+        pts[(3 * P + P - 1) * 3] = (float)NAN;
         for (vb = 24; vb <= 36; vb += 12)
             for (ortho = 0; ortho < 2; ++ortho)
                 for (oi = 0; oi < 4; ++oi)
