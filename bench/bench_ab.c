@@ -7,8 +7,8 @@
    guides; each version grows its own fur from the same description), call
    by call: for each stage, FRAMES calls of each, the order swapped every
    call, each after a read of 64 MiB of other bytes (as in a frame, the
-   stage's output has left the cache; a memset of that size, which
-   glibc writes with streaming stores, evicted nothing). ab_side.c is built once with each header
+   stage's output has left the cache; a memset of that size, glibc's
+   `rep stosb`, left the cache as it was). ab_side.c is built once with each header
    (every function static), as `base` and `new`.
 
    Output: a table, then a machine line per stage:
