@@ -463,34 +463,21 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
     bytes[ST_FRAME] = bytes[ST_FRAME16] = bytes[ST_FRAMEP] = 0;
 
     allocs0 = g_allocs;
+    /* the stages in their enum's order, roots to ribbons16, each timed */
     for (f = -warm; f < frames; ++f) {
-        double t0, t1, t2, t3, t4, t5, t6, t7;
+        double ts[ST_RIBBONS16 + 2];
         scene_pose(s, s->frame++);
-        t0 = now_ms();
-        run_job(&jobs[ST_ROOTS]);
-        t1 = now_ms();
-        run_job(&jobs[ST_ROPES]);
-        t2 = now_ms();
-        run_job(&jobs[ST_LODG]);
-        t3 = now_ms();
-        run_job(&jobs[ST_INTERP]);
-        t4 = now_ms();
-        run_job(&jobs[ST_RIBBONS]);
-        t5 = now_ms();
-        run_job(&jobs[ST_POINTS]);
-        t6 = now_ms();
-        run_job(&jobs[ST_RIBBONS16]);
-        t7 = now_ms();
+        ts[0] = now_ms();
+        for (k = 0; k <= ST_RIBBONS16; ++k) {
+            run_job(&jobs[k]);
+            ts[k + 1] = now_ms();
+        }
         if (f < 0) continue;
-        t[ST_ROOTS][f] = t1 - t0;
-        t[ST_ROPES][f] = t2 - t1;
-        t[ST_LODG][f] = t3 - t2;
-        t[ST_INTERP][f] = t4 - t3;
-        t[ST_RIBBONS][f] = t5 - t4;
-        t[ST_POINTS][f] = t6 - t5;
-        t[ST_RIBBONS16][f] = t7 - t6;
-        t[ST_FRAME][f] = t5 - t0; /* roots .. ribbons: what a frame needs */
-        t[ST_FRAME16][f] = (t4 - t0) + (t7 - t6); /* with 16-byte vertices */
+        for (k = 0; k <= ST_RIBBONS16; ++k) t[k][f] = ts[k + 1] - ts[k];
+        /* roots .. ribbons: what a frame needs; with 16-byte vertices */
+        t[ST_FRAME][f] = ts[ST_RIBBONS + 1] - ts[0];
+        t[ST_FRAME16][f] = (ts[ST_INTERP + 1] - ts[0]) +
+                           (ts[ST_RIBBONS16 + 1] - ts[ST_RIBBONS16]);
     }
     /* The GPU path's frames on their own, as an application that draws
        that way runs them: roots, ropes, LOD guides, then strands and their
