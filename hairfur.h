@@ -9754,6 +9754,24 @@ hf__put_side_avx2(unsigned char *o, size_t st2, int n, int run, __m256 x,
     }
 }
 
+/* A group's left and right positions from frame row offset o, w the
+   half widths: L = p - s w, R = p + s w, relative to the origin and
+   scale (ov as hf__rout_vec_avx2) */
+HF__TARGET_AVX2 HF__INLINE void hf__sides_avx2(const hf__rframe *fr, int o,
+                                               __m256 w, const __m256 *ov,
+                                               __m256 *L, __m256 *R)
+{
+    int c;
+    HF__UNROLL for (c = 0; c < 3; ++c) {
+        const __m256 p = _mm256_loadu_ps(fr->p[c] + o);
+        const __m256 sw = _mm256_mul_ps(_mm256_loadu_ps(fr->s[c] + o), w);
+        L[c] = _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(p, sw), ov[1 + c]),
+                             ov[0]);
+        R[c] = _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(p, sw), ov[1 + c]),
+                             ov[0]);
+    }
+}
+
 /* One group of n points (8 but for the last), the run's vertices from
    point 8 k on at b: the writer's loop body, inlined with n and run as
    constants where it can (the common groups then take no branch) */
@@ -9770,22 +9788,12 @@ hf__ribbon_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k,
                  hi = _mm256_unpackhi_ps(ty, tz);
     const __m256 tx = _mm256_loadu_ps(fr->t[0] + o);
     __m256 B[4], L[3], R[3];
-    int c;
     /* ty tz u v of points i and i + 4: the same on both sides */
     B[0] = _mm256_shuffle_ps(lo, uv, _MM_SHUFFLE(1, 0, 1, 0));
     B[1] = _mm256_shuffle_ps(lo, uv, _MM_SHUFFLE(1, 0, 3, 2));
     B[2] = _mm256_shuffle_ps(hi, uv, _MM_SHUFFLE(1, 0, 1, 0));
     B[3] = _mm256_shuffle_ps(hi, uv, _MM_SHUFFLE(1, 0, 3, 2));
-    /* L = p - s w, R = p + s w, relative to the origin and scale (ov as
-       hf__rout_vec_avx2) */
-    HF__UNROLL for (c = 0; c < 3; ++c) {
-        const __m256 p = _mm256_loadu_ps(fr->p[c] + o);
-        const __m256 sw = _mm256_mul_ps(_mm256_loadu_ps(fr->s[c] + o), w);
-        L[c] = _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(p, sw), ov[1 + c]),
-                             ov[0]);
-        R[c] = _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(p, sw), ov[1 + c]),
-                             ov[0]);
-    }
+    hf__sides_avx2(fr, o, w, ov, L, R);
     if (n == 8 && run == 3) {
         hf__put_pair_avx2(b, st, L[0], L[1], L[2], R[0], R[1], R[2], tx, B,
                           K->tt + 8 * k);
@@ -10765,6 +10773,32 @@ HF__TARGET_AVX512 HF__INLINE __m512 hf__join16(__m256 lo, __m256 hi)
         _mm256_castps_pd(hi), 1));
 }
 
+/* A strand's u v in lanes 0 and 1 (the lines' sixth source) */
+HF__TARGET_AVX512 HF__INLINE __m512 hf__uv16(const hf__rstrand *str)
+{
+    return _mm512_castps128_ps512(
+        _mm_unpacklo_ps(_mm_set1_ps(str->uv[0]), _mm_set1_ps(str->uv[1])));
+}
+
+/* A group's F lines at b from its sources S (left | right x, y, z; tx |
+   ty; tz | t) and uv */
+HF__TARGET_AVX512 HF__INLINE void hf__lines_out(unsigned char *b,
+                                                const __m512 *S, __m512 uv,
+                                                const hf__lines *t)
+{
+    int c;
+    for (c = 0; c < t->F; ++c) {
+        const __m512i *ix = t->idx[c];
+        const __m512 a = _mm512_permutex2var_ps(S[0], ix[0], S[1]),
+                     d = _mm512_permutex2var_ps(S[2], ix[1], S[3]),
+                     e = _mm512_permutex2var_ps(S[4], ix[2], uv);
+        _mm512_stream_ps(
+            (float *)(void *)(b + 64 * c),
+            _mm512_mask_blend_ps(t->m[c][1],
+                                 _mm512_mask_blend_ps(t->m[c][0], a, d), e));
+    }
+}
+
 /* One strand's vertices at ro's position base + v0 vertices, as lines */
 HF__TARGET_AVX512 HF__INLINE void
 hf__ribbon_lines_avx512(const hf__rframe *fr, int P, const hf__rconst *K,
@@ -10774,37 +10808,22 @@ hf__ribbon_lines_avx512(const hf__rframe *fr, int P, const hf__rconst *K,
     const int F = t->F;
     unsigned char *b = ro->base[HF__S_POS] + v0 * 4u * (size_t)F;
     const __m256 ws = _mm256_set1_ps(str->wscale);
-    const __m512 uv = _mm512_castps128_ps512(
-        _mm_unpacklo_ps(_mm_set1_ps(str->uv[0]), _mm_set1_ps(str->uv[1])));
+    const __m512 uv = hf__uv16(str);
     int k, c;
     hf__page_ahead(b, 8u * (size_t)P * (size_t)F);
     for (k = 0; 8 * k < P; ++k, b += 64 * F) {
         const int o = 4 + 8 * k;
-        const __m256 w = _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws);
+        __m256 L[3], R[3];
         __m512 S[5];
-        HF__UNROLL for (c = 0; c < 3; ++c) { /* as hf__ribbon_group_avx2 */
-            const __m256 p = _mm256_loadu_ps(fr->p[c] + o);
-            const __m256 sw = _mm256_mul_ps(_mm256_loadu_ps(fr->s[c] + o), w);
-            S[c] = hf__join16(
-                _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(p, sw), ov[1 + c]),
-                              ov[0]),
-                _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(p, sw), ov[1 + c]),
-                              ov[0]));
-        }
+        hf__sides_avx2(fr, o,
+                       _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws), ov,
+                       L, R);
+        HF__UNROLL for (c = 0; c < 3; ++c) S[c] = hf__join16(L[c], R[c]);
         S[3] = hf__join16(_mm256_loadu_ps(fr->t[0] + o),
                           _mm256_loadu_ps(fr->t[1] + o));
         S[4] = hf__join16(_mm256_loadu_ps(fr->t[2] + o),
                           _mm256_loadu_ps(K->tt + 8 * k));
-        for (c = 0; c < F; ++c) {
-            const __m512 a = _mm512_permutex2var_ps(S[0], t->idx[c][0], S[1]),
-                         d = _mm512_permutex2var_ps(S[2], t->idx[c][1], S[3]),
-                         e = _mm512_permutex2var_ps(S[4], t->idx[c][2], uv);
-            _mm512_stream_ps(
-                (float *)(void *)(b + 64 * c),
-                _mm512_mask_blend_ps(t->m[c][1],
-                                     _mm512_mask_blend_ps(t->m[c][0], a, d),
-                                     e));
-        }
+        hf__lines_out(b, S, uv, t);
     }
 }
 
@@ -10838,10 +10857,10 @@ HF__TARGET_AVX512 HF__INLINE void hf__rows16(const float *q, __m512 *X,
 /* A strand's frame and lines in registers, sixteen points a turn (P a
    multiple of 16), for hf__ribbons_lines_avx512: hf__frame_group_avx2's
    operations on sixteen lanes (a 512-bit square root or division costs
-   what a 256-bit one does on the cores measured), no frame rows written
-   and read back. Returns 0, with lines perhaps written, where a point is
-   not finite or a lane is left to the reference: the caller writes the
-   strand again from hf__strand_frame_rest's frame. */
+   what a 256-bit one does on Zen 5), no frame rows written and read
+   back. Returns 0, with lines perhaps written, where a point is not
+   finite or a lane is left to the reference: the caller writes the
+   strand again from hf__frame_strand_avx2's rows. */
 HF__TARGET_AVX512 HF__INLINE int
 hf__ribbon_fused_avx512(const float *pts, int P, int ortho, const __m512 *e,
                         const hf__rconst *K, const hf__rstrand *str,
@@ -10854,8 +10873,7 @@ hf__ribbon_fused_avx512(const float *pts, int P, int ortho, const __m512 *e,
                  big = _mm512_set1_ps(3.40282347e+38f),
                  side_sin2 = _mm512_set1_ps(HF__SIDE_SIN2),
                  ws = _mm512_set1_ps(str->wscale);
-    const __m512 uv = _mm512_castps128_ps512(
-        _mm_unpacklo_ps(_mm_set1_ps(str->uv[0]), _mm_set1_ps(str->uv[1])));
+    const __m512 uv = hf__uv16(str);
     unsigned char *b = ro->base[HF__S_POS] + v0 * 4u * (size_t)F;
     __m512 cx, cy, cz, nx, ny, nz, px, py, pz;
     int g, c, h;
@@ -10865,6 +10883,7 @@ hf__ribbon_fused_avx512(const float *pts, int P, int ortho, const __m512 *e,
     py = _mm512_set1_ps(pts[1]);
     pz = _mm512_set1_ps(pts[2]);
     for (g = 0; 16 * g < P; ++g) {
+        const __m512 tt = _mm512_loadu_ps(K->tt + 16 * g);
         __m512 T[3], L[3], R[3], S[5], acc, dx, dy, dz, vx, vy, vz, l2, sx,
             sy, sz, c2, vv, inv, inv2, w;
         __mmask16 ok, ok2;
@@ -10936,7 +10955,6 @@ hf__ribbon_fused_avx512(const float *pts, int P, int ortho, const __m512 *e,
             }
         }
         for (h = 0; h < 2; ++h, b += 64 * F) {
-            const __m512 tt = _mm512_loadu_ps(K->tt + 16 * g);
 #define HF__HALF(a, b2)                                                        \
     (h ? _mm512_maskz_shuffle_f32x4(0xffff, a, b2, 0xee)                       \
        : _mm512_maskz_shuffle_f32x4(0xffff, a, b2, 0x44))
@@ -10946,17 +10964,7 @@ hf__ribbon_fused_avx512(const float *pts, int P, int ortho, const __m512 *e,
             S[3] = HF__HALF(T[0], T[1]);
             S[4] = HF__HALF(T[2], tt);
 #undef HF__HALF
-            for (c = 0; c < F; ++c) {
-                const __m512i *ix = t->idx[c];
-                const __m512 a = _mm512_permutex2var_ps(S[0], ix[0], S[1]),
-                             d = _mm512_permutex2var_ps(S[2], ix[1], S[3]),
-                             f = _mm512_permutex2var_ps(S[4], ix[2], uv);
-                _mm512_stream_ps(
-                    (float *)(void *)(b + 64 * c),
-                    _mm512_mask_blend_ps(
-                        t->m[c][1], _mm512_mask_blend_ps(t->m[c][0], a, d),
-                        f));
-            }
+            hf__lines_out(b, S, uv, t);
         }
         px = cx;
         py = cy;
@@ -10969,17 +10977,16 @@ hf__ribbon_fused_avx512(const float *pts, int P, int ortho, const __m512 *e,
 }
 
 /* Whether a streamed call goes out as lines (above) at `level`: the
-   stage's vertex (block bytes, dst0 the first byte of vertex 0) is a
-   packed float run alone, P a multiple of 8 (so every strand's block
-   keeps the first's alignment) and strand `first`'s block starts a
-   line */
+   stage's vertex (hf__ribbon_stage: block bytes, every stream inside it,
+   dst0 the first byte of vertex 0) is the float run alone, 4 F bytes, P
+   a multiple of 8 (so every strand's block keeps the first's alignment)
+   and strand `first`'s block starts a line */
 HF__PRIVATE int hf__lines_fit(const hf__rout *ro, int P, int level,
                               const unsigned char *dst0, size_t block,
                               int first, int out_first)
 {
-    const size_t F = ro->run == 3 ? 9u : 6u;
-    return level >= HF_SIMD_AVX512 && ro->run && !ro->rest &&
-           block == 4u * F && ro->stride[HF__S_POS] == block && P % 8 == 0 &&
+    return level >= HF_SIMD_AVX512 && ro->run &&
+           block == (ro->run == 3 ? 36u : 24u) && P % 8 == 0 &&
            (((uintptr_t)dst0 + (size_t)(first - out_first) * 2u *
                                    (size_t)P * block) & 63u) == 0;
 }
@@ -11133,7 +11140,8 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
     const hf_ribbon_params *params = &prm;
     hf_ribbon_strands sv;
     const hf_stream *streams[5];
-    union { /* the stage, or the AVX2 run's second frame */
+    union { /* the stage, or a second frame (the AVX2 run's plain path,
+               the AVX-512 lines) */
         float stage[HF__STAGE_BYTES / 4];
         hf__rframe fr2;
     } mem;

@@ -244,7 +244,7 @@ static void scene_init(scene *s, const char *name, int rings, int segments,
    with memset, as the bench did before, left them there: glibc 2.36
    writes a memset of that size with `rep stosb`, which on this CPU left
    the cache as it was (a 19 MiB buffer then measured 46-48 GB/s with vector
-   stores, 40-44 flushed; 7 MiB 54-66 against 44-46). A buffer under the
+   stores, 40-44 flushed; 7 MiB 39-66 against 44-46). A buffer under the
    last-level cache still writes faster than a large one, flushed or
    not: its lines are written back after the pass, for the limit and a
    stage alike. Without SSE2: 64 MiB of other bytes, one ordinary store

@@ -6016,24 +6016,24 @@ static void test_ribbons_streamed_lines(void)
         pts[(3 * P + P - 1) * 3] = (float)NAN;
         for (vb = 24; vb <= 36; vb += 12)
             for (ortho = 0; ortho < 2; ++ortho)
-                for (oi = 0; oi < 4; ++oi)
-                    for (ci = 0; ci < 3; ++ci) {
-                        hf_ribbon_params p = t_rparams();
-                        hf_ribbon_output o = t_packed_run(ref + offs[oi], vb);
-                        p.points_per_strand = P;
-                        p.orthographic = ortho;
-                        p.view_dir[2] = -1.0f;
-                        memset(ref, 0x5a, BYTES + 128);
-                        p.simd = HF_SIMD_SCALAR;
-                        p.nontemporal = 2;
-                        CHECK_EQ_INT(hf_ribbons(&st, 0, N, &p, &o), HF_OK);
+                for (oi = 0; oi < 4; ++oi) {
+                    hf_ribbon_params p = t_rparams();
+                    hf_ribbon_output o = t_packed_run(ref + offs[oi], vb);
+                    p.points_per_strand = P;
+                    p.orthographic = ortho;
+                    p.view_dir[2] = -1.0f;
+                    memset(ref, 0x5a, BYTES + 128);
+                    p.simd = HF_SIMD_SCALAR;
+                    p.nontemporal = 2;
+                    CHECK_EQ_INT(hf_ribbons(&st, 0, N, &p, &o), HF_OK);
+                    p.nontemporal = 1;
+                    for (ci = 0; ci < 3; ++ci)
                         for (level = HF_SIMD_SSE2; level <= HF_SIMD_AVX512;
                              ++level) {
                             const int a = cuts[ci][0], b = cuts[ci][1];
                             memset(got, 0x5a, BYTES + 128);
                             o = t_packed_run(got + offs[oi], vb);
                             p.simd = level;
-                            p.nontemporal = 1;
                             CHECK_EQ_INT(hf_ribbons(&st, 0, a, &p, &o), HF_OK);
                             CHECK_EQ_INT(hf_ribbons(&st, a, b - a, &p, &o),
                                          HF_OK);
@@ -6041,7 +6041,7 @@ static void test_ribbons_streamed_lines(void)
                                          HF_OK);
                             CHECK(memcmp(got, ref, BYTES + 128) == 0);
                         }
-                    }
+                }
     }
     free(pts);
     free(ref0);
