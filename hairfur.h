@@ -7867,74 +7867,78 @@ HF__INLINE int hf__stream_mode(int nt, const void *o, uintptr_t whole)
 #endif
 
 #if HF__AVX2
-/* (1 - sc) root of a strand in lanes 0-2 (lane 3: unused), the scalar
-   root's operations in its order; the wide kernels spread it in its
-   phases with one permute each. */
-HF__INLINE __m128 hf__interp_root4(const hf_strand_binding *b,
-                                   const float *g0, const float *g1,
-                                   const float *g2)
-{
-    return _mm_mul_ps(
-        _mm_set1_ps(1.0f - b->length_scale),
-        _mm_add_ps(
-            _mm_add_ps(_mm_mul_ps(_mm_set1_ps(b->weight[0]), _mm_loadu_ps(g0)),
-                       _mm_mul_ps(_mm_set1_ps(b->weight[1]), _mm_loadu_ps(g1))),
-            _mm_mul_ps(_mm_set1_ps(b->weight[2]), _mm_loadu_ps(g2))));
-}
-
 /* One strand's inputs at eight lanes, straight from its binding (taken
    through hf__istrand and a record of its vectors, the sixteen-lane
    kernel ran 1.3x slower on 100,000 strands): its
    guides (gn: the one it clumps to, NULL without clumping), weights,
    scale, and (1 - sc) root in its phases at floats 0, 8, 16 (0, 2, 1;
-   it repeats every 3 floats). The kernels pass the run's fields in:
+   it repeats every 3 floats; hf__roots8). The kernels pass the run's
+   fields in:
    their vector stores may alias anything, so fields read through the run
    would be read again after each. */
 typedef struct hf__is8 {
     const float *g0, *g1, *g2, *gn;
     __m256 W0, W1, W2, SC, R[3];
 } hf__is8;
+/* one vector, in the texts built at eight and sixteen lanes */
+typedef __m256 hf__f8;
 
 HF__TARGET_AVX2 HF__INLINE void hf__strand8(const float *G, int clump,
                                             const hf_strand_binding *b,
                                             size_t n, hf__is8 *v)
 {
-    const __m256i x0 = _mm256_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1);
-    const __m256i x2 = _mm256_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0);
-    const __m256i x1 = _mm256_setr_epi32(1, 2, 0, 1, 2, 0, 1, 2);
-    __m128 r4;
-    __m256 r;
     v->g0 = G + (size_t)b->guide[0] * n;
     v->g1 = G + (size_t)b->guide[1] * n;
     v->g2 = G + (size_t)b->guide[2] * n;
     v->gn = clump ? G + hf__clump_guide(b) * n : NULL;
-    r4 = hf__interp_root4(b, v->g0, v->g1, v->g2);
-    r = _mm256_insertf128_ps(_mm256_castps128_ps256(r4), r4, 1);
-    v->R[0] = _mm256_permutevar8x32_ps(r, x0);
-    v->R[1] = _mm256_permutevar8x32_ps(r, x2);
-    v->R[2] = _mm256_permutevar8x32_ps(r, x1);
     v->W0 = _mm256_set1_ps(b->weight[0]);
     v->W1 = _mm256_set1_ps(b->weight[1]);
     v->W2 = _mm256_set1_ps(b->weight[2]);
     v->SC = _mm256_set1_ps(b->length_scale);
 }
 
-/* Floats [q, q + 8) of the strand, in root phase R[k]: the operations of
+/* The weighted sum of the guides' floats [q, q + 8): the operations of
    hf__interp_strand_ref in its order (no FMA), so the same bytes. */
-HF__TARGET_AVX2 HF__INLINE __m256 hf__blend8(const hf__is8 *v,
-                                             const float *ctab, size_t q,
-                                             int k)
+HF__TARGET_AVX2 HF__INLINE __m256 hf__sum8(const hf__is8 *v, size_t q)
 {
-    __m256 p = _mm256_add_ps(
+    return _mm256_add_ps(
         _mm256_add_ps(_mm256_mul_ps(v->W0, _mm256_loadu_ps(v->g0 + q)),
                       _mm256_mul_ps(v->W1, _mm256_loadu_ps(v->g1 + q))),
         _mm256_mul_ps(v->W2, _mm256_loadu_ps(v->g2 + q)));
+}
+
+/* The root phases from the sum of floats [0, 8) (s0: the root's sum in
+   lanes 0-2), so the root costs no loads of its own */
+HF__TARGET_AVX2 HF__INLINE void hf__roots8(hf__is8 *v, __m256 s0)
+{
+    const __m256i x0 = _mm256_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1);
+    const __m256i x2 = _mm256_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0);
+    const __m256i x1 = _mm256_setr_epi32(1, 2, 0, 1, 2, 0, 1, 2);
+    const __m256 r = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(1.0f), v->SC),
+                                   s0);
+    v->R[0] = _mm256_permutevar8x32_ps(r, x0);
+    v->R[1] = _mm256_permutevar8x32_ps(r, x2);
+    v->R[2] = _mm256_permutevar8x32_ps(r, x1);
+}
+
+/* Floats [q, q + 8) of the strand from their sum p, in root phase R[k] */
+HF__TARGET_AVX2 HF__INLINE __m256 hf__finish8(const hf__is8 *v,
+                                              const float *ctab, __m256 p,
+                                              size_t q, int k)
+{
     p = _mm256_add_ps(_mm256_mul_ps(v->SC, p), v->R[k]);
     if (v->gn)
         p = _mm256_add_ps(
             p, _mm256_mul_ps(_mm256_loadu_ps(ctab + q),
                              _mm256_sub_ps(_mm256_loadu_ps(v->gn + q), p)));
     return p;
+}
+
+HF__TARGET_AVX2 HF__INLINE __m256 hf__blend8(const hf__is8 *v,
+                                             const float *ctab, size_t q,
+                                             int k)
+{
+    return hf__finish8(v, ctab, hf__sum8(v, q), q, k);
 }
 
 /* Eight floats at o, as hf__stream_mode says: a plain store (0), two
@@ -7985,17 +7989,22 @@ T HF__INLINE void hf__interp_whole##W(const hf__irun *run, int first,          \
     const hf_strand_binding *b = run->bindings + first;                        \
     const float *G = run->guides, *ctab = run->ctab;                           \
     float *o = run->out + (size_t)(first - run->out_first) * n;                \
-    int s, k;                                                                  \
+    int s;                                                                     \
     for (s = 0; s < count; ++s, ++b, o += n) {                                 \
         hf__is##W v;                                                           \
+        hf__f##W sa;                                                           \
         size_t i;                                                              \
         if (nt) hf__page_ahead(o, 4u * n);                                     \
         hf__strand##W(G, clump, b, n, &v);                                     \
-        for (i = 0; i < n; i += 3 * W)                                         \
-            HF__UNROLL for (k = 0; k < 3; ++k)                                 \
-                hf__put##W(o + i + (size_t)(W * k),                            \
-                           hf__blend##W(&v, ctab, i + (size_t)(W * k), k),     \
-                           nt);                                                \
+        sa = hf__sum##W(&v, 0); /* the root's sum, and the first vector's */   \
+        hf__roots##W(&v, sa);                                                  \
+        for (i = 0;; sa = hf__sum##W(&v, i)) {                                 \
+            hf__put##W(o + i, hf__finish##W(&v, ctab, sa, i, 0), nt);          \
+            hf__put##W(o + i + W, hf__blend##W(&v, ctab, i + W, 1), nt);       \
+            hf__put##W(o + i + 2 * W, hf__blend##W(&v, ctab, i + 2 * W, 2),    \
+                       nt);                                                    \
+            if ((i += 3 * W) >= n) break;                                      \
+        }                                                                      \
     }                                                                          \
 }                                                                              \
                                                                                \
@@ -8029,6 +8038,8 @@ T HF__PRIVATE void hf__interp_range##W(const hf__irun *run, int first,         \
         size_t i;                                                              \
         if (nt) hf__page_ahead(o, 4u * n);                                     \
         hf__strand##W(G, clump, b, n, &v);                                     \
+        if (n >= W) /* else only the scalar tail, with a root of its own */    \
+            hf__roots##W(&v, hf__sum##W(&v, 0));                               \
         for (i = 0; i + 3 * W <= n; i += 3 * W)                                \
             HF__UNROLL for (k = 0; k < 3; ++k)                                 \
                 hf__put##W(o + i + (size_t)(W * k),                            \
@@ -8064,10 +8075,32 @@ typedef struct hf__is16 {
     const float *g0, *g1, *g2, *gn;
     __m512 W0, W1, W2, SC, R[3];
 } hf__is16;
+typedef __m512 hf__f16;
 
 HF__TARGET_AVX512 HF__INLINE void hf__strand16(const float *G, int clump,
                                               const hf_strand_binding *b,
                                               size_t n, hf__is16 *v)
+{
+    v->g0 = G + (size_t)b->guide[0] * n;
+    v->g1 = G + (size_t)b->guide[1] * n;
+    v->g2 = G + (size_t)b->guide[2] * n;
+    v->gn = clump ? G + hf__clump_guide(b) * n : NULL;
+    v->W0 = _mm512_set1_ps(b->weight[0]);
+    v->W1 = _mm512_set1_ps(b->weight[1]);
+    v->W2 = _mm512_set1_ps(b->weight[2]);
+    v->SC = _mm512_set1_ps(b->length_scale);
+}
+
+/* Sixteen floats a vector: hf__sum8, hf__roots8, hf__finish8, hf__blend8 */
+HF__TARGET_AVX512 HF__INLINE __m512 hf__sum16(const hf__is16 *v, size_t q)
+{
+    return _mm512_add_ps(
+        _mm512_add_ps(_mm512_mul_ps(v->W0, _mm512_loadu_ps(v->g0 + q)),
+                      _mm512_mul_ps(v->W1, _mm512_loadu_ps(v->g1 + q))),
+        _mm512_mul_ps(v->W2, _mm512_loadu_ps(v->g2 + q)));
+}
+
+HF__TARGET_AVX512 HF__INLINE void hf__roots16(hf__is16 *v, __m512 s0)
 {
     const __m512i x0 = _mm512_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,
                                          0, 1, 2, 0);
@@ -8075,36 +8108,30 @@ HF__TARGET_AVX512 HF__INLINE void hf__strand16(const float *G, int clump,
                                          1, 2, 0, 1);
     const __m512i x2 = _mm512_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1,
                                          2, 0, 1, 2);
-    __m512 r;
-    v->g0 = G + (size_t)b->guide[0] * n;
-    v->g1 = G + (size_t)b->guide[1] * n;
-    v->g2 = G + (size_t)b->guide[2] * n;
-    v->gn = clump ? G + hf__clump_guide(b) * n : NULL;
-    r = _mm512_castps128_ps512(hf__interp_root4(b, v->g0, v->g1, v->g2));
+    const __m512 r = _mm512_mul_ps(_mm512_sub_ps(_mm512_set1_ps(1.0f), v->SC),
+                                   s0);
     v->R[0] = _mm512_maskz_permutexvar_ps(0xffff, x0, r);
     v->R[1] = _mm512_maskz_permutexvar_ps(0xffff, x1, r);
     v->R[2] = _mm512_maskz_permutexvar_ps(0xffff, x2, r);
-    v->W0 = _mm512_set1_ps(b->weight[0]);
-    v->W1 = _mm512_set1_ps(b->weight[1]);
-    v->W2 = _mm512_set1_ps(b->weight[2]);
-    v->SC = _mm512_set1_ps(b->length_scale);
 }
 
-/* Sixteen floats a vector: the operations of hf__blend8. */
-HF__TARGET_AVX512 HF__INLINE __m512 hf__blend16(const hf__is16 *v,
-                                               const float *ctab, size_t q,
-                                               int k)
+HF__TARGET_AVX512 HF__INLINE __m512 hf__finish16(const hf__is16 *v,
+                                                const float *ctab, __m512 p,
+                                                size_t q, int k)
 {
-    __m512 p = _mm512_add_ps(
-        _mm512_add_ps(_mm512_mul_ps(v->W0, _mm512_loadu_ps(v->g0 + q)),
-                      _mm512_mul_ps(v->W1, _mm512_loadu_ps(v->g1 + q))),
-        _mm512_mul_ps(v->W2, _mm512_loadu_ps(v->g2 + q)));
     p = _mm512_add_ps(_mm512_mul_ps(v->SC, p), v->R[k]);
     if (v->gn)
         p = _mm512_add_ps(
             p, _mm512_mul_ps(_mm512_loadu_ps(ctab + q),
                              _mm512_sub_ps(_mm512_loadu_ps(v->gn + q), p)));
     return p;
+}
+
+HF__TARGET_AVX512 HF__INLINE __m512 hf__blend16(const hf__is16 *v,
+                                               const float *ctab, size_t q,
+                                               int k)
+{
+    return hf__finish16(v, ctab, hf__sum16(v, q), q, k);
 }
 
 /* Sixteen floats at o, as hf__put8: a plain store, four streaming
@@ -11553,18 +11580,22 @@ T HF__INLINE void hf__interp_points_whole##W(                                  \
     for (s = first; s < first + count; ++s) {                                  \
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;            \
         const hf__f##W WS = hf__set1_##W(hf__strand_width(st, s, wcap));       \
-        hf__f##W acc = hf__set1_##W(0.0f);                                     \
+        hf__f##W acc = hf__set1_##W(0.0f), sa;                                 \
         hf__is##W v;                                                           \
         if (mode) hf__page_ahead(o, 16u * (size_t)P);                          \
         hf__strand##W(G, clump, run->bindings + s, n, &v);                     \
-        for (i = 0, j = 0; j < P; i += 3 * W, j += W) {                        \
-            const hf__f##W a = hf__blend##W(&v, ctab, (size_t)i, 0);           \
+        sa = hf__sum##W(&v, 0); /* the root's sum, and the first vector's */   \
+        hf__roots##W(&v, sa);                                                  \
+        for (i = 0, j = 0;; sa = hf__sum##W(&v, (size_t)i)) {                  \
+            const hf__f##W a = hf__finish##W(&v, ctab, sa, (size_t)i, 0);      \
             const hf__f##W b = hf__blend##W(&v, ctab, (size_t)i + W, 1);       \
             const hf__f##W c = hf__blend##W(&v, ctab, (size_t)i + 2 * W, 2);   \
             acc = hf__nan_acc##W(acc, a);                                      \
             acc = hf__nan_acc##W(acc, b);                                      \
             acc = hf__nan_acc##W(acc, c);                                      \
             hf__points_out##W(o + 4 * j, a, b, c, k->pw.v + 4 * j, WS, mode);  \
+            i += 3 * W;                                                        \
+            if ((j += W) >= P) break;                                          \
         }                                                                      \
         if (!hf__all_zero##W(acc)) hf__points_collapse_avx2(k, o);             \
     }                                                                          \
@@ -11587,7 +11618,6 @@ T HF__PRIVATE void hf__interp_points##W(                                       \
 }
 
 #if HF__AVX2
-typedef __m256 hf__f8;
 HF__TARGET_AVX2 HF__INLINE __m256 hf__set1_8(float x)
 {
     return _mm256_set1_ps(x);
@@ -11639,7 +11669,6 @@ HF__INTERP_POINTS(8, HF__TARGET_AVX2)
 #endif
 
 #if HF__AVX512
-typedef __m512 hf__f16;
 HF__TARGET_AVX512 HF__INLINE __m512 hf__set1_16(float x)
 {
     return _mm512_set1_ps(x);
