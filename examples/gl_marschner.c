@@ -88,13 +88,20 @@
 #define GLM_SHADOW_SIZE 1024     /* shadow map texels a side */
 #define GLM_WIDTH_SPACING 0.66f  /* root width / mean strand spacing */
 
+/* How each frame's strands reach the GL buffer they are drawn from:
+   written straight into it, mapped (the default); into our memory, then
+   glBufferSubData (--copy); into a mapped staging buffer, then copied on
+   the GPU with glCopyBufferSubData (--staging), so that the buffer drawn
+   from is never mapped and the driver may keep it in GPU memory. */
+enum { GLM_MAPPED, GLM_COPY, GLM_STAGING };
+
 typedef struct glm_options {
     int width, height, headless, frames, strands, lut_size;
     const char *out, *expand_shader;
     int kajiya, gpu_expand, color3d, colliders, still, a2c, draw_all;
     int compact;      /* CPU ribbons as glm_compact vertices */
-    int copy;         /* 1: strands written into our memory, then
-                         copied; 0: into the mapped GL buffers */
+    int upload;       /* how the strands reach the GL buffers: GLM_MAPPED,
+                         GLM_COPY or GLM_STAGING */
     float specular;   /* 1 = on; 0 = diffuse + ambient only */
     float distance;   /* camera distance to the head centre (m) */
     float lod;        /* < 0: from the distance */
@@ -220,6 +227,8 @@ typedef struct glm_app {
     float light_view_proj[16], shadow_depth; /* light's clip, depth range (m) */
     GLuint vao_cpu, vao_cpu16, vao_gpu, vao_head, vao_line;
     GLuint vbo_dyn, vbo_dyn16, vbo_static, vbo_points, tbo_points;
+    GLuint vbo_stage;   /* --staging: the mapped buffer copied from */
+    size_t stage_bytes; /* its size */
     GLuint vbo_uv, tbo_uv;
     GLuint vbo_scolor, tbo_scolor, vbo_c3x, tbo_c3x, ibo_hair;
     GLuint vbo_head, ibo_head, vbo_line;
@@ -1301,6 +1310,7 @@ static int glm_init(glm_app *a, const glm_options *o)
     glGenVertexArrays(1, &a->vao_cpu);
     glBindVertexArray(a->vao_cpu);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, a->ibo_hair);
+    glGenBuffers(1, &a->vbo_stage); /* sized by its first use */
     glGenBuffers(1, &a->vbo_dyn);
     glBindBuffer(GL_ARRAY_BUFFER, a->vbo_dyn);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(glm_dyn) * nv), NULL,
@@ -1545,9 +1555,10 @@ static GLenum glm_stream_buffer(glm_app *a, size_t *all, size_t *bytes)
    GPU points straight from the guides (hf_fur_interpolate_points), and
    the upload. Only frames that are drawn need it. They are written
    straight into the mapped GL buffer with streaming stores (the stores
-   for write-combined memory), and nothing is copied; with --copy, or
-   where the buffer cannot be mapped, into memory of our own, then
-   glBufferSubData. */
+   for write-combined memory), and nothing is copied; with --staging into
+   a mapped staging buffer the same way, then copied on the GPU; with
+   --copy, or where a buffer cannot be mapped, into memory of our own,
+   then glBufferSubData. */
 static int glm_build(glm_app *a)
 {
     hf_ribbon_params v;
@@ -1561,10 +1572,18 @@ static int glm_build(glm_app *a)
     size_t all, bytes;
     GLenum target = 0;
     glm_ribbon_view(a, &v);
-    if (!a->o.copy) {
+    if (a->o.upload != GLM_COPY) {
         /* the whole buffer invalidated: the driver need not wait for the
            GPU to finish reading last frame's data */
         target = glm_stream_buffer(a, &all, &bytes);
+        if (a->o.upload == GLM_STAGING) {
+            target = GL_COPY_READ_BUFFER;
+            glBindBuffer(target, a->vbo_stage);
+            if (a->stage_bytes < all) {
+                glBufferData(target, (GLsizeiptr)all, NULL, GL_STREAM_DRAW);
+                a->stage_bytes = all;
+            }
+        }
         if (bytes > 0)
             map = (unsigned char *)glMapBufferRange(
                 target, 0, (GLsizeiptr)bytes,
@@ -1573,7 +1592,7 @@ static int glm_build(glm_app *a)
             fprintf(stderr, "gl_marschner: glMapBufferRange failed (GL "
                     "error 0x%x): the strands are copied from now on, as "
                     "with --copy\n", (unsigned)glGetError());
-            a->o.copy = 1;
+            a->o.upload = GLM_COPY;
         }
         v.nontemporal = map != NULL;
     }
@@ -1642,6 +1661,12 @@ static int glm_build(glm_app *a)
                         a->o.gpu_expand ? (const void *)a->points4
                         : a->o.compact  ? (const void *)a->cdyn
                                         : (const void *)a->dyn);
+    } else if (a->o.upload == GLM_STAGING) {
+        /* orphaned as above, then the drawn prefix copied on the GPU */
+        target = glm_stream_buffer(a, &all, &bytes);
+        glBufferData(target, (GLsizeiptr)all, NULL, GL_DYNAMIC_COPY);
+        glCopyBufferSubData(GL_COPY_READ_BUFFER, target, 0, 0,
+                            (GLsizeiptr)bytes);
     }
     a->ms_upload += (glm_now_ms() - t1) + (t0 - tu);
     glBindBuffer(GL_ARRAY_BUFFER, a->vbo_head);
@@ -1886,12 +1911,12 @@ static void glm_draw(glm_app *a)
 
 static void glm_shutdown(glm_app *a)
 {
-    GLuint bufs[11], texs[9], vaos[5], progs[9];
+    GLuint bufs[12], texs[9], vaos[5], progs[9];
     int i;
     bufs[0] = a->vbo_dyn; bufs[1] = a->vbo_static; bufs[2] = a->vbo_points;
     bufs[3] = a->vbo_uv; bufs[4] = a->vbo_scolor; bufs[5] = a->vbo_c3x;
     bufs[6] = a->ibo_hair; bufs[7] = a->vbo_head; bufs[8] = a->ibo_head;
-    bufs[9] = a->vbo_line; bufs[10] = a->vbo_dyn16;
+    bufs[9] = a->vbo_line; bufs[10] = a->vbo_dyn16; bufs[11] = a->vbo_stage;
     texs[0] = a->tex_m; texs[1] = a->tex_n; texs[2] = a->tex_ramp;
     texs[3] = a->tex_density; texs[4] = a->tbo_points; texs[5] = a->tbo_uv;
     texs[6] = a->tbo_scolor; texs[7] = a->tbo_c3x; texs[8] = a->tex_shadow;
@@ -1901,7 +1926,7 @@ static void glm_shutdown(glm_app *a)
     progs[3] = a->prog_head; progs[4] = a->prog_line; progs[5] = a->depth_cpu;
     progs[6] = a->depth_cpu16; progs[7] = a->depth_gpu; progs[8] = a->depth_head;
     if (glc_width() > 0) {
-        glDeleteBuffers(11, bufs);
+        glDeleteBuffers(12, bufs);
         glDeleteTextures(9, texs);
         glDeleteVertexArrays(5, vaos);
         glDeleteFramebuffers(1, &a->shadow_fbo);
@@ -2000,6 +2025,9 @@ static void glm_usage(FILE *fp)
 "  --copy             strands written into memory of the program's, then\n"
 "                     copied (glBufferSubData); default: straight into the\n"
 "                     mapped GL buffers, with streaming stores\n"
+"  --staging          strands written into a mapped staging buffer, then\n"
+"                     copied on the GPU (glCopyBufferSubData) into the\n"
+"                     buffers drawn from, which are never mapped\n"
 "  --color3d          the 3D colour scheme (a ramp with dyed tips)\n"
 "  --colliders        draw the colliders\n"
 "  --no-hair          draw the body alone (hair still simulated): a control\n"
@@ -2108,7 +2136,15 @@ static int glm_parse(int argc, char **argv, glm_options *o)
         else if (!strcmp(s, "--a2c")) o->a2c = 1;
         else if (!strcmp(s, "--draw-all")) o->draw_all = 1;
         else if (!strcmp(s, "--compact")) o->compact = 1;
-        else if (!strcmp(s, "--copy")) o->copy = 1;
+        else if (!strcmp(s, "--copy") || !strcmp(s, "--staging")) {
+            const int u = s[2] == 'c' ? GLM_COPY : GLM_STAGING;
+            if (o->upload != GLM_MAPPED && o->upload != u) {
+                fprintf(stderr, "gl_marschner: --copy and --staging are two "
+                        "ways to upload the strands: give one\n");
+                return 0;
+            }
+            o->upload = u;
+        }
         else if (!strcmp(s, "--no-specular")) o->specular = 0.0f;
         else if (!strcmp(s, "--no-shadows")) o->no_shadows = 1;
         else if (!strcmp(s, "--no-hair")) o->no_hair = 1;
@@ -2330,9 +2366,9 @@ static void glm_report(const glm_app *a, int drawn_frames)
                "the root's depth; if a proxy is larger than the body there, "
                "shrink it)\n");
     /* the drawn strands of the last built frame (with --gpu-expand only
-       its points were written; without --copy into the GL buffer, so
+       its points were written; without --copy into a GL buffer, so
        they are written again into points4 here for the check) */
-    if (a->o.gpu_expand && !a->o.copy) {
+    if (a->o.gpu_expand && a->o.upload != GLM_COPY) {
         hf_ribbon_params v;
         glm_ribbon_view(a, &v);
         if (hf_fur_interpolate_points(a->fur, 0, a->drawn, &v, a->points4))
@@ -2363,7 +2399,9 @@ static void glm_report(const glm_app *a, int drawn_frames)
                a->ms_skin / a->ms_frames, a->ms_sim / a->ms_frames,
                a->o.gpu_expand ? "GPU points" : "ribbons",
                a->build_frames ? a->ms_build / a->build_frames : 0.0,
-               a->o.copy ? "" : " (into the mapped buffer)",
+               a->o.upload == GLM_COPY      ? ""
+               : a->o.upload == GLM_STAGING ? " (into a mapped staging buffer)"
+                                            : " (into the mapped buffer)",
                a->build_frames ? a->ms_upload / a->build_frames : 0.0,
                a->build_frames, drawn_frames ? a->ms_draw / drawn_frames : 0.0);
 }

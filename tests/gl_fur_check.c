@@ -15,22 +15,25 @@
  *      SNORM16 around the head centre) matches the float one over hair
  *      pixels (mean difference and fraction of pixels off by more than 8).
  *   5. mapped buffers: the strands written straight into the mapped GL
- *      buffers (the default) and copied (--copy) draw the same picture,
- *      byte for byte, for CPU ribbons, compact ones and GPU points.
+ *      buffers (the default), copied (--copy) and written into a mapped
+ *      staging buffer copied on the GPU (--staging) draw the same
+ *      picture, byte for byte, for CPU ribbons, compact ones and GPU
+ *      points.
  * Each check also runs on negative controls (a blank image, the
  * diffuse-only render compared with itself, the head-only render as if it
  * were hair, the compact render drawn with a scale 1 % off, the compact
  * render against the float one byte for byte) and must reject them, so
  * the checks are shown to be able to fail every time the test runs.
  *
- * Usage: gl_fur_check [--out-dir DIR] [--sabotage blank|nospec|scale|copy]
+ * Usage: gl_fur_check [--out-dir DIR]
+ *                     [--sabotage blank|nospec|scale|copy|staging]
  *   --out-dir DIR  also write DIR/fur_check_{spec,diffuse,head,gpu,
  *                  compact}.png
  *   --sabotage     feed a blank image / the diffuse-only render in place of
  *                  the Marschner one, or the wrong-scale compact render in
  *                  place of the compact one, or the compact render in place
- *                  of the copied float one: the test must then FAIL
- *                  (exit 1)
+ *                  of the copied (or staged) float one: the test must then
+ *                  FAIL (exit 1)
  * Exit 0 all checks passed, 1 a check failed, 2 "SKIP: reason" (no headless
  * GL). Build: see the Makefile (needs examples/ribbon_expand.glsl only for the
  * GPU-expansion comparison, which it skips with a note if absent). */
@@ -210,7 +213,7 @@ int main(int argc, char **argv)
     static glm_app app;
     glm_app *a = &app;
     unsigned char *spec, *diff, *head, *gpu, *blank, *cmp, *cmp_bad;
-    unsigned char *mapped, *copied;
+    unsigned char *mapped, *copied, *staged;
     region g;
     double v1, v2, t0;
     int f, i;
@@ -220,7 +223,7 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--sabotage") && i + 1 < argc) sabotage = argv[++i];
         else {
             fprintf(stderr, "usage: gl_fur_check [--out-dir DIR] "
-                            "[--sabotage blank|nospec|scale|copy]\n");
+                            "[--sabotage blank|nospec|scale|copy|staging]\n");
             return 2;
         }
     }
@@ -246,7 +249,7 @@ int main(int argc, char **argv)
         return 1;
     }
     glc_set_quiet(0);
-    spec = (unsigned char *)malloc((size_t)W * H * 4 * 9);
+    spec = (unsigned char *)malloc((size_t)W * H * 4 * 10);
     if (!spec) return 1;
     diff = spec + (size_t)W * H * 4;
     head = diff + (size_t)W * H * 4;
@@ -256,6 +259,7 @@ int main(int argc, char **argv)
     cmp_bad = cmp + (size_t)W * H * 4;
     mapped = cmp_bad + (size_t)W * H * 4;
     copied = mapped + (size_t)W * H * 4;
+    staged = copied + (size_t)W * H * 4;
 
     /* 45 frames of physics, the last one with ribbons and uploads */
     for (f = 1; f <= 45; ++f)
@@ -367,31 +371,45 @@ int main(int argc, char **argv)
     expect(i, "scale 1 % off: rejected (mean |compact - float|)", v1);
     expect(i, "scale 1 % off: rejected (fraction off by more than 8)", v2);
 
-    /* the strands copied (--copy) draw the same picture, byte for byte,
-       as written straight into the mapped buffers (the same bytes, with
-       streaming stores); without self-shadowing, as above. Control: the
-       compact render against the float one is told apart. */
-    printf("mapped buffers (the default) against copies (--copy):\n");
+    /* the strands copied (--copy), and staged (--staging: a mapped
+       staging buffer copied on the GPU), draw the same picture, byte for
+       byte, as written straight into the mapped buffers (the same bytes,
+       with streaming stores); without self-shadowing, as above. Control:
+       the compact render against the float one is told apart. */
+    printf("mapped buffers (the default) against copies (--copy) and "
+           "staging buffers (--staging):\n");
     a->o.no_shadows = 1;
     for (f = 0; f < 3; ++f) {
-        static const char *what[3] = {
-            "CPU ribbons: the same bytes mapped and copied",
-            "compact CPU ribbons: the same bytes mapped and copied",
-            "GPU points: the same bytes mapped and copied"};
+        static const char *what[3][2] = {
+            {"CPU ribbons: the same bytes mapped and copied",
+             "CPU ribbons: the same bytes mapped and staged"},
+            {"compact CPU ribbons: the same bytes mapped and copied",
+             "compact CPU ribbons: the same bytes mapped and staged"},
+            {"GPU points: the same bytes mapped and copied",
+             "GPU points: the same bytes mapped and staged"}};
         if (f == 2 && !a->prog_gpu) continue;
         a->o.compact = f == 1;
         a->o.gpu_expand = f == 2;
-        a->o.copy = 0;
+        a->o.upload = GLM_MAPPED;
         if (!build_draw_read(a, mapped)) return 1;
-        a->o.copy = 1;
+        a->o.upload = GLM_COPY;
         if (!build_draw_read(a, copied)) return 1;
+        a->o.upload = GLM_STAGING;
+        if (!build_draw_read(a, staged)) return 1;
         if (f == 0 && sabotage && !strcmp(sabotage, "copy")) {
             printf("  SABOTAGE: the compact render replaces the copied "
                    "float one\n");
             memcpy(copied, cmp, (size_t)W * H * 4);
         }
+        if (f == 0 && sabotage && !strcmp(sabotage, "staging")) {
+            printf("  SABOTAGE: the compact render replaces the staged "
+                   "float one\n");
+            memcpy(staged, cmp, (size_t)W * H * 4);
+        }
         i = memcmp(mapped, copied, (size_t)W * H * 4) == 0;
-        expect(i, what[f], i);
+        expect(i, what[f][0], i);
+        i = memcmp(mapped, staged, (size_t)W * H * 4) == 0;
+        expect(i, what[f][1], i);
         if (f == 0) {
             i = memcmp(gpu, cmp, (size_t)W * H * 4) != 0;
             expect(i, "control: the compact render differs from the float "
@@ -400,7 +418,7 @@ int main(int argc, char **argv)
     }
     a->o.compact = 0;
     a->o.gpu_expand = 0;
-    a->o.copy = 0;
+    a->o.upload = GLM_MAPPED;
     a->o.no_shadows = 0;
     glm_shutdown(a);
     glc_close();
