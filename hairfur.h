@@ -7873,9 +7873,8 @@ HF__INLINE int hf__stream_mode(int nt, const void *o, uintptr_t whole)
    guides (gn: the one it clumps to, NULL without clumping), weights,
    scale, and (1 - sc) root in its phases at floats 0, 8, 16 (0, 2, 1;
    it repeats every 3 floats; hf__roots8). The kernels pass the run's
-   fields in:
-   their vector stores may alias anything, so fields read through the run
-   would be read again after each. */
+   fields in: their vector stores may alias anything, so fields read
+   through the run would be read again after each. */
 typedef struct hf__is8 {
     const float *g0, *g1, *g2, *gn;
     __m256 W0, W1, W2, SC, R[3];
