@@ -30,7 +30,8 @@
        a GL_RGBA32F texture buffer, expanded by examples/ribbon_expand.glsl),
        both drawn with the same hf_ribbon_indices buffer, and both
        written straight into the mapped GL buffer with streaming stores
-       (--copy: written into our memory, then glBufferSubData);
+       (--copy: written into our memory, then glBufferSubData; --staging:
+       into a mapped staging buffer, then copied on the GPU);
      - compact CPU ribbons (--compact): 16-byte vertices, position SNORM16
        around the camera target, texcoord UNORM16, tangent SNORM8, read by
        GL as normalized integers (docs/rendering.md "Compact vertices").
@@ -1593,6 +1594,7 @@ static int glm_build(glm_app *a)
                     "error 0x%x): the strands are copied from now on, as "
                     "with --copy\n", (unsigned)glGetError());
             a->o.upload = GLM_COPY;
+            a->stage_bytes = 0; /* its storage may not have been made */
         }
         v.nontemporal = map != NULL;
     }

@@ -380,6 +380,7 @@ int main(int argc, char **argv)
            "staging buffers (--staging):\n");
     a->o.no_shadows = 1;
     for (f = 0; f < 3; ++f) {
+        int held, held_staged;
         static const char *what[3][2] = {
             {"CPU ribbons: the same bytes mapped and copied",
              "CPU ribbons: the same bytes mapped and staged"},
@@ -390,12 +391,17 @@ int main(int argc, char **argv)
         if (f == 2 && !a->prog_gpu) continue;
         a->o.compact = f == 1;
         a->o.gpu_expand = f == 2;
+        /* a mapping that fails falls back to copying: each way must
+           still be the one asked for after its render, or the
+           comparison would test copies against copies */
         a->o.upload = GLM_MAPPED;
         if (!build_draw_read(a, mapped)) return 1;
+        held = a->o.upload == GLM_MAPPED;
         a->o.upload = GLM_COPY;
         if (!build_draw_read(a, copied)) return 1;
         a->o.upload = GLM_STAGING;
         if (!build_draw_read(a, staged)) return 1;
+        held_staged = a->o.upload == GLM_STAGING;
         if (f == 0 && sabotage && !strcmp(sabotage, "copy")) {
             printf("  SABOTAGE: the compact render replaces the copied "
                    "float one\n");
@@ -406,9 +412,10 @@ int main(int argc, char **argv)
                    "float one\n");
             memcpy(staged, cmp, (size_t)W * H * 4);
         }
-        i = memcmp(mapped, copied, (size_t)W * H * 4) == 0;
+        i = held && memcmp(mapped, copied, (size_t)W * H * 4) == 0;
         expect(i, what[f][0], i);
-        i = memcmp(mapped, staged, (size_t)W * H * 4) == 0;
+        i = held && held_staged &&
+            memcmp(mapped, staged, (size_t)W * H * 4) == 0;
         expect(i, what[f][1], i);
         if (f == 0) {
             i = memcmp(gpu, cmp, (size_t)W * H * 4) != 0;
