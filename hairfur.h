@@ -10880,30 +10880,122 @@ HF__TARGET_AVX512 HF__INLINE void hf__rows16(const float *q, __m512 *X,
                                   12, 15), c);
 }
 
-/* A strand's frame and lines in registers, sixteen points a turn (P a
-   multiple of 16), for hf__ribbons_lines_avx512: hf__frame_group_avx2's
-   operations on sixteen lanes (a 512-bit square root or division costs
-   what a 256-bit one does on Zen 5), no frame rows written and read
-   back. Returns 0, with lines perhaps written, where a point is not
-   finite or a lane is left to the reference: the caller writes the
-   strand again from hf__frame_strand_avx2's rows. */
+/* hf__enc8 at sixteen lanes (hf__enc8_init's values) */
+typedef struct hf__enc16 {
+    __m512 lo, scale, one, round;
+    __m512i mask;
+} hf__enc16;
+
+HF__TARGET_AVX512 HF__INLINE void hf__enc16_init(hf__enc16 *e, int fmt)
+{
+    float lo;
+    e->scale = _mm512_set1_ps(hf__norm_scale(fmt, &lo));
+    e->lo = _mm512_set1_ps(lo);
+    e->one = _mm512_set1_ps(1.0f);
+    e->round = _mm512_set1_ps(12582912.0f);
+    e->mask = _mm512_set1_epi32(hf_format_bytes(fmt) == 2 ? 0xffff : 0xff);
+}
+
+/* hf__encode_var_avx2's operations at sixteen lanes */
+HF__TARGET_AVX512 HF__INLINE __m512i hf__encode16(__m512 x,
+                                                 const hf__enc16 *e)
+{
+    __m512 v = _mm512_min_ps(_mm512_max_ps(x, e->lo), e->one);
+    v = _mm512_sub_ps(_mm512_add_ps(_mm512_mul_ps(v, e->scale), e->round),
+                      e->round);
+    return _mm512_and_si512(_mm512_cvttps_epi32(v), e->mask);
+}
+
+/* hf__c16_put_avx2 at sixteen points, all of them: one side's compact
+   vertices at o (vertex i at o + i st2), two 8-byte stores a vertex, the
+   pad byte never written. In each 128-bit lane q of v[k]: vertex 4 q + k
+   (the unpacks work within lanes). */
+HF__TARGET_AVX512 HF__INLINE void hf__c16_put16(unsigned char *o, size_t st2,
+                                               __m512i d0, __m512i d1,
+                                               __m512i s02, __m512i s13)
+{
+    const __m512i a = _mm512_unpacklo_epi32(d0, d1),
+                  b = _mm512_unpackhi_epi32(d0, d1);
+    __m512i v[4];
+    int k, q;
+    v[0] = _mm512_unpacklo_epi64(a, s02);
+    v[1] = _mm512_unpackhi_epi64(a, s02);
+    v[2] = _mm512_unpacklo_epi64(b, s13);
+    v[3] = _mm512_unpackhi_epi64(b, s13);
+    HF__UNROLL for (q = 0; q < 4; ++q)
+        HF__UNROLL for (k = 0; k < 4; ++k) {
+            const __m128i x = _mm512_maskz_extracti32x4_epi32(0xf, v[k], q);
+            unsigned char *p = o + (size_t)(4 * q + k) * st2;
+            _mm_storel_epi64((__m128i *)(void *)p, x);
+            _mm_storel_epi64((__m128i *)(void *)(p + 7),
+                             _mm_srli_si128(x, 7));
+        }
+}
+
+/* hf__c16_group_avx2 at sixteen points from registers: the left and
+   right positions (relative to the origin and scale), the tangents and
+   t, the strand's u and v already encoded (eu shifted) */
+HF__TARGET_AVX512 HF__INLINE void
+hf__c16_group16(unsigned char *b, size_t st, const __m512 *L, const __m512 *R,
+                const __m512 *T, __m512 tt, __m512i eu, __m512i ev,
+                const hf__enc16 *enc)
+{
+    __m512i eL[3], eR[3], et[3], d2, d3, s02, s13;
+    int c;
+    HF__UNROLL for (c = 0; c < 3; ++c) {
+        eL[c] = hf__encode16(L[c], &enc[0]);
+        eR[c] = hf__encode16(R[c], &enc[0]);
+        et[c] = hf__encode16(T[c], &enc[2]);
+    }
+    d2 = _mm512_or_si512(ev, _mm512_slli_epi32(hf__encode16(tt, &enc[1]), 16));
+    d3 = _mm512_or_si512(_mm512_or_si512(et[0], _mm512_slli_epi32(et[1], 8)),
+                         _mm512_slli_epi32(et[2], 16));
+    s02 = _mm512_unpacklo_epi32(d2, d3);
+    s13 = _mm512_unpackhi_epi32(d2, d3);
+    hf__c16_put16(b, 2 * st,
+                  _mm512_or_si512(eL[0], _mm512_slli_epi32(eL[1], 16)),
+                  _mm512_or_si512(eL[2], eu), s02, s13);
+    hf__c16_put16(b + st, 2 * st,
+                  _mm512_or_si512(eR[0], _mm512_slli_epi32(eR[1], 16)),
+                  _mm512_or_si512(eR[2], eu), s02, s13);
+}
+
+/* A strand's frame and vertices in registers, sixteen points a turn (P a
+   multiple of 16): hf__frame_group_avx2's operations on sixteen lanes (a
+   512-bit square root or division costs what a 256-bit one does on Zen
+   5), no frame rows written and read back. The vertices go out as lines
+   (t; enc NULL) for hf__ribbons_lines_avx512, or as compact vertices
+   (enc: hf__enc16 of position, texcoord and tangent) for
+   hf__ribbons_c16_avx512. Returns 0, with vertices perhaps written,
+   where a point is not finite or a lane is left to the reference: the
+   caller writes the strand again from hf__frame_strand_avx2's rows. */
 HF__TARGET_AVX512 HF__INLINE int
 hf__ribbon_fused_avx512(const float *pts, int P, int ortho, const __m512 *e,
                         const hf__rconst *K, const hf__rstrand *str,
                         const hf__rout *ro, size_t v0, const __m512 *ov,
-                        const hf__lines *t)
+                        const hf__lines *t, const hf__enc16 *enc)
 {
-    const int F = t->F;
+    const int F = enc ? 0 : t->F;
+    const size_t st = ro->stride[HF__S_POS];
     const __m512 one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps(),
                  tiny = _mm512_set1_ps(1e-30f),
                  big = _mm512_set1_ps(3.40282347e+38f),
                  side_sin2 = _mm512_set1_ps(HF__SIDE_SIN2),
                  ws = _mm512_set1_ps(str->wscale);
-    const __m512 uv = hf__uv16(str);
-    unsigned char *b = ro->base[HF__S_POS] + v0 * 4u * (size_t)F;
+    __m512 uv = zero;
+    __m512i eu = _mm512_setzero_si512(), ev = eu;
+    unsigned char *b = ro->base[HF__S_POS] +
+                       (enc ? v0 * st : v0 * 4u * (size_t)F);
     __m512 cx, cy, cz, nx, ny, nz, px, py, pz;
     int g, c, h;
-    hf__page_ahead(b, 8u * (size_t)P * (size_t)F);
+    if (enc) { /* u and v are the strand's: encoded once */
+        eu = _mm512_slli_epi32(
+            hf__encode16(_mm512_set1_ps(str->uv[0]), &enc[1]), 16);
+        ev = hf__encode16(_mm512_set1_ps(str->uv[1]), &enc[1]);
+    } else {
+        uv = hf__uv16(str);
+        hf__page_ahead(b, 8u * (size_t)P * (size_t)F);
+    }
     hf__rows16(pts, &cx, &cy, &cz);
     px = _mm512_set1_ps(pts[0]); /* the root repeats before it */
     py = _mm512_set1_ps(pts[1]);
@@ -10980,7 +11072,10 @@ hf__ribbon_fused_avx512(const float *pts, int P, int ortho, const __m512 *e,
                     _mm512_sub_ps(_mm512_add_ps(cc[c], sw), ov[1 + c]), ov[0]);
             }
         }
-        for (h = 0; h < 2; ++h, b += 64 * F) {
+        if (enc) {
+            hf__c16_group16(b, st, L, R, T, tt, eu, ev, enc);
+            b += 32 * st;
+        } else for (h = 0; h < 2; ++h, b += 64 * F) {
 #define HF__HALF(a, b2)                                                        \
     (h ? _mm512_maskz_shuffle_f32x4(0xffff, a, b2, 0xee)                       \
        : _mm512_maskz_shuffle_f32x4(0xffff, a, b2, 0x44))
@@ -11054,7 +11149,7 @@ hf__ribbons_lines_avx512(const hf_ribbon_strands *sv, int first, int count,
             hf__rstrand_fill(&svl, s, K->wcap, &str);
             if (hf__ribbon_fused_avx512(svl.points + (size_t)s * (size_t)P * 3u,
                                         P, ortho, e16, K, &str, ro, v0, ov16,
-                                        &t))
+                                        &t, NULL))
                 continue;
             hf__frame_at_avx2(&svl, s, end, P, ortho, e, params, fr, &wsc[0]);
             str.wscale = wsc[0];
@@ -11077,6 +11172,52 @@ hf__ribbons_lines_avx512(const hf_ribbon_strands *sv, int first, int count,
         }
     }
     _mm_sfence(); /* streamed stores visible before we return */
+    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
+}
+
+/* The compact vertex (hf__rout c16) of a call at AVX-512, P a multiple
+   of 16: each strand's frame and vertices in registers
+   (hf__ribbon_fused_avx512); a strand it leaves, framed by
+   hf__frame_strand_avx2 and written from the rows by the AVX2 writer. */
+HF__TARGET_AVX512 HF__PRIVATE void
+hf__ribbons_c16_avx512(const hf_ribbon_strands *sv, int first, int count,
+                       const hf_ribbon_params *params, const hf__rconst *K,
+                       const hf__rout *ro, int out_first, hf__rframe *fr)
+{
+    static const int q[3] = {HF__S_POS, HF__S_TEX, HF__S_TAN};
+    const int P = params->points_per_strand,
+              ortho = params->orthographic != 0, end = first + count;
+    const hf_ribbon_strands svl = *sv; /* no reload after every store */
+    float wsc;
+    __m256 e[3], ov[4];
+    __m512 e16[3], ov16[4];
+    hf__enc8 enc[3];
+    hf__enc16 enc16[3];
+    int s, c;
+    hf__frame_eye_avx2(params, e);
+    hf__rout_vec_avx2(ro, ov);
+    HF__UNROLL for (c = 0; c < 4; ++c) { /* the same in every lane */
+        if (c < 3) {
+            e16[c] = hf__join16(e[c], e[c]);
+            hf__enc8_init(&enc[c], ro->fmt[q[c]]);
+            hf__enc16_init(&enc16[c], ro->fmt[q[c]]);
+        }
+        ov16[c] = hf__join16(ov[c], ov[c]);
+    }
+    for (s = first; s < end; ++s) {
+        const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
+        hf__rstrand str;
+        str.wscale = 1.0f;
+        hf__rstrand_fill(&svl, s, K->wcap, &str);
+        if (hf__ribbon_fused_avx512(svl.points + (size_t)s * (size_t)P * 3u,
+                                    P, ortho, e16, K, &str, ro, v0, ov16,
+                                    NULL, enc16))
+            continue;
+        hf__frame_at_avx2(&svl, s, end, P, ortho, e, params, fr, &wsc);
+        str.wscale = wsc;
+        hf__rstrand_fill(&svl, s, K->wcap, &str);
+        hf__ribbon_write_c16_avx2_in(fr, P, K, &str, ro, v0, ov, enc);
+    }
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 #endif
@@ -11248,6 +11389,11 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
     if (stage && hf__lines_fit(&ro, P, level, dst0, block, first, out_first)) {
         hf__ribbons_lines_avx512(&sv, first, count, params, &K, &ro,
                                  out_first, &fr, &mem.fr2);
+        return HF_OK;
+    }
+    if (!stage && ro.c16 && level >= HF_SIMD_AVX512 && P % 16 == 0) {
+        hf__ribbons_c16_avx512(&sv, first, count, params, &K, &ro, out_first,
+                               &fr);
         return HF_OK;
     }
 #endif

@@ -6335,11 +6335,12 @@ static void test_ribbons_run_layouts_every_level(void)
        the compact vertex (2-byte position and texcoord, 1-byte tangent
        in 15 bytes) in each of its formats, with and without padding. P
        from 2 to 33 (partial groups of four and eight, one and several
-       full groups), both camera kinds, strands the frames leave to the
-       reference (a NaN point, all points equal, one along the view)
-       beside ordinary ones, optional inputs with a NaN among them: every
-       level writes the scalar reference's bytes, however the range is
-       split, and no byte outside the streams changes. */
+       full groups of eight and of sixteen), both camera kinds, strands
+       the frames leave to the reference (a NaN point, all points equal,
+       one along the view) beside ordinary ones, optional inputs with a
+       NaN among them: every level writes the scalar reference's bytes,
+       however the range is split, and no byte outside the streams
+       changes. */
     enum { NS = 12, PM = 33, VM = 52, NL = 8, BUF = NS * PM * 2 * VM + 64 };
     /* offset and format of position, tangent, texcoord, colour and 3D
        colour (offset -1: none), then the stride */
@@ -6353,7 +6354,7 @@ static void test_ribbons_run_layouts_every_level(void)
         {0, HF_FORMAT_UNORM16, 12, HF_FORMAT_SNORM8, 6, HF_FORMAT_SNORM16, -1, 0, -1, 0, 15},
         {4, HF_FORMAT_SNORM16, 16, HF_FORMAT_SNORM8, 10, HF_FORMAT_F16, -1, 0, -1, 0, 24}};
     static const int nc[5] = {3, 3, 3, 4, 2};
-    static const int Ps[8] = {2, 7, 8, 9, 16, 17, 24, PM};
+    static const int Ps[9] = {2, 7, 8, 9, 16, 17, 24, 32, PM};
     static unsigned char ref[BUF], got[BUF];
     static float pts[NS * PM * 3];
     float uv[2 * NS], col[4 * NS], c3[NS], wid[NS];
@@ -6371,7 +6372,7 @@ static void test_ribbons_run_layouts_every_level(void)
     col[9] = NAN;
     wid[4] = NAN;
     for (L = 0; L < NL; ++L)
-        for (pi = 0; pi < 8; ++pi)
+        for (pi = 0; pi < 9; ++pi)
             for (ortho = 0; ortho < 2; ++ortho) {
                 const int P = Ps[pi], st = lay[L][10];
                 const size_t bytes = (size_t)NS * P * 2 * st;
