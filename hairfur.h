@@ -10896,14 +10896,20 @@ HF__TARGET_AVX512 HF__INLINE void hf__enc16_init(hf__enc16 *e, int fmt)
     e->mask = _mm512_set1_epi32(hf_format_bytes(fmt) == 2 ? 0xffff : 0xff);
 }
 
+/* x << n in each 32-bit lane. The masked forms of this and of min, max,
+   the conversion and the unpacks below: gcc's plain ones take an
+   "undefined" operand, which g++ -O1 warns about. */
+#define HF__SLL16(x, n) _mm512_maskz_slli_epi32(0xffff, x, n)
+
 /* hf__encode_var_avx2's operations at sixteen lanes */
 HF__TARGET_AVX512 HF__INLINE __m512i hf__encode16(__m512 x,
                                                  const hf__enc16 *e)
 {
-    __m512 v = _mm512_min_ps(_mm512_max_ps(x, e->lo), e->one);
+    __m512 v = _mm512_maskz_min_ps(0xffff, _mm512_maskz_max_ps(0xffff, x, e->lo),
+                                   e->one);
     v = _mm512_sub_ps(_mm512_add_ps(_mm512_mul_ps(v, e->scale), e->round),
                       e->round);
-    return _mm512_and_si512(_mm512_cvttps_epi32(v), e->mask);
+    return _mm512_and_si512(_mm512_maskz_cvttps_epi32(0xffff, v), e->mask);
 }
 
 /* hf__c16_put_avx2 at sixteen points, all of them: one side's compact
@@ -10914,14 +10920,14 @@ HF__TARGET_AVX512 HF__INLINE void hf__c16_put16(unsigned char *o, size_t st2,
                                                __m512i d0, __m512i d1,
                                                __m512i s02, __m512i s13)
 {
-    const __m512i a = _mm512_unpacklo_epi32(d0, d1),
-                  b = _mm512_unpackhi_epi32(d0, d1);
+    const __m512i a = _mm512_maskz_unpacklo_epi32(0xffff, d0, d1),
+                  b = _mm512_maskz_unpackhi_epi32(0xffff, d0, d1);
     __m512i v[4];
     int k, q;
-    v[0] = _mm512_unpacklo_epi64(a, s02);
-    v[1] = _mm512_unpackhi_epi64(a, s02);
-    v[2] = _mm512_unpacklo_epi64(b, s13);
-    v[3] = _mm512_unpackhi_epi64(b, s13);
+    v[0] = _mm512_maskz_unpacklo_epi64(0xff, a, s02);
+    v[1] = _mm512_maskz_unpackhi_epi64(0xff, a, s02);
+    v[2] = _mm512_maskz_unpacklo_epi64(0xff, b, s13);
+    v[3] = _mm512_maskz_unpackhi_epi64(0xff, b, s13);
     HF__UNROLL for (q = 0; q < 4; ++q)
         HF__UNROLL for (k = 0; k < 4; ++k) {
             const __m128i x = _mm512_maskz_extracti32x4_epi32(0xf, v[k], q);
@@ -10947,16 +10953,16 @@ hf__c16_group16(unsigned char *b, size_t st, const __m512 *L, const __m512 *R,
         eR[c] = hf__encode16(R[c], &enc[0]);
         et[c] = hf__encode16(T[c], &enc[2]);
     }
-    d2 = _mm512_or_si512(ev, _mm512_slli_epi32(hf__encode16(tt, &enc[1]), 16));
-    d3 = _mm512_or_si512(_mm512_or_si512(et[0], _mm512_slli_epi32(et[1], 8)),
-                         _mm512_slli_epi32(et[2], 16));
-    s02 = _mm512_unpacklo_epi32(d2, d3);
-    s13 = _mm512_unpackhi_epi32(d2, d3);
+    d2 = _mm512_or_si512(ev, HF__SLL16(hf__encode16(tt, &enc[1]), 16));
+    d3 = _mm512_or_si512(_mm512_or_si512(et[0], HF__SLL16(et[1], 8)),
+                         HF__SLL16(et[2], 16));
+    s02 = _mm512_maskz_unpacklo_epi32(0xffff, d2, d3);
+    s13 = _mm512_maskz_unpackhi_epi32(0xffff, d2, d3);
     hf__c16_put16(b, 2 * st,
-                  _mm512_or_si512(eL[0], _mm512_slli_epi32(eL[1], 16)),
+                  _mm512_or_si512(eL[0], HF__SLL16(eL[1], 16)),
                   _mm512_or_si512(eL[2], eu), s02, s13);
     hf__c16_put16(b + st, 2 * st,
-                  _mm512_or_si512(eR[0], _mm512_slli_epi32(eR[1], 16)),
+                  _mm512_or_si512(eR[0], HF__SLL16(eR[1], 16)),
                   _mm512_or_si512(eR[2], eu), s02, s13);
 }
 
@@ -10989,8 +10995,8 @@ hf__ribbon_fused_avx512(const float *pts, int P, int ortho, const __m512 *e,
     __m512 cx, cy, cz, nx, ny, nz, px, py, pz;
     int g, c, h;
     if (enc) { /* u and v are the strand's: encoded once */
-        eu = _mm512_slli_epi32(
-            hf__encode16(_mm512_set1_ps(str->uv[0]), &enc[1]), 16);
+        eu = HF__SLL16(hf__encode16(_mm512_set1_ps(str->uv[0]), &enc[1]),
+                       16);
         ev = hf__encode16(_mm512_set1_ps(str->uv[1]), &enc[1]);
     } else {
         uv = hf__uv16(str);
@@ -11096,6 +11102,7 @@ hf__ribbon_fused_avx512(const float *pts, int P, int ortho, const __m512 *e,
     }
     return 1;
 }
+#undef HF__SLL16
 
 /* Whether a streamed call goes out as lines (above) at `level`: the
    stage's vertex (hf__ribbon_stage: block bytes, every stream inside it,
