@@ -10905,11 +10905,19 @@ HF__TARGET_AVX512 HF__INLINE void hf__enc16_init(hf__enc16 *e, int fmt)
 HF__TARGET_AVX512 HF__INLINE __m512i hf__encode16(__m512 x,
                                                  const hf__enc16 *e)
 {
-    __m512 v = _mm512_maskz_min_ps(0xffff, _mm512_maskz_max_ps(0xffff, x, e->lo),
-                                   e->one);
+    __m512 v = _mm512_maskz_max_ps(0xffff, x, e->lo);
+    v = _mm512_maskz_min_ps(0xffff, v, e->one);
     v = _mm512_sub_ps(_mm512_add_ps(_mm512_mul_ps(v, e->scale), e->round),
                       e->round);
     return _mm512_and_si512(_mm512_maskz_cvttps_epi32(0xffff, v), e->mask);
+}
+
+/* One compact vertex at p from x's low 16 bytes: two 8-byte stores, the
+   second over bytes 7..14 (the pad byte is never written) */
+HF__INLINE void hf__c16_vertex(unsigned char *p, __m128i x)
+{
+    _mm_storel_epi64((__m128i *)(void *)p, x);
+    _mm_storel_epi64((__m128i *)(void *)(p + 7), _mm_srli_si128(x, 7));
 }
 
 /* hf__c16_put_avx2 at sixteen points, all of them: one side's compact
@@ -10923,19 +10931,21 @@ HF__TARGET_AVX512 HF__INLINE void hf__c16_put16(unsigned char *o, size_t st2,
     const __m512i a = _mm512_maskz_unpacklo_epi32(0xffff, d0, d1),
                   b = _mm512_maskz_unpackhi_epi32(0xffff, d0, d1);
     __m512i v[4];
-    int k, q;
+    int k;
     v[0] = _mm512_maskz_unpacklo_epi64(0xff, a, s02);
     v[1] = _mm512_maskz_unpackhi_epi64(0xff, a, s02);
     v[2] = _mm512_maskz_unpacklo_epi64(0xff, b, s13);
     v[3] = _mm512_maskz_unpackhi_epi64(0xff, b, s13);
-    HF__UNROLL for (q = 0; q < 4; ++q)
-        HF__UNROLL for (k = 0; k < 4; ++k) {
-            const __m128i x = _mm512_maskz_extracti32x4_epi32(0xf, v[k], q);
-            unsigned char *p = o + (size_t)(4 * q + k) * st2;
-            _mm_storel_epi64((__m128i *)(void *)p, x);
-            _mm_storel_epi64((__m128i *)(void *)(p + 7),
-                             _mm_srli_si128(x, 7));
-        }
+    HF__UNROLL for (k = 0; k < 4; ++k) { /* lanes as immediates */
+        unsigned char *p = o + (size_t)k * st2;
+        hf__c16_vertex(p, _mm512_maskz_extracti32x4_epi32(0xf, v[k], 0));
+        hf__c16_vertex(p + 4 * st2,
+                       _mm512_maskz_extracti32x4_epi32(0xf, v[k], 1));
+        hf__c16_vertex(p + 8 * st2,
+                       _mm512_maskz_extracti32x4_epi32(0xf, v[k], 2));
+        hf__c16_vertex(p + 12 * st2,
+                       _mm512_maskz_extracti32x4_epi32(0xf, v[k], 3));
+    }
 }
 
 /* hf__c16_group_avx2 at sixteen points from registers: the left and
