@@ -10880,20 +10880,21 @@ HF__TARGET_AVX512 HF__INLINE void hf__rows16(const float *q, __m512 *X,
                                   12, 15), c);
 }
 
-/* hf__enc8 at sixteen lanes (hf__enc8_init's values) */
+/* hf__enc8 at sixteen lanes: h's values in both halves */
 typedef struct hf__enc16 {
     __m512 lo, scale, one, round;
     __m512i mask;
 } hf__enc16;
 
-HF__TARGET_AVX512 HF__INLINE void hf__enc16_init(hf__enc16 *e, int fmt)
+HF__TARGET_AVX512 HF__INLINE void hf__enc16_init(hf__enc16 *e,
+                                                const hf__enc8 *h)
 {
-    float lo;
-    e->scale = _mm512_set1_ps(hf__norm_scale(fmt, &lo));
-    e->lo = _mm512_set1_ps(lo);
-    e->one = _mm512_set1_ps(1.0f);
-    e->round = _mm512_set1_ps(12582912.0f);
-    e->mask = _mm512_set1_epi32(hf_format_bytes(fmt) == 2 ? 0xffff : 0xff);
+    const __m256 m = _mm256_castsi256_ps(h->mask);
+    e->lo = hf__join16(h->lo, h->lo);
+    e->scale = hf__join16(h->scale, h->scale);
+    e->one = hf__join16(h->one, h->one);
+    e->round = hf__join16(h->round, h->round);
+    e->mask = _mm512_castps_si512(hf__join16(m, m));
 }
 
 /* x << n in each 32-bit lane. The masked forms of this and of min, max,
@@ -11129,6 +11130,38 @@ HF__PRIVATE int hf__lines_fit(const hf__rout *ro, int P, int level,
                                    (size_t)P * block) & 63u) == 0;
 }
 
+/* Strand s with P a multiple of 16: its frame and vertices in registers
+   (hf__ribbon_fused_avx512), or, where that leaves the strand, framed by
+   hf__frame_strand_avx2 into fr and written from the rows; as lines (t)
+   or as compact vertices (enc16 and enc, the AVX2 writer's). e, ov: the
+   eye and output vectors at eight lanes, e16, ov16 at sixteen. */
+HF__TARGET_AVX512 HF__INLINE void
+hf__ribbon_strand16(const hf_ribbon_strands *sv, int s, int end,
+                    const hf_ribbon_params *params, const hf__rconst *K,
+                    const hf__rout *ro, int out_first, const __m256 *e,
+                    const __m256 *ov, const __m512 *e16, const __m512 *ov16,
+                    hf__rframe *fr, const hf__lines *t,
+                    const hf__enc16 *enc16, const hf__enc8 *enc)
+{
+    const int P = params->points_per_strand,
+              ortho = params->orthographic != 0;
+    const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
+    hf__rstrand str;
+    float wsc;
+    str.wscale = 1.0f;
+    hf__rstrand_fill(sv, s, K->wcap, &str);
+    if (hf__ribbon_fused_avx512(sv->points + (size_t)s * (size_t)P * 3u, P,
+                                ortho, e16, K, &str, ro, v0, ov16, t, enc16))
+        return;
+    hf__frame_at_avx2(sv, s, end, P, ortho, e, params, fr, &wsc);
+    str.wscale = wsc;
+    hf__rstrand_fill(sv, s, K->wcap, &str);
+    if (enc)
+        hf__ribbon_write_c16_avx2_in(fr, P, K, &str, ro, v0, ov, enc);
+    else
+        hf__ribbon_lines_avx512(fr, P, K, &str, ro, v0, ov, t);
+}
+
 /* The strands of a streamed call as lines (hf__lines_fit). P a multiple
    of 16: each strand's frame in registers (hf__ribbon_fused_avx512), a
    strand it leaves framed by hf__frame_strand_avx2 and written from the
@@ -11159,20 +11192,9 @@ hf__ribbons_lines_avx512(const hf_ribbon_strands *sv, int first, int count,
     F[0] = fr;
     F[1] = fr2;
     if (P % 16 == 0) {
-        for (s = first; s < end; ++s) {
-            const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
-            hf__rstrand str;
-            str.wscale = 1.0f;
-            hf__rstrand_fill(&svl, s, K->wcap, &str);
-            if (hf__ribbon_fused_avx512(svl.points + (size_t)s * (size_t)P * 3u,
-                                        P, ortho, e16, K, &str, ro, v0, ov16,
-                                        &t, NULL))
-                continue;
-            hf__frame_at_avx2(&svl, s, end, P, ortho, e, params, fr, &wsc[0]);
-            str.wscale = wsc[0];
-            hf__rstrand_fill(&svl, s, K->wcap, &str);
-            hf__ribbon_lines_avx512(fr, P, K, &str, ro, v0, ov, &t);
-        }
+        for (s = first; s < end; ++s)
+            hf__ribbon_strand16(&svl, s, end, params, K, ro, out_first, e, ov,
+                                e16, ov16, fr, &t, NULL, NULL);
     } else {
         hf__frame_at_avx2(&svl, first, end, P, ortho, e, params, F[0],
                           &wsc[0]);
@@ -11202,10 +11224,8 @@ hf__ribbons_c16_avx512(const hf_ribbon_strands *sv, int first, int count,
                        const hf__rout *ro, int out_first, hf__rframe *fr)
 {
     static const int q[3] = {HF__S_POS, HF__S_TEX, HF__S_TAN};
-    const int P = params->points_per_strand,
-              ortho = params->orthographic != 0, end = first + count;
+    const int end = first + count;
     const hf_ribbon_strands svl = *sv; /* no reload after every store */
-    float wsc;
     __m256 e[3], ov[4];
     __m512 e16[3], ov16[4];
     hf__enc8 enc[3];
@@ -11217,24 +11237,13 @@ hf__ribbons_c16_avx512(const hf_ribbon_strands *sv, int first, int count,
         if (c < 3) {
             e16[c] = hf__join16(e[c], e[c]);
             hf__enc8_init(&enc[c], ro->fmt[q[c]]);
-            hf__enc16_init(&enc16[c], ro->fmt[q[c]]);
+            hf__enc16_init(&enc16[c], &enc[c]);
         }
         ov16[c] = hf__join16(ov[c], ov[c]);
     }
-    for (s = first; s < end; ++s) {
-        const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
-        hf__rstrand str;
-        str.wscale = 1.0f;
-        hf__rstrand_fill(&svl, s, K->wcap, &str);
-        if (hf__ribbon_fused_avx512(svl.points + (size_t)s * (size_t)P * 3u,
-                                    P, ortho, e16, K, &str, ro, v0, ov16,
-                                    NULL, enc16))
-            continue;
-        hf__frame_at_avx2(&svl, s, end, P, ortho, e, params, fr, &wsc);
-        str.wscale = wsc;
-        hf__rstrand_fill(&svl, s, K->wcap, &str);
-        hf__ribbon_write_c16_avx2_in(fr, P, K, &str, ro, v0, ov, enc);
-    }
+    for (s = first; s < end; ++s)
+        hf__ribbon_strand16(&svl, s, end, params, K, ro, out_first, e, ov,
+                            e16, ov16, fr, NULL, enc16, enc);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 #endif
