@@ -1438,7 +1438,9 @@ typedef struct hf_ribbon_params {
        36 or 24 bytes (position, tangent and texcoord, or the first two)
        in a buffer aligned to 64 bytes with points_per_strand a multiple
        of 8, which it writes in whole 64-byte lines (with a multiple of
-       16, their frames sixteen points at a time). */
+       16, their frames sixteen points at a time), and for the compact
+       16-byte vertex (16-bit position and texcoord, 8-bit tangent) with
+       a multiple of 16, frames and vertices sixteen points at a time. */
     int simd;
 } hf_ribbon_params;
 
@@ -7881,6 +7883,10 @@ typedef struct hf__is8 {
 } hf__is8;
 /* one vector, in the texts built at eight and sixteen lanes */
 typedef __m256 hf__f8;
+HF__TARGET_AVX2 HF__INLINE __m256 hf__set1_8(float x)
+{
+    return _mm256_set1_ps(x);
+}
 
 HF__TARGET_AVX2 HF__INLINE void hf__strand8(const float *G, int clump,
                                             const hf_strand_binding *b,
@@ -8026,7 +8032,7 @@ T HF__PRIVATE void hf__interp_range##W(const hf__irun *run, int first,         \
     const float *G = run->guides, *ctab = run->ctab;                           \
     const int clump = run->clump;                                              \
     float *o = run->out + (size_t)(first - run->out_first) * n;                \
-    int s, k;                                                                  \
+    int s;                                                                     \
     if (n % (3 * W) == 0) {                                                    \
         hf__interp_groups##W(run, first, count);                               \
         return;                                                                \
@@ -8034,19 +8040,25 @@ T HF__PRIVATE void hf__interp_range##W(const hf__irun *run, int first,         \
     for (s = first; s < first + count; ++s, ++b, o += n) {                     \
         const int nt = hf__stream_mode(run->nt, o, 4u * W - 1u);               \
         hf__is##W v;                                                           \
+        hf__f##W sa = hf__set1_##W(0.0f);                                      \
         size_t i;                                                              \
         if (nt) hf__page_ahead(o, 4u * n);                                     \
         hf__strand##W(G, clump, b, n, &v);                                     \
-        if (n >= W) /* else only the scalar tail, with a root of its own */    \
-            hf__roots##W(&v, hf__sum##W(&v, 0));                               \
-        for (i = 0; i + 3 * W <= n; i += 3 * W)                                \
-            HF__UNROLL for (k = 0; k < 3; ++k)                                 \
-                hf__put##W(o + i + (size_t)(W * k),                            \
-                           hf__blend##W(&v, ctab, i + (size_t)(W * k), k),     \
-                           nt);                                                \
-        /* the phases by constants: v stays in registers */                    \
+        /* the root's sum, and the first vector's (below W floats only the     \
+           scalar tail runs, with a root of its own) */                        \
+        if (n >= W) sa = hf__sum##W(&v, 0);                                    \
+        hf__roots##W(&v, sa);                                                  \
+        /* sa: the sum of floats [i, i + W) wherever i + W <= n; the phases    \
+           by constants, so v stays in registers */                            \
+        for (i = 0; i + 3 * W <= n;) {                                         \
+            hf__put##W(o + i, hf__finish##W(&v, ctab, sa, i, 0), nt);          \
+            hf__put##W(o + i + W, hf__blend##W(&v, ctab, i + W, 1), nt);       \
+            hf__put##W(o + i + 2 * W, hf__blend##W(&v, ctab, i + 2 * W, 2),    \
+                       nt);                                                    \
+            if ((i += 3 * W) + W <= n) sa = hf__sum##W(&v, i);                 \
+        }                                                                      \
         if (i + W <= n) {                                                      \
-            hf__put##W(o + i, hf__blend##W(&v, ctab, i, 0), nt);               \
+            hf__put##W(o + i, hf__finish##W(&v, ctab, sa, i, 0), nt);          \
             i += W;                                                            \
         }                                                                      \
         if (i + W <= n) {                                                      \
@@ -8075,6 +8087,10 @@ typedef struct hf__is16 {
     __m512 W0, W1, W2, SC, R[3];
 } hf__is16;
 typedef __m512 hf__f16;
+HF__TARGET_AVX512 HF__INLINE __m512 hf__set1_16(float x)
+{
+    return _mm512_set1_ps(x);
+}
 
 HF__TARGET_AVX512 HF__INLINE void hf__strand16(const float *G, int clump,
                                               const hf_strand_binding *b,
@@ -11130,6 +11146,22 @@ HF__PRIVATE int hf__lines_fit(const hf__rout *ro, int P, int level,
                                    (size_t)P * block) & 63u) == 0;
 }
 
+/* The eye (hf__frame_eye_avx2) and the output's scale and origin
+   (hf__rout_vec_avx2) as vectors of eight lanes and of sixteen, the
+   same in every lane */
+HF__TARGET_AVX512 HF__INLINE void
+hf__vecs16_init(const hf_ribbon_params *params, const hf__rout *ro, __m256 *e,
+                __m256 *ov, __m512 *e16, __m512 *ov16)
+{
+    int c;
+    hf__frame_eye_avx2(params, e);
+    hf__rout_vec_avx2(ro, ov);
+    HF__UNROLL for (c = 0; c < 4; ++c) {
+        if (c < 3) e16[c] = hf__join16(e[c], e[c]);
+        ov16[c] = hf__join16(ov[c], ov[c]);
+    }
+}
+
 /* Strand s with P a multiple of 16: its frame and vertices in registers
    (hf__ribbon_fused_avx512), or, where that leaves the strand, framed by
    hf__frame_strand_avx2 into fr and written from the rows; as lines (t)
@@ -11181,14 +11213,9 @@ hf__ribbons_lines_avx512(const hf_ribbon_strands *sv, int first, int count,
     __m256 e[3], ov[4];
     __m512 e16[3], ov16[4];
     hf__lines t;
-    int s, c;
+    int s;
     hf__lines_init(&t, ro->run == 3 ? 9 : 6);
-    hf__frame_eye_avx2(params, e);
-    hf__rout_vec_avx2(ro, ov);
-    HF__UNROLL for (c = 0; c < 4; ++c) { /* the same in every lane */
-        if (c < 3) e16[c] = hf__join16(e[c], e[c]);
-        ov16[c] = hf__join16(ov[c], ov[c]);
-    }
+    hf__vecs16_init(params, ro, e, ov, e16, ov16);
     F[0] = fr;
     F[1] = fr2;
     if (P % 16 == 0) {
@@ -11231,15 +11258,10 @@ hf__ribbons_c16_avx512(const hf_ribbon_strands *sv, int first, int count,
     hf__enc8 enc[3];
     hf__enc16 enc16[3];
     int s, c;
-    hf__frame_eye_avx2(params, e);
-    hf__rout_vec_avx2(ro, ov);
-    HF__UNROLL for (c = 0; c < 4; ++c) { /* the same in every lane */
-        if (c < 3) {
-            e16[c] = hf__join16(e[c], e[c]);
-            hf__enc8_init(&enc[c], ro->fmt[q[c]]);
-            hf__enc16_init(&enc16[c], &enc[c]);
-        }
-        ov16[c] = hf__join16(ov[c], ov[c]);
+    hf__vecs16_init(params, ro, e, ov, e16, ov16);
+    HF__UNROLL for (c = 0; c < 3; ++c) {
+        hf__enc8_init(&enc[c], ro->fmt[q[c]]);
+        hf__enc16_init(&enc16[c], &enc[c]);
     }
     for (s = first; s < end; ++s)
         hf__ribbon_strand16(&svl, s, end, params, K, ro, out_first, e, ov,
@@ -11789,10 +11811,6 @@ T HF__PRIVATE void hf__interp_points##W(                                       \
 }
 
 #if HF__AVX2
-HF__TARGET_AVX2 HF__INLINE __m256 hf__set1_8(float x)
-{
-    return _mm256_set1_ps(x);
-}
 /* acc + q * 0: stays zero while every lane of q is finite */
 HF__TARGET_AVX2 HF__INLINE __m256 hf__nan_acc8(__m256 acc, __m256 q)
 {
@@ -11840,10 +11858,6 @@ HF__INTERP_POINTS(8, HF__TARGET_AVX2)
 #endif
 
 #if HF__AVX512
-HF__TARGET_AVX512 HF__INLINE __m512 hf__set1_16(float x)
-{
-    return _mm512_set1_ps(x);
-}
 HF__TARGET_AVX512 HF__INLINE __m512 hf__nan_acc16(__m512 acc, __m512 q)
 {
     return _mm512_add_ps(acc, _mm512_mul_ps(q, _mm512_setzero_ps()));

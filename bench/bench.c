@@ -362,36 +362,37 @@ static double vector_stores_gbps(float *dst, size_t bytes, int reps,
 #undef VECTOR_LINES
 #endif
 
-/* The best of the ways to write `bytes`: the limit of a write-bound
-   stage. For the report, g_limit_how names the way that set it and
-   g_limit_stream holds the streaming stores' rate: under the last-level
-   cache's size memset can finish before its lines are written back, a
-   rate that a stage streaming to memory (as into a mapped GPU buffer)
-   does not reach. */
-static const char *g_limit_how = "memset";
-static double g_limit_stream;
+/* Each way of writing `bytes` (GB/s; vector and stream 0 without SSE2)
+   and the best of them, the limit of a write-bound stage, with the way
+   that set it: under the last-level cache's size memset can finish
+   before its lines are written back, a rate that a stage streaming to
+   memory (as into a mapped GPU buffer) does not reach, so the report
+   gives the ratio against streaming stores too. */
+typedef struct wlimit {
+    double memset, vector, stream, best;
+    const char *how;
+} wlimit;
 
-static double limit_gbps(float *dst, size_t bytes, int reps)
+static wlimit write_limit(float *dst, size_t bytes, int reps)
 {
-    double best = memset_gbps(dst, bytes, reps, 0);
+    wlimit l;
+    l.memset = memset_gbps(dst, bytes, reps, 0);
+    l.vector = l.stream = 0.0;
 #if HAVE_SSE2
-    double v = vector_stores_gbps(dst, bytes, reps, 0),
-           st = vector_stores_gbps(dst, bytes, reps, 1);
+    l.vector = vector_stores_gbps(dst, bytes, reps, 0);
+    l.stream = vector_stores_gbps(dst, bytes, reps, 1);
 #endif
-    g_limit_how = "memset";
-    g_limit_stream = 0.0;
-#if HAVE_SSE2
-    g_limit_stream = st;
-    if (v > best) {
-        best = v;
-        g_limit_how = "vector";
+    l.best = l.memset;
+    l.how = "memset";
+    if (l.vector > l.best) {
+        l.best = l.vector;
+        l.how = "vector";
     }
-    if (st > best) {
-        best = st;
-        g_limit_how = "stream";
+    if (l.stream > l.best) {
+        l.best = l.stream;
+        l.how = "stream";
     }
-#endif
-    return best;
+    return l;
 }
 
 /* ---- measuring --------------------------------------------------------- */
@@ -410,31 +411,30 @@ static figure stats(double *v, int n)
     return f;
 }
 
+/* A figure's line and machine line; with lim (its bytes' write limit),
+   the bytes written per second against it */
 static void report(const char *stage, const char *scene_name, int threads,
-                   figure f, double bytes, double limit, long allocs)
+                   figure f, double bytes, const wlimit *lim, long allocs)
 {
-    double gbps = bytes > 0 ? bytes / f.med / 1e6 : 0.0;
+    double gbps = lim ? bytes / f.med / 1e6 : 0.0;
     printf("  %-12s %-2s %dT  median %8.3f ms  (min %7.3f, max %7.3f)", stage,
            scene_name, threads, f.med, f.min, f.max);
-    if (bytes > 0) {
-        printf("  %6.2f GB/s  limit %6.2f %-8s ratio %.2f", gbps, limit,
-               g_limit_how[0] == 'm'   ? "(memset)"
-               : g_limit_how[0] == 'v' ? "(vector)"
-                                       : "(stream)",
-               gbps / limit);
-        if (g_limit_stream > 0.0 && g_limit_how[0] != 's')
-            printf(" (streaming stores %.2f: %.2f)", g_limit_stream,
-                   gbps / g_limit_stream);
+    if (lim) {
+        printf("  %6.2f GB/s  limit %6.2f (%s) ratio %.2f", gbps, lim->best,
+               lim->how, gbps / lim->best);
+        if (lim->stream > 0.0 && lim->stream < lim->best)
+            printf(" (streaming stores %.2f: %.2f)", lim->stream,
+                   gbps / lim->stream);
     }
     if (allocs >= 0) printf("  allocs %ld", allocs);
     printf("\n");
     fprintf(stderr, "bench stage=%s scene=%s threads=%d ms=%.4f gbps=%.3f "
                     "limit_gbps=%.3f ratio=%.3f",
-            stage, scene_name, threads, f.med, gbps, bytes > 0 ? limit : 0.0,
-            bytes > 0 ? gbps / limit : 0.0);
-    if (bytes > 0)
-        fprintf(stderr, " limit_method=%s stream_gbps=%.3f", g_limit_how,
-                g_limit_stream);
+            stage, scene_name, threads, f.med, gbps, lim ? lim->best : 0.0,
+            lim ? gbps / lim->best : 0.0);
+    if (lim)
+        fprintf(stderr, " limit_method=%s stream_gbps=%.3f", lim->how,
+                lim->stream);
     if (allocs >= 0) fprintf(stderr, " allocs=%ld", allocs);
     fprintf(stderr, "\n");
 }
@@ -532,14 +532,11 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
         memset(dst, 1, big);
         for (k = 0; k < ST_N; ++k) {
             figure fg = stats(t[k], frames);
-            double limit = 0.0;
+            wlimit lim;
             if (k == ST_LODG && jobs[ST_LODG].total == 0) continue;
-            if (bytes[k] > 0) {
-                size_t b = (size_t)bytes[k];
-                limit = limit_gbps(dst, b, 7);
-            }
-            report(st_name[k], s->name, threads, fg, bytes[k], limit,
-                   k >= ST_FRAME ? allocs : -1);
+            if (bytes[k] > 0) lim = write_limit(dst, (size_t)bytes[k], 7);
+            report(st_name[k], s->name, threads, fg, bytes[k],
+                   bytes[k] > 0 ? &lim : NULL, k >= ST_FRAME ? allocs : -1);
             if (k == ST_FRAME && frame_ms_out) *frame_ms_out = fg.med;
         }
         free(dst);
@@ -647,16 +644,16 @@ static void bench_levels(scene *s, int frames)
         for (k = 0; k < LV_N; ++k) {
             char name[32];
             sprintf(name, "%s_%s", what[k], level_name[level]);
-            report(name, s->name, 1, stats(t[k], frames), bytes[k],
-                   limit_gbps(dst, (size_t)bytes[k], 7), -1);
+            const wlimit lim = write_limit(dst, (size_t)bytes[k], 7);
+            report(name, s->name, 1, stats(t[k], frames), bytes[k], &lim, -1);
         }
         level_frames(s, level, frames, tf, tp);
         {
             char name[32];
             sprintf(name, "frame_%s", level_name[level]);
-            report(name, s->name, 1, stats(tf, frames), 0, 0, -1);
+            report(name, s->name, 1, stats(tf, frames), 0, NULL, -1);
             sprintf(name, "frame_points_%s", level_name[level]);
-            report(name, s->name, 1, stats(tp, frames), 0, 0, -1);
+            report(name, s->name, 1, stats(tp, frames), 0, NULL, -1);
         }
     }
     check("kernels", hf_fur_set_kernels(s->fur, HF_SIMD_AUTO, 0));
@@ -690,7 +687,8 @@ static void bench_lod_guides(scene *s, int frames)
     jl.fn = j_lodg;
     jl.total = s->info.lod_guide_count;
     for (th = 1; th <= MAX_THREADS; ++th) {
-        double bytes = (double)s->info.lod_guide_count * P * 12.0, limit;
+        double bytes = (double)s->info.lod_guide_count * P * 12.0;
+        wlimit lim;
         size_t b = (size_t)bytes;
         float *dst = (float *)mapped_like(b);
         g_threads = th;
@@ -704,8 +702,8 @@ static void bench_lod_guides(scene *s, int frames)
             if (f >= 0) t[f] = now_ms() - t0;
         }
         memset(dst, 1, b);
-        limit = limit_gbps(dst, b, 7);
-        report("lod_guides", s->name, th, stats(t, frames), bytes, limit, -1);
+        lim = write_limit(dst, b, 7);
+        report("lod_guides", s->name, th, stats(t, frames), bytes, &lim, -1);
         free(dst);
     }
     free(t);
@@ -803,7 +801,7 @@ static void bench_lut(int reps)
         check("lut n", hf_lut_bake_n(&p, 0, 256, n));
         t[r] = now_ms() - t0;
     }
-    report("lut_256", "-", 1, stats(t, reps), 0, 0, -1);
+    report("lut_256", "-", 1, stats(t, reps), 0, NULL, -1);
     free(m);
     free(n);
     free(t);
@@ -814,25 +812,23 @@ static void bench_bandwidth(void)
     /* the write limit for scene L's ribbons, each way, printed on its own */
     size_t bytes = (size_t)100000 * P * 2u * 36u;
     float *dst = (float *)mapped_like(bytes);
-    double sc, ms, zs, vec = 0.0, str = 0.0, best;
+    double sc, zs;
+    wlimit l;
     memset(dst, 1, bytes);
     sc = store_gbps(dst, bytes, 7);
-    ms = memset_gbps(dst, bytes, 7, 0);
     zs = memset_gbps(dst, bytes, 7, 1);
-#if HAVE_SSE2
-    vec = vector_stores_gbps(dst, bytes, 7, 0);
-    str = vector_stores_gbps(dst, bytes, 7, 1);
-#endif
-    best = ms > vec ? ms : vec;
-    best = str > best ? str : best;
+    l = write_limit(dst, bytes, 7);
     printf("  write limit (%.0f MiB): vector stores %.2f GB/s, streaming "
            "stores %.2f, memset %.2f (the limit: %.2f); for reference a "
            "scalar store loop %.2f, memset of zeros %.2f (no stage writes "
            "zero lines)\n",
-           bytes / 1048576.0, vec, str, ms, best, sc, zs);
-    fprintf(stderr, "bench stage=write_limit method=vector gbps=%.3f\n", vec);
-    fprintf(stderr, "bench stage=write_limit method=stream gbps=%.3f\n", str);
-    fprintf(stderr, "bench stage=write_limit method=memset gbps=%.3f\n", ms);
+           bytes / 1048576.0, l.vector, l.stream, l.memset, l.best, sc, zs);
+    fprintf(stderr, "bench stage=write_limit method=vector gbps=%.3f\n",
+            l.vector);
+    fprintf(stderr, "bench stage=write_limit method=stream gbps=%.3f\n",
+            l.stream);
+    fprintf(stderr, "bench stage=write_limit method=memset gbps=%.3f\n",
+            l.memset);
     fprintf(stderr, "bench stage=write_limit method=scalar gbps=%.3f\n", sc);
     fprintf(stderr, "bench stage=write_limit method=zeros gbps=%.3f\n", zs);
     free(dst);
