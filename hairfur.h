@@ -1440,7 +1440,10 @@ typedef struct hf_ribbon_params {
        of 8, which it writes in whole 64-byte lines (with a multiple of
        16, their frames sixteen points at a time), and for the compact
        16-byte vertex (16-bit position and texcoord, 8-bit tangent) with
-       a multiple of 16, frames and vertices sixteen points at a time. */
+       a multiple of 16, frames and vertices sixteen points at a time.
+       GPU points: SSE2 or NEON; AVX2, eight points a group where
+       points_per_strand is a multiple of 8 (else two a vector); AVX-512,
+       sixteen a group with a multiple of 16, else AVX2. */
     int simd;
 } hf_ribbon_params;
 
@@ -7887,6 +7890,10 @@ HF__TARGET_AVX2 HF__INLINE __m256 hf__set1_8(float x)
 {
     return _mm256_set1_ps(x);
 }
+HF__TARGET_AVX2 HF__INLINE __m256 hf__loadu_8(const float *p)
+{
+    return _mm256_loadu_ps(p);
+}
 
 HF__TARGET_AVX2 HF__INLINE void hf__strand8(const float *G, int clump,
                                             const hf_strand_binding *b,
@@ -8090,6 +8097,10 @@ typedef __m512 hf__f16;
 HF__TARGET_AVX512 HF__INLINE __m512 hf__set1_16(float x)
 {
     return _mm512_set1_ps(x);
+}
+HF__TARGET_AVX512 HF__INLINE __m512 hf__loadu_16(const float *p)
+{
+    return _mm512_loadu_ps(p);
 }
 
 HF__TARGET_AVX512 HF__INLINE void hf__strand16(const float *G, int clump,
@@ -11708,49 +11719,6 @@ HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
 #endif
 }
 
-/* GPU points of strands [first, first + count): strand s's points at
-   pts + (s - pts_first) * 3 P, written to out4 + (s - out_first) * 4 P.
-   The caller fences streamed stores. */
-HF__PRIVATE void hf__points_run(const hf__points_kit *k,
-                                const hf_ribbon_strands *strands,
-                                const float *pts, int pts_first, int first,
-                                int count, int out_first, float *out4)
-{
-    const int P = k->P;
-    int s;
-#if HF__AVX2
-    if (k->wide) {
-        /* finiteness found on the way: a strand that is not is written
-           again, collapsed (streamed stores ordered first) */
-        hf__points_run_avx2(k, strands, pts, pts_first, first, count,
-                            out_first, out4);
-        return;
-    }
-#endif
-    for (s = first; s < first + count; ++s) {
-        const float *p = pts + (size_t)(s - pts_first) * (size_t)P * 3u;
-        float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
-        float wscale = 0.0f;
-        if (hf__points_finite(p, 3 * P))
-            wscale = hf__strand_width(strands, s, k->wcap);
-        else
-            p = hf__zero_points; /* collapsed, as hf_ribbons */
-#if HF__SSE
-        if (k->level >= HF_SIMD_SSE2) {
-            hf__points_strand_sse(p, k->hw, wscale, o, P, k->nt);
-            continue;
-        }
-#endif
-#if HF__NEON
-        if (k->level >= HF_SIMD_NEON) {
-            hf__points_strand_neon(p, k->hw, wscale, o, P);
-            continue;
-        }
-#endif
-        hf__points_strand_ref(p, k->hw, wscale, o, P);
-    }
-}
-
 /* hf__interp_range<W> and the GPU points kernel in one, for P a
    multiple of W (8 at AVX2, 16 at AVX-512), one text built at both
    widths: three vectors of a strand's floats (W points) stay in
@@ -11758,7 +11726,8 @@ HF__PRIVATE void hf__points_run(const hf__points_kit *k,
    the same values in the same order as the two kernels write them. The
    finiteness test rides on the same vectors (x * 0 is NaN for NaN or
    infinity); a strand that is not finite is written again, collapsed,
-   as hf__points_run does. */
+   as hf__points_run does. hf__points_groups<W>: the GPU points kernel
+   alone, the same text loading the strand's points. */
 #define HF__INTERP_POINTS(W, T)                                                \
 T HF__INLINE void hf__interp_points_whole##W(                                  \
     const hf__irun *run, const hf__points_kit *k,                              \
@@ -11807,6 +11776,54 @@ T HF__PRIVATE void hf__interp_points##W(                                       \
         4u * W - 1u);                                                          \
     HF__CLUMP_MODE_CASES(run->clump, mode, hf__interp_points_whole##W, run, k, \
                          st, first, count, out_first, out4);                   \
+    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */                              \
+}                                                                              \
+                                                                               \
+/* hf__points_run's kernel for P a multiple of W: the kernel above with      \
+   three loads of the strand's points where it interpolates them */          \
+T HF__INLINE void hf__points_whole##W(                                         \
+    const hf__points_kit *k, const hf_ribbon_strands *st, const float *pts,    \
+    int pts_first, int first, int count, int out_first, float *out4,           \
+    int mode)                                                                  \
+{                                                                              \
+    const int P = k->P;                                                        \
+    const float wcap = k->wcap; /* read once: the stores may alias k */      \
+    int s, j;                                                                  \
+    for (s = first; s < first + count; ++s) {                                  \
+        const float *p = pts + (size_t)(s - pts_first) * (size_t)P * 3u;       \
+        float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;            \
+        const hf__f##W WS = hf__set1_##W(hf__strand_width(st, s, wcap));       \
+        hf__f##W acc = hf__set1_##W(0.0f);                                     \
+        if (mode) hf__page_ahead(o, 16u * (size_t)P);                          \
+        for (j = 0; j < P; j += W) {                                           \
+            const hf__f##W a = hf__loadu_##W(p + 3 * j);                       \
+            const hf__f##W b = hf__loadu_##W(p + 3 * j + W);                   \
+            const hf__f##W c = hf__loadu_##W(p + 3 * j + 2 * W);               \
+            acc = hf__nan_acc##W(acc, a);                                      \
+            acc = hf__nan_acc##W(acc, b);                                      \
+            acc = hf__nan_acc##W(acc, c);                                      \
+            hf__points_out##W(o + 4 * j, a, b, c, k->pw.v + 4 * j, WS, mode);  \
+        }                                                                      \
+        if (!hf__all_zero##W(acc)) hf__points_collapse_avx2(k, o);             \
+    }                                                                          \
+}                                                                              \
+                                                                               \
+T HF__PRIVATE void hf__points_groups##W(                                       \
+    const hf__points_kit *k, const hf_ribbon_strands *st, const float *pts,    \
+    int pts_first, int first, int count, int out_first, float *out4)           \
+{                                                                              \
+    const int mode = hf__stream_mode(                                          \
+        k->nt, out4 + (size_t)(first - out_first) * (size_t)k->P * 4u,         \
+        4u * W - 1u);                                                          \
+    if (mode == 2) /* the mode a constant in each loop, as above */            \
+        hf__points_whole##W(k, st, pts, pts_first, first, count, out_first,    \
+                            out4, 2);                                          \
+    else if (mode)                                                             \
+        hf__points_whole##W(k, st, pts, pts_first, first, count, out_first,    \
+                            out4, 1);                                          \
+    else                                                                       \
+        hf__points_whole##W(k, st, pts, pts_first, first, count, out_first,    \
+                            out4, 0);                                          \
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */                              \
 }
 
@@ -11917,6 +11934,62 @@ HF__INTERP_POINTS(16, HF__TARGET_AVX512)
 #endif
 #undef HF__INTERP_POINTS
 #undef HF__CLUMP_MODE_CASES
+
+/* GPU points of strands [first, first + count): strand s's points at
+   pts + (s - pts_first) * 3 P, written to out4 + (s - out_first) * 4 P.
+   The caller fences streamed stores. */
+HF__PRIVATE void hf__points_run(const hf__points_kit *k,
+                                const hf_ribbon_strands *strands,
+                                const float *pts, int pts_first, int first,
+                                int count, int out_first, float *out4)
+{
+    const int P = k->P;
+    int s;
+#if HF__AVX2
+    if (k->wide) {
+        /* finiteness found on the way: a strand that is not is written
+           again, collapsed (streamed stores ordered first). Whole groups
+           of W points where P allows (with its output in L2, 100,000
+           strands of 16 points took 0.43-0.47 ms against the pairs'
+           0.71), else two points a vector */
+#if HF__AVX512
+        if (k->level >= HF_SIMD_AVX512 && P % 16 == 0)
+            hf__points_groups16(k, strands, pts, pts_first, first, count,
+                                out_first, out4);
+        else
+#endif
+        if (P % 8 == 0)
+            hf__points_groups8(k, strands, pts, pts_first, first, count,
+                               out_first, out4);
+        else
+            hf__points_run_avx2(k, strands, pts, pts_first, first, count,
+                                out_first, out4);
+        return;
+    }
+#endif
+    for (s = first; s < first + count; ++s) {
+        const float *p = pts + (size_t)(s - pts_first) * (size_t)P * 3u;
+        float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
+        float wscale = 0.0f;
+        if (hf__points_finite(p, 3 * P))
+            wscale = hf__strand_width(strands, s, k->wcap);
+        else
+            p = hf__zero_points; /* collapsed, as hf_ribbons */
+#if HF__SSE
+        if (k->level >= HF_SIMD_SSE2) {
+            hf__points_strand_sse(p, k->hw, wscale, o, P, k->nt);
+            continue;
+        }
+#endif
+#if HF__NEON
+        if (k->level >= HF_SIMD_NEON) {
+            hf__points_strand_neon(p, k->hw, wscale, o, P);
+            continue;
+        }
+#endif
+        hf__points_strand_ref(p, k->hw, wscale, o, P);
+    }
+}
 
 /* hf_ribbon_points, with the stores chosen as for `sized` strands (as
    hf__ribbons) */

@@ -6664,15 +6664,16 @@ static void test_format_encoders(void)
     CHECK_EQ_INT(hf__encode1(0.5f, HF_FORMAT_UNORM8), 128); /* 127.5: even */
 }
 
-/* GPU points at every SIMD level and with streaming stores, into aligned
-   and unaligned buffers: the same bytes as the documented formula, every
-   strand length (the AVX2 and SSE loops leave different tails), a NaN
-   strand collapsed wherever its NaN sits, per-strand widths. */
+/* GPU points at every SIMD level and with streaming stores, into buffers
+   aligned to 64 bytes and 16, 32 and 48 bytes past: the same bytes as the
+   documented formula, every strand length to 21 (the AVX2 and SSE loops
+   leave different tails) and 32 (two sixteen-point groups), a NaN strand
+   collapsed wherever its NaN sits, per-strand widths. */
 static void test_points_every_level(void)
 {
-    enum { N = 9, QM = 21 };
+    enum { N = 9, QM = 32 };
     static float pts[N * QM * 3], wid[N];
-    static float buf[N * QM * 4 + 16], ref[N * QM * 4];
+    static float buf[N * QM * 4 + 32], ref[N * QM * 4];
     hf_ribbon_strands st;
     hf_ribbon_params rp;
     hf_rng r;
@@ -6680,7 +6681,7 @@ static void test_points_every_level(void)
     hf_rng_seed(&r, 5u, 1u);
     for (i = 0; i < N * QM * 3; ++i) pts[i] = hf_rng_float(&r) - 0.5f;
     for (s = 0; s < N; ++s) wid[s] = 0.5f + hf_rng_float(&r);
-    for (Q = 2; Q <= QM; ++Q) {
+    for (Q = 2; Q <= QM; Q = Q == 21 ? QM : Q + 1) {
         /* strand 4's NaN: its last float where Q is odd (the tail's
            load), else somewhere inside */
         const int nan_at = 4 * Q * 3 + (Q & 1 ? 3 * Q - 1 : (7 * Q) % (3 * Q));
@@ -6706,8 +6707,9 @@ static void test_points_every_level(void)
             }
         for (level = 0; level <= HF_SIMD_AVX512; ++level)
             for (nt = 0; nt < 3; ++nt) /* by size, streaming, ordinary */
-                for (shift = 0; shift < 2; ++shift) {
-                    float *o = buf + 4 * shift + (((uintptr_t)buf & 31u) ? 4 : 0) % 8;
+                for (shift = 0; shift < 4; ++shift) {
+                    float *o = buf + ((64u - ((uintptr_t)buf & 63u)) & 63u) / 4u +
+                               4 * shift;
                     memset(buf, 0xab, sizeof buf);
                     rp.simd = level;
                     rp.nontemporal = nt;
