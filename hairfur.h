@@ -174,9 +174,10 @@
          exactly that range (hf_ropes_copy_range for rope positions; the
          growth-time range outputs are indexed absolutely).
        - Stack (gcc, x86-64, -fcallgraph-info=su, callees added, at -O2
-         and at -O0): hf_ribbons and hf_fur_ribbons about 34 KiB (two
+         and at -O0): hf_ribbons and hf_fur_ribbons about 38 KiB (two
          strands' rows sized for HF_MAX_POINTS, the second sharing an
-         8 KiB stage for streaming stores), hf_fur_interpolate_points 18
+         8 KiB stage for streaming stores, and up to 4 KiB to start the
+         first at a page boundary), hf_fur_interpolate_points 18
          KiB (23 at -O0), hf_ropes_step about 21 KiB with the AVX-512
          kernel (33 at -O0), the other per-frame calls under 8 KiB: size
          worker and fiber stacks for it. Kernels are forced inline only
@@ -10578,6 +10579,38 @@ HF__PRIVATE int hf__ribbon_stage(const hf__rout *ro, int P, size_t *block,
     return 1;
 }
 
+/* Where the streamed ribbons' scratch goes: no frame row's points and no
+   stage across a 4 KiB page boundary. With a tangent row or the stage
+   across one, scene L's streamed ribbons at AVX2 ran 2.3-2.6x slower (63
+   ns a strand against 141-172, by where the stack put them: about a
+   third of runs under address randomisation); page-split stores, queued
+   behind the streaming stores and read back, are the likely cause.
+   hf__frame_in_page: the first page boundary in room (HF__RIBBON_ROOM
+   floats: a frame, the boundary's slack, then a second frame or the
+   stage); the rows then start at 0, 1072, 2144 and 3216 bytes into a
+   page and at 192, 1264, 2336, 3408 and 384 past the next ones, so none
+   crosses with P <= 160 (the second frame's with P <= 64).
+   hf__stage_in_page: a stage of `need` bytes in buf (HF__STAGE_BYTES),
+   moved to the next page boundary where it would cross one and fits in
+   one (buf + 4096 - off leaves 4096 + off bytes >= need). */
+#define HF__RIBBON_ROOM                                                        \
+    ((sizeof(hf__rframe) + 4096 +                                              \
+      (sizeof(hf__rframe) > HF__STAGE_BYTES ? sizeof(hf__rframe)               \
+                                            : HF__STAGE_BYTES)) /              \
+     sizeof(float))
+HF__PRIVATE hf__rframe *hf__frame_in_page(float *room)
+{
+    const size_t off = (size_t)((uintptr_t)room & 4095u);
+    return (hf__rframe *)(void *)(room + ((4096u - off) & 4095u) / 4u);
+}
+
+HF__PRIVATE float *hf__stage_in_page(float *buf, size_t need)
+{
+    const size_t off = (size_t)((uintptr_t)buf & 4095u);
+    return need <= 4096u && off + need > 4096u ? buf + (4096u - off) / 4u
+                                               : buf;
+}
+
 /* The layout ro with its streams moved into the stage: a strand's
    vertices are written there as the strand at vertex 0. */
 HF__PRIVATE void hf__rout_staged(const hf__rout *ro, float *stage,
@@ -11359,19 +11392,18 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
                                   const hf_ribbon_params *view,
                                   const hf_ribbon_output *out, int sized)
 {
-    hf__rframe fr;
     hf__rconst K;
     hf__rout ro, so;
     hf_ribbon_params prm;
     const hf_ribbon_params *params = &prm;
     hf_ribbon_strands sv;
     const hf_stream *streams[5];
-    union { /* the stage, or a second frame (the AVX2 run's plain path,
-               the AVX-512 lines) */
-        float stage[HF__STAGE_BYTES / 4];
-        hf__rframe fr2;
-    } mem;
-    float *const stage_buf = mem.stage;
+    /* a strand's frame rows from a page boundary, then a second frame
+       (the AVX2 run's plain path, the AVX-512 lines) or the stage (a
+       streamed call) */
+    float room[HF__RIBBON_ROOM];
+    hf__rframe *const fr = hf__frame_in_page(room), *const fr2 = fr + 1;
+    float *stage_buf = NULL;
     unsigned char *dst0 = NULL;
     size_t block = 0, elem[5];
     int s, k, P, stage, level, out_first;
@@ -11436,6 +11468,9 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
                           HF_STREAM_MIN_VERTEX_BYTES)
                 ? hf__ribbon_stage(&ro, P, &block, &dst0)
                 : 0;
+    if (stage)
+        stage_buf = hf__stage_in_page((float *)(void *)fr2,
+                                      2u * (size_t)P * block);
     /* the inputs in locals, read once: the kernels are calls whose
        stores may alias anything reached through a pointer */
     sv = *strands;
@@ -11447,19 +11482,19 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
 #if HF__AVX512
     if (stage && hf__lines_fit(&ro, P, level, dst0, block, first, out_first)) {
         hf__ribbons_lines_avx512(&sv, first, count, params, &K, &ro,
-                                 out_first, &fr, &mem.fr2);
+                                 out_first, fr, fr2);
         return HF_OK;
     }
     if (!stage && ro.c16 && level >= HF_SIMD_AVX512 && P % 16 == 0) {
         hf__ribbons_c16_avx512(&sv, first, count, params, &K, &ro, out_first,
-                               &fr);
+                               fr);
         return HF_OK;
     }
 #endif
 #if HF__AVX2
     if (level >= HF_SIMD_AVX2 && (ro.run || ro.nw)) {
         hf__ribbons_run_avx2(&sv, first, count, params, &K, &ro, out_first,
-                             &fr, stage ? NULL : &mem.fr2,
+                             fr, stage ? NULL : fr2,
                              stage ? stage_buf : NULL, dst0, block);
         return HF_OK;
     }
@@ -11469,15 +11504,15 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
         const float *pts = sv.points + (size_t)s * (size_t)P * 3u;
         const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
         hf__rstrand str;
-        hf__strand_frame(pts, P, params, &fr, &str.wscale, level);
+        hf__strand_frame(pts, P, params, fr, &str.wscale, level);
         hf__rstrand_fill(&sv, s, K.wcap, &str);
         if (stage) {
             /* the strand's vertices into the stage (in L1), then out to
                its block with streaming stores */
-            hf__ribbon_write(&fr, P, &K, &str, &so, 0, level);
+            hf__ribbon_write(fr, P, &K, &str, &so, 0, level);
             hf__stream_copy(dst0 + v0 * block, stage_buf, 2u * (size_t)P * block);
         } else {
-            hf__ribbon_write(&fr, P, &K, &str, &ro, v0, level);
+            hf__ribbon_write(fr, P, &K, &str, &ro, v0, level);
         }
     }
 #if HF__SSE

@@ -6720,6 +6720,55 @@ static void test_points_every_level(void)
     }
 }
 
+/* The streamed ribbons' scratch, for every offset of its buffer in a
+   page: the stage (hf__stage_in_page) inside its 8 KiB, crossing no 4
+   KiB page where the strand's vertices fit in one, and where it already
+   crosses none, the buffer's start; the frames (hf__frame_in_page). */
+static void test_ribbon_scratch_in_page(void)
+{
+    static float mem[3 * 4096 / 4 + HF__RIBBON_ROOM];
+    float *const page = mem + ((4096u - ((uintptr_t)mem & 4095u)) & 4095u) / 4u;
+    static const size_t needs[5] = {16, 1152, 4000, 4096, 6000};
+    size_t off, k, bad = 0;
+    for (k = 0; k < 5; ++k)
+        for (off = 0; off < 4096; off += 4) {
+            float *const buf = page + off / 4;
+            const size_t need = needs[k];
+            float *const st = hf__stage_in_page(buf, need);
+            const size_t at = (size_t)(st - buf) * 4u;
+            const size_t in_page = (size_t)((uintptr_t)st & 4095u);
+            if (at + need > HF__STAGE_BYTES) ++bad;
+            if (need <= 4096u && in_page + need > 4096u) ++bad;
+            if (off + need <= 4096u && st != buf) ++bad;
+            if (need > 4096u && st != buf) ++bad;
+        }
+    CHECK_EQ_INT((int)bad, 0);
+    /* the frames: the first at a page boundary, the second frame or the
+       stage (HF__STAGE_BYTES) inside the room after it; no row of the
+       first crosses a page with P = 160, one of them with P = 161 */
+    for (off = 0; off < 4096; off += 4) {
+        float *const room = mem + off / 4;
+        const hf__rframe *const fr = hf__frame_in_page(room);
+        const unsigned char *const end =
+            (const unsigned char *)(room + HF__RIBBON_ROOM);
+        int r, crossing160 = 0, crossing161 = 0;
+        if (((uintptr_t)fr & 4095u) != 0) ++bad;
+        if ((const unsigned char *)(fr + 2) > end ||
+            (const unsigned char *)(fr + 1) + HF__STAGE_BYTES > end)
+            ++bad;
+        for (r = 0; r < 9; ++r) {
+            const size_t at = (size_t)((uintptr_t)(r < 3   ? fr->p[r]
+                                                   : r < 6 ? fr->t[r - 3]
+                                                           : fr->s[r - 6]) &
+                                       4095u);
+            crossing160 += at + 4u * (160u + 12u) > 4096u;
+            crossing161 += at + 4u * (161u + 12u) > 4096u;
+        }
+        if (crossing160 != 0 || crossing161 == 0) ++bad;
+    }
+    CHECK_EQ_INT((int)bad, 0);
+}
+
 /* Widths at their bounds: root and tip width, width_scale and a strand's
    multiplier may each reach HF_MAX_ABS, and their product would overflow
    float. A vertex's half width is then held to HF_MAX_ABS: no NaN (a
@@ -10576,6 +10625,7 @@ int main(void)
     RUN(test_ribbons_table_layouts);
     RUN(test_format_encoders);
     RUN(test_points_every_level);
+    RUN(test_ribbon_scratch_in_page);
     RUN(test_widths_at_the_bound);
     RUN(test_simd_kernels_leave_upper_clean);
     RUN(test_ribbons_compact_formats);
