@@ -5433,7 +5433,9 @@ static void test_interp_simd_matches_scalar_reference(void)
        order; every SIMD level (those this CPU lacks resolve lower) must
        give the same bytes. The point counts put every remainder past the
        groups of 12 (SSE), 24 (AVX2) and 48 (AVX-512) floats, so every tail
-       runs; clump 0 skips the clump term; streaming stores too, into an
+       runs (the last vector over the end of the others, or the scalar
+       tail below one vector); clump 0 skips the clump term; streaming
+       stores too, into an
        output at 64, 32, 16 and 4 bytes past a 64-byte boundary (whole
        vectors, halves or quarters, and plain stores). make test also
        builds with HF_NO_SIMD. */
