@@ -1275,9 +1275,10 @@ typedef struct hf_interp_params {
        in first and push the guides out (measured, into 64-byte aligned
        buffers: 1.7x faster for 36,700 strands of 16 points, 2x for
        100,000; 3 % slower for 3,670; a frame split into small calls:
-       set 1 or 2); 1 = streaming; 2 = ordinary stores. Same bytes
-       either way. Another value, or a simd outside 0..4, is
-       HF_ERROR_BAD_PARAMETER. */
+       set 1 or 2); 1 = streaming; 2 = ordinary stores. Streaming
+       needs P a multiple of 4 (every strand 16-byte aligned, with
+       out_points), else the stores are ordinary. Same bytes either way.
+       Another value, or a simd outside 0..4, is HF_ERROR_BAD_PARAMETER. */
     int nontemporal;
 } hf_interp_params;
 
@@ -1428,7 +1429,9 @@ typedef struct hf_ribbon_params {
        hf_ribbon_points can always stream; hf_ribbons when its streams
        are one interleaved buffer whose vertex they fill exactly (the
        usual layout: position, tangent, texcoord) and a strand's
-       vertices take at most 8 KiB, else it uses ordinary stores. Same
+       vertices take at most 8 KiB and start 16-byte aligned (the
+       buffer aligned so, and 2 P vertices a multiple of 16 bytes: P
+       even for 36-byte vertices), else it uses ordinary stores. Same
        bytes either way. Another value, or a simd outside 0..4, is
        HF_ERROR_BAD_PARAMETER. */
     int nontemporal;
@@ -7985,6 +7988,19 @@ HF__TARGET_AVX2 HF__INLINE void hf__put8(float *o, __m256 q, int mode)
         }                                                                      \
     } while (0)
 
+/* r floats from q to o (16-byte aligned) in streaming stores: four at a
+   time, then one at a time */
+HF__INLINE void hf__stream_floats(float *o, const float *q, size_t r)
+{
+    size_t k;
+    int bits;
+    for (k = 0; k + 4 <= r; k += 4) _mm_stream_ps(o + k, _mm_loadu_ps(q + k));
+    for (; k < r; ++k) {
+        HF_MEMCPY(&bits, q + k, 4);
+        _mm_stream_si32((int *)(void *)(o + k), bits);
+    }
+}
+
 /* The strands of a range, W floats a vector, in one target function
    (attribute T; no call per strand), as two kernels built from one text.
    hf__interp_groups<W>: P a multiple of W, a strand whole groups of three
@@ -8076,11 +8092,13 @@ T HF__PRIVATE void hf__interp_range##W(const hf__irun *run, int first,         \
             i += W;                                                            \
         }                                                                      \
         if (i < n && n >= W) {                                                 \
-            /* the last W floats again, over some already written (the       \
-               same values): their phase is 2, since n - W = 2 W (mod 3),    \
-               and the stores' mode that of their own address */            \
-            hf__put##W(o + n - W, hf__blend##W(&v, ctab, n - W, 2),            \
-                       hf__stream_mode(nt != 0, o + n - W, 4u * W - 1u));     \
+            /* the last W floats (their phase 2, since n - W = 2 W mod 3):     \
+               over some already written (the same values), or streamed,       \
+               only those past i: a line streamed twice goes out twice */      \
+            float t[W];                                                        \
+            hf__put##W(nt ? t : o + n - W, hf__blend##W(&v, ctab, n - W, 2),   \
+                       0);                                                     \
+            if (nt) hf__stream_floats(o + i, t + W - (n - i), n - i);          \
         } else if (i < n) {                                                    \
             hf__istrand t;                                                     \
             /* the tail is SSE code: with the upper halves dirty it would      \
@@ -8206,7 +8224,12 @@ HF__PRIVATE void hf__irun_init(hf__irun *run, const float *guide_points,
     run->P = P;
     run->out_first = out_first;
     run->clump = clump != 0.0f;
-    run->nt = nt;
+    /* streaming only where every strand keeps the first's alignment to
+       16 bytes (P a multiple of 4): otherwise some strands would stream
+       and the others, unaligned, take ordinary stores into the lines
+       they share, which cost 98-192 ns a strand against 7.8-12.4 with
+       ordinary stores throughout (P = 9 to 14, 100,000 strands) */
+    run->nt = nt && P % 4 == 0;
 }
 
 /* Strands [first, first + count) from inputs already checked: the loop of
@@ -8222,7 +8245,10 @@ HF__PRIVATE void hf__interpolate_run(const float *guide_points,
     hf__irun_init(&run, guide_points, bindings, P, clump, ctab, out_points,
                   out_first, nt);
 #if HF__AVX512
-    if (level >= HF_SIMD_AVX512)
+    /* with P a multiple of 8 but not of 16, eight lanes in whole groups:
+       P = 24 and 40 took 0.43 ns a point against sixteen lanes' 0.48 and
+       0.45 (a group and a part of one, in L2) */
+    if (level >= HF_SIMD_AVX512 && (P % 16 == 0 || P % 8 != 0))
         hf__interp_range16(&run, first, count);
     else
 #endif
@@ -11495,6 +11521,15 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
                           HF_STREAM_MIN_VERTEX_BYTES)
                 ? hf__ribbon_stage(&ro, P, &block, &dst0)
                 : 0;
+    /* every strand's vertices 16-byte aligned, or none streamed: strands
+       that stream beside ones whose ends take ordinary stores into the
+       lines they share ran 3x slower (P = 9 and 11, 36-byte vertices) */
+    if (stage && ((2u * (size_t)P * block) % 16u != 0 ||
+                  ((uintptr_t)dst0 + (size_t)(first - params->out_first) *
+                                         2u * (size_t)P * block) %
+                          16u !=
+                      0))
+        stage = 0;
     if (stage)
         stage_buf = hf__stage_in_page((float *)(void *)fr2,
                                       2u * (size_t)P * block);

@@ -47,7 +47,7 @@ static void ab_free(void *scene)
 }
 
 static void *ab_make(const hm_mesh *head, const unsigned char *px,
-                     int strands)
+                     int strands, int points)
 {
     hf_fur_desc d;
     hf_map density;
@@ -57,16 +57,17 @@ static void *ab_make(const hm_mesh *head, const unsigned char *px,
     ab_scene *s = (ab_scene *)calloc(1, sizeof *s);
     if (!s) return NULL;
     bench_fur_desc(&d, &density, &rp, head, px, strands, 0.0f);
+    d.points_per_strand = points;
     if (hf_fur_create(&d, &s->fur, &diag) != HF_OK) {
         fprintf(stderr, "bench_ab: %s\n", diag.message);
         free(s);
         return NULL;
     }
     hf_fur_get_info(s->fur, &s->info);
-    nv = (size_t)s->info.strand_count * BENCH_P * 2u;
+    nv = (size_t)s->info.strand_count * (size_t)points * 2u;
     s->vbuf = (float *)ab_buffer(nv * 36u);
     s->cbuf = (unsigned char *)ab_buffer(nv * 16u);
-    s->pbuf = (float *)ab_buffer((size_t)s->info.strand_count * BENCH_P * 16u);
+    s->pbuf = (float *)ab_buffer(nv * 8u); /* 16 bytes a point */
     if (!s->vbuf || !s->cbuf || !s->pbuf) {
         fprintf(stderr, "bench_ab: out of memory\n");
         ab_free(s);

@@ -4,7 +4,8 @@
    one), so two builds timed one after the other cannot show a change of
    a few percent. Here both versions run in the same process on the same
    scene (scene L of bench.c: 100,000 strands of 16 points on about 1,000
-   guides; each version grows its own fur from the same description), call
+   guides, or --strands and --points of the user's; each version grows
+   its own fur from the same description), call
    by call: for each stage, FRAMES calls of each, the order swapped every
    call, each after a read of 64 MiB of other bytes (as in a frame, the
    stage's output has left the cache; a memset of that size, glibc's
@@ -18,7 +19,7 @@
    to see the noise of the method itself: on this machine 0.94-1.02 a
    stage in a noisy hour (the method in a test program, ribbons only:
    1.00 in a quiet one).
-   Usage: bench_ab [--frames N] [--strands N] */
+   Usage: bench_ab [--frames N] [--strands N] [--points N] */
 #define _POSIX_C_SOURCE 200809L
 #define HEAD_MESH_IMPLEMENTATION
 #include "../examples/head_mesh.h"
@@ -42,7 +43,8 @@ int main(int argc, char **argv)
                                       "points", "interp_points", "ropes"};
     static unsigned char px[256 * 256];
     const ab_side *side[2] = {&ab_base, &ab_new};
-    int frames = 40, strands = BENCH_L_STRANDS, i, k, f, w;
+    int frames = 40, strands = BENCH_L_STRANDS, points = BENCH_P, i, k, f,
+        w;
     void *scene[2];
     double *t[2];
     unsigned char *evict;
@@ -52,17 +54,22 @@ int main(int argc, char **argv)
             frames = atoi(argv[++i]);
         } else if (i + 1 < argc && !strcmp(argv[i], "--strands")) {
             strands = atoi(argv[++i]);
+        } else if (i + 1 < argc && !strcmp(argv[i], "--points")) {
+            points = atoi(argv[++i]);
         } else {
             int help = !strcmp(argv[i], "--help") || !strcmp(argv[i], "-h");
             if (!help)
                 fprintf(stderr, "bench_ab: %s: unknown option or missing "
                                 "value\n", argv[i]);
             fprintf(help ? stdout : stderr,
-                    "usage: bench_ab [--frames N] [--strands N]\n"
+                    "usage: bench_ab [--frames N] [--strands N] "
+                    "[--points N]\n"
                     "  --frames N    calls of each version per stage "
                     "(default 40, at least 3)\n"
                     "  --strands N   strands of the scene (default "
                     "100000, at least 1)\n"
+                    "  --points N    points a strand (default 16, 2 to "
+                    "256)\n"
                     "Each stage run by the base and the new hairfur.h "
                     "alternately; medians and new / base.\n");
             return help ? 0 : 2;
@@ -79,9 +86,10 @@ int main(int argc, char **argv)
     if (!evict || !t[0] || !t[1]) return 1;
     memset(evict, 0x33, EVICT_BYTES);
     for (w = 0; w < 2; ++w)
-        if (!(scene[w] = side[w]->make(&head, px, strands))) return 1;
-    printf("bench_ab: base and new hairfur.h, %d strands, %d calls of each "
-           "a stage (medians, ms)\n", strands, frames);
+        if (!(scene[w] = side[w]->make(&head, px, strands, points)))
+            return 1;
+    printf("bench_ab: base and new hairfur.h, %d strands of %d points, %d "
+           "calls of each a stage (medians, ms)\n", strands, points, frames);
     printf("  %-14s %9s %9s %9s\n", "stage", "base", "new", "new/base");
     for (k = 0; k < AB_N; ++k) {
         double mb, mn;

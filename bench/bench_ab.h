@@ -14,11 +14,13 @@ enum {
     AB_N
 };
 
-/* One side's functions: make a scene of `strands` strands on `head`
-   (density image px, 256 x 256; NULL and a message on stderr when it
-   cannot), run a stage once (0, or the hf_result), free the scene. */
+/* One side's functions: make a scene of `strands` strands of `points`
+   points on `head` (density image px, 256 x 256; NULL and a message on
+   stderr when it cannot), run a stage once (0, or the hf_result), free
+   the scene. */
 typedef struct ab_side {
-    void *(*make)(const hm_mesh *head, const unsigned char *px, int strands);
+    void *(*make)(const hm_mesh *head, const unsigned char *px, int strands,
+                  int points);
     int (*run)(void *scene, int stage);
     void (*free_scene)(void *scene);
 } ab_side;

@@ -5433,15 +5433,16 @@ static void test_interp_simd_matches_scalar_reference(void)
        order; every SIMD level (those this CPU lacks resolve lower) must
        give the same bytes. The point counts put every remainder past the
        groups of 12 (SSE), 24 (AVX2) and 48 (AVX-512) floats, so every tail
-       runs (the last vector over the end of the others, or the scalar
-       tail below one vector); clump 0 skips the clump term; streaming
-       stores too, into an
+       runs (the last vector over the end of the others, or streamed
+       past them where P is a multiple of 4 but not of the group, or the
+       scalar tail below one vector); clump 0 skips the clump term;
+       streaming stores too, into an
        output at 64, 32, 16 and 4 bytes past a 64-byte boundary (whole
        vectors, halves or quarters, and plain stores). make test also
        builds with HF_NO_SIMD. */
     enum { QM = 40, G = 5, N = 40 };
-    static const int qs[] = {2, 3, 5, 8, 13, 14, 15, 16, 17, 19, 21, 24,
-                             32, 33, 40};
+    static const int qs[] = {2, 3, 4, 5, 8, 12, 13, 14, 15, 16, 17, 19,
+                             20, 21, 24, 28, 32, 33, 40};
     static const int shifts[] = {0, 8, 4, 1};
     static float outbuf[N * QM * 3 + 32];
     int qi, level, sh;
