@@ -8952,25 +8952,6 @@ hf__frame_eye_avx2(const hf_ribbon_params *params, __m256 *e)
                                                    : params->eye[c]);
 }
 
-/* Eight points' x, y and z (the 24 floats at q) as rows: halves of
-   points 0-3 and 4-7, as x0 y0 z0 x1 | y1 z1 x2 y2 | z2 x3 y3 z3, then
-   shuffles */
-HF__TARGET_AVX2 HF__INLINE void hf__rows8(const float *q, __m256 *x,
-                                          __m256 *y, __m256 *z)
-{
-#define HF__LD2(a, b)                                                          \
-    _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(q + (a))),      \
-                         _mm_loadu_ps(q + (b)), 1)
-    const __m256 m03 = HF__LD2(0, 12), m14 = HF__LD2(4, 16),
-                 m25 = HF__LD2(8, 20);
-#undef HF__LD2
-    const __m256 xy = _mm256_shuffle_ps(m14, m25, _MM_SHUFFLE(2, 1, 3, 2));
-    const __m256 yz = _mm256_shuffle_ps(m03, m14, _MM_SHUFFLE(1, 0, 2, 1));
-    *x = _mm256_shuffle_ps(m03, xy, _MM_SHUFFLE(2, 0, 3, 0));
-    *y = _mm256_shuffle_ps(yz, xy, _MM_SHUFFLE(3, 1, 2, 0));
-    *z = _mm256_shuffle_ps(yz, m25, _MM_SHUFFLE(3, 0, 3, 1));
-}
-
 /* hf__strand_frame_v4 eight points at a time, with the same IEEE
    operations per point, and the same cases left to the reference;
    ortho and e as hf__frame_eye_avx2 gives them. */
@@ -8983,34 +8964,34 @@ hf__strand_frame_avx2_in(const float *pts, int P, int ortho, const __m256 *e,
     const __m256 zero = _mm256_setzero_ps();
     __m256 acc = zero, px, py, pz;
     float tip[3];
-    __m256 x, y, z;
     int k, c, bad = 0;
     /* rows: eight points (24 floats) deinterleaved by shuffles; the
        whole groups in a loop of their own (no test for the last) */
     for (k = 0; 8 * k + 8 <= P; ++k) {
-        hf__rows8(pts + 24 * k, &x, &y, &z);
-        hf__row_put_avx2(fr, k, x, y, z, &acc);
+        const float *q = pts + 24 * k;
+#define HF__LD2(a, b)                                                          \
+    _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(q + (a))),      \
+                         _mm_loadu_ps(q + (b)), 1)
+        /* halves: points 0-3 and 4-7, as x0 y0 z0 x1 | y1 z1 x2 y2 |
+           z2 x3 y3 z3 */
+        const __m256 m03 = HF__LD2(0, 12), m14 = HF__LD2(4, 16),
+                     m25 = HF__LD2(8, 20);
+#undef HF__LD2
+        const __m256 xy = _mm256_shuffle_ps(m14, m25, _MM_SHUFFLE(2, 1, 3, 2));
+        const __m256 yz = _mm256_shuffle_ps(m03, m14, _MM_SHUFFLE(1, 0, 2, 1));
+        hf__row_put_avx2(fr, k,
+                         _mm256_shuffle_ps(m03, xy, _MM_SHUFFLE(2, 0, 3, 0)),
+                         _mm256_shuffle_ps(yz, xy, _MM_SHUFFLE(3, 1, 2, 0)),
+                         _mm256_shuffle_ps(yz, m25, _MM_SHUFFLE(3, 0, 3, 1)),
+                         &acc);
     }
-    if (8 * k < P && P >= 8) {
-        /* the last, partial group repeats the tip: from the strand's last
-           eight points, lane i takes point P - n + i, or the tip (scalar
-           copies through a stack array cost a failed store forward a row:
-           P = 12 ran 2.7x the time of P = 8) */
+    if (8 * k < P) { /* the last, partial group repeats the tip */
         const int n = P - 8 * k;
-        const __m256i ix = _mm256_min_epi32(
-            _mm256_add_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
-                             _mm256_set1_epi32(8 - n)),
-            _mm256_set1_epi32(7));
-        hf__rows8(pts + 3 * (P - 8), &x, &y, &z);
-        hf__row_put_avx2(fr, k, _mm256_permutevar8x32_ps(x, ix),
-                         _mm256_permutevar8x32_ps(y, ix),
-                         _mm256_permutevar8x32_ps(z, ix), &acc);
-    } else if (8 * k < P) { /* P < 8: the tip repeats past it */
         float r[3][8];
         int i;
         for (i = 0; i < 8; ++i)
             HF__UNROLL for (c = 0; c < 3; ++c)
-                r[c][i] = pts[3 * (i < P ? i : P - 1) + c];
+                r[c][i] = pts[3 * (8 * k + (i < n ? i : n - 1)) + c];
         hf__row_put_avx2(fr, k, _mm256_loadu_ps(r[0]), _mm256_loadu_ps(r[1]),
                          _mm256_loadu_ps(r[2]), &acc);
     }
