@@ -1752,7 +1752,10 @@ typedef struct hf_fur_desc {
                                factor in [1 - v, 1 + v] (clamped to 1) */
     float width_variation;  /* [0, 1]: each strand's ribbon width times a
                                random factor in [1 - v, 1 + v] */
-    int points_per_strand;  /* 0 = 16; 2 .. HF_MAX_POINTS */
+    int points_per_strand;  /* 0 = 16; 2 .. HF_MAX_POINTS. A multiple
+                               of 16 (or 8) takes every kernel's whole
+                               groups: P = 12 costs up to 2.2x P = 16's
+                               time a point (docs/performance.md) */
     float max_length;       /* 0 = 0.05 m */
     float tess_factor;      /* 1/m^2; 0 = no tessellation: pure guides
                                only. Else triangles split while
