@@ -7991,17 +7991,12 @@ HF__TARGET_AVX2 HF__INLINE void hf__put8(float *o, __m256 q, int mode)
         }                                                                      \
     } while (0)
 
-/* r floats from q to o (16-byte aligned) in streaming stores: four at a
-   time, then one at a time */
+/* r floats from q to o (16-byte aligned) in streaming stores, r a
+   multiple of 4 (strands stream only with P one, hf__irun_init) */
 HF__INLINE void hf__stream_floats(float *o, const float *q, size_t r)
 {
     size_t k;
-    int bits;
-    for (k = 0; k + 4 <= r; k += 4) _mm_stream_ps(o + k, _mm_loadu_ps(q + k));
-    for (; k < r; ++k) {
-        HF_MEMCPY(&bits, q + k, 4);
-        _mm_stream_si32((int *)(void *)(o + k), bits);
-    }
+    for (k = 0; k < r; k += 4) _mm_stream_ps(o + k, _mm_loadu_ps(q + k));
 }
 
 /* The strands of a range, W floats a vector, in one target function
@@ -8249,8 +8244,8 @@ HF__PRIVATE void hf__interpolate_run(const float *guide_points,
                   out_first, nt);
 #if HF__AVX512
     /* with P a multiple of 8 but not of 16, eight lanes in whole groups:
-       P = 24 and 40 took 0.43 ns a point against sixteen lanes' 0.48 and
-       0.45 (a group and a part of one, in L2) */
+       P = 24 and 40 took 0.43 and 0.42 ns a point against sixteen lanes'
+       0.48 and 0.45 (a group and a part of one, in L2) */
     if (level >= HF_SIMD_AVX512 && (P % 16 == 0 || P % 8 != 0))
         hf__interp_range16(&run, first, count);
     else
@@ -10603,13 +10598,19 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
    a stage: a strand's vertices are written there by the usual kernels,
    then copied out in 16-byte streaming stores. The copy writes whole
    blocks, so the streams must tile one interleaved vertex exactly
-   (hf__rout's tile), and a strand's vertices must fit the stage. Returns
-   1 with the vertex size and the block's first byte when so. */
+   (hf__rout's tile), a strand's vertices must fit the stage, and every
+   strand's block must start 16-byte aligned (v0: the call's first
+   vertex): strands that stream beside ones whose ends take ordinary
+   stores into the lines they share ran 3x slower (P = 9 and 11, 36-byte
+   vertices). Returns 1 with the vertex size and the first byte of
+   vertex 0 when so. */
 #define HF__STAGE_BYTES 8192
-HF__PRIVATE int hf__ribbon_stage(const hf__rout *ro, int P, size_t *block,
-                                 unsigned char **first)
+HF__PRIVATE int hf__ribbon_stage(const hf__rout *ro, int P, size_t v0,
+                                 size_t *block, unsigned char **first)
 {
-    if (!HF__SSE || !ro->tile || 2u * (size_t)P * ro->tile > HF__STAGE_BYTES)
+    const size_t sb = 2u * (size_t)P * ro->tile;
+    if (!HF__SSE || !ro->tile || sb > HF__STAGE_BYTES || sb % 16u != 0 ||
+        ((uintptr_t)ro->base[ro->wq[0]] + v0 * ro->tile) % 16u != 0)
         return 0;
     *block = ro->tile;
     *first = ro->base[ro->wq[0]];
@@ -10619,7 +10620,7 @@ HF__PRIVATE int hf__ribbon_stage(const hf__rout *ro, int P, size_t *block,
 /* Where the streamed ribbons' scratch goes: no frame row's points and no
    stage across a 4 KiB page boundary. With a tangent row or the stage
    across one, scene L's streamed ribbons at AVX2 ran 2.3-2.6x slower (63
-   ns a strand against 141-172, by where the stack put them: about a
+   ns a strand against 141-195, by where the stack put them: about a
    third of runs under address randomisation); page-split stores, queued
    behind the streaming stores and read back, are the likely cause.
    hf__frame_in_page: the first page boundary in room (HF__RIBBON_ROOM
@@ -10629,23 +10630,29 @@ HF__PRIVATE int hf__ribbon_stage(const hf__rout *ro, int P, size_t *block,
    crosses with P <= 160 (the second frame's with P <= 64).
    hf__stage_in_page: a stage of `need` bytes in buf (HF__STAGE_BYTES),
    moved to the next page boundary where it would cross one and fits in
-   one (buf + 4096 - off leaves 4096 + off bytes >= need). */
+   one (buf off bytes into a page: the boundary leaves 4096 + off bytes,
+   >= need). */
 #define HF__RIBBON_ROOM                                                        \
     ((sizeof(hf__rframe) + 4096 +                                              \
       (sizeof(hf__rframe) > HF__STAGE_BYTES ? sizeof(hf__rframe)               \
                                             : HF__STAGE_BYTES)) /              \
      sizeof(float))
+/* the first page boundary at or past p */
+HF__PRIVATE float *hf__page_up(float *p)
+{
+    return p + ((4096u - ((uintptr_t)p & 4095u)) & 4095u) / 4u;
+}
+
 HF__PRIVATE hf__rframe *hf__frame_in_page(float *room)
 {
-    const size_t off = (size_t)((uintptr_t)room & 4095u);
-    return (hf__rframe *)(void *)(room + ((4096u - off) & 4095u) / 4u);
+    return (hf__rframe *)(void *)hf__page_up(room);
 }
 
 HF__PRIVATE float *hf__stage_in_page(float *buf, size_t need)
 {
-    const size_t off = (size_t)((uintptr_t)buf & 4095u);
-    return need <= 4096u && off + need > 4096u ? buf + (4096u - off) / 4u
-                                               : buf;
+    return need <= 4096u && ((uintptr_t)buf & 4095u) + need > 4096u
+               ? hf__page_up(buf)
+               : buf;
 }
 
 /* The layout ro with its streams moved into the stage: a strand's
@@ -11503,17 +11510,11 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
     stage = hf__streaming(params->nontemporal,
                           (size_t)sized * 2u * (size_t)P * ro.tile,
                           HF_STREAM_MIN_VERTEX_BYTES)
-                ? hf__ribbon_stage(&ro, P, &block, &dst0)
+                ? hf__ribbon_stage(&ro, P,
+                                   (size_t)(first - params->out_first) * 2u *
+                                       (size_t)P,
+                                   &block, &dst0)
                 : 0;
-    /* every strand's vertices 16-byte aligned, or none streamed: strands
-       that stream beside ones whose ends take ordinary stores into the
-       lines they share ran 3x slower (P = 9 and 11, 36-byte vertices) */
-    if (stage && ((2u * (size_t)P * block) % 16u != 0 ||
-                  ((uintptr_t)dst0 + (size_t)(first - params->out_first) *
-                                         2u * (size_t)P * block) %
-                          16u !=
-                      0))
-        stage = 0;
     if (stage)
         stage_buf = hf__stage_in_page((float *)(void *)fr2,
                                       2u * (size_t)P * block);
@@ -11810,6 +11811,17 @@ HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
    as hf__points_run does. hf__points_groups<W>: the GPU points kernel
    alone, the same text loading the strand's points. */
 #define HF__INTERP_POINTS(W, T)                                                \
+/* W points' floats a, b, c: their finiteness into acc, their points out */    \
+T HF__INLINE void hf__points_abc##W(float *o, hf__f##W a, hf__f##W b,          \
+                                    hf__f##W c, const float *pw, hf__f##W WS,  \
+                                    hf__f##W *acc, int mode)                   \
+{                                                                              \
+    *acc = hf__nan_acc##W(*acc, a);                                            \
+    *acc = hf__nan_acc##W(*acc, b);                                            \
+    *acc = hf__nan_acc##W(*acc, c);                                            \
+    hf__points_out##W(o, a, b, c, pw, WS, mode);                               \
+}                                                                              \
+                                                                               \
 T HF__INLINE void hf__interp_points_whole##W(                                  \
     const hf__irun *run, const hf__points_kit *k,                              \
     const hf_ribbon_strands *st, int first, int count, int out_first,          \
@@ -11833,10 +11845,8 @@ T HF__INLINE void hf__interp_points_whole##W(                                  \
             const hf__f##W a = hf__finish##W(&v, ctab, sa, (size_t)i, 0);      \
             const hf__f##W b = hf__blend##W(&v, ctab, (size_t)i + W, 1);       \
             const hf__f##W c = hf__blend##W(&v, ctab, (size_t)i + 2 * W, 2);   \
-            acc = hf__nan_acc##W(acc, a);                                      \
-            acc = hf__nan_acc##W(acc, b);                                      \
-            acc = hf__nan_acc##W(acc, c);                                      \
-            hf__points_out##W(o + 4 * j, a, b, c, k->pw.v + 4 * j, WS, mode);  \
+            hf__points_abc##W(o + 4 * j, a, b, c, k->pw.v + 4 * j, WS, &acc,   \
+                              mode);                                           \
             i += 3 * W;                                                        \
             if ((j += W) >= P) break;                                          \
         }                                                                      \
@@ -11860,8 +11870,8 @@ T HF__PRIVATE void hf__interp_points##W(                                       \
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */                              \
 }                                                                              \
                                                                                \
-/* hf__points_run's kernel for P a multiple of W: the kernel above with      \
-   three loads of the strand's points where it interpolates them */          \
+/* hf__points_run's kernel for P a multiple of W: the kernel above with        \
+   three loads of the strand's points where it interpolates them */            \
 T HF__INLINE void hf__points_whole##W(                                         \
     const hf__points_kit *k, const hf_ribbon_strands *st, const float *pts,    \
     int pts_first, int first, int count, int out_first, float *out4,           \
@@ -11880,10 +11890,8 @@ T HF__INLINE void hf__points_whole##W(                                         \
             const hf__f##W a = hf__loadu_##W(p + 3 * j);                       \
             const hf__f##W b = hf__loadu_##W(p + 3 * j + W);                   \
             const hf__f##W c = hf__loadu_##W(p + 3 * j + 2 * W);               \
-            acc = hf__nan_acc##W(acc, a);                                      \
-            acc = hf__nan_acc##W(acc, b);                                      \
-            acc = hf__nan_acc##W(acc, c);                                      \
-            hf__points_out##W(o + 4 * j, a, b, c, k->pw.v + 4 * j, WS, mode);  \
+            hf__points_abc##W(o + 4 * j, a, b, c, k->pw.v + 4 * j, WS, &acc,   \
+                              mode);                                           \
         }                                                                      \
         if (!hf__all_zero##W(acc)) hf__points_collapse_avx2(k, o);             \
     }                                                                          \
@@ -12030,9 +12038,9 @@ HF__PRIVATE void hf__points_run(const hf__points_kit *k,
     if (k->wide) {
         /* finiteness found on the way: a strand that is not is written
            again, collapsed (streamed stores ordered first). Whole groups
-           of W points where P allows (with its output in L2, 100,000
-           strands of 16 points took 0.43-0.47 ms against the pairs'
-           0.71), else two points a vector */
+           of W points where P allows (with its input and output in L2,
+           100,000 strands of 16 points took 0.41-0.48 ms against the
+           pairs' 0.64-0.67), else two points a vector */
 #if HF__AVX512
         if (k->level >= HF_SIMD_AVX512 && P % 16 == 0)
             hf__points_groups16(k, strands, pts, pts_first, first, count,
