@@ -382,7 +382,7 @@ typedef enum hf_simd_level {
     HF_SIMD_SSE2 = 2,   /* 4 lanes: SSE2, the x86-64 baseline, or NEON */
     HF_SIMD_NEON = 2,   /* on ARM64 (always there), the same level */
     HF_SIMD_AVX2 = 3,   /* 8 lanes */
-    HF_SIMD_AVX512 = 4  /* 16 lanes (AVX-512F) */
+    HF_SIMD_AVX512 = 4  /* 16 lanes (AVX-512F and BW) */
 } hf_simd_level;
 
 /* The level a kernel runs at when `requested` is asked for: 0 (auto) gives
@@ -2082,8 +2082,10 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
    SSE2 is the baseline wherever the compiler targets it, NEON on ARM64.
    AVX2 and AVX-512 kernels are compiled into any x86 build (target
    attributes on gcc and clang, none needed on MSVC) and picked at run
-   time by CPUID. HF_NO_SIMD forces the scalar references; HF_SIMD_MAX
-   (an hf_simd_level) caps the level at compile time. */
+   time by CPUID (the AVX-512 level needs AVX-512F and BW, which every
+   AVX-512 CPU but the Xeon Phi has; there AVX2 runs). HF_NO_SIMD forces
+   the scalar references; HF_SIMD_MAX (an hf_simd_level) caps the level
+   at compile time. */
 #if !defined(HF_NO_SIMD) &&                                                    \
     (defined(__SSE2__) || defined(_M_X64) ||                                   \
      (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
@@ -2111,7 +2113,7 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
    on the Zen 4 measured here (all of it, the caller's too; Intel cores
    have their own penalty), and gcc leaves them dirty below -O2. */
 #define HF__TARGET_AVX2 __attribute__((target("avx2")))
-#define HF__TARGET_AVX512 __attribute__((target("avx512f")))
+#define HF__TARGET_AVX512 __attribute__((target("avx512f,avx512bw")))
 #elif HF__SSE && defined(_MSC_VER) && (defined(_M_X64) || defined(_M_IX86))
 /* MSVC compiles any intrinsic in any function: the kernels need no
    attribute, and hf__cpu_simd asks CPUID (__cpuid, __cpuidex, _xgetbv) */
@@ -2128,7 +2130,7 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 #else
 #define HF__AVX2 0
 #endif
-#if HF__SSE && defined(__AVX512F__)
+#if HF__SSE && defined(__AVX512F__) && defined(__AVX512BW__)
 #define HF__AVX512 1
 #else
 #define HF__AVX512 0
@@ -2336,9 +2338,9 @@ HF__PRIVATE int hf__cpu_simd(void)
 {
 #if HF__X86_DISPATCH && defined(_MSC_VER) && !defined(__clang__) &&          \
     !defined(__GNUC__)
-    /* the ISA bits (leaf 7: EBX bit 5 AVX2, bit 16 AVX-512F) count only
-       where the OS saves the registers (XCR0: bits 1-2 for 256 bits, and
-       5-7 as well for 512) */
+    /* the ISA bits (leaf 7: EBX bit 5 AVX2, bits 16 and 30 AVX-512F and
+       BW) count only where the OS saves the registers (XCR0: bits 1-2 for
+       256 bits, and 5-7 as well for 512) */
     int r[4];
     unsigned long long xcr0 = 0;
     __cpuid(r, 0);
@@ -2347,13 +2349,16 @@ HF__PRIVATE int hf__cpu_simd(void)
     if (((r[2] >> 27) & 1) == 0) return HF_SIMD_SSE2; /* no OSXSAVE */
     xcr0 = _xgetbv(0);
     __cpuidex(r, 7, 0);
-    if ((r[1] >> 16 & 1) && (xcr0 & 0xe6) == 0xe6) return HF_SIMD_AVX512;
+    if ((r[1] >> 16 & 1) && (r[1] >> 30 & 1) && (xcr0 & 0xe6) == 0xe6)
+        return HF_SIMD_AVX512;
     if ((r[1] >> 5 & 1) && (xcr0 & 6) == 6) return HF_SIMD_AVX2;
     return HF_SIMD_SSE2;
 #elif HF__X86_DISPATCH
     /* libgcc (or compiler-rt) reads CPUID and XCR0 at load time, so this
        also knows whether the OS saves the wide registers */
-    if (__builtin_cpu_supports("avx512f")) return HF_SIMD_AVX512;
+    if (__builtin_cpu_supports("avx512f") &&
+        __builtin_cpu_supports("avx512bw"))
+        return HF_SIMD_AVX512;
     if (__builtin_cpu_supports("avx2")) return HF_SIMD_AVX2;
     return HF_SIMD_SSE2;
 #elif HF__AVX512
@@ -10986,7 +10991,7 @@ HF__TARGET_AVX512 HF__INLINE void hf__rows16(const float *q, __m512 *X,
 
 /* hf__enc8 at sixteen lanes: h's values in both halves */
 typedef struct hf__enc16 {
-    __m512 lo, scale, one, round;
+    __m512 lo, scale, one;
     __m512i mask;
 } hf__enc16;
 
@@ -10997,7 +11002,6 @@ HF__TARGET_AVX512 HF__INLINE void hf__enc16_init(hf__enc16 *e,
     e->lo = hf__join16(h->lo, h->lo);
     e->scale = hf__join16(h->scale, h->scale);
     e->one = hf__join16(h->one, h->one);
-    e->round = hf__join16(h->round, h->round);
     e->mask = _mm512_castps_si512(hf__join16(m, m));
 }
 
@@ -11006,15 +11010,18 @@ HF__TARGET_AVX512 HF__INLINE void hf__enc16_init(hf__enc16 *e,
    "undefined" operand, which g++ -O1 warns about. */
 #define HF__SLL16(x, n) _mm512_maskz_slli_epi32(0xffff, x, n)
 
-/* hf__encode_var_avx2's operations at sixteen lanes */
+/* hf__encode_var_avx2 at sixteen lanes, two operations fewer: the
+   conversion rounds to nearest even itself (an embedded rounding mode),
+   the integer that adding and taking away 1.5 * 2^23 leaves there */
 HF__TARGET_AVX512 HF__INLINE __m512i hf__encode16(__m512 x,
                                                  const hf__enc16 *e)
 {
     __m512 v = _mm512_maskz_max_ps(0xffff, x, e->lo);
-    v = _mm512_maskz_min_ps(0xffff, v, e->one);
-    v = _mm512_sub_ps(_mm512_add_ps(_mm512_mul_ps(v, e->scale), e->round),
-                      e->round);
-    return _mm512_and_si512(_mm512_maskz_cvttps_epi32(0xffff, v), e->mask);
+    v = _mm512_mul_ps(_mm512_maskz_min_ps(0xffff, v, e->one), e->scale);
+    return _mm512_and_si512(
+        _mm512_maskz_cvt_roundps_epi32(
+            (__mmask16)-1, v, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC),
+        e->mask);
 }
 
 /* One compact vertex at p from x's low 16 bytes: two 8-byte stores, the
@@ -11025,22 +11032,29 @@ HF__INLINE void hf__c16_vertex(unsigned char *p, __m128i x)
     _mm_storel_epi64((__m128i *)(void *)(p + 7), _mm_srli_si128(x, 7));
 }
 
-/* hf__c16_put_avx2 at sixteen points, all of them: one side's compact
-   vertices at o (vertex i at o + i st2), two 8-byte stores a vertex, the
-   pad byte never written. In each 128-bit lane q of v[k]: vertex 4 q + k
-   (the unpacks work within lanes). */
-HF__TARGET_AVX512 HF__INLINE void hf__c16_put16(unsigned char *o, size_t st2,
-                                               __m512i d0, __m512i d1,
-                                               __m512i s02, __m512i s13)
+/* One side's compact vertices of sixteen points by 128-bit lane, from
+   their dwords (d0, d1 the side's; s02, s13 the ones both sides share,
+   unpacked): lane q of v[k] is point 4 q + k's (the unpacks work within
+   lanes) */
+HF__TARGET_AVX512 HF__INLINE void hf__c16_lanes16(__m512i d0, __m512i d1,
+                                                 __m512i s02, __m512i s13,
+                                                 __m512i *v)
 {
     const __m512i a = _mm512_maskz_unpacklo_epi32(0xffff, d0, d1),
                   b = _mm512_maskz_unpackhi_epi32(0xffff, d0, d1);
-    __m512i v[4];
-    int k;
     v[0] = _mm512_maskz_unpacklo_epi64(0xff, a, s02);
     v[1] = _mm512_maskz_unpackhi_epi64(0xff, a, s02);
     v[2] = _mm512_maskz_unpacklo_epi64(0xff, b, s13);
     v[3] = _mm512_maskz_unpackhi_epi64(0xff, b, s13);
+}
+
+/* hf__c16_put_avx2 at sixteen points, all of them: one side's vertices
+   (hf__c16_lanes16) at o, vertex i at o + i st2, two 8-byte stores a
+   vertex, the pad byte never written */
+HF__TARGET_AVX512 HF__INLINE void hf__c16_put16(unsigned char *o, size_t st2,
+                                               const __m512i *v)
+{
+    int k;
     HF__UNROLL for (k = 0; k < 4; ++k) { /* lanes as immediates */
         unsigned char *p = o + (size_t)k * st2;
         hf__c16_vertex(p, _mm512_maskz_extracti32x4_epi32(0xf, v[k], 0));
@@ -11053,6 +11067,38 @@ HF__TARGET_AVX512 HF__INLINE void hf__c16_put16(unsigned char *o, size_t st2,
     }
 }
 
+/* Both sides' vertices of sixteen points with a stride of 16 bytes, so
+   that points 2 j and 2 j + 1 (left, right, left, right) are the 64
+   bytes at o + 64 j: eight stores masked by byte (the pad bytes never
+   written) where hf__c16_put16 makes 64 stores of 8 bytes and 64
+   extractions. l, r: hf__c16_lanes16 of the left and the right side. */
+HF__TARGET_AVX512 HF__INLINE void hf__c16_put16_tight(unsigned char *o,
+                                                     const __m512i *l,
+                                                     const __m512i *r)
+{
+    const __mmask64 pad = 0x7fff7fff7fff7fffull;
+    const __m512i lo = _mm512_setr_epi64(0, 1, 8, 9, 2, 3, 10, 11),
+                  hi = _mm512_setr_epi64(4, 5, 12, 13, 6, 7, 14, 15);
+    __m512i p[2][4]; /* p[h][k]: points 8 h + k and 8 h + 4 + k, each
+                        left then right */
+    int k, h;
+    HF__UNROLL for (k = 0; k < 4; ++k) {
+        p[0][k] = _mm512_permutex2var_epi64(l[k], lo, r[k]);
+        p[1][k] = _mm512_permutex2var_epi64(l[k], hi, r[k]);
+    }
+    HF__UNROLL for (h = 0; h < 2; ++h) {
+        unsigned char *q = o + 256 * h; /* point 8 h */
+        HF__UNROLL for (k = 0; k < 4; k += 2) { /* points 8 h + k, + 1 */
+            _mm512_mask_storeu_epi8(
+                q + 32 * k, pad,
+                _mm512_maskz_shuffle_i64x2(0xff, p[h][k], p[h][k + 1], 0x44));
+            _mm512_mask_storeu_epi8(
+                q + 32 * k + 128, pad,
+                _mm512_maskz_shuffle_i64x2(0xff, p[h][k], p[h][k + 1], 0xee));
+        }
+    }
+}
+
 /* hf__c16_group_avx2 at sixteen points from registers: the left and
    right positions (relative to the origin and scale), the tangents and
    t, the strand's u and v already encoded (eu shifted) */
@@ -11061,7 +11107,7 @@ hf__c16_group16(unsigned char *b, size_t st, const __m512 *L, const __m512 *R,
                 const __m512 *T, __m512 tt, __m512i eu, __m512i ev,
                 const hf__enc16 *enc)
 {
-    __m512i eL[3], eR[3], et[3], d2, d3, s02, s13;
+    __m512i eL[3], eR[3], et[3], d2, d3, s02, s13, vl[4], vr[4];
     int c;
     HF__UNROLL for (c = 0; c < 3; ++c) {
         eL[c] = hf__encode16(L[c], &enc[0]);
@@ -11073,12 +11119,16 @@ hf__c16_group16(unsigned char *b, size_t st, const __m512 *L, const __m512 *R,
                          HF__SLL16(et[2], 16));
     s02 = _mm512_maskz_unpacklo_epi32(0xffff, d2, d3);
     s13 = _mm512_maskz_unpackhi_epi32(0xffff, d2, d3);
-    hf__c16_put16(b, 2 * st,
-                  _mm512_or_si512(eL[0], HF__SLL16(eL[1], 16)),
-                  _mm512_or_si512(eL[2], eu), s02, s13);
-    hf__c16_put16(b + st, 2 * st,
-                  _mm512_or_si512(eR[0], HF__SLL16(eR[1], 16)),
-                  _mm512_or_si512(eR[2], eu), s02, s13);
+    hf__c16_lanes16(_mm512_or_si512(eL[0], HF__SLL16(eL[1], 16)),
+                    _mm512_or_si512(eL[2], eu), s02, s13, vl);
+    hf__c16_lanes16(_mm512_or_si512(eR[0], HF__SLL16(eR[1], 16)),
+                    _mm512_or_si512(eR[2], eu), s02, s13, vr);
+    if (st == 16) {
+        hf__c16_put16_tight(b, vl, vr);
+    } else {
+        hf__c16_put16(b, 2 * st, vl);
+        hf__c16_put16(b + st, 2 * st, vr);
+    }
 }
 
 /* A strand's frame and vertices in registers, sixteen points a turn (P a
