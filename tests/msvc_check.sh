@@ -22,8 +22,8 @@ src=${TMPDIR:-/tmp}/hf_msvc_check_$$.c
 printf '#define HAIRFUR_IMPLEMENTATION\n#include "hairfur.h"\nint main(void) { return hf_version() > 0 ? 0 : 1; }\n' >"$src"
 # clang's immintrin.h, in MSVC mode, declares the AVX types and intrinsics
 # only for a target that has them (MSVC's always does): -mavx2 -mavx512f
-# let it parse the run-time dispatched kernels
-AVX="-mavx2 -mavx512f"
+# -mavx512bw let it parse the run-time dispatched kernels
+AVX="-mavx2 -mavx512f -mavx512bw"
 fail=0
 for lang in "c -std=c99" "c++ -std=c++14"; do
     # shellcheck disable=SC2086
