@@ -58,7 +58,7 @@
 #                      (BENCH_PEERS_ARGS)
 #   make bench-ab      this hairfur.h against the one of git revision BASE
 #                      (default HEAD), stage by stage, in one program
-#                      (BENCH_AB_ARGS: --frames, --strands, --points)
+#                      (BENCH_AB_ARGS: --frames, --strands, --points, --range)
 #
 # Housekeeping
 #   make deps          install every Debian package of mk/packages.txt (as

@@ -8217,9 +8217,11 @@ HF__PRIVATE void hf__irun_init(hf__irun *run, const float *guide_points,
                                int out_first, int nt)
 {
     int i;
-    /* clump weight of float i of a strand: clump * (i / 3) / (P - 1) */
-    for (i = 0; i < 3 * P; ++i)
-        ctab[i] = clump / (float)(P - 1) * (float)(i / 3);
+    /* clump weight of float i of a strand: clump * (i / 3) / (P - 1),
+       read only with clumping (every call pays for it) */
+    if (clump != 0.0f)
+        for (i = 0; i < 3 * P; ++i)
+            ctab[i] = clump / (float)(P - 1) * (float)(i / 3);
     run->guides = guide_points;
     run->bindings = bindings;
     run->ctab = ctab;
@@ -8415,24 +8417,50 @@ HF__PRIVATE hf_result hf__ribbon_check(const hf_ribbon_strands *strands,
     return HF_OK;
 }
 
-/* Half width at t = j / (P - 1), with the taper curve (resolved p).
-   Returns the largest strand multiplier for them: the product, a
-   vertex's half width, stays within HF_MAX_ABS (each factor may reach
-   it: their product would overflow to infinity, and a side's zero
-   component times infinity is NaN). */
-HF__PRIVATE float hf__half_widths(const hf_ribbon_params *p, float *hw)
+/* Half width at t = j / (P - 1), with the taper curve (resolved p), and
+   t itself where tt is not NULL. Returns the largest strand multiplier
+   for them: the product, a vertex's half width, stays within HF_MAX_ABS
+   (each factor may reach it: their product would overflow to infinity,
+   and a side's zero component times infinity is NaN). Every call pays
+   for this (P divisions), so the linear taper takes four points a
+   vector: the same operations, the same values. */
+HF__PRIVATE float hf__half_widths(const hf_ribbon_params *p, float *hw,
+                                  float *tt)
 {
     const int P = p->points_per_strand;
     const float scale = p->width_scale;
     const float power = p->taper_power;
     float m = 1.0f;
-    int j;
-    for (j = 0; j < P; ++j) {
+    int j = 0;
+#if HF__SSE
+    if (power == 1.0f) {
+        const __m128 d = _mm_set1_ps((float)(P - 1)),
+                     hs = _mm_set1_ps(0.5f * scale), one = _mm_set1_ps(1.0f),
+                     rw = _mm_set1_ps(p->root_width),
+                     tw = _mm_set1_ps(p->tip_width);
+        __m128 jv = _mm_setr_ps(0.0f, 1.0f, 2.0f, 3.0f), mv = one;
+        float mm[4];
+        for (; j + 4 <= P; j += 4, jv = _mm_add_ps(jv, _mm_set1_ps(4.0f))) {
+            const __m128 t = _mm_div_ps(jv, d),
+                         h = _mm_mul_ps(
+                             hs, _mm_add_ps(_mm_mul_ps(_mm_sub_ps(one, t), rw),
+                                            _mm_mul_ps(t, tw)));
+            _mm_storeu_ps(hw + j, h);
+            if (tt) _mm_storeu_ps(tt + j, t);
+            mv = _mm_max_ps(mv, h);
+        }
+        _mm_storeu_ps(mm, mv);
+        for (j = 0; j < 4; ++j) m = mm[j] > m ? mm[j] : m;
+        j = P & ~3;
+    }
+#endif
+    for (; j < P; ++j) {
         float t = (float)j / (float)(P - 1);
         float f = power == 1.0f ? t : (float)HF_POW((double)t, (double)power);
         if (j == P - 1) f = 1.0f; /* exact tip width whatever pow rounds */
         /* this form gives root and tip widths exactly at f = 0 and 1 */
         hw[j] = 0.5f * scale * ((1.0f - f) * p->root_width + f * p->tip_width);
+        if (tt) tt[j] = t;
         m = hw[j] > m ? hw[j] : m;
     }
     return HF_MAX_ABS / m;
@@ -9392,13 +9420,17 @@ typedef struct hf__rconst {
 HF__PRIVATE void hf__rconst_init(hf__rconst *K, const hf_ribbon_params *p)
 {
     const int P = p->points_per_strand;
+    /* zeros past the last point, as far as a group of sixteen reads */
+    const size_t pad = (size_t)(HF_MAX_POINTS + 4 - P < 16
+                                    ? HF_MAX_POINTS + 4 - P
+                                    : 16) * sizeof(float);
     int j;
-    HF_MEMSET(K, 0, sizeof *K);
-    K->wcap = hf__half_widths(p, K->hw);
-    for (j = 0; j < P; ++j) {
-        K->tt[j] = (float)j / (float)(P - 1);
+    K->wcap = hf__half_widths(p, K->hw, K->tt);
+    for (j = 0; j < P; ++j)
         K->fade[j] = (1.0f - K->tt[j]) * p->alpha_root + K->tt[j] * p->alpha_tip;
-    }
+    HF_MEMSET(K->hw + P, 0, pad);
+    HF_MEMSET(K->tt + P, 0, pad);
+    HF_MEMSET(K->fade + P, 0, pad);
 }
 
 /* Per strand: the optional inputs, already made finite. */
@@ -9537,13 +9569,12 @@ HF__PRIVATE void hf__rout_layout(hf__rout *ro)
     }
     if (end == st) ro->tile = st;
     if (end < 9 || end > 16 || end > st) return;
-    for (q = 0; q < 5; ++q) {
-        const size_t d = ro->base[q] ? (size_t)(at[q] - at[ro->wq[0]]) : 0;
-        for (m = 0; m < 16; ++m)
-            ro->wm[q][m] = (unsigned char)(ro->base[q] && (size_t)m >= d &&
-                                                   (size_t)m < d + z[q]
-                                               ? (size_t)m - d
-                                               : 0x80);
+    HF_MEMSET(ro->wm, 0x80, sizeof ro->wm);
+    for (q = 0; q < 5; ++q) { /* each element inside the run's end bytes */
+        const size_t d = (size_t)(at[q] - at[ro->wq[0]]);
+        size_t k;
+        if (!ro->base[q]) continue;
+        for (k = 0; k < z[q]; ++k) ro->wm[q][d + k] = (unsigned char)k;
     }
     for (m = 0; m < 16; ++m)
         ro->wsh[m] =
@@ -10877,26 +10908,50 @@ typedef struct hf__lines {
    0-7 left or tx or tz, 8-15 right or ty or t. */
 HF__TARGET_AVX512 HF__INLINE void hf__lines_init(hf__lines *t, int F)
 {
-    static const signed char pair[9] = {0, 0, 1, 1, 1, 2, 2, 2, 2};
-    static const signed char base[9] = {0, 16, 0, 16, 24, 0, 16, 17, 8};
-    int c, l, q;
+    /* by float f of a vertex: its pair, its lane in the pair, 8 where left
+       and right differ (x y z), 1 where it goes by point (all but u v).
+       Every call sets these up, so no division or branch: w = g / F as a
+       multiply (exact for g < 16 F, F 6 or 9) */
+    const __m512i pair = _mm512_setr_epi32(0, 0, 1, 1, 1, 2, 2, 2, 2, 0, 0,
+                                           0, 0, 0, 0, 0),
+                  base = _mm512_setr_epi32(0, 16, 0, 16, 24, 0, 16, 17, 8, 0,
+                                           0, 0, 0, 0, 0, 0),
+                  side = _mm512_setr_epi32(8, 8, 8, 0, 0, 0, 0, 0, 0, 0, 0,
+                                           0, 0, 0, 0, 0),
+                  point = _mm512_setr_epi32(1, 1, 1, 1, 1, 1, 0, 0, 1, 0, 0,
+                                            0, 0, 0, 0, 0),
+                  lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10,
+                                           11, 12, 13, 14, 15),
+                  inv = _mm512_set1_epi32((65535 + F) / F),
+                  vf = _mm512_set1_epi32(F), one = _mm512_set1_epi32(1);
+    int c;
     t->F = F;
-    for (c = 0; c < F; ++c) {
-        int ix[3][16];
-        unsigned m[3] = {0, 0, 0};
-        HF_MEMSET(ix, 0, sizeof ix);
-        for (l = 0; l < 16; ++l) {
-            const int g = 16 * c + l, w = g / F, f = g % F, i = w >> 1;
-            /* x y z: left or right; u v: one lane; the rest by point */
-            ix[pair[f]][l] = base[f] + (f < 3 ? 8 * (w & 1) + i
-                                        : f == 6 || f == 7 ? 0 : i);
-            m[pair[f]] |= 1u << l;
-        }
-        for (q = 0; q < 3; ++q)
-            t->idx[c][q] = _mm512_loadu_si512((const void *)ix[q]);
-        t->m[c][0] = (__mmask16)m[1];
-        t->m[c][1] = (__mmask16)m[2];
+#define HF__BY_F(tab) _mm512_maskz_permutexvar_epi32(0xffff, f, tab)
+    for (c = 0; c < F; ++c) { /* float g = 16 c + l: float f of vertex w */
+        const __m512i g = _mm512_add_epi32(_mm512_set1_epi32(16 * c), lane),
+                      w = _mm512_maskz_srli_epi32(
+                          0xffff, _mm512_mullo_epi32(g, inv), 16),
+                      f = _mm512_sub_epi32(g, _mm512_mullo_epi32(w, vf)),
+                      q = HF__BY_F(pair),
+                      ix = _mm512_add_epi32(
+                          HF__BY_F(base),
+                          _mm512_add_epi32(
+                              _mm512_mullo_epi32(
+                                  HF__BY_F(side),
+                                  _mm512_and_si512(w, one)),
+                              _mm512_mullo_epi32(
+                                  HF__BY_F(point),
+                                  _mm512_maskz_srli_epi32(0xffff, w, 1))));
+        const __mmask16 m1 = _mm512_cmpeq_epi32_mask(q, one),
+                        m2 = _mm512_cmpeq_epi32_mask(q, _mm512_add_epi32(
+                                                            one, one));
+        t->idx[c][0] = _mm512_maskz_mov_epi32((__mmask16)~(m1 | m2), ix);
+        t->idx[c][1] = _mm512_maskz_mov_epi32(m1, ix);
+        t->idx[c][2] = _mm512_maskz_mov_epi32(m2, ix);
+        t->m[c][0] = m1;
+        t->m[c][1] = m2;
     }
+#undef HF__BY_F
 }
 
 /* lo in lanes 0-7, hi in 8-15 (the masked form: gcc's plain one takes
@@ -11438,7 +11493,8 @@ HF__PRIVATE long long hf__inverse_mod(long long x, long long m)
    gcd(sa, sb) away from a0 - b0: for each such y (at most ea + eb of
    them) the pairs (v, w) form one family (v + t pa, w + t pb), pa =
    sb / g, pb = sa / g, whose members in [0, n) are a range of t; v - w
-   changes along it unless the strides are equal. */
+   changes along it unless the strides are equal. Equal strides, the
+   usual interleaved vertex, take one division: v - w alone decides. */
 HF__PRIVATE int hf__streams_cross(uintptr_t a, size_t sa, size_t ea,
                                   uintptr_t b, size_t sb, size_t eb,
                                   size_t v0, size_t n)
@@ -11451,6 +11507,14 @@ HF__PRIVATE int hf__streams_cross(uintptr_t a, size_t sa, size_t ea,
     if (n == 0 || a0 + (n - 1) * sa + ea <= b0 ||
         b0 + (n - 1) * sb + eb <= a0)
         return 0; /* the spans do not meet */
+    if (sa == sb && sa > 0) { /* one stride: v - w = k != 0 with d + k sa
+                                 in (-ea, eb), the least such k tried */
+        const long long s = (long long)sa, m = end - 1;
+        long long k = hf__floordiv(-(long long)ea - d, s) + 1;
+        if (k < -m) k = -m;
+        if (k == 0) k = 1;
+        return k <= m && d + k * s < (long long)eb;
+    }
     while (h) { /* g = gcd(sa, sb) */
         const long long t = g % h;
         g = h;
@@ -11842,7 +11906,7 @@ HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
     k->nt = hf__streaming(params->nontemporal,
                           (size_t)count * (size_t)k->P * 16u,
                           HF_STREAM_MIN_VERTEX_BYTES);
-    k->wcap = hf__half_widths(params, k->hw);
+    k->wcap = hf__half_widths(params, k->hw, NULL);
     k->wide = 0;
 #if HF__AVX2
     /* the AVX2 kernel needs P >= 3 */

@@ -79,25 +79,36 @@ static void *ab_make(const hm_mesh *head, const unsigned char *px,
     return s;
 }
 
-static int ab_run(void *scene, int stage)
+static int ab_call(ab_scene *s, int stage, int first, int count)
 {
-    ab_scene *s = (ab_scene *)scene;
-    const int n = s->info.strand_count;
     switch (stage) {
-    case AB_STRANDS: return (int)hf_fur_interpolate(s->fur, 0, n);
+    case AB_STRANDS: return (int)hf_fur_interpolate(s->fur, first, count);
     case AB_RIBBONS:
-        return (int)hf_fur_ribbons(s->fur, 0, n, &s->view, &s->out);
+        return (int)hf_fur_ribbons(s->fur, first, count, &s->view, &s->out);
     case AB_RIBBONS16:
-        return (int)hf_fur_ribbons(s->fur, 0, n, &s->view, &s->out16);
-    case AB_POINTS: return (int)hf_fur_points(s->fur, 0, n, &s->view, s->pbuf);
+        return (int)hf_fur_ribbons(s->fur, first, count, &s->view, &s->out16);
+    case AB_POINTS:
+        return (int)hf_fur_points(s->fur, first, count, &s->view, s->pbuf);
     case AB_INTERP_POINTS:
-        return (int)hf_fur_interpolate_points(s->fur, 0, n, &s->view_gpu,
-                                              s->pbuf);
+        return (int)hf_fur_interpolate_points(s->fur, first, count,
+                                              &s->view_gpu, s->pbuf);
     case AB_ROPES:
-        return (int)hf_fur_simulate(s->fur, 0, s->info.guide_count,
-                                    1.0f / 60.0f, &s->col, 1);
+        return (int)hf_fur_simulate(s->fur, first, count, 1.0f / 60.0f,
+                                    &s->col, 1);
     default: return -1;
     }
+}
+
+static int ab_run(void *scene, int stage, int range)
+{
+    ab_scene *s = (ab_scene *)scene;
+    const int n = stage == AB_ROPES ? s->info.guide_count
+                                    : s->info.strand_count,
+              step = range > 0 && range < n ? range : n;
+    int first, r = 0;
+    for (first = 0; first < n && r == 0; first += step)
+        r = ab_call(s, stage, first, n - first < step ? n - first : step);
+    return r;
 }
 
 const ab_side AB_SIDE = {ab_make, ab_run, ab_free};

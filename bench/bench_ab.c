@@ -19,7 +19,10 @@
    to see the noise of the method itself: on this machine 0.94-1.02 a
    stage in a noisy hour (the method in a test program, ribbons only:
    1.00 in a quiet one).
-   Usage: bench_ab [--frames N] [--strands N] [--points N] */
+   --range N runs each stage in calls of N strands (guides for the
+   ropes), as an engine's jobs would, so that what a call costs beyond
+   its strands shows.
+   Usage: bench_ab [--frames N] [--strands N] [--points N] [--range N] */
 #define _POSIX_C_SOURCE 200809L
 #define HEAD_MESH_IMPLEMENTATION
 #include "../examples/head_mesh.h"
@@ -43,8 +46,8 @@ int main(int argc, char **argv)
                                       "points", "interp_points", "ropes"};
     static unsigned char px[256 * 256];
     const ab_side *side[2] = {&ab_base, &ab_new};
-    int frames = 40, strands = BENCH_L_STRANDS, points = BENCH_P, i, k, f,
-        w;
+    int frames = 40, strands = BENCH_L_STRANDS, points = BENCH_P, range = 0,
+        i, k, f, w;
     void *scene[2];
     double *t[2];
     unsigned char *evict;
@@ -56,6 +59,8 @@ int main(int argc, char **argv)
             strands = atoi(argv[++i]);
         } else if (i + 1 < argc && !strcmp(argv[i], "--points")) {
             points = atoi(argv[++i]);
+        } else if (i + 1 < argc && !strcmp(argv[i], "--range")) {
+            range = atoi(argv[++i]);
         } else {
             int help = !strcmp(argv[i], "--help") || !strcmp(argv[i], "-h");
             if (!help)
@@ -63,13 +68,15 @@ int main(int argc, char **argv)
                                 "value\n", argv[i]);
             fprintf(help ? stdout : stderr,
                     "usage: bench_ab [--frames N] [--strands N] "
-                    "[--points N]\n"
+                    "[--points N] [--range N]\n"
                     "  --frames N    calls of each version per stage "
                     "(default 40, at least 3)\n"
                     "  --strands N   strands of the scene (default "
                     "100000, at least 1)\n"
                     "  --points N    points a strand (default 16, 2 to "
                     "256)\n"
+                    "  --range N     strands (guides) a call (default: "
+                    "all in one call)\n"
                     "Each stage run by the base and the new hairfur.h "
                     "alternately; medians and new / base.\n");
             return help ? 0 : 2;
@@ -89,7 +96,9 @@ int main(int argc, char **argv)
         if (!(scene[w] = side[w]->make(&head, px, strands, points)))
             return 1;
     printf("bench_ab: base and new hairfur.h, %d strands of %d points, %d "
-           "calls of each a stage (medians, ms)\n", strands, points, frames);
+           "runs of each a stage", strands, points, frames);
+    if (range > 0) printf(" in calls of %d strands (guides)", range);
+    printf(" (medians, ms)\n");
     printf("  %-14s %9s %9s %9s\n", "stage", "base", "new", "new/base");
     for (k = 0; k < AB_N; ++k) {
         double mb, mn;
@@ -103,7 +112,7 @@ int main(int argc, char **argv)
                 for (e = 0; e < EVICT_BYTES; e += 64) sum += evict[e];
                 g_sink = sum;
                 t0 = now_ms();
-                r = side[w]->run(scene[w], k);
+                r = side[w]->run(scene[w], k, range);
                 if (r != 0) {
                     fprintf(stderr, "bench_ab: %s: error %d\n", names[k], r);
                     return 1;

@@ -16,12 +16,13 @@ enum {
 
 /* One side's functions: make a scene of `strands` strands of `points`
    points on `head` (density image px, 256 x 256; NULL and a message on
-   stderr when it cannot), run a stage once (0, or the hf_result), free
-   the scene. */
+   stderr when it cannot), run a stage once over the whole scene in calls
+   of `range` strands or guides (the last call takes what is left; 0 for
+   one call; 0, or the first failing hf_result), free the scene. */
 typedef struct ab_side {
     void *(*make)(const hm_mesh *head, const unsigned char *px, int strands,
                   int points);
-    int (*run)(void *scene, int stage);
+    int (*run)(void *scene, int stage, int range);
     void (*free_scene)(void *scene);
 } ab_side;
 

@@ -5662,6 +5662,40 @@ static void test_lod_strand_count_exact(void)
 
 /* ==== 8. ribbons ========================================================== */
 
+static void test_half_widths_every_p(void)
+{
+    /* A call's half widths and t (hf__half_widths, four points a vector
+       for the linear taper) are the scalar formula's values for every P,
+       each step rounded to float as written (volatile: no contraction),
+       and its cap is HF_MAX_ABS over the largest of them and 1 */
+    hf_rng rng;
+    int P, j, pw;
+    hf_rng_seed(&rng, 5, 5);
+    for (pw = 0; pw < 2; ++pw)
+        for (P = 2; P <= HF_MAX_POINTS; ++P) {
+            static float hw[HF_MAX_POINTS], tt[HF_MAX_POINTS];
+            hf_ribbon_params p = t_rparams();
+            float m = 1.0f, cap;
+            p.points_per_strand = P;
+            p.root_width = 4.0f * hf_rng_float(&rng);
+            p.tip_width = 4.0f * hf_rng_float(&rng);
+            p.width_scale = 0.1f + 2.0f * hf_rng_float(&rng);
+            p.taper_power = pw ? 2.5f : 1.0f;
+            cap = hf__half_widths(&p, hw, tt);
+            for (j = 0; j < P; ++j) {
+                volatile float t = (float)j / (float)(P - 1), f, a, b, h;
+                f = pw && j < P - 1 ? (float)pow((double)t, 2.5) : t;
+                a = (1.0f - f) * p.root_width;
+                b = f * p.tip_width;
+                h = 0.5f * p.width_scale;
+                h = h * (a + b);
+                CHECK(hw[j] == h && tt[j] == t);
+                m = h > m ? h : m;
+            }
+            CHECK(cap == HF_MAX_ABS / m);
+        }
+}
+
 static void test_ribbons_perpendicular_and_widths(void)
 {
     float g[3 * TP * 3];
@@ -6327,6 +6361,40 @@ static void test_ribbons_every_level_matches_reference(void)
                 }
         }
     }
+}
+
+static void test_streams_cross_matches_brute_force(void)
+{
+    /* hf_ribbons refuses two streams where vertex v of one and vertex
+       w != v of the other share a byte (hf__streams_cross: a closed form
+       for equal strides, a family of solutions a residue otherwise):
+       every answer matches a search over all pairs, for random offsets,
+       strides, element sizes and vertex ranges, half of them with equal
+       strides */
+    hf_rng rng;
+    int it, hits = 0, equal = 0;
+    hf_rng_seed(&rng, 77, 3);
+    for (it = 0; it < 200000; ++it) {
+        const size_t sa = 1 + hf_rng_below(&rng, 24),
+                     sb = hf_rng_below(&rng, 2) ? sa
+                                                : 1 + hf_rng_below(&rng, 24),
+                     ea = 1 + hf_rng_below(&rng, (uint32_t)sa),
+                     eb = 1 + hf_rng_below(&rng, (uint32_t)sb),
+                     v0 = hf_rng_below(&rng, 4), n = hf_rng_below(&rng, 8);
+        const uintptr_t a = 4096 + hf_rng_below(&rng, 96),
+                        b = 4096 + hf_rng_below(&rng, 96);
+        size_t v, w;
+        int want = 0;
+        for (v = v0; v < v0 + n && !want; ++v)
+            for (w = v0; w < v0 + n && !want; ++w) {
+                const uintptr_t x = a + v * sa, y = b + w * sb;
+                want = v != w && x < y + eb && y < x + ea;
+            }
+        hits += want;
+        equal += sa == sb && want;
+        CHECK_EQ_INT(hf__streams_cross(a, sa, ea, b, sb, eb, v0, n), want);
+    }
+    CHECK(hits > 1000 && equal > 500); /* both answers, both paths */
 }
 
 static void test_ribbons_run_layouts_every_level(void)
@@ -10613,6 +10681,7 @@ int main(void)
     RUN(test_lod_strand_count_exact);
 
     /* 8. ribbons */
+    RUN(test_half_widths_every_p);
     RUN(test_ribbons_perpendicular_and_widths);
     RUN(test_ribbons_degenerate_never_nan);
     RUN(test_ribbons_nonfinite_strand_collapses);
@@ -10624,6 +10693,7 @@ int main(void)
     RUN(test_ribbons_errors_write_nothing);
     RUN(test_ribbons_leading_tangent);
     RUN(test_ribbons_every_level_matches_reference);
+    RUN(test_streams_cross_matches_brute_force);
     RUN(test_ribbons_run_layouts_every_level);
     RUN(test_ribbons_table_layouts);
     RUN(test_format_encoders);
