@@ -2077,7 +2077,8 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 /* SIMD levels. A kernel named hf__<name>_sse (or _neon, _v4 for one
    written once for both, _avx2, _avx512) sits beside its scalar reference
    hf__<name>_ref; every level uses the same IEEE operations in the same
-   order (no FMA), so all give the same bytes, and one function per stage
+   order (no FMA), so all give the same bytes (in the default rounding
+   mode: hf__encode16 rounds to nearest in any), and one function per stage
    picks between them (the dispatch) with the level hf_simd_resolve gives.
    SSE2 is the baseline wherever the compiler targets it, NEON on ARM64.
    AVX2 and AVX-512 kernels are compiled into any x86 build (target
