@@ -2078,7 +2078,9 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
    written once for both, _avx2, _avx512) sits beside its scalar reference
    hf__<name>_ref; every level uses the same IEEE operations in the same
    order (no FMA), so all give the same bytes (in the default rounding
-   mode: hf__encode16 rounds to nearest in any), and one function per stage
+   mode: the encoders of normalized formats convert by the mode, the
+   scalar one rounds by adding and taking away 1.5 * 2^23, hf__encode16
+   rounds to nearest in any), and one function per stage
    picks between them (the dispatch) with the level hf_simd_resolve gives.
    SSE2 is the baseline wherever the compiler targets it, NEON on ARM64.
    AVX2 and AVX-512 kernels are compiled into any x86 build (target
@@ -9170,9 +9172,12 @@ HF__INLINE float hf__norm_scale(int fmt, float *lo)
 }
 
 #if HF__SSE
+/* A normalized format's codes from hf__encode1's clamp and scale: the
+   conversion rounds to nearest even in the default rounding mode, as
+   adding and taking away 1.5 * 2^23 does there (two operations fewer;
+   every level's bytes are the same in that mode) */
 HF__INLINE __m128i hf__encode_sse(__m128 x, int fmt)
 {
-    const __m128 m = _mm_set1_ps(12582912.0f);
     float lo, scale;
     __m128 v;
     if (fmt == HF_FORMAT_F16) {
@@ -9200,8 +9205,7 @@ HF__INLINE __m128i hf__encode_sse(__m128 x, int fmt)
     }
     scale = hf__norm_scale(fmt, &lo);
     v = _mm_min_ps(_mm_max_ps(x, _mm_set1_ps(lo)), _mm_set1_ps(1.0f));
-    v = _mm_sub_ps(_mm_add_ps(_mm_mul_ps(v, _mm_set1_ps(scale)), m), m);
-    return _mm_and_si128(_mm_cvttps_epi32(v),
+    return _mm_and_si128(_mm_cvtps_epi32(_mm_mul_ps(v, _mm_set1_ps(scale))),
                          _mm_set1_epi32(hf_format_bytes(fmt) == 2 ? 0xffff
                                                                   : 0xff));
 }
@@ -9993,7 +9997,6 @@ hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
 /* hf__encode_sse at eight lanes: the same operations. */
 HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_avx2(__m256 x, int fmt)
 {
-    const __m256 m = _mm256_set1_ps(12582912.0f);
     float lo, scale;
     __m256 v;
     if (fmt == HF_FORMAT_F16) {
@@ -10019,10 +10022,8 @@ HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_avx2(__m256 x, int fmt)
     }
     scale = hf__norm_scale(fmt, &lo);
     v = _mm256_min_ps(_mm256_max_ps(x, _mm256_set1_ps(lo)), _mm256_set1_ps(1.0f));
-    v = _mm256_sub_ps(_mm256_add_ps(_mm256_mul_ps(v, _mm256_set1_ps(scale)), m),
-                      m);
     return _mm256_and_si256(
-        _mm256_cvttps_epi32(v),
+        _mm256_cvtps_epi32(_mm256_mul_ps(v, _mm256_set1_ps(scale))),
         _mm256_set1_epi32(hf_format_bytes(fmt) == 2 ? 0xffff : 0xff));
 }
 
@@ -10272,7 +10273,7 @@ hf__ribbon_write_table_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
    meets the format at run time: the clamp's bounds, the scale and the
    code's mask (hf__encode_avx2's operations with them in memory). */
 typedef struct hf__enc8 {
-    __m256 lo, scale, one, round;
+    __m256 lo, scale, one;
     __m256i mask;
 } hf__enc8;
 
@@ -10284,7 +10285,6 @@ HF__TARGET_AVX2 HF__INLINE void hf__enc8_init(hf__enc8 *e, int fmt)
     /* in memory beside them, so that each use is an operand, not a
        broadcast */
     e->one = _mm256_set1_ps(1.0f);
-    e->round = _mm256_set1_ps(12582912.0f);
     e->mask = _mm256_set1_epi32(hf_format_bytes(fmt) == 2 ? 0xffff : 0xff);
 }
 
@@ -10292,10 +10292,9 @@ HF__TARGET_AVX2 HF__INLINE void hf__enc8_init(hf__enc8 *e, int fmt)
 HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_var_avx2(__m256 x,
                                                       const hf__enc8 *e)
 {
-    __m256 v = _mm256_min_ps(_mm256_max_ps(x, e->lo), e->one);
-    v = _mm256_sub_ps(_mm256_add_ps(_mm256_mul_ps(v, e->scale), e->round),
-                      e->round);
-    return _mm256_and_si256(_mm256_cvttps_epi32(v), e->mask);
+    const __m256 v = _mm256_min_ps(_mm256_max_ps(x, e->lo), e->one);
+    return _mm256_and_si256(_mm256_cvtps_epi32(_mm256_mul_ps(v, e->scale)),
+                            e->mask);
 }
 
 /* One side's compact vertices of a group of n points at o (vertex i at
@@ -11066,9 +11065,8 @@ HF__TARGET_AVX512 HF__INLINE void hf__enc16_init(hf__enc16 *e,
    "undefined" operand, which g++ -O1 warns about. */
 #define HF__SLL16(x, n) _mm512_maskz_slli_epi32(0xffff, x, n)
 
-/* hf__encode_var_avx2 at sixteen lanes, two operations fewer: the
-   conversion rounds to nearest even itself (an embedded rounding mode),
-   the integer that adding and taking away 1.5 * 2^23 leaves there */
+/* hf__encode_var_avx2 at sixteen lanes, rounding to nearest even by an
+   embedded rounding mode (the same codes in the default mode) */
 HF__TARGET_AVX512 HF__INLINE __m512i hf__encode16(__m512 x,
                                                  const hf__enc16 *e)
 {
