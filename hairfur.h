@@ -2078,10 +2078,10 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
    written once for both, _avx2, _avx512) sits beside its scalar reference
    hf__<name>_ref; every level uses the same IEEE operations in the same
    order (no FMA), so all give the same bytes (in the default rounding
-   mode: the encoders of normalized formats convert by the mode, the
-   scalar one rounds by adding and taking away 1.5 * 2^23, hf__encode16
-   rounds to nearest in any), and one function per stage
-   picks between them (the dispatch) with the level hf_simd_resolve gives.
+   mode: the vector encoders of normalized formats convert by the mode,
+   the scalar one adds and takes away 1.5 * 2^23), and one function per
+   stage picks between them (the dispatch) with the level hf_simd_resolve
+   gives.
    SSE2 is the baseline wherever the compiler targets it, NEON on ARM64.
    AVX2 and AVX-512 kernels are compiled into any x86 build (target
    attributes on gcc and clang, none needed on MSVC) and picked at run
@@ -11065,17 +11065,13 @@ HF__TARGET_AVX512 HF__INLINE void hf__enc16_init(hf__enc16 *e,
    "undefined" operand, which g++ -O1 warns about. */
 #define HF__SLL16(x, n) _mm512_maskz_slli_epi32(0xffff, x, n)
 
-/* hf__encode_var_avx2 at sixteen lanes, rounding to nearest even by an
-   embedded rounding mode (the same codes in the default mode) */
+/* hf__encode_var_avx2 at sixteen lanes */
 HF__TARGET_AVX512 HF__INLINE __m512i hf__encode16(__m512 x,
                                                  const hf__enc16 *e)
 {
     __m512 v = _mm512_maskz_max_ps(0xffff, x, e->lo);
     v = _mm512_mul_ps(_mm512_maskz_min_ps(0xffff, v, e->one), e->scale);
-    return _mm512_and_si512(
-        _mm512_maskz_cvt_roundps_epi32(
-            (__mmask16)-1, v, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC),
-        e->mask);
+    return _mm512_and_si512(_mm512_maskz_cvtps_epi32(0xffff, v), e->mask);
 }
 
 /* One compact vertex at p from x's low 16 bytes: two 8-byte stores, the
