@@ -7228,7 +7228,7 @@ static const hf__rope_rows hf__rope_rows_v4 = {
 #endif
 
 #if HF__AVX2
-/* The rope kernels at eight lanes (AVX2), then sixteen (AVX-512F): the
+/* The rope kernels at eight lanes (AVX2), then sixteen (AVX-512): the
    contact kernels (HF__FTL_KERNELS) and the sub-step's rows
    (HF__ROPE_ROWS), with the four-lane operations' names standing for
    their AVX forms while they expand: the same operations per rope, so the
@@ -7290,7 +7290,7 @@ HF__FTL_KERNELS(v8, __m256, 8, HF__TARGET_AVX2, HF__GATHER8,
 #undef HF__GATHER8
 HF__ROPE_ROWS(v8, __m256, 8, HF__TARGET_AVX2, _mm256_zeroupper())
 #if HF__AVX512
-/* At sixteen lanes (AVX-512F), the same text again. A mask stays a
+/* At sixteen lanes (AVX-512), the same text again. A mask stays a
    vector of all-set or all-clear lanes, as the text expects: a compare's
    mask register is widened to one (hf__m16), and a select is a bitwise
    one (vpternlogd). */
