@@ -40,6 +40,9 @@
    and ropes_LEVEL, and whole frames at the level, frame_LEVEL and
    frame_points_LEVEL; LEVEL scalar, sse2, avx2, avx512 up to what the CPU
    has.
+   Last, the targets of docs/performance.md read from this run's figures
+   (those of the scenes it ran), each met or NOT met:
+     bench target=NAME value=... goal=... met=0|1
    Scene Mc (M's strands on a coarse head, whose tessellation adds LOD
    guides) at LOD 0.25 measures lod_guides: LOD guides interpolated from
    the pure guides instead of simulated.
@@ -411,12 +414,43 @@ static figure stats(double *v, int n)
     return f;
 }
 
+/* The figures the targets are read from (report keeps them) */
+typedef struct kept {
+    char stage[32], scene[4];
+    int threads;
+    double ms, ratio;
+} kept;
+static kept g_kept[512];
+static int g_nkept;
+static long g_max_allocs = -1;
+
+static const kept *find_kept(const char *stage, const char *scene_name,
+                             int threads)
+{
+    int i;
+    for (i = 0; i < g_nkept; ++i)
+        if (!strcmp(g_kept[i].stage, stage) &&
+            !strcmp(g_kept[i].scene, scene_name) &&
+            g_kept[i].threads == threads)
+            return &g_kept[i];
+    return NULL;
+}
+
 /* A figure's line and machine line; with lim (its bytes' write limit),
    the bytes written per second against it */
 static void report(const char *stage, const char *scene_name, int threads,
                    figure f, double bytes, const wlimit *lim, long allocs)
 {
     double gbps = lim ? bytes / f.med / 1e6 : 0.0;
+    if (g_nkept < (int)(sizeof g_kept / sizeof g_kept[0])) {
+        kept *k = &g_kept[g_nkept++];
+        snprintf(k->stage, sizeof k->stage, "%s", stage);
+        snprintf(k->scene, sizeof k->scene, "%s", scene_name);
+        k->threads = threads;
+        k->ms = f.med;
+        k->ratio = lim ? gbps / lim->best : 0.0;
+    }
+    if (allocs > g_max_allocs) g_max_allocs = allocs;
     printf("  %-12s %-2s %dT  median %8.3f ms  (min %7.3f, max %7.3f)", stage,
            scene_name, threads, f.med, f.min, f.max);
     if (lim) {
@@ -834,6 +868,54 @@ static void bench_bandwidth(void)
     free(dst);
 }
 
+/* One target: its line and machine line (value against goal; below:
+   the value must be under the goal, else at least it) */
+static void target_line(const char *name, const char *what, double value,
+                        double goal, int below)
+{
+    const int met = below ? value < goal : value >= goal;
+    printf("  %-40s %6.3g %2s %-5g %s\n", what, value, below ? "<" : ">=",
+           goal, met ? "met" : "NOT met");
+    fprintf(stderr, "bench target=%s value=%.4f goal=%g met=%d\n", name, value,
+            goal, met);
+}
+
+/* The targets of docs/performance.md ("Targets, and where they stand"),
+   read from this run's figures (those of the scenes it ran) */
+static void print_targets(const double frame_ms[3][MAX_THREADS + 1],
+                          int ran_l)
+{
+    static const char *l_rows[4] = {"ribbons", "strands", "points",
+                                    "interp_points"};
+    const kept *k;
+    int i;
+    printf("targets (one thread unless named; this run; every run in "
+           "docs/performance.md):\n");
+    for (i = 0; i < 4; ++i)
+        if ((k = find_kept(l_rows[i], "L", 1)) != NULL) {
+            char what[64], name[32];
+            snprintf(what, sizeof what, "%s on L (of the write limit)",
+                     l_rows[i]);
+            snprintf(name, sizeof name, "%s_L_ratio", l_rows[i]);
+            target_line(name, what, k->ratio, 0.5, 0);
+        }
+    if ((k = find_kept("frame", "M", 1)) != NULL)
+        target_line("frame_M_ms", "frame of M, CPU ribbons (ms)", k->ms, 4.17,
+                    1);
+    if ((k = find_kept("frame_points", "M", 1)) != NULL)
+        target_line("frame_points_M_ms", "frame of M, GPU points (ms)", k->ms,
+                    1.0, 1);
+    if (ran_l)
+        target_line("frame_L_2T_speedup", "frame of L, 2 threads (speed-up)",
+                    frame_ms[2][1] / frame_ms[2][2], 1.8, 0);
+    if ((k = find_kept("lut_256", "-", 1)) != NULL)
+        target_line("lut_256_ms", "256 x 256 LUT bake (ms)", k->ms, 50.0, 1);
+    if (g_max_allocs >= 0)
+        target_line("allocs_per_frame", "allocations in any frame",
+                    (double)g_max_allocs, 1.0, 1);
+    printf("  ropes against Bullet and 0.1.0: make bench-peers\n");
+}
+
 int main(int argc, char **argv)
 {
     int frames = 30, i, th, scaling = 0;
@@ -865,7 +947,8 @@ int main(int argc, char **argv)
                     "  --scaling    how cost grows with strands and guides "
                     "instead\n"
                     "The table goes to stdout, one machine line per figure "
-                    "to stderr.\n");
+                    "to stderr;\nit ends with the targets of "
+                    "docs/performance.md, met or NOT met, from this run.\n");
             return help ? 0 : 2;
         }
     }
@@ -912,6 +995,8 @@ int main(int argc, char **argv)
         hf_fur_destroy(lodsc.fur);
     }
     bench_lut(9);
+    print_targets((const double(*)[MAX_THREADS + 1])frame_ms,
+                  !only || !strcmp(only, "L"));
 
     g_quit = 1;
     g_threads = 1;
