@@ -8443,6 +8443,7 @@ HF__PRIVATE float hf__half_widths(const hf_ribbon_params *p, float *hw,
                      tw = _mm_set1_ps(p->tip_width);
         __m128 jv = _mm_setr_ps(0.0f, 1.0f, 2.0f, 3.0f), mv = one;
         float mm[4];
+        int i;
         for (; j + 4 <= P; j += 4, jv = _mm_add_ps(jv, _mm_set1_ps(4.0f))) {
             const __m128 t = _mm_div_ps(jv, d),
                          h = _mm_mul_ps(
@@ -8453,8 +8454,7 @@ HF__PRIVATE float hf__half_widths(const hf_ribbon_params *p, float *hw,
             mv = _mm_max_ps(mv, h);
         }
         _mm_storeu_ps(mm, mv);
-        for (j = 0; j < 4; ++j) m = mm[j] > m ? mm[j] : m;
-        j = P & ~3;
+        for (i = 0; i < 4; ++i) m = mm[i] > m ? mm[i] : m;
     }
 #endif
     for (; j < P; ++j) {
@@ -10923,7 +10923,8 @@ HF__TARGET_AVX512 HF__INLINE void hf__lines_init(hf__lines *t, int F)
                   lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10,
                                            11, 12, 13, 14, 15),
                   inv = _mm512_set1_epi32((65535 + F) / F),
-                  vf = _mm512_set1_epi32(F), one = _mm512_set1_epi32(1);
+                  vf = _mm512_set1_epi32(F), one = _mm512_set1_epi32(1),
+                  two = _mm512_set1_epi32(2);
     int c;
     t->F = F;
 #define HF__BY_F(tab) _mm512_maskz_permutexvar_epi32(0xffff, f, tab)
@@ -10943,8 +10944,7 @@ HF__TARGET_AVX512 HF__INLINE void hf__lines_init(hf__lines *t, int F)
                                   HF__BY_F(point),
                                   _mm512_maskz_srli_epi32(0xffff, w, 1))));
         const __mmask16 m1 = _mm512_cmpeq_epi32_mask(q, one),
-                        m2 = _mm512_cmpeq_epi32_mask(q, _mm512_add_epi32(
-                                                            one, one));
+                        m2 = _mm512_cmpeq_epi32_mask(q, two);
         t->idx[c][0] = _mm512_maskz_mov_epi32((__mmask16)~(m1 | m2), ix);
         t->idx[c][1] = _mm512_maskz_mov_epi32(m1, ix);
         t->idx[c][2] = _mm512_maskz_mov_epi32(m2, ix);
@@ -11489,7 +11489,8 @@ HF__PRIVATE long long hf__inverse_mod(long long x, long long m)
    them) the pairs (v, w) form one family (v + t pa, w + t pb), pa =
    sb / g, pb = sa / g, whose members in [0, n) are a range of t; v - w
    changes along it unless the strides are equal. Equal strides, the
-   usual interleaved vertex, take one division: v - w alone decides. */
+   usual interleaved vertex, take one division: v - w alone decides.
+   Strides are positive (a stream's own, or its element's size). */
 HF__PRIVATE int hf__streams_cross(uintptr_t a, size_t sa, size_t ea,
                                   uintptr_t b, size_t sb, size_t eb,
                                   size_t v0, size_t n)
@@ -11502,8 +11503,8 @@ HF__PRIVATE int hf__streams_cross(uintptr_t a, size_t sa, size_t ea,
     if (n == 0 || a0 + (n - 1) * sa + ea <= b0 ||
         b0 + (n - 1) * sb + eb <= a0)
         return 0; /* the spans do not meet */
-    if (sa == sb && sa > 0) { /* one stride: v - w = k != 0 with d + k sa
-                                 in (-ea, eb), the least such k tried */
+    if (sa == sb) { /* one stride: v - w = k != 0 with d + k sa in
+                       (-ea, eb), the least such k tried */
         const long long s = (long long)sa, m = end - 1;
         long long k = hf__floordiv(-(long long)ea - d, s) + 1;
         if (k < -m) k = -m;
@@ -11559,10 +11560,13 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
     float *stage_buf = NULL;
     unsigned char *dst0 = NULL;
     size_t block = 0, elem[5];
+    size_t nv, call_v0; /* vertices a strand; the call's first vertex */
     int s, k, P, stage, level, out_first;
     hf_result r = hf__ribbon_check(strands, first, count, view, &prm);
     if (r != HF_OK) return r;
     if (!out) return HF_ERROR_NULL_POINTER;
+    nv = 2u * (size_t)prm.points_per_strand;
+    call_v0 = (size_t)(first - prm.out_first) * nv;
     streams[HF__S_POS] = &out->position;
     streams[HF__S_TAN] = &out->tangent;
     streams[HF__S_TEX] = &out->texcoord;
@@ -11583,15 +11587,13 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
         ro.fmt[k] = streams[k]->format;
     }
     {
-        const size_t nv = 2u * (size_t)prm.points_per_strand,
-                     v0 = (size_t)(first - prm.out_first) * nv;
         int m;
         for (k = 0; k < 5; ++k)
             for (m = k + 1; m < 5; ++m)
                 if (ro.base[k] && ro.base[m] &&
                     hf__streams_cross((uintptr_t)ro.base[k], ro.stride[k],
                                       elem[k], (uintptr_t)ro.base[m],
-                                      ro.stride[m], elem[m], v0,
+                                      ro.stride[m], elem[m], call_v0,
                                       (size_t)count * nv))
                     return HF_ERROR_BAD_STRIDE;
     }
@@ -11619,10 +11621,7 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
     stage = hf__streaming(params->nontemporal,
                           (size_t)sized * 2u * (size_t)P * ro.tile,
                           HF_STREAM_MIN_VERTEX_BYTES)
-                ? hf__ribbon_stage(&ro, P,
-                                   (size_t)(first - params->out_first) * 2u *
-                                       (size_t)P,
-                                   &block, &dst0)
+                ? hf__ribbon_stage(&ro, P, call_v0, &block, &dst0)
                 : 0;
     if (stage)
         stage_buf = hf__stage_in_page((float *)(void *)fr2,

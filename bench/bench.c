@@ -881,9 +881,9 @@ static void target_line(const char *name, const char *what, double value,
 }
 
 /* The targets of docs/performance.md ("Targets, and where they stand"),
-   read from this run's figures (those of the scenes it ran) */
-static void print_targets(const double frame_ms[3][MAX_THREADS + 1],
-                          int ran_l)
+   read from this run's figures (those of the scenes it ran; frame_l:
+   L's frame ms by thread count, NULL when L did not run) */
+static void print_targets(const double *frame_l)
 {
     static const char *l_rows[4] = {"ribbons", "strands", "points",
                                     "interp_points"};
@@ -905,9 +905,9 @@ static void print_targets(const double frame_ms[3][MAX_THREADS + 1],
     if ((k = find_kept("frame_points", "M", 1)) != NULL)
         target_line("frame_points_M_ms", "frame of M, GPU points (ms)", k->ms,
                     1.0, 1);
-    if (ran_l)
+    if (frame_l)
         target_line("frame_L_2T_speedup", "frame of L, 2 threads (speed-up)",
-                    frame_ms[2][1] / frame_ms[2][2], 1.8, 0);
+                    frame_l[1] / frame_l[2], 1.8, 0);
     if ((k = find_kept("lut_256", "-", 1)) != NULL)
         target_line("lut_256_ms", "256 x 256 LUT bake (ms)", k->ms, 50.0, 1);
     if (g_max_allocs >= 0)
@@ -995,8 +995,7 @@ int main(int argc, char **argv)
         hf_fur_destroy(lodsc.fur);
     }
     bench_lut(9);
-    print_targets((const double(*)[MAX_THREADS + 1])frame_ms,
-                  !only || !strcmp(only, "L"));
+    print_targets(!only || !strcmp(only, "L") ? frame_ms[2] : NULL);
 
     g_quit = 1;
     g_threads = 1;
