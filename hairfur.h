@@ -11953,8 +11953,8 @@ T HF__INLINE void hf__interp_points_whole##W(                                  \
             const hf__f##W a = hf__finish##W(&v, ctab, sa, (size_t)i, 0);      \
             const hf__f##W b = hf__blend##W(&v, ctab, (size_t)i + W, 1);       \
             const hf__f##W c = hf__blend##W(&v, ctab, (size_t)i + 2 * W, 2);   \
-            hf__points_abc##W(o + 4 * j, a, b, c, k->pw.v + 4 * j, WS, &acc,   \
-                              mode);                                           \
+            hf__points_abc##W(o + 4 * j, a, b, c, hf__widths##W(k, j), WS,   \
+                              &acc, mode);                                           \
             i += 3 * W;                                                        \
             if ((j += W) >= P) break;                                          \
         }                                                                      \
@@ -11998,8 +11998,8 @@ T HF__INLINE void hf__points_whole##W(                                         \
             const hf__f##W a = hf__loadu_##W(p + 3 * j);                       \
             const hf__f##W b = hf__loadu_##W(p + 3 * j + W);                   \
             const hf__f##W c = hf__loadu_##W(p + 3 * j + 2 * W);               \
-            hf__points_abc##W(o + 4 * j, a, b, c, k->pw.v + 4 * j, WS, &acc,   \
-                              mode);                                           \
+            hf__points_abc##W(o + 4 * j, a, b, c, hf__widths##W(k, j), WS,   \
+                              &acc, mode);                                           \
         }                                                                      \
         if (!hf__all_zero##W(acc)) hf__points_collapse_avx2(k, o);             \
     }                                                                          \
@@ -12068,6 +12068,12 @@ HF__TARGET_AVX2 HF__INLINE void hf__points_out8(float *o, __m256 a, __m256 b,
                      mode);
 }
 
+/* the widths hf__points_out8 takes from point j: pair widths */
+HF__INLINE const float *hf__widths8(const hf__points_kit *k, int j)
+{
+    return k->pw.v + 4 * j;
+}
+
 HF__INTERP_POINTS(8, HF__TARGET_AVX2)
 #endif
 
@@ -12081,50 +12087,43 @@ HF__TARGET_AVX512 HF__INLINE int hf__all_zero16(__m512 acc)
     return _mm512_cmp_ps_mask(acc, _mm512_setzero_ps(), _CMP_EQ_OQ) == 0xffff;
 }
 
-/* Four points' x y z in q, their widths (pw, as hf__pair_widths) times ws
-   in lanes 3, 7, 11 and 15 */
-HF__TARGET_AVX512 HF__INLINE __m512 hf__point_quad_w(__m512 q, const float *pw,
-                                                     __m512 ws)
+/* the widths hf__points_out16 takes from point j: the half widths */
+HF__INLINE const float *hf__widths16(const hf__points_kit *k, int j)
 {
-    return _mm512_mask_mov_ps(q, 0x8888,
-                              _mm512_mul_ps(_mm512_loadu_ps(pw), ws));
+    return k->hw + j;
 }
 
 /* hf__points_out8 at sixteen points: four vectors of four points, one
-   64-byte line a store where the output is aligned so; the widths of
-   four points are four entries of hf__pair_widths */
+   64-byte line a store where the output is aligned so. The sixteen
+   widths (hw times ws, one product a point as the pair widths give) go
+   in as the second source of each two-source permute, so a point's width
+   costs no blend or multiply of its own; the two middle vectors draw on
+   three sources, so their third (four floats of a or c) is first moved
+   into lanes of the widths the permute does not read. */
 HF__TARGET_AVX512 HF__INLINE void hf__points_out16(float *o, __m512 a,
                                                    __m512 b, __m512 c,
-                                                   const float *pw,
+                                                   const float *hw,
                                                    __m512 ws, int mode)
 {
-    /* x y z of points 4 q .. 4 q + 3 from floats 0, 12, 24 and 36 of
-       the sixteen points' 48: in one vector, or across two (index >= 16:
-       the second) */
-    const __m512i i0 = _mm512_setr_epi32(0, 1, 2, 0, 3, 4, 5, 0, 6, 7, 8, 0,
-                                         9, 10, 11, 0);
-    const __m512i i1 = _mm512_setr_epi32(12, 13, 14, 0, 15, 16, 17, 0, 18,
-                                         19, 20, 0, 21, 22, 23, 0);
-    const __m512i i2 = _mm512_setr_epi32(8, 9, 10, 0, 11, 12, 13, 0, 14, 15,
-                                         16, 0, 17, 18, 19, 0);
-    const __m512i i3 = _mm512_setr_epi32(4, 5, 6, 0, 7, 8, 9, 0, 10, 11, 12,
-                                         0, 13, 14, 15, 0);
-    hf__put16(o,
-              hf__point_quad_w(_mm512_maskz_permutexvar_ps(0xffff, i0, a), pw,
-                               ws),
-              mode);
-    hf__put16(o + 16,
-              hf__point_quad_w(_mm512_maskz_permutex2var_ps(0xffff, a, i1, b),
-                               pw + 16, ws),
-              mode);
-    hf__put16(o + 32,
-              hf__point_quad_w(_mm512_maskz_permutex2var_ps(0xffff, b, i2, c),
-                               pw + 32, ws),
-              mode);
-    hf__put16(o + 48,
-              hf__point_quad_w(_mm512_maskz_permutexvar_ps(0xffff, i3, c),
-                               pw + 48, ws),
-              mode);
+    /* index >= 16: the second source. Points 0-3: a's floats 0-11, w's
+       0-3; points 4-7: a's 12-15 (moved into w's lanes 12-15: x), b's
+       0-7, w's 4-7; points 8-11: b's 8-15, c's 0-3 (moved into w's lanes
+       0-3: y), w's 8-11; points 12-15: c's 4-15, w's 12-15 */
+    const __m512i i0 = _mm512_setr_epi32(0, 1, 2, 16, 3, 4, 5, 17, 6, 7, 8,
+                                         18, 9, 10, 11, 19);
+    const __m512i i1 = _mm512_setr_epi32(12, 13, 14, 4, 15, 16, 17, 5, 18,
+                                         19, 20, 6, 21, 22, 23, 7);
+    const __m512i i2 = _mm512_setr_epi32(8, 9, 10, 24, 11, 12, 13, 25, 14,
+                                         15, 16, 26, 17, 18, 19, 27);
+    const __m512i i3 = _mm512_setr_epi32(4, 5, 6, 28, 7, 8, 9, 29, 10, 11,
+                                         12, 30, 13, 14, 15, 31);
+    const __m512 w = _mm512_mul_ps(_mm512_loadu_ps(hw), ws);
+    const __m512 x = _mm512_mask_mov_ps(w, 0xf000, a);
+    const __m512 y = _mm512_mask_mov_ps(w, 0x000f, c);
+    hf__put16(o, _mm512_permutex2var_ps(a, i0, w), mode);
+    hf__put16(o + 16, _mm512_permutex2var_ps(x, i1, b), mode);
+    hf__put16(o + 32, _mm512_permutex2var_ps(b, i2, y), mode);
+    hf__put16(o + 48, _mm512_permutex2var_ps(c, i3, w), mode);
 }
 
 HF__INTERP_POINTS(16, HF__TARGET_AVX512)
