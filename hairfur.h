@@ -4546,6 +4546,21 @@ enum {
    row by row, as before. */
 #define HF__ROPE_KTAB 64
 
+/* A collider ready for the row kernels (hf__collider_prep): base point,
+   capsule axis e and 1 / |e|^2 (0 for a sphere or a zero-length capsule:
+   a point, so a sphere), the radius grown by the margin, and the distance
+   from the axis below which a rope's root counts as inside: deeper than
+   the margin below the surface (and 1e-4 of the radius, for rounding), so
+   roots on a proxy that hugs the skin a little outside it keep the
+   margin. */
+typedef struct hf__col_prep {
+    float a[3], e[3], inv, rr, inner;
+} hf__col_prep;
+
+/* Colliders prepared once per call (hf__rope_step.col), and in lanes once
+   per row call; further ones per use. */
+#define HF__ROPE_PREP 8
+
 /* Resolved per-call constants. */
 typedef struct hf__rope_step {
     int n;             /* sub-steps */
@@ -4564,6 +4579,7 @@ typedef struct hf__rope_step {
     int ktab; /* kg, kl hold hf__rope_kg, hf__rope_kl */
     int level; /* hf_simd_resolve(params->simd) */
     float kg[HF__ROPE_KTAB], kl[HF__ROPE_KTAB];
+    hf__col_prep col[HF__ROPE_PREP]; /* the call's first colliders */
 } hf__rope_step;
 
 HFDEF void hf_rope_params_init(hf_rope_params *p)
@@ -5574,16 +5590,6 @@ HF__PRIVATE void hf__ropes_animated_run(hf_ropes *ro, int a, int b,
     }
 }
 
-/* A collider ready for the row kernels: base point, capsule axis e and
-   1 / |e|^2 (0 for a sphere or a zero-length capsule: a point, so a
-   sphere), the radius grown by the margin, and the distance from the
-   axis below which a rope's root counts as inside: deeper than the margin
-   below the surface (and 1e-4 of the radius, for rounding), so roots on
-   a proxy that hugs the skin a little outside it keep the margin. */
-typedef struct hf__col_prep {
-    float a[3], e[3], inv, rr, inner;
-} hf__col_prep;
-
 HF__PRIVATE hf__col_prep hf__collider_prep(const hf_collider *c, float margin)
 {
     hf__col_prep k;
@@ -5680,9 +5686,6 @@ HF__PRIVATE void hf__ropes_collide_row(hf_ropes *ro, const float *F, int j,
    its axis, so a root inside a proxy neither stretches nor throws its
    rope. */
 #define HF__FTL_ROUNDS 8
-
-/* Colliders prepared once per row call; further ones per use. */
-#define HF__ROPE_PREP 8
 
 /* The radius collider k has for a rope whose root is at `root`: rr, or
    the root's distance from the axis where the root is more than the
@@ -6456,14 +6459,12 @@ T HF__INLINE int hf__col_hits_##S(const hf__col_##S *k, const V *x)            \
 }                                                                              \
                                                                                \
 /* The first HF__ROPE_PREP colliders in lanes, once per row or pass. */        \
-T HF__PRIVATE void hf__col_prep_first_##S(const hf_collider *col, int ncol,    \
-                                          float margin, hf__col_##S *pre)      \
+T HF__PRIVATE void hf__col_prep_first_##S(const hf__rope_step *st, int ncol,   \
+                                          hf__col_##S *pre)                    \
 {                                                                              \
     int c;                                                                     \
-    for (c = 0; c < ncol && c < HF__ROPE_PREP; ++c) {                          \
-        const hf__col_prep k = hf__collider_prep(col + c, margin);             \
-        hf__col_prep_##S(&k, pre + c);                                         \
-    }                                                                          \
+    for (c = 0; c < ncol && c < HF__ROPE_PREP; ++c)                            \
+        hf__col_prep_##S(&st->col[c], pre + c);                                \
 }                                                                              \
                                                                                \
 /* Collider c in lanes: pre + c, or, beyond HF__ROPE_PREP, made in *spare. */  \
@@ -6784,12 +6785,14 @@ HF__FTL_KERNELS(v4, hf__v4, 4, , HF__GATHER4, (void)0)
    back after a hit. */
 HF__PRIVATE void
 hf__ropes_collide_v4(hf_ropes *ro, const float *F, int a, int b,
-                     const hf_collider *col, int ncol, float margin)
+                     const hf_collider *col, int ncol,
+                     const hf__rope_step *st)
 {
     size_t R = (size_t)ro->rope_count;
+    const float margin = st->margin;
     hf__col_v4 pre[HF__ROPE_PREP], spare;
     int j, r, c, m, i;
-    hf__col_prep_first_v4(col, ncol, margin, pre);
+    hf__col_prep_first_v4(st, ncol, pre);
     for (j = 1; j < ro->points; ++j)
         for (r = a; r < b; r += 4) {
             const size_t o = (size_t)j * R + (size_t)r;
@@ -7062,7 +7065,7 @@ T HF__PRIVATE void hf__ropes_ftl_row_##S(hf_ropes *ro, const float *F, int j,  \
     int r;                                                                     \
     hf__frame_rows(F, R, f);                                                   \
     hits.n = 0;                                                                \
-    if (st->ftl) hf__col_prep_first_##S(col, ncol, st->margin, pre);           \
+    if (st->ftl) hf__col_prep_first_##S(st, ncol, pre);                        \
     for (r = a; r < b; r += W) {                                               \
         const V x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),                      \
                 z0 = HF__LD(Z0 + r);                                           \
@@ -7214,10 +7217,10 @@ HF__PRIVATE void hf__ropes_substep_rows(hf_ropes *ro, const float *F, int a,
             else
                 k->distance(ro, j, a, b);
         if (!st->ftl && ncol > 0)
-            hf__ropes_collide_v4(ro, F, a, b, col, ncol, st->margin);
+            hf__ropes_collide_v4(ro, F, a, b, col, ncol, st);
     }
     if (st->iterations == 0 && ncol > 0)
-        hf__ropes_collide_v4(ro, F, a, b, col, ncol, st->margin);
+        hf__ropes_collide_v4(ro, F, a, b, col, ncol, st);
 }
 
 static const hf__rope_rows hf__rope_rows_v4 = {
@@ -7557,12 +7560,14 @@ HF__PRIVATE void hf__rope_step_setup(hf__rope_step *st,
    collisions shrink that collider for the rope. */
 HF__PRIVATE void hf__ropes_mark_roots(hf_ropes *ro, int a, int b,
                                       const hf_collider *col, int ncol,
-                                      float margin)
+                                      const hf__rope_step *st)
 {
     int r, c;
     for (r = a; r < b; ++r) ro->root_inside[r] = 0;
     for (c = 0; c < ncol; ++c) {
-        const hf__col_prep k = hf__collider_prep(col + c, margin);
+        const hf__col_prep k = c < HF__ROPE_PREP
+                                   ? st->col[c]
+                                   : hf__collider_prep(col + c, st->margin);
         for (r = a; r < b; ++r) {
             const float root[3] = {ro->x[r], ro->y[r], ro->z[r]};
             if (hf__col_radius_for(&k, root) < k.rr) ro->root_inside[r] = 1;
@@ -7599,6 +7604,8 @@ HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
     if ((res = hf__rope_params_check(&prm, NULL)) != HF_OK) return res;
     if (count == 0) return HF_OK;
     hf__rope_step_setup(&st, &prm, dt, ropes->points);
+    for (k = 0; k < collider_count && k < HF__ROPE_PREP; ++k)
+        st.col[k] = hf__collider_prep(colliders + k, prm.collision_margin);
 
     /* runs of ropes of one kind, each with its kernel; the kinds depend
        only on each rope's own state, so any split gives the same bytes */
@@ -7614,8 +7621,7 @@ HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
             hf__ropes_sim_run(ropes, r, b, &st, colliders, collider_count);
         r = b;
     }
-    hf__ropes_mark_roots(ropes, first, end, colliders, collider_count,
-                         prm.collision_margin);
+    hf__ropes_mark_roots(ropes, first, end, colliders, collider_count, &st);
     /* this frame becomes the start of the next step's interpolation */
     for (k = 0; k < 12; ++k)
         HF_MEMCPY(ropes->frame + (size_t)(12 + k) * (size_t)ropes->rope_count +
