@@ -8992,6 +8992,25 @@ hf__frame_eye_avx2(const hf_ribbon_params *params, __m256 *e)
                                                    : params->eye[c]);
 }
 
+/* Eight points' x, y and z (24 floats at q) in three vectors, by
+   shuffles. */
+HF__TARGET_AVX2 HF__INLINE void hf__load8_avx2(const float *q, __m256 *xyz)
+{
+#define HF__LD2(a, b)                                                          \
+    _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(q + (a))),      \
+                         _mm_loadu_ps(q + (b)), 1)
+    /* halves: points 0-3 and 4-7, as x0 y0 z0 x1 | y1 z1 x2 y2 |
+       z2 x3 y3 z3 */
+    const __m256 m03 = HF__LD2(0, 12), m14 = HF__LD2(4, 16),
+                 m25 = HF__LD2(8, 20);
+#undef HF__LD2
+    const __m256 xy = _mm256_shuffle_ps(m14, m25, _MM_SHUFFLE(2, 1, 3, 2));
+    const __m256 yz = _mm256_shuffle_ps(m03, m14, _MM_SHUFFLE(1, 0, 2, 1));
+    xyz[0] = _mm256_shuffle_ps(m03, xy, _MM_SHUFFLE(2, 0, 3, 0));
+    xyz[1] = _mm256_shuffle_ps(yz, xy, _MM_SHUFFLE(3, 1, 2, 0));
+    xyz[2] = _mm256_shuffle_ps(yz, m25, _MM_SHUFFLE(3, 0, 3, 1));
+}
+
 /* hf__strand_frame_v4 eight points at a time, with the same IEEE
    operations per point, and the same cases left to the reference;
    ortho and e as hf__frame_eye_avx2 gives them. */
@@ -9008,24 +9027,25 @@ hf__strand_frame_avx2_in(const float *pts, int P, int ortho, const __m256 *e,
     /* rows: eight points (24 floats) deinterleaved by shuffles; the
        whole groups in a loop of their own (no test for the last) */
     for (k = 0; 8 * k + 8 <= P; ++k) {
-        const float *q = pts + 24 * k;
-#define HF__LD2(a, b)                                                          \
-    _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(q + (a))),      \
-                         _mm_loadu_ps(q + (b)), 1)
-        /* halves: points 0-3 and 4-7, as x0 y0 z0 x1 | y1 z1 x2 y2 |
-           z2 x3 y3 z3 */
-        const __m256 m03 = HF__LD2(0, 12), m14 = HF__LD2(4, 16),
-                     m25 = HF__LD2(8, 20);
-#undef HF__LD2
-        const __m256 xy = _mm256_shuffle_ps(m14, m25, _MM_SHUFFLE(2, 1, 3, 2));
-        const __m256 yz = _mm256_shuffle_ps(m03, m14, _MM_SHUFFLE(1, 0, 2, 1));
-        hf__row_put_avx2(fr, k,
-                         _mm256_shuffle_ps(m03, xy, _MM_SHUFFLE(2, 0, 3, 0)),
-                         _mm256_shuffle_ps(yz, xy, _MM_SHUFFLE(3, 1, 2, 0)),
-                         _mm256_shuffle_ps(yz, m25, _MM_SHUFFLE(3, 0, 3, 1)),
-                         &acc);
+        __m256 xyz[3];
+        hf__load8_avx2(pts + 24 * k, xyz);
+        hf__row_put_avx2(fr, k, xyz[0], xyz[1], xyz[2], &acc);
     }
-    if (8 * k < P) { /* the last, partial group repeats the tip */
+    if (8 * k < P && P >= 8) {
+        /* the last, partial group from the strand's last eight points,
+           moved down to its first and the tip repeated past the end (a
+           copy through the stack would wait on failed store forwards) */
+        const int n = P - 8 * k;
+        const __m256i shift = _mm256_min_epi32(
+            _mm256_add_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
+                             _mm256_set1_epi32(8 - n)),
+            _mm256_set1_epi32(7));
+        __m256 xyz[3];
+        hf__load8_avx2(pts + 3 * (P - 8), xyz);
+        hf__row_put_avx2(fr, k, _mm256_permutevar8x32_ps(xyz[0], shift),
+                         _mm256_permutevar8x32_ps(xyz[1], shift),
+                         _mm256_permutevar8x32_ps(xyz[2], shift), &acc);
+    } else if (8 * k < P) { /* P < 8: the only group repeats the tip */
         const int n = P - 8 * k;
         float r[3][8];
         int i;
