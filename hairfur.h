@@ -8750,6 +8750,14 @@ HF__INLINE __m128 hf__next_v4(__m128 c, __m128 n)
     return _mm_shuffle_ps(c, _mm_shuffle_ps(c, n, _MM_SHUFFLE(0, 0, 3, 3)),
                           _MM_SHUFFLE(2, 0, 2, 1));
 }
+/* The last n (1-3) lanes of q moved to the first n, the last repeated
+   after them. */
+HF__INLINE __m128 hf__tail_v4(__m128 q, int n)
+{
+    if (n == 1) return _mm_shuffle_ps(q, q, _MM_SHUFFLE(3, 3, 3, 3));
+    if (n == 2) return _mm_shuffle_ps(q, q, _MM_SHUFFLE(3, 3, 3, 2));
+    return _mm_shuffle_ps(q, q, _MM_SHUFFLE(3, 3, 2, 1));
+}
 /* by shuffles, so no load waits on the narrow stores of a just-written
    array */
 HF__INLINE void hf__load3_v4(const float *q, __m128 *X, __m128 *Y, __m128 *Z)
@@ -8776,6 +8784,13 @@ HF__INLINE float32x4_t hf__next_v4(float32x4_t c,
 {
     return vextq_f32(c, n, 1);
 }
+HF__INLINE float32x4_t hf__tail_v4(float32x4_t q, int n)
+{
+    const float32x4_t tip = vdupq_laneq_f32(q, 3);
+    if (n == 1) return tip;
+    if (n == 2) return vextq_f32(q, tip, 2);
+    return vextq_f32(q, tip, 1);
+}
 HF__INLINE void hf__load3_v4(const float *q, float32x4_t *X,
                                             float32x4_t *Y, float32x4_t *Z)
 {
@@ -8785,6 +8800,19 @@ HF__INLINE void hf__load3_v4(const float *q, float32x4_t *X,
     *Z = v.val[2];
 }
 #endif
+
+/* Group k of a frame's point rows, its finiteness added to acc (x * 0 is
+   NaN for NaN or infinity). */
+HF__INLINE hf__v4 hf__row_put_v4(hf__rframe *fr, int k, hf__v4 X, hf__v4 Y,
+                                 hf__v4 Z, hf__v4 acc)
+{
+    const hf__v4 zero = HF__SET1(0.0f);
+    HF__ST(fr->p[0] + 4 + 4 * k, X);
+    HF__ST(fr->p[1] + 4 + 4 * k, Y);
+    HF__ST(fr->p[2] + 4 + 4 * k, Z);
+    return HF__ADD(acc, HF__ADD(HF__MUL(X, zero),
+                                HF__ADD(HF__MUL(Y, zero), HF__MUL(Z, zero))));
+}
 
 /* hf__strand_frame_ref four points at a time (SSE2 or NEON), with the same
    IEEE operations per point. Returns 0 and leaves the strand to the
@@ -8803,30 +8831,36 @@ HF__PRIVATE int hf__strand_frame_v4(const float *pts, int P,
     const hf__v4 big = HF__SET1(3.40282347e+38f);
     const hf__v4 lane = HF__LD(lanes);
     hf__v4 acc = zero, e[3];
-    float *px = fr->p[0], *py = fr->p[1], *pz = fr->p[2];
     int k, c, bad = 0;
-    /* rows: four points a group, deinterleaved */
-    for (k = 0; k < G; ++k) {
+    /* rows: four points a group, deinterleaved; the whole groups in a
+       loop of their own */
+    for (k = 0; 4 * k + 4 <= P; ++k) {
         hf__v4 X, Y, Z;
-        if (4 * k + 4 <= P) {
-            hf__load3_v4(pts + 12 * k, &X, &Y, &Z);
-        } else { /* the last, partial group repeats the tip */
-            const int n = P - 4 * k;
+        hf__load3_v4(pts + 12 * k, &X, &Y, &Z);
+        acc = hf__row_put_v4(fr, k, X, Y, Z, acc);
+    }
+    if (4 * k < P) {
+        const int n = P - 4 * k;
+        hf__v4 X, Y, Z;
+        if (P >= 4) {
+            /* the last, partial group from the strand's last four points,
+               moved down and the tip repeated (a copy through the stack
+               would wait on failed store forwards) */
+            hf__load3_v4(pts + 3 * (P - 4), &X, &Y, &Z);
+            X = hf__tail_v4(X, n);
+            Y = hf__tail_v4(Y, n);
+            Z = hf__tail_v4(Z, n);
+        } else { /* P < 4: the only group repeats the tip */
             float r[3][4];
             int i;
             HF__UNROLL for (i = 0; i < 4; ++i)
                 HF__UNROLL for (c = 0; c < 3; ++c)
-                    r[c][i] = pts[3 * (4 * k + (i < n ? i : n - 1)) + c];
+                    r[c][i] = pts[3 * (i < n ? i : n - 1) + c];
             X = HF__LD(r[0]);
             Y = HF__LD(r[1]);
             Z = HF__LD(r[2]);
         }
-        /* x * 0 is NaN for NaN or infinity */
-        acc = HF__ADD(acc, HF__ADD(HF__MUL(X, zero),
-                                   HF__ADD(HF__MUL(Y, zero), HF__MUL(Z, zero))));
-        HF__ST(px + 4 + 4 * k, X);
-        HF__ST(py + 4 + 4 * k, Y);
-        HF__ST(pz + 4 + 4 * k, Z);
+        acc = hf__row_put_v4(fr, k, X, Y, Z, acc);
     }
     if (HF__MASK(HF__EQ(acc, zero)) != 0xf) {
         *finite = 0;
