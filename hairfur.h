@@ -12013,8 +12013,8 @@ T HF__INLINE void hf__interp_points_whole##W(                                  \
             const hf__f##W a = hf__finish##W(&v, ctab, sa, (size_t)i, 0);      \
             const hf__f##W b = hf__blend##W(&v, ctab, (size_t)i + W, 1);       \
             const hf__f##W c = hf__blend##W(&v, ctab, (size_t)i + 2 * W, 2);   \
-            hf__points_abc##W(o + 4 * j, a, b, c, hf__widths##W(k, j), WS,   \
-                              &acc, mode);                                           \
+            hf__points_abc##W(o + 4 * j, a, b, c, hf__widths##W(k, j), WS,     \
+                              &acc, mode);                                     \
             i += 3 * W;                                                        \
             if ((j += W) >= P) break;                                          \
         }                                                                      \
@@ -12058,8 +12058,8 @@ T HF__INLINE void hf__points_whole##W(                                         \
             const hf__f##W a = hf__loadu_##W(p + 3 * j);                       \
             const hf__f##W b = hf__loadu_##W(p + 3 * j + W);                   \
             const hf__f##W c = hf__loadu_##W(p + 3 * j + 2 * W);               \
-            hf__points_abc##W(o + 4 * j, a, b, c, hf__widths##W(k, j), WS,   \
-                              &acc, mode);                                           \
+            hf__points_abc##W(o + 4 * j, a, b, c, hf__widths##W(k, j), WS,     \
+                              &acc, mode);                                     \
         }                                                                      \
         if (!hf__all_zero##W(acc)) hf__points_collapse_avx2(k, o);             \
     }                                                                          \
