@@ -8565,11 +8565,15 @@ HF__PRIVATE float hf__fin0(float x) { return hf__finitef(x) ? x : 0.0f; }
 /* A strand's width multiplier: 1 without the array, else the value,
    with negative or non-finite read as 0, and at most cap (what
    hf__half_widths returns). */
+HF__INLINE float hf__width_at(const float *width, int s, float cap)
+{
+    const float w = width ? hf__fin0(width[s]) : 1.0f;
+    return w > 0.0f ? (w < cap ? w : cap) : 0.0f;
+}
 HF__PRIVATE float hf__strand_width(const hf_ribbon_strands *st, int s,
                                    float cap)
 {
-    const float w = st->width ? hf__fin0(st->width[s]) : 1.0f;
-    return w > 0.0f ? (w < cap ? w : cap) : 0.0f;
+    return hf__width_at(st->width, s, cap);
 }
 
 /* One strand in structure-of-arrays rows, so that four points load as one
@@ -11913,14 +11917,15 @@ hf__points_loop_avx2(const hf__points_kit *k, const hf_ribbon_strands *strands,
                      int out_first, float *out4, int mode)
 {
     const int P = k->P;
+    /* read once: the stores may alias k and strands */
+    const float wcap = k->wcap, *wd = strands->width;
     int s;
     for (s = first; s < first + count; ++s) {
         const float *p = pts + (size_t)(s - pts_first) * (size_t)P * 3u;
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
         const int m = mode >= 0 ? mode : hf__stream_mode(k->nt, o, 31u);
         if (m) hf__page_ahead(o, 16u * (size_t)P);
-        if (!hf__points_strand_avx2_in(p, &k->pw,
-                                       hf__strand_width(strands, s, k->wcap),
+        if (!hf__points_strand_avx2_in(p, &k->pw, hf__width_at(wd, s, wcap),
                                        o, P, m)) {
             _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
             hf__points_collapse_avx2(k, o);
@@ -11998,15 +12003,17 @@ T HF__INLINE void hf__interp_points_whole##W(                                  \
     const int P = run->P;                                                      \
     const size_t n = 3u * (size_t)P;                                           \
     const float *G = run->guides, *ctab = run->ctab;                           \
-    const float wcap = k->wcap; /* read once: the stores may alias k */      \
+    /* read once: the stores may alias k, st and run */                       \
+    const float wcap = k->wcap, *wd = st->width;                               \
+    const hf_strand_binding *B = run->bindings;                                \
     int s, i, j;                                                               \
     for (s = first; s < first + count; ++s) {                                  \
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;            \
-        const hf__f##W WS = hf__set1_##W(hf__strand_width(st, s, wcap));       \
+        const hf__f##W WS = hf__set1_##W(hf__width_at(wd, s, wcap));           \
         hf__f##W acc = hf__set1_##W(0.0f), sa;                                 \
         hf__is##W v;                                                           \
         if (mode) hf__page_ahead(o, 16u * (size_t)P);                          \
-        hf__strand##W(G, clump, run->bindings + s, n, &v);                     \
+        hf__strand##W(G, clump, B + s, n, &v);                                 \
         sa = hf__sum##W(&v, 0); /* the root's sum, and the first vector's */   \
         hf__roots##W(&v, sa);                                                  \
         for (i = 0, j = 0;; sa = hf__sum##W(&v, (size_t)i)) {                  \
@@ -12046,12 +12053,13 @@ T HF__INLINE void hf__points_whole##W(                                         \
     int mode)                                                                  \
 {                                                                              \
     const int P = k->P;                                                        \
-    const float wcap = k->wcap; /* read once: the stores may alias k */      \
+    /* read once: the stores may alias k and st */                             \
+    const float wcap = k->wcap, *wd = st->width;                               \
     int s, j;                                                                  \
     for (s = first; s < first + count; ++s) {                                  \
         const float *p = pts + (size_t)(s - pts_first) * (size_t)P * 3u;       \
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;            \
-        const hf__f##W WS = hf__set1_##W(hf__strand_width(st, s, wcap));       \
+        const hf__f##W WS = hf__set1_##W(hf__width_at(wd, s, wcap));           \
         hf__f##W acc = hf__set1_##W(0.0f);                                     \
         if (mode) hf__page_ahead(o, 16u * (size_t)P);                          \
         for (j = 0; j < P; j += W) {                                           \
