@@ -11974,25 +11974,29 @@ HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
 #endif
 }
 
-/* hf__interp_range<W> and the GPU points kernel in one, for P a
-   multiple of W (8 at AVX2, 16 at AVX-512), one text built at both
-   widths: three vectors of a strand's floats (W points) stay in
+/* hf__interp_range<W> and the GPU points kernel in one, for P at least
+   W (8 at AVX2, 16 at AVX-512) and a multiple of W / 4 (a vector of
+   points' worth), one text built at both widths: the strand's whole
+   groups, then, where points are left, the group that ends at the tip,
+   written from the first vector of points not yet written. Three
+   vectors of a strand's floats (W points) stay in
    registers and go out as four vectors of points (hf__points_out<W>),
    the same values in the same order as the two kernels write them. The
    finiteness test rides on the same vectors (x * 0 is NaN for NaN or
    infinity); a strand that is not finite is written again, collapsed,
    as hf__points_run does. hf__points_groups<W>: the GPU points kernel
-   alone, the same text loading the strand's points. */
+   alone (P a multiple of W), the same text loading the strand's points. */
 #define HF__INTERP_POINTS(W, T)                                                \
-/* W points' floats a, b, c: their finiteness into acc, their points out */    \
+/* W points' floats a, b, c: their finiteness into acc, their points out      \
+   from output vector q on (0: all four) */                                    \
 T HF__INLINE void hf__points_abc##W(float *o, hf__f##W a, hf__f##W b,          \
                                     hf__f##W c, const float *pw, hf__f##W WS,  \
-                                    hf__f##W *acc, int mode)                   \
+                                    hf__f##W *acc, int mode, int q)            \
 {                                                                              \
     *acc = hf__nan_acc##W(*acc, a);                                            \
     *acc = hf__nan_acc##W(*acc, b);                                            \
     *acc = hf__nan_acc##W(*acc, c);                                            \
-    hf__points_out##W(o, a, b, c, pw, WS, mode);                               \
+    hf__points_out##W(o, a, b, c, pw, WS, mode, q);                            \
 }                                                                              \
                                                                                \
 T HF__INLINE void hf__interp_points_whole##W(                                  \
@@ -12021,17 +12025,31 @@ T HF__INLINE void hf__interp_points_whole##W(                                  \
             const hf__f##W b = hf__blend##W(&v, ctab, (size_t)i + W, 1);       \
             const hf__f##W c = hf__blend##W(&v, ctab, (size_t)i + 2 * W, 2);   \
             hf__points_abc##W(o + 4 * j, a, b, c, hf__widths##W(k, j), WS,     \
-                              &acc, mode);                                     \
+                              &acc, mode, 0);                                  \
             i += 3 * W;                                                        \
-            if ((j += W) >= P) break;                                          \
+            if ((j += W) + W > P) break;                                       \
+        }                                                                      \
+        if (j < P) {                                                           \
+            /* the last points: the group of W that ends at the tip (its       \
+               first float's phase is 0 too), written from the output         \
+               vector that holds point j on, so no point is written twice */   \
+            const int q = (j + W - P) / (W / 4);                               \
+            hf__f##W a, b, c;                                                  \
+            j = P - W;                                                         \
+            i = 3 * j;                                                         \
+            a = hf__blend##W(&v, ctab, (size_t)i, 0);                          \
+            b = hf__blend##W(&v, ctab, (size_t)i + W, 1);                      \
+            c = hf__blend##W(&v, ctab, (size_t)i + 2 * W, 2);                  \
+            hf__points_abc##W(o + 4 * j, a, b, c, hf__widths##W(k, j), WS,     \
+                              &acc, mode, q);                                  \
         }                                                                      \
         if (!hf__all_zero##W(acc)) hf__points_collapse_avx2(k, o);             \
     }                                                                          \
 }                                                                              \
                                                                                \
-/* every strand's 16 P bytes keep the first's alignment (P a multiple of       \
-   W), so the stream mode, like the clumping, is one for the call: both        \
-   passed to the loop as constants */                                          \
+/* every strand's 16 P bytes keep the first's alignment (a multiple of 4 W    \
+   bytes, P a multiple of W / 4), so the stream mode, like the clumping, is    \
+   one for the call: both passed to the loop as constants */                   \
 T HF__PRIVATE void hf__interp_points##W(                                       \
     const hf__irun *run, const hf__points_kit *k,                              \
     const hf_ribbon_strands *st, int first, int count, int out_first,          \
@@ -12067,7 +12085,7 @@ T HF__INLINE void hf__points_whole##W(                                         \
             const hf__f##W b = hf__loadu_##W(p + 3 * j + W);                   \
             const hf__f##W c = hf__loadu_##W(p + 3 * j + 2 * W);               \
             hf__points_abc##W(o + 4 * j, a, b, c, hf__widths##W(k, j), WS,     \
-                              &acc, mode);                                     \
+                              &acc, mode, 0);                                  \
         }                                                                      \
         if (!hf__all_zero##W(acc)) hf__points_collapse_avx2(k, o);             \
     }                                                                          \
@@ -12120,18 +12138,22 @@ HF__TARGET_AVX2 HF__INLINE void hf__point_pair_w(float *o, __m256 q,
    looped: an array of the four would go through the stack) */
 HF__TARGET_AVX2 HF__INLINE void hf__points_out8(float *o, __m256 a, __m256 b,
                                                 __m256 c, const float *pw,
-                                                __m256 ws, int mode)
+                                                __m256 ws, int mode, int q)
 {
     const __m256i lo = _mm256_setr_epi32(0, 1, 2, 0, 3, 4, 5, 0);
     const __m256i hi = _mm256_setr_epi32(2, 3, 4, 0, 5, 6, 7, 0);
-    hf__point_pair_w(o, _mm256_permutevar8x32_ps(a, lo), pw, ws, mode);
-    hf__point_pair_w(
-        o + 8, _mm256_permutevar8x32_ps(_mm256_permute2f128_ps(a, b, 0x21), hi),
-        pw + 8, ws, mode);
-    hf__point_pair_w(
-        o + 16,
-        _mm256_permutevar8x32_ps(_mm256_permute2f128_ps(b, c, 0x21), lo),
-        pw + 16, ws, mode);
+    if (q <= 0)
+        hf__point_pair_w(o, _mm256_permutevar8x32_ps(a, lo), pw, ws, mode);
+    if (q <= 1)
+        hf__point_pair_w(o + 8,
+                         _mm256_permutevar8x32_ps(
+                             _mm256_permute2f128_ps(a, b, 0x21), hi),
+                         pw + 8, ws, mode);
+    if (q <= 2)
+        hf__point_pair_w(o + 16,
+                         _mm256_permutevar8x32_ps(
+                             _mm256_permute2f128_ps(b, c, 0x21), lo),
+                         pw + 16, ws, mode);
     hf__point_pair_w(o + 24, _mm256_permutevar8x32_ps(c, hi), pw + 24, ws,
                      mode);
 }
@@ -12171,7 +12193,7 @@ HF__INLINE const float *hf__widths16(const hf__points_kit *k, int j)
 HF__TARGET_AVX512 HF__INLINE void hf__points_out16(float *o, __m512 a,
                                                    __m512 b, __m512 c,
                                                    const float *hw,
-                                                   __m512 ws, int mode)
+                                                   __m512 ws, int mode, int q)
 {
     /* index >= 16: the second source. Points 0-3: a's floats 0-11, w's
        0-3; points 4-7: a's 12-15 (moved into w's lanes 12-15: x), b's
@@ -12188,9 +12210,9 @@ HF__TARGET_AVX512 HF__INLINE void hf__points_out16(float *o, __m512 a,
     const __m512 w = _mm512_mul_ps(_mm512_loadu_ps(hw), ws);
     const __m512 x = _mm512_mask_mov_ps(w, 0xf000, a);
     const __m512 y = _mm512_mask_mov_ps(w, 0x000f, c);
-    hf__put16(o, _mm512_permutex2var_ps(a, i0, w), mode);
-    hf__put16(o + 16, _mm512_permutex2var_ps(x, i1, b), mode);
-    hf__put16(o + 32, _mm512_permutex2var_ps(b, i2, y), mode);
+    if (q <= 0) hf__put16(o, _mm512_permutex2var_ps(a, i0, w), mode);
+    if (q <= 1) hf__put16(o + 16, _mm512_permutex2var_ps(x, i1, b), mode);
+    if (q <= 2) hf__put16(o + 32, _mm512_permutex2var_ps(b, i2, y), mode);
     hf__put16(o + 48, _mm512_permutex2var_ps(c, i3, w), mode);
 }
 
@@ -14858,7 +14880,7 @@ HFDEF hf_result hf_fur_interpolate_points(const hf_fur *f, int first,
 #if HF__AVX2
     lv = hf_simd_resolve(f->simd);
     lv = lv < kit.level ? lv : kit.level;
-    if (kit.wide && lv >= HF_SIMD_AVX2 && f->P % 8 == 0 &&
+    if (kit.wide && lv >= HF_SIMD_AVX2 && f->P % 2 == 0 && f->P >= 8 &&
         hf__fur_blend_only(f)) {
         /* in registers, nothing through memory (the run's own output is
            not written: the kernels write points to out4) */
@@ -14867,7 +14889,7 @@ HFDEF hf_result hf_fur_interpolate_points(const hf_fur *f, int first,
         hf__irun_init(&run, f->guide_points, f->bindings, f->P, f->clump,
                       ctab, out4, first, 0);
 #if HF__AVX512
-        if (lv >= HF_SIMD_AVX512 && f->P % 16 == 0)
+        if (lv >= HF_SIMD_AVX512 && f->P % 4 == 0 && f->P >= 16)
             hf__interp_points16(&run, &kit, &st, first, count,
                                 prm.out_first, out4);
         else

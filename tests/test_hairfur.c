@@ -9561,9 +9561,12 @@ static void test_fur_ranges_byte_identical(void)
 static void test_interp_points_kernels(void)
 {
 #if HF__AVX2
-    enum { G = 12, S = 40 };
-    static float guides[G * 32 * 3], mid[S * 32 * 3];
-    static float ref[S * 32 * 4 + 16], got[S * 32 * 4 + 16];
+    /* P: whole groups of eight and sixteen, and the last points of a
+       strand written from a group that ends at its tip */
+    static const int Ps[] = {8, 10, 12, 14, 16, 20, 24, 28, 32, 40};
+    enum { G = 12, S = 40, PM = 40 };
+    static float guides[G * PM * 3], mid[S * PM * 3];
+    static float ref[S * PM * 4 + 32], got[S * PM * 4 + 32];
     float width[S], ctab[3 * HF_MAX_POINTS];
     hf_strand_binding b[S];
     hf_ribbon_strands st;
@@ -9571,14 +9574,16 @@ static void test_interp_points_kernels(void)
     hf__points_kit kit;
     hf__irun run;
     hf_rng r;
-    int P, i, clump, nt, off, wide;
+    int P, pi, i, clump, nt, off, wide;
     hf_rng_seed(&r, 7, 1);
     memset(&st, 0, sizeof st);
     st.width = width;
     for (i = 0; i < S; ++i) width[i] = 0.5f + hf_rng_float(&r);
-    for (P = 8; P <= 32; P += 8)
+    for (pi = 0; pi < (int)(sizeof Ps / sizeof Ps[0]); ++pi)
         for (wide = 0; wide < 2; ++wide) {
-            if (wide && (P % 16 || hf_simd_resolve(HF_SIMD_AVX512) < HF_SIMD_AVX512))
+            P = Ps[pi];
+            if (wide && (P % 4 || P < 16 ||
+                         hf_simd_resolve(HF_SIMD_AVX512) < HF_SIMD_AVX512))
                 continue;
             if (!wide && hf_simd_resolve(HF_SIMD_AVX2) < HF_SIMD_AVX2) continue;
             for (i = 0; i < G * P * 3; ++i) guides[i] = hf_rng_float(&r) - 0.5f;
@@ -9616,6 +9621,12 @@ static void test_interp_points_kernels(void)
                         if (nt) _mm_sfence();
                         CHECK(memcmp(ref + off, got + off,
                                      sizeof(float) * 4u * (size_t)(S * P)) == 0);
+                        { /* nothing written before or past the strands */
+                            const float g = got[sizeof got / sizeof *got - 1];
+                            const int e = off + 4 * S * P;
+                            for (i = 0; i < off; ++i) CHECK(got[i] == g);
+                            for (i = e; i < e + 16; ++i) CHECK(got[i] == g);
+                        }
                         for (i = 0; i < S; ++i)
                             collapsed += ref[off + 4 * i * P + 3] == 0.0f;
                         CHECK(collapsed > 0 && collapsed < S);
