@@ -7513,10 +7513,12 @@ HF__PRIVATE hf_result hf__colliders_check(const hf_collider *colliders,
 }
 
 /* The per-call constants of a step from resolved parameters: dt clamped
-   and scaled, split into equal sub-steps, rates per sub-step. */
+   and scaled, split into equal sub-steps, rates per sub-step, and the
+   first colliders prepared (checked by the caller). */
 HF__PRIVATE void hf__rope_step_setup(hf__rope_step *st,
                                      const hf_rope_params *params, float dt,
-                                     int points)
+                                     int points, const hf_collider *col,
+                                     int ncol)
 {
     float sdt, q;
     int k;
@@ -7553,6 +7555,8 @@ HF__PRIVATE void hf__rope_step_setup(hf__rope_step *st,
             st->kg[k] = hf__rope_kg(st, k, points);
             st->kl[k] = hf__rope_kl(st, k, points);
         }
+    for (k = 0; k < ncol && k < HF__ROPE_PREP; ++k)
+        st->col[k] = hf__collider_prep(col + k, st->margin);
 }
 
 /* root_inside of ropes [a, b): whether the root sits inside a collider
@@ -7603,9 +7607,8 @@ HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
     hf__rope_params_resolve(params, &prm);
     if ((res = hf__rope_params_check(&prm, NULL)) != HF_OK) return res;
     if (count == 0) return HF_OK;
-    hf__rope_step_setup(&st, &prm, dt, ropes->points);
-    for (k = 0; k < collider_count && k < HF__ROPE_PREP; ++k)
-        st.col[k] = hf__collider_prep(colliders + k, prm.collision_margin);
+    hf__rope_step_setup(&st, &prm, dt, ropes->points, colliders,
+                        collider_count);
 
     /* runs of ropes of one kind, each with its kernel; the kinds depend
        only on each rope's own state, so any split gives the same bytes */
@@ -8562,18 +8565,15 @@ static const float hf__zero_points[3 * HF_MAX_POINTS] = {0.0f};
    0, so no NaN reaches a vertex. */
 HF__PRIVATE float hf__fin0(float x) { return hf__finitef(x) ? x : 0.0f; }
 
-/* A strand's width multiplier: 1 without the array, else the value,
-   with negative or non-finite read as 0, and at most cap (what
-   hf__half_widths returns). */
+/* Strand s's width multiplier from the strands' width array: 1 without
+   the array, else the value, with negative or non-finite read as 0, and
+   at most cap (what hf__half_widths returns). The kernels pass the
+   array's address read once a call: their stores may alias the strands'
+   record. */
 HF__INLINE float hf__width_at(const float *width, int s, float cap)
 {
     const float w = width ? hf__fin0(width[s]) : 1.0f;
     return w > 0.0f ? (w < cap ? w : cap) : 0.0f;
-}
-HF__PRIVATE float hf__strand_width(const hf_ribbon_strands *st, int s,
-                                   float cap)
-{
-    return hf__width_at(st->width, s, cap);
 }
 
 /* One strand in structure-of-arrays rows, so that four points load as one
@@ -10811,7 +10811,7 @@ HF__INLINE void hf__rstrand_fill(const hf_ribbon_strands *sv, int s,
                                  float cap, hf__rstrand *str)
 {
     int k;
-    str->wscale *= hf__strand_width(sv, s, cap);
+    str->wscale *= hf__width_at(sv->width, s, cap);
     HF__UNROLL for (k = 0; k < 2; ++k)
         str->uv[k] =
             sv->root_uv ? hf__fin0(sv->root_uv[2 * (size_t)s + k]) : 0.0f;
@@ -12032,7 +12032,8 @@ T HF__INLINE void hf__interp_points_whole##W(                                  \
         if (j < P) {                                                           \
             /* the last points: the group of W that ends at the tip (its       \
                first float's phase is 0 too), written from the output         \
-               vector that holds point j on, so no point is written twice */   \
+               vector that holds point j on, so no point is written twice;     \
+               apart from the loop, whose stores then take no test */          \
             const int q = (j + W - P) / (W / 4);                               \
             hf__f##W a, b, c;                                                  \
             j = P - W;                                                         \
@@ -12258,7 +12259,7 @@ HF__PRIVATE void hf__points_run(const hf__points_kit *k,
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
         float wscale = 0.0f;
         if (hf__points_finite(p, 3 * P))
-            wscale = hf__strand_width(strands, s, k->wcap);
+            wscale = hf__width_at(strands->width, s, k->wcap);
         else
             p = hf__zero_points; /* collapsed, as hf_ribbons */
 #if HF__SSE
