@@ -7471,16 +7471,34 @@ HF__PRIVATE void hf__ropes_safety_net(hf_ropes *ro, int a, int b,
 }
 
 /* Simulated ropes [a, b): every sub-step, then the safety net. */
+/* Ropes [a, b). A range beside another one that may run on another
+   thread at the same time goes in two halves of whole 16-rope groups,
+   each taking every sub-step before the next begins. Two such ranges
+   touch neighbouring cache lines in every row; the CPU's prefetcher,
+   running along a row, carries the first lines of the next range across,
+   and while both ranges sweep the same rows those lines go back and
+   forth between the cores (scene L's ropes on two threads took 0.16 ms
+   against 0.14 on one; in halves, 0.092). With halves, a range's last
+   lines are swept while its neighbour works on its own second half. The
+   whole rope set needs none of it, and the halves' extra row calls cost
+   one thread about 5 %. The bytes are those of any split. */
 HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
                                    const hf__rope_step *st,
                                    const hf_collider *col, int ncol)
 {
-    int s;
-    for (s = 0; s < st->n; ++s) {
-        const float *F = hf__ropes_substep_prep(ro, a, b, st, s);
-        hf__ropes_substep(ro, F, a, b, st, col, ncol);
+    const int whole = a == 0 && b == ro->rope_count;
+    const int half = !whole && b - a >= 128
+                         ? ((b - a + 1) / 2 + 15) & ~15
+                         : b - a;
+    int s, x;
+    for (x = a; x < b; x += half) {
+        const int e = b - x > half ? x + half : b;
+        for (s = 0; s < st->n; ++s) {
+            const float *F = hf__ropes_substep_prep(ro, x, e, st, s);
+            hf__ropes_substep(ro, F, x, e, st, col, ncol);
+        }
+        hf__ropes_safety_net(ro, x, e, st);
     }
-    hf__ropes_safety_net(ro, a, b, st);
 }
 
 HF__PRIVATE int hf__rope_kind(const hf_ropes *ro, int r)
