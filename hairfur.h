@@ -165,7 +165,8 @@
          refused. Byte strides of 0 mean "packed".
        - Every stochastic stage takes a seed and uses hf_rng (PCG32): no
          rand(), no global state. Same inputs and seed, same bytes.
-       - No function keeps state between calls; the per-frame functions take
+       - No function keeps state between calls (MSVC builds keep one fact,
+         the CPU's SIMD level, read once); the per-frame functions take
          a (first, count) range and never allocate, so an engine can spread a
          frame over its own threads. Inputs are indexed by absolute strand
          (or rope) index; outputs too, unless out_first (interpolation,
@@ -389,8 +390,10 @@ typedef enum hf_simd_level {
    the best this CPU supports in this build (CPUID on gcc and clang for
    x86; what the compiler targets elsewhere; HF_NO_SIMD: scalar;
    HF_SIMD_MAX caps it); a higher request than that is lowered to it, so
-   asking for a level is always safe. Unknown values count as auto. No
-   state: the answer comes from the CPU each call. */
+   asking for a level is always safe. Unknown values count as auto. The
+   CPU is asked once a process (by libgcc or compiler-rt when the program
+   loads; on MSVC at the first call), so every call gives the same
+   answer. */
 HFDEF int hf_simd_resolve(int requested);
 
 
@@ -2336,14 +2339,14 @@ HFDEF const char *hf_result_string(hf_result result)
 HFDEF int hf_version(void) { return HAIRFUR_VERSION_NUMBER; }
 HFDEF const char *hf_version_string(void) { return HAIRFUR_VERSION_STRING; }
 
-/* The best level the CPU runs in this build. */
-HF__PRIVATE int hf__cpu_simd(void)
-{
 #if HF__X86_DISPATCH && defined(_MSC_VER) && !defined(__clang__) &&          \
     !defined(__GNUC__)
-    /* the ISA bits (leaf 7: EBX bit 5 AVX2, bits 16 and 30 AVX-512F and
-       BW) count only where the OS saves the registers (XCR0: bits 1-2 for
-       256 bits, and 5-7 as well for 512) */
+#define HF__MSVC_CPUID 1
+/* What CPUID says: the ISA bits (leaf 7: EBX bit 5 AVX2, bits 16 and 30
+   AVX-512F and BW) count only where the OS saves the registers (XCR0:
+   bits 1-2 for 256 bits, and 5-7 as well for 512). */
+HF__PRIVATE int hf__cpuid_simd(void)
+{
     int r[4];
     unsigned long long xcr0 = 0;
     __cpuid(r, 0);
@@ -2356,6 +2359,24 @@ HF__PRIVATE int hf__cpu_simd(void)
         return HF_SIMD_AVX512;
     if ((r[1] >> 5 & 1) && (xcr0 & 6) == 6) return HF_SIMD_AVX2;
     return HF_SIMD_SSE2;
+}
+#else
+#define HF__MSVC_CPUID 0
+#endif
+
+/* The best level the CPU runs in this build. */
+HF__PRIVATE int hf__cpu_simd(void)
+{
+#if HF__MSVC_CPUID
+    /* CPUID once a process, as libgcc reads it once for gcc: where Windows
+       runs under a hypervisor (virtualisation-based security), every
+       CPUID exits to it, microseconds that every call would pay. A thread
+       that finds 0 asks and stores the same answer; x86 reads and writes
+       an aligned long whole. */
+    static volatile long level;
+    long v = level;
+    if (v == 0) level = v = hf__cpuid_simd();
+    return (int)v;
 #elif HF__X86_DISPATCH
     /* libgcc (or compiler-rt) reads CPUID and XCR0 at load time, so this
        also knows whether the OS saves the wide registers */
