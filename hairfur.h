@@ -4598,6 +4598,7 @@ typedef struct hf__rope_step {
     float gs_root, gs_tip, ls_root, ls_tip; /* per 1/60 s */
     int global_on, local_on;
     int ktab; /* kg, kl hold hf__rope_kg, hf__rope_kl */
+    int halves; /* the call is not the whole set (hf__ropes_sim_run) */
     int level; /* hf_simd_resolve(params->simd) */
     float kg[HF__ROPE_KTAB], kl[HF__ROPE_KTAB];
     hf__col_prep col[HF__ROPE_PREP]; /* the call's first colliders */
@@ -7492,23 +7493,23 @@ HF__PRIVATE void hf__ropes_safety_net(hf_ropes *ro, int a, int b,
 }
 
 /* Simulated ropes [a, b): every sub-step, then the safety net. */
-/* Ropes [a, b). A range beside another one that may run on another
-   thread at the same time goes in two halves of whole 16-rope groups,
+/* Ropes [a, b). In a call that is not the whole rope set, so that a range
+   beside it may run on another thread at the same time, a run goes in
+   two halves of whole 16-rope groups,
    each taking every sub-step before the next begins. Two such ranges
    touch neighbouring cache lines in every row; the CPU's prefetcher,
    running along a row, carries the first lines of the next range across,
    and while both ranges sweep the same rows those lines go back and
    forth between the cores (scene L's ropes on two threads took 0.16 ms
    against 0.14 on one; in halves, 0.092). With halves, a range's last
-   lines are swept while its neighbour works on its own second half. The
-   whole rope set needs none of it, and the halves' extra row calls cost
-   one thread about 5 %. The bytes are those of any split. */
+   lines are swept while its neighbour works on its own second half. A
+   call on the whole set needs none of it, and the halves' extra row
+   calls cost one thread about 5 %. The bytes are those of any split. */
 HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
                                    const hf__rope_step *st,
                                    const hf_collider *col, int ncol)
 {
-    const int whole = a == 0 && b == ro->rope_count;
-    const int half = !whole && b - a >= 128
+    const int half = st->halves && b - a >= 128
                          ? ((b - a + 1) / 2 + 15) & ~15
                          : b - a;
     int s, x;
@@ -7629,10 +7630,12 @@ HFDEF hf_result hf_ropes_roots_inside(const hf_ropes *ropes, int first,
     return HF_OK;
 }
 
-HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
-                              float dt, const hf_rope_params *params,
-                              const hf_collider *colliders,
-                              int collider_count)
+/* hf_ropes_step; `whole`: the caller's call covers every rope (the
+   fur's calls step a run of guides at a time). */
+HF__PRIVATE hf_result hf__ropes_step(hf_ropes *ropes, int first, int count,
+                                     float dt, const hf_rope_params *params,
+                                     const hf_collider *colliders,
+                                     int collider_count, int whole)
 {
     hf__rope_step st;
     hf_rope_params prm;
@@ -7648,6 +7651,7 @@ HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
     if (count == 0) return HF_OK;
     hf__rope_step_setup(&st, &prm, dt, ropes->points, colliders,
                         collider_count);
+    st.halves = !whole;
 
     /* runs of ropes of one kind, each with its kernel; the kinds depend
        only on each rope's own state, so any split gives the same bytes */
@@ -7671,6 +7675,16 @@ HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
                   ropes->frame + (size_t)k * (size_t)ropes->rope_count + first,
                   (size_t)count * sizeof(float));
     return HF_OK;
+}
+
+HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
+                              float dt, const hf_rope_params *params,
+                              const hf_collider *colliders,
+                              int collider_count)
+{
+    return hf__ropes_step(ropes, first, count, dt, params, colliders,
+                          collider_count,
+                          ropes && first == 0 && count == ropes->rope_count);
 }
 
 #undef HF__ROW
@@ -14747,7 +14761,7 @@ HFDEF hf_result hf_fur_set_roots(hf_fur *f, const hf_mesh *m, int first,
    rope is stepped on its own, so runs give the bytes one call would). */
 HF__PRIVATE hf_result hf__fur_step_runs(hf_fur *f, int first, int end,
                                         float dt, const hf_collider *colliders,
-                                        int collider_count)
+                                        int collider_count, int whole)
 {
     int a = first;
     while (a < end) {
@@ -14756,8 +14770,8 @@ HF__PRIVATE hf_result hf__fur_step_runs(hf_fur *f, int first, int end,
         hf_rope_params p = f->rope[f->rope_of[a]];
         while (b < end && f->rope_of[b] == f->rope_of[a]) ++b;
         p.simd = f->simd; /* the fur's kernel level (hf_fur_set_kernels) */
-        r = hf_ropes_step(f->ropes, a, b - a, dt, &p, colliders,
-                          collider_count);
+        r = hf__ropes_step(f->ropes, a, b - a, dt, &p, colliders,
+                           collider_count, whole);
         if (r != HF_OK) return r;
         a = b;
     }
@@ -14769,21 +14783,24 @@ HFDEF hf_result hf_fur_simulate(hf_fur *f, int first, int count, float dt,
                                 int collider_count)
 {
     hf_result r;
-    int end;
+    int end, whole;
     if (!f) return HF_ERROR_NULL_POINTER;
     if (!hf__range_ok(first, count) || first + count > f->guide_count)
         return HF_ERROR_BAD_RANGE;
     end = first + count;
+    whole = first == 0 && count == f->guide_count;
     if (!f->lod_sim && end > f->pure_count) {
         /* sleeping LOD guides are still carried by their roots, so they
            wake up in place; they are stepped but not copied out */
         int lf = first > f->pure_count ? first : f->pure_count;
-        r = hf__fur_step_runs(f, lf, end, dt, colliders, collider_count);
+        r = hf__fur_step_runs(f, lf, end, dt, colliders, collider_count,
+                              whole);
         if (r != HF_OK) return r;
         end = lf;
     }
     if (end <= first) return HF_OK;
-    r = hf__fur_step_runs(f, first, end, dt, colliders, collider_count);
+    r = hf__fur_step_runs(f, first, end, dt, colliders, collider_count,
+                          whole);
     if (r != HF_OK) return r;
     hf__ropes_copy(f->ropes, first, end, f->guide_points, 12, 0,
                    hf_simd_resolve(f->simd));
