@@ -387,8 +387,8 @@ typedef enum hf_simd_level {
 } hf_simd_level;
 
 /* The level a kernel runs at when `requested` is asked for: 0 (auto) gives
-   the best this CPU supports in this build (CPUID on gcc and clang for
-   x86; what the compiler targets elsewhere; HF_NO_SIMD: scalar;
+   the best this CPU supports in this build (CPUID on x86; what the
+   compiler targets elsewhere; HF_NO_SIMD: scalar;
    HF_SIMD_MAX caps it); a higher request than that is lowered to it, so
    asking for a level is always safe. Unknown values count as auto. The
    CPU is asked once a process (by libgcc or compiler-rt when the program
@@ -7492,19 +7492,20 @@ HF__PRIVATE void hf__ropes_safety_net(hf_ropes *ro, int a, int b,
         }
 }
 
-/* Simulated ropes [a, b): every sub-step, then the safety net. */
-/* Ropes [a, b). In a call that is not the whole rope set, so that a range
-   beside it may run on another thread at the same time, a run goes in
-   two halves of whole 16-rope groups,
-   each taking every sub-step before the next begins. Two such ranges
-   touch neighbouring cache lines in every row; the CPU's prefetcher,
-   running along a row, carries the first lines of the next range across,
-   and while both ranges sweep the same rows those lines go back and
-   forth between the cores (scene L's ropes on two threads took 0.16 ms
-   against 0.14 on one; in halves, 0.092). With halves, a range's last
-   lines are swept while its neighbour works on its own second half. A
-   call on the whole set needs none of it, and the halves' extra row
-   calls cost one thread about 5 %. The bytes are those of any split. */
+/* Simulated ropes [a, b) (a run of one parameter set and mode): every
+   sub-step, then the safety net. In a call that is not the whole rope
+   set, where a range beside it may run on another thread at the same
+   time, a run of 128 ropes or more goes in two halves (the first a whole
+   number of 16-rope groups), each taking every sub-step and its safety
+   net before the next begins. Two such ranges touch neighbouring cache
+   lines in every row; the CPU's prefetcher, running along a row, carries
+   the first lines of the next range across, and while both ranges sweep
+   the same rows those lines go back and forth between the cores (scene
+   L's ropes on two threads took 0.16 ms against 0.14 on one; in halves,
+   0.092). With halves, a range's last lines are swept while its
+   neighbour works on its own second half. A call on the whole set needs
+   none of it, and the halves' extra row calls cost one thread about
+   5 %. The bytes are those of any split. */
 HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
                                    const hf__rope_step *st,
                                    const hf_collider *col, int ncol)
