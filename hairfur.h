@@ -1915,7 +1915,10 @@ HFDEF hf_result hf_fur_set_transform(hf_fur *fur, const float m[12],
 /* Step the ropes of guides [first, first + count) by dt (see
    hf_ropes_step: clamped above max_dt, HF_ERROR_BAD_TIME_STEP for zero,
    negative or non-finite) with the given colliders, and copy their points
-   into the guide array. LOD guides are skipped while not simulated. */
+   into the guide array. LOD guides are skipped while not simulated. On
+   several threads, give each one contiguous range a frame: neighbouring
+   ranges stepped at once touch the same rows' cache lines at their edge
+   (docs/frame.md). */
 HFDEF hf_result hf_fur_simulate(hf_fur *fur, int first, int count, float dt,
                                 const hf_collider *colliders,
                                 int collider_count);
