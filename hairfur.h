@@ -4601,7 +4601,7 @@ typedef struct hf__rope_step {
     float gs_root, gs_tip, ls_root, ls_tip; /* per 1/60 s */
     int global_on, local_on;
     int ktab; /* kg, kl hold hf__rope_kg, hf__rope_kl */
-    int halves; /* the call is not the whole set (hf__ropes_sim_run) */
+    int halves; /* runs in halves: the call is not the whole set */
     int level; /* hf_simd_resolve(params->simd) */
     float kg[HF__ROPE_KTAB], kl[HF__ROPE_KTAB];
     hf__col_prep col[HF__ROPE_PREP]; /* the call's first colliders */
@@ -7506,14 +7506,16 @@ HF__PRIVATE void hf__ropes_safety_net(hf_ropes *ro, int a, int b,
    the same rows those lines go back and forth between the cores (scene
    L's ropes on two threads took 0.16 ms against 0.14 on one; in halves,
    0.092). With halves, a range's last lines are swept while its
-   neighbour works on its own second half. A call on the whole set needs
-   none of it, and the halves' extra row calls cost one thread about
-   5 %. The bytes are those of any split. */
+   neighbour works on its own second half (the prefetcher's reach, about
+   eight lines, is what a half must cover). A call on the whole set needs
+   none of it, and the halves' extra row calls cost one thread 3-5 %. The
+   bytes are those of any split. */
+#define HF__ROPE_HALVES_MIN 128
 HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
                                    const hf__rope_step *st,
                                    const hf_collider *col, int ncol)
 {
-    const int half = st->halves && b - a >= 128
+    const int half = st->halves && b - a >= HF__ROPE_HALVES_MIN
                          ? ((b - a + 1) / 2 + 15) & ~15
                          : b - a;
     int s, x;
@@ -7557,12 +7559,13 @@ HF__PRIVATE hf_result hf__colliders_check(const hf_collider *colliders,
 }
 
 /* The per-call constants of a step from resolved parameters: dt clamped
-   and scaled, split into equal sub-steps, rates per sub-step, and the
-   first colliders prepared (checked by the caller). */
+   and scaled, split into equal sub-steps, rates per sub-step, the first
+   colliders prepared (checked by the caller), and halves unless the
+   caller's call is the whole rope set. */
 HF__PRIVATE void hf__rope_step_setup(hf__rope_step *st,
                                      const hf_rope_params *params, float dt,
                                      int points, const hf_collider *col,
-                                     int ncol)
+                                     int ncol, int whole)
 {
     float sdt, q;
     int k;
@@ -7601,6 +7604,7 @@ HF__PRIVATE void hf__rope_step_setup(hf__rope_step *st,
         }
     for (k = 0; k < ncol && k < HF__ROPE_PREP; ++k)
         st->col[k] = hf__collider_prep(col + k, st->margin);
+    st->halves = !whole;
 }
 
 /* root_inside of ropes [a, b): whether the root sits inside a collider
@@ -7654,8 +7658,7 @@ HF__PRIVATE hf_result hf__ropes_step(hf_ropes *ropes, int first, int count,
     if ((res = hf__rope_params_check(&prm, NULL)) != HF_OK) return res;
     if (count == 0) return HF_OK;
     hf__rope_step_setup(&st, &prm, dt, ropes->points, colliders,
-                        collider_count);
-    st.halves = !whole;
+                        collider_count, whole);
 
     /* runs of ropes of one kind, each with its kernel; the kinds depend
        only on each rope's own state, so any split gives the same bytes */

@@ -4042,6 +4042,66 @@ static void test_ropes_ranges_byte_identical(void)
     for (k = 0; k < 3; ++k) tr_close(&s[k]);
 }
 
+/* Ranges of 128 ropes or more that are not the whole set step in two
+   halves (hf__ropes_sim_run): at both solvers and every level, with a
+   collider and a capsule, the same bytes as one call on every rope. */
+static void test_ropes_halves_byte_identical(void)
+{
+    enum { R = 300, P = 9, FRAMES = 30 };
+    static float rest[3 * R * P];
+    static float root[3 * R], nrm[3 * R], tan[3 * R];
+    /* halves of 129 and 171 ropes; 200 (first half 112) beside 1 and 99 */
+    const int cuts[2][4] = {{0, 129, 300, 300}, {0, 200, 201, 300}};
+    hf_collider col[2];
+    hf_rope_params p;
+    tr_set s[3];
+    int r, f, k, i, lv, ftl, same = 1;
+    for (k = 0; k < 3; ++k)
+        if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
+    for (r = 0; r < R; ++r) {
+        const float a = 0.05f * r;
+        root[3 * r] = 0.1f * cosf(a); root[3 * r + 1] = 0.001f * r;
+        root[3 * r + 2] = 0.1f * sinf(a);
+        nrm[3 * r] = cosf(a); nrm[3 * r + 1] = 0.3f; nrm[3 * r + 2] = sinf(a);
+        tan[3 * r] = 0; tan[3 * r + 1] = 1; tan[3 * r + 2] = 0;
+        tr_straight(rest, r, P, root + 3 * r, nrm + 3 * r, 0.2f);
+    }
+    memset(col, 0, sizeof col);
+    col[0].type = HF_COLLIDER_SPHERE;
+    col[0].radius = 0.1f;
+    col[1].type = HF_COLLIDER_CAPSULE;
+    col[1].radius = 0.03f;
+    col[1].a[0] = 0.3f; col[1].a[1] = -0.1f;
+    col[1].b[0] = -0.3f; col[1].b[1] = -0.1f; col[1].b[2] = 0.2f;
+    for (lv = HF_SIMD_SCALAR; lv <= HF_SIMD_AVX512; ++lv)
+        for (ftl = 0; ftl < 2; ++ftl) {
+            hf_rope_params_init(&p);
+            p.wind[0] = 3.0f;
+            p.local_stiffness_root = 0.5f;
+            p.solver = ftl ? HF_ROPE_SOLVER_FTL : HF_ROPE_SOLVER_DISTANCE;
+            p.simd = lv;
+            for (k = 0; k < 3; ++k)
+                hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm, tan, 0);
+            for (f = 0; f < FRAMES; ++f)
+                for (k = 0; k < 3; ++k) {
+                    if (k == 0) {
+                        CHECK_EQ_INT(hf_ropes_step(&s[0].ro, 0, R, 1.0f / 60,
+                                                   &p, col, 2),
+                                     HF_OK);
+                        continue;
+                    }
+                    for (i = 0; i < 3; ++i)
+                        hf_ropes_step(&s[k].ro, cuts[k - 1][i],
+                                      cuts[k - 1][i + 1] - cuts[k - 1][i],
+                                      1.0f / 60, &p, col, 2);
+                }
+            for (k = 1; k < 3; ++k) same &= tr_same(&s[0].ro, &s[k].ro, 1);
+        }
+    CHECK(same);
+    CHECK(tr_finite(&s[0].ro));
+    for (k = 0; k < 3; ++k) tr_close(&s[k]);
+}
+
 /* Root frame input: bad values refused with nothing written; a tangent
    parallel to the normal, or zero, still gives a rigid frame. */
 static void test_ropes_root_frames(void)
@@ -10656,6 +10716,7 @@ int main(void)
     RUN(test_ropes_mode_switch_smooth);
     RUN(test_ropes_bad_time_steps);
     RUN(test_ropes_ranges_byte_identical);
+    RUN(test_ropes_halves_byte_identical);
     RUN(test_ropes_root_frames);
     RUN(test_ropes_reset_teleport);
     RUN(test_ropes_root_and_local_stiffness);
