@@ -4576,14 +4576,18 @@ enum {
    from the axis below which a rope's root counts as inside: deeper than
    the margin below the surface (and 1e-4 of the radius, for rounding), so
    roots on a proxy that hugs the skin a little outside it keep the
-   margin. */
+   margin. id: its index in the call's array (the order every kernel
+   resolves them in); row: the first point row of its tile that can reach
+   it (hf__bp_build). */
 typedef struct hf__col_prep {
     float a[3], e[3], inv, rr, inner;
+    int id, row;
 } hf__col_prep;
 
-/* Colliders prepared once per call (hf__rope_step.col), and in lanes once
-   per row call; further ones per use. */
-#define HF__ROPE_PREP 8
+/* A point resolves against at most this many colliders at once (the
+   ones within reach of its segment, hf__ftl_relevant); more, and it
+   walks them in batches of this many (hf__ftl_collide_one). */
+#define HF__FTL_NEAR 8
 
 /* Resolved per-call constants. */
 typedef struct hf__rope_step {
@@ -4601,10 +4605,8 @@ typedef struct hf__rope_step {
     float gs_root, gs_tip, ls_root, ls_tip; /* per 1/60 s */
     int global_on, local_on;
     int ktab; /* kg, kl hold hf__rope_kg, hf__rope_kl */
-    int halves; /* runs in halves: the call is not the whole set */
     int level; /* hf_simd_resolve(params->simd) */
     float kg[HF__ROPE_KTAB], kl[HF__ROPE_KTAB];
-    hf__col_prep col[HF__ROPE_PREP]; /* the call's first colliders */
 } hf__rope_step;
 
 HFDEF void hf_rope_params_init(hf_rope_params *p)
@@ -5615,8 +5617,11 @@ HF__PRIVATE void hf__ropes_animated_run(hf_ropes *ro, int a, int b,
     }
 }
 
-HF__PRIVATE hf__col_prep hf__collider_prep(const hf_collider *c, float margin)
+/* Collider c of the call's array `col`, prepared. */
+HF__PRIVATE hf__col_prep hf__collider_prep(const hf_collider *col, int id,
+                                           float margin)
 {
+    const hf_collider *c = col + id;
     hf__col_prep k;
     int i;
     float l2;
@@ -5628,6 +5633,8 @@ HF__PRIVATE hf__col_prep hf__collider_prep(const hf_collider *c, float margin)
     k.inv = l2 > 1e-20f ? 1.0f / l2 : 0.0f;
     k.rr = c->radius + margin;
     k.inner = c->radius * 0.9999f - margin - 1e-6f;
+    k.id = id;
+    k.row = 1;
     return k;
 }
 
@@ -5676,23 +5683,6 @@ HF__PRIVATE void hf__col_push_out(const hf__col_prep *k, float *x, float *y,
         *y = c[1] + ny * rr;
         *z = c[2] + nz * rr;
     }
-}
-
-/* One collider against point row j (>= 1) of ropes [a, b); F: the frame
-   rows of the sub-step. */
-HF__PRIVATE void hf__ropes_collide_row(hf_ropes *ro, const float *F, int j,
-                                       int a, int b, const hf_collider *c,
-                                       float margin)
-{
-    size_t R = (size_t)ro->rope_count;
-    const float *nx = HF__ROW(F, 6, R), *ny = HF__ROW(F, 7, R), *nz = HF__ROW(F, 8, R);
-    const hf__col_prep k_ = hf__collider_prep(c, margin);
-    float *HF__RESTRICT X = HF__ROW(ro->x, j, R);
-    float *HF__RESTRICT Y = HF__ROW(ro->y, j, R);
-    float *HF__RESTRICT Z = HF__ROW(ro->z, j, R);
-    int r;
-    for (r = a; r < b; ++r)
-        hf__col_push_out(&k_, X + r, Y + r, Z + r, nx[r], ny[r], nz[r]);
 }
 
 /* Follow-the-leader collisions: a point inside a collider turns about its
@@ -5845,8 +5835,8 @@ HF__PRIVATE float hf__ftl_penetration(const hf__col_prep *k, const float *rr,
 }
 
 /* One point after its FTL placement, against colliders k[0 .. ncol) (at
-   most HF__ROPE_PREP at a time: the caller walks longer lists in batches,
-   again until a walk moves nothing). Each round makes the caps of the colliders near the best
+   most HF__FTL_NEAR, the ones relevant to it: hf__ftl_collide_one walks
+   longer lists in batches). Each round makes the caps of the colliders near the best
    point so far (a capsule's from its axis point closest to that point),
    then tries every direction that can be nearest and clear: u turned
    onto each cap's edge, and the crossings of every two edges; the one
@@ -5857,8 +5847,8 @@ HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
                                        const float *t, const hf__col_prep *k,
                                        int ncol)
 {
-    float q[3], best[3], u[3], rr[HF__ROPE_PREP];
-    float m[2 * HF__ROPE_PREP][3], cmin[2 * HF__ROPE_PREP], best_pen, best_dot;
+    float q[3], best[3], u[3], rr[HF__FTL_NEAR];
+    float m[2 * HF__FTL_NEAR][3], cmin[2 * HF__FTL_NEAR], best_pen, best_dot;
     int c, e, round, deepest, ncap;
     q[0] = *x;
     q[1] = *y;
@@ -5931,53 +5921,338 @@ HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
     *z = best[2];
 }
 
-/* Every collider against point row j (>= 1) of ropes [a, b) right after
-   an FTL placement; F: the frame rows of the sub-step. */
-HF__PRIVATE void hf__ropes_collide_ftl_row(hf_ropes *ro, const float *F,
-                                           int j, int a, int b,
-                                           const hf_collider *col, int ncol,
-                                           float margin)
+/* Whether collider k can matter to a child at distance l from its
+   parent p: the parent nearer its axis than rr + l, with 1e-4 of that to
+   spare so that rounding never decides it. A collider that is not
+   relevant can neither hold the child nor bound a direction it may take,
+   so the contact kernels resolve a point against the relevant ones alone,
+   in the order of the call's array, and any list that holds those (a
+   tile's, a group's, the whole array) gives the same bytes. The SIMD
+   kernels compute it with the same operations. */
+HF__INLINE int hf__ftl_relevant(const hf__col_prep *k, const float *p, float l)
+{
+    float c[3], d[3], lim;
+    const float d2 = hf__col_closest(k, p[0], p[1], p[2], c, d);
+    lim = k->rr + l;
+    lim = lim + 1e-4f * lim;
+    return d2 < lim * lim;
+}
+
+/* ---- the broadphase ---- */
+
+/* Ropes are simulated in chunks of up to HF__BP_TILES tiles of
+   HF__BP_TILE neighbouring ropes, each chunk taking every sub-step before
+   the next (which also keeps a chunk's rows in the core's own cache, and
+   two threads' neighbouring ranges apart in time). Before its sub-steps a
+   chunk learns which colliders each tile can touch this call: a rope
+   point cannot leave the ball of the rope's rest length so far (row by
+   row) around its root, and the root moves between the last frame's
+   place and this one's, so a collider whose box (grown by radius and
+   margin) is farther from the box of the tile's roots than that is kept
+   out of the tile's list; one that is nearer is kept, with the first
+   point row that can reach it. Contact tests then see only the tile's
+   colliders that the row reaches. The cost: a box test per collider and
+   chunk, one per candidate and tile, then per point the colliders its
+   tile can reach; a collider far from every rope costs next to nothing.
+   The tiles' prepared colliders share HF__BP_SLOTS slots; a chunk ends
+   at the tile that does not fit, and a tile alone over them tests the
+   whole array (exact, slower). */
+#define HF__BP_TILE 16
+#define HF__BP_TILES 16
+#define HF__BP_SLOTS 160
+#define HF__BP_CAND 128
+
+typedef struct hf__bp {
+    int a;     /* the chunk's first rope: tile t is ropes a + 16 t .. */
+    int tiles; /* tiles in the chunk */
+    const hf_collider *col; /* the call's colliders */
+    int ncol;
+    float margin;
+    int start[HF__BP_TILES + 1]; /* tile t: k[start[t] .. start[t + 1]) */
+    unsigned char all[HF__BP_TILES]; /* 1: the whole array, prepared on use */
+    hf__col_prep k[HF__BP_SLOTS];
+} hf__bp;
+
+/* The colliders a tile may touch: n prepared ones from k, or, where k is
+   NULL, the whole array raw[0 .. n), prepared on use. */
+typedef struct hf__cols {
+    const hf__col_prep *k;
+    const hf_collider *raw;
+    int n;
+    float margin;
+} hf__cols;
+
+HF__INLINE void hf__bp_tile(const hf__bp *bp, int r, hf__cols *cl)
+{
+    const int t = (r - bp->a) / HF__BP_TILE;
+    cl->margin = bp->margin;
+    if (bp->all[t]) {
+        cl->k = NULL;
+        cl->raw = bp->col;
+        cl->n = bp->ncol;
+    } else {
+        cl->k = bp->k + bp->start[t];
+        cl->raw = NULL;
+        cl->n = bp->start[t + 1] - bp->start[t];
+    }
+}
+
+HF__INLINE const hf__col_prep *hf__cols_at(const hf__cols *cl, int i,
+                                           hf__col_prep *spare)
+{
+    if (cl->k) return cl->k + i;
+    *spare = hf__collider_prep(cl->raw, i, cl->margin);
+    return spare;
+}
+
+/* Collider c's box, grown by its radius and margin (and 1e-3 of them). */
+HF__INLINE void hf__col_box(const hf_collider *c, float margin, float *lo,
+                            float *hi)
+{
+    const float g = (c->radius + margin) * 1.001f;
+    int k;
+    for (k = 0; k < 3; ++k) {
+        const float b = c->type == HF_COLLIDER_CAPSULE ? c->b[k] : c->a[k];
+        lo[k] = (c->a[k] < b ? c->a[k] : b) - g;
+        hi[k] = (c->a[k] < b ? b : c->a[k]) + g;
+    }
+}
+
+/* The distance between boxes (lo, hi) and (blo, bhi), 0 where they meet. */
+HF__INLINE float hf__box_gap(const float *lo, const float *hi,
+                             const float *blo, const float *bhi)
+{
+    float g2 = 0.0f;
+    int k;
+    for (k = 0; k < 3; ++k) {
+        const float g = blo[k] > hi[k] ? blo[k] - hi[k]
+                                       : (lo[k] > bhi[k] ? lo[k] - bhi[k]
+                                                         : 0.0f);
+        g2 += g * g;
+    }
+    return HF_SQRTF(g2);
+}
+
+/* Tile [x, e): the box of its roots over the call (the frame position
+   this frame and last, between which the sub-steps move it), and how far
+   a point can be from it: *r1 for row 1 and *far for the tip (the root's
+   rest offset plus the rest lengths before the row, the most of any rope
+   of the tile, grown by 1e-3 and by 1e-4 of the coordinates, for
+   rounding: hf__bp_reach). */
+HF__PRIVATE void hf__bp_tile_box(const hf_ropes *ro, int x, int e, float *lo,
+                                 float *hi, float *big, float *r1, float *far_)
 {
     const size_t R = (size_t)ro->rope_count;
-    const float *L = HF__ROW(ro->rest_length, j - 1, R);
-    hf__col_prep k[HF__ROPE_PREP];
-    int r, c0, c, nk, walk;
-    for (r = a; r < b; ++r) {
-        const size_t o = (size_t)j * R + (size_t)r, o0 = o - R;
-        const float p[3] = {ro->x[o0], ro->y[o0], ro->z[o0]};
-        const float root[3] = {ro->x[r], ro->y[r], ro->z[r]};
-        const float n[3] = {F[6 * R + r], F[7 * R + r], F[8 * R + r]};
-        const float t[3] = {F[3 * R + r], F[4 * R + r], F[5 * R + r]};
-        /* more colliders than one batch: walk the batches again until a
-           whole walk moves nothing (a turn out of a later batch can land
-           in an earlier one) */
-        for (walk = 0; walk < (ncol > HF__ROPE_PREP ? HF__FTL_ROUNDS : 1);
-             ++walk) {
-            const float before[3] = {ro->x[o], ro->y[o], ro->z[o]};
-            for (c0 = 0; c0 < ncol; c0 += HF__ROPE_PREP) {
-                nk = ncol - c0 < HF__ROPE_PREP ? ncol - c0 : HF__ROPE_PREP;
-                for (c = 0; c < nk; ++c)
-                    k[c] = hf__collider_prep(col + c0 + c, margin);
-                hf__ftl_collide_point(ro->x + o, ro->y + o, ro->z + o, p,
-                                      L[r], root, n, t, k, nk);
+    float m0 = 0.0f, m1 = 0.0f, mt = 0.0f;
+    int r, k;
+    *big = 0.0f;
+    for (k = 0; k < 3; ++k) lo[k] = hi[k] = ro->frame[(size_t)k * R + x];
+    for (r = x; r < e; ++r) {
+        const float u = ro->rest_u[r], v = ro->rest_v[r], w = ro->rest_w[r];
+        const float o = HF_SQRTF(u * u + v * v + w * w);
+        for (k = 0; k < 3; ++k) {
+            const float c = ro->frame[(size_t)k * R + r],
+                        p = ro->frame[(size_t)(12 + k) * R + r];
+            lo[k] = c < lo[k] ? c : lo[k];
+            hi[k] = c > hi[k] ? c : hi[k];
+            lo[k] = p < lo[k] ? p : lo[k];
+            hi[k] = p > hi[k] ? p : hi[k];
+        }
+        m0 = o > m0 ? o : m0;
+        m1 = o + ro->rest_length[r] > m1 ? o + ro->rest_length[r] : m1;
+        mt = o + ro->length[r] > mt ? o + ro->length[r] : mt;
+    }
+    for (k = 0; k < 3; ++k) {
+        const float a = HF_FABS(lo[k]) > HF_FABS(hi[k]) ? HF_FABS(lo[k])
+                                                        : HF_FABS(hi[k]);
+        *big = a > *big ? a : *big;
+    }
+    /* the tip's bound from the ropes' lengths: their sums of the same
+       rest lengths in the same order, so the same floats as row P - 1's */
+    *r1 = m1 * 1.001f + 1e-4f * (1.0f + *big + m1);
+    *far_ = mt * 1.001f + 1e-4f * (1.0f + *big + mt);
+    (void)m0;
+}
+
+/* reach[j] for every row j of tile [x, e), as hf__bp_tile_box's bounds. */
+HF__PRIVATE void hf__bp_reach(const hf_ropes *ro, int x, int e, float big,
+                              float *reach)
+{
+    const size_t R = (size_t)ro->rope_count;
+    float cum[HF__BP_TILE];
+    int r, j;
+    for (r = x; r < e; ++r) {
+        const float u = ro->rest_u[r], v = ro->rest_v[r], w = ro->rest_w[r];
+        cum[r - x] = HF_SQRTF(u * u + v * v + w * w);
+    }
+    for (j = 0; j < ro->points; ++j) {
+        const float *L = ro->rest_length + (size_t)(j - 1) * R;
+        float m = 0.0f;
+        for (r = x; r < e; ++r) {
+            if (j > 0) cum[r - x] += L[r];
+            m = cum[r - x] > m ? cum[r - x] : m;
+        }
+        reach[j] = m * 1.001f + 1e-4f * (1.0f + big + m);
+    }
+}
+
+/* The broadphase of the chunk that starts at rope a (of a run that ends
+   at b): fills bp, returns where the chunk ends. */
+HF__PRIVATE int hf__bp_build(const hf_ropes *ro, int a, int b,
+                             const hf_collider *col, int ncol, float margin,
+                             hf__bp *bp)
+{
+    float tlo[HF__BP_TILES][3], thi[HF__BP_TILES][3], far_[HF__BP_TILES];
+    float r1[HF__BP_TILES], big[HF__BP_TILES], reach[HF_MAX_POINTS];
+    float clo[3], chi[3];
+    int cand[HF__BP_CAND], nc = 0, t, x, e, c, k, n = 0;
+    bp->a = a;
+    bp->col = col;
+    bp->ncol = ncol;
+    bp->margin = margin;
+    /* the chunk's tiles and their reach, then the colliders near any */
+    for (t = 0, x = a; t < HF__BP_TILES && x < b; ++t, x = e) {
+        e = b - x > HF__BP_TILE ? x + HF__BP_TILE : b;
+        hf__bp_tile_box(ro, x, e, tlo[t], thi[t], &big[t], &r1[t], &far_[t]);
+        for (k = 0; k < 3; ++k) {
+            clo[k] = t == 0 || tlo[t][k] - far_[t] < clo[k]
+                         ? tlo[t][k] - far_[t]
+                         : clo[k];
+            chi[k] = t == 0 || thi[t][k] + far_[t] > chi[k]
+                         ? thi[t][k] + far_[t]
+                         : chi[k];
+        }
+    }
+    bp->tiles = t;
+    for (c = 0; c < ncol && nc <= HF__BP_CAND; ++c) {
+        float lo[3], hi[3];
+        hf__col_box(col + c, margin, lo, hi);
+        if (hf__box_gap(clo, chi, lo, hi) > 0.0f) continue;
+        if (nc < HF__BP_CAND) cand[nc] = c;
+        ++nc; /* HF__BP_CAND + 1: too many, every tile tests them all */
+    }
+    for (t = 0, x = a; t < bp->tiles; ++t, x += HF__BP_TILE) {
+        const int m = nc > HF__BP_CAND ? ncol : nc;
+        int i, got = 0;
+        bp->start[t] = n;
+        bp->all[t] = 0;
+        for (i = 0; i < m; ++i) {
+            float lo[3], hi[3], gap;
+            int j = 1;
+            c = nc > HF__BP_CAND ? i : cand[i];
+            hf__col_box(col + c, margin, lo, hi);
+            gap = hf__box_gap(tlo[t], thi[t], lo, hi);
+            if (!(gap < far_[t])) continue;
+            if (n == HF__BP_SLOTS) break;
+            if (!(gap < r1[t])) { /* beyond row 1: which row reaches it */
+                if (!got) {
+                    e = b - x > HF__BP_TILE ? x + HF__BP_TILE : b;
+                    hf__bp_reach(ro, x, e, big[t], reach);
+                    got = 1;
+                }
+                while (j < ro->points - 1 && !(gap < reach[j])) ++j;
             }
-            if (ro->x[o] == before[0] && ro->y[o] == before[1] &&
-                ro->z[o] == before[2])
+            bp->k[n] = hf__collider_prep(col, c, margin);
+            bp->k[n++].row = j;
+        }
+        if (i < m) { /* out of slots */
+            if (t > 0) { /* the chunk ends before this tile */
+                bp->tiles = t;
+                return x;
+            }
+            bp->all[0] = 1;
+            bp->start[1] = 0;
+            bp->tiles = 1;
+            return b - a > HF__BP_TILE ? a + HF__BP_TILE : b;
+        }
+        bp->start[t + 1] = n;
+    }
+    return b - a > bp->tiles * HF__BP_TILE ? a + bp->tiles * HF__BP_TILE : b;
+}
+
+/* root_inside of the chunk's ropes [a, b) after its step: whether the
+   root sits inside one of its tile's colliders (deeper than the margin
+   below its surface), which is when the collisions shrink that collider
+   for the rope. A collider that holds a root is always in its tile's
+   list. */
+HF__PRIVATE void hf__ropes_mark_roots(hf_ropes *ro, int a, int b,
+                                      const hf__bp *bp)
+{
+    hf__cols cl;
+    hf__col_prep spare;
+    int r, i;
+    for (r = a; r < b; ++r) {
+        const float root[3] = {ro->x[r], ro->y[r], ro->z[r]};
+        ro->root_inside[r] = 0;
+        if (!bp) continue;
+        hf__bp_tile(bp, r, &cl);
+        for (i = 0; i < cl.n; ++i) {
+            const hf__col_prep *k = hf__cols_at(&cl, i, &spare);
+            if (hf__col_radius_for(k, root) < k->rr) {
+                ro->root_inside[r] = 1;
                 break;
+            }
         }
     }
 }
 
-/* Every collider against points 1.. of ropes [a, b). */
-HF__PRIVATE void hf__ropes_collide(hf_ropes *ro, const float *F, int a, int b,
-                                   const hf_collider *col, int ncol,
-                                   float margin)
+/* Point row j (>= 1) of rope r right after its FTL placement, against the
+   colliders of its tile list that are relevant to it, HF__FTL_NEAR at a
+   time: with more, the batches are walked again until a walk moves
+   nothing (a turn out of a later batch can land in an earlier one). */
+HF__PRIVATE void hf__ftl_collide_one(hf_ropes *ro, const float *F, int j,
+                                     int r, const hf__cols *cl)
 {
-    int j, c;
-    for (j = 1; j < ro->points; ++j)
-        for (c = 0; c < ncol; ++c)
-            hf__ropes_collide_row(ro, F, j, a, b, col + c, margin);
+    const size_t R = (size_t)ro->rope_count;
+    const size_t o = (size_t)j * R + (size_t)r, o0 = o - R;
+    const float p[3] = {ro->x[o0], ro->y[o0], ro->z[o0]};
+    const float root[3] = {ro->x[r], ro->y[r], ro->z[r]};
+    const float n[3] = {F[6 * R + r], F[7 * R + r], F[8 * R + r]};
+    const float t[3] = {F[3 * R + r], F[4 * R + r], F[5 * R + r]};
+    const float l = ro->rest_length[o0];
+    hf__col_prep near_[HF__FTL_NEAR], spare;
+    int i, nn, walk, more;
+    for (walk = 0; walk < HF__FTL_ROUNDS; ++walk) {
+        const float before[3] = {ro->x[o], ro->y[o], ro->z[o]};
+        nn = more = 0;
+        for (i = 0; i < cl->n; ++i) {
+            const hf__col_prep *k = hf__cols_at(cl, i, &spare);
+            if (k->row > j || !hf__ftl_relevant(k, p, l)) continue;
+            if (nn == HF__FTL_NEAR) {
+                hf__ftl_collide_point(ro->x + o, ro->y + o, ro->z + o, p, l,
+                                      root, n, t, near_, nn);
+                nn = 0;
+                more = 1;
+            }
+            near_[nn++] = *k;
+        }
+        if (nn)
+            hf__ftl_collide_point(ro->x + o, ro->y + o, ro->z + o, p, l, root,
+                                  n, t, near_, nn);
+        if (!more || (ro->x[o] == before[0] && ro->y[o] == before[1] &&
+                      ro->z[o] == before[2]))
+            break;
+    }
 }
+
+/* Every collider against point row j (>= 1) of ropes [a, b) right after
+   an FTL placement; F: the frame rows of the sub-step. */
+HF__PRIVATE void hf__ropes_collide_ftl_row(hf_ropes *ro, const float *F,
+                                           int j, int a, int b,
+                                           const hf__bp *bp)
+{
+    hf__cols cl;
+    int r;
+    for (r = a; r < b; ++r) {
+        hf__bp_tile(bp, r, &cl);
+        hf__ftl_collide_one(ro, F, j, r, &cl);
+    }
+}
+
+/* The distance solver's collisions (after each pass): every point of
+   ropes [a, b) pushed straight out of each collider in turn. */
+HF__PRIVATE void hf__ropes_collide(hf_ropes *ro, const float *F, int a, int b,
+                                   const hf__bp *bp, int level);
 
 /* Ropes [a, b) gliding from simulation to animation: kinematic, no
    constraints, no colliders. In root-frame coordinates each point follows
@@ -6285,7 +6560,7 @@ HF__PRIVATE void hf__ropes_local_shape_ref(hf_ropes *ro, const float *F,
 /* The solver passes, each a distance pass with its collisions. */
 HF__PRIVATE void hf__ropes_solve_ref(hf_ropes *ro, const float *F, int a,
                                      int b, const hf__rope_step *st,
-                                     const hf_collider *col, int ncol)
+                                     const hf__bp *bp)
 {
     const size_t R = (size_t)ro->rope_count;
     const int P = ro->points;
@@ -6335,9 +6610,8 @@ HF__PRIVATE void hf__ropes_solve_ref(hf_ropes *ro, const float *F, int a,
                 /* FTL never moves a parent again, so colliding each
                    point right after placing it leaves the whole rope
                    outside when the pass ends */
-                if (st->ftl && ncol > 0)
-                    hf__ropes_collide_ftl_row(ro, F, j, a, b, col, ncol,
-                                              st->margin);
+                if (st->ftl && bp)
+                    hf__ropes_collide_ftl_row(ro, F, j, a, b, bp);
             } else {
                 for (r = a; r < b; ++r) {
                     float dx = X1[r] - X0[r], dy = Y1[r] - Y0[r],
@@ -6356,23 +6630,21 @@ HF__PRIVATE void hf__ropes_solve_ref(hf_ropes *ro, const float *F, int a,
                 }
             }
         }
-        if (!st->ftl && ncol > 0)
-            hf__ropes_collide(ro, F, a, b, col, ncol, st->margin);
+        if (!st->ftl && bp) hf__ropes_collide(ro, F, a, b, bp, 0);
     }
-    if (st->iterations == 0 && ncol > 0)
-        hf__ropes_collide(ro, F, a, b, col, ncol, st->margin);
+    if (st->iterations == 0 && bp) hf__ropes_collide(ro, F, a, b, bp, 0);
 }
 
 /* One sub-step of simulated ropes [a, b), the scalar reference. */
 HF__PRIVATE void hf__ropes_substep_ref(hf_ropes *ro, const float *F, int a,
                                        int b, const hf__rope_step *st,
-                                       const hf_collider *col, int ncol)
+                                       const hf__bp *bp)
 {
     hf__ropes_integrate_ref(ro, F, a, b);
     if (st->k_root > 0.0f || st->global_on)
         hf__ropes_global_shape_ref(ro, F, a, b, st);
     if (st->local_on) hf__ropes_local_shape_ref(ro, F, a, b, st);
-    hf__ropes_solve_ref(ro, F, a, b, st, col, ncol);
+    hf__ropes_solve_ref(ro, F, a, b, st, bp);
 }
 
 /* Marks (VF[r] = 1) the ropes of [a, b) whose point row j lies beyond the
@@ -6420,7 +6692,7 @@ typedef struct hf__ftl_hits {
     int n, r[HF__FTL_HITS];
 } hf__ftl_hits;
 
-#define HF__FTL_KERNELS(S, V, W, T, G, ZU)                                    \
+#define HF__FTL_KERNELS(S, V, W, T, G, ZU)                                     \
 /* A prepared collider in every lane, rr^2, and whether its axis is a point    \
    (e == 0: a sphere or a zero-length capsule). */                             \
 typedef struct hf__col_##S {                                                   \
@@ -6428,7 +6700,7 @@ typedef struct hf__col_##S {                                                   \
     int point, capsule, shrink;                                                \
 } hf__col_##S;                                                                 \
                                                                                \
-T HF__PRIVATE void hf__col_prep_##S(const hf__col_prep *k, hf__col_##S *v)     \
+T HF__INLINE void hf__col_prep_##S(const hf__col_prep *k, hf__col_##S *v)      \
 {                                                                              \
     int i;                                                                     \
     for (i = 0; i < 3; ++i) {                                                  \
@@ -6483,50 +6755,44 @@ T HF__INLINE int hf__col_hits_##S(const hf__col_##S *k, const V *x)            \
     return HF__MASK(HF__LT(d2, k->rr2));                                       \
 }                                                                              \
                                                                                \
-/* The first HF__ROPE_PREP colliders in lanes, once per row or pass. */        \
-T HF__PRIVATE void hf__col_prep_first_##S(const hf__rope_step *st, int ncol,   \
-                                          hf__col_##S *pre)                    \
+/* Which of W points (in one tile) some collider of the tile's list that       \
+   row j reaches holds (bit i: lane i). */                                     \
+T HF__INLINE int hf__col_any_##S(const hf__cols *cl, int j, const V *xyz)      \
 {                                                                              \
-    int c;                                                                     \
-    for (c = 0; c < ncol && c < HF__ROPE_PREP; ++c)                            \
-        hf__col_prep_##S(&st->col[c], pre + c);                                \
-}                                                                              \
-                                                                               \
-/* Collider c in lanes: pre + c, or, beyond HF__ROPE_PREP, made in *spare. */  \
-T HF__INLINE const hf__col_##S *hf__col_at_##S(const hf_collider *col, int c,  \
-                                               const hf__col_##S *pre,         \
-                                               float margin,                   \
-                                               hf__col_##S *spare)             \
-{                                                                              \
-    hf__col_prep k;                                                            \
-    if (c < HF__ROPE_PREP) return pre + c;                                     \
-    k = hf__collider_prep(col + c, margin);                                    \
-    hf__col_prep_##S(&k, spare);                                               \
-    return spare;                                                              \
-}                                                                              \
-                                                                               \
-/* Which colliders hold a point of W (bit i: lane i). */                       \
-T HF__INLINE int hf__col_any_##S(const hf_collider *col, int ncol,             \
-                                 const hf__col_##S *pre, float margin,         \
-                                 const V *xyz)                                 \
-{                                                                              \
-    hf__col_##S spare;                                                         \
-    int c, m = 0;                                                              \
-    for (c = 0; c < ncol && m != (1 << W) - 1; ++c)                            \
-        m |= hf__col_hits_##S(hf__col_at_##S(col, c, pre, margin, &spare),     \
-                              xyz);                                            \
+    hf__col_prep spare;                                                        \
+    hf__col_##S v;                                                             \
+    int i, m = 0;                                                              \
+    for (i = 0; i < cl->n && m != (1 << W) - 1; ++i) {                         \
+        const hf__col_prep *k = hf__cols_at(cl, i, &spare);                    \
+        if (k->row > j) continue;                                              \
+        hf__col_prep_##S(k, &v);                                               \
+        m |= hf__col_hits_##S(&v, xyz);                                        \
+    }                                                                          \
     return m;                                                                  \
 }                                                                              \
                                                                                \
-/* hf__ftl_penetration on W points; *any: the lanes some collider holds */     \
+/* hf__ftl_relevant on W parents p with segments l */                          \
+T HF__INLINE V hf__ftl_relevant_##S(const hf__col_##S *k, const V *p, V l)     \
+{                                                                              \
+    V cc[3], lim;                                                              \
+    const V d2 = hf__col_closest_##S(k, p, cc);                                \
+    lim = HF__ADD(k->rr, l);                                                   \
+    lim = HF__ADD(lim, HF__MUL(HF__SET1(1e-4f), lim));                         \
+    return HF__LT(d2, HF__MUL(lim, lim));                                      \
+}                                                                              \
+                                                                               \
+/* hf__ftl_penetration on W points, each against the colliders relevant        \
+   to it (rel[c]: the lanes collider c is); *any: the lanes some collider      \
+   holds */                                                                    \
 T HF__INLINE V hf__ftl_penetration_##S(const hf__col_##S *k, const V *rr,      \
-                                       int ncol, const V *q, V *any)           \
+                                       const V *rel, int ncol, const V *q,     \
+                                       V *any)                                 \
 {                                                                              \
     V worst = HF__SET1(0.0f), hit_any = HF__LT(worst, worst), c3[3];           \
     int c;                                                                     \
     for (c = 0; c < ncol; ++c) {                                               \
         const V d2 = hf__col_closest_##S(k + c, q, c3);                        \
-        const V hit = HF__LT(d2, HF__MUL(rr[c], rr[c]));                       \
+        const V hit = HF__AND(rel[c], HF__LT(d2, HF__MUL(rr[c], rr[c])));      \
         const V pen = HF__SUB(rr[c], HF__SQRT(d2));                            \
         const V up = HF__SEL(hit_any, HF__AND(hit, HF__GT(pen, worst)), hit);  \
         worst = HF__SEL(up, pen, worst);                                       \
@@ -6649,9 +6915,11 @@ T HF__PRIVATE V hf__ftl_cap_pair_##S(const V *m1, V c1, const V *m2, V c2,     \
     return ok;                                                                 \
 }                                                                              \
                                                                                \
-/* hf__ropes_collide_ftl_row for point row j of ropes idx[0 .. W) (any         \
-   ropes: the points in contact, gathered) against colliders k[0 .. ncol),     \
-   ncol <= HF__ROPE_PREP. */                                                   \
+/* hf__ftl_collide_one for point row j of ropes idx[0 .. W) (any ropes:        \
+   the points in contact, gathered) against colliders k[0 .. ncol), ncol       \
+   <= HF__FTL_NEAR, in the order of the call's array: each lane sees only      \
+   those relevant to it (rel), so every lane gets the bytes of its own         \
+   point's scalar kernel whatever the other lanes bring. */                    \
 T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
                                          const int *idx, const hf__col_##S *k, \
                                          int ncol)                             \
@@ -6659,9 +6927,9 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
     const size_t R = (size_t)ro->rope_count, o0 = (size_t)(j - 1) * R;         \
     const V zero = HF__SET1(0.0f);                                             \
     float g[3][W];                                                             \
-    V l, p[3], q[3], root[3], n[3], t[3], u[3], best[3], rr[HF__ROPE_PREP],    \
-        m[2 * HF__ROPE_PREP][3], cmin[2 * HF__ROPE_PREP], act, best_pen,       \
-        best_dot, bd, big;                                                     \
+    V l, p[3], q[3], root[3], n[3], t[3], u[3], best[3], rr[HF__FTL_NEAR],     \
+        rel[HF__FTL_NEAR], m[2 * HF__FTL_NEAR][3], cmin[2 * HF__FTL_NEAR],     \
+        capv[2 * HF__FTL_NEAR], act, best_pen, best_dot, bd, big;              \
     int c, e, i, w, round, ncap;                                               \
     HF__UNROLL for (c = 0; c < 3; ++c) {                                       \
         const float *X = c == 0 ? ro->x : c == 1 ? ro->y : ro->z;              \
@@ -6676,12 +6944,13 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
     for (c = 0; c < ncol; ++c) {                                               \
         V cc[3];                                                               \
         const V d2 = hf__col_closest_##S(k + c, root, cc);                     \
+        rel[c] = hf__ftl_relevant_##S(k + c, p, l);                            \
         rr[c] = k[c].rr;                                                       \
         if (k[c].shrink)                                                       \
             rr[c] = HF__SEL(HF__LT(d2, HF__MUL(k[c].inner, k[c].inner)),       \
                             HF__SQRT(d2), rr[c]);                              \
     }                                                                          \
-    best_pen = hf__ftl_penetration_##S(k, rr, ncol, q, &act);                  \
+    best_pen = hf__ftl_penetration_##S(k, rr, rel, ncol, q, &act);             \
     act = HF__AND(act, HF__GT(l, zero));                                       \
     if (!HF__MASK(act)) return;                                                \
     HF__UNROLL for (i = 0; i < 3; ++i) u[i] = HF__SUB(q[i], p[i]);             \
@@ -6703,19 +6972,21 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
         ncap = 0;                                                              \
         for (c = 0; c < ncol; ++c) {                                           \
             V cc[3];                                                           \
+            if (!HF__MASK(HF__AND(act, rel[c]))) continue;                     \
             hf__col_closest_##S(k + c, best, cc);                              \
             hf__ftl_cap_##S(p, l, cc, rr[c], n, m[ncap], &cmin[ncap]);         \
-            ++ncap;                                                            \
+            capv[ncap++] = rel[c];                                             \
             if (k[c].capsule) {                                                \
                 hf__col_closest_##S(k + c, p, cc);                             \
                 hf__ftl_cap_##S(p, l, cc, rr[c], n, m[ncap], &cmin[ncap]);     \
-                ++ncap;                                                        \
+                capv[ncap++] = rel[c];                                         \
             }                                                                  \
         }                                                                      \
         for (c = 0; c < ncap; ++c)                                             \
             for (e = c; e < ncap; ++e) {                                       \
-                V d[6], valid = HF__EQ(zero, zero);                            \
+                V d[6], valid = HF__AND(capv[c], capv[e]);                     \
                 int nd;                                                        \
+                if (!HF__MASK(HF__AND(act, valid))) continue;                  \
                 if (e == c) {                                                  \
                     hf__ftl_onto_cap_##S(from, m[c], cmin[c], t, d);           \
                     nd = 1;                                                    \
@@ -6724,8 +6995,9 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
                         nd = 2;                                                \
                     }                                                          \
                 } else {                                                       \
-                    valid = hf__ftl_cap_pair_##S(m[c], cmin[c], m[e], cmin[e], \
-                                                 d);                           \
+                    valid = HF__AND(valid, hf__ftl_cap_pair_##S(m[c], cmin[c], \
+                                                                m[e], cmin[e], \
+                                                                d));           \
                     if (!HF__MASK(HF__AND(act, valid))) continue;              \
                     nd = 2;                                                    \
                 }                                                              \
@@ -6734,7 +7006,8 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
                     V cand[3], pen, dot, up, hold;                             \
                     HF__UNROLL for (w = 0; w < 3; ++w)                         \
                         cand[w] = HF__ADD(p[w], HF__MUL(l, di[w]));            \
-                    pen = hf__ftl_penetration_##S(k, rr, ncol, cand, &hold);   \
+                    pen = hf__ftl_penetration_##S(k, rr, rel, ncol, cand,      \
+                                                  &hold);                      \
                     dot = HF__DOT3(di[0], di[1], di[2], u[0], u[1], u[2]);     \
                     up = HF__OR(HF__LT(pen, best_pen),                         \
                                 HF__AND(HF__EQ(pen, best_pen),                 \
@@ -6757,46 +7030,89 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
     }                                                                          \
 }                                                                              \
                                                                                \
-/* The points of row j in contact, resolved W at a time when the list          \
-   fills and when the row ends; one and two colliders, the common cases,       \
-   as constants, so the compiler unrolls the collider loops and keeps the      \
-   caps in registers. */                                                       \
+/* The points of row j in contact, resolved when the list fills and when       \
+   the row ends. Each point's relevant colliders (hf__ftl_relevant, in the     \
+   order of the call's array) are its signature; points of one signature       \
+   go W at a time through the contact kernel against just those, where a       \
+   group of points with different ones would pay for all of them (the          \
+   kernel's cost grows with the cube of its colliders). A point with more      \
+   than HF__FTL_NEAR goes alone through the scalar kernel, which walks         \
+   them in batches. One and two colliders, the common cases, as constants,     \
+   so the compiler unrolls the collider loops and keeps the caps in            \
+   registers. */                                                               \
 T HF__PRIVATE void hf__ftl_flush_##S(hf_ropes *ro, const float *F, int j,      \
-                                     hf__ftl_hits *h, const hf__col_##S *k,    \
-                                     int ncol)                                 \
+                                     hf__ftl_hits *h, const hf__bp *bp)        \
 {                                                                              \
-    int g, i, idx[W];                                                          \
-    for (g = 0; g < h->n; g += W) {                                            \
-        for (i = 0; i < W; ++i) /* a short last group repeats its last */      \
-            idx[i] = h->r[g + i < h->n ? g + i : h->n - 1];                    \
-        if (ncol == 1)                                                         \
+    const size_t R = (size_t)ro->rope_count, o0 = (size_t)(j - 1) * R;         \
+    int sig[HF__FTL_HITS][HF__FTL_NEAR + 1]; /* [0]: count, -1: too many */    \
+    unsigned char done[HF__FTL_HITS];                                          \
+    hf__col_##S k[HF__FTL_NEAR];                                               \
+    hf__col_prep spare, kp;                                                    \
+    hf__cols cl;                                                               \
+    int g, i, m, c, n, idx[W];                                                 \
+    for (i = 0; i < h->n; ++i) {                                               \
+        const size_t o = o0 + (size_t)h->r[i];                                 \
+        const float pp[3] = {ro->x[o], ro->y[o], ro->z[o]};                    \
+        const float l = ro->rest_length[o];                                    \
+        hf__bp_tile(bp, h->r[i], &cl);                                         \
+        n = 0;                                                                 \
+        for (c = 0; c < cl.n; ++c) {                                           \
+            const hf__col_prep *kc = hf__cols_at(&cl, c, &spare);              \
+            if (kc->row > j || !hf__ftl_relevant(kc, pp, l)) continue;         \
+            if (n == HF__FTL_NEAR) {                                           \
+                n = -1;                                                        \
+                break;                                                         \
+            }                                                                  \
+            sig[i][1 + n++] = kc->id;                                          \
+        }                                                                      \
+        sig[i][0] = n;                                                         \
+        done[i] = 0;                                                           \
+    }                                                                          \
+    for (i = 0; i < h->n; ++i) {                                               \
+        if (done[i]) continue;                                                 \
+        n = sig[i][0];                                                         \
+        if (n <= 0) {                                                          \
+            if (n < 0) {                                                       \
+                ZU;                                                            \
+                hf__bp_tile(bp, h->r[i], &cl);                                 \
+                hf__ftl_collide_one(ro, F, j, h->r[i], &cl);                   \
+            }                                                                  \
+            continue;                                                          \
+        }                                                                      \
+        for (g = 0, m = i; m < h->n && g < W; ++m) {                           \
+            if (done[m] || sig[m][0] != n) continue;                           \
+            for (c = 1; c <= n && sig[m][c] == sig[i][c]; ++c) {               \
+            }                                                                  \
+            if (c <= n) continue;                                              \
+            idx[g++] = h->r[m];                                                \
+            done[m] = 1;                                                       \
+        }                                                                      \
+        for (m = g; m < W; ++m) idx[m] = idx[g - 1]; /* repeats its last */    \
+        for (c = 0; c < n; ++c) {                                              \
+            kp = hf__collider_prep(bp->col, sig[i][1 + c], bp->margin);        \
+            hf__col_prep_##S(&kp, k + c);                                      \
+        }                                                                      \
+        if (n == 1)                                                            \
             hf__ftl_collide_in_##S(ro, F, j, idx, k, 1);                       \
-        else if (ncol == 2)                                                    \
+        else if (n == 2)                                                       \
             hf__ftl_collide_in_##S(ro, F, j, idx, k, 2);                       \
         else                                                                   \
-            hf__ftl_collide_in_##S(ro, F, j, idx, k, ncol);                    \
+            hf__ftl_collide_in_##S(ro, F, j, idx, k, n);                       \
     }                                                                          \
     h->n = 0;                                                                  \
 }                                                                              \
                                                                                \
 /* Row j's points r + i for the bits i of m, which some collider holds:        \
-   onto the list (flushed when full), or, beyond HF__ROPE_PREP colliders,      \
-   through the scalar kernel at once. */                                       \
+   onto the list, flushed when full. */                                        \
 T HF__INLINE void hf__ftl_list_##S(hf_ropes *ro, const float *F, int j,        \
                                    int r, int m, hf__ftl_hits *h,              \
-                                   const hf_collider *col, int ncol,           \
-                                   const hf__col_##S *pre, float margin)       \
+                                   const hf__bp *bp)                           \
 {                                                                              \
     int i;                                                                     \
     for (i = r; m; ++i, m >>= 1) {                                             \
         if (!(m & 1)) continue;                                                \
-        if (ncol > HF__ROPE_PREP) {                                            \
-            ZU;                                                                \
-            hf__ropes_collide_ftl_row(ro, F, j, i, i + 1, col, ncol, margin);  \
-            continue;                                                          \
-        }                                                                      \
         h->r[h->n++] = i;                                                      \
-        if (h->n == HF__FTL_HITS) hf__ftl_flush_##S(ro, F, j, h, pre, ncol);   \
+        if (h->n == HF__FTL_HITS) hf__ftl_flush_##S(ro, F, j, h, bp);          \
     }                                                                          \
 }
 
@@ -6805,39 +7121,72 @@ T HF__INLINE void hf__ftl_list_##S(hf_ropes *ro, const float *F, int j,        \
 HF__FTL_KERNELS(v4, hf__v4, 4, , HF__GATHER4, (void)0)
 #undef HF__GATHER4
 
-/* hf__ropes_collide for ropes [a, b), b - a a multiple of 4: the radial
-   push of each collider in order, on the lanes it holds, the row read
-   back after a hit. */
-HF__PRIVATE void
-hf__ropes_collide_v4(hf_ropes *ro, const float *F, int a, int b,
-                     const hf_collider *col, int ncol,
-                     const hf__rope_step *st)
+/* The distance solver's collisions for ropes [a, b): per tile, the box
+   of its points, and the colliders in order that meet it or the box of
+   one kept before (a push leaves a point on the surface of the collider
+   it left, inside that collider's box); each kept collider pushes every
+   point of the tile it holds straight out, four lanes tested at once
+   where the level has them (the push is the scalar one: same bytes). */
+HF__PRIVATE void hf__ropes_collide(hf_ropes *ro, const float *F, int a, int b,
+                                   const hf__bp *bp, int level)
 {
-    size_t R = (size_t)ro->rope_count;
-    const float margin = st->margin;
-    hf__col_v4 pre[HF__ROPE_PREP], spare;
-    int j, r, c, m, i;
-    hf__col_prep_first_v4(st, ncol, pre);
-    for (j = 1; j < ro->points; ++j)
-        for (r = a; r < b; r += 4) {
-            const size_t o = (size_t)j * R + (size_t)r;
-            hf__v4 xyz[3];
-            xyz[0] = HF__LD(ro->x + o);
-            xyz[1] = HF__LD(ro->y + o);
-            xyz[2] = HF__LD(ro->z + o);
-            for (c = 0; c < ncol; ++c) {
-                m = hf__col_hits_v4(
-                    hf__col_at_v4(col, c, pre, margin, &spare), xyz);
-                if (!m) continue;
-                for (i = 0; i < 4; ++i)
-                    if ((m >> i) & 1)
-                        hf__ropes_collide_row(ro, F, j, r + i, r + i + 1,
-                                              col + c, margin);
-                xyz[0] = HF__LD(ro->x + o);
-                xyz[1] = HF__LD(ro->y + o);
-                xyz[2] = HF__LD(ro->z + o);
+    const size_t R = (size_t)ro->rope_count;
+    const float *nx = HF__ROW(F, 6, R), *ny = HF__ROW(F, 7, R),
+                *nz = HF__ROW(F, 8, R);
+    int x, e, j, r, c, k;
+    for (x = a; x < b; x = e) {
+        float lo[3], hi[3];
+        e = b - x > HF__BP_TILE ? x + HF__BP_TILE : b;
+        for (k = 0; k < 3; ++k) {
+            const float *X = k == 0 ? ro->x : k == 1 ? ro->y : ro->z;
+            lo[k] = hi[k] = X[R + (size_t)x];
+            for (j = 1; j < ro->points; ++j)
+                for (r = x; r < e; ++r) {
+                    const float v = X[(size_t)j * R + (size_t)r];
+                    lo[k] = v < lo[k] ? v : lo[k];
+                    hi[k] = v > hi[k] ? v : hi[k];
+                }
+        }
+        for (c = 0; c < bp->ncol; ++c) {
+            float clo[3], chi[3];
+            hf__col_prep kp;
+            hf__col_box(bp->col + c, bp->margin, clo, chi);
+            if (hf__box_gap(lo, hi, clo, chi) > 0.0f) continue;
+            for (k = 0; k < 3; ++k) {
+                lo[k] = clo[k] < lo[k] ? clo[k] : lo[k];
+                hi[k] = chi[k] > hi[k] ? chi[k] : hi[k];
+            }
+            kp = hf__collider_prep(bp->col, c, bp->margin);
+            for (j = 1; j < ro->points; ++j) {
+                float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
+                      *Z = HF__ROW(ro->z, j, R);
+                r = x;
+#if HF__V4
+                if (level >= HF_SIMD_SSE2) {
+                    hf__col_v4 kv;
+                    hf__col_prep_v4(&kp, &kv);
+                    for (; r + 4 <= e; r += 4) {
+                        hf__v4 xyz[3];
+                        int m, i;
+                        xyz[0] = HF__LD(X + r);
+                        xyz[1] = HF__LD(Y + r);
+                        xyz[2] = HF__LD(Z + r);
+                        m = hf__col_hits_v4(&kv, xyz);
+                        for (i = 0; m; ++i, m >>= 1)
+                            if (m & 1)
+                                hf__col_push_out(&kp, X + r + i, Y + r + i,
+                                                 Z + r + i, nx[r + i],
+                                                 ny[r + i], nz[r + i]);
+                    }
+                }
+#endif
+                for (; r < e; ++r)
+                    hf__col_push_out(&kp, X + r, Y + r, Z + r, nx[r], ny[r],
+                                     nz[r]);
             }
         }
+    }
+    (void)level;
 }
 
 /* The sub-step's row kernels (ropes [a, b), b - a a multiple of W, a rope
@@ -7072,7 +7421,7 @@ T HF__PRIVATE void hf__ropes_local_row_##S(hf_ropes *ro, const float *F,       \
 T HF__PRIVATE void hf__ropes_ftl_row_##S(hf_ropes *ro, const float *F, int j,  \
                                          int a, int b,                         \
                                          const hf__rope_step *st,              \
-                                         const hf_collider *col, int ncol)     \
+                                         const hf__bp *bp)                     \
 {                                                                              \
     const size_t R = (size_t)ro->rope_count;                                   \
     const float *f[12];                                                        \
@@ -7086,11 +7435,11 @@ T HF__PRIVATE void hf__ropes_ftl_row_##S(hf_ropes *ro, const float *F, int j,  \
     const V one = HF__SET1(1.0f);                                              \
     const V sd = HF__SET1(j >= 2 ? st->ftl_damping : 0.0f);                    \
     hf__ftl_hits hits;                                                         \
-    hf__col_##S pre[HF__ROPE_PREP]; /* the first colliders, in lanes */        \
+    hf__cols cl;                                                               \
     int r;                                                                     \
     hf__frame_rows(F, R, f);                                                   \
     hits.n = 0;                                                                \
-    if (st->ftl) hf__col_prep_first_##S(st, ncol, pre);                        \
+    cl.n = 0;                                                                  \
     for (r = a; r < b; r += W) {                                               \
         const V x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),                      \
                 z0 = HF__LD(Z0 + r);                                           \
@@ -7121,14 +7470,15 @@ T HF__PRIVATE void hf__ropes_ftl_row_##S(hf_ropes *ro, const float *F, int j,  \
                HF__ADD(HF__LD(PY0 + r), HF__MUL(sd, HF__SUB(xyz[1], oy))));    \
         HF__ST(PZ0 + r,                                                        \
                HF__ADD(HF__LD(PZ0 + r), HF__MUL(sd, HF__SUB(xyz[2], oz))));    \
-        if (ncol > 0) {                                                        \
-            const int m = hf__col_any_##S(col, ncol, pre, st->margin, xyz);    \
-            if (m)                                                             \
-                hf__ftl_list_##S(ro, F, j, r, m, &hits, col, ncol, pre,        \
-                                 st->margin);                                  \
+        if (bp) {                                                              \
+            int m;                                                             \
+            if (((r - bp->a) & (HF__BP_TILE - 1)) == 0 || r == a)              \
+                hf__bp_tile(bp, r, &cl); /* a new tile */                      \
+            m = hf__col_any_##S(&cl, j, xyz);                                  \
+            if (m) hf__ftl_list_##S(ro, F, j, r, m, &hits, bp);                \
         }                                                                      \
     }                                                                          \
-    if (st->ftl) hf__ftl_flush_##S(ro, F, j, &hits, pre, ncol);                \
+    if (st->ftl && bp) hf__ftl_flush_##S(ro, F, j, &hits, bp);                 \
     ZU;                                                                        \
 }                                                                              \
                                                                                \
@@ -7202,7 +7552,7 @@ typedef struct hf__rope_rows {
     void (*local)(hf_ropes *, const float *, int, int, int,
                   const hf__rope_step *, float *[2][3]);
     void (*ftl)(hf_ropes *, const float *, int, int, int,
-                const hf__rope_step *, const hf_collider *, int);
+                const hf__rope_step *, const hf__bp *);
     void (*distance)(hf_ropes *, int, int, int);
     int (*mark_far)(const hf_ropes *, int, int, const float *, float *);
 } hf__rope_rows;
@@ -7219,7 +7569,7 @@ typedef struct hf__rope_rows {
    four-lane kernel at every width). */
 HF__PRIVATE void hf__ropes_substep_rows(hf_ropes *ro, const float *F, int a,
                                         int b, const hf__rope_step *st,
-                                        const hf_collider *col, int ncol,
+                                        const hf__bp *bp,
                                         const hf__rope_rows *k)
 {
     const size_t R = (size_t)ro->rope_count;
@@ -7238,14 +7588,13 @@ HF__PRIVATE void hf__ropes_substep_rows(hf_ropes *ro, const float *F, int a,
     for (it = 0; it < st->iterations; ++it) {
         for (j = 1; j < P; ++j)
             if (st->ftl || j == 1)
-                k->ftl(ro, F, j, a, b, st, col, ncol);
+                k->ftl(ro, F, j, a, b, st, bp);
             else
                 k->distance(ro, j, a, b);
-        if (!st->ftl && ncol > 0)
-            hf__ropes_collide_v4(ro, F, a, b, col, ncol, st);
+        if (!st->ftl && bp) hf__ropes_collide(ro, F, a, b, bp, st->level);
     }
-    if (st->iterations == 0 && ncol > 0)
-        hf__ropes_collide_v4(ro, F, a, b, col, ncol, st);
+    if (st->iterations == 0 && bp)
+        hf__ropes_collide(ro, F, a, b, bp, st->level);
 }
 
 static const hf__rope_rows hf__rope_rows_v4 = {
@@ -7438,19 +7787,18 @@ static const hf__rope_rows *const hf__rope_widths[] = {
 
 /* The dispatch of the simulated rope kernels (hf__rope_widths). */
 HF__PRIVATE void hf__ropes_substep(hf_ropes *ro, const float *F, int a, int b,
-                                   const hf__rope_step *st,
-                                   const hf_collider *col, int ncol)
+                                   const hf__rope_step *st, const hf__bp *bp)
 {
 #if HF__V4
     const hf__rope_rows *const *k;
     for (k = hf__rope_widths; *k; ++k) {
         const int e = a + (b - a) / (*k)->lanes * (*k)->lanes;
         if (st->level < (*k)->level) continue;
-        if (e > a) hf__ropes_substep_rows(ro, F, a, e, st, col, ncol, *k);
+        if (e > a) hf__ropes_substep_rows(ro, F, a, e, st, bp, *k);
         a = e;
     }
 #endif
-    hf__ropes_substep_ref(ro, F, a, b, st, col, ncol);
+    hf__ropes_substep_ref(ro, F, a, b, st, bp);
 }
 
 
@@ -7495,37 +7843,48 @@ HF__PRIVATE void hf__ropes_safety_net(hf_ropes *ro, int a, int b,
         }
 }
 
-/* Simulated ropes [a, b) (a run of one parameter set and mode): every
-   sub-step, then the safety net. In a call that is not the whole rope
-   set, where a range beside it may run on another thread at the same
-   time, a run of 128 ropes or more goes in two halves (the first a whole
-   number of 16-rope groups), each taking every sub-step and its safety
-   net before the next begins. Two such ranges touch neighbouring cache
-   lines in every row; the CPU's prefetcher, running along a row, carries
-   the first lines of the next range across, and while both ranges sweep
-   the same rows those lines go back and forth between the cores (scene
-   L's ropes on two threads took 0.16 ms against 0.14 on one; in halves,
-   0.092). With halves, a range's last lines are swept while its
-   neighbour works on its own second half (the prefetcher's reach, about
-   eight lines, is what a half must cover). A call on the whole set needs
-   none of it, and the halves' extra row calls cost one thread 3-5 %. The
-   bytes are those of any split. */
-#define HF__ROPE_HALVES_MIN 128
+/* Simulated ropes [a, b) (a run of one parameter set and mode), chunk
+   by chunk (the broadphase's, hf__bp_build): every sub-step, the safety
+   net and the roots' contacts of one chunk before the next. A chunk's
+   rows stay in the core's cache across its sub-steps, and two threads'
+   neighbouring ranges meet only where one has finished (two ranges swept
+   row by row at once trade the cache lines at their edge every row).
+   The bytes are those of any split. */
+#define HF__ROPE_CHUNK (HF__BP_TILES * HF__BP_TILE)
 HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
                                    const hf__rope_step *st,
                                    const hf_collider *col, int ncol)
 {
-    const int half = st->halves && b - a >= HF__ROPE_HALVES_MIN
-                         ? ((b - a + 1) / 2 + 15) & ~15
-                         : b - a;
-    int s, x;
-    for (x = a; x < b; x += half) {
-        const int e = b - x > half ? x + half : b;
+    hf__bp bp;
+    int s, x, e;
+    for (x = a; x < b; x = e) {
+        if (ncol > 0)
+            e = hf__bp_build(ro, x, b, col, ncol, st->margin, &bp);
+        else
+            e = b - x > HF__ROPE_CHUNK ? x + HF__ROPE_CHUNK : b;
         for (s = 0; s < st->n; ++s) {
             const float *F = hf__ropes_substep_prep(ro, x, e, st, s);
-            hf__ropes_substep(ro, F, x, e, st, col, ncol);
+            hf__ropes_substep(ro, F, x, e, st, ncol > 0 ? &bp : NULL);
         }
         hf__ropes_safety_net(ro, x, e, st);
+        hf__ropes_mark_roots(ro, x, e, ncol > 0 ? &bp : NULL);
+    }
+}
+
+/* The roots' contacts of ropes [a, b) that are not simulated (they
+   ignore colliders, but hf_ropes_roots_inside counts them too). */
+HF__PRIVATE void hf__ropes_mark_roots_run(hf_ropes *ro, int a, int b,
+                                          const hf__rope_step *st,
+                                          const hf_collider *col, int ncol)
+{
+    hf__bp bp;
+    int x, e;
+    for (x = a; x < b; x = e) {
+        if (ncol > 0)
+            e = hf__bp_build(ro, x, b, col, ncol, st->margin, &bp);
+        else
+            e = b;
+        hf__ropes_mark_roots(ro, x, e, ncol > 0 ? &bp : NULL);
     }
 }
 
@@ -7559,13 +7918,10 @@ HF__PRIVATE hf_result hf__colliders_check(const hf_collider *colliders,
 }
 
 /* The per-call constants of a step from resolved parameters: dt clamped
-   and scaled, split into equal sub-steps, rates per sub-step, the first
-   colliders prepared (checked by the caller), and halves unless the
-   caller's call is the whole rope set. */
+   and scaled, split into equal sub-steps, rates per sub-step. */
 HF__PRIVATE void hf__rope_step_setup(hf__rope_step *st,
                                      const hf_rope_params *params, float dt,
-                                     int points, const hf_collider *col,
-                                     int ncol, int whole)
+                                     int points)
 {
     float sdt, q;
     int k;
@@ -7602,29 +7958,6 @@ HF__PRIVATE void hf__rope_step_setup(hf__rope_step *st,
             st->kg[k] = hf__rope_kg(st, k, points);
             st->kl[k] = hf__rope_kl(st, k, points);
         }
-    for (k = 0; k < ncol && k < HF__ROPE_PREP; ++k)
-        st->col[k] = hf__collider_prep(col + k, st->margin);
-    st->halves = !whole;
-}
-
-/* root_inside of ropes [a, b): whether the root sits inside a collider
-   (deeper than the margin below its surface), which is when the
-   collisions shrink that collider for the rope. */
-HF__PRIVATE void hf__ropes_mark_roots(hf_ropes *ro, int a, int b,
-                                      const hf_collider *col, int ncol,
-                                      const hf__rope_step *st)
-{
-    int r, c;
-    for (r = a; r < b; ++r) ro->root_inside[r] = 0;
-    for (c = 0; c < ncol; ++c) {
-        const hf__col_prep k = c < HF__ROPE_PREP
-                                   ? st->col[c]
-                                   : hf__collider_prep(col + c, st->margin);
-        for (r = a; r < b; ++r) {
-            const float root[3] = {ro->x[r], ro->y[r], ro->z[r]};
-            if (hf__col_radius_for(&k, root) < k.rr) ro->root_inside[r] = 1;
-        }
-    }
 }
 
 HFDEF hf_result hf_ropes_roots_inside(const hf_ropes *ropes, int first,
@@ -7638,12 +7971,10 @@ HFDEF hf_result hf_ropes_roots_inside(const hf_ropes *ropes, int first,
     return HF_OK;
 }
 
-/* hf_ropes_step; `whole`: the caller's call covers every rope (the
-   fur's calls step a run of guides at a time). */
-HF__PRIVATE hf_result hf__ropes_step(hf_ropes *ropes, int first, int count,
-                                     float dt, const hf_rope_params *params,
-                                     const hf_collider *colliders,
-                                     int collider_count, int whole)
+HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
+                              float dt, const hf_rope_params *params,
+                              const hf_collider *colliders,
+                              int collider_count)
 {
     hf__rope_step st;
     hf_rope_params prm;
@@ -7657,8 +7988,7 @@ HF__PRIVATE hf_result hf__ropes_step(hf_ropes *ropes, int first, int count,
     hf__rope_params_resolve(params, &prm);
     if ((res = hf__rope_params_check(&prm, NULL)) != HF_OK) return res;
     if (count == 0) return HF_OK;
-    hf__rope_step_setup(&st, &prm, dt, ropes->points, colliders,
-                        collider_count, whole);
+    hf__rope_step_setup(&st, &prm, dt, ropes->points);
 
     /* runs of ropes of one kind, each with its kernel; the kinds depend
        only on each rope's own state, so any split gives the same bytes */
@@ -7666,15 +7996,18 @@ HF__PRIVATE hf_result hf__ropes_step(hf_ropes *ropes, int first, int count,
     for (r = first; r < end;) {
         int kind = hf__rope_kind(ropes, r), b = r + 1;
         while (b < end && hf__rope_kind(ropes, b) == kind) ++b;
-        if (kind == 2)
-            hf__ropes_animated_run(ropes, r, b, &st);
-        else if (kind == 1)
-            hf__ropes_glide_run(ropes, r, b, &st);
-        else
+        if (kind == 0) {
             hf__ropes_sim_run(ropes, r, b, &st, colliders, collider_count);
+        } else {
+            if (kind == 2)
+                hf__ropes_animated_run(ropes, r, b, &st);
+            else
+                hf__ropes_glide_run(ropes, r, b, &st);
+            hf__ropes_mark_roots_run(ropes, r, b, &st, colliders,
+                                     collider_count);
+        }
         r = b;
     }
-    hf__ropes_mark_roots(ropes, first, end, colliders, collider_count, &st);
     /* this frame becomes the start of the next step's interpolation */
     for (k = 0; k < 12; ++k)
         HF_MEMCPY(ropes->frame + (size_t)(12 + k) * (size_t)ropes->rope_count +
@@ -7682,16 +8015,6 @@ HF__PRIVATE hf_result hf__ropes_step(hf_ropes *ropes, int first, int count,
                   ropes->frame + (size_t)k * (size_t)ropes->rope_count + first,
                   (size_t)count * sizeof(float));
     return HF_OK;
-}
-
-HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
-                              float dt, const hf_rope_params *params,
-                              const hf_collider *colliders,
-                              int collider_count)
-{
-    return hf__ropes_step(ropes, first, count, dt, params, colliders,
-                          collider_count,
-                          ropes && first == 0 && count == ropes->rope_count);
 }
 
 #undef HF__ROW
@@ -14768,7 +15091,7 @@ HFDEF hf_result hf_fur_set_roots(hf_fur *f, const hf_mesh *m, int first,
    rope is stepped on its own, so runs give the bytes one call would). */
 HF__PRIVATE hf_result hf__fur_step_runs(hf_fur *f, int first, int end,
                                         float dt, const hf_collider *colliders,
-                                        int collider_count, int whole)
+                                        int collider_count)
 {
     int a = first;
     while (a < end) {
@@ -14777,8 +15100,8 @@ HF__PRIVATE hf_result hf__fur_step_runs(hf_fur *f, int first, int end,
         hf_rope_params p = f->rope[f->rope_of[a]];
         while (b < end && f->rope_of[b] == f->rope_of[a]) ++b;
         p.simd = f->simd; /* the fur's kernel level (hf_fur_set_kernels) */
-        r = hf__ropes_step(f->ropes, a, b - a, dt, &p, colliders,
-                           collider_count, whole);
+        r = hf_ropes_step(f->ropes, a, b - a, dt, &p, colliders,
+                          collider_count);
         if (r != HF_OK) return r;
         a = b;
     }
@@ -14790,24 +15113,21 @@ HFDEF hf_result hf_fur_simulate(hf_fur *f, int first, int count, float dt,
                                 int collider_count)
 {
     hf_result r;
-    int end, whole;
+    int end;
     if (!f) return HF_ERROR_NULL_POINTER;
     if (!hf__range_ok(first, count) || first + count > f->guide_count)
         return HF_ERROR_BAD_RANGE;
     end = first + count;
-    whole = first == 0 && count == f->guide_count;
     if (!f->lod_sim && end > f->pure_count) {
         /* sleeping LOD guides are still carried by their roots, so they
            wake up in place; they are stepped but not copied out */
         int lf = first > f->pure_count ? first : f->pure_count;
-        r = hf__fur_step_runs(f, lf, end, dt, colliders, collider_count,
-                              whole);
+        r = hf__fur_step_runs(f, lf, end, dt, colliders, collider_count);
         if (r != HF_OK) return r;
         end = lf;
     }
     if (end <= first) return HF_OK;
-    r = hf__fur_step_runs(f, first, end, dt, colliders, collider_count,
-                          whole);
+    r = hf__fur_step_runs(f, first, end, dt, colliders, collider_count);
     if (r != HF_OK) return r;
     hf__ropes_copy(f->ropes, first, end, f->guide_points, 12, 0,
                    hf_simd_resolve(f->simd));
