@@ -5849,7 +5849,7 @@ HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
 {
     float q[3], best[3], u[3], rr[HF__FTL_NEAR];
     float m[2 * HF__FTL_NEAR][3], cmin[2 * HF__FTL_NEAR], best_pen, best_dot;
-    int c, e, round, deepest, ncap;
+    int c, e, round, deepest, ncap, pass;
     q[0] = *x;
     q[1] = *y;
     q[2] = *z;
@@ -5888,8 +5888,12 @@ HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
                 ++ncap;
             }
         }
-        for (c = 0; c < ncap; ++c)
-            for (e = c; e < ncap; ++e) {
+        for (pass = 0; pass < 2; ++pass) {
+            /* the projections onto every edge; the crossings of two only
+               where none of them clears every collider */
+            if (pass == 1 && !(best_pen > 0.0f)) break;
+            for (c = 0; c < ncap; ++c)
+            for (e = pass ? c + 1 : c; e < (pass ? ncap : c + 1); ++e) {
                 float d[6];
                 int nd, i, w;
                 if (e == c) { /* from, and u where it differs */
@@ -5914,6 +5918,7 @@ HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
                     }
                 }
             }
+        }
         if (!(best_pen < pen0)) break; /* no progress */
     }
     *x = best[0];
@@ -6930,7 +6935,7 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
     V l, p[3], q[3], root[3], n[3], t[3], u[3], best[3], rr[HF__FTL_NEAR],     \
         rel[HF__FTL_NEAR], m[2 * HF__FTL_NEAR][3], cmin[2 * HF__FTL_NEAR],     \
         capv[2 * HF__FTL_NEAR], act, best_pen, best_dot, bd, big;              \
-    int c, e, i, w, round, ncap;                                               \
+    int c, e, i, w, round, ncap, pass;                                         \
     HF__UNROLL for (c = 0; c < 3; ++c) {                                       \
         const float *X = c == 0 ? ro->x : c == 1 ? ro->y : ro->z;              \
         p[c] = G(X + o0, idx);                                                 \
@@ -6982,11 +6987,17 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
                 capv[ncap++] = rel[c];                                         \
             }                                                                  \
         }                                                                      \
-        for (c = 0; c < ncap; ++c)                                             \
-            for (e = c; e < ncap; ++e) {                                       \
+        for (pass = 0; pass < 2; ++pass) {                                     \
+            V need = act; /* pass 1: the lanes no projection cleared */        \
+            if (pass == 1) {                                                   \
+                need = HF__AND(act, HF__GT(best_pen, zero));                   \
+                if (!HF__MASK(need)) break;                                    \
+            }                                                                  \
+            for (c = 0; c < ncap; ++c)                                         \
+            for (e = pass ? c + 1 : c; e < (pass ? ncap : c + 1); ++e) {       \
                 V d[6], valid = HF__AND(capv[c], capv[e]);                     \
                 int nd;                                                        \
-                if (!HF__MASK(HF__AND(act, valid))) continue;                  \
+                if (!HF__MASK(HF__AND(need, valid))) continue;                 \
                 if (e == c) {                                                  \
                     hf__ftl_onto_cap_##S(from, m[c], cmin[c], t, d);           \
                     nd = 1;                                                    \
@@ -6998,7 +7009,7 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
                     valid = HF__AND(valid, hf__ftl_cap_pair_##S(m[c], cmin[c], \
                                                                 m[e], cmin[e], \
                                                                 d));           \
-                    if (!HF__MASK(HF__AND(act, valid))) continue;              \
+                    if (!HF__MASK(HF__AND(need, valid))) continue;             \
                     nd = 2;                                                    \
                 }                                                              \
                 for (i = 0; i < nd; ++i) {                                     \
@@ -7012,13 +7023,14 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
                     up = HF__OR(HF__LT(pen, best_pen),                         \
                                 HF__AND(HF__EQ(pen, best_pen),                 \
                                         HF__GT(dot, best_dot)));               \
-                    up = HF__AND(HF__AND(act, valid), up);                     \
+                    up = HF__AND(HF__AND(need, valid), up);                    \
                     best_pen = HF__SEL(up, pen, best_pen);                     \
                     best_dot = HF__SEL(up, dot, best_dot);                     \
                     HF__UNROLL for (w = 0; w < 3; ++w)                         \
                         best[w] = HF__SEL(up, cand[w], best[w]);               \
                 }                                                              \
             }                                                                  \
+        }                                                                      \
         act = HF__AND(act, HF__LT(best_pen, pen0)); /* no progress: done */    \
     }                                                                          \
     HF__UNROLL for (c = 0; c < 3; ++c) HF__ST(g[c], best[c]);                  \
@@ -7050,24 +7062,45 @@ T HF__PRIVATE void hf__ftl_flush_##S(hf_ropes *ro, const float *F, int j,      \
     hf__col_prep spare, kp;                                                    \
     hf__cols cl;                                                               \
     int g, i, m, c, n, idx[W];                                                 \
-    for (i = 0; i < h->n; ++i) {                                               \
-        const size_t o = o0 + (size_t)h->r[i];                                 \
-        const float pp[3] = {ro->x[o], ro->y[o], ro->z[o]};                    \
-        const float l = ro->rest_length[o];                                    \
-        hf__bp_tile(bp, h->r[i], &cl);                                         \
-        n = 0;                                                                 \
-        for (c = 0; c < cl.n; ++c) {                                           \
-            const hf__col_prep *kc = hf__cols_at(&cl, c, &spare);              \
-            if (kc->row > j || !hf__ftl_relevant(kc, pp, l)) continue;         \
-            if (n == HF__FTL_NEAR) {                                           \
-                n = -1;                                                        \
-                break;                                                         \
-            }                                                                  \
-            sig[i][1 + n++] = kc->id;                                          \
+    /* the signatures, W points at a time, tile by tile (each point's          \
+       tile list holds every collider relevant to it, in the array's           \
+       order) */                                                               \
+    for (g = 0; g < h->n; g += W) {                                            \
+        V p[3], l;                                                             \
+        int t, t1, lanes;                                                      \
+        for (i = 0; i < W; ++i) {                                              \
+            idx[i] = h->r[g + i < h->n ? g + i : h->n - 1];                    \
+            if (g + i < h->n) sig[g + i][0] = 0;                               \
         }                                                                      \
-        sig[i][0] = n;                                                         \
-        done[i] = 0;                                                           \
+        p[0] = G(ro->x + o0, idx);                                             \
+        p[1] = G(ro->y + o0, idx);                                             \
+        p[2] = G(ro->z + o0, idx);                                             \
+        l = G(ro->rest_length + o0, idx);                                      \
+        t1 = (idx[W - 1] - bp->a) / HF__BP_TILE;                               \
+        for (t = (idx[0] - bp->a) / HF__BP_TILE; t <= t1; ++t) {               \
+            for (lanes = 0, i = 0; i < W && g + i < h->n; ++i)                 \
+                if ((idx[i] - bp->a) / HF__BP_TILE == t) lanes |= 1 << i;      \
+            if (!lanes) continue;                                              \
+            hf__bp_tile(bp, bp->a + t * HF__BP_TILE, &cl);                     \
+            for (c = 0; c < cl.n; ++c) {                                       \
+                const hf__col_prep *kc = hf__cols_at(&cl, c, &spare);          \
+                hf__col_##S v;                                                 \
+                int bits;                                                      \
+                if (kc->row > j) continue;                                     \
+                hf__col_prep_##S(kc, &v);                                      \
+                bits = lanes & HF__MASK(hf__ftl_relevant_##S(&v, p, l));       \
+                for (i = 0; bits; ++i, bits >>= 1) {                           \
+                    int *sg = sig[g + i];                                      \
+                    if (!(bits & 1) || sg[0] < 0) continue;                    \
+                    if (sg[0] == HF__FTL_NEAR)                                 \
+                        sg[0] = -1;                                            \
+                    else                                                       \
+                        sg[1 + sg[0]++] = kc->id;                              \
+                }                                                              \
+            }                                                                  \
+        }                                                                      \
     }                                                                          \
+    for (i = 0; i < h->n; ++i) done[i] = 0;                                    \
     for (i = 0; i < h->n; ++i) {                                               \
         if (done[i]) continue;                                                 \
         n = sig[i][0];                                                         \
