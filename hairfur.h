@@ -5866,6 +5866,23 @@ HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
     }
     HF_MEMCPY(best, q, sizeof q);
     best_dot = -2.0f;
+    {
+        /* the quick answer: out of the deepest collider's ball about its
+           axis point nearest q, onto the edge of that ball's cap nearest
+           u. Every direction that clears the colliders lies outside that
+           ball, so where this one clears them all, no other is nearer u
+           and the rounds are not needed (most contacts end here) */
+        float cc[3], dd[3], mq[3], cq, d[3], cand[3];
+        int w, dq;
+        hf__col_closest(k + deepest, q[0], q[1], q[2], cc, dd);
+        hf__ftl_cap(p, l, cc, rr[deepest], n, mq, &cq);
+        hf__ftl_onto_cap(u, mq, cq, t, d);
+        for (w = 0; w < 3; ++w) cand[w] = p[w] + l * d[w];
+        if (!(hf__ftl_penetration(k, rr, ncol, cand, &dq) > 0.0f)) {
+            HF_MEMCPY(best, cand, sizeof cand);
+            best_pen = 0.0f;
+        }
+    }
     for (round = 0; round < HF__FTL_ROUNDS && best_pen > 0.0f; ++round) {
         float from[3];
         const float pen0 = best_pen;
@@ -6691,8 +6708,10 @@ HF__PRIVATE void hf__ropes_mark_far_ref(const hf_ropes *ro, int j, int a,
 #define HF__OR(a, b) HF__SEL(a, a, b) /* masks only */
 
 /* A row's points in contact, listed for the kernel (they are independent:
-   a point's collision moves nothing the row reads again). */
-#define HF__FTL_HITS 64
+   a point's collision moves nothing the row reads again): as many as a
+   chunk has ropes, so that a row's contacts are grouped once, the more
+   of a signature the fuller its groups. */
+#define HF__FTL_HITS 256
 typedef struct hf__ftl_hits {
     int n, r[HF__FTL_HITS];
 } hf__ftl_hits;
@@ -6788,13 +6807,14 @@ T HF__INLINE V hf__ftl_relevant_##S(const hf__col_##S *k, const V *p, V l)     \
                                                                                \
 /* hf__ftl_penetration on W points, each against the colliders relevant        \
    to it (rel[c]: the lanes collider c is); *any: the lanes some collider      \
-   holds */                                                                    \
+   holds; cw and rw (unless NULL): the deepest one's axis point nearest        \
+   the point, and its radius */                                                \
 T HF__INLINE V hf__ftl_penetration_##S(const hf__col_##S *k, const V *rr,      \
                                        const V *rel, int ncol, const V *q,     \
-                                       V *any)                                 \
+                                       V *any, V *cw, V *rw)                   \
 {                                                                              \
     V worst = HF__SET1(0.0f), hit_any = HF__LT(worst, worst), c3[3];           \
-    int c;                                                                     \
+    int c, i;                                                                  \
     for (c = 0; c < ncol; ++c) {                                               \
         const V d2 = hf__col_closest_##S(k + c, q, c3);                        \
         const V hit = HF__AND(rel[c], HF__LT(d2, HF__MUL(rr[c], rr[c])));      \
@@ -6802,13 +6822,18 @@ T HF__INLINE V hf__ftl_penetration_##S(const hf__col_##S *k, const V *rr,      \
         const V up = HF__SEL(hit_any, HF__AND(hit, HF__GT(pen, worst)), hit);  \
         worst = HF__SEL(up, pen, worst);                                       \
         hit_any = HF__OR(hit, hit_any);                                        \
+        if (cw) {                                                              \
+            HF__UNROLL for (i = 0; i < 3; ++i)                                 \
+                cw[i] = HF__SEL(up, c3[i], cw[i]);                             \
+            *rw = HF__SEL(up, rr[c], *rw);                                     \
+        }                                                                      \
     }                                                                          \
     *any = hit_any;                                                            \
     return worst;                                                              \
 }                                                                              \
                                                                                \
 /* hf__ftl_cap on W lanes */                                                   \
-T HF__PRIVATE void hf__ftl_cap_##S(const V *p, V l, const V *c, V rr,          \
+T HF__INLINE void hf__ftl_cap_##S(const V *p, V l, const V *c, V rr,           \
                                    const V *n, V *m, V *cmin)                  \
 {                                                                              \
     const V zero = HF__SET1(0.0f), one = HF__SET1(1.0f);                       \
@@ -6844,7 +6869,7 @@ T HF__INLINE V hf__perp_part_##S(V *v, const V *m)                             \
                                                                                \
 /* hf__ftl_onto_cap on W lanes; the fixed perpendicular, rare, lane by         \
    lane through the scalar code */                                             \
-T HF__PRIVATE void hf__ftl_onto_cap_##S(const V *u, const V *m, V cmin,        \
+T HF__INLINE void hf__ftl_onto_cap_##S(const V *u, const V *m, V cmin,         \
                                         const V *t, V *d)                      \
 {                                                                              \
     const V tiny = HF__SET1(1e-8f);                                            \
@@ -6886,7 +6911,7 @@ T HF__PRIVATE void hf__ftl_onto_cap_##S(const V *u, const V *m, V cmin,        \
                                                                                \
 /* hf__ftl_cap_pair on W lanes: both crossings in d[0..5]; returns the         \
    lanes where the scalar code returns 2 */                                    \
-T HF__PRIVATE V hf__ftl_cap_pair_##S(const V *m1, V c1, const V *m2, V c2,     \
+T HF__INLINE V hf__ftl_cap_pair_##S(const V *m1, V c1, const V *m2, V c2,      \
                                      V *d)                                     \
 {                                                                              \
     const V one = HF__SET1(1.0f);                                              \
@@ -6934,7 +6959,7 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
     float g[3][W];                                                             \
     V l, p[3], q[3], root[3], n[3], t[3], u[3], best[3], rr[HF__FTL_NEAR],     \
         rel[HF__FTL_NEAR], m[2 * HF__FTL_NEAR][3], cmin[2 * HF__FTL_NEAR],     \
-        capv[2 * HF__FTL_NEAR], act, best_pen, best_dot, bd, big;              \
+        capv[2 * HF__FTL_NEAR], act, best_pen, best_dot, bd, big, cw[3], rw;   \
     int c, e, i, w, round, ncap, pass;                                         \
     HF__UNROLL for (c = 0; c < 3; ++c) {                                       \
         const float *X = c == 0 ? ro->x : c == 1 ? ro->y : ro->z;              \
@@ -6955,7 +6980,8 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
             rr[c] = HF__SEL(HF__LT(d2, HF__MUL(k[c].inner, k[c].inner)),       \
                             HF__SQRT(d2), rr[c]);                              \
     }                                                                          \
-    best_pen = hf__ftl_penetration_##S(k, rr, rel, ncol, q, &act);             \
+    rw = cw[0] = cw[1] = cw[2] = zero; /* set for ncol >= 1 */                 \
+    best_pen = hf__ftl_penetration_##S(k, rr, rel, ncol, q, &act, cw, &rw);    \
     act = HF__AND(act, HF__GT(l, zero));                                       \
     if (!HF__MASK(act)) return;                                                \
     HF__UNROLL for (i = 0; i < 3; ++i) u[i] = HF__SUB(q[i], p[i]);             \
@@ -6967,6 +6993,22 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
         best[i] = q[i];                                                        \
     }                                                                          \
     best_dot = HF__SET1(-2.0f);                                                \
+    { /* hf__ftl_collide_point's quick answer */                               \
+        V mq[3], cq, d[3], cand[3], hold, ok;                                  \
+        hf__ftl_cap_##S(p, l, cw, rw, n, mq, &cq);                             \
+        hf__ftl_onto_cap_##S(u, mq, cq, t, d);                                 \
+        HF__UNROLL for (i = 0; i < 3; ++i)                                     \
+            cand[i] = HF__ADD(p[i], HF__MUL(l, d[i]));                         \
+        ok = HF__AND(act, HF__LE(hf__ftl_penetration_##S(k, rr, rel, ncol,     \
+                                                         cand, &hold, NULL,    \
+                                                         NULL),                \
+                                 zero));                                       \
+        HF__UNROLL for (i = 0; i < 3; ++i)                                     \
+            best[i] = HF__SEL(ok, cand[i], best[i]);                           \
+        HF__UNROLL for (i = 0; i < 3; ++i)                                     \
+            best[i] = HF__SEL(ok, cand[i], best[i]);                           \
+        best_pen = HF__SEL(ok, zero, best_pen);                                \
+    }                                                                          \
     for (round = 0; round < HF__FTL_ROUNDS; ++round) {                         \
         V from[3];                                                             \
         const V pen0 = best_pen;                                               \
@@ -7018,7 +7060,7 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
                     HF__UNROLL for (w = 0; w < 3; ++w)                         \
                         cand[w] = HF__ADD(p[w], HF__MUL(l, di[w]));            \
                     pen = hf__ftl_penetration_##S(k, rr, rel, ncol, cand,      \
-                                                  &hold);                      \
+                                                  &hold, NULL, NULL);          \
                     dot = HF__DOT3(di[0], di[1], di[2], u[0], u[1], u[2]);     \
                     up = HF__OR(HF__LT(pen, best_pen),                         \
                                 HF__AND(HF__EQ(pen, best_pen),                 \
@@ -7058,6 +7100,8 @@ T HF__PRIVATE void hf__ftl_flush_##S(hf_ropes *ro, const float *F, int j,      \
     const size_t R = (size_t)ro->rope_count, o0 = (size_t)(j - 1) * R;         \
     int sig[HF__FTL_HITS][HF__FTL_NEAR + 1]; /* [0]: count, -1: too many */    \
     unsigned char done[HF__FTL_HITS];                                          \
+    unsigned short nxt[HF__FTL_HITS], first[2 * HF__FTL_HITS],                 \
+        last[2 * HF__FTL_HITS];                                                \
     hf__col_##S k[HF__FTL_NEAR];                                               \
     hf__col_prep spare, kp;                                                    \
     hf__cols cl;                                                               \
@@ -7100,7 +7144,31 @@ T HF__PRIVATE void hf__ftl_flush_##S(hf_ropes *ro, const float *F, int j,      \
             }                                                                  \
         }                                                                      \
     }                                                                          \
-    for (i = 0; i < h->n; ++i) done[i] = 0;                                    \
+    /* chain the points of each signature (nxt), through a hash table of       \
+       each one's first and last point */                                      \
+    for (i = 0; i < 2 * HF__FTL_HITS; ++i) first[i] = 0xffff;                  \
+    for (i = 0; i < h->n; ++i) {                                               \
+        unsigned hash = 2166136261u;                                           \
+        done[i] = 0;                                                           \
+        nxt[i] = 0xffff;                                                       \
+        for (c = 0; c <= sig[i][0]; ++c)                                       \
+            hash = (hash ^ (unsigned)sig[i][c]) * 16777619u;                   \
+        for (m = (int)(hash & (2 * HF__FTL_HITS - 1));;                        \
+             m = (m + 1) & (2 * HF__FTL_HITS - 1)) {                           \
+            if (first[m] == 0xffff) {                                          \
+                first[m] = last[m] = (unsigned short)i;                        \
+                break;                                                         \
+            }                                                                  \
+            n = sig[i][0];                                                     \
+            for (c = 0; c <= n && sig[first[m]][c] == sig[i][c]; ++c) {        \
+            }                                                                  \
+            if (c > n) {                                                       \
+                nxt[last[m]] = (unsigned short)i;                              \
+                last[m] = (unsigned short)i;                                   \
+                break;                                                         \
+            }                                                                  \
+        }                                                                      \
+    }                                                                          \
     for (i = 0; i < h->n; ++i) {                                               \
         if (done[i]) continue;                                                 \
         n = sig[i][0];                                                         \
@@ -7112,11 +7180,7 @@ T HF__PRIVATE void hf__ftl_flush_##S(hf_ropes *ro, const float *F, int j,      \
             }                                                                  \
             continue;                                                          \
         }                                                                      \
-        for (g = 0, m = i; m < h->n && g < W; ++m) {                           \
-            if (done[m] || sig[m][0] != n) continue;                           \
-            for (c = 1; c <= n && sig[m][c] == sig[i][c]; ++c) {               \
-            }                                                                  \
-            if (c <= n) continue;                                              \
+        for (g = 0, m = i; m != 0xffff && g < W; m = nxt[m]) {                 \
             idx[g++] = h->r[m];                                                \
             done[m] = 1;                                                       \
         }                                                                      \
@@ -7132,6 +7196,7 @@ T HF__PRIVATE void hf__ftl_flush_##S(hf_ropes *ro, const float *F, int j,      \
         else                                                                   \
             hf__ftl_collide_in_##S(ro, F, j, idx, k, n);                       \
     }                                                                          \
+                                                                               \
     h->n = 0;                                                                  \
 }                                                                              \
                                                                                \
