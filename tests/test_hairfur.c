@@ -5207,6 +5207,343 @@ static void test_ropes_many_colliders(void)
     tr_close(&s);
 }
 
+/* A 24-proxy body under the 0.1 m head sphere centred at (dx, 0, 0):
+   neck, chest, back, shoulders, arms, hips and legs, overlapping at the
+   joints as an engine's physics asset has them. Returns 24. */
+static int tr_body(hf_collider *c, float dx)
+{
+    static const float caps[19][7] = {
+        {0, -0.09f, -0.01f, 0, -0.17f, -0.01f, 0.055f},
+        {-0.12f, -0.30f, 0, 0.12f, -0.30f, 0, 0.11f},
+        {-0.10f, -0.42f, 0, 0.10f, -0.42f, 0, 0.11f},
+        {-0.08f, -0.55f, 0, 0.08f, -0.55f, 0, 0.10f},
+        {-0.10f, -0.70f, 0, 0.10f, -0.70f, 0, 0.11f},
+        {-0.10f, -0.28f, -0.06f, 0.10f, -0.45f, -0.06f, 0.09f},
+        {-0.05f, -0.19f, -0.02f, -0.17f, -0.23f, -0.02f, 0.06f},
+        {0.05f, -0.19f, -0.02f, 0.17f, -0.23f, -0.02f, 0.06f},
+        {-0.20f, -0.25f, 0, -0.22f, -0.52f, 0, 0.05f},
+        {0.20f, -0.25f, 0, 0.22f, -0.52f, 0, 0.05f},
+        {-0.22f, -0.52f, 0, -0.24f, -0.78f, 0.03f, 0.04f},
+        {0.22f, -0.52f, 0, 0.24f, -0.78f, 0.03f, 0.04f},
+        {-0.12f, -0.80f, 0, -0.13f, -1.20f, 0, 0.08f},
+        {0.12f, -0.80f, 0, 0.13f, -1.20f, 0, 0.08f},
+        {-0.13f, -1.20f, 0, -0.13f, -1.60f, 0, 0.06f},
+        {0.13f, -1.20f, 0, 0.13f, -1.60f, 0, 0.06f},
+        {-0.13f, -1.66f, -0.02f, -0.13f, -1.66f, 0.12f, 0.04f},
+        {0.13f, -1.66f, -0.02f, 0.13f, -1.66f, 0.12f, 0.04f},
+        {-0.04f, -0.30f, 0.07f, 0.04f, -0.30f, 0.07f, 0.06f}};
+    static const float sph[5][4] = {{-0.19f, -0.24f, 0, 0.065f},
+                                    {0.19f, -0.24f, 0, 0.065f},
+                                    {-0.25f, -0.84f, 0.04f, 0.05f},
+                                    {0.25f, -0.84f, 0.04f, 0.05f},
+                                    {0, -0.02f, 0.09f, 0.04f}};
+    int n = 0, i, k;
+    for (i = 0; i < 19; ++i, ++n) {
+        memset(c + n, 0, sizeof *c);
+        c[n].type = HF_COLLIDER_CAPSULE;
+        for (k = 0; k < 3; ++k) {
+            c[n].a[k] = caps[i][k] + (k == 0 ? dx : 0.0f);
+            c[n].b[k] = caps[i][3 + k] + (k == 0 ? dx : 0.0f);
+        }
+        c[n].radius = caps[i][6];
+    }
+    for (i = 0; i < 5; ++i, ++n) {
+        memset(c + n, 0, sizeof *c);
+        c[n].type = HF_COLLIDER_SPHERE;
+        for (k = 0; k < 3; ++k) c[n].a[k] = sph[i][k] + (k == 0 ? dx : 0.0f);
+        c[n].radius = sph[i][3];
+    }
+    return n;
+}
+
+/* Ropes of length len on a scalp cap of the 0.1 m head at (dx, 0, 0)
+   (polar angles up to 110 degrees), rest poses straight out. */
+static void tr_scalp(int R, int P, float len, float dx, float *rest,
+                     float *root, float *nrm, float *tan)
+{
+    float dirs[3 * 400];
+    int r;
+    for (r = 0; r < R && r < 400; ++r) {
+        const double el = 1.92 * sqrt((r + 0.5) / R);
+        const double az = 2.39996323 * r;
+        tr_on_head(r, el, az, dirs, nrm, tan, root);
+        root[3 * r] += dx;
+        tr_straight(rest, r, P, root + 3 * r, dirs + 3 * r, len);
+    }
+}
+
+/* Colliders far from every rope change nothing: the same ropes against
+   a head and a capsule near it, and against the same two among 40
+   others 3 m away (before, between and after them in the array), give
+   the same bytes at every level and however the ropes are split; the
+   near ones are touched. */
+static void test_ropes_far_colliders_same_bytes(void)
+{
+    enum { R = 70, P = 10, FAR = 40, FRAMES = 40 };
+    static float rest[3 * R * P];
+    float root[3 * R], nrm[3 * R], tan[3 * R];
+    hf_collider near_[2], all[FAR + 2];
+    hf_rope_params p;
+    tr_set s[3];
+    int k, f, r, c, lv, n, same = 1, touching = 0;
+    for (k = 0; k < 3; ++k)
+        if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
+    tr_scalp(R, P, 0.2f, 0.0f, rest, root, nrm, tan);
+    memset(near_, 0, sizeof near_);
+    near_[0].type = HF_COLLIDER_SPHERE;
+    near_[0].radius = 0.097f;
+    near_[1].type = HF_COLLIDER_CAPSULE;
+    near_[1].a[0] = -0.15f; near_[1].a[1] = -0.15f; near_[1].a[2] = 0.05f;
+    near_[1].b[0] = 0.15f; near_[1].b[1] = -0.15f; near_[1].b[2] = -0.05f;
+    near_[1].radius = 0.06f;
+    for (c = n = 0; c < FAR + 2; ++c) {
+        hf_collider *o = all + c;
+        if (c == 7 || c == 23) { /* the near ones, among the far */
+            *o = near_[n++];
+            continue;
+        }
+        memset(o, 0, sizeof *o);
+        o->type = c % 3 ? HF_COLLIDER_CAPSULE : HF_COLLIDER_SPHERE;
+        o->a[0] = 3.0f * cosf(0.3f * c);
+        o->a[1] = 0.5f * sinf(0.7f * c);
+        o->a[2] = 3.0f * sinf(0.3f * c);
+        o->b[0] = o->a[0] + 0.3f;
+        o->b[1] = o->a[1] - 0.2f;
+        o->b[2] = o->a[2];
+        o->radius = 0.05f + 0.01f * (c % 5);
+    }
+    for (lv = 0; lv < 4; ++lv) {
+        hf_rope_params_init(&p);
+        p.simd = tr_levels[lv];
+        for (k = 0; k < 3; ++k)
+            hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm, tan, 0);
+        for (f = 0; f < FRAMES; ++f) {
+            const float dx = 0.08f * sinf(0.2f * (float)f);
+            float moved[3 * R];
+            for (r = 0; r < 3 * R; ++r)
+                moved[r] = root[r] + (r % 3 == 0 ? dx : 0.0f);
+            for (k = 0; k < 3; ++k)
+                hf_ropes_set_roots(&s[k].ro, 0, R, moved, nrm, tan, 0);
+            CHECK_EQ_INT(hf_ropes_step(&s[0].ro, 0, R, 1.0f / 60.0f, &p,
+                                       near_, 2),
+                         HF_OK);
+            CHECK_EQ_INT(hf_ropes_step(&s[1].ro, 0, R, 1.0f / 60.0f, &p,
+                                       all, FAR + 2),
+                         HF_OK);
+            hf_ropes_step(&s[2].ro, 0, 33, 1.0f / 60.0f, &p, all, FAR + 2);
+            hf_ropes_step(&s[2].ro, 33, R - 33, 1.0f / 60.0f, &p, all,
+                          FAR + 2);
+            same &= tr_same(&s[0].ro, &s[1].ro, 1);
+            same &= tr_same(&s[0].ro, &s[2].ro, 1);
+        }
+        for (r = 0; r < R * P; ++r)
+            for (c = 0; c < 2; ++c) {
+                const float q[3] = {s[0].ro.x[r], s[0].ro.y[r], s[0].ro.z[r]};
+                if (r >= R && tr_dist_seg(q, &near_[c]) <
+                                  near_[c].radius + p.collision_margin + 1e-4)
+                    ++touching;
+            }
+    }
+    CHECK(same);
+    CHECK(touching > 40);
+    for (k = 0; k < 3; ++k) CHECK(tr_finite(&s[k].ro));
+    for (k = 0; k < 3; ++k) tr_close(&s[k]);
+}
+
+/* Hair on a head that swings over a 24-proxy body, its proxies
+   overlapping at the joints, for 600 frames: the ropes stay inextensible,
+   no point ends a step inside any proxy (but where the proxy holds the
+   rope's root, and is shrunk for it), many rest on them; and for the
+   first 60 frames every level gives the scalar bytes. */
+static void test_ropes_body_proxies(void)
+{
+    enum { R = 150, P = 12, FRAMES = 600, NSET = 4 };
+    static float rest[3 * R * P];
+    float root[3 * R], nrm[3 * R], tan[3 * R], moved[3 * R], st, worst_st = 0;
+    double worst_in = -1.0;
+    hf_collider col[25];
+    hf_rope_params p;
+    tr_set s[NSET];
+    int k, f, r, c, ncol, held = 0, same = 1, touching = 0, roots_in = 0;
+    for (k = 0; k < NSET; ++k)
+        if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
+    tr_scalp(R, P, 0.3f, 0.0f, rest, root, nrm, tan);
+    hf_rope_params_init(&p);
+    p.local_stiffness_root = 0.2f;
+    for (k = 0; k < NSET; ++k)
+        hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm, tan, 0);
+    for (f = 0; f < FRAMES; ++f) {
+        /* the head (and its hair) swings 0.16 m, the body stays */
+        const float dx = 0.08f * sinf(6.2831853f * (float)f / 60.0f);
+        memset(col, 0, sizeof col);
+        col[0].type = HF_COLLIDER_SPHERE;
+        col[0].a[0] = dx;
+        col[0].radius = 0.097f;
+        ncol = 1 + tr_body(col + 1, 0.0f);
+        for (r = 0; r < 3 * R; ++r)
+            moved[r] = root[r] + (r % 3 == 0 ? dx : 0.0f);
+        for (k = 0; k < (f < 60 ? NSET : 1); ++k) {
+            hf_rope_params pl = p;
+            pl.simd = k == 0 ? HF_SIMD_SCALAR : tr_levels[k - 1];
+            hf_ropes_set_roots(&s[k].ro, 0, R, moved, nrm, tan, 0);
+            CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, 1.0f / 60.0f, &pl, col,
+                                       ncol),
+                         HF_OK);
+            if (k > 0) same &= tr_same(&s[0].ro, &s[k].ro, 1);
+        }
+        hf_ropes_max_stretch(&s[0].ro, 0, R, &st);
+        worst_st = st > worst_st ? st : worst_st;
+        hf_ropes_roots_inside(&s[0].ro, 0, R, &held);
+        roots_in = held > roots_in ? held : roots_in;
+        for (r = R; r < R * P; ++r) /* every non-root point */
+            for (c = 0; c < ncol; ++c) {
+                hf_ropes_roots_inside(&s[0].ro, r % R, 1, &held);
+                if (held) continue;
+                const float q[3] = {s[0].ro.x[r], s[0].ro.y[r], s[0].ro.z[r]};
+                const double in = col[c].radius - tr_dist_seg(q, &col[c]);
+                worst_in = in > worst_in ? in : worst_in;
+                if (f == FRAMES - 1 && c > 0 && in > -p.collision_margin - 1e-4)
+                    ++touching;
+            }
+    }
+    CHECK(same);
+    CHECK(worst_st <= 1e-4f);
+    CHECK(worst_in < 0.0);
+    CHECK(touching > 50);
+    CHECK(roots_in < R / 10); /* a few roots on the chin's proxy */
+    CHECK(tr_finite(&s[0].ro));
+    for (k = 0; k < NSET; ++k) tr_close(&s[k]);
+}
+
+/* Hair draped over a joint, two capsules that overlap, comes to rest
+   there: after it settles no point moves faster than 1 mm/s. */
+static void test_ropes_resting_on_joint(void)
+{
+    enum { R = 24, P = 12 };
+    static float rest[3 * R * P];
+    float root[3 * R], nrm[3 * R], tan[3 * R], a[3 * R * P], b[3 * R * P];
+    hf_collider col[2];
+    hf_rope_params p;
+    tr_set s;
+    double vmax = 0.0;
+    int r, f;
+    if (!tr_open(&s, R, P)) { CHECK(0); return; }
+    memset(col, 0, sizeof col);
+    col[0].type = col[1].type = HF_COLLIDER_CAPSULE;
+    col[0].a[0] = -0.25f; /* an arm, and a forearm bent down at the elbow */
+    col[1].b[0] = 0.18f;
+    col[1].b[1] = -0.18f;
+    col[0].radius = col[1].radius = 0.05f;
+    for (r = 0; r < R; ++r) {
+        root[3 * r] = -0.04f + 0.08f * (float)(r % 6) / 5.0f;
+        root[3 * r + 1] = 0.06f;
+        root[3 * r + 2] = -0.03f + 0.06f * (float)(r / 6) / 3.0f;
+        nrm[3 * r] = 0.0f; nrm[3 * r + 1] = 1.0f; nrm[3 * r + 2] = 0.0f;
+        tan[3 * r] = 1.0f; tan[3 * r + 1] = 0.0f; tan[3 * r + 2] = 0.0f;
+        { /* tilted, half toward each capsule, so that they fall on it */
+            const float dir[3] = {r % 2 ? 0.7f : -0.7f, 0.7f, 0.14f};
+            tr_straight(rest, r, P, root + 3 * r, dir, 0.25f);
+        }
+    }
+    hf_rope_params_init(&p);
+    CHECK_EQ_INT(hf_ropes_set_rest(&s.ro, 0, R, rest, 0, root, nrm, tan, 0),
+                 HF_OK);
+    for (f = 0; f < 360; ++f) {
+        if (f >= 300) tr_snapshot(&s.ro, a);
+        CHECK_EQ_INT(hf_ropes_step(&s.ro, 0, R, 1.0f / 60.0f, &p, col, 2),
+                     HF_OK);
+        if (f >= 300) {
+            double v;
+            tr_snapshot(&s.ro, b);
+            v = tr_max_move(a, b, (size_t)R * P) * 60.0;
+            vmax = v > vmax ? v : vmax;
+        }
+    }
+    /* it lies on both: some points touch each capsule */
+    {
+        int on[2] = {0, 0}, c, j;
+        for (r = 0; r < R; ++r)
+            for (j = 1; j < P; ++j)
+                for (c = 0; c < 2; ++c)
+                    if (tr_dist_seg(b + 3 * ((size_t)r * P + j), &col[c]) <
+                        0.05 + 0.002 + 1e-4)
+                        ++on[c];
+        CHECK(on[0] > 10 && on[1] > 10);
+    }
+    CHECK(vmax < 1e-3);
+    tr_close(&s);
+}
+
+/* More colliders within reach than the broadphase holds per tile (200
+   small spheres among the ropes) and more than it lists per chunk: the
+   levels agree to the byte, the ropes keep their lengths. A bad collider
+   far down a long array is still refused, with nothing written. */
+static void test_ropes_crowded_colliders(void)
+{
+    enum { R = 40, P = 8, N = 200, NSET = 4 };
+    static float rest[3 * R * P];
+    float root[3 * R], nrm[3 * R], tan[3 * R], st;
+    static hf_collider col[N];
+    hf_rope_params p;
+    tr_set s[NSET];
+    uint32_t seed = 99u;
+    int k, f, c, same = 1;
+    for (k = 0; k < NSET; ++k)
+        if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
+    tr_scalp(R, P, 0.15f, 0.0f, rest, root, nrm, tan);
+    for (c = 0; c < N; ++c) {
+#define T_RND()                                                                \
+    ((float)((seed = seed * 1664525u + 1013904223u) >> 8) * (1.0f / 16777216.0f))
+        memset(col + c, 0, sizeof col[c]);
+        col[c].type = c % 2 ? HF_COLLIDER_CAPSULE : HF_COLLIDER_SPHERE;
+        for (k = 0; k < 3; ++k) {
+            col[c].a[k] = 0.5f * T_RND() - 0.25f;
+            col[c].b[k] = col[c].a[k] + 0.02f * T_RND();
+        }
+        col[c].a[1] += 0.1f;
+        col[c].b[1] += 0.1f;
+        col[c].radius = 0.004f + 0.004f * T_RND();
+#undef T_RND
+    }
+    for (k = 0; k < NSET; ++k)
+        hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm, tan, 0);
+    for (f = 0; f < 20; ++f)
+        for (k = 0; k < NSET; ++k) {
+            hf_rope_params_init(&p);
+            p.simd = k == 0 ? HF_SIMD_SCALAR : tr_levels[k - 1];
+            p.wind[0] = 4.0f;
+            CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, 1.0f / 60.0f, &p, col,
+                                       N),
+                         HF_OK);
+            if (k > 0) same &= tr_same(&s[0].ro, &s[k].ro, 1);
+        }
+    CHECK(same);
+    hf_ropes_max_stretch(&s[0].ro, 0, R, &st);
+    CHECK(st <= 1e-4f);
+    CHECK(tr_finite(&s[0].ro));
+    {
+        const size_t bytes = s[0].size;
+        unsigned char *snap = (unsigned char *)malloc(bytes);
+        hf_ropes keep = s[0].ro;
+        if (snap) {
+            memcpy(snap, s[0].mem, bytes);
+            col[N - 3].radius = -0.01f;
+            CHECK_EQ_INT(hf_ropes_step(&s[0].ro, 0, R, 1.0f / 60.0f, &p, col,
+                                       N),
+                         HF_ERROR_BAD_PARAMETER);
+            col[N - 3].radius = 0.01f;
+            col[N - 2].b[2] = TB_NAN;
+            CHECK_EQ_INT(hf_ropes_step(&s[0].ro, 0, R, 1.0f / 60.0f, &p, col,
+                                       N),
+                         HF_ERROR_NON_FINITE);
+            CHECK(memcmp(snap, s[0].mem, bytes) == 0);
+            CHECK(memcmp(&keep, &s[0].ro, sizeof keep) == 0);
+            free(snap);
+        }
+    }
+    for (k = 0; k < NSET; ++k) tr_close(&s[k]);
+}
+
 static void test_bad_rope_params(void)
 {
     hf_rope_params p, b;
@@ -10737,6 +11074,10 @@ int main(void)
     RUN(test_ropes_collision_soak);
     RUN(test_ropes_copy_range);
     RUN(test_ropes_many_colliders);
+    RUN(test_ropes_far_colliders_same_bytes);
+    RUN(test_ropes_body_proxies);
+    RUN(test_ropes_resting_on_joint);
+    RUN(test_ropes_crowded_colliders);
     RUN(test_bad_rope_params);
     RUN(test_bad_ropes_memory_and_limits);
     RUN(test_bad_ropes_set_rest_and_roots);
