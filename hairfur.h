@@ -7219,74 +7219,6 @@ T HF__INLINE void hf__ftl_list_##S(hf_ropes *ro, const float *F, int j,        \
 HF__FTL_KERNELS(v4, hf__v4, 4, , HF__GATHER4, (void)0)
 #undef HF__GATHER4
 
-/* The distance solver's collisions for ropes [a, b): per tile, the box
-   of its points, and the colliders in order that meet it or the box of
-   one kept before (a push leaves a point on the surface of the collider
-   it left, inside that collider's box); each kept collider pushes every
-   point of the tile it holds straight out, four lanes tested at once
-   where the level has them (the push is the scalar one: same bytes). */
-HF__PRIVATE void hf__ropes_collide(hf_ropes *ro, const float *F, int a, int b,
-                                   const hf__bp *bp, int level)
-{
-    const size_t R = (size_t)ro->rope_count;
-    const float *nx = HF__ROW(F, 6, R), *ny = HF__ROW(F, 7, R),
-                *nz = HF__ROW(F, 8, R);
-    int x, e, j, r, c, k;
-    for (x = a; x < b; x = e) {
-        float lo[3], hi[3];
-        e = b - x > HF__BP_TILE ? x + HF__BP_TILE : b;
-        for (k = 0; k < 3; ++k) {
-            const float *X = k == 0 ? ro->x : k == 1 ? ro->y : ro->z;
-            lo[k] = hi[k] = X[R + (size_t)x];
-            for (j = 1; j < ro->points; ++j)
-                for (r = x; r < e; ++r) {
-                    const float v = X[(size_t)j * R + (size_t)r];
-                    lo[k] = v < lo[k] ? v : lo[k];
-                    hi[k] = v > hi[k] ? v : hi[k];
-                }
-        }
-        for (c = 0; c < bp->ncol; ++c) {
-            float clo[3], chi[3];
-            hf__col_prep kp;
-            hf__col_box(bp->col + c, bp->margin, clo, chi);
-            if (hf__box_gap(lo, hi, clo, chi) > 0.0f) continue;
-            for (k = 0; k < 3; ++k) {
-                lo[k] = clo[k] < lo[k] ? clo[k] : lo[k];
-                hi[k] = chi[k] > hi[k] ? chi[k] : hi[k];
-            }
-            kp = hf__collider_prep(bp->col, c, bp->margin);
-            for (j = 1; j < ro->points; ++j) {
-                float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
-                      *Z = HF__ROW(ro->z, j, R);
-                r = x;
-#if HF__V4
-                if (level >= HF_SIMD_SSE2) {
-                    hf__col_v4 kv;
-                    hf__col_prep_v4(&kp, &kv);
-                    for (; r + 4 <= e; r += 4) {
-                        hf__v4 xyz[3];
-                        int m, i;
-                        xyz[0] = HF__LD(X + r);
-                        xyz[1] = HF__LD(Y + r);
-                        xyz[2] = HF__LD(Z + r);
-                        m = hf__col_hits_v4(&kv, xyz);
-                        for (i = 0; m; ++i, m >>= 1)
-                            if (m & 1)
-                                hf__col_push_out(&kp, X + r + i, Y + r + i,
-                                                 Z + r + i, nx[r + i],
-                                                 ny[r + i], nz[r + i]);
-                    }
-                }
-#endif
-                for (; r < e; ++r)
-                    hf__col_push_out(&kp, X + r, Y + r, Z + r, nx[r], ny[r],
-                                     nz[r]);
-            }
-        }
-    }
-    (void)level;
-}
-
 /* The sub-step's row kernels (ropes [a, b), b - a a multiple of W, a rope
    per lane), each with the operations of its scalar reference: written
    once, like the contact kernels, in HF__ROPE_ROWS(S, V, W, T, ZU), with
@@ -7701,6 +7633,75 @@ static const hf__rope_rows hf__rope_rows_v4 = {
     hf__ropes_mark_far_v4};
 
 #endif
+
+/* The distance solver's collisions for ropes [a, b): per tile, the box
+   of its points, and the colliders in order that meet it or the box of
+   one kept before (a push leaves a point on the surface of the collider
+   it left, inside that collider's box); each kept collider pushes every
+   point of the tile it holds straight out, four lanes tested at once
+   where the level has them (the push is the scalar one: same bytes). */
+HF__PRIVATE void hf__ropes_collide(hf_ropes *ro, const float *F, int a, int b,
+                                   const hf__bp *bp, int level)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const float *nx = HF__ROW(F, 6, R), *ny = HF__ROW(F, 7, R),
+                *nz = HF__ROW(F, 8, R);
+    int x, e, j, r, c, k;
+    for (x = a; x < b; x = e) {
+        float lo[3], hi[3];
+        e = b - x > HF__BP_TILE ? x + HF__BP_TILE : b;
+        for (k = 0; k < 3; ++k) {
+            const float *X = k == 0 ? ro->x : k == 1 ? ro->y : ro->z;
+            lo[k] = hi[k] = X[R + (size_t)x];
+            for (j = 1; j < ro->points; ++j)
+                for (r = x; r < e; ++r) {
+                    const float v = X[(size_t)j * R + (size_t)r];
+                    lo[k] = v < lo[k] ? v : lo[k];
+                    hi[k] = v > hi[k] ? v : hi[k];
+                }
+        }
+        for (c = 0; c < bp->ncol; ++c) {
+            float clo[3], chi[3];
+            hf__col_prep kp;
+            hf__col_box(bp->col + c, bp->margin, clo, chi);
+            if (hf__box_gap(lo, hi, clo, chi) > 0.0f) continue;
+            for (k = 0; k < 3; ++k) {
+                lo[k] = clo[k] < lo[k] ? clo[k] : lo[k];
+                hi[k] = chi[k] > hi[k] ? chi[k] : hi[k];
+            }
+            kp = hf__collider_prep(bp->col, c, bp->margin);
+            for (j = 1; j < ro->points; ++j) {
+                float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
+                      *Z = HF__ROW(ro->z, j, R);
+                r = x;
+#if HF__V4
+                if (level >= HF_SIMD_SSE2) {
+                    hf__col_v4 kv;
+                    hf__col_prep_v4(&kp, &kv);
+                    for (; r + 4 <= e; r += 4) {
+                        hf__v4 xyz[3];
+                        int m, i;
+                        xyz[0] = HF__LD(X + r);
+                        xyz[1] = HF__LD(Y + r);
+                        xyz[2] = HF__LD(Z + r);
+                        m = hf__col_hits_v4(&kv, xyz);
+                        for (i = 0; m; ++i, m >>= 1)
+                            if (m & 1)
+                                hf__col_push_out(&kp, X + r + i, Y + r + i,
+                                                 Z + r + i, nx[r + i],
+                                                 ny[r + i], nz[r + i]);
+                    }
+                }
+#endif
+                for (; r < e; ++r)
+                    hf__col_push_out(&kp, X + r, Y + r, Z + r, nx[r], ny[r],
+                                     nz[r]);
+            }
+        }
+    }
+    (void)level;
+}
+
 
 #if HF__AVX2
 /* The rope kernels at eight lanes (AVX2), then sixteen (AVX-512): the

@@ -186,7 +186,9 @@ typedef struct scene {
     hf_fur_info info;
     float *vbuf, *pbuf;
     unsigned char *cbuf; /* 16-byte compact ribbon vertices */
-    hf_collider col;
+    int points;          /* per strand */
+    hf_collider col[BENCH_MAX_COLLIDERS]; /* the head's, then a body's */
+    int ncol;
     hf_mesh skinned;
     float dt;
     int frame;
@@ -206,7 +208,7 @@ static void check(const char *what, hf_result r)
 }
 
 static void j_roots(job *j, int f, int c) { (void)j; check("roots", hf_fur_set_roots(g_sc->fur, &g_sc->skinned, f, c)); }
-static void j_ropes(job *j, int f, int c) { (void)j; check("ropes", hf_fur_simulate(g_sc->fur, f, c, g_sc->dt, &g_sc->col, 1)); }
+static void j_ropes(job *j, int f, int c) { (void)j; check("ropes", hf_fur_simulate(g_sc->fur, f, c, g_sc->dt, g_sc->col, g_sc->ncol)); }
 static void j_lodg(job *j, int f, int c) { (void)j; check("lod guides", hf_fur_interpolate_guides(g_sc->fur, f, c)); }
 static void j_interp(job *j, int f, int c) { (void)j; check("interpolate", hf_fur_interpolate(g_sc->fur, f, c)); }
 
@@ -221,6 +223,21 @@ static void j_ipoints(job *j, int f, int c) { (void)j; check("interp_points", hf
 static hf_ribbon_output g_out16;
 static void j_ribbons16(job *j, int f, int c) { (void)j; check("ribbons16", hf_fur_ribbons(g_sc->fur, f, c, &g_view, &g_out16)); }
 
+/* The first ncol colliders of a character swaying dx sideways: the
+   head's sphere, its body (bench_body), then two more bodies 2 m to
+   either side, which no hair reaches. */
+static void scene_colliders(scene *s, float dx)
+{
+    hf_collider all[1 + 3 * BENCH_BODY];
+    int i;
+    bench_collider(&all[0]);
+    all[0].a[0] = dx;
+    bench_body(all + 1, dx, 0.0f);
+    bench_body(all + 1 + BENCH_BODY, dx + 2.0f, 0.0f);
+    bench_body(all + 1 + 2 * BENCH_BODY, dx - 2.0f, 0.5f);
+    for (i = 0; i < s->ncol; ++i) s->col[i] = all[i];
+}
+
 static void scene_pose(scene *s, int frame)
 {
     /* sideways swing, 0.2 m peak to peak at 1 Hz */
@@ -230,7 +247,7 @@ static void scene_pose(scene *s, int frame)
         s->skin[i] = s->head.vertices[i];
         s->skin[i].pos[0] += dx;
     }
-    s->col.a[0] = dx;
+    scene_colliders(s, dx);
 }
 
 /* A buffer aligned as a mapped OpenGL buffer is (and the write limit's,
@@ -246,7 +263,8 @@ static void *mapped_like(size_t bytes)
 }
 
 static void scene_init(scene *s, const char *name, int rings, int segments,
-                       int strands, float tess_factor)
+                       int strands, float tess_factor, int points,
+                       float length)
 {
     hf_fur_desc d;
     hf_diag diag;
@@ -260,6 +278,8 @@ static void scene_init(scene *s, const char *name, int rings, int segments,
     hm_hairline_density(s->density, 256, 256);
     bench_fur_desc(&d, &density, &rp, &s->head, s->density, strands,
                    tess_factor);
+    d.points_per_strand = s->points = points;
+    d.max_length = length;
     a.alloc = c_alloc;
     a.realloc = c_realloc;
     a.free = c_free;
@@ -271,21 +291,22 @@ static void scene_init(scene *s, const char *name, int rings, int segments,
     }
     hf_fur_get_info(s->fur, &s->info);
     s->skin = (hm_vertex *)malloc(sizeof(hm_vertex) * (size_t)s->head.vertex_count);
-    nv = (size_t)s->info.strand_count * P * 2u;
+    nv = (size_t)s->info.strand_count * (size_t)points * 2u;
     /* the vertices go to mapped buffers, which OpenGL aligns to at least
        64 bytes (GL_MIN_MAP_BUFFER_ALIGNMENT) */
     s->vbuf = (float *)mapped_like(nv * 36u);
-    s->pbuf = (float *)mapped_like((size_t)s->info.strand_count * P * 16u);
+    s->pbuf = (float *)mapped_like(nv * 8u);
     s->cbuf = (unsigned char *)mapped_like(nv * 16u);
     if (!s->skin) exit(1);
     memset(s->vbuf, 0, nv * 36u); /* fault the pages in before timing */
     memset(s->cbuf, 0, nv * 16u);
-    memset(s->pbuf, 0, (size_t)s->info.strand_count * P * 16u);
+    memset(s->pbuf, 0, nv * 8u);
     s->skinned = d.mesh;
     s->skinned.positions = s->skin[0].pos;
     s->skinned.normals = s->skin[0].normal;
     s->skinned.uvs = s->skin[0].uv;
-    bench_collider(&s->col);
+    s->ncol = 1; /* the head's sphere */
+    scene_colliders(s, 0.0f);
     s->dt = 1.0f / 60.0f;
 }
 
@@ -567,6 +588,7 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
     long allocs0;
     int f, k, warm = 10;
     double bytes[ST_N];
+    const double np = s->points;
     g_sc = s;
     g_threads = threads;
     bench_views(&g_view, &g_view_gpu, &g_out, s->vbuf, &g_out16, s->cbuf);
@@ -574,12 +596,12 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
         t[k] = (double *)malloc(sizeof(double) * (size_t)frames);
     stage_jobs(s, jobs);
     bytes[ST_ROOTS] = (double)s->info.guide_count * 36.0;
-    bytes[ST_ROPES] = (double)s->info.guide_count * P * 12.0;
-    bytes[ST_LODG] = (double)s->info.lod_guide_count * P * 12.0;
-    bytes[ST_INTERP] = (double)s->info.strand_count * P * 12.0;
-    bytes[ST_RIBBONS] = (double)s->info.strand_count * P * 2.0 * 36.0;
-    bytes[ST_POINTS] = (double)s->info.strand_count * P * 16.0;
-    bytes[ST_RIBBONS16] = (double)s->info.strand_count * P * 2.0 * 16.0;
+    bytes[ST_ROPES] = (double)s->info.guide_count * np * 12.0;
+    bytes[ST_LODG] = (double)s->info.lod_guide_count * np * 12.0;
+    bytes[ST_INTERP] = (double)s->info.strand_count * np * 12.0;
+    bytes[ST_RIBBONS] = (double)s->info.strand_count * np * 2.0 * 36.0;
+    bytes[ST_POINTS] = (double)s->info.strand_count * np * 16.0;
+    bytes[ST_RIBBONS16] = (double)s->info.strand_count * np * 2.0 * 16.0;
     bytes[ST_IPOINTS] = bytes[ST_POINTS];
     bytes[ST_FRAME] = bytes[ST_FRAME16] = bytes[ST_FRAMEP] = 0;
 
@@ -617,7 +639,7 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
     }
     {
         long allocs = g_allocs - allocs0;
-        size_t big = (size_t)s->info.strand_count * P * 2u * 36u;
+        size_t big = (size_t)s->info.strand_count * (size_t)np * 2u * 36u;
         float *dst = (float *)mapped_like(big);
         memset(dst, 1, big);
         for (k = 0; k < ST_N; ++k) {
@@ -755,6 +777,94 @@ static void bench_levels(scene *s, int frames)
     free(dst);
 }
 
+static void scene_free(scene *s)
+{
+    hf_fur_destroy(s->fur);
+    hm_free(&s->head);
+    free(s->skin);
+    free(s->vbuf);
+    free(s->pbuf);
+    free(s->cbuf);
+}
+
+/* Scene V, a character at Veilguard's scale (BENCH_V_*): every stage
+   with the head's sphere alone (scene Vh) and with the head on its
+   24-proxy body (scene V), 1 and 2 threads; then how the ropes and the
+   GPU path's frame (roots, ropes, LOD guides, interp_points) grow with
+   the colliders: none, the head's, the head and the first 7 (23)
+   proxies, the whole body (25), and 64 (39 more of two bodies 2 m away,
+   which no hair reaches), each after a second for the hair to settle
+   on them. Machine lines:
+     bench stage=colliders scene=V colliders=N threads=T ropes=..
+           frame_points=..
+   g_v_frame: frame_points ms by collider row and threads. */
+#define V_ROWS 6
+static const int v_counts[V_ROWS] = {0, 1, 8, 24, 1 + BENCH_BODY,
+                                     BENCH_MAX_COLLIDERS};
+static double g_v_frame[V_ROWS][MAX_THREADS + 1];
+static int g_v_ran;
+
+static void bench_character(int frames)
+{
+    static scene v;
+    job jobs[ST_N];
+    double *tr = (double *)malloc(sizeof(double) * (size_t)frames),
+           *tf = (double *)malloc(sizeof(double) * (size_t)frames);
+    int body, th, c, f;
+    scene_init(&v, "Vh", BENCH_V_RINGS, BENCH_V_SEGMENTS, BENCH_V_STRANDS,
+               0.0f, BENCH_V_POINTS, BENCH_V_LENGTH);
+    printf("scene V: %d guides, %d strands, %d points each, %.2f m of hair; "
+           "Vh: the head's sphere alone, V: the head on a %d-proxy body\n",
+           v.info.guide_count, v.info.strand_count, v.info.points_per_strand,
+           (double)BENCH_V_LENGTH, BENCH_BODY);
+    for (body = 0; body < 2; ++body) {
+        v.name = body ? "V" : "Vh";
+        v.ncol = body ? 1 + BENCH_BODY : 1;
+        check("reset", hf_fur_reset(v.fur));
+        for (th = 1; th <= MAX_THREADS; ++th)
+            bench_scene(&v, frames, th, NULL);
+    }
+    printf("  colliders on V: median ms of the ropes and of the GPU path's "
+           "frame\n");
+    g_sc = &v;
+    stage_jobs(&v, jobs);
+    for (c = 0; c < V_ROWS; ++c) {
+        v.ncol = v_counts[c];
+        check("reset", hf_fur_reset(v.fur));
+        for (th = 1; th <= MAX_THREADS; ++th) {
+            figure fr, ff;
+            g_threads = th;
+            for (f = -60; f < frames; ++f) {
+                double t0, t1, t2;
+                scene_pose(&v, v.frame++);
+                t0 = now_ms();
+                run_job(&jobs[ST_ROOTS]);
+                t1 = now_ms();
+                run_job(&jobs[ST_ROPES]);
+                t2 = now_ms();
+                run_job(&jobs[ST_LODG]);
+                run_job(&jobs[ST_IPOINTS]);
+                if (f < 0) continue;
+                tr[f] = t2 - t1;
+                tf[f] = now_ms() - t0;
+            }
+            fr = stats(tr, frames);
+            ff = stats(tf, frames);
+            g_v_frame[c][th] = ff.med;
+            printf("    %2d colliders %dT: ropes %7.3f (min %7.3f)  frame "
+                   "%7.3f (min %7.3f)\n",
+                   v_counts[c], th, fr.med, fr.min, ff.med, ff.min);
+            fprintf(stderr, "bench stage=colliders scene=V colliders=%d "
+                            "threads=%d ropes=%.4f frame_points=%.4f\n",
+                    v_counts[c], th, fr.med, ff.med);
+        }
+    }
+    g_v_ran = 1;
+    scene_free(&v);
+    free(tr);
+    free(tf);
+}
+
 /* LOD guides interpolated instead of simulated: a coarse head whose
    tessellation adds guides (scenes S, M and L are fine enough that it adds
    none), drawn at LOD 0.25, below the default simulate threshold of 0.5. */
@@ -805,15 +915,6 @@ static void bench_lod_guides(scene *s, int frames)
    machine line per configuration:
      bench stage=scaling vary=strands|guides strands=N guides=G threads=T
            roots=.. ropes=.. strands_ms=.. ribbons=.. points=.. */
-static void scene_free(scene *s)
-{
-    hf_fur_destroy(s->fur);
-    hm_free(&s->head);
-    free(s->skin);
-    free(s->vbuf);
-    free(s->pbuf);
-    free(s->cbuf);
-}
 
 static void bench_scaling(int frames)
 {
@@ -835,9 +936,10 @@ static void bench_scaling(int frames)
             static scene sc;
             memset(&sc, 0, sizeof sc);
             if (vary == 0)
-                scene_init(&sc, "scale", 26, 40, strands[i], 0.0f);
+                scene_init(&sc, "scale", 26, 40, strands[i], 0.0f, P, 0.25f);
             else
-                scene_init(&sc, "scale", rings[i], segs[i], 100000, 0.0f);
+                scene_init(&sc, "scale", rings[i], segs[i], 100000, 0.0f, P,
+                           0.25f);
             g_sc = &sc;
             bench_views(&g_view, &g_view_gpu, &g_out, sc.vbuf, &g_out16,
                         sc.cbuf);
@@ -966,6 +1068,18 @@ static void print_targets(const double *frame_l)
                     frame_l[1] / frame_l[2], 1.8, 0);
     if ((k = find_kept("lut_256", "-", 1)) != NULL)
         target_line("lut_256_ms", "256 x 256 LUT bake (ms)", k->ms, 50.0, 1);
+    if (g_v_ran) {
+        /* rows 1 (the head's sphere), 4 (its body), 5 (64) */
+        target_line("frame_points_V_body_ratio",
+                    "V's frame, body / head alone (GPU points)",
+                    g_v_frame[4][1] / g_v_frame[1][1], 1.3, 1);
+        target_line("frame_points_V_64_ratio",
+                    "V's frame, 64 colliders / head alone",
+                    g_v_frame[5][1] / g_v_frame[1][1], 1.4, 1);
+        target_line("frame_points_V_body_2T_ms",
+                    "V's frame with the body, 2 threads (ms)",
+                    g_v_frame[4][2], 1.0, 1);
+    }
     if (g_max_allocs >= 0)
         target_line("allocs_per_frame", "allocations in any frame",
                     (double)g_max_allocs, 1.0, 1);
@@ -985,7 +1099,8 @@ int main(int argc, char **argv)
             frames = atoi(argv[++i]);
         else if (i + 1 < argc && !strcmp(argv[i], "--scene") &&
                  (!strcmp(argv[i + 1], "S") || !strcmp(argv[i + 1], "M") ||
-                  !strcmp(argv[i + 1], "L") || !strcmp(argv[i + 1], "Mc")))
+                  !strcmp(argv[i + 1], "L") || !strcmp(argv[i + 1], "Mc") ||
+                  !strcmp(argv[i + 1], "V")))
             only = argv[++i];
         else {
             int help = !strcmp(argv[i], "--help") || !strcmp(argv[i], "-h");
@@ -995,11 +1110,14 @@ int main(int argc, char **argv)
                         i + 1 < argc ? "unknown option or value"
                                      : "unknown option or missing value");
             fprintf(help ? stdout : stderr,
-                    "usage: bench [--frames N] [--scene S|M|L|Mc] "
+                    "usage: bench [--frames N] [--scene S|M|L|Mc|V] "
                     "[--scaling]\n"
                     "  --frames N   frames measured after a 10-frame "
                     "warm-up (default 30, at least 3)\n"
-                    "  --scene X    only scene X (S, M, L; Mc: LOD guides)\n"
+                    "  --scene X    only scene X (S, M, L; Mc: LOD guides; V: a "
+                    "character,\n"
+                    "               its head on a 24-proxy body, and the "
+                    "cost of colliders)\n"
                     "  --scaling    how cost grows with strands and guides "
                     "instead\n"
                     "The table goes to stdout, one machine line per figure "
@@ -1026,10 +1144,10 @@ int main(int argc, char **argv)
     }
     bench_bandwidth();
     /* sphere resolutions chosen for about 360, 3,700 and 1,000 guides */
-    scene_init(&sc[0], "S", 16, 24, 3670, 0.0f);   /* 362 guides */
-    scene_init(&sc[1], "M", 52, 72, 36700, 0.0f);  /* 3,674 guides */
+    scene_init(&sc[0], "S", 16, 24, 3670, 0.0f, P, 0.25f); /* 362 guides */
+    scene_init(&sc[1], "M", 52, 72, 36700, 0.0f, P, 0.25f); /* 3,674 */
     scene_init(&sc[2], "L", BENCH_L_RINGS, BENCH_L_SEGMENTS, BENCH_L_STRANDS,
-               0.0f); /* 1,002 guides */
+               0.0f, P, 0.25f); /* 1,002 guides */
     for (i = 0; i < 3; ++i) {
         if (only && strcmp(only, sc[i].name)) continue;
         printf("scene %s: %d guides, %d strands, %d points each\n",
@@ -1043,10 +1161,11 @@ int main(int argc, char **argv)
     }
     if (!only || !strcmp(only, "Mc")) {
         static scene lodsc;
-        scene_init(&lodsc, "Mc", 10, 16, 36700, 80000.0f);
+        scene_init(&lodsc, "Mc", 10, 16, 36700, 80000.0f, P, 0.25f);
         bench_lod_guides(&lodsc, frames);
         hf_fur_destroy(lodsc.fur);
     }
+    if (!only || !strcmp(only, "V")) bench_character(frames);
     bench_lut(9);
     print_targets(!only || !strcmp(only, "L") ? frame_ms[2] : NULL);
 

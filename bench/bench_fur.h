@@ -13,6 +13,15 @@
 #define BENCH_L_RINGS 26
 #define BENCH_L_SEGMENTS 40
 #define BENCH_L_STRANDS 100000
+/* scene V, a character at Veilguard's scale: 50,000 strands of 32 points
+   on about 5,000 guides, 0.3 m of hair, the head on a 24-proxy body */
+#define BENCH_V_RINGS 56
+#define BENCH_V_SEGMENTS 92
+#define BENCH_V_STRANDS 50000
+#define BENCH_V_POINTS 32
+#define BENCH_V_LENGTH 0.3f
+#define BENCH_BODY 24       /* proxies of bench_body */
+#define BENCH_MAX_COLLIDERS 64
 
 #ifdef HAIRFUR_H
 
@@ -88,6 +97,53 @@ static void bench_collider(hf_collider *c)
     memset(c, 0, sizeof *c);
     c->type = HF_COLLIDER_SPHERE;
     c->radius = 0.097f; /* the head: BENCH_HEAD_RADIUS */
+}
+
+/* A humanoid body of BENCH_BODY proxies under the head (radius 0.1 m,
+   centred at (dx, 0, dz)), as an engine's physics asset gives one:
+   neck, chest, belly, pelvis, back, shoulders, arms, hands, legs, feet and
+   chin, overlapping at the joints. Writes c[0 .. BENCH_BODY). */
+static void bench_body(hf_collider *c, float dx, float dz)
+{
+    static const float caps[19][7] = {
+        /* a (x, y, z), b (x, y, z), radius */
+        {0, -0.09f, -0.01f, 0, -0.17f, -0.01f, 0.055f},         /* neck */
+        {-0.12f, -0.30f, 0, 0.12f, -0.30f, 0, 0.11f},           /* chest */
+        {-0.10f, -0.42f, 0, 0.10f, -0.42f, 0, 0.11f},           /* ribs */
+        {-0.08f, -0.55f, 0, 0.08f, -0.55f, 0, 0.10f},           /* belly */
+        {-0.10f, -0.70f, 0, 0.10f, -0.70f, 0, 0.11f},           /* pelvis */
+        {-0.10f, -0.28f, -0.06f, 0.10f, -0.45f, -0.06f, 0.09f}, /* back */
+        {-0.05f, -0.19f, -0.02f, -0.17f, -0.23f, -0.02f, 0.06f}, /* traps */
+        {0.05f, -0.19f, -0.02f, 0.17f, -0.23f, -0.02f, 0.06f},
+        {-0.20f, -0.25f, 0, -0.22f, -0.52f, 0, 0.05f},          /* arms */
+        {0.20f, -0.25f, 0, 0.22f, -0.52f, 0, 0.05f},
+        {-0.22f, -0.52f, 0, -0.24f, -0.78f, 0.03f, 0.04f},      /* forearms */
+        {0.22f, -0.52f, 0, 0.24f, -0.78f, 0.03f, 0.04f},
+        {-0.12f, -0.80f, 0, -0.13f, -1.20f, 0, 0.08f},          /* thighs */
+        {0.12f, -0.80f, 0, 0.13f, -1.20f, 0, 0.08f},
+        {-0.13f, -1.20f, 0, -0.13f, -1.60f, 0, 0.06f},          /* shins */
+        {0.13f, -1.20f, 0, 0.13f, -1.60f, 0, 0.06f},
+        {-0.13f, -1.66f, -0.02f, -0.13f, -1.66f, 0.12f, 0.04f}, /* feet */
+        {0.13f, -1.66f, -0.02f, 0.13f, -1.66f, 0.12f, 0.04f},
+        {-0.04f, -0.30f, 0.07f, 0.04f, -0.30f, 0.07f, 0.06f}};  /* sternum */
+    static const float sph[5][4] = {{-0.19f, -0.24f, 0, 0.065f}, /* shoulders */
+                                    {0.19f, -0.24f, 0, 0.065f},
+                                    {-0.25f, -0.84f, 0.04f, 0.05f}, /* hands */
+                                    {0.25f, -0.84f, 0.04f, 0.05f},
+                                    {0, -0.02f, 0.09f, 0.04f}}; /* chin */
+    int i, k;
+    for (i = 0; i < BENCH_BODY; ++i) {
+        hf_collider *o = c + i;
+        const float *q = i < 19 ? caps[i] : sph[i - 19];
+        memset(o, 0, sizeof *o);
+        o->type = i < 19 ? HF_COLLIDER_CAPSULE : HF_COLLIDER_SPHERE;
+        for (k = 0; k < 3; ++k) {
+            const float off = k == 0 ? dx : (k == 2 ? dz : 0.0f);
+            o->a[k] = q[k] + off;
+            o->b[k] = (i < 19 ? q[3 + k] : q[k]) + off;
+        }
+        o->radius = i < 19 ? q[6] : q[3];
+    }
 }
 
 #endif /* HAIRFUR_H */
