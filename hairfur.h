@@ -1395,6 +1395,19 @@ typedef struct hf_ribbon_strands {
                                 multiplier) is at most HF_MAX_ABS */
 } hf_ribbon_strands;
 
+/* How the GPU points (hf_ribbon_points, hf_fur_points,
+   hf_fur_interpolate_points) store a point. */
+typedef enum hf_point_format {
+    HF_POINT_F32 = 0,    /* x, y, z, half width: 4 floats, 16 bytes */
+    HF_POINT_COMPACT = 1 /* 8 bytes: x, y, z as SNORM16 of
+                            (p - point_origin) / point_scale, then the half
+                            width as an IEEE half (F16); in GL an RGBA16I
+                            texture buffer, see examples/ribbon_expand.glsl.
+                            Position error at most point_scale / 65534 (15
+                            um for a 1 m box: scale 1), half width 11 bits
+                            relative */
+} hf_point_format;
+
 typedef struct hf_ribbon_params {
     int points_per_strand; /* P, >= 2 (required) */
     /* Camera: by default perspective from `eye`; orthographic != 0 uses the
@@ -1452,6 +1465,17 @@ typedef struct hf_ribbon_params {
        points_per_strand is a multiple of 8 (else two a vector); AVX-512,
        sixteen a group with a multiple of 16, else AVX2. */
     int simd;
+    /* GPU points only: hf_point_format, 0 = HF_POINT_F32; for
+       HF_POINT_COMPACT the box the positions are stored in: origin
+       (finite, within +-HF_MAX_ABS) and half extent point_scale (0 means
+       1, else within [1 / HF_MAX_ABS, HF_MAX_ABS]); a point outside the
+       box is clamped to its surface. Compact points go through a 4 KiB
+       stage on the stack and are encoded from there (SSE2, AVX2 or NEON):
+       the same bytes at every level. Another format is
+       HF_ERROR_BAD_FORMAT. */
+    int point_format;
+    float point_origin[3];
+    float point_scale;
 } hf_ribbon_params;
 
 /* Ribbon widths a zeroed hf_ribbon_params gets, in metres: fur on a head
@@ -1493,7 +1517,8 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
    as (x, y, z, half width) in 4 floats, a third of the bytes of a minimal
    ribbon; examples/ribbon_expand.glsl builds the same ribbons in a vertex
    shader. Point j of strand s goes to out4 + ((s - out_first) * P + j) *
-   4. Same
+   4, or with params->point_format HF_POINT_COMPACT in 8 bytes, at byte
+   ((s - out_first) * P + j) * 8 of out4 (half the bytes). Same
    parameters and errors as hf_ribbons (the camera fields are unused). */
 HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
                                  int count, const hf_ribbon_params *params,
@@ -2499,6 +2524,7 @@ HF__PRIVATE void hf__ribbon_params_resolve(const hf_ribbon_params *in,
     p->width_scale = hf__def_f(p->width_scale, 1.0f);
     if (p->alpha_root == 0.0f && p->alpha_tip == 0.0f)
         p->alpha_root = p->alpha_tip = 1.0f;
+    p->point_scale = hf__def_f(p->point_scale, 1.0f);
 }
 
 HF__PRIVATE void hf__tess_params_resolve(const hf_tess_params *in,
@@ -6108,12 +6134,12 @@ HF__PRIVATE void hf__bp_reach(const hf_ropes *ro, int x, int e, float big,
         cum[r - x] = HF_SQRTF(u * u + v * v + w * w);
     }
     for (j = 0; j < ro->points; ++j) {
-        const float *L = ro->rest_length + (size_t)(j - 1) * R;
         float m = 0.0f;
-        for (r = x; r < e; ++r) {
-            if (j > 0) cum[r - x] += L[r];
-            m = cum[r - x] > m ? cum[r - x] : m;
+        if (j > 0) {
+            const float *L = ro->rest_length + (size_t)(j - 1) * R;
+            for (r = x; r < e; ++r) cum[r - x] += L[r];
         }
+        for (r = x; r < e; ++r) m = cum[r - x] > m ? cum[r - x] : m;
         reach[j] = m * 1.001f + 1e-4f * (1.0f + big + m);
     }
 }
@@ -8896,6 +8922,17 @@ HF__PRIVATE hf_result hf__ribbon_check(const hf_ribbon_strands *strands,
         p->width_scale > HF_MAX_ABS || p->alpha_root < 0.0f ||
         p->alpha_root > 1.0f || p->alpha_tip < 0.0f || p->alpha_tip > 1.0f ||
         !hf__kernels_ok(p->simd, p->nontemporal))
+        return HF_ERROR_BAD_PARAMETER;
+    if (p->point_format != HF_POINT_F32 && p->point_format != HF_POINT_COMPACT)
+        return HF_ERROR_BAD_FORMAT;
+    for (k = 0; k < 3; ++k) {
+        if (!hf__finitef(p->point_origin[k])) return HF_ERROR_NON_FINITE;
+        if (p->point_origin[k] > HF_MAX_ABS || p->point_origin[k] < -HF_MAX_ABS)
+            return HF_ERROR_BAD_PARAMETER;
+    }
+    if (!hf__finitef(p->point_scale)) return HF_ERROR_NON_FINITE;
+    if (p->point_scale != 0.0f && !(p->point_scale >= 1.0f / HF_MAX_ABS &&
+                                    p->point_scale <= HF_MAX_ABS))
         return HF_ERROR_BAD_PARAMETER;
     if (p->orthographic) {
         /* a view_dir too short to square in float is scaled up by a
@@ -12376,6 +12413,8 @@ typedef struct hf__points_kit {
 #endif
     float wcap; /* the cap of the strand multiplier (hf__half_widths) */
     int P, level, nt, wide;
+    int compact;           /* HF_POINT_COMPACT: */
+    float origin[3], inv;  /* its box: (p - origin) * inv */
 } hf__points_kit;
 
 #if HF__AVX2
@@ -12442,10 +12481,14 @@ HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
                                      const hf_ribbon_params *params,
                                      int count)
 {
+    int c;
     k->P = params->points_per_strand;
     k->level = hf_simd_resolve(params->simd);
+    k->compact = params->point_format == HF_POINT_COMPACT;
+    for (c = 0; c < 3; ++c) k->origin[c] = params->point_origin[c];
+    k->inv = 1.0f / params->point_scale; /* resolved: not 0 */
     k->nt = hf__streaming(params->nontemporal,
-                          (size_t)count * (size_t)k->P * 16u,
+                          (size_t)count * (size_t)k->P * (k->compact ? 8u : 16u),
                           HF_STREAM_MIN_VERTEX_BYTES);
     k->wcap = hf__half_widths(params, k->hw, NULL);
     k->wide = 0;
@@ -12704,9 +12747,179 @@ HF__INTERP_POINTS(16, HF__TARGET_AVX512)
 #undef HF__INTERP_POINTS
 #undef HF__CLUMP_MODE_CASES
 
+/* Compact points (HF_POINT_COMPACT) from float ones: n points (x, y, z,
+   half width) at in to 8 bytes each at o, native byte order; the vector
+   encoders (hf__encode_sse, _avx2, _neon) perform hf__encode1's
+   operations, so every level writes the same bytes. */
+HF__PRIVATE void hf__points_encode_ref(const hf__points_kit *k,
+                                       const float *in, size_t n,
+                                       unsigned char *o)
+{
+    size_t i;
+    int c;
+    for (i = 0; i < n; ++i, in += 4, o += 8) {
+        uint16_t code[4];
+        for (c = 0; c < 3; ++c)
+            code[c] = (uint16_t)hf__encode1((in[c] - k->origin[c]) * k->inv,
+                                            HF_FORMAT_SNORM16);
+        code[3] = (uint16_t)hf__encode1(in[3], HF_FORMAT_F16);
+        HF_MEMCPY(o, code, 8);
+    }
+}
+
+#if HF__SSE
+/* One point's four codes (x, y, z SNORM16, w F16) in 32-bit lanes. */
+HF__INLINE __m128i hf__point_codes_sse(__m128 v, __m128 o, __m128 inv)
+{
+    const __m128i xyz = _mm_setr_epi32(-1, -1, -1, 0);
+    const __m128i sn = hf__encode_sse(_mm_mul_ps(_mm_sub_ps(v, o), inv),
+                                      HF_FORMAT_SNORM16);
+    const __m128i h = hf__encode_sse(v, HF_FORMAT_F16);
+    const __m128i c = _mm_or_si128(_mm_and_si128(xyz, sn),
+                                   _mm_andnot_si128(xyz, h));
+    return _mm_srai_epi32(_mm_slli_epi32(c, 16), 16); /* for packs */
+}
+
+HF__PRIVATE void hf__points_encode_sse(const hf__points_kit *k,
+                                       const float *in, size_t n,
+                                       unsigned char *o, int nt)
+{
+    const __m128 org = _mm_setr_ps(k->origin[0], k->origin[1], k->origin[2],
+                                   0.0f),
+                 inv = _mm_setr_ps(k->inv, k->inv, k->inv, 1.0f);
+    size_t i = 0;
+    nt = nt && ((uintptr_t)o & 15u) == 0;
+    for (; i + 2 <= n; i += 2, in += 8, o += 16) {
+        const __m128i two = _mm_packs_epi32(
+            hf__point_codes_sse(_mm_loadu_ps(in), org, inv),
+            hf__point_codes_sse(_mm_loadu_ps(in + 4), org, inv));
+        if (nt)
+            _mm_stream_si128((__m128i *)(void *)o, two);
+        else
+            _mm_storeu_si128((__m128i *)(void *)o, two);
+    }
+    if (i < n)
+        _mm_storel_epi64((__m128i *)(void *)o,
+                         _mm_packs_epi32(hf__point_codes_sse(_mm_loadu_ps(in),
+                                                             org, inv),
+                                         _mm_setzero_si128()));
+}
+#endif
+
+#if HF__AVX2
+/* hf__points_encode_sse two points a vector */
+HF__TARGET_AVX2 HF__PRIVATE void
+hf__points_encode_avx2(const hf__points_kit *k, const float *in, size_t n,
+                       unsigned char *o, int nt)
+{
+    const __m256 org = _mm256_setr_ps(k->origin[0], k->origin[1],
+                                      k->origin[2], 0.0f, k->origin[0],
+                                      k->origin[1], k->origin[2], 0.0f),
+                 inv = _mm256_setr_ps(k->inv, k->inv, k->inv, 1.0f, k->inv,
+                                      k->inv, k->inv, 1.0f);
+    const __m256i xyz = _mm256_setr_epi32(-1, -1, -1, 0, -1, -1, -1, 0);
+    size_t i = 0;
+    nt = nt && ((uintptr_t)o & 31u) == 0;
+    for (; i + 4 <= n; i += 4, in += 16, o += 32) {
+        __m256i c[2], four;
+        int h;
+        for (h = 0; h < 2; ++h) {
+            const __m256 v = _mm256_loadu_ps(in + 8 * h);
+            const __m256i sn = hf__encode_avx2(
+                _mm256_mul_ps(_mm256_sub_ps(v, org), inv), HF_FORMAT_SNORM16);
+            const __m256i w = hf__encode_avx2(v, HF_FORMAT_F16);
+            c[h] = _mm256_blendv_epi8(w, sn, xyz);
+            c[h] = _mm256_srai_epi32(_mm256_slli_epi32(c[h], 16), 16);
+        }
+        /* packs works within 128-bit halves: points 0 2 | 1 3, reordered */
+        four = _mm256_permute4x64_epi64(_mm256_packs_epi32(c[0], c[1]),
+                                        _MM_SHUFFLE(3, 1, 2, 0));
+        if (nt)
+            _mm256_stream_si256((__m256i *)(void *)o, four);
+        else
+            _mm256_storeu_si256((__m256i *)(void *)o, four);
+    }
+    _mm256_zeroupper();
+    if (i < n) hf__points_encode_sse(k, in, n - i, o, 0);
+}
+#endif
+
+#if HF__NEON
+HF__PRIVATE void hf__points_encode_neon(const hf__points_kit *k,
+                                        const float *in, size_t n,
+                                        unsigned char *o)
+{
+    const float32x4_t inv = {k->inv, k->inv, k->inv, 1.0f};
+    const float32x4_t org = {k->origin[0], k->origin[1], k->origin[2], 0.0f};
+    const uint32x4_t xyz = {0xffffffffu, 0xffffffffu, 0xffffffffu, 0u};
+    size_t i;
+    for (i = 0; i < n; ++i, in += 4, o += 8) {
+        const float32x4_t v = vld1q_f32(in);
+        const uint32x4_t c = vbslq_u32(
+            xyz,
+            hf__encode_neon(vmulq_f32(vsubq_f32(v, org), inv),
+                            HF_FORMAT_SNORM16),
+            hf__encode_neon(v, HF_FORMAT_F16));
+        vst1_u16((uint16_t *)(void *)o, vmovn_u32(c));
+    }
+}
+#endif
+
+HF__PRIVATE void hf__points_run(const hf__points_kit *k,
+                                const hf_ribbon_strands *strands,
+                                const float *pts, int pts_first, int first,
+                                int count, int out_first, float *out4);
+
+/* Compact points of strands [first, first + count): the float points of
+   a few strands at a time into a 4 KiB stage (ordinary stores, so it
+   stays in L1), then encoded from there to out + (s - out_first) * 8 P
+   bytes. */
+#define HF__POINTS_STAGE 1024
+HF__PRIVATE void hf__points_run_compact(const hf__points_kit *k,
+                                        const hf_ribbon_strands *strands,
+                                        const float *pts, int pts_first,
+                                        int first, int count, int out_first,
+                                        unsigned char *out)
+{
+    float stage[HF__POINTS_STAGE];
+    hf__points_kit f32 = *k;
+    const int P = k->P, per = HF__POINTS_STAGE / 4 / P;
+    int s, n;
+    f32.compact = 0;
+    f32.nt = 0;
+    for (s = first; s < first + count; s += n) {
+        const size_t np = (size_t)(n = first + count - s < per
+                                           ? first + count - s
+                                           : per) *
+                          (size_t)P;
+        unsigned char *o = out + (size_t)(s - out_first) * (size_t)P * 8u;
+        hf__points_run(&f32, strands, pts, pts_first, s, n, s, stage);
+#if HF__AVX2
+        if (k->level >= HF_SIMD_AVX2) {
+            hf__points_encode_avx2(k, stage, np, o, k->nt);
+            continue;
+        }
+#endif
+#if HF__SSE
+        if (k->level >= HF_SIMD_SSE2) {
+            hf__points_encode_sse(k, stage, np, o, k->nt);
+            continue;
+        }
+#endif
+#if HF__NEON
+        if (k->level >= HF_SIMD_NEON) {
+            hf__points_encode_neon(k, stage, np, o);
+            continue;
+        }
+#endif
+        hf__points_encode_ref(k, stage, np, o);
+    }
+}
+
 /* GPU points of strands [first, first + count): strand s's points at
-   pts + (s - pts_first) * 3 P, written to out4 + (s - out_first) * 4 P.
-   The caller fences streamed stores. */
+   pts + (s - pts_first) * 3 P, written to out4 + (s - out_first) * 4 P
+   (compact ones: hf__points_run_compact). The caller fences streamed
+   stores. */
 HF__PRIVATE void hf__points_run(const hf__points_kit *k,
                                 const hf_ribbon_strands *strands,
                                 const float *pts, int pts_first, int first,
@@ -12714,6 +12927,11 @@ HF__PRIVATE void hf__points_run(const hf__points_kit *k,
 {
     const int P = k->P;
     int s;
+    if (k->compact) {
+        hf__points_run_compact(k, strands, pts, pts_first, first, count,
+                               out_first, (unsigned char *)out4);
+        return;
+    }
 #if HF__AVX2
     if (k->wide) {
         /* finiteness found on the way: a strand that is not is written
@@ -15363,8 +15581,8 @@ HFDEF hf_result hf_fur_interpolate_points(const hf_fur *f, int first,
 #if HF__AVX2
     lv = hf_simd_resolve(f->simd);
     lv = lv < kit.level ? lv : kit.level;
-    if (kit.wide && lv >= HF_SIMD_AVX2 && f->P % 2 == 0 && f->P >= 8 &&
-        hf__fur_blend_only(f)) {
+    if (kit.wide && !kit.compact && lv >= HF_SIMD_AVX2 && f->P % 2 == 0 &&
+        f->P >= 8 && hf__fur_blend_only(f)) {
         /* in registers, nothing through memory (the run's own output is
            not written: the kernels write points to out4) */
         float ctab[3 * HF_MAX_POINTS];

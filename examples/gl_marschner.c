@@ -200,6 +200,7 @@ typedef struct glm_app {
     double stretch_max, stretch_sum;
     long stretch_frames;
     double ms_skin, ms_sim, ms_build, ms_upload, ms_draw; /* sums */
+    double ms_roots, ms_ropes; /* parts of ms_sim */
     long ms_frames, build_frames;
     unsigned char *density_px, *length_px, *color_px, *index_px;
     hf_map density, length, color, index;
@@ -450,24 +451,31 @@ static const char *glm_fs_line =
     "void main() { o_color = u_color; }\n";
 
 /* ribbon_expand.glsl with its main() renamed, then glm_vs_gpu_tail: the
-   shipped shader is used as it is. Returns malloc'd source or NULL. */
-static char *glm_gpu_vs_source(const char *path)
+   shipped shader is used as it is (compact: HF_POINTS_COMPACT defined
+   after its #version line). Returns malloc'd source or NULL. */
+static char *glm_gpu_vs_source(const char *path, int compact)
 {
-    char *src = glc_read_text_file(path), *at, *out;
+    char *src = glc_read_text_file(path), *at, *ver, *out;
     size_t n;
     const char *from = "void main()", *to = "void ribbon_expand_main()";
+    const char *def = compact ? "#define HF_POINTS_COMPACT 1\n" : "";
     if (!src) return NULL;
     at = strstr(src, from);
-    if (!at) {
-        fprintf(stderr, "gl_marschner: no main() in %s\n", path);
+    ver = strstr(src, "#version");
+    if (!at || !ver || ver > at || !strchr(ver, '\n')) {
+        fprintf(stderr, "gl_marschner: no #version line and main() in %s\n",
+                path);
         free(src);
         return NULL;
     }
-    n = strlen(src) + strlen(to) + strlen(glm_vs_gpu_tail) + 1;
+    ver = strchr(ver, '\n') + 1;
+    n = strlen(src) + strlen(def) + strlen(to) + strlen(glm_vs_gpu_tail) + 1;
     out = (char *)malloc(n);
     if (out) {
-        memcpy(out, src, (size_t)(at - src));
-        strcpy(out + (at - src), to);
+        memcpy(out, src, (size_t)(ver - src));
+        strcpy(out + (ver - src), def);
+        strncat(out, ver, (size_t)(at - ver));
+        strcat(out, to);
         strcat(out, at + strlen(from));
         strcat(out, glm_vs_gpu_tail);
     }
@@ -1239,7 +1247,7 @@ static int glm_init(glm_app *a, const glm_options *o)
         if (!a->prog_cpu || !a->prog_cpu16 || !a->prog_head || !a->prog_line ||
             !a->depth_cpu || !a->depth_cpu16 || !a->depth_head)
             return 0;
-        gpu_src = glm_gpu_vs_source(path);
+        gpu_src = glm_gpu_vs_source(path, o->compact);
         if (gpu_src) {
             a->prog_gpu = glc_program(gpu_src, glm_fs_hair, "hair (GPU expansion)");
             a->depth_gpu = glc_program(gpu_src, glm_fs_depth,
@@ -1397,8 +1405,11 @@ static int glm_init(glm_app *a, const glm_options *o)
     glGenVertexArrays(1, &a->vao_gpu);
     glBindVertexArray(a->vao_gpu);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, a->ibo_hair);
-    glm_tbo(&a->vbo_points, &a->tbo_points, GL_RGBA32F,
-            sizeof(float) * 4u * (size_t)S * (size_t)a->P, NULL, GL_STREAM_DRAW);
+    /* compact points: 8 bytes, read as RGBA16I (ribbon_expand.glsl) */
+    glm_tbo(&a->vbo_points, &a->tbo_points,
+            a->o.compact ? GL_RGBA16I : GL_RGBA32F,
+            (a->o.compact ? 8u : 16u) * (size_t)S * (size_t)a->P, NULL,
+            GL_STREAM_DRAW);
     {
         float *tmp = (float *)malloc(sizeof(float) * 2u * (size_t)S);
         float *c3x = (float *)malloc(sizeof(float) * (size_t)S);
@@ -1501,11 +1512,19 @@ static int glm_simulate(glm_app *a, double t, float dt)
     a->drawn = a->info.drawn_strand_count;
     /* a groom on the head rides on its rigid motion; on a mesh, on the
        skinned grown part, as fur does */
-    r = a->groom && a->ch.vertex_count == 0
-            ? hf_fur_set_transform(a->fur, a->pose, 0, a->info.guide_count)
-            : hf_fur_set_roots(a->fur, &a->skinned, 0, a->info.guide_count);
-    if (!r) r = hf_fur_simulate(a->fur, 0, a->info.guide_count, dt, a->col,
+    {
+        double tr0 = glm_now_ms(), tr1;
+        r = a->groom && a->ch.vertex_count == 0
+                ? hf_fur_set_transform(a->fur, a->pose, 0, a->info.guide_count)
+                : hf_fur_set_roots(a->fur, &a->skinned, 0,
+                                   a->info.guide_count);
+        tr1 = glm_now_ms();
+        if (!r)
+            r = hf_fur_simulate(a->fur, 0, a->info.guide_count, dt, a->col,
                                 a->ncol);
+        a->ms_roots += tr1 - tr0;
+        a->ms_ropes += glm_now_ms() - tr1;
+    }
     if (!r) r = hf_fur_interpolate_guides(a->fur, 0, a->info.lod_guide_count);
     if (r != HF_OK) {
         fprintf(stderr, "gl_marschner: simulate at t = %.3f: %s\n", t,
@@ -1539,7 +1558,7 @@ static GLenum glm_stream_buffer(glm_app *a, size_t *all, size_t *bytes)
 {
     const size_t n = (size_t)a->drawn * (size_t)a->P,
                  S = (size_t)a->info.strand_count * (size_t)a->P;
-    const size_t vsize = a->o.gpu_expand ? 4u * sizeof(float)
+    const size_t vsize = a->o.gpu_expand ? (a->o.compact ? 8u : 16u)
                          : a->o.compact  ? 2u * sizeof(glm_compact)
                                          : 2u * sizeof(glm_dyn);
     const GLenum target =
@@ -1600,6 +1619,15 @@ static int glm_build(glm_app *a)
     }
     t0 = glm_now_ms();
     if (a->o.gpu_expand) {
+        if (a->o.compact) { /* 8-byte points in the same box as below */
+            memcpy(a->corigin, a->target, sizeof a->corigin);
+            a->cscale = a->ch.vertex_count > 0
+                            ? 0.6f * a->ch_diag + 2.0f * a->hair_len
+                            : GLM_COMPACT_SCALE;
+            v.point_format = HF_POINT_COMPACT;
+            memcpy(v.point_origin, a->corigin, sizeof v.point_origin);
+            v.point_scale = a->cscale;
+        }
         r = hf_fur_interpolate_points(a->fur, 0, n, &v,
                                       map ? (float *)(void *)map
                                           : a->points4);
@@ -1736,6 +1764,8 @@ static void glm_draw_hair(glm_app *a, GLuint prog, const float eye[3],
         glm_sampler(prog, 5, GL_TEXTURE_BUFFER, a->tbo_scolor, "u_strand_color");
         glm_sampler(prog, 6, GL_TEXTURE_BUFFER, a->tbo_c3x, "u_strand_c3x");
         glUniform1i(glGetUniformLocation(prog, "u_points_per_strand"), a->P);
+        glUniform3fv(glGetUniformLocation(prog, "u_point_origin"), 1, a->corigin);
+        glUniform1f(glGetUniformLocation(prog, "u_point_scale"), a->cscale);
         glUniform1i(glGetUniformLocation(prog, "u_orthographic"), orthographic);
         glUniform3fv(glGetUniformLocation(prog, "u_view_dir"), 1, view_dir);
         glBindVertexArray(a->vao_gpu);
@@ -2023,7 +2053,8 @@ static void glm_usage(FILE *fp)
 "  --no-shadows       no self-shadowing (default: a deep shadow map)\n"
 "  --no-specular      diffuse and ambient only\n"
 "  --gpu-expand       ribbons expanded on the GPU from hf_fur_interpolate_points\n"
-"  --compact          CPU ribbons in the 16-byte vertex\n"
+"  --compact          CPU ribbons in the 16-byte vertex; with --gpu-expand,\n"
+"                     GPU points in 8 bytes (HF_POINT_COMPACT)\n"
 "  --copy             strands written into memory of the program's, then\n"
 "                     copied (glBufferSubData); default: straight into the\n"
 "                     mapped GL buffers, with streaming stores\n"
@@ -2370,8 +2401,8 @@ static void glm_report(const glm_app *a, int drawn_frames)
     /* the drawn strands of the last built frame (with --gpu-expand only
        its points were written; without --copy into a GL buffer, so
        they are written again into points4 here for the check) */
-    if (a->o.gpu_expand && a->o.upload != GLM_COPY) {
-        hf_ribbon_params v;
+    if (a->o.gpu_expand && (a->o.upload != GLM_COPY || a->o.compact)) {
+        hf_ribbon_params v; /* float points, whatever was drawn */
         glm_ribbon_view(a, &v);
         if (hf_fur_interpolate_points(a->fur, 0, a->drawn, &v, a->points4))
             unread = 1; /* none to look at: every one counted */
@@ -2394,6 +2425,12 @@ static void glm_report(const glm_app *a, int drawn_frames)
                "skinned mesh\n", missing, info.guide_count, worst,
                worst / a->size);
     }
+    if (a->ms_frames > 0)
+        printf("gl_marschner: ropes: %.3f ms a frame for %d guides with %d "
+               "colliders (roots + ropes %.3f us a guide)\n",
+               a->ms_ropes / a->ms_frames, info.guide_count, a->ncol,
+               1000.0 * (a->ms_roots + a->ms_ropes) / a->ms_frames /
+                   (info.guide_count > 0 ? info.guide_count : 1));
     if (a->ms_frames > 0)
         printf("gl_marschner: ms per frame: skin and colliders %.2f, roots + "
                "ropes + LOD guides %.2f, strands + %s %.2f%s and upload "

@@ -1019,13 +1019,14 @@ int main(int argc, char **argv)
         float stretch = 0.0f;
         hf_fur_max_stretch(fur, &stretch);
         printf("%d frames at lod %.2f (%d of %d strands drawn), median ms: "
-               "roots %.3f, ropes %.3f, LOD guides %.3f, strands %.3f, "
-               "ribbons %.3f; max stretch %.3f %%\n",
+               "roots %.3f, ropes %.3f (%d guides, %d colliders), LOD "
+               "guides %.3f, strands %.3f, ribbons %.3f; max stretch %.3f "
+               "%%\n",
                frames, (double)info.lod, info.drawn_strand_count,
                info.strand_count, median(t_roots, frames),
-               median(t_sim, frames), median(t_guides, frames),
-               median(t_interp, frames), median(t_ribbons, frames),
-               100.0 * stretch);
+               median(t_sim, frames), info.guide_count, ncol,
+               median(t_guides, frames), median(t_interp, frames),
+               median(t_ribbons, frames), 100.0 * stretch);
         hf_fur_get_info(fur, &info);
         printf("collider: %d of %d guide roots inside it at the last frame"
                "%s\n", info.roots_inside, info.guide_count,

@@ -10,9 +10,39 @@
 //   glBindBuffer(GL_TEXTURE_BUFFER, points_vbo);
 //   glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, points_vbo);
 //   glDrawElements(GL_TRIANGLES, index_count, GL_UNSIGNED_INT, 0);
+//
+// Compact points (hf_ribbon_params.point_format = HF_POINT_COMPACT, 8
+// bytes a point: half the upload): define HF_POINTS_COMPACT after the
+// #version line, make the texture buffer GL_RGBA16I, and set
+// u_point_origin and u_point_scale to the call's point_origin and
+// point_scale (the box the positions are stored in).
 #version 330 core
 
+#ifdef HF_POINTS_COMPACT
+uniform isamplerBuffer u_points;  // x, y, z SNORM16; half width F16 bits
+uniform vec3 u_point_origin;
+uniform float u_point_scale;
+
+// An IEEE half from its bits (GLSL 3.30 has no unpackHalf2x16).
+float hf_half(int h)
+{
+    int e = (h >> 10) & 31;
+    float m = float(h & 1023);
+    float v = e == 0 ? m * exp2(-24.0) : (m + 1024.0) * exp2(float(e - 25));
+    return (h & 0x8000) != 0 ? -v : v;
+}
+
+vec4 hf_point(int i)
+{
+    ivec4 c = texelFetch(u_points, i);
+    vec3 q = max(vec3(c.xyz) / 32767.0, vec3(-1.0)); // GL's SNORM rule
+    return vec4(u_point_origin + u_point_scale * q, hf_half(c.w & 0xffff));
+}
+#else
 uniform samplerBuffer u_points;   // (x, y, z, half width) per point
+
+vec4 hf_point(int i) { return texelFetch(u_points, i); }
+#endif
 uniform samplerBuffer u_root_uv;  // (u, v) per strand, GL_RG32F
 uniform int u_points_per_strand;  // P
 uniform vec3 u_eye;               // perspective eye, world space
@@ -31,10 +61,10 @@ void main()
     int s = point / P;
     int j = point - s * P;
     int base = s * P;
-    vec4 p = texelFetch(u_points, point);
+    vec4 p = hf_point(point);
     // central difference, one-sided at the ends (as hf_ribbons)
-    vec3 a = texelFetch(u_points, base + max(j - 1, 0)).xyz;
-    vec3 b = texelFetch(u_points, base + min(j + 1, P - 1)).xyz;
+    vec3 a = hf_point(base + max(j - 1, 0)).xyz;
+    vec3 b = hf_point(base + min(j + 1, P - 1)).xyz;
     vec3 d = b - a;
     vec3 t = dot(d, d) > 1e-30 ? normalize(d) : vec3(0.0, 1.0, 0.0);
     vec3 view = u_orthographic != 0 ? -u_view_dir : u_eye - p.xyz;

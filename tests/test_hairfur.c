@@ -4042,15 +4042,16 @@ static void test_ropes_ranges_byte_identical(void)
     for (k = 0; k < 3; ++k) tr_close(&s[k]);
 }
 
-/* Ranges of 128 ropes or more that are not the whole set step in two
-   halves (hf__ropes_sim_run): at both solvers and every level, with a
-   collider and a capsule, the same bytes as one call on every rope. */
-static void test_ropes_halves_byte_identical(void)
+/* Ropes step in chunks of 256 (hf__ropes_sim_run), each with its
+   broadphase: ranges that cut the chunks elsewhere give, at both solvers
+   and every level, with a collider and a capsule, the same bytes as one
+   call on every rope. */
+static void test_ropes_chunks_byte_identical(void)
 {
     enum { R = 300, P = 9, FRAMES = 30 };
     static float rest[3 * R * P];
     static float root[3 * R], nrm[3 * R], tan[3 * R];
-    /* halves of 129 and 171 ropes; 200 (first half 112) beside 1 and 99 */
+    /* 129 and 171 ropes; 200 beside 1 and 99 (one call: 256 and 44) */
     const int cuts[2][4] = {{0, 129, 300, 300}, {0, 200, 201, 300}};
     hf_collider col[2];
     hf_rope_params p;
@@ -7185,6 +7186,169 @@ static void test_points_every_level(void)
                     CHECK(memcmp(o, ref, sizeof(float) * 4u * N * (size_t)Q) == 0);
                 }
         pts[nan_at] = 0.25f;
+    }
+}
+
+/* Compact GPU points (HF_POINT_COMPACT): within scale / 65534 of the
+   float points in a box of half extent 1 m (0.1 mm asked), the half
+   width to 2^-11 relative, clamped to the box outside it; the same bytes
+   at every level, streamed or not, at any offset, however the strands
+   are split; the fur's calls write the encoding of their float points;
+   bad formats, origins and scales refused with nothing written. */
+static void test_points_compact(void)
+{
+    enum { N = 11, QM = 20 };
+    static float pts[N * QM * 3], ref4[N * QM * 4];
+    static unsigned char ref[N * QM * 8], buf[N * QM * 8 + 64];
+    const float org[3] = {0.3f, -1.2f, 0.05f};
+    hf_ribbon_strands st;
+    hf_ribbon_params rp;
+    hf_rng r;
+    double worst = 0.0, worst_w = 0.0;
+    int i, s, j, c, Q, level, nt, shift, same = 1, clamped = 0;
+    hf_rng_seed(&r, 7u, 3u);
+    for (i = 0; i < N * QM * 3; ++i)
+        pts[i] = org[i % 3] + 2.0f * hf_rng_float(&r) - 1.0f;
+    pts[3 * 5] = org[0] + 1.7f; /* outside the box: clamped */
+    memset(&st, 0, sizeof st);
+    st.points = pts;
+    for (Q = 2; Q <= QM; Q += Q < 9 ? 1 : 11) {
+        memset(&rp, 0, sizeof rp);
+        rp.points_per_strand = Q;
+        rp.root_width = 0.002f;
+        rp.tip_width = 0.0001f;
+        rp.simd = HF_SIMD_SCALAR;
+        CHECK_EQ_INT(hf_ribbon_points(&st, 0, N, &rp, ref4), HF_OK);
+        rp.point_format = HF_POINT_COMPACT;
+        for (c = 0; c < 3; ++c) rp.point_origin[c] = org[c];
+        CHECK_EQ_INT(hf_ribbon_points(&st, 0, N, &rp, (float *)(void *)ref),
+                     HF_OK);
+        for (s = 0; s < N; ++s)
+            for (j = 0; j < Q; ++j) {
+                const size_t q = (size_t)s * Q + j;
+                int16_t code[3];
+                uint16_t h;
+                memcpy(code, ref + 8 * q, 6);
+                memcpy(&h, ref + 8 * q + 6, 2);
+                for (c = 0; c < 3; ++c) {
+                    const double x = org[c] + code[c] / 32767.0,
+                                 want = ref4[4 * q + c];
+                    const double lim = org[c] + (want > org[c] ? 1.0 : -1.0);
+                    if (fabs(want - org[c]) > 1.0) {
+                        ++clamped;
+                        CHECK(fabs(x - lim) < 1e-6);
+                        continue;
+                    }
+                    if (fabs(x - want) > worst) worst = fabs(x - want);
+                }
+                if (ref4[4 * q + 3] > 0.0f) {
+                    const double e = fabs(t_half(h) / ref4[4 * q + 3] - 1.0);
+                    if (e > worst_w) worst_w = e;
+                }
+            }
+        for (level = 0; level <= HF_SIMD_AVX512; ++level)
+            for (nt = 0; nt < 3; ++nt)
+                for (shift = 0; shift < 4; ++shift) {
+                    unsigned char *o =
+                        buf + ((64u - ((uintptr_t)buf & 63u)) & 63u) + 8 * shift;
+                    memset(buf, 0xab, sizeof buf);
+                    rp.simd = level;
+                    rp.nontemporal = nt;
+                    if (shift == 3) { /* in two ranges, each at its own start */
+                        rp.out_first = 0;
+                        CHECK_EQ_INT(hf_ribbon_points(&st, 0, 4, &rp,
+                                                      (float *)(void *)o),
+                                     HF_OK);
+                        rp.out_first = 4;
+                        CHECK_EQ_INT(hf_ribbon_points(&st, 4, N - 4, &rp,
+                                                      (float *)(void *)(o + 32 * Q)),
+                                     HF_OK);
+                        rp.out_first = 0;
+                    } else {
+                        CHECK_EQ_INT(hf_ribbon_points(&st, 0, N, &rp,
+                                                      (float *)(void *)o),
+                                     HF_OK);
+                    }
+                    same &= memcmp(o, ref, 8u * N * (size_t)Q) == 0;
+                }
+    }
+    CHECK(same);
+    CHECK(worst <= 1.0 / 65534.0 + 1e-6);
+    CHECK(worst < 1e-4);
+    CHECK(worst_w <= 1.0 / 2048.0);
+    CHECK(clamped > 0);
+    { /* bad parameters: nothing written */
+        unsigned char z[8 * N * QM];
+        memset(buf, 0x5a, sizeof buf);
+        memcpy(z, buf, sizeof z);
+        rp.points_per_strand = QM;
+        rp.point_format = 2;
+        CHECK_EQ_INT(hf_ribbon_points(&st, 0, N, &rp, (float *)(void *)buf),
+                     HF_ERROR_BAD_FORMAT);
+        rp.point_format = -1;
+        CHECK_EQ_INT(hf_ribbon_points(&st, 0, N, &rp, (float *)(void *)buf),
+                     HF_ERROR_BAD_FORMAT);
+        rp.point_format = HF_POINT_COMPACT;
+        rp.point_origin[1] = (float)NAN;
+        CHECK_EQ_INT(hf_ribbon_points(&st, 0, N, &rp, (float *)(void *)buf),
+                     HF_ERROR_NON_FINITE);
+        rp.point_origin[1] = 3e18f;
+        CHECK_EQ_INT(hf_ribbon_points(&st, 0, N, &rp, (float *)(void *)buf),
+                     HF_ERROR_BAD_PARAMETER);
+        rp.point_origin[1] = 0.0f;
+        rp.point_scale = -1.0f;
+        CHECK_EQ_INT(hf_ribbon_points(&st, 0, N, &rp, (float *)(void *)buf),
+                     HF_ERROR_BAD_PARAMETER);
+        rp.point_scale = (float)INFINITY;
+        CHECK_EQ_INT(hf_ribbon_points(&st, 0, N, &rp, (float *)(void *)buf),
+                     HF_ERROR_NON_FINITE);
+        CHECK(memcmp(z, buf, sizeof z) == 0);
+    }
+    /* the fur's calls: the encoding of their own float points */
+    {
+        t_fur_scene sc;
+        hf_fur *f = NULL;
+        hf_fur_info info;
+        hf_result worst_r = HF_OK;
+        hf_ribbon_params view;
+        void *vbuf = calloc(24u * 2u * 16u * 500u, 1);
+        float *f4;
+        unsigned char *c8, *e8;
+        hf__points_kit kit;
+        t_fur_scene_init(&sc, 1.0f);
+        sc.desc.points_per_strand = 16;
+        CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+        if (!f || !vbuf) return;
+        t_fur_frame(f, &sc, 0.0f, 1, vbuf, &worst_r);
+        hf_fur_get_info(f, &info);
+        f4 = (float *)malloc(16u * 16u * (size_t)info.strand_count);
+        c8 = (unsigned char *)malloc(8u * 16u * (size_t)info.strand_count);
+        e8 = (unsigned char *)malloc(8u * 16u * (size_t)info.strand_count);
+        memset(&view, 0, sizeof view);
+        view.point_origin[1] = 0.1f;
+        view.point_scale = 0.5f;
+        CHECK_EQ_INT(hf_fur_points(f, 0, info.drawn_strand_count, &view, f4),
+                     HF_OK);
+        view.point_format = HF_POINT_COMPACT;
+        memset(&kit, 0, sizeof kit);
+        kit.origin[1] = 0.1f;
+        kit.inv = 2.0f;
+        hf__points_encode_ref(&kit, f4,
+                              (size_t)info.drawn_strand_count * 16u, e8);
+        CHECK_EQ_INT(hf_fur_points(f, 0, info.drawn_strand_count, &view,
+                                   (float *)(void *)c8),
+                     HF_OK);
+        CHECK(memcmp(c8, e8, 8u * 16u * (size_t)info.drawn_strand_count) == 0);
+        memset(c8, 0, 8u * 16u * (size_t)info.drawn_strand_count);
+        CHECK_EQ_INT(hf_fur_interpolate_points(f, 0, info.drawn_strand_count,
+                                               &view, (float *)(void *)c8),
+                     HF_OK);
+        CHECK(memcmp(c8, e8, 8u * 16u * (size_t)info.drawn_strand_count) == 0);
+        free(f4);
+        free(c8);
+        free(e8);
+        free(vbuf);
+        hf_fur_destroy(f);
     }
 }
 
@@ -11053,7 +11217,7 @@ int main(void)
     RUN(test_ropes_mode_switch_smooth);
     RUN(test_ropes_bad_time_steps);
     RUN(test_ropes_ranges_byte_identical);
-    RUN(test_ropes_halves_byte_identical);
+    RUN(test_ropes_chunks_byte_identical);
     RUN(test_ropes_root_frames);
     RUN(test_ropes_reset_teleport);
     RUN(test_ropes_root_and_local_stiffness);
@@ -11111,6 +11275,7 @@ int main(void)
     RUN(test_ribbons_table_layouts);
     RUN(test_format_encoders);
     RUN(test_points_every_level);
+    RUN(test_points_compact);
     RUN(test_ribbon_scratch_in_page);
     RUN(test_widths_at_the_bound);
     RUN(test_simd_kernels_leave_upper_clean);
