@@ -179,9 +179,12 @@
          strands' rows sized for HF_MAX_POINTS, the second sharing an
          8 KiB stage for streaming stores, and up to 4 KiB to start the
          first at a page boundary), hf_fur_interpolate_points 18
-         KiB (23 at -O0), hf_ropes_step about 21 KiB with the AVX-512
-         kernel (33 at -O0), the other per-frame calls under 8 KiB: size
-         worker and fiber stacks for it. Kernels are forced inline only
+         KiB (23 at -O0; 24 and 27 for compact points, through a 4 KiB
+         stage), hf_ropes_step and hf_fur_simulate about 41 KiB with the
+         AVX-512 kernel (48 at -O0: a chunk's broadphase, 8 KiB, and a
+         row's contacts grouped by their colliders, 17 KiB), the other
+         per-frame calls under 16 KiB: size worker and fiber stacks for
+         it. Kernels are forced inline only
          where the compiler optimizes, so a debug build needs no more.
          make test runs its native builds on a 256 KiB stack.
 
@@ -210,6 +213,15 @@
 
    VERSION HISTORY
 
+       next (unreleased)   any number of colliders at SIMD speed: a
+                           broadphase per 16 ropes (the colliders within
+                           reach of their roots, row by row), contacts
+                           against each point's relevant colliders, a
+                           quick answer first; ropes stepped in chunks of
+                           256 (bytes change where a rope touches a
+                           collider); compact GPU points, 8 bytes
+                           (hf_point_format, hf_ribbon_params.
+                           point_format, point_origin, point_scale).
        0.2.0 (2026-11-23)  one convention: every struct zero-initialised
                            means its defaults (hf_rope_params and
                            hf_lut_params too, with explicit_zero bits for a

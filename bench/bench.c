@@ -11,7 +11,8 @@
    larger than HF_STREAM_MIN_BYTES, ordinary for S), ribbons
    (36-byte float vertices: position, tangent, texcoord), points (the GPU
    path, 16 bytes a point), ribbons16 (the same attributes in 16 bytes:
-   SNORM16 position, UNORM16 texcoord, SNORM8 tangent), interp_points
+   SNORM16 position, UNORM16 texcoord, SNORM8 tangent), points8 (the
+   GPU points in 8 bytes, HF_POINT_COMPACT, streamed), interp_points
    (hf_fur_interpolate_points: strands and points in one pass, with
    streaming stores, as into a mapped GPU buffer aligned to 64 bytes),
    frame (roots to ribbons), frame16 (the same with ribbons16) and
@@ -48,7 +49,11 @@
    guides) at LOD 0.25 measures lod_guides: LOD guides interpolated from
    the pure guides instead of simulated.
    --scaling instead: how cost grows with strands and guides (bench_scaling).
-   Usage: bench [--frames N] [--scene S|M|L|Mc] [--scaling] */
+   Scene V (--scene V): a character at Veilguard's scale, its head alone
+   (Vh) and on a 24-proxy body (V), every stage at 1 and 2 threads, then
+   the ropes and the GPU path's frame against the number of colliders
+   (bench_character), and three targets of its own.
+   Usage: bench [--frames N] [--scene S|M|L|Mc|V] [--scaling] */
 #define _POSIX_C_SOURCE 200809L
 #define HAIRFUR_IMPLEMENTATION
 #include "../hairfur.h"
@@ -222,6 +227,10 @@ static hf_ribbon_params g_view_gpu;
 static void j_ipoints(job *j, int f, int c) { (void)j; check("interp_points", hf_fur_interpolate_points(g_sc->fur, f, c, &g_view_gpu, g_sc->pbuf)); }
 static hf_ribbon_output g_out16;
 static void j_ribbons16(job *j, int f, int c) { (void)j; check("ribbons16", hf_fur_ribbons(g_sc->fur, f, c, &g_view, &g_out16)); }
+/* the GPU points in 8 bytes (HF_POINT_COMPACT, a 0.5 m box about the
+   head), streamed as the other GPU path */
+static hf_ribbon_params g_view_gpu8;
+static void j_points8(job *j, int f, int c) { (void)j; check("points8", hf_fur_points(g_sc->fur, f, c, &g_view_gpu8, g_sc->pbuf)); }
 
 /* The first ncol colliders of a character swaying dx sideways: the
    head's sphere, its body (bench_body), then two more bodies 2 m to
@@ -551,18 +560,19 @@ static void report(const char *stage, const char *scene_name, int threads,
 }
 
 enum { ST_ROOTS, ST_ROPES, ST_LODG, ST_INTERP, ST_RIBBONS, ST_POINTS,
-       ST_RIBBONS16, ST_IPOINTS, ST_FRAME, ST_FRAME16, ST_FRAMEP, ST_N };
+       ST_RIBBONS16, ST_POINTS8, ST_IPOINTS, ST_FRAME, ST_FRAME16, ST_FRAMEP,
+       ST_N };
 static const char *st_name[ST_N] = {"roots", "ropes", "lod_guides", "strands",
                                     "ribbons", "points", "ribbons16",
-                                    "interp_points", "frame", "frame16",
-                                    "frame_points"};
+                                    "points8", "interp_points", "frame",
+                                    "frame16", "frame_points"};
 
 /* Each stage's job over the whole scene (the frames' entries left empty) */
 static void stage_jobs(const scene *s, job *jobs)
 {
     static const job_fn fn[ST_FRAME] = {
         j_roots, j_ropes, j_lodg, j_interp, j_ribbons, j_points,
-        j_ribbons16, j_ipoints};
+        j_ribbons16, j_points8, j_ipoints};
     int k;
     for (k = 0; k < ST_N; ++k) {
         jobs[k].fn = k < ST_FRAME ? fn[k] : NULL;
@@ -592,6 +602,9 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
     g_sc = s;
     g_threads = threads;
     bench_views(&g_view, &g_view_gpu, &g_out, s->vbuf, &g_out16, s->cbuf);
+    g_view_gpu8 = g_view_gpu;
+    g_view_gpu8.point_format = HF_POINT_COMPACT;
+    g_view_gpu8.point_scale = 0.5f;
     for (k = 0; k < ST_N; ++k)
         t[k] = (double *)malloc(sizeof(double) * (size_t)frames);
     stage_jobs(s, jobs);
@@ -602,21 +615,22 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
     bytes[ST_RIBBONS] = (double)s->info.strand_count * np * 2.0 * 36.0;
     bytes[ST_POINTS] = (double)s->info.strand_count * np * 16.0;
     bytes[ST_RIBBONS16] = (double)s->info.strand_count * np * 2.0 * 16.0;
+    bytes[ST_POINTS8] = (double)s->info.strand_count * np * 8.0;
     bytes[ST_IPOINTS] = bytes[ST_POINTS];
     bytes[ST_FRAME] = bytes[ST_FRAME16] = bytes[ST_FRAMEP] = 0;
 
     allocs0 = g_allocs;
-    /* the stages in their enum's order, roots to ribbons16, each timed */
+    /* the stages in their enum's order, roots to points8, each timed */
     for (f = -warm; f < frames; ++f) {
-        double ts[ST_RIBBONS16 + 2];
+        double ts[ST_POINTS8 + 2];
         scene_pose(s, s->frame++);
         ts[0] = now_ms();
-        for (k = 0; k <= ST_RIBBONS16; ++k) {
+        for (k = 0; k <= ST_POINTS8; ++k) {
             run_job(&jobs[k]);
             ts[k + 1] = now_ms();
         }
         if (f < 0) continue;
-        for (k = 0; k <= ST_RIBBONS16; ++k) t[k][f] = ts[k + 1] - ts[k];
+        for (k = 0; k <= ST_POINTS8; ++k) t[k][f] = ts[k + 1] - ts[k];
         /* roots .. ribbons: what a frame needs; with 16-byte vertices */
         t[ST_FRAME][f] = ts[ST_RIBBONS + 1] - ts[0];
         t[ST_FRAME16][f] = (ts[ST_INTERP + 1] - ts[0]) +
