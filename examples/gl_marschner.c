@@ -461,14 +461,14 @@ static char *glm_gpu_vs_source(const char *path, int compact)
     const char *def = compact ? "#define HF_POINTS_COMPACT 1\n" : "";
     if (!src) return NULL;
     at = strstr(src, from);
-    ver = strstr(src, "#version");
-    if (!at || !ver || ver > at || !strchr(ver, '\n')) {
+    ver = strncmp(src, "#version", 8) ? strstr(src, "\n#version") : src;
+    if (!at || !ver || ver > at || !strchr(ver + 1, '\n')) {
         fprintf(stderr, "gl_marschner: no #version line and main() in %s\n",
                 path);
         free(src);
         return NULL;
     }
-    ver = strchr(ver, '\n') + 1;
+    ver = strchr(ver + 1, '\n') + 1; /* after the #version line */
     n = strlen(src) + strlen(def) + strlen(to) + strlen(glm_vs_gpu_tail) + 1;
     out = (char *)malloc(n);
     if (out) {

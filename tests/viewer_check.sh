@@ -161,6 +161,27 @@ else
     bad "m / cm renders: exit non-zero"
 fi
 
+# compact GPU points (8 bytes) draw what the float ones draw, on a
+# skinned character whose box follows its head; a control: far fewer
+# strands (LOD 0.05) differ
+set -- --headless --still --frames 20 --strands 4000 --hair-length 0.1 \
+    --mesh "$M/OBJ/WusonOBJ.obj"
+if $V "$@" --gpu-expand --out "$O/gpu.png" >/dev/null 2>&1 &&
+   $V "$@" --gpu-expand --compact --out "$O/gpu8.png" >"$O/gpu8.txt" 2>&1 &&
+   $V "$@" --gpu-expand --lod 0.05 --out "$O/gpu_lod.png" >/dev/null 2>&1; then
+    if d=$($B/png_diff "$O/gpu.png" "$O/gpu8.png"); then
+        ok "compact GPU points vs float: $d"
+    else bad "compact GPU points differ from float: $d"; fi
+    if d=$($B/png_diff "$O/gpu.png" "$O/gpu_lod.png"); then
+        bad "the control (LOD 0.05) looks the same: $d"
+    else ok "control, LOD 0.05, differs: $d"; fi
+    if grep -q "ropes: .* colliders" "$O/gpu8.txt"; then
+        ok "$(grep -m1 "ropes: " "$O/gpu8.txt")"
+    else bad "no ropes time with the collider count"; fi
+else
+    bad "GPU point renders: exit non-zero"
+fi
+
 [ "$fails" -eq 0 ] && echo "viewer_check: all passed" ||
     echo "viewer_check: $fails FAILED"
 exit "$fails"
