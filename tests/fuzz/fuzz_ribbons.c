@@ -296,11 +296,19 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     /* ---- hf_ribbon_points ---------------------------------------------- */
     p4 = (float *)fz_sentinel_alloc(sizeof(float) * 4u * (size_t)S * (size_t)P);
     fz_range_untotalled(&r, S, &first, &count);
+    if (fz_chance(&r, 96)) { /* compact points, their box, bad formats */
+        int c;
+        rp.point_format = fz_chance(&r, 200) ? HF_POINT_COMPACT
+                                             : fz_int(&r, -2, 3);
+        for (c = 0; c < 3; ++c) rp.point_origin[c] = fz_float(&r, 10.0f);
+        rp.point_scale = fz_chance(&r, 200) ? fz_float_in(&r, 0.0f, 2.0f)
+                                            : fz_float(&r, 1e20f);
+    }
     rr = hf_ribbon_points(&st, first, count, &rp, p4);
     FZ_REQUIRE(fz_known_result(rr));
     if (rr != HF_OK)
         FZ_REQUIRE(fz_untouched(p4, sizeof(float) * 4u * (size_t)S * (size_t)P));
-    else
+    else if (rp.point_format == HF_POINT_F32)
         FZ_REQUIRE(fz_all_finite(p4 + 4 * (size_t)first *
                                           (size_t)rp.points_per_strand,
                                  4u * (size_t)count *

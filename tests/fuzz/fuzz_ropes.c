@@ -20,6 +20,8 @@
 
 #include <math.h>
 
+#define FZ_COLS 40 /* colliders at most */
+
 typedef struct fz_ropeset {
     hf_ropes ropes;
     void *mem;
@@ -112,7 +114,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     hf_result ra, rb, rv;
     size_t bytes = 0;
     float *rest, *rpos, *rnrm, *rtan, *out;
-    hf_collider col[4];
+    hf_collider col[FZ_COLS];
     int R, P, frames, f, i, nmut;
 
     fz_init(&r, data, size);
@@ -243,15 +245,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             fz_mutate_params(&r, &params);
         }
         /* colliders */
-        nc = fz_int(&r, 0, 3);
+        /* a few, or a body's worth and more (the broadphase), some far */
+        nc = fz_chance(&r, 200) ? fz_int(&r, 0, 3) : fz_int(&r, 4, FZ_COLS);
         for (k = 0; k < nc; ++k) {
             int c;
+            const float far_ = fz_chance(&r, 180) ? 0.0f : fz_float(&r, 50.0f);
             memset(&col[k], 0, sizeof col[k]);
             col[k].type = fz_chance(&r, 250) ? fz_int(&r, 0, 1)
                                               : fz_int(&r, -1, 3);
             for (c = 0; c < 3; ++c) {
-                col[k].a[c] = rpos[c] + fz_float(&r, 0.5f);
-                col[k].b[c] = rpos[c] + fz_float(&r, 0.5f);
+                col[k].a[c] = rpos[c] + far_ + fz_float(&r, 0.5f);
+                col[k].b[c] = rpos[c] + far_ + fz_float(&r, 0.5f);
             }
             col[k].radius = fz_chance(&r, 240) ? fz_float_in(&r, 0.0f, 0.5f)
                                                : fz_float(&r, 1e6f);
