@@ -6843,19 +6843,18 @@ T HF__INLINE V hf__ftl_relevant_##S(const hf__col_##S *k, const V *p, V l)     \
     return HF__LT(d2, HF__MUL(lim, lim));                                      \
 }                                                                              \
                                                                                \
-/* hf__ftl_penetration on W points, each against the colliders relevant        \
-   to it (rel[c]: the lanes collider c is); *any: the lanes some collider      \
-   holds; cw and rw (unless NULL): the deepest one's axis point nearest        \
-   the point, and its radius */                                                \
+/* hf__ftl_penetration on W points; *any: the lanes some collider holds;       \
+   cw and rw (unless NULL): the deepest one's axis point nearest the           \
+   point, and its radius */                                                    \
 T HF__INLINE V hf__ftl_penetration_##S(const hf__col_##S *k, const V *rr,      \
-                                       const V *rel, int ncol, const V *q,     \
-                                       V *any, V *cw, V *rw)                   \
+                                       int ncol, const V *q, V *any, V *cw,    \
+                                       V *rw)                                  \
 {                                                                              \
     V worst = HF__SET1(0.0f), hit_any = HF__LT(worst, worst), c3[3];           \
     int c, i;                                                                  \
     for (c = 0; c < ncol; ++c) {                                               \
         const V d2 = hf__col_closest_##S(k + c, q, c3);                        \
-        const V hit = HF__AND(rel[c], HF__LT(d2, HF__MUL(rr[c], rr[c])));      \
+        const V hit = HF__LT(d2, HF__MUL(rr[c], rr[c]));                       \
         const V pen = HF__SUB(rr[c], HF__SQRT(d2));                            \
         const V up = HF__SEL(hit_any, HF__AND(hit, HF__GT(pen, worst)), hit);  \
         worst = HF__SEL(up, pen, worst);                                       \
@@ -6985,9 +6984,9 @@ T HF__INLINE V hf__ftl_cap_pair_##S(const V *m1, V c1, const V *m2, V c2,      \
                                                                                \
 /* hf__ftl_collide_one for point row j of ropes idx[0 .. W) (any ropes:        \
    the points in contact, gathered) against colliders k[0 .. ncol), ncol       \
-   <= HF__FTL_NEAR, in the order of the call's array: each lane sees only      \
-   those relevant to it (rel), so every lane gets the bytes of its own         \
-   point's scalar kernel whatever the other lanes bring. */                    \
+   <= HF__FTL_NEAR, in the order of the call's array: the colliders            \
+   relevant to every lane's point (hf__ftl_flush groups the points so), so     \
+   each lane gets the bytes of its own point's scalar kernel. */               \
 T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
                                          const int *idx, const hf__col_##S *k, \
                                          int ncol)                             \
@@ -6996,8 +6995,8 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
     const V zero = HF__SET1(0.0f);                                             \
     float g[3][W];                                                             \
     V l, p[3], q[3], root[3], n[3], t[3], u[3], best[3], rr[HF__FTL_NEAR],     \
-        rel[HF__FTL_NEAR], m[2 * HF__FTL_NEAR][3], cmin[2 * HF__FTL_NEAR],     \
-        capv[2 * HF__FTL_NEAR], act, best_pen, best_dot, bd, big, cw[3], rw;   \
+        m[2 * HF__FTL_NEAR][3], cmin[2 * HF__FTL_NEAR], act, best_pen,         \
+        best_dot, bd, big, cw[3], rw;                                          \
     int c, e, i, w, round, ncap, pass;                                         \
     HF__UNROLL for (c = 0; c < 3; ++c) {                                       \
         const float *X = c == 0 ? ro->x : c == 1 ? ro->y : ro->z;              \
@@ -7012,14 +7011,13 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
     for (c = 0; c < ncol; ++c) {                                               \
         V cc[3];                                                               \
         const V d2 = hf__col_closest_##S(k + c, root, cc);                     \
-        rel[c] = hf__ftl_relevant_##S(k + c, p, l);                            \
         rr[c] = k[c].rr;                                                       \
         if (k[c].shrink)                                                       \
             rr[c] = HF__SEL(HF__LT(d2, HF__MUL(k[c].inner, k[c].inner)),       \
                             HF__SQRT(d2), rr[c]);                              \
     }                                                                          \
     rw = cw[0] = cw[1] = cw[2] = zero; /* set for ncol >= 1 */                 \
-    best_pen = hf__ftl_penetration_##S(k, rr, rel, ncol, q, &act, cw, &rw);    \
+    best_pen = hf__ftl_penetration_##S(k, rr, ncol, q, &act, cw, &rw);         \
     act = HF__AND(act, HF__GT(l, zero));                                       \
     if (!HF__MASK(act)) return;                                                \
     HF__UNROLL for (i = 0; i < 3; ++i) u[i] = HF__SUB(q[i], p[i]);             \
@@ -7037,9 +7035,8 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
         hf__ftl_onto_cap_##S(u, mq, cq, t, d);                                 \
         HF__UNROLL for (i = 0; i < 3; ++i)                                     \
             cand[i] = HF__ADD(p[i], HF__MUL(l, d[i]));                         \
-        ok = HF__AND(act, HF__LE(hf__ftl_penetration_##S(k, rr, rel, ncol,     \
-                                                         cand, &hold, NULL,    \
-                                                         NULL),                \
+        ok = HF__AND(act, HF__LE(hf__ftl_penetration_##S(k, rr, ncol, cand,    \
+                                                         &hold, NULL, NULL),   \
                                  zero));                                       \
         HF__UNROLL for (i = 0; i < 3; ++i)                                     \
             best[i] = HF__SEL(ok, cand[i], best[i]);                           \
@@ -7057,14 +7054,13 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
         ncap = 0;                                                              \
         for (c = 0; c < ncol; ++c) {                                           \
             V cc[3];                                                           \
-            if (!HF__MASK(HF__AND(act, rel[c]))) continue;                     \
             hf__col_closest_##S(k + c, best, cc);                              \
             hf__ftl_cap_##S(p, l, cc, rr[c], n, m[ncap], &cmin[ncap]);         \
-            capv[ncap++] = rel[c];                                             \
+            ++ncap;                                                            \
             if (k[c].capsule) {                                                \
                 hf__col_closest_##S(k + c, p, cc);                             \
                 hf__ftl_cap_##S(p, l, cc, rr[c], n, m[ncap], &cmin[ncap]);     \
-                capv[ncap++] = rel[c];                                         \
+                ++ncap;                                                        \
             }                                                                  \
         }                                                                      \
         for (pass = 0; pass < 2; ++pass) {                                     \
@@ -7075,9 +7071,8 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
             }                                                                  \
             for (c = 0; c < ncap; ++c)                                         \
             for (e = pass ? c + 1 : c; e < (pass ? ncap : c + 1); ++e) {       \
-                V d[6], valid = HF__AND(capv[c], capv[e]);                     \
+                V d[6], valid = HF__EQ(zero, zero);                            \
                 int nd;                                                        \
-                if (!HF__MASK(HF__AND(need, valid))) continue;                 \
                 if (e == c) {                                                  \
                     hf__ftl_onto_cap_##S(from, m[c], cmin[c], t, d);           \
                     nd = 1;                                                    \
@@ -7097,8 +7092,8 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
                     V cand[3], pen, dot, up, hold;                             \
                     HF__UNROLL for (w = 0; w < 3; ++w)                         \
                         cand[w] = HF__ADD(p[w], HF__MUL(l, di[w]));            \
-                    pen = hf__ftl_penetration_##S(k, rr, rel, ncol, cand,      \
-                                                  &hold, NULL, NULL);          \
+                    pen = hf__ftl_penetration_##S(k, rr, ncol, cand, &hold,    \
+                                                  NULL, NULL);                 \
                     dot = HF__DOT3(di[0], di[1], di[2], u[0], u[1], u[2]);     \
                     up = HF__OR(HF__LT(pen, best_pen),                         \
                                 HF__AND(HF__EQ(pen, best_pen),                 \
