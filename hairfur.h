@@ -12814,7 +12814,9 @@ HF__PRIVATE void hf__points_encode_sse(const hf__points_kit *k,
 #endif
 
 #if HF__AVX2
-/* hf__points_encode_sse two points a vector */
+/* hf__points_encode_sse eight points at a time: the positions two points
+   a vector, the eight half widths gathered into one vector for a single
+   half conversion, then put back into each point's fourth lane. */
 HF__TARGET_AVX2 HF__PRIVATE void
 hf__points_encode_avx2(const hf__points_kit *k, const float *in, size_t n,
                        unsigned char *o, int nt)
@@ -12822,29 +12824,51 @@ hf__points_encode_avx2(const hf__points_kit *k, const float *in, size_t n,
     const __m256 org = _mm256_setr_ps(k->origin[0], k->origin[1],
                                       k->origin[2], 0.0f, k->origin[0],
                                       k->origin[1], k->origin[2], 0.0f),
-                 inv = _mm256_setr_ps(k->inv, k->inv, k->inv, 1.0f, k->inv,
-                                      k->inv, k->inv, 1.0f);
-    const __m256i xyz = _mm256_setr_epi32(-1, -1, -1, 0, -1, -1, -1, 0);
+                 inv = _mm256_set1_ps(k->inv);
     size_t i = 0;
     nt = nt && ((uintptr_t)o & 31u) == 0;
-    for (; i + 4 <= n; i += 4, in += 16, o += 32) {
-        __m256i c[2], four;
-        int h;
-        for (h = 0; h < 2; ++h) {
-            const __m256 v = _mm256_loadu_ps(in + 8 * h);
-            const __m256i sn = hf__encode_avx2(
-                _mm256_mul_ps(_mm256_sub_ps(v, org), inv), HF_FORMAT_SNORM16);
-            const __m256i w = hf__encode_avx2(v, HF_FORMAT_F16);
-            c[h] = _mm256_blendv_epi8(w, sn, xyz);
-            c[h] = _mm256_srai_epi32(_mm256_slli_epi32(c[h], 16), 16);
-        }
+    for (; i + 8 <= n; i += 8, in += 32, o += 64) {
+        const __m256 v0 = _mm256_loadu_ps(in), v1 = _mm256_loadu_ps(in + 8),
+                     v2 = _mm256_loadu_ps(in + 16),
+                     v3 = _mm256_loadu_ps(in + 24);
+        /* w0 w2 w4 w6 | w1 w3 w5 w7 */
+        const __m256i w = hf__encode_avx2(
+            _mm256_shuffle_ps(
+                _mm256_shuffle_ps(v0, v1, _MM_SHUFFLE(3, 3, 3, 3)),
+                _mm256_shuffle_ps(v2, v3, _MM_SHUFFLE(3, 3, 3, 3)),
+                _MM_SHUFFLE(2, 0, 2, 0)),
+            HF_FORMAT_F16);
+        __m256i c0 = hf__encode_avx2(
+                    _mm256_mul_ps(_mm256_sub_ps(v0, org), inv), HF_FORMAT_SNORM16),
+                c1 = hf__encode_avx2(
+                    _mm256_mul_ps(_mm256_sub_ps(v1, org), inv), HF_FORMAT_SNORM16),
+                c2 = hf__encode_avx2(
+                    _mm256_mul_ps(_mm256_sub_ps(v2, org), inv), HF_FORMAT_SNORM16),
+                c3 = hf__encode_avx2(
+                    _mm256_mul_ps(_mm256_sub_ps(v3, org), inv), HF_FORMAT_SNORM16),
+                out0, out1;
+        /* each point's half width into its fourth lane, then the codes
+           sign-extended for packs */
+        c0 = _mm256_blend_epi32(c0, _mm256_shuffle_epi32(w, 0x00), 0x88);
+        c1 = _mm256_blend_epi32(c1, _mm256_shuffle_epi32(w, 0x55), 0x88);
+        c2 = _mm256_blend_epi32(c2, _mm256_shuffle_epi32(w, 0xaa), 0x88);
+        c3 = _mm256_blend_epi32(c3, _mm256_shuffle_epi32(w, 0xff), 0x88);
+        c0 = _mm256_srai_epi32(_mm256_slli_epi32(c0, 16), 16);
+        c1 = _mm256_srai_epi32(_mm256_slli_epi32(c1, 16), 16);
+        c2 = _mm256_srai_epi32(_mm256_slli_epi32(c2, 16), 16);
+        c3 = _mm256_srai_epi32(_mm256_slli_epi32(c3, 16), 16);
         /* packs works within 128-bit halves: points 0 2 | 1 3, reordered */
-        four = _mm256_permute4x64_epi64(_mm256_packs_epi32(c[0], c[1]),
+        out0 = _mm256_permute4x64_epi64(_mm256_packs_epi32(c0, c1),
                                         _MM_SHUFFLE(3, 1, 2, 0));
-        if (nt)
-            _mm256_stream_si256((__m256i *)(void *)o, four);
-        else
-            _mm256_storeu_si256((__m256i *)(void *)o, four);
+        out1 = _mm256_permute4x64_epi64(_mm256_packs_epi32(c2, c3),
+                                        _MM_SHUFFLE(3, 1, 2, 0));
+        if (nt) {
+            _mm256_stream_si256((__m256i *)(void *)o, out0);
+            _mm256_stream_si256((__m256i *)(void *)(o + 32), out1);
+        } else {
+            _mm256_storeu_si256((__m256i *)(void *)o, out0);
+            _mm256_storeu_si256((__m256i *)(void *)(o + 32), out1);
+        }
     }
     _mm256_zeroupper();
     if (i < n) hf__points_encode_sse(k, in, n - i, o, 0);
