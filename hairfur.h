@@ -5739,6 +5739,7 @@ HF__PRIVATE void hf__col_push_out(const hf__col_prep *k, float *x, float *y,
    its axis, so a root inside a proxy neither stretches nor throws its
    rope. */
 #define HF__FTL_ROUNDS 8
+#define HF__FTL_QUICK 8
 
 /* The radius collider k has for a rope whose root is at `root`: rr, or
    the root's distance from the axis where the root is more than the
@@ -5909,16 +5910,26 @@ HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
            axis point nearest q, onto the edge of that ball's cap nearest
            u. Every direction that clears the colliders lies outside that
            ball, so where this one clears them all, no other is nearer u
-           and the rounds are not needed (most contacts end here) */
-        float cc[3], dd[3], mq[3], cq, d[3], cand[3];
-        int w, dq;
-        hf__col_closest(k + deepest, q[0], q[1], q[2], cc, dd);
-        hf__ftl_cap(p, l, cc, rr[deepest], n, mq, &cq);
-        hf__ftl_onto_cap(u, mq, cq, t, d);
-        for (w = 0; w < 3; ++w) cand[w] = p[w] + l * d[w];
-        if (!(hf__ftl_penetration(k, rr, ncol, cand, &dq) > 0.0f)) {
-            HF_MEMCPY(best, cand, sizeof cand);
-            best_pen = 0.0f;
+           and the rounds are not needed (half the contacts end here).
+           Where the point is still inside (a capsule's next ball along
+           its axis, most often), the same again from there, at most
+           HF__FTL_QUICK times, before the rounds. */
+        float from[3], at[3], cc[3], dd[3], mq[3], cq, d[3], cand[3];
+        int w, it, dq = deepest;
+        HF_MEMCPY(from, u, sizeof from);
+        HF_MEMCPY(at, q, sizeof at);
+        for (it = 0; it < HF__FTL_QUICK; ++it) {
+            hf__col_closest(k + dq, at[0], at[1], at[2], cc, dd);
+            hf__ftl_cap(p, l, cc, rr[dq], n, mq, &cq);
+            hf__ftl_onto_cap(from, mq, cq, t, d);
+            for (w = 0; w < 3; ++w) cand[w] = p[w] + l * d[w];
+            if (!(hf__ftl_penetration(k, rr, ncol, cand, &dq) > 0.0f)) {
+                HF_MEMCPY(best, cand, sizeof cand);
+                best_pen = 0.0f;
+                break;
+            }
+            HF_MEMCPY(from, d, sizeof d);
+            HF_MEMCPY(at, cand, sizeof cand);
         }
     }
     for (round = 0; round < HF__FTL_ROUNDS && best_pen > 0.0f; ++round) {
@@ -7030,19 +7041,24 @@ T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
     }                                                                          \
     best_dot = HF__SET1(-2.0f);                                                \
     { /* hf__ftl_collide_point's quick answer */                               \
-        V mq[3], cq, d[3], cand[3], hold, ok;                                  \
-        hf__ftl_cap_##S(p, l, cw, rw, n, mq, &cq);                             \
-        hf__ftl_onto_cap_##S(u, mq, cq, t, d);                                 \
-        HF__UNROLL for (i = 0; i < 3; ++i)                                     \
-            cand[i] = HF__ADD(p[i], HF__MUL(l, d[i]));                         \
-        ok = HF__AND(act, HF__LE(hf__ftl_penetration_##S(k, rr, ncol, cand,    \
-                                                         &hold, NULL, NULL),   \
-                                 zero));                                       \
-        HF__UNROLL for (i = 0; i < 3; ++i)                                     \
-            best[i] = HF__SEL(ok, cand[i], best[i]);                           \
-        HF__UNROLL for (i = 0; i < 3; ++i)                                     \
-            best[i] = HF__SEL(ok, cand[i], best[i]);                           \
-        best_pen = HF__SEL(ok, zero, best_pen);                                \
+        V from[3], mq[3], cq, d[3], cand[3], hold, go = act;                   \
+        HF__UNROLL for (i = 0; i < 3; ++i) from[i] = u[i];                     \
+        for (round = 0; round < HF__FTL_QUICK && HF__MASK(go); ++round) {      \
+            V pen, ok;                                                         \
+            hf__ftl_cap_##S(p, l, cw, rw, n, mq, &cq);                         \
+            hf__ftl_onto_cap_##S(from, mq, cq, t, d);                          \
+            HF__UNROLL for (i = 0; i < 3; ++i)                                 \
+                cand[i] = HF__ADD(p[i], HF__MUL(l, d[i]));                     \
+            /* cw, rw: the next ball, where the point is still inside */       \
+            pen = hf__ftl_penetration_##S(k, rr, ncol, cand, &hold, cw, &rw);  \
+            ok = HF__AND(go, HF__LE(pen, zero));                               \
+            HF__UNROLL for (i = 0; i < 3; ++i) {                               \
+                best[i] = HF__SEL(ok, cand[i], best[i]);                       \
+                from[i] = d[i];                                                \
+            }                                                                  \
+            best_pen = HF__SEL(ok, zero, best_pen);                            \
+            go = HF__AND(go, HF__GT(pen, zero));                               \
+        }                                                                      \
     }                                                                          \
     for (round = 0; round < HF__FTL_ROUNDS; ++round) {                         \
         V from[3];                                                             \
