@@ -6032,6 +6032,7 @@ HF__INLINE int hf__ftl_relevant(const hf__col_prep *k, const float *p, float l)
 #define HF__BP_TILES 16
 #define HF__BP_SLOTS 160
 #define HF__BP_CAND 128
+#define HF__ROPE_CHUNK (HF__BP_TILES * HF__BP_TILE)
 
 typedef struct hf__bp {
     int a;     /* the chunk's first rope: tile t is ropes a + 16 t .. */
@@ -6104,6 +6105,13 @@ HF__INLINE float hf__box_gap(const float *lo, const float *hi,
     return HF_SQRTF(g2);
 }
 
+/* Rope r's root's offset from its frame position (its rest row 0). */
+HF__INLINE float hf__root_offset(const hf_ropes *ro, int r)
+{
+    const float u = ro->rest_u[r], v = ro->rest_v[r], w = ro->rest_w[r];
+    return HF_SQRTF(u * u + v * v + w * w);
+}
+
 /* Tile [x, e): the box of its roots over the call (the frame position
    this frame and last, between which the sub-steps move it), and how far
    a point can be from it: *r1 for row 1 and *far for the tip (the root's
@@ -6114,13 +6122,12 @@ HF__PRIVATE void hf__bp_tile_box(const hf_ropes *ro, int x, int e, float *lo,
                                  float *hi, float *big, float *r1, float *far_)
 {
     const size_t R = (size_t)ro->rope_count;
-    float m0 = 0.0f, m1 = 0.0f, mt = 0.0f;
+    float m1 = 0.0f, mt = 0.0f;
     int r, k;
     *big = 0.0f;
     for (k = 0; k < 3; ++k) lo[k] = hi[k] = ro->frame[(size_t)k * R + x];
     for (r = x; r < e; ++r) {
-        const float u = ro->rest_u[r], v = ro->rest_v[r], w = ro->rest_w[r];
-        const float o = HF_SQRTF(u * u + v * v + w * w);
+        const float o = hf__root_offset(ro, r);
         for (k = 0; k < 3; ++k) {
             const float c = ro->frame[(size_t)k * R + r],
                         p = ro->frame[(size_t)(12 + k) * R + r];
@@ -6129,7 +6136,6 @@ HF__PRIVATE void hf__bp_tile_box(const hf_ropes *ro, int x, int e, float *lo,
             lo[k] = p < lo[k] ? p : lo[k];
             hi[k] = p > hi[k] ? p : hi[k];
         }
-        m0 = o > m0 ? o : m0;
         m1 = o + ro->rest_length[r] > m1 ? o + ro->rest_length[r] : m1;
         mt = o + ro->length[r] > mt ? o + ro->length[r] : mt;
     }
@@ -6142,7 +6148,6 @@ HF__PRIVATE void hf__bp_tile_box(const hf_ropes *ro, int x, int e, float *lo,
        rest lengths in the same order, so the same floats as row P - 1's */
     *r1 = m1 * 1.001f + 1e-4f * (1.0f + *big + m1);
     *far_ = mt * 1.001f + 1e-4f * (1.0f + *big + mt);
-    (void)m0;
 }
 
 /* reach[j] for every row j of tile [x, e), as hf__bp_tile_box's bounds. */
@@ -6152,10 +6157,7 @@ HF__PRIVATE void hf__bp_reach(const hf_ropes *ro, int x, int e, float big,
     const size_t R = (size_t)ro->rope_count;
     float cum[HF__BP_TILE];
     int r, j;
-    for (r = x; r < e; ++r) {
-        const float u = ro->rest_u[r], v = ro->rest_v[r], w = ro->rest_w[r];
-        cum[r - x] = HF_SQRTF(u * u + v * v + w * w);
-    }
+    for (r = x; r < e; ++r) cum[r - x] = hf__root_offset(ro, r);
     for (j = 0; j < ro->points; ++j) {
         float m = 0.0f;
         if (j > 0) {
@@ -6759,8 +6761,9 @@ HF__PRIVATE void hf__ropes_mark_far_ref(const hf_ropes *ro, int j, int a,
 /* A row's points in contact, listed for the kernel (they are independent:
    a point's collision moves nothing the row reads again): as many as a
    chunk has ropes, so that a row's contacts are grouped once, the more
-   of a signature the fuller its groups. */
-#define HF__FTL_HITS 256
+   of a signature the fuller its groups (a power of two: the grouping's
+   hash table masks with it). */
+#define HF__FTL_HITS HF__ROPE_CHUNK
 typedef struct hf__ftl_hits {
     int n, r[HF__FTL_HITS];
 } hf__ftl_hits;
@@ -7998,7 +8001,6 @@ HF__PRIVATE void hf__ropes_safety_net(hf_ropes *ro, int a, int b,
    neighbouring ranges meet only where one has finished (two ranges swept
    row by row at once trade the cache lines at their edge every row).
    The bytes are those of any split. */
-#define HF__ROPE_CHUNK (HF__BP_TILES * HF__BP_TILE)
 HF__PRIVATE void hf__ropes_sim_run(hf_ropes *ro, int a, int b,
                                    const hf__rope_step *st,
                                    const hf_collider *col, int ncol)
@@ -12904,20 +12906,20 @@ hf__points_encode_avx512(const hf__points_kit *k, const float *in, size_t n,
         k->origin[0], k->origin[1], k->origin[2], 0.0f, k->origin[0],
         k->origin[1], k->origin[2], 0.0f, k->origin[0], k->origin[1],
         k->origin[2], 0.0f, k->origin[0], k->origin[1], k->origin[2], 0.0f);
-    const __m512 inv = _mm512_set1_ps(k->inv), one = _mm512_set1_ps(1.0f),
+    const __m512 inv = _mm512_set1_ps(k->inv),
                  big = _mm512_set1_ps(65504.0f),
                  nbig = _mm512_set1_ps(-65504.0f);
+    hf__enc8 e8;
+    hf__enc16 sn;
     size_t i = 0;
+    hf__enc8_init(&e8, HF_FORMAT_SNORM16);
+    hf__enc16_init(&sn, &e8);
     nt = nt && ((uintptr_t)o & 31u) == 0;
     for (; i + 4 <= n; i += 4, in += 16, o += 32) {
         const __m512 v = _mm512_loadu_ps(in);
-        __m512 q = _mm512_mul_ps(_mm512_sub_ps(v, org), inv);
-        __m512i c;
+        __m512i c = hf__encode16(_mm512_mul_ps(_mm512_sub_ps(v, org), inv),
+                                 &sn);
         __m256i four;
-        q = _mm512_maskz_max_ps(0xffff, q, _mm512_set1_ps(-1.0f));
-        q = _mm512_mul_ps(_mm512_maskz_min_ps(0xffff, q, one),
-                          _mm512_set1_ps(32767.0f));
-        c = _mm512_maskz_cvtps_epi32(0xffff, q);
         /* the masked forms, as HF__SQRT's */
         c = _mm512_mask_blend_epi32(
             0x8888, c,
@@ -12966,6 +12968,37 @@ HF__PRIVATE void hf__points_run(const hf__points_kit *k,
                                 const float *pts, int pts_first, int first,
                                 int count, int out_first, float *out4);
 
+/* The dispatch of the compact encoders: n points at in to o. */
+HF__PRIVATE void hf__points_encode(const hf__points_kit *k, const float *in,
+                                   size_t n, unsigned char *o)
+{
+#if HF__AVX512
+    if (k->level >= HF_SIMD_AVX512) {
+        hf__points_encode_avx512(k, in, n, o, k->nt);
+        return;
+    }
+#endif
+#if HF__AVX2
+    if (k->level >= HF_SIMD_AVX2) {
+        hf__points_encode_avx2(k, in, n, o, k->nt);
+        return;
+    }
+#endif
+#if HF__SSE
+    if (k->level >= HF_SIMD_SSE2) {
+        hf__points_encode_sse(k, in, n, o, k->nt);
+        return;
+    }
+#endif
+#if HF__NEON
+    if (k->level >= HF_SIMD_NEON) {
+        hf__points_encode_neon(k, in, n, o);
+        return;
+    }
+#endif
+    hf__points_encode_ref(k, in, n, o);
+}
+
 /* Compact points of strands [first, first + count): the float points of
    a few strands at a time into a 4 KiB stage (ordinary stores, so it
    stays in L1), then encoded from there to out + (s - out_first) * 8 P
@@ -12984,37 +13017,10 @@ HF__PRIVATE void hf__points_run_compact(const hf__points_kit *k,
     f32.compact = 0;
     f32.nt = 0;
     for (s = first; s < first + count; s += n) {
-        const size_t np = (size_t)(n = first + count - s < per
-                                           ? first + count - s
-                                           : per) *
-                          (size_t)P;
-        unsigned char *o = out + (size_t)(s - out_first) * (size_t)P * 8u;
+        n = first + count - s < per ? first + count - s : per;
         hf__points_run(&f32, strands, pts, pts_first, s, n, s, stage);
-#if HF__AVX512
-        if (k->level >= HF_SIMD_AVX512) {
-            hf__points_encode_avx512(k, stage, np, o, k->nt);
-            continue;
-        }
-#endif
-#if HF__AVX2
-        if (k->level >= HF_SIMD_AVX2) {
-            hf__points_encode_avx2(k, stage, np, o, k->nt);
-            continue;
-        }
-#endif
-#if HF__SSE
-        if (k->level >= HF_SIMD_SSE2) {
-            hf__points_encode_sse(k, stage, np, o, k->nt);
-            continue;
-        }
-#endif
-#if HF__NEON
-        if (k->level >= HF_SIMD_NEON) {
-            hf__points_encode_neon(k, stage, np, o);
-            continue;
-        }
-#endif
-        hf__points_encode_ref(k, stage, np, o);
+        hf__points_encode(k, stage, (size_t)n * (size_t)P,
+                          out + (size_t)(s - out_first) * (size_t)P * 8u);
     }
 }
 
