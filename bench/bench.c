@@ -191,7 +191,6 @@ typedef struct scene {
     hf_fur_info info;
     float *vbuf, *pbuf;
     unsigned char *cbuf; /* 16-byte compact ribbon vertices */
-    int points;          /* per strand */
     hf_collider col[BENCH_MAX_COLLIDERS]; /* the head's, then a body's */
     int ncol;
     hf_mesh skinned;
@@ -287,7 +286,7 @@ static void scene_init(scene *s, const char *name, int rings, int segments,
     hm_hairline_density(s->density, 256, 256);
     bench_fur_desc(&d, &density, &rp, &s->head, s->density, strands,
                    tess_factor);
-    d.points_per_strand = s->points = points;
+    d.points_per_strand = points;
     d.max_length = length;
     a.alloc = c_alloc;
     a.realloc = c_realloc;
@@ -598,7 +597,7 @@ static void bench_scene(scene *s, int frames, int threads, double *frame_ms_out)
     long allocs0;
     int f, k, warm = 10;
     double bytes[ST_N];
-    const double np = s->points;
+    const double np = s->info.points_per_strand;
     g_sc = s;
     g_threads = threads;
     bench_views(&g_view, &g_view_gpu, &g_out, s->vbuf, &g_out16, s->cbuf);

@@ -1579,6 +1579,16 @@ static GLenum glm_stream_buffer(glm_app *a, size_t *all, size_t *bytes)
    a mapped staging buffer the same way, then copied on the GPU; with
    --copy, or where a buffer cannot be mapped, into memory of our own,
    then glBufferSubData. */
+/* The box compact positions are written in this frame (corigin, cscale):
+   it follows the head, so the hair stays well inside it however far the
+   head moves. */
+static void glm_compact_box(glm_app *a)
+{
+    memcpy(a->corigin, a->target, sizeof a->corigin);
+    a->cscale = a->ch.vertex_count > 0 ? 0.6f * a->ch_diag + 2.0f * a->hair_len
+                                       : GLM_COMPACT_SCALE;
+}
+
 static int glm_build(glm_app *a)
 {
     hf_ribbon_params v;
@@ -1619,11 +1629,8 @@ static int glm_build(glm_app *a)
     }
     t0 = glm_now_ms();
     if (a->o.gpu_expand) {
-        if (a->o.compact) { /* 8-byte points in the same box as below */
-            memcpy(a->corigin, a->target, sizeof a->corigin);
-            a->cscale = a->ch.vertex_count > 0
-                            ? 0.6f * a->ch_diag + 2.0f * a->hair_len
-                            : GLM_COMPACT_SCALE;
+        if (a->o.compact) { /* 8-byte points in the compact box */
+            glm_compact_box(a);
             v.point_format = HF_POINT_COMPACT;
             memcpy(v.point_origin, a->corigin, sizeof v.point_origin);
             v.point_scale = a->cscale;
@@ -1634,16 +1641,11 @@ static int glm_build(glm_app *a)
     } else if ((r = hf_fur_interpolate(a->fur, 0, n)) == HF_OK &&
                a->o.compact) {
         /* position and tangent only: the texcoords from init stay in
-           cdyn (a mapped buffer is invalidated: they are written too).
-           The origin follows the head, so the hair stays well inside the
-           +-GLM_COMPACT_SCALE box however far the head moves. */
+           cdyn (a mapped buffer is invalidated: they are written too) */
         glm_compact *c = map ? (glm_compact *)(void *)map : a->cdyn;
         hf_ribbon_output out;
         memset(&out, 0, sizeof out);
-        memcpy(a->corigin, a->target, sizeof a->corigin);
-        a->cscale = a->ch.vertex_count > 0
-                        ? 0.6f * a->ch_diag + 2.0f * a->hair_len
-                        : GLM_COMPACT_SCALE;
+        glm_compact_box(a);
         out.position.data = c[0].pos;
         out.position.stride = sizeof(glm_compact);
         out.position.format = HF_FORMAT_SNORM16;
