@@ -1016,7 +1016,9 @@ typedef enum hf_rope_zero {
     HF_ROPE_ZERO_ITERATIONS = 1 << 2,  /* iterations 0: no solver pass */
     HF_ROPE_ZERO_FTL_DAMPING = 1 << 3, /* ftl_damping 0 */
     HF_ROPE_ZERO_MARGIN = 1 << 4,      /* collision_margin 0 */
-    HF_ROPE_ZERO_BLEND_TIME = 1 << 5   /* mode_blend_time 0: switch at once */
+    HF_ROPE_ZERO_BLEND_TIME = 1 << 5,  /* mode_blend_time 0: switch at once */
+    HF_ROPE_ZERO_VOLUME = 1 << 6,      /* volume 0: no hair-hair repulsion */
+    HF_ROPE_ZERO_FRICTION = 1 << 7     /* friction 0: no hair-hair friction */
 } hf_rope_zero;
 
 /* Simulation parameters. Zero-initialise and set what you need: every zero
@@ -1067,6 +1069,20 @@ typedef struct hf_rope_params {
                           animated glides to its rest pose over this much
                           simulated time, [0, 1000]; at once needs
                           HF_ROPE_ZERO_BLEND_TIME */
+    /* Hair-hair interaction, where a grid is given (hf_ropes_apply_grid,
+       hf_fur_desc.grid_resolution); without one they do nothing. */
+    float volume;   /* 1: repulsion, so hair keeps a volume: each point is
+                       pushed from dense toward sparse hair with this many
+                       g (9.81 m/s^2) where the density changes by the
+                       typical density (that around the average point)
+                       across one grid cell, [0, 100]; off needs
+                       HF_ROPE_ZERO_VOLUME */
+    float friction; /* 0.2: hair-hair friction, so hair moves as a mass:
+                       the fraction of the difference between a point's
+                       velocity and that of the hair around it removed per
+                       1/60 s (as much less as the hair around is sparser
+                       than typical), [0, 1]; off needs
+                       HF_ROPE_ZERO_FRICTION */
     int explicit_zero;      /* 0: hf_rope_zero bits, fields whose 0 is
                                literal */
     int simd; /* 0: hf_simd_level of the rope step, 0 = the best the CPU
@@ -1258,6 +1274,86 @@ HFDEF hf_result hf_ropes_get_positions(const hf_ropes *ropes, int first,
    (0 = 12). Same errors. */
 HFDEF hf_result hf_ropes_copy_range(const hf_ropes *ropes, int first,
                                     int count, float *out, int stride);
+
+/* Take the current pose of ropes [first, first + count) as their rest
+   pose, in their current root frames (the frame of their last step), and
+   put them at rest there: the way to keep a shape gravity settled (step
+   the ropes for a while, then call this), so shape stiffness holds the
+   draped shape instead of the grown one. Rest lengths are kept. Errors:
+   HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE. */
+HFDEF hf_result hf_ropes_rest_from_pose(hf_ropes *ropes, int first,
+                                        int count);
+
+/* ---- hair-hair interaction ---------------------------------------------- */
+
+/* A grid of resolution^3 nodes over the ropes' points, rebuilt every
+   frame from where the points are (hf_grid_build) and read by
+   hf_ropes_apply_grid before the step: each node holds the points near it
+   (trilinear weights) and their momentum. It gives each point the
+   density and the velocity of the hair around it (its own share taken
+   out), for a repulsion from dense toward sparse hair (volume) and a
+   friction toward the hair's common motion (friction), the grid methods
+   of Petrovic et al. 2005 and McAdams et al. 2009 at one grid a frame.
+   The grid is a cube over the roots grown by each rope's length, so
+   resolution 32 on a head with 0.3 m hair gives cells of about 2.5 cm.
+   The caller owns the struct and its memory (hf_grid_init) or gets both
+   from hf_grid_create. Fields marked private may change. */
+typedef struct hf_grid {
+    int resolution;  /* nodes along each axis, [4, HF_GRID_MAX_RESOLUTION] */
+    float *node;     /* 4 floats a node (x fastest, then y, then z): the
+                        points' weight, then their momentum (weight x
+                        velocity, m/s) */
+    /* private */
+    float *slab;     /* per z layer: the cube (origin, spacing) and the
+                        sums of the weight and of its square */
+    hf_allocator allocator; /* hf_grid_create only */
+    int owned;
+} hf_grid;
+
+#define HF_GRID_MAX_RESOLUTION 128
+
+/* Bytes of memory hf_grid_init needs for a grid of resolution^3 nodes
+   (16 per node plus 24 per layer). Errors: HF_ERROR_NULL_POINTER,
+   HF_ERROR_BAD_COUNT (resolution outside [4, HF_GRID_MAX_RESOLUTION]). */
+HFDEF hf_result hf_grid_memory_size(int resolution, size_t *out_size);
+/* Set up an empty grid (one that moves nothing) on caller memory of at
+   least hf_grid_memory_size bytes (any alignment). Errors:
+   HF_ERROR_NULL_POINTER, HF_ERROR_BAD_COUNT, HF_ERROR_BUFFER_TOO_SMALL;
+   *grid untouched then. */
+HFDEF hf_result hf_grid_init(hf_grid *grid, int resolution, void *memory,
+                             size_t memory_size);
+/* The same, the struct and its memory in one block from `alloc` (NULL =
+   default); free it with hf_grid_destroy. Errors: as hf_grid_init,
+   HF_ERROR_OUT_OF_MEMORY. */
+HFDEF hf_result hf_grid_create(int resolution, const hf_allocator *alloc,
+                               hf_grid **out_grid);
+/* Free what hf_grid_create returned (NULL is ignored). */
+HFDEF void hf_grid_destroy(hf_grid *grid);
+
+/* Rebuild z layers [first, first + count) of the grid (0 .. resolution -
+   1) from the points of ropes [0, rope_count) as they are now: call it
+   after the roots are set and before hf_ropes_apply_grid, every frame.
+   Each call reads every one of those ropes' points and writes only its
+   own layers, so layers built on several threads give the same bytes as
+   one call. Points outside the cube (a rope stretched beyond its length)
+   are left out. Errors: HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE (the
+   layers, or rope_count outside [0, ropes->rope_count]); nothing is
+   written then. No allocation. */
+HFDEF hf_result hf_grid_build(hf_grid *grid, const hf_ropes *ropes,
+                              int rope_count, int first, int count);
+
+/* Before hf_ropes_step of ropes [first, first + count), change the
+   velocity of their simulated points (the root excepted) by the hair-hair
+   forces of params->volume and params->friction over dt (clamped and
+   scaled as hf_ropes_step does), from a grid built this frame with every
+   layer (hf_grid_build). The ropes stay inextensible: the step's solver
+   keeps their lengths. A grid that is empty, or points outside it, get
+   no force. Errors: HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE,
+   HF_ERROR_BAD_TIME_STEP, HF_ERROR_NON_FINITE / HF_ERROR_BAD_PARAMETER
+   (params); nothing is written then. No allocation. */
+HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
+                                    float dt, const hf_rope_params *params,
+                                    const hf_grid *grid);
 
 /* ======================================================================== */
 /* 7. Interpolation and LOD                                                 */
@@ -1733,6 +1829,7 @@ HFDEF hf_result hf_lut_eval_n(const hf_lut_params *p, double cos_theta_d,
 
        hf_fur_set_lod(fur, lod);                            // one thread
        hf_fur_set_roots(fur, &skinned_mesh, 0, info.guide_count);
+       hf_fur_build_grid(fur, 0, info.grid_resolution);    // with a grid
        hf_fur_simulate(fur, 0, info.guide_count, dt, colliders, n);
        hf_fur_interpolate_guides(fur, 0, info.lod_guide_count);
        hf_fur_interpolate(fur, 0, info.drawn_strand_count);
@@ -1836,6 +1933,12 @@ typedef struct hf_fur_desc {
                                2 = ordinary stores */
     float lod_simulate_threshold; /* 0 = 0.5: LOD guides simulated at
                                      lod >= this */
+    int grid_resolution;    /* 0 = no hair-hair interaction; else the
+                               nodes along each axis of the fur's grid
+                               (hf_grid, [4, HF_GRID_MAX_RESOLUTION]; 32
+                               is a good start), rebuilt each frame by
+                               hf_fur_build_grid, its strengths volume
+                               and friction of hf_rope_params */
     const hf_rope_params *rope_params; /* NULL = hf_rope_params_init */
     const hf_allocator *allocator;     /* NULL = default; copied */
 } hf_fur_desc;
@@ -1853,6 +1956,8 @@ typedef struct hf_fur_info {
     int roots_inside;        /* guides whose root sat inside a collider at
                                 their last hf_fur_simulate (see
                                 hf_ropes_roots_inside): shrink that proxy */
+    int grid_resolution;     /* the grid's layers (hf_fur_build_grid's
+                                range); 0 without a grid */
     const float *guide_points;  /* guide_count * P * 3 */
     const float *strand_points; /* strand_count * P * 3 */
     const hf_strand *strands;   /* strand_count records */
@@ -1893,6 +1998,7 @@ typedef struct hf_groom_desc {
                                   each guide root is bound to its nearest
                                   point on it, and hf_fur_set_roots with the
                                   skinned scalp moves the roots */
+    int grid_resolution;       /* as hf_fur_desc.grid_resolution */
     const hf_rope_params *rope_params; /* NULL = hf_rope_params_init */
     const hf_allocator *allocator;     /* NULL = default; copied */
 } hf_groom_desc;
@@ -1959,6 +2065,35 @@ HFDEF hf_result hf_fur_set_transform(hf_fur *fur, const float m[12],
 HFDEF hf_result hf_fur_simulate(hf_fur *fur, int first, int count, float dt,
                                 const hf_collider *colliders,
                                 int collider_count);
+
+/* With a grid (hf_fur_desc.grid_resolution), rebuild its z layers
+   [first, first + count) of info.grid_resolution from the simulated
+   guides as they are (hf_grid_build): every frame after the roots are
+   set and before hf_fur_simulate, which then pushes and drags each
+   guide's points by the hair around them (hf_ropes_apply_grid: volume
+   and friction of the rope parameters). Layers may be built on several
+   threads (same bytes); every layer must be built before any guide is
+   simulated. A grid not rebuilt acts from where the hair was when it
+   was. Without a grid: HF_OK for the empty range. Errors:
+   HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE. */
+HFDEF hf_result hf_fur_build_grid(hf_fur *fur, int first, int count);
+
+/* Drape the hair: simulate every guide (LOD guides too) for `seconds` of
+   simulated time in 1/60 s steps at its current roots, under gravity and
+   the colliders (the grid rebuilt each step where there is one), then
+   take the result as the guides' rest shapes (hf_ropes_rest_from_pose),
+   at rest. Shape stiffness then holds the draped shape rather than the
+   grown one. While settling, the fur's rope parameters hold except that
+   shape stiffness (global and local) is off, wind and turbulence are off,
+   and damping is at least 0.1, so the hair falls and comes to rest; 1 s
+   is enough for most hair. Not a range call; it allocates a byte per
+   guide, freed before it returns. Errors: HF_ERROR_NULL_POINTER,
+   HF_ERROR_BAD_PARAMETER (seconds NaN or outside [0, 600]), the
+   colliders' errors (as hf_ropes_step), HF_ERROR_OUT_OF_MEMORY; nothing
+   changes then. */
+HFDEF hf_result hf_fur_settle_rest(hf_fur *fur, float seconds,
+                                   const hf_collider *colliders,
+                                   int collider_count);
 
 /* While LOD guides are not simulated, interpolate LOD guides [first, first
    + count) (0-based among the LOD guides) from the pure guides of their
@@ -2505,6 +2640,9 @@ HF__PRIVATE void hf__rope_params_resolve(const hf_rope_params *in,
         p->collision_margin = hf__def_f(p->collision_margin, 0.002f);
     if (!(z & HF_ROPE_ZERO_BLEND_TIME))
         p->mode_blend_time = hf__def_f(p->mode_blend_time, 0.25f);
+    if (!(z & HF_ROPE_ZERO_VOLUME)) p->volume = hf__def_f(p->volume, 1.0f);
+    if (!(z & HF_ROPE_ZERO_FRICTION))
+        p->friction = hf__def_f(p->friction, 0.2f);
 }
 
 HF__PRIVATE void hf__lut_params_resolve(const hf_lut_params *in,
@@ -4705,7 +4843,9 @@ HF__PRIVATE hf_result hf__rope_params_check(const hf_rope_params *p,
         (r = hf__rope_check_f(diag, "collision_margin", p->collision_margin,
                               0.0f, 1000.0f)) ||
         (r = hf__rope_check_f(diag, "mode_blend_time", p->mode_blend_time,
-                              0.0f, 1000.0f)))
+                              0.0f, 1000.0f)) ||
+        (r = hf__rope_check_f(diag, "volume", p->volume, 0.0f, 100.0f)) ||
+        (r = hf__rope_check_f(diag, "friction", p->friction, 0.0f, 1.0f)))
         return r;
     if (p->max_substeps < 1 || p->max_substeps > 1000)
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "max_substeps", -1,
@@ -5311,6 +5451,32 @@ HFDEF hf_result hf_ropes_reset(hf_ropes *ropes, int first, int count)
     if (!hf__ropes_ok(ropes)) return HF_ERROR_NULL_POINTER;
     if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
     for (r = first; r < first + count; ++r) hf__rope_reset_one(ropes, r);
+    return HF_OK;
+}
+
+HFDEF hf_result hf_ropes_rest_from_pose(hf_ropes *ropes, int first,
+                                        int count)
+{
+    const size_t R = ropes ? (size_t)ropes->rope_count : 0u;
+    int r, j;
+    if (!hf__ropes_ok(ropes)) return HF_ERROR_NULL_POINTER;
+    if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
+    for (r = first; r < first + count; ++r) {
+        float f[12];
+        /* the frame the points were computed in */
+        hf__rope_get_frame(ropes, 12, r, f);
+        for (j = 0; j < ropes->points; ++j) {
+            const size_t i = (size_t)j * R + (size_t)r;
+            float d[3];
+            d[0] = ropes->x[i] - f[0];
+            d[1] = ropes->y[i] - f[1];
+            d[2] = ropes->z[i] - f[2];
+            ropes->rest_u[i] = hf__dot3(d, f + 3);
+            ropes->rest_v[i] = hf__dot3(d, f + 6);
+            ropes->rest_w[i] = hf__dot3(d, f + 9);
+        }
+        hf__rope_reset_one(ropes, r);
+    }
     return HF_OK;
 }
 
@@ -8164,6 +8330,357 @@ HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
                       first,
                   ropes->frame + (size_t)k * (size_t)ropes->rope_count + first,
                   (size_t)count * sizeof(float));
+    return HF_OK;
+}
+
+/* ---- hair-hair interaction: the grid ------------------------------------ */
+
+/* Floats per z layer in hf_grid.slab: the cube (origin xyz, spacing), the
+   point stride, then the layer's sums of the node weights and of their
+   squares. Every layer holds the same cube and stride, so a reader takes
+   layer 0's. */
+enum { HF__GRID_SLAB = 7 };
+
+HF__PRIVATE hf_result hf__grid_layout(int n, size_t *node_bytes,
+                                      size_t *total)
+{
+    if (n < 4 || n > HF_GRID_MAX_RESOLUTION) return HF_ERROR_BAD_COUNT;
+    /* 128^3 nodes x 16 bytes: 32 MiB, far from size_t's limit */
+    *node_bytes = (size_t)n * (size_t)n * (size_t)n * 4u * sizeof(float);
+    *total = 64u + *node_bytes + (size_t)n * HF__GRID_SLAB * sizeof(float);
+    return HF_OK;
+}
+
+HFDEF hf_result hf_grid_memory_size(int resolution, size_t *out_size)
+{
+    size_t node_bytes, total;
+    hf_result r;
+    if (!out_size) return HF_ERROR_NULL_POINTER;
+    r = hf__grid_layout(resolution, &node_bytes, &total);
+    if (r == HF_OK) *out_size = total;
+    return r;
+}
+
+HFDEF hf_result hf_grid_init(hf_grid *grid, int resolution, void *memory,
+                             size_t memory_size)
+{
+    size_t node_bytes, total;
+    unsigned char *at;
+    hf_result r;
+    if (!grid || !memory) return HF_ERROR_NULL_POINTER;
+    r = hf__grid_layout(resolution, &node_bytes, &total);
+    if (r != HF_OK) return r;
+    if (memory_size < total) return HF_ERROR_BUFFER_TOO_SMALL;
+    HF_MEMSET(memory, 0, total);
+    at = (unsigned char *)memory;
+    at += (64u - (size_t)((uintptr_t)at & 63u)) & 63u;
+    HF_MEMSET(grid, 0, sizeof *grid);
+    grid->resolution = resolution;
+    grid->node = (float *)at;
+    grid->slab = (float *)(at + node_bytes);
+    return HF_OK;
+}
+
+HFDEF hf_result hf_grid_create(int resolution, const hf_allocator *alloc,
+                               hf_grid **out_grid)
+{
+    size_t need, head = (sizeof(hf_grid) + 63u) & ~(size_t)63u;
+    hf_grid *g;
+    hf_result r;
+    if (!out_grid) return HF_ERROR_NULL_POINTER;
+    r = hf_grid_memory_size(resolution, &need);
+    if (r != HF_OK) return r;
+    g = (hf_grid *)hf__alloc(alloc, need + head);
+    if (!g) return HF_ERROR_OUT_OF_MEMORY;
+    r = hf_grid_init(g, resolution, (unsigned char *)g + head, need);
+    HF_ASSERT(r == HF_OK);
+    if (alloc) g->allocator = *alloc;
+    g->owned = alloc ? 2 : 1;
+    *out_grid = g;
+    return HF_OK;
+}
+
+HFDEF void hf_grid_destroy(hf_grid *grid)
+{
+    if (!grid || !grid->owned) return;
+    if (grid->owned == 2) {
+        hf_allocator a = grid->allocator;
+        hf__free(&a, grid);
+    } else {
+        hf__free(NULL, grid);
+    }
+}
+
+/* The cube over ropes [0, rc) and the point stride: their roots where the
+   points were computed (the previous-frame rows) grown by each rope's
+   length (and 1 % and 0.1 mm for rounding), its largest side over
+   resolution - 1 cells; every k-th point of each rope stands for the k
+   from it (k points apart is at most a cell on the rope of longest
+   segments: finer than the grid sees nothing new). Every layer's call
+   computes the same floats. */
+HF__PRIVATE void hf__grid_cube(const hf_ropes *ro, int rc, int n,
+                               float cube[5])
+{
+    const size_t R = (size_t)ro->rope_count;
+    float lo[3], hi[3], side = 0.0f, longest = 0.0f, k;
+    int r, i;
+    for (i = 0; i < 3; ++i) {
+        lo[i] = HF_ROPE_MAX_COORD * 16.0f;
+        hi[i] = -lo[i];
+    }
+    for (r = 0; r < rc; ++r) {
+        float L = ro->length[r] * 1.01f + 1e-4f;
+        longest = ro->length[r] > longest ? ro->length[r] : longest;
+        for (i = 0; i < 3; ++i) {
+            float c = ro->frame[(size_t)(12 + i) * R + (size_t)r];
+            lo[i] = c - L < lo[i] ? c - L : lo[i];
+            hi[i] = c + L > hi[i] ? c + L : hi[i];
+        }
+    }
+    for (i = 0; i < 3; ++i) {
+        cube[i] = lo[i];
+        side = hi[i] - lo[i] > side ? hi[i] - lo[i] : side;
+    }
+    cube[3] = side / (float)(n - 1);
+    if (!(cube[3] >= 1e-6f)) cube[3] = 1e-6f;
+    k = longest > 0.0f ? cube[3] * (float)(ro->points - 1) / longest : 1.0f;
+    cube[4] = k >= 8.0f ? 8.0f : (k >= 1.0f ? (float)(int)k : 1.0f);
+}
+
+/* Grid coordinate of c along one axis: the cell k (0 .. n - 2) and the
+   fraction f in it; 0 for a point outside the cube. */
+HF__INLINE int hf__grid_axis(float c, float o, float inv, int n, int *k,
+                             float *f)
+{
+    float q = (c - o) * inv;
+    if (!(q >= 0.0f && q < (float)(n - 1))) return 0;
+    *k = (int)q;
+    *f = q - (float)*k;
+    return 1;
+}
+
+/* The grid cell of point i and its place in it: the node index of the
+   cell's low corner, its layer kz and the fractions; 0 for a point
+   outside the cube. */
+HF__INLINE int hf__grid_locate(const hf_ropes *ro, size_t i, const float *cube,
+                               float inv, int n, size_t *node, int *kz,
+                               float f[3])
+{
+    int kx, ky;
+    if (!hf__grid_axis(ro->z[i], cube[2], inv, n, kz, &f[2]) ||
+        !hf__grid_axis(ro->x[i], cube[0], inv, n, &kx, &f[0]) ||
+        !hf__grid_axis(ro->y[i], cube[1], inv, n, &ky, &f[1]))
+        return 0;
+    *node = ((size_t)*kz * (size_t)n + (size_t)ky) * (size_t)n + (size_t)kx;
+    return 1;
+}
+
+/* o[0..3] += w * v[0..3]: the 4 floats of a node (weight, momentum). */
+HF__INLINE void hf__grid_add4(float *o, float w, const float *v)
+{
+    o[0] += w * v[0];
+    o[1] += w * v[1];
+    o[2] += w * v[2];
+    o[3] += w * v[3];
+}
+
+/* The velocity of point i of rope r, times `weight` (v[0] = weight). */
+HF__INLINE void hf__grid_velocity(const hf_ropes *ro, size_t i, float hv,
+                                  float weight, float v[4])
+{
+    v[0] = weight;
+    v[1] = weight * ((ro->x[i] - ro->px[i]) * hv);
+    v[2] = weight * ((ro->y[i] - ro->py[i]) * hv);
+    v[3] = weight * ((ro->z[i] - ro->pz[i]) * hv);
+}
+
+HFDEF hf_result hf_grid_build(hf_grid *grid, const hf_ropes *ropes,
+                              int rope_count, int first, int count)
+{
+    size_t R, n2;
+    float cube[5], inv;
+    int n, end, j, r, s, k, P;
+    if (!grid || !grid->node || !hf__ropes_ok(ropes))
+        return HF_ERROR_NULL_POINTER;
+    n = grid->resolution;
+    if (!hf__range_ok(first, count) || first + count > n ||
+        rope_count < 0 || rope_count > ropes->rope_count)
+        return HF_ERROR_BAD_RANGE;
+    end = first + count;
+    R = (size_t)ropes->rope_count;
+    P = ropes->points;
+    n2 = (size_t)n * (size_t)n;
+    HF_MEMSET(grid->node + 4u * n2 * (size_t)first, 0,
+              4u * n2 * (size_t)count * sizeof(float));
+    hf__grid_cube(ropes, rope_count, n, cube);
+    inv = 1.0f / cube[3];
+    k = (int)cube[4];
+    for (j = 0; j < P; j += k) {
+        /* the points this one stands for: j .. j + k - 1 */
+        const float weight = (float)(j + k <= P ? k : P - j);
+        for (r = 0; r < rope_count; ++r) {
+            const size_t i = (size_t)j * R + (size_t)r;
+            float f[3], v[4], hv, wy[2], wz[2];
+            size_t node;
+            int kz, dz;
+            if (!hf__grid_locate(ropes, i, cube, inv, n, &node, &kz, f) ||
+                kz + 1 < first || kz >= end)
+                continue;
+            hv = ropes->last_h[r] > 0.0f ? 1.0f / ropes->last_h[r] : 0.0f;
+            hf__grid_velocity(ropes, i, hv, weight, v);
+            wy[0] = 1.0f - f[1];
+            wy[1] = f[1];
+            wz[0] = 1.0f - f[2];
+            wz[1] = f[2];
+            for (dz = 0; dz < 2; ++dz) {
+                float *o = grid->node + 4u * (node + (size_t)dz * n2);
+                int dy;
+                if (kz + dz < first || kz + dz >= end) continue;
+                for (dy = 0; dy < 2; ++dy) {
+                    float *q = o + 4u * (size_t)dy * (size_t)n;
+                    const float w = wy[dy] * wz[dz];
+                    hf__grid_add4(q, (1.0f - f[0]) * w, v);
+                    hf__grid_add4(q + 4, f[0] * w, v);
+                }
+            }
+        }
+    }
+    for (s = first; s < end; ++s) {
+        const float *o = grid->node + 4u * n2 * (size_t)s;
+        float *sl = grid->slab + HF__GRID_SLAB * s;
+        double w = 0.0, w2 = 0.0;
+        size_t c;
+        for (c = 0; c < n2; ++c) {
+            w += (double)o[4 * c];
+            w2 += (double)o[4 * c] * (double)o[4 * c];
+        }
+        for (k = 0; k < 5; ++k) sl[k] = cube[k];
+        sl[5] = (float)w;
+        sl[6] = (float)w2;
+    }
+    return HF_OK;
+}
+
+/* Sum of the two corner weights' squares along one axis: a point's own
+   share of the weight its trilinear read finds (in the product of the
+   three axes). */
+HF__INLINE float hf__grid_self(float f)
+{
+    return (1.0f - f) * (1.0f - f) + f * f;
+}
+
+/* The grid at a point (cell `node`, fractions f): the weight and momentum
+   (a[0..3]) and the weight's gradient in grid units (g[0..2]: along each
+   axis, the differences across the cell blended by the other two axes'
+   weights), the point's own share (v, as hf__grid_velocity) taken out of
+   both. */
+HF__PRIVATE void hf__grid_read(const hf_grid *grid, size_t node,
+                               const float f[3], const float v[4], float a[4],
+                               float g[3])
+{
+    const size_t n = (size_t)grid->resolution, n2 = n * n;
+    const float *q[8], wx0 = 1.0f - f[0], wy0 = 1.0f - f[1];
+    const float wz0 = 1.0f - f[2];
+    /* corner c = dx + 2 dy + 4 dz; weights of the y-z, x-z and x-y edges */
+    const float wyz[4] = {wy0 * wz0, f[1] * wz0, wy0 * f[2], f[1] * f[2]};
+    const float wxz[4] = {wx0 * wz0, f[0] * wz0, wx0 * f[2], f[0] * f[2]};
+    const float wxy[4] = {wx0 * wy0, f[0] * wy0, wx0 * f[1], f[0] * f[1]};
+    float sx, sy, sz, ms;
+    int c, k;
+    for (c = 0; c < 8; ++c)
+        q[c] = grid->node + 4u * (node + (size_t)(c >> 2) * n2 +
+                                  (size_t)((c >> 1) & 1) * n + (size_t)(c & 1));
+    for (k = 0; k < 4; ++k) a[k] = 0.0f;
+    for (c = 0; c < 4; ++c) {
+        hf__grid_add4(a, wx0 * wyz[c], q[2 * c]);
+        hf__grid_add4(a, f[0] * wyz[c], q[2 * c + 1]);
+    }
+    g[0] = wyz[0] * (q[1][0] - q[0][0]) + wyz[1] * (q[3][0] - q[2][0]) +
+           wyz[2] * (q[5][0] - q[4][0]) + wyz[3] * (q[7][0] - q[6][0]);
+    g[1] = wxz[0] * (q[2][0] - q[0][0]) + wxz[1] * (q[3][0] - q[1][0]) +
+           wxz[2] * (q[6][0] - q[4][0]) + wxz[3] * (q[7][0] - q[5][0]);
+    g[2] = wxy[0] * (q[4][0] - q[0][0]) + wxy[1] * (q[5][0] - q[1][0]) +
+           wxy[2] * (q[6][0] - q[2][0]) + wxy[3] * (q[7][0] - q[3][0]);
+    /* take the point's own share out: alone, it feels nothing */
+    sx = hf__grid_self(f[0]);
+    sy = hf__grid_self(f[1]);
+    sz = hf__grid_self(f[2]);
+    ms = sx * (sy * sz);
+    for (k = 0; k < 4; ++k) a[k] -= ms * v[k];
+    g[0] -= v[0] * ((2.0f * f[0] - 1.0f) * (sy * sz));
+    g[1] -= v[0] * ((2.0f * f[1] - 1.0f) * (sx * sz));
+    g[2] -= v[0] * ((2.0f * f[2] - 1.0f) * (sx * sy));
+}
+
+HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
+                                    float dt, const hf_rope_params *params,
+                                    const hf_grid *grid)
+{
+    hf_rope_params prm;
+    hf__rope_step st;
+    hf_result res;
+    const float *sl;
+    double w = 0.0, w2 = 0.0;
+    size_t R;
+    float inv, ref, push, fric;
+    int n, r, j, s, k, P;
+    if (!hf__ropes_ok(ropes) || !params || !grid || !grid->node)
+        return HF_ERROR_NULL_POINTER;
+    if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
+    if (!hf__finitef(dt) || !(dt > 0.0f)) return HF_ERROR_BAD_TIME_STEP;
+    hf__rope_params_resolve(params, &prm);
+    if ((res = hf__rope_params_check(&prm, NULL)) != HF_OK) return res;
+    n = grid->resolution;
+    sl = grid->slab;
+    for (s = 0; s < n; ++s) {
+        w += (double)sl[HF__GRID_SLAB * s + 5];
+        w2 += (double)sl[HF__GRID_SLAB * s + 6];
+    }
+    if (count == 0 || !(w > 0.0) || !(sl[3] > 0.0f)) return HF_OK;
+    hf__rope_step_setup(&st, &prm, dt, ropes->points);
+    /* the density around the average point: the unit of the push */
+    ref = (float)(w2 / w);
+    push = prm.volume * 9.81f * (st.h * (float)st.n) / ref;
+    fric = hf__rope_k(prm.friction, st.h * (float)st.n);
+    if (!(push > 0.0f) && !(fric > 0.0f)) return HF_OK;
+    R = (size_t)ropes->rope_count;
+    P = ropes->points;
+    inv = 1.0f / sl[3];
+    k = (int)sl[4];
+    /* point rows outermost, as the grid was built: neighbouring ropes
+       read neighbouring nodes */
+    for (j = 0; j < P; j += k) {
+        const int last = j + k <= P ? j + k : P;
+        for (r = first; r < first + count; ++r) {
+            const size_t i = (size_t)j * R + (size_t)r;
+            float f[3], v[4], a[4], g[3], dv[3], hl, hv;
+            size_t node;
+            int kz, q;
+            if (hf__rope_kind(ropes, r) != 0 ||
+                !hf__grid_locate(ropes, i, sl, inv, n, &node, &kz, f))
+                continue;
+            hl = ropes->last_h[r] > 0.0f ? ropes->last_h[r] : st.h;
+            hv = ropes->last_h[r] > 0.0f ? 1.0f / ropes->last_h[r] : 0.0f;
+            hf__grid_velocity(ropes, i, hv, (float)(last - j), v);
+            hf__grid_read(grid, node, f, v, a, g);
+            for (q = 0; q < 3; ++q) dv[q] = -push * g[q];
+            if (fric > 0.0f && a[0] > 1e-6f * ref) {
+                const float ia = 1.0f / a[0], iw = 1.0f / v[0];
+                float b = fric * (a[0] < ref ? a[0] / ref : 1.0f);
+                for (q = 0; q < 3; ++q)
+                    dv[q] += b * (a[q + 1] * ia - v[q + 1] * iw);
+            }
+            for (q = 0; q < 3; ++q) dv[q] *= hl;
+            /* the change read at point j moves the points it stands for
+               (the root stays on the skin) */
+            for (q = j > 0 ? j : 1; q < last; ++q) {
+                const size_t iq = (size_t)q * R + (size_t)r;
+                ropes->px[iq] -= dv[0];
+                ropes->py[iq] -= dv[1];
+                ropes->pz[iq] -= dv[2];
+            }
+        }
+    }
     return HF_OK;
 }
 
@@ -13841,6 +14358,7 @@ struct hf_fur {
     uint32_t *leader;      /* clump_size > 0: per strand, the strand whose
                               shape it clumps to (itself for a leader) */
     hf_ropes *ropes;
+    hf_grid *grid;        /* NULL: no hair-hair interaction */
     float *guide_points;  /* guide_count * P * 3, rope-major */
     float *strand_points; /* strand_count * P * 3 */
     hf_strand *strands;
@@ -13897,6 +14415,7 @@ HFDEF void hf_fur_destroy(hf_fur *f)
     if (!f) return;
     a = f->alloc;
     hf_ropes_destroy(f->ropes);
+    hf_grid_destroy(f->grid);
     hf__free64(&a, f->guide_points);
     hf__free64(&a, f->strand_points);
     hf__free(&a, f->strands);
@@ -14053,6 +14572,12 @@ HF__PRIVATE hf_result hf__fur_desc_check(const hf_fur_desc *d, hf_diag *diag)
                         "clump or lod_simulate_threshold outside [0, 1], "
                         "or max_length or tess_factor negative or "
                         "non-finite");
+    if (d->grid_resolution != 0 &&
+        (d->grid_resolution < 4 ||
+         d->grid_resolution > HF_GRID_MAX_RESOLUTION))
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "grid_resolution", -1,
+                        "grid_resolution %d is not 0 (no grid) or in "
+                        "4..%d", d->grid_resolution, HF_GRID_MAX_RESOLUTION);
     if (!hf__kernels_ok(d->simd, d->nontemporal))
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "simd", -1,
                         "simd %d is not an hf_simd_level (0..4), or "
@@ -14841,6 +15366,10 @@ HF__PRIVATE hf_result hf__fur_ropes(hf_fur *f, hf__fur_build *b)
             HF_OK)
         return r;
     if ((r = hf__fur_keep_rest_frames(f)) != HF_OK) return r;
+    if (b->desc.grid_resolution > 0 &&
+        (r = hf_grid_create(b->desc.grid_resolution, &f->alloc, &f->grid)) !=
+            HF_OK)
+        return r;
     f->lod = 1.0f;
     f->width_scale = 1.0f;
     f->lod_sim = 1;
@@ -15123,6 +15652,12 @@ HF__PRIVATE hf_result hf__groom_check(const hf_groom_desc *d, int P,
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "guide_fraction", -1,
                         "guide_fraction %g is outside (0, 1]",
                         (double)fraction);
+    if (d->grid_resolution != 0 &&
+        (d->grid_resolution < 4 ||
+         d->grid_resolution > HF_GRID_MAX_RESOLUTION))
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "grid_resolution", -1,
+                        "grid_resolution %d is not 0 (no grid) or in "
+                        "4..%d", d->grid_resolution, HF_GRID_MAX_RESOLUTION);
     for (i = 0; i < d->strand_count; ++i) {
         const int n = d->strand_points[i];
         const float *p;
@@ -15291,7 +15826,10 @@ HF__PRIVATE hf_result hf__groom_build(hf_fur *f, const hf_groom_desc *d,
         (r = hf_ropes_set_rest(f->ropes, 0, G, f->guide_points, 0, f->root_pos,
                                f->root_nrm, f->root_tan, 0)) != HF_OK ||
         (r = hf__fur_keep_rest_frames(f)) != HF_OK ||
-        (d->scalp && (r = hf__groom_bind_scalp(f, d->scalp)) != HF_OK))
+        (d->scalp && (r = hf__groom_bind_scalp(f, d->scalp)) != HF_OK) ||
+        (d->grid_resolution > 0 &&
+         (r = hf_grid_create(d->grid_resolution, &f->alloc, &f->grid)) !=
+             HF_OK))
         goto done;
     f->lod = 1.0f;
     f->width_scale = 1.0f;
@@ -15385,6 +15923,7 @@ HFDEF hf_result hf_fur_get_info(const hf_fur *f, hf_fur_info *info)
     info->width_scale = f->width_scale;
     info->triangle_count = f->triangle_count;
     hf_ropes_roots_inside(f->ropes, 0, f->guide_count, &info->roots_inside);
+    info->grid_resolution = f->grid ? f->grid->resolution : 0;
     info->guide_points = f->guide_points;
     info->strand_points = f->strand_points;
     info->strands = f->strands;
@@ -15514,22 +16053,93 @@ HFDEF hf_result hf_fur_set_roots(hf_fur *f, const hf_mesh *m, int first,
 
 /* Step guides [first, end) in runs that share a rope parameter set (each
    rope is stepped on its own, so runs give the bytes one call would). */
+/* Step guides [first, end) run by run of one parameter set, each pushed
+   by the grid first where there is one. The step's own checks come first,
+   so that a refused call changes nothing. */
 HF__PRIVATE hf_result hf__fur_step_runs(hf_fur *f, int first, int end,
                                         float dt, const hf_collider *colliders,
                                         int collider_count)
 {
+    hf_result r;
     int a = first;
+    if ((r = hf__colliders_check(colliders, collider_count)) != HF_OK)
+        return r;
+    if (!hf__finitef(dt) || !(dt > 0.0f)) return HF_ERROR_BAD_TIME_STEP;
     while (a < end) {
         int b = a + 1;
-        hf_result r;
         hf_rope_params p = f->rope[f->rope_of[a]];
         while (b < end && f->rope_of[b] == f->rope_of[a]) ++b;
         p.simd = f->simd; /* the fur's kernel level (hf_fur_set_kernels) */
+        if (f->grid &&
+            (r = hf_ropes_apply_grid(f->ropes, a, b - a, dt, &p, f->grid)) !=
+                HF_OK)
+            return r;
         r = hf_ropes_step(f->ropes, a, b - a, dt, &p, colliders,
                           collider_count);
         if (r != HF_OK) return r;
         a = b;
     }
+    return HF_OK;
+}
+
+HFDEF hf_result hf_fur_build_grid(hf_fur *f, int first, int count)
+{
+    if (!f) return HF_ERROR_NULL_POINTER;
+    if (!f->grid) return first == 0 && count == 0 ? HF_OK : HF_ERROR_BAD_RANGE;
+    return hf_grid_build(f->grid, f->ropes,
+                         f->lod_sim ? f->guide_count : f->pure_count, first,
+                         count);
+}
+
+HFDEF hf_result hf_fur_settle_rest(hf_fur *f, float seconds,
+                                   const hf_collider *colliders,
+                                   int collider_count)
+{
+    hf_rope_params keep[HF_FUR_ROPE_SETS];
+    unsigned char *mode;
+    hf_result r;
+    int steps, s, k, g, G;
+    if (!f) return HF_ERROR_NULL_POINTER;
+    if (!hf__finitef(seconds) || seconds < 0.0f || seconds > 600.0f)
+        return HF_ERROR_BAD_PARAMETER;
+    if ((r = hf__colliders_check(colliders, collider_count)) != HF_OK)
+        return r;
+    G = f->guide_count;
+    mode = (unsigned char *)hf__alloc(&f->alloc, (size_t)G);
+    if (!mode) return HF_ERROR_OUT_OF_MEMORY;
+    /* every guide simulated, the sets made into settling ones */
+    for (g = 0; g < G; ++g) {
+        mode[g] = f->ropes->mode[g];
+        f->ropes->mode[g] = HF_ROPE_SIMULATED;
+        f->ropes->blend[g] = 0.0f;
+    }
+    for (k = 0; k < HF_FUR_ROPE_SETS; ++k) {
+        hf_rope_params *p = &f->rope[k];
+        keep[k] = *p;
+        p->global_stiffness_root = p->global_stiffness_tip = 0.0f;
+        p->local_stiffness_root = p->local_stiffness_tip = 0.0f;
+        p->wind[0] = p->wind[1] = p->wind[2] = 0.0f;
+        p->turbulence = 0.0f;
+        if (p->damping < 0.1f) p->damping = 0.1f;
+    }
+    steps = (int)(seconds * 60.0f + 0.5f);
+    for (s = 0; s < steps && r == HF_OK; ++s) {
+        if (f->grid) r = hf_grid_build(f->grid, f->ropes, G, 0,
+                                       f->grid->resolution);
+        if (r == HF_OK)
+            r = hf__fur_step_runs(f, 0, G, 1.0f / 60.0f, colliders,
+                                  collider_count);
+    }
+    for (k = 0; k < HF_FUR_ROPE_SETS; ++k) f->rope[k] = keep[k];
+    if (r == HF_OK) r = hf_ropes_rest_from_pose(f->ropes, 0, G);
+    for (g = 0; g < G; ++g) {
+        f->ropes->mode[g] = mode[g];
+        f->ropes->blend[g] = mode[g] == HF_ROPE_ANIMATED ? 1.0f : 0.0f;
+    }
+    hf__free(&f->alloc, mode);
+    if (r != HF_OK) return r;
+    hf__ropes_copy(f->ropes, 0, G, f->guide_points, 12, 0,
+                   hf_simd_resolve(f->simd));
     return HF_OK;
 }
 
