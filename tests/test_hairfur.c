@@ -854,7 +854,7 @@ static void t_fur_frame(hf_fur *f, t_fur_scene *sc, float dx, int n,
     hf_collider col;
     hf_ribbon_params view;
     hf_ribbon_output out;
-    int i, stage;
+    int i, o;
     for (i = 0; i < (FR + 1) * (FS + 1) * 3; ++i)
         moved[i] = sc->pos[i] + (i % 3 == 0 ? dx : 0.0f);
     m.positions = moved;
@@ -872,9 +872,14 @@ static void t_fur_frame(hf_fur *f, t_fur_scene *sc, float dx, int n,
     out.tangent.data = (float *)vbuf + 3;
     out.tangent.stride = 24;
     hf_fur_get_info(f, &info);
-    for (stage = 0; stage < 5; ++stage) {
+    for (o = 0; o < 6; ++o) {
+        /* with a grid, its layers (stage 5) between the roots and the
+           step, split too */
+        static const int order[6] = {0, 5, 1, 2, 3, 4};
+        const int stage = order[o];
         int total = stage < 2 ? info.guide_count
                               : stage == 2 ? info.lod_guide_count
+                              : stage == 5 ? info.grid_resolution
                                            : info.drawn_strand_count;
         int first = 0;
         for (i = 0; i < n; ++i) {
@@ -882,11 +887,12 @@ static void t_fur_frame(hf_fur *f, t_fur_scene *sc, float dx, int n,
             hf_result r = HF_OK;
             switch (stage) {
             case 0: r = hf_fur_set_roots(f, &m, first, cnt); break;
+            case 5: r = hf_fur_build_grid(f, first, cnt); break;
             case 1: r = hf_fur_simulate(f, first, cnt, 1.0f / 60.0f, &col,
                                         dx >= 0.0f); break;
             case 2: r = hf_fur_interpolate_guides(f, first, cnt); break;
             case 3: r = hf_fur_interpolate(f, first, cnt); break;
-            default: r = hf_fur_ribbons(f, first, cnt, &view, &out); break;
+            case 4: r = hf_fur_ribbons(f, first, cnt, &view, &out); break;
             }
             if (r != HF_OK) *worst = r;
             first += cnt;
@@ -5545,6 +5551,397 @@ static void test_ropes_crowded_colliders(void)
     for (k = 0; k < NSET; ++k) tr_close(&s[k]);
 }
 
+/* ---- ropes: hair-hair interaction on a grid ------------------------------ */
+
+typedef struct tg_grid {
+    hf_grid g;
+    void *mem;
+} tg_grid;
+
+static int tg_open(tg_grid *t, int n)
+{
+    size_t size;
+    memset(t, 0, sizeof *t);
+    if (hf_grid_memory_size(n, &size) != HF_OK) return 0;
+    t->mem = malloc(size);
+    return t->mem && hf_grid_init(&t->g, n, t->mem, size) == HF_OK;
+}
+
+/* The most non-root points in one cube of side `cell` (a 96^3 block
+   about the origin), and the mean distance of the tips from the head's
+   centre. */
+static int tg_crowd(const hf_ropes *ro, float cell, double *tip_dist)
+{
+    enum { N = 96 };
+    static unsigned short cnt[N * N * N];
+    const size_t R = (size_t)ro->rope_count;
+    int most = 0, j;
+    size_t r;
+    double d = 0.0;
+    memset(cnt, 0, sizeof cnt);
+    for (j = 1; j < ro->points; ++j)
+        for (r = 0; r < R; ++r) {
+            const size_t i = (size_t)j * R + r;
+            const int x = (int)floorf(ro->x[i] / cell) + N / 2;
+            const int y = (int)floorf(ro->y[i] / cell) + N / 2;
+            const int z = (int)floorf(ro->z[i] / cell) + N / 2;
+            if (x < 0 || y < 0 || z < 0 || x >= N || y >= N || z >= N)
+                continue;
+            if (++cnt[(z * N + y) * N + x] > most)
+                most = cnt[(z * N + y) * N + x];
+            if (j == ro->points - 1)
+                d += sqrt((double)ro->x[i] * ro->x[i] +
+                          (double)ro->y[i] * ro->y[i] +
+                          (double)ro->z[i] * ro->z[i]);
+        }
+    *tip_dist = d / (double)R;
+    return most;
+}
+
+/* Frames of hair on a head (a grid each frame: built, applied, stepped). */
+static void tg_run(tr_set *s, tg_grid *t, const hf_rope_params *p,
+                   const hf_collider *col, int frames)
+{
+    const int R = s->ro.rope_count;
+    int f;
+    for (f = 0; f < frames; ++f) {
+        CHECK_EQ_INT(hf_grid_build(&t->g, &s->ro, R, 0, t->g.resolution),
+                     HF_OK);
+        CHECK_EQ_INT(hf_ropes_apply_grid(&s->ro, 0, R, 1.0f / 60.0f, p,
+                                         &t->g),
+                     HF_OK);
+        CHECK_EQ_INT(hf_ropes_step(&s->ro, 0, R, 1.0f / 60.0f, p, col, 1),
+                     HF_OK);
+    }
+}
+
+/* Long hair falling onto a head: with volume (the default) the densest
+   2 cm cells hold fewer points than without, the tips stand further out,
+   and the ropes keep their lengths either way. */
+static void test_grid_volume_spreads_hair(void)
+{
+    enum { R = 400, P = 16 };
+    static float rest[3 * R * P];
+    float root[3 * R], nrm[3 * R], tan[3 * R], st[2];
+    hf_collider head;
+    hf_rope_params p[2];
+    tr_set s[2];
+    tg_grid t;
+    double tips[2];
+    int crowd[2], k;
+    if (!tg_open(&t, 24)) { CHECK(0); return; }
+    tr_scalp(R, P, 0.25f, 0.0f, rest, root, nrm, tan);
+    memset(&head, 0, sizeof head);
+    head.type = HF_COLLIDER_SPHERE;
+    head.radius = 0.097f;
+    for (k = 0; k < 2; ++k) {
+        if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
+        hf_rope_params_init(&p[k]);
+        if (k == 1) { /* off: a literal 0 */
+            p[k].volume = 0.0f;
+            p[k].explicit_zero = HF_ROPE_ZERO_VOLUME;
+        }
+        hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm, tan, 0);
+        tg_run(&s[k], &t, &p[k], &head, 120);
+        crowd[k] = tg_crowd(&s[k].ro, 0.02f, &tips[k]);
+        hf_ropes_max_stretch(&s[k].ro, 0, R, &st[k]);
+        CHECK(tr_finite(&s[k].ro));
+    }
+    CHECK(crowd[0] < 0.8 * crowd[1]);
+    CHECK(tips[0] > tips[1] + 0.005);
+    CHECK(st[0] <= 1e-4f && st[1] <= 1e-4f);
+    for (k = 0; k < 2; ++k) tr_close(&s[k]);
+    free(t.mem);
+}
+
+/* Hair tossed by a turbulent wind (a random acceleration per rope): with
+   friction the tips of neighbouring ropes move more alike than without. */
+static void test_grid_friction_moves_hair_together(void)
+{
+    enum { R = 300, P = 12 };
+    static float rest[3 * R * P];
+    float root[3 * R], nrm[3 * R], tan[3 * R];
+    hf_collider head;
+    tr_set s[2];
+    tg_grid t;
+    double spread[2] = {0.0, 0.0};
+    int k, f;
+    if (!tg_open(&t, 16)) { CHECK(0); return; }
+    tr_scalp(R, P, 0.2f, 0.0f, rest, root, nrm, tan);
+    memset(&head, 0, sizeof head);
+    head.type = HF_COLLIDER_SPHERE;
+    head.radius = 0.097f;
+    for (k = 0; k < 2; ++k) {
+        hf_rope_params p;
+        if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
+        hf_rope_params_init(&p);
+        p.turbulence = 20.0f;
+        p.turbulence_frequency = 3.0f;
+        p.friction = k == 1 ? 0.0f : 0.8f;
+        p.volume = 0.0f;
+        p.explicit_zero = HF_ROPE_ZERO_VOLUME | HF_ROPE_ZERO_FRICTION;
+        hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm, tan, 0);
+        for (f = 0; f < 90; ++f) {
+            tg_run(&s[k], &t, &p, &head, 1);
+            if (f >= 30) { /* tip velocity against the neighbours' mean */
+                const size_t base = (size_t)(P - 1) * R;
+                int r;
+                for (r = 1; r + 1 < R; ++r) {
+                    const hf_ropes *o = &s[k].ro;
+                    double d = 0.0;
+                    int c;
+                    for (c = 0; c < 3; ++c) {
+                        const float *x = c == 0 ? o->x : c == 1 ? o->y : o->z;
+                        const float *q = c == 0 ? o->px : c == 1 ? o->py : o->pz;
+                        double v = x[base + r] - q[base + r];
+                        double m = 0.5 * ((x[base + r - 1] - q[base + r - 1]) +
+                                          (x[base + r + 1] - q[base + r + 1]));
+                        d += (v - m) * (v - m);
+                    }
+                    spread[k] += sqrt(d);
+                }
+            }
+        }
+    }
+    CHECK(spread[0] < 0.8 * spread[1]);
+    for (k = 0; k < 2; ++k) tr_close(&s[k]);
+    free(t.mem);
+}
+
+/* The grid's layers built in pieces, the ropes pushed and stepped in
+   ranges, and every kernel level: the same bytes as one call. */
+static void test_grid_splits_same_bytes(void)
+{
+    enum { R = 250, P = 12, FRAMES = 30, NSET = 5 };
+    static float rest[3 * R * P];
+    float root[3 * R], nrm[3 * R], tan[3 * R];
+    hf_collider head;
+    tr_set s[NSET];
+    tg_grid t[NSET];
+    int k, f, same = 1, grids_same = 1;
+    tr_scalp(R, P, 0.22f, 0.0f, rest, root, nrm, tan);
+    memset(&head, 0, sizeof head);
+    head.type = HF_COLLIDER_SPHERE;
+    head.radius = 0.097f;
+    for (k = 0; k < NSET; ++k) {
+        if (!tr_open(&s[k], R, P) || !tg_open(&t[k], 20)) { CHECK(0); return; }
+        hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm, tan, 0);
+    }
+    for (f = 0; f < FRAMES; ++f) {
+        float moved[3 * R];
+        int r;
+        for (r = 0; r < 3 * R; ++r)
+            moved[r] = root[r] + (r % 3 == 0 ? 0.05f * sinf(0.3f * f) : 0.0f);
+        for (k = 0; k < NSET; ++k) {
+            hf_rope_params p;
+            hf_rope_params_init(&p);
+            p.friction = 0.5f;
+            p.simd = k < 2 ? HF_SIMD_SCALAR : tr_levels[k - 2];
+            hf_ropes_set_roots(&s[k].ro, 0, R, moved, nrm, tan, 0);
+            if (k == 1) { /* in pieces, the middle first: a piece that
+                             wrote past its layers would spoil it */
+                hf_grid_build(&t[k].g, &s[k].ro, R, 10, 1);
+                hf_grid_build(&t[k].g, &s[k].ro, R, 0, 10);
+                hf_grid_build(&t[k].g, &s[k].ro, R, 11, 9);
+                hf_ropes_apply_grid(&s[k].ro, 100, R - 100, 1.0f / 60.0f, &p,
+                                    &t[k].g);
+                hf_ropes_apply_grid(&s[k].ro, 0, 100, 1.0f / 60.0f, &p,
+                                    &t[k].g);
+                hf_ropes_step(&s[k].ro, 0, 37, 1.0f / 60.0f, &p, &head, 1);
+                hf_ropes_step(&s[k].ro, 37, R - 37, 1.0f / 60.0f, &p, &head,
+                              1);
+            } else {
+                hf_grid_build(&t[k].g, &s[k].ro, R, 0, 20);
+                hf_ropes_apply_grid(&s[k].ro, 0, R, 1.0f / 60.0f, &p,
+                                    &t[k].g);
+                hf_ropes_step(&s[k].ro, 0, R, 1.0f / 60.0f, &p, &head, 1);
+            }
+            if (k > 0) {
+                same &= tr_same(&s[0].ro, &s[k].ro, 1);
+                grids_same &= memcmp(t[0].g.node, t[k].g.node,
+                                     sizeof(float) * 4u * 20u * 20u * 20u) ==
+                              0;
+            }
+        }
+    }
+    CHECK(same);
+    CHECK(grids_same);
+    for (k = 0; k < NSET; ++k) {
+        tr_close(&s[k]);
+        free(t[k].mem);
+    }
+}
+
+/* Bad input to the grid calls is refused with nothing written; an empty
+   grid moves nothing; rest_from_pose keeps the pose. */
+static void test_grid_bad_input(void)
+{
+    enum { R = 20, P = 6 };
+    static float rest[3 * R * P];
+    float root[3 * R], nrm[3 * R], tan[3 * R];
+    static float before[6 * R * P], after[6 * R * P];
+    hf_rope_params p;
+    tr_set s;
+    tg_grid t;
+    size_t size;
+    hf_grid *g = NULL;
+    unsigned char small[64];
+    int k;
+    if (!tr_open(&s, R, P) || !tg_open(&t, 8)) { CHECK(0); return; }
+    tr_scalp(R, P, 0.1f, 0.0f, rest, root, nrm, tan);
+    hf_ropes_set_rest(&s.ro, 0, R, rest, 0, root, nrm, tan, 0);
+    hf_rope_params_init(&p);
+    CHECK_EQ_INT(hf_grid_memory_size(3, &size), HF_ERROR_BAD_COUNT);
+    CHECK_EQ_INT(hf_grid_memory_size(HF_GRID_MAX_RESOLUTION + 1, &size),
+                 HF_ERROR_BAD_COUNT);
+    CHECK_EQ_INT(hf_grid_memory_size(8, NULL), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_grid_create(2, NULL, &g), HF_ERROR_BAD_COUNT);
+    CHECK(g == NULL);
+    CHECK_EQ_INT(hf_grid_init(&t.g, 8, small, sizeof small),
+                 HF_ERROR_BUFFER_TOO_SMALL);
+    CHECK_EQ_INT(hf_grid_create(8, NULL, &g), HF_OK);
+    hf_grid_destroy(g);
+    hf_grid_destroy(NULL);
+    /* an empty grid moves nothing */
+    tr_snapshot(&s.ro, before);
+    memcpy(before + 3 * R * P, s.ro.px, sizeof(float) * R * P);
+    CHECK_EQ_INT(hf_ropes_apply_grid(&s.ro, 0, R, 1.0f / 60.0f, &p, &t.g),
+                 HF_OK);
+    CHECK(memcmp(before + 3 * R * P, s.ro.px, sizeof(float) * R * P) == 0);
+    /* refused: nothing written */
+    CHECK_EQ_INT(hf_grid_build(&t.g, &s.ro, R, 0, 9), HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_grid_build(&t.g, &s.ro, R, -1, 2), HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_grid_build(&t.g, &s.ro, R + 1, 0, 8), HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_grid_build(&t.g, NULL, R, 0, 8), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_grid_build(NULL, &s.ro, R, 0, 8), HF_ERROR_NULL_POINTER);
+    for (k = 0; k < 4 * 8 * 8 * 8; ++k) CHECK(t.g.node[k] == 0.0f);
+    CHECK_EQ_INT(hf_grid_build(&t.g, &s.ro, R, 0, 8), HF_OK);
+    {
+        hf_rope_params bad = p;
+        bad.volume = -1.0f;
+        CHECK_EQ_INT(hf_ropes_apply_grid(&s.ro, 0, R, 1.0f / 60.0f, &bad,
+                                         &t.g),
+                     HF_ERROR_BAD_PARAMETER);
+        bad.volume = (float)NAN;
+        CHECK_EQ_INT(hf_ropes_apply_grid(&s.ro, 0, R, 1.0f / 60.0f, &bad,
+                                         &t.g),
+                     HF_ERROR_NON_FINITE);
+        bad = p;
+        bad.friction = 1.5f;
+        CHECK_EQ_INT(hf_rope_params_validate(&bad, NULL),
+                     HF_ERROR_BAD_PARAMETER);
+        CHECK_EQ_INT(hf_ropes_apply_grid(&s.ro, 0, R, 1.0f / 60.0f, &bad,
+                                         &t.g),
+                     HF_ERROR_BAD_PARAMETER);
+        bad = p;
+        bad.volume = 101.0f;
+        CHECK_EQ_INT(hf_ropes_step(&s.ro, 0, R, 1.0f / 60.0f, &bad, NULL, 0),
+                     HF_ERROR_BAD_PARAMETER);
+    }
+    CHECK_EQ_INT(hf_ropes_apply_grid(&s.ro, 0, R, 0.0f, &p, &t.g),
+                 HF_ERROR_BAD_TIME_STEP);
+    CHECK_EQ_INT(hf_ropes_apply_grid(&s.ro, 0, R + 1, 1.0f / 60.0f, &p, &t.g),
+                 HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_ropes_apply_grid(&s.ro, 0, R, 1.0f / 60.0f, &p, NULL),
+                 HF_ERROR_NULL_POINTER);
+    CHECK(memcmp(before + 3 * R * P, s.ro.px, sizeof(float) * R * P) == 0);
+    /* defaults: volume 1, friction 0.2; each off with its bit */
+    {
+        hf_rope_params d, z;
+        memset(&z, 0, sizeof z);
+        hf_rope_params_init(&d);
+        CHECK(d.volume == 1.0f && d.friction == 0.2f);
+        z.explicit_zero = HF_ROPE_ZERO_VOLUME | HF_ROPE_ZERO_FRICTION;
+        CHECK_EQ_INT(hf_rope_params_validate(&z, NULL), HF_OK);
+    }
+    /* the pose as rest: a step at rest changes nothing */
+    CHECK_EQ_INT(hf_ropes_rest_from_pose(NULL, 0, 1), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_ropes_rest_from_pose(&s.ro, 0, R + 1), HF_ERROR_BAD_RANGE);
+    CHECK_EQ_INT(hf_ropes_rest_from_pose(&s.ro, 0, R), HF_OK);
+    tr_snapshot(&s.ro, after);
+    CHECK(tr_max_move(before, after, (size_t)R * P) < 1e-6);
+    tr_close(&s);
+    free(t.mem);
+}
+
+/* hf_fur_settle_rest drapes grown hair: its tips fall, it keeps its
+   lengths, it is at rest in the new shape (stiff hair held there stays),
+   and bad input is refused with nothing changed. */
+static void test_fur_settle_rest(void)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    hf_collider ball;
+    hf_rope_params p;
+    float st, *before, *settled;
+    size_t n;
+    double tip0 = 0.0, tip1 = 0.0, moved = 0.0;
+    int g, k;
+    t_fur_scene_init(&sc, 0.1f);
+    sc.desc.max_length = 0.2f;
+    sc.desc.grid_resolution = 16;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (!f) return;
+    hf_fur_get_info(f, &info);
+    CHECK_EQ_INT(info.grid_resolution, 16);
+    n = (size_t)info.guide_count * 8u * 3u;
+    before = (float *)malloc(n * sizeof(float));
+    settled = (float *)malloc(n * sizeof(float));
+    memcpy(before, info.guide_points, n * sizeof(float));
+    memset(&ball, 0, sizeof ball);
+    ball.type = HF_COLLIDER_SPHERE;
+    ball.radius = 0.097f;
+    CHECK_EQ_INT(hf_fur_settle_rest(f, -1.0f, &ball, 1), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_fur_settle_rest(f, (float)NAN, &ball, 1),
+                 HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_fur_settle_rest(f, 1.0f, NULL, 1), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_fur_settle_rest(NULL, 1.0f, NULL, 0),
+                 HF_ERROR_NULL_POINTER);
+    CHECK(memcmp(before, info.guide_points, n * sizeof(float)) == 0);
+    CHECK_EQ_INT(hf_fur_settle_rest(f, 1.5f, &ball, 1), HF_OK);
+    memcpy(settled, info.guide_points, n * sizeof(float));
+    for (g = 0; g < info.guide_count; ++g) {
+        tip0 += before[(g * 8 + 7) * 3 + 1] - before[(g * 8) * 3 + 1];
+        tip1 += settled[(g * 8 + 7) * 3 + 1] - settled[(g * 8) * 3 + 1];
+    }
+    CHECK(tip1 < tip0 - 0.02 * info.guide_count); /* 2 cm lower on average */
+    hf_fur_max_stretch(f, &st);
+    CHECK(st <= 1e-4f);
+    /* held stiffly, it stays where it settled */
+    hf_rope_params_init(&p);
+    p.global_stiffness_root = p.global_stiffness_tip = 1.0f;
+    hf_fur_set_rope_params(f, &p);
+    for (k = 0; k < 30; ++k) {
+        hf_fur_build_grid(f, 0, info.grid_resolution);
+        CHECK_EQ_INT(hf_fur_simulate(f, 0, info.guide_count, 1.0f / 60.0f,
+                                     &ball, 1),
+                     HF_OK);
+    }
+    for (k = 0; k < (int)n; ++k) {
+        double d = fabs((double)info.guide_points[k] - settled[k]);
+        moved = d > moved ? d : moved;
+    }
+    CHECK(moved < 2e-3);
+    CHECK_EQ_INT(hf_fur_build_grid(f, 0, 17), HF_ERROR_BAD_RANGE);
+    hf_fur_destroy(f);
+    /* no grid: the empty range only; a bad resolution refused */
+    sc.desc.grid_resolution = 0;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (f) {
+        CHECK_EQ_INT(hf_fur_build_grid(f, 0, 0), HF_OK);
+        CHECK_EQ_INT(hf_fur_build_grid(f, 0, 1), HF_ERROR_BAD_RANGE);
+        CHECK_EQ_INT(hf_fur_settle_rest(f, 0.2f, NULL, 0), HF_OK);
+        hf_fur_destroy(f);
+    }
+    sc.desc.grid_resolution = 3;
+    f = NULL;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_ERROR_BAD_PARAMETER);
+    CHECK(f == NULL);
+    free(before);
+    free(settled);
+}
+
 static void test_bad_rope_params(void)
 {
     hf_rope_params p, b;
@@ -10073,7 +10470,8 @@ static void t_fur_ranges(int styled)
     hf_result worst = HF_OK;
     hf_fur_info info[3];
     t_fur_scene_init(&sc, 1.0f);
-    if (styled) t_fur_style_all(&sc.desc);
+    if (styled == 1) t_fur_style_all(&sc.desc);
+    if (styled == 2) sc.desc.grid_resolution = 12; /* hair-hair on */
     for (k = 0; k < 3; ++k) {
         v[k] = (unsigned char *)calloc(1, bytes);
         CHECK_EQ_INT(hf_fur_create(&sc.desc, &f[k], NULL), HF_OK);
@@ -10107,11 +10505,13 @@ static void t_fur_ranges(int styled)
     }
 }
 
-/* Range splits give the same bytes, plain and with every styling on. */
+/* Range splits give the same bytes, plain, with every styling on, and
+   with hair-hair interaction (the grid's layers split as well). */
 static void test_fur_ranges_byte_identical(void)
 {
     t_fur_ranges(0);
     t_fur_ranges(1);
+    t_fur_ranges(2);
 }
 
 /* The one-pass kernels against interpolation then points, on guides with
@@ -11242,6 +11642,10 @@ int main(void)
     RUN(test_ropes_body_proxies);
     RUN(test_ropes_resting_on_joint);
     RUN(test_ropes_crowded_colliders);
+    RUN(test_grid_volume_spreads_hair);
+    RUN(test_grid_friction_moves_hair_together);
+    RUN(test_grid_splits_same_bytes);
+    RUN(test_grid_bad_input);
     RUN(test_bad_rope_params);
     RUN(test_bad_ropes_memory_and_limits);
     RUN(test_bad_ropes_set_rest_and_roots);
@@ -11329,6 +11733,7 @@ int main(void)
     RUN(test_fur_no_allocation_per_frame);
     RUN(test_fur_points_aligned);
     RUN(test_fur_ranges_byte_identical);
+    RUN(test_fur_settle_rest);
     RUN(test_fur_interpolate_points);
     RUN(test_interp_points_kernels);
     RUN(test_fur_lod_prefix_and_width);
