@@ -8,7 +8,8 @@
 #                      -O1 and -O0; the scalar HF_NO_SIMD build; GNU C with
 #                      -mavx2 -mfma), the C++ compile and C/C++ link
 #                      checks, the API doc check, the quick start check,
-#                      then the GL checks when headless EGL is there
+#                      the CMake and pkg-config check, then the GL checks
+#                      when headless EGL is there
 #   make check         the fast loop: the unit tests built once (gcc -std=c99
 #                      -O2), the API doc check and the quick start check
 #   make check-build   build what make test runs, without running it
@@ -22,6 +23,12 @@
 #                      the reason, where grow_fur cannot be built
 #   make curves-check  the examples' .hair, .tfx and OBJ curve readers and
 #                      writers (tests/curves_check.c; part of make test)
+#   make cmake-check   the library as other builds find it: a program built
+#                      with CMake's find_package (after cmake --install),
+#                      add_subdirectory and FetchContent, and with
+#                      pkg-config (after cmake --install and make install),
+#                      under build/cmake-check/ (tests/cmake_check.sh; part
+#                      of make test; skipped, saying why, without cmake)
 #   make valgrind      the test suite under memcheck
 #   make soak          a million rope steps under random abuse (SOAK_FRAMES)
 #   make fuzz          each libFuzzer target for FUZZ_SECONDS (60) s
@@ -61,6 +68,10 @@
 #                      (BENCH_AB_ARGS: --frames, --strands, --points, --range)
 #
 # Housekeeping
+#   make install       hairfur.h into $(PREFIX)/include and hairfur.pc into
+#                      $(PREFIX)/share/pkgconfig (PREFIX=/usr/local,
+#                      DESTDIR); for CMake's find_package, install with
+#                      CMakeLists.txt: cmake -B B && cmake --install B
 #   make deps          install every Debian package of mk/packages.txt (as
 #                      root), or print the apt-get line
 #   make clean         remove build/ and out/
@@ -76,6 +87,11 @@
 #   mk/packages.sh     prints the packages of the groups it is given
 #   mk/quickstart.sh   extracts README.md's quick start program and checks
 #                      its output
+#
+# CMakeLists.txt is not the project's build: it gives other CMake builds
+# the target hairfur::hairfur (find_package, add_subdirectory,
+# FetchContent) and installs the header with its CMake package and
+# hairfur.pc (from hairfur.pc.in, as make install does).
 
 BUILD  := build
 OUT    := out
@@ -94,7 +110,8 @@ CLANG   := $(shell command -v clang 2>/dev/null)
 CLANGXX := $(shell command -v clang++ 2>/dev/null)
 
 .PHONY: all test check check-build quickstart api-doc-check grow-fur-check demo demo-deps \
-        examples deps clean help gl-test-or-skip bench bench-ab valgrind FORCE
+        examples deps clean help gl-test-or-skip bench bench-ab valgrind FORCE \
+        cmake-check install
 
 all: test
 
@@ -182,6 +199,7 @@ test:
 	@$(MAKE) --no-print-directory quickstart
 	@$(MAKE) --no-print-directory grow-fur-check
 	@$(MAKE) --no-print-directory curves-check
+	@$(MAKE) --no-print-directory cmake-check
 	@$(MAKE) --no-print-directory -j2 cross-test
 	@sh tests/msvc_check.sh
 	@$(MAKE) --no-print-directory gl-test-or-skip
@@ -231,6 +249,13 @@ curves-check: $(BUILD)/curves_check
 	rc=$$?; tail -n 1 $(BUILD)/curves_check_i686.log; \
 	if [ $$rc -ne 0 ]; then grep -v ' passed, ' $(BUILD)/curves_check_i686.log | \
 	  head -n 40; echo "make curves-check: FAILED"; exit 1; fi
+
+# The library as other builds find it (CMakeLists.txt, hairfur.pc.in,
+# make install): tests/cmake_check.sh builds tests/cmake_consumer with
+# CMake three ways and with pkg-config, all under build/cmake-check/.
+# Skipped, with the reason, where cmake is missing.
+cmake-check:
+	@sh tests/cmake_check.sh
 
 # docs/api.md against hairfur.h: the script prints the drift and fails.
 # Skipped, silently, where the script is absent.
@@ -829,6 +854,22 @@ deps:
 
 clean:
 	rm -rf $(BUILD) $(OUT)
+
+# The header and hairfur.pc (hairfur.pc.in, as CMakeLists.txt writes it,
+# naming PREFIX made absolute) under $(DESTDIR)$(PREFIX). The CMake
+# package (find_package) comes with cmake --install.
+PREFIX  ?= /usr/local
+HAIRFUR_VERSION = $(shell sed -n 's/^\#define HAIRFUR_VERSION_STRING "\([0-9.]*\)"$$/\1/p' $(HDR))
+install: $(HDR) hairfur.pc.in
+	@test -n "$(HAIRFUR_VERSION)" || { echo "make install: no HAIRFUR_VERSION_STRING in $(HDR)"; exit 1; }
+	install -d $(DESTDIR)$(abspath $(PREFIX))/include \
+	  $(DESTDIR)$(abspath $(PREFIX))/share/pkgconfig
+	install -m 644 $(HDR) $(DESTDIR)$(abspath $(PREFIX))/include/hairfur.h
+	sed -e 's|@HAIRFUR_PC_PREFIX@|$(abspath $(PREFIX))|' \
+	    -e 's|@HAIRFUR_PC_INCLUDEDIR@|$${prefix}/include|' \
+	    -e 's|@HAIRFUR_VERSION@|$(HAIRFUR_VERSION)|' hairfur.pc.in \
+	  > $(DESTDIR)$(abspath $(PREFIX))/share/pkgconfig/hairfur.pc
+	@echo "make install: hairfur.h $(HAIRFUR_VERSION) and hairfur.pc under $(DESTDIR)$(abspath $(PREFIX))"
 
 # The comment block at the top of this file.
 help:
