@@ -616,10 +616,17 @@ characters: $(BUILD)/gl_check $(BUILD)/gl_marschner $(BUILD)/paint_density \
 	cp $(OUT)/fur_wuson_120.png $(OUT)/fur_wuson.png; \
 	$(BUILD)/paint_density --mesh $(HUMAN) --part Head \
 	  --plane 0,1,-0.53,0.717 --out $(OUT)/hair_human_scalp.png; \
+	$(BUILD)/paint_density --mesh $(HUMAN) --part Head \
+	  --plane 0,0,-1,0.045 --soft 0.05 --out $(OUT)/hair_human_length.png; \
 	$(CHAR_RUN) --mesh $(HUMAN) --grow-on Head --density $(OUT)/hair_human_scalp.png \
-	  --hair-length 0.12 --comb 0,-0.5,-3 --stiffness 0.2 --settle 1 \
+	  --length $(OUT)/hair_human_length.png --hair-length 0.25 \
+	  --comb 0,-0.5,-3 --stiffness 0.3 --rest-from-gravity 1.5 \
 	  --frames 198 --save-every 18 --out $(OUT)/hair_human_%03d.png; \
 	cp $(OUT)/hair_human_090.png $(OUT)/hair_human.png; \
+	$(CHAR_RUN) --mesh $(HUMAN) --grow-on Head --density $(OUT)/hair_human_scalp.png \
+	  --length $(OUT)/hair_human_length.png --hair-length 0.25 \
+	  --comb 0,-0.5,-3 --stiffness 0.3 --rest-from-gravity 1.5 \
+	  --volume 0 --friction 0 --frames 90 --out $(OUT)/hair_human_flat.png; \
 	$(BUILD)/make_hairstyle --mesh $(HUMAN) --part Head \
 	  --plane 0,1,-0.53,0.717 --out $(OUT)/hair_styled.hair; \
 	$(CHAR_RUN) --mesh $(HUMAN) --grow-on Head --density $(OUT)/hair_human_scalp.png \
@@ -627,7 +634,8 @@ characters: $(BUILD)/gl_check $(BUILD)/gl_marschner $(BUILD)/paint_density \
 	  --settle 1 --frames 60 --still --out $(OUT)/hair_styled.png; \
 	echo "characters: wrote $(OUT)/fur_wuson_012.png ... fur_wuson_120.png," \
 	     "fur_wuson.png, hair_human_018.png ... hair_human_198.png," \
-	     "hair_human.png, hair_styled.hair (authored curves), hair_styled.png"
+	     "hair_human.png, hair_human_flat.png (no hair-hair interaction)," \
+	     "hair_styled.hair (authored curves), hair_styled.png"
 
 # The interactive windows (need a display).
 run: $(BUILD)/gl_marschner

@@ -1073,10 +1073,10 @@ typedef struct hf_rope_params {
        hf_fur_desc.grid_resolution); without one they do nothing. */
     float volume;   /* 1: repulsion, so hair keeps a volume: each point is
                        pushed from dense toward sparse hair with this many
-                       g (9.81 m/s^2) where the density changes by the
-                       typical density (that around the average point)
-                       across one grid cell, [0, 100]; off needs
-                       HF_ROPE_ZERO_VOLUME */
+                       times the gravity's pull (9.81 m/s^2 with no
+                       gravity) where the density changes by the typical
+                       density (that around the average point) across one
+                       grid cell, [0, 100]; off needs HF_ROPE_ZERO_VOLUME */
     float friction; /* 0.2: hair-hair friction, so hair moves as a mass:
                        the fraction of the difference between a point's
                        velocity and that of the hair around it removed per
@@ -2084,9 +2084,9 @@ HFDEF hf_result hf_fur_build_grid(hf_fur *fur, int first, int count);
    take the result as the guides' rest shapes (hf_ropes_rest_from_pose),
    at rest. Shape stiffness then holds the draped shape rather than the
    grown one. While settling, the fur's rope parameters hold except that
-   shape stiffness (global and local) is off, wind and turbulence are off,
-   and damping is at least 0.1, so the hair falls and comes to rest; 1 s
-   is enough for most hair. Not a range call; it allocates a byte per
+   the global shape stiffness is off (the local one still shapes the hair
+   near its roots), wind and turbulence are off, and damping is at least
+   0.1, so the hair falls and comes to rest; 1 s is enough for most hair. Not a range call; it allocates a byte per
    guide, freed before it returns. Errors: HF_ERROR_NULL_POINTER,
    HF_ERROR_BAD_PARAMETER (seconds NaN or outside [0, 600]), the
    colliders' errors (as hf_ropes_step), HF_ERROR_OUT_OF_MEMORY; nothing
@@ -8622,7 +8622,7 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
     const float *sl;
     double w = 0.0, w2 = 0.0;
     size_t R;
-    float inv, ref, push, fric;
+    float inv, ref, push, fric, gmag;
     int n, r, j, s, k, P;
     if (!hf__ropes_ok(ropes) || !params || !grid || !grid->node)
         return HF_ERROR_NULL_POINTER;
@@ -8640,7 +8640,13 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
     hf__rope_step_setup(&st, &prm, dt, ropes->points);
     /* the density around the average point: the unit of the push */
     ref = (float)(w2 / w);
-    push = prm.volume * 9.81f * (st.h * (float)st.n) / ref;
+    /* volume 1: a density step of the typical density across a cell
+       pushes as hard as gravity pulls (9.81 m/s^2 without gravity) */
+    gmag = HF_SQRTF(prm.gravity[0] * prm.gravity[0] +
+                    prm.gravity[1] * prm.gravity[1] +
+                    prm.gravity[2] * prm.gravity[2]);
+    if (!(gmag > 0.0f)) gmag = 9.81f;
+    push = prm.volume * gmag * (st.h * (float)st.n) / ref;
     fric = hf__rope_k(prm.friction, st.h * (float)st.n);
     if (!(push > 0.0f) && !(fric > 0.0f)) return HF_OK;
     R = (size_t)ropes->rope_count;
@@ -16117,7 +16123,6 @@ HFDEF hf_result hf_fur_settle_rest(hf_fur *f, float seconds,
         hf_rope_params *p = &f->rope[k];
         keep[k] = *p;
         p->global_stiffness_root = p->global_stiffness_tip = 0.0f;
-        p->local_stiffness_root = p->local_stiffness_tip = 0.0f;
         p->wind[0] = p->wind[1] = p->wind[2] = 0.0f;
         p->turbulence = 0.0f;
         if (p->damping < 0.1f) p->damping = 0.1f;

@@ -120,6 +120,9 @@ typedef struct glm_options {
     float comb[3];      /* world direction hair is combed in, its length
                            the strength (0: along the normal) */
     float settle;       /* seconds simulated at the first pose, first */
+    float rest_gravity; /* seconds draped before the rest shape is taken */
+    float volume, friction; /* hair-hair: 0 = off */
+    int grid;           /* nodes along each axis of the hair-hair grid */
     const char *guides_path; /* authored guide curves (.hair, .tfx, .obj) */
     const char *groom_path;  /* a groom: its strands drawn, some simulated */
     float guide_fraction;    /* of the groom's strands; 0 = 0.1 */
@@ -145,6 +148,9 @@ static void glm_default_options(glm_options *o)
     o->azimuth = 30.0f;
     o->elevation = 12.0f;
     o->orbit_speed = 12.0f;
+    o->volume = 1.0f; /* the library's defaults */
+    o->friction = 0.2f;
+    o->grid = 32;
 }
 
 /* Interleaved per-vertex layouts. The dynamic stream is rewritten every
@@ -200,7 +206,7 @@ typedef struct glm_app {
     double stretch_max, stretch_sum;
     long stretch_frames;
     double ms_skin, ms_sim, ms_build, ms_upload, ms_draw; /* sums */
-    double ms_roots, ms_ropes; /* parts of ms_sim */
+    double ms_roots, ms_ropes; /* parts of ms_sim (roots: with the grid) */
     long ms_frames, build_frames;
     unsigned char *density_px, *length_px, *color_px, *index_px;
     hf_map density, length, color, index;
@@ -797,6 +803,10 @@ static int glm_load_mesh(glm_app *a)
     }
     a->grow_first = lo;
     a->grow_count = hi - lo;
+    /* a grown part (hair on a head) gets a sphere inside it as well, so
+       draped hair rests on its crown (all_col has room for it) */
+    if (o->grow_on && ch_fit_sphere(c, lo, hi - lo))
+        ch_pose(c, a->anim, 0.0, a->rest, a->all_col);
     /* the grown triangles first, then the rest */
     for (any = 0; any < 2; ++any)
         for (p = 0; p < c->part_count; ++p) {
@@ -1176,6 +1186,12 @@ static int glm_init(glm_app *a, const glm_options *o)
     rp.root_stiffness = 0.5f;
     rp.global_stiffness_root = o->stiffness;
     rp.global_stiffness_tip = 0.5f * o->stiffness;
+    /* hair-hair interaction; 0 on the command line is off */
+    rp.volume = o->volume;
+    rp.friction = o->friction;
+    rp.explicit_zero = (o->volume == 0.0f ? HF_ROPE_ZERO_VOLUME : 0) |
+                       (o->friction == 0.0f ? HF_ROPE_ZERO_FRICTION : 0);
+    desc.grid_resolution = o->volume > 0.0f || o->friction > 0.0f ? o->grid : 0;
     desc.rope_params = &rp;
     if (a->groom) {
         /* the groom's own strands, a fraction of them simulated */
@@ -1193,6 +1209,7 @@ static int glm_init(glm_app *a, const glm_options *o)
         gd.guide_fraction = o->guide_fraction;
         gd.seed = 7;
         gd.rope_params = &rp;
+        gd.grid_resolution = desc.grid_resolution;
         /* on a mesh, the roots follow the skinned grown part */
         gd.scalp = a->ch.vertex_count > 0 ? &desc.mesh : NULL;
         r = hf_fur_create_groom(&gd, &a->fur, &diag);
@@ -1518,6 +1535,7 @@ static int glm_simulate(glm_app *a, double t, float dt)
                 ? hf_fur_set_transform(a->fur, a->pose, 0, a->info.guide_count)
                 : hf_fur_set_roots(a->fur, &a->skinned, 0,
                                    a->info.guide_count);
+        if (!r) r = hf_fur_build_grid(a->fur, 0, a->info.grid_resolution);
         tr1 = glm_now_ms();
         if (!r)
             r = hf_fur_simulate(a->fur, 0, a->info.guide_count, dt, a->col,
@@ -2037,6 +2055,20 @@ static void glm_usage(FILE *fp)
 "                     normal)\n"
 "  --settle S         seconds simulated at the first pose before frame 1, so\n"
 "                     hair starts hanging (default 0)\n"
+"  --rest-from-gravity S  seconds the hair hangs at the first pose (under\n"
+"                     gravity, the colliders and the grid) before the draped\n"
+"                     shape becomes the rest shape that --stiffness holds,\n"
+"                     [0, 600] (default 0: the grown shape)\n"
+"  --volume F         hair-hair repulsion, so hair keeps a volume: F times\n"
+"                     gravity's pull where the density changes by the\n"
+"                     typical density across a grid cell, [0, 100]\n"
+"                     (default 1; 0 = off)\n"
+"  --friction F       hair-hair friction, so hair moves as a mass: the\n"
+"                     fraction of a point's velocity difference to the hair\n"
+"                     around it removed per 1/60 s, [0, 1] (default 0.2;\n"
+"                     0 = off)\n"
+"  --grid N           nodes along each axis of the hair-hair grid, 4..128\n"
+"                     (default 32; none when --volume and --friction are 0)\n"
 "  --groom FILE       a groom (.hair, .tfx, .obj polylines): its own strands\n"
 "                     are drawn, a fraction of them simulated; its roots\n"
 "                     follow the skinned --grow-on meshes (or the head)\n"
@@ -2204,6 +2236,10 @@ static int glm_parse(int argc, char **argv, glm_options *o)
             else if (!strcmp(s, "--hair-length")) ok = glm_real(s, v, 1e-6, 1e4, &o->hair_length);
             else if (!strcmp(s, "--stiffness")) ok = glm_real(s, v, 0.0, 1.0, &o->stiffness);
             else if (!strcmp(s, "--settle")) ok = glm_real(s, v, 0.0, 60.0, &o->settle);
+            else if (!strcmp(s, "--rest-from-gravity")) ok = glm_real(s, v, 0.0, 600.0, &o->rest_gravity);
+            else if (!strcmp(s, "--volume")) ok = glm_real(s, v, 0.0, 100.0, &o->volume);
+            else if (!strcmp(s, "--friction")) ok = glm_real(s, v, 0.0, 1.0, &o->friction);
+            else if (!strcmp(s, "--grid")) ok = glm_int(s, v, 4, HF_GRID_MAX_RESOLUTION, &o->grid);
             else if (!strcmp(s, "--hair-color")) ok = glm_real3(s, v, 0.0, 1.0, o->hair_color);
             else if (!strcmp(s, "--comb")) ok = glm_real3(s, v, -100.0, 100.0, o->comb);
             else if (!strcmp(s, "--guides")) {
@@ -2429,8 +2465,10 @@ static void glm_report(const glm_app *a, int drawn_frames)
     }
     if (a->ms_frames > 0)
         printf("gl_marschner: ropes: %.3f ms a frame for %d guides with %d "
-               "colliders (roots + ropes %.3f us a guide)\n",
+               "colliders%s (roots%s + ropes %.3f us a guide)\n",
                a->ms_ropes / a->ms_frames, info.guide_count, a->ncol,
+               info.grid_resolution ? " and hair-hair interaction" : "",
+               info.grid_resolution ? " + grid" : "",
                1000.0 * (a->ms_roots + a->ms_ropes) / a->ms_frames /
                    (info.guide_count > 0 ? info.guide_count : 1));
     if (a->ms_frames > 0)
@@ -2469,6 +2507,24 @@ int main(int argc, char **argv)
     {
         int k, n = (int)(a->o.settle * 60.0f + 0.5f);
         for (k = 0; k < n && ok; ++k) ok = glm_simulate(a, 0.0, 1.0f / 60.0f);
+        if (ok && a->o.rest_gravity > 0.0f) {
+            /* the roots and colliders at the first pose, then the drape */
+            hf_result r;
+            double t0;
+            if (n == 0) ok = glm_simulate(a, 0.0, 1.0f / 60.0f);
+            t0 = glm_now_ms();
+            r = hf_fur_settle_rest(a->fur, a->o.rest_gravity, a->col,
+                                   a->ncol);
+            if (r != HF_OK) {
+                fprintf(stderr, "gl_marschner: --rest-from-gravity: %s\n",
+                        hf_result_string(r));
+                ok = 0;
+            } else {
+                printf("gl_marschner: rest from gravity: %g s of draping in "
+                       "%.0f ms\n", (double)a->o.rest_gravity,
+                       glm_now_ms() - t0);
+            }
+        }
         a->stretch_max = a->stretch_sum = 0.0;
         a->stretch_frames = a->ms_frames = 0;
         a->ms_skin = a->ms_sim = 0.0;

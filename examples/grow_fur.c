@@ -10,6 +10,8 @@
               [--estimator area|edges|corners]
               [--strands N] [--guides N | --tess-factor F] [--points N]
               [--length-max M] [--frames N] [--lod F] [--seed N]
+              [--stiffness F] [--volume F] [--friction F] [--grid N]
+              [--rest-from-gravity S]
               [--collider none|auto|sphere:X,Y,Z,R|capsule:X0,Y0,Z0,X1,Y1,Z1,R]...
               [--eye x,y,z]
               [--guides FILE.hair|.tfx|.obj]
@@ -26,7 +28,10 @@
    PNG's top row is v = 1, as in OpenGL (rows are flipped on load, since
    hf_map's row 0 is v = 0). --guides sets the LOD guide density from the
    mesh's area (see docs/grow.md). The head swings sideways (0.05 m at 1 Hz) and
-   turns (+-25 degrees) for --frames frames of 1/60 s; the colliders
+   turns (+-25 degrees) for --frames frames of 1/60 s (after
+   --rest-from-gravity seconds of draping at rest, if given), the guides
+   pushed apart and dragged together by the hair around them (--volume,
+   --friction: a grid of --grid^3 nodes each frame); the colliders
    (--collider, repeatable: spheres and capsules) follow the head. The last frame's ribbons, seen from
    --eye (default: in front of the mesh's bounding box), are
    written as OBJ (positions, texture coordinates (root u, root v) and
@@ -128,7 +133,28 @@ static void usage(FILE *fp)
 "  --frames N         frames simulated, 1/60 s each (default 120)\n"
 "  --lod F            level of detail, 0..1 (hf_fur_set_lod; 1 = every\n"
 "                     strand drawn) (default 1)\n"
-"  --seed N           random seed, a count >= 0 (default 1)\n"
+"  --seed N           random seed, a count >= 0 (default 1)\n",
+            GF_DEFAULT_STRANDS, GF_MAX_DEFAULT_GUIDES, HF_MAX_POINTS);
+    /* in two parts: ISO C's longest string literal is 4095 characters */
+    fprintf(fp,
+"  --stiffness F      how firmly the guides hold their rest shape: the global\n"
+"                     shape stiffness at the root, [0, 1] per 1/60 s (F/15\n"
+"                     at the tip) (default 0.3; 0: hair falls freely)\n"
+"  --volume F         hair-hair repulsion, so hair keeps a volume: points\n"
+"                     pushed from dense toward sparse hair at F g where the\n"
+"                     density changes by the typical density across a grid\n"
+"                     cell, [0, 100] (default 1; 0 = off)\n"
+"  --friction F       hair-hair friction, so hair moves as a mass: the\n"
+"                     fraction of a point's velocity difference to the hair\n"
+"                     around it removed per 1/60 s, [0, 1] (default 0.2;\n"
+"                     0 = off)\n"
+"  --grid N           nodes along each axis of the hair-hair grid, 4..%d\n"
+"                     (default 32; not made when --volume and --friction\n"
+"                     are both 0)\n"
+"  --rest-from-gravity S  seconds the hair hangs under gravity and the\n"
+"                     colliders (the grid too) before the first frame; the\n"
+"                     draped shape becomes the rest shape the stiffness\n"
+"                     holds, [0, 600] (default 0: the grown shape)\n"
 "  --collider C       a collider the head carries, mesh units (metres);\n"
 "                     repeat it for several (at most %d):\n"
 "                       none     no collider (alone)\n"
@@ -146,8 +172,7 @@ static void usage(FILE *fp)
 "                     instead of ribbons\n"
 "  --help             this list\n"
 "Counts (N) accept 20000, 2e4 or 20k (k = 1000). Exit code 2: bad arguments.\n",
-            GF_DEFAULT_STRANDS, GF_MAX_DEFAULT_GUIDES, HF_MAX_POINTS,
-            GF_MAX_COLLIDERS);
+            HF_GRID_MAX_RESOLUTION, GF_MAX_COLLIDERS);
 }
 
 /* A count: an integer written as 20000, 2e4 or 20k (k = 1000), the whole
@@ -538,6 +563,10 @@ int main(int argc, char **argv)
     int strands = GF_DEFAULT_STRANDS, points = 16, frames = 120, i, f;
     long long seed = 1, guides = -1, cnt;
     float lod = 1.0f, max_length = 0.12f, tess_factor = -1.0f;
+    /* the ropes: shape stiffness, hair-hair interaction, draping */
+    float stiffness = 0.3f, volume = 1.0f, friction = 0.2f, settle = 0.0f;
+    long long grid = 32;
+    double t_settle = 0.0, *t_grid;
     int has_normals = 1, has_uvs = 1, uvless = 0, mesh_count = 1;
     /* --collider: the shapes at rest; the auto one is filled in once the
        mesh's box is known. No --collider at all means auto. */
@@ -624,6 +653,16 @@ int main(int argc, char **argv)
             ok = parse_real(a, v, 0.0, 1.0, &lod);
         else if (!strcmp(a, "--length-max"))
             ok = parse_real(a, v, 1e-9, 1e6, &max_length);
+        else if (!strcmp(a, "--stiffness"))
+            ok = parse_real(a, v, 0.0, 1.0, &stiffness);
+        else if (!strcmp(a, "--volume"))
+            ok = parse_real(a, v, 0.0, 100.0, &volume);
+        else if (!strcmp(a, "--friction"))
+            ok = parse_real(a, v, 0.0, 1.0, &friction);
+        else if (!strcmp(a, "--grid"))
+            ok = parse_count(a, v, 4, HF_GRID_MAX_RESOLUTION, &grid);
+        else if (!strcmp(a, "--rest-from-gravity"))
+            ok = parse_real(a, v, 0.0, 600.0, &settle);
         else if (!strcmp(a, "--collider")) {
             if (!strcmp(v, "none")) {
                 no_col = 1;
@@ -894,12 +933,18 @@ int main(int argc, char **argv)
                    "target of %lld: no LOD guides\n", pure_guides, guides);
     }
     hf_rope_params_init(&rp);
-    rp.global_stiffness_root = 0.3f;
-    rp.global_stiffness_tip = 0.02f;
+    rp.global_stiffness_root = stiffness;
+    rp.global_stiffness_tip = stiffness / 15.0f;
     rp.local_stiffness_root = 0.5f;
     rp.local_stiffness_tip = 0.1f;
     rp.root_stiffness = 0.8f;
+    /* 0 on the command line is off: a literal 0 for the library */
+    rp.volume = volume;
+    rp.friction = friction;
+    rp.explicit_zero = (volume == 0.0f ? HF_ROPE_ZERO_VOLUME : 0) |
+                       (friction == 0.0f ? HF_ROPE_ZERO_FRICTION : 0);
     desc.rope_params = &rp;
+    desc.grid_resolution = volume > 0.0f || friction > 0.0f ? (int)grid : 0;
     {
         double t0 = now_ms();
         if (groom_path) {
@@ -913,6 +958,7 @@ int main(int argc, char **argv)
             gd.guide_fraction = guide_fraction;
             gd.seed = (uint64_t)seed;
             gd.rope_params = &rp;
+            gd.grid_resolution = desc.grid_resolution;
             r = hf_fur_create_groom(&gd, &fur, &diag);
         } else {
             r = hf_fur_create(&desc, &fur, &diag);
@@ -943,13 +989,29 @@ int main(int argc, char **argv)
     }
     hf_fur_set_lod(fur, lod);
     hf_fur_get_info(fur, &info);
+    if (settle > 0.0f) {
+        /* the head's first pose (frame 0 of the swing is the rest pose),
+           so the draped shape is the rest shape in the roots' frames */
+        double t0 = now_ms();
+        for (i = 0; i < ncol; ++i) moved[i] = cols[i];
+        r = hf_fur_settle_rest(fur, settle, ncol ? moved : NULL, ncol);
+        if (r != HF_OK) {
+            fprintf(stderr, "grow_fur: --rest-from-gravity: %s\n",
+                    hf_result_string(r));
+            return 1;
+        }
+        t_settle = now_ms() - t0;
+        printf("rest from gravity: %g s of draping in %.1f ms\n",
+               (double)settle, t_settle);
+    }
 
     /* per frame: skin, roots, simulate, interpolate, ribbons */
     skin = (vtx *)malloc(sizeof(vtx) * (size_t)nv);
     vbuf = (float *)malloc(sizeof(float) * 12u * 2u * (size_t)info.strand_count *
                            (size_t)info.points_per_strand);
-    t_roots = (double *)malloc(sizeof(double) * 5u * (size_t)frames);
+    t_roots = (double *)malloc(sizeof(double) * 6u * (size_t)frames);
     if (!skin || !vbuf || !t_roots) return 1;
+    t_grid = t_roots + 5 * frames;
     t_sim = t_roots + frames;
     t_guides = t_sim + frames;
     t_interp = t_guides + frames;
@@ -962,7 +1024,7 @@ int main(int argc, char **argv)
         float m[12];
         hf_ribbon_params view;
         hf_ribbon_output out;
-        double t0, t1, t2, t3, t4, t5;
+        double t0, t1, t1g, t2, t3, t4, t5;
         head_pose((f + 1) / 60.0, m);
         for (i = 0; i < nv; ++i) {
             xform(m, rest[i].pos, 1.0f, skin[i].pos);
@@ -993,6 +1055,8 @@ int main(int argc, char **argv)
         r = groom_path ? hf_fur_set_transform(fur, m, 0, info.guide_count)
                        : hf_fur_set_roots(fur, &skinned, 0, info.guide_count);
         t1 = now_ms();
+        if (r == HF_OK) r = hf_fur_build_grid(fur, 0, info.grid_resolution);
+        t1g = now_ms();
         if (r == HF_OK)
             r = hf_fur_simulate(fur, 0, info.guide_count, 1.0f / 60.0f,
                                 ncol ? moved : NULL, ncol);
@@ -1010,7 +1074,8 @@ int main(int argc, char **argv)
             return 1;
         }
         t_roots[f] = t1 - t0;
-        t_sim[f] = t2 - t1;
+        t_grid[f] = t1g - t1;
+        t_sim[f] = t2 - t1g;
         t_guides[f] = t3 - t2;
         t_interp[f] = t4 - t3;
         t_ribbons[f] = t5 - t4;
@@ -1019,11 +1084,13 @@ int main(int argc, char **argv)
         float stretch = 0.0f;
         hf_fur_max_stretch(fur, &stretch);
         printf("%d frames at lod %.2f (%d of %d strands drawn), median ms: "
-               "roots %.3f, ropes %.3f (%d guides, %d colliders), LOD "
+               "roots %.3f, grid %.3f (%d^3 nodes), ropes %.3f (%d guides, "
+               "%d colliders), LOD "
                "guides %.3f, strands %.3f, ribbons %.3f; max stretch %.3f "
                "%%\n",
                frames, (double)info.lod, info.drawn_strand_count,
                info.strand_count, median(t_roots, frames),
+               median(t_grid, frames), info.grid_resolution,
                median(t_sim, frames), info.guide_count, ncol,
                median(t_guides, frames), median(t_interp, frames),
                median(t_ribbons, frames), 100.0 * stretch);
