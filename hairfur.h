@@ -45,7 +45,9 @@
        Fur on a mesh, or a groom, all stages in one object (section 10):
            hf_fur_create, hf_fur_create_groom, hf_fur_destroy,
            hf_fur_get_info, hf_fur_set_lod, hf_fur_set_roots,
-           hf_fur_set_transform, hf_fur_simulate, hf_fur_interpolate_guides,
+           hf_fur_set_transform, hf_fur_build_grid (hair-hair interaction),
+           hf_fur_simulate, hf_fur_settle_rest (draped rest shapes),
+           hf_fur_interpolate_guides,
            hf_fur_interpolate, hf_fur_ribbons, hf_fur_points,
            hf_fur_interpolate_points (the GPU path in one pass),
            hf_fur_max_stretch, hf_fur_reset, hf_fur_set_rope_params,
@@ -66,7 +68,10 @@
            hf_ropes_create, hf_ropes_destroy, hf_ropes_set_rest,
            hf_ropes_set_roots, hf_ropes_step, hf_ropes_set_mode,
            hf_ropes_reset, hf_ropes_max_stretch, hf_ropes_roots_inside,
-           hf_ropes_get_positions, hf_ropes_copy_range
+           hf_ropes_get_positions, hf_ropes_copy_range,
+           hf_ropes_rest_from_pose; hair-hair interaction:
+           hf_grid_memory_size, hf_grid_init, hf_grid_create,
+           hf_grid_destroy, hf_grid_build, hf_ropes_apply_grid
        Interpolating strands of your own (section 7): hf_interpolate
        Shading: the Marschner lookup textures (section 9):
            hf_lut_params_init, hf_lut_validate, hf_lut_bake_m,
@@ -221,7 +226,13 @@
                            256 (bytes change where a rope touches a
                            collider); compact GPU points, 8 bytes
                            (hf_point_format, hf_ribbon_params.
-                           point_format, point_origin, point_scale).
+                           point_format, point_origin, point_scale);
+                           hair-hair interaction on a grid (hf_grid,
+                           hf_grid_build, hf_ropes_apply_grid,
+                           hf_rope_params.volume and friction,
+                           hf_fur_desc.grid_resolution, hf_fur_build_grid);
+                           gravity-settled rest shapes
+                           (hf_ropes_rest_from_pose, hf_fur_settle_rest).
        0.2.0 (2026-11-23)  one convention: every struct zero-initialised
                            means its defaults (hf_rope_params and
                            hf_lut_params too, with explicit_zero bits for a
@@ -8484,6 +8495,14 @@ HF__INLINE void hf__grid_add4(float *o, float w, const float *v)
     o[3] += w * v[3];
 }
 
+/* 1 / the last sub-step (0 before the first): a step of 10^-6 s or less
+   counts as 10^-6 s, so that velocities stay finite whatever the time
+   scale (1 / a denormal step is infinite). */
+HF__INLINE float hf__grid_hv(float last_h)
+{
+    return last_h > 0.0f ? 1.0f / (last_h > 1e-6f ? last_h : 1e-6f) : 0.0f;
+}
+
 /* The velocity of point i of rope r, times `weight` (v[0] = weight). */
 HF__INLINE void hf__grid_velocity(const hf_ropes *ro, size_t i, float hv,
                                   float weight, float v[4])
@@ -8526,7 +8545,7 @@ HFDEF hf_result hf_grid_build(hf_grid *grid, const hf_ropes *ropes,
             if (!hf__grid_locate(ropes, i, cube, inv, n, &node, &kz, f) ||
                 kz + 1 < first || kz >= end)
                 continue;
-            hv = ropes->last_h[r] > 0.0f ? 1.0f / ropes->last_h[r] : 0.0f;
+            hv = hf__grid_hv(ropes->last_h[r]);
             hf__grid_velocity(ropes, i, hv, weight, v);
             wy[0] = 1.0f - f[1];
             wy[1] = f[1];
@@ -8659,17 +8678,22 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
         const int last = j + k <= P ? j + k : P;
         for (r = first; r < first + count; ++r) {
             const size_t i = (size_t)j * R + (size_t)r;
-            float f[3], v[4], a[4], g[3], dv[3], hl, hv;
+            float f[3], v[4], a[4], g[3], dv[3], hl, hv, gn, gs;
             size_t node;
             int kz, q;
             if (hf__rope_kind(ropes, r) != 0 ||
                 !hf__grid_locate(ropes, i, sl, inv, n, &node, &kz, f))
                 continue;
             hl = ropes->last_h[r] > 0.0f ? ropes->last_h[r] : st.h;
-            hv = ropes->last_h[r] > 0.0f ? 1.0f / ropes->last_h[r] : 0.0f;
+            hv = hf__grid_hv(ropes->last_h[r]);
             hf__grid_velocity(ropes, i, hv, (float)(last - j), v);
             hf__grid_read(grid, node, f, v, a, g);
-            for (q = 0; q < 3; ++q) dv[q] = -push * g[q];
+            /* at most volume x gravity: a density step of more than the
+               typical density across a cell pushes no harder, so a
+               crowd cannot throw hair (the push is one frame late) */
+            gn = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
+            gs = gn > ref * ref ? ref / HF_SQRTF(gn) : 1.0f;
+            for (q = 0; q < 3; ++q) dv[q] = -push * (g[q] * gs);
             if (fric > 0.0f && a[0] > 1e-6f * ref) {
                 const float ia = 1.0f / a[0], iw = 1.0f / v[0];
                 float b = fric * (a[0] < ref ? a[0] / ref : 1.0f);

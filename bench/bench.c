@@ -52,7 +52,9 @@
    Scene V (--scene V): a character at Veilguard's scale, its head alone
    (Vh) and on a 24-proxy body (V), every stage at 1 and 2 threads, then
    the ropes and the GPU path's frame against the number of colliders
-   (bench_character), and three targets of its own.
+   (bench_character), and three targets of its own; then hair-hair
+   interaction on V (bench_hair_grid): the grid, and what it adds to the
+   ropes, with its target.
    Usage: bench [--frames N] [--scene S|M|L|Mc|V] [--scaling] */
 #define _POSIX_C_SOURCE 200809L
 #define HAIRFUR_IMPLEMENTATION
@@ -213,6 +215,7 @@ static void check(const char *what, hf_result r)
 
 static void j_roots(job *j, int f, int c) { (void)j; check("roots", hf_fur_set_roots(g_sc->fur, &g_sc->skinned, f, c)); }
 static void j_ropes(job *j, int f, int c) { (void)j; check("ropes", hf_fur_simulate(g_sc->fur, f, c, g_sc->dt, g_sc->col, g_sc->ncol)); }
+static void j_grid(job *j, int f, int c) { (void)j; check("grid", hf_fur_build_grid(g_sc->fur, f, c)); }
 static void j_lodg(job *j, int f, int c) { (void)j; check("lod guides", hf_fur_interpolate_guides(g_sc->fur, f, c)); }
 static void j_interp(job *j, int f, int c) { (void)j; check("interpolate", hf_fur_interpolate(g_sc->fur, f, c)); }
 
@@ -270,6 +273,9 @@ static void *mapped_like(size_t bytes)
     return q;
 }
 
+/* the hair-hair grid of the next scene_init (0: none) */
+static int g_grid_resolution;
+
 static void scene_init(scene *s, const char *name, int rings, int segments,
                        int strands, float tess_factor, int points,
                        float length)
@@ -288,6 +294,7 @@ static void scene_init(scene *s, const char *name, int rings, int segments,
                    tess_factor);
     d.points_per_strand = points;
     d.max_length = length;
+    d.grid_resolution = g_grid_resolution;
     a.alloc = c_alloc;
     a.realloc = c_realloc;
     a.free = c_free;
@@ -878,6 +885,80 @@ static void bench_character(int frames)
     free(tf);
 }
 
+/* Hair-hair interaction on scene V (the head on its body): the same fur
+   with a grid of BENCH_GRID^3 nodes. grid: hf_fur_build_grid over its
+   layers; ropes_grid: hf_fur_simulate with the grid's push (its volume
+   and friction at their defaults); against V's ropes without a grid, the
+   difference is what the interaction adds to the ropes. Machine line:
+     bench stage=hair_grid scene=V threads=T grid=.. ropes_grid=..
+           ropes=.. cost=..
+   g_grid_cost: grid + the ropes' extra, one thread. */
+#define BENCH_GRID 32
+static double g_grid_cost = -1.0;
+
+static void bench_hair_grid(int frames)
+{
+    static scene v[2];
+    job jr, jg, js;
+    double *t[3];
+    int th, f, k;
+    for (k = 0; k < 3; ++k)
+        t[k] = (double *)malloc(sizeof(double) * (size_t)frames);
+    for (k = 0; k < 2; ++k) {
+        g_grid_resolution = k ? BENCH_GRID : 0;
+        scene_init(&v[k], k ? "Vg" : "V", BENCH_V_RINGS, BENCH_V_SEGMENTS,
+                   BENCH_V_STRANDS, 0.0f, BENCH_V_POINTS, BENCH_V_LENGTH);
+        v[k].ncol = 1 + BENCH_BODY;
+    }
+    g_grid_resolution = 0;
+    printf("hair-hair interaction on V (%d guides of %d points, the body's "
+           "colliders): a grid of %d^3 nodes, median ms\n",
+           v[1].info.guide_count, v[1].info.points_per_strand, BENCH_GRID);
+    for (th = 1; th <= MAX_THREADS; ++th) {
+        figure fg, fs, f0;
+        g_threads = th;
+        for (k = 0; k < 2; ++k) {
+            g_sc = &v[k];
+            jr.fn = j_roots;
+            jr.total = v[k].info.guide_count;
+            jg.fn = j_grid;
+            jg.total = v[k].info.grid_resolution;
+            js.fn = j_ropes;
+            js.total = v[k].info.guide_count;
+            check("reset", hf_fur_reset(v[k].fur));
+            for (f = -60; f < frames; ++f) {
+                double t0, t1, t2;
+                scene_pose(&v[k], v[k].frame++);
+                run_job(&jr);
+                t0 = now_ms();
+                if (k) run_job(&jg);
+                t1 = now_ms();
+                run_job(&js);
+                t2 = now_ms();
+                if (f < 0) continue;
+                if (k) {
+                    t[0][f] = t1 - t0;
+                    t[1][f] = t2 - t1;
+                } else {
+                    t[2][f] = t2 - t1;
+                }
+            }
+        }
+        fg = stats(t[0], frames);
+        fs = stats(t[1], frames);
+        f0 = stats(t[2], frames);
+        printf("  %dT: grid %7.3f  ropes with it %7.3f  ropes without %7.3f"
+               "  hair-hair cost %7.3f\n", th, fg.med, fs.med, f0.med,
+               fg.med + fs.med - f0.med);
+        fprintf(stderr, "bench stage=hair_grid scene=V threads=%d grid=%.4f "
+                        "ropes_grid=%.4f ropes=%.4f cost=%.4f\n",
+                th, fg.med, fs.med, f0.med, fg.med + fs.med - f0.med);
+        if (th == 1) g_grid_cost = fg.med + fs.med - f0.med;
+    }
+    for (k = 0; k < 2; ++k) scene_free(&v[k]);
+    for (k = 0; k < 3; ++k) free(t[k]);
+}
+
 /* LOD guides interpolated instead of simulated: a coarse head whose
    tessellation adds guides (scenes S, M and L are fine enough that it adds
    none), drawn at LOD 0.25, below the default simulate threshold of 0.5. */
@@ -1093,6 +1174,9 @@ static void print_targets(const double *frame_l)
                     "V's frame with the body, 2 threads (ms)",
                     g_v_frame[4][2], 1.0, 1);
     }
+    if (g_grid_cost >= 0.0)
+        target_line("hair_grid_V_ms", "hair-hair grid on V, 1 thread (ms)",
+                    g_grid_cost, 0.25, 1);
     if (g_max_allocs >= 0)
         target_line("allocs_per_frame", "allocations in any frame",
                     (double)g_max_allocs, 1.0, 1);
@@ -1178,7 +1262,10 @@ int main(int argc, char **argv)
         bench_lod_guides(&lodsc, frames);
         hf_fur_destroy(lodsc.fur);
     }
-    if (!only || !strcmp(only, "V")) bench_character(frames);
+    if (!only || !strcmp(only, "V")) {
+        bench_character(frames);
+        bench_hair_grid(frames);
+    }
     bench_lut(9);
     print_targets(!only || !strcmp(only, "L") ? frame_ms[2] : NULL);
 

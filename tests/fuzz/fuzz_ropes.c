@@ -10,7 +10,10 @@
    scratch rows (per-call temporaries, see hf_ropes_init); on success every
    position is finite; hf_ropes_max_stretch is finite and >= 0;
    hf_ropes_get_positions writes exactly its range; hf_ropes_create with
-   a failing or counting allocator leaks nothing.
+   a failing or counting allocator leaks nothing. Some frames also build
+   a hair-hair grid (A in one call, B in layers split where the input
+   says: the same bytes) and push the ropes with it before the step
+   (A whole, B in ranges); a refused push changes nothing.
 
    libFuzzer: clang -g -O1 -fsanitize=fuzzer,address,undefined fuzz_ropes.c
    replay:    gcc -O1 -g fuzz_main.c fuzz_ropes.c -lm (see the Makefile) */
@@ -21,6 +24,7 @@
 #include <math.h>
 
 #define FZ_COLS 40 /* colliders at most */
+#define FZ_GRID 6  /* nodes along each axis of the fuzzed grids */
 
 typedef struct fz_ropeset {
     hf_ropes ropes;
@@ -81,7 +85,7 @@ static void fz_roots(fz_reader *r, int R, float *pos, float *nrm, float *tan,
 /* A random field of the params to a fuzz value. */
 static void fz_mutate_params(fz_reader *r, hf_rope_params *p)
 {
-    switch (fz_u8(r) % 21) {
+    switch (fz_u8(r) % 23) {
     case 0: p->gravity[fz_u8(r) % 3] = fz_float(r, 100.0f); break;
     case 1: p->wind[fz_u8(r) % 3] = fz_float(r, 100.0f); break;
     case 2: p->turbulence = fz_float(r, 50.0f); break;
@@ -101,7 +105,9 @@ static void fz_mutate_params(fz_reader *r, hf_rope_params *p)
     case 16: p->local_stiffness_tip = fz_float(r, 1.0f); break;
     case 17: p->collision_margin = fz_float(r, 0.1f); break;
     case 18: p->mode_blend_time = fz_float(r, 1.0f); break;
-    case 19: p->explicit_zero = fz_int(r, 0, 63); break;
+    case 19: p->explicit_zero = fz_int(r, 0, 255); break;
+    case 21: p->volume = fz_float(r, 5.0f); break;
+    case 22: p->friction = fz_float(r, 1.0f); break;
     default: p->max_substeps = fz_int(r, 1, 1000); break;
     }
 }
@@ -264,6 +270,44 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
         dt = fz_chance(&r, 220) ? fz_float_in(&r, 0.0f, 0.05f)
                                 : fz_float(&r, 1.0f);
+
+        /* hair-hair: a grid each, built (B in layers) and pushed with */
+        if (op & 0x20) {
+            static unsigned char ga_mem[65536], gb_mem[65536];
+            static hf_grid ga, gb;
+            size_t gsz = 0;
+            int done = 0, parts = fz_int(&r, 1, 3), p;
+            FZ_REQUIRE(hf_grid_memory_size(FZ_GRID, &gsz) == HF_OK &&
+                       gsz <= sizeof ga_mem);
+            if (!ga.node) {
+                FZ_REQUIRE(hf_grid_init(&ga, FZ_GRID, ga_mem, gsz) == HF_OK);
+                FZ_REQUIRE(hf_grid_init(&gb, FZ_GRID, gb_mem, gsz) == HF_OK);
+            }
+            FZ_REQUIRE(hf_grid_build(&ga, &A.ropes, R, 0, FZ_GRID) == HF_OK);
+            for (p = 0; p < parts; ++p) {
+                int cnt = p == parts - 1 ? FZ_GRID - done
+                                         : fz_int(&r, 0, FZ_GRID - done);
+                FZ_REQUIRE(hf_grid_build(&gb, &B.ropes, R, done, cnt) ==
+                           HF_OK);
+                done += cnt;
+            }
+            FZ_REQUIRE(memcmp(ga.node, gb.node, sizeof(float) * 4u *
+                              FZ_GRID * FZ_GRID * FZ_GRID) == 0);
+            fz_snap(&A);
+            ra = hf_ropes_apply_grid(&A.ropes, 0, R, dt, &params, &ga);
+            FZ_REQUIRE(fz_known_result(ra));
+            if (ra != HF_OK) FZ_REQUIRE(fz_same_as_snap(&A));
+            done = 0;
+            for (p = 0; p < parts; ++p) {
+                int cnt = p == parts - 1 ? R - done : fz_int(&r, 0, R - done);
+                rb = hf_ropes_apply_grid(&B.ropes, done, cnt, dt, &params,
+                                         &gb);
+                FZ_REQUIRE(rb == ra);
+                done += cnt;
+            }
+            FZ_REQUIRE(fz_same_state(&A, &B));
+            FZ_REQUIRE(fz_ropes_finite(&A.ropes));
+        }
 
         /* step: A whole at the level the params ask (the best the CPU
            runs, unless fuzzed), B in up to four ranges at the SSE2 (NEON)
