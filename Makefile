@@ -444,7 +444,8 @@ WEB_NEED = $(if $(EMCC),,emcc (emscripten))$(shell \
 web-check:
 	@if [ -n "$(strip $(WEB_NEED))" ]; then \
 	  echo "web-check skipped: missing $(strip $(WEB_NEED)) (make deps)"; exit 0; fi; \
-	$(call web_make,$(WEB_DIR)/index.html $(BUILD)/png_diff) || exit 1; \
+	$(call web_make,$(WEB_DIR)/index.html) && \
+	  $(call web_make,$(BUILD)/png_diff) || exit 1; \
 	if command -v glad >/dev/null 2>&1 && \
 	   printf '#include <EGL/egl.h>\n#include <GLFW/glfw3.h>\n#include <assimp/cimport.h>\n' | \
 	   $(CC) -E -x c - >/dev/null 2>&1; then \

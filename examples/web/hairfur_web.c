@@ -451,7 +451,10 @@ static void hw_measure(hw_app *a)
                     *p1 = a->head.vertices[t[1]].pos,
                     *p2 = a->head.vertices[t[2]].pos;
         float e1[3], e2[3], n[3], d = 0.0f, v[4];
-        for (k = 0; k < 3; ++k) { e1[k] = p1[k] - p0[k]; e2[k] = p2[k] - p0[k]; }
+        for (k = 0; k < 3; ++k) {
+            e1[k] = p1[k] - p0[k];
+            e2[k] = p2[k] - p0[k];
+        }
         n[0] = e1[1] * e2[2] - e1[2] * e2[1];
         n[1] = e1[2] * e2[0] - e1[0] * e2[2];
         n[2] = e1[0] * e2[1] - e1[1] * e2[0];
@@ -612,9 +615,10 @@ static int hw_init(hw_app *a)
         return 0;
     }
     {
-        GLenum internal =
-            emscripten_webgl_enable_extension(a->ctx, "OES_texture_float_linear")
-                ? GL_RGBA32F : GL_RGBA16F;
+        GLenum internal = emscripten_webgl_enable_extension(
+                              a->ctx, "OES_texture_float_linear")
+                              ? GL_RGBA32F
+                              : GL_RGBA16F;
         if ((r = hf_lut_bake_m(&lp, 0, lp.size, lut)) != HF_OK) {
             snprintf(msg, sizeof msg, "LUT: %s", hf_result_string(r));
             hw_error(a, msg);
@@ -1049,9 +1053,11 @@ static void hw_run_fixed(hw_app *a)
         snprintf(a->status + strlen(a->status),
                  sizeof a->status - strlen(a->status),
                  "%s%ld steps of 1/60 s, the last drawn: %d of %d "
-                 "strands; picture: %.1f %% off the background",
+                 "strands, SIMD level %d; picture: %.1f %% off the "
+                 "background",
                  a->status[0] ? "; " : "", (long)a->frames, a->drawn,
-                 a->info.strand_count, 100.0 * off / n);
+                 a->info.strand_count, hf_simd_resolve(a->simd),
+                 100.0 * off / n);
         if (off < n / 20) hw_error(a, "blank picture");
         ok = hw_gl_ok(a, "readback");
     }
@@ -1107,9 +1113,9 @@ HW_EXPORT const char *web_stats(void)
              "GL calls          %6.2f ms\n"
              "frame             %6.2f ms (%.1f fps)\n",
              a->drawn, a->info.strand_count, a->lod, a->info.guide_count, a->P,
-             level == HF_SIMD_WASM128 && HF__SSE
-                 ? "WebAssembly SIMD128 (the SSE2 kernels)"
-                 : "scalar",
+             level == HF_SIMD_WASM128 ? "WebAssembly SIMD128 (the SSE2 kernels)"
+             : level == HF_SIMD_SCALAR ? "scalar"
+                                       : "?",
              a->mean[ST_SKIN], a->mean[ST_ROPES], a->mean[ST_STRANDS],
              a->mean[ST_UPLOAD], a->mean[ST_DRAW], a->mean[ST_FRAME],
              a->mean[ST_FRAME] > 0.0 ? 1000.0 / a->mean[ST_FRAME] : 0.0);
