@@ -59,7 +59,7 @@ chromium_run() {
 rm -f "$D/report.txt" "$D/url.txt"
 python3 tests/web_serve.py "$W" 0 "$D/report.txt" >"$D/url.txt" 2>&1 &
 server=$!
-trap 'kill $server 2>/dev/null' EXIT INT TERM
+trap 'kill $server 2>/dev/null' EXIT HUP INT PIPE TERM
 i=0
 while [ ! -s "$D/url.txt" ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
 url=$(head -n 1 "$D/url.txt")
