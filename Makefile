@@ -9,7 +9,9 @@
 #                      -mavx2 -mfma), the C++ compile and C/C++ link
 #                      checks, the API doc check, the quick start check,
 #                      the CMake and pkg-config check, then the GL checks
-#                      when headless EGL is there
+#                      when headless EGL is there, the WebAssembly build of
+#                      the suite and the web page in headless Chromium
+#                      where emscripten and chromium are installed
 #   make check         the fast loop: the unit tests built once (gcc -std=c99
 #                      -O2), the API doc check and the quick start check
 #   make check-build   build what make test runs, without running it
@@ -35,6 +37,24 @@
 #   make fuzz-smoke    each target for FUZZ_SMOKE_SECONDS (20) s (CI)
 #   make fuzz-replay   replay corpus and regressions with gcc (no clang)
 #   make fuzz-build    build the libFuzzer targets
+#   make wasm-test     the unit tests built with emscripten (WebAssembly
+#                      SIMD128, -O2) and run under node (part of make
+#                      test; skipped, with the reason, without emscripten)
+#
+# Web (Debian's emscripten, chromium for the checks)
+#   make web           the page: build/web/index.html, index.js, index.wasm
+#                      (examples/web/): fur grown, simulated and expanded
+#                      in WebAssembly every frame, drawn with WebGL2
+#   make web-serve     serve build/web on 127.0.0.1 (WEB_PORT, default 8000)
+#   make web-check     the page in headless Chromium: 60 fixed steps, no
+#                      console error, not blank, and the screenshot against
+#                      gl_marschner's headless render (part of make test;
+#                      skipped, with the reason, without emscripten or
+#                      chromium)
+#   make web-bench     the page's per-stage milliseconds in headless
+#                      Chromium, in real time (WEB_BENCH_FRAMES, 20;
+#                      WEB_BENCH_QUERY, e.g. simd=1 for the scalar level),
+#                      and a screenshot of the page (build/web-check/page.png)
 #
 # GL (GLAD generated at build time, headless EGL, GLFW for windows)
 #   make msvc-check    the header's MSVC branches, parsed by clang as MSVC
@@ -83,7 +103,8 @@
 #
 # Helper files in mk/ (no make fragments: this Makefile is the whole build)
 #   mk/packages.txt    the Debian packages, in groups (build, examples, gl,
-#                      cross, fuzz, peers); the one list, also read by .ci/run
+#                      cross, fuzz, web, peers); the one list, also read by
+#                      .ci/run
 #   mk/packages.sh     prints the packages of the groups it is given
 #   mk/quickstart.sh   extracts README.md's quick start program and checks
 #                      its output
@@ -203,6 +224,8 @@ test:
 	@$(MAKE) --no-print-directory -j2 cross-test
 	@sh tests/msvc_check.sh
 	@$(MAKE) --no-print-directory gl-test-or-skip
+	@$(MAKE) --no-print-directory wasm-test
+	@$(MAKE) --no-print-directory web-check
 
 # The edit-compile-test loop: one build of the suite, the doc checks.
 check: $(BUILD)/test_gcc_c99
@@ -371,6 +394,95 @@ cross-i686: | $(BUILD)
 	  -o $(BUILD)/test_i686 -lm
 	@if command -v qemu-i386 >/dev/null 2>&1 && [ -x $(BUILD)/test_i686 ]; then :; else exit 0; fi
 	$(call cross_run,test_i686_qemu,qemu-i386 $(BUILD)/test_i686)
+
+# ==== WebAssembly ============================================================
+# Debian's emscripten (3.1.6): the suite and the page with WebAssembly
+# SIMD128, where -msse2 has emscripten compile the header's SSE2 kernels
+# into SIMD128 (the level HF_SIMD_WASM128). Its tools run under the node
+# on PATH, which finds Debian's acorn only through NODE_PATH when it is
+# not Debian's own node.
+EMCC      := $(shell command -v emcc 2>/dev/null)
+EM_ENV    := NODE_PATH=/usr/share/nodejs$(if $(NODE_PATH),:$(NODE_PATH))
+WASM_SIMD := -msimd128 -msse2
+.PHONY: wasm-test web web-serve web-check web-bench
+# $(call web_make,TARGETS): build them, silent when they are up to date
+web_make = { $(MAKE) -q --no-print-directory $(1) 2>/dev/null || \
+             $(MAKE) --no-print-directory $(1); }
+
+# The suite, once, at -O2, as one .js file (the wasm inside: emscripten
+# 3.1.6's loader tries fetch() on a file path under node 18 and later);
+# the stack of the native builds (TEST_STACK_KB), every stack move checked;
+# it must run at the SIMD128 level (HF_TEST_SIMD_LEVEL), and compares that
+# level with the scalar references as every build does.
+$(BUILD)/test_wasm.js: $(TEST) $(HDR) | $(BUILD)
+	$(EM_ENV) emcc -std=c99 -O2 $(WASM_SIMD) $(WARN) \
+	  -DHF_TEST_SIMD_LEVEL=HF_SIMD_WASM128 -sSINGLE_FILE=1 \
+	  -sALLOW_MEMORY_GROWTH=1 -sTOTAL_STACK=$$(($(TEST_STACK_KB) * 1024)) \
+	  -sSTACK_OVERFLOW_CHECK=2 $(TEST) -o $@
+
+wasm-test:
+	@if [ -z "$(EMCC)" ]; then \
+	  echo "wasm-test skipped: no emcc: install emscripten (make deps)"; exit 0; fi; \
+	if ! command -v node >/dev/null 2>&1; then \
+	  echo "wasm-test skipped: no node to run it: install nodejs (make deps)"; exit 0; fi; \
+	$(call web_make,$(BUILD)/test_wasm.js) || exit 1; \
+	printf '%-28s ' "test_wasm.js (node):"; \
+	node $(BUILD)/test_wasm.js > $(BUILD)/test_wasm.log 2>&1; rc=$$?; \
+	tail -n 1 $(BUILD)/test_wasm.log; \
+	if [ $$rc -ne 0 ]; then grep -v ' passed, ' $(BUILD)/test_wasm.log | head -n 40; \
+	  echo "make wasm-test: FAILED"; exit 1; fi
+
+# The page: examples/web/hairfur_web.c (the library, examples/head_mesh.h,
+# WebGL2 through emscripten's GLES3) in examples/web/shell.html.
+WEB_DIR   := $(BUILD)/web
+WEB_FLAGS := -std=c99 -O2 $(WASM_SIMD) $(WARN) -Iexamples -I. \
+             -sMIN_WEBGL_VERSION=2 -sMAX_WEBGL_VERSION=2 \
+             -sALLOW_MEMORY_GROWTH=1 -sENVIRONMENT=web -sMINIFY_HTML=0 \
+             -sEXPORTED_RUNTIME_METHODS=UTF8ToString
+WEB_PORT  ?= 8000
+WEB_BENCH_FRAMES ?= 20
+WEB_BENCH_QUERY  ?=
+
+$(WEB_DIR)/index.html: examples/web/hairfur_web.c examples/web/shell.html \
+                       examples/head_mesh.h $(HDR)
+	@mkdir -p $(WEB_DIR)
+	$(EM_ENV) emcc $(WEB_FLAGS) --shell-file examples/web/shell.html \
+	  examples/web/hairfur_web.c -o $@
+
+web:
+	@if [ -z "$(EMCC)" ]; then \
+	  echo "make web: no emcc: install emscripten (make deps)"; exit 1; fi
+	@$(call web_make,$(WEB_DIR)/index.html)
+	@echo "web: wrote $(WEB_DIR)/index.html, index.js and index.wasm;" \
+	     "serve them (make web-serve) and open the page"
+
+web-serve: web
+	@echo "web-serve: Ctrl-C stops it"
+	python3 tests/web_serve.py $(WEB_DIR) $(WEB_PORT)
+
+# The page in headless Chromium (tests/web_check.sh). gl_marschner (its
+# render is the reference) where the GL packages are there.
+WEB_NEED = $(if $(EMCC),,emcc (emscripten))$(shell \
+  command -v chromium >/dev/null 2>&1 || echo ' chromium'; \
+  command -v python3 >/dev/null 2>&1 || echo ' python3'; \
+  test -f $(STB_H) || echo ' libstb-dev')
+web-check:
+	@if [ -n "$(strip $(WEB_NEED))" ]; then \
+	  echo "web-check skipped: missing $(strip $(WEB_NEED)) (make deps)"; exit 0; fi; \
+	$(call web_make,$(WEB_DIR)/index.html) && \
+	  $(call web_make,$(BUILD)/png_diff) || exit 1; \
+	if command -v glad >/dev/null 2>&1 && \
+	   printf '#include <EGL/egl.h>\n#include <GLFW/glfw3.h>\n#include <assimp/cimport.h>\n' | \
+	   $(CC) -E -x c - >/dev/null 2>&1; then \
+	  $(MAKE) -s --no-print-directory $(BUILD)/gl_marschner $(BUILD)/gl_check \
+	    || exit 1; fi; \
+	BUILD=$(BUILD) sh tests/web_check.sh
+
+web-bench:
+	@if [ -n "$(strip $(WEB_NEED))" ]; then \
+	  echo "web-bench: missing $(strip $(WEB_NEED)) (make deps)"; exit 1; fi
+	@$(call web_make,$(WEB_DIR)/index.html)
+	@BUILD=$(BUILD) sh tests/web_check.sh bench $(WEB_BENCH_FRAMES) "$(WEB_BENCH_QUERY)"
 
 # ==== Examples ===============================================================
 EX_CFLAGS := -std=c99 -O2 -Wall -Wextra -Wpedantic

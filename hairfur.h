@@ -101,7 +101,9 @@
                             identical. Otherwise SSE2 where the compiler
                             targets it, and on gcc and clang for x86 also
                             AVX2 and AVX-512 kernels, chosen at run time
-                            by CPUID (hf_simd_resolve).
+                            by CPUID (hf_simd_resolve); on WebAssembly
+                            the SSE2 kernels with emscripten's -msimd128
+                            -msse2 (HF_SIMD_WASM128).
        HF_SIMD_MAX          an hf_simd_level: the highest level used
                             (e.g. HF_SIMD_SSE2 keeps the wide kernels out
                             of use).
@@ -123,9 +125,14 @@
 
        gcc and clang: C99 and C++11, the strict warnings as errors, on
        x86-64 (SSE2), ARM64, 32-bit x86 with SSE2 math (x87 math changes
-       results: use -msse2 -mfpmath=sse) and Windows x64 through mingw-w64
-       (make cross-test runs each). MSVC: the header keeps every
-       compiler-specific word behind its own macros, with an _MSC_VER
+       results: use -msse2 -mfpmath=sse), Windows x64 through mingw-w64
+       (make cross-test runs each) and WebAssembly through emscripten
+       (make wasm-test, under node): built with -msimd128 -msse2, the SSE2
+       kernels are compiled to WebAssembly SIMD128 by emscripten's SSE2
+       headers and are the level chosen at compile time (HF_SIMD_WASM128;
+       no CPUID there); without -msse2 the scalar references run. MSVC:
+       the header keeps every compiler-specific word behind its own
+       macros, with an _MSC_VER
        branch: HF__INLINE is static __forceinline, HF__NOINLINE
        __declspec(noinline), HF__RESTRICT __restrict, HF__UNUSED and
        HF__PRINTF empty; SSE2 is used when _M_X64 is defined or
@@ -405,6 +412,8 @@ typedef enum hf_simd_level {
     HF_SIMD_SCALAR = 1, /* the scalar references */
     HF_SIMD_SSE2 = 2,   /* 4 lanes: SSE2, the x86-64 baseline, or NEON */
     HF_SIMD_NEON = 2,   /* on ARM64 (always there), the same level */
+    HF_SIMD_WASM128 = 2, /* on WebAssembly (emscripten -msimd128 -msse2):
+                            the SSE2 kernels in SIMD128, the same level */
     HF_SIMD_AVX2 = 3,   /* 8 lanes */
     HF_SIMD_AVX512 = 4  /* 16 lanes (AVX-512F and BW) */
 } hf_simd_level;
@@ -2316,13 +2325,17 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 #define HF__TARGET_AVX512
 #include <intrin.h>
 #else
+/* no CPUID: the level is what the compiler targets. On WebAssembly that
+   is SSE2 at most (emscripten's -msimd128 -msse2 translate it into
+   SIMD128; its wider x86 headers are not used) */
 #define HF__X86_DISPATCH 0
-#if HF__SSE && defined(__AVX2__)
+#if HF__SSE && defined(__AVX2__) && !defined(__wasm__)
 #define HF__AVX2 1
 #else
 #define HF__AVX2 0
 #endif
-#if HF__SSE && defined(__AVX512F__) && defined(__AVX512BW__)
+#if HF__SSE && defined(__AVX512F__) && defined(__AVX512BW__) &&                \
+    !defined(__wasm__)
 #define HF__AVX512 1
 #else
 #define HF__AVX512 0

@@ -1063,6 +1063,25 @@ static void test_version(void)
     CHECK(strcmp(buf, hf_version_string()) == 0);
 }
 
+/* The level a build runs where no CPUID is asked (WebAssembly): the one
+   the compiler targets. HF_TEST_SIMD_LEVEL, where a build defines it
+   (make wasm-test: HF_SIMD_WASM128), is the level it must resolve to, so
+   a build that lost its SIMD flags and compared the scalar references
+   with themselves fails here. */
+static void test_simd_level_of_the_target(void)
+{
+#if defined(__wasm__)
+    CHECK(!HF__X86_DISPATCH && !HF__AVX2 && !HF__AVX512 && !HF__NEON);
+    CHECK_EQ_INT(hf_simd_resolve(HF_SIMD_AUTO),
+                 HF__SSE ? HF_SIMD_WASM128 : HF_SIMD_SCALAR);
+#endif
+#ifdef HF_TEST_SIMD_LEVEL
+    CHECK_EQ_INT(hf_simd_resolve(HF_SIMD_AUTO), HF_TEST_SIMD_LEVEL);
+#endif
+    CHECK(hf_simd_resolve(HF_SIMD_AUTO) <= HF_SIMD_MAX ||
+          hf_simd_resolve(HF_SIMD_AUTO) == HF_SIMD_SCALAR);
+}
+
 /* ==== 2. random numbers =================================================== */
 
 static void test_rng_matches_pcg32_reference(void)
@@ -11551,6 +11570,7 @@ int main(void)
     /* 1. configuration, result codes, version */
     RUN(test_result_strings_distinct);
     RUN(test_version);
+    RUN(test_simd_level_of_the_target);
 
     /* 2. random numbers */
     RUN(test_rng_matches_pcg32_reference);
