@@ -8644,6 +8644,172 @@ HF__PRIVATE void hf__grid_read(const hf_grid *grid, size_t node,
     g[2] -= v[0] * ((2.0f * f[2] - 1.0f) * (sx * sy));
 }
 
+#if HF__SSE
+/* Corner c of four lanes' cells: their nodes' four floats, transposed to
+   weight and momentum x, y, z across the lanes. */
+HF__INLINE void hf__grid_corner_sse(const float *node, const size_t *at,
+                                    size_t off, __m128 q[4])
+{
+    q[0] = _mm_loadu_ps(node + 4u * (at[0] + off));
+    q[1] = _mm_loadu_ps(node + 4u * (at[1] + off));
+    q[2] = _mm_loadu_ps(node + 4u * (at[2] + off));
+    q[3] = _mm_loadu_ps(node + 4u * (at[3] + off));
+    _MM_TRANSPOSE4_PS(q[0], q[1], q[2], q[3]);
+}
+
+/* One axis of four points (hf__grid_axis): the fraction, the cell in
+   k[0..3], and the lanes inside the cube. */
+HF__INLINE __m128 hf__grid_axis_sse(__m128 c, float o, float inv, int n,
+                                    int k[4], __m128 *f)
+{
+    const __m128 q = _mm_mul_ps(_mm_sub_ps(c, _mm_set1_ps(o)),
+                                _mm_set1_ps(inv));
+    const __m128i ki = _mm_cvttps_epi32(q);
+    _mm_storeu_si128((__m128i *)(void *)k, ki);
+    *f = _mm_sub_ps(q, _mm_cvtepi32_ps(ki));
+    return _mm_and_ps(_mm_cmpge_ps(q, _mm_setzero_ps()),
+                      _mm_cmplt_ps(q, _mm_set1_ps((float)(n - 1))));
+}
+
+/* hf_ropes_apply_grid at point row j for ropes r .. r + 3 (the lanes of
+   `act` simulated), group j .. last - 1: the scalar code's operations
+   lane by lane (hf__grid_read, the cap, the friction), so its bytes. */
+HF__PRIVATE void hf__grid_apply_sse(hf_ropes *ro, const hf_grid *grid,
+                                    const float *sl, int j, int last, int r,
+                                    int act, float inv, float push,
+                                    float fric, float ref, float h)
+{
+    const size_t R = (size_t)ro->rope_count, i = (size_t)j * R + (size_t)r;
+    const int n = grid->resolution;
+    const size_t n2 = (size_t)n * (size_t)n;
+    const __m128 one = _mm_set1_ps(1.0f), two = _mm_set1_ps(2.0f);
+    const __m128 x = _mm_loadu_ps(ro->x + i), y = _mm_loadu_ps(ro->y + i);
+    const __m128 z = _mm_loadu_ps(ro->z + i);
+    const __m128 lh = _mm_loadu_ps(ro->last_h + r);
+    __m128 f[3], in, w[3], v[4], a[4], g[3], q[8][4], hv, hl, lhm;
+    __m128 wx0, wy0, wz0, wyz[4], wxz[4], wxy[4], sx, sy, sz, ms, gn, gs;
+    __m128 dv[3];
+    int kx[4], ky[4], kz[4], l, c, mask, p;
+    size_t at[4];
+    in = _mm_and_ps(hf__grid_axis_sse(z, sl[2], inv, n, kz, &f[2]),
+                    _mm_and_ps(hf__grid_axis_sse(x, sl[0], inv, n, kx, &f[0]),
+                               hf__grid_axis_sse(y, sl[1], inv, n, ky, &f[1])));
+    mask = _mm_movemask_ps(in) & act;
+    if (!mask) return;
+    for (l = 0; l < 4; ++l) /* lanes out of the cube read node 0 */
+        at[l] = mask >> l & 1 ? ((size_t)kz[l] * (size_t)n + (size_t)ky[l]) *
+                                        (size_t)n + (size_t)kx[l]
+                              : 0u;
+    /* hf__grid_hv and the step's sub-step */
+    lhm = _mm_cmpgt_ps(lh, _mm_setzero_ps());
+    hv = hf__sel_sse(
+        lhm, _mm_div_ps(one, _mm_max_ps(lh, _mm_set1_ps(1e-6f))),
+        _mm_setzero_ps());
+    hl = hf__sel_sse(lhm, lh, _mm_set1_ps(h));
+    v[0] = _mm_set1_ps((float)(last - j));
+    v[1] = _mm_sub_ps(x, _mm_loadu_ps(ro->px + i));
+    v[2] = _mm_sub_ps(y, _mm_loadu_ps(ro->py + i));
+    v[3] = _mm_sub_ps(z, _mm_loadu_ps(ro->pz + i));
+    for (p = 1; p < 4; ++p) v[p] = _mm_mul_ps(v[0], _mm_mul_ps(v[p], hv));
+    for (c = 0; c < 8; ++c)
+        hf__grid_corner_sse(grid->node, at,
+                            (size_t)(c >> 2) * n2 +
+                                (size_t)((c >> 1) & 1) * (size_t)n +
+                                (size_t)(c & 1),
+                            q[c]);
+    wx0 = _mm_sub_ps(one, f[0]);
+    wy0 = _mm_sub_ps(one, f[1]);
+    wz0 = _mm_sub_ps(one, f[2]);
+    wyz[0] = _mm_mul_ps(wy0, wz0);
+    wyz[1] = _mm_mul_ps(f[1], wz0);
+    wyz[2] = _mm_mul_ps(wy0, f[2]);
+    wyz[3] = _mm_mul_ps(f[1], f[2]);
+    wxz[0] = _mm_mul_ps(wx0, wz0);
+    wxz[1] = _mm_mul_ps(f[0], wz0);
+    wxz[2] = _mm_mul_ps(wx0, f[2]);
+    wxz[3] = _mm_mul_ps(f[0], f[2]);
+    wxy[0] = _mm_mul_ps(wx0, wy0);
+    wxy[1] = _mm_mul_ps(f[0], wy0);
+    wxy[2] = _mm_mul_ps(wx0, f[1]);
+    wxy[3] = _mm_mul_ps(f[0], f[1]);
+    for (p = 0; p < 4; ++p) a[p] = _mm_setzero_ps();
+    for (c = 0; c < 4; ++c) {
+        w[0] = _mm_mul_ps(wx0, wyz[c]);
+        w[1] = _mm_mul_ps(f[0], wyz[c]);
+        for (p = 0; p < 4; ++p)
+            a[p] = _mm_add_ps(a[p], _mm_mul_ps(w[0], q[2 * c][p]));
+        for (p = 0; p < 4; ++p)
+            a[p] = _mm_add_ps(a[p], _mm_mul_ps(w[1], q[2 * c + 1][p]));
+    }
+#define HF__GRID_D(e, hi, lo) _mm_mul_ps(e, _mm_sub_ps(q[hi][0], q[lo][0]))
+    g[0] = _mm_add_ps(_mm_add_ps(_mm_add_ps(HF__GRID_D(wyz[0], 1, 0),
+                                            HF__GRID_D(wyz[1], 3, 2)),
+                                 HF__GRID_D(wyz[2], 5, 4)),
+                      HF__GRID_D(wyz[3], 7, 6));
+    g[1] = _mm_add_ps(_mm_add_ps(_mm_add_ps(HF__GRID_D(wxz[0], 2, 0),
+                                            HF__GRID_D(wxz[1], 3, 1)),
+                                 HF__GRID_D(wxz[2], 6, 4)),
+                      HF__GRID_D(wxz[3], 7, 5));
+    g[2] = _mm_add_ps(_mm_add_ps(_mm_add_ps(HF__GRID_D(wxy[0], 4, 0),
+                                            HF__GRID_D(wxy[1], 5, 1)),
+                                 HF__GRID_D(wxy[2], 6, 2)),
+                      HF__GRID_D(wxy[3], 7, 3));
+#undef HF__GRID_D
+    sx = _mm_add_ps(_mm_mul_ps(wx0, wx0), _mm_mul_ps(f[0], f[0]));
+    sy = _mm_add_ps(_mm_mul_ps(wy0, wy0), _mm_mul_ps(f[1], f[1]));
+    sz = _mm_add_ps(_mm_mul_ps(wz0, wz0), _mm_mul_ps(f[2], f[2]));
+    ms = _mm_mul_ps(sx, _mm_mul_ps(sy, sz));
+    for (p = 0; p < 4; ++p) a[p] = _mm_sub_ps(a[p], _mm_mul_ps(ms, v[p]));
+    w[0] = _mm_mul_ps(sy, sz);
+    w[1] = _mm_mul_ps(sx, sz);
+    w[2] = _mm_mul_ps(sx, sy);
+    for (p = 0; p < 3; ++p)
+        g[p] = _mm_sub_ps(
+            g[p], _mm_mul_ps(v[0], _mm_mul_ps(_mm_sub_ps(_mm_mul_ps(two, f[p]),
+                                                         one),
+                                              w[p])));
+    gn = _mm_add_ps(_mm_add_ps(_mm_mul_ps(g[0], g[0]), _mm_mul_ps(g[1], g[1])),
+                    _mm_mul_ps(g[2], g[2]));
+    gs = hf__sel_sse(_mm_cmpgt_ps(gn, _mm_set1_ps(ref * ref)),
+                     _mm_div_ps(_mm_set1_ps(ref), _mm_sqrt_ps(gn)), one);
+    for (p = 0; p < 3; ++p)
+        dv[p] = _mm_mul_ps(_mm_set1_ps(-push), _mm_mul_ps(g[p], gs));
+    if (fric > 0.0f) {
+        const __m128 fm = _mm_cmpgt_ps(a[0], _mm_set1_ps(1e-6f * ref));
+        const __m128 ia = _mm_div_ps(one, a[0]), iw = _mm_div_ps(one, v[0]);
+        const __m128 b = _mm_mul_ps(
+            _mm_set1_ps(fric),
+            hf__sel_sse(_mm_cmplt_ps(a[0], _mm_set1_ps(ref)),
+                        _mm_div_ps(a[0], _mm_set1_ps(ref)), one));
+        for (p = 0; p < 3; ++p)
+            dv[p] = hf__sel_sse(
+                fm,
+                _mm_add_ps(dv[p],
+                           _mm_mul_ps(b, _mm_sub_ps(_mm_mul_ps(a[p + 1], ia),
+                                                    _mm_mul_ps(v[p + 1], iw)))),
+                dv[p]);
+    }
+    {
+        const __m128 m = _mm_castsi128_ps(_mm_setr_epi32(
+            mask & 1 ? -1 : 0, mask & 2 ? -1 : 0, mask & 4 ? -1 : 0,
+            mask & 8 ? -1 : 0));
+        float *px = ro->px, *py = ro->py, *pz = ro->pz;
+        for (p = 0; p < 3; ++p) dv[p] = _mm_mul_ps(dv[p], hl);
+        for (c = j > 0 ? j : 1; c < last; ++c) {
+            float *o[3];
+            o[0] = px + (size_t)c * R + (size_t)r;
+            o[1] = py + (size_t)c * R + (size_t)r;
+            o[2] = pz + (size_t)c * R + (size_t)r;
+            for (p = 0; p < 3; ++p) {
+                const __m128 was = _mm_loadu_ps(o[p]);
+                _mm_storeu_ps(o[p],
+                              hf__sel_sse(m, _mm_sub_ps(was, dv[p]), was));
+            }
+        }
+    }
+}
+#endif
+
 HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
                                     float dt, const hf_rope_params *params,
                                     const hf_grid *grid)
@@ -8655,7 +8821,7 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
     double w = 0.0, w2 = 0.0;
     size_t R;
     float inv, ref, push, fric, gmag;
-    int n, r, j, s, k, P;
+    int n, r, j, s, k, P, level;
     if (!hf__ropes_ok(ropes) || !params || !grid || !grid->node)
         return HF_ERROR_NULL_POINTER;
     if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
@@ -8685,11 +8851,26 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
     P = ropes->points;
     inv = 1.0f / sl[3];
     k = (int)sl[4];
+    level = hf_simd_resolve(prm.simd);
+    (void)level; /* four lanes on SSE2 only, so far */
     /* point rows outermost, as the grid was built: neighbouring ropes
        read neighbouring nodes */
     for (j = 0; j < P; j += k) {
         const int last = j + k <= P ? j + k : P;
-        for (r = first; r < first + count; ++r) {
+        r = first;
+#if HF__SSE
+        if (level >= HF_SIMD_SSE2)
+            for (; r + 4 <= first + count; r += 4) {
+                const int act = (hf__rope_kind(ropes, r) == 0) |
+                                (hf__rope_kind(ropes, r + 1) == 0) << 1 |
+                                (hf__rope_kind(ropes, r + 2) == 0) << 2 |
+                                (hf__rope_kind(ropes, r + 3) == 0) << 3;
+                if (act)
+                    hf__grid_apply_sse(ropes, grid, sl, j, last, r, act, inv,
+                                       push, fric, ref, st.h);
+            }
+#endif
+        for (; r < first + count; ++r) {
             const size_t i = (size_t)j * R + (size_t)r;
             float f[3], v[4], a[4], g[3], dv[3], hl, hv, gn, gs;
             size_t node;

@@ -20,10 +20,28 @@ bad() { echo "grow_fur_check: FAIL: $*"; fail=1; }
 # --help: exit 0, one line per option, the map orientation
 "$BIN" --help >"$tmp/help" 2>&1; rc=$?
 [ $rc -eq 0 ] || bad "--help exited $rc"
-for opt in --mesh --density --estimator --strands --guides --tess-factor --collider --eye --out; do
+for opt in --mesh --density --estimator --strands --guides --tess-factor --collider --eye --out \
+           --stiffness --volume --friction --grid --rest-from-gravity; do
     grep -q -- "^  $opt " "$tmp/help" || bad "--help has no line for $opt"
 done
 grep -q "PNG top row = v 1" "$tmp/help" || bad "--help does not say which way maps are read"
+
+# hair-hair interaction and draping: bad strengths refused (exit 2, the
+# option named); long hair draped with the grid runs and says so
+for pair in "--volume -1" "--volume 101" "--friction 1.5" "--grid 3" "--grid 129" \
+            "--rest-from-gravity -1" "--stiffness 2"; do
+    set -- $pair
+    "$BIN" "$1" "$2" --frames 1 --out "$tmp/f.obj" >"$tmp/out" 2>&1; rc=$?
+    [ $rc -eq 2 ] || bad "$1 $2: exit $rc, expected 2"
+    grep -q -- "$1" "$tmp/out" || bad "$1 $2: no message naming it"
+done
+"$BIN" --strands 2000 --length-max 0.25 --rest-from-gravity 0.5 --frames 2 \
+    --out "$tmp/h.hair" >"$tmp/out" 2>&1 || bad "--rest-from-gravity 0.5: $(tail -n 2 "$tmp/out")"
+grep -q "rest from gravity: 0.5 s of draping" "$tmp/out" || bad "--rest-from-gravity: not reported"
+grep -q "grid [0-9.]* (32^3 nodes)" "$tmp/out" || bad "the grid's time not reported"
+"$BIN" --strands 2000 --volume 0 --friction 0 --frames 2 --out "$tmp/h.hair" \
+    >"$tmp/out" 2>&1 || bad "--volume 0 --friction 0 failed"
+grep -q "grid 0.000 (0^3 nodes)" "$tmp/out" || bad "--volume 0 --friction 0: a grid made"
 
 # bad values: exit 2 and a message naming the option and the value
 for v in 5x abc "" -3 0 2.5 1e99 k " 7"; do

@@ -40,7 +40,8 @@ if $V --help >"$O/help" 2>&1; then
     miss=""
     for o in --mesh --anim --grow-on --unit --density --length --color \
              --no-shadows --headless --frames --out --save-every --comb \
-             --hair-length --settle Keys; do
+             --hair-length --settle --rest-from-gravity --volume --friction \
+             --grid --stiffness Keys; do
         grep -q -- "$o" "$O/help" || miss="$miss $o"
     done
     # every key the viewer answers, with what it does
