@@ -575,6 +575,7 @@ static int hw_init(hw_app *a)
     desc.seed = (uint32_t)a->seed;
     desc.clump = 0.25f;
     desc.tess_factor = 25000.0f; /* about 2,000 guides on the head */
+    desc.grid_resolution = 32; /* hair-hair interaction, as gl_marschner */
     hw_rope_params(a);
     desc.rope_params = &a->rp;
     r = hf_fur_create(&desc, &a->fur, &diag);
@@ -776,6 +777,7 @@ static int hw_simulate(hw_app *a, double t, float dt)
     }
     a->drawn = a->info.drawn_strand_count;
     r = hf_fur_set_roots(a->fur, &a->skinned, 0, a->info.guide_count);
+    if (!r) r = hf_fur_build_grid(a->fur, 0, a->info.grid_resolution);
     if (!r)
         r = hf_fur_simulate(a->fur, 0, a->info.guide_count, dt, a->col,
                             HW_NCOL);
