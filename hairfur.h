@@ -8439,9 +8439,9 @@ HFDEF void hf_grid_destroy(hf_grid *grid)
    points were computed (the previous-frame rows) grown by each rope's
    length (and 1 % and 0.1 mm for rounding), its largest side over
    resolution - 1 cells; every k-th point of each rope stands for the k
-   from it (k points apart is at most a cell on the rope of longest
-   segments: finer than the grid sees nothing new). Every layer's call
-   computes the same floats. */
+   from it (k points apart is about a cell, to the nearest point, on the
+   rope of longest segments: the grid sees nothing finer). Every layer's
+   call computes the same floats. */
 HF__PRIVATE void hf__grid_cube(const hf_ropes *ro, int rc, int n,
                                float cube[5])
 {
@@ -8468,7 +8468,7 @@ HF__PRIVATE void hf__grid_cube(const hf_ropes *ro, int rc, int n,
     cube[3] = side / (float)(n - 1);
     if (!(cube[3] >= 1e-6f)) cube[3] = 1e-6f;
     k = longest > 0.0f ? cube[3] * (float)(ro->points - 1) / longest : 1.0f;
-    cube[4] = k >= 8.0f ? 8.0f : (k >= 1.0f ? (float)(int)k : 1.0f);
+    cube[4] = k >= 7.5f ? 8.0f : (k >= 1.0f ? (float)(int)(k + 0.5f) : 1.0f);
 }
 
 /* Grid coordinate of c along one axis: the cell k (0 .. n - 2) and the
@@ -8686,7 +8686,8 @@ HF__PRIVATE void hf__grid_apply_sse(hf_ropes *ro, const hf_grid *grid,
     const __m128 x = _mm_loadu_ps(ro->x + i), y = _mm_loadu_ps(ro->y + i);
     const __m128 z = _mm_loadu_ps(ro->z + i);
     const __m128 lh = _mm_loadu_ps(ro->last_h + r);
-    __m128 f[3], in, w[3], v[4], a[4], g[3], q[8][4], hv, hl, lhm;
+    __m128 f[3], in, w[3], v[4], a[4], g[3], m8[8], hv, hl, lhm;
+    __m128 a0, a1, a2, a3;
     __m128 wx0, wy0, wz0, wyz[4], wxz[4], wxy[4], sx, sy, sz, ms, gn, gs;
     __m128 dv[3];
     int kx[4], ky[4], kz[4], l, c, mask, p;
@@ -8711,12 +8712,6 @@ HF__PRIVATE void hf__grid_apply_sse(hf_ropes *ro, const hf_grid *grid,
     v[2] = _mm_sub_ps(y, _mm_loadu_ps(ro->py + i));
     v[3] = _mm_sub_ps(z, _mm_loadu_ps(ro->pz + i));
     for (p = 1; p < 4; ++p) v[p] = _mm_mul_ps(v[0], _mm_mul_ps(v[p], hv));
-    for (c = 0; c < 8; ++c)
-        hf__grid_corner_sse(grid->node, at,
-                            (size_t)(c >> 2) * n2 +
-                                (size_t)((c >> 1) & 1) * (size_t)n +
-                                (size_t)(c & 1),
-                            q[c]);
     wx0 = _mm_sub_ps(one, f[0]);
     wy0 = _mm_sub_ps(one, f[1]);
     wz0 = _mm_sub_ps(one, f[2]);
@@ -8732,16 +8727,27 @@ HF__PRIVATE void hf__grid_apply_sse(hf_ropes *ro, const hf_grid *grid,
     wxy[1] = _mm_mul_ps(f[0], wy0);
     wxy[2] = _mm_mul_ps(wx0, f[1]);
     wxy[3] = _mm_mul_ps(f[0], f[1]);
-    for (p = 0; p < 4; ++p) a[p] = _mm_setzero_ps();
-    for (c = 0; c < 4; ++c) {
-        w[0] = _mm_mul_ps(wx0, wyz[c]);
-        w[1] = _mm_mul_ps(f[0], wyz[c]);
-        for (p = 0; p < 4; ++p)
-            a[p] = _mm_add_ps(a[p], _mm_mul_ps(w[0], q[2 * c][p]));
-        for (p = 0; p < 4; ++p)
-            a[p] = _mm_add_ps(a[p], _mm_mul_ps(w[1], q[2 * c + 1][p]));
+    /* corner by corner, in the scalar order, the sums in registers */
+    a0 = a1 = a2 = a3 = _mm_setzero_ps();
+    for (c = 0; c < 8; ++c) {
+        __m128 t[4], wc;
+        hf__grid_corner_sse(grid->node, at,
+                            (size_t)(c >> 2) * n2 +
+                                (size_t)((c >> 1) & 1) * (size_t)n +
+                                (size_t)(c & 1),
+                            t);
+        wc = _mm_mul_ps(c & 1 ? f[0] : wx0, wyz[c >> 1]);
+        a0 = _mm_add_ps(a0, _mm_mul_ps(wc, t[0]));
+        a1 = _mm_add_ps(a1, _mm_mul_ps(wc, t[1]));
+        a2 = _mm_add_ps(a2, _mm_mul_ps(wc, t[2]));
+        a3 = _mm_add_ps(a3, _mm_mul_ps(wc, t[3]));
+        m8[c] = t[0];
     }
-#define HF__GRID_D(e, hi, lo) _mm_mul_ps(e, _mm_sub_ps(q[hi][0], q[lo][0]))
+    a[0] = a0;
+    a[1] = a1;
+    a[2] = a2;
+    a[3] = a3;
+#define HF__GRID_D(e, hi, lo) _mm_mul_ps(e, _mm_sub_ps(m8[hi], m8[lo]))
     g[0] = _mm_add_ps(_mm_add_ps(_mm_add_ps(HF__GRID_D(wyz[0], 1, 0),
                                             HF__GRID_D(wyz[1], 3, 2)),
                                  HF__GRID_D(wyz[2], 5, 4)),
@@ -8770,13 +8776,17 @@ HF__PRIVATE void hf__grid_apply_sse(hf_ropes *ro, const hf_grid *grid,
                                               w[p])));
     gn = _mm_add_ps(_mm_add_ps(_mm_mul_ps(g[0], g[0]), _mm_mul_ps(g[1], g[1])),
                     _mm_mul_ps(g[2], g[2]));
-    gs = hf__sel_sse(_mm_cmpgt_ps(gn, _mm_set1_ps(ref * ref)),
-                     _mm_div_ps(_mm_set1_ps(ref), _mm_sqrt_ps(gn)), one);
+    gs = _mm_cmpgt_ps(gn, _mm_set1_ps(ref * ref));
+    gs = _mm_movemask_ps(gs) ? hf__sel_sse(gs, _mm_div_ps(_mm_set1_ps(ref),
+                                                          _mm_sqrt_ps(gn)),
+                                           one)
+                             : one; /* no lane capped: skip the root */
     for (p = 0; p < 3; ++p)
         dv[p] = _mm_mul_ps(_mm_set1_ps(-push), _mm_mul_ps(g[p], gs));
     if (fric > 0.0f) {
         const __m128 fm = _mm_cmpgt_ps(a[0], _mm_set1_ps(1e-6f * ref));
-        const __m128 ia = _mm_div_ps(one, a[0]), iw = _mm_div_ps(one, v[0]);
+        const __m128 ia = _mm_div_ps(one, a[0]);
+        const __m128 iw = _mm_set1_ps(1.0f / (float)(last - j)); /* v[0] */
         const __m128 b = _mm_mul_ps(
             _mm_set1_ps(fric),
             hf__sel_sse(_mm_cmplt_ps(a[0], _mm_set1_ps(ref)),
