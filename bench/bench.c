@@ -55,7 +55,8 @@
    (bench_character), and three targets of its own; then hair-hair
    interaction on V (bench_hair_grid): the grid, and what it adds to the
    ropes, with its target.
-   Usage: bench [--frames N] [--scene S|M|L|Mc|V] [--scaling] */
+   --scene Vg: the hair-hair stage alone.
+   Usage: bench [--frames N] [--scene S|M|L|Mc|V|Vg] [--scaling] */
 #define _POSIX_C_SOURCE 200809L
 #define HAIRFUR_IMPLEMENTATION
 #include "../hairfur.h"
@@ -1197,7 +1198,7 @@ int main(int argc, char **argv)
         else if (i + 1 < argc && !strcmp(argv[i], "--scene") &&
                  (!strcmp(argv[i + 1], "S") || !strcmp(argv[i + 1], "M") ||
                   !strcmp(argv[i + 1], "L") || !strcmp(argv[i + 1], "Mc") ||
-                  !strcmp(argv[i + 1], "V")))
+                  !strcmp(argv[i + 1], "V") || !strcmp(argv[i + 1], "Vg")))
             only = argv[++i];
         else {
             int help = !strcmp(argv[i], "--help") || !strcmp(argv[i], "-h");
@@ -1207,7 +1208,7 @@ int main(int argc, char **argv)
                         i + 1 < argc ? "unknown option or value"
                                      : "unknown option or missing value");
             fprintf(help ? stdout : stderr,
-                    "usage: bench [--frames N] [--scene S|M|L|Mc|V] "
+                    "usage: bench [--frames N] [--scene S|M|L|Mc|V|Vg] "
                     "[--scaling]\n"
                     "  --frames N   frames measured after a 10-frame "
                     "warm-up (default 30, at least 3)\n"
@@ -1262,10 +1263,9 @@ int main(int argc, char **argv)
         bench_lod_guides(&lodsc, frames);
         hf_fur_destroy(lodsc.fur);
     }
-    if (!only || !strcmp(only, "V")) {
-        bench_character(frames);
+    if (!only || !strcmp(only, "V")) bench_character(frames);
+    if (!only || !strcmp(only, "V") || !strcmp(only, "Vg"))
         bench_hair_grid(frames);
-    }
     bench_lut(9);
     print_targets(!only || !strcmp(only, "L") ? frame_ms[2] : NULL);
 
