@@ -9970,6 +9970,41 @@ static int t_distinct_tips(const hf_fur_info *info)
 /* clump_size: with clump 1 every tip lands on its leader's, so there are
    as many distinct tips as leaders: few for large clumps, more for small
    ones; leaders are clump_size apart. Ranges give the same bytes. */
+/* hf_fur_settle_rest on a groom (with a grid): its guides drape, their
+   lengths kept. */
+static void test_fur_groom_settle_rest(void)
+{
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    float st;
+    {
+        static float pts[TG_S * TG_P * 3];
+        static int npts[TG_S];
+        hf_groom_desc gd;
+        double drop[2] = {0.0, 0.0};
+        int s2, pass;
+        t_groom_desc(&gd, pts, npts);
+        gd.grid_resolution = 8;
+        f = NULL;
+        CHECK_EQ_INT(hf_fur_create_groom(&gd, &f, NULL), HF_OK);
+        if (!f) return;
+        for (pass = 0; pass < 2; ++pass) {
+            hf_fur_get_info(f, &info);
+            CHECK_EQ_INT(info.grid_resolution, 8);
+            for (s2 = 0; s2 < info.guide_count; ++s2) {
+                const float *g = info.guide_points + (size_t)s2 * TG_P * 3;
+                drop[pass] += g[3 * (TG_P - 1) + 1] - g[1];
+            }
+            if (pass == 0)
+                CHECK_EQ_INT(hf_fur_settle_rest(f, 1.0f, NULL, 0), HF_OK);
+        }
+        CHECK(drop[1] < drop[0] - 0.01 * info.guide_count);
+        hf_fur_max_stretch(f, &st);
+        CHECK(st <= 1e-4f);
+        hf_fur_destroy(f);
+    }
+}
+
 /* Clump leaders against a brute-force search (the library's own fields:
    this file builds the implementation): in strand order, a strand with
    no earlier leader within its radius leads, every other one follows
@@ -11754,6 +11789,7 @@ int main(void)
     RUN(test_fur_points_aligned);
     RUN(test_fur_ranges_byte_identical);
     RUN(test_fur_settle_rest);
+    RUN(test_fur_groom_settle_rest);
     RUN(test_fur_interpolate_points);
     RUN(test_interp_points_kernels);
     RUN(test_fur_lod_prefix_and_width);
