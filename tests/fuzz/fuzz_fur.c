@@ -125,13 +125,19 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     desc.clump = fz_chance(&r, 220) ? fz_float_in(&r, 0.0f, 1.0f)
                                     : fz_float(&r, 2.0f);
     desc.lod_simulate_threshold = fz_float_in(&r, 0.0f, 1.0f);
+    /* hair-hair interaction: mostly none, some grids, some bad sizes */
+    desc.grid_resolution = fz_chance(&r, 160) ? 0
+                           : fz_chance(&r, 200) ? fz_int(&r, 4, 12)
+                                                : fz_int(&r, -5, 200);
     memset(&rope, 0, sizeof rope);
     if (fz_chance(&r, 128)) {
         rope.gravity[1] = fz_float(&r, 30.0f);
         rope.damping = fz_float_in(&r, 0.0f, 1.0f);
         rope.collision_margin = fz_float_in(&r, 0.0f, 0.01f);
         rope.local_stiffness_root = fz_float_in(&r, 0.0f, 1.0f);
-        rope.explicit_zero = fz_int(&r, 0, 63) & ~HF_ROPE_ZERO_ITERATIONS;
+        rope.volume = fz_float(&r, 3.0f);
+        rope.friction = fz_float(&r, 1.0f);
+        rope.explicit_zero = fz_int(&r, 0, 255) & ~HF_ROPE_ZERO_ITERATIONS;
         desc.rope_params = &rope;
     }
     alloc = fz_counting(&counter, fz_chance(&r, 16) ? fz_int(&r, 0, 40) : -1,
@@ -200,6 +206,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             /* every stage over the whole range, and once a fuzz range */
             rs = hf_fur_set_roots(fur, &sk, 0, info.guide_count);
             FZ_REQUIRE(fz_known_result(rs));
+            FZ_REQUIRE(hf_fur_build_grid(fur, 0, info.grid_resolution) == HF_OK);
+            if (frame == 1 && fz_chance(&r, 64)) { /* drape, briefly */
+                float sec = fz_chance(&r, 200) ? fz_float_in(&r, 0.0f, 0.1f)
+                                               : fz_float(&r, 1000.0f);
+                if (sec > 0.1f && sec <= 600.0f) sec = 0.1f; /* quick */
+                rs = hf_fur_settle_rest(fur, sec, nc ? col : NULL, nc);
+                FZ_REQUIRE(fz_known_result(rs));
+                FZ_REQUIRE(fz_all_finite(info.guide_points,
+                                         3u * (size_t)info.guide_count *
+                                             (size_t)info.points_per_strand));
+            }
             rs = hf_fur_simulate(fur, 0, info.guide_count, dt, nc ? col : NULL, nc);
             FZ_REQUIRE(fz_known_result(rs));
             if (rs == HF_OK && dt > 0.0f && info.lod_guides_simulated &&
