@@ -2187,7 +2187,8 @@ HFDEF hf_result hf_fur_set_mode(hf_fur *fur, int first, int count, int mode);
    (nontemporal: 0 by size, 1 streaming, 2 ordinary, as
    hf_fur_desc.nontemporal). Every choice gives the same bytes; for tests,
    benchmarks and tuning. Ribbons and points take theirs from
-   hf_ribbon_params. Errors: HF_ERROR_NULL_POINTER, HF_ERROR_BAD_PARAMETER
+   hf_ribbon_params; hf_fur_interpolate_points runs at the lower of the
+   two levels. Errors: HF_ERROR_NULL_POINTER, HF_ERROR_BAD_PARAMETER
    (not an hf_simd_level, or nontemporal not 0, 1 or 2). */
 HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 
