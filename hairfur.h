@@ -8556,8 +8556,11 @@ HFDEF hf_result hf_grid_build(hf_grid *grid, const hf_ropes *ropes,
             float f[3], v[4], hv, wy[2], wz[2];
             size_t node;
             int kz, dz;
-            if (!hf__grid_locate(ropes, i, cube, inv, n, &node, &kz, f) ||
-                kz + 1 < first || kz >= end)
+            /* the layer first: a call for some layers skips the rest
+               of the points at once */
+            if (!hf__grid_axis(ropes->z[i], cube[2], inv, n, &kz, &f[2]) ||
+                kz + 1 < first || kz >= end ||
+                !hf__grid_locate(ropes, i, cube, inv, n, &node, &kz, f))
                 continue;
             hv = hf__grid_hv(ropes->last_h[r]);
             hf__grid_velocity(ropes, i, hv, weight, v);
