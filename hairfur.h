@@ -1796,8 +1796,8 @@ HFDEF hf_result hf_lut_validate(const hf_lut_params *p, hf_diag *diag);
    A density that would exceed FLT_MAX (only for beta_r_deg below about
    1e-37) is stored as FLT_MAX. With model HF_LUT_ENERGY: the M texture of
    that fibre (RGBA = M_R, M_TT, M_TRT, M_p>=3, each texel the mean over
-   its cell of sin(theta_r)), not symmetric; it costs about ten times the
-   paper's M. */
+   its cell of sin(theta_r)), not symmetric; it costs 30 to 50 times the
+   paper's M (about 0.1 s at 256: a Bessel function per quadrature node). */
 HFDEF hf_result hf_lut_bake_m(const hf_lut_params *p, int first_row,
                               int row_count, float *out);
 
@@ -1910,8 +1910,9 @@ HFDEF hf_result hf_lut_furnace(const hf_lut_params *p, const float *m,
    sigma_a and variant come from the table and p (p->sigma_a, sigma_a_rgb
    and model are not used). Writes rows [first_row, first_row + row_count)
    of all three planes into out, 12 * n * n floats; other rows are not
-   touched; the bytes do not depend on the split. Cost: about n^2 * 300
-   exponentials (0.15 s at 256; 64 is plenty for a shader). Errors
+   touched; the bytes do not depend on the split. Cost: about n^2 * 200
+   exponentials (0.1 s at 256, 8 ms at 64, which is plenty for a shader).
+   Errors
    (nothing written): as hf_lut_bake_m. */
 #define HF_LUT_DUAL_PLANES 3 /* RGBA planes hf_lut_bake_dual writes */
 #define HF_LUT_DUAL_DB 0.7   /* Zinke's backward density factor d_b */
