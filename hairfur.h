@@ -1875,7 +1875,7 @@ HFDEF hf_result hf_lut_eval_n(const hf_lut_params *p, double cos_theta_d,
    clamp-to-edge reads it (in double). Midpoint rule over sin(theta_r) in
    (-1, 1) and phi in (0, pi) (S is even in phi), max(1024, 4 size) steps
    each. An energy-conserving fibre that absorbs nothing gives 1 (within
-   about 1e-3 at size 64 or more); the paper's gives 1.90 at theta_i = 0.
+   2e-4 at size 256, 1.1e-3 at 64); the paper's gives 1.90 at theta_i = 0.
    Cost: HF_LUT_ENERGY about 8 size texture reads; HF_LUT_MARSCHNER
    (max(1024, 4 size))^2 (0.02 s at 256). Errors (albedo untouched): as
    hf_lut_validate, HF_ERROR_NULL_POINTER (m, n or albedo),
@@ -1907,13 +1907,13 @@ HFDEF hf_result hf_lut_furnace(const hf_lut_params *p, const float *m,
    lobes' share of a_f or a_b as weights (beta as a root mean square);
    A_b, delta_b, sigma_b: Zinke's eqs. 14, 16 and 17, with d_b =
    HF_LUT_DUAL_DB (docs/marschner-spec.md section 16 has every formula).
-   sigma_a and variant come from the table and p (p->sigma_a, sigma_a_rgb
-   and model are not used). Writes rows [first_row, first_row + row_count)
-   of all three planes into out, 12 * n * n floats; other rows are not
-   touched; the bytes do not depend on the split. Cost: about n^2 * 200
-   exponentials (0.1 s at 256, 8 ms at 64, which is plenty for a shader).
-   Errors
-   (nothing written): as hf_lut_bake_m. */
+   p->sigma_a, sigma_a_rgb and model are not used (the absorption is the
+   table's column); eta, alpha_r_deg, beta_r_deg, variant and size are.
+   Writes rows [first_row, first_row + row_count) of all three planes into
+   out, 12 * n * n floats; other rows are not touched; the bytes do not
+   depend on the split. Cost: about n^2 * 200 exponentials (0.1 s at 256,
+   8 ms at 64, which is plenty for a shader). Errors (nothing written): as
+   hf_lut_bake_m. */
 #define HF_LUT_DUAL_PLANES 3 /* RGBA planes hf_lut_bake_dual writes */
 #define HF_LUT_DUAL_DB 0.7   /* Zinke's backward density factor d_b */
 HFDEF hf_result hf_lut_bake_dual(const hf_lut_params *p, int first_row,
