@@ -76,7 +76,8 @@
        Shading: the Marschner lookup textures (section 9):
            hf_lut_params_init, hf_lut_validate, hf_lut_bake_m,
            hf_lut_bake_n, hf_lut_bake_n_rgb, hf_lut_to_u8, hf_lut_eval_m,
-           hf_lut_eval_n
+           hf_lut_eval_n, hf_lut_furnace (white furnace of baked
+           textures), hf_lut_bake_dual (dual scattering tables)
        Inputs (sections 3, 4): hf_map_validate, hf_map_sample,
            hf_map_sample_fast, hf_map_blur, hf_mesh_validate,
            hf_mesh_compute_normals, hf_triangle_area
@@ -1722,7 +1723,37 @@ HFDEF hf_result hf_ribbon_indices16(int strand_count, int points_per_strand,
    the bytes do not depend on how the rows are split. They allocate
    nothing. Cost: about n^2 texels at a few dozen transcendental calls each
    (docs/luts.md has timings); per call there is also O(n) setup, so pass
-   large row ranges rather than one row at a time. */
+   large row ranges rather than one row at a time.
+
+   Two fibres (hf_lut_params.model). HF_LUT_MARSCHNER, the default, is the
+   paper's model above, byte for byte as before. HF_LUT_ENERGY is an
+   energy-conserving fibre: a longitudinal function normalised for every
+   incident direction (d'Eon et al. 2011, the Bessel-function lobe, with
+   the paper's shifts and widths), the azimuthal terms computed from the
+   incident inclination theta_i (as Chiang et al. 2016 and pbrt do), and
+   the light of every longer path (p >= 3: TRRT, ...) as a fourth lobe.
+   A fibre that absorbs nothing scatters exactly the light it receives;
+   hf_lut_furnace integrates baked textures to show it. Its textures:
+
+     M (n x n RGBA float), indexed as above: R, G, B, A = M_R, M_TT,
+       M_TRT, M_p>=3, densities per unit of sin(theta_r);
+     N (n x n RGBA float), indexed by u = cos(theta_i) * 0.5 + 0.5,
+       v = cos(phi) * 0.5 + 0.5: R, G, B, A = N_R, N_TT, N_TRT, N_p>=3;
+     S = dot(M, N) / max(cos(theta_r), 1e-2).
+
+   Along v each texel of these two holds the mean of its lobe over the
+   texel's cell (not the value at its centre), so the baked tables carry
+   the fibre's energy exactly at any size: the TRT caustic becomes a
+   finite bump. hf_lut_bake_dual bakes Zinke et al.'s (2008) dual
+   scattering tables of the energy-conserving fibre. The exact formulas:
+   docs/marschner-spec.md sections 14 to 16. */
+
+/* Which fibre the textures describe. */
+typedef enum hf_lut_model {
+    HF_LUT_MARSCHNER = 0, /* the paper's model (default) */
+    HF_LUT_ENERGY = 1     /* energy-conserving: M normalised per direction,
+                             N from theta_i, a p >= 3 lobe */
+} hf_lut_model;
 
 /* How the azimuthal exit angle Phi(p, gamma) is computed. */
 typedef enum hf_lut_variant {
@@ -1759,18 +1790,21 @@ typedef struct hf_lut_params {
     int variant; /* hf_lut_variant: HF_LUT_CUBIC (0) or HF_LUT_EXACT */
     int size;             /* n, both textures n x n, 1 .. 4096 (256) */
     int explicit_zero;    /* hf_lut_zero bits (0) */
+    int model;            /* hf_lut_model: HF_LUT_MARSCHNER (0) or
+                             HF_LUT_ENERGY */
 } hf_lut_params;
 
 /* Fill `p` with the defaults above (what a zeroed struct means: eta 1.55,
    alpha_R -7.5, beta_R 7.5, sigma_a 0.2, sigma_a_rgb 0.2 each, cubic, size
-   256). NULL is ignored. */
+   256, the paper's model). NULL is ignored. */
 HFDEF void hf_lut_params_init(hf_lut_params *p);
 
 /* Check a parameter block. Returns HF_OK, or: HF_ERROR_NULL_POINTER (p is
    NULL), HF_ERROR_NON_FINITE (a float field is NaN or infinite),
    HF_ERROR_BAD_PARAMETER (eta outside [1.2, 3], beta_r_deg <= 0, sigma_a or
-   a sigma_a_rgb component < 0, unknown variant), HF_ERROR_BAD_COUNT (size
-   outside [1, HF_LUT_MAX_SIZE]). `diag` (may be NULL) names the field. */
+   a sigma_a_rgb component < 0, unknown variant or model),
+   HF_ERROR_BAD_COUNT (size outside [1, HF_LUT_MAX_SIZE]). `diag` (may be
+   NULL) names the field. */
 HFDEF hf_result hf_lut_validate(const hf_lut_params *p, hf_diag *diag);
 
 /* Bake rows [first_row, first_row + row_count) of the M texture into
@@ -1780,12 +1814,20 @@ HFDEF hf_result hf_lut_validate(const hf_lut_params *p, hf_diag *diag);
    out, HF_ERROR_BAD_RANGE for first_row < 0, row_count < 0 or
    first_row + row_count > size. M is symmetric: texel (i, j) == (j, i).
    A density that would exceed FLT_MAX (only for beta_r_deg below about
-   1e-37) is stored as FLT_MAX. */
+   1e-37) is stored as FLT_MAX. With model HF_LUT_ENERGY: the M texture of
+   that fibre (RGBA = M_R, M_TT, M_TRT, M_p>=3, each texel the mean over
+   its cell of sin(theta_r)), not symmetric; it costs 30 to 50 times the
+   paper's M (about 0.1 s at 256: a Bessel function per quadrature node). */
 HFDEF hf_result hf_lut_bake_m(const hf_lut_params *p, int first_row,
                               int row_count, float *out);
 
 /* The same for the N texture (R = N_R, G = N_TT, B = N_TRT, A = 1),
-   absorption sigma_a. Same buffer size, range rules and errors. */
+   absorption sigma_a. Same buffer size, range rules and errors. With
+   model HF_LUT_ENERGY: that fibre's N (u = cos(theta_i) * 0.5 + 0.5,
+   RGBA = N_R, N_TT, N_TRT, N_p>=3, each texel the mean over its cell of
+   cos(phi); absorption along the chord, 2 cos(gamma_t) / cos(theta_t)
+   fibre radii, so a sigma_a absorbs about half what it does in the
+   paper's model). */
 HFDEF hf_result hf_lut_bake_n(const hf_lut_params *p, int first_row,
                               int row_count, float *out);
 
@@ -1798,7 +1840,10 @@ HFDEF hf_result hf_lut_bake_n(const hf_lut_params *p, int first_row,
        S_rgb = (M.r * NTT.a + M.g * NTT.rgb + M.b * NTRT.rgb)
                / max(M.a * M.a, cos2Min).
    Both outputs are full textures of 4 * size * size floats each and must
-   not overlap. Errors as hf_lut_bake_n (either output NULL). */
+   not overlap. Errors as hf_lut_bake_n (either output NULL), and
+   HF_ERROR_BAD_PARAMETER for model HF_LUT_ENERGY, whose four lobes do not
+   fit two textures: bake its N once per channel (hf_lut_bake_n with
+   sigma_a set to each). */
 HFDEF hf_result hf_lut_bake_n_rgb(const hf_lut_params *p, int first_row,
                                   int row_count, float *out_tt_rgb,
                                   float *out_trt_rgb);
@@ -1830,11 +1875,69 @@ HFDEF hf_result hf_lut_to_u8(const float *rgba, int n,
    reference values and CPU renderers. Errors (out untouched): as
    hf_lut_validate except that size is not checked, HF_ERROR_NULL_POINTER
    for out, HF_ERROR_NON_FINITE / HF_ERROR_BAD_PARAMETER for an input that
-   is NaN, infinite or outside its range. */
+   is NaN, infinite or outside its range; HF_ERROR_BAD_PARAMETER for model
+   HF_LUT_ENERGY (the paper's model only). */
 HFDEF hf_result hf_lut_eval_m(const hf_lut_params *p, double theta_h,
                               double out[3]);
 HFDEF hf_result hf_lut_eval_n(const hf_lut_params *p, double cos_theta_d,
                               double phi, double out[3]);
+
+/* White furnace: the albedo of baked textures m and n (of p->size, baked
+   with p) as the shader combines them, for light at inclination theta_i
+   (radians, in [-pi/2, pi/2]):
+       albedo = integral over all outgoing directions of
+                S(theta_i, theta_r, phi) cos(theta_r) dw_r,
+       dw_r = cos(theta_r) dtheta_r dphi,
+   with S the model's shader combination (HF_LUT_MARSCHNER:
+   dot(M.rgb, N.rgb) / max(M.a^2, 1e-2), N read at (M.a, cos phi);
+   HF_LUT_ENERGY: dot(M, N) / max(cos theta_r, 1e-2), N read at
+   (cos theta_i, cos phi)) and every texture read as GL_LINEAR with
+   clamp-to-edge reads it (in double). Midpoint rule over sin(theta_r) in
+   (-1, 1) and phi in (0, pi) (S is even in phi), max(1024, 4 size) steps
+   each. An energy-conserving fibre that absorbs nothing gives 1 (within
+   2e-4 at size 256, 1.1e-3 at 64); the paper's gives 1.90 at theta_i = 0.
+   Cost: HF_LUT_ENERGY about 8 size texture reads; HF_LUT_MARSCHNER
+   (max(1024, 4 size))^2 (0.02 s at 256). Errors (albedo untouched): as
+   hf_lut_validate, HF_ERROR_NULL_POINTER (m, n or albedo),
+   HF_ERROR_NON_FINITE (theta_i or a texel), HF_ERROR_BAD_PARAMETER
+   (theta_i outside [-pi/2, pi/2]). */
+HFDEF hf_result hf_lut_furnace(const hf_lut_params *p, const float *m,
+                               const float *n, double theta_i,
+                               double *albedo);
+
+/* Dual scattering (Zinke, Yuksel, Weber and Keyser 2008): per absorption
+   and incident inclination, the averages of the energy-conserving fibre
+   (always HF_LUT_ENERGY: the paper's fibre scatters up to twice the light
+   it receives, and the series behind A_b need a_f < 1) that the
+   approximation needs. Three planes, each an n x n RGBA float texture
+   (n = p->size; plane k starts at out + 4 * n * n * k; float c of texel
+   (i, j) of plane k at out[4 * (n * n * k + j * n + i) + c]):
+
+     column i: absorption sigma_a = u / (1 - u), u = (i + 0.5) / n (the
+       shader reads u = sigma_a / (1 + sigma_a)); row j: incident
+       inclination, cos(theta_i) = (j + 0.5) / n (read v = cos(theta_i));
+     plane 0, forward:  a_f, alpha_f, beta_f, 1
+     plane 1, backward: a_b, alpha_b, beta_b, 1
+     plane 2, multiple back scattering: A_b, delta_b, sigma_b, 1
+
+   a_f (a_b): the fraction of the light arriving at theta_i that the fibre
+   scatters into the forward (backward) half of the azimuths, |phi| > pi/2
+   (< pi/2), over all theta_r; alpha and beta: the lobes' shifts and widths
+   (radians of theta_h, as the paper's alpha_R, beta_R) averaged with the
+   lobes' share of a_f or a_b as weights (beta as a root mean square);
+   A_b, delta_b, sigma_b: Zinke's eqs. 14, 16 and 17, with d_b =
+   HF_LUT_DUAL_DB (docs/marschner-spec.md section 16 has every formula).
+   p->sigma_a, sigma_a_rgb and model are not used (the absorption is the
+   table's column); eta, alpha_r_deg, beta_r_deg, variant and size are.
+   Writes rows [first_row, first_row + row_count) of all three planes into
+   out, 12 * n * n floats; other rows are not touched; the bytes do not
+   depend on the split. Cost: about n^2 * 200 exponentials (0.1 s at 256,
+   8 ms at 64, which is plenty for a shader). Errors (nothing written): as
+   hf_lut_bake_m. */
+#define HF_LUT_DUAL_PLANES 3 /* RGBA planes hf_lut_bake_dual writes */
+#define HF_LUT_DUAL_DB 0.7   /* Zinke's backward density factor d_b */
+HFDEF hf_result hf_lut_bake_dual(const hf_lut_params *p, int first_row,
+                                 int row_count, float *out);
 
 /* ======================================================================== */
 /* 10. The fur object                                                      */
@@ -13978,6 +14081,12 @@ HFDEF hf_result hf_ribbon_indices16(int strand_count, int points_per_strand,
 #define HF__LUT_FLT_MAX 3.40282346638528859812e+38
 #define HF__LUT_BLOCK 32 /* columns whose setup is computed together */
 
+/* The HF_LUT_ENERGY bakes, further down. */
+HF__PRIVATE void hf__lut_bake_m_energy(const hf_lut_params *p, int first_row,
+                                       int row_count, float *out);
+HF__PRIVATE void hf__lut_bake_n_energy(const hf_lut_params *p, int first_row,
+                                       int row_count, float *out);
+
 HFDEF void hf_lut_params_init(hf_lut_params *p)
 {
     hf_lut_params zero;
@@ -14043,6 +14152,11 @@ HF__PRIVATE hf_result hf__lut_check(const hf_lut_params *in, hf_lut_params *p,
                         "variant %d is neither HF_LUT_CUBIC nor "
                         "HF_LUT_EXACT",
                         p->variant);
+    if (p->model != HF_LUT_MARSCHNER && p->model != HF_LUT_ENERGY)
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "model", -1,
+                        "model %d is neither HF_LUT_MARSCHNER nor "
+                        "HF_LUT_ENERGY",
+                        p->model);
     if (check_size && (p->size < 1 || p->size > HF_LUT_MAX_SIZE))
         return hf__fail(diag, HF_ERROR_BAD_COUNT, "size", -1,
                         "size %d is outside [1, %d]", p->size,
@@ -14130,6 +14244,7 @@ HFDEF hf_result hf_lut_eval_m(const hf_lut_params *params, double theta_h,
     int k;
     hf_result r = hf__lut_check(params, &q, NULL, 0);
     if (r != HF_OK) return r;
+    if (p->model != HF_LUT_MARSCHNER) return HF_ERROR_BAD_PARAMETER;
     if (!out) return HF_ERROR_NULL_POINTER;
     if (!hf__lut_finite(theta_h)) return HF_ERROR_NON_FINITE;
     hf__lut_m_setup(p, &m);
@@ -14147,6 +14262,10 @@ HFDEF hf_result hf_lut_bake_m(const hf_lut_params *params, int first_row,
     int n, i0, i, j;
     hf_result r = hf__lut_check_bake(params, &q, first_row, row_count, out, out);
     if (r != HF_OK) return r;
+    if (p->model == HF_LUT_ENERGY) {
+        hf__lut_bake_m_energy(p, first_row, row_count, out);
+        return HF_OK;
+    }
     n = p->size;
     hf__lut_m_setup(p, &m);
     for (i0 = 0; i0 < n; i0 += HF__LUT_BLOCK) {
@@ -14454,6 +14573,7 @@ HFDEF hf_result hf_lut_eval_n(const hf_lut_params *params,
     const hf_lut_params *p = &q;
     hf_result r = hf__lut_check(params, &q, NULL, 0);
     if (r != HF_OK) return r;
+    if (p->model != HF_LUT_MARSCHNER) return HF_ERROR_BAD_PARAMETER;
     if (!out) return HF_ERROR_NULL_POINTER;
     if (!hf__lut_finite(cos_theta_d) || !hf__lut_finite(phi))
         return HF_ERROR_NON_FINITE;
@@ -14479,6 +14599,11 @@ HF__PRIVATE hf_result hf__lut_bake_n_any(const hf_lut_params *params,
     hf_result r = hf__lut_check_bake(params, &q, first_row, row_count, out,
                                      rgb ? out_trt : out);
     if (r != HF_OK) return r;
+    if (p->model == HF_LUT_ENERGY) {
+        if (rgb) return HF_ERROR_BAD_PARAMETER;
+        hf__lut_bake_n_energy(p, first_row, row_count, out);
+        return HF_OK;
+    }
     n = p->size;
     exact = p->variant == HF_LUT_EXACT;
     nsig = rgb ? 3 : 1;
@@ -14543,6 +14668,601 @@ HFDEF hf_result hf_lut_bake_n_rgb(const hf_lut_params *p, int first_row,
     if (!out_trt_rgb) return HF_ERROR_NULL_POINTER;
     return hf__lut_bake_n_any(p, first_row, row_count, out_tt_rgb,
                               out_trt_rgb);
+}
+
+/* ---- the energy-conserving fibre (HF_LUT_ENERGY) ------------------------ */
+/* docs/marschner-spec.md sections 14 and 15. Along the outgoing axis (v)
+   every texel holds its lobe's mean over the texel's cell, integrated by
+   5-point Gauss-Legendre on pieces that follow the lobe. */
+
+#define HF__LUT_COS_R_MIN 1e-2 /* the energy shader's guard on cos theta_r */
+#define HF__LUT_GL_STEP 0.0625 /* widest Gauss-Legendre piece in gamma */
+#define HF__LUT_NCHUNK 64      /* N cells whose roots are sorted together */
+#define HF__LUT_NBRK (2 * 3 * (HF__LUT_NCHUNK + 1) + 4)
+
+/* 5-point Gauss-Legendre nodes and weights on [-1, 1], in closed form. */
+HF__PRIVATE void hf__lut_gl5(double x[5], double w[5])
+{
+    double a = 2.0 * HF_SQRT(10.0 / 7.0), r = HF_SQRT(70.0);
+    x[0] = -HF_SQRT(5.0 + a) / 3.0;
+    x[1] = -HF_SQRT(5.0 - a) / 3.0;
+    x[2] = 0.0;
+    x[3] = -x[1];
+    x[4] = -x[0];
+    w[0] = w[4] = (322.0 - 13.0 * r) / 900.0;
+    w[1] = w[3] = (322.0 + 13.0 * r) / 900.0;
+    w[2] = 128.0 / 225.0;
+}
+
+/* exp(-x) I0(x), x >= 0: the power series below 20, the asymptotic series
+   from 20 on (its terms keep falling until k ~ 2x, far below 1e-17). */
+HF__PRIVATE double hf__lut_i0e(double x)
+{
+    double t = 1.0, s = 1.0;
+    int k;
+    if (x < 20.0) {
+        double q = 0.25 * x * x;
+        for (k = 1; k < 100 && t > 1e-17 * s; ++k) {
+            t *= q / ((double)k * (double)k);
+            s += t;
+        }
+        return s * HF_EXP(-x);
+    }
+    for (k = 1; k < 40 && t > 1e-17 * s; ++k) {
+        t *= (2.0 * k - 1.0) * (2.0 * k - 1.0) / (8.0 * k * x);
+        s += t;
+    }
+    return s / HF_SQRT(2.0 * HF__LUT_PI * x);
+}
+
+/* One longitudinal lobe of the energy-conserving fibre. */
+typedef struct hf__lut_lobe_e {
+    double v;     /* variance (2 beta_p)^2, radians^2 of theta_r */
+    double sd;    /* sqrt(v) */
+    double den;   /* v (1 - exp(-2 / v)) = 2 v sinh(1 / v) exp(-1 / v) */
+    double alpha; /* shift alpha_p (radians of theta_h) */
+} hf__lut_lobe_e;
+
+/* Shifts and widths (radians of theta_h) of R, TT, TRT and p >= 3. */
+HF__PRIVATE void hf__lut_lobes_ab(const hf_lut_params *p, double alpha[4],
+                                  double beta[4])
+{
+    const double d2r = HF__LUT_PI / 180.0;
+    double a = p->alpha_r_deg * d2r, b = p->beta_r_deg * d2r;
+    alpha[0] = a;
+    alpha[1] = -a / 2.0;
+    alpha[2] = -3.0 * a / 2.0;
+    alpha[3] = 0.0;
+    beta[0] = b;
+    beta[1] = b / 2.0;
+    beta[2] = 2.0 * b;
+    beta[3] = 2.0 * b;
+}
+
+HF__PRIVATE void hf__lut_lobes_e(const hf_lut_params *p, hf__lut_lobe_e L[4])
+{
+    double alpha[4], beta[4];
+    int k;
+    hf__lut_lobes_ab(p, alpha, beta);
+    for (k = 0; k < 4; ++k) {
+        double v = 4.0 * beta[k] * beta[k], x;
+        /* the same floats as the true variance beyond these ends, with
+           every step finite */
+        if (!(v >= 4e-300)) v = 4e-300;
+        if (v > 1e30) v = 1e30;
+        x = 2.0 / v;
+        L[k].v = v;
+        L[k].sd = HF_SQRT(v);
+        L[k].den = v * (x < 1e-4 ? x * (1.0 - x / 2.0 + x * x / 6.0)
+                                 : 1.0 - HF_EXP(-x));
+        L[k].alpha = alpha[k];
+    }
+}
+
+/* d'Eon's lobe, exp(-sin ti sin tr / v) I0(cos ti cos tr / v) /
+   (2 v sinh(1 / v)), for ti in [-pi/2, pi/2] (the shifted incident
+   inclination folded back: same sine, |cosine|): a density per unit of
+   sin(theta_r) over [-1, 1] for every ti. As written here nothing
+   overflows: exp(-sin ti sin tr / v) I0(a) exp(-1 / v) =
+   i0e(a) exp((cos(ti + tr) - 1) / v), a = cos ti cos tr / v, and
+   cos(ti + tr) - 1 = -2 sin^2((ti + tr) / 2) loses no digits. */
+HF__PRIVATE double hf__lut_deon(const hf__lut_lobe_e *L, double ti,
+                                double tr)
+{
+    double h = HF_SIN(0.5 * (ti + tr));
+    double a = HF_COS(ti) * HF_COS(tr) / L->v;
+    if (a < 0.0) a = 0.0;
+    return hf__lut_i0e(a) * HF_EXP(-2.0 * h * h / L->v) / L->den;
+}
+
+/* The mean of one lobe over theta_r in [t0, t1] (a cell of sin theta_r,
+   width ds): pieces no wider than half the lobe's width inside 12 widths
+   of its peak, nothing outside (below exp(-72) of the peak). */
+HF__PRIVATE double hf__lut_m_cell(const hf__lut_lobe_e *L, double ti,
+                                  double t0, double t1, double ds,
+                                  const double *gx, const double *gw)
+{
+    double lo = -ti - 12.0 * L->sd, hi = -ti + 12.0 * L->sd, sum = 0.0, len;
+    int m, k, q;
+    if (lo < t0) lo = t0;
+    if (hi > t1) hi = t1;
+    if (!(hi > lo)) return 0.0;
+    len = hi - lo;
+    m = len > 32.0 * L->sd ? 64 : (int)HF_CEIL(len / (0.5 * L->sd));
+    if (m < 1) m = 1;
+    for (k = 0; k < m; ++k) {
+        double a = lo + len * k / m, b = k + 1 == m ? hi : lo + len * (k + 1) / m;
+        double c = 0.5 * (a + b), hl = 0.5 * (b - a);
+        for (q = 0; q < 5; ++q) {
+            double tr = c + hl * gx[q];
+            sum += gw[q] * hl * hf__lut_deon(L, ti, tr) * HF_COS(tr);
+        }
+    }
+    return sum / ds;
+}
+
+/* M of HF_LUT_ENERGY: texel (i, j) = the mean of each lobe over sin(theta_r)
+   in [(2j - n) / n, (2j + 2 - n) / n], theta_i at the column's centre. */
+HF__PRIVATE void hf__lut_bake_m_energy(const hf_lut_params *p, int first_row,
+                                       int row_count, float *out)
+{
+    hf__lut_lobe_e L[4];
+    double ti[HF__LUT_BLOCK][4], gx[5], gw[5];
+    int n = p->size, i0, i, j, k;
+    hf__lut_lobes_e(p, L);
+    hf__lut_gl5(gx, gw);
+    for (i0 = 0; i0 < n; i0 += HF__LUT_BLOCK) {
+        int i1 = n - i0 < HF__LUT_BLOCK ? n : i0 + HF__LUT_BLOCK;
+        for (i = i0; i < i1; ++i) {
+            double t = HF_ASIN(hf__lut_axis(i, n));
+            /* light at theta_i - 2 alpha_p puts the lobe's peak at
+               theta_r = 2 alpha_p - theta_i, theta_h = alpha_p */
+            for (k = 0; k < 4; ++k)
+                ti[i - i0][k] = HF_ASIN(HF_SIN(t - 2.0 * L[k].alpha));
+        }
+        for (j = first_row; j < first_row + row_count; ++j) {
+            double t0 = HF_ASIN((double)(2 * j - n) / (double)n);
+            double t1 = HF_ASIN((double)(2 * j + 2 - n) / (double)n);
+            float *o = out + 4 * ((size_t)j * (size_t)n + (size_t)i0);
+            for (i = i0; i < i1; ++i, o += 4)
+                for (k = 0; k < 4; ++k)
+                    o[k] = hf__lut_f(hf__lut_m_cell(&L[k], ti[i - i0][k], t0,
+                                                    t1, 2.0 / n, gx, gw));
+        }
+    }
+}
+
+/* Attenuation of the energy-conserving fibre at offset h = sin(gamma):
+   one Fresnel factor F (section 6.4's F_ext) at every interface, the
+   absorption T = exp(-sig * e) along the chord, e = 2 cos(gamma_t) /
+   cos(theta_t). Returns F and e. */
+HF__PRIVATE double hf__lut_fresnel_e(const hf__lut_col *col, double g,
+                                     double *e)
+{
+    double h = HF_SIN(g), cg = HF_COS(g), st = h / col->eta1;
+    *e = 2.0 * HF_SQRT(1.0 - st * st) * col->inv_cos_tt;
+    return 0.5 * (hf__lut_rs(col->eta1, h / col->eta1, cg) +
+                  hf__lut_rp(col->eta2, h / col->eta2, cg));
+}
+
+/* A_p for p = 0, 1, 2 and the sum over p >= 3, given F and T. */
+HF__PRIVATE void hf__lut_atten_e(double F, double T, double A[4])
+{
+    double t = (1.0 - F) * (1.0 - F);
+    A[0] = F;
+    A[1] = t * T;
+    A[2] = A[1] * F * T;
+    A[3] = A[2] * F * T / (1.0 - F * T);
+}
+
+/* The R_p kink: gamma where |h| = eta'' (eta'' < 1), else pi/2. */
+HF__PRIVATE double hf__lut_kink(const hf__lut_col *col)
+{
+    return col->eta2 < 1.0 ? HF_ASIN(col->eta2) : HF__LUT_HALF_PI;
+}
+
+/* Nodes g and weights w (Gauss-Legendre weight times the piece's half
+   width, times cos(gamma): dh = cos(gamma) dgamma) for an integral over h
+   of gamma in [a, b] (0 <= a < b <= pi/2), in pieces no wider than
+   HF__LUT_GL_STEP. Where b is the kink (sqrt_b) R_p goes like
+   sqrt(b - gamma), so the pieces are in t = sqrt(b - gamma), where the
+   integrand is smooth. Returns the count, at most HF__LUT_MAX_NODES. */
+#define HF__LUT_MAX_NODES 130 /* 5 * ceil((pi / 2) / HF__LUT_GL_STEP) */
+HF__PRIVATE int hf__lut_nodes(double a, double b, int sqrt_b,
+                              const double *gx, const double *gw, double *g,
+                              double *w)
+{
+    double lo = sqrt_b ? 0.0 : a, hi = sqrt_b ? HF_SQRT(b - a) : b;
+    double len = hi - lo;
+    int m = (int)HF_CEIL(len / HF__LUT_GL_STEP), k, q, nn = 0;
+    if (m < 1) m = 1;
+    for (k = 0; k < m; ++k) {
+        double x0 = lo + len * k / m, x1 = k + 1 == m ? hi : lo + len * (k + 1) / m;
+        double c = 0.5 * (x0 + x1), hl = 0.5 * (x1 - x0);
+        for (q = 0; q < 5; ++q) {
+            double x = c + hl * gx[q], gg = sqrt_b ? b - x * x : x;
+            g[nn] = gg;
+            w[nn++] = gw[q] * hl * (sqrt_b ? 2.0 * x : 1.0) * HF_COS(gg);
+        }
+    }
+    return nn;
+}
+
+/* Energy of the p >= 3 lobe, 1/2 the integral of A_3 over h in [-1, 1]. */
+HF__PRIVATE double hf__lut_e3(const hf__lut_col *col, double sig,
+                              const double *gx, const double *gw)
+{
+    double ends[3], sum = 0.0, g[HF__LUT_MAX_NODES], w[HF__LUT_MAX_NODES];
+    int s, k, nn;
+    ends[0] = 0.0;
+    ends[1] = hf__lut_kink(col);
+    ends[2] = HF__LUT_HALF_PI;
+    for (s = 0; s < 2; ++s) {
+        if (!(ends[s + 1] > ends[s])) continue;
+        nn = hf__lut_nodes(ends[s], ends[s + 1], s == 0 && col->eta2 < 1.0,
+                           gx, gw, g, w);
+        for (k = 0; k < nn; ++k) {
+            double e, A[4], F = hf__lut_fresnel_e(col, g[k], &e);
+            hf__lut_atten_e(F, HF_EXP(-sig * e), A);
+            sum += w[k] * A[3];
+        }
+    }
+    return sum;
+}
+
+/* Exit azimuth: cos(Phi(p, gamma)) (cubic or exact). */
+HF__PRIVATE double hf__lut_cos_exit(const hf__lut_col *col, int p, int exact,
+                                    double g)
+{
+    double t = exact ? hf__lut_phi_exact(col->eta1, p, g)
+                     : (col->a[p] * g * g + col->b[p]) * g;
+    return (p & 1) ? -HF_COS(t) : HF_COS(t);
+}
+
+/* Roots gamma in (0, pi/2) of |Phi(p, gamma)| = phi_b (mod 2 pi), added
+   to brk. */
+HF__PRIVATE int hf__lut_exit_roots(const hf__lut_col *col, int p, int exact,
+                                   double phi_b, double *brk, int nb)
+{
+    int sg, r;
+    for (sg = -1; sg <= 1; sg += 2) {
+        double t = sg * phi_b - p * HF__LUT_PI, g[3];
+        int nr;
+        while (t >= HF__LUT_PI) t -= 2.0 * HF__LUT_PI;
+        while (t < -HF__LUT_PI) t += 2.0 * HF__LUT_PI;
+        nr = exact ? hf__lut_exact_roots(col, p, t, g)
+                   : hf__lut_cubic_roots(col->a[p], col->b[p], t, g);
+        for (r = 0; r < nr; ++r)
+            if (g[r] > 0.0 && g[r] < HF__LUT_HALF_PI) brk[nb++] = g[r];
+    }
+    return nb;
+}
+
+/* Ascending heap sort (no allocation, the same order every time). */
+HF__PRIVATE void hf__lut_sort(double *a, int n)
+{
+    int start, end;
+    for (start = n / 2 - 1, end = n; end > 1;) {
+        int root, child;
+        double t;
+        if (start >= 0) {
+            root = start--;
+        } else {
+            --end;
+            t = a[0];
+            a[0] = a[end];
+            a[end] = t;
+            root = 0;
+        }
+        while ((child = 2 * root + 1) < end) {
+            if (child + 1 < end && a[child + 1] > a[child]) ++child;
+            if (!(a[child] > a[root])) break;
+            t = a[root];
+            a[root] = a[child];
+            a[child] = t;
+            root = child;
+        }
+    }
+}
+
+/* cos(phi) at the edge b of the N cells: (2b - n) / n, -1 and 1 exactly. */
+HF__PRIVATE double hf__lut_cell_edge(int b, int n)
+{
+    return (double)(2 * b - n) / (double)n;
+}
+
+/* One column of N of HF_LUT_ENERGY, cells [j0, j1) (at most
+   HF__LUT_NCHUNK): e[4 (j - j0) + p] = the energy of lobe p leaving with
+   cos(phi) in cell j (both signs of phi), p = 0, 1, 2. Every interval of
+   gamma between consecutive roots of the cells' edges falls in one cell;
+   the intervals of cell j are bounded by the roots of its own two edges
+   (and the kink), so the sums do not depend on the chunking. */
+HF__PRIVATE void hf__lut_n_cells(const hf__lut_col *col, int exact, double sig,
+                                 int n, int j0, int j1, const double *gx,
+                                 const double *gw, double *e)
+{
+    double brk[HF__LUT_NBRK], g[HF__LUT_MAX_NODES], w[HF__LUT_MAX_NODES];
+    double kink = hf__lut_kink(col);
+    int p, b, k, nb;
+    for (k = 0; k < 4 * (j1 - j0); ++k) e[k] = 0.0;
+    for (p = 0; p < 3; ++p) {
+        nb = 0;
+        brk[nb++] = 0.0;
+        brk[nb++] = HF__LUT_HALF_PI;
+        if (col->eta2 < 1.0) brk[nb++] = kink;
+        for (b = j0; b <= j1; ++b) {
+            double c = hf__lut_cell_edge(b, n);
+            nb = hf__lut_exit_roots(col, p, exact, HF_ACOS(c), brk, nb);
+        }
+        hf__lut_sort(brk, nb);
+        for (k = 0; k + 1 < nb; ++k) {
+            double g0 = brk[k], g1 = brk[k + 1], sum = 0.0, cm;
+            int jc, nn, r;
+            if (!(g1 > g0)) continue;
+            cm = hf__lut_cos_exit(col, p, exact, 0.5 * (g0 + g1));
+            jc = (int)HF_FLOOR((cm + 1.0) * 0.5 * n);
+            if (jc > n - 1) jc = n - 1;
+            if (jc < j0 || jc >= j1) continue;
+            nn = hf__lut_nodes(g0, g1, col->eta2 < 1.0 && g1 == kink, gx, gw,
+                               g, w);
+            for (r = 0; r < nn; ++r) {
+                double ee, A[4], F = hf__lut_fresnel_e(col, g[r], &ee);
+                hf__lut_atten_e(F, p ? HF_EXP(-sig * ee) : 1.0, A);
+                sum += w[r] * A[p];
+            }
+            e[4 * (jc - j0) + p] += sum;
+        }
+    }
+}
+
+/* N of HF_LUT_ENERGY: columns by cos(theta_i) (the right half computed,
+   the left mirrored, as for N), each cell's mean over phi. */
+HF__PRIVATE void hf__lut_bake_n_energy(const hf_lut_params *p, int first_row,
+                                       int row_count, float *out)
+{
+    double gx[5], gw[5], e[4 * HF__LUT_NCHUNK];
+    int n = p->size, exact = p->variant == HF_LUT_EXACT, i, j0, j, k;
+    hf__lut_gl5(gx, gw);
+    for (i = n / 2; i < n; ++i) {
+        hf__lut_col col;
+        double n3;
+        hf__lut_col_setup(&col, p->eta, hf__lut_cd(hf__lut_axis(i, n)), exact);
+        n3 = hf__lut_e3(&col, p->sigma_a, gx, gw) / (2.0 * HF__LUT_PI);
+        for (j0 = first_row; j0 < first_row + row_count; j0 += HF__LUT_NCHUNK) {
+            int j1 = first_row + row_count - j0 < HF__LUT_NCHUNK
+                         ? first_row + row_count
+                         : j0 + HF__LUT_NCHUNK;
+            hf__lut_n_cells(&col, exact, p->sigma_a, n, j0, j1, gx, gw, e);
+            for (j = j0; j < j1; ++j) {
+                size_t row = (size_t)j * (size_t)n;
+                double dphi = HF_ACOS(hf__lut_cell_edge(j, n)) -
+                              HF_ACOS(hf__lut_cell_edge(j + 1, n));
+                float v[4];
+                for (k = 0; k < 3; ++k)
+                    v[k] = hf__lut_f(e[4 * (j - j0) + k] / (2.0 * dphi));
+                v[3] = hf__lut_f(n3);
+                HF_MEMCPY(out + 4 * (row + (size_t)i), v, sizeof v);
+                HF_MEMCPY(out + 4 * (row + (size_t)(n - 1 - i)), v, sizeof v);
+            }
+        }
+    }
+}
+
+/* ---- white furnace ------------------------------------------------------ */
+
+/* A texture read as GL_LINEAR with clamp-to-edge does it, in double. */
+HF__PRIVATE void hf__lut_tex(const float *t, int n, double u, double v,
+                             double o[4])
+{
+    double x = u * n - 0.5, y = v * n - 0.5, fx, fy;
+    double xf = HF_FLOOR(x), yf = HF_FLOOR(y);
+    int i0 = (int)xf, j0 = (int)yf, i1 = i0 + 1, j1 = j0 + 1, c;
+    const float *a, *b, *d, *e;
+    fx = x - xf;
+    fy = y - yf;
+    i0 = i0 < 0 ? 0 : (i0 > n - 1 ? n - 1 : i0);
+    i1 = i1 < 0 ? 0 : (i1 > n - 1 ? n - 1 : i1);
+    j0 = j0 < 0 ? 0 : (j0 > n - 1 ? n - 1 : j0);
+    j1 = j1 < 0 ? 0 : (j1 > n - 1 ? n - 1 : j1);
+    a = t + 4 * ((size_t)j0 * (size_t)n + (size_t)i0);
+    b = t + 4 * ((size_t)j0 * (size_t)n + (size_t)i1);
+    d = t + 4 * ((size_t)j1 * (size_t)n + (size_t)i0);
+    e = t + 4 * ((size_t)j1 * (size_t)n + (size_t)i1);
+    for (c = 0; c < 4; ++c)
+        o[c] = ((double)a[c] * (1.0 - fx) + (double)b[c] * fx) * (1.0 - fy) +
+               ((double)d[c] * (1.0 - fx) + (double)e[c] * fx) * fy;
+}
+
+HFDEF hf_result hf_lut_furnace(const hf_lut_params *params, const float *m,
+                               const float *nt, double theta_i,
+                               double *albedo)
+{
+    hf_lut_params q;
+    const hf_lut_params *p = &q;
+    double si, ci, sum = 0.0, ds, dp;
+    size_t i, count;
+    int n, K, a, b, c;
+    hf_result r = hf__lut_check(params, &q, NULL, 1);
+    if (r != HF_OK) return r;
+    if (!m || !nt || !albedo) return HF_ERROR_NULL_POINTER;
+    if (!hf__lut_finite(theta_i)) return HF_ERROR_NON_FINITE;
+    if (!(theta_i >= -HF__LUT_HALF_PI && theta_i <= HF__LUT_HALF_PI))
+        return HF_ERROR_BAD_PARAMETER;
+    n = p->size;
+    count = 4u * (size_t)n * (size_t)n;
+    for (i = 0; i < count; ++i)
+        if (!hf__finitef(m[i]) || !hf__finitef(nt[i]))
+            return HF_ERROR_NON_FINITE;
+    K = 4 * n > 1024 ? 4 * n : 1024;
+    ds = 2.0 / K;
+    dp = HF__LUT_PI / K;
+    si = HF_SIN(theta_i);
+    ci = HF_COS(theta_i);
+    if (p->model == HF_LUT_ENERGY) {
+        /* N does not depend on theta_r, M not on phi: two sums */
+        double ms[4] = {0, 0, 0, 0}, ns[4] = {0, 0, 0, 0}, o[4];
+        for (a = 0; a < K; ++a) {
+            double s = -1.0 + (a + 0.5) * ds, cr = HF_SQRT(1.0 - s * s);
+            double w = ds * cr / (cr > HF__LUT_COS_R_MIN ? cr : HF__LUT_COS_R_MIN);
+            hf__lut_tex(m, n, si * 0.5 + 0.5, s * 0.5 + 0.5, o);
+            for (c = 0; c < 4; ++c) ms[c] += w * o[c];
+        }
+        for (b = 0; b < K; ++b) {
+            double phi = (b + 0.5) * dp;
+            hf__lut_tex(nt, n, ci * 0.5 + 0.5, HF_COS(phi) * 0.5 + 0.5, o);
+            for (c = 0; c < 4; ++c) ns[c] += dp * o[c];
+        }
+        for (c = 0; c < 4; ++c) sum += ms[c] * ns[c];
+    } else {
+        for (a = 0; a < K; ++a) {
+            double s = -1.0 + (a + 0.5) * ds, cr = HF_SQRT(1.0 - s * s);
+            double M[4], inv, row = 0.0;
+            hf__lut_tex(m, n, si * 0.5 + 0.5, s * 0.5 + 0.5, M);
+            inv = M[3] * M[3] > 1e-2 ? 1.0 / (M[3] * M[3]) : 1e2;
+            for (b = 0; b < K; ++b) {
+                double N[4], phi = (b + 0.5) * dp;
+                hf__lut_tex(nt, n, M[3] * 0.5 + 0.5, HF_COS(phi) * 0.5 + 0.5, N);
+                row += M[0] * N[0] + M[1] * N[1] + M[2] * N[2];
+            }
+            sum += row * inv * cr * ds * dp;
+        }
+    }
+    *albedo = 2.0 * sum; /* phi in (-pi, 0) mirrors (0, pi) */
+    return HF_OK;
+}
+
+/* ---- dual scattering tables ---------------------------------------------- */
+
+/* Round a value of either sign to float once, held to +-FLT_MAX. */
+HF__PRIVATE float hf__lut_fs(double x)
+{
+    if (x > HF__LUT_FLT_MAX) return (float)HF__LUT_FLT_MAX;
+    if (x < -HF__LUT_FLT_MAX) return (float)-HF__LUT_FLT_MAX;
+    return (float)x;
+}
+
+#define HF__LUT_DUAL_NODES 400 /* 5 Gauss-Legendre nodes on <= 80 pieces */
+
+HFDEF hf_result hf_lut_bake_dual(const hf_lut_params *params, int first_row,
+                                 int row_count, float *out)
+{
+    hf_lut_params q;
+    const hf_lut_params *p = &q;
+    double gx[5], gw[5], alpha[4], beta[4];
+    double nw[HF__LUT_DUAL_NODES], nf[HF__LUT_DUAL_NODES],
+        ne[HF__LUT_DUAL_NODES];
+    unsigned char fwd[HF__LUT_DUAL_NODES];
+    size_t plane;
+    int n, exact, i, j, k;
+    hf_result r = hf__lut_check_bake(params, &q, first_row, row_count, out, out);
+    if (r != HF_OK) return r;
+    n = p->size;
+    plane = 4u * (size_t)n * (size_t)n;
+    exact = p->variant == HF_LUT_EXACT;
+    hf__lut_gl5(gx, gw);
+    hf__lut_lobes_ab(p, alpha, beta);
+    for (j = first_row; j < first_row + row_count; ++j) {
+        hf__lut_col col;
+        double brk[16], kink, g[HF__LUT_MAX_NODES], w[HF__LUT_MAX_NODES];
+        int nb = 0, nn = 0, s, pp;
+        hf__lut_col_setup(&col, p->eta,
+                          hf__lut_cd((double)(2 * j + 1) / (double)(2 * n)),
+                          exact);
+        /* where a lobe turns from backward (cos phi > 0) to forward: R at
+           gamma = pi/4, TT and TRT where |Phi| = pi/2; and the kink */
+        brk[nb++] = 0.0;
+        brk[nb++] = HF__LUT_HALF_PI;
+        brk[nb++] = 0.25 * HF__LUT_PI;
+        kink = hf__lut_kink(&col);
+        if (col.eta2 < 1.0) brk[nb++] = kink;
+        for (pp = 1; pp < 3; ++pp)
+            nb = hf__lut_exit_roots(&col, pp, exact, HF__LUT_HALF_PI, brk, nb);
+        hf__lut_sort(brk, nb);
+        for (s = 0; s + 1 < nb; ++s) {
+            double g0 = brk[s], g1 = brk[s + 1], mid;
+            unsigned char bits = 0;
+            int m;
+            if (!(g1 > g0)) continue;
+            mid = 0.5 * (g0 + g1);
+            for (pp = 0; pp < 3; ++pp)
+                if (hf__lut_cos_exit(&col, pp, exact, mid) < 0.0)
+                    bits |= (unsigned char)(1u << pp);
+            m = hf__lut_nodes(g0, g1, col.eta2 < 1.0 && g1 == kink, gx, gw, g,
+                              w);
+            for (k = 0; k < m && nn < HF__LUT_DUAL_NODES; ++k) {
+                nf[nn] = hf__lut_fresnel_e(&col, g[k], &ne[nn]);
+                nw[nn] = w[k];
+                fwd[nn++] = bits;
+            }
+        }
+        for (i = 0; i < n; ++i) {
+            double u = (double)(2 * i + 1) / (double)(2 * n);
+            double sig = u / (1.0 - u), af[4] = {0, 0, 0, 0},
+                   ab[4] = {0, 0, 0, 0};
+            double Af = 0.0, Ab = 0.0, mf = 0.0, mb = 0.0, vf = 0.0, vb = 0.0;
+            double af2, qq, A_b, d_b, s_b, v[12];
+            size_t at = 4 * ((size_t)j * (size_t)n + (size_t)i);
+            for (k = 0; k < nn; ++k) {
+                double A[4];
+                hf__lut_atten_e(nf[k], HF_EXP(-sig * ne[k]), A);
+                for (pp = 0; pp < 3; ++pp) {
+                    if (fwd[k] & (1u << pp))
+                        af[pp] += nw[k] * A[pp];
+                    else
+                        ab[pp] += nw[k] * A[pp];
+                }
+                af[3] += 0.5 * nw[k] * A[3]; /* p >= 3: uniform in phi */
+                ab[3] += 0.5 * nw[k] * A[3];
+            }
+            for (pp = 0; pp < 4; ++pp) {
+                Af += af[pp];
+                Ab += ab[pp];
+                if (af[pp] > 0.0) {
+                    mf += af[pp] * alpha[pp];
+                    vf += af[pp] * beta[pp] * beta[pp];
+                }
+                if (ab[pp] > 0.0) {
+                    mb += ab[pp] * alpha[pp];
+                    vb += ab[pp] * beta[pp] * beta[pp];
+                }
+            }
+            if (Af > 0.0) {
+                mf /= Af;
+                vf /= Af;
+            }
+            if (Ab > 0.0) {
+                mb /= Ab;
+                vb /= Ab;
+            }
+            /* Zinke et al. eqs. 14, 16, 17 (section 16) */
+            af2 = Af * Af;
+            qq = 1.0 - af2;
+            if (qq < 1e-12) qq = 1e-12;
+            A_b = Ab * af2 / qq + Ab * Ab * Ab * af2 / (qq * qq * qq);
+            d_b = mb * (1.0 - 2.0 * Ab * Ab / (qq * qq)) +
+                  mf * (2.0 * qq * qq + 4.0 * af2 * Ab * Ab) / (qq * qq * qq);
+            s_b = Ab > 0.0
+                      ? (1.0 + HF_LUT_DUAL_DB * af2) *
+                            (Ab * HF_SQRT(2.0 * vf + vb) +
+                             Ab * Ab * Ab * HF_SQRT(2.0 * vf + 3.0 * vb)) /
+                            (Ab + Ab * Ab * Ab)
+                      : 0.0;
+            v[0] = Af;
+            v[1] = mf;
+            v[2] = HF_SQRT(vf);
+            v[4] = Ab;
+            v[5] = mb;
+            v[6] = HF_SQRT(vb);
+            v[8] = A_b;
+            v[9] = d_b;
+            v[10] = s_b;
+            v[3] = v[7] = v[11] = 1.0;
+            for (k = 0; k < 12; ++k)
+                out[plane * (size_t)(k / 4) + at + (size_t)(k & 3)] =
+                    hf__lut_fs(v[k]);
+        }
+    }
+    return HF_OK;
 }
 
 /* ---- 8-bit conversion (section 9) ---- */

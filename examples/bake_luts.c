@@ -1,14 +1,24 @@
 /* bake_luts.c - bake the Marschner M and N lookup textures to PNG files.
 
    Shows: hf_lut_params_init, hf_lut_bake_m / hf_lut_bake_n /
-   hf_lut_bake_n_rgb, hf_lut_to_u8. The textures and the shader that uses
-   them are described in docs/luts.md.
+   hf_lut_bake_n_rgb, hf_lut_to_u8, hf_lut_furnace, hf_lut_bake_dual. The
+   textures and the shader that uses them are described in docs/luts.md.
 
    Build:  cc -O2 -std=c99 bake_luts.c -o bake_luts -lm
            (stb_image_write.h from Debian's libstb-dev, /usr/include/stb)
    Usage:  bake_luts [--size N] [--eta F] [--absorption F |
                       --absorption-rgb R,G,B] [--alpha-r DEG] [--beta-r DEG]
-                     [--exact] [--out DIR] [--raw] [--channels]
+                     [--exact] [--model marschner|energy] [--out DIR]
+                     [--raw] [--channels] [--dual] [--furnace] [--help]
+
+   --model energy bakes the energy-conserving fibre instead of the paper's
+   (its files are named energy_* instead of marschner_*).
+   --furnace writes nothing: it bakes the energy-conserving fibre (or the
+   --model given) and prints its white-furnace albedo, one line per
+   absorption (0, 0.2, 1 and --absorption if given) and incident angle
+   (0, 30, 60, 80 degrees):
+       furnace sigma_a=S theta_i=DEG albedo=A
+   --dual adds dual_scattering.f32 and dual_scattering.txt (below).
 
    Writes, in DIR (default "."):
      marschner_m.png, marschner_n.png  8-bit RGBA, each channel divided by
@@ -29,6 +39,15 @@
                           shown with display gamma 1/2.2 so that small
                           values stay visible: for looking at, not for
                           rendering
+     with --dual          dual_scattering.f32: hf_lut_bake_dual's tables,
+                          float32 little-endian, no header: 3 planes, each
+                          N x N RGBA, plane 0 first, row 0 first; column i
+                          is sigma_a = u / (1 - u), u = (i + 0.5) / N, row
+                          j is cos(theta_i) = (j + 0.5) / N; plane 0 =
+                          a_f, alpha_f, beta_f, 1; plane 1 = a_b, alpha_b,
+                          beta_b, 1; plane 2 = A_b, delta_b, sigma_b, 1
+                          (angles in radians); dual_scattering.txt says
+                          the same with the parameters
 
    Which way up: row 0 of a texture (v = 0, texture coordinate t = 0) is
    the FIRST row of each PNG, which image viewers show at the TOP. So
@@ -46,12 +65,62 @@
 #include <stdlib.h>
 #include <string.h>
 
-static void usage(void)
+#define USAGE                                                                  \
+    "usage: bake_luts [--size N] [--eta F] [--absorption F | "                \
+    "--absorption-rgb R,G,B] [--alpha-r DEG] [--beta-r DEG] [--exact] "        \
+    "[--model marschner|energy] [--out DIR] [--raw] [--channels] [--dual] "    \
+    "[--furnace] [--help]\n"
+
+static void usage(void) { fprintf(stderr, USAGE); }
+
+static void help(void)
 {
-    fprintf(stderr,
-            "usage: bake_luts [--size N] [--eta F] [--absorption F | "
-            "--absorption-rgb R,G,B] [--alpha-r DEG] [--beta-r DEG] "
-            "[--exact] [--out DIR] [--raw] [--channels]\n");
+    printf(USAGE
+           "\n"
+           "Bakes the Marschner lookup textures (docs/luts.md) into DIR:\n"
+           "  PREFIX_m.png, PREFIX_n.png    8-bit RGBA, each channel divided "
+           "by its scale\n"
+           "  PREFIX_scales.txt             one line per PNG: name, R G B A "
+           "scales\n"
+           "  PREFIX is marschner (the paper's fibre, the default) or energy "
+           "(--model\n"
+           "  energy: the energy-conserving fibre, M = M_R, M_TT, M_TRT, "
+           "M_p>=3 per unit\n"
+           "  sin(theta_r); N = N_R, N_TT, N_TRT, N_p>=3 by (cos theta_i, "
+           "cos phi)).\n"
+           "  --absorption-rgb R,G,B  also marschner_n_tt_rgb.png and "
+           "marschner_n_trt_rgb.png\n"
+           "  --raw        each texture also as PREFIX_*.f32: float32 "
+           "little-endian RGBA,\n"
+           "               N x N texels, row 0 first, no header\n"
+           "  --channels   grayscale previews of each channel (not for "
+           "rendering)\n"
+           "  --dual       dual_scattering.f32 (and .txt): the dual "
+           "scattering tables of\n"
+           "               the energy-conserving fibre (hf_lut_bake_dual), "
+           "float32\n"
+           "               little-endian, no header: 3 planes of N x N RGBA, "
+           "plane 0 first,\n"
+           "               row 0 first. Column i: sigma_a = u / (1 - u), "
+           "u = (i + 0.5) / N;\n"
+           "               row j: cos(theta_i) = (j + 0.5) / N. Plane 0: "
+           "a_f, alpha_f,\n"
+           "               beta_f, 1; plane 1: a_b, alpha_b, beta_b, 1; "
+           "plane 2: A_b,\n"
+           "               delta_b, sigma_b, 1 (angles in radians of "
+           "theta_h)\n"
+           "  --furnace    write nothing; print the white-furnace albedo of "
+           "the baked\n"
+           "               energy-conserving fibre (or of --model), "
+           "integrated from the\n"
+           "               textures as the shader combines them, one line "
+           "per absorption\n"
+           "               (0, 0.2, 1, and --absorption) and angle (0, 30, "
+           "60, 80 degrees):\n"
+           "               furnace sigma_a=S theta_i=DEG albedo=A\n"
+           "Defaults: --size 256 --eta 1.55 --absorption 0.2 --alpha-r -7.5 "
+           "--beta-r 7.5,\n"
+           "cubic exit angle (--exact: the exact one), --out .\n");
 }
 
 static int parse_double(const char *s, double *out)
@@ -177,12 +246,115 @@ static int save(const char *dir, const char *stem, const float *t, int n,
     return 1;
 }
 
+/* --furnace: bake M once and N per absorption, print the albedo. */
+static int furnace(hf_lut_params p, int model_given, double extra)
+{
+    static const double angles[4] = {0.0, 30.0, 60.0, 80.0};
+    double sig[4] = {0.0, 0.2, 1.0, 0.0};
+    int ns = 3, n, s, k;
+    float *m, *t;
+    hf_result r;
+    if (!model_given) p.model = HF_LUT_ENERGY;
+    if (extra >= 0.0 && extra != 0.0 && extra != 0.2 && extra != 1.0) {
+        /* in order */
+        for (k = 3; k > 0 && sig[k - 1] > extra; --k) sig[k] = sig[k - 1];
+        sig[k] = extra;
+        ns = 4;
+    }
+    n = p.size;
+    m = (float *)malloc(sizeof(float) * 4 * (size_t)n * (size_t)n);
+    t = (float *)malloc(sizeof(float) * 4 * (size_t)n * (size_t)n);
+    if (!m || !t) {
+        fprintf(stderr, "bake_luts: out of memory\n");
+        free(m);
+        free(t);
+        return 1;
+    }
+    if ((r = hf_lut_bake_m(&p, 0, n, m)) != HF_OK) goto fail;
+    for (s = 0; s < ns; ++s) {
+        p.sigma_a = sig[s];
+        p.explicit_zero |= HF_LUT_ZERO_SIGMA_A;
+        if ((r = hf_lut_bake_n(&p, 0, n, t)) != HF_OK) goto fail;
+        for (k = 0; k < 4; ++k) {
+            double albedo;
+            r = hf_lut_furnace(&p, m, t, angles[k] * 3.14159265358979323846 /
+                                             180.0, &albedo);
+            if (r != HF_OK) goto fail;
+            printf("furnace sigma_a=%g theta_i=%g albedo=%.6f\n", sig[s],
+                   angles[k], albedo);
+        }
+    }
+    free(m);
+    free(t);
+    return 0;
+fail:
+    fprintf(stderr, "bake_luts: %s\n", hf_result_string(r));
+    free(m);
+    free(t);
+    return 1;
+}
+
+/* --dual: dual_scattering.f32 and its description. */
+static int save_dual(const char *dir, const hf_lut_params *p)
+{
+    int n = p->size;
+    size_t count = 12u * (size_t)n * (size_t)n;
+    float *d = (float *)malloc(sizeof(float) * count);
+    char file[4096];
+    FILE *f;
+    hf_result r;
+    int ok;
+    if (!d) {
+        fprintf(stderr, "bake_luts: out of memory\n");
+        return 0;
+    }
+    if ((r = hf_lut_bake_dual(p, 0, n, d)) != HF_OK) {
+        fprintf(stderr, "bake_luts: %s\n", hf_result_string(r));
+        free(d);
+        return 0;
+    }
+    ok = path(file, sizeof file, dir, "dual_scattering.f32") &&
+         write_f32(file, d, count);
+    free(d);
+    if (!ok || !path(file, sizeof file, dir, "dual_scattering.txt") ||
+        !(f = fopen(file, "w"))) {
+        fprintf(stderr, "bake_luts: cannot write %s/dual_scattering.*\n", dir);
+        return 0;
+    }
+    fprintf(f,
+            "# dual_scattering.f32: hf_lut_bake_dual, the energy-conserving "
+            "fibre\n"
+            "# eta %g, alpha_R %g deg, beta_R %g deg, %s, d_b %g\n"
+            "# float32 little-endian, no header: 3 planes of %d x %d RGBA, "
+            "plane 0 first,\n"
+            "# row 0 first; float c of texel (i, j) of plane k at "
+            "4 * (%d * %d * k + j * %d + i) + c\n"
+            "# column i: sigma_a = u / (1 - u), u = (i + 0.5) / %d "
+            "(per fibre radius, chord)\n"
+            "# row j: cos(theta_i) = (j + 0.5) / %d\n"
+            "# plane 0: a_f alpha_f beta_f 1\n"
+            "# plane 1: a_b alpha_b beta_b 1\n"
+            "# plane 2: A_b delta_b sigma_b 1\n"
+            "# angles in radians of theta_h; docs/luts.md has the formulas\n"
+            "size %d\nplanes 3\n",
+            p->eta, p->alpha_r_deg, p->beta_r_deg,
+            p->variant == HF_LUT_EXACT ? "exact" : "cubic", HF_LUT_DUAL_DB, n,
+            n, n, n, n, n, n, n);
+    if (fclose(f) != 0) return 0;
+    printf("  dual_scattering.f32 (%d x %d x 3 planes RGBA float32), "
+           "dual_scattering.txt\n",
+           n, n);
+    return 1;
+}
+
 int main(int argc, char **argv)
 {
     hf_lut_params p;
-    const char *dir = ".";
-    int raw = 0, rgb = 0, channels = 0, i, n, ok = 1;
-    char file[4096];
+    const char *dir = ".", *prefix;
+    int raw = 0, rgb = 0, channels = 0, dual = 0, furn = 0, model_given = 0;
+    int i, n, ok = 1;
+    double absorption = -1.0;
+    char file[4096], name[64];
     float *m, *nn, *tt, *trt, *tmp;
     unsigned char *rgba8;
     FILE *scales;
@@ -204,6 +376,18 @@ int main(int argc, char **argv)
             channels = 1;
             continue;
         }
+        if (strcmp(a, "--dual") == 0) {
+            dual = 1;
+            continue;
+        }
+        if (strcmp(a, "--furnace") == 0) {
+            furn = 1;
+            continue;
+        }
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            help();
+            return 0;
+        }
         if (!v) {
             usage();
             return 2;
@@ -211,6 +395,16 @@ int main(int argc, char **argv)
         ++i;
         if (strcmp(a, "--out") == 0) {
             dir = v;
+        } else if (strcmp(a, "--model") == 0) {
+            if (strcmp(v, "marschner") == 0)
+                p.model = HF_LUT_MARSCHNER;
+            else if (strcmp(v, "energy") == 0)
+                p.model = HF_LUT_ENERGY;
+            else {
+                usage();
+                return 2;
+            }
+            model_given = 1;
         } else if (strcmp(a, "--absorption-rgb") == 0) {
             if (!parse_rgb(v, p.sigma_a_rgb)) {
                 usage();
@@ -231,6 +425,7 @@ int main(int argc, char **argv)
         } else if (strcmp(a, "--eta") == 0) {
             p.eta = d;
         } else if (strcmp(a, "--absorption") == 0) {
+            absorption = d;
             p.sigma_a = d;
             p.sigma_a_rgb[0] = p.sigma_a_rgb[1] = p.sigma_a_rgb[2] = d;
             if (d == 0.0)
@@ -255,6 +450,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "bake_luts: %s\n", hf_result_string(r));
         return 1;
     }
+    if (furn) return furnace(p, model_given, absorption);
+    prefix = p.model == HF_LUT_ENERGY ? "energy" : "marschner";
 
     n = p.size;
     m = (float *)malloc(sizeof(float) * 4 * (size_t)n * (size_t)n);
@@ -274,10 +471,9 @@ int main(int argc, char **argv)
         return 1;
     }
 
-    if (!path(file, sizeof file, dir, "marschner_scales.txt") ||
-        !(scales = fopen(file, "w"))) {
-        fprintf(stderr, "bake_luts: cannot write %s/marschner_scales.txt\n",
-                dir);
+    snprintf(name, sizeof name, "%s_scales.txt", prefix);
+    if (!path(file, sizeof file, dir, name) || !(scales = fopen(file, "w"))) {
+        fprintf(stderr, "bake_luts: cannot write %s/%s\n", dir, name);
         return 1;
     }
     fprintf(scales,
@@ -288,21 +484,36 @@ int main(int argc, char **argv)
             n, p.eta, p.alpha_r_deg, p.beta_r_deg, p.sigma_a,
             p.sigma_a_rgb[0], p.sigma_a_rgb[1], p.sigma_a_rgb[2],
             p.variant == HF_LUT_EXACT ? "exact" : "cubic");
+    if (p.model == HF_LUT_ENERGY)
+        fprintf(scales, "# the energy-conserving fibre (--model energy)\n");
     printf("bake_luts: %d x %d, eta %g, alpha_R %g, beta_R %g, sigma_a %g, "
-           "%s -> %s\n",
+           "%s%s -> %s\n",
            n, n, p.eta, p.alpha_r_deg, p.beta_r_deg, p.sigma_a,
-           p.variant == HF_LUT_EXACT ? "exact" : "cubic", dir);
-    ok = save(dir, "marschner_m", m, n, raw, rgba8, scales) &&
-         save(dir, "marschner_n", nn, n, raw, rgba8, scales) &&
+           p.variant == HF_LUT_EXACT ? "exact" : "cubic",
+           p.model == HF_LUT_ENERGY ? ", energy-conserving" : "", dir);
+    {
+        char sm[64], sn[64];
+        snprintf(sm, sizeof sm, "%s_m", prefix);
+        snprintf(sn, sizeof sn, "%s_n", prefix);
+        ok = save(dir, sm, m, n, raw, rgba8, scales) &&
+             save(dir, sn, nn, n, raw, rgba8, scales);
+    }
+    ok = ok &&
          (!rgb || (save(dir, "marschner_n_tt_rgb", tt, n, raw, rgba8,
                         scales) &&
                    save(dir, "marschner_n_trt_rgb", trt, n, raw, rgba8,
                         scales)));
     if (fclose(scales) != 0) ok = 0;
-    if (ok) printf("  marschner_scales.txt\n");
-    if (ok && channels)
-        ok = write_channels(dir, "marschner_m", m, n, 4, tmp, rgba8) &&
-             write_channels(dir, "marschner_n", nn, n, 3, tmp, rgba8);
+    if (ok) printf("  %s\n", name);
+    if (ok && channels) {
+        char sm[64], sn[64];
+        snprintf(sm, sizeof sm, "%s_m", prefix);
+        snprintf(sn, sizeof sn, "%s_n", prefix);
+        ok = write_channels(dir, sm, m, n, 4, tmp, rgba8) &&
+             write_channels(dir, sn, nn, n,
+                            p.model == HF_LUT_ENERGY ? 4 : 3, tmp, rgba8);
+    }
+    if (ok && dual) ok = save_dual(dir, &p);
     free(m);
     free(nn);
     free(tt);

@@ -12,11 +12,12 @@
        strength) measured from it, and the file's unit found from its
        size, so a model in centimetres gives the picture it gives in
        metres;
-     - the Marschner M and N lookup textures baked in-process
-       (hf_lut_bake_m / hf_lut_bake_n, RGBA32F, GL_LINEAR, clamp to edge) and
-       combined in the fragment shader as docs/luts.md "The shader" says,
-       plus the diffuse term sqrt(1 - (L.T)^2) and ambient light;
-       Kajiya-Kay as a switch;
+     - the M and N lookup textures of the energy-conserving Marschner
+       fibre and the dual scattering tables baked in-process
+       (hf_lut_bake_m / hf_lut_bake_n with HF_LUT_ENERGY, hf_lut_bake_dual;
+       RGBA32F, GL_LINEAR, clamp to edge) and combined in the fragment
+       shader as docs/luts.md says (--no-dual: single scattering only),
+       plus ambient light; Kajiya-Kay as a switch;
      - self-shadowing: a shadow map of hair and body from the light, read
        as an approximate deep shadow map (light falls off with the depth
        of hair in front);
@@ -111,6 +112,7 @@ typedef struct glm_options {
     const char *mesh, *anim, *grow_on, *unit;
     const char *density_path, *length_path, *color_path;
     int no_shadows;     /* 1: no self-shadowing */
+    int no_dual;        /* 1: no dual scattering (single scattering only) */
     int no_hair;        /* 1: the body alone (a control picture) */
     int save_every;     /* > 0: write every Nth frame to out (a %d pattern) */
     float hair_length;  /* metres; 0 = 0.14 on the head, else 5 % of the
@@ -241,6 +243,7 @@ typedef struct glm_app {
     GLuint vbo_scolor, tbo_scolor, vbo_c3x, tbo_c3x, ibo_hair;
     GLuint vbo_head, ibo_head, vbo_line;
     GLuint tex_m, tex_n, tex_ramp, tex_density;
+    GLuint tex_dual[HF_LUT_DUAL_PLANES]; /* hf_lut_bake_dual's planes */
     float *line_buf;
     int line_count;
 } glm_app;
@@ -317,13 +320,16 @@ static const char *glm_vs_gpu_tail =
    shadow map. The shadow map holds the depth (from the light) of the
    nearest hair or skin; a point that far behind it has that much hair in
    front of it, and light falls off exponentially with that depth,
-   u_shadow_k per metre (set from the hair length), to 12 % at the least.
+   u_shadow_k per metre (set from the hair length): hair_trans is the
+   light that arrives unscattered, exp(-n) with n the fibres crossed on
+   average; hair_shadow holds it at 12 % at the least (light that got
+   through scattered, where dual scattering does not say how much).
    3 x 3 taps soften the edges. */
 #define GLM_SHADOW_GLSL                                                      \
     "uniform sampler2D u_shadow;\n"                                          \
     "uniform mat4 u_light_view_proj;\n"                                      \
     "uniform float u_shadow_on, u_shadow_k, u_shadow_depth, u_shadow_bias;\n" \
-    "float hair_shadow(vec3 p) {\n"                                          \
+    "float hair_trans(vec3 p) {\n"                                           \
     "    if (u_shadow_on == 0.0) return 1.0;\n"                              \
     "    vec4 q = u_light_view_proj * vec4(p, 1.0);\n"                       \
     "    vec3 s = q.xyz / q.w * 0.5 + 0.5;\n"                                \
@@ -337,25 +343,40 @@ static const char *glm_vs_gpu_tail =
     "            float d = (s.z - z0) * u_shadow_depth - u_shadow_bias;\n"   \
     "            sum += exp(-u_shadow_k * max(d, 0.0));\n"                   \
     "        }\n"                                                            \
-    "    return mix(0.12, 1.0, sum / 9.0);\n"                                \
-    "}\n"
+    "    return sum / 9.0;\n"                                                \
+    "}\n"                                                                    \
+    "float hair_shadow(vec3 p) { return mix(0.12, 1.0, hair_trans(p)); }\n"
 
-/* The hair fragment shader: Marschner from the two LUTs (docs/luts.md),
-   or Kajiya-Kay; diffuse sqrt(1 - (L.T)^2); ambient; self-shadowing.
-   Lighting is done in linear space and written with gamma 2.2. */
-static const char *glm_fs_hair =
+/* The hair fragment shader: the energy-conserving Marschner fibre from
+   its two LUTs (hf_lut_bake_m / _n with HF_LUT_ENERGY, baked without
+   absorption; docs/luts.md), with the hair colour as an absorption per
+   channel, and Zinke et al.'s dual scattering from the tables of
+   hf_lut_bake_dual (u_dual; --no-dual: single scattering of the light
+   that arrives unscattered only); or Kajiya-Kay with its diffuse term;
+   ambient; self-shadowing. Lighting is done in linear space and written
+   with gamma 2.2. */
+static const char *const glm_fs_hair_parts[3] = {
+    /* C99 compilers need only take 4095 bytes a string: three parts */
     "#version 330 core\n"
     "in vec3 v_position, v_tangent, v_texcoord;\n"
     "in vec4 v_color;\n"
     "in vec2 v_c3d;\n"
     "uniform sampler2D u_lut_m, u_lut_n, u_ramp;\n"
+    "uniform sampler2D u_dual0, u_dual2; // hf_lut_bake_dual planes 0, 2\n"
     "uniform int u_kajiya, u_color3d;\n"
     "uniform float u_spec;            // 0 = diffuse + ambient only\n"
+    "uniform float u_dual;            // 1 = dual scattering\n"
     "uniform float u_dither;          // alpha dither (alpha to coverage)\n"
     "uniform vec3 u_eye, u_light_dir, u_light_color, u_ambient;\n"
     GLM_SHADOW_GLSL
     "out vec4 o_color;\n"
-    "const float cos2Min = 1e-2;      // grazing theta_d guard\n"
+    "const float PI = 3.14159265;\n"
+    "const float cosMin = 1e-2;       // grazing theta_r guard\n"
+    "const float d_f = 0.7, d_b = 0.7; // Zinke's density factors\n"
+    "// a unit-area Gaussian of theta_h (x = theta_h - shift)\n"
+    "float g1(float x, float var) {\n"
+    "    return exp(-0.5 * x * x / var) * inversesqrt(2.0 * PI * var);\n"
+    "}\n",
     "void main() {\n"
     "    vec3 T = normalize(v_tangent);\n"
     "    vec3 L = u_light_dir;\n"
@@ -366,43 +387,94 @@ static const char *glm_fs_hair =
     "    float h = fract(sin(dot(v_texcoord.xy, vec2(12.9898, 78.233))) * 43758.5453);\n"
     "    vec3 base = pow(srgb, vec3(2.2)) * (0.7 + 0.6 * h);\n"
     "    float TL = dot(T, L), TV = dot(T, V);\n"
-    "    float sinTL = sqrt(max(0.0, 1.0 - TL * TL));\n"
-    "    float sinTV = sqrt(max(0.0, 1.0 - TV * TV));\n"
-    "    vec3 spec;\n"
+    "    float sinTL = sqrt(max(0.0, 1.0 - TL * TL));   // cos(theta_i)\n"
+    "    float sinTV = sqrt(max(0.0, 1.0 - TV * TV));   // cos(theta_r)\n"
+    "    float shadow = hair_shadow(v_position);\n"
+    "    vec3 lit;\n"
     "    if (u_kajiya != 0) {\n"
     "        // Kajiya-Kay: mirror cone, V pointing away (spec section 10)\n"
     "        float c = max(0.0, sinTL * sinTV - TL * TV);\n"
-    "        spec = vec3(0.35 * pow(c, 80.0)) + 0.25 * base / max(base.r, 1e-3)\n"
-    "               * pow(c, 12.0);\n"
+    "        vec3 spec = vec3(0.35 * pow(c, 80.0)) + 0.25 * base / max(base.r, 1e-3)\n"
+    "                    * pow(c, 12.0);\n"
+    "        lit = shadow * (0.8 * base * sinTL + u_spec * spec);\n"
+    "    } else if (u_spec == 0.0) {\n"
+    "        lit = shadow * 0.8 * base * sinTL;\n"
     "    } else {\n"
-    "        vec2 uv1 = vec2(TL, TV) * 0.5 + 0.5;\n"
-    "        vec4 M = texture(u_lut_m, uv1);   // M_R, M_TT, M_TRT, cos(theta_d)\n"
+    "        vec4 M = texture(u_lut_m, vec2(TL, TV) * 0.5 + 0.5); // M_R, M_TT, M_TRT, M_p>=3\n"
     "        vec3 Lp = L - TL * T, Vp = V - TV * T;\n"
     "        float cosPhi = dot(Lp, Vp) * inversesqrt(max(dot(Lp, Lp) * dot(Vp, Vp), 1e-12));\n"
-    "        vec2 uv2 = vec2(M.a, cosPhi) * 0.5 + 0.5;\n"
-    "        vec4 N = texture(u_lut_n, uv2);   // N_R, N_TT, N_TRT, 1\n"
-    "        float inv = 1.0 / max(M.a * M.a, cos2Min);\n"
-    "        // S = (M_R N_R + M_TT N_TT + M_TRT N_TRT) / cos^2(theta_d); the\n"
-    "        // LUT has one grey absorption, so TT and TRT (light that went\n"
-    "        // through the fibre) take the hair's hue; R stays white.\n"
-    "        vec3 tint = mix(vec3(1.0), base / max(max(base.r, base.g),\n"
-    "                                              max(base.b, 1e-3)), 0.75);\n"
-    "        spec = 2.0 * (vec3(M.r * N.r) + (M.g * N.g + M.b * N.b) * tint)\n"
-    "               * inv * sinTL;          // cos(theta_i); 2: artistic gain\n"
+    "        vec4 N = texture(u_lut_n, vec2(sinTL, cosPhi) * 0.5 + 0.5); // N_R .. N_p>=3\n"
+    "        // the hair colour as absorption per fibre radius (Chiang et al.\n"
+    "        // 2016, no azimuthal roughness): what multiple scattering turns\n"
+    "        // into that colour; a pass through the fibre is about 1.86\n"
+    "        // radii / cos(theta_t) long\n"
+    "        vec3 sigma = pow(log(clamp(base, 1e-3, 0.999)) / 5.969, vec3(2.0));\n"
+    "        vec3 Tr = exp(-sigma * 1.86 / sqrt(1.0 - TL * TL / (1.55 * 1.55)));\n"
+    "        float invCos = 1.0 / max(sinTV, cosMin);\n"
+    "        // S = sum_p M_p N_p / cos(theta_r); p = 1, 2, 3.. cross it p times\n"
+    "        vec3 single = (M.r * N.r + (M.g * N.g + (M.b * N.b + M.a * N.a * Tr) * Tr) * Tr) * invCos;\n"
+    "        float fd = hair_trans(v_position); // light arriving unscattered\n"
+    "        vec3 S = fd * single;\n",
+    "        if (u_dual != 0.0) {\n"
+    "            // Zinke et al. 2008 from the tables at (sigma / (1 + sigma),\n"
+    "            // cos(theta_i)): the amounts per channel, the lobes' shifts\n"
+    "            // and widths at the mean absorption (per channel they part\n"
+    "            // into colour fringes); Zinke's Gaussians of theta_h halved,\n"
+    "            // as this fibre's M is per unit of theta_r\n"
+    "            vec3 u = sigma / (1.0 + sigma);\n"
+    "            float sm = dot(sigma, vec3(0.2126, 0.7152, 0.0722));\n"
+    "            vec2 um = vec2(sm / (1.0 + sm), sinTL);\n"
+    "            vec4 f = texture(u_dual0, um);  // a_f, alpha_f, beta_f\n"
+    "            vec4 m = texture(u_dual2, um);  // A_b, delta_b, sigma_b\n"
+    "            vec3 af = vec3(texture(u_dual0, vec2(u.r, sinTL)).x,\n"
+    "                           texture(u_dual0, vec2(u.g, sinTL)).x,\n"
+    "                           texture(u_dual0, vec2(u.b, sinTL)).x);\n"
+    "            vec3 Ab = vec3(texture(u_dual2, vec2(u.r, sinTL)).x,\n"
+    "                           texture(u_dual2, vec2(u.g, sinTL)).x,\n"
+    "                           texture(u_dual2, vec2(u.b, sinTL)).x);\n"
+    "            // fibres crossed on the way in: the shadow map's exp(-n)\n"
+    "            float n = -log(max(fd, 1e-4));\n"
+    "            vec3 Tf = pow(af, vec3(n));   // light that got here forward\n"
+    "            float vf = n * f.z * f.z;     // its spread, variance in theta_h\n"
+    "            float thH = 0.5 * (asin(clamp(TL, -1.0, 1.0)) + asin(clamp(TV, -1.0, 1.0)));\n"
+    "            float inv = 1.0 / (PI * max(sinTV * sinTV, cosMin));\n"
+    "            float gD = g1(thH - m.y, m.z * m.z) * inv;      // f_back / A_b\n"
+    "            float gS = g1(thH - m.y, m.z * m.z + vf) * inv; // spread\n"
+    "            // single scattering of the forward-scattered light: N_G =\n"
+    "            // a_f / pi, one lobe of the forward average shift, width\n"
+    "            float gF = 0.5 * g1(thH - f.y, f.z * f.z + vf) * inv;\n"
+    "            S = fd * (single + d_b * Ab * gD)\n"
+    "                + max(Tf - fd, 0.0) * d_f * (af * gF + PI * d_b * Ab * gS);\n"
+    "        }\n"
+    "        lit = 3.0 * S * sinTL;     // cos(theta_i); 3: artistic gain\n"
     "    }\n"
-    "    // the shadow of the hair and body in front, and a cheap ambient\n"
-    "    // occlusion that darkens hair near its root: inner hair gets less\n"
-    "    float shadow = hair_shadow(v_position);\n"
+    "    // a cheap ambient occlusion that darkens hair near its root: inner\n"
+    "    // hair gets less\n"
     "    float occ = mix(0.35, 1.0, smoothstep(0.0, 0.3, v_texcoord.z));\n"
-    "    vec3 c = u_ambient * base * occ\n"
-    "           + u_light_color * shadow * occ * (0.8 * base * sinTL + u_spec * spec);\n"
+    "    vec3 c = u_ambient * base * occ + u_light_color * occ * lit;\n"
     "    // dither the alpha per pixel: alpha to coverage alone quantises\n"
     "    // the tip fade to 4 levels, which shows as concentric shells\n"
     "    float n = fract(52.9829189 * fract(dot(gl_FragCoord.xy,\n"
     "                                           vec2(0.06711056, 0.00583715))));\n"
     "    o_color = vec4(pow(c, vec3(1.0 / 2.2)),\n"
     "                   clamp(v_color.a + u_dither * (n - 0.5), 0.0, 1.0));\n"
-    "}\n";
+    "}\n"};
+
+/* The hair fragment shader, its parts joined (once). */
+static const char *glm_fs_hair(void)
+{
+    static char src[12288];
+    if (!src[0]) {
+        size_t k, at = 0;
+        for (k = 0; k < 3; ++k) {
+            size_t len = strlen(glm_fs_hair_parts[k]);
+            if (at + len >= sizeof src) return "";
+            memcpy(src + at, glm_fs_hair_parts[k], len + 1);
+            at += len;
+        }
+    }
+    return src;
+}
 
 static const char *glm_vs_head =
     "#version 330 core\n"
@@ -1252,8 +1324,8 @@ static int glm_init(glm_app *a, const glm_options *o)
         char *gpu_src = NULL;
         const char *path = o->expand_shader ? o->expand_shader
                                             : "examples/ribbon_expand.glsl";
-        a->prog_cpu = glc_program(glm_vs_cpu, glm_fs_hair, "hair (CPU ribbons)");
-        a->prog_cpu16 = glc_program(glm_vs_cpu16, glm_fs_hair,
+        a->prog_cpu = glc_program(glm_vs_cpu, glm_fs_hair(), "hair (CPU ribbons)");
+        a->prog_cpu16 = glc_program(glm_vs_cpu16, glm_fs_hair(),
                                     "hair (compact CPU ribbons)");
         a->prog_head = glc_program(glm_vs_head, glm_fs_head, "head");
         a->prog_line = glc_program(glm_vs_line, glm_fs_line, "lines");
@@ -1266,7 +1338,7 @@ static int glm_init(glm_app *a, const glm_options *o)
             return 0;
         gpu_src = glm_gpu_vs_source(path, o->compact);
         if (gpu_src) {
-            a->prog_gpu = glc_program(gpu_src, glm_fs_hair, "hair (GPU expansion)");
+            a->prog_gpu = glc_program(gpu_src, glm_fs_hair(), "hair (GPU expansion)");
             a->depth_gpu = glc_program(gpu_src, glm_fs_depth,
                                        "shadow (GPU expansion)");
             free(gpu_src);
@@ -1278,13 +1350,21 @@ static int glm_init(glm_app *a, const glm_options *o)
         }
     }
 
-    /* the LUTs, baked once (about 10 ms at 256) */
+    /* the LUTs of the energy-conserving fibre, without absorption (the
+       shader absorbs per channel), and the dual scattering tables at 64
+       (about 0.1 s at 256) */
     hf_lut_params_init(&lp);
     lp.size = o->lut_size;
-    lut = (float *)malloc(sizeof(float) * 4u * (size_t)lp.size * (size_t)lp.size);
+    lp.model = HF_LUT_ENERGY;
+    lp.sigma_a = 0.0;
+    lp.explicit_zero = HF_LUT_ZERO_SIGMA_A;
+    lut = (float *)malloc(sizeof(float) * 4u * HF_LUT_DUAL_PLANES *
+                          (size_t)(lp.size > 64 ? lp.size : 64) *
+                          (size_t)(lp.size > 64 ? lp.size : 64));
     if (!lut) return 0;
     if ((r = hf_lut_bake_m(&lp, 0, lp.size, lut)) != HF_OK) {
         fprintf(stderr, "gl_marschner: LUT: %s\n", hf_result_string(r));
+        free(lut);
         return 0;
     }
     a->tex_m = glm_texture2d(GL_RGBA32F, lp.size, lp.size, GL_RGBA, GL_FLOAT,
@@ -1292,6 +1372,16 @@ static int glm_init(glm_app *a, const glm_options *o)
     hf_lut_bake_n(&lp, 0, lp.size, lut);
     a->tex_n = glm_texture2d(GL_RGBA32F, lp.size, lp.size, GL_RGBA, GL_FLOAT,
                              lut, GL_CLAMP_TO_EDGE);
+    lp.size = 64;
+    hf_lut_bake_dual(&lp, 0, lp.size, lut);
+    {
+        int k;
+        for (k = 0; k < HF_LUT_DUAL_PLANES; ++k)
+            a->tex_dual[k] = glm_texture2d(
+                GL_RGBA32F, lp.size, lp.size, GL_RGBA, GL_FLOAT,
+                lut + 4u * (size_t)lp.size * (size_t)lp.size * (size_t)k,
+                GL_CLAMP_TO_EDGE);
+    }
     free(lut);
     glm_ramp(ramp, 64, 32);
     a->tex_ramp = glm_texture2d(GL_RGBA8, 64, 32, GL_RGBA, GL_UNSIGNED_BYTE,
@@ -1910,6 +2000,11 @@ static void glm_draw(glm_app *a)
         glm_sampler(prog, 0, GL_TEXTURE_2D, a->tex_m, "u_lut_m");
         glm_sampler(prog, 1, GL_TEXTURE_2D, a->tex_n, "u_lut_n");
         glm_sampler(prog, 2, GL_TEXTURE_2D, a->tex_ramp, "u_ramp");
+        glUniform1f(glGetUniformLocation(prog, "u_dual"),
+                    a->o.no_dual ? 0.0f : 1.0f);
+        glm_sampler(prog, 8, GL_TEXTURE_2D, a->tex_dual[0], "u_dual0");
+        glm_sampler(prog, 9, GL_TEXTURE_2D, a->tex_dual[2], "u_dual2");
+        glActiveTexture(GL_TEXTURE0);
         if (prog == a->prog_gpu) {
             hf_ribbon_params v;
             glm_ribbon_view(a, &v);
@@ -1980,6 +2075,7 @@ static void glm_shutdown(glm_app *a)
     if (glc_width() > 0) {
         glDeleteBuffers(12, bufs);
         glDeleteTextures(9, texs);
+        glDeleteTextures(HF_LUT_DUAL_PLANES, a->tex_dual);
         glDeleteVertexArrays(5, vaos);
         glDeleteFramebuffers(1, &a->shadow_fbo);
         for (i = 0; i < 9; ++i) glDeleteProgram(progs[i]);
@@ -2085,6 +2181,8 @@ static void glm_usage(FILE *fp)
 "Drawing\n"
 "  --kajiya           Kajiya-Kay instead of Marschner\n"
 "  --no-shadows       no self-shadowing (default: a deep shadow map)\n"
+"  --no-dual          no dual scattering: single scattering only (default:\n"
+"                     Zinke's dual scattering from hf_lut_bake_dual)\n"
 "  --no-specular      diffuse and ambient only\n"
 "  --gpu-expand       ribbons expanded on the GPU from hf_fur_interpolate_points\n"
 "  --compact          CPU ribbons in the 16-byte vertex; with --gpu-expand,\n"
@@ -2214,6 +2312,7 @@ static int glm_parse(int argc, char **argv, glm_options *o)
         }
         else if (!strcmp(s, "--no-specular")) o->specular = 0.0f;
         else if (!strcmp(s, "--no-shadows")) o->no_shadows = 1;
+        else if (!strcmp(s, "--no-dual")) o->no_dual = 1;
         else if (!strcmp(s, "--no-hair")) o->no_hair = 1;
         else if (!v) {
             fprintf(stderr, "gl_marschner: unknown option or %s without its "

@@ -682,6 +682,7 @@ static double t_rp(double n, double x)
 
 typedef struct t_col {
     double eta1, eta2, sigma1, c;
+    double inv_ctt; /* 1 / cos(theta_t) */
 } t_col;
 
 static t_col t_column(double eta, double cd, double sigma)
@@ -692,6 +693,7 @@ static t_col t_column(double eta, double cd, double sigma)
     k.eta2 = eta * eta / k.eta1;
     cos_tt = sqrt(eta * eta - s2) / eta;
     k.sigma1 = sigma / cos_tt;
+    k.inv_ctt = 1.0 / cos_tt;
     k.c = asin(1.0 / k.eta1);
     return k;
 }
@@ -8551,6 +8553,7 @@ static void test_lut_params_init_defaults(void)
           p.sigma_a_rgb[2] == 0.2);
     CHECK_EQ_INT(p.variant, HF_LUT_CUBIC);
     CHECK_EQ_INT(p.size, 256);
+    CHECK_EQ_INT(p.model, HF_LUT_MARSCHNER);
     CHECK_EQ_INT(hf_lut_validate(&p, NULL), HF_OK);
     hf_lut_params_init(NULL); /* ignored, no crash */
 }
@@ -8583,6 +8586,7 @@ static void test_lut_validate_codes(void)
     T_BAD(sigma_a, -1e-9, HF_ERROR_BAD_PARAMETER, "sigma_a");
     T_BAD(sigma_a_rgb[1], -0.5, HF_ERROR_BAD_PARAMETER, "sigma_a_rgb[1]");
     T_BAD(variant, (hf_lut_variant)2, HF_ERROR_BAD_PARAMETER, "variant");
+    T_BAD(model, 2, HF_ERROR_BAD_PARAMETER, "model");
     T_BAD(size, -1, HF_ERROR_BAD_COUNT, "size");
     T_BAD(size, -3, HF_ERROR_BAD_COUNT, "size");
     T_BAD(size, HF_LUT_MAX_SIZE + 1, HF_ERROR_BAD_COUNT, "size");
@@ -9314,6 +9318,566 @@ static void test_lut_texel_centres(void)
         }
     free(m);
     free(t);
+}
+
+/* ---- the energy-conserving fibre, the furnace, dual scattering ----------- */
+
+/* A reference written from docs/marschner-spec.md sections 14 to 16, apart
+   from the library: d'Eon's lobe in its plain form (I0 by its power
+   series, no scaling), cell means by the midpoint rule, lobe energies by
+   binning a fine midpoint rule in gamma, and Zinke's formulas. */
+
+/* I0(x) = sum (x^2 / 4)^k / (k!)^2: every term positive, double suffices
+   for the x <= 250 the default lobes reach. */
+static double t_i0(double x)
+{
+    double t = 1.0, s = 1.0, q = 0.25 * x * x;
+    int k;
+    for (k = 1; k < 2000 && t > 1e-18 * s; ++k) {
+        t *= q / ((double)k * (double)k);
+        s += t;
+    }
+    return s;
+}
+
+/* d'Eon et al. 2011: exp(-sin ti sin tr / v) I0(cos ti cos tr / v) /
+   (2 v sinh(1 / v)), ti the shifted incident inclination */
+static double t_deon(double v, double ti, double tr)
+{
+    return exp(-sin(ti) * sin(tr) / v) * t_i0(fabs(cos(ti)) * cos(tr) / v) /
+           (2.0 * v * sinh(1.0 / v));
+}
+
+/* lobe k's shift and variance: alpha_R, -alpha_R / 2, -3 alpha_R / 2, 0;
+   (2 beta)^2 with beta_R, beta_R / 2, 2 beta_R, 2 beta_R */
+static void t_lobe(const hf_lut_params *p, int k, double *alpha, double *v,
+                   double *beta)
+{
+    static const double fa[4] = {1.0, -0.5, -1.5, 0.0};
+    static const double fb[4] = {1.0, 0.5, 2.0, 2.0};
+    double b = fb[k] * p->beta_r_deg * T_DEG;
+    *alpha = fa[k] * p->alpha_r_deg * T_DEG;
+    *beta = b;
+    *v = 4.0 * b * b;
+}
+
+/* The energy-conserving fibre at h = sin(g): one Fresnel factor (F_ext of
+   section 6.4) at every interface, and the chord 2 cos(gamma_t) /
+   cos(theta_t) that the absorption runs along (T = exp(-sigma_a e)). */
+static double t_fresnel_e(const t_col *k, double g, double *e)
+{
+    double gt = asin(sin(g) / k->eta1);
+    *e = 2.0 * cos(gt) * k->inv_ctt;
+    return 0.5 * (t_rs(k->eta1, g) + t_rp(k->eta2, g));
+}
+
+/* A_p from F and T; p = 3 is the sum over p >= 3. */
+static double t_atten_ft(int p, double F, double T)
+{
+    if (p == 0) return F;
+    if (p == 3) return (1 - F) * (1 - F) * F * F * T * T * T / (1 - F * T);
+    return (1 - F) * (1 - F) * pow(F, p - 1) * pow(T, p);
+}
+
+/* cos of the exit azimuth of lobe p at gamma (cubic or exact) */
+static double t_cos_exit(const t_col *k, int p, double g, int exact)
+{
+    return cos(t_phi(k, p, g, exact) + p * T_PI);
+}
+
+/* The albedo of the fibre at cos(theta_i) = cd: 1/2 the integral over h
+   of F + (1 - F)^2 T / (1 - F T) (all p summed in closed form). */
+static double t_albedo_e(double eta, double cd, double sigma)
+{
+    t_col k = t_column(eta, cd, sigma);
+    const int steps = 20000;
+    double sum = 0.0;
+    int i;
+    for (i = 0; i < steps; ++i) {
+        double g = (i + 0.5) * (T_PI / 2) / steps, e;
+        double F = t_fresnel_e(&k, g, &e), T = exp(-sigma * e);
+        sum += (F + (1 - F) * (1 - F) * T / (1 - F * T)) * cos(g) *
+               (T_PI / 2) / steps;
+    }
+    return sum;
+}
+
+/* Lobe energies of one column, binned by cos(phi) into n cells
+   (e[4 j + p], both signs of phi), and the p >= 3 energy in e3. */
+static void t_energy_cells(const hf_lut_params *p, double cd, int n,
+                           int steps, double *e, double *e3)
+{
+    t_col k = t_column(p->eta, cd, p->sigma_a);
+    int exact = p->variant == HF_LUT_EXACT, i, c;
+    for (i = 0; i < 4 * n; ++i) e[i] = 0.0;
+    *e3 = 0.0;
+    for (i = 0; i < steps; ++i) {
+        double g = (i + 0.5) * (T_PI / 2) / steps, ee;
+        double w = cos(g) * (T_PI / 2) / steps;
+        double F = t_fresnel_e(&k, g, &ee), T = exp(-p->sigma_a * ee);
+        for (c = 0; c < 3; ++c) {
+            int j = (int)floor((t_cos_exit(&k, c, g, exact) + 1.0) * 0.5 * n);
+            if (j > n - 1) j = n - 1;
+            e[4 * j + c] += w * t_atten_ft(c, F, T);
+        }
+        *e3 += w * t_atten_ft(3, F, T);
+    }
+}
+
+static float *t_dual_alloc(int n)
+{
+    return (float *)malloc(sizeof(float) * 12u * (size_t)n * (size_t)n);
+}
+
+static hf_lut_params t_lut_energy(int size)
+{
+    hf_lut_params p = t_lut_defaults(size, HF_LUT_CUBIC);
+    p.model = HF_LUT_ENERGY;
+    return p;
+}
+
+/* The model field: default, validation, the calls that are the paper's
+   only; the paper's bytes do not move (the other tests pin them). */
+static void test_lut_energy_params(void)
+{
+    hf_lut_params p = t_lut_energy(8);
+    float *a = t_lut_alloc(8), *b = t_lut_alloc(8);
+    double o[3] = {-1, -1, -1};
+    hf_diag d;
+    hf_lut_params z;
+    memset(&z, 0, sizeof z);
+    CHECK_EQ_INT(z.model, HF_LUT_MARSCHNER); /* zero: the paper's model */
+    hf_lut_params_init(&z);
+    CHECK_EQ_INT(z.model, HF_LUT_MARSCHNER);
+    CHECK_EQ_INT(hf_lut_validate(&p, &d), HF_OK);
+    p.model = 2;
+    CHECK_EQ_INT(hf_lut_validate(&p, &d), HF_ERROR_BAD_PARAMETER);
+    CHECK(strcmp(d.field, "model") == 0);
+    p.model = -1;
+    CHECK_EQ_INT(hf_lut_validate(&p, &d), HF_ERROR_BAD_PARAMETER);
+    p.model = HF_LUT_ENERGY;
+    CHECK_EQ_INT(hf_lut_eval_m(&p, 0.1, o), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_lut_eval_n(&p, 0.5, 1.0, o), HF_ERROR_BAD_PARAMETER);
+    CHECK(o[0] == -1 && o[1] == -1 && o[2] == -1);
+    {
+        float *keep = t_lut_alloc(8);
+        memset(keep, 0x5a, sizeof(float) * 4 * 64);
+        memcpy(a, keep, sizeof(float) * 4 * 64);
+        memcpy(b, keep, sizeof(float) * 4 * 64);
+        CHECK_EQ_INT(hf_lut_bake_n_rgb(&p, 0, 8, a, b), HF_ERROR_BAD_PARAMETER);
+        CHECK(memcmp(a, keep, sizeof(float) * 4 * 64) == 0);
+        CHECK(memcmp(b, keep, sizeof(float) * 4 * 64) == 0);
+        free(keep);
+    }
+    free(a);
+    free(b);
+}
+
+/* M of the energy-conserving fibre against the reference: every texel at
+   n = 8 (cell means of the plain formula, midpoint rule). */
+static void test_lut_energy_m_reference(void)
+{
+    const int n = 8, steps = 400;
+    hf_lut_params p = t_lut_energy(n);
+    float *m = t_lut_alloc(n);
+    int i, j, k, s, bad = 0;
+    p.alpha_r_deg = -9.0;
+    p.beta_r_deg = 6.0;
+    CHECK_EQ_INT(hf_lut_bake_m(&p, 0, n, m), HF_OK);
+    for (k = 0; k < 4; ++k) {
+        double alpha, v, beta;
+        t_lobe(&p, k, &alpha, &v, &beta);
+        for (i = 0; i < n; ++i) {
+            double ti = asin((2.0 * i + 1 - n) / n) - 2.0 * alpha;
+            for (j = 0; j < n; ++j) {
+                double t0 = asin((2.0 * j - n) / n);
+                double t1 = asin((2.0 * j + 2 - n) / n), sum = 0.0, x;
+                for (s = 0; s < steps; ++s) {
+                    double tr = t0 + (t1 - t0) * (s + 0.5) / steps;
+                    sum += t_deon(v, ti, tr) * cos(tr) * (t1 - t0) / steps;
+                }
+                sum /= 2.0 / n;
+                x = m[4 * (j * n + i) + k];
+                if (!(fabs(x - sum) <= 2e-4 * sum + 1e-9)) {
+                    if (bad < 5)
+                        printf("  M(%d, %d) lobe %d: %.9g, reference %.9g\n",
+                               i, j, k, x, sum);
+                    ++bad;
+                }
+            }
+        }
+    }
+    CHECK_EQ_INT(bad, 0);
+    free(m);
+}
+
+/* d'Eon's normalisation, texel by texel: for every incident column and
+   lobe the cells hold a density that integrates to 1 over sin(theta_r),
+   whatever the size, shift and width (to the float rounding). */
+static void test_lut_energy_m_normalised(void)
+{
+    static const int sizes[3] = {5, 32, 64};
+    static const double ab[3][2] = {{-7.5, 7.5}, {-10, 5}, {-5, 10}};
+    int z, a, i, j, k;
+    for (z = 0; z < 3; ++z)
+        for (a = 0; a < 3; ++a) {
+            int n = sizes[z];
+            hf_lut_params p = t_lut_energy(n);
+            float *m = t_lut_alloc(n);
+            p.alpha_r_deg = ab[a][0];
+            p.beta_r_deg = ab[a][1];
+            CHECK_EQ_INT(hf_lut_bake_m(&p, 0, n, m), HF_OK);
+            for (i = 0; i < n; ++i)
+                for (k = 0; k < 4; ++k) {
+                    double sum = 0.0;
+                    for (j = 0; j < n; ++j) sum += m[4 * (j * n + i) + k];
+                    CHECK_NEAR(sum * 2.0 / n, 1.0, 1e-6);
+                }
+            free(m);
+        }
+}
+
+/* N of the energy-conserving fibre against the reference: the binned
+   lobe energies over the cells' widths in phi, both variants; the p >= 3
+   lobe uniform; every column's cells add up to the lobe's energy, and to
+   1 over all lobes when nothing is absorbed. */
+static void test_lut_energy_n_reference(void)
+{
+    const int n = 8, steps = 60000;
+    int v, a, i, j, c, bad = 0;
+    double e[4 * 8], e3;
+    for (v = 0; v < 2; ++v)
+        for (a = 0; a < 2; ++a) {
+            hf_lut_params p = t_lut_energy(n);
+            float *t = t_lut_alloc(n);
+            double mx = 0.0;
+            p.variant = v;
+            p.sigma_a = a ? 0.0 : 0.35;
+            p.explicit_zero = HF_LUT_ZERO_SIGMA_A;
+            CHECK_EQ_INT(hf_lut_bake_n(&p, 0, n, t), HF_OK);
+            for (i = 0; i < 4 * n * n; ++i)
+                if ((i & 3) != 3 && t[i] > mx) mx = t[i];
+            for (i = n / 2; i < n; ++i) {
+                double cd = (2.0 * i + 1 - n) / n, tot[3] = {0, 0, 0};
+                double sum_all = 0.0;
+                t_energy_cells(&p, cd, n, steps, e, &e3);
+                for (j = 0; j < n; ++j) {
+                    double dphi = acos((2.0 * j - n) / n) -
+                                  acos((2.0 * j + 2 - n) / n);
+                    const float *x = t + 4 * (j * n + i);
+                    for (c = 0; c < 3; ++c) {
+                        double r = e[4 * j + c] / (2.0 * dphi);
+                        if (!(fabs(x[c] - r) <= 2e-3 * r + 2e-4 * mx)) {
+                            if (bad < 5)
+                                printf("  N(%d, %d).%d: %.9g, reference %.9g\n",
+                                       i, j, c, x[c], r);
+                            ++bad;
+                        }
+                        tot[c] += x[c] * 2.0 * dphi;
+                    }
+                    CHECK_REL(x[3], e3 / (2.0 * T_PI), 3e-6);
+                    /* mirrored column */
+                    CHECK(memcmp(x, t + 4 * (j * n + n - 1 - i), 16) == 0);
+                }
+                for (c = 0; c < 3; ++c) {
+                    double want = 0.0;
+                    for (j = 0; j < n; ++j) want += e[4 * j + c];
+                    CHECK_NEAR(tot[c], want, 1e-6 * want + 1e-7);
+                    sum_all += tot[c];
+                }
+                sum_all += e3;
+                if (a) CHECK_NEAR(sum_all, 1.0, 1e-6);
+                else CHECK_NEAR(sum_all, t_albedo_e(p.eta, cd, p.sigma_a), 1e-5);
+            }
+            free(t);
+        }
+    CHECK_EQ_INT(bad, 0);
+}
+
+/* The white furnace of the baked textures, as the shader combines them:
+   the energy-conserving fibre gives 1 when nothing is absorbed, the
+   reference albedo otherwise, falling as absorption rises; the paper's
+   fibre scatters about twice what it receives. */
+static void test_lut_furnace(void)
+{
+    static const double sig[3] = {0.0, 0.2, 1.0};
+    static const double th[4] = {0, 30, 60, 80};
+    const int n = 64;
+    hf_lut_params p = t_lut_energy(n);
+    float *m = t_lut_alloc(n), *t = t_lut_alloc(n);
+    double alb[3][4];
+    int s, k;
+    CHECK_EQ_INT(hf_lut_bake_m(&p, 0, n, m), HF_OK);
+    for (s = 0; s < 3; ++s) {
+        p.sigma_a = sig[s];
+        p.explicit_zero = HF_LUT_ZERO_SIGMA_A;
+        CHECK_EQ_INT(hf_lut_bake_n(&p, 0, n, t), HF_OK);
+        for (k = 0; k < 4; ++k) {
+            double ref = t_albedo_e(p.eta, cos(th[k] * T_DEG), sig[s]);
+            CHECK_EQ_INT(hf_lut_furnace(&p, m, t, th[k] * T_DEG, &alb[s][k]),
+                         HF_OK);
+            CHECK_NEAR(alb[s][k], ref, 4e-3);
+            if (s == 0) CHECK_NEAR(alb[s][k], 1.0, 2e-3);
+            if (s > 0) CHECK(alb[s][k] < alb[s - 1][k] - 0.01);
+            /* light from below the normal plane: the same */
+            {
+                double b;
+                hf_lut_furnace(&p, m, t, -th[k] * T_DEG, &b);
+                CHECK_NEAR(b, alb[s][k], 2e-3);
+            }
+        }
+    }
+    /* the paper's fibre: twice too bright where it absorbs nothing */
+    {
+        hf_lut_params q = t_lut_defaults(32, HF_LUT_CUBIC);
+        double a0;
+        q.sigma_a = 0.0;
+        q.explicit_zero = HF_LUT_ZERO_SIGMA_A;
+        hf_lut_bake_m(&q, 0, 32, m);
+        hf_lut_bake_n(&q, 0, 32, t);
+        CHECK_EQ_INT(hf_lut_furnace(&q, m, t, 0.0, &a0), HF_OK);
+        CHECK(a0 > 1.75 && a0 < 2.0);
+    }
+    /* errors leave the albedo alone */
+    {
+        double a = -5.0;
+        CHECK_EQ_INT(hf_lut_furnace(NULL, m, t, 0.0, &a), HF_ERROR_NULL_POINTER);
+        CHECK_EQ_INT(hf_lut_furnace(&p, NULL, t, 0.0, &a), HF_ERROR_NULL_POINTER);
+        CHECK_EQ_INT(hf_lut_furnace(&p, m, NULL, 0.0, &a), HF_ERROR_NULL_POINTER);
+        CHECK_EQ_INT(hf_lut_furnace(&p, m, t, 0.0, NULL), HF_ERROR_NULL_POINTER);
+        CHECK_EQ_INT(hf_lut_furnace(&p, m, t, 1.6, &a), HF_ERROR_BAD_PARAMETER);
+        CHECK_EQ_INT(hf_lut_furnace(&p, m, t, HUGE_VAL, &a), HF_ERROR_NON_FINITE);
+        p.eta = 0.5;
+        CHECK_EQ_INT(hf_lut_furnace(&p, m, t, 0.0, &a), HF_ERROR_BAD_PARAMETER);
+        p.eta = 1.55;
+        m[4 * n * n - 1] = strtof("nan", NULL);
+        CHECK_EQ_INT(hf_lut_furnace(&p, m, t, 0.0, &a), HF_ERROR_NON_FINITE);
+        CHECK(a == -5.0);
+    }
+    free(m);
+    free(t);
+}
+
+/* Zinke et al.'s eqs. 14, 16, 17 with the weights of section 16. */
+static void t_dual_derived(double af, double ab, double mf, double mb,
+                           double bf, double bb, double out[3])
+{
+    double q = 1 - af * af;
+    out[0] = ab * af * af / q + pow(ab, 3) * af * af / pow(q, 3);
+    out[1] = mb * (1 - 2 * ab * ab / (q * q)) +
+             mf * (2 * q * q + 4 * af * af * ab * ab) / pow(q, 3);
+    out[2] = (1 + 0.7 * af * af) *
+             (ab * sqrt(2 * bf * bf + bb * bb) +
+              pow(ab, 3) * sqrt(2 * bf * bf + 3 * bb * bb)) /
+             (ab + pow(ab, 3));
+}
+
+/* The dual scattering tables against the reference integration: every
+   texel at n = 6, both variants; a_f + a_b is the fibre's albedo. */
+static void test_lut_dual_reference(void)
+{
+    const int n = 6, steps = 60000;
+    double *F = (double *)malloc(sizeof(double) * steps);
+    double *E = (double *)malloc(sizeof(double) * steps);
+    double *W = (double *)malloc(sizeof(double) * steps);
+    unsigned char *fw = (unsigned char *)malloc((size_t)steps);
+    int v, i, j, s, c, bad = 0;
+    for (v = 0; v < 2; ++v) {
+        hf_lut_params p = t_lut_defaults(n, (hf_lut_variant)v);
+        float *d = t_dual_alloc(n);
+        const size_t P = 4u * n * n;
+        p.alpha_r_deg = -8.0;
+        p.beta_r_deg = 7.0;
+        CHECK_EQ_INT(hf_lut_bake_dual(&p, 0, n, d), HF_OK);
+        for (j = 0; j < n; ++j) {
+            double cd = (j + 0.5) / n;
+            t_col k = t_column(p.eta, cd, 0.0);
+            /* per sample of gamma: F, the chord, the weight, and which
+               lobes leave forward (cos phi < 0) */
+            for (s = 0; s < steps; ++s) {
+                double g = (s + 0.5) * (T_PI / 2) / steps;
+                F[s] = t_fresnel_e(&k, g, &E[s]);
+                W[s] = cos(g) * (T_PI / 2) / steps;
+                fw[s] = 0;
+                for (c = 0; c < 3; ++c)
+                    if (t_cos_exit(&k, c, g, v) < 0) fw[s] |= (unsigned char)(1 << c);
+            }
+            for (i = 0; i < n; ++i) {
+                double u = (i + 0.5) / n, sig = u / (1 - u);
+                double af[4] = {0, 0, 0, 0}, ab[4] = {0, 0, 0, 0};
+                double Af = 0, Ab = 0, mf = 0, mb = 0, vf = 0, vb = 0;
+                double der[3], want[12];
+                const size_t at = 4u * (j * n + i);
+                for (s = 0; s < steps; ++s) {
+                    double T = exp(-sig * E[s]), f = F[s], A[4];
+                    A[0] = W[s] * f;
+                    A[1] = W[s] * (1 - f) * (1 - f) * T;
+                    A[2] = A[1] * f * T;
+                    A[3] = A[2] * f * T / (1 - f * T);
+                    for (c = 0; c < 3; ++c) {
+                        if (fw[s] & (1 << c)) af[c] += A[c];
+                        else ab[c] += A[c];
+                    }
+                    af[3] += 0.5 * A[3];
+                    ab[3] += 0.5 * A[3];
+                }
+                for (c = 0; c < 4; ++c) {
+                    double alpha, var, beta;
+                    t_lobe(&p, c, &alpha, &var, &beta);
+                    Af += af[c];
+                    Ab += ab[c];
+                    mf += af[c] * alpha;
+                    mb += ab[c] * alpha;
+                    vf += af[c] * beta * beta;
+                    vb += ab[c] * beta * beta;
+                }
+                mf /= Af;
+                mb /= Ab;
+                vf = sqrt(vf / Af);
+                vb = sqrt(vb / Ab);
+                t_dual_derived(Af, Ab, mf, mb, vf, vb, der);
+                want[0] = Af; want[1] = mf; want[2] = vf; want[3] = 1;
+                want[4] = Ab; want[5] = mb; want[6] = vb; want[7] = 1;
+                want[8] = der[0]; want[9] = der[1]; want[10] = der[2];
+                want[11] = 1;
+                for (c = 0; c < 12; ++c) {
+                    double x = d[P * (c / 4) + at + (c & 3)];
+                    double tol = (c == 0 || c == 4) ? 2e-5
+                                 : c == 8 ? 1e-4 * want[c] + 1e-7
+                                          : 1e-4 + 1e-3 * fabs(want[c]);
+                    if (!(fabs(x - want[c]) <= tol)) {
+                        if (bad < 5)
+                            printf("  dual(%d, %d) channel %d: %.9g, "
+                                   "reference %.9g\n", i, j, c, x, want[c]);
+                        ++bad;
+                    }
+                }
+                CHECK_NEAR(d[at] + d[P + at], t_albedo_e(p.eta, cd, sig), 1e-5);
+                CHECK(d[at] > 0 && d[at] < 1 && d[P + at] > 0);
+            }
+        }
+        /* darker hair sends back less after many bounces */
+        for (j = 0; j < n; ++j)
+            for (i = 1; i < n; ++i)
+                CHECK(d[2 * P + 4u * (j * n + i)] <
+                      d[2 * P + 4u * (j * n + i - 1)]);
+        free(d);
+    }
+    CHECK_EQ_INT(bad, 0);
+    free(F);
+    free(E);
+    free(W);
+    free(fw);
+}
+
+/* The textures of the energy-conserving fibre and the dual tables: any
+   row split gives the same bytes; errors write nothing; extremes stay
+   finite. */
+static void test_lut_energy_contracts(void)
+{
+    static const int sizes[3] = {37, 1, 70};
+    hf_rng rng;
+    int z, w, k;
+    hf_rng_seed(&rng, 777u, 3u);
+    for (z = 0; z < 3; ++z) {
+        int n = sizes[z];
+        size_t bytes = sizeof(float) * 12u * n * n;
+        hf_lut_params p = t_lut_energy(n);
+        float *whole[3], *part[3];
+        p.variant = z == 2 ? HF_LUT_EXACT : HF_LUT_CUBIC;
+        for (w = 0; w < 3; ++w) {
+            whole[w] = t_dual_alloc(n);
+            part[w] = t_dual_alloc(n);
+            memset(part[w], 0x5a, bytes);
+        }
+        CHECK_EQ_INT(hf_lut_bake_m(&p, 0, n, whole[0]), HF_OK);
+        CHECK_EQ_INT(hf_lut_bake_n(&p, 0, n, whole[1]), HF_OK);
+        CHECK_EQ_INT(hf_lut_bake_dual(&p, 0, n, whole[2]), HF_OK);
+        {
+            int first = 0;
+            while (first < n) {
+                int count = 1 + (int)hf_rng_below(&rng, 23u);
+                if (count > n - first) count = n - first;
+                CHECK_EQ_INT(hf_lut_bake_m(&p, first, count, part[0]), HF_OK);
+                CHECK_EQ_INT(hf_lut_bake_n(&p, first, count, part[1]), HF_OK);
+                CHECK_EQ_INT(hf_lut_bake_dual(&p, first, count, part[2]),
+                             HF_OK);
+                first += count;
+            }
+        }
+        for (w = 0; w < 3; ++w) {
+            size_t b = w == 2 ? bytes : bytes / 3;
+            CHECK(memcmp(whole[w], part[w], b) == 0);
+            CHECK(tb_finite(whole[w], b / sizeof(float)));
+            free(whole[w]);
+            free(part[w]);
+        }
+    }
+    /* errors: nothing written */
+    {
+        const int n = 4;
+        float d[12 * 16], keep[12 * 16];
+        hf_lut_params p = t_lut_energy(n), b;
+        memset(keep, 0x3c, sizeof keep);
+        memcpy(d, keep, sizeof d);
+        b = p; b.eta = 5.0;
+        CHECK_EQ_INT(hf_lut_bake_dual(&b, 0, n, d), HF_ERROR_BAD_PARAMETER);
+        CHECK_EQ_INT(hf_lut_bake_m(&b, 0, n, d), HF_ERROR_BAD_PARAMETER);
+        b = p; b.beta_r_deg = NAN;
+        CHECK_EQ_INT(hf_lut_bake_dual(&b, 0, n, d), HF_ERROR_NON_FINITE);
+        CHECK_EQ_INT(hf_lut_bake_n(&b, 0, n, d), HF_ERROR_NON_FINITE);
+        b = p; b.model = 7;
+        CHECK_EQ_INT(hf_lut_bake_dual(&b, 0, n, d), HF_ERROR_BAD_PARAMETER);
+        b = p; b.size = HF_LUT_MAX_SIZE + 1;
+        CHECK_EQ_INT(hf_lut_bake_dual(&b, 0, 1, d), HF_ERROR_BAD_COUNT);
+        CHECK_EQ_INT(hf_lut_bake_dual(NULL, 0, n, d), HF_ERROR_NULL_POINTER);
+        CHECK_EQ_INT(hf_lut_bake_dual(&p, 0, n, NULL), HF_ERROR_NULL_POINTER);
+        CHECK_EQ_INT(hf_lut_bake_dual(&p, -1, 2, d), HF_ERROR_BAD_RANGE);
+        CHECK_EQ_INT(hf_lut_bake_dual(&p, 2, 3, d), HF_ERROR_BAD_RANGE);
+        CHECK_EQ_INT(hf_lut_bake_dual(&p, 1, 0x7fffffff, d), HF_ERROR_BAD_RANGE);
+        CHECK_EQ_INT(hf_lut_bake_dual(&p, n, 0, d), HF_OK); /* empty */
+        CHECK(memcmp(d, keep, sizeof d) == 0);
+        /* one row: exactly that row of each plane */
+        CHECK_EQ_INT(hf_lut_bake_dual(&p, 1, 1, d), HF_OK);
+        for (k = 0; k < 3; ++k) {
+            const float *pl = d + 4 * n * n * k, *kp = keep + 4 * n * n * k;
+            CHECK(memcmp(pl, kp, sizeof(float) * 4 * n) == 0);
+            CHECK(memcmp(pl + 4 * n, kp + 4 * n, sizeof(float) * 4 * n) != 0);
+            CHECK(memcmp(pl + 8 * n, kp + 8 * n, sizeof(float) * 8 * n) == 0);
+        }
+    }
+    /* extremes: finite, M and N not negative */
+    {
+        static const double etas[2] = {1.2, 3.0};
+        static const double sig[3] = {0.0, 1e-3, 1e308};
+        static const double betas[4] = {1e-3, 4.9e-324, 1e308, 40.0};
+        static const double alphas[3] = {0.0, 1e5, -1e308};
+        float *t = t_dual_alloc(5);
+        int e, s, bb, a, fails = 0;
+        size_t i;
+        for (e = 0; e < 2; ++e)
+            for (s = 0; s < 3; ++s)
+                for (bb = 0; bb < 4; ++bb)
+                    for (a = 0; a < 3; ++a) {
+                        hf_lut_params p = t_lut_energy(5);
+                        p.eta = etas[e];
+                        p.sigma_a = sig[s];
+                        p.beta_r_deg = betas[bb];
+                        p.alpha_r_deg = alphas[a];
+                        p.variant = (e + a) & 1;
+                        p.explicit_zero =
+                            HF_LUT_ZERO_SIGMA_A | HF_LUT_ZERO_ALPHA_R;
+                        CHECK_EQ_INT(hf_lut_bake_m(&p, 0, 5, t), HF_OK);
+                        if (!t_lut_all_ok(t, 5, 0)) ++fails;
+                        CHECK_EQ_INT(hf_lut_bake_n(&p, 0, 5, t), HF_OK);
+                        if (!t_lut_all_ok(t, 5, 0)) ++fails;
+                        CHECK_EQ_INT(hf_lut_bake_dual(&p, 0, 5, t), HF_OK);
+                        for (i = 0; i < 12u * 25; ++i)
+                            if (!t_is_finite(t[i])) ++fails;
+                    }
+        CHECK_EQ_INT(fails, 0);
+        free(t);
+    }
 }
 
 static void test_bad_lut(void)
@@ -11796,6 +12360,13 @@ int main(int argc, char **argv)
     RUN(test_lut_to_u8);
     RUN(test_lut_eval_errors);
     RUN(test_lut_texel_centres);
+    RUN(test_lut_energy_params);
+    RUN(test_lut_energy_m_reference);
+    RUN(test_lut_energy_m_normalised);
+    RUN(test_lut_energy_n_reference);
+    RUN(test_lut_furnace);
+    RUN(test_lut_dual_reference);
+    RUN(test_lut_energy_contracts);
     RUN(test_defaults_zeroed_lut_params_are_init);
     RUN(test_bad_lut);
 

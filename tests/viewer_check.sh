@@ -155,7 +155,9 @@ if $V "$@" --mesh "$M/OBJ/WusonOBJ.obj" --out "$O/m.png" >/dev/null 2>&1 &&
       >/dev/null 2>&1; then
     if d=$($B/png_diff "$O/m.png" "$O/cm.png"); then ok "m vs cm: $d"
     else bad "m vs cm differ: $d"; fi
-    if d=$($B/png_diff "$O/m.png" "$O/mm.png"); then
+    # the controls ask for 1 % of the pixels off by 12: seen from its
+    # unlit side the fur is dark (light reaches it only through the fur)
+    if d=$($B/png_diff "$O/m.png" "$O/mm.png" 12 0.01); then
         bad "the control (cm read at 1 mm a unit) looks the same: $d"
     else ok "control, cm read at 1 mm a unit, differs: $d"; fi
 else
@@ -173,7 +175,7 @@ if $V "$@" --gpu-expand --out "$O/gpu.png" >/dev/null 2>&1 &&
     if d=$($B/png_diff "$O/gpu.png" "$O/gpu8.png"); then
         ok "compact GPU points vs float: $d"
     else bad "compact GPU points differ from float: $d"; fi
-    if d=$($B/png_diff "$O/gpu.png" "$O/gpu_lod.png"); then
+    if d=$($B/png_diff "$O/gpu.png" "$O/gpu_lod.png" 12 0.01); then
         bad "the control (LOD 0.05) looks the same: $d"
     else ok "control, LOD 0.05, differs: $d"; fi
     if grep -q "ropes: .* colliders" "$O/gpu8.txt"; then

@@ -8,7 +8,10 @@
    texel is finite (the library promises: never NaN), M.a and N.a lie in [0, 1], the
    densities are >= 0, and the same rows baked in pieces give the same
    bytes; hf_lut_to_u8 writes everything or nothing; eval writes finite
-   values or nothing.
+   values or nothing. Then (from the bytes left) the energy-conserving
+   fibre's M and N and the dual scattering tables with the same
+   parameters: finite, M and N not negative, the same bytes in pieces,
+   nothing written on failure, and the model's calls that refuse it.
 
    libFuzzer: clang -g -O1 -fsanitize=fuzzer,address,undefined fuzz_lut.c
               fuzz_impl.c (the header's implementation)
@@ -154,6 +157,58 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 FZ_REQUIRE(out[c] == out[c] && out[c] - out[c] == 0.0 &&
                            out[c] >= 0.0);
         }
+    }
+
+    /* ---- the energy-conserving fibre, the dual tables ----------------- */
+    {
+        float *d = (float *)fz_sentinel_alloc(3u * bytes);
+        float *d2 = (float *)fz_sentinel_alloc(3u * bytes);
+        hf_result rd;
+        int w = fz_u8(&r) % 3, f, c;
+        p.model = fz_chance(&r, 250) ? HF_LUT_ENERGY : fz_int(&r, -1, 3);
+        rv = hf_lut_validate(&p, NULL);
+        fz_range(&r, n, &f, &c);
+        rd = w == 0   ? hf_lut_bake_m(&p, f, c, d)
+             : w == 1 ? hf_lut_bake_n(&p, f, c, d)
+                      : hf_lut_bake_dual(&p, f, c, d);
+        FZ_REQUIRE(fz_known_result(rd));
+        if (rv != HF_OK && w != 2) FZ_REQUIRE(rd != HF_OK);
+        if (rd != HF_OK) {
+            FZ_REQUIRE(fz_untouched(d, 3u * bytes));
+        } else {
+            size_t planes = w == 2 ? 3u : 1u, pl, t;
+            for (pl = 0; pl < planes; ++pl) {
+                const float *x = d + pl * texels * 4u;
+                size_t t0 = (size_t)f * (size_t)n, tn = (size_t)c * (size_t)n;
+                FZ_REQUIRE(fz_untouched(x, t0 * 16u));
+                for (t = t0; t < t0 + tn; ++t) {
+                    FZ_REQUIRE(fz_all_finite(x + 4 * t, 4));
+                    if (w != 2)
+                        FZ_REQUIRE(x[4 * t] >= 0.0f && x[4 * t + 1] >= 0.0f &&
+                                   x[4 * t + 2] >= 0.0f && x[4 * t + 3] >= 0.0f);
+                }
+            }
+            {
+                int done = f, end = f + c;
+                while (done < end) {
+                    int k2 = fz_int(&r, 1, end - done);
+                    rd = w == 0   ? hf_lut_bake_m(&p, done, k2, d2)
+                         : w == 1 ? hf_lut_bake_n(&p, done, k2, d2)
+                                  : hf_lut_bake_dual(&p, done, k2, d2);
+                    FZ_REQUIRE(rd == HF_OK);
+                    done += k2;
+                }
+                if (c > 0)
+                    FZ_REQUIRE(memcmp(d, d2, (w == 2 ? 3u : 1u) * bytes) == 0);
+            }
+        }
+        if (rv == HF_OK && p.model == HF_LUT_ENERGY) {
+            double out[3] = {-7.0, -7.0, -7.0};
+            FZ_REQUIRE(hf_lut_eval_m(&p, 0.1, out) == HF_ERROR_BAD_PARAMETER);
+            FZ_REQUIRE(out[0] == -7.0);
+        }
+        free(d);
+        free(d2);
     }
 
     free(a);
