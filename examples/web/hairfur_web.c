@@ -96,7 +96,8 @@ typedef struct hw_app {
     GLuint prog_hair, prog_head, depth_hair, depth_head;
     GLuint vao_hair, vao_head, vbo_dyn, vbo_static, ibo_hair, vbo_head,
         ibo_head;
-    GLuint tex_m, tex_n, tex_density, tex_shadow, shadow_fbo;
+    GLuint tex_m, tex_n, tex_dual0, tex_dual2, tex_density, tex_shadow,
+        shadow_fbo;
     size_t dyn_bytes;
     /* the outcome */
     char status[2048];
@@ -219,7 +220,7 @@ static const char *hw_vs_hair =
     "uniform sampler2D u_shadow;\n"                                          \
     "uniform mat4 u_light_view_proj;\n"                                      \
     "uniform float u_shadow_k, u_shadow_depth, u_shadow_bias;\n"             \
-    "float hair_shadow(vec3 p) {\n"                                          \
+    "float hair_trans(vec3 p) {\n"                                           \
     "    vec4 q = u_light_view_proj * vec4(p, 1.0);\n"                       \
     "    vec3 s = q.xyz / q.w * 0.5 + 0.5;\n"                                \
     "    if (any(lessThan(s, vec3(0.0))) || any(greaterThan(s, vec3(1.0))))\n" \
@@ -232,46 +233,90 @@ static const char *hw_vs_hair =
     "            float d = (s.z - z0) * u_shadow_depth - u_shadow_bias;\n"   \
     "            sum += exp(-u_shadow_k * max(d, 0.0));\n"                   \
     "        }\n"                                                            \
-    "    return mix(0.12, 1.0, sum / 9.0);\n"                                \
-    "}\n"
+    "    return sum / 9.0;\n"                                                \
+    "}\n"                                                                    \
+    "float hair_shadow(vec3 p) { return mix(0.12, 1.0, hair_trans(p)); }\n"
 
-/* Marschner from the two LUTs (docs/luts.md), diffuse, ambient and the
-   shadow, as gl_marschner's hair shader; linear light, gamma 2.2 out */
-static const char *hw_fs_hair =
+/* gl_marschner's hair shader at its defaults (Marschner, dual
+   scattering): the energy-conserving fibre from its two LUTs (baked
+   without absorption), the hair colour as an absorption per channel,
+   Zinke et al.'s dual scattering from the tables of hf_lut_bake_dual,
+   ambient and the shadow; linear light, gamma 2.2 out. In parts: C99
+   compilers need only take 4095 bytes a string. */
+static const char *const hw_fs_hair_parts[3] = {
     HW_GLSL_HEADER
     "in vec3 v_position, v_tangent, v_texcoord;\n"
     "in vec4 v_color;\n"
-    "uniform sampler2D u_lut_m, u_lut_n;\n"
+    "uniform sampler2D u_lut_m, u_lut_n, u_dual0, u_dual2;\n"
     "uniform vec3 u_eye, u_light_dir, u_light_color, u_ambient;\n"
     HW_SHADOW_GLSL
     "out vec4 o_color;\n"
-    "const float cos2Min = 1e-2;      // grazing theta_d guard\n"
+    "const float PI = 3.14159265;\n"
+    "const float cosMin = 1e-2;       // grazing theta_r guard\n"
+    "const float d_f = 0.7, d_b = 0.7; // Zinke's density factors\n"
+    "float g1(float x, float var) {\n"
+    "    return exp(-0.5 * x * x / var) * inversesqrt(2.0 * PI * var);\n"
+    "}\n",
     "void main() {\n"
     "    vec3 T = normalize(v_tangent);\n"
     "    vec3 L = u_light_dir;\n"
     "    vec3 V = normalize(u_eye - v_position);\n"
-    "    // per-strand brightness from a hash of the root UV\n"
     "    float h = fract(sin(dot(v_texcoord.xy, vec2(12.9898, 78.233))) * 43758.5453);\n"
     "    vec3 base = pow(v_color.rgb, vec3(2.2)) * (0.7 + 0.6 * h);\n"
     "    float TL = dot(T, L), TV = dot(T, V);\n"
     "    float sinTL = sqrt(max(0.0, 1.0 - TL * TL));\n"
-    "    vec2 uv1 = vec2(TL, TV) * 0.5 + 0.5;\n"
-    "    vec4 M = texture(u_lut_m, uv1);   // M_R, M_TT, M_TRT, cos(theta_d)\n"
+    "    float sinTV = sqrt(max(0.0, 1.0 - TV * TV));\n"
+    "    vec4 M = texture(u_lut_m, vec2(TL, TV) * 0.5 + 0.5);\n"
     "    vec3 Lp = L - TL * T, Vp = V - TV * T;\n"
     "    float cosPhi = dot(Lp, Vp) * inversesqrt(max(dot(Lp, Lp) * dot(Vp, Vp), 1e-12));\n"
-    "    vec2 uv2 = vec2(M.a, cosPhi) * 0.5 + 0.5;\n"
-    "    vec4 N = texture(u_lut_n, uv2);   // N_R, N_TT, N_TRT, 1\n"
-    "    float inv = 1.0 / max(M.a * M.a, cos2Min);\n"
-    "    vec3 tint = mix(vec3(1.0), base / max(max(base.r, base.g),\n"
-    "                                          max(base.b, 1e-3)), 0.75);\n"
-    "    vec3 spec = 2.0 * (vec3(M.r * N.r) + (M.g * N.g + M.b * N.b) * tint)\n"
-    "                * inv * sinTL;\n"
-    "    float shadow = hair_shadow(v_position);\n"
+    "    vec4 N = texture(u_lut_n, vec2(sinTL, cosPhi) * 0.5 + 0.5);\n"
+    "    vec3 sigma = pow(log(clamp(base, 1e-3, 0.999)) / 5.969, vec3(2.0));\n"
+    "    vec3 Tr = exp(-sigma * 1.86 / sqrt(1.0 - TL * TL / (1.55 * 1.55)));\n"
+    "    float invCos = 1.0 / max(sinTV, cosMin);\n"
+    "    vec3 single = (M.r * N.r + (M.g * N.g + (M.b * N.b + M.a * N.a * Tr) * Tr) * Tr) * invCos;\n"
+    "    float fd = hair_trans(v_position);\n",
+    "    vec3 u = sigma / (1.0 + sigma);\n"
+    "    float sm = dot(sigma, vec3(0.2126, 0.7152, 0.0722));\n"
+    "    vec2 um = vec2(sm / (1.0 + sm), sinTL);\n"
+    "    vec4 f = texture(u_dual0, um);\n"
+    "    vec4 m = texture(u_dual2, um);\n"
+    "    vec3 af = vec3(texture(u_dual0, vec2(u.r, sinTL)).x,\n"
+    "                   texture(u_dual0, vec2(u.g, sinTL)).x,\n"
+    "                   texture(u_dual0, vec2(u.b, sinTL)).x);\n"
+    "    vec3 Ab = vec3(texture(u_dual2, vec2(u.r, sinTL)).x,\n"
+    "                   texture(u_dual2, vec2(u.g, sinTL)).x,\n"
+    "                   texture(u_dual2, vec2(u.b, sinTL)).x);\n"
+    "    float n = -log(max(fd, 1e-4));\n"
+    "    vec3 Tf = pow(af, vec3(n));\n"
+    "    float vf = n * f.z * f.z;\n"
+    "    float thH = 0.5 * (asin(clamp(TL, -1.0, 1.0)) + asin(clamp(TV, -1.0, 1.0)));\n"
+    "    float inv = 1.0 / (PI * max(sinTV * sinTV, cosMin));\n"
+    "    float gD = g1(thH - m.y, m.z * m.z) * inv;\n"
+    "    float gS = g1(thH - m.y, m.z * m.z + vf) * inv;\n"
+    "    float gF = 0.5 * g1(thH - f.y, f.z * f.z + vf) * inv;\n"
+    "    vec3 S = fd * (single + d_b * Ab * gD)\n"
+    "        + max(Tf - fd, 0.0) * d_f * (af * gF + PI * d_b * Ab * gS);\n"
+    "    vec3 lit = 3.0 * S * sinTL;\n"
     "    float occ = mix(0.35, 1.0, smoothstep(0.0, 0.3, v_texcoord.z));\n"
-    "    vec3 c = u_ambient * base * occ\n"
-    "           + u_light_color * shadow * occ * (0.8 * base * sinTL + spec);\n"
+    "    vec3 c = u_ambient * base * occ + u_light_color * occ * lit;\n"
     "    o_color = vec4(pow(c, vec3(1.0 / 2.2)), clamp(v_color.a, 0.0, 1.0));\n"
-    "}\n";
+    "}\n"};
+
+/* The hair fragment shader, its parts joined (once). */
+static const char *hw_fs_hair(void)
+{
+    static char src[8192];
+    if (!src[0]) {
+        size_t k, at = 0;
+        for (k = 0; k < 3; ++k) {
+            size_t len = strlen(hw_fs_hair_parts[k]);
+            if (at + len >= sizeof src) return "";
+            memcpy(src + at, hw_fs_hair_parts[k], len + 1);
+            at += len;
+        }
+    }
+    return src;
+}
 
 static const char *hw_vs_head =
     HW_GLSL_HEADER
@@ -598,17 +643,22 @@ static int hw_init(hw_app *a)
         return 0;
     }
 
-    a->prog_hair = hw_program(a, hw_vs_hair, hw_fs_hair, "hair");
+    a->prog_hair = hw_program(a, hw_vs_hair, hw_fs_hair(), "hair");
     a->prog_head = hw_program(a, hw_vs_head, hw_fs_head, "head");
     a->depth_hair = hw_program(a, hw_vs_hair, hw_fs_depth, "hair shadow");
     a->depth_head = hw_program(a, hw_vs_head, hw_fs_depth, "head shadow");
     if (!a->prog_hair || !a->prog_head || !a->depth_hair || !a->depth_head)
         return 0;
 
-    /* the LUTs, baked here in wasm: RGBA32F where the browser filters
-       float textures, else RGBA16F (filtered everywhere in WebGL2) */
+    /* the LUTs, baked here in wasm as gl_marschner bakes them (the
+       energy-conserving fibre without absorption, the dual scattering
+       tables at 64): RGBA32F where the browser filters float textures,
+       else RGBA16F (filtered everywhere in WebGL2) */
     hf_lut_params_init(&lp);
     lp.size = 256;
+    lp.model = HF_LUT_ENERGY;
+    lp.sigma_a = 0.0;
+    lp.explicit_zero = HF_LUT_ZERO_SIGMA_A;
     lut = (float *)malloc(sizeof(float) * 4u * (size_t)lp.size *
                           (size_t)lp.size);
     if (!lut) {
@@ -631,6 +681,13 @@ static int hw_init(hw_app *a)
         hf_lut_bake_n(&lp, 0, lp.size, lut);
         a->tex_n = hw_texture(internal, lp.size, lp.size, GL_RGBA, GL_FLOAT,
                               lut, GL_LINEAR, GL_CLAMP_TO_EDGE);
+        lp.size = 64; /* 3 planes of 64 x 64 fit in the 256 x 256 buffer */
+        hf_lut_bake_dual(&lp, 0, lp.size, lut);
+        a->tex_dual0 = hw_texture(internal, lp.size, lp.size, GL_RGBA,
+                                  GL_FLOAT, lut, GL_LINEAR, GL_CLAMP_TO_EDGE);
+        a->tex_dual2 = hw_texture(internal, lp.size, lp.size, GL_RGBA,
+                                  GL_FLOAT, lut + 2u * 4u * 64u * 64u,
+                                  GL_LINEAR, GL_CLAMP_TO_EDGE);
     }
     free(lut);
     a->tex_density = hw_texture(GL_R8, 256, 256, GL_RED, GL_UNSIGNED_BYTE,
@@ -950,6 +1007,12 @@ static void hw_draw(hw_app *a)
         glActiveTexture(GL_TEXTURE1);
         glBindTexture(GL_TEXTURE_2D, a->tex_n);
         glUniform1i(glGetUniformLocation(a->prog_hair, "u_lut_n"), 1);
+        glActiveTexture(GL_TEXTURE4);
+        glBindTexture(GL_TEXTURE_2D, a->tex_dual0);
+        glUniform1i(glGetUniformLocation(a->prog_hair, "u_dual0"), 4);
+        glActiveTexture(GL_TEXTURE5);
+        glBindTexture(GL_TEXTURE_2D, a->tex_dual2);
+        glUniform1i(glGetUniformLocation(a->prog_hair, "u_dual2"), 5);
         glEnable(GL_BLEND);
         glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
