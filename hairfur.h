@@ -8927,6 +8927,198 @@ HF__PRIVATE void hf__grid_apply_sse(hf_ropes *ro, const hf_grid *grid,
 }
 #endif
 
+#if HF__AVX2
+#define HF__GT8(x, y) _mm256_cmp_ps(x, y, _CMP_GT_OQ)
+#define HF__LT8(x, y) _mm256_cmp_ps(x, y, _CMP_LT_OQ)
+#define HF__GE8(x, y) _mm256_cmp_ps(x, y, _CMP_GE_OQ)
+HF__TARGET_AVX2 HF__INLINE __m256 hf__sel8(__m256 m, __m256 a, __m256 b)
+{
+    return _mm256_blendv_ps(b, a, m);
+}
+
+/* hf__grid_corner_sse for eight lanes: two four-lane transposes, joined */
+HF__TARGET_AVX2 HF__INLINE void hf__grid_corner_avx2(const float *node,
+                                                     const size_t *at,
+                                                     size_t off, __m256 q[4])
+{
+    __m128 lo[4], hi[4];
+    int k;
+    hf__grid_corner_sse(node, at, off, lo);
+    hf__grid_corner_sse(node, at + 4, off, hi);
+    for (k = 0; k < 4; ++k)
+        q[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(lo[k]), hi[k], 1);
+}
+
+/* hf__grid_axis_sse for eight points */
+HF__TARGET_AVX2 HF__INLINE __m256 hf__grid_axis_avx2(__m256 c, float o,
+                                                     float inv, int n, int k[8],
+                                                     __m256 *f)
+{
+    const __m256 q = _mm256_mul_ps(_mm256_sub_ps(c, _mm256_set1_ps(o)),
+                                   _mm256_set1_ps(inv));
+    const __m256i ki = _mm256_cvttps_epi32(q);
+    _mm256_storeu_si256((__m256i *)(void *)k, ki);
+    *f = _mm256_sub_ps(q, _mm256_cvtepi32_ps(ki));
+    return _mm256_and_ps(HF__GE8(q, _mm256_setzero_ps()),
+                         HF__LT8(q, _mm256_set1_ps((float)(n - 1))));
+}
+
+/* hf__grid_apply_sse for ropes r .. r + 7 (the lanes of `act`): the
+   same operations, eight lanes. */
+HF__TARGET_AVX2 HF__PRIVATE void hf__grid_apply_avx2(hf_ropes *ro, const hf_grid *grid,
+                                     const float *sl, int j, int last, int r,
+                                    int act, float inv, float push,
+                                    float fric, float ref, float h)
+{
+    const size_t R = (size_t)ro->rope_count, i = (size_t)j * R + (size_t)r;
+    const int n = grid->resolution;
+    const size_t n2 = (size_t)n * (size_t)n;
+    const __m256 one = _mm256_set1_ps(1.0f), two = _mm256_set1_ps(2.0f);
+    const __m256 x = _mm256_loadu_ps(ro->x + i), y = _mm256_loadu_ps(ro->y + i);
+    const __m256 z = _mm256_loadu_ps(ro->z + i);
+    const __m256 lh = _mm256_loadu_ps(ro->last_h + r);
+    __m256 f[3], in, w[3], v[4], a[4], g[3], m8[8], hv, hl, lhm;
+    __m256 a0, a1, a2, a3;
+    __m256 wx0, wy0, wz0, wyz[4], wxz[4], wxy[4], sx, sy, sz, ms, gn, gs;
+    __m256 dv[3];
+    int kx[8], ky[8], kz[8], l, c, mask, p;
+    size_t at[8];
+    in = _mm256_and_ps(hf__grid_axis_avx2(z, sl[2], inv, n, kz, &f[2]),
+                    _mm256_and_ps(hf__grid_axis_avx2(x, sl[0], inv, n, kx, &f[0]),
+                               hf__grid_axis_avx2(y, sl[1], inv, n, ky, &f[1])));
+    mask = _mm256_movemask_ps(in) & act;
+    if (!mask) {
+        _mm256_zeroupper();
+        return;
+    }
+    for (l = 0; l < 8; ++l) /* lanes out of the cube read node 0 */
+        at[l] = mask >> l & 1 ? ((size_t)kz[l] * (size_t)n + (size_t)ky[l]) *
+                                        (size_t)n + (size_t)kx[l]
+                              : 0u;
+    /* hf__grid_hv and the step's sub-step */
+    lhm = HF__GT8(lh, _mm256_setzero_ps());
+    hv = hf__sel8(
+        lhm, _mm256_div_ps(one, _mm256_max_ps(lh, _mm256_set1_ps(1e-6f))),
+        _mm256_setzero_ps());
+    hl = hf__sel8(lhm, lh, _mm256_set1_ps(h));
+    v[0] = _mm256_set1_ps((float)(last - j));
+    v[1] = _mm256_sub_ps(x, _mm256_loadu_ps(ro->px + i));
+    v[2] = _mm256_sub_ps(y, _mm256_loadu_ps(ro->py + i));
+    v[3] = _mm256_sub_ps(z, _mm256_loadu_ps(ro->pz + i));
+    for (p = 1; p < 4; ++p) v[p] = _mm256_mul_ps(v[0], _mm256_mul_ps(v[p], hv));
+    wx0 = _mm256_sub_ps(one, f[0]);
+    wy0 = _mm256_sub_ps(one, f[1]);
+    wz0 = _mm256_sub_ps(one, f[2]);
+    wyz[0] = _mm256_mul_ps(wy0, wz0);
+    wyz[1] = _mm256_mul_ps(f[1], wz0);
+    wyz[2] = _mm256_mul_ps(wy0, f[2]);
+    wyz[3] = _mm256_mul_ps(f[1], f[2]);
+    wxz[0] = _mm256_mul_ps(wx0, wz0);
+    wxz[1] = _mm256_mul_ps(f[0], wz0);
+    wxz[2] = _mm256_mul_ps(wx0, f[2]);
+    wxz[3] = _mm256_mul_ps(f[0], f[2]);
+    wxy[0] = _mm256_mul_ps(wx0, wy0);
+    wxy[1] = _mm256_mul_ps(f[0], wy0);
+    wxy[2] = _mm256_mul_ps(wx0, f[1]);
+    wxy[3] = _mm256_mul_ps(f[0], f[1]);
+    /* corner by corner, in the scalar order, the sums in registers */
+    a0 = a1 = a2 = a3 = _mm256_setzero_ps();
+    for (c = 0; c < 8; ++c) {
+        __m256 t[4], wc;
+        hf__grid_corner_avx2(grid->node, at,
+                            (size_t)(c >> 2) * n2 +
+                                (size_t)((c >> 1) & 1) * (size_t)n +
+                                (size_t)(c & 1),
+                            t);
+        wc = _mm256_mul_ps(c & 1 ? f[0] : wx0, wyz[c >> 1]);
+        a0 = _mm256_add_ps(a0, _mm256_mul_ps(wc, t[0]));
+        a1 = _mm256_add_ps(a1, _mm256_mul_ps(wc, t[1]));
+        a2 = _mm256_add_ps(a2, _mm256_mul_ps(wc, t[2]));
+        a3 = _mm256_add_ps(a3, _mm256_mul_ps(wc, t[3]));
+        m8[c] = t[0];
+    }
+    a[0] = a0;
+    a[1] = a1;
+    a[2] = a2;
+    a[3] = a3;
+#define HF__GRID_D(e, hi, lo) _mm256_mul_ps(e, _mm256_sub_ps(m8[hi], m8[lo]))
+    g[0] = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(HF__GRID_D(wyz[0], 1, 0),
+                                            HF__GRID_D(wyz[1], 3, 2)),
+                                 HF__GRID_D(wyz[2], 5, 4)),
+                      HF__GRID_D(wyz[3], 7, 6));
+    g[1] = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(HF__GRID_D(wxz[0], 2, 0),
+                                            HF__GRID_D(wxz[1], 3, 1)),
+                                 HF__GRID_D(wxz[2], 6, 4)),
+                      HF__GRID_D(wxz[3], 7, 5));
+    g[2] = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(HF__GRID_D(wxy[0], 4, 0),
+                                            HF__GRID_D(wxy[1], 5, 1)),
+                                 HF__GRID_D(wxy[2], 6, 2)),
+                      HF__GRID_D(wxy[3], 7, 3));
+#undef HF__GRID_D
+    sx = _mm256_add_ps(_mm256_mul_ps(wx0, wx0), _mm256_mul_ps(f[0], f[0]));
+    sy = _mm256_add_ps(_mm256_mul_ps(wy0, wy0), _mm256_mul_ps(f[1], f[1]));
+    sz = _mm256_add_ps(_mm256_mul_ps(wz0, wz0), _mm256_mul_ps(f[2], f[2]));
+    ms = _mm256_mul_ps(sx, _mm256_mul_ps(sy, sz));
+    for (p = 0; p < 4; ++p) a[p] = _mm256_sub_ps(a[p], _mm256_mul_ps(ms, v[p]));
+    w[0] = _mm256_mul_ps(sy, sz);
+    w[1] = _mm256_mul_ps(sx, sz);
+    w[2] = _mm256_mul_ps(sx, sy);
+    for (p = 0; p < 3; ++p)
+        g[p] = _mm256_sub_ps(
+            g[p], _mm256_mul_ps(v[0], _mm256_mul_ps(_mm256_sub_ps(_mm256_mul_ps(two, f[p]),
+                                                         one),
+                                              w[p])));
+    gn = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(g[0], g[0]), _mm256_mul_ps(g[1], g[1])),
+                    _mm256_mul_ps(g[2], g[2]));
+    gs = HF__GT8(gn, _mm256_set1_ps(ref * ref));
+    gs = _mm256_movemask_ps(gs) ? hf__sel8(gs, _mm256_div_ps(_mm256_set1_ps(ref),
+                                                          _mm256_sqrt_ps(gn)),
+                                           one)
+                             : one; /* no lane capped: skip the root */
+    for (p = 0; p < 3; ++p)
+        dv[p] = _mm256_mul_ps(_mm256_set1_ps(-push), _mm256_mul_ps(g[p], gs));
+    if (fric > 0.0f) {
+        const __m256 fm = HF__GT8(a[0], _mm256_set1_ps(1e-6f * ref));
+        const __m256 ia = _mm256_div_ps(one, a[0]);
+        const __m256 iw = _mm256_set1_ps(1.0f / (float)(last - j)); /* v[0] */
+        const __m256 b = _mm256_mul_ps(
+            _mm256_set1_ps(fric),
+            hf__sel8(HF__LT8(a[0], _mm256_set1_ps(ref)),
+                        _mm256_div_ps(a[0], _mm256_set1_ps(ref)), one));
+        for (p = 0; p < 3; ++p)
+            dv[p] = hf__sel8(
+                fm,
+                _mm256_add_ps(dv[p],
+                           _mm256_mul_ps(b, _mm256_sub_ps(_mm256_mul_ps(a[p + 1], ia),
+                                                    _mm256_mul_ps(v[p + 1], iw)))),
+                dv[p]);
+    }
+    {
+        const __m256 m = _mm256_castsi256_ps(_mm256_setr_epi32(
+            -(mask & 1), -(mask >> 1 & 1), -(mask >> 2 & 1), -(mask >> 3 & 1),
+            -(mask >> 4 & 1), -(mask >> 5 & 1), -(mask >> 6 & 1),
+            -(mask >> 7 & 1)));
+        float *px = ro->px, *py = ro->py, *pz = ro->pz;
+        for (p = 0; p < 3; ++p) dv[p] = _mm256_mul_ps(dv[p], hl);
+        for (c = j > 0 ? j : 1; c < last; ++c) {
+            float *o[3];
+            o[0] = px + (size_t)c * R + (size_t)r;
+            o[1] = py + (size_t)c * R + (size_t)r;
+            o[2] = pz + (size_t)c * R + (size_t)r;
+            for (p = 0; p < 3; ++p) {
+                const __m256 was = _mm256_loadu_ps(o[p]);
+                _mm256_storeu_ps(o[p],
+                              hf__sel8(m, _mm256_sub_ps(was, dv[p]), was));
+            }
+        }
+    }
+    _mm256_zeroupper();
+}
+#undef HF__GT8
+#undef HF__LT8
+#undef HF__GE8
+#endif
+
 HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
                                     float dt, const hf_rope_params *params,
                                     const hf_grid *grid)
@@ -8969,12 +9161,23 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
     inv = 1.0f / sl[3];
     k = (int)sl[4];
     level = hf_simd_resolve(prm.simd);
-    (void)level; /* four lanes on SSE2 only, so far */
+    (void)level; /* eight lanes at AVX2 and up, four at SSE2 */
     /* point rows outermost, as the grid was built: neighbouring ropes
        read neighbouring nodes */
     for (j = 0; j < P; j += k) {
         const int last = j + k <= P ? j + k : P;
         r = first;
+#if HF__AVX2
+        if (level >= HF_SIMD_AVX2)
+            for (; r + 8 <= first + count; r += 8) {
+                int act = 0, l;
+                for (l = 0; l < 8; ++l)
+                    act |= (hf__rope_kind(ropes, r + l) == 0) << l;
+                if (act)
+                    hf__grid_apply_avx2(ropes, grid, sl, j, last, r, act,
+                                        inv, push, fric, ref, st.h);
+            }
+#endif
 #if HF__SSE
         if (level >= HF_SIMD_SSE2)
             for (; r + 4 <= first + count; r += 4) {
