@@ -2209,8 +2209,9 @@ HFDEF hf_result hf_fur_build_grid(hf_fur *fur, int first, int count);
    grown one. While settling, the fur's rope parameters hold except that
    the global shape stiffness is off (the local one still shapes the hair
    near its roots), wind and turbulence are off, and damping is at least
-   0.1, so the hair falls and comes to rest; 1 s is enough for most hair. Not a range call; it allocates a byte per
-   guide, freed before it returns. Errors: HF_ERROR_NULL_POINTER,
+   0.1, so the hair falls and comes to rest; 1 s is enough for most
+   hair. Not a range call; it allocates a byte per guide, freed before it
+   returns. Errors: HF_ERROR_NULL_POINTER,
    HF_ERROR_BAD_PARAMETER (seconds NaN or outside [0, 600]), the
    colliders' errors (as hf_ropes_step), HF_ERROR_OUT_OF_MEMORY; nothing
    changes then. */
@@ -8965,10 +8966,10 @@ HF__TARGET_AVX2 HF__INLINE __m256 hf__grid_axis_avx2(__m256 c, float o,
 
 /* hf__grid_apply_sse for ropes r .. r + 7 (the lanes of `act`): the
    same operations, eight lanes. */
-HF__TARGET_AVX2 HF__PRIVATE void hf__grid_apply_avx2(hf_ropes *ro, const hf_grid *grid,
-                                     const float *sl, int j, int last, int r,
-                                    int act, float inv, float push,
-                                    float fric, float ref, float h)
+HF__TARGET_AVX2 HF__PRIVATE void
+hf__grid_apply_avx2(hf_ropes *ro, const hf_grid *grid, const float *sl, int j,
+                    int last, int r, int act, float inv, float push, float fric,
+                    float ref, float h)
 {
     const size_t R = (size_t)ro->rope_count, i = (size_t)j * R + (size_t)r;
     const int n = grid->resolution;
@@ -8983,23 +8984,25 @@ HF__TARGET_AVX2 HF__PRIVATE void hf__grid_apply_avx2(hf_ropes *ro, const hf_grid
     __m256 dv[3];
     int kx[8], ky[8], kz[8], l, c, mask, p;
     size_t at[8];
-    in = _mm256_and_ps(hf__grid_axis_avx2(z, sl[2], inv, n, kz, &f[2]),
-                    _mm256_and_ps(hf__grid_axis_avx2(x, sl[0], inv, n, kx, &f[0]),
-                               hf__grid_axis_avx2(y, sl[1], inv, n, ky, &f[1])));
+    in = _mm256_and_ps(
+        hf__grid_axis_avx2(z, sl[2], inv, n, kz, &f[2]),
+        _mm256_and_ps(hf__grid_axis_avx2(x, sl[0], inv, n, kx, &f[0]),
+                      hf__grid_axis_avx2(y, sl[1], inv, n, ky, &f[1])));
     mask = _mm256_movemask_ps(in) & act;
     if (!mask) {
         _mm256_zeroupper();
         return;
     }
     for (l = 0; l < 8; ++l) /* lanes out of the cube read node 0 */
-        at[l] = mask >> l & 1 ? ((size_t)kz[l] * (size_t)n + (size_t)ky[l]) *
-                                        (size_t)n + (size_t)kx[l]
-                              : 0u;
+        at[l] = mask >> l & 1
+                    ? ((size_t)kz[l] * (size_t)n + (size_t)ky[l]) * (size_t)n +
+                          (size_t)kx[l]
+                    : 0u;
     /* hf__grid_hv and the step's sub-step */
     lhm = HF__GT8(lh, _mm256_setzero_ps());
-    hv = hf__sel8(
-        lhm, _mm256_div_ps(one, _mm256_max_ps(lh, _mm256_set1_ps(1e-6f))),
-        _mm256_setzero_ps());
+    hv = hf__sel8(lhm,
+                  _mm256_div_ps(one, _mm256_max_ps(lh, _mm256_set1_ps(1e-6f))),
+                  _mm256_setzero_ps());
     hl = hf__sel8(lhm, lh, _mm256_set1_ps(h));
     v[0] = _mm256_set1_ps((float)(last - j));
     v[1] = _mm256_sub_ps(x, _mm256_loadu_ps(ro->px + i));
@@ -9026,10 +9029,10 @@ HF__TARGET_AVX2 HF__PRIVATE void hf__grid_apply_avx2(hf_ropes *ro, const hf_grid
     for (c = 0; c < 8; ++c) {
         __m256 t[4], wc;
         hf__grid_corner_avx2(grid->node, at,
-                            (size_t)(c >> 2) * n2 +
-                                (size_t)((c >> 1) & 1) * (size_t)n +
-                                (size_t)(c & 1),
-                            t);
+                             (size_t)(c >> 2) * n2 +
+                                 (size_t)((c >> 1) & 1) * (size_t)n +
+                                 (size_t)(c & 1),
+                             t);
         wc = _mm256_mul_ps(c & 1 ? f[0] : wx0, wyz[c >> 1]);
         a0 = _mm256_add_ps(a0, _mm256_mul_ps(wc, t[0]));
         a1 = _mm256_add_ps(a1, _mm256_mul_ps(wc, t[1]));
@@ -9043,17 +9046,17 @@ HF__TARGET_AVX2 HF__PRIVATE void hf__grid_apply_avx2(hf_ropes *ro, const hf_grid
     a[3] = a3;
 #define HF__GRID_D(e, hi, lo) _mm256_mul_ps(e, _mm256_sub_ps(m8[hi], m8[lo]))
     g[0] = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(HF__GRID_D(wyz[0], 1, 0),
-                                            HF__GRID_D(wyz[1], 3, 2)),
-                                 HF__GRID_D(wyz[2], 5, 4)),
-                      HF__GRID_D(wyz[3], 7, 6));
+                                                     HF__GRID_D(wyz[1], 3, 2)),
+                                       HF__GRID_D(wyz[2], 5, 4)),
+                         HF__GRID_D(wyz[3], 7, 6));
     g[1] = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(HF__GRID_D(wxz[0], 2, 0),
-                                            HF__GRID_D(wxz[1], 3, 1)),
-                                 HF__GRID_D(wxz[2], 6, 4)),
-                      HF__GRID_D(wxz[3], 7, 5));
+                                                     HF__GRID_D(wxz[1], 3, 1)),
+                                       HF__GRID_D(wxz[2], 6, 4)),
+                         HF__GRID_D(wxz[3], 7, 5));
     g[2] = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(HF__GRID_D(wxy[0], 4, 0),
-                                            HF__GRID_D(wxy[1], 5, 1)),
-                                 HF__GRID_D(wxy[2], 6, 2)),
-                      HF__GRID_D(wxy[3], 7, 3));
+                                                     HF__GRID_D(wxy[1], 5, 1)),
+                                       HF__GRID_D(wxy[2], 6, 2)),
+                         HF__GRID_D(wxy[3], 7, 3));
 #undef HF__GRID_D
     sx = _mm256_add_ps(_mm256_mul_ps(wx0, wx0), _mm256_mul_ps(f[0], f[0]));
     sy = _mm256_add_ps(_mm256_mul_ps(wy0, wy0), _mm256_mul_ps(f[1], f[1]));
@@ -9065,39 +9068,47 @@ HF__TARGET_AVX2 HF__PRIVATE void hf__grid_apply_avx2(hf_ropes *ro, const hf_grid
     w[2] = _mm256_mul_ps(sx, sy);
     for (p = 0; p < 3; ++p)
         g[p] = _mm256_sub_ps(
-            g[p], _mm256_mul_ps(v[0], _mm256_mul_ps(_mm256_sub_ps(_mm256_mul_ps(two, f[p]),
-                                                         one),
-                                              w[p])));
-    gn = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(g[0], g[0]), _mm256_mul_ps(g[1], g[1])),
-                    _mm256_mul_ps(g[2], g[2]));
+            g[p],
+            _mm256_mul_ps(v[0],
+                          _mm256_mul_ps(_mm256_sub_ps(_mm256_mul_ps(two, f[p]),
+                                                      one),
+                                        w[p])));
+    gn = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(g[0], g[0]),
+                                     _mm256_mul_ps(g[1], g[1])),
+                       _mm256_mul_ps(g[2], g[2]));
     gs = HF__GT8(gn, _mm256_set1_ps(ref * ref));
-    gs = _mm256_movemask_ps(gs) ? hf__sel8(gs, _mm256_div_ps(_mm256_set1_ps(ref),
-                                                          _mm256_sqrt_ps(gn)),
-                                           one)
-                             : one; /* no lane capped: skip the root */
+    gs = _mm256_movemask_ps(gs)
+             ? hf__sel8(gs,
+                        _mm256_div_ps(_mm256_set1_ps(ref), _mm256_sqrt_ps(gn)),
+                        one)
+             : one; /* no lane capped: skip the root */
     for (p = 0; p < 3; ++p)
         dv[p] = _mm256_mul_ps(_mm256_set1_ps(-push), _mm256_mul_ps(g[p], gs));
     if (fric > 0.0f) {
         const __m256 fm = HF__GT8(a[0], _mm256_set1_ps(1e-6f * ref));
         const __m256 ia = _mm256_div_ps(one, a[0]);
         const __m256 iw = _mm256_set1_ps(1.0f / (float)(last - j)); /* v[0] */
-        const __m256 b = _mm256_mul_ps(
-            _mm256_set1_ps(fric),
-            hf__sel8(HF__LT8(a[0], _mm256_set1_ps(ref)),
-                        _mm256_div_ps(a[0], _mm256_set1_ps(ref)), one));
+        const __m256 b =
+            _mm256_mul_ps(_mm256_set1_ps(fric),
+                          hf__sel8(HF__LT8(a[0], _mm256_set1_ps(ref)),
+                                   _mm256_div_ps(a[0], _mm256_set1_ps(ref)),
+                                   one));
         for (p = 0; p < 3; ++p)
             dv[p] = hf__sel8(
                 fm,
-                _mm256_add_ps(dv[p],
-                           _mm256_mul_ps(b, _mm256_sub_ps(_mm256_mul_ps(a[p + 1], ia),
-                                                    _mm256_mul_ps(v[p + 1], iw)))),
+                _mm256_add_ps(
+                    dv[p],
+                    _mm256_mul_ps(b,
+                                  _mm256_sub_ps(_mm256_mul_ps(a[p + 1], ia),
+                                                _mm256_mul_ps(v[p + 1], iw)))),
                 dv[p]);
     }
     {
-        const __m256 m = _mm256_castsi256_ps(_mm256_setr_epi32(
-            -(mask & 1), -(mask >> 1 & 1), -(mask >> 2 & 1), -(mask >> 3 & 1),
-            -(mask >> 4 & 1), -(mask >> 5 & 1), -(mask >> 6 & 1),
-            -(mask >> 7 & 1)));
+        const __m256 m = _mm256_castsi256_ps(
+            _mm256_setr_epi32(-(mask & 1), -(mask >> 1 & 1), -(mask >> 2 & 1),
+                              -(mask >> 3 & 1), -(mask >> 4 & 1),
+                              -(mask >> 5 & 1), -(mask >> 6 & 1),
+                              -(mask >> 7 & 1)));
         float *px = ro->px, *py = ro->py, *pz = ro->pz;
         for (p = 0; p < 3; ++p) dv[p] = _mm256_mul_ps(dv[p], hl);
         for (c = j > 0 ? j : 1; c < last; ++c) {
@@ -9108,7 +9119,7 @@ HF__TARGET_AVX2 HF__PRIVATE void hf__grid_apply_avx2(hf_ropes *ro, const hf_grid
             for (p = 0; p < 3; ++p) {
                 const __m256 was = _mm256_loadu_ps(o[p]);
                 _mm256_storeu_ps(o[p],
-                              hf__sel8(m, _mm256_sub_ps(was, dv[p]), was));
+                                 hf__sel8(m, _mm256_sub_ps(was, dv[p]), was));
             }
         }
     }
