@@ -18,9 +18,11 @@
        RGBA32F, GL_LINEAR, clamp to edge) and combined in the fragment
        shader as docs/luts.md says (--no-dual: single scattering only),
        plus ambient light; Kajiya-Kay as a switch;
-     - self-shadowing: a shadow map of hair and body from the light, read
-       as an approximate deep shadow map (light falls off with the depth
-       of hair in front);
+     - self-shadowing: deep opacity maps of the hair from the light (three
+       layers of opacity behind the first hair, Yuksel and Keyser 2008)
+       and the body's depth, read by hair and body alike; --shadows
+       single: one shadow map read as an approximate deep shadow map
+       (light falls off with the depth of hair in front);
      - hair colour from the 2D colour map (per-vertex colour stream of
        hf_fur_ribbons) or the 3D colour scheme (color3d stream sampling a
        ramp texture with dyed tips);
@@ -88,6 +90,15 @@
 #define GLM_CULL 54.5f
 #define GLM_HEAD_COLLIDERS 3
 #define GLM_SHADOW_SIZE 1024     /* shadow map texels a side */
+/* Deep opacity maps: the three layers behind the first hair from the
+   light end at these fractions of the hair length past it (the last
+   layer takes everything further), and a fibre's opacity, as a fraction
+   of a shadow-map texel it covers, becomes transmittance
+   exp(-GLM_OPACITY_K * opacity). */
+#define GLM_LAYER_1 0.08f
+#define GLM_LAYER_2 0.2f
+#define GLM_LAYER_3 0.5f
+#define GLM_OPACITY_K 1.0f
 #define GLM_WIDTH_SPACING 0.66f  /* root width / mean strand spacing */
 
 /* How each frame's strands reach the GL buffer they are drawn from:
@@ -112,6 +123,8 @@ typedef struct glm_options {
     const char *mesh, *anim, *grow_on, *unit;
     const char *density_path, *length_path, *color_path;
     int no_shadows;     /* 1: no self-shadowing */
+    int single_shadow;  /* 1: one depth map, exp(-k d) (--shadows single);
+                           0: deep opacity maps */
     int no_dual;        /* 1: no dual scattering (single scattering only) */
     int no_hair;        /* 1: the body alone (a control picture) */
     int save_every;     /* > 0: write every Nth frame to out (a %d pattern) */
@@ -234,6 +247,10 @@ typedef struct glm_app {
     GLuint prog_cpu, prog_cpu16, prog_gpu, prog_head, prog_line;
     GLuint depth_cpu, depth_cpu16, depth_gpu, depth_head; /* shadow pass */
     GLuint shadow_fbo, tex_shadow;
+    GLuint opacity_fbo, tex_opacity; /* deep opacity maps: 3 layers + body */
+    GLuint opacity_cpu, opacity_cpu16, opacity_gpu, opacity_head;
+    float layers[3], opacity_texel; /* layer ends (m); a fibre's coverage */
+    double shadow_ms, ms_shadow;    /* the shadow passes, glFinish-timed */
     float light_view_proj[16], shadow_depth; /* light's clip, depth range (m) */
     GLuint vao_cpu, vao_cpu16, vao_gpu, vao_head, vao_line;
     GLuint vbo_dyn, vbo_dyn16, vbo_static, vbo_points, tbo_points;
@@ -316,34 +333,58 @@ static const char *glm_vs_gpu_tail =
     "    v_c3d = vec2(texelFetch(u_strand_c3x, s).r, t);\n"
     "}\n";
 
-/* Self-shadowing, shared by the hair and the body: an approximate deep
-   shadow map. The shadow map holds the depth (from the light) of the
-   nearest hair or skin; a point that far behind it has that much hair in
-   front of it, and light falls off exponentially with that depth,
-   u_shadow_k per metre (set from the hair length): hair_trans is the
-   light that arrives unscattered, exp(-n) with n the fibres crossed on
-   average; hair_shadow holds it at 12 % at the least (light that got
-   through scattered, where dual scattering does not say how much).
-   3 x 3 taps soften the edges. */
+/* Self-shadowing, shared by the hair and the body. u_shadow holds the
+   depth (from the light) of the nearest hair or skin, z0.
+   Deep opacity maps (the default; Yuksel and Keyser 2008): u_opacity's
+   R, G, B hold the opacity of the hair in three layers behind z0, ending
+   u_layers metres past it (the last takes everything further), and its
+   A the depth of the nearest skin. The hair's opacity in front of a point
+   is the layers' sum up to its depth, linear within a layer; the light
+   arriving unscattered is exp(-u_opacity_k * opacity), times the body's
+   own falloff exp(-u_shadow_k d) where the point is d behind the skin.
+   --shadows single: one depth map read as an approximate deep shadow map,
+   light falling off exponentially with the depth behind z0, u_shadow_k
+   per metre (set from the hair length).
+   hair_trans is the light that arrives unscattered, exp(-n) with n the
+   fibres crossed on average; hair_shadow holds it at 12 % at the least
+   (light that got through scattered, where dual scattering does not say
+   how much). 3 x 3 taps soften the edges (2 x 2 of the deep maps, whose
+   layers are smooth already: the read costs less). */
 #define GLM_SHADOW_GLSL                                                      \
-    "uniform sampler2D u_shadow;\n"                                          \
+    "uniform sampler2D u_shadow, u_opacity;\n"                               \
     "uniform mat4 u_light_view_proj;\n"                                      \
     "uniform float u_shadow_on, u_shadow_k, u_shadow_depth, u_shadow_bias;\n" \
+    "uniform float u_deep, u_opacity_k;\n"                                   \
+    "uniform vec3 u_layers;\n"                                               \
+    "// the deep opacity maps' transmittance at d metres past z0\n"          \
+    "float deep_trans(vec2 t, float d, float z) {\n"                         \
+    "    vec4 o = texture(u_opacity, t);\n"                                  \
+    "    vec3 lo = vec3(0.0, u_layers.xy), w = u_layers - lo;\n"             \
+    "    float a = dot(o.rgb, clamp((vec3(d) - lo) / w, 0.0, 1.0));\n"       \
+    "    float b = (z - o.a) * u_shadow_depth - u_shadow_bias;\n"            \
+    "    return exp(-u_opacity_k * a - u_shadow_k * max(b, 0.0));\n"         \
+    "}\n"                                                                    \
     "float hair_trans(vec3 p) {\n"                                           \
     "    if (u_shadow_on == 0.0) return 1.0;\n"                              \
     "    vec4 q = u_light_view_proj * vec4(p, 1.0);\n"                       \
     "    vec3 s = q.xyz / q.w * 0.5 + 0.5;\n"                                \
     "    if (any(lessThan(s, vec3(0.0))) || any(greaterThan(s, vec3(1.0))))\n" \
     "        return 1.0;\n"                                                  \
-    "    vec2 texel = 1.5 / vec2(textureSize(u_shadow, 0));\n"               \
+    "    // taps: 3 x 3, 1.5 texels apart (single); 2 x 2, 2 apart (deep)\n" \
+    "    int n = u_deep != 0.0 ? 2 : 3;\n"                                   \
+    "    vec2 texel = (u_deep != 0.0 ? 2.0 : 1.5)\n"                         \
+    "                 / vec2(textureSize(u_shadow, 0));\n"                   \
+    "    vec2 o0 = vec2(u_deep != 0.0 ? -0.5 : -1.0);\n"                     \
     "    float sum = 0.0;\n"                                                 \
-    "    for (int y = -1; y <= 1; ++y)\n"                                    \
-    "        for (int x = -1; x <= 1; ++x) {\n"                              \
-    "            float z0 = texture(u_shadow, s.xy + vec2(x, y) * texel).r;\n" \
+    "    for (int y = 0; y < n; ++y)\n"                                      \
+    "        for (int x = 0; x < n; ++x) {\n"                                \
+    "            vec2 t = s.xy + (o0 + vec2(x, y)) * texel;\n"               \
+    "            float z0 = texture(u_shadow, t).r;\n"                       \
     "            float d = (s.z - z0) * u_shadow_depth - u_shadow_bias;\n"   \
-    "            sum += exp(-u_shadow_k * max(d, 0.0));\n"                   \
+    "            sum += u_deep != 0.0 ? deep_trans(t, d, s.z)\n"             \
+    "                                 : exp(-u_shadow_k * max(d, 0.0));\n"   \
     "        }\n"                                                            \
-    "    return sum / 9.0;\n"                                                \
+    "    return sum / float(n * n);\n"                                       \
     "}\n"                                                                    \
     "float hair_shadow(vec3 p) { return mix(0.12, 1.0, hair_trans(p)); }\n"
 
@@ -355,8 +396,8 @@ static const char *glm_vs_gpu_tail =
    that arrives unscattered only); or Kajiya-Kay with its diffuse term;
    ambient; self-shadowing. Lighting is done in linear space and written
    with gamma 2.2. */
-static const char *const glm_fs_hair_parts[3] = {
-    /* C99 compilers need only take 4095 bytes a string: three parts */
+static const char *const glm_fs_hair_parts[4] = {
+    /* C99 compilers need only take 4095 bytes a string: four parts */
     "#version 330 core\n"
     "in vec3 v_position, v_tangent, v_texcoord;\n"
     "in vec4 v_color;\n"
@@ -367,7 +408,7 @@ static const char *const glm_fs_hair_parts[3] = {
     "uniform float u_spec;            // 0 = diffuse + ambient only\n"
     "uniform float u_dual;            // 1 = dual scattering\n"
     "uniform float u_dither;          // alpha dither (alpha to coverage)\n"
-    "uniform vec3 u_eye, u_light_dir, u_light_color, u_ambient;\n"
+    "uniform vec3 u_eye, u_light_dir, u_light_color, u_ambient;\n",
     GLM_SHADOW_GLSL
     "out vec4 o_color;\n"
     "const float PI = 3.14159265;\n"
@@ -389,7 +430,8 @@ static const char *const glm_fs_hair_parts[3] = {
     "    float TL = dot(T, L), TV = dot(T, V);\n"
     "    float sinTL = sqrt(max(0.0, 1.0 - TL * TL));   // cos(theta_i)\n"
     "    float sinTV = sqrt(max(0.0, 1.0 - TV * TV));   // cos(theta_r)\n"
-    "    float shadow = hair_shadow(v_position);\n"
+    "    float fd = hair_trans(v_position); // light arriving unscattered\n"
+    "    float shadow = mix(0.12, 1.0, fd); // hair_shadow, read once\n"
     "    vec3 lit;\n"
     "    if (u_kajiya != 0) {\n"
     "        // Kajiya-Kay: mirror cone, V pointing away (spec section 10)\n"
@@ -413,7 +455,6 @@ static const char *const glm_fs_hair_parts[3] = {
     "        float invCos = 1.0 / max(sinTV, cosMin);\n"
     "        // S = sum_p M_p N_p / cos(theta_r); p = 1, 2, 3.. cross it p times\n"
     "        vec3 single = (M.r * N.r + (M.g * N.g + (M.b * N.b + M.a * N.a * Tr) * Tr) * Tr) * invCos;\n"
-    "        float fd = hair_trans(v_position); // light arriving unscattered\n"
     "        vec3 S = fd * single;\n",
     "        if (u_dual != 0.0) {\n"
     "            // Zinke et al. 2008 from the tables at (sigma / (1 + sigma),\n"
@@ -463,10 +504,10 @@ static const char *const glm_fs_hair_parts[3] = {
 /* The hair fragment shader, its parts joined (once). */
 static const char *glm_fs_hair(void)
 {
-    static char src[12288];
+    static char src[16384];
     if (!src[0]) {
         size_t k, at = 0;
-        for (k = 0; k < 3; ++k) {
+        for (k = 0; k < 4; ++k) {
             size_t len = strlen(glm_fs_hair_parts[k]);
             if (at + len >= sizeof src) return "";
             memcpy(src + at, glm_fs_hair_parts[k], len + 1);
@@ -521,6 +562,33 @@ static const char *glm_vs_line =
 static const char *glm_fs_depth =
     "#version 330 core\n"
     "void main() {}\n";
+
+/* The deep opacity pass, drawn with additive blending (alpha: the
+   minimum) into an RGBA16F target cleared to (0, 0, 0, 1): each hair
+   fragment adds its opacity, its alpha times the fraction of a texel the
+   strand covers, to the layer its depth falls in past z0 (the depth
+   pass's nearest hair or skin at this texel); beyond the last layer's end
+   it goes into the last. */
+static const char *glm_fs_opacity_hair =
+    "#version 330 core\n"
+    "in vec4 v_color;\n"
+    "uniform sampler2D u_shadow;\n"
+    "uniform float u_shadow_depth, u_opacity_texel;\n"
+    "uniform vec3 u_layers;\n"
+    "out vec4 o_color;\n"
+    "void main() {\n"
+    "    float z0 = texelFetch(u_shadow, ivec2(gl_FragCoord.xy), 0).r;\n"
+    "    float d = (gl_FragCoord.z - z0) * u_shadow_depth;\n"
+    "    vec3 k = d < u_layers.x ? vec3(1.0, 0.0, 0.0)\n"
+    "           : d < u_layers.y ? vec3(0.0, 1.0, 0.0) : vec3(0.0, 0.0, 1.0);\n"
+    "    o_color = vec4(k * v_color.a * u_opacity_texel, 1.0);\n"
+    "}\n";
+
+/* ... and the body: no opacity, its depth into alpha (the minimum). */
+static const char *glm_fs_opacity_body =
+    "#version 330 core\n"
+    "out vec4 o_color;\n"
+    "void main() { o_color = vec4(0.0, 0.0, 0.0, gl_FragCoord.z); }\n";
 
 static const char *glm_fs_line =
     "#version 330 core\n"
@@ -1333,14 +1401,23 @@ static int glm_init(glm_app *a, const glm_options *o)
         a->depth_cpu16 = glc_program(glm_vs_cpu16, glm_fs_depth,
                                      "shadow (compact CPU ribbons)");
         a->depth_head = glc_program(glm_vs_head, glm_fs_depth, "shadow (body)");
+        a->opacity_cpu = glc_program(glm_vs_cpu, glm_fs_opacity_hair,
+                                     "deep opacity (CPU ribbons)");
+        a->opacity_cpu16 = glc_program(glm_vs_cpu16, glm_fs_opacity_hair,
+                                       "deep opacity (compact CPU ribbons)");
+        a->opacity_head = glc_program(glm_vs_head, glm_fs_opacity_body,
+                                      "deep opacity (body)");
         if (!a->prog_cpu || !a->prog_cpu16 || !a->prog_head || !a->prog_line ||
-            !a->depth_cpu || !a->depth_cpu16 || !a->depth_head)
+            !a->depth_cpu || !a->depth_cpu16 || !a->depth_head ||
+            !a->opacity_cpu || !a->opacity_cpu16 || !a->opacity_head)
             return 0;
         gpu_src = glm_gpu_vs_source(path, o->compact);
         if (gpu_src) {
             a->prog_gpu = glc_program(gpu_src, glm_fs_hair(), "hair (GPU expansion)");
             a->depth_gpu = glc_program(gpu_src, glm_fs_depth,
                                        "shadow (GPU expansion)");
+            a->opacity_gpu = glc_program(gpu_src, glm_fs_opacity_hair,
+                                         "deep opacity (GPU expansion)");
             free(gpu_src);
         }
         if (!a->prog_gpu) {
@@ -1409,6 +1486,22 @@ static int glm_init(glm_app *a, const glm_options *o)
                 "incomplete; run with --no-shadows\n");
         return 0;
     }
+    /* the deep opacity maps: three layers and the body's depth, half
+       floats, blended */
+    a->tex_opacity = glm_texture2d(GL_RGBA16F, GLM_SHADOW_SIZE, GLM_SHADOW_SIZE,
+                                   GL_RGBA, GL_FLOAT, NULL, GL_CLAMP_TO_EDGE);
+    glGenFramebuffers(1, &a->opacity_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, a->opacity_fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                           a->tex_opacity, 0);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        fprintf(stderr, "gl_marschner: the deep opacity framebuffer is "
+                "incomplete; run with --shadows single or --no-shadows\n");
+        return 0;
+    }
+    a->layers[0] = GLM_LAYER_1 * a->hair_len;
+    a->layers[1] = GLM_LAYER_2 * a->hair_len;
+    a->layers[2] = GLM_LAYER_3 * a->hair_len;
     glc_begin_frame(); /* back to the output's framebuffer */
 
     /* the index buffer: once, for every strand; a LOD draws a prefix */
@@ -1843,6 +1936,13 @@ static void glm_lights(GLuint prog, const glm_app *a)
     glUniform1f(glGetUniformLocation(prog, "u_shadow_depth"), a->shadow_depth);
     glUniform1f(glGetUniformLocation(prog, "u_shadow_bias"),
                 3.0f * a->shadow_depth / GLM_SHADOW_SIZE);
+    glUniform1f(glGetUniformLocation(prog, "u_deep"),
+                a->o.single_shadow ? 0.0f : 1.0f);
+    glUniform1f(glGetUniformLocation(prog, "u_opacity_k"), GLM_OPACITY_K);
+    glUniform3fv(glGetUniformLocation(prog, "u_layers"), 1, a->layers);
+    glActiveTexture(GL_TEXTURE10);
+    glBindTexture(GL_TEXTURE_2D, a->tex_opacity);
+    glUniform1i(glGetUniformLocation(prog, "u_opacity"), 10);
     glActiveTexture(GL_TEXTURE7);
     glBindTexture(GL_TEXTURE_2D, a->tex_shadow);
     glUniform1i(glGetUniformLocation(prog, "u_shadow"), 7);
@@ -1939,14 +2039,63 @@ static void glm_shadow_pass(glm_app *a)
         /* CPU ribbons face the camera; the GPU path faces the light */
         glm_draw_hair(a, prog, eye, 1, dir);
     }
+    if (!a->o.single_shadow) {
+        /* the deep opacity maps: everything drawn, added up per layer
+           (alpha: the body's nearest depth) */
+        glBindFramebuffer(GL_FRAMEBUFFER, a->opacity_fbo);
+        glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        glDisable(GL_DEPTH_TEST);
+        glEnable(GL_BLEND);
+        glBlendEquationSeparate(GL_FUNC_ADD, GL_MIN);
+        glBlendFunc(GL_ONE, GL_ONE);
+        glUseProgram(a->opacity_head);
+        glUniformMatrix4fv(glGetUniformLocation(a->opacity_head, "u_view_proj"),
+                           1, GL_FALSE, a->light_view_proj);
+        glBindVertexArray(a->vao_head);
+        glDrawElements(GL_TRIANGLES, 3 * a->nt, GL_UNSIGNED_INT, 0);
+        if (a->draw_hair && a->drawn > 0) {
+            prog = a->o.gpu_expand && a->prog_gpu ? a->opacity_gpu
+                 : a->o.compact ? a->opacity_cpu16 : a->opacity_cpu;
+            glUseProgram(prog);
+            glUniformMatrix4fv(glGetUniformLocation(prog, "u_view_proj"), 1,
+                               GL_FALSE, a->light_view_proj);
+            glUniform1f(glGetUniformLocation(prog, "u_shadow_depth"),
+                        a->shadow_depth);
+            glUniform3fv(glGetUniformLocation(prog, "u_layers"), 1, a->layers);
+            /* a strand's width over a texel's: the fraction it covers */
+            a->opacity_texel = a->root_width * GLM_SHADOW_SIZE / (2.0f * r);
+            if (a->opacity_texel > 1.0f) a->opacity_texel = 1.0f;
+            glUniform1f(glGetUniformLocation(prog, "u_opacity_texel"),
+                        a->opacity_texel);
+            if (prog == a->opacity_gpu) {
+                hf_ribbon_params v;
+                glm_ribbon_view(a, &v);
+                glUniform2f(glGetUniformLocation(prog, "u_alpha"),
+                            v.alpha_root, v.alpha_tip);
+            }
+            glActiveTexture(GL_TEXTURE7);
+            glBindTexture(GL_TEXTURE_2D, a->tex_shadow);
+            glUniform1i(glGetUniformLocation(prog, "u_shadow"), 7);
+            glActiveTexture(GL_TEXTURE0);
+            glm_draw_hair(a, prog, eye, 1, dir);
+        }
+        glBlendEquation(GL_FUNC_ADD);
+        glDisable(GL_BLEND);
+    }
     glBindVertexArray(0);
 }
 
 static void glm_draw(glm_app *a)
 {
     const int n = a->drawn;
-    double t0 = glm_now_ms();
+    double t0, ts;
+    glFinish(); /* the shadow passes timed alone */
+    t0 = glm_now_ms();
     glm_shadow_pass(a);
+    glFinish();
+    ts = glm_now_ms();
+    a->shadow_ms = ts - t0;
     glc_begin_frame();
     glClearColor(0.13f, 0.14f, 0.17f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -2058,7 +2207,7 @@ static void glm_draw(glm_app *a)
 
 static void glm_shutdown(glm_app *a)
 {
-    GLuint bufs[12], texs[9], vaos[5], progs[9];
+    GLuint bufs[12], texs[10], vaos[5], progs[13];
     int i;
     bufs[0] = a->vbo_dyn; bufs[1] = a->vbo_static; bufs[2] = a->vbo_points;
     bufs[3] = a->vbo_uv; bufs[4] = a->vbo_scolor; bufs[5] = a->vbo_c3x;
@@ -2067,18 +2216,22 @@ static void glm_shutdown(glm_app *a)
     texs[0] = a->tex_m; texs[1] = a->tex_n; texs[2] = a->tex_ramp;
     texs[3] = a->tex_density; texs[4] = a->tbo_points; texs[5] = a->tbo_uv;
     texs[6] = a->tbo_scolor; texs[7] = a->tbo_c3x; texs[8] = a->tex_shadow;
+    texs[9] = a->tex_opacity;
     vaos[0] = a->vao_cpu; vaos[1] = a->vao_gpu; vaos[2] = a->vao_head;
     vaos[3] = a->vao_line; vaos[4] = a->vao_cpu16;
     progs[0] = a->prog_cpu; progs[1] = a->prog_cpu16; progs[2] = a->prog_gpu;
     progs[3] = a->prog_head; progs[4] = a->prog_line; progs[5] = a->depth_cpu;
     progs[6] = a->depth_cpu16; progs[7] = a->depth_gpu; progs[8] = a->depth_head;
+    progs[9] = a->opacity_cpu; progs[10] = a->opacity_cpu16;
+    progs[11] = a->opacity_gpu; progs[12] = a->opacity_head;
     if (glc_width() > 0) {
         glDeleteBuffers(12, bufs);
-        glDeleteTextures(9, texs);
+        glDeleteTextures(10, texs);
         glDeleteTextures(HF_LUT_DUAL_PLANES, a->tex_dual);
         glDeleteVertexArrays(5, vaos);
         glDeleteFramebuffers(1, &a->shadow_fbo);
-        for (i = 0; i < 9; ++i) glDeleteProgram(progs[i]);
+        glDeleteFramebuffers(1, &a->opacity_fbo);
+        for (i = 0; i < 13; ++i) glDeleteProgram(progs[i]);
     }
     hf_fur_destroy(a->fur);
     if (a->ch.vertex_count > 0) ch_free(&a->ch);
@@ -2180,7 +2333,11 @@ static void glm_usage(FILE *fp)
     fprintf(fp, /* two strings: C99 compilers need only take 4095 bytes */
 "Drawing\n"
 "  --kajiya           Kajiya-Kay instead of Marschner\n"
-"  --no-shadows       no self-shadowing (default: a deep shadow map)\n"
+"  --no-shadows       no self-shadowing (default: deep opacity maps)\n"
+"  --shadows MODE     deep (default): deep opacity maps, three layers of\n"
+"                     the hair's opacity behind the first hair from the\n"
+"                     light; single: one depth map, light falling off as\n"
+"                     exp(-k d) with the depth d behind it (the web page's)\n"
 "  --no-dual          no dual scattering: single scattering only (default:\n"
 "                     Zinke's dual scattering from hf_lut_bake_dual)\n"
 "  --no-specular      diffuse and ambient only\n"
@@ -2322,6 +2479,15 @@ static int glm_parse(int argc, char **argv, glm_options *o)
             ++i;
             if (!strcmp(s, "--frames")) ok = glm_int(s, v, 1, 1000000, &o->frames);
             else if (!strcmp(s, "--out")) o->out = v;
+            else if (!strcmp(s, "--shadows")) {
+                if (!strcmp(v, "single")) o->single_shadow = 1;
+                else if (!strcmp(v, "deep")) o->single_shadow = 0;
+                else {
+                    fprintf(stderr, "gl_marschner: --shadows takes deep or "
+                            "single, not %s\n", v);
+                    ok = 0;
+                }
+            }
             else if (!strcmp(s, "--save-every")) ok = glm_int(s, v, 1, 1000000, &o->save_every);
             else if (!strcmp(s, "--width")) ok = glm_int(s, v, 16, 8192, &o->width);
             else if (!strcmp(s, "--height")) ok = glm_int(s, v, 16, 8192, &o->height);
@@ -2573,7 +2739,8 @@ static void glm_report(const glm_app *a, int drawn_frames)
     if (a->ms_frames > 0)
         printf("gl_marschner: ms per frame: skin and colliders %.2f, roots + "
                "ropes + LOD guides %.2f, strands + %s %.2f%s and upload "
-               "%.2f (%ld drawn frames), GL draw %.1f\n",
+               "%.2f (%ld drawn frames), GL draw %.1f (of it the shadow "
+               "passes %.2f: %s)\n",
                a->ms_skin / a->ms_frames, a->ms_sim / a->ms_frames,
                a->o.gpu_expand ? "GPU points" : "ribbons",
                a->build_frames ? a->ms_build / a->build_frames : 0.0,
@@ -2581,7 +2748,11 @@ static void glm_report(const glm_app *a, int drawn_frames)
                : a->o.upload == GLM_STAGING ? " (into a mapped staging buffer)"
                                             : " (into the mapped buffer)",
                a->build_frames ? a->ms_upload / a->build_frames : 0.0,
-               a->build_frames, drawn_frames ? a->ms_draw / drawn_frames : 0.0);
+               a->build_frames, drawn_frames ? a->ms_draw / drawn_frames : 0.0,
+               drawn_frames ? a->ms_shadow / drawn_frames : 0.0,
+               a->o.no_shadows      ? "none"
+               : a->o.single_shadow ? "depth map, glFinish-timed"
+                                    : "depth + deep opacity, glFinish-timed");
 }
 
 int main(int argc, char **argv)
@@ -2654,6 +2825,7 @@ int main(int argc, char **argv)
         if (ok && draw) {
             glm_draw(a);
             a->ms_draw += a->draw_ms;
+            a->ms_shadow += a->shadow_ms;
             ++drawn_frames;
         }
         if (ok && save) {
@@ -2674,7 +2846,8 @@ int main(int argc, char **argv)
             char title[512];
             snprintf(title, sizeof title,
                      "hairfur gl_marschner - %s, %s%s%s - %.2f m, LOD %.2f: "
-                     "%d of %d strands - CPU %.1f ms, draw %.1f ms - keys: "
+                     "%d of %d strands - CPU %.1f ms, draw %.1f ms (shadows "
+                     "%.1f) - keys: "
                      "K Kajiya-Kay, G GPU, C 3D colour, V colliders, "
                      "O shadows, S specular, H motion, space orbit, "
                      "+/- distance, arrows, Esc",
@@ -2682,8 +2855,12 @@ int main(int argc, char **argv)
                      a->o.gpu_expand ? "GPU expansion"
                      : a->o.compact ? "compact CPU ribbons" : "CPU ribbons",
                      a->o.color3d ? ", 3D colour" : "",
-                     a->o.no_shadows ? "" : ", shadows", a->o.distance, a->lod,
-                     a->drawn, a->info.strand_count, a->cpu_ms, a->draw_ms);
+                     a->o.no_shadows      ? ""
+                     : a->o.single_shadow ? ", single shadow map"
+                                          : ", deep opacity maps",
+                     a->o.distance, a->lod,
+                     a->drawn, a->info.strand_count, a->cpu_ms, a->draw_ms,
+                     a->shadow_ms);
             glfwSetWindowTitle((GLFWwindow *)glc_window(), title);
             title_at = now;
         }

@@ -39,7 +39,7 @@ fi
 if $V --help >"$O/help" 2>&1; then
     miss=""
     for o in --mesh --anim --grow-on --unit --density --length --color \
-             --no-shadows --headless --frames --out --save-every --comb \
+             --no-shadows --shadows --headless --frames --out --save-every --comb \
              --hair-length --settle --rest-from-gravity --volume --friction \
              --grid --stiffness Keys; do
         grep -q -- "$o" "$O/help" || miss="$miss $o"
@@ -64,6 +64,7 @@ expect_error "unknown mesh to grow on" "Wuson" --headless \
     --mesh "$M/X/Testwuson.X" --grow-on Tail
 expect_error "bad strand count" "expected a whole number" --headless \
     --strands 5k
+expect_error "bad shadow mode" "deep or single" --headless --shadows soft
 expect_error "bad unit" "unit" --headless --mesh "$M/OBJ/WusonOBJ.obj" \
     --unit furlong
 expect_error "--save-every without %d" "%d" --headless --save-every 5 \
