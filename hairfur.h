@@ -8752,176 +8752,209 @@ HF__PRIVATE void hf__grid_read(const hf_grid *grid, size_t node,
     g[2] -= v[0] * ((2.0f * f[2] - 1.0f) * (sx * sy));
 }
 
-#if HF__SSE
+#if HF__V4
 /* Corner c of four lanes' cells: their nodes' four floats, transposed to
    weight and momentum x, y, z across the lanes. */
-HF__INLINE void hf__grid_corner_sse(const float *node, const size_t *at,
-                                    size_t off, __m128 q[4])
+HF__INLINE void hf__grid_corner_v4(const float *node, const size_t *at,
+                                   size_t off, hf__v4 q[4])
 {
-    q[0] = _mm_loadu_ps(node + 4u * (at[0] + off));
-    q[1] = _mm_loadu_ps(node + 4u * (at[1] + off));
-    q[2] = _mm_loadu_ps(node + 4u * (at[2] + off));
-    q[3] = _mm_loadu_ps(node + 4u * (at[3] + off));
+    q[0] = HF__LD(node + 4u * (at[0] + off));
+    q[1] = HF__LD(node + 4u * (at[1] + off));
+    q[2] = HF__LD(node + 4u * (at[2] + off));
+    q[3] = HF__LD(node + 4u * (at[3] + off));
+#if HF__SSE
     _MM_TRANSPOSE4_PS(q[0], q[1], q[2], q[3]);
+#else
+    {
+        const float32x4x2_t t01 = vtrnq_f32(q[0], q[1]);
+        const float32x4x2_t t23 = vtrnq_f32(q[2], q[3]);
+        q[0] = vcombine_f32(vget_low_f32(t01.val[0]), vget_low_f32(t23.val[0]));
+        q[1] = vcombine_f32(vget_low_f32(t01.val[1]), vget_low_f32(t23.val[1]));
+        q[2] = vcombine_f32(vget_high_f32(t01.val[0]),
+                            vget_high_f32(t23.val[0]));
+        q[3] = vcombine_f32(vget_high_f32(t01.val[1]),
+                            vget_high_f32(t23.val[1]));
+    }
+#endif
 }
 
 /* One axis of four points (hf__grid_axis): the fraction, the cell in
-   k[0..3], and the lanes inside the cube. */
-HF__INLINE __m128 hf__grid_axis_sse(__m128 c, float o, float inv, int n,
-                                    int k[4], __m128 *f)
+   k[0..3] (truncated, as the scalar cast), and the lanes inside the
+   cube. */
+HF__INLINE hf__v4 hf__grid_axis_v4(hf__v4 c, float o, float inv, int n,
+                                   int k[4], hf__v4 *f)
 {
-    const __m128 q = _mm_mul_ps(_mm_sub_ps(c, _mm_set1_ps(o)),
-                                _mm_set1_ps(inv));
+    const hf__v4 q = HF__MUL(HF__SUB(c, HF__SET1(o)), HF__SET1(inv));
+#if HF__SSE
     const __m128i ki = _mm_cvttps_epi32(q);
     _mm_storeu_si128((__m128i *)(void *)k, ki);
-    *f = _mm_sub_ps(q, _mm_cvtepi32_ps(ki));
-    return _mm_and_ps(_mm_cmpge_ps(q, _mm_setzero_ps()),
-                      _mm_cmplt_ps(q, _mm_set1_ps((float)(n - 1))));
+    *f = HF__SUB(q, _mm_cvtepi32_ps(ki));
+#else
+    const int32x4_t ki = vcvtq_s32_f32(q);
+    vst1q_s32(k, ki);
+    *f = HF__SUB(q, vcvtq_f32_s32(ki));
+#endif
+    return HF__AND(HF__LE(HF__SET1(0.0f), q),
+                   HF__LT(q, HF__SET1((float)(n - 1))));
+}
+
+/* All bits set in lane l where bit l of mask is. */
+HF__INLINE hf__v4 hf__grid_lanes_v4(int mask)
+{
+#if HF__SSE
+    return _mm_castsi128_ps(_mm_setr_epi32(-(mask & 1), -(mask >> 1 & 1),
+                                           -(mask >> 2 & 1),
+                                           -(mask >> 3 & 1)));
+#else
+    const uint32_t b[4] = {(uint32_t)-(mask & 1), (uint32_t)-(mask >> 1 & 1),
+                           (uint32_t)-(mask >> 2 & 1),
+                           (uint32_t)-(mask >> 3 & 1)};
+    return vreinterpretq_f32_u32(vld1q_u32(b));
+#endif
 }
 
 /* hf_ropes_apply_grid at point row j for ropes r .. r + 3 (the lanes of
-   `act` simulated), group j .. last - 1: the scalar code's operations
-   lane by lane (hf__grid_read, the cap, the friction), so its bytes. */
-HF__PRIVATE void hf__grid_apply_sse(hf_ropes *ro, const hf_grid *grid,
-                                    const float *sl, int j, int last, int r,
-                                    int act, float inv, float push,
-                                    float fric, float ref, float h)
+   `act` simulated), group j .. last - 1, in SSE2 or NEON: the scalar
+   code's operations lane by lane (hf__grid_read, the cap, the friction),
+   so its bytes. */
+HF__PRIVATE void hf__grid_apply_v4(hf_ropes *ro, const hf_grid *grid,
+                                   const float *sl, int j, int last, int r,
+                                   int act, float inv, float push,
+                                   float fric, float ref, float h)
 {
     const size_t R = (size_t)ro->rope_count, i = (size_t)j * R + (size_t)r;
     const int n = grid->resolution;
     const size_t n2 = (size_t)n * (size_t)n;
-    const __m128 one = _mm_set1_ps(1.0f), two = _mm_set1_ps(2.0f);
-    const __m128 x = _mm_loadu_ps(ro->x + i), y = _mm_loadu_ps(ro->y + i);
-    const __m128 z = _mm_loadu_ps(ro->z + i);
-    const __m128 lh = _mm_loadu_ps(ro->last_h + r);
-    __m128 f[3], in, w[3], v[4], a[4], g[3], m8[8], hv, hl, lhm;
-    __m128 a0, a1, a2, a3;
-    __m128 wx0, wy0, wz0, wyz[4], wxz[4], wxy[4], sx, sy, sz, ms, gn, gs;
-    __m128 dv[3];
+    const hf__v4 one = HF__SET1(1.0f), two = HF__SET1(2.0f);
+    const hf__v4 x = HF__LD(ro->x + i), y = HF__LD(ro->y + i);
+    const hf__v4 z = HF__LD(ro->z + i);
+    const hf__v4 lh = HF__LD(ro->last_h + r);
+    hf__v4 f[3], in, w[3], v[4], a[4], g[3], m8[8], hv, hl, lhm;
+    hf__v4 a0, a1, a2, a3;
+    hf__v4 wx0, wy0, wz0, wyz[4], wxz[4], wxy[4], sx, sy, sz, ms, gn, gs;
+    hf__v4 dv[3];
     int kx[4], ky[4], kz[4], l, c, mask, p;
     size_t at[4];
-    in = _mm_and_ps(hf__grid_axis_sse(z, sl[2], inv, n, kz, &f[2]),
-                    _mm_and_ps(hf__grid_axis_sse(x, sl[0], inv, n, kx, &f[0]),
-                               hf__grid_axis_sse(y, sl[1], inv, n, ky, &f[1])));
-    mask = _mm_movemask_ps(in) & act;
+    in = HF__AND(hf__grid_axis_v4(z, sl[2], inv, n, kz, &f[2]),
+                    HF__AND(hf__grid_axis_v4(x, sl[0], inv, n, kx, &f[0]),
+                               hf__grid_axis_v4(y, sl[1], inv, n, ky, &f[1])));
+    mask = HF__MASK(in) & act;
     if (!mask) return;
     for (l = 0; l < 4; ++l) /* lanes out of the cube read node 0 */
         at[l] = mask >> l & 1 ? ((size_t)kz[l] * (size_t)n + (size_t)ky[l]) *
                                         (size_t)n + (size_t)kx[l]
                               : 0u;
     /* hf__grid_hv and the step's sub-step */
-    lhm = _mm_cmpgt_ps(lh, _mm_setzero_ps());
-    hv = hf__sel_sse(
-        lhm, _mm_div_ps(one, _mm_max_ps(lh, _mm_set1_ps(1e-6f))),
-        _mm_setzero_ps());
-    hl = hf__sel_sse(lhm, lh, _mm_set1_ps(h));
-    v[0] = _mm_set1_ps((float)(last - j));
-    v[1] = _mm_sub_ps(x, _mm_loadu_ps(ro->px + i));
-    v[2] = _mm_sub_ps(y, _mm_loadu_ps(ro->py + i));
-    v[3] = _mm_sub_ps(z, _mm_loadu_ps(ro->pz + i));
-    for (p = 1; p < 4; ++p) v[p] = _mm_mul_ps(v[0], _mm_mul_ps(v[p], hv));
-    wx0 = _mm_sub_ps(one, f[0]);
-    wy0 = _mm_sub_ps(one, f[1]);
-    wz0 = _mm_sub_ps(one, f[2]);
-    wyz[0] = _mm_mul_ps(wy0, wz0);
-    wyz[1] = _mm_mul_ps(f[1], wz0);
-    wyz[2] = _mm_mul_ps(wy0, f[2]);
-    wyz[3] = _mm_mul_ps(f[1], f[2]);
-    wxz[0] = _mm_mul_ps(wx0, wz0);
-    wxz[1] = _mm_mul_ps(f[0], wz0);
-    wxz[2] = _mm_mul_ps(wx0, f[2]);
-    wxz[3] = _mm_mul_ps(f[0], f[2]);
-    wxy[0] = _mm_mul_ps(wx0, wy0);
-    wxy[1] = _mm_mul_ps(f[0], wy0);
-    wxy[2] = _mm_mul_ps(wx0, f[1]);
-    wxy[3] = _mm_mul_ps(f[0], f[1]);
+    lhm = HF__GT(lh, HF__SET1(0.0f));
+    hv = HF__SEL(
+        lhm, HF__DIV(one, HF__MAX(lh, HF__SET1(1e-6f))),
+        HF__SET1(0.0f));
+    hl = HF__SEL(lhm, lh, HF__SET1(h));
+    v[0] = HF__SET1((float)(last - j));
+    v[1] = HF__SUB(x, HF__LD(ro->px + i));
+    v[2] = HF__SUB(y, HF__LD(ro->py + i));
+    v[3] = HF__SUB(z, HF__LD(ro->pz + i));
+    for (p = 1; p < 4; ++p) v[p] = HF__MUL(v[0], HF__MUL(v[p], hv));
+    wx0 = HF__SUB(one, f[0]);
+    wy0 = HF__SUB(one, f[1]);
+    wz0 = HF__SUB(one, f[2]);
+    wyz[0] = HF__MUL(wy0, wz0);
+    wyz[1] = HF__MUL(f[1], wz0);
+    wyz[2] = HF__MUL(wy0, f[2]);
+    wyz[3] = HF__MUL(f[1], f[2]);
+    wxz[0] = HF__MUL(wx0, wz0);
+    wxz[1] = HF__MUL(f[0], wz0);
+    wxz[2] = HF__MUL(wx0, f[2]);
+    wxz[3] = HF__MUL(f[0], f[2]);
+    wxy[0] = HF__MUL(wx0, wy0);
+    wxy[1] = HF__MUL(f[0], wy0);
+    wxy[2] = HF__MUL(wx0, f[1]);
+    wxy[3] = HF__MUL(f[0], f[1]);
     /* corner by corner, in the scalar order, the sums in registers */
-    a0 = a1 = a2 = a3 = _mm_setzero_ps();
+    a0 = a1 = a2 = a3 = HF__SET1(0.0f);
     for (c = 0; c < 8; ++c) {
-        __m128 t[4], wc;
-        hf__grid_corner_sse(grid->node, at,
+        hf__v4 t[4], wc;
+        hf__grid_corner_v4(grid->node, at,
                             (size_t)(c >> 2) * n2 +
                                 (size_t)((c >> 1) & 1) * (size_t)n +
                                 (size_t)(c & 1),
                             t);
-        wc = _mm_mul_ps(c & 1 ? f[0] : wx0, wyz[c >> 1]);
-        a0 = _mm_add_ps(a0, _mm_mul_ps(wc, t[0]));
-        a1 = _mm_add_ps(a1, _mm_mul_ps(wc, t[1]));
-        a2 = _mm_add_ps(a2, _mm_mul_ps(wc, t[2]));
-        a3 = _mm_add_ps(a3, _mm_mul_ps(wc, t[3]));
+        wc = HF__MUL(c & 1 ? f[0] : wx0, wyz[c >> 1]);
+        a0 = HF__ADD(a0, HF__MUL(wc, t[0]));
+        a1 = HF__ADD(a1, HF__MUL(wc, t[1]));
+        a2 = HF__ADD(a2, HF__MUL(wc, t[2]));
+        a3 = HF__ADD(a3, HF__MUL(wc, t[3]));
         m8[c] = t[0];
     }
     a[0] = a0;
     a[1] = a1;
     a[2] = a2;
     a[3] = a3;
-#define HF__GRID_D(e, hi, lo) _mm_mul_ps(e, _mm_sub_ps(m8[hi], m8[lo]))
-    g[0] = _mm_add_ps(_mm_add_ps(_mm_add_ps(HF__GRID_D(wyz[0], 1, 0),
+#define HF__GRID_D(e, hi, lo) HF__MUL(e, HF__SUB(m8[hi], m8[lo]))
+    g[0] = HF__ADD(HF__ADD(HF__ADD(HF__GRID_D(wyz[0], 1, 0),
                                             HF__GRID_D(wyz[1], 3, 2)),
                                  HF__GRID_D(wyz[2], 5, 4)),
                       HF__GRID_D(wyz[3], 7, 6));
-    g[1] = _mm_add_ps(_mm_add_ps(_mm_add_ps(HF__GRID_D(wxz[0], 2, 0),
+    g[1] = HF__ADD(HF__ADD(HF__ADD(HF__GRID_D(wxz[0], 2, 0),
                                             HF__GRID_D(wxz[1], 3, 1)),
                                  HF__GRID_D(wxz[2], 6, 4)),
                       HF__GRID_D(wxz[3], 7, 5));
-    g[2] = _mm_add_ps(_mm_add_ps(_mm_add_ps(HF__GRID_D(wxy[0], 4, 0),
+    g[2] = HF__ADD(HF__ADD(HF__ADD(HF__GRID_D(wxy[0], 4, 0),
                                             HF__GRID_D(wxy[1], 5, 1)),
                                  HF__GRID_D(wxy[2], 6, 2)),
                       HF__GRID_D(wxy[3], 7, 3));
 #undef HF__GRID_D
-    sx = _mm_add_ps(_mm_mul_ps(wx0, wx0), _mm_mul_ps(f[0], f[0]));
-    sy = _mm_add_ps(_mm_mul_ps(wy0, wy0), _mm_mul_ps(f[1], f[1]));
-    sz = _mm_add_ps(_mm_mul_ps(wz0, wz0), _mm_mul_ps(f[2], f[2]));
-    ms = _mm_mul_ps(sx, _mm_mul_ps(sy, sz));
-    for (p = 0; p < 4; ++p) a[p] = _mm_sub_ps(a[p], _mm_mul_ps(ms, v[p]));
-    w[0] = _mm_mul_ps(sy, sz);
-    w[1] = _mm_mul_ps(sx, sz);
-    w[2] = _mm_mul_ps(sx, sy);
+    sx = HF__ADD(HF__MUL(wx0, wx0), HF__MUL(f[0], f[0]));
+    sy = HF__ADD(HF__MUL(wy0, wy0), HF__MUL(f[1], f[1]));
+    sz = HF__ADD(HF__MUL(wz0, wz0), HF__MUL(f[2], f[2]));
+    ms = HF__MUL(sx, HF__MUL(sy, sz));
+    for (p = 0; p < 4; ++p) a[p] = HF__SUB(a[p], HF__MUL(ms, v[p]));
+    w[0] = HF__MUL(sy, sz);
+    w[1] = HF__MUL(sx, sz);
+    w[2] = HF__MUL(sx, sy);
     for (p = 0; p < 3; ++p)
-        g[p] = _mm_sub_ps(
-            g[p], _mm_mul_ps(v[0], _mm_mul_ps(_mm_sub_ps(_mm_mul_ps(two, f[p]),
+        g[p] = HF__SUB(
+            g[p], HF__MUL(v[0], HF__MUL(HF__SUB(HF__MUL(two, f[p]),
                                                          one),
                                               w[p])));
-    gn = _mm_add_ps(_mm_add_ps(_mm_mul_ps(g[0], g[0]), _mm_mul_ps(g[1], g[1])),
-                    _mm_mul_ps(g[2], g[2]));
-    gs = _mm_cmpgt_ps(gn, _mm_set1_ps(ref * ref));
-    gs = _mm_movemask_ps(gs) ? hf__sel_sse(gs, _mm_div_ps(_mm_set1_ps(ref),
-                                                          _mm_sqrt_ps(gn)),
+    gn = HF__ADD(HF__ADD(HF__MUL(g[0], g[0]), HF__MUL(g[1], g[1])),
+                    HF__MUL(g[2], g[2]));
+    gs = HF__GT(gn, HF__SET1(ref * ref));
+    gs = HF__MASK(gs) ? HF__SEL(gs, HF__DIV(HF__SET1(ref),
+                                                          HF__SQRT(gn)),
                                            one)
                              : one; /* no lane capped: skip the root */
     for (p = 0; p < 3; ++p)
-        dv[p] = _mm_mul_ps(_mm_set1_ps(-push), _mm_mul_ps(g[p], gs));
+        dv[p] = HF__MUL(HF__SET1(-push), HF__MUL(g[p], gs));
     if (fric > 0.0f) {
-        const __m128 fm = _mm_cmpgt_ps(a[0], _mm_set1_ps(1e-6f * ref));
-        const __m128 ia = _mm_div_ps(one, a[0]);
-        const __m128 iw = _mm_set1_ps(1.0f / (float)(last - j)); /* v[0] */
-        const __m128 b = _mm_mul_ps(
-            _mm_set1_ps(fric),
-            hf__sel_sse(_mm_cmplt_ps(a[0], _mm_set1_ps(ref)),
-                        _mm_div_ps(a[0], _mm_set1_ps(ref)), one));
+        const hf__v4 fm = HF__GT(a[0], HF__SET1(1e-6f * ref));
+        const hf__v4 ia = HF__DIV(one, a[0]);
+        const hf__v4 iw = HF__SET1(1.0f / (float)(last - j)); /* v[0] */
+        const hf__v4 b = HF__MUL(
+            HF__SET1(fric),
+            HF__SEL(HF__LT(a[0], HF__SET1(ref)),
+                        HF__DIV(a[0], HF__SET1(ref)), one));
         for (p = 0; p < 3; ++p)
-            dv[p] = hf__sel_sse(
+            dv[p] = HF__SEL(
                 fm,
-                _mm_add_ps(dv[p],
-                           _mm_mul_ps(b, _mm_sub_ps(_mm_mul_ps(a[p + 1], ia),
-                                                    _mm_mul_ps(v[p + 1], iw)))),
+                HF__ADD(dv[p],
+                           HF__MUL(b, HF__SUB(HF__MUL(a[p + 1], ia),
+                                                    HF__MUL(v[p + 1], iw)))),
                 dv[p]);
     }
     {
-        const __m128 m = _mm_castsi128_ps(_mm_setr_epi32(
-            mask & 1 ? -1 : 0, mask & 2 ? -1 : 0, mask & 4 ? -1 : 0,
-            mask & 8 ? -1 : 0));
+        const hf__v4 m = hf__grid_lanes_v4(mask);
         float *px = ro->px, *py = ro->py, *pz = ro->pz;
-        for (p = 0; p < 3; ++p) dv[p] = _mm_mul_ps(dv[p], hl);
+        for (p = 0; p < 3; ++p) dv[p] = HF__MUL(dv[p], hl);
         for (c = j > 0 ? j : 1; c < last; ++c) {
             float *o[3];
             o[0] = px + (size_t)c * R + (size_t)r;
             o[1] = py + (size_t)c * R + (size_t)r;
             o[2] = pz + (size_t)c * R + (size_t)r;
             for (p = 0; p < 3; ++p) {
-                const __m128 was = _mm_loadu_ps(o[p]);
-                _mm_storeu_ps(o[p],
-                              hf__sel_sse(m, _mm_sub_ps(was, dv[p]), was));
+                const hf__v4 was = HF__LD(o[p]);
+                HF__ST(o[p],
+                              HF__SEL(m, HF__SUB(was, dv[p]), was));
             }
         }
     }
@@ -8937,20 +8970,20 @@ HF__TARGET_AVX2 HF__INLINE __m256 hf__sel8(__m256 m, __m256 a, __m256 b)
     return _mm256_blendv_ps(b, a, m);
 }
 
-/* hf__grid_corner_sse for eight lanes: two four-lane transposes, joined */
+/* hf__grid_corner_v4 for eight lanes: two four-lane transposes, joined */
 HF__TARGET_AVX2 HF__INLINE void hf__grid_corner_avx2(const float *node,
                                                      const size_t *at,
                                                      size_t off, __m256 q[4])
 {
     __m128 lo[4], hi[4];
     int k;
-    hf__grid_corner_sse(node, at, off, lo);
-    hf__grid_corner_sse(node, at + 4, off, hi);
+    hf__grid_corner_v4(node, at, off, lo);
+    hf__grid_corner_v4(node, at + 4, off, hi);
     for (k = 0; k < 4; ++k)
         q[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(lo[k]), hi[k], 1);
 }
 
-/* hf__grid_axis_sse for eight points */
+/* hf__grid_axis_v4 for eight points */
 HF__TARGET_AVX2 HF__INLINE __m256 hf__grid_axis_avx2(__m256 c, float o,
                                                      float inv, int n, int k[8],
                                                      __m256 *f)
@@ -8964,7 +8997,7 @@ HF__TARGET_AVX2 HF__INLINE __m256 hf__grid_axis_avx2(__m256 c, float o,
                          HF__LT8(q, _mm256_set1_ps((float)(n - 1))));
 }
 
-/* hf__grid_apply_sse for ropes r .. r + 7 (the lanes of `act`): the
+/* hf__grid_apply_v4 for ropes r .. r + 7 (the lanes of `act`): the
    same operations, eight lanes. */
 HF__TARGET_AVX2 HF__PRIVATE void
 hf__grid_apply_avx2(hf_ropes *ro, const hf_grid *grid, const float *sl, int j,
@@ -9172,7 +9205,7 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
     inv = 1.0f / sl[3];
     k = (int)sl[4];
     level = hf_simd_resolve(prm.simd);
-    (void)level; /* eight lanes at AVX2 and up, four at SSE2 */
+    (void)level; /* eight lanes at AVX2 and up, four at SSE2 and NEON */
     /* point rows outermost, as the grid was built: neighbouring ropes
        read neighbouring nodes */
     for (j = 0; j < P; j += k) {
@@ -9189,7 +9222,7 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
                                         inv, push, fric, ref, st.h);
             }
 #endif
-#if HF__SSE
+#if HF__V4
         if (level >= HF_SIMD_SSE2)
             for (; r + 4 <= first + count; r += 4) {
                 const int act = (hf__rope_kind(ropes, r) == 0) |
@@ -9197,8 +9230,8 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
                                 (hf__rope_kind(ropes, r + 2) == 0) << 2 |
                                 (hf__rope_kind(ropes, r + 3) == 0) << 3;
                 if (act)
-                    hf__grid_apply_sse(ropes, grid, sl, j, last, r, act, inv,
-                                       push, fric, ref, st.h);
+                    hf__grid_apply_v4(ropes, grid, sl, j, last, r, act, inv,
+                                      push, fric, ref, st.h);
             }
 #endif
         for (; r < first + count; ++r) {
