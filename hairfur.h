@@ -8364,20 +8364,27 @@ HF__PRIVATE hf_result hf__colliders_check(const hf_collider *colliders,
 
 /* The per-call constants of a step from resolved parameters: dt clamped
    and scaled, split into equal sub-steps, rates per sub-step. */
+/* The sub-steps of a call of dt (resolved params): their count *n and
+   length, returned; n * length is dt clamped and scaled. */
+HF__PRIVATE float hf__rope_substeps(const hf_rope_params *params, float dt,
+                                    int *n)
+{
+    float sdt, q;
+    if (dt > params->max_dt) dt = params->max_dt;
+    sdt = dt * params->time_scale;
+    q = sdt / params->substep;
+    *n = q >= (float)params->max_substeps ? params->max_substeps : (int)q;
+    if ((float)*n < q * 0.9999f && *n < params->max_substeps) ++*n;
+    if (*n < 1) *n = 1;
+    return sdt / (float)*n;
+}
+
 HF__PRIVATE void hf__rope_step_setup(hf__rope_step *st,
                                      const hf_rope_params *params, float dt,
                                      int points)
 {
-    float sdt, q;
     int k;
-    if (dt > params->max_dt) dt = params->max_dt;
-    sdt = dt * params->time_scale;
-    q = sdt / params->substep;
-    st->n = q >= (float)params->max_substeps ? params->max_substeps
-                                             : (int)q;
-    if ((float)st->n < q * 0.9999f && st->n < params->max_substeps) ++st->n;
-    if (st->n < 1) st->n = 1;
-    st->h = sdt / (float)st->n;
+    st->h = hf__rope_substeps(params, dt, &st->n);
     st->keep = 1.0f - hf__rope_k(params->damping, st->h);
     st->k_root = hf__rope_k(params->root_stiffness, st->h);
     st->ftl = params->solver == HF_ROPE_SOLVER_FTL;
@@ -8659,13 +8666,16 @@ HFDEF hf_result hf_grid_build(hf_grid *grid, const hf_ropes *ropes,
             const size_t i = (size_t)j * R + (size_t)r;
             float f[3], v[4], hv, wy[2], wz[2];
             size_t node;
-            int kz, dz;
+            int kx, ky, kz, dz;
             /* the layer first: a call for some layers skips the rest
                of the points at once */
             if (!hf__grid_axis(ropes->z[i], cube[2], inv, n, &kz, &f[2]) ||
                 kz + 1 < first || kz >= end ||
-                !hf__grid_locate(ropes, i, cube, inv, n, &node, &kz, f))
+                !hf__grid_axis(ropes->x[i], cube[0], inv, n, &kx, &f[0]) ||
+                !hf__grid_axis(ropes->y[i], cube[1], inv, n, &ky, &f[1]))
                 continue;
+            node = ((size_t)kz * (size_t)n + (size_t)ky) * (size_t)n +
+                   (size_t)kx;
             hv = hf__grid_hv(ropes->last_h[r]);
             hf__grid_velocity(ropes, i, hv, weight, v);
             wy[0] = 1.0f - f[1];
@@ -9168,13 +9178,12 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
                                     const hf_grid *grid)
 {
     hf_rope_params prm;
-    hf__rope_step st;
     hf_result res;
     const float *sl;
     double w = 0.0, w2 = 0.0;
     size_t R;
-    float inv, ref, push, fric, gmag;
-    int n, r, j, s, k, P, level;
+    float inv, ref, push, fric, gmag, h;
+    int n, r, j, s, k, P, level, steps;
     if (!hf__ropes_ok(ropes) || !params || !grid || !grid->node)
         return HF_ERROR_NULL_POINTER;
     if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
@@ -9188,7 +9197,7 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
         w2 += (double)sl[HF__GRID_SLAB * s + 6];
     }
     if (count == 0 || !(w > 0.0) || !(sl[3] > 0.0f)) return HF_OK;
-    hf__rope_step_setup(&st, &prm, dt, ropes->points);
+    h = hf__rope_substeps(&prm, dt, &steps);
     /* the density around the average point: the unit of the push */
     ref = (float)(w2 / w);
     /* volume 1: a density step of the typical density across a cell
@@ -9197,8 +9206,8 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
                     prm.gravity[1] * prm.gravity[1] +
                     prm.gravity[2] * prm.gravity[2]);
     if (!(gmag > 0.0f)) gmag = 9.81f;
-    push = prm.volume * gmag * (st.h * (float)st.n) / ref;
-    fric = hf__rope_k(prm.friction, st.h * (float)st.n);
+    push = prm.volume * gmag * (h * (float)steps) / ref;
+    fric = hf__rope_k(prm.friction, h * (float)steps);
     if (!(push > 0.0f) && !(fric > 0.0f)) return HF_OK;
     R = (size_t)ropes->rope_count;
     P = ropes->points;
@@ -9219,7 +9228,7 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
                     act |= (hf__rope_kind(ropes, r + l) == 0) << l;
                 if (act)
                     hf__grid_apply_avx2(ropes, grid, sl, j, last, r, act,
-                                        inv, push, fric, ref, st.h);
+                                        inv, push, fric, ref, h);
             }
 #endif
 #if HF__V4
@@ -9231,7 +9240,7 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
                                 (hf__rope_kind(ropes, r + 3) == 0) << 3;
                 if (act)
                     hf__grid_apply_v4(ropes, grid, sl, j, last, r, act, inv,
-                                      push, fric, ref, st.h);
+                                      push, fric, ref, h);
             }
 #endif
         for (; r < first + count; ++r) {
@@ -9242,7 +9251,7 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
             if (hf__rope_kind(ropes, r) != 0 ||
                 !hf__grid_locate(ropes, i, sl, inv, n, &node, &kz, f))
                 continue;
-            hl = ropes->last_h[r] > 0.0f ? ropes->last_h[r] : st.h;
+            hl = ropes->last_h[r] > 0.0f ? ropes->last_h[r] : h;
             hv = hf__grid_hv(ropes->last_h[r]);
             hf__grid_velocity(ropes, i, hv, (float)(last - j), v);
             hf__grid_read(grid, node, f, v, a, g);

@@ -671,25 +671,6 @@ static void glm_ramp(unsigned char *rgba, int w, int h)
         }
 }
 
-/* The head's motion at time t: sideways swing (0.05 m at 1 Hz) and a turn
-   (+-25 degrees at 0.5 Hz), as grow_fur; rows of a 3x4 matrix. */
-static void glm_pose(double t, int still, float m[12])
-{
-    double yaw = still ? 0.0 : 0.436 * sin(GLM_PI * t);
-    double dx = still ? 0.0 : 0.05 * sin(2.0 * GLM_PI * t);
-    float c = (float)cos(yaw), s = (float)sin(yaw);
-    memset(m, 0, 12 * sizeof *m);
-    m[0] = c; m[2] = s; m[3] = (float)dx; m[5] = 1; m[8] = -s; m[10] = c;
-}
-
-static void glm_xform(const float m[12], const float *p, float w, float *o)
-{
-    int k;
-    for (k = 0; k < 3; ++k)
-        o[k] = m[4 * k] * p[0] + m[4 * k + 1] * p[1] + m[4 * k + 2] * p[2] +
-               m[4 * k + 3] * w;
-}
-
 /* Colliders in head space, moved by the pose: the skull (the drawn
    sphere: the 2 mm collision margin keeps hair lying on the scalp off its
    flat triangles), the neck (it overlaps the underside of the head, so the
@@ -705,8 +686,8 @@ static void glm_head_colliders(const float m[12], hf_collider *col)
     for (i = 0; i < 3; ++i) {
         memset(&col[i], 0, sizeof col[i]);
         col[i].type = i == 0 ? HF_COLLIDER_SPHERE : HF_COLLIDER_CAPSULE;
-        glm_xform(m, a[i], 1.0f, col[i].a);
-        glm_xform(m, b[i], 1.0f, col[i].b);
+        hm_xform(m, a[i], 1.0f, col[i].a);
+        hm_xform(m, b[i], 1.0f, col[i].b);
         col[i].radius = r[i];
     }
 }
@@ -1690,10 +1671,10 @@ static int glm_simulate(glm_app *a, double t, float dt)
         ch_pose(&a->ch, a->anim, a->o.still ? 0.0 : t, a->skin, a->all_col);
         for (i = 0; i < a->ncol; ++i) a->col[i] = a->all_col[a->col_keep[i]];
     } else {
-        glm_pose(t, a->o.still, a->pose);
+        hm_pose(t, a->o.still, a->pose);
         for (i = 0; i < a->nv; ++i) {
-            glm_xform(a->pose, a->rest[i].pos, 1.0f, a->skin[i].pos);
-            glm_xform(a->pose, a->rest[i].normal, 0.0f, a->skin[i].normal);
+            hm_xform(a->pose, a->rest[i].pos, 1.0f, a->skin[i].pos);
+            hm_xform(a->pose, a->rest[i].normal, 0.0f, a->skin[i].normal);
         }
         glm_head_colliders(a->pose, a->col);
     }

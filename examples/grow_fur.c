@@ -445,27 +445,6 @@ static int get_map(const char *path, int channels, int builtin,
     return 1;
 }
 
-/* The scripted head motion at time t: a rigid transform (rotation about y
-   by `yaw`, then a sideways offset). */
-static void head_pose(double t, float m[12])
-{
-    double yaw = 0.436 * sin(2.0 * 3.14159265358979 * 0.5 * t);
-    double dx = 0.05 * sin(2.0 * 3.14159265358979 * 1.0 * t);
-    double c = cos(yaw), s = sin(yaw);
-    /* rows: x' = m0 x + m1 y + m2 z + m3 ... */
-    m[0] = (float)c;  m[1] = 0; m[2] = (float)s;  m[3] = (float)dx;
-    m[4] = 0;         m[5] = 1; m[6] = 0;         m[7] = 0;
-    m[8] = (float)-s; m[9] = 0; m[10] = (float)c; m[11] = 0;
-}
-
-static void xform(const float m[12], const float *p, float w, float *o)
-{
-    int r;
-    for (r = 0; r < 3; ++r)
-        o[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] +
-               m[4 * r + 3] * w;
-}
-
 static int ends_with(const char *s, const char *suf)
 {
     size_t a = strlen(s), b = strlen(suf);
@@ -1025,18 +1004,18 @@ int main(int argc, char **argv)
         hf_ribbon_params view;
         hf_ribbon_output out;
         double t0, t1, t1g, t2, t3, t4, t5;
-        head_pose((f + 1) / 60.0, m);
+        hm_pose((f + 1) / 60.0, 0, m);
         for (i = 0; i < nv; ++i) {
-            xform(m, rest[i].pos, 1.0f, skin[i].pos);
-            xform(m, rest[i].normal, 0.0f, skin[i].normal);
+            hm_xform(m, rest[i].pos, 1.0f, skin[i].pos);
+            hm_xform(m, rest[i].normal, 0.0f, skin[i].normal);
             skin[i].uv[0] = rest[i].uv[0];
             skin[i].uv[1] = rest[i].uv[1];
         }
         if (!has_normals) skinned.normals = NULL; /* face normals */
         for (i = 0; i < ncol; ++i) {
             moved[i] = cols[i];
-            xform(m, cols[i].a, 1.0f, moved[i].a);
-            xform(m, cols[i].b, 1.0f, moved[i].b);
+            hm_xform(m, cols[i].a, 1.0f, moved[i].a);
+            hm_xform(m, cols[i].b, 1.0f, moved[i].b);
         }
 
         memset(&view, 0, sizeof view);

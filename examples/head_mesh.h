@@ -36,6 +36,12 @@ void hm_free(hm_mesh *m);
 
 /* Maps, 8-bit single channel (colour: RGB), w x h, row 0 = v = 0. */
 void hm_hairline_density(unsigned char *px, int w, int h);
+/* The head's motion at time t (s) in the examples: a sideways swing
+   (0.05 m at 1 Hz) and a turn (+-25 degrees at 0.5 Hz) about y; still:
+   the rest pose. Rows of a 3x4 matrix. */
+void hm_pose(double t, int still, float m[12]);
+/* o = m p, p a point (w = 1) or a direction (w = 0). */
+void hm_xform(const float m[12], const float *p, float w, float *o);
 void hm_bangs_length(unsigned char *px, int w, int h);
 void hm_hair_color(unsigned char *rgb, int w, int h);
 
@@ -112,6 +118,25 @@ static double hm__from_face(double u)
 {
     double d = u - 0.5;
     return d < 0 ? -d : d;
+}
+
+void hm_pose(double t, int still, float m[12])
+{
+    const double pi = 3.14159265358979f; /* as the viewer always had it */
+    double yaw = still ? 0.0 : 0.436 * sin(pi * t);
+    double dx = still ? 0.0 : 0.05 * sin(2.0 * pi * t);
+    float c = (float)cos(yaw), s = (float)sin(yaw);
+    int k;
+    for (k = 0; k < 12; ++k) m[k] = 0.0f;
+    m[0] = c; m[2] = s; m[3] = (float)dx; m[5] = 1; m[8] = -s; m[10] = c;
+}
+
+void hm_xform(const float m[12], const float *p, float w, float *o)
+{
+    int k;
+    for (k = 0; k < 3; ++k)
+        o[k] = m[4 * k] * p[0] + m[4 * k + 1] * p[1] + m[4 * k + 2] * p[2] +
+               m[4 * k + 3] * w;
 }
 
 void hm_hairline_density(unsigned char *px, int w, int h)

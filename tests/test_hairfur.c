@@ -5322,6 +5322,15 @@ static void tr_scalp(int R, int P, float len, float dx, float *rest,
     }
 }
 
+/* The head's sphere of tr_scalp's ropes (radius 0.1 m at the origin),
+   a little inside their roots. */
+static void tr_head_sphere(hf_collider *c)
+{
+    memset(c, 0, sizeof *c);
+    c->type = HF_COLLIDER_SPHERE;
+    c->radius = 0.097f;
+}
+
 /* Colliders far from every rope change nothing: the same ropes against
    a head and a capsule near it, and against the same two among 40
    others 3 m away (before, between and after them in the array), give
@@ -5674,9 +5683,7 @@ static void test_grid_volume_spreads_hair(void)
     int crowd[2], k;
     if (!tg_open(&t, 24)) { CHECK(0); return; }
     tr_scalp(R, P, 0.25f, 0.0f, rest, root, nrm, tan);
-    memset(&head, 0, sizeof head);
-    head.type = HF_COLLIDER_SPHERE;
-    head.radius = 0.097f;
+    tr_head_sphere(&head);
     for (k = 0; k < 2; ++k) {
         if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
         hf_rope_params_init(&p[k]);
@@ -5711,9 +5718,7 @@ static void test_grid_friction_moves_hair_together(void)
     int k, f;
     if (!tg_open(&t, 16)) { CHECK(0); return; }
     tr_scalp(R, P, 0.2f, 0.0f, rest, root, nrm, tan);
-    memset(&head, 0, sizeof head);
-    head.type = HF_COLLIDER_SPHERE;
-    head.radius = 0.097f;
+    tr_head_sphere(&head);
     for (k = 0; k < 2; ++k) {
         hf_rope_params p;
         if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
@@ -5763,9 +5768,7 @@ static void test_grid_splits_same_bytes(void)
     tg_grid t[NSET];
     int k, f, same = 1, grids_same = 1;
     tr_scalp(R, P, 0.22f, 0.0f, rest, root, nrm, tan);
-    memset(&head, 0, sizeof head);
-    head.type = HF_COLLIDER_SPHERE;
-    head.radius = 0.097f;
+    tr_head_sphere(&head);
     for (k = 0; k < NSET; ++k) {
         if (!tr_open(&s[k], R, P) || !tg_open(&t[k], 20)) { CHECK(0); return; }
         hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm, tan, 0);
@@ -5932,9 +5935,7 @@ static void test_fur_settle_rest(void)
     before = (float *)malloc(n * sizeof(float));
     settled = (float *)malloc(n * sizeof(float));
     memcpy(before, info.guide_points, n * sizeof(float));
-    memset(&ball, 0, sizeof ball);
-    ball.type = HF_COLLIDER_SPHERE;
-    ball.radius = 0.097f;
+    tr_head_sphere(&ball);
     CHECK_EQ_INT(hf_fur_settle_rest(f, -1.0f, &ball, 1), HF_ERROR_BAD_PARAMETER);
     CHECK_EQ_INT(hf_fur_settle_rest(f, (float)NAN, &ball, 1),
                  HF_ERROR_BAD_PARAMETER);

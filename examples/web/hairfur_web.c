@@ -433,25 +433,6 @@ static int hw_gl_ok(hw_app *a, const char *where)
 
 /* ---- the scene: gl_marschner's built-in head ---------------------------- */
 
-/* the head's motion at time t: sideways swing (0.05 m at 1 Hz) and a turn
-   (+-25 degrees at 0.5 Hz); rows of a 3x4 matrix (glm_pose) */
-static void hw_pose(double t, int still, float m[12])
-{
-    double yaw = still ? 0.0 : 0.436 * sin(HW_PI * t);
-    double dx = still ? 0.0 : 0.05 * sin(2.0 * HW_PI * t);
-    float c = (float)cos(yaw), s = (float)sin(yaw);
-    memset(m, 0, 12 * sizeof *m);
-    m[0] = c; m[2] = s; m[3] = (float)dx; m[5] = 1; m[8] = -s; m[10] = c;
-}
-
-static void hw_xform(const float m[12], const float *p, float w, float *o)
-{
-    int k;
-    for (k = 0; k < 3; ++k)
-        o[k] = m[4 * k] * p[0] + m[4 * k + 1] * p[1] + m[4 * k + 2] * p[2] +
-               m[4 * k + 3] * w;
-}
-
 /* skull, neck and shoulders, moved by the pose (glm_head_colliders) */
 static void hw_colliders(const float m[12], hf_collider *col)
 {
@@ -464,8 +445,8 @@ static void hw_colliders(const float m[12], hf_collider *col)
     for (i = 0; i < 3; ++i) {
         memset(&col[i], 0, sizeof col[i]);
         col[i].type = i == 0 ? HF_COLLIDER_SPHERE : HF_COLLIDER_CAPSULE;
-        hw_xform(m, a[i], 1.0f, col[i].a);
-        hw_xform(m, b[i], 1.0f, col[i].b);
+        hm_xform(m, a[i], 1.0f, col[i].a);
+        hm_xform(m, b[i], 1.0f, col[i].b);
         col[i].radius = r[i];
     }
 }
@@ -812,10 +793,10 @@ static int hw_simulate(hw_app *a, double t, float dt)
     int i;
     double t0 = emscripten_get_now(), t1;
     a->t = t;
-    hw_pose(t, !a->motion, a->pose);
+    hm_pose(t, !a->motion, a->pose);
     for (i = 0; i < a->head.vertex_count; ++i) {
-        hw_xform(a->pose, a->head.vertices[i].pos, 1.0f, a->skin[i].pos);
-        hw_xform(a->pose, a->head.vertices[i].normal, 0.0f,
+        hm_xform(a->pose, a->head.vertices[i].pos, 1.0f, a->skin[i].pos);
+        hm_xform(a->pose, a->head.vertices[i].normal, 0.0f,
                  a->skin[i].normal);
     }
     hw_colliders(a->pose, a->col);
