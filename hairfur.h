@@ -5967,7 +5967,7 @@ HF__PRIVATE hf__col_prep hf__collider_prep(const hf_collider *col, int id,
     k.rr = c->radius + margin;
     k.inner = c->radius * 0.9999f - margin - 1e-6f;
     k.id = id;
-    k.row = 1;
+    k.row = 0; /* any row, the root's included: the broadphase narrows it */
     return k;
 }
 
@@ -6409,15 +6409,15 @@ HF__INLINE float hf__root_offset(const hf_ropes *ro, int r)
 
 /* Tile [x, e): the box of its roots over the call (the frame position
    this frame and last, between which the sub-steps move it), and how far
-   a point can be from it: *r1 for row 1 and *far for the tip (the root's
-   rest offset plus the rest lengths before the row, the most of any rope
-   of the tile, grown by 1e-3 and by 1e-4 of the coordinates, for
-   rounding: hf__bp_reach). */
+   a point can be from it: reach[0] for the root, reach[1] for row 1 and
+   reach[2] for the tip (the root's rest offset plus the rest lengths
+   before the row, the most of any rope of the tile, grown by 1e-3 and by
+   1e-4 of the coordinates, for rounding: hf__bp_reach). */
 HF__PRIVATE void hf__bp_tile_box(const hf_ropes *ro, int x, int e, float *lo,
-                                 float *hi, float *big, float *r1, float *far_)
+                                 float *hi, float *big, float *reach)
 {
     const size_t R = (size_t)ro->rope_count;
-    float m1 = 0.0f, mt = 0.0f;
+    float m0 = 0.0f, m1 = 0.0f, mt = 0.0f;
     int r, k;
     *big = 0.0f;
     for (k = 0; k < 3; ++k) lo[k] = hi[k] = ro->frame[(size_t)k * R + x];
@@ -6431,6 +6431,7 @@ HF__PRIVATE void hf__bp_tile_box(const hf_ropes *ro, int x, int e, float *lo,
             lo[k] = p < lo[k] ? p : lo[k];
             hi[k] = p > hi[k] ? p : hi[k];
         }
+        m0 = o > m0 ? o : m0;
         m1 = o + ro->rest_length[r] > m1 ? o + ro->rest_length[r] : m1;
         mt = o + ro->length[r] > mt ? o + ro->length[r] : mt;
     }
@@ -6441,8 +6442,9 @@ HF__PRIVATE void hf__bp_tile_box(const hf_ropes *ro, int x, int e, float *lo,
     }
     /* the tip's bound from the ropes' lengths: their sums of the same
        rest lengths in the same order, so the same floats as row P - 1's */
-    *r1 = m1 * 1.001f + 1e-4f * (1.0f + *big + m1);
-    *far_ = mt * 1.001f + 1e-4f * (1.0f + *big + mt);
+    reach[0] = m0 * 1.001f + 1e-4f * (1.0f + *big + m0);
+    reach[1] = m1 * 1.001f + 1e-4f * (1.0f + *big + m1);
+    reach[2] = mt * 1.001f + 1e-4f * (1.0f + *big + mt);
 }
 
 /* reach[j] for every row j of tile [x, e), as hf__bp_tile_box's bounds. */
@@ -6470,9 +6472,9 @@ HF__PRIVATE int hf__bp_build(const hf_ropes *ro, int a, int b,
                              const hf_collider *col, int ncol, float margin,
                              hf__bp *bp)
 {
-    float tlo[HF__BP_TILES][3], thi[HF__BP_TILES][3], far_[HF__BP_TILES];
-    float r1[HF__BP_TILES], big[HF__BP_TILES], reach[HF_MAX_POINTS];
-    float clo[3], chi[3];
+    float tlo[HF__BP_TILES][3], thi[HF__BP_TILES][3], tr[HF__BP_TILES][3];
+    float big[HF__BP_TILES], reach[HF_MAX_POINTS];
+    float clo[3], chi[3], box[HF__BP_CAND][6];
     int cand[HF__BP_CAND], nc = 0, t, x, e, c, k, n = 0;
     bp->a = a;
     bp->col = col;
@@ -6481,22 +6483,29 @@ HF__PRIVATE int hf__bp_build(const hf_ropes *ro, int a, int b,
     /* the chunk's tiles and their reach, then the colliders near any */
     for (t = 0, x = a; t < HF__BP_TILES && x < b; ++t, x = e) {
         e = b - x > HF__BP_TILE ? x + HF__BP_TILE : b;
-        hf__bp_tile_box(ro, x, e, tlo[t], thi[t], &big[t], &r1[t], &far_[t]);
+        hf__bp_tile_box(ro, x, e, tlo[t], thi[t], &big[t], tr[t]);
         for (k = 0; k < 3; ++k) {
-            clo[k] = t == 0 || tlo[t][k] - far_[t] < clo[k]
-                         ? tlo[t][k] - far_[t]
+            clo[k] = t == 0 || tlo[t][k] - tr[t][2] < clo[k]
+                         ? tlo[t][k] - tr[t][2]
                          : clo[k];
-            chi[k] = t == 0 || thi[t][k] + far_[t] > chi[k]
-                         ? thi[t][k] + far_[t]
+            chi[k] = t == 0 || thi[t][k] + tr[t][2] > chi[k]
+                         ? thi[t][k] + tr[t][2]
                          : chi[k];
         }
     }
     bp->tiles = t;
+    /* the candidates and their boxes, once for every tile */
     for (c = 0; c < ncol && nc <= HF__BP_CAND; ++c) {
         float lo[3], hi[3];
         hf__col_box(col + c, margin, lo, hi);
         if (hf__box_gap(clo, chi, lo, hi) > 0.0f) continue;
-        if (nc < HF__BP_CAND) cand[nc] = c;
+        if (nc < HF__BP_CAND) {
+            cand[nc] = c;
+            for (k = 0; k < 3; ++k) {
+                box[nc][k] = lo[k];
+                box[nc][3 + k] = hi[k];
+            }
+        }
         ++nc; /* HF__BP_CAND + 1: too many, every tile tests them all */
     }
     for (t = 0, x = a; t < bp->tiles; ++t, x += HF__BP_TILE) {
@@ -6507,12 +6516,22 @@ HF__PRIVATE int hf__bp_build(const hf_ropes *ro, int a, int b,
         for (i = 0; i < m; ++i) {
             float lo[3], hi[3], gap;
             int j = 1;
-            c = nc > HF__BP_CAND ? i : cand[i];
-            hf__col_box(col + c, margin, lo, hi);
+            if (nc > HF__BP_CAND) {
+                c = i;
+                hf__col_box(col + c, margin, lo, hi);
+            } else {
+                c = cand[i];
+                for (k = 0; k < 3; ++k) {
+                    lo[k] = box[i][k];
+                    hi[k] = box[i][3 + k];
+                }
+            }
             gap = hf__box_gap(tlo[t], thi[t], lo, hi);
-            if (!(gap < far_[t])) continue;
+            if (!(gap < tr[t][2])) continue;
             if (n == HF__BP_SLOTS) break;
-            if (!(gap < r1[t])) { /* beyond row 1: which row reaches it */
+            if (gap < tr[t][0]) /* a root may sit inside */
+                j = 0;
+            else if (!(gap < tr[t][1])) { /* beyond row 1: which row */
                 if (!got) {
                     e = b - x > HF__BP_TILE ? x + HF__BP_TILE : b;
                     hf__bp_reach(ro, x, e, big[t], reach);
@@ -6542,7 +6561,7 @@ HF__PRIVATE int hf__bp_build(const hf_ropes *ro, int a, int b,
    root sits inside one of its tile's colliders (deeper than the margin
    below its surface), which is when the collisions shrink that collider
    for the rope. A collider that holds a root is always in its tile's
-   list. */
+   list, at row 0 (the rest cannot reach a root). */
 HF__PRIVATE void hf__ropes_mark_roots(hf_ropes *ro, int a, int b,
                                       const hf__bp *bp)
 {
@@ -6556,6 +6575,7 @@ HF__PRIVATE void hf__ropes_mark_roots(hf_ropes *ro, int a, int b,
         hf__bp_tile(bp, r, &cl);
         for (i = 0; i < cl.n; ++i) {
             const hf__col_prep *k = hf__cols_at(&cl, i, &spare);
+            if (k->row > 0) continue;
             if (hf__col_radius_for(k, root) < k->rr) {
                 ro->root_inside[r] = 1;
                 break;

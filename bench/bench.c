@@ -75,6 +75,8 @@
 #include "bench_time.h"
 #define P BENCH_P
 #define MAX_THREADS 2
+/* ropes handed out 256 at a time on two threads (struct job) */
+#define BENCH_ROPE_GRAIN 256
 
 /* ---- counting allocator ------------------------------------------------ */
 
@@ -92,11 +94,17 @@ static void c_free(void *p, void *u) { (void)u; free(p); }
    with one).
    A worker that finds no stage after a while sleeps until the next. */
 
+/* A stage's work: equal shares, one per thread, or (grain > 0) ranges
+   of grain items that the threads take in turn, as a job system hands
+   them out: a rope's cost depends on its contacts, and hair resting on a
+   body's shoulders lies in one part of the guides' order. */
 typedef struct job job;
 typedef void (*job_fn)(job *j, int first, int count);
 struct job {
     job_fn fn;
     int total;
+    int grain;
+    int next; /* the next grain's first item (atomic) */
 };
 
 static job *volatile g_job;
@@ -121,7 +129,16 @@ static void run_share(job *j, int t, int n)
 {
     int first = (int)((long long)j->total * t / n);
     int end = (int)((long long)j->total * (t + 1) / n);
-    j->fn(j, first, end - first);
+    if (n == 1 || j->grain <= 0) {
+        j->fn(j, first, end - first);
+        return;
+    }
+    for (;;) {
+        first = __atomic_fetch_add(&j->next, j->grain, __ATOMIC_RELAXED);
+        if (first >= j->total) break;
+        end = j->total - first < j->grain ? j->total : first + j->grain;
+        j->fn(j, first, end - first);
+    }
 }
 
 /* The next stage's number after `seen`: spin a while, then sleep. */
@@ -172,6 +189,7 @@ static void run_job(job *j)
         return;
     }
     g_job = j;
+    j->next = 0;
     __atomic_store_n(&g_left, MAX_THREADS - 1, __ATOMIC_RELAXED);
     start_stage();
     run_share(j, 0, g_threads);
@@ -583,6 +601,8 @@ static void stage_jobs(const scene *s, job *jobs)
     int k;
     for (k = 0; k < ST_N; ++k) {
         jobs[k].fn = k < ST_FRAME ? fn[k] : NULL;
+        jobs[k].grain = k == ST_ROPES ? BENCH_ROPE_GRAIN : 0;
+        jobs[k].next = 0;
         jobs[k].total = k == ST_ROOTS || k == ST_ROPES ? s->info.guide_count
                         : k == ST_LODG                 ? s->info.lod_guide_count
                         : k < ST_FRAME                 ? s->info.strand_count
@@ -735,6 +755,7 @@ static void bench_levels(scene *s, int frames)
     int f, level, k, best = hf_simd_resolve(HF_SIMD_AUTO);
     size_t big = (size_t)s->info.strand_count * P * 2u * 36u;
     float *dst = (float *)mapped_like(big);
+    memset(jobs, 0, sizeof jobs);
     g_sc = s;
     g_threads = 1;
     jobs[0].fn = j_interp;
@@ -903,6 +924,9 @@ static void bench_hair_grid(int frames)
     job jr, jg, js;
     double *t[3];
     int th, f, k;
+    memset(&jr, 0, sizeof jr);
+    memset(&jg, 0, sizeof jg);
+    memset(&js, 0, sizeof js);
     for (k = 0; k < 3; ++k)
         t[k] = (double *)malloc(sizeof(double) * (size_t)frames);
     for (k = 0; k < 2; ++k) {
@@ -926,6 +950,7 @@ static void bench_hair_grid(int frames)
             jg.total = v[k].info.grid_resolution;
             js.fn = j_ropes;
             js.total = v[k].info.guide_count;
+            js.grain = BENCH_ROPE_GRAIN;
             check("reset", hf_fur_reset(v[k].fur));
             for (f = -60; f < frames; ++f) {
                 double t0, t1, t2;
@@ -969,6 +994,9 @@ static void bench_lod_guides(scene *s, int frames)
     double *t = (double *)malloc(sizeof(double) * (size_t)frames);
     int f, th;
     g_sc = s;
+    memset(&jr, 0, sizeof jr);
+    memset(&jg, 0, sizeof jg);
+    memset(&jl, 0, sizeof jl);
     check("lod", hf_fur_set_lod(s->fur, 0.25f));
     hf_fur_get_info(s->fur, &s->info);
     printf("scene %s: %d guides (%d pure, %d LOD guides), %d strands, "
@@ -979,6 +1007,7 @@ static void bench_lod_guides(scene *s, int frames)
     jr.total = s->info.guide_count;
     jg.fn = j_ropes;
     jg.total = s->info.guide_count;
+    jg.grain = BENCH_ROPE_GRAIN;
     jl.fn = j_lodg;
     jl.total = s->info.lod_guide_count;
     for (th = 1; th <= MAX_THREADS; ++th) {
@@ -1038,8 +1067,10 @@ static void bench_scaling(int frames)
             g_sc = &sc;
             bench_views(&g_view, &g_view_gpu, &g_out, sc.vbuf, &g_out16,
                         sc.cbuf);
+            memset(jobs, 0, sizeof jobs);
             for (k = 0; k < K; ++k) {
                 jobs[k].fn = fns[k];
+                jobs[k].grain = k == 1 ? BENCH_ROPE_GRAIN : 0;
                 jobs[k].total = k < 2 ? sc.info.guide_count
                                       : sc.info.strand_count;
             }
