@@ -14,9 +14,10 @@
 #                      where emscripten and chromium are installed
 #   make check         the fast loop: the unit tests built once (gcc -std=c99
 #                      -O2), the API doc check and the quick start check;
-#                      T="ropes grid" runs only the tests whose names hold
-#                      one of the words (make test too; the binaries take
-#                      the words, and --list)
+#                      T="ropes_ grid_" runs only the tests whose names
+#                      begin with one of the prefixes, "test_" left out
+#                      (make test too; the binaries take the prefixes,
+#                      and --list)
 #   make check-build   build what make test runs, without running it
 #   make quickstart    the README quick start check: README.md's Quick start
 #                      program built with gcc, clang and g++, run, output
