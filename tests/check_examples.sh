@@ -15,8 +15,7 @@
 # POSIX sh and awk only.
 
 MAX_LINES=150
-EXCEPTIONS="examples/bake_luts.c:main
-examples/character.h:ch_load
+EXCEPTIONS="examples/character.h:ch_load
 examples/gl_marschner.c:glm_init
 examples/grow_pictures.c:main
 examples/web/hairfur_web.c:hw_init"
