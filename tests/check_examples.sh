@@ -17,7 +17,6 @@
 MAX_LINES=150
 EXCEPTIONS="examples/character.h:ch_load
 examples/gl_marschner.c:glm_init
-examples/grow_pictures.c:main
 examples/web/hairfur_web.c:hw_init"
 
 files=$(find examples -name '*.c' -o -name '*.h' | sort)
