@@ -15,8 +15,7 @@
 # POSIX sh and awk only.
 
 MAX_LINES=150
-EXCEPTIONS="examples/character.h:ch_load
-examples/gl_marschner.c:glm_init
+EXCEPTIONS="examples/gl_marschner.c:glm_init
 examples/web/hairfur_web.c:hw_init"
 
 files=$(find examples -name '*.c' -o -name '*.h' | sort)
