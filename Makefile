@@ -7,22 +7,31 @@
 #                      installed, clang; C99 and C++11; -O2, ASan+UBSan at
 #                      -O1 and -O0; the scalar HF_NO_SIMD build; GNU C with
 #                      -mavx2 -mfma), the C++ compile and C/C++ link
-#                      checks, the API doc check, the quick start check,
+#                      checks, the API doc, doc and examples checks,
+#                      the quick start check,
 #                      the CMake and pkg-config check, then the GL checks
 #                      when headless EGL is there, the WebAssembly build of
 #                      the suite and the web page in headless Chromium
 #                      where emscripten and chromium are installed
 #   make check         the fast loop: the unit tests built once (gcc -std=c99
-#                      -O2), the API doc check and the quick start check;
-#                      T="ropes grid" runs only the tests whose names hold
-#                      one of the words (make test too; the binaries take
-#                      the words, and --list)
+#                      -O2), the API doc, doc and quick start checks;
+#                      T="ropes_ grid_" runs only the tests whose names
+#                      begin with one of the prefixes, "test_" left out
+#                      (make test too; the binaries take the prefixes,
+#                      and --list)
 #   make check-build   build what make test runs, without running it
 #   make quickstart    the README quick start check: README.md's Quick start
 #                      program built with gcc, clang and g++, run, output
 #                      checked
 #   make api-doc-check tests/check_api_doc.sh (docs/api.md against hairfur.h)
 #                      when that script exists
+#   make doc-check     README.md and docs/*.md against the code
+#                      (tests/check_docs.sh): every hf_/HF_ name in
+#                      hairfur.h, struct listings as declared, every C
+#                      block compiled, make targets and programs named,
+#                      the stack figures, links
+#   make examples-check  no function of examples/ over 150 lines but the
+#                      exceptions tests/check_examples.sh lists
 #   make grow-fur-check  grow_fur's options as a user meets them (bad counts,
 #                      --help, --guides on the built-in head); skipped, with
 #                      the reason, where grow_fur cannot be built
@@ -133,7 +142,8 @@ TEST   := tests/test_hairfur.c
 CLANG   := $(shell command -v clang 2>/dev/null)
 CLANGXX := $(shell command -v clang++ 2>/dev/null)
 
-.PHONY: all test check check-build quickstart api-doc-check grow-fur-check demo demo-deps \
+.PHONY: all test check check-build quickstart api-doc-check doc-check examples-check \
+        grow-fur-check demo demo-deps \
         examples deps clean help gl-test-or-skip bench bench-ab valgrind FORCE \
         cmake-check install
 
@@ -220,6 +230,8 @@ test:
 	@$(BUILD)/link_check
 	$(call run_tests,$(TEST_BINS),test)
 	@$(MAKE) --no-print-directory api-doc-check
+	@$(MAKE) --no-print-directory doc-check
+	@$(MAKE) --no-print-directory examples-check
 	@$(MAKE) --no-print-directory quickstart
 	@$(MAKE) --no-print-directory grow-fur-check
 	@$(MAKE) --no-print-directory curves-check
@@ -234,6 +246,7 @@ test:
 check: $(BUILD)/test_gcc_c99
 	$(call run_tests,$(BUILD)/test_gcc_c99,check)
 	@$(MAKE) --no-print-directory api-doc-check
+	@$(MAKE) --no-print-directory doc-check
 	@$(MAKE) --no-print-directory quickstart
 
 # grow_fur as a user meets it: tests/grow_fur_check.sh builds it itself.
@@ -287,6 +300,17 @@ cmake-check:
 # Skipped, silently, where the script is absent.
 api-doc-check:
 	@if [ -f tests/check_api_doc.sh ]; then sh tests/check_api_doc.sh; fi
+
+# README.md and docs/*.md against the code (tests/check_docs.sh: names,
+# struct listings, C blocks compiled into $(BUILD)/doc_blocks.c, make
+# targets, stack figures, links); about 2 s.
+doc-check: | $(BUILD)
+	@BUILD=$(BUILD) sh tests/check_docs.sh
+
+# Functions of examples/ a user can read in one go: at most 150 lines,
+# but the exceptions the script lists by name.
+examples-check:
+	@sh tests/check_examples.sh
 
 # ==== README quick start check ===============================================
 # The first ```c block under "## Quick start" in README.md is a complete

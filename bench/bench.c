@@ -1174,7 +1174,7 @@ static void print_targets(const double *frame_l)
     const kept *k;
     int i;
     printf("targets (one thread unless named; this run; every run in "
-           "docs/performance.md):\n");
+           "docs/performance-log.md):\n");
     for (i = 0; i < 4; ++i)
         if ((k = find_kept(l_rows[i], "L", 1)) != NULL) {
             char what[64], name[32];

@@ -347,41 +347,44 @@ static int save_dual(const char *dir, const hf_lut_params *p)
     return 1;
 }
 
-int main(int argc, char **argv)
-{
+/* The command line: every option's value, the defaults where not given. */
+typedef struct bl_options {
     hf_lut_params p;
-    const char *dir = ".", *prefix;
-    int raw = 0, rgb = 0, channels = 0, dual = 0, furn = 0, model_given = 0;
-    int i, n, ok = 1;
-    double absorption = -1.0;
-    char file[4096], name[64];
-    float *m, *nn, *tt, *trt, *tmp;
-    unsigned char *rgba8;
-    FILE *scales;
-    hf_result r;
+    const char *dir;
+    int raw, rgb, channels, dual, furn, model_given;
+    double absorption; /* -1: not given */
+} bl_options;
 
-    hf_lut_params_init(&p);
+/* The command line into *o: -1 to go on, else the exit code (0 after
+   --help, 2 for a bad argument). */
+static int parse_args(int argc, char **argv, bl_options *o)
+{
+    int i;
+    memset(o, 0, sizeof *o);
+    o->dir = ".";
+    o->absorption = -1.0;
+    hf_lut_params_init(&o->p);
     for (i = 1; i < argc; ++i) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         double d;
         if (strcmp(a, "--exact") == 0) {
-            p.variant = HF_LUT_EXACT;
+            o->p.variant = HF_LUT_EXACT;
             continue;
         }
         if (strcmp(a, "--raw") == 0) {
-            raw = 1;
+            o->raw = 1;
             continue;
         }
         if (strcmp(a, "--channels") == 0) {
-            channels = 1;
+            o->channels = 1;
             continue;
         }
         if (strcmp(a, "--dual") == 0) {
-            dual = 1;
+            o->dual = 1;
             continue;
         }
         if (strcmp(a, "--furnace") == 0) {
-            furn = 1;
+            o->furn = 1;
             continue;
         }
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
@@ -394,24 +397,24 @@ int main(int argc, char **argv)
         }
         ++i;
         if (strcmp(a, "--out") == 0) {
-            dir = v;
+            o->dir = v;
         } else if (strcmp(a, "--model") == 0) {
             if (strcmp(v, "marschner") == 0)
-                p.model = HF_LUT_MARSCHNER;
+                o->p.model = HF_LUT_MARSCHNER;
             else if (strcmp(v, "energy") == 0)
-                p.model = HF_LUT_ENERGY;
+                o->p.model = HF_LUT_ENERGY;
             else {
                 usage();
                 return 2;
             }
-            model_given = 1;
+            o->model_given = 1;
         } else if (strcmp(a, "--absorption-rgb") == 0) {
-            if (!parse_rgb(v, p.sigma_a_rgb)) {
+            if (!parse_rgb(v, o->p.sigma_a_rgb)) {
                 usage();
                 return 2;
             }
-            p.explicit_zero |= HF_LUT_ZERO_SIGMA_A_RGB; /* 0 is no absorption */
-            rgb = 1;
+            o->p.explicit_zero |= HF_LUT_ZERO_SIGMA_A_RGB; /* 0 is no absorption */
+            o->rgb = 1;
         } else if (!parse_double(v, &d)) {
             usage();
             return 2;
@@ -421,36 +424,58 @@ int main(int argc, char **argv)
                 usage();
                 return 2;
             }
-            p.size = (int)d;
+            o->p.size = (int)d;
         } else if (strcmp(a, "--eta") == 0) {
-            p.eta = d;
+            o->p.eta = d;
         } else if (strcmp(a, "--absorption") == 0) {
-            absorption = d;
-            p.sigma_a = d;
-            p.sigma_a_rgb[0] = p.sigma_a_rgb[1] = p.sigma_a_rgb[2] = d;
+            o->absorption = d;
+            o->p.sigma_a = d;
+            o->p.sigma_a_rgb[0] = o->p.sigma_a_rgb[1] = o->p.sigma_a_rgb[2] = d;
             if (d == 0.0)
-                p.explicit_zero |= HF_LUT_ZERO_SIGMA_A | HF_LUT_ZERO_SIGMA_A_RGB;
+                o->p.explicit_zero |= HF_LUT_ZERO_SIGMA_A | HF_LUT_ZERO_SIGMA_A_RGB;
         } else if (strcmp(a, "--alpha-r") == 0) {
-            p.alpha_r_deg = d;
-            if (d == 0.0) p.explicit_zero |= HF_LUT_ZERO_ALPHA_R;
+            o->p.alpha_r_deg = d;
+            if (d == 0.0) o->p.explicit_zero |= HF_LUT_ZERO_ALPHA_R;
         } else if (strcmp(a, "--beta-r") == 0) {
-            p.beta_r_deg = d;
+            o->p.beta_r_deg = d;
         } else {
             usage();
             return 2;
         }
     }
     for (i = 1; i < argc; ++i) /* the two absorption options exclude */
-        if (rgb && strcmp(argv[i], "--absorption") == 0) {
+        if (o->rgb && strcmp(argv[i], "--absorption") == 0) {
             usage();
             return 2;
         }
+    return -1;
+}
+
+int main(int argc, char **argv)
+{
+    bl_options o;
+    hf_lut_params p;
+    const char *dir, *prefix;
+    int raw, rgb, channels, dual, n, ok = 1, rc;
+    char file[4096], name[64];
+    float *m, *nn, *tt, *trt, *tmp;
+    unsigned char *rgba8;
+    FILE *scales;
+    hf_result r;
+
+    if ((rc = parse_args(argc, argv, &o)) >= 0) return rc;
+    p = o.p; /* the names the steps below use */
+    dir = o.dir;
+    raw = o.raw;
+    rgb = o.rgb;
+    channels = o.channels;
+    dual = o.dual;
     r = hf_lut_validate(&p, NULL);
     if (r != HF_OK) {
         fprintf(stderr, "bake_luts: %s\n", hf_result_string(r));
         return 1;
     }
-    if (furn) return furnace(p, model_given, absorption);
+    if (o.furn) return furnace(p, o.model_given, o.absorption);
     prefix = p.model == HF_LUT_ENERGY ? "energy" : "marschner";
 
     n = p.size;

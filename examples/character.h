@@ -329,16 +329,182 @@ static float ch__unit(const char *unit, double diag, int *ok)
     return (float)u;
 }
 
+/* Every array of *c sized from the scene (nv vertices, nt triangles,
+   max_ch channels per animation), zeroed, and *nodes, the scene's nodes
+   in flattened order; 0 when out of memory. */
+static int ch__alloc(ch_character *c, const struct aiScene *sc, size_t nv,
+                     size_t nt, int max_ch, const struct aiNode ***nodes)
+{
+    unsigned m;
+    c->raw = (ch_vertex *)calloc(nv, sizeof *c->raw);
+    c->indices = (uint32_t *)calloc(3 * nt, sizeof *c->indices);
+    c->parts = (ch_part *)calloc((size_t)c->part_count, sizeof *c->parts);
+    c->vmat = (int (*)[CH_MAX_INFLUENCES])calloc(nv, sizeof *c->vmat);
+    c->vweight = (float (*)[CH_MAX_INFLUENCES])calloc(nv, sizeof *c->vweight);
+    c->node_name = (char (*)[CH_NAME])calloc((size_t)c->node_count, CH_NAME);
+    c->node_parent = (int *)calloc((size_t)c->node_count, sizeof(int));
+    c->node_local = (float (*)[12])calloc((size_t)c->node_count, sizeof *c->node_local);
+    c->global = (float (*)[12])calloc((size_t)c->node_count, sizeof *c->global);
+    *nodes = (const struct aiNode **)calloc((size_t)c->node_count, sizeof **nodes);
+    c->animation_name = (char (*)[CH_NAME])calloc((size_t)c->animation_count + 1, CH_NAME);
+    c->channel_node = (int *)calloc((size_t)(c->animation_count * max_ch) + 1, sizeof(int));
+    c->anim_ticks_per_s = (double *)calloc((size_t)c->animation_count + 1, sizeof(double));
+    c->anim_duration = (double *)calloc((size_t)c->animation_count + 1, sizeof(double));
+    for (m = 0; m < sc->mNumMeshes; ++m) c->bone_count += (int)sc->mMeshes[m]->mNumBones;
+    c->bone_node = (int *)calloc((size_t)c->bone_count + 1, sizeof(int));
+    c->bone_offset = (float (*)[12])calloc((size_t)c->bone_count + 1, sizeof *c->bone_offset);
+    c->skin = (float (*)[12])calloc((size_t)(c->bone_count + c->node_count), sizeof *c->skin);
+    c->capsules = (ch_capsule *)calloc((size_t)c->bone_count + 1, sizeof *c->capsules);
+    return c->raw && c->indices && c->parts && c->vmat && c->vweight &&
+           c->node_name && c->node_parent && c->node_local && c->global &&
+           *nodes && c->animation_name && c->channel_node &&
+           c->anim_ticks_per_s && c->anim_duration && c->bone_node &&
+           c->bone_offset && c->skin && c->capsules;
+}
+
+/* Mesh m of the scene as the next part: its vertices from *vo, its
+   triangles from *to, its bones from *b (each advanced past them), and
+   the weights they give its vertices. */
+static void ch__read_mesh(ch_character *c, const struct aiScene *sc,
+                          unsigned m, const struct aiNode **nodes,
+                          size_t *vo, size_t *to, int *b)
+{
+    const struct aiMesh *me = sc->mMeshes[m];
+    ch_part *p = &c->parts[c->part_count++];
+    int owner = 0, k;
+    unsigned i, bi, w;
+    ch__copy_name(p->name, &me->mName);
+    p->first_vertex = (int)*vo;
+    p->vertex_count = (int)me->mNumVertices;
+    p->first_triangle = (int)*to;
+    p->has_uvs = me->mTextureCoords[0] != NULL;
+    p->has_bones = me->mNumBones > 0;
+    /* a mesh without bones follows the (first) node that holds it */
+    for (k = 0; k < c->node_count; ++k) {
+        unsigned j;
+        for (j = 0; j < nodes[k]->mNumMeshes; ++j)
+            if (nodes[k]->mMeshes[j] == m) { owner = k; break; }
+        if (owner) break;
+    }
+    for (i = 0; i < me->mNumVertices; ++i) {
+        ch_vertex *v = &c->raw[*vo + i];
+        v->pos[0] = me->mVertices[i].x;
+        v->pos[1] = me->mVertices[i].y;
+        v->pos[2] = me->mVertices[i].z;
+        if (me->mNormals) {
+            v->normal[0] = me->mNormals[i].x;
+            v->normal[1] = me->mNormals[i].y;
+            v->normal[2] = me->mNormals[i].z;
+        }
+        if (me->mTextureCoords[0]) {
+            v->uv[0] = me->mTextureCoords[0][i].x;
+            v->uv[1] = me->mTextureCoords[0][i].y;
+        }
+        if (!p->has_bones) {
+            c->vmat[*vo + i][0] = c->bone_count + owner;
+            c->vweight[*vo + i][0] = 1.0f;
+        }
+    }
+    for (bi = 0; bi < me->mNumBones; ++bi, ++*b) {
+        const struct aiBone *bone = me->mBones[bi];
+        char name[CH_NAME];
+        ch__copy_name(name, &bone->mName);
+        c->bone_node[*b] = ch__find_node(c, name);
+        if (c->bone_node[*b] < 0) c->bone_node[*b] = 0;
+        ch__from_ai(&bone->mOffsetMatrix, c->bone_offset[*b]);
+        for (w = 0; w < bone->mNumWeights; ++w) {
+            unsigned vid = bone->mWeights[w].mVertexId;
+            float wt = bone->mWeights[w].mWeight;
+            float *ws;
+            int slot = 0;
+            if (vid >= me->mNumVertices || !(wt > 0.0f)) continue;
+            ws = c->vweight[*vo + vid];
+            for (k = 1; k < CH_MAX_INFLUENCES; ++k)
+                if (ws[k] < ws[slot]) slot = k;
+            if (wt > ws[slot]) {
+                ws[slot] = wt;
+                c->vmat[*vo + vid][slot] = *b;
+            }
+        }
+    }
+    for (i = 0; i < me->mNumFaces; ++i) {
+        const struct aiFace *f = &me->mFaces[i];
+        if (f->mNumIndices != 3) continue;
+        for (k = 0; k < 3; ++k)
+            c->indices[3 * *to + (size_t)k] = (uint32_t)*vo + f->mIndices[k];
+        ++*to;
+    }
+    p->triangle_count = (int)*to - p->first_triangle;
+    *vo += me->mNumVertices;
+}
+
+/* Weights sum to 1; a skinned vertex no bone holds stays where it is (the
+   first bone's matrix, weight 0, would collapse it). */
+static void ch__normalize_weights(ch_character *c)
+{
+    int i, k;
+    for (i = 0; i < c->vertex_count; ++i) {
+        float s = 0.0f;
+        for (k = 0; k < CH_MAX_INFLUENCES; ++k) s += c->vweight[i][k];
+        if (s > 0.0f)
+            for (k = 0; k < CH_MAX_INFLUENCES; ++k) c->vweight[i][k] /= s;
+        else {
+            c->vmat[i][0] = c->bone_count; /* the root node: static */
+            c->vweight[i][0] = 1.0f;
+        }
+    }
+}
+
+/* The animations: names, timing, and which node each channel moves. */
+static void ch__read_animations(ch_character *c, const struct aiScene *sc,
+                                int max_ch)
+{
+    unsigned a, ch;
+    for (a = 0; a < sc->mNumAnimations; ++a) {
+        const struct aiAnimation *an = sc->mAnimations[a];
+        ch__copy_name(c->animation_name[a], &an->mName);
+        if (!c->animation_name[a][0])
+            snprintf(c->animation_name[a], CH_NAME, "animation%u", a);
+        c->anim_ticks_per_s[a] = an->mTicksPerSecond > 0 ? an->mTicksPerSecond : 25.0;
+        c->anim_duration[a] = an->mDuration;
+        for (ch = 0; ch < an->mNumChannels; ++ch) {
+            char name[CH_NAME];
+            ch__copy_name(name, &an->mChannels[ch]->mNodeName);
+            c->channel_node[(int)a * max_ch + (int)ch] = ch__find_node(c, name);
+        }
+    }
+}
+
+/* The diagonal of the box of the file's pose, in file units, into *diag;
+   0 when out of memory. */
+static int ch__pose_diagonal(ch_character *c, double *diag)
+{
+    double lo[3] = {1e30, 1e30, 1e30}, hi[3] = {-1e30, -1e30, -1e30};
+    ch_vertex *v = (ch_vertex *)malloc(sizeof(ch_vertex) * (size_t)c->vertex_count);
+    int i, k;
+    if (!v) return 0;
+    ch_pose(c, -1, 0.0, v, NULL);
+    for (i = 0; i < c->vertex_count; ++i)
+        for (k = 0; k < 3; ++k) {
+            if (v[i].pos[k] < lo[k]) lo[k] = v[i].pos[k];
+            if (v[i].pos[k] > hi[k]) hi[k] = v[i].pos[k];
+        }
+    free(v);
+    *diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                 (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    return 1;
+}
+
 int ch_load(ch_character *c, const char *path, const char *unit, char *err,
             size_t err_size)
 {
     const struct aiScene *sc;
     const struct aiNode **nodes = NULL;
-    unsigned m, i, a, ch;
+    unsigned m, a;
     size_t nv = 0, nt = 0, vo = 0, to = 0;
     int at = 0, b, ok, max_ch = 0;
     float *tmp;
-    double lo[3] = {1e30, 1e30, 1e30}, hi[3] = {-1e30, -1e30, -1e30}, diag;
+    double diag;
 
     memset(c, 0, sizeof *c);
     sc = aiImportFile(path, aiProcess_Triangulate |
@@ -369,31 +535,9 @@ int ch_load(ch_character *c, const char *path, const char *unit, char *err,
             max_ch = (int)sc->mAnimations[a]->mNumChannels;
     c->animation_count = (int)sc->mNumAnimations;
     c->channel_stride = max_ch;
-    c->raw = (ch_vertex *)calloc(nv, sizeof *c->raw);
-    c->indices = (uint32_t *)calloc(3 * nt, sizeof *c->indices);
-    c->parts = (ch_part *)calloc((size_t)c->part_count, sizeof *c->parts);
-    c->vmat = (int (*)[CH_MAX_INFLUENCES])calloc(nv, sizeof *c->vmat);
-    c->vweight = (float (*)[CH_MAX_INFLUENCES])calloc(nv, sizeof *c->vweight);
-    c->node_name = (char (*)[CH_NAME])calloc((size_t)c->node_count, CH_NAME);
-    c->node_parent = (int *)calloc((size_t)c->node_count, sizeof(int));
-    c->node_local = (float (*)[12])calloc((size_t)c->node_count, sizeof *c->node_local);
-    c->global = (float (*)[12])calloc((size_t)c->node_count, sizeof *c->global);
-    nodes = (const struct aiNode **)calloc((size_t)c->node_count, sizeof *nodes);
-    c->animation_name = (char (*)[CH_NAME])calloc((size_t)c->animation_count + 1, CH_NAME);
-    c->channel_node = (int *)calloc((size_t)(c->animation_count * max_ch) + 1, sizeof(int));
-    c->anim_ticks_per_s = (double *)calloc((size_t)c->animation_count + 1, sizeof(double));
-    c->anim_duration = (double *)calloc((size_t)c->animation_count + 1, sizeof(double));
-    for (m = 0; m < sc->mNumMeshes; ++m) c->bone_count += (int)sc->mMeshes[m]->mNumBones;
-    c->bone_node = (int *)calloc((size_t)c->bone_count + 1, sizeof(int));
-    c->bone_offset = (float (*)[12])calloc((size_t)c->bone_count + 1, sizeof *c->bone_offset);
-    c->skin = (float (*)[12])calloc((size_t)(c->bone_count + c->node_count), sizeof *c->skin);
-    c->capsules = (ch_capsule *)calloc((size_t)c->bone_count + 1, sizeof *c->capsules);
+    ok = ch__alloc(c, sc, nv, nt, max_ch, &nodes);
     tmp = (float *)malloc(sizeof(float) * nv);
-    if (!c->raw || !c->indices || !c->parts || !c->vmat || !c->vweight ||
-        !c->node_name || !c->node_parent || !c->node_local || !c->global ||
-        !nodes || !c->animation_name || !c->channel_node ||
-        !c->anim_ticks_per_s || !c->anim_duration || !c->bone_node ||
-        !c->bone_offset || !c->skin || !c->capsules || !tmp) {
+    if (!ok || !tmp) {
         ch__err(err, err_size, path, "out of memory");
         free(nodes);
         free(tmp);
@@ -405,131 +549,23 @@ int ch_load(ch_character *c, const char *path, const char *unit, char *err,
     /* vertices, triangles and weights, mesh by mesh */
     c->part_count = 0;
     b = 0;
-    for (m = 0; m < sc->mNumMeshes; ++m) {
-        const struct aiMesh *me = sc->mMeshes[m];
-        ch_part *p;
-        int owner = 0, k;
-        unsigned bi, w;
-        if (!(me->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
-        p = &c->parts[c->part_count++];
-        ch__copy_name(p->name, &me->mName);
-        p->first_vertex = (int)vo;
-        p->vertex_count = (int)me->mNumVertices;
-        p->first_triangle = (int)to;
-        p->has_uvs = me->mTextureCoords[0] != NULL;
-        p->has_bones = me->mNumBones > 0;
-        /* a mesh without bones follows the (first) node that holds it */
-        for (k = 0; k < c->node_count; ++k) {
-            unsigned j;
-            for (j = 0; j < nodes[k]->mNumMeshes; ++j)
-                if (nodes[k]->mMeshes[j] == m) { owner = k; break; }
-            if (owner) break;
-        }
-        for (i = 0; i < me->mNumVertices; ++i) {
-            ch_vertex *v = &c->raw[vo + i];
-            v->pos[0] = me->mVertices[i].x;
-            v->pos[1] = me->mVertices[i].y;
-            v->pos[2] = me->mVertices[i].z;
-            if (me->mNormals) {
-                v->normal[0] = me->mNormals[i].x;
-                v->normal[1] = me->mNormals[i].y;
-                v->normal[2] = me->mNormals[i].z;
-            }
-            if (me->mTextureCoords[0]) {
-                v->uv[0] = me->mTextureCoords[0][i].x;
-                v->uv[1] = me->mTextureCoords[0][i].y;
-            }
-            if (!p->has_bones) {
-                c->vmat[vo + i][0] = c->bone_count + owner;
-                c->vweight[vo + i][0] = 1.0f;
-            }
-        }
-        for (bi = 0; bi < me->mNumBones; ++bi, ++b) {
-            const struct aiBone *bone = me->mBones[bi];
-            char name[CH_NAME];
-            ch__copy_name(name, &bone->mName);
-            c->bone_node[b] = ch__find_node(c, name);
-            if (c->bone_node[b] < 0) c->bone_node[b] = 0;
-            ch__from_ai(&bone->mOffsetMatrix, c->bone_offset[b]);
-            for (w = 0; w < bone->mNumWeights; ++w) {
-                unsigned vid = bone->mWeights[w].mVertexId;
-                float wt = bone->mWeights[w].mWeight;
-                float *ws;
-                int slot = 0;
-                if (vid >= me->mNumVertices || !(wt > 0.0f)) continue;
-                ws = c->vweight[vo + vid];
-                for (k = 1; k < CH_MAX_INFLUENCES; ++k)
-                    if (ws[k] < ws[slot]) slot = k;
-                if (wt > ws[slot]) {
-                    ws[slot] = wt;
-                    c->vmat[vo + vid][slot] = b;
-                }
-            }
-        }
-        for (i = 0; i < me->mNumFaces; ++i) {
-            const struct aiFace *f = &me->mFaces[i];
-            if (f->mNumIndices != 3) continue;
-            for (k = 0; k < 3; ++k)
-                c->indices[3 * to + (size_t)k] = (uint32_t)vo + f->mIndices[k];
-            ++to;
-        }
-        p->triangle_count = (int)to - p->first_triangle;
-        vo += me->mNumVertices;
-    }
+    for (m = 0; m < sc->mNumMeshes; ++m)
+        if (sc->mMeshes[m]->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)
+            ch__read_mesh(c, sc, m, nodes, &vo, &to, &b);
     c->vertex_count = (int)vo;
     c->triangle_count = (int)to;
-    /* weights sum to 1; a skinned vertex no bone holds stays where it is
-       (the first bone's matrix, weight 0, would collapse it) */
-    for (i = 0; i < (unsigned)c->vertex_count; ++i) {
-        float s = 0.0f;
-        int k;
-        for (k = 0; k < CH_MAX_INFLUENCES; ++k) s += c->vweight[i][k];
-        if (s > 0.0f)
-            for (k = 0; k < CH_MAX_INFLUENCES; ++k) c->vweight[i][k] /= s;
-        else {
-            c->vmat[i][0] = c->bone_count; /* the root node: static */
-            c->vweight[i][0] = 1.0f;
-        }
-    }
-
-    /* animations: which node each channel moves */
-    for (a = 0; a < sc->mNumAnimations; ++a) {
-        const struct aiAnimation *an = sc->mAnimations[a];
-        ch__copy_name(c->animation_name[a], &an->mName);
-        if (!c->animation_name[a][0])
-            snprintf(c->animation_name[a], CH_NAME, "animation%u", a);
-        c->anim_ticks_per_s[a] = an->mTicksPerSecond > 0 ? an->mTicksPerSecond : 25.0;
-        c->anim_duration[a] = an->mDuration;
-        for (ch = 0; ch < an->mNumChannels; ++ch) {
-            char name[CH_NAME];
-            ch__copy_name(name, &an->mChannels[ch]->mNodeName);
-            c->channel_node[(int)a * max_ch + (int)ch] = ch__find_node(c, name);
-        }
-    }
+    ch__normalize_weights(c);
+    ch__read_animations(c, sc, max_ch);
 
     /* the unit, from the box of the file's pose */
     c->unit = 1.0f;
-    {
-        ch_vertex *v = (ch_vertex *)malloc(sizeof(ch_vertex) * vo);
-        if (!v) {
-            ch__err(err, err_size, path, "out of memory");
-            free(nodes);
-            free(tmp);
-            ch_free(c);
-            return 0;
-        }
-        ch_pose(c, -1, 0.0, v, NULL);
-        for (i = 0; i < (unsigned)vo; ++i) {
-            int k;
-            for (k = 0; k < 3; ++k) {
-                if (v[i].pos[k] < lo[k]) lo[k] = v[i].pos[k];
-                if (v[i].pos[k] > hi[k]) hi[k] = v[i].pos[k];
-            }
-        }
-        free(v);
+    if (!ch__pose_diagonal(c, &diag)) {
+        ch__err(err, err_size, path, "out of memory");
+        free(nodes);
+        free(tmp);
+        ch_free(c);
+        return 0;
     }
-    diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                (hi[2] - lo[2]) * (hi[2] - lo[2]));
     c->unit = ch__unit(unit, diag, &ok);
     if (!ok || !(diag > 0.0) || !isfinite(diag)) {
         ch__err(err, err_size, path, !ok ? "bad --unit (auto, m, cm, mm or "

@@ -531,63 +531,167 @@ static float fit_tess_factor(const hf_mesh *mesh, const hf_map *density,
     return (float)best_f;
 }
 
-int main(int argc, char **argv)
-{
-    const char *mesh_path = NULL, *density_path = NULL, *length_path = NULL,
-               *color_path = NULL, *out_path = "fur.obj", *curves_path = NULL;
-    int curves_out = 0; /* --curves: OBJ polylines instead of ribbons */
-    const char *groom_path = NULL; /* --groom: a groom, no growth */
-    float guide_fraction = 0.0f;   /* of the groom's strands; 0 = 0.1 */
-    cv_curves curves;
-    int strands = GF_DEFAULT_STRANDS, points = 16, frames = 120, i, f;
-    long long seed = 1, guides = -1, cnt;
-    float lod = 1.0f, max_length = 0.12f, tess_factor = -1.0f;
+/* The command line: every option's value, the defaults where not given. */
+typedef struct gf_options {
+    const char *mesh_path, *density_path, *length_path, *color_path,
+        *out_path, *curves_path;
+    int curves_out;         /* --curves: OBJ polylines instead of ribbons */
+    const char *groom_path; /* --groom: a groom, no growth */
+    float guide_fraction;   /* of the groom's strands; 0 = 0.1 */
+    int strands, points, frames;
+    long long seed, guides;
+    float lod, max_length, tess_factor;
     /* the ropes: shape stiffness, hair-hair interaction, draping */
-    float stiffness = 0.3f, volume = 1.0f, friction = 0.2f, settle = 0.0f;
-    long long grid = 32;
-    double t_settle = 0.0, *t_grid;
-    int has_normals = 1, has_uvs = 1, uvless = 0, mesh_count = 1;
+    float stiffness, volume, friction, settle;
+    long long grid;
     /* --collider: the shapes at rest; the auto one is filled in once the
        mesh's box is known. No --collider at all means auto. */
-    hf_collider cols[GF_MAX_COLLIDERS], moved[GF_MAX_COLLIDERS];
-    int ncol = 0, auto_col = -1, no_col = 0;
-    float eye[3] = {0, 0, 0};
-    int have_eye = 0, pure_guides;
+    hf_collider cols[GF_MAX_COLLIDERS];
+    int ncol, auto_col, no_col;
+    float eye[3];
+    int have_eye;
     /* area: a map's feature inside a big triangle still counts (corners
        would read only the three corner samples, so a bald patch grows) */
-    int estimator = HF_DENSITY_AREA;
-    double area = 0.0;
-    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
-    float box_radius;
-    vtx *rest = NULL, *skin = NULL;
-    uint32_t *idx = NULL;
-    int nv = 0, nt = 0;
-    hm_mesh head;
-    hf_map density, length, color;
-    int have_density = 0, have_length = 0, have_color = 0;
-    hf_fur_desc desc;
-    hf_fur *fur = NULL;
-    hf_fur_info info;
-    hf_diag diag;
-    hf_result r;
-    hf_mesh skinned;
-    hf_rope_params rp;
-    double *t_roots, *t_sim, *t_guides, *t_interp, *t_ribbons;
-    float *vbuf = NULL;
-    uint32_t *ibuf = NULL;
-    long long n_idx;
-    float center[3] = {0, 0, 0}, radius = 0.1f;
+    int estimator;
+} gf_options;
 
+/* The mesh at rest, and what the run measures of it. */
+typedef struct gf_mesh {
+    vtx *rest;
+    uint32_t *idx;
+    int nv, nt;
+    int has_normals, has_uvs, uvless, mesh_count;
+    float lo[3], hi[3], box_radius;
+    double area;
+} gf_mesh;
+
+/* Each stage's milliseconds, one entry per frame. */
+typedef struct gf_times {
+    double *roots, *grid, *sim, *guides, *interp, *ribbons;
+} gf_times;
+
+/* The built-in head: a sphere of this radius at the origin. */
+#define GF_HEAD_RADIUS 0.1f
+
+static void options_init(gf_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->out_path = "fur.obj";
+    o->strands = GF_DEFAULT_STRANDS;
+    o->points = 16;
+    o->frames = 120;
+    o->seed = 1;
+    o->guides = -1;
+    o->lod = 1.0f;
+    o->max_length = 0.12f;
+    o->tess_factor = -1.0f;
+    o->stiffness = 0.3f;
+    o->volume = 1.0f;
+    o->friction = 0.2f;
+    o->grid = 32;
+    o->auto_col = -1;
+    o->estimator = HF_DENSITY_AREA;
+}
+
+/* One option with its value v; 0 when refused (said why). */
+static int parse_option(gf_options *o, const char *a, const char *v)
+{
+    long long cnt;
+    int ok = 1;
+    if (!strcmp(a, "--mesh")) o->mesh_path = v;
+    else if (!strcmp(a, "--density")) o->density_path = v;
+    else if (!strcmp(a, "--length")) o->length_path = v;
+    else if (!strcmp(a, "--color")) o->color_path = v;
+    else if (!strcmp(a, "--out")) o->out_path = v;
+    else if (!strcmp(a, "--strands")) {
+        ok = parse_count(a, v, 1, GF_MAX_COUNT, &cnt);
+        o->strands = (int)cnt;
+    } else if (!strcmp(a, "--guides")) {
+        /* a guide count, or a file of guide curves */
+        if (strspn(v, "0123456789+") == strlen(v))
+            ok = parse_count(a, v, 1, GF_MAX_COUNT, &o->guides);
+        else
+            o->curves_path = v;
+    }
+    else if (!strcmp(a, "--groom")) o->groom_path = v;
+    else if (!strcmp(a, "--guide-fraction"))
+        ok = parse_real(a, v, 1e-6, 1.0, &o->guide_fraction);
+    else if (!strcmp(a, "--tess-factor"))
+        ok = parse_real(a, v, 0.0, 1e30, &o->tess_factor);
+    else if (!strcmp(a, "--points")) {
+        ok = parse_count(a, v, 2, HF_MAX_POINTS, &cnt);
+        o->points = (int)cnt;
+    } else if (!strcmp(a, "--frames")) {
+        ok = parse_count(a, v, 1, 100000000, &cnt);
+        o->frames = (int)cnt;
+    } else if (!strcmp(a, "--seed"))
+        ok = parse_count(a, v, 0, 9007199254740992LL, &o->seed);
+    else if (!strcmp(a, "--lod"))
+        ok = parse_real(a, v, 0.0, 1.0, &o->lod);
+    else if (!strcmp(a, "--length-max"))
+        ok = parse_real(a, v, 1e-9, 1e6, &o->max_length);
+    else if (!strcmp(a, "--stiffness"))
+        ok = parse_real(a, v, 0.0, 1.0, &o->stiffness);
+    else if (!strcmp(a, "--volume"))
+        ok = parse_real(a, v, 0.0, 100.0, &o->volume);
+    else if (!strcmp(a, "--friction"))
+        ok = parse_real(a, v, 0.0, 1.0, &o->friction);
+    else if (!strcmp(a, "--grid"))
+        ok = parse_count(a, v, 4, HF_GRID_MAX_RESOLUTION, &o->grid);
+    else if (!strcmp(a, "--rest-from-gravity"))
+        ok = parse_real(a, v, 0.0, 600.0, &o->settle);
+    else if (!strcmp(a, "--collider")) {
+        if (!strcmp(v, "none")) {
+            o->no_col = 1;
+        } else if (o->ncol == GF_MAX_COLLIDERS) {
+            fprintf(stderr, "grow_fur: --collider '%s': at most %d "
+                            "colliders\n", v, GF_MAX_COLLIDERS);
+            ok = 0;
+        } else if (!strcmp(v, "auto")) {
+            if (o->auto_col >= 0) {
+                fprintf(stderr, "grow_fur: --collider auto given "
+                                "twice\n");
+                ok = 0;
+            }
+            o->auto_col = o->ncol++;
+        } else {
+            ok = parse_collider(v, &o->cols[o->ncol++]);
+        }
+    } else if (!strcmp(a, "--estimator")) {
+        if (!strcmp(v, "area")) o->estimator = HF_DENSITY_AREA;
+        else if (!strcmp(v, "edges")) o->estimator = HF_DENSITY_EDGES;
+        else if (!strcmp(v, "corners")) o->estimator = HF_DENSITY_CORNERS;
+        else {
+            fprintf(stderr, "grow_fur: --estimator '%s': expected area, "
+                            "edges or corners\n", v);
+            ok = 0;
+        }
+    } else if (!strcmp(a, "--eye")) {
+        ok = parse_reals(a, v, v, 3, 1e30, o->eye, "x,y,z");
+        o->have_eye = 1;
+    } else {
+        fprintf(stderr, "grow_fur: unknown option '%s' (--help lists "
+                        "the options)\n", a);
+        return 0;
+    }
+    return ok;
+}
+
+/* The command line into *o: -1 to go on, else the exit code (0 after
+   --help, 2 for a bad argument, said why). */
+static int parse_args(int argc, char **argv, gf_options *o)
+{
+    int i;
+    options_init(o);
     for (i = 1; i < argc; ++i) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int ok = 1;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             usage(stdout);
             return 0;
         }
         if (!strcmp(a, "--curves")) { /* the one option without a value */
-            curves_out = 1;
+            o->curves_out = 1;
             continue;
         }
         if (strncmp(a, "--", 2) != 0 || !strcmp(a, "--")) {
@@ -600,234 +704,188 @@ int main(int argc, char **argv)
                             "options)\n", a);
             return 2;
         }
-        if (!strcmp(a, "--mesh")) mesh_path = v;
-        else if (!strcmp(a, "--density")) density_path = v;
-        else if (!strcmp(a, "--length")) length_path = v;
-        else if (!strcmp(a, "--color")) color_path = v;
-        else if (!strcmp(a, "--out")) out_path = v;
-        else if (!strcmp(a, "--strands")) {
-            ok = parse_count(a, v, 1, GF_MAX_COUNT, &cnt);
-            strands = (int)cnt;
-        } else if (!strcmp(a, "--guides")) {
-            /* a guide count, or a file of guide curves */
-            if (strspn(v, "0123456789+") == strlen(v))
-                ok = parse_count(a, v, 1, GF_MAX_COUNT, &guides);
-            else
-                curves_path = v;
-        }
-        else if (!strcmp(a, "--groom")) groom_path = v;
-        else if (!strcmp(a, "--guide-fraction"))
-            ok = parse_real(a, v, 1e-6, 1.0, &guide_fraction);
-        else if (!strcmp(a, "--tess-factor"))
-            ok = parse_real(a, v, 0.0, 1e30, &tess_factor);
-        else if (!strcmp(a, "--points")) {
-            ok = parse_count(a, v, 2, HF_MAX_POINTS, &cnt);
-            points = (int)cnt;
-        } else if (!strcmp(a, "--frames")) {
-            ok = parse_count(a, v, 1, 100000000, &cnt);
-            frames = (int)cnt;
-        } else if (!strcmp(a, "--seed"))
-            ok = parse_count(a, v, 0, 9007199254740992LL, &seed);
-        else if (!strcmp(a, "--lod"))
-            ok = parse_real(a, v, 0.0, 1.0, &lod);
-        else if (!strcmp(a, "--length-max"))
-            ok = parse_real(a, v, 1e-9, 1e6, &max_length);
-        else if (!strcmp(a, "--stiffness"))
-            ok = parse_real(a, v, 0.0, 1.0, &stiffness);
-        else if (!strcmp(a, "--volume"))
-            ok = parse_real(a, v, 0.0, 100.0, &volume);
-        else if (!strcmp(a, "--friction"))
-            ok = parse_real(a, v, 0.0, 1.0, &friction);
-        else if (!strcmp(a, "--grid"))
-            ok = parse_count(a, v, 4, HF_GRID_MAX_RESOLUTION, &grid);
-        else if (!strcmp(a, "--rest-from-gravity"))
-            ok = parse_real(a, v, 0.0, 600.0, &settle);
-        else if (!strcmp(a, "--collider")) {
-            if (!strcmp(v, "none")) {
-                no_col = 1;
-            } else if (ncol == GF_MAX_COLLIDERS) {
-                fprintf(stderr, "grow_fur: --collider '%s': at most %d "
-                                "colliders\n", v, GF_MAX_COLLIDERS);
-                ok = 0;
-            } else if (!strcmp(v, "auto")) {
-                if (auto_col >= 0) {
-                    fprintf(stderr, "grow_fur: --collider auto given "
-                                    "twice\n");
-                    ok = 0;
-                }
-                auto_col = ncol++;
-            } else {
-                ok = parse_collider(v, &cols[ncol++]);
-            }
-        } else if (!strcmp(a, "--estimator")) {
-            if (!strcmp(v, "area")) estimator = HF_DENSITY_AREA;
-            else if (!strcmp(v, "edges")) estimator = HF_DENSITY_EDGES;
-            else if (!strcmp(v, "corners")) estimator = HF_DENSITY_CORNERS;
-            else {
-                fprintf(stderr, "grow_fur: --estimator '%s': expected area, "
-                                "edges or corners\n", v);
-                ok = 0;
-            }
-        } else if (!strcmp(a, "--eye")) {
-            ok = parse_reals(a, v, v, 3, 1e30, eye, "x,y,z");
-            have_eye = 1;
-        } else {
-            fprintf(stderr, "grow_fur: unknown option '%s' (--help lists "
-                            "the options)\n", a);
-            return 2;
-        }
-        if (!ok) return 2;
+        if (!parse_option(o, a, v)) return 2;
         ++i;
     }
+    return -1;
+}
+
+/* The options against each other, and the curve file read into *curves:
+   -1 to go on, else the exit code. */
+static int check_args(gf_options *o, cv_curves *curves)
+{
+    const char *out_path = o->out_path;
     if (!(ends_with(out_path, ".obj") || ends_with(out_path, ".ply") ||
           ends_with(out_path, ".hair"))) {
         fprintf(stderr, "grow_fur: --out '%s': the name must end in .obj, "
                         ".ply or .hair\n", out_path);
         return 2;
     }
-    if (curves_out && !ends_with(out_path, ".obj")) {
+    if (o->curves_out && !ends_with(out_path, ".obj")) {
         fprintf(stderr, "grow_fur: --curves writes OBJ polylines: --out must "
                         "end in .obj (.hair is always curves)\n");
         return 2;
     }
-    memset(&curves, 0, sizeof curves);
-    if (curves_path && groom_path) {
+    memset(curves, 0, sizeof *curves);
+    if (o->curves_path && o->groom_path) {
         fprintf(stderr, "grow_fur: give --guides FILE or --groom FILE, not "
                         "both\n");
         return 2;
     }
-    if (curves_path || groom_path) {
+    if (o->curves_path || o->groom_path) {
         char err[700];
-        const char *cp = groom_path ? groom_path : curves_path;
-        if (!cv_read(cp, &curves, err, sizeof err)) {
-            fprintf(stderr, "grow_fur: --%s %s\n", groom_path ? "groom" : "guides",
-                    err);
+        const char *cp = o->groom_path ? o->groom_path : o->curves_path;
+        if (!cv_read(cp, curves, err, sizeof err)) {
+            fprintf(stderr, "grow_fur: --%s %s\n",
+                    o->groom_path ? "groom" : "guides", err);
             return 1;
         }
         printf("%s: %d curves, %d points from %s\n",
-               groom_path ? "groom" : "guides", curves.count, curves.total, cp);
+               o->groom_path ? "groom" : "guides", curves->count,
+               curves->total, cp);
     }
-    if (no_col && ncol > 0) {
+    if (o->no_col && o->ncol > 0) {
         fprintf(stderr, "grow_fur: --collider none with other colliders: "
                         "give none alone\n");
         return 2;
     }
-    if (!no_col && ncol == 0) auto_col = ncol++;
-    if (guides >= 0 && tess_factor >= 0.0f) {
+    if (!o->no_col && o->ncol == 0) o->auto_col = o->ncol++;
+    if (o->guides >= 0 && o->tess_factor >= 0.0f) {
         fprintf(stderr, "grow_fur: give --guides or --tess-factor, not "
                         "both\n");
         return 2;
     }
-    if (guides < 0 && tess_factor < 0.0f) {
-        guides = strands / 10;
-        if (guides > GF_MAX_DEFAULT_GUIDES) guides = GF_MAX_DEFAULT_GUIDES;
-        if (guides < 1) guides = 1;
+    if (o->guides < 0 && o->tess_factor < 0.0f) {
+        o->guides = o->strands / 10;
+        if (o->guides > GF_MAX_DEFAULT_GUIDES) o->guides = GF_MAX_DEFAULT_GUIDES;
+        if (o->guides < 1) o->guides = 1;
     }
+    return -1;
+}
 
-    /* the mesh: a file through assimp, or the built-in head */
-    if (mesh_path) {
-        if (!load_mesh(mesh_path, &rest, &idx, &nv, &nt, &has_normals,
-                       &has_uvs, &uvless, &mesh_count))
-            return 1;
+/* Smooth normals from assimp: pass them on, but only if every one is
+   usable (finite, non-zero length; hf_mesh_validate refuses others); a
+   bad one is replaced by the library's area-weighted normal. */
+static void repair_normals(gf_mesh *g)
+{
+    int i, bad = 0;
+    for (i = 0; i < g->nv; ++i) {
+        const float *n = g->rest[i].normal;
+        double l2 = (double)n[0] * n[0] + (double)n[1] * n[1] +
+                    (double)n[2] * n[2];
+        if (!isfinite(l2) || !(l2 > 1e-20)) ++bad;
+    }
+    if (bad) {
+        hf_mesh m;
+        float *nn = (float *)malloc(sizeof(float) * 3u * (size_t)g->nv);
+        memset(&m, 0, sizeof m);
+        m.positions = g->rest[0].pos;
+        m.position_stride = (int)sizeof(vtx);
+        m.vertex_count = g->nv;
+        m.indices = g->idx;
+        m.triangle_count = g->nt;
+        if (!nn || hf_mesh_compute_normals(&m, nn) != HF_OK) {
+            g->has_normals = 0;
+        } else {
+            for (i = 0; i < g->nv; ++i) {
+                float *n = g->rest[i].normal;
+                double l2 = (double)n[0] * n[0] + (double)n[1] * n[1] +
+                            (double)n[2] * n[2];
+                if (!isfinite(l2) || !(l2 > 1e-20))
+                    memcpy(n, nn + 3 * i, sizeof(float) * 3u);
+            }
+            printf("normals: %d of %d mesh normals were zero or not "
+                   "finite: replaced by area-weighted ones\n", bad, g->nv);
+        }
+        free(nn);
+    }
+}
+
+/* The mesh: a file through assimp, or the built-in head; then its normals,
+   bounding box and area. 0 on failure (said why). */
+static int load_rest_mesh(const gf_options *o, gf_mesh *g)
+{
+    int i, k;
+    memset(g, 0, sizeof *g);
+    g->has_normals = g->has_uvs = g->mesh_count = 1;
+    if (o->mesh_path) {
+        if (!load_mesh(o->mesh_path, &g->rest, &g->idx, &g->nv, &g->nt,
+                       &g->has_normals, &g->has_uvs, &g->uvless,
+                       &g->mesh_count))
+            return 0;
     } else {
-        if (!hm_sphere(24, 32, radius, &head)) return 1;
-        nv = head.vertex_count;
-        nt = head.triangle_count;
-        rest = (vtx *)malloc(sizeof(vtx) * (size_t)nv);
-        if (!rest) return 1;
-        memcpy(rest, head.vertices, sizeof(vtx) * (size_t)nv);
-        idx = head.indices;
+        hm_mesh head;
+        if (!hm_sphere(24, 32, GF_HEAD_RADIUS, &head)) return 0;
+        g->nv = head.vertex_count;
+        g->nt = head.triangle_count;
+        g->rest = (vtx *)malloc(sizeof(vtx) * (size_t)g->nv);
+        if (!g->rest) return 0;
+        memcpy(g->rest, head.vertices, sizeof(vtx) * (size_t)g->nv);
+        g->idx = head.indices;
         head.indices = NULL;
         hm_free(&head);
     }
     /* maps need UVs: refuse rather than read one texel everywhere */
-    if (!has_uvs && (density_path || length_path || color_path)) {
-        const char *what = density_path ? "--density" : length_path ? "--length" : "--color";
-        const char *map = density_path ? density_path : length_path ? length_path : color_path;
+    if (!g->has_uvs && (o->density_path || o->length_path || o->color_path)) {
+        const char *what = o->density_path ? "--density" : o->length_path ? "--length" : "--color";
+        const char *map = o->density_path ? o->density_path : o->length_path ? o->length_path : o->color_path;
         fprintf(stderr,
                 "grow_fur: %s %s needs texture coordinates, but %s has none "
                 "(%d of its %d triangle meshes lack UV channel 0): give the "
                 "mesh UVs, or leave the maps out\n",
-                what, map, mesh_path, uvless, mesh_count);
-        return 1;
+                what, map, o->mesh_path, g->uvless, g->mesh_count);
+        return 0;
     }
-    /* smooth normals from assimp: pass them on, but only if every one is
-       usable (finite, non-zero length; hf_mesh_validate refuses others);
-       a bad one is replaced by the library's area-weighted normal */
-    if (mesh_path && has_normals) {
-        int bad = 0;
-        for (i = 0; i < nv; ++i) {
-            const float *n = rest[i].normal;
-            double l2 = (double)n[0] * n[0] + (double)n[1] * n[1] +
-                        (double)n[2] * n[2];
-            if (!isfinite(l2) || !(l2 > 1e-20)) ++bad;
-        }
-        if (bad) {
-            hf_mesh m;
-            float *nn = (float *)malloc(sizeof(float) * 3u * (size_t)nv);
-            memset(&m, 0, sizeof m);
-            m.positions = rest[0].pos;
-            m.position_stride = (int)sizeof(vtx);
-            m.vertex_count = nv;
-            m.indices = idx;
-            m.triangle_count = nt;
-            if (!nn || hf_mesh_compute_normals(&m, nn) != HF_OK) {
-                has_normals = 0;
-            } else {
-                for (i = 0; i < nv; ++i) {
-                    float *n = rest[i].normal;
-                    double l2 = (double)n[0] * n[0] + (double)n[1] * n[1] +
-                                (double)n[2] * n[2];
-                    if (!isfinite(l2) || !(l2 > 1e-20))
-                        memcpy(n, nn + 3 * i, sizeof(float) * 3u);
-                }
-                printf("normals: %d of %d mesh normals were zero or not "
-                       "finite: replaced by area-weighted ones\n", bad, nv);
-            }
-            free(nn);
-        }
-    }
+    if (o->mesh_path && g->has_normals) repair_normals(g);
     printf("mesh: %s, %d vertices, %d triangles, normals %s, UVs %s\n",
-           mesh_path ? mesh_path : "built-in head", nv, nt,
-           has_normals ? "from the mesh" : "computed by hairfur",
-           has_uvs ? "yes" : "none");
-    /* bounding box and area */
-    {
-        int k;
-        for (i = 0; i < nv; ++i)
-            for (k = 0; k < 3; ++k) {
-                lo[k] = rest[i].pos[k] < lo[k] ? rest[i].pos[k] : lo[k];
-                hi[k] = rest[i].pos[k] > hi[k] ? rest[i].pos[k] : hi[k];
-            }
-        for (i = 0; i < nt; ++i)
-            area += hf_triangle_area(rest[idx[3 * i]].pos,
-                                     rest[idx[3 * i + 1]].pos,
-                                     rest[idx[3 * i + 2]].pos);
-        box_radius = 0.5f * sqrtf((hi[0] - lo[0]) * (hi[0] - lo[0]) +
-                                  (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                                  (hi[2] - lo[2]) * (hi[2] - lo[2]));
-        printf("bounding box (mesh units): (%g, %g, %g) .. (%g, %g, %g); "
-               "area %g square mesh units\n",
-               (double)lo[0], (double)lo[1], (double)lo[2], (double)hi[0],
-               (double)hi[1], (double)hi[2], area);
+           o->mesh_path ? o->mesh_path : "built-in head", g->nv, g->nt,
+           g->has_normals ? "from the mesh" : "computed by hairfur",
+           g->has_uvs ? "yes" : "none");
+    for (k = 0; k < 3; ++k) {
+        g->lo[k] = 1e30f;
+        g->hi[k] = -1e30f;
     }
+    for (i = 0; i < g->nv; ++i)
+        for (k = 0; k < 3; ++k) {
+            g->lo[k] = g->rest[i].pos[k] < g->lo[k] ? g->rest[i].pos[k] : g->lo[k];
+            g->hi[k] = g->rest[i].pos[k] > g->hi[k] ? g->rest[i].pos[k] : g->hi[k];
+        }
+    for (i = 0; i < g->nt; ++i)
+        g->area += hf_triangle_area(g->rest[g->idx[3 * i]].pos,
+                                    g->rest[g->idx[3 * i + 1]].pos,
+                                    g->rest[g->idx[3 * i + 2]].pos);
+    g->box_radius = 0.5f * sqrtf((g->hi[0] - g->lo[0]) * (g->hi[0] - g->lo[0]) +
+                                 (g->hi[1] - g->lo[1]) * (g->hi[1] - g->lo[1]) +
+                                 (g->hi[2] - g->lo[2]) * (g->hi[2] - g->lo[2]));
+    printf("bounding box (mesh units): (%g, %g, %g) .. (%g, %g, %g); "
+           "area %g square mesh units\n",
+           (double)g->lo[0], (double)g->lo[1], (double)g->lo[2],
+           (double)g->hi[0], (double)g->hi[1], (double)g->hi[2], g->area);
+    return 1;
+}
+
+/* The auto collider and the eye from the mesh's box, and both said. */
+static void place_colliders_and_eye(gf_options *o, const gf_mesh *g)
+{
+    int i;
     /* auto: the mesh's bounding sphere, shrunk so roots sit on it (the
        built-in head: its own sphere) */
-    if (auto_col >= 0) {
-        hf_collider *c = &cols[auto_col];
+    if (o->auto_col >= 0) {
+        hf_collider *c = &o->cols[o->auto_col];
+        float center[3] = {0, 0, 0}, radius = GF_HEAD_RADIUS;
         int k;
-        if (mesh_path) {
-            for (k = 0; k < 3; ++k) center[k] = 0.5f * (lo[k] + hi[k]);
-            radius = 0.5f * 0.5f * (hi[0] - lo[0]); /* a conservative inner ball */
+        if (o->mesh_path) {
+            for (k = 0; k < 3; ++k) center[k] = 0.5f * (g->lo[k] + g->hi[k]);
+            radius = 0.5f * 0.5f * (g->hi[0] - g->lo[0]); /* a conservative inner ball */
         }
         memset(c, 0, sizeof *c);
         c->type = HF_COLLIDER_SPHERE;
         memcpy(c->a, center, sizeof c->a);
         c->radius = 0.97f * radius;
     }
-    if (ncol == 0) printf("collider: none\n");
-    for (i = 0; i < ncol; ++i) {
-        const hf_collider *c = &cols[i];
+    if (o->ncol == 0) printf("collider: none\n");
+    for (i = 0; i < o->ncol; ++i) {
+        const hf_collider *c = &o->cols[i];
         if (c->type == HF_COLLIDER_CAPSULE)
             printf("collider: given capsule, (%g, %g, %g) - (%g, %g, %g), "
                    "radius %g (mesh units, at rest)\n", (double)c->a[0],
@@ -836,54 +894,54 @@ int main(int argc, char **argv)
         else
             printf("collider: %s sphere, centre (%g, %g, %g), radius %g "
                    "(mesh units, at rest)\n",
-                   i == auto_col ? "auto" : "given", (double)c->a[0],
+                   i == o->auto_col ? "auto" : "given", (double)c->a[0],
                    (double)c->a[1], (double)c->a[2], (double)c->radius);
     }
-    if (!have_eye) {
-        eye[0] = 0.5f * (lo[0] + hi[0]);
-        eye[1] = 0.5f * (lo[1] + hi[1]);
-        eye[2] = 0.5f * (lo[2] + hi[2]) + 2.5f * box_radius;
+    if (!o->have_eye) {
+        o->eye[0] = 0.5f * (g->lo[0] + g->hi[0]);
+        o->eye[1] = 0.5f * (g->lo[1] + g->hi[1]);
+        o->eye[2] = 0.5f * (g->lo[2] + g->hi[2]) + 2.5f * g->box_radius;
     }
-    printf("eye: (%g, %g, %g)%s\n", (double)eye[0], (double)eye[1],
-           (double)eye[2], have_eye ? "" : " (box centre + (0, 0, 2.5 x half "
-                                          "the box diagonal))");
+    printf("eye: (%g, %g, %g)%s\n", (double)o->eye[0], (double)o->eye[1],
+           (double)o->eye[2], o->have_eye ? "" : " (box centre + (0, 0, 2.5 x half "
+                                                "the box diagonal))");
+}
 
-    /* the maps: files, or the built-in ones for the built-in head */
-    if (!get_map(density_path, 1, !mesh_path, hm_hairline_density, 256,
-                 &density, &have_density) ||
-        !get_map(length_path, 1, !mesh_path, hm_bangs_length, 256, &length,
-                 &have_length) ||
-        !get_map(color_path, 3, !mesh_path, hm_hair_color, 64, &color,
-                 &have_color))
-        return 1;
-
-    /* grow */
-    memset(&desc, 0, sizeof desc);
-    desc.mesh.positions = rest[0].pos;
-    desc.mesh.position_stride = (int)sizeof(vtx);
+/* What hf_fur_create grows from: the mesh, the maps, the guide curves,
+   the ropes' parameters (into *rp) and the tessellation factor that
+   reaches the guide target. 0 on failure. */
+static int fill_desc(const gf_options *o, const gf_mesh *g,
+                     const cv_curves *curves, const hf_map *density,
+                     const hf_map *length, const hf_map *color,
+                     hf_rope_params *rp, hf_fur_desc *desc)
+{
+    int pure_guides;
+    memset(desc, 0, sizeof *desc);
+    desc->mesh.positions = g->rest[0].pos;
+    desc->mesh.position_stride = (int)sizeof(vtx);
     /* the mesh's smooth normals where it has them, else hairfur computes
        area-weighted ones; UVs only where there are some */
-    desc.mesh.normals = has_normals ? rest[0].normal : NULL;
-    desc.mesh.normal_stride = (int)sizeof(vtx);
-    desc.mesh.uvs = has_uvs ? rest[0].uv : NULL;
-    desc.mesh.uv_stride = (int)sizeof(vtx);
-    desc.mesh.vertex_count = nv;
-    desc.mesh.indices = idx;
-    desc.mesh.triangle_count = nt;
-    desc.density_map = have_density ? &density : NULL;
-    desc.length_map = have_length ? &length : NULL;
-    desc.color_map = have_color ? &color : NULL;
-    desc.points_per_strand = points;
-    desc.max_length = max_length;
-    desc.total_strands = strands;
-    desc.sampler = HF_SAMPLER_STRATIFIED;
-    desc.tess_estimator = estimator;
-    desc.seed = (uint64_t)seed;
-    desc.clump = 0.2f;
-    if (curves.count > 0 && !groom_path) {
-        desc.guide_curves = curves.xyz;
-        desc.guide_curve_points = curves.points;
-        desc.guide_curve_count = curves.count;
+    desc->mesh.normals = g->has_normals ? g->rest[0].normal : NULL;
+    desc->mesh.normal_stride = (int)sizeof(vtx);
+    desc->mesh.uvs = g->has_uvs ? g->rest[0].uv : NULL;
+    desc->mesh.uv_stride = (int)sizeof(vtx);
+    desc->mesh.vertex_count = g->nv;
+    desc->mesh.indices = g->idx;
+    desc->mesh.triangle_count = g->nt;
+    desc->density_map = density;
+    desc->length_map = length;
+    desc->color_map = color;
+    desc->points_per_strand = o->points;
+    desc->max_length = o->max_length;
+    desc->total_strands = o->strands;
+    desc->sampler = HF_SAMPLER_STRATIFIED;
+    desc->tess_estimator = o->estimator;
+    desc->seed = (uint64_t)o->seed;
+    desc->clump = 0.2f;
+    if (curves->count > 0 && !o->groom_path) {
+        desc->guide_curves = curves->xyz;
+        desc->guide_curve_points = curves->points;
+        desc->guide_curve_count = curves->count;
     }
     /* LOD guides where the mesh is coarse. A triangle of density D and
        area A is split while D * A * tess_factor > 1, so a factor of about
@@ -891,135 +949,151 @@ int main(int argc, char **argv)
        counting pass of hf_tessellate then tunes it. Pure guides sit at the
        welded vertices, so a target below their count means no LOD
        guides. */
-    pure_guides = welded_count(rest, nv, idx, nt);
-    if (pure_guides < 0) return 1;
-    if (tess_factor >= 0.0f) {
-        desc.tess_factor = tess_factor;
+    pure_guides = welded_count(g->rest, g->nv, g->idx, g->nt);
+    if (pure_guides < 0) return 0;
+    if (o->tess_factor >= 0.0f) {
+        desc->tess_factor = o->tess_factor;
         printf("guides: --tess-factor %g per square mesh unit\n",
-               (double)tess_factor);
+               (double)o->tess_factor);
     } else {
-        long long want = guides - pure_guides;
-        desc.tess_factor =
-            want > 0 ? fit_tess_factor(&desc.mesh, desc.density_map,
-                                       desc.tess_estimator, area, want)
+        long long want = o->guides - pure_guides;
+        desc->tess_factor =
+            want > 0 ? fit_tess_factor(&desc->mesh, desc->density_map,
+                                       desc->tess_estimator, g->area, want)
                      : 0.0f;
         printf("guides: target %lld = %d pure (welded vertices) + %lld LOD "
                "-> tess_factor %g per square mesh unit (first guess %g)\n",
-               guides, pure_guides, want > 0 ? want : 0,
-               (double)desc.tess_factor, want > 0 ? (double)want / area : 0.0);
+               o->guides, pure_guides, want > 0 ? want : 0,
+               (double)desc->tess_factor, want > 0 ? (double)want / g->area : 0.0);
         if (want <= 0)
             printf("guides: the mesh's %d welded vertices already reach the "
-                   "target of %lld: no LOD guides\n", pure_guides, guides);
+                   "target of %lld: no LOD guides\n", pure_guides, o->guides);
     }
-    hf_rope_params_init(&rp);
-    rp.global_stiffness_root = stiffness;
-    rp.global_stiffness_tip = stiffness / 15.0f;
-    rp.local_stiffness_root = 0.5f;
-    rp.local_stiffness_tip = 0.1f;
-    rp.root_stiffness = 0.8f;
+    hf_rope_params_init(rp);
+    rp->global_stiffness_root = o->stiffness;
+    rp->global_stiffness_tip = o->stiffness / 15.0f;
+    rp->local_stiffness_root = 0.5f;
+    rp->local_stiffness_tip = 0.1f;
+    rp->root_stiffness = 0.8f;
     /* 0 on the command line is off: a literal 0 for the library */
-    rp.volume = volume;
-    rp.friction = friction;
-    rp.explicit_zero = (volume == 0.0f ? HF_ROPE_ZERO_VOLUME : 0) |
-                       (friction == 0.0f ? HF_ROPE_ZERO_FRICTION : 0);
-    desc.rope_params = &rp;
-    desc.grid_resolution = volume > 0.0f || friction > 0.0f ? (int)grid : 0;
-    {
-        double t0 = now_ms();
-        if (groom_path) {
-            /* the groom's own strands; its roots ride on the head */
-            hf_groom_desc gd;
-            memset(&gd, 0, sizeof gd);
-            gd.points = curves.xyz;
-            gd.strand_points = curves.points;
-            gd.strand_count = curves.count;
-            gd.points_per_strand = points;
-            gd.guide_fraction = guide_fraction;
-            gd.seed = (uint64_t)seed;
-            gd.rope_params = &rp;
-            gd.grid_resolution = desc.grid_resolution;
-            r = hf_fur_create_groom(&gd, &fur, &diag);
-        } else {
-            r = hf_fur_create(&desc, &fur, &diag);
-        }
-        if (r != HF_OK) {
-            fprintf(stderr, "grow_fur: %s\n", diag.message);
-            if (r == HF_ERROR_BAD_RANGE && estimator != HF_DENSITY_CORNERS)
-                fprintf(stderr, "grow_fur: (UVs spanning many map periods: "
-                                "--estimator corners reads any)\n");
-            return 1;
-        }
-        hf_fur_get_info(fur, &info);
-        if (groom_path)
-            printf("groom made in %.1f ms: %d strands of %d points, %d of them "
-                   "simulated guides\n", now_ms() - t0, info.strand_count,
-                   info.points_per_strand, info.guide_count);
-        else
-            printf("grown in %.1f ms: %d vertices, %d triangles -> %d guide "
-                   "triangles; %d guides (%d pure, %d LOD); %d strands of %d "
-                   "points\n",
-                   now_ms() - t0, nv, nt, info.triangle_count, info.guide_count,
-                   info.pure_guide_count, info.lod_guide_count,
-                   info.strand_count, info.points_per_strand);
-        if (guides >= 0)
-            printf("guides: %d of a target of %lld (%.2f x)\n",
-                   info.guide_count, guides,
-                   (double)info.guide_count / (double)guides);
+    rp->volume = o->volume;
+    rp->friction = o->friction;
+    rp->explicit_zero = (o->volume == 0.0f ? HF_ROPE_ZERO_VOLUME : 0) |
+                        (o->friction == 0.0f ? HF_ROPE_ZERO_FRICTION : 0);
+    desc->rope_params = rp;
+    desc->grid_resolution =
+        o->volume > 0.0f || o->friction > 0.0f ? (int)o->grid : 0;
+    return 1;
+}
+
+/* The fur: grown from *desc, or made from the groom's own strands (their
+   roots ride on the head); then its level of detail, and the draping.
+   NULL on failure (said why). */
+static hf_fur *create_fur(const gf_options *o, const gf_mesh *g,
+                          const cv_curves *curves, const hf_fur_desc *desc)
+{
+    hf_fur *fur = NULL;
+    hf_fur_info info;
+    hf_diag diag;
+    hf_result r;
+    double t0 = now_ms();
+    if (o->groom_path) {
+        hf_groom_desc gd;
+        memset(&gd, 0, sizeof gd);
+        gd.points = curves->xyz;
+        gd.strand_points = curves->points;
+        gd.strand_count = curves->count;
+        gd.points_per_strand = o->points;
+        gd.guide_fraction = o->guide_fraction;
+        gd.seed = (uint64_t)o->seed;
+        gd.rope_params = desc->rope_params;
+        gd.grid_resolution = desc->grid_resolution;
+        r = hf_fur_create_groom(&gd, &fur, &diag);
+    } else {
+        r = hf_fur_create(desc, &fur, &diag);
     }
-    hf_fur_set_lod(fur, lod);
+    if (r != HF_OK) {
+        fprintf(stderr, "grow_fur: %s\n", diag.message);
+        if (r == HF_ERROR_BAD_RANGE && o->estimator != HF_DENSITY_CORNERS)
+            fprintf(stderr, "grow_fur: (UVs spanning many map periods: "
+                            "--estimator corners reads any)\n");
+        return NULL;
+    }
     hf_fur_get_info(fur, &info);
-    if (settle > 0.0f) {
+    if (o->groom_path)
+        printf("groom made in %.1f ms: %d strands of %d points, %d of them "
+               "simulated guides\n", now_ms() - t0, info.strand_count,
+               info.points_per_strand, info.guide_count);
+    else
+        printf("grown in %.1f ms: %d vertices, %d triangles -> %d guide "
+               "triangles; %d guides (%d pure, %d LOD); %d strands of %d "
+               "points\n",
+               now_ms() - t0, g->nv, g->nt, info.triangle_count,
+               info.guide_count, info.pure_guide_count, info.lod_guide_count,
+               info.strand_count, info.points_per_strand);
+    if (o->guides >= 0)
+        printf("guides: %d of a target of %lld (%.2f x)\n", info.guide_count,
+               o->guides, (double)info.guide_count / (double)o->guides);
+    hf_fur_set_lod(fur, o->lod);
+    if (o->settle > 0.0f) {
         /* the head's first pose (frame 0 of the swing is the rest pose),
            so the draped shape is the rest shape in the roots' frames */
-        double t0 = now_ms();
-        for (i = 0; i < ncol; ++i) moved[i] = cols[i];
-        r = hf_fur_settle_rest(fur, settle, ncol ? moved : NULL, ncol);
+        hf_collider moved[GF_MAX_COLLIDERS];
+        int i;
+        t0 = now_ms();
+        for (i = 0; i < o->ncol; ++i) moved[i] = o->cols[i];
+        r = hf_fur_settle_rest(fur, o->settle, o->ncol ? moved : NULL, o->ncol);
         if (r != HF_OK) {
             fprintf(stderr, "grow_fur: --rest-from-gravity: %s\n",
                     hf_result_string(r));
-            return 1;
+            hf_fur_destroy(fur);
+            return NULL;
         }
-        t_settle = now_ms() - t0;
         printf("rest from gravity: %g s of draping in %.1f ms\n",
-               (double)settle, t_settle);
+               (double)o->settle, now_ms() - t0);
     }
+    return fur;
+}
 
-    /* per frame: skin, roots, simulate, interpolate, ribbons */
-    skin = (vtx *)malloc(sizeof(vtx) * (size_t)nv);
-    vbuf = (float *)malloc(sizeof(float) * 12u * 2u * (size_t)info.strand_count *
-                           (size_t)info.points_per_strand);
-    t_roots = (double *)malloc(sizeof(double) * 6u * (size_t)frames);
-    if (!skin || !vbuf || !t_roots) return 1;
-    t_grid = t_roots + 5 * frames;
-    t_sim = t_roots + frames;
-    t_guides = t_sim + frames;
-    t_interp = t_guides + frames;
-    t_ribbons = t_interp + frames;
-    skinned = desc.mesh;
+/* --frames frames of the swinging head: skin, roots, grid, simulate,
+   interpolate, ribbons into vbuf (two 24-byte vertices a point), each
+   stage timed into *t. 0 on failure (said why). */
+static int run_frames(const gf_options *o, const gf_mesh *g, hf_fur *fur,
+                      const hf_mesh *rest_mesh, float *vbuf, gf_times *t)
+{
+    hf_collider moved[GF_MAX_COLLIDERS];
+    hf_fur_info info;
+    hf_mesh skinned;
+    hf_result r;
+    int f, i;
+    vtx *skin = (vtx *)malloc(sizeof(vtx) * (size_t)g->nv);
+    if (!skin) return 0;
+    hf_fur_get_info(fur, &info);
+    skinned = *rest_mesh;
     skinned.positions = skin[0].pos;
     skinned.normals = skin[0].normal;
-    skinned.uvs = has_uvs ? skin[0].uv : NULL;
-    for (f = 0; f < frames; ++f) {
+    skinned.uvs = g->has_uvs ? skin[0].uv : NULL;
+    for (f = 0; f < o->frames; ++f) {
         float m[12];
         hf_ribbon_params view;
         hf_ribbon_output out;
         double t0, t1, t1g, t2, t3, t4, t5;
         hm_pose((f + 1) / 60.0, 0, m);
-        for (i = 0; i < nv; ++i) {
-            hm_xform(m, rest[i].pos, 1.0f, skin[i].pos);
-            hm_xform(m, rest[i].normal, 0.0f, skin[i].normal);
-            skin[i].uv[0] = rest[i].uv[0];
-            skin[i].uv[1] = rest[i].uv[1];
+        for (i = 0; i < g->nv; ++i) {
+            hm_xform(m, g->rest[i].pos, 1.0f, skin[i].pos);
+            hm_xform(m, g->rest[i].normal, 0.0f, skin[i].normal);
+            skin[i].uv[0] = g->rest[i].uv[0];
+            skin[i].uv[1] = g->rest[i].uv[1];
         }
-        if (!has_normals) skinned.normals = NULL; /* face normals */
-        for (i = 0; i < ncol; ++i) {
-            moved[i] = cols[i];
-            hm_xform(m, cols[i].a, 1.0f, moved[i].a);
-            hm_xform(m, cols[i].b, 1.0f, moved[i].b);
+        if (!g->has_normals) skinned.normals = NULL; /* face normals */
+        for (i = 0; i < o->ncol; ++i) {
+            moved[i] = o->cols[i];
+            hm_xform(m, o->cols[i].a, 1.0f, moved[i].a);
+            hm_xform(m, o->cols[i].b, 1.0f, moved[i].b);
         }
 
         memset(&view, 0, sizeof view);
-        memcpy(view.eye, eye, sizeof view.eye);
+        memcpy(view.eye, o->eye, sizeof view.eye);
         view.root_width = 0.0012f;
         view.tip_width = 0.0003f;
         view.alpha_root = 1.0f;
@@ -1031,14 +1105,14 @@ int main(int argc, char **argv)
         out.tangent.stride = 24;
 
         t0 = now_ms();
-        r = groom_path ? hf_fur_set_transform(fur, m, 0, info.guide_count)
-                       : hf_fur_set_roots(fur, &skinned, 0, info.guide_count);
+        r = o->groom_path ? hf_fur_set_transform(fur, m, 0, info.guide_count)
+                          : hf_fur_set_roots(fur, &skinned, 0, info.guide_count);
         t1 = now_ms();
         if (r == HF_OK) r = hf_fur_build_grid(fur, 0, info.grid_resolution);
         t1g = now_ms();
         if (r == HF_OK)
             r = hf_fur_simulate(fur, 0, info.guide_count, 1.0f / 60.0f,
-                                ncol ? moved : NULL, ncol);
+                                o->ncol ? moved : NULL, o->ncol);
         t2 = now_ms();
         if (r == HF_OK)
             r = hf_fur_interpolate_guides(fur, 0, info.lod_guide_count);
@@ -1050,141 +1124,233 @@ int main(int argc, char **argv)
         t5 = now_ms();
         if (r != HF_OK) {
             fprintf(stderr, "grow_fur: frame %d: %s\n", f, hf_result_string(r));
-            return 1;
+            free(skin);
+            return 0;
         }
-        t_roots[f] = t1 - t0;
-        t_grid[f] = t1g - t1;
-        t_sim[f] = t2 - t1g;
-        t_guides[f] = t3 - t2;
-        t_interp[f] = t4 - t3;
-        t_ribbons[f] = t5 - t4;
+        t->roots[f] = t1 - t0;
+        t->grid[f] = t1g - t1;
+        t->sim[f] = t2 - t1g;
+        t->guides[f] = t3 - t2;
+        t->interp[f] = t4 - t3;
+        t->ribbons[f] = t5 - t4;
     }
-    {
-        float stretch = 0.0f;
-        hf_fur_max_stretch(fur, &stretch);
-        printf("%d frames at lod %.2f (%d of %d strands drawn), median ms: "
-               "roots %.3f, grid %.3f (%d^3 nodes), ropes %.3f (%d guides, "
-               "%d colliders), LOD "
-               "guides %.3f, strands %.3f, ribbons %.3f; max stretch %.3f "
-               "%%\n",
-               frames, (double)info.lod, info.drawn_strand_count,
-               info.strand_count, median(t_roots, frames),
-               median(t_grid, frames), info.grid_resolution,
-               median(t_sim, frames), info.guide_count, ncol,
-               median(t_guides, frames), median(t_interp, frames),
-               median(t_ribbons, frames), 100.0 * stretch);
-        hf_fur_get_info(fur, &info);
-        printf("collider: %d of %d guide roots inside it at the last frame"
-               "%s\n", info.roots_inside, info.guide_count,
-               ncol > 1 ? " (any of the colliders)" : "");
-        if (info.roots_inside > 0)
-            printf("%d of %d guide roots sit inside the collider (for "
-                   "those guides it is shrunk to the root's depth); if the "
-                   "proxy is larger than the body there, shrink it\n",
-                   info.roots_inside, info.guide_count);
-    }
+    free(skin);
+    return 1;
+}
 
-    /* export the last frame */
+/* The frames' medians, the stretch, and the roots inside a collider. */
+static void report_frames(const gf_options *o, const hf_fur *fur,
+                          gf_times *t)
+{
+    hf_fur_info info;
+    float stretch = 0.0f;
+    int frames = o->frames;
+    hf_fur_get_info(fur, &info);
+    hf_fur_max_stretch(fur, &stretch);
+    printf("%d frames at lod %.2f (%d of %d strands drawn), median ms: "
+           "roots %.3f, grid %.3f (%d^3 nodes), ropes %.3f (%d guides, "
+           "%d colliders), LOD "
+           "guides %.3f, strands %.3f, ribbons %.3f; max stretch %.3f "
+           "%%\n",
+           frames, (double)info.lod, info.drawn_strand_count,
+           info.strand_count, median(t->roots, frames),
+           median(t->grid, frames), info.grid_resolution,
+           median(t->sim, frames), info.guide_count, o->ncol,
+           median(t->guides, frames), median(t->interp, frames),
+           median(t->ribbons, frames), 100.0 * stretch);
+    printf("collider: %d of %d guide roots inside it at the last frame"
+           "%s\n", info.roots_inside, info.guide_count,
+           o->ncol > 1 ? " (any of the colliders)" : "");
+    if (info.roots_inside > 0)
+        printf("%d of %d guide roots sit inside the collider (for "
+               "those guides it is shrunk to the root's depth); if the "
+               "proxy is larger than the body there, shrink it\n",
+               info.roots_inside, info.guide_count);
+}
+
+/* The last frame's drawn strands as curves, with their colours (.hair),
+   or as OBJ polylines. 0 on failure (said why). */
+static int write_curves(const char *out_path, const hf_fur_info *info)
+{
+    cv_curves o;
+    char err[600];
+    int P = info->points_per_strand, S = info->drawn_strand_count, k;
+    long q;
+    memset(&o, 0, sizeof o);
+    o.count = S;
+    o.total = S * P;
+    o.points = (int *)malloc(sizeof(int) * (size_t)(S > 0 ? S : 1));
+    o.xyz = (float *)malloc(sizeof(float) * 3u * (size_t)(S > 0 ? S * P : 1));
+    o.rgb = (float *)malloc(sizeof(float) * 3u * (size_t)(S > 0 ? S * P : 1));
+    if (!o.points || !o.xyz || !o.rgb) return 0;
+    for (k = 0; k < S; ++k) o.points[k] = P;
+    memcpy(o.xyz, info->strand_points, sizeof(float) * 3u * (size_t)S * (size_t)P);
+    for (q = 0; q < (long)S * P; ++q)
+        memcpy(o.rgb + 3 * q, info->strand_colors + 4 * (q / P), 3 * sizeof(float));
+    if (!(ends_with(out_path, ".hair")
+              ? cv_write_hair(out_path, &o, "hairfur grow_fur", err, sizeof err)
+              : cv_write_obj(out_path, &o, err, sizeof err))) {
+        fprintf(stderr, "grow_fur: %s\n", err);
+        return 0;
+    }
+    printf("wrote %s: %d curves of %d points\n", out_path, S, P);
+    cv_free(&o);
+    return 1;
+}
+
+/* The last frame's ribbons as OBJ: positions, (root u, root v), faces. */
+static void write_obj(FILE *fp, const hf_fur_info *info, const float *vbuf,
+                      long long nvert, const uint32_t *ibuf, long long n_idx)
+{
+    long long k;
+    fprintf(fp, "# hairfur.h grow_fur: %d strands, %d points each, "
+                "2 vertices per point\n",
+            info->drawn_strand_count, info->points_per_strand);
+    for (k = 0; k < nvert; ++k)
+        fprintf(fp, "v %.6f %.6f %.6f\n", vbuf[6 * k], vbuf[6 * k + 1],
+                vbuf[6 * k + 2]);
+    for (k = 0; k < nvert; ++k) {
+        /* vt: root uv of the strand (hairfur stores it per strand) */
+        const float *uv = info->strands[k / (2 * info->points_per_strand)].uv;
+        fprintf(fp, "vt %.6f %.6f\n", uv[0], uv[1]);
+    }
+    for (k = 0; k < n_idx; k += 3)
+        fprintf(fp, "f %u/%u %u/%u %u/%u\n", ibuf[k] + 1, ibuf[k] + 1,
+                ibuf[k + 1] + 1, ibuf[k + 1] + 1, ibuf[k + 2] + 1,
+                ibuf[k + 2] + 1);
+}
+
+/* The last frame's ribbons as binary PLY: positions, tangents as normals,
+   the strands' colours. */
+static void write_ply(FILE *fp, const hf_fur_info *info, const float *vbuf,
+                      long long nvert, const uint32_t *ibuf, long long n_idx)
+{
+    long long k;
+    fprintf(fp,
+            "ply\nformat binary_little_endian 1.0\n"
+            "comment hairfur.h grow_fur ribbons\n"
+            "element vertex %lld\nproperty float x\nproperty float y\n"
+            "property float z\nproperty float nx\nproperty float ny\n"
+            "property float nz\nproperty uchar red\nproperty uchar "
+            "green\nproperty uchar blue\n"
+            "element face %lld\nproperty list uchar uint "
+            "vertex_indices\nend_header\n",
+            nvert, n_idx / 3);
+    for (k = 0; k < nvert; ++k) {
+        const float *c =
+            info->strand_colors + 4 * (k / (2 * info->points_per_strand));
+        unsigned char rgb[3];
+        int q;
+        for (q = 0; q < 3; ++q)
+            rgb[q] = (unsigned char)(255.0f * (c[q] < 0 ? 0 : c[q] > 1 ? 1 : c[q]) + 0.5f);
+        fwrite(vbuf + 6 * k, 4, 6, fp); /* little-endian hosts */
+        fwrite(rgb, 1, 3, fp);
+    }
+    for (k = 0; k < n_idx; k += 3) {
+        unsigned char three = 3;
+        fwrite(&three, 1, 1, fp);
+        fwrite(ibuf + k, 4, 3, fp);
+    }
+}
+
+/* The last frame into --out: curves (.hair, or .obj with --curves), or
+   ribbons with their index buffer (.obj, .ply). 0 on failure. */
+static int export_last_frame(const gf_options *o, const hf_fur *fur,
+                             const float *vbuf)
+{
+    const char *out_path = o->out_path;
+    hf_fur_info info;
+    uint32_t *ibuf;
+    long long n_idx, nvert;
+    FILE *fp;
+    hf_fur_get_info(fur, &info);
     n_idx = hf_ribbon_index_count(info.drawn_strand_count,
                                   info.points_per_strand, HF_TRIANGLES);
     ibuf = (uint32_t *)malloc(sizeof(uint32_t) * (size_t)n_idx);
     if (!ibuf ||
         hf_ribbon_indices(info.drawn_strand_count, info.points_per_strand,
-                          HF_TRIANGLES, ibuf, n_idx) != HF_OK)
-        return 1;
-    if (ends_with(out_path, ".hair") || curves_out) {
-        /* the drawn strands as curves, with their colours (.hair) */
-        cv_curves o;
-        char err[600];
-        int P = info.points_per_strand, S = info.drawn_strand_count, k;
-        long q;
-        memset(&o, 0, sizeof o);
-        o.count = S;
-        o.total = S * P;
-        o.points = (int *)malloc(sizeof(int) * (size_t)(S > 0 ? S : 1));
-        o.xyz = (float *)malloc(sizeof(float) * 3u * (size_t)(S > 0 ? S * P : 1));
-        o.rgb = (float *)malloc(sizeof(float) * 3u * (size_t)(S > 0 ? S * P : 1));
-        if (!o.points || !o.xyz || !o.rgb) return 1;
-        for (k = 0; k < S; ++k) o.points[k] = P;
-        memcpy(o.xyz, info.strand_points, sizeof(float) * 3u * (size_t)S * (size_t)P);
-        for (q = 0; q < (long)S * P; ++q)
-            memcpy(o.rgb + 3 * q, info.strand_colors + 4 * (q / P), 3 * sizeof(float));
-        if (!(ends_with(out_path, ".hair")
-                  ? cv_write_hair(out_path, &o, "hairfur grow_fur", err, sizeof err)
-                  : cv_write_obj(out_path, &o, err, sizeof err))) {
-            fprintf(stderr, "grow_fur: %s\n", err);
-            return 1;
-        }
-        printf("wrote %s: %d curves of %d points\n", out_path, S, P);
-        cv_free(&o);
-    } else {
-        FILE *fp = fopen(out_path, "wb");
-        long long nvert = 2LL * info.drawn_strand_count * info.points_per_strand;
-        long long k;
-        const float *uv;
-        if (!fp) {
-            fprintf(stderr, "grow_fur: cannot write %s\n", out_path);
-            return 1;
-        }
-        if (ends_with(out_path, ".obj")) {
-            fprintf(fp, "# hairfur.h grow_fur: %d strands, %d points each, "
-                        "2 vertices per point\n",
-                    info.drawn_strand_count, info.points_per_strand);
-            for (k = 0; k < nvert; ++k)
-                fprintf(fp, "v %.6f %.6f %.6f\n", vbuf[6 * k], vbuf[6 * k + 1],
-                        vbuf[6 * k + 2]);
-            for (k = 0; k < nvert; ++k) {
-                /* vt: root uv of the strand (hairfur stores it per strand) */
-                uv = info.strands[k / (2 * info.points_per_strand)].uv;
-                fprintf(fp, "vt %.6f %.6f\n", uv[0], uv[1]);
-            }
-            for (k = 0; k < n_idx; k += 3)
-                fprintf(fp, "f %u/%u %u/%u %u/%u\n", ibuf[k] + 1, ibuf[k] + 1,
-                        ibuf[k + 1] + 1, ibuf[k + 1] + 1, ibuf[k + 2] + 1,
-                        ibuf[k + 2] + 1);
-        } else {
-            fprintf(fp,
-                    "ply\nformat binary_little_endian 1.0\n"
-                    "comment hairfur.h grow_fur ribbons\n"
-                    "element vertex %lld\nproperty float x\nproperty float y\n"
-                    "property float z\nproperty float nx\nproperty float ny\n"
-                    "property float nz\nproperty uchar red\nproperty uchar "
-                    "green\nproperty uchar blue\n"
-                    "element face %lld\nproperty list uchar uint "
-                    "vertex_indices\nend_header\n",
-                    nvert, n_idx / 3);
-            for (k = 0; k < nvert; ++k) {
-                const float *c =
-                    info.strand_colors + 4 * (k / (2 * info.points_per_strand));
-                unsigned char rgb[3];
-                int q;
-                for (q = 0; q < 3; ++q)
-                    rgb[q] = (unsigned char)(255.0f * (c[q] < 0 ? 0 : c[q] > 1 ? 1 : c[q]) + 0.5f);
-                fwrite(vbuf + 6 * k, 4, 6, fp); /* little-endian hosts */
-                fwrite(rgb, 1, 3, fp);
-            }
-            for (k = 0; k < n_idx; k += 3) {
-                unsigned char three = 3;
-                fwrite(&three, 1, 1, fp);
-                fwrite(ibuf + k, 4, 3, fp);
-            }
-        }
-        if (fclose(fp) != 0) {
-            fprintf(stderr, "grow_fur: error writing %s\n", out_path);
-            return 1;
-        }
-        printf("wrote %s: %lld vertices, %lld triangles\n", out_path, nvert,
-               n_idx / 3);
+                          HF_TRIANGLES, ibuf, n_idx) != HF_OK) {
+        free(ibuf);
+        return 0;
     }
+    if (ends_with(out_path, ".hair") || o->curves_out) {
+        free(ibuf);
+        return write_curves(out_path, &info);
+    }
+    fp = fopen(out_path, "wb");
+    nvert = 2LL * info.drawn_strand_count * info.points_per_strand;
+    if (!fp) {
+        fprintf(stderr, "grow_fur: cannot write %s\n", out_path);
+        free(ibuf);
+        return 0;
+    }
+    if (ends_with(out_path, ".obj"))
+        write_obj(fp, &info, vbuf, nvert, ibuf, n_idx);
+    else
+        write_ply(fp, &info, vbuf, nvert, ibuf, n_idx);
+    free(ibuf);
+    if (fclose(fp) != 0) {
+        fprintf(stderr, "grow_fur: error writing %s\n", out_path);
+        return 0;
+    }
+    printf("wrote %s: %lld vertices, %lld triangles\n", out_path, nvert,
+           n_idx / 3);
+    return 1;
+}
+
+int main(int argc, char **argv)
+{
+    gf_options o;
+    gf_mesh g;
+    cv_curves curves;
+    hf_map density, length, color;
+    int have_density = 0, have_length = 0, have_color = 0, rc;
+    hf_fur_desc desc;
+    hf_rope_params rp;
+    hf_fur *fur;
+    hf_fur_info info;
+    gf_times t;
+    float *vbuf;
+
+    if ((rc = parse_args(argc, argv, &o)) >= 0) return rc;
+    if ((rc = check_args(&o, &curves)) >= 0) return rc;
+    if (!load_rest_mesh(&o, &g)) return 1;
+    place_colliders_and_eye(&o, &g);
+    /* the maps: files, or the built-in ones for the built-in head */
+    if (!get_map(o.density_path, 1, !o.mesh_path, hm_hairline_density, 256,
+                 &density, &have_density) ||
+        !get_map(o.length_path, 1, !o.mesh_path, hm_bangs_length, 256, &length,
+                 &have_length) ||
+        !get_map(o.color_path, 3, !o.mesh_path, hm_hair_color, 64, &color,
+                 &have_color))
+        return 1;
+    if (!fill_desc(&o, &g, &curves, have_density ? &density : NULL,
+                   have_length ? &length : NULL, have_color ? &color : NULL,
+                   &rp, &desc))
+        return 1;
+    if (!(fur = create_fur(&o, &g, &curves, &desc))) return 1;
+
+    /* per frame: measured apart from what is written afterwards */
+    hf_fur_get_info(fur, &info);
+    vbuf = (float *)malloc(sizeof(float) * 12u * 2u * (size_t)info.strand_count *
+                           (size_t)info.points_per_strand);
+    t.roots = (double *)malloc(sizeof(double) * 6u * (size_t)o.frames);
+    if (!vbuf || !t.roots) return 1;
+    t.sim = t.roots + o.frames;
+    t.guides = t.sim + o.frames;
+    t.interp = t.guides + o.frames;
+    t.ribbons = t.interp + o.frames;
+    t.grid = t.roots + 5 * o.frames;
+    if (!run_frames(&o, &g, fur, &desc.mesh, vbuf, &t)) return 1;
+    report_frames(&o, fur, &t);
+    if (!export_last_frame(&o, fur, vbuf)) return 1;
 
     hf_fur_destroy(fur);
     cv_free(&curves);
-    free(rest);
-    free(skin);
-    free(idx);
+    free(g.rest);
+    free(g.idx);
     free(vbuf);
-    free(ibuf);
-    free(t_roots);
+    free(t.roots);
     /* stb_image's buffers come from malloc too (no STBI_MALLOC here) */
     if (have_density) free((void *)density.data);
     if (have_length) free((void *)length.data);

@@ -136,6 +136,78 @@ static int fail(const char *what, hf_result r)
     return 1;
 }
 
+/* The LOD order: prefixes of the same array of roots (5 %, 20 % and all
+   n of them) over the density map: grow_lod.png. 0, or main's exit
+   code. */
+static int draw_lod(const char *dir, const hf_map *dmap, const float *roots,
+                    int n)
+{
+    static const unsigned char root_c[3] = {250, 230, 140};
+    image im;
+    int i;
+    const float frac[3] = {0.05f, 0.2f, 1.0f};
+    const int P = 340, gap = 10;
+    int p;
+    im = image_new(3 * P + 2 * gap, P);
+    for (p = 0; p < 3; ++p) {
+        int m = (int)(frac[p] * (float)n);
+        draw_map(&im, dmap, p * (P + gap), P);
+        for (i = 0; i < m; ++i)
+            dot(&im, p * (P + gap) + roots[3 * i] * (P - 1),
+                roots[3 * i + 1] * (P - 1), 1, root_c);
+    }
+    if (!write_png(dir, "grow_lod.png", &im)) return 1;
+    free(im.rgb);
+    return 0;
+}
+
+/* Three samplers on one triangle, 2,000 roots each: corner-biased,
+   uniform, stratified: grow_samplers.png. 0, or main's exit code. */
+static int draw_samplers(const char *dir)
+{
+    hf_place_params pp;
+    hf_result r;
+    image im;
+    int i, y;
+    static const float tp3[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    static const uint32_t ti[3] = {0, 1, 2};
+    static const int smp[3] = {HF_SAMPLER_CORNER_BIASED,
+                                           HF_SAMPLER_UNIFORM,
+                                           HF_SAMPLER_STRATIFIED};
+    static const unsigned char bg[3] = {30, 34, 52},
+                               pt[3] = {250, 230, 140};
+    const int P = 340, gap = 10, N = 2000;
+    hf_mesh one;
+    hf_strand s[2000];
+    float rr[2000 * 3];
+    int p, j;
+    memset(&one, 0, sizeof one);
+    one.positions = tp3;
+    one.vertex_count = 3;
+    one.indices = ti;
+    one.triangle_count = 1;
+    im = image_new(3 * P + 2 * gap, P);
+    for (p = 0; p < 3; ++p) {
+        int cnt = 0;
+        memset(&pp, 0, sizeof pp);
+        pp.total_strands = N;
+        pp.sampler = smp[p];
+        pp.seed = 3;
+        if ((r = hf_place_strands(&one, NULL, &pp, s, N, &cnt, NULL)) !=
+            HF_OK)
+            return fail("hf_place_strands (one triangle)", r);
+        hf_strand_roots(&one, s, cnt, 0, cnt, rr);
+        for (y = 0; y < P; ++y)
+            for (j = 0; j + y < P; ++j) put(&im, p * (P + gap) + j, y, bg);
+        for (i = 0; i < cnt; ++i)
+            dot(&im, p * (P + gap) + rr[3 * i] * (P - 1),
+                rr[3 * i + 1] * (P - 1), 1, pt);
+    }
+    if (!write_png(dir, "grow_samplers.png", &im)) return 1;
+    free(im.rgb);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     const char *dir = argc > 1 ? argv[1] : ".";
@@ -149,7 +221,7 @@ int main(int argc, char **argv)
     hf_place_params pp;
     hf_strand *strands;
     float *roots;
-    int x, y, t = 0, n = 0, i, k;
+    int x, y, t = 0, n = 0, i, k, rc;
     hf_result r;
     image im;
     static const unsigned char edge[3] = {255, 170, 60},
@@ -252,62 +324,10 @@ int main(int argc, char **argv)
     if (!write_png(dir, "grow_roots.png", &im)) return 1;
     free(im.rgb);
 
-    /* 3. the LOD order: prefixes of the same array */
-    {
-        const float frac[3] = {0.05f, 0.2f, 1.0f};
-        const int P = 340, gap = 10;
-        int p;
-        im = image_new(3 * P + 2 * gap, P);
-        for (p = 0; p < 3; ++p) {
-            int m = (int)(frac[p] * (float)n);
-            draw_map(&im, &dmap, p * (P + gap), P);
-            for (i = 0; i < m; ++i)
-                dot(&im, p * (P + gap) + roots[3 * i] * (P - 1),
-                    roots[3 * i + 1] * (P - 1), 1, root_c);
-        }
-        if (!write_png(dir, "grow_lod.png", &im)) return 1;
-        free(im.rgb);
-    }
-
-    /* 4. three samplers on one triangle */
-    {
-        static const float tp3[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-        static const uint32_t ti[3] = {0, 1, 2};
-        static const int smp[3] = {HF_SAMPLER_CORNER_BIASED,
-                                               HF_SAMPLER_UNIFORM,
-                                               HF_SAMPLER_STRATIFIED};
-        static const unsigned char bg[3] = {30, 34, 52},
-                                   pt[3] = {250, 230, 140};
-        const int P = 340, gap = 10, N = 2000;
-        hf_mesh one;
-        hf_strand s[2000];
-        float rr[2000 * 3];
-        int p, j;
-        memset(&one, 0, sizeof one);
-        one.positions = tp3;
-        one.vertex_count = 3;
-        one.indices = ti;
-        one.triangle_count = 1;
-        im = image_new(3 * P + 2 * gap, P);
-        for (p = 0; p < 3; ++p) {
-            int cnt = 0;
-            memset(&pp, 0, sizeof pp);
-            pp.total_strands = N;
-            pp.sampler = smp[p];
-            pp.seed = 3;
-            if ((r = hf_place_strands(&one, NULL, &pp, s, N, &cnt, NULL)) !=
-                HF_OK)
-                return fail("hf_place_strands (one triangle)", r);
-            hf_strand_roots(&one, s, cnt, 0, cnt, rr);
-            for (y = 0; y < P; ++y)
-                for (j = 0; j + y < P; ++j) put(&im, p * (P + gap) + j, y, bg);
-            for (i = 0; i < cnt; ++i)
-                dot(&im, p * (P + gap) + rr[3 * i] * (P - 1),
-                    rr[3 * i + 1] * (P - 1), 1, pt);
-        }
-        if (!write_png(dir, "grow_samplers.png", &im)) return 1;
-        free(im.rgb);
-    }
+    /* 3. the LOD order; 4. three samplers on one triangle */
+    if ((rc = draw_lod(dir, &dmap, roots, n)) != 0 ||
+        (rc = draw_samplers(dir)) != 0)
+        return rc;
     free(strands);
     free(roots);
     free(to.indices);

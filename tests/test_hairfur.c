@@ -1,18 +1,47 @@
 /* test_hairfur.c - the unit tests of hairfur.h, one function per behaviour.
 
-   Build and run: make test (C and C++, -O2 and ASan+UBSan, gcc and clang).
-   Prints one line per failed check and ends with "N passed, N failed";
-   exits non-zero when anything failed.
+   Build and run: make test (C and C++, -O2 and ASan+UBSan, gcc and clang),
+   or make check (one build). Prints one line per failed check and ends
+   with "N passed, N failed", counting the tests that ran; exits non-zero
+   when anything failed. Arguments pick tests by the start of their names,
+   "test_" left out or not: build/test_gcc_c99 ropes_ fur_ runs the rope
+   and fur tests alone (make check T="ropes_ fur_"); --list names them.
 
-   Layout: the harness, then the helpers the tests share, then the tests in
-   the order of the sections of hairfur.h, then main, which runs them in that
-   order. Each section's test_bad_* tests are its part of the bad-input
-   matrix: for every public function each bad input it can get (NULL, zero
-   or negative counts, out-of-range indices, NaN and infinite values,
-   degenerate geometry, huge factors, bad time steps, the eye on a strand):
-   the result code, outputs untouched (sentinel-filled and compared), no
-   NaN; and the limits (counts near INT_MAX, byte sizes that would overflow
-   size_t). */
+   CONTENTS (the sections of hairfur.h, in its order; each list, right
+   after its section's tests, is what main runs)
+
+       harness               CHECK, CHECK_NEAR, CHECK_EQ_INT, RUN, the
+                             counting allocator
+       shared helpers        maps, meshes, tessellation, ropes, strands,
+                             ribbons, LUTs, the fur scene, bad input
+       1. configuration      T_CONFIG_TESTS
+       2. random numbers     T_RNG_TESTS
+       3. maps               T_MAP_TESTS
+       4. meshes             T_MESH_TESTS
+       5. grow               T_DENSITY_TESTS (5.1 estimators),
+                             T_TESS_TESTS (5.2 tessellation),
+                             T_GUIDES_TESTS (5.3), T_PLACE_TESTS (5.4),
+                             T_STRAND_TESTS (5.5 maps on strands, 5.6
+                             bindings)
+       6. ropes              T_ROPES_TESTS, T_CONTACT_TESTS (collisions
+                             that never stretch), T_GRID_TESTS (hair-hair
+                             interaction)
+       7. interpolation, LOD T_INTERP_TESTS
+       8. ribbons            T_RIBBON_TESTS
+       9. LUT baking         T_LUT_TESTS, T_FIBRE_TESTS (the
+                             energy-conserving fibre, dual scattering)
+      10. the fur object     T_FUR_TESTS
+       main                  the lists above, in that order
+
+   A new test goes into its section and onto the section's list: a test
+   left off the list is an unused static function, which the strict
+   warnings make an error. Each section's test_bad_* tests are its part
+   of the bad-input matrix: for every public function each bad input it
+   can get (NULL, zero or negative counts, out-of-range indices, NaN and
+   infinite values, degenerate geometry, huge factors, bad time steps,
+   the eye on a strand): the result code, outputs untouched
+   (sentinel-filled and compared), no NaN; and the limits (counts near
+   INT_MAX, byte sizes that would overflow size_t). */
 
 #define HAIRFUR_IMPLEMENTATION
 #include "../hairfur.h"
@@ -95,18 +124,21 @@ static const char *t_current;
 #define T_CALL(fn) fn()
 #endif
 
-/* Which tests run: every one, or (arguments) those whose names hold any
-   of the words given ("ropes grid": the rope and grid tests); --list
+/* Which tests run: every one, or (arguments) those whose names begin
+   with one of the prefixes given, with or without the "test_" ("ropes_
+   grid_": the rope and grid tests; "bad_" the bad-input matrix); --list
    prints the names it would run instead. */
 static int t_argc, t_list;
 static char **t_argv;
 static int t_pick(const char *name)
 {
+    const char *bare = strncmp(name, "test_", 5) ? name : name + 5;
     int i, any = 0, hit = 0;
     for (i = 1; i < t_argc; ++i) {
+        size_t n = strlen(t_argv[i]);
         if (!strcmp(t_argv[i], "--list")) continue;
         any = 1;
-        hit |= strstr(name, t_argv[i]) != NULL;
+        hit |= !strncmp(bare, t_argv[i], n) || !strncmp(name, t_argv[i], n);
     }
     if (any && !hit) return 0;
     if (t_list) {
@@ -1106,6 +1138,12 @@ static void test_simd_level_of_the_target(void)
           hf_simd_resolve(HF_SIMD_AUTO) == HF_SIMD_SCALAR);
 }
 
+/* 1. configuration, result codes, version: its tests, in the order they run */
+#define T_CONFIG_TESTS(X)                                                      \
+    X(test_result_strings_distinct)                                            \
+    X(test_version)                                                            \
+    X(test_simd_level_of_the_target)
+
 /* ==== 2. random numbers =================================================== */
 
 static void test_rng_matches_pcg32_reference(void)
@@ -1154,6 +1192,12 @@ static void test_rng_float_and_below_ranges(void)
     CHECK_EQ_INT(hf_rng_below(&r, 0u), 0);
     CHECK_EQ_INT(hf_rng_below(&r, 1u), 0);
 }
+
+/* 2. random numbers: its tests, in the order they run */
+#define T_RNG_TESTS(X)                                                         \
+    X(test_rng_matches_pcg32_reference)                                        \
+    X(test_rng_streams_and_copies)                                             \
+    X(test_rng_float_and_below_ranges)
 
 /* ==== 3. maps ============================================================= */
 
@@ -1432,6 +1476,17 @@ static void test_bad_map_validate_sample_blur(void)
     }
 }
 
+/* 3. maps: its tests, in the order they run */
+#define T_MAP_TESTS(X)                                                         \
+    X(test_map_sample_texel_centres_exact)                                     \
+    X(test_map_sample_bilinear_midpoints)                                      \
+    X(test_map_wrap_repeat_vs_clamp)                                           \
+    X(test_map_f32_multichannel_row_stride)                                    \
+    X(test_map_validate_errors)                                                \
+    X(test_map_blur_constant_impulse_and_sum)                                  \
+    X(test_map_blur_errors_and_allocator)                                      \
+    X(test_bad_map_validate_sample_blur)
+
 /* ==== 4. meshes =========================================================== */
 
 static void test_mesh_validate_interleaved_ok(void)
@@ -1651,6 +1706,16 @@ static void test_bad_odd_strides(void)
 
 /* ==== 5. grow ============================================================= */
 
+/* 4. meshes: its tests, in the order they run */
+#define T_MESH_TESTS(X)                                                        \
+    X(test_mesh_validate_interleaved_ok)                                       \
+    X(test_mesh_validate_errors)                                               \
+    X(test_triangle_area_exact)                                                \
+    X(test_mesh_normals_area_weighted)                                         \
+    X(test_mesh_normals_degenerate_fallback)                                   \
+    X(test_bad_mesh_validate_and_normals)                                      \
+    X(test_bad_odd_strides)
+
 /* ---- 5.1 density estimators ---------------------------------------------- */
 
 static void test_grow_record_sizes(void)
@@ -1835,6 +1900,15 @@ static void test_bad_uv_density(void)
     CHECK_EQ_INT(hf_uv_triangle_density(&m, a, a, a, 2, &d), HF_OK);
     CHECK(t_is_finite(d));
 }
+
+/* 5.1 density estimators: its tests, in the order they run */
+#define T_DENSITY_TESTS(X)                                                     \
+    X(test_grow_record_sizes)                                                  \
+    X(test_density_estimators_agree_on_constant_map)                           \
+    X(test_density_estimators_order_on_gradient)                               \
+    X(test_density_area_and_edges_exact)                                       \
+    X(test_density_bad_input)                                                  \
+    X(test_bad_uv_density)
 
 /* ---- 5.2 tessellation ---------------------------------------------------- */
 
@@ -2402,6 +2476,17 @@ static void test_bad_tess_evaluate(void)
 #undef TB_EVAL
 }
 
+/* 5.2 tessellation: its tests, in the order they run */
+#define T_TESS_TESTS(X)                                                        \
+    X(test_tess_constant_map_power_of_three)                                   \
+    X(test_tess_output_properties)                                             \
+    X(test_tess_evaluate_ranges_and_normals)                                   \
+    X(test_tess_caps_write_nothing)                                            \
+    X(test_tess_bad_input)                                                     \
+    X(test_tess_same_seed_same_bytes)                                          \
+    X(test_bad_tessellate)                                                     \
+    X(test_bad_tess_evaluate)
+
 /* ---- 5.3 guides ---------------------------------------------------------- */
 
 /* A cube of side 2 as an engine stores it: 24 vertices (4 per face, with
@@ -2754,6 +2839,13 @@ static void test_bad_guides_rest(void)
     CHECK(tb_finite(pts, sizeof pts / sizeof pts[0]));
 #undef TB_GUIDES
 }
+
+/* 5.3 guides: its tests, in the order they run */
+#define T_GUIDES_TESTS(X)                                                      \
+    X(test_guides_weld_and_rest_shape)                                         \
+    X(test_guides_combing)                                                     \
+    X(test_guides_bad_input)                                                   \
+    X(test_bad_guides_rest)
 
 /* ---- 5.4 placement ------------------------------------------------------- */
 
@@ -3243,6 +3335,17 @@ static void test_bad_place_strands(void)
 #undef TB_PLACE
 }
 
+/* 5.4 placement: its tests, in the order they run */
+#define T_PLACE_TESTS(X)                                                       \
+    X(test_place_uniform_chi_square)                                           \
+    X(test_place_stratified_fewer_clumps_and_holes)                            \
+    X(test_place_total_matches_density_integral)                               \
+    X(test_place_lod_prefix_covers_surface)                                    \
+    X(test_place_same_seed_same_bytes)                                         \
+    X(test_place_bad_input)                                                    \
+    X(test_place_skips_zero_area_triangles)                                    \
+    X(test_bad_place_strands)
+
 /* ---- 5.5 maps on strands, 5.6 bindings ----------------------------------- */
 
 static void test_strand_lengths_and_colors(void)
@@ -3495,6 +3598,12 @@ static void test_bad_strand_functions(void)
     CHECK(b[0].length_scale == 1.0f && t_is_finite(b[1].length_scale));
 #undef TB_BIND
 }
+
+/* 5.5 maps on strands, 5.6 bindings: its tests, in the order they run */
+#define T_STRAND_TESTS(X)                                                      \
+    X(test_strand_lengths_and_colors)                                          \
+    X(test_grow_end_to_end_bindings)                                           \
+    X(test_bad_strand_functions)
 
 /* ==== 6. ropes ============================================================ */
 
@@ -4936,6 +5045,34 @@ static void test_defaults_explicit_zero(void)
     tr_close(&a);
 }
 
+/* 6. ropes: its tests, in the order they run */
+#define T_ROPES_TESTS(X)                                                       \
+    X(test_ropes_params_defaults_and_validation)                               \
+    X(test_ropes_memory_init_create)                                           \
+    X(test_ropes_hanging_settles)                                              \
+    X(test_ropes_shape_kept_by_moving_frame)                                   \
+    X(test_ropes_collider_sweep_never_penetrates)                              \
+    X(test_ropes_mode_switch_no_jump)                                          \
+    X(test_ropes_mode_switch_smooth)                                           \
+    X(test_ropes_bad_time_steps)                                               \
+    X(test_ropes_ranges_byte_identical)                                        \
+    X(test_ropes_chunks_byte_identical)                                        \
+    X(test_ropes_root_frames)                                                  \
+    X(test_ropes_reset_teleport)                                               \
+    X(test_ropes_root_and_local_stiffness)                                     \
+    X(test_ropes_swinging_head)                                                \
+    X(test_ropes_max_stretch_exact)                                            \
+    X(test_ropes_wind_and_turbulence)                                          \
+    X(test_ropes_distance_solver_iterations)                                   \
+    X(test_ropes_get_positions)                                                \
+    X(test_ropes_set_roots_lanes)                                              \
+    X(test_ropes_safety_net_resets)                                            \
+    X(test_ropes_contacts_match_scalar)                                        \
+    X(test_ropes_contacts_degenerate_lanes)                                    \
+    X(test_ropes_simd_lanes_match_scalar)                                      \
+    X(test_defaults_zeroed_rope_params_are_init)                               \
+    X(test_defaults_explicit_zero)
+
 /* ---- collisions that never stretch ---- */
 
 /* One rope hanging past a capsule: one step keeps every segment (the
@@ -5603,6 +5740,18 @@ static void test_ropes_crowded_colliders(void)
     for (k = 0; k < NSET; ++k) tr_close(&s[k]);
 }
 
+/* 6. ropes: collisions that never stretch: its tests, in the order they run */
+#define T_CONTACT_TESTS(X)                                                     \
+    X(test_ropes_capsule_keeps_length)                                         \
+    X(test_ropes_roots_inside_colliders)                                       \
+    X(test_ropes_collision_soak)                                               \
+    X(test_ropes_copy_range)                                                   \
+    X(test_ropes_many_colliders)                                               \
+    X(test_ropes_far_colliders_same_bytes)                                     \
+    X(test_ropes_body_proxies)                                                 \
+    X(test_ropes_resting_on_joint)                                             \
+    X(test_ropes_crowded_colliders)
+
 /* ---- ropes: hair-hair interaction on a grid ------------------------------ */
 
 typedef struct tg_grid {
@@ -5910,82 +6059,6 @@ static void test_grid_bad_input(void)
     free(t.mem);
 }
 
-/* hf_fur_settle_rest drapes grown hair: its tips fall, it keeps its
-   lengths, it is at rest in the new shape (stiff hair held there stays),
-   and bad input is refused with nothing changed. */
-static void test_fur_settle_rest(void)
-{
-    t_fur_scene sc;
-    hf_fur *f = NULL;
-    hf_fur_info info;
-    hf_collider ball;
-    hf_rope_params p;
-    float st, *before, *settled;
-    size_t n;
-    double tip0 = 0.0, tip1 = 0.0, moved = 0.0;
-    int g, k;
-    t_fur_scene_init(&sc, 0.1f);
-    sc.desc.max_length = 0.2f;
-    sc.desc.grid_resolution = 16;
-    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
-    if (!f) return;
-    hf_fur_get_info(f, &info);
-    CHECK_EQ_INT(info.grid_resolution, 16);
-    n = (size_t)info.guide_count * 8u * 3u;
-    before = (float *)malloc(n * sizeof(float));
-    settled = (float *)malloc(n * sizeof(float));
-    memcpy(before, info.guide_points, n * sizeof(float));
-    tr_head_sphere(&ball);
-    CHECK_EQ_INT(hf_fur_settle_rest(f, -1.0f, &ball, 1), HF_ERROR_BAD_PARAMETER);
-    CHECK_EQ_INT(hf_fur_settle_rest(f, (float)NAN, &ball, 1),
-                 HF_ERROR_BAD_PARAMETER);
-    CHECK_EQ_INT(hf_fur_settle_rest(f, 1.0f, NULL, 1), HF_ERROR_NULL_POINTER);
-    CHECK_EQ_INT(hf_fur_settle_rest(NULL, 1.0f, NULL, 0),
-                 HF_ERROR_NULL_POINTER);
-    CHECK(memcmp(before, info.guide_points, n * sizeof(float)) == 0);
-    CHECK_EQ_INT(hf_fur_settle_rest(f, 1.5f, &ball, 1), HF_OK);
-    memcpy(settled, info.guide_points, n * sizeof(float));
-    for (g = 0; g < info.guide_count; ++g) {
-        tip0 += before[(g * 8 + 7) * 3 + 1] - before[(g * 8) * 3 + 1];
-        tip1 += settled[(g * 8 + 7) * 3 + 1] - settled[(g * 8) * 3 + 1];
-    }
-    CHECK(tip1 < tip0 - 0.02 * info.guide_count); /* 2 cm lower on average */
-    hf_fur_max_stretch(f, &st);
-    CHECK(st <= 1e-4f);
-    /* held stiffly, it stays where it settled */
-    hf_rope_params_init(&p);
-    p.global_stiffness_root = p.global_stiffness_tip = 1.0f;
-    hf_fur_set_rope_params(f, &p);
-    for (k = 0; k < 30; ++k) {
-        hf_fur_build_grid(f, 0, info.grid_resolution);
-        CHECK_EQ_INT(hf_fur_simulate(f, 0, info.guide_count, 1.0f / 60.0f,
-                                     &ball, 1),
-                     HF_OK);
-    }
-    for (k = 0; k < (int)n; ++k) {
-        double d = fabs((double)info.guide_points[k] - settled[k]);
-        moved = d > moved ? d : moved;
-    }
-    CHECK(moved < 2e-3);
-    CHECK_EQ_INT(hf_fur_build_grid(f, 0, 17), HF_ERROR_BAD_RANGE);
-    hf_fur_destroy(f);
-    /* no grid: the empty range only; a bad resolution refused */
-    sc.desc.grid_resolution = 0;
-    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
-    if (f) {
-        CHECK_EQ_INT(hf_fur_build_grid(f, 0, 0), HF_OK);
-        CHECK_EQ_INT(hf_fur_build_grid(f, 0, 1), HF_ERROR_BAD_RANGE);
-        CHECK_EQ_INT(hf_fur_settle_rest(f, 0.2f, NULL, 0), HF_OK);
-        hf_fur_destroy(f);
-    }
-    sc.desc.grid_resolution = 3;
-    f = NULL;
-    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_ERROR_BAD_PARAMETER);
-    CHECK(f == NULL);
-    free(before);
-    free(settled);
-}
-
 static void test_bad_rope_params(void)
 {
     hf_rope_params p, b;
@@ -6212,6 +6285,17 @@ static void test_bad_ropes_step(void)
     CHECK_EQ_INT(hf_ropes_get_positions(&t.r, 0, 3, NULL, 0), HF_ERROR_NULL_POINTER);
     free(t.mem);
 }
+
+/* 6. ropes: hair-hair interaction on a grid: its tests, in the order they run */
+#define T_GRID_TESTS(X)                                                        \
+    X(test_grid_volume_spreads_hair)                                           \
+    X(test_grid_friction_moves_hair_together)                                  \
+    X(test_grid_splits_same_bytes)                                             \
+    X(test_grid_bad_input)                                                     \
+    X(test_bad_rope_params)                                                    \
+    X(test_bad_ropes_memory_and_limits)                                        \
+    X(test_bad_ropes_set_rest_and_roots)                                       \
+    X(test_bad_ropes_step)
 
 /* ==== 7. interpolation and LOD ============================================ */
 
@@ -6498,6 +6582,17 @@ static void test_lod_strand_count_exact(void)
     CHECK_EQ_INT(hf_lod_strand_count(1000, 0.0015f), 2);
     CHECK_EQ_INT(hf_lod_strand_count(7, 1.0f), 7);
 }
+
+/* 7. interpolation and LOD: its tests, in the order they run */
+#define T_INTERP_TESTS(X)                                                      \
+    X(test_interp_on_guide_equals_guide)                                       \
+    X(test_interp_linear_in_barycentrics)                                      \
+    X(test_interp_simd_matches_scalar_reference)                               \
+    X(test_interp_length_scale_and_clump)                                      \
+    X(test_interp_errors_write_nothing)                                        \
+    X(test_lod_counts_and_widths_exact)                                        \
+    X(test_bad_interpolate_and_lod)                                            \
+    X(test_lod_strand_count_exact)
 
 /* ==== 8. ribbons ========================================================== */
 
@@ -8535,6 +8630,38 @@ static void test_out_first_interpolate_and_ribbons(void)
     CHECK_EQ_INT(hf_ribbons(&st, 0, 1, &rp, &o), HF_ERROR_BAD_RANGE);
 }
 
+/* 8. ribbons: its tests, in the order they run */
+#define T_RIBBON_TESTS(X)                                                      \
+    X(test_half_widths_every_p)                                                \
+    X(test_ribbons_perpendicular_and_widths)                                   \
+    X(test_ribbons_degenerate_never_nan)                                       \
+    X(test_ribbons_nonfinite_strand_collapses)                                 \
+    X(test_ribbons_ranges_byte_identical)                                      \
+    X(test_streaming_by_size)                                                  \
+    X(test_ribbons_nontemporal)                                                \
+    X(test_ribbons_streamed_lines)                                             \
+    X(test_ribbons_separate_streams_and_skips)                                 \
+    X(test_ribbons_errors_write_nothing)                                       \
+    X(test_ribbons_leading_tangent)                                            \
+    X(test_ribbons_every_level_matches_reference)                              \
+    X(test_streams_cross_matches_brute_force)                                  \
+    X(test_ribbons_run_layouts_every_level)                                    \
+    X(test_ribbons_table_layouts)                                              \
+    X(test_format_encoders)                                                    \
+    X(test_points_every_level)                                                 \
+    X(test_points_compact)                                                     \
+    X(test_ribbon_scratch_in_page)                                             \
+    X(test_widths_at_the_bound)                                                \
+    X(test_simd_kernels_leave_upper_clean)                                     \
+    X(test_ribbons_compact_formats)                                            \
+    X(test_ribbon_indices)                                                     \
+    X(test_ribbon_winding_faces_camera)                                        \
+    X(test_ribbon_sides_never_twist)                                           \
+    X(test_bad_ribbons)                                                        \
+    X(test_defaults_zeroed_ribbon_params_draw)                                 \
+    X(test_ribbon_indices16)                                                   \
+    X(test_out_first_interpolate_and_ribbons)
+
 /* ==== 9. LUT baking: the Marschner M and N textures ======================= */
 
 /* Expected numbers are the spot values, texel table and channel sums of
@@ -9321,6 +9448,31 @@ static void test_lut_texel_centres(void)
     free(t);
 }
 
+/* 9. LUT baking: its tests, in the order they run */
+#define T_LUT_TESTS(X)                                                         \
+    X(test_lut_params_init_defaults)                                           \
+    X(test_lut_validate_codes)                                                 \
+    X(test_lut_n_spot_values)                                                  \
+    X(test_lut_n_closed_forms)                                                 \
+    X(test_lut_m_spot_values)                                                  \
+    X(test_lut_texels_n64)                                                     \
+    X(test_lut_channel_sums_n64)                                               \
+    X(test_lut_m_symmetric)                                                    \
+    X(test_lut_m_unit_area)                                                    \
+    X(test_lut_n_energy_identity)                                              \
+    X(test_lut_n_energy_no_absorption)                                         \
+    X(test_lut_n_caustic_clamp)                                                \
+    X(test_lut_n_conformance)                                                  \
+    X(test_lut_extremes_finite)                                                \
+    X(test_lut_extremes_full_size)                                             \
+    X(test_lut_invalid_writes_nothing)                                         \
+    X(test_lut_row_splits_identical)                                           \
+    X(test_lut_rgb_matches_scalar)                                             \
+    X(test_lut_n_mirror_columns)                                               \
+    X(test_lut_to_u8)                                                          \
+    X(test_lut_eval_errors)                                                    \
+    X(test_lut_texel_centres)
+
 /* ---- the energy-conserving fibre, the furnace, dual scattering ----------- */
 
 /* A reference written from docs/marschner-spec.md sections 14 to 16, apart
@@ -9988,6 +10140,18 @@ static void test_defaults_zeroed_lut_params_are_init(void)
     free(b);
 }
 
+/* 9. LUT baking: the energy-conserving fibre: its tests, in the order they run */
+#define T_FIBRE_TESTS(X)                                                       \
+    X(test_lut_energy_params)                                                  \
+    X(test_lut_energy_m_reference)                                             \
+    X(test_lut_energy_m_normalised)                                            \
+    X(test_lut_energy_n_reference)                                             \
+    X(test_lut_furnace)                                                        \
+    X(test_lut_dual_reference)                                                 \
+    X(test_lut_energy_contracts)                                               \
+    X(test_bad_lut)                                                            \
+    X(test_defaults_zeroed_lut_params_are_init)
+
 /* ==== 10. the fur object ================================================== */
 
 static void test_fur_create_counts_and_welding(void)
@@ -10554,9 +10718,82 @@ static int t_distinct_tips(const hf_fur_info *info)
     return n;
 }
 
-/* clump_size: with clump 1 every tip lands on its leader's, so there are
-   as many distinct tips as leaders: few for large clumps, more for small
-   ones; leaders are clump_size apart. Ranges give the same bytes. */
+/* hf_fur_settle_rest drapes grown hair: its tips fall, it keeps its
+   lengths, it is at rest in the new shape (stiff hair held there stays),
+   and bad input is refused with nothing changed. */
+static void test_fur_settle_rest(void)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    hf_collider ball;
+    hf_rope_params p;
+    float st, *before, *settled;
+    size_t n;
+    double tip0 = 0.0, tip1 = 0.0, moved = 0.0;
+    int g, k;
+    t_fur_scene_init(&sc, 0.1f);
+    sc.desc.max_length = 0.2f;
+    sc.desc.grid_resolution = 16;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (!f) return;
+    hf_fur_get_info(f, &info);
+    CHECK_EQ_INT(info.grid_resolution, 16);
+    n = (size_t)info.guide_count * 8u * 3u;
+    before = (float *)malloc(n * sizeof(float));
+    settled = (float *)malloc(n * sizeof(float));
+    memcpy(before, info.guide_points, n * sizeof(float));
+    tr_head_sphere(&ball);
+    CHECK_EQ_INT(hf_fur_settle_rest(f, -1.0f, &ball, 1), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_fur_settle_rest(f, (float)NAN, &ball, 1),
+                 HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_INT(hf_fur_settle_rest(f, 1.0f, NULL, 1), HF_ERROR_NULL_POINTER);
+    CHECK_EQ_INT(hf_fur_settle_rest(NULL, 1.0f, NULL, 0),
+                 HF_ERROR_NULL_POINTER);
+    CHECK(memcmp(before, info.guide_points, n * sizeof(float)) == 0);
+    CHECK_EQ_INT(hf_fur_settle_rest(f, 1.5f, &ball, 1), HF_OK);
+    memcpy(settled, info.guide_points, n * sizeof(float));
+    for (g = 0; g < info.guide_count; ++g) {
+        tip0 += before[(g * 8 + 7) * 3 + 1] - before[(g * 8) * 3 + 1];
+        tip1 += settled[(g * 8 + 7) * 3 + 1] - settled[(g * 8) * 3 + 1];
+    }
+    CHECK(tip1 < tip0 - 0.02 * info.guide_count); /* 2 cm lower on average */
+    hf_fur_max_stretch(f, &st);
+    CHECK(st <= 1e-4f);
+    /* held stiffly, it stays where it settled */
+    hf_rope_params_init(&p);
+    p.global_stiffness_root = p.global_stiffness_tip = 1.0f;
+    hf_fur_set_rope_params(f, &p);
+    for (k = 0; k < 30; ++k) {
+        hf_fur_build_grid(f, 0, info.grid_resolution);
+        CHECK_EQ_INT(hf_fur_simulate(f, 0, info.guide_count, 1.0f / 60.0f,
+                                     &ball, 1),
+                     HF_OK);
+    }
+    for (k = 0; k < (int)n; ++k) {
+        double d = fabs((double)info.guide_points[k] - settled[k]);
+        moved = d > moved ? d : moved;
+    }
+    CHECK(moved < 2e-3);
+    CHECK_EQ_INT(hf_fur_build_grid(f, 0, 17), HF_ERROR_BAD_RANGE);
+    hf_fur_destroy(f);
+    /* no grid: the empty range only; a bad resolution refused */
+    sc.desc.grid_resolution = 0;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (f) {
+        CHECK_EQ_INT(hf_fur_build_grid(f, 0, 0), HF_OK);
+        CHECK_EQ_INT(hf_fur_build_grid(f, 0, 1), HF_ERROR_BAD_RANGE);
+        CHECK_EQ_INT(hf_fur_settle_rest(f, 0.2f, NULL, 0), HF_OK);
+        hf_fur_destroy(f);
+    }
+    sc.desc.grid_resolution = 3;
+    f = NULL;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_ERROR_BAD_PARAMETER);
+    CHECK(f == NULL);
+    free(before);
+    free(settled);
+}
+
 /* hf_fur_settle_rest on a groom (with a grid): its guides drape, their
    lengths kept. */
 static void test_fur_groom_settle_rest(void)
@@ -10663,6 +10900,9 @@ static void test_fur_clump_leaders_nearest(void)
     }
 }
 
+/* clump_size: with clump 1 every tip lands on its leader's, so there are
+   as many distinct tips as leaders: few for large clumps, more for small
+   ones; leaders are clump_size apart. Ranges give the same bytes. */
 static void test_fur_clump_size(void)
 {
     t_fur_scene sc;
@@ -12185,7 +12425,46 @@ static void test_fur_kernels_same_bytes(void)
     hf_fur_destroy(f);
 }
 
-/* ==== main: every test, in the order above ================================ */
+/* 10. the fur object: its tests, in the order they run */
+#define T_FUR_TESTS(X)                                                         \
+    X(test_fur_create_counts_and_welding)                                      \
+    X(test_fur_comb)                                                           \
+    X(test_fur_guide_curves)                                                   \
+    X(test_fur_styling)                                                        \
+    X(test_fur_groom)                                                          \
+    X(test_fur_settle_rest)                                                    \
+    X(test_fur_groom_settle_rest)                                              \
+    X(test_fur_clump_leaders_nearest)                                          \
+    X(test_fur_clump_size)                                                     \
+    X(test_ribbon_strand_widths)                                               \
+    X(test_fur_groom_scalp)                                                    \
+    X(test_fur_control_maps)                                                   \
+    X(test_diagnostics_read_back)                                              \
+    X(test_fur_no_allocation_per_frame)                                        \
+    X(test_fur_points_aligned)                                                 \
+    X(test_fur_ranges_byte_identical)                                          \
+    X(test_interp_points_kernels)                                              \
+    X(test_fur_interpolate_points)                                             \
+    X(test_fur_lod_prefix_and_width)                                           \
+    X(test_fur_lod_guides_wake_without_jump)                                   \
+    X(test_fur_bad_desc_and_out_of_memory)                                     \
+    X(test_fur_same_seed_same_bytes)                                           \
+    X(test_fur_errors_per_frame)                                               \
+    X(test_bad_fur)                                                            \
+    X(test_defaults_fur_strand_count_precedence)                               \
+    X(test_out_first_fur_chunks)                                               \
+    X(test_fur_roots_inside_count)                                             \
+    X(test_fur_rope_params_range)                                              \
+    X(test_fur_set_rope_params_and_mode)                                       \
+    X(test_fur_controls_no_jump)                                               \
+    X(test_fur_mode_survives_lod)                                              \
+    X(test_fur_styled_strands_follow_guides)                                   \
+    X(test_fur_teleport)                                                       \
+    X(test_fur_kernels_same_bytes)
+
+/* ==== main: every section's list, in the order above ====================== */
+
+#define T_RUN_ONE(fn) RUN(fn);
 
 int main(int argc, char **argv)
 {
@@ -12193,224 +12472,27 @@ int main(int argc, char **argv)
     t_argc = argc;
     t_argv = argv;
     for (i = 1; i < argc; ++i) t_list |= !strcmp(argv[i], "--list");
-    /* 1. configuration, result codes, version */
-    RUN(test_result_strings_distinct);
-    RUN(test_version);
-    RUN(test_simd_level_of_the_target);
-
-    /* 2. random numbers */
-    RUN(test_rng_matches_pcg32_reference);
-    RUN(test_rng_streams_and_copies);
-    RUN(test_rng_float_and_below_ranges);
-
-    /* 3. maps */
-    RUN(test_map_sample_texel_centres_exact);
-    RUN(test_map_sample_bilinear_midpoints);
-    RUN(test_map_wrap_repeat_vs_clamp);
-    RUN(test_map_f32_multichannel_row_stride);
-    RUN(test_map_validate_errors);
-    RUN(test_map_blur_constant_impulse_and_sum);
-    RUN(test_map_blur_errors_and_allocator);
-    RUN(test_bad_map_validate_sample_blur);
-
-    /* 4. meshes */
-    RUN(test_mesh_validate_interleaved_ok);
-    RUN(test_mesh_validate_errors);
-    RUN(test_triangle_area_exact);
-    RUN(test_mesh_normals_area_weighted);
-    RUN(test_mesh_normals_degenerate_fallback);
-    RUN(test_bad_mesh_validate_and_normals);
-    RUN(test_bad_odd_strides);
-
-    /* 5. grow */
-    RUN(test_grow_record_sizes);
-    RUN(test_density_estimators_agree_on_constant_map);
-    RUN(test_density_estimators_order_on_gradient);
-    RUN(test_density_area_and_edges_exact);
-    RUN(test_density_bad_input);
-    RUN(test_bad_uv_density);
-    RUN(test_tess_constant_map_power_of_three);
-    RUN(test_tess_output_properties);
-    RUN(test_tess_evaluate_ranges_and_normals);
-    RUN(test_tess_caps_write_nothing);
-    RUN(test_tess_bad_input);
-    RUN(test_tess_same_seed_same_bytes);
-    RUN(test_bad_tessellate);
-    RUN(test_bad_tess_evaluate);
-    RUN(test_guides_weld_and_rest_shape);
-    RUN(test_guides_combing);
-    RUN(test_guides_bad_input);
-    RUN(test_bad_guides_rest);
-    RUN(test_place_uniform_chi_square);
-    RUN(test_place_stratified_fewer_clumps_and_holes);
-    RUN(test_place_total_matches_density_integral);
-    RUN(test_place_lod_prefix_covers_surface);
-    RUN(test_place_same_seed_same_bytes);
-    RUN(test_place_bad_input);
-    RUN(test_place_skips_zero_area_triangles);
-    RUN(test_bad_place_strands);
-    RUN(test_strand_lengths_and_colors);
-    RUN(test_grow_end_to_end_bindings);
-    RUN(test_bad_strand_functions);
-
-    /* 6. ropes */
-    RUN(test_ropes_params_defaults_and_validation);
-    RUN(test_ropes_memory_init_create);
-    RUN(test_ropes_hanging_settles);
-    RUN(test_ropes_shape_kept_by_moving_frame);
-    RUN(test_ropes_collider_sweep_never_penetrates);
-    RUN(test_ropes_mode_switch_no_jump);
-    RUN(test_ropes_mode_switch_smooth);
-    RUN(test_ropes_bad_time_steps);
-    RUN(test_ropes_ranges_byte_identical);
-    RUN(test_ropes_chunks_byte_identical);
-    RUN(test_ropes_root_frames);
-    RUN(test_ropes_reset_teleport);
-    RUN(test_ropes_root_and_local_stiffness);
-    RUN(test_ropes_swinging_head);
-    RUN(test_ropes_max_stretch_exact);
-    RUN(test_ropes_wind_and_turbulence);
-    RUN(test_ropes_distance_solver_iterations);
-    RUN(test_ropes_get_positions);
-    RUN(test_ropes_simd_lanes_match_scalar);
-    RUN(test_ropes_contacts_match_scalar);
-    RUN(test_ropes_contacts_degenerate_lanes);
-    RUN(test_ropes_set_roots_lanes);
-    RUN(test_ropes_safety_net_resets);
-    RUN(test_defaults_zeroed_rope_params_are_init);
-    RUN(test_defaults_explicit_zero);
-    RUN(test_ropes_capsule_keeps_length);
-    RUN(test_ropes_roots_inside_colliders);
-    RUN(test_ropes_collision_soak);
-    RUN(test_ropes_copy_range);
-    RUN(test_ropes_many_colliders);
-    RUN(test_ropes_far_colliders_same_bytes);
-    RUN(test_ropes_body_proxies);
-    RUN(test_ropes_resting_on_joint);
-    RUN(test_ropes_crowded_colliders);
-    RUN(test_grid_volume_spreads_hair);
-    RUN(test_grid_friction_moves_hair_together);
-    RUN(test_grid_splits_same_bytes);
-    RUN(test_grid_bad_input);
-    RUN(test_bad_rope_params);
-    RUN(test_bad_ropes_memory_and_limits);
-    RUN(test_bad_ropes_set_rest_and_roots);
-    RUN(test_bad_ropes_step);
-
-    /* 7. interpolation and LOD */
-    RUN(test_interp_on_guide_equals_guide);
-    RUN(test_interp_linear_in_barycentrics);
-    RUN(test_interp_simd_matches_scalar_reference);
-    RUN(test_interp_length_scale_and_clump);
-    RUN(test_interp_errors_write_nothing);
-    RUN(test_lod_counts_and_widths_exact);
-    RUN(test_bad_interpolate_and_lod);
-    RUN(test_lod_strand_count_exact);
-
-    /* 8. ribbons */
-    RUN(test_half_widths_every_p);
-    RUN(test_ribbons_perpendicular_and_widths);
-    RUN(test_ribbons_degenerate_never_nan);
-    RUN(test_ribbons_nonfinite_strand_collapses);
-    RUN(test_ribbons_ranges_byte_identical);
-    RUN(test_ribbons_nontemporal);
-    RUN(test_ribbons_streamed_lines);
-    RUN(test_streaming_by_size);
-    RUN(test_ribbons_separate_streams_and_skips);
-    RUN(test_ribbons_errors_write_nothing);
-    RUN(test_ribbons_leading_tangent);
-    RUN(test_ribbons_every_level_matches_reference);
-    RUN(test_streams_cross_matches_brute_force);
-    RUN(test_ribbons_run_layouts_every_level);
-    RUN(test_ribbons_table_layouts);
-    RUN(test_format_encoders);
-    RUN(test_points_every_level);
-    RUN(test_points_compact);
-    RUN(test_ribbon_scratch_in_page);
-    RUN(test_widths_at_the_bound);
-    RUN(test_simd_kernels_leave_upper_clean);
-    RUN(test_ribbons_compact_formats);
-    RUN(test_ribbon_indices);
-    RUN(test_ribbon_winding_faces_camera);
-    RUN(test_defaults_zeroed_ribbon_params_draw);
-    RUN(test_ribbon_indices16);
-    RUN(test_out_first_interpolate_and_ribbons);
-    RUN(test_ribbon_sides_never_twist);
-    RUN(test_bad_ribbons);
-
-    /* 9. LUT baking: the Marschner M and N textures */
-    RUN(test_lut_params_init_defaults);
-    RUN(test_lut_validate_codes);
-    RUN(test_lut_n_spot_values);
-    RUN(test_lut_n_closed_forms);
-    RUN(test_lut_m_spot_values);
-    RUN(test_lut_texels_n64);
-    RUN(test_lut_channel_sums_n64);
-    RUN(test_lut_m_symmetric);
-    RUN(test_lut_m_unit_area);
-    RUN(test_lut_n_energy_identity);
-    RUN(test_lut_n_energy_no_absorption);
-    RUN(test_lut_n_caustic_clamp);
-    RUN(test_lut_n_conformance);
-    RUN(test_lut_extremes_finite);
-    RUN(test_lut_extremes_full_size);
-    RUN(test_lut_invalid_writes_nothing);
-    RUN(test_lut_row_splits_identical);
-    RUN(test_lut_rgb_matches_scalar);
-    RUN(test_lut_n_mirror_columns);
-    RUN(test_lut_to_u8);
-    RUN(test_lut_eval_errors);
-    RUN(test_lut_texel_centres);
-    RUN(test_lut_energy_params);
-    RUN(test_lut_energy_m_reference);
-    RUN(test_lut_energy_m_normalised);
-    RUN(test_lut_energy_n_reference);
-    RUN(test_lut_furnace);
-    RUN(test_lut_dual_reference);
-    RUN(test_lut_energy_contracts);
-    RUN(test_defaults_zeroed_lut_params_are_init);
-    RUN(test_bad_lut);
-
-    /* 10. the fur object */
-    RUN(test_fur_create_counts_and_welding);
-    RUN(test_fur_comb);
-    RUN(test_fur_guide_curves);
-    RUN(test_fur_styling);
-    RUN(test_fur_groom);
-    RUN(test_fur_groom_scalp);
-    RUN(test_fur_clump_size);
-    RUN(test_fur_clump_leaders_nearest);
-    RUN(test_ribbon_strand_widths);
-    RUN(test_fur_control_maps);
-    RUN(test_diagnostics_read_back);
-    RUN(test_fur_no_allocation_per_frame);
-    RUN(test_fur_points_aligned);
-    RUN(test_fur_ranges_byte_identical);
-    RUN(test_fur_settle_rest);
-    RUN(test_fur_groom_settle_rest);
-    RUN(test_fur_interpolate_points);
-    RUN(test_interp_points_kernels);
-    RUN(test_fur_lod_prefix_and_width);
-    RUN(test_fur_lod_guides_wake_without_jump);
-    RUN(test_fur_bad_desc_and_out_of_memory);
-    RUN(test_fur_same_seed_same_bytes);
-    RUN(test_fur_errors_per_frame);
-    RUN(test_defaults_fur_strand_count_precedence);
-    RUN(test_out_first_fur_chunks);
-    RUN(test_fur_roots_inside_count);
-    RUN(test_fur_set_rope_params_and_mode);
-    RUN(test_fur_controls_no_jump);
-    RUN(test_fur_mode_survives_lod);
-    RUN(test_fur_styled_strands_follow_guides);
-    RUN(test_fur_teleport);
-    RUN(test_fur_kernels_same_bytes);
-    RUN(test_fur_rope_params_range);
-    RUN(test_bad_fur);
-
+    T_CONFIG_TESTS(T_RUN_ONE)
+    T_RNG_TESTS(T_RUN_ONE)
+    T_MAP_TESTS(T_RUN_ONE)
+    T_MESH_TESTS(T_RUN_ONE)
+    T_DENSITY_TESTS(T_RUN_ONE)
+    T_TESS_TESTS(T_RUN_ONE)
+    T_GUIDES_TESTS(T_RUN_ONE)
+    T_PLACE_TESTS(T_RUN_ONE)
+    T_STRAND_TESTS(T_RUN_ONE)
+    T_ROPES_TESTS(T_RUN_ONE)
+    T_CONTACT_TESTS(T_RUN_ONE)
+    T_GRID_TESTS(T_RUN_ONE)
+    T_INTERP_TESTS(T_RUN_ONE)
+    T_RIBBON_TESTS(T_RUN_ONE)
+    T_LUT_TESTS(T_RUN_ONE)
+    T_FIBRE_TESTS(T_RUN_ONE)
+    T_FUR_TESTS(T_RUN_ONE)
     if (t_list) return 0;
     if (t_passed + t_failed == 0) {
-        printf("no test's name holds any of the words given (--list lists "
-               "them)\n");
+        printf("no test's name begins with any of the prefixes given "
+               "(--list lists them)\n");
         return 1;
     }
     printf("%d passed, %d failed\n", t_passed, t_failed);
