@@ -11,7 +11,8 @@
 #     console.warn, anything on stderr, an uncaught error, an abort), a
 #     shader that does not compile, a GL error, a blank picture;
 #   - any console message in Chromium's log (a good run writes none; the
-#     browser's own WebGL warnings land there);
+#     browser's own WebGL warnings land there), but the performance notice
+#     a busy machine gives on the page's readPixels;
 #   - a blank screenshot (png_diff --stats: under 5 % of the pixels off
 #     the background);
 #   - a screenshot that differs from gl_marschner's headless render of the
@@ -107,8 +108,11 @@ elif [ -n "$title" ]; then
 else
     bad "no page in Chromium's output (log: $D/chromium.log)"
 fi
-if grep -q ':CONSOLE' "$D/chromium.log"; then
-    bad "console messages: $(grep ':CONSOLE' "$D/chromium.log" | head -n 10)"
+# Chromium's performance notice on the page's own readPixels ("GPU stall
+# due to ReadPixels", written when the machine is busy) is not a fault
+msgs=$(grep ':CONSOLE' "$D/chromium.log" | grep -v 'GPU stall due to ReadPixels')
+if [ -n "$msgs" ]; then
+    bad "console messages: $(printf '%s\n' "$msgs" | head -n 10)"
 else
     ok "no console message"
 fi
