@@ -101,7 +101,7 @@
 #define GLM_OPACITY_K 1.0f
 #define GLM_WIDTH_SPACING 0.66f  /* root width / mean strand spacing */
 /* Ribbons are drawn at least this many pixels wide, their alpha scaled
-   by the width they lost (GLM_COVERAGE_GLSL). */
+   by the width they lost (GLM_COVERAGE_GLSL; --min-width). */
 #define GLM_MIN_PX 1.0f
 /* OIT's depth weight grows e times every GLM_OIT_FALLOFF of the framing
    distance nearer (8 mm on the head, framed at 0.55 m), so the outer
@@ -135,6 +135,8 @@ typedef struct glm_options {
                            0: deep opacity maps */
     int no_dual;        /* 1: no dual scattering (single scattering only) */
     int no_hair;        /* 1: the body alone (a control picture) */
+    float min_px;       /* ribbons drawn at least this wide (pixels), their
+                           alpha scaled by the width lost; 0: as built */
     int no_oit;         /* 1: the hair blended in draw order with depth
                            writes (--no-oit); 0: weighted blended
                            order-independent transparency */
@@ -177,6 +179,7 @@ static void glm_default_options(glm_options *o)
     o->volume = 1.0f; /* the library's defaults */
     o->friction = 0.2f;
     o->grid = 32;
+    o->min_px = GLM_MIN_PX;
 }
 
 /* Interleaved per-vertex layouts. The dynamic stream is rewritten every
@@ -2371,7 +2374,7 @@ static void glm_draw(glm_app *a)
         glUniform2f(glGetUniformLocation(prog, "u_viewport"),
                     (float)a->o.width, (float)a->o.height);
         glUniform1f(glGetUniformLocation(prog, "u_min_px"),
-                    a->min_width ? GLM_MIN_PX : 0.0f);
+                    a->min_width ? a->o.min_px : 0.0f);
         glUniform1f(glGetUniformLocation(prog, "u_oit"), (float)oit);
         /* the weight's reference: about the front of the grown mesh */
         glUniform1f(glGetUniformLocation(prog, "u_oit_ref"),
@@ -2613,6 +2616,9 @@ static void glm_usage(FILE *fp)
 "                     transparency, McGuire and Bavoil 2013, where the GL\n"
 "                     can make its float targets)\n"
 "  --a2c              alpha to coverage instead of blending (no OIT)\n"
+"  --min-width PX     strands narrower than PX pixels on screen are drawn\n"
+"                     PX wide and faded by true width / PX (default 1;\n"
+"                     0: drawn as built, thin ones alias)\n"
 "  --lut-size N       Marschner LUT size (default 256)\n"
 "  --expand-shader F  the GPU expansion shader (examples/ribbon_expand.glsl)\n"
 "Camera (the default frames the grown mesh, whatever its size)\n"
@@ -2759,6 +2765,7 @@ static int glm_parse(int argc, char **argv, glm_options *o)
             else if (!strcmp(s, "--strands")) ok = glm_int(s, v, 1, 10000000, &o->strands);
             else if (!strcmp(s, "--lut-size")) ok = glm_int(s, v, 2, HF_LUT_MAX_SIZE, &o->lut_size);
             else if (!strcmp(s, "--distance")) ok = glm_real(s, v, 1e-3, 1e6, &o->distance);
+            else if (!strcmp(s, "--min-width")) ok = glm_real(s, v, 0.0, 64.0, &o->min_px);
             else if (!strcmp(s, "--lod")) ok = glm_real(s, v, 0.0, 1.0, &o->lod);
             else if (!strcmp(s, "--azimuth")) ok = glm_real(s, v, -1e6, 1e6, &o->azimuth);
             else if (!strcmp(s, "--elevation")) ok = glm_real(s, v, -89.0, 89.0, &o->elevation);
