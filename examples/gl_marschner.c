@@ -100,6 +100,14 @@
 #define GLM_LAYER_3 0.5f
 #define GLM_OPACITY_K 1.0f
 #define GLM_WIDTH_SPACING 0.66f  /* root width / mean strand spacing */
+/* Ribbons are drawn at least this many pixels wide, their alpha scaled
+   by the width they lost (GLM_COVERAGE_GLSL; --min-width). */
+#define GLM_MIN_PX 1.0f
+/* OIT's depth weight grows e times every GLM_OIT_FALLOFF of the framing
+   distance nearer (8 mm on the head, framed at 0.55 m), so the outer
+   layer of hair outweighs the hair a centimetre under it by 3.5 times
+   and hides the far side of the head; float32 targets hold its range. */
+#define GLM_OIT_FALLOFF 0.015f
 
 /* How each frame's strands reach the GL buffer they are drawn from:
    written straight into it, mapped (the default); into our memory, then
@@ -127,6 +135,11 @@ typedef struct glm_options {
                            0: deep opacity maps */
     int no_dual;        /* 1: no dual scattering (single scattering only) */
     int no_hair;        /* 1: the body alone (a control picture) */
+    float min_px;       /* ribbons drawn at least this wide (pixels), their
+                           alpha scaled by the width lost; 0: as built */
+    int no_oit;         /* 1: the hair blended in draw order with depth
+                           writes (--no-oit); 0: weighted blended
+                           order-independent transparency */
     int save_every;     /* > 0: write every Nth frame to out (a %d pattern) */
     float hair_length;  /* metres; 0 = 0.14 on the head, else 5 % of the
                            grown mesh's bounding-box diagonal */
@@ -166,6 +179,7 @@ static void glm_default_options(glm_options *o)
     o->volume = 1.0f; /* the library's defaults */
     o->friction = 0.2f;
     o->grid = 32;
+    o->min_px = GLM_MIN_PX;
 }
 
 /* Interleaved per-vertex layouts. The dynamic stream is rewritten every
@@ -261,6 +275,13 @@ typedef struct glm_app {
     GLuint vbo_head, ibo_head, vbo_line;
     GLuint tex_m, tex_n, tex_ramp, tex_density;
     GLuint tex_dual[HF_LUT_DUAL_PLANES]; /* hf_lut_bake_dual's planes */
+    GLuint tbo_pair, tbo_pair16; /* vbo_dyn, vbo_dyn16 as texture buffers:
+                                    the other side of a ribbon vertex */
+    int min_width;      /* the texture buffers fit: the 1-pixel clamp */
+    /* weighted blended OIT: accumulated colour (and the revealage in its
+       alpha) and the weights' sum, sharing the target's depth */
+    GLuint oit_fbo, tex_accum, tex_weight, prog_oit, vao_empty;
+    int oit_ok, oit_samples;
     float *line_buf;
     int line_count;
 } glm_app;
@@ -274,7 +295,34 @@ static double glm_now_ms(void)
 
 /* ---- shaders ------------------------------------------------------------ */
 
-/* CPU-ribbon vertex shader: everything comes from hf_fur_ribbons. */
+/* Strands narrower than a pixel (GLM_COVERAGE_GLSL, in every hair vertex
+   shader): a ribbon drawn narrower than u_min_px pixels on screen is
+   widened about its centre line to u_min_px, and its alpha scaled by
+   true width / drawn width, so a thin strand fades by its coverage
+   instead of breaking into the dotted line that rasterising a sliver
+   gives. p is this vertex, q the other vertex of its pair (the two
+   sides of one strand point); u_min_px 0 (the shadow passes) leaves
+   the ribbon as it is. */
+#define GLM_COVERAGE_GLSL                                                    \
+    "uniform vec2 u_viewport;   // target size, pixels\n"                    \
+    "uniform float u_min_px;    // 0: as built\n"                            \
+    "// widens p (its pair's other side q) to u_min_px on screen;\n"         \
+    "// returns the coverage, true width / drawn width\n"                   \
+    "float min_width(inout vec3 p, vec3 q) {\n"                              \
+    "    if (u_min_px <= 0.0) return 1.0;\n"                                 \
+    "    vec4 a = u_view_proj * vec4(p, 1.0), b = u_view_proj * vec4(q, 1.0);\n" \
+    "    if (a.w <= 0.0 || b.w <= 0.0) return 1.0;\n"                        \
+    "    float px = length((a.xy / a.w - b.xy / b.w) * 0.5 * u_viewport);\n" \
+    "    if (px >= u_min_px) return 1.0;\n"                                  \
+    "    vec3 c = 0.5 * (p + q);\n"                                          \
+    "    p = c + (p - c) * (u_min_px / max(px, 1e-3 * u_min_px));\n"        \
+    "    return px / u_min_px;\n"                                            \
+    "}\n"
+
+/* CPU-ribbon vertex shader: everything comes from hf_fur_ribbons. The
+   pair's other vertex (gl_VertexID ^ 1: hf_ribbon_indices numbers a
+   point's two sides 2k and 2k + 1) is read from the same buffer, bound
+   as a GL_RG32F texture buffer (glm_dyn: 3 texels a vertex, x y | z). */
 static const char *glm_vs_cpu =
     "#version 330 core\n"
     "layout(location = 0) in vec3 a_pos;\n"
@@ -283,18 +331,28 @@ static const char *glm_vs_cpu =
     "layout(location = 3) in vec4 a_color;\n"
     "layout(location = 4) in vec2 a_color3d;\n"
     "uniform mat4 u_view_proj;\n"
+    "uniform samplerBuffer u_pair;   // the dynamic buffer, GL_RG32F\n"
+    GLM_COVERAGE_GLSL
     "out vec3 v_position, v_tangent, v_texcoord;\n"
     "out vec4 v_color;\n"
     "out vec2 v_c3d;\n"
     "void main() {\n"
-    "    v_position = a_pos; v_tangent = a_tangent; v_texcoord = a_texcoord;\n"
-    "    v_color = a_color; v_c3d = a_color3d;\n"
-    "    gl_Position = u_view_proj * vec4(a_pos, 1.0);\n"
+    "    vec3 p = a_pos;\n"
+    "    float cov = 1.0;\n"
+    "    if (u_min_px > 0.0) {\n"
+    "        int o = 3 * (gl_VertexID ^ 1);\n"
+    "        cov = min_width(p, vec3(texelFetch(u_pair, o).xy,\n"
+    "                                texelFetch(u_pair, o + 1).x));\n"
+    "    }\n"
+    "    v_position = p; v_tangent = a_tangent; v_texcoord = a_texcoord;\n"
+    "    v_color = vec4(a_color.rgb, a_color.a * cov); v_c3d = a_color3d;\n"
+    "    gl_Position = u_view_proj * vec4(p, 1.0);\n"
     "}\n";
 
 /* --compact: the same, with the position undone from SNORM16 (GL gives
    a_pos in [-1, 1]) and the SNORM8 tangent renormalised, so the fragment
-   shader sees what glm_vs_cpu gives it. */
+   shader sees what glm_vs_cpu gives it. The pair's other vertex comes
+   from the 16-byte buffer bound as GL_RGBA16I (2 texels a vertex). */
 static const char *glm_vs_cpu16 =
     "#version 330 core\n"
     "layout(location = 0) in vec3 a_pos;      // (p - origin) / scale\n"
@@ -305,23 +363,35 @@ static const char *glm_vs_cpu16 =
     "uniform mat4 u_view_proj;\n"
     "uniform vec3 u_pos_origin;\n"
     "uniform float u_pos_scale;\n"
+    "uniform isamplerBuffer u_pair;  // the 16-byte buffer, GL_RGBA16I\n"
+    GLM_COVERAGE_GLSL
     "out vec3 v_position, v_tangent, v_texcoord;\n"
     "out vec4 v_color;\n"
     "out vec2 v_c3d;\n"
     "void main() {\n"
     "    vec3 p = u_pos_origin + u_pos_scale * a_pos;\n"
+    "    float cov = 1.0;\n"
+    "    if (u_min_px > 0.0) {\n"
+    "        vec3 q = vec3(texelFetch(u_pair, 2 * (gl_VertexID ^ 1)).xyz);\n"
+    "        q = u_pos_origin + u_pos_scale * max(q / 32767.0, vec3(-1.0));\n"
+    "        cov = min_width(p, q);\n"
+    "    }\n"
     "    v_position = p; v_tangent = normalize(a_tangent);\n"
-    "    v_texcoord = a_texcoord; v_color = a_color; v_c3d = a_color3d;\n"
+    "    v_texcoord = a_texcoord; v_c3d = a_color3d;\n"
+    "    v_color = vec4(a_color.rgb, a_color.a * cov);\n"
     "    gl_Position = u_view_proj * vec4(p, 1.0);\n"
     "}\n";
 
 /* Appended to ribbon_expand.glsl (whose main is renamed): the per-strand
    colour and 3D-colour x come from two more texture buffers, the fade from
-   t, so both paths feed the fragment shader the same values. */
+   t, so both paths feed the fragment shader the same values; a ribbon
+   narrower than a pixel is widened as the CPU ribbons are (its other
+   side mirrored about the strand point). */
 static const char *glm_vs_gpu_tail =
     "\nuniform samplerBuffer u_strand_color; // rgba per strand\n"
     "uniform samplerBuffer u_strand_c3x;     // 3D-colour x per strand\n"
     "uniform vec2 u_alpha;                   // alpha at root, tip\n"
+    GLM_COVERAGE_GLSL
     "out vec4 v_color;\n"
     "out vec2 v_c3d;\n"
     "void main() {\n"
@@ -329,7 +399,13 @@ static const char *glm_vs_gpu_tail =
     "    int s = (gl_VertexID >> 1) / u_points_per_strand;\n"
     "    vec4 c = texelFetch(u_strand_color, s);\n"
     "    float t = v_texcoord.z;\n"
-    "    v_color = vec4(c.rgb, c.a * mix(u_alpha.x, u_alpha.y, t));\n"
+    "    float cov = 1.0;\n"
+    "    if (u_min_px > 0.0) {\n"
+    "        vec3 m = hf_point(gl_VertexID >> 1).xyz;\n"
+    "        cov = min_width(v_position, 2.0 * m - v_position);\n"
+    "        gl_Position = u_view_proj * vec4(v_position, 1.0);\n"
+    "    }\n"
+    "    v_color = vec4(c.rgb, c.a * mix(u_alpha.x, u_alpha.y, t) * cov);\n"
     "    v_c3d = vec2(texelFetch(u_strand_c3x, s).r, t);\n"
     "}\n";
 
@@ -408,9 +484,12 @@ static const char *const glm_fs_hair_parts[4] = {
     "uniform float u_spec;            // 0 = diffuse + ambient only\n"
     "uniform float u_dual;            // 1 = dual scattering\n"
     "uniform float u_dither;          // alpha dither (alpha to coverage)\n"
-    "uniform vec3 u_eye, u_light_dir, u_light_color, u_ambient;\n",
+    "uniform vec3 u_eye, u_light_dir, u_light_color, u_ambient;\n"
+    "uniform float u_oit;             // 1: weighted blended OIT\n"
+    "uniform float u_oit_ref, u_oit_scale; // its depth weight (metres)\n",
     GLM_SHADOW_GLSL
-    "out vec4 o_color;\n"
+    "layout(location = 0) out vec4 o_color;\n"
+    "layout(location = 1) out vec4 o_weight; // OIT: the weights' sum\n"
     "const float PI = 3.14159265;\n"
     "const float cosMin = 1e-2;       // grazing theta_r guard\n"
     "const float d_f = 0.7, d_b = 0.7; // Zinke's density factors\n"
@@ -497,8 +576,19 @@ static const char *const glm_fs_hair_parts[4] = {
     "    // the tip fade to 4 levels, which shows as concentric shells\n"
     "    float n = fract(52.9829189 * fract(dot(gl_FragCoord.xy,\n"
     "                                           vec2(0.06711056, 0.00583715))));\n"
-    "    o_color = vec4(pow(c, vec3(1.0 / 2.2)),\n"
-    "                   clamp(v_color.a + u_dither * (n - 0.5), 0.0, 1.0));\n"
+    "    float alpha = clamp(v_color.a + u_dither * (n - 0.5), 0.0, 1.0);\n"
+    "    o_color = vec4(pow(c, vec3(1.0 / 2.2)), alpha);\n"
+    "    o_weight = vec4(0.0);\n"
+    "    if (u_oit != 0.0) {\n"
+    "        // McGuire and Bavoil 2013: the colour premultiplied and\n"
+    "        // weighted, nearer fragments weighing more (e times per\n"
+    "        // u_oit_scale metres); alpha multiplies the revealage\n"
+    "        float d = length(u_eye - v_position);\n"
+    "        float wt = alpha * clamp(exp((u_oit_ref - d) / u_oit_scale),\n"
+    "                                 1e-6, 1e6);\n"
+    "        o_color = vec4(o_color.rgb * wt, alpha);\n"
+    "        o_weight = vec4(wt, 0.0, 0.0, 0.0);\n"
+    "    }\n"
     "}\n"};
 
 /* The hair fragment shader, its parts joined (once). */
@@ -589,6 +679,39 @@ static const char *glm_fs_opacity_body =
     "#version 330 core\n"
     "out vec4 o_color;\n"
     "void main() { o_color = vec4(0.0, 0.0, 0.0, gl_FragCoord.z); }\n";
+
+/* Weighted blended OIT's resolve: a triangle over the screen; the
+   accumulated colour over the weights' sum, over what is there by the
+   revealage (accum.a: the product of 1 - alpha). Per sample, then
+   averaged, where the targets are multisampled (GLM_OIT_MS). */
+static const char *glm_vs_screen =
+    "#version 330 core\n"
+    "void main() {\n"
+    "    vec2 p = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0);\n"
+    "    gl_Position = vec4(p, 0.0, 1.0);\n"
+    "}\n";
+static const char *glm_fs_oit =
+    "#if GLM_OIT_MS\n"
+    "uniform sampler2DMS u_accum, u_weight;\n"
+    "#else\n"
+    "uniform sampler2D u_accum, u_weight;\n"
+    "#endif\n"
+    "uniform int u_samples;\n"
+    "out vec4 o_color;\n"
+    "void main() {\n"
+    "    ivec2 p = ivec2(gl_FragCoord.xy);\n"
+    "    vec3 c = vec3(0.0);\n"
+    "    float r = 0.0;\n"
+    "    for (int i = 0; i < u_samples; ++i) {\n"
+    "        vec4 a = texelFetch(u_accum, p, i);\n"
+    "        float w = texelFetch(u_weight, p, i).r;\n"
+    "        c += a.rgb / max(w, 1e-20) * (1.0 - a.a);\n"
+    "        r += a.a;\n"
+    "    }\n"
+    "    r /= float(u_samples);\n"
+    "    if (r >= 1.0) discard;   // no hair here\n"
+    "    o_color = vec4(c / float(u_samples), 1.0 - r); // premultiplied\n"
+    "}\n";
 
 static const char *glm_fs_line =
     "#version 330 core\n"
@@ -1131,6 +1254,77 @@ static void glm_ribbon_view(const glm_app *a, hf_ribbon_params *v)
     v->alpha_tip = 0.2f;     /* tips fade */
 }
 
+/* Weighted blended OIT's targets, at the output's size and sample count,
+   on the output's depth buffer (the body's depth tests the hair; the
+   hair writes none). Core GL 3.2 (float colour targets, blending into
+   them, multisampled textures); where the driver cannot make them,
+   a->oit_ok stays 0 and the hair is blended in draw order, as with
+   --no-oit. */
+static void glm_oit_init(glm_app *a)
+{
+    static const GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    GLint type = 0, depth = 0, samples = 0;
+    const int w = glc_width(), h = glc_height();
+    char fs[2048];
+    int k;
+    glBindFramebuffer(GL_FRAMEBUFFER, glc_target_fbo());
+    glGetFramebufferAttachmentParameteriv(
+        GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT,
+        GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+    glGetFramebufferAttachmentParameteriv(
+        GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT,
+        GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &depth);
+    if (type != GL_RENDERBUFFER || depth == 0) {
+        printf("gl_marschner: no order-independent transparency (the "
+               "output has no depth renderbuffer to share); the hair is "
+               "blended in draw order\n");
+        return;
+    }
+    glBindRenderbuffer(GL_RENDERBUFFER, (GLuint)depth);
+    glGetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES,
+                                 &samples);
+    a->oit_samples = samples > 1 ? samples : 1;
+    glGenTextures(1, &a->tex_accum);
+    glGenTextures(1, &a->tex_weight);
+    for (k = 0; k < 2; ++k) {
+        const GLuint t = k ? a->tex_weight : a->tex_accum;
+        const GLenum f = k ? GL_R32F : GL_RGBA32F;
+        if (samples > 1) {
+            glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, t);
+            glTexImage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, samples, f, w,
+                                    h, GL_TRUE);
+        } else {
+            glBindTexture(GL_TEXTURE_2D, t);
+            glTexImage2D(GL_TEXTURE_2D, 0, (GLint)f, w, h, 0,
+                         k ? GL_RED : GL_RGBA, GL_FLOAT, NULL);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        }
+    }
+    glGenFramebuffers(1, &a->oit_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, a->oit_fbo);
+    for (k = 0; k < 2; ++k)
+        glFramebufferTexture2D(GL_FRAMEBUFFER, bufs[k],
+                               samples > 1 ? GL_TEXTURE_2D_MULTISAMPLE
+                                           : GL_TEXTURE_2D,
+                               k ? a->tex_weight : a->tex_accum, 0);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT,
+                              GL_RENDERBUFFER, (GLuint)depth);
+    glDrawBuffers(2, bufs);
+    snprintf(fs, sizeof fs, "#version 330 core\n#define GLM_OIT_MS %d\n%s",
+             samples > 1, glm_fs_oit);
+    a->prog_oit = glc_program(glm_vs_screen, fs, "OIT resolve");
+    glGenVertexArrays(1, &a->vao_empty);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE ||
+        !a->prog_oit || !glc_check_gl("OIT targets")) {
+        printf("gl_marschner: no order-independent transparency (its "
+               "targets cannot be made here); the hair is blended in draw "
+               "order\n");
+        return;
+    }
+    a->oit_ok = 1;
+}
+
 /* Returns 1, or 0 with a message. The GL context must be current. */
 static int glm_init(glm_app *a, const glm_options *o)
 {
@@ -1483,6 +1677,7 @@ static int glm_init(glm_app *a, const glm_options *o)
     a->layers[0] = GLM_LAYER_1 * a->hair_len;
     a->layers[1] = GLM_LAYER_2 * a->hair_len;
     a->layers[2] = GLM_LAYER_3 * a->hair_len;
+    glm_oit_init(a);
     glc_begin_frame(); /* back to the output's framebuffer */
 
     /* the index buffer: once, for every strand; a LOD draws a prefix */
@@ -1579,6 +1774,27 @@ static int glm_init(glm_app *a, const glm_options *o)
     glVertexAttribPointer(4, 2, GL_FLOAT, GL_FALSE, sizeof(glm_static),
                           (void *)offsetof(glm_static, c3d));
     for (i = 0; i < 5; ++i) glEnableVertexAttribArray((GLuint)i);
+
+    /* the two dynamic buffers as texture buffers too, where they fit:
+       each ribbon vertex reads its pair's other side (the 1-pixel
+       clamp); glm_dyn is 3 RG32F texels, glm_compact 2 RGBA16I */
+    {
+        GLint most = 0;
+        glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &most);
+        a->min_width = (double)most >= 3.0 * (double)nv;
+        if (a->min_width) {
+            glGenTextures(1, &a->tbo_pair);
+            glBindTexture(GL_TEXTURE_BUFFER, a->tbo_pair);
+            glTexBuffer(GL_TEXTURE_BUFFER, GL_RG32F, a->vbo_dyn);
+            glGenTextures(1, &a->tbo_pair16);
+            glBindTexture(GL_TEXTURE_BUFFER, a->tbo_pair16);
+            glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA16I, a->vbo_dyn16);
+        } else {
+            printf("gl_marschner: %.0f ribbon vertices are more than a "
+                   "texture buffer holds here (%d texels): strands are not "
+                   "widened to a pixel\n", (double)nv, (int)most);
+        }
+    }
 
     /* GPU path: points (streamed), root UV, colour and 3D-colour x per
        strand (static). hf_fur_info has no 3D-colour x, so it is computed
@@ -1963,10 +2179,13 @@ static void glm_draw_hair(glm_app *a, GLuint prog, const float eye[3],
     } else if (a->o.compact) {
         glUniform3fv(glGetUniformLocation(prog, "u_pos_origin"), 1, a->corigin);
         glUniform1f(glGetUniformLocation(prog, "u_pos_scale"), a->cscale);
+        glm_sampler(prog, 11, GL_TEXTURE_BUFFER, a->tbo_pair16, "u_pair");
         glBindVertexArray(a->vao_cpu16);
     } else {
+        glm_sampler(prog, 11, GL_TEXTURE_BUFFER, a->tbo_pair, "u_pair");
         glBindVertexArray(a->vao_cpu);
     }
+    glActiveTexture(GL_TEXTURE0);
     glDrawElements(GL_TRIANGLES, (GLsizei)(6 * (a->P - 1) * a->drawn),
                    GL_UNSIGNED_INT, 0);
 }
@@ -2067,6 +2286,12 @@ static void glm_shadow_pass(glm_app *a)
     glBindVertexArray(0);
 }
 
+/* Is the hair drawn with order-independent transparency this frame? */
+static int glm_oit_on(const glm_app *a)
+{
+    return a->oit_ok && !a->o.no_oit && !a->o.a2c;
+}
+
 static void glm_draw(glm_app *a)
 {
     const int n = a->drawn;
@@ -2112,14 +2337,19 @@ static void glm_draw(glm_app *a)
 
     /* the hair: no culling (camera-facing ribbons have no back to cull;
        the GPU path's fallback side at a degenerate point may flip the
-       winding). Tips fade by alpha blending with depth writes on: on
-       llvmpipe it looked smoother than alpha to coverage (--a2c), whose 4
-       coverage levels need the dithering in the shader and then show its
-       pattern. Blending without sorting lets a faded tip hide strands
-       drawn after it behind it; at these alphas that is not visible. */
+       winding). By default, weighted blended order-independent
+       transparency (McGuire and Bavoil 2013): every hair fragment in
+       front of the body adds its weighted colour and multiplies the
+       revealage, in any order, without depth writes; a resolve then lays
+       the result over the body. --no-oit: alpha blending in draw order
+       with depth writes on, where a faded tip hides the strands drawn
+       after it behind it. On llvmpipe either looked smoother than alpha
+       to coverage (--a2c), whose 4 coverage levels need the dithering in
+       the shader and then show its pattern. */
     if (a->draw_hair && n > 0) {
         GLuint prog = a->o.gpu_expand && a->prog_gpu ? a->prog_gpu
                     : a->o.compact ? a->prog_cpu16 : a->prog_cpu;
+        const int oit = glm_oit_on(a);
         glUseProgram(prog);
         glm_lights(prog, a);
         glUniform1i(glGetUniformLocation(prog, "u_kajiya"), a->o.kajiya);
@@ -2141,7 +2371,27 @@ static void glm_draw(glm_app *a)
             glUniform2f(glGetUniformLocation(prog, "u_alpha"), v.alpha_root,
                         v.alpha_tip);
         }
-        if (a->o.a2c && glc_samples() > 1) {
+        glUniform2f(glGetUniformLocation(prog, "u_viewport"),
+                    (float)a->o.width, (float)a->o.height);
+        glUniform1f(glGetUniformLocation(prog, "u_min_px"),
+                    a->min_width ? a->o.min_px : 0.0f);
+        glUniform1f(glGetUniformLocation(prog, "u_oit"), (float)oit);
+        /* the weight's reference: about the front of the grown mesh */
+        glUniform1f(glGetUniformLocation(prog, "u_oit_ref"),
+                    a->o.distance - 0.5f * a->size);
+        glUniform1f(glGetUniformLocation(prog, "u_oit_scale"),
+                    GLM_OIT_FALLOFF * a->frame_dist);
+        if (oit) {
+            static const float accum0[4] = {0, 0, 0, 1}, weight0[4] = {0};
+            glBindFramebuffer(GL_FRAMEBUFFER, a->oit_fbo);
+            glClearBufferfv(GL_COLOR, 0, accum0); /* revealage 1 */
+            glClearBufferfv(GL_COLOR, 1, weight0);
+            glDepthMask(GL_FALSE);
+            glEnable(GL_BLEND);
+            /* colours and weights add up; alpha: revealage *= 1 - a */
+            glBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO,
+                                GL_ONE_MINUS_SRC_ALPHA);
+        } else if (a->o.a2c && glc_samples() > 1) {
             glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
         } else {
             glEnable(GL_BLEND);
@@ -2149,8 +2399,27 @@ static void glm_draw(glm_app *a)
         }
         /* alpha is coverage, not colour: keep the target opaque (a PNG
            with the fade in its alpha channel looks washed out) */
-        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
+        if (!oit) glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
         glm_draw_hair(a, prog, a->eye, 0, a->eye);
+        if (oit) { /* the resolve, over the body */
+            glDepthMask(GL_TRUE);
+            glc_begin_frame();
+            glDisable(GL_DEPTH_TEST);
+            glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA); /* premultiplied */
+            glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
+            glUseProgram(a->prog_oit);
+            glm_sampler(a->prog_oit, 0, a->oit_samples > 1
+                        ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D,
+                        a->tex_accum, "u_accum");
+            glm_sampler(a->prog_oit, 1, a->oit_samples > 1
+                        ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D,
+                        a->tex_weight, "u_weight");
+            glUniform1i(glGetUniformLocation(a->prog_oit, "u_samples"),
+                        a->oit_samples);
+            glBindVertexArray(a->vao_empty);
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+            glEnable(GL_DEPTH_TEST);
+        }
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
         glDisable(GL_BLEND);
@@ -2213,6 +2482,12 @@ static void glm_shutdown(glm_app *a)
         glDeleteFramebuffers(1, &a->shadow_fbo);
         glDeleteFramebuffers(1, &a->opacity_fbo);
         for (i = 0; i < 13; ++i) glDeleteProgram(progs[i]);
+        texs[0] = a->tbo_pair; texs[1] = a->tbo_pair16;
+        texs[2] = a->tex_accum; texs[3] = a->tex_weight;
+        glDeleteTextures(4, texs);
+        glDeleteFramebuffers(1, &a->oit_fbo);
+        glDeleteVertexArrays(1, &a->vao_empty);
+        glDeleteProgram(a->prog_oit);
     }
     hf_fur_destroy(a->fur);
     if (a->ch.vertex_count > 0) ch_free(&a->ch);
@@ -2244,7 +2519,8 @@ static void glm_shutdown(glm_app *a)
 /* One list for --help and the window's start, so they cannot drift. */
 #define GLM_KEYS \
 "Keys (window): K Kajiya-Kay/Marschner, G GPU expansion, C 3D colour,\n" \
-"  V colliders, O shadows, S specular, H body motion, space orbit,\n" \
+"  V colliders, O shadows, S specular, T transparency (OIT), H body\n" \
+"  motion, space orbit,\n" \
 "  +/- or scroll distance, arrows orbit, Esc quits\n"
 
 static void glm_usage(FILE *fp)
@@ -2335,7 +2611,14 @@ static void glm_usage(FILE *fp)
 "  --colliders        draw the colliders\n"
 "  --no-hair          draw the body alone (hair still simulated): a control\n"
 "                     picture\n"
-"  --a2c              alpha to coverage instead of blending\n"
+"  --no-oit           blend the hair in draw order, with depth writes\n"
+"                     (default: weighted blended order-independent\n"
+"                     transparency, McGuire and Bavoil 2013, where the GL\n"
+"                     can make its float targets)\n"
+"  --a2c              alpha to coverage instead of blending (no OIT)\n"
+"  --min-width PX     strands narrower than PX pixels on screen are drawn\n"
+"                     PX wide and faded by true width / PX (default 1;\n"
+"                     0: drawn as built, thin ones alias)\n"
 "  --lut-size N       Marschner LUT size (default 256)\n"
 "  --expand-shader F  the GPU expansion shader (examples/ribbon_expand.glsl)\n"
 "Camera (the default frames the grown mesh, whatever its size)\n"
@@ -2452,6 +2735,13 @@ static int glm_parse(int argc, char **argv, glm_options *o)
         else if (!strcmp(s, "--no-shadows")) o->no_shadows = 1;
         else if (!strcmp(s, "--no-dual")) o->no_dual = 1;
         else if (!strcmp(s, "--no-hair")) o->no_hair = 1;
+        else if (!strcmp(s, "--no-oit")) o->no_oit = 1;
+        else if (!strncmp(s, "--no-oit=", 9) || !strncmp(s, "--oit", 5)) {
+            fprintf(stderr, "gl_marschner: %s: order-independent "
+                    "transparency is on by default; --no-oit (no value) "
+                    "turns it off\n", s);
+            return 0;
+        }
         else if (!v) {
             fprintf(stderr, "gl_marschner: unknown option or %s without its "
                     "value (--help lists them)\n", s);
@@ -2475,6 +2765,7 @@ static int glm_parse(int argc, char **argv, glm_options *o)
             else if (!strcmp(s, "--strands")) ok = glm_int(s, v, 1, 10000000, &o->strands);
             else if (!strcmp(s, "--lut-size")) ok = glm_int(s, v, 2, HF_LUT_MAX_SIZE, &o->lut_size);
             else if (!strcmp(s, "--distance")) ok = glm_real(s, v, 1e-3, 1e6, &o->distance);
+            else if (!strcmp(s, "--min-width")) ok = glm_real(s, v, 0.0, 64.0, &o->min_px);
             else if (!strcmp(s, "--lod")) ok = glm_real(s, v, 0.0, 1.0, &o->lod);
             else if (!strcmp(s, "--azimuth")) ok = glm_real(s, v, -1e6, 1e6, &o->azimuth);
             else if (!strcmp(s, "--elevation")) ok = glm_real(s, v, -89.0, 89.0, &o->elevation);
@@ -2553,6 +2844,7 @@ static void glm_key(GLFWwindow *w, int key, int scancode, int action, int mods)
     case GLFW_KEY_O: o->no_shadows = !o->no_shadows; break;
     case GLFW_KEY_H: o->still = !o->still; break;
     case GLFW_KEY_S: o->specular = o->specular > 0 ? 0.0f : 1.0f; break;
+    case GLFW_KEY_T: o->no_oit = !o->no_oit; break;
     case GLFW_KEY_SPACE: o->orbit_speed = o->orbit_speed != 0 ? 0.0f : 12.0f; break;
     case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: o->distance /= 1.15f; break;
     case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: o->distance *= 1.15f; break;
@@ -2664,11 +2956,13 @@ static void glm_report(const glm_app *a, int drawn_frames)
     int missing;
     double worst;
     hf_fur_get_info(a->fur, &info);
-    printf("gl_marschner: %s, %s, %dx%d, distance %.3g m, LOD %.3f: %d of %d "
-           "strands drawn, %d guides, %d colliders\n",
+    printf("gl_marschner: %s, %s, %s, %dx%d, distance %.3g m, LOD %.3f: %d "
+           "of %d strands drawn, %d guides, %d colliders\n",
            a->o.kajiya ? "Kajiya-Kay" : "Marschner",
            a->o.gpu_expand ? "GPU expansion"
            : a->o.compact ? "compact CPU ribbons" : "CPU ribbons",
+           glm_oit_on(a) ? "order-independent transparency"
+           : a->o.a2c    ? "alpha to coverage" : "blended in draw order",
            a->o.width, a->o.height, a->o.distance, a->lod, a->drawn,
            a->info.strand_count, info.guide_count, a->ncol);
     printf("gl_marschner: stretch (longest guide / its rest length - 1): "
@@ -2826,11 +3120,11 @@ int main(int argc, char **argv)
                at start and in --help) */
             char title[512];
             snprintf(title, sizeof title,
-                     "hairfur gl_marschner - %s, %s%s%s - %.2f m, LOD %.2f: "
+                     "hairfur gl_marschner - %s, %s%s%s%s - %.2f m, LOD %.2f: "
                      "%d of %d strands - CPU %.1f ms, draw %.1f ms (shadows "
                      "%.1f) - keys: "
                      "K Kajiya-Kay, G GPU, C 3D colour, V colliders, "
-                     "O shadows, S specular, H motion, space orbit, "
+                     "O shadows, S specular, T OIT, H motion, space orbit, "
                      "+/- distance, arrows, Esc",
                      a->o.kajiya ? "Kajiya-Kay" : "Marschner",
                      a->o.gpu_expand ? "GPU expansion"
@@ -2839,6 +3133,7 @@ int main(int argc, char **argv)
                      a->o.no_shadows      ? ""
                      : a->o.single_shadow ? ", single shadow map"
                                           : ", deep opacity maps",
+                     glm_oit_on(a) ? ", OIT" : "",
                      a->o.distance, a->lod,
                      a->drawn, a->info.strand_count, a->cpu_ms, a->draw_ms,
                      a->shadow_ms);
