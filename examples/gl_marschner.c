@@ -1937,9 +1937,14 @@ static int glm_simulate(glm_app *a, double t, float dt)
         double worst = 0.0;
         for (i = 0; i < a->info.guide_count; ++i) {
             const float *p = a->info.guide_points + 3 * (size_t)i * (size_t)a->P;
-            double e = glm_polyline_length(p, a->P) / a->rest_len[i] - 1.0;
+            double e;
             int k;
             for (k = 0; k < 3 * a->P; ++k) a->nonfinite += !isfinite(p[k]);
+            /* guides under 1 mm (a length map near 0) are left out: their
+               lengths are a few float steps of the coordinates, and a
+               relative error of those says nothing about the ropes */
+            if (!(a->rest_len[i] >= 1e-3f)) continue;
+            e = glm_polyline_length(p, a->P) / a->rest_len[i] - 1.0;
             if (isnan(e)) a->stretch_nan = 1;
             else if (e > worst) worst = e;
         }
@@ -2965,7 +2970,8 @@ static void glm_report(const glm_app *a, int drawn_frames)
            : a->o.a2c    ? "alpha to coverage" : "blended in draw order",
            a->o.width, a->o.height, a->o.distance, a->lod, a->drawn,
            a->info.strand_count, info.guide_count, a->ncol);
-    printf("gl_marschner: stretch (longest guide / its rest length - 1): "
+    printf("gl_marschner: stretch (longest guide / its rest length - 1, "
+           "guides of 1 mm and longer): "
            "worst %.2e, mean of the per-frame worst %.2e over %ld frames; "
            "%d of %d guide roots inside a collider\n",
            a->stretch_nan ? (double)NAN : a->stretch_max,
