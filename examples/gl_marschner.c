@@ -142,6 +142,8 @@ typedef struct glm_options {
     int no_hair;        /* 1: the body alone (a control picture) */
     float min_px;       /* ribbons drawn at least this wide (pixels), their
                            alpha scaled by the width lost; 0: as built */
+    float root_fade;    /* root widths each strand fades in over, its depth
+                           lifted (GLM_ROOT_GLSL); 0: roots as built */
     int no_oit;         /* 1: the hair blended in draw order with depth
                            writes (--no-oit); 0: weighted blended
                            order-independent transparency */
@@ -185,6 +187,7 @@ static void glm_default_options(glm_options *o)
     o->friction = 0.2f;
     o->grid = 32;
     o->min_px = GLM_MIN_PX;
+    o->root_fade = GLM_ROOT_FADE;
 }
 
 /* Interleaved per-vertex layouts. The dynamic stream is rewritten every
@@ -2214,7 +2217,7 @@ static void glm_draw_hair(glm_app *a, GLuint prog, const float eye[3],
     glUniform3fv(glGetUniformLocation(prog, "u_eye"), 1, eye);
     glUniform1i(glGetUniformLocation(prog, "u_points_per_strand"), a->P);
     glUniform1f(glGetUniformLocation(prog, "u_root_fade"),
-                fminf(GLM_ROOT_FADE * a->root_width,
+                fminf(a->o.root_fade * a->root_width,
                       GLM_ROOT_FADE_LEN * a->hair_len));
     if (a->o.gpu_expand && a->prog_gpu) {
         glm_sampler(prog, 3, GL_TEXTURE_BUFFER, a->tbo_points, "u_points");
@@ -2425,7 +2428,8 @@ static void glm_draw(glm_app *a)
                     (float)a->o.width, (float)a->o.height);
         glUniform1f(glGetUniformLocation(prog, "u_min_px"),
                     a->min_width ? a->o.min_px : 0.0f);
-        glUniform1f(glGetUniformLocation(prog, "u_lift"), 1.0f);
+        glUniform1f(glGetUniformLocation(prog, "u_lift"),
+                    a->o.root_fade > 0.0f ? 1.0f : 0.0f);
         glUniform1f(glGetUniformLocation(prog, "u_oit"), (float)oit);
         /* the weight's reference: about the front of the grown mesh */
         glUniform1f(glGetUniformLocation(prog, "u_oit_ref"),
@@ -2670,6 +2674,9 @@ static void glm_usage(FILE *fp)
 "  --min-width PX     strands narrower than PX pixels on screen are drawn\n"
 "                     PX wide and faded by true width / PX (default 1;\n"
 "                     0: drawn as built, thin ones alias)\n"
+"  --root-fade N      strands fade in over their first N root widths (at\n"
+"                     most 4 %% of the hair length), their depth half a\n"
+"                     width nearer the eye (default 8; 0: roots as built)\n"
 "  --lut-size N       Marschner LUT size (default 256)\n"
 "  --expand-shader F  the GPU expansion shader (examples/ribbon_expand.glsl)\n"
 "Camera (the default frames the grown mesh, whatever its size)\n"
@@ -2817,6 +2824,7 @@ static int glm_parse(int argc, char **argv, glm_options *o)
             else if (!strcmp(s, "--lut-size")) ok = glm_int(s, v, 2, HF_LUT_MAX_SIZE, &o->lut_size);
             else if (!strcmp(s, "--distance")) ok = glm_real(s, v, 1e-3, 1e6, &o->distance);
             else if (!strcmp(s, "--min-width")) ok = glm_real(s, v, 0.0, 64.0, &o->min_px);
+            else if (!strcmp(s, "--root-fade")) ok = glm_real(s, v, 0.0, 1e3, &o->root_fade);
             else if (!strcmp(s, "--lod")) ok = glm_real(s, v, 0.0, 1.0, &o->lod);
             else if (!strcmp(s, "--azimuth")) ok = glm_real(s, v, -1e6, 1e6, &o->azimuth);
             else if (!strcmp(s, "--elevation")) ok = glm_real(s, v, -89.0, 89.0, &o->elevation);
