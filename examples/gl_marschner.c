@@ -2345,24 +2345,9 @@ static int glm_oit_on(const glm_app *a)
     return a->oit_ok && !a->o.no_oit && !a->o.a2c;
 }
 
-static void glm_draw(glm_app *a)
+/* The body: the grown triangles with the scalp colour, then the rest. */
+static void glm_draw_body(glm_app *a)
 {
-    const int n = a->drawn;
-    double t0, ts;
-    glFinish(); /* the shadow passes timed alone */
-    t0 = glm_now_ms();
-    glm_shadow_pass(a);
-    glFinish();
-    ts = glm_now_ms();
-    a->shadow_ms = ts - t0;
-    glc_begin_frame();
-    glClearColor(0.13f, 0.14f, 0.17f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LEQUAL);
-    glDisable(GL_CULL_FACE);
-
-    /* the body: the grown triangles with the scalp colour, then the rest */
     glUseProgram(a->prog_head);
     glm_lights(a->prog_head, a);
     {
@@ -2387,6 +2372,26 @@ static void glm_draw(glm_app *a)
     if (a->nt > a->nt_grown)
         glDrawElements(GL_TRIANGLES, 3 * (a->nt - a->nt_grown), GL_UNSIGNED_INT,
                        (void *)(12u * (size_t)a->nt_grown));
+}
+
+static void glm_draw(glm_app *a)
+{
+    const int n = a->drawn;
+    double t0, ts;
+    glFinish(); /* the shadow passes timed alone */
+    t0 = glm_now_ms();
+    glm_shadow_pass(a);
+    glFinish();
+    ts = glm_now_ms();
+    a->shadow_ms = ts - t0;
+    glc_begin_frame();
+    glClearColor(0.13f, 0.14f, 0.17f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDisable(GL_CULL_FACE);
+
+    glm_draw_body(a);
 
     /* the hair: no culling (camera-facing ribbons have no back to cull;
        the GPU path's fallback side at a degenerate point may flip the
