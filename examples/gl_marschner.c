@@ -103,6 +103,11 @@
 /* Ribbons are drawn at least this many pixels wide, their alpha scaled
    by the width they lost (GLM_COVERAGE_GLSL; --min-width). */
 #define GLM_MIN_PX 1.0f
+/* Each strand fades in from alpha 0 at its root over GLM_ROOT_FADE root
+   widths, at most GLM_ROOT_FADE_LEN of the hair length (GLM_ROOT_GLSL): a
+   hairline blends into the skin, and short fur keeps its roots. */
+#define GLM_ROOT_FADE 8.0f
+#define GLM_ROOT_FADE_LEN 0.04f
 /* OIT's depth weight grows e times every GLM_OIT_FALLOFF of the framing
    distance nearer (8 mm on the head, framed at 0.55 m), so the outer
    layer of hair outweighs the hair a centimetre under it by 3.5 times
@@ -137,6 +142,8 @@ typedef struct glm_options {
     int no_hair;        /* 1: the body alone (a control picture) */
     float min_px;       /* ribbons drawn at least this wide (pixels), their
                            alpha scaled by the width lost; 0: as built */
+    float root_fade;    /* root widths each strand fades in over, its depth
+                           lifted (GLM_ROOT_GLSL); 0: roots as built */
     int no_oit;         /* 1: the hair blended in draw order with depth
                            writes (--no-oit); 0: weighted blended
                            order-independent transparency */
@@ -180,6 +187,7 @@ static void glm_default_options(glm_options *o)
     o->friction = 0.2f;
     o->grid = 32;
     o->min_px = GLM_MIN_PX;
+    o->root_fade = GLM_ROOT_FADE;
 }
 
 /* Interleaved per-vertex layouts. The dynamic stream is rewritten every
@@ -319,6 +327,37 @@ static double glm_now_ms(void)
     "    return px / u_min_px;\n"                                            \
     "}\n"
 
+/* The hairline (GLM_ROOT_GLSL, in every hair vertex shader, after
+   u_eye and u_view_proj). A ribbon is a flat stand-in for a fibre whose
+   near side is half its width nearer the eye; at the root, where the
+   fibre leaves the skin, the flat ribbon dips into it, and the body's
+   depth cuts it into jagged pieces. u_lift 1 (the picture; 0 in the
+   shadow passes) moves the depth, not the pixel, of each vertex half the
+   strand's width along its ray towards the eye. v_root, metres from the
+   strand's root point, lets the fragment shaders fade the first
+   u_root_fade metres (glm_root_fade): where roots stand over bare skin
+   they blend into it, as a real hairline's thin hairs do, instead of
+   ending in an opaque ribbon-wide edge. */
+#define GLM_ROOT_GLSL                                                        \
+    "uniform float u_lift;      // 1: depth half a width nearer the eye\n"  \
+    "out float v_root;          // metres from the root point\n"            \
+    "// gl_Position of p, a point of a strand hw (half its width) wide\n"   \
+    "vec4 hair_clip(vec3 p, float hw) {\n"                                  \
+    "    vec3 e = u_eye - p;\n"                                             \
+    "    float l = length(e);\n"                                            \
+    "    if (u_lift > 0.0 && l > 2.0 * hw) p += e * (hw / l);\n"            \
+    "    return u_view_proj * vec4(p, 1.0);\n"                              \
+    "}\n"
+
+/* The root fade, in the hair and the opacity fragment shaders. */
+#define GLM_ROOT_FADE_GLSL                                                   \
+    "in float v_root;\n"                                                    \
+    "uniform float u_root_fade; // metres; 0: none\n"                       \
+    "float root_fade() {\n"                                                 \
+    "    return u_root_fade > 0.0 ? smoothstep(0.0, u_root_fade, v_root)\n" \
+    "                             : 1.0;\n"                                 \
+    "}\n"
+
 /* CPU-ribbon vertex shader: everything comes from hf_fur_ribbons. The
    pair's other vertex (gl_VertexID ^ 1: hf_ribbon_indices numbers a
    point's two sides 2k and 2k + 1) is read from the same buffer, bound
@@ -331,22 +370,26 @@ static const char *glm_vs_cpu =
     "layout(location = 3) in vec4 a_color;\n"
     "layout(location = 4) in vec2 a_color3d;\n"
     "uniform mat4 u_view_proj;\n"
+    "uniform vec3 u_eye;\n"
+    "uniform int u_points_per_strand;\n"
     "uniform samplerBuffer u_pair;   // the dynamic buffer, GL_RG32F\n"
     GLM_COVERAGE_GLSL
+    GLM_ROOT_GLSL
     "out vec3 v_position, v_tangent, v_texcoord;\n"
     "out vec4 v_color;\n"
     "out vec2 v_c3d;\n"
+    "vec3 vertex(int i) {\n"
+    "    return vec3(texelFetch(u_pair, 3 * i).xy, texelFetch(u_pair, 3 * i + 1).x);\n"
+    "}\n"
     "void main() {\n"
-    "    vec3 p = a_pos;\n"
-    "    float cov = 1.0;\n"
-    "    if (u_min_px > 0.0) {\n"
-    "        int o = 3 * (gl_VertexID ^ 1);\n"
-    "        cov = min_width(p, vec3(texelFetch(u_pair, o).xy,\n"
-    "                                texelFetch(u_pair, o + 1).x));\n"
-    "    }\n"
+    "    vec3 p = a_pos, q = vertex(gl_VertexID ^ 1);\n"
+    "    int r = gl_VertexID - gl_VertexID % (2 * u_points_per_strand);\n"
+    "    v_root = 0.5 * length(p + q - vertex(r) - vertex(r + 1));\n"
+    "    float hw = 0.5 * length(p - q);\n"
+    "    float cov = min_width(p, q);\n"
     "    v_position = p; v_tangent = a_tangent; v_texcoord = a_texcoord;\n"
     "    v_color = vec4(a_color.rgb, a_color.a * cov); v_c3d = a_color3d;\n"
-    "    gl_Position = u_view_proj * vec4(p, 1.0);\n"
+    "    gl_Position = hair_clip(p, hw);\n"
     "}\n";
 
 /* --compact: the same, with the position undone from SNORM16 (GL gives
@@ -363,23 +406,28 @@ static const char *glm_vs_cpu16 =
     "uniform mat4 u_view_proj;\n"
     "uniform vec3 u_pos_origin;\n"
     "uniform float u_pos_scale;\n"
+    "uniform vec3 u_eye;\n"
+    "uniform int u_points_per_strand;\n"
     "uniform isamplerBuffer u_pair;  // the 16-byte buffer, GL_RGBA16I\n"
     GLM_COVERAGE_GLSL
+    GLM_ROOT_GLSL
     "out vec3 v_position, v_tangent, v_texcoord;\n"
     "out vec4 v_color;\n"
     "out vec2 v_c3d;\n"
+    "vec3 vertex(int i) {\n"
+    "    vec3 q = vec3(texelFetch(u_pair, 2 * i).xyz);\n"
+    "    return u_pos_origin + u_pos_scale * max(q / 32767.0, vec3(-1.0));\n"
+    "}\n"
     "void main() {\n"
-    "    vec3 p = u_pos_origin + u_pos_scale * a_pos;\n"
-    "    float cov = 1.0;\n"
-    "    if (u_min_px > 0.0) {\n"
-    "        vec3 q = vec3(texelFetch(u_pair, 2 * (gl_VertexID ^ 1)).xyz);\n"
-    "        q = u_pos_origin + u_pos_scale * max(q / 32767.0, vec3(-1.0));\n"
-    "        cov = min_width(p, q);\n"
-    "    }\n"
+    "    vec3 p = u_pos_origin + u_pos_scale * a_pos, q = vertex(gl_VertexID ^ 1);\n"
+    "    int r = gl_VertexID - gl_VertexID % (2 * u_points_per_strand);\n"
+    "    v_root = 0.5 * length(p + q - vertex(r) - vertex(r + 1));\n"
+    "    float hw = 0.5 * length(p - q);\n"
+    "    float cov = min_width(p, q);\n"
     "    v_position = p; v_tangent = normalize(a_tangent);\n"
     "    v_texcoord = a_texcoord; v_c3d = a_color3d;\n"
     "    v_color = vec4(a_color.rgb, a_color.a * cov);\n"
-    "    gl_Position = u_view_proj * vec4(p, 1.0);\n"
+    "    gl_Position = hair_clip(p, hw);\n"
     "}\n";
 
 /* Appended to ribbon_expand.glsl (whose main is renamed): the per-strand
@@ -392,6 +440,7 @@ static const char *glm_vs_gpu_tail =
     "uniform samplerBuffer u_strand_c3x;     // 3D-colour x per strand\n"
     "uniform vec2 u_alpha;                   // alpha at root, tip\n"
     GLM_COVERAGE_GLSL
+    GLM_ROOT_GLSL
     "out vec4 v_color;\n"
     "out vec2 v_c3d;\n"
     "void main() {\n"
@@ -399,12 +448,10 @@ static const char *glm_vs_gpu_tail =
     "    int s = (gl_VertexID >> 1) / u_points_per_strand;\n"
     "    vec4 c = texelFetch(u_strand_color, s);\n"
     "    float t = v_texcoord.z;\n"
-    "    float cov = 1.0;\n"
-    "    if (u_min_px > 0.0) {\n"
-    "        vec3 m = hf_point(gl_VertexID >> 1).xyz;\n"
-    "        cov = min_width(v_position, 2.0 * m - v_position);\n"
-    "        gl_Position = u_view_proj * vec4(v_position, 1.0);\n"
-    "    }\n"
+    "    vec4 m = hf_point(gl_VertexID >> 1);\n"
+    "    v_root = length(m.xyz - hf_point(s * u_points_per_strand).xyz);\n"
+    "    float cov = min_width(v_position, 2.0 * m.xyz - v_position);\n"
+    "    gl_Position = hair_clip(v_position, m.w);\n"
     "    v_color = vec4(c.rgb, c.a * mix(u_alpha.x, u_alpha.y, t) * cov);\n"
     "    v_c3d = vec2(texelFetch(u_strand_c3x, s).r, t);\n"
     "}\n";
@@ -488,6 +535,7 @@ static const char *const glm_fs_hair_parts[4] = {
     "uniform float u_oit;             // 1: weighted blended OIT\n"
     "uniform float u_oit_ref, u_oit_scale; // its depth weight (metres)\n",
     GLM_SHADOW_GLSL
+    GLM_ROOT_FADE_GLSL
     "layout(location = 0) out vec4 o_color;\n"
     "layout(location = 1) out vec4 o_weight; // OIT: the weights' sum\n"
     "const float PI = 3.14159265;\n"
@@ -576,7 +624,8 @@ static const char *const glm_fs_hair_parts[4] = {
     "    // the tip fade to 4 levels, which shows as concentric shells\n"
     "    float n = fract(52.9829189 * fract(dot(gl_FragCoord.xy,\n"
     "                                           vec2(0.06711056, 0.00583715))));\n"
-    "    float alpha = clamp(v_color.a + u_dither * (n - 0.5), 0.0, 1.0);\n"
+    "    float alpha = clamp(v_color.a * root_fade() + u_dither * (n - 0.5),\n"
+    "                        0.0, 1.0);\n"
     "    o_color = vec4(pow(c, vec3(1.0 / 2.2)), alpha);\n"
     "    o_weight = vec4(0.0);\n"
     "    if (u_oit != 0.0) {\n"
@@ -662,6 +711,7 @@ static const char *glm_fs_depth =
 static const char *glm_fs_opacity_hair =
     "#version 330 core\n"
     "in vec4 v_color;\n"
+    GLM_ROOT_FADE_GLSL
     "uniform sampler2D u_shadow;\n"
     "uniform float u_shadow_depth, u_opacity_texel;\n"
     "uniform vec3 u_layers;\n"
@@ -671,7 +721,7 @@ static const char *glm_fs_opacity_hair =
     "    float d = (gl_FragCoord.z - z0) * u_shadow_depth;\n"
     "    vec3 k = d < u_layers.x ? vec3(1.0, 0.0, 0.0)\n"
     "           : d < u_layers.y ? vec3(0.0, 1.0, 0.0) : vec3(0.0, 0.0, 1.0);\n"
-    "    o_color = vec4(k * v_color.a * u_opacity_texel, 1.0);\n"
+    "    o_color = vec4(k * v_color.a * root_fade() * u_opacity_texel, 1.0);\n"
     "}\n";
 
 /* ... and the body: no opacity, its depth into alpha (the minimum). */
@@ -2170,12 +2220,15 @@ static void glm_draw_hair(glm_app *a, GLuint prog, const float eye[3],
                           int orthographic, const float view_dir[3])
 {
     glUniform3fv(glGetUniformLocation(prog, "u_eye"), 1, eye);
+    glUniform1i(glGetUniformLocation(prog, "u_points_per_strand"), a->P);
+    glUniform1f(glGetUniformLocation(prog, "u_root_fade"),
+                fminf(a->o.root_fade * a->root_width,
+                      GLM_ROOT_FADE_LEN * a->hair_len));
     if (a->o.gpu_expand && a->prog_gpu) {
         glm_sampler(prog, 3, GL_TEXTURE_BUFFER, a->tbo_points, "u_points");
         glm_sampler(prog, 4, GL_TEXTURE_BUFFER, a->tbo_uv, "u_root_uv");
         glm_sampler(prog, 5, GL_TEXTURE_BUFFER, a->tbo_scolor, "u_strand_color");
         glm_sampler(prog, 6, GL_TEXTURE_BUFFER, a->tbo_c3x, "u_strand_c3x");
-        glUniform1i(glGetUniformLocation(prog, "u_points_per_strand"), a->P);
         glUniform3fv(glGetUniformLocation(prog, "u_point_origin"), 1, a->corigin);
         glUniform1f(glGetUniformLocation(prog, "u_point_scale"), a->cscale);
         glUniform1i(glGetUniformLocation(prog, "u_orthographic"), orthographic);
@@ -2297,24 +2350,9 @@ static int glm_oit_on(const glm_app *a)
     return a->oit_ok && !a->o.no_oit && !a->o.a2c;
 }
 
-static void glm_draw(glm_app *a)
+/* The body: the grown triangles with the scalp colour, then the rest. */
+static void glm_draw_body(glm_app *a)
 {
-    const int n = a->drawn;
-    double t0, ts;
-    glFinish(); /* the shadow passes timed alone */
-    t0 = glm_now_ms();
-    glm_shadow_pass(a);
-    glFinish();
-    ts = glm_now_ms();
-    a->shadow_ms = ts - t0;
-    glc_begin_frame();
-    glClearColor(0.13f, 0.14f, 0.17f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LEQUAL);
-    glDisable(GL_CULL_FACE);
-
-    /* the body: the grown triangles with the scalp colour, then the rest */
     glUseProgram(a->prog_head);
     glm_lights(a->prog_head, a);
     {
@@ -2339,6 +2377,26 @@ static void glm_draw(glm_app *a)
     if (a->nt > a->nt_grown)
         glDrawElements(GL_TRIANGLES, 3 * (a->nt - a->nt_grown), GL_UNSIGNED_INT,
                        (void *)(12u * (size_t)a->nt_grown));
+}
+
+static void glm_draw(glm_app *a)
+{
+    const int n = a->drawn;
+    double t0, ts;
+    glFinish(); /* the shadow passes timed alone */
+    t0 = glm_now_ms();
+    glm_shadow_pass(a);
+    glFinish();
+    ts = glm_now_ms();
+    a->shadow_ms = ts - t0;
+    glc_begin_frame();
+    glClearColor(0.13f, 0.14f, 0.17f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDisable(GL_CULL_FACE);
+
+    glm_draw_body(a);
 
     /* the hair: no culling (camera-facing ribbons have no back to cull;
        the GPU path's fallback side at a degenerate point may flip the
@@ -2380,6 +2438,8 @@ static void glm_draw(glm_app *a)
                     (float)a->o.width, (float)a->o.height);
         glUniform1f(glGetUniformLocation(prog, "u_min_px"),
                     a->min_width ? a->o.min_px : 0.0f);
+        glUniform1f(glGetUniformLocation(prog, "u_lift"),
+                    a->o.root_fade > 0.0f ? 1.0f : 0.0f);
         glUniform1f(glGetUniformLocation(prog, "u_oit"), (float)oit);
         /* the weight's reference: about the front of the grown mesh */
         glUniform1f(glGetUniformLocation(prog, "u_oit_ref"),
@@ -2624,6 +2684,9 @@ static void glm_usage(FILE *fp)
 "  --min-width PX     strands narrower than PX pixels on screen are drawn\n"
 "                     PX wide and faded by true width / PX (default 1;\n"
 "                     0: drawn as built, thin ones alias)\n"
+"  --root-fade N      strands fade in over their first N root widths (at\n"
+"                     most 4 %% of the hair length), their depth half a\n"
+"                     width nearer the eye (default 8; 0: roots as built)\n"
 "  --lut-size N       Marschner LUT size (default 256)\n"
 "  --expand-shader F  the GPU expansion shader (examples/ribbon_expand.glsl)\n"
 "Camera (the default frames the grown mesh, whatever its size)\n"
@@ -2771,6 +2834,7 @@ static int glm_parse(int argc, char **argv, glm_options *o)
             else if (!strcmp(s, "--lut-size")) ok = glm_int(s, v, 2, HF_LUT_MAX_SIZE, &o->lut_size);
             else if (!strcmp(s, "--distance")) ok = glm_real(s, v, 1e-3, 1e6, &o->distance);
             else if (!strcmp(s, "--min-width")) ok = glm_real(s, v, 0.0, 64.0, &o->min_px);
+            else if (!strcmp(s, "--root-fade")) ok = glm_real(s, v, 0.0, 1e3, &o->root_fade);
             else if (!strcmp(s, "--lod")) ok = glm_real(s, v, 0.0, 1.0, &o->lod);
             else if (!strcmp(s, "--azimuth")) ok = glm_real(s, v, -1e6, 1e6, &o->azimuth);
             else if (!strcmp(s, "--elevation")) ok = glm_real(s, v, -89.0, 89.0, &o->elevation);

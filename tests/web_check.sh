@@ -17,7 +17,7 @@
 #     the background);
 #   - a screenshot that differs from gl_marschner's headless render of the
 #     same scene (gl_marschner --headless --frames 60 --shadows single
-#     --no-oit --min-width 0: the built-in head, seed 7, with the one
+#     --no-oit --min-width 0 --root-fade 0: the built-in head, seed 7, with the one
 #     shadow map the page draws, not the viewer's default deep opacity
 #     maps, and the hair blended in draw order at its built width as the
 #     page draws it, not with the viewer's default order-independent
@@ -128,9 +128,9 @@ fi
 
 # the native render of the same scene
 # --shadows single: the page's self-shadowing (one depth map, exp(-k d));
-# --no-oit --min-width 0: the page's blending, in draw order, of ribbons
+# --no-oit --min-width 0 --root-fade 0: the page's blending, in draw order, of ribbons
 # as built
-G="env -u DISPLAY -u WAYLAND_DISPLAY $B/gl_marschner --headless --shadows single --no-oit --min-width 0"
+G="env -u DISPLAY -u WAYLAND_DISPLAY $B/gl_marschner --headless --shadows single --no-oit --min-width 0 --root-fade 0"
 if [ ! -x $B/gl_marschner ] || [ ! -x $B/gl_check ]; then
     echo "web_check: comparison with the native render skipped: no" \
          "$B/gl_marschner (its packages: make deps)"
@@ -140,7 +140,7 @@ elif [ -s "$D/web.png" ]; then
     if $G --frames 60 --out "$D/native.png" >"$D/native.log" 2>&1 &&
        $G --frames 59 --out "$D/native59.png" >>"$D/native.log" 2>&1; then
         if d=$($B/png_diff "$D/web.png" "$D/native.png" $TOL_THR $TOL_LIMIT); then
-            ok "the page against gl_marschner --headless --frames 60 --shadows single --no-oit --min-width 0: $d"
+            ok "the page against gl_marschner --headless --frames 60 --shadows single --no-oit --min-width 0 --root-fade 0: $d"
         else
             bad "the page differs from gl_marschner's render ($D/web.png, $D/native.png): $d"
         fi
