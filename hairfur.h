@@ -2635,19 +2635,25 @@ HF__INLINE int hf__mask_neon(float32x4_t m)
 }
 #endif
 #if HF__V4
-/* a x + b y + c z, added left to right as the scalar code does */
-#define HF__DOT3(a, b, c, x, y, z)                                             \
-    HF__ADD(HF__ADD(HF__MUL(a, x), HF__MUL(b, y)), HF__MUL(c, z))
-/* o = a x b on three rows of lanes, in hf__cross3's order */
-#define HF__CROSS3(o, a, b)                                                    \
+/* a x + b y + c z, added left to right as the scalar code does; o = a x b
+   on three rows of lanes, in hf__cross3's order; o + a x + b y + c z,
+   likewise. The _OF forms take the operations (a kernel text's too:
+   HF__VDOT3, ...). */
+#define HF__DOT3_OF(add, mul, a, b, c, x, y, z)                                \
+    add(add(mul(a, x), mul(b, y)), mul(c, z))
+#define HF__CROSS3_OF(sub, mul, o, a, b)                                       \
     do {                                                                       \
-        (o)[0] = HF__SUB(HF__MUL((a)[1], (b)[2]), HF__MUL((a)[2], (b)[1]));    \
-        (o)[1] = HF__SUB(HF__MUL((a)[2], (b)[0]), HF__MUL((a)[0], (b)[2]));    \
-        (o)[2] = HF__SUB(HF__MUL((a)[0], (b)[1]), HF__MUL((a)[1], (b)[0]));    \
+        (o)[0] = sub(mul((a)[1], (b)[2]), mul((a)[2], (b)[1]));                \
+        (o)[1] = sub(mul((a)[2], (b)[0]), mul((a)[0], (b)[2]));                \
+        (o)[2] = sub(mul((a)[0], (b)[1]), mul((a)[1], (b)[0]));                \
     } while (0)
-/* o + a x + b y + c z, likewise */
+#define HF__POSE_OF(add, mul, o, a, b, c, x, y, z)                             \
+    add(add(add(o, mul(a, x)), mul(b, y)), mul(c, z))
+#define HF__DOT3(a, b, c, x, y, z)                                             \
+    HF__DOT3_OF(HF__ADD, HF__MUL, a, b, c, x, y, z)
+#define HF__CROSS3(o, a, b) HF__CROSS3_OF(HF__SUB, HF__MUL, o, a, b)
 #define HF__POSE(o, a, b, c, x, y, z)                                          \
-    HF__ADD(HF__ADD(HF__ADD(o, HF__MUL(a, x)), HF__MUL(b, y)), HF__MUL(c, z))
+    HF__POSE_OF(HF__ADD, HF__MUL, o, a, b, c, x, y, z)
 #endif
 
 /* Kernel texts. The kernels written once for any SIMD width (the rope
@@ -2792,20 +2798,11 @@ HF__TARGET_AVX512 HF__INLINE int hf__mask16(__m512 m)
 #error "hairfur.h: a kernel pass is built at 4, 8 or 16 lanes (HF__W)"
 #endif
 #define HF__VOR(a, b) HF__VSEL(a, a, b) /* masks only */
-/* a x + b y + c z, added left to right as the scalar code does */
 #define HF__VDOT3(a, b, c, x, y, z)                                            \
-    HF__VADD(HF__VADD(HF__VMUL(a, x), HF__VMUL(b, y)), HF__VMUL(c, z))
-/* o = a x b on three rows of lanes, in hf__cross3's order */
-#define HF__VCROSS3(o, a, b)                                                   \
-    do {                                                                       \
-        (o)[0] = HF__VSUB(HF__VMUL((a)[1], (b)[2]), HF__VMUL((a)[2], (b)[1])); \
-        (o)[1] = HF__VSUB(HF__VMUL((a)[2], (b)[0]), HF__VMUL((a)[0], (b)[2])); \
-        (o)[2] = HF__VSUB(HF__VMUL((a)[0], (b)[1]), HF__VMUL((a)[1], (b)[0])); \
-    } while (0)
-/* o + a x + b y + c z, likewise */
+    HF__DOT3_OF(HF__VADD, HF__VMUL, a, b, c, x, y, z)
+#define HF__VCROSS3(o, a, b) HF__CROSS3_OF(HF__VSUB, HF__VMUL, o, a, b)
 #define HF__VPOSE(o, a, b, c, x, y, z)                                         \
-    HF__VADD(HF__VADD(HF__VADD(o, HF__VMUL(a, x)), HF__VMUL(b, y)),            \
-             HF__VMUL(c, z))
+    HF__POSE_OF(HF__VADD, HF__VMUL, o, a, b, c, x, y, z)
 #endif /* HF__PASS */
 
 #ifndef HF__PASS /* the implementation's text; a kernel pass skips it */
@@ -7264,8 +7261,8 @@ HF__INLINE void hf__ropes_prefetch_row(const hf_ropes *ro, int j, int r)
 
    These kernels are a kernel text, written once for W = HF__W lanes
    and built at four below (SSE2, NEON), at eight (AVX2) and sixteen
-   (AVX-512) in the AVX2 section; HF__VZEROUPPER() readies the registers
-   for the scalar code of the rare paths. */
+   (AVX-512) after hf__ropes_collide; HF__VZEROUPPER() readies the
+   registers for the scalar code of the rare paths. */
 
 /* A prepared collider in every lane, rr^2, and whether its axis is a point
    (e == 0: a sphere or a zero-length capsule). */
@@ -8117,7 +8114,8 @@ HF__VTARGET HF__PRIVATE int HF__KN(hf__ropes_mark_far)(const hf_ropes *ro,
 
 #ifndef HF__PASS
 #if HF__V4
-/* the rope kernels at four lanes (the AVX2 section builds the wider) */
+/* the rope kernels at four lanes (at eight and sixteen after
+   hf__ropes_collide) */
 #define HF__PASS HF__PASS_ROPES
 #define HF__W 4
 #include HF_HEADER_FILENAME
@@ -9720,16 +9718,31 @@ HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__blend)(const HF__KN(hf__is) *v,
 }
 
 /* The strands of a range, W floats a vector, in one target function
-   (attribute T; no call per strand), as two kernels built from one text.
-   hf__interp_groups<W>: P a multiple of W, a strand whole groups of three
+   (HF__VTARGET; no call per strand), as two kernels built from one text.
+   hf__interp_groups_v<W>: P a multiple of W, a strand whole groups of three
    vectors: the stream mode once, since every strand's 12 P bytes keep the
    first's alignment, and no tail (with one, the sixteen-lane loop
    measured 1.1x slower). Its loop is inlined once for each clumping and
    stream mode, passed as constants: tested in every vector, they took a
-   third of its instructions at AVX2. hf__interp_range<W>: any P, three
+   third of its instructions at AVX2. hf__interp_range_v<W>: any P, three
    vectors a turn, then one or two, then the strand's last W floats over
    the end of those (with fewer than W floats, the scalar tail): at P = 12
    and 20, 7.5-12 ns a strand in L2 where the scalar tail took 18-32. */
+/* Floats [i, i + 3 W) of the strand at o + i, from sa, the sum of the
+   first W: a turn of the loops below, the root phases by constants, so
+   v stays in registers */
+HF__VTARGET HF__INLINE void HF__KN(hf__turn)(float *o,
+                                             const HF__KN(hf__is) *v,
+                                             const float *ctab, HF__VEC sa,
+                                             size_t i, int nt)
+{
+    HF__KN(hf__put)(o + i, HF__KN(hf__finish)(v, ctab, sa, i, 0), nt);
+    HF__KN(hf__put)(o + i + HF__W, HF__KN(hf__blend)(v, ctab, i + HF__W, 1),
+                    nt);
+    HF__KN(hf__put)(o + i + 2 * HF__W,
+                    HF__KN(hf__blend)(v, ctab, i + 2 * HF__W, 2), nt);
+}
+
 HF__VTARGET HF__INLINE void HF__KN(hf__interp_whole)(const hf__irun *run,
                                                      int first, int count,
                                                      int clump, int nt)
@@ -9745,16 +9758,10 @@ HF__VTARGET HF__INLINE void HF__KN(hf__interp_whole)(const hf__irun *run,
         size_t i;
         if (nt) hf__page_ahead(o, 4u * n);
         HF__KN(hf__strand)(G, clump, b, n, &v);
-        sa =
-            HF__KN(hf__sum)(&v, 0); /* the root's sum, and the first vector's */
+        sa = HF__KN(hf__sum)(&v, 0); /* the root's, and the first vector's */
         HF__KN(hf__roots)(v.SC, sa, v.R);
         for (i = 0;; sa = HF__KN(hf__sum)(&v, i)) {
-            HF__KN(hf__put)(o + i, HF__KN(hf__finish)(&v, ctab, sa, i, 0), nt);
-            HF__KN(hf__put)
-            (o + i + HF__W, HF__KN(hf__blend)(&v, ctab, i + HF__W, 1), nt);
-            HF__KN(hf__put)
-            (o + i + 2 * HF__W, HF__KN(hf__blend)(&v, ctab, i + 2 * HF__W, 2),
-             nt);
+            HF__KN(hf__turn)(o, &v, ctab, sa, i, nt);
             if ((i += 3 * HF__W) >= n) break;
         }
     }
@@ -9795,15 +9802,9 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__interp_range)(const hf__irun *run,
            scalar tail runs, with a root of its own) */
         if (n >= HF__W) sa = HF__KN(hf__sum)(&v, 0);
         HF__KN(hf__roots)(v.SC, sa, v.R);
-        /* sa: the sum of floats [i, i + W) wherever i + W <= n; the phases
-           by constants, so v stays in registers */
+        /* sa: the sum of floats [i, i + W) wherever i + W <= n */
         for (i = 0; i + 3 * HF__W <= n;) {
-            HF__KN(hf__put)(o + i, HF__KN(hf__finish)(&v, ctab, sa, i, 0), nt);
-            HF__KN(hf__put)
-            (o + i + HF__W, HF__KN(hf__blend)(&v, ctab, i + HF__W, 1), nt);
-            HF__KN(hf__put)
-            (o + i + 2 * HF__W, HF__KN(hf__blend)(&v, ctab, i + 2 * HF__W, 2),
-             nt);
+            HF__KN(hf__turn)(o, &v, ctab, sa, i, nt);
             if ((i += 3 * HF__W) + HF__W <= n) sa = HF__KN(hf__sum)(&v, i);
         }
         if (i + HF__W <= n) {
@@ -9819,9 +9820,8 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__interp_range)(const hf__irun *run,
                over some already written (the same values), or streamed,
                only those past i: a line streamed twice goes out twice */
             float t[HF__W];
-            HF__KN(hf__put)
-            (nt ? t : o + n - HF__W, HF__KN(hf__blend)(&v, ctab, n - HF__W, 2),
-             0);
+            HF__KN(hf__put)(nt ? t : o + n - HF__W,
+                            HF__KN(hf__blend)(&v, ctab, n - HF__W, 2), 0);
             if (nt) hf__stream_floats(o + i, t + HF__W - (n - i), n - i);
         } else if (i < n) {
             hf__istrand t;
@@ -13654,17 +13654,17 @@ HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
 #endif /* !HF__PASS */
 
 #if defined(HF__PASS) && HF__PASS == HF__PASS_POINTS
-/* hf__interp_range<W> and the GPU points kernel in one, for P at least
+/* hf__interp_range_v<W> and the GPU points kernel in one, for P at least
    W (8 at AVX2, 16 at AVX-512) and a multiple of W / 4 (a vector of
    points' worth), one text built at both widths: the strand's whole
    groups, then, where points are left, the group that ends at the tip,
    written from the first vector of points not yet written. Three
    vectors of a strand's floats (W points) stay in
-   registers and go out as four vectors of points (hf__points_out<W>),
+   registers and go out as four vectors of points (hf__points_out_v<W>),
    the same values in the same order as the two kernels write them. The
    finiteness test rides on the same vectors (x * 0 is NaN for NaN or
    infinity); a strand that is not finite is written again, collapsed,
-   as hf__points_run does. hf__points_groups<W>: the GPU points kernel
+   as hf__points_run does. hf__points_groups_v<W>: the GPU points kernel
    alone (P a multiple of W), the same text loading the strand's points. */
 
 /* acc + q * 0: stays zero while every lane of q is finite */
@@ -13705,16 +13705,15 @@ HF__VTARGET HF__INLINE void HF__KN(hf__interp_points_whole)(
         HF__KN(hf__is) v;
         if (mode) hf__page_ahead(o, 16u * (size_t)P);
         HF__KN(hf__strand)(G, clump, B + s, n, &v);
-        sa =
-            HF__KN(hf__sum)(&v, 0); /* the root's sum, and the first vector's */
+        sa = HF__KN(hf__sum)(&v, 0); /* the root's, and the first vector's */
         HF__KN(hf__roots)(v.SC, sa, v.R);
         for (i = 0, j = 0;; sa = HF__KN(hf__sum)(&v, (size_t)i)) {
             const HF__VEC a = HF__KN(hf__finish)(&v, ctab, sa, (size_t)i, 0);
             const HF__VEC b = HF__KN(hf__blend)(&v, ctab, (size_t)i + HF__W, 1);
             const HF__VEC c =
                 HF__KN(hf__blend)(&v, ctab, (size_t)i + 2 * HF__W, 2);
-            HF__KN(hf__points_abc)
-            (o + 4 * j, a, b, c, HF__KN(hf__widths)(k, j), WS, &acc, mode, 0);
+            HF__KN(hf__points_abc)(o + 4 * j, a, b, c, HF__KN(hf__widths)(k, j),
+                                   WS, &acc, mode, 0);
             i += 3 * HF__W;
             if ((j += HF__W) + HF__W > P) break;
         }
@@ -13730,8 +13729,8 @@ HF__VTARGET HF__INLINE void HF__KN(hf__interp_points_whole)(
             a = HF__KN(hf__blend)(&v, ctab, (size_t)i, 0);
             b = HF__KN(hf__blend)(&v, ctab, (size_t)i + HF__W, 1);
             c = HF__KN(hf__blend)(&v, ctab, (size_t)i + 2 * HF__W, 2);
-            HF__KN(hf__points_abc)
-            (o + 4 * j, a, b, c, HF__KN(hf__widths)(k, j), WS, &acc, mode, q);
+            HF__KN(hf__points_abc)(o + 4 * j, a, b, c, HF__KN(hf__widths)(k, j),
+                                   WS, &acc, mode, q);
         }
         if (!HF__KN(hf__all_zero)(acc)) hf__points_collapse_avx2(k, o);
     }
@@ -13774,8 +13773,8 @@ HF__KN(hf__points_whole)(const hf__points_kit *k, const hf_ribbon_strands *st,
             const HF__VEC a = HF__VLD(p + 3 * j);
             const HF__VEC b = HF__VLD(p + 3 * j + HF__W);
             const HF__VEC c = HF__VLD(p + 3 * j + 2 * HF__W);
-            HF__KN(hf__points_abc)
-            (o + 4 * j, a, b, c, HF__KN(hf__widths)(k, j), WS, &acc, mode, 0);
+            HF__KN(hf__points_abc)(o + 4 * j, a, b, c, HF__KN(hf__widths)(k, j),
+                                   WS, &acc, mode, 0);
         }
         if (!HF__KN(hf__all_zero)(acc)) hf__points_collapse_avx2(k, o);
     }
@@ -13790,14 +13789,14 @@ HF__KN(hf__points_groups)(const hf__points_kit *k, const hf_ribbon_strands *st,
         k->nt, out4 + (size_t)(first - out_first) * (size_t)k->P * 4u,
         4u * HF__W - 1u);
     if (mode == 2) /* the mode a constant in each loop, as above */
-        HF__KN(hf__points_whole)
-        (k, st, pts, pts_first, first, count, out_first, out4, 2);
+        HF__KN(hf__points_whole)(k, st, pts, pts_first, first, count,
+                                 out_first, out4, 2);
     else if (mode)
-        HF__KN(hf__points_whole)
-        (k, st, pts, pts_first, first, count, out_first, out4, 1);
+        HF__KN(hf__points_whole)(k, st, pts, pts_first, first, count,
+                                 out_first, out4, 1);
     else
-        HF__KN(hf__points_whole)
-        (k, st, pts, pts_first, first, count, out_first, out4, 0);
+        HF__KN(hf__points_whole)(k, st, pts, pts_first, first, count,
+                                 out_first, out4, 0);
     HF__VZEROUPPER(); /* see HF__TARGET_AVX2 */
 }
 #endif /* HF__PASS_POINTS */
