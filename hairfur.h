@@ -11330,41 +11330,43 @@ HF__PRIVATE void hf__rout_layout(hf__rout *ro)
 /* One stream's elements of points i < n at o + 2 i st (side 0, from
    table slot L + i ts) and a stride later (side 1, from R + i ts; R == L
    for the streams both sides share, read once): each in `wb` bytes
-   (hf__rout's wb) as a head of N0 bytes and a tail of N1, constants in
-   each loop. */
-#define HF__ELEMS_LOOP(N0, N1)                                                 \
-    for (i = 0; i < n; ++i, o += 2 * st, L += ts, R += ts) {                   \
-        uint64_t x0 = 0, y0 = 0, x1, y1;                                       \
-        HF_MEMCPY(&x0, L, N0);                                                 \
-        HF_MEMCPY(&y0, L + N0, N1);                                            \
-        x1 = x0;                                                               \
-        y1 = y0;                                                               \
-        if (R != L) {                                                          \
-            HF_MEMCPY(&x1, R, N0);                                             \
-            HF_MEMCPY(&y1, R + N0, N1);                                        \
-        }                                                                      \
-        HF_MEMCPY(o, &x0, N0);                                                 \
-        HF_MEMCPY(o + N0, &y0, N1);                                            \
-        HF_MEMCPY(o + st, &x1, N0);                                            \
-        HF_MEMCPY(o + st + N0, &y1, N1);                                       \
-    }                                                                          \
-    break
+   (hf__rout's wb) as a head of n0 bytes and a tail of n1, constants in
+   each copy hf__elems_put inlines. */
+HF__INLINE void hf__elems_run(unsigned char *o, size_t st, int n,
+                              const unsigned char *L, const unsigned char *R,
+                              size_t ts, size_t n0, size_t n1)
+{
+    int i;
+    for (i = 0; i < n; ++i, o += 2 * st, L += ts, R += ts) {
+        uint64_t x0 = 0, y0 = 0, x1, y1;
+        HF_MEMCPY(&x0, L, n0);
+        HF_MEMCPY(&y0, L + n0, n1);
+        x1 = x0;
+        y1 = y0;
+        if (R != L) {
+            HF_MEMCPY(&x1, R, n0);
+            HF_MEMCPY(&y1, R + n0, n1);
+        }
+        HF_MEMCPY(o, &x0, n0);
+        HF_MEMCPY(o + n0, &y0, n1);
+        HF_MEMCPY(o + st, &x1, n0);
+        HF_MEMCPY(o + st + n0, &y1, n1);
+    }
+}
 HF__INLINE void hf__elems_put(unsigned char *o, size_t st, int n,
                               const unsigned char *L, const unsigned char *R,
                               size_t ts, int wb)
 {
-    int i;
     switch (wb) {
-    case 2: HF__ELEMS_LOOP(2, 0);
-    case 3: HF__ELEMS_LOOP(2, 1);
-    case 4: HF__ELEMS_LOOP(4, 0);
-    case 6: HF__ELEMS_LOOP(4, 2);
-    case 8: HF__ELEMS_LOOP(8, 0);
-    case 12: HF__ELEMS_LOOP(8, 4);
-    default: HF__ELEMS_LOOP(8, 8);
+    case 2: hf__elems_run(o, st, n, L, R, ts, 2, 0); break;
+    case 3: hf__elems_run(o, st, n, L, R, ts, 2, 1); break;
+    case 4: hf__elems_run(o, st, n, L, R, ts, 4, 0); break;
+    case 6: hf__elems_run(o, st, n, L, R, ts, 4, 2); break;
+    case 8: hf__elems_run(o, st, n, L, R, ts, 8, 0); break;
+    case 12: hf__elems_run(o, st, n, L, R, ts, 8, 4); break;
+    default: hf__elems_run(o, st, n, L, R, ts, 8, 8); break;
     }
 }
-#undef HF__ELEMS_LOOP
 
 #if HF__SSE
 /* A float run (see hf__float_run) for points i < n of a group: left
@@ -11848,6 +11850,49 @@ HF__TARGET_AVX2 HF__INLINE __m128i hf__slot_avx2(const unsigned char *t,
         mask);
 }
 
+/* The or of the slots of the ns streams (0 to 4, a constant where it is
+   inlined) that both sides of point i share, in the table's order */
+HF__TARGET_AVX2 HF__INLINE __m128i
+hf__window_shared_avx2(const unsigned char *const *t, const size_t *ts,
+                       const __m128i *mk, int i, int ns)
+{
+    __m128i s01;
+    if (ns == 0) return _mm_setzero_si128();
+    if (ns == 1) return hf__slot_avx2(t[0], ts[0], i, mk[0]);
+    s01 = _mm_or_si128(hf__slot_avx2(t[0], ts[0], i, mk[0]),
+                       hf__slot_avx2(t[1], ts[1], i, mk[1]));
+    if (ns == 2) return s01;
+    if (ns == 3)
+        return _mm_or_si128(s01, hf__slot_avx2(t[2], ts[2], i, mk[2]));
+    return _mm_or_si128(s01,
+                        _mm_or_si128(hf__slot_avx2(t[2], ts[2], i, mk[2]),
+                                     hf__slot_avx2(t[3], ts[3], i, mk[3])));
+}
+
+/* The points of hf__window_put_avx2, with ns (a constant in each copy it
+   inlines) the streams both sides share besides the position */
+HF__TARGET_AVX2 HF__INLINE void
+hf__window_rows_avx2(unsigned char *o, size_t st, int L, __m128i sh, int n,
+                     int pos, unsigned char tab[6][HF__TB * 16], size_t tp,
+                     __m128i mp, const unsigned char *const *t,
+                     const size_t *ts, const __m128i *mk, int ns)
+{
+    int i;
+    for (i = 0; i < n; ++i, o += 2 * st) {
+        __m128i a = hf__window_shared_avx2(t, ts, mk, i, ns), b = a;
+        if (pos) {
+            a = _mm_or_si128(a, hf__slot_avx2(tab[HF__S_POS], tp, i, mp));
+            b = _mm_or_si128(b, hf__slot_avx2(tab[5], tp, i, mp));
+        }
+        _mm_storel_epi64((__m128i *)(void *)o, a);
+        _mm_storel_epi64((__m128i *)(void *)(o + L - 8),
+                         _mm_shuffle_epi8(a, sh));
+        _mm_storel_epi64((__m128i *)(void *)(o + st), b);
+        _mm_storel_epi64((__m128i *)(void *)(o + st + L - 8),
+                         _mm_shuffle_epi8(b, sh));
+    }
+}
+
 HF__TARGET_AVX2 HF__INLINE void
 hf__window_put_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
                     const size_t *tsq, size_t v, int n)
@@ -11863,42 +11908,30 @@ hf__window_put_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
     __m128i mk[4];
     size_t ts[4];
     unsigned char *o = ro->base[q0] + v * st;
-    int i, q, ns = 0;
+    int q, ns = 0;
     for (q = HF__S_TAN; q <= HF__S_C3D; ++q) {
         if (!ro->base[q]) continue;
         t[ns] = tab[q];
         ts[ns] = tsq[q];
         mk[ns++] = _mm_loadu_si128((const __m128i *)(const void *)ro->wm[q]);
     }
-#define HF__WIN_LOOP(SHARED)                                                   \
-    for (i = 0; i < n; ++i, o += 2 * st) {                                     \
-        __m128i a = SHARED, b = a;                                             \
-        if (pos) {                                                             \
-            a = _mm_or_si128(a, hf__slot_avx2(tab[HF__S_POS], tp, i, mp));     \
-            b = _mm_or_si128(b, hf__slot_avx2(tab[5], tp, i, mp));             \
-        }                                                                      \
-        _mm_storel_epi64((__m128i *)(void *)o, a);                             \
-        _mm_storel_epi64((__m128i *)(void *)(o + L - 8),                       \
-                         _mm_shuffle_epi8(a, sh));                             \
-        _mm_storel_epi64((__m128i *)(void *)(o + st), b);                      \
-        _mm_storel_epi64((__m128i *)(void *)(o + st + L - 8),                  \
-                         _mm_shuffle_epi8(b, sh));                             \
-    }                                                                          \
-    break
-#define HF__WIN_S(k) hf__slot_avx2(t[k], ts[k], i, mk[k])
     switch (ns) {
-    case 0: HF__WIN_LOOP(_mm_setzero_si128());
-    case 1: HF__WIN_LOOP(HF__WIN_S(0));
-    case 2: HF__WIN_LOOP(_mm_or_si128(HF__WIN_S(0), HF__WIN_S(1)));
+    case 0:
+        hf__window_rows_avx2(o, st, L, sh, n, pos, tab, tp, mp, t, ts, mk, 0);
+        break;
+    case 1:
+        hf__window_rows_avx2(o, st, L, sh, n, pos, tab, tp, mp, t, ts, mk, 1);
+        break;
+    case 2:
+        hf__window_rows_avx2(o, st, L, sh, n, pos, tab, tp, mp, t, ts, mk, 2);
+        break;
     case 3:
-        HF__WIN_LOOP(_mm_or_si128(_mm_or_si128(HF__WIN_S(0), HF__WIN_S(1)),
-                                  HF__WIN_S(2)));
+        hf__window_rows_avx2(o, st, L, sh, n, pos, tab, tp, mp, t, ts, mk, 3);
+        break;
     default:
-        HF__WIN_LOOP(_mm_or_si128(_mm_or_si128(HF__WIN_S(0), HF__WIN_S(1)),
-                                  _mm_or_si128(HF__WIN_S(2), HF__WIN_S(3))));
+        hf__window_rows_avx2(o, st, L, sh, n, pos, tab, tp, mp, t, ts, mk, 4);
+        break;
     }
-#undef HF__WIN_S
-#undef HF__WIN_LOOP
 }
 
 /* Every stream of a layout the table writer takes (hf__rout nw > 0), in
