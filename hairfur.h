@@ -11869,14 +11869,23 @@ hf__window_shared_avx2(const unsigned char *const *t, const size_t *ts,
                                      hf__slot_avx2(t[3], ts[3], i, mk[3])));
 }
 
-/* The points of hf__window_put_avx2, with ns (a constant in each copy it
-   inlines) the streams both sides share besides the position */
+/* hf__window_put_avx2 with t, ts and mk the slots, strides and masks of
+   the ns streams both sides share besides the position (ns a constant in
+   each copy it inlines) */
 HF__TARGET_AVX2 HF__INLINE void
-hf__window_rows_avx2(unsigned char *o, size_t st, int L, __m128i sh, int n,
-                     int pos, unsigned char tab[6][HF__TB * 16], size_t tp,
-                     __m128i mp, const unsigned char *const *t,
-                     const size_t *ts, const __m128i *mk, int ns)
+hf__window_rows_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
+                     const size_t *tsq, size_t v, int n,
+                     const unsigned char *const *t, const size_t *ts,
+                     const __m128i *mk, int ns)
 {
+    const int q0 = ro->wq[0], L = ro->wl;
+    const size_t st = ro->stride[q0];
+    const __m128i sh = _mm_loadu_si128((const __m128i *)(const void *)ro->wsh);
+    const int pos = ro->base[HF__S_POS] != NULL;
+    const __m128i mp =
+        _mm_loadu_si128((const __m128i *)(const void *)ro->wm[HF__S_POS]);
+    const size_t tp = tsq[HF__S_POS];
+    unsigned char *o = ro->base[q0] + v * st;
     int i;
     for (i = 0; i < n; ++i, o += 2 * st) {
         __m128i a = hf__window_shared_avx2(t, ts, mk, i, ns), b = a;
@@ -11897,17 +11906,9 @@ HF__TARGET_AVX2 HF__INLINE void
 hf__window_put_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
                     const size_t *tsq, size_t v, int n)
 {
-    const int q0 = ro->wq[0], L = ro->wl;
-    const size_t st = ro->stride[q0];
-    const __m128i sh = _mm_loadu_si128((const __m128i *)(const void *)ro->wsh);
-    const int pos = ro->base[HF__S_POS] != NULL;
-    const __m128i mp =
-        _mm_loadu_si128((const __m128i *)(const void *)ro->wm[HF__S_POS]);
-    const size_t tp = tsq[HF__S_POS];
     const unsigned char *t[4];
     __m128i mk[4];
     size_t ts[4];
-    unsigned char *o = ro->base[q0] + v * st;
     int q, ns = 0;
     for (q = HF__S_TAN; q <= HF__S_C3D; ++q) {
         if (!ro->base[q]) continue;
@@ -11916,21 +11917,11 @@ hf__window_put_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
         mk[ns++] = _mm_loadu_si128((const __m128i *)(const void *)ro->wm[q]);
     }
     switch (ns) {
-    case 0:
-        hf__window_rows_avx2(o, st, L, sh, n, pos, tab, tp, mp, t, ts, mk, 0);
-        break;
-    case 1:
-        hf__window_rows_avx2(o, st, L, sh, n, pos, tab, tp, mp, t, ts, mk, 1);
-        break;
-    case 2:
-        hf__window_rows_avx2(o, st, L, sh, n, pos, tab, tp, mp, t, ts, mk, 2);
-        break;
-    case 3:
-        hf__window_rows_avx2(o, st, L, sh, n, pos, tab, tp, mp, t, ts, mk, 3);
-        break;
-    default:
-        hf__window_rows_avx2(o, st, L, sh, n, pos, tab, tp, mp, t, ts, mk, 4);
-        break;
+    case 0: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 0); break;
+    case 1: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 1); break;
+    case 2: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 2); break;
+    case 3: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 3); break;
+    default: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 4); break;
     }
 }
 
