@@ -232,14 +232,14 @@
        hf__<name>_ref and gives the same bytes; one dispatch function per
        stage picks between them by the level hf_simd_resolve gives. A
        kernel for one instruction set is named by it (_sse, _neon, _avx2,
-       _avx512); one written once for any width (the rope step's contacts
-       and rows, interpolation into strands and into GPU points) is a
-       kernel text, compiled once per width by the header including
-       itself (HF_HEADER_FILENAME) and named by its lanes: _v4 (SSE2 or
-       NEON), _v8 (AVX2), _v16 (AVX-512). Each copy is a function with
-       the text's own lines, so a debugger stops in the AVX2 rope kernel
-       at "break hf__ropes_ftl_row_v8" (more under "Kernel texts" in the
-       prologue).
+       _avx512), one for SSE2 and NEON alike _v4. One written once for
+       any width (the rope step's contacts and rows, interpolation into
+       strands and into GPU points) is a kernel text, compiled once per
+       width by the header including itself (HF_HEADER_FILENAME) and
+       named by its lanes: _v4 (SSE2 or NEON), _v8 (AVX2), _v16
+       (AVX-512). Each copy is a function with the text's own lines, so a
+       debugger stops in the AVX2 rope kernel at "break
+       hf__ropes_ftl_row_v8" (more under "Kernel texts" in the prologue).
 
    VERSION HISTORY
 
@@ -2408,8 +2408,9 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 #endif
 
 /* SIMD levels. A kernel named hf__<name>_sse (or _neon, _avx2, _avx512;
-   _v4, _v8 or _v16 for a kernel text built at four, eight or sixteen
-   lanes, see "Kernel texts" below) follows its scalar reference
+   _v4 for one written once for SSE2 and NEON; _v4, _v8 or _v16 for a
+   kernel text built at four, eight or sixteen lanes, see "Kernel texts"
+   below) follows its scalar reference
    hf__<name>_ref; every level uses the same IEEE operations in the same
    order (no FMA), so all give the same bytes (in the default rounding
    mode: the vector encoders of normalized formats convert by the mode,
