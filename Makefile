@@ -193,18 +193,18 @@ $(BUILD)/link_check: tests/link_main.cpp $(BUILD)/link_impl.o $(HDR) | $(BUILD)
 # The implementation under another file name, which HF_HEADER_FILENAME
 # gives it (it includes itself once per SIMD width of its kernel texts):
 # a copy in another directory, compiled as the translation unit.
-$(BUILD)/renamed/hf_renamed.o: $(HDR) | $(BUILD)
+$(BUILD)/renamed/hairfur_copy.o: $(HDR) | $(BUILD)
 	@mkdir -p $(BUILD)/renamed
-	cp $(HDR) $(BUILD)/renamed/hf_renamed.h
+	cp $(HDR) $(BUILD)/renamed/hairfur_copy.h
 	gcc -std=c99 -O1 $(WARN) -x c -DHAIRFUR_IMPLEMENTATION \
-	  -DHF_HEADER_FILENAME='"hf_renamed.h"' \
-	  -c $(BUILD)/renamed/hf_renamed.h -o $@
+	  -DHF_HEADER_FILENAME='"hairfur_copy.h"' \
+	  -c $(BUILD)/renamed/hairfur_copy.h -o $@
 
 # the sanitizer builds at -O1 first: they take minutes where the others
 # take seconds, and make -j starts the prerequisites in this order
 check-build: $(filter %clang_c99_san,$(TEST_BINS)) $(filter %_san,$(TEST_BINS)) \
              $(TEST_BINS) $(BUILD)/cpp_compile $(BUILD)/link_check \
-             $(BUILD)/renamed/hf_renamed.o
+             $(BUILD)/renamed/hairfur_copy.o
 
 # $(1) = test binaries to run, $(2) = the target's name. Prints each
 # binary's last line (N passed, N failed), and the failures. Each runs on
