@@ -7,8 +7,9 @@
 #                      installed, clang; C99 and C++11; -O2, ASan+UBSan at
 #                      -O1 and -O0; the scalar HF_NO_SIMD build; GNU C with
 #                      -mavx2 -mfma), the C++ compile and C/C++ link
-#                      checks, the API doc, doc and examples checks,
-#                      the quick start check,
+#                      checks, the header built under another name
+#                      (HF_HEADER_FILENAME), the API doc, doc and examples
+#                      checks, the quick start check,
 #                      the CMake and pkg-config check, then the GL checks
 #                      when headless EGL is there, the WebAssembly build of
 #                      the suite and the web page in headless Chromium
@@ -198,11 +199,21 @@ $(BUILD)/link_impl.o: tests/link_impl.c $(HDR) | $(BUILD)
 	gcc -std=c99 -O1 $(WARN) -c $< -o $@
 $(BUILD)/link_check: tests/link_main.cpp $(BUILD)/link_impl.o $(HDR) | $(BUILD)
 	g++ -std=c++11 -O1 $(WARN) $< $(BUILD)/link_impl.o -o $@ -lm
+# The implementation under another file name, which HF_HEADER_FILENAME
+# gives it (it includes itself once per SIMD width of its kernel texts):
+# a copy in another directory, compiled as the translation unit.
+$(BUILD)/renamed/hairfur_copy.o: $(HDR) | $(BUILD)
+	@mkdir -p $(BUILD)/renamed
+	cp $(HDR) $(BUILD)/renamed/hairfur_copy.h
+	gcc -std=c99 -O1 $(WARN) -x c -DHAIRFUR_IMPLEMENTATION \
+	  -DHF_HEADER_FILENAME='"hairfur_copy.h"' \
+	  -c $(BUILD)/renamed/hairfur_copy.h -o $@
 
 # the sanitizer builds at -O1 first: they take minutes where the others
 # take seconds, and make -j starts the prerequisites in this order
 check-build: $(filter %clang_c99_san,$(TEST_BINS)) $(filter %_san,$(TEST_BINS)) \
-             $(TEST_BINS) $(BUILD)/cpp_compile $(BUILD)/link_check
+             $(TEST_BINS) $(BUILD)/cpp_compile $(BUILD)/link_check \
+             $(BUILD)/renamed/hairfur_copy.o
 
 # $(1) = test binaries to run, $(2) = the target's name. Prints each
 # binary's last line (N passed, N failed), and the failures. Each runs on
@@ -832,7 +843,9 @@ bench: $(BUILD)/bench
 # Two versions of the header in one program (bench/bench_ab.c): each stage
 # on scene L, the hairfur.h of git revision BASE (default HEAD; WORKTREE:
 # the working tree's own, to see the method's noise) against the working
-# tree's, call by call. Both built with BENCH_CFLAGS.
+# tree's, call by call. Both built with BENCH_CFLAGS. The base copy is
+# named hairfur_base.h, which HF_HEADER_FILENAME tells it (the header
+# includes itself by its name).
 BASE ?= HEAD
 BENCH_AB_ARGS ?=
 AB_CC := gcc -std=c99 $(BENCH_CFLAGS) -Wall -Wextra -Wpedantic
@@ -845,6 +858,7 @@ bench-ab: bench/bench_ab.c bench/ab_side.c bench/bench_ab.h bench/bench_fur.h \
 	  echo "bench-ab: no hairfur.h at revision '$(BASE)' (BASE=REV or WORKTREE)"; \
 	  exit 1; fi
 	$(AB_CC) -I$(BUILD)/ab -DAB_HEADER='"hairfur_base.h"' -DAB_SIDE=ab_base \
+	  -DHF_HEADER_FILENAME='"hairfur_base.h"' \
 	  -c bench/ab_side.c -o $(BUILD)/ab/base.o
 	$(AB_CC) -I. -DAB_HEADER='"hairfur.h"' -DAB_SIDE=ab_new \
 	  -c bench/ab_side.c -o $(BUILD)/ab/new.o

@@ -15,7 +15,9 @@
            #define HAIRFUR_IMPLEMENTATION
            #include "hairfur.h"
 
-       Everywhere else, include "hairfur.h" without the define.
+       Everywhere else, include "hairfur.h" without the define. Under
+       another file name, define HF_HEADER_FILENAME beside the
+       implementation too (CONFIGURATION MACROS).
 
    QUICK START (README.md has it as a complete program, built by make test)
 
@@ -108,6 +110,13 @@
        HF_SIMD_MAX          an hf_simd_level: the highest level used
                             (e.g. HF_SIMD_SSE2 keeps the wide kernels out
                             of use).
+       HF_HEADER_FILENAME   the header's own file name, quoted; default
+                            "hairfur.h". The implementation includes
+                            itself by it, once for each SIMD width of its
+                            kernel texts (found beside it, as #include
+                            "..." searches the including file's directory
+                            first): define it, e.g. "hairfur-0.2.h", where
+                            the file has another name.
        HF_STREAM_MIN_BYTES  strand points larger than this (a call's, or
                             a fur's drawn strands') are written with
                             streaming stores by default (nontemporal
@@ -217,12 +226,20 @@
       10. the fur object (hf_fur): all of the above, per frame
 
        The implementation follows the same order, after one prologue (the
-       overridable macros, the compiler words, the SIMD level) and one
-       place where every struct's zero fields get their defaults. Each
-       SIMD kernel hf__<name>_sse (_avx2, _avx512) sits beside its scalar
-       reference hf__<name>_ref and gives the same bytes; one dispatch
-       function per stage picks between them by the level hf_simd_resolve
-       gives.
+       overridable macros, the compiler words, the SIMD level and its
+       operations) and one place where every struct's zero fields get
+       their defaults. Each SIMD kernel follows its scalar reference
+       hf__<name>_ref and gives the same bytes; one dispatch function per
+       stage picks between them by the level hf_simd_resolve gives. A
+       kernel for one instruction set is named by it (_sse, _neon, _avx2,
+       _avx512), one for SSE2 and NEON alike _v4. One written once for
+       any width (the rope step's contacts and rows, interpolation into
+       strands and into GPU points) is a kernel text, compiled once per
+       width by the header including itself (HF_HEADER_FILENAME) and
+       named by its lanes: _v4 (SSE2 or NEON), _v8 (AVX2), _v16
+       (AVX-512). Each copy is a function with the text's own lines, so a
+       debugger stops in the AVX2 rope kernel at "break
+       hf__ropes_ftl_row_v8" (more under "Kernel texts" in the prologue).
 
    VERSION HISTORY
 
@@ -2306,7 +2323,14 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 /*                            IMPLEMENTATION                                */
 /* ======================================================================== */
 
-#if defined(HAIRFUR_IMPLEMENTATION) && !defined(HAIRFUR_IMPLEMENTATION_DONE)
+/* The implementation, and its kernel passes: a kernel text, written once
+   for any SIMD width, is built by including this file again once per
+   width, with HF__PASS naming the text (see "Kernel texts" after the
+   SIMD words); a pass compiles that text alone. */
+#if (defined(HAIRFUR_IMPLEMENTATION) &&                                        \
+     !defined(HAIRFUR_IMPLEMENTATION_DONE)) ||                                 \
+    defined(HF__PASS)
+#ifndef HF__PASS
 #define HAIRFUR_IMPLEMENTATION_DONE
 
 #include <math.h>
@@ -2328,6 +2352,12 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 #ifndef HF_ASSERT
 #include <assert.h>
 #define HF_ASSERT(x) assert(x)
+#endif
+
+/* The name this file includes itself by, once per SIMD width of each
+   kernel text (see CONFIGURATION MACROS) */
+#ifndef HF_HEADER_FILENAME
+#define HF_HEADER_FILENAME "hairfur.h"
 #endif
 
 /* libm and libc, each replaceable (see CONFIGURATION MACROS at the top). */
@@ -2377,8 +2407,10 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 #define HF_MEMSET(d, v, n) memset(d, v, n)
 #endif
 
-/* SIMD levels. A kernel named hf__<name>_sse (or _neon, _v4 for one
-   written once for both, _avx2, _avx512) sits beside its scalar reference
+/* SIMD levels. A kernel named hf__<name>_sse (or _neon, _avx2, _avx512;
+   _v4 for one written once for SSE2 and NEON; _v4, _v8 or _v16 for a
+   kernel text built at four, eight or sixteen lanes, see "Kernel texts"
+   below) follows its scalar reference
    hf__<name>_ref; every level uses the same IEEE operations in the same
    order (no FMA), so all give the same bytes (in the default rounding
    mode: the vector encoders of normalized formats convert by the mode,
@@ -2532,14 +2564,12 @@ HF__INLINE __m128 hf__sel_sse(__m128 m, __m128 a, __m128 b)
 }
 #endif
 
-/* The four-lane kernels (the rope step) are written once, for SSE2 and
-   NEON, in these: hf__v4 holds four floats, a mask is a vector whose
-   lanes have every bit set or clear, HF__MASK gives bit i for lane i.
-   Each is the IEEE operation of the scalar code, so both ISAs give its
-   bytes; HF__MAX is SSE's maxps, x > y ? x : y (y when either is NaN).
-   Each macro argument is used once. The rope kernels are also built at
-   eight and sixteen lanes under these names (HF__FTL_KERNELS and
-   HF__ROPE_ROWS, in the AVX2 section). */
+/* The four-lane operations, for SSE2 and NEON: hf__v4 holds four floats,
+   a mask is a vector whose lanes have every bit set or clear, HF__MASK
+   gives bit i for lane i. Each is the IEEE operation of the scalar code,
+   so both ISAs give its bytes; HF__MAX is SSE's maxps, x > y ? x : y (y
+   when either is NaN). Each macro argument is used once. The kernel
+   texts use them at four lanes (as HF__VLD, ...: see "Kernel texts"). */
 #define HF__V4 (HF__SSE || HF__NEON)
 #if HF__SSE
 typedef __m128 hf__v4;
@@ -2606,20 +2636,177 @@ HF__INLINE int hf__mask_neon(float32x4_t m)
 }
 #endif
 #if HF__V4
-/* a x + b y + c z, added left to right as the scalar code does */
-#define HF__DOT3(a, b, c, x, y, z)                                             \
-    HF__ADD(HF__ADD(HF__MUL(a, x), HF__MUL(b, y)), HF__MUL(c, z))
-/* o = a x b on three rows of lanes, in hf__cross3's order */
-#define HF__CROSS3(o, a, b)                                                    \
+/* a x + b y + c z, added left to right as the scalar code does; o = a x b
+   on three rows of lanes, in hf__cross3's order; o + a x + b y + c z,
+   likewise. The _OF forms take the operations (a kernel text's too:
+   HF__VDOT3, ...). */
+#define HF__DOT3_OF(add, mul, a, b, c, x, y, z)                                \
+    add(add(mul(a, x), mul(b, y)), mul(c, z))
+#define HF__CROSS3_OF(sub, mul, o, a, b)                                       \
     do {                                                                       \
-        (o)[0] = HF__SUB(HF__MUL((a)[1], (b)[2]), HF__MUL((a)[2], (b)[1]));    \
-        (o)[1] = HF__SUB(HF__MUL((a)[2], (b)[0]), HF__MUL((a)[0], (b)[2]));    \
-        (o)[2] = HF__SUB(HF__MUL((a)[0], (b)[1]), HF__MUL((a)[1], (b)[0]));    \
+        (o)[0] = sub(mul((a)[1], (b)[2]), mul((a)[2], (b)[1]));                \
+        (o)[1] = sub(mul((a)[2], (b)[0]), mul((a)[0], (b)[2]));                \
+        (o)[2] = sub(mul((a)[0], (b)[1]), mul((a)[1], (b)[0]));                \
     } while (0)
-/* o + a x + b y + c z, likewise */
+#define HF__POSE_OF(add, mul, o, a, b, c, x, y, z)                             \
+    add(add(add(o, mul(a, x)), mul(b, y)), mul(c, z))
+#define HF__DOT3(a, b, c, x, y, z)                                             \
+    HF__DOT3_OF(HF__ADD, HF__MUL, a, b, c, x, y, z)
+#define HF__CROSS3(o, a, b) HF__CROSS3_OF(HF__SUB, HF__MUL, o, a, b)
 #define HF__POSE(o, a, b, c, x, y, z)                                          \
-    HF__ADD(HF__ADD(HF__ADD(o, HF__MUL(a, x)), HF__MUL(b, y)), HF__MUL(c, z))
+    HF__POSE_OF(HF__ADD, HF__MUL, o, a, b, c, x, y, z)
 #endif
+
+/* Kernel texts. The kernels written once for any SIMD width (the rope
+   step's contacts and rows at 4, 8 and 16 lanes, interpolation into
+   strands and into GPU points at 8 and 16) are ordinary lines of this
+   file, each where the data flow puts it, between
+       #if defined(HF__PASS) && HF__PASS == HF__PASS_<TEXT>
+   and its #endif, which the implementation skips. After the text it
+   includes this file once per width the build has, with HF__PASS and
+   HF__W (the lanes) set:
+       #define HF__PASS HF__PASS_ROPES
+       #define HF__W 8
+       #include HF_HEADER_FILENAME
+   That pass compiles the text alone (the declarations, already seen,
+   and the rest of the implementation are skipped) in its width's words
+   (below), and undefines them, HF__PASS and HF__W as it ends. Each
+   width's copy of a function is thus a function of its own, named by its
+   width (_v4: SSE2 or NEON, _v8: AVX2, _v16: AVX-512), with the text's
+   own lines in the debug information. In gdb, "break
+   hf__ropes_ftl_row_v8" stops in the rope step's AVX2 FTL row, and
+   "break hairfur.h:LINE" at a line of a text stops in every width's copy;
+   both also find the small kernels that HF__INLINE inlines where the
+   compiler optimizes. */
+#define HF__PASS_ROPES 1  /* the rope step's contact kernels and rows */
+#define HF__PASS_INTERP 2 /* interpolation at 8 and 16 lanes */
+#define HF__PASS_POINTS 3 /* interpolation into GPU points, likewise */
+#if HF__AVX512
+/* Sixteen lanes' words: a mask stays a vector of all-set or all-clear
+   lanes, as the texts expect, so a compare's mask register is widened to
+   one (hf__m16), and a select is a bitwise one (vpternlogd). */
+HF__TARGET_AVX512 HF__INLINE __m512 hf__m16(__mmask16 k)
+{
+    return _mm512_castsi512_ps(_mm512_maskz_set1_epi32(k, -1));
+}
+HF__TARGET_AVX512 HF__INLINE __m512 hf__and16(__m512 x, __m512 y)
+{
+    return _mm512_castsi512_ps(
+        _mm512_and_si512(_mm512_castps_si512(x), _mm512_castps_si512(y)));
+}
+HF__TARGET_AVX512 HF__INLINE __m512 hf__sel16(__m512 m, __m512 a, __m512 b)
+{
+    /* 0xCA: m ? a : b, bit by bit */
+    return _mm512_castsi512_ps(_mm512_ternarylogic_epi32(
+        _mm512_castps_si512(m), _mm512_castps_si512(a),
+        _mm512_castps_si512(b), 0xCA));
+}
+HF__TARGET_AVX512 HF__INLINE int hf__mask16(__m512 m)
+{
+    /* the sign bits, as movemask */
+    return (int)_mm512_cmplt_epi32_mask(_mm512_castps_si512(m),
+                                        _mm512_setzero_si512());
+}
+#endif
+#else /* HF__PASS: a kernel text's words at HF__W lanes */
+/* HF__KN(name): the width's copy of a function or type of the text
+   (name_v4, name_v8, name_v16); HF__VEC: its vector of HF__W floats;
+   HF__VTARGET: its functions' target attribute; HF__VZEROUPPER(): the
+   registers readied for SSE or scalar code after AVX (see
+   HF__TARGET_AVX2); HF__VGATHER(row, idx): row[idx[0 .. HF__W)] in a
+   vector. HF__VLD ... HF__VMASK mean what the four-lane operations
+   without the V mean (HF__LD, ...), the same IEEE operation at every
+   width, so every width gives the scalar code's bytes (the compares
+   false on NaN, HF__VMAX maxps's order). */
+#if HF__W == 4
+#define HF__KN(name) name##_v4
+#define HF__VEC hf__v4
+#define HF__VTARGET
+#define HF__VZEROUPPER() ((void)0)
+#define HF__VGATHER(row, idx)                                                  \
+    HF__SET4((row)[(idx)[0]], (row)[(idx)[1]], (row)[(idx)[2]], (row)[(idx)[3]])
+#define HF__VLD HF__LD
+#define HF__VST HF__ST
+#define HF__VSET1 HF__SET1
+#define HF__VADD HF__ADD
+#define HF__VSUB HF__SUB
+#define HF__VMUL HF__MUL
+#define HF__VDIV HF__DIV
+#define HF__VSQRT HF__SQRT
+#define HF__VMAX HF__MAX
+#define HF__VGT HF__GT
+#define HF__VLT HF__LT
+#define HF__VEQ HF__EQ
+#define HF__VLE HF__LE
+#define HF__VAND HF__AND
+#define HF__VSEL HF__SEL
+#define HF__VMASK HF__MASK
+#elif HF__W == 8
+#define HF__KN(name) name##_v8
+#define HF__VEC __m256
+#define HF__VTARGET HF__TARGET_AVX2
+#define HF__VZEROUPPER() _mm256_zeroupper()
+#define HF__VGATHER(row, idx)                                                  \
+    _mm256_setr_ps((row)[(idx)[0]], (row)[(idx)[1]], (row)[(idx)[2]],         \
+                   (row)[(idx)[3]], (row)[(idx)[4]], (row)[(idx)[5]],         \
+                   (row)[(idx)[6]], (row)[(idx)[7]])
+#define HF__VLD(p) _mm256_loadu_ps(p)
+#define HF__VST(p, v) _mm256_storeu_ps(p, v)
+#define HF__VSET1(x) _mm256_set1_ps(x)
+#define HF__VADD(x, y) _mm256_add_ps(x, y)
+#define HF__VSUB(x, y) _mm256_sub_ps(x, y)
+#define HF__VMUL(x, y) _mm256_mul_ps(x, y)
+#define HF__VDIV(x, y) _mm256_div_ps(x, y)
+#define HF__VSQRT(x) _mm256_sqrt_ps(x)
+#define HF__VMAX(x, y) _mm256_max_ps(x, y)
+#define HF__VGT(x, y) _mm256_cmp_ps(x, y, _CMP_GT_OQ)
+#define HF__VLT(x, y) _mm256_cmp_ps(x, y, _CMP_LT_OQ)
+#define HF__VEQ(x, y) _mm256_cmp_ps(x, y, _CMP_EQ_OQ)
+#define HF__VLE(x, y) _mm256_cmp_ps(x, y, _CMP_LE_OQ)
+#define HF__VAND(x, y) _mm256_and_ps(x, y)
+#define HF__VSEL(m, a, b) _mm256_blendv_ps(b, a, m)
+#define HF__VMASK(m) _mm256_movemask_ps(m)
+#elif HF__W == 16
+#define HF__KN(name) name##_v16
+#define HF__VEC __m512
+#define HF__VTARGET HF__TARGET_AVX512
+#define HF__VZEROUPPER() _mm256_zeroupper()
+/* a hardware gather: steadier here than sixteen scalar loads (3 % faster,
+   where code placement made those 0.089-0.101 ms a step; at eight lanes
+   the scalar loads win); the masked form, as HF__VSQRT */
+#define HF__VGATHER(row, idx)                                                  \
+    _mm512_mask_i32gather_ps(_mm512_setzero_ps(), 0xffff,                     \
+                             _mm512_loadu_si512((const void *)(idx)), (row), 4)
+#define HF__VLD(p) _mm512_loadu_ps(p)
+#define HF__VST(p, v) _mm512_storeu_ps(p, v)
+#define HF__VSET1(x) _mm512_set1_ps(x)
+#define HF__VADD(x, y) _mm512_add_ps(x, y)
+#define HF__VSUB(x, y) _mm512_sub_ps(x, y)
+#define HF__VMUL(x, y) _mm512_mul_ps(x, y)
+#define HF__VDIV(x, y) _mm512_div_ps(x, y)
+/* the masked forms: gcc's plain ones leave lanes "undefined", which its
+   C++ front end warns about */
+#define HF__VSQRT(x) _mm512_maskz_sqrt_ps(0xffff, x)
+#define HF__VMAX(x, y) _mm512_maskz_max_ps(0xffff, x, y)
+#define HF__VGT(x, y) hf__m16(_mm512_cmp_ps_mask(x, y, _CMP_GT_OQ))
+#define HF__VLT(x, y) hf__m16(_mm512_cmp_ps_mask(x, y, _CMP_LT_OQ))
+#define HF__VEQ(x, y) hf__m16(_mm512_cmp_ps_mask(x, y, _CMP_EQ_OQ))
+#define HF__VLE(x, y) hf__m16(_mm512_cmp_ps_mask(x, y, _CMP_LE_OQ))
+#define HF__VAND(x, y) hf__and16(x, y)
+#define HF__VSEL(m, a, b) hf__sel16(m, a, b)
+#define HF__VMASK(m) hf__mask16(m)
+#else
+#error "hairfur.h: a kernel pass is built at 4, 8 or 16 lanes (HF__W)"
+#endif
+#define HF__VOR(a, b) HF__VSEL(a, a, b) /* masks only */
+#define HF__VDOT3(a, b, c, x, y, z)                                            \
+    HF__DOT3_OF(HF__VADD, HF__VMUL, a, b, c, x, y, z)
+#define HF__VCROSS3(o, a, b) HF__CROSS3_OF(HF__VSUB, HF__VMUL, o, a, b)
+#define HF__VPOSE(o, a, b, c, x, y, z)                                         \
+    HF__POSE_OF(HF__VADD, HF__VMUL, o, a, b, c, x, y, z)
+#endif /* HF__PASS */
+
+#ifndef HF__PASS /* the implementation's text; a kernel pass skips it */
 
 #ifdef __cplusplus
 extern "C" {
@@ -7055,24 +7242,6 @@ HF__PRIVATE void hf__ropes_mark_far_ref(const hf_ropes *ro, int j, int a,
 
 #if HF__V4
 
-/* The follow-the-leader collision of hf__ftl_collide_point on W ropes at
-   once, the same operations in the same order per lane, so every lane
-   gets the scalar kernel's bytes: the steps that branch in the scalar code
-   run on every lane and a select keeps each lane's own branch; a lane
-   whose point is outside, or done, keeps its value. Points in contact are
-   a few percent of a row, but each costs the scalar kernel a chain of
-   some twenty square roots and divisions, so W at a time pays.
-
-   These kernels are written once, for any lane width, in HF__FTL_KERNELS,
-   and built for four lanes below (hf__v4: SSE2, NEON) and for eight and
-   sixteen in the AVX2 section. S names the width in every name (v4, v8,
-   v16), V is its vector, W its lanes, T its functions' target attribute,
-   G(row, idx) gathers row[idx[0 .. W)] into a vector, and ZU readies the
-   registers for the scalar code of the rare paths. They use the four-lane operations'
-   names (HF__ADD, ...), which the wider builds map to AVX2 and AVX-512
-   while they expand. */
-#define HF__OR(a, b) HF__SEL(a, a, b) /* masks only */
-
 /* A row's points in contact, listed for the kernel (they are independent:
    a point's collision moves nothing the row reads again): as many as a
    chunk has ropes, so that a row's contacts are grouped once, the more
@@ -7082,517 +7251,6 @@ HF__PRIVATE void hf__ropes_mark_far_ref(const hf_ropes *ro, int j, int a,
 typedef struct hf__ftl_hits {
     int n, r[HF__FTL_HITS];
 } hf__ftl_hits;
-
-#define HF__FTL_KERNELS(S, V, W, T, G, ZU)                                     \
-/* A prepared collider in every lane, rr^2, and whether its axis is a point    \
-   (e == 0: a sphere or a zero-length capsule). */                             \
-typedef struct hf__col_##S {                                                   \
-    V a[3], e[3], inv, rr2, rr, inner;                                         \
-    int point, capsule, shrink;                                                \
-} hf__col_##S;                                                                 \
-                                                                               \
-T HF__INLINE void hf__col_prep_##S(const hf__col_prep *k, hf__col_##S *v)      \
-{                                                                              \
-    int i;                                                                     \
-    for (i = 0; i < 3; ++i) {                                                  \
-        v->a[i] = HF__SET1(k->a[i]);                                           \
-        v->e[i] = HF__SET1(k->e[i]);                                           \
-    }                                                                          \
-    v->inv = HF__SET1(k->inv);                                                 \
-    v->rr2 = HF__SET1(k->rr * k->rr);                                          \
-    v->rr = HF__SET1(k->rr);                                                   \
-    v->inner = HF__SET1(k->inner);                                             \
-    v->point = k->e[0] == 0.0f && k->e[1] == 0.0f && k->e[2] == 0.0f;          \
-    v->capsule = k->inv > 0.0f;                                                \
-    v->shrink = k->inner > 0.0f;                                               \
-}                                                                              \
-                                                                               \
-/* hf__col_closest on W points */                                              \
-T HF__INLINE V hf__col_closest_##S(const hf__col_##S *k, const V *x, V *c)     \
-{                                                                              \
-    const V zero = HF__SET1(0.0f), one = HF__SET1(1.0f);                       \
-    V t, d[3];                                                                 \
-    int i;                                                                     \
-    if (k->point) {                                                            \
-        HF__UNROLL for (i = 0; i < 3; ++i) c[i] = k->a[i];                     \
-    } else {                                                                   \
-        t = HF__MUL(HF__DOT3(HF__SUB(x[0], k->a[0]), HF__SUB(x[1], k->a[1]),   \
-                             HF__SUB(x[2], k->a[2]), k->e[0], k->e[1],         \
-                             k->e[2]),                                         \
-                    k->inv);                                                   \
-        /* t < 0 ? 0 : (t > 1 ? 1 : t), NaN and -0 kept as the scalar does */  \
-        t = HF__SEL(HF__LT(t, zero), zero, HF__SEL(HF__GT(t, one), one, t));   \
-        HF__UNROLL for (i = 0; i < 3; ++i)                                     \
-            c[i] = HF__ADD(k->a[i], HF__MUL(k->e[i], t));                      \
-    }                                                                          \
-    HF__UNROLL for (i = 0; i < 3; ++i) d[i] = HF__SUB(x[i], c[i]);             \
-    return HF__DOT3(d[0], d[1], d[2], d[0], d[1], d[2]);                       \
-}                                                                              \
-                                                                               \
-/* Which of W points hf__col_closest finds inside radius rr (bit i: lane       \
-   i), from its |d|^2: the kernels run the scalar code on exactly the          \
-   points it would act on, and skip the rest (most points, most steps). */     \
-T HF__INLINE int hf__col_hits_##S(const hf__col_##S *k, const V *x)            \
-{                                                                              \
-    V d2;                                                                      \
-    if (k->point) { /* hf__col_closest without its c */                        \
-        const V dx = HF__SUB(x[0], k->a[0]), dy = HF__SUB(x[1], k->a[1]),      \
-                dz = HF__SUB(x[2], k->a[2]);                                   \
-        d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);                                 \
-    } else {                                                                   \
-        V c[3];                                                                \
-        d2 = hf__col_closest_##S(k, x, c);                                     \
-    }                                                                          \
-    return HF__MASK(HF__LT(d2, k->rr2));                                       \
-}                                                                              \
-                                                                               \
-/* Which of W points (in one tile) some collider of the tile's list that       \
-   row j reaches holds (bit i: lane i). */                                     \
-T HF__INLINE int hf__col_any_##S(const hf__cols *cl, int j, const V *xyz)      \
-{                                                                              \
-    hf__col_prep spare;                                                        \
-    hf__col_##S v;                                                             \
-    int i, m = 0;                                                              \
-    for (i = 0; i < cl->n && m != (1 << W) - 1; ++i) {                         \
-        const hf__col_prep *k = hf__cols_at(cl, i, &spare);                    \
-        if (k->row > j) continue;                                              \
-        hf__col_prep_##S(k, &v);                                               \
-        m |= hf__col_hits_##S(&v, xyz);                                        \
-    }                                                                          \
-    return m;                                                                  \
-}                                                                              \
-                                                                               \
-/* hf__ftl_relevant on W parents p with segments l */                          \
-T HF__INLINE V hf__ftl_relevant_##S(const hf__col_##S *k, const V *p, V l)     \
-{                                                                              \
-    V cc[3], lim;                                                              \
-    const V d2 = hf__col_closest_##S(k, p, cc);                                \
-    lim = HF__ADD(k->rr, l);                                                   \
-    lim = HF__ADD(lim, HF__MUL(HF__SET1(1e-4f), lim));                         \
-    return HF__LT(d2, HF__MUL(lim, lim));                                      \
-}                                                                              \
-                                                                               \
-/* hf__ftl_penetration on W points; *any: the lanes some collider holds;       \
-   cw and rw (unless NULL): the deepest one's axis point nearest the           \
-   point, and its radius */                                                    \
-T HF__INLINE V hf__ftl_penetration_##S(const hf__col_##S *k, const V *rr,      \
-                                       int ncol, const V *q, V *any, V *cw,    \
-                                       V *rw)                                  \
-{                                                                              \
-    V worst = HF__SET1(0.0f), hit_any = HF__LT(worst, worst), c3[3];           \
-    int c, i;                                                                  \
-    for (c = 0; c < ncol; ++c) {                                               \
-        const V d2 = hf__col_closest_##S(k + c, q, c3);                        \
-        const V hit = HF__LT(d2, HF__MUL(rr[c], rr[c]));                       \
-        const V pen = HF__SUB(rr[c], HF__SQRT(d2));                            \
-        const V up = HF__SEL(hit_any, HF__AND(hit, HF__GT(pen, worst)), hit);  \
-        worst = HF__SEL(up, pen, worst);                                       \
-        hit_any = HF__OR(hit, hit_any);                                        \
-        if (cw) {                                                              \
-            HF__UNROLL for (i = 0; i < 3; ++i)                                 \
-                cw[i] = HF__SEL(up, c3[i], cw[i]);                             \
-            *rw = HF__SEL(up, rr[c], *rw);                                     \
-        }                                                                      \
-    }                                                                          \
-    *any = hit_any;                                                            \
-    return worst;                                                              \
-}                                                                              \
-                                                                               \
-/* hf__ftl_cap on W lanes */                                                   \
-T HF__INLINE void hf__ftl_cap_##S(const V *p, V l, const V *c, V rr,           \
-                                   const V *n, V *m, V *cmin)                  \
-{                                                                              \
-    const V zero = HF__SET1(0.0f), one = HF__SET1(1.0f);                       \
-    V rho2, rho, big, cm;                                                      \
-    int k;                                                                     \
-    HF__UNROLL for (k = 0; k < 3; ++k) m[k] = HF__SUB(p[k], c[k]);             \
-    rho2 = HF__DOT3(m[0], m[1], m[2], m[0], m[1], m[2]);                       \
-    big = HF__GT(rho2, HF__SET1(1e-24f));                                      \
-    rho = HF__SEL(big, HF__SQRT(rho2), zero);                                  \
-    HF__UNROLL for (k = 0; k < 3; ++k)                                         \
-        m[k] = HF__SEL(big, HF__DIV(m[k], rho), n[k]);                         \
-    rr = HF__ADD(rr, HF__MUL(HF__SET1(1e-6f), HF__ADD(rr, l)));                \
-    cm = HF__DIV(HF__SUB(HF__SUB(HF__MUL(rr, rr), HF__MUL(rho, rho)),          \
-                         HF__MUL(l, l)),                                       \
-                 HF__MUL(HF__MUL(HF__SET1(2.0f), l), rho));                    \
-    cm = HF__SEL(HF__GT(rho, zero), cm, one);                                  \
-    *cmin = HF__SEL(HF__GT(cm, one), one,                                      \
-                    HF__SEL(HF__LT(cm, HF__SET1(-1.0f)), HF__SET1(-1.0f),      \
-                            cm));                                              \
-}                                                                              \
-                                                                               \
-/* hf__perp_part on W lanes */                                                 \
-T HF__INLINE V hf__perp_part_##S(V *v, const V *m)                             \
-{                                                                              \
-    int pass, k;                                                               \
-    HF__UNROLL for (pass = 0; pass < 2; ++pass) {                              \
-        const V vm = HF__DOT3(v[0], v[1], v[2], m[0], m[1], m[2]);             \
-        HF__UNROLL for (k = 0; k < 3; ++k)                                     \
-            v[k] = HF__SUB(v[k], HF__MUL(m[k], vm));                           \
-    }                                                                          \
-    return HF__DOT3(v[0], v[1], v[2], v[0], v[1], v[2]);                       \
-}                                                                              \
-                                                                               \
-/* hf__ftl_onto_cap on W lanes; the fixed perpendicular, rare, lane by         \
-   lane through the scalar code */                                             \
-T HF__INLINE void hf__ftl_onto_cap_##S(const V *u, const V *m, V cmin,         \
-                                        const V *t, V *d)                      \
-{                                                                              \
-    const V tiny = HF__SET1(1e-8f);                                            \
-    V v[3], w[3], v2, w2, low, s;                                              \
-    int k, lanes;                                                              \
-    HF__UNROLL for (k = 0; k < 3; ++k) v[k] = u[k];                            \
-    v2 = hf__perp_part_##S(v, m);                                              \
-    low = HF__LT(v2, tiny);                                                    \
-    if (HF__MASK(low)) {                                                       \
-        HF__UNROLL for (k = 0; k < 3; ++k) w[k] = t[k];                        \
-        w2 = hf__perp_part_##S(w, m);                                          \
-        HF__UNROLL for (k = 0; k < 3; ++k) v[k] = HF__SEL(low, w[k], v[k]);    \
-        v2 = HF__SEL(low, w2, v2);                                             \
-        lanes = HF__MASK(HF__AND(low, HF__LT(w2, tiny)));                      \
-        if (lanes) {                                                           \
-            float mm[3][W], vv[3][W], vv2[W], ml[3], vl[3];                    \
-            int i;                                                             \
-            for (k = 0; k < 3; ++k) {                                          \
-                HF__ST(mm[k], m[k]);                                           \
-                HF__ST(vv[k], v[k]);                                           \
-            }                                                                  \
-            HF__ST(vv2, v2);                                                   \
-            for (i = 0; i < W; ++i)                                            \
-                if ((lanes >> i) & 1) {                                        \
-                    for (k = 0; k < 3; ++k) ml[k] = mm[k][i];                  \
-                    ZU;                                                        \
-                    vv2[i] = hf__perp_fixed(ml, vl);                           \
-                    for (k = 0; k < 3; ++k) vv[k][i] = vl[k];                  \
-                }                                                              \
-            for (k = 0; k < 3; ++k) v[k] = HF__LD(vv[k]);                      \
-            v2 = HF__LD(vv2);                                                  \
-        }                                                                      \
-    }                                                                          \
-    s = HF__DIV(HF__SQRT(HF__SUB(HF__SET1(1.0f), HF__MUL(cmin, cmin))),        \
-                HF__SQRT(v2));                                                 \
-    HF__UNROLL for (k = 0; k < 3; ++k)                                         \
-        d[k] = HF__ADD(HF__MUL(m[k], cmin), HF__MUL(v[k], s));                 \
-}                                                                              \
-                                                                               \
-/* hf__ftl_cap_pair on W lanes: both crossings in d[0..5]; returns the         \
-   lanes where the scalar code returns 2 */                                    \
-T HF__INLINE V hf__ftl_cap_pair_##S(const V *m1, V c1, const V *m2, V c2,      \
-                                     V *d)                                     \
-{                                                                              \
-    const V one = HF__SET1(1.0f);                                              \
-    const V mu = HF__DOT3(m1[0], m1[1], m1[2], m2[0], m2[1], m2[2]);           \
-    const V det = HF__SUB(one, HF__MUL(mu, mu));                               \
-    const V al = HF__DIV(HF__SUB(c1, HF__MUL(mu, c2)), det),                   \
-            be = HF__DIV(HF__SUB(c2, HF__MUL(mu, c1)), det);                   \
-    V x[3], h2, g2, ok = HF__GT(det, HF__SET1(1e-8f));                         \
-    int k;                                                                     \
-    HF__CROSS3(x, m1, m2);                                                     \
-    h2 = HF__ADD(HF__ADD(HF__MUL(al, al), HF__MUL(be, be)),                    \
-                 HF__MUL(HF__MUL(HF__MUL(HF__SET1(2.0f), al), be), mu));       \
-    g2 = HF__DIV(HF__SUB(one, h2), det);                                       \
-    ok = HF__AND(ok, HF__LE(HF__SET1(0.0f), g2));                              \
-    g2 = HF__SQRT(g2);                                                         \
-    HF__UNROLL for (k = 0; k < 3; ++k) {                                       \
-        const V b = HF__ADD(HF__MUL(al, m1[k]), HF__MUL(be, m2[k]));           \
-        d[k] = HF__ADD(b, HF__MUL(g2, x[k]));                                  \
-        d[3 + k] = HF__SUB(b, HF__MUL(g2, x[k]));                              \
-    }                                                                          \
-    HF__UNROLL for (k = 0; k < 2; ++k) {                                       \
-        V *dk = d + 3 * k,                                                     \
-          n2 = HF__DOT3(dk[0], dk[1], dk[2], dk[0], dk[1], dk[2]);             \
-        ok = HF__AND(ok, HF__AND(HF__GT(n2, HF__SET1(0.25f)),                  \
-                                 HF__LT(n2, HF__SET1(4.0f))));                 \
-        n2 = HF__DIV(one, HF__SQRT(n2));                                       \
-        dk[0] = HF__MUL(dk[0], n2);                                            \
-        dk[1] = HF__MUL(dk[1], n2);                                            \
-        dk[2] = HF__MUL(dk[2], n2);                                            \
-    }                                                                          \
-    return ok;                                                                 \
-}                                                                              \
-                                                                               \
-/* hf__ftl_collide_one for point row j of ropes idx[0 .. W) (any ropes:        \
-   the points in contact, gathered) against colliders k[0 .. ncol), ncol       \
-   <= HF__FTL_NEAR, in the order of the call's array: the colliders            \
-   relevant to every lane's point (hf__ftl_flush groups the points so), so     \
-   each lane gets the bytes of its own point's scalar kernel. */               \
-T HF__INLINE void hf__ftl_collide_in_##S(hf_ropes *ro, const float *F, int j,  \
-                                         const int *idx, const hf__col_##S *k, \
-                                         int ncol)                             \
-{                                                                              \
-    const size_t R = (size_t)ro->rope_count, o0 = (size_t)(j - 1) * R;         \
-    const V zero = HF__SET1(0.0f);                                             \
-    float g[3][W];                                                             \
-    V l, p[3], q[3], root[3], n[3], t[3], u[3], best[3], rr[HF__FTL_NEAR],     \
-        m[2 * HF__FTL_NEAR][3], cmin[2 * HF__FTL_NEAR], act, best_pen,         \
-        best_dot, bd, big, cw[3], rw;                                          \
-    int c, e, i, w, round, ncap, pass;                                         \
-    HF__UNROLL for (c = 0; c < 3; ++c) {                                       \
-        const float *X = c == 0 ? ro->x : c == 1 ? ro->y : ro->z;              \
-        p[c] = G(X + o0, idx);                                                 \
-        q[c] = G(X + o0 + R, idx);                                             \
-        root[c] = G(X, idx);                                                   \
-        t[c] = G(F + (size_t)(3 + c) * R, idx);                                \
-        n[c] = G(F + (size_t)(6 + c) * R, idx);                                \
-    }                                                                          \
-    l = G(ro->rest_length + o0, idx);                                          \
-    /* hf__col_radius_for */                                                   \
-    for (c = 0; c < ncol; ++c) {                                               \
-        V cc[3];                                                               \
-        const V d2 = hf__col_closest_##S(k + c, root, cc);                     \
-        rr[c] = k[c].rr;                                                       \
-        if (k[c].shrink)                                                       \
-            rr[c] = HF__SEL(HF__LT(d2, HF__MUL(k[c].inner, k[c].inner)),       \
-                            HF__SQRT(d2), rr[c]);                              \
-    }                                                                          \
-    rw = cw[0] = cw[1] = cw[2] = zero; /* set for ncol >= 1 */                 \
-    best_pen = hf__ftl_penetration_##S(k, rr, ncol, q, &act, cw, &rw);         \
-    act = HF__AND(act, HF__GT(l, zero));                                       \
-    if (!HF__MASK(act)) return;                                                \
-    HF__UNROLL for (i = 0; i < 3; ++i) u[i] = HF__SUB(q[i], p[i]);             \
-    bd = HF__DOT3(u[0], u[1], u[2], u[0], u[1], u[2]);                         \
-    big = HF__GT(bd, HF__SET1(1e-24f));                                        \
-    bd = HF__DIV(HF__SET1(1.0f), HF__SQRT(bd));                                \
-    HF__UNROLL for (i = 0; i < 3; ++i) {                                       \
-        u[i] = HF__SEL(big, HF__MUL(u[i], bd), n[i]);                          \
-        best[i] = q[i];                                                        \
-    }                                                                          \
-    best_dot = HF__SET1(-2.0f);                                                \
-    { /* hf__ftl_collide_point's quick answer */                               \
-        V from[3], mq[3], cq, d[3], cand[3], hold, go = act;                   \
-        HF__UNROLL for (i = 0; i < 3; ++i) from[i] = u[i];                     \
-        for (round = 0; round < HF__FTL_QUICK && HF__MASK(go); ++round) {      \
-            V pen, ok;                                                         \
-            hf__ftl_cap_##S(p, l, cw, rw, n, mq, &cq);                         \
-            hf__ftl_onto_cap_##S(from, mq, cq, t, d);                          \
-            HF__UNROLL for (i = 0; i < 3; ++i)                                 \
-                cand[i] = HF__ADD(p[i], HF__MUL(l, d[i]));                     \
-            /* cw, rw: the next ball, where the point is still inside */       \
-            pen = hf__ftl_penetration_##S(k, rr, ncol, cand, &hold, cw, &rw);  \
-            ok = HF__AND(go, HF__LE(pen, zero));                               \
-            HF__UNROLL for (i = 0; i < 3; ++i) {                               \
-                best[i] = HF__SEL(ok, cand[i], best[i]);                       \
-                from[i] = d[i];                                                \
-            }                                                                  \
-            best_pen = HF__SEL(ok, zero, best_pen);                            \
-            go = HF__AND(go, HF__GT(pen, zero));                               \
-        }                                                                      \
-    }                                                                          \
-    for (round = 0; round < HF__FTL_ROUNDS; ++round) {                         \
-        V from[3];                                                             \
-        const V pen0 = best_pen;                                               \
-        act = HF__AND(act, HF__GT(best_pen, zero));                            \
-        if (!HF__MASK(act)) break;                                             \
-        HF__UNROLL for (i = 0; i < 3; ++i)                                     \
-            from[i] = round == 0 ? u[i] : HF__DIV(HF__SUB(best[i], p[i]), l);  \
-        ncap = 0;                                                              \
-        for (c = 0; c < ncol; ++c) {                                           \
-            V cc[3];                                                           \
-            hf__col_closest_##S(k + c, best, cc);                              \
-            hf__ftl_cap_##S(p, l, cc, rr[c], n, m[ncap], &cmin[ncap]);         \
-            ++ncap;                                                            \
-            if (k[c].capsule) {                                                \
-                hf__col_closest_##S(k + c, p, cc);                             \
-                hf__ftl_cap_##S(p, l, cc, rr[c], n, m[ncap], &cmin[ncap]);     \
-                ++ncap;                                                        \
-            }                                                                  \
-        }                                                                      \
-        for (pass = 0; pass < 2; ++pass) {                                     \
-            V need = act; /* pass 1: the lanes no projection cleared */        \
-            if (pass == 1) {                                                   \
-                need = HF__AND(act, HF__GT(best_pen, zero));                   \
-                if (!HF__MASK(need)) break;                                    \
-            }                                                                  \
-            for (c = 0; c < ncap; ++c)                                         \
-            for (e = pass ? c + 1 : c; e < (pass ? ncap : c + 1); ++e) {       \
-                V d[6], valid = HF__EQ(zero, zero);                            \
-                int nd;                                                        \
-                if (e == c) {                                                  \
-                    hf__ftl_onto_cap_##S(from, m[c], cmin[c], t, d);           \
-                    nd = 1;                                                    \
-                    if (round > 0) {                                           \
-                        hf__ftl_onto_cap_##S(u, m[c], cmin[c], t, d + 3);      \
-                        nd = 2;                                                \
-                    }                                                          \
-                } else {                                                       \
-                    valid = HF__AND(valid, hf__ftl_cap_pair_##S(m[c], cmin[c], \
-                                                                m[e], cmin[e], \
-                                                                d));           \
-                    if (!HF__MASK(HF__AND(need, valid))) continue;             \
-                    nd = 2;                                                    \
-                }                                                              \
-                for (i = 0; i < nd; ++i) {                                     \
-                    const V *di = d + 3 * i;                                   \
-                    V cand[3], pen, dot, up, hold;                             \
-                    HF__UNROLL for (w = 0; w < 3; ++w)                         \
-                        cand[w] = HF__ADD(p[w], HF__MUL(l, di[w]));            \
-                    pen = hf__ftl_penetration_##S(k, rr, ncol, cand, &hold,    \
-                                                  NULL, NULL);                 \
-                    dot = HF__DOT3(di[0], di[1], di[2], u[0], u[1], u[2]);     \
-                    up = HF__OR(HF__LT(pen, best_pen),                         \
-                                HF__AND(HF__EQ(pen, best_pen),                 \
-                                        HF__GT(dot, best_dot)));               \
-                    up = HF__AND(HF__AND(need, valid), up);                    \
-                    best_pen = HF__SEL(up, pen, best_pen);                     \
-                    best_dot = HF__SEL(up, dot, best_dot);                     \
-                    HF__UNROLL for (w = 0; w < 3; ++w)                         \
-                        best[w] = HF__SEL(up, cand[w], best[w]);               \
-                }                                                              \
-            }                                                                  \
-        }                                                                      \
-        act = HF__AND(act, HF__LT(best_pen, pen0)); /* no progress: done */    \
-    }                                                                          \
-    HF__UNROLL for (c = 0; c < 3; ++c) HF__ST(g[c], best[c]);                  \
-    for (i = 0; i < W; ++i) {                                                  \
-        const size_t o = o0 + R + (size_t)idx[i];                              \
-        ro->x[o] = g[0][i];                                                    \
-        ro->y[o] = g[1][i];                                                    \
-        ro->z[o] = g[2][i];                                                    \
-    }                                                                          \
-}                                                                              \
-                                                                               \
-/* The points of row j in contact, resolved when the list fills and when       \
-   the row ends. Each point's relevant colliders (hf__ftl_relevant, in the     \
-   order of the call's array) are its signature; points of one signature       \
-   go W at a time through the contact kernel against just those, where a       \
-   group of points with different ones would pay for all of them (the          \
-   kernel's cost grows with the cube of its colliders). A point with more      \
-   than HF__FTL_NEAR goes alone through the scalar kernel, which walks         \
-   them in batches. One and two colliders, the common cases, as constants,     \
-   so the compiler unrolls the collider loops and keeps the caps in            \
-   registers. */                                                               \
-T HF__PRIVATE void hf__ftl_flush_##S(hf_ropes *ro, const float *F, int j,      \
-                                     hf__ftl_hits *h, const hf__bp *bp)        \
-{                                                                              \
-    const size_t R = (size_t)ro->rope_count, o0 = (size_t)(j - 1) * R;         \
-    int sig[HF__FTL_HITS][HF__FTL_NEAR + 1]; /* [0]: count, -1: too many */    \
-    unsigned char done[HF__FTL_HITS];                                          \
-    unsigned short nxt[HF__FTL_HITS], first[2 * HF__FTL_HITS],                 \
-        last[2 * HF__FTL_HITS];                                                \
-    hf__col_##S k[HF__FTL_NEAR];                                               \
-    hf__col_prep spare, kp;                                                    \
-    hf__cols cl;                                                               \
-    int g, i, m, c, n, idx[W];                                                 \
-    /* the signatures, W points at a time, tile by tile (each point's          \
-       tile list holds every collider relevant to it, in the array's           \
-       order) */                                                               \
-    for (g = 0; g < h->n; g += W) {                                            \
-        V p[3], l;                                                             \
-        int t, t1, lanes;                                                      \
-        for (i = 0; i < W; ++i) {                                              \
-            idx[i] = h->r[g + i < h->n ? g + i : h->n - 1];                    \
-            if (g + i < h->n) sig[g + i][0] = 0;                               \
-        }                                                                      \
-        p[0] = G(ro->x + o0, idx);                                             \
-        p[1] = G(ro->y + o0, idx);                                             \
-        p[2] = G(ro->z + o0, idx);                                             \
-        l = G(ro->rest_length + o0, idx);                                      \
-        t1 = (idx[W - 1] - bp->a) / HF__BP_TILE;                               \
-        for (t = (idx[0] - bp->a) / HF__BP_TILE; t <= t1; ++t) {               \
-            for (lanes = 0, i = 0; i < W && g + i < h->n; ++i)                 \
-                if ((idx[i] - bp->a) / HF__BP_TILE == t) lanes |= 1 << i;      \
-            if (!lanes) continue;                                              \
-            hf__bp_tile(bp, bp->a + t * HF__BP_TILE, &cl);                     \
-            for (c = 0; c < cl.n; ++c) {                                       \
-                const hf__col_prep *kc = hf__cols_at(&cl, c, &spare);          \
-                hf__col_##S v;                                                 \
-                int bits;                                                      \
-                if (kc->row > j) continue;                                     \
-                hf__col_prep_##S(kc, &v);                                      \
-                bits = lanes & HF__MASK(hf__ftl_relevant_##S(&v, p, l));       \
-                for (i = 0; bits; ++i, bits >>= 1) {                           \
-                    int *sg = sig[g + i];                                      \
-                    if (!(bits & 1) || sg[0] < 0) continue;                    \
-                    if (sg[0] == HF__FTL_NEAR)                                 \
-                        sg[0] = -1;                                            \
-                    else                                                       \
-                        sg[1 + sg[0]++] = kc->id;                              \
-                }                                                              \
-            }                                                                  \
-        }                                                                      \
-    }                                                                          \
-    /* chain the points of each signature (nxt), through a hash table of       \
-       each one's first and last point */                                      \
-    for (i = 0; i < 2 * HF__FTL_HITS; ++i) first[i] = 0xffff;                  \
-    for (i = 0; i < h->n; ++i) {                                               \
-        unsigned hash = 2166136261u;                                           \
-        done[i] = 0;                                                           \
-        nxt[i] = 0xffff;                                                       \
-        for (c = 0; c <= sig[i][0]; ++c)                                       \
-            hash = (hash ^ (unsigned)sig[i][c]) * 16777619u;                   \
-        for (m = (int)(hash & (2 * HF__FTL_HITS - 1));;                        \
-             m = (m + 1) & (2 * HF__FTL_HITS - 1)) {                           \
-            if (first[m] == 0xffff) {                                          \
-                first[m] = last[m] = (unsigned short)i;                        \
-                break;                                                         \
-            }                                                                  \
-            n = sig[i][0];                                                     \
-            for (c = 0; c <= n && sig[first[m]][c] == sig[i][c]; ++c) {        \
-            }                                                                  \
-            if (c > n) {                                                       \
-                nxt[last[m]] = (unsigned short)i;                              \
-                last[m] = (unsigned short)i;                                   \
-                break;                                                         \
-            }                                                                  \
-        }                                                                      \
-    }                                                                          \
-    for (i = 0; i < h->n; ++i) {                                               \
-        if (done[i]) continue;                                                 \
-        n = sig[i][0];                                                         \
-        if (n <= 0) {                                                          \
-            if (n < 0) {                                                       \
-                ZU;                                                            \
-                hf__bp_tile(bp, h->r[i], &cl);                                 \
-                hf__ftl_collide_one(ro, F, j, h->r[i], &cl);                   \
-            }                                                                  \
-            continue;                                                          \
-        }                                                                      \
-        for (g = 0, m = i; m != 0xffff && g < W; m = nxt[m]) {                 \
-            idx[g++] = h->r[m];                                                \
-            done[m] = 1;                                                       \
-        }                                                                      \
-        for (m = g; m < W; ++m) idx[m] = idx[g - 1]; /* repeats its last */    \
-        for (c = 0; c < n; ++c) {                                              \
-            kp = hf__collider_prep(bp->col, sig[i][1 + c], bp->margin);        \
-            hf__col_prep_##S(&kp, k + c);                                      \
-        }                                                                      \
-        if (n == 1)                                                            \
-            hf__ftl_collide_in_##S(ro, F, j, idx, k, 1);                       \
-        else if (n == 2)                                                       \
-            hf__ftl_collide_in_##S(ro, F, j, idx, k, 2);                       \
-        else                                                                   \
-            hf__ftl_collide_in_##S(ro, F, j, idx, k, n);                       \
-    }                                                                          \
-                                                                               \
-    h->n = 0;                                                                  \
-}                                                                              \
-                                                                               \
-/* Row j's points r + i for the bits i of m, which some collider holds:        \
-   onto the list, flushed when full. */                                        \
-T HF__INLINE void hf__ftl_list_##S(hf_ropes *ro, const float *F, int j,        \
-                                   int r, int m, hf__ftl_hits *h,              \
-                                   const hf__bp *bp)                           \
-{                                                                              \
-    int i;                                                                     \
-    for (i = r; m; ++i, m >>= 1) {                                             \
-        if (!(m & 1)) continue;                                                \
-        h->r[h->n++] = i;                                                      \
-        if (h->n == HF__FTL_HITS) hf__ftl_flush_##S(ro, F, j, h, bp);          \
-    }                                                                          \
-}
-
-#define HF__GATHER4(row, idx)                                                  \
-    HF__SET4((row)[(idx)[0]], (row)[(idx)[1]], (row)[(idx)[2]], (row)[(idx)[3]])
-HF__FTL_KERNELS(v4, hf__v4, 4, , HF__GATHER4, (void)0)
-#undef HF__GATHER4
-
-/* The sub-step's row kernels (ropes [a, b), b - a a multiple of W, a rope
-   per lane), each with the operations of its scalar reference: written
-   once, like the contact kernels, in HF__ROPE_ROWS(S, V, W, T, ZU), with
-   the safety net's test of every point row (hf__ropes_mark_far_##S, whole
-   groups from a), and built for four lanes here and for eight and sixteen
-   in the AVX2 section. ZU ends each (the AVX build's _mm256_zeroupper, see
-   HF__TARGET_AVX2). */
 
 /* Prefetch of what row j's integration and local shape read, for the 16
    ropes (a cache line) from r. */
@@ -7610,333 +7268,878 @@ HF__INLINE void hf__ropes_prefetch_row(const hf_ropes *ro, int j, int r)
     HF__PREFETCH(ro->rest_w + o);
     HF__PREFETCH(ro->rest_length + o - R);
 }
+#endif
+#endif /* !HF__PASS */
 
-#define HF__ROPE_ROWS(S, V, W, T, ZU)                                          \
-/* The root pinned to the frame F (hf__ropes_integrate_ref's last loop). */    \
-T HF__PRIVATE void hf__ropes_pin_root_##S(hf_ropes *ro, const float *F,        \
-                                          int a, int b)                        \
-{                                                                              \
-    const size_t R = (size_t)ro->rope_count;                                   \
-    const float *f[12];                                                        \
-    int r;                                                                     \
-    hf__frame_rows(F, R, f);                                                   \
-    for (r = a; r < b; r += W) {                                               \
-        const V u = HF__LD(ro->rest_u + r), v = HF__LD(ro->rest_v + r),        \
-                w = HF__LD(ro->rest_w + r);                                    \
-        HF__ST(ro->px + r, HF__LD(ro->x + r));                                 \
-        HF__ST(ro->py + r, HF__LD(ro->y + r));                                 \
-        HF__ST(ro->pz + r, HF__LD(ro->z + r));                                 \
-        HF__ST(ro->x + r,                                                      \
-               HF__POSE(HF__LD(f[0] + r), HF__LD(f[3] + r), HF__LD(f[6] + r),  \
-                        HF__LD(f[9] + r), u, v, w));                           \
-        HF__ST(ro->y + r,                                                      \
-               HF__POSE(HF__LD(f[1] + r), HF__LD(f[4] + r), HF__LD(f[7] + r),  \
-                        HF__LD(f[10] + r), u, v, w));                          \
-        HF__ST(ro->z + r,                                                      \
-               HF__POSE(HF__LD(f[2] + r), HF__LD(f[5] + r), HF__LD(f[8] + r),  \
-                        HF__LD(f[11] + r), u, v, w));                          \
-    }                                                                          \
-    ZU;                                                                        \
-}                                                                              \
-                                                                               \
-/* Row j: Verlet integration and the global pull toward the rest place. */     \
-T HF__PRIVATE void hf__ropes_integrate_row_##S(hf_ropes *ro, const float *F,   \
-                                               int j, int a, int b,            \
-                                               const hf__rope_step *st)        \
-{                                                                              \
-    const size_t R = (size_t)ro->rope_count;                                   \
-    const int P = ro->points;                                                  \
-    const float *AX = HF__ROW(ro->scratch, HF__RS_A, R),                       \
-                *AY = HF__ROW(ro->scratch, HF__RS_A + 1, R),                   \
-                *AZ = HF__ROW(ro->scratch, HF__RS_A + 2, R),                   \
-                *VF = HF__ROW(ro->scratch, HF__RS_VF, R);                      \
-    const float *f[12];                                                        \
-    float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),                \
-          *Z = HF__ROW(ro->z, j, R);                                           \
-    float *PX = HF__ROW(ro->px, j, R), *PY = HF__ROW(ro->py, j, R),            \
-          *PZ = HF__ROW(ro->pz, j, R);                                         \
-    const float *u = HF__ROW(ro->rest_u, j, R),                                \
-                *v = HF__ROW(ro->rest_v, j, R),                                \
-                *w = HF__ROW(ro->rest_w, j, R);                                \
-    const float kgj = st->ktab ? st->kg[j] : hf__rope_kg(st, j, P);            \
-    const int pull = (st->k_root > 0.0f || st->global_on) && !(kgj <= 0.0f);   \
-    const V kg = HF__SET1(kgj);                                                \
-    int r;                                                                     \
-    hf__frame_rows(F, R, f);                                                   \
-    for (r = a; r < b; r += W) {                                               \
-        const V vf = HF__LD(VF + r);                                           \
-        V x = HF__LD(X + r), y = HF__LD(Y + r), z = HF__LD(Z + r);             \
-        const V vx = HF__MUL(HF__SUB(x, HF__LD(PX + r)), vf),                  \
-                vy = HF__MUL(HF__SUB(y, HF__LD(PY + r)), vf),                  \
-                vz = HF__MUL(HF__SUB(z, HF__LD(PZ + r)), vf);                  \
-        HF__ST(PX + r, x);                                                     \
-        HF__ST(PY + r, y);                                                     \
-        HF__ST(PZ + r, z);                                                     \
-        x = HF__ADD(x, HF__ADD(vx, HF__LD(AX + r)));                           \
-        y = HF__ADD(y, HF__ADD(vy, HF__LD(AY + r)));                           \
-        z = HF__ADD(z, HF__ADD(vz, HF__LD(AZ + r)));                           \
-        if (pull) {                                                            \
-            const V uu = HF__LD(u + r), vv = HF__LD(v + r),                    \
-                    ww = HF__LD(w + r);                                        \
-            V g;                                                               \
-            g = HF__POSE(HF__LD(f[0] + r), HF__LD(f[3] + r),                   \
-                         HF__LD(f[6] + r), HF__LD(f[9] + r), uu, vv, ww);      \
-            x = HF__ADD(x, HF__MUL(kg, HF__SUB(g, x)));                        \
-            g = HF__POSE(HF__LD(f[1] + r), HF__LD(f[4] + r),                   \
-                         HF__LD(f[7] + r), HF__LD(f[10] + r), uu, vv, ww);     \
-            y = HF__ADD(y, HF__MUL(kg, HF__SUB(g, y)));                        \
-            g = HF__POSE(HF__LD(f[2] + r), HF__LD(f[5] + r),                   \
-                         HF__LD(f[8] + r), HF__LD(f[11] + r), uu, vv, ww);     \
-            z = HF__ADD(z, HF__MUL(kg, HF__SUB(g, z)));                        \
-        }                                                                      \
-        HF__ST(X + r, x);                                                      \
-        HF__ST(Y + r, y);                                                      \
-        HF__ST(Z + r, z);                                                      \
-    }                                                                          \
-    ZU;                                                                        \
-}                                                                              \
-                                                                               \
-/* Row j's local shape: segment m = j - 1's world rest direction into the      \
-   scratch rows Q[m & 1] (the child direction q of point j + 1's turn, the     \
-   parent direction p of point j + 2's), then point j turned as in             \
-   hf__ropes_local_shape_ref at its j = m; the next row is prefetched. */      \
-T HF__PRIVATE void hf__ropes_local_row_##S(hf_ropes *ro, const float *F,       \
-                                           int j, int a, int b,                \
-                                           const hf__rope_step *st,            \
-                                           float *Q[2][3])                     \
-{                                                                              \
-    const size_t R = (size_t)ro->rope_count;                                   \
-    const int P = ro->points;                                                  \
-    const float *f[12];                                                        \
-    const float *u = HF__ROW(ro->rest_u, j, R),                                \
-                *v = HF__ROW(ro->rest_v, j, R),                                \
-                *w = HF__ROW(ro->rest_w, j, R);                                \
-    float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),                \
-          *Z = HF__ROW(ro->z, j, R);                                           \
-    const V one = HF__SET1(1.0f);                                              \
-    const int m = j - 1;                                                       \
-    const float klm = m < 1      ? 0.0f                                        \
-                      : st->ktab ? st->kl[m]                                   \
-                                 : hf__rope_kl(st, m, P);                      \
-    int r;                                                                     \
-    hf__frame_rows(F, R, f);                                                   \
-    {                                                                          \
-        /* q of segment m */                                                   \
-        const float *u1 = HF__ROW(ro->rest_u, m, R),                           \
-                    *v1 = HF__ROW(ro->rest_v, m, R),                           \
-                    *w1 = HF__ROW(ro->rest_w, m, R);                           \
-        float *QX = Q[m & 1][0], *QY = Q[m & 1][1], *QZ = Q[m & 1][2];         \
-        for (r = a; r < b; r += W) {                                           \
-            const V qu = HF__SUB(HF__LD(u + r), HF__LD(u1 + r)),               \
-                    qv = HF__SUB(HF__LD(v + r), HF__LD(v1 + r)),               \
-                    qw = HF__SUB(HF__LD(w + r), HF__LD(w1 + r));               \
-            HF__ST(QX + r, HF__DOT3(HF__LD(f[3] + r), HF__LD(f[6] + r),        \
-                                    HF__LD(f[9] + r), qu, qv, qw));            \
-            HF__ST(QY + r, HF__DOT3(HF__LD(f[4] + r), HF__LD(f[7] + r),        \
-                                    HF__LD(f[10] + r), qu, qv, qw));           \
-            HF__ST(QZ + r, HF__DOT3(HF__LD(f[5] + r), HF__LD(f[8] + r),        \
-                                    HF__LD(f[11] + r), qu, qv, qw));           \
-        }                                                                      \
-    }                                                                          \
-    if (m >= 1 && !(klm <= 0.0f)) {                                            \
-        /* the local shape of hf__ropes_sim_run at its j = m */                \
-        const float *X0 = HF__ROW(ro->x, m - 1, R),                            \
-                    *Y0 = HF__ROW(ro->y, m - 1, R),                            \
-                    *Z0 = HF__ROW(ro->z, m - 1, R);                            \
-        const float *X1 = HF__ROW(ro->x, m, R), *Y1 = HF__ROW(ro->y, m, R),    \
-                    *Z1 = HF__ROW(ro->z, m, R);                                \
-        const float *L = HF__ROW(ro->rest_length, m - 1, R);                   \
-        const float *QX = Q[m & 1][0], *QY = Q[m & 1][1], *QZ = Q[m & 1][2];   \
-        const float *PX_ = Q[(m + 1) & 1][0], *PY_ = Q[(m + 1) & 1][1],        \
-                    *PZ_ = Q[(m + 1) & 1][2];                                  \
-        const V kl = HF__SET1(klm);                                            \
-        const int pf = j + 1 < P;                                              \
-        for (r = a; r < b; r += W) {                                           \
-            const V x1 = HF__LD(X1 + r), y1 = HF__LD(Y1 + r),                  \
-                    z1 = HF__LD(Z1 + r), l = HF__LD(L + r);                    \
-            const V qx = HF__LD(QX + r), qy = HF__LD(QY + r),                  \
-                    qz = HF__LD(QZ + r);                                       \
-            V px_, py_, pz_, bx, by, bz, b2, ok, ia, ib, cc, kx, ky, kz, kd,   \
-                den, rx, ry, rz, x2, y2, z2;                                   \
-            int all_ok;                                                        \
-            if (pf && ((r - a) & 15) == 0) /* the next row */                  \
-                hf__ropes_prefetch_row(ro, j + 1, r);                          \
-            bx = HF__SUB(x1, HF__LD(X0 + r));                                  \
-            by = HF__SUB(y1, HF__LD(Y0 + r));                                  \
-            bz = HF__SUB(z1, HF__LD(Z0 + r));                                  \
-            b2 = HF__DOT3(bx, by, bz, bx, by, bz);                             \
-            ok = HF__AND(HF__GT(l, HF__SET1(1e-12f)),                          \
-                         HF__GT(b2, HF__SET1(1e-24f)));                        \
-            all_ok = HF__MASK(ok) == (1 << W) - 1;                             \
-            ia = HF__DIV(one, l);                                              \
-            ib = HF__DIV(one, HF__SQRT(b2));                                   \
-            if (!all_ok) { /* the scalar's 0 (lanes may divide by 0) */        \
-                ia = HF__AND(ok, ia);                                          \
-                ib = HF__AND(ok, ib);                                          \
-            }                                                                  \
-            px_ = HF__MUL(HF__LD(PX_ + r), ia);                                \
-            py_ = HF__MUL(HF__LD(PY_ + r), ia);                                \
-            pz_ = HF__MUL(HF__LD(PZ_ + r), ia);                                \
-            bx = HF__MUL(bx, ib);                                              \
-            by = HF__MUL(by, ib);                                              \
-            bz = HF__MUL(bz, ib);                                              \
-            cc = HF__DOT3(px_, py_, pz_, bx, by, bz);                          \
-            if (!all_ok) cc = HF__SEL(ok, cc, one);                            \
-            kx = HF__SUB(HF__MUL(py_, bz), HF__MUL(pz_, by));                  \
-            ky = HF__SUB(HF__MUL(pz_, bx), HF__MUL(px_, bz));                  \
-            kz = HF__SUB(HF__MUL(px_, by), HF__MUL(py_, bx));                  \
-            kd = HF__DOT3(kx, ky, kz, qx, qy, qz);                             \
-            /* maxps(a, b) is a > b ? a : b, NaN included: the scalar's */     \
-            den = HF__DIV(kd, HF__MAX(HF__ADD(one, cc), HF__SET1(1e-6f)));     \
-            /* r = q cc + k x q + k den, turned q */                           \
-            rx = HF__ADD(HF__ADD(HF__MUL(qx, cc),                              \
-                                 HF__SUB(HF__MUL(ky, qz), HF__MUL(kz, qy))),   \
-                         HF__MUL(kx, den));                                    \
-            ry = HF__ADD(HF__ADD(HF__MUL(qy, cc),                              \
-                                 HF__SUB(HF__MUL(kz, qx), HF__MUL(kx, qz))),   \
-                         HF__MUL(ky, den));                                    \
-            rz = HF__ADD(HF__ADD(HF__MUL(qz, cc),                              \
-                                 HF__SUB(HF__MUL(kx, qy), HF__MUL(ky, qx))),   \
-                         HF__MUL(kz, den));                                    \
-            x2 = HF__LD(X + r);                                                \
-            y2 = HF__LD(Y + r);                                                \
-            z2 = HF__LD(Z + r);                                                \
-            x2 = HF__ADD(x2, HF__MUL(kl, HF__SUB(HF__ADD(x1, rx), x2)));       \
-            y2 = HF__ADD(y2, HF__MUL(kl, HF__SUB(HF__ADD(y1, ry), y2)));       \
-            z2 = HF__ADD(z2, HF__MUL(kl, HF__SUB(HF__ADD(z1, rz), z2)));       \
-            HF__ST(X + r, x2);                                                 \
-            HF__ST(Y + r, y2);                                                 \
-            HF__ST(Z + r, z2);                                                 \
-        }                                                                      \
-    }                                                                          \
-    ZU;                                                                        \
-}                                                                              \
-                                                                               \
-/* Row j's follow-the-leader placement (or, for the distance solver, the       \
-   root segment), then its collisions: the points some collider holds are      \
-   listed, and resolved W at a time by the contact kernel. */                  \
-T HF__PRIVATE void hf__ropes_ftl_row_##S(hf_ropes *ro, const float *F, int j,  \
-                                         int a, int b,                         \
-                                         const hf__rope_step *st,              \
-                                         const hf__bp *bp)                     \
-{                                                                              \
-    const size_t R = (size_t)ro->rope_count;                                   \
-    const float *f[12];                                                        \
-    float *X0 = HF__ROW(ro->x, j - 1, R), *Y0 = HF__ROW(ro->y, j - 1, R),      \
-          *Z0 = HF__ROW(ro->z, j - 1, R);                                      \
-    float *X1 = HF__ROW(ro->x, j, R), *Y1 = HF__ROW(ro->y, j, R),              \
-          *Z1 = HF__ROW(ro->z, j, R);                                          \
-    float *PX0 = HF__ROW(ro->px, j - 1, R), *PY0 = HF__ROW(ro->py, j - 1, R),  \
-          *PZ0 = HF__ROW(ro->pz, j - 1, R);                                    \
-    const float *L = HF__ROW(ro->rest_length, j - 1, R);                       \
-    const V one = HF__SET1(1.0f);                                              \
-    const V sd = HF__SET1(j >= 2 ? st->ftl_damping : 0.0f);                    \
-    hf__ftl_hits hits;                                                         \
-    hf__cols cl;                                                               \
-    int r;                                                                     \
-    hf__frame_rows(F, R, f);                                                   \
-    hits.n = 0;                                                                \
-    cl.n = 0;                                                                  \
-    for (r = a; r < b; r += W) {                                               \
-        const V x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),                      \
-                z0 = HF__LD(Z0 + r);                                           \
-        const V ox = HF__LD(X1 + r), oy = HF__LD(Y1 + r),                      \
-                oz = HF__LD(Z1 + r);                                           \
-        V dx = HF__SUB(ox, x0), dy = HF__SUB(oy, y0), dz = HF__SUB(oz, z0),    \
-          d2, deg, sc, xyz[3];                                                 \
-        d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);                                 \
-        /* coincident points: grow along the root normal */                    \
-        deg = HF__LT(d2, HF__SET1(1e-24f));                                    \
-        if (HF__MASK(deg)) { /* rare: the selects */                           \
-            dx = HF__SEL(deg, HF__LD(f[6] + r), dx);                           \
-            dy = HF__SEL(deg, HF__LD(f[7] + r), dy);                           \
-            dz = HF__SEL(deg, HF__LD(f[8] + r), dz);                           \
-            d2 = HF__SEL(deg, one, d2);                                        \
-        }                                                                      \
-        sc = HF__DIV(HF__LD(L + r), HF__SQRT(d2));                             \
-        xyz[0] = HF__ADD(x0, HF__MUL(dx, sc));                                 \
-        xyz[1] = HF__ADD(y0, HF__MUL(dy, sc));                                 \
-        xyz[2] = HF__ADD(z0, HF__MUL(dz, sc));                                 \
-        HF__ST(X1 + r, xyz[0]);                                                \
-        HF__ST(Y1 + r, xyz[1]);                                                \
-        HF__ST(Z1 + r, xyz[2]);                                                \
-        if (!st->ftl) continue;                                                \
-        HF__ST(PX0 + r,                                                        \
-               HF__ADD(HF__LD(PX0 + r), HF__MUL(sd, HF__SUB(xyz[0], ox))));    \
-        HF__ST(PY0 + r,                                                        \
-               HF__ADD(HF__LD(PY0 + r), HF__MUL(sd, HF__SUB(xyz[1], oy))));    \
-        HF__ST(PZ0 + r,                                                        \
-               HF__ADD(HF__LD(PZ0 + r), HF__MUL(sd, HF__SUB(xyz[2], oz))));    \
-        if (bp) {                                                              \
-            int m;                                                             \
-            if (((r - bp->a) & (HF__BP_TILE - 1)) == 0 || r == a)              \
-                hf__bp_tile(bp, r, &cl); /* a new tile */                      \
-            m = hf__col_any_##S(&cl, j, xyz);                                  \
-            if (m) hf__ftl_list_##S(ro, F, j, r, m, &hits, bp);                \
-        }                                                                      \
-    }                                                                          \
-    if (st->ftl && bp) hf__ftl_flush_##S(ro, F, j, &hits, bp);                 \
-    ZU;                                                                        \
-}                                                                              \
-                                                                               \
-/* Row j of a distance pass: half the error to each end (equal masses). */     \
-T HF__PRIVATE void hf__ropes_distance_row_##S(hf_ropes *ro, int j, int a,      \
-                                              int b)                           \
-{                                                                              \
-    const size_t R = (size_t)ro->rope_count;                                   \
-    float *X0 = HF__ROW(ro->x, j - 1, R), *Y0 = HF__ROW(ro->y, j - 1, R),      \
-          *Z0 = HF__ROW(ro->z, j - 1, R);                                      \
-    float *X1 = HF__ROW(ro->x, j, R), *Y1 = HF__ROW(ro->y, j, R),              \
-          *Z1 = HF__ROW(ro->z, j, R);                                          \
-    const float *L = HF__ROW(ro->rest_length, j - 1, R);                       \
-    const V half = HF__SET1(0.5f);                                             \
-    int r;                                                                     \
-    for (r = a; r < b; r += W) {                                               \
-        const V x0 = HF__LD(X0 + r), y0 = HF__LD(Y0 + r),                      \
-                z0 = HF__LD(Z0 + r), x1 = HF__LD(X1 + r),                      \
-                y1 = HF__LD(Y1 + r), z1 = HF__LD(Z1 + r);                      \
-        const V dx = HF__SUB(x1, x0), dy = HF__SUB(y1, y0),                    \
-                dz = HF__SUB(z1, z0);                                          \
-        const V d2 = HF__DOT3(dx, dy, dz, dx, dy, dz);                         \
-        const V e =                                                            \
-            HF__AND(HF__GT(d2, HF__SET1(1e-24f)),                              \
-                    HF__SUB(half, HF__DIV(HF__MUL(half, HF__LD(L + r)),        \
-                                          HF__SQRT(d2))));                     \
-        HF__ST(X0 + r, HF__ADD(x0, HF__MUL(dx, e)));                           \
-        HF__ST(Y0 + r, HF__ADD(y0, HF__MUL(dy, e)));                           \
-        HF__ST(Z0 + r, HF__ADD(z0, HF__MUL(dz, e)));                           \
-        HF__ST(X1 + r, HF__SUB(x1, HF__MUL(dx, e)));                           \
-        HF__ST(Y1 + r, HF__SUB(y1, HF__MUL(dy, e)));                           \
-        HF__ST(Z1 + r, HF__SUB(z1, HF__MUL(dz, e)));                           \
-    }                                                                          \
-    ZU;                                                                        \
-}                                                                              \
-                                                                               \
-/* hf__ropes_mark_far_ref for every point row, on whole groups of W ropes      \
-   from a; returns where the groups end. */                                    \
-T HF__PRIVATE int hf__ropes_mark_far_##S(const hf_ropes *ro, int a, int b,     \
-                                         const float *KB, float *VF)           \
-{                                                                              \
-    const size_t R = (size_t)ro->rope_count;                                   \
-    int r = a, j;                                                              \
-    for (; r + W <= b; r += W) {                                               \
-        const V x0 = HF__LD(ro->x + r), y0 = HF__LD(ro->y + r),                \
-                z0 = HF__LD(ro->z + r), kb = HF__LD(KB + r);                   \
-        V in = HF__EQ(kb, kb); /* each row's d2 <= KB: false for NaN too */    \
-        for (j = 1; j < ro->points; ++j) {                                     \
-            const size_t o = (size_t)j * R + (size_t)r;                        \
-            const V dx = HF__SUB(HF__LD(ro->x + o), x0),                       \
-                    dy = HF__SUB(HF__LD(ro->y + o), y0),                       \
-                    dz = HF__SUB(HF__LD(ro->z + o), z0);                       \
-            in = HF__AND(in, HF__LE(HF__DOT3(dx, dy, dz, dx, dy, dz), kb));    \
-        }                                                                      \
-        HF__ST(VF + r, HF__SEL(in, HF__LD(VF + r), HF__SET1(1.0f)));           \
-    }                                                                          \
-    ZU;                                                                        \
-    return r;                                                                  \
+#if defined(HF__PASS) && HF__PASS == HF__PASS_ROPES
+/* The follow-the-leader collision of hf__ftl_collide_point on W ropes at
+   once, the same operations in the same order per lane, so every lane
+   gets the scalar kernel's bytes: the steps that branch in the scalar code
+   run on every lane and a select keeps each lane's own branch; a lane
+   whose point is outside, or done, keeps its value. Points in contact are
+   a few percent of a row, but each costs the scalar kernel a chain of
+   some twenty square roots and divisions, so W at a time pays.
+
+   These kernels are a kernel text, written once for W = HF__W lanes
+   and built at four below (SSE2, NEON), at eight (AVX2) and sixteen
+   (AVX-512) after hf__ropes_collide; HF__VZEROUPPER() readies the
+   registers for the scalar code of the rare paths. */
+
+/* A prepared collider in every lane, rr^2, and whether its axis is a point
+   (e == 0: a sphere or a zero-length capsule). */
+typedef struct HF__KN(hf__col) {
+    HF__VEC a[3], e[3], inv, rr2, rr, inner;
+    int point, capsule, shrink;
+} HF__KN(hf__col);
+
+HF__VTARGET HF__INLINE void HF__KN(hf__col_prep)(const hf__col_prep *k,
+                                                 HF__KN(hf__col) *v)
+{
+    int i;
+    for (i = 0; i < 3; ++i) {
+        v->a[i] = HF__VSET1(k->a[i]);
+        v->e[i] = HF__VSET1(k->e[i]);
+    }
+    v->inv = HF__VSET1(k->inv);
+    v->rr2 = HF__VSET1(k->rr * k->rr);
+    v->rr = HF__VSET1(k->rr);
+    v->inner = HF__VSET1(k->inner);
+    v->point = k->e[0] == 0.0f && k->e[1] == 0.0f && k->e[2] == 0.0f;
+    v->capsule = k->inv > 0.0f;
+    v->shrink = k->inner > 0.0f;
 }
 
-HF__ROPE_ROWS(v4, hf__v4, 4, , (void)0)
+/* hf__col_closest on W points */
+HF__VTARGET HF__INLINE HF__VEC
+HF__KN(hf__col_closest)(const HF__KN(hf__col) *k, const HF__VEC *x, HF__VEC *c)
+{
+    const HF__VEC zero = HF__VSET1(0.0f), one = HF__VSET1(1.0f);
+    HF__VEC t, d[3];
+    int i;
+    if (k->point) {
+        HF__UNROLL for (i = 0; i < 3; ++i) c[i] = k->a[i];
+    } else {
+        t = HF__VMUL(HF__VDOT3(HF__VSUB(x[0], k->a[0]), HF__VSUB(x[1], k->a[1]),
+                               HF__VSUB(x[2], k->a[2]), k->e[0], k->e[1],
+                               k->e[2]),
+                     k->inv);
+        /* t < 0 ? 0 : (t > 1 ? 1 : t), NaN and -0 kept as the scalar does */
+        t = HF__VSEL(HF__VLT(t, zero), zero, HF__VSEL(HF__VGT(t, one), one, t));
+        HF__UNROLL for (i = 0; i < 3; ++i)
+            c[i] = HF__VADD(k->a[i], HF__VMUL(k->e[i], t));
+    }
+    HF__UNROLL for (i = 0; i < 3; ++i) d[i] = HF__VSUB(x[i], c[i]);
+    return HF__VDOT3(d[0], d[1], d[2], d[0], d[1], d[2]);
+}
+
+/* Which of W points hf__col_closest finds inside radius rr (bit i: lane
+   i), from its |d|^2: the kernels run the scalar code on exactly the
+   points it would act on, and skip the rest (most points, most steps). */
+HF__VTARGET HF__INLINE int HF__KN(hf__col_hits)(const HF__KN(hf__col) *k,
+                                                const HF__VEC *x)
+{
+    HF__VEC d2;
+    if (k->point) { /* hf__col_closest without its c */
+        const HF__VEC dx = HF__VSUB(x[0], k->a[0]),
+                      dy = HF__VSUB(x[1], k->a[1]),
+                      dz = HF__VSUB(x[2], k->a[2]);
+        d2 = HF__VDOT3(dx, dy, dz, dx, dy, dz);
+    } else {
+        HF__VEC c[3];
+        d2 = HF__KN(hf__col_closest)(k, x, c);
+    }
+    return HF__VMASK(HF__VLT(d2, k->rr2));
+}
+
+/* Which of W points (in one tile) some collider of the tile's list that
+   row j reaches holds (bit i: lane i). */
+HF__VTARGET HF__INLINE int HF__KN(hf__col_any)(const hf__cols *cl, int j,
+                                               const HF__VEC *xyz)
+{
+    hf__col_prep spare;
+    HF__KN(hf__col) v;
+    int i, m = 0;
+    for (i = 0; i < cl->n && m != (1 << HF__W) - 1; ++i) {
+        const hf__col_prep *k = hf__cols_at(cl, i, &spare);
+        if (k->row > j) continue;
+        HF__KN(hf__col_prep)(k, &v);
+        m |= HF__KN(hf__col_hits)(&v, xyz);
+    }
+    return m;
+}
+
+/* hf__ftl_relevant on W parents p with segments l */
+HF__VTARGET HF__INLINE HF__VEC
+HF__KN(hf__ftl_relevant)(const HF__KN(hf__col) *k, const HF__VEC *p, HF__VEC l)
+{
+    HF__VEC cc[3], lim;
+    const HF__VEC d2 = HF__KN(hf__col_closest)(k, p, cc);
+    lim = HF__VADD(k->rr, l);
+    lim = HF__VADD(lim, HF__VMUL(HF__VSET1(1e-4f), lim));
+    return HF__VLT(d2, HF__VMUL(lim, lim));
+}
+
+/* hf__ftl_penetration on W points; *any: the lanes some collider holds;
+   cw and rw (unless NULL): the deepest one's axis point nearest the
+   point, and its radius */
+HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__ftl_penetration)(
+    const HF__KN(hf__col) *k, const HF__VEC *rr, int ncol, const HF__VEC *q,
+    HF__VEC *any, HF__VEC *cw, HF__VEC *rw)
+{
+    HF__VEC worst = HF__VSET1(0.0f), hit_any = HF__VLT(worst, worst), c3[3];
+    int c, i;
+    for (c = 0; c < ncol; ++c) {
+        const HF__VEC d2 = HF__KN(hf__col_closest)(k + c, q, c3);
+        const HF__VEC hit = HF__VLT(d2, HF__VMUL(rr[c], rr[c]));
+        const HF__VEC pen = HF__VSUB(rr[c], HF__VSQRT(d2));
+        const HF__VEC up =
+            HF__VSEL(hit_any, HF__VAND(hit, HF__VGT(pen, worst)), hit);
+        worst = HF__VSEL(up, pen, worst);
+        hit_any = HF__VOR(hit, hit_any);
+        if (cw) {
+            HF__UNROLL for (i = 0; i < 3; ++i)
+                cw[i] = HF__VSEL(up, c3[i], cw[i]);
+            *rw = HF__VSEL(up, rr[c], *rw);
+        }
+    }
+    *any = hit_any;
+    return worst;
+}
+
+/* hf__ftl_cap on W lanes */
+HF__VTARGET HF__INLINE void HF__KN(hf__ftl_cap)(const HF__VEC *p, HF__VEC l,
+                                                const HF__VEC *c, HF__VEC rr,
+                                                const HF__VEC *n, HF__VEC *m,
+                                                HF__VEC *cmin)
+{
+    const HF__VEC zero = HF__VSET1(0.0f), one = HF__VSET1(1.0f);
+    HF__VEC rho2, rho, big, cm;
+    int k;
+    HF__UNROLL for (k = 0; k < 3; ++k) m[k] = HF__VSUB(p[k], c[k]);
+    rho2 = HF__VDOT3(m[0], m[1], m[2], m[0], m[1], m[2]);
+    big = HF__VGT(rho2, HF__VSET1(1e-24f));
+    rho = HF__VSEL(big, HF__VSQRT(rho2), zero);
+    HF__UNROLL for (k = 0; k < 3; ++k)
+        m[k] = HF__VSEL(big, HF__VDIV(m[k], rho), n[k]);
+    rr = HF__VADD(rr, HF__VMUL(HF__VSET1(1e-6f), HF__VADD(rr, l)));
+    cm = HF__VDIV(HF__VSUB(HF__VSUB(HF__VMUL(rr, rr), HF__VMUL(rho, rho)),
+                           HF__VMUL(l, l)),
+                  HF__VMUL(HF__VMUL(HF__VSET1(2.0f), l), rho));
+    cm = HF__VSEL(HF__VGT(rho, zero), cm, one);
+    *cmin =
+        HF__VSEL(HF__VGT(cm, one), one,
+                 HF__VSEL(HF__VLT(cm, HF__VSET1(-1.0f)), HF__VSET1(-1.0f), cm));
+}
+
+/* hf__perp_part on W lanes */
+HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__perp_part)(HF__VEC *v,
+                                                     const HF__VEC *m)
+{
+    int pass, k;
+    HF__UNROLL for (pass = 0; pass < 2; ++pass) {
+        const HF__VEC vm = HF__VDOT3(v[0], v[1], v[2], m[0], m[1], m[2]);
+        HF__UNROLL for (k = 0; k < 3; ++k)
+            v[k] = HF__VSUB(v[k], HF__VMUL(m[k], vm));
+    }
+    return HF__VDOT3(v[0], v[1], v[2], v[0], v[1], v[2]);
+}
+
+/* hf__ftl_onto_cap on W lanes; the fixed perpendicular, rare, lane by
+   lane through the scalar code */
+HF__VTARGET HF__INLINE void
+HF__KN(hf__ftl_onto_cap)(const HF__VEC *u, const HF__VEC *m, HF__VEC cmin,
+                         const HF__VEC *t, HF__VEC *d)
+{
+    const HF__VEC tiny = HF__VSET1(1e-8f);
+    HF__VEC v[3], w[3], v2, w2, low, s;
+    int k, lanes;
+    HF__UNROLL for (k = 0; k < 3; ++k) v[k] = u[k];
+    v2 = HF__KN(hf__perp_part)(v, m);
+    low = HF__VLT(v2, tiny);
+    if (HF__VMASK(low)) {
+        HF__UNROLL for (k = 0; k < 3; ++k) w[k] = t[k];
+        w2 = HF__KN(hf__perp_part)(w, m);
+        HF__UNROLL for (k = 0; k < 3; ++k) v[k] = HF__VSEL(low, w[k], v[k]);
+        v2 = HF__VSEL(low, w2, v2);
+        lanes = HF__VMASK(HF__VAND(low, HF__VLT(w2, tiny)));
+        if (lanes) {
+            float mm[3][HF__W], vv[3][HF__W], vv2[HF__W], ml[3], vl[3];
+            int i;
+            for (k = 0; k < 3; ++k) {
+                HF__VST(mm[k], m[k]);
+                HF__VST(vv[k], v[k]);
+            }
+            HF__VST(vv2, v2);
+            for (i = 0; i < HF__W; ++i)
+                if ((lanes >> i) & 1) {
+                    for (k = 0; k < 3; ++k) ml[k] = mm[k][i];
+                    HF__VZEROUPPER();
+                    vv2[i] = hf__perp_fixed(ml, vl);
+                    for (k = 0; k < 3; ++k) vv[k][i] = vl[k];
+                }
+            for (k = 0; k < 3; ++k) v[k] = HF__VLD(vv[k]);
+            v2 = HF__VLD(vv2);
+        }
+    }
+    s = HF__VDIV(HF__VSQRT(HF__VSUB(HF__VSET1(1.0f), HF__VMUL(cmin, cmin))),
+                 HF__VSQRT(v2));
+    HF__UNROLL for (k = 0; k < 3; ++k)
+        d[k] = HF__VADD(HF__VMUL(m[k], cmin), HF__VMUL(v[k], s));
+}
+
+/* hf__ftl_cap_pair on W lanes: both crossings in d[0..5]; returns the
+   lanes where the scalar code returns 2 */
+HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__ftl_cap_pair)(const HF__VEC *m1,
+                                                        HF__VEC c1,
+                                                        const HF__VEC *m2,
+                                                        HF__VEC c2, HF__VEC *d)
+{
+    const HF__VEC one = HF__VSET1(1.0f);
+    const HF__VEC mu = HF__VDOT3(m1[0], m1[1], m1[2], m2[0], m2[1], m2[2]);
+    const HF__VEC det = HF__VSUB(one, HF__VMUL(mu, mu));
+    const HF__VEC al = HF__VDIV(HF__VSUB(c1, HF__VMUL(mu, c2)), det),
+                  be = HF__VDIV(HF__VSUB(c2, HF__VMUL(mu, c1)), det);
+    HF__VEC x[3], h2, g2, ok = HF__VGT(det, HF__VSET1(1e-8f));
+    int k;
+    HF__VCROSS3(x, m1, m2);
+    h2 = HF__VADD(HF__VADD(HF__VMUL(al, al), HF__VMUL(be, be)),
+                  HF__VMUL(HF__VMUL(HF__VMUL(HF__VSET1(2.0f), al), be), mu));
+    g2 = HF__VDIV(HF__VSUB(one, h2), det);
+    ok = HF__VAND(ok, HF__VLE(HF__VSET1(0.0f), g2));
+    g2 = HF__VSQRT(g2);
+    HF__UNROLL for (k = 0; k < 3; ++k) {
+        const HF__VEC b = HF__VADD(HF__VMUL(al, m1[k]), HF__VMUL(be, m2[k]));
+        d[k] = HF__VADD(b, HF__VMUL(g2, x[k]));
+        d[3 + k] = HF__VSUB(b, HF__VMUL(g2, x[k]));
+    }
+    HF__UNROLL for (k = 0; k < 2; ++k) {
+        HF__VEC *dk = d + 3 * k,
+                n2 = HF__VDOT3(dk[0], dk[1], dk[2], dk[0], dk[1], dk[2]);
+        ok = HF__VAND(ok, HF__VAND(HF__VGT(n2, HF__VSET1(0.25f)),
+                                   HF__VLT(n2, HF__VSET1(4.0f))));
+        n2 = HF__VDIV(one, HF__VSQRT(n2));
+        dk[0] = HF__VMUL(dk[0], n2);
+        dk[1] = HF__VMUL(dk[1], n2);
+        dk[2] = HF__VMUL(dk[2], n2);
+    }
+    return ok;
+}
+
+/* hf__ftl_collide_one for point row j of ropes idx[0 .. W) (any ropes:
+   the points in contact, gathered) against colliders k[0 .. ncol), ncol
+   <= HF__FTL_NEAR, in the order of the call's array: the colliders
+   relevant to every lane's point (hf__ftl_flush groups the points so), so
+   each lane gets the bytes of its own point's scalar kernel. */
+HF__VTARGET HF__INLINE void
+HF__KN(hf__ftl_collide_in)(hf_ropes *ro, const float *F, int j, const int *idx,
+                           const HF__KN(hf__col) *k, int ncol)
+{
+    const size_t R = (size_t)ro->rope_count, o0 = (size_t)(j - 1) * R;
+    const HF__VEC zero = HF__VSET1(0.0f);
+    float g[3][HF__W];
+    HF__VEC l, p[3], q[3], root[3], n[3], t[3], u[3], best[3], rr[HF__FTL_NEAR],
+        m[2 * HF__FTL_NEAR][3], cmin[2 * HF__FTL_NEAR], act, best_pen, best_dot,
+        bd, big, cw[3], rw;
+    int c, e, i, w, round, ncap, pass;
+    HF__UNROLL for (c = 0; c < 3; ++c) {
+        const float *X = c == 0 ? ro->x : c == 1 ? ro->y : ro->z;
+        p[c] = HF__VGATHER(X + o0, idx);
+        q[c] = HF__VGATHER(X + o0 + R, idx);
+        root[c] = HF__VGATHER(X, idx);
+        t[c] = HF__VGATHER(F + (size_t)(3 + c) * R, idx);
+        n[c] = HF__VGATHER(F + (size_t)(6 + c) * R, idx);
+    }
+    l = HF__VGATHER(ro->rest_length + o0, idx);
+    /* hf__col_radius_for */
+    for (c = 0; c < ncol; ++c) {
+        HF__VEC cc[3];
+        const HF__VEC d2 = HF__KN(hf__col_closest)(k + c, root, cc);
+        rr[c] = k[c].rr;
+        if (k[c].shrink)
+            rr[c] = HF__VSEL(HF__VLT(d2, HF__VMUL(k[c].inner, k[c].inner)),
+                             HF__VSQRT(d2), rr[c]);
+    }
+    rw = cw[0] = cw[1] = cw[2] = zero; /* set for ncol >= 1 */
+    best_pen = HF__KN(hf__ftl_penetration)(k, rr, ncol, q, &act, cw, &rw);
+    act = HF__VAND(act, HF__VGT(l, zero));
+    if (!HF__VMASK(act)) return;
+    HF__UNROLL for (i = 0; i < 3; ++i) u[i] = HF__VSUB(q[i], p[i]);
+    bd = HF__VDOT3(u[0], u[1], u[2], u[0], u[1], u[2]);
+    big = HF__VGT(bd, HF__VSET1(1e-24f));
+    bd = HF__VDIV(HF__VSET1(1.0f), HF__VSQRT(bd));
+    HF__UNROLL for (i = 0; i < 3; ++i) {
+        u[i] = HF__VSEL(big, HF__VMUL(u[i], bd), n[i]);
+        best[i] = q[i];
+    }
+    best_dot = HF__VSET1(-2.0f);
+    { /* hf__ftl_collide_point's quick answer */
+        HF__VEC from[3], mq[3], cq, d[3], cand[3], hold, go = act;
+        HF__UNROLL for (i = 0; i < 3; ++i) from[i] = u[i];
+        for (round = 0; round < HF__FTL_QUICK && HF__VMASK(go); ++round) {
+            HF__VEC pen, ok;
+            HF__KN(hf__ftl_cap)(p, l, cw, rw, n, mq, &cq);
+            HF__KN(hf__ftl_onto_cap)(from, mq, cq, t, d);
+            HF__UNROLL for (i = 0; i < 3; ++i)
+                cand[i] = HF__VADD(p[i], HF__VMUL(l, d[i]));
+            /* cw, rw: the next ball, where the point is still inside */
+            pen =
+                HF__KN(hf__ftl_penetration)(k, rr, ncol, cand, &hold, cw, &rw);
+            ok = HF__VAND(go, HF__VLE(pen, zero));
+            HF__UNROLL for (i = 0; i < 3; ++i) {
+                best[i] = HF__VSEL(ok, cand[i], best[i]);
+                from[i] = d[i];
+            }
+            best_pen = HF__VSEL(ok, zero, best_pen);
+            go = HF__VAND(go, HF__VGT(pen, zero));
+        }
+    }
+    for (round = 0; round < HF__FTL_ROUNDS; ++round) {
+        HF__VEC from[3];
+        const HF__VEC pen0 = best_pen;
+        act = HF__VAND(act, HF__VGT(best_pen, zero));
+        if (!HF__VMASK(act)) break;
+        HF__UNROLL for (i = 0; i < 3; ++i)
+            from[i] = round == 0 ? u[i] : HF__VDIV(HF__VSUB(best[i], p[i]), l);
+        ncap = 0;
+        for (c = 0; c < ncol; ++c) {
+            HF__VEC cc[3];
+            HF__KN(hf__col_closest)(k + c, best, cc);
+            HF__KN(hf__ftl_cap)(p, l, cc, rr[c], n, m[ncap], &cmin[ncap]);
+            ++ncap;
+            if (k[c].capsule) {
+                HF__KN(hf__col_closest)(k + c, p, cc);
+                HF__KN(hf__ftl_cap)(p, l, cc, rr[c], n, m[ncap], &cmin[ncap]);
+                ++ncap;
+            }
+        }
+        for (pass = 0; pass < 2; ++pass) {
+            HF__VEC need = act; /* pass 1: the lanes no projection cleared */
+            if (pass == 1) {
+                need = HF__VAND(act, HF__VGT(best_pen, zero));
+                if (!HF__VMASK(need)) break;
+            }
+            for (c = 0; c < ncap; ++c)
+            for (e = pass ? c + 1 : c; e < (pass ? ncap : c + 1); ++e) {
+                HF__VEC d[6], valid = HF__VEQ(zero, zero);
+                int nd;
+                if (e == c) {
+                    HF__KN(hf__ftl_onto_cap)(from, m[c], cmin[c], t, d);
+                    nd = 1;
+                    if (round > 0) {
+                        HF__KN(hf__ftl_onto_cap)(u, m[c], cmin[c], t, d + 3);
+                        nd = 2;
+                    }
+                } else {
+                    valid =
+                        HF__VAND(valid,
+                                 HF__KN(hf__ftl_cap_pair)(m[c], cmin[c], m[e],
+                                                          cmin[e], d));
+                    if (!HF__VMASK(HF__VAND(need, valid))) continue;
+                    nd = 2;
+                }
+                for (i = 0; i < nd; ++i) {
+                    const HF__VEC *di = d + 3 * i;
+                    HF__VEC cand[3], pen, dot, up, hold;
+                    HF__UNROLL for (w = 0; w < 3; ++w)
+                        cand[w] = HF__VADD(p[w], HF__VMUL(l, di[w]));
+                    pen = HF__KN(hf__ftl_penetration)(k, rr, ncol, cand, &hold,
+                                                      NULL, NULL);
+                    dot = HF__VDOT3(di[0], di[1], di[2], u[0], u[1], u[2]);
+                    up = HF__VOR(HF__VLT(pen, best_pen),
+                                 HF__VAND(HF__VEQ(pen, best_pen),
+                                          HF__VGT(dot, best_dot)));
+                    up = HF__VAND(HF__VAND(need, valid), up);
+                    best_pen = HF__VSEL(up, pen, best_pen);
+                    best_dot = HF__VSEL(up, dot, best_dot);
+                    HF__UNROLL for (w = 0; w < 3; ++w)
+                        best[w] = HF__VSEL(up, cand[w], best[w]);
+                }
+            }
+        }
+        act = HF__VAND(act, HF__VLT(best_pen, pen0)); /* no progress: done */
+    }
+    HF__UNROLL for (c = 0; c < 3; ++c) HF__VST(g[c], best[c]);
+    for (i = 0; i < HF__W; ++i) {
+        const size_t o = o0 + R + (size_t)idx[i];
+        ro->x[o] = g[0][i];
+        ro->y[o] = g[1][i];
+        ro->z[o] = g[2][i];
+    }
+}
+
+/* The points of row j in contact, resolved when the list fills and when
+   the row ends. Each point's relevant colliders (hf__ftl_relevant, in the
+   order of the call's array) are its signature; points of one signature
+   go W at a time through the contact kernel against just those, where a
+   group of points with different ones would pay for all of them (the
+   kernel's cost grows with the cube of its colliders). A point with more
+   than HF__FTL_NEAR goes alone through the scalar kernel, which walks
+   them in batches. One and two colliders, the common cases, as constants,
+   so the compiler unrolls the collider loops and keeps the caps in
+   registers. */
+HF__VTARGET HF__PRIVATE void HF__KN(hf__ftl_flush)(hf_ropes *ro, const float *F,
+                                                   int j, hf__ftl_hits *h,
+                                                   const hf__bp *bp)
+{
+    const size_t R = (size_t)ro->rope_count, o0 = (size_t)(j - 1) * R;
+    int sig[HF__FTL_HITS][HF__FTL_NEAR + 1]; /* [0]: count, -1: too many */
+    unsigned char done[HF__FTL_HITS];
+    unsigned short nxt[HF__FTL_HITS], first[2 * HF__FTL_HITS],
+        last[2 * HF__FTL_HITS];
+    HF__KN(hf__col) k[HF__FTL_NEAR];
+    hf__col_prep spare, kp;
+    hf__cols cl;
+    int g, i, m, c, n, idx[HF__W];
+    /* the signatures, W points at a time, tile by tile (each point's
+       tile list holds every collider relevant to it, in the array's
+       order) */
+    for (g = 0; g < h->n; g += HF__W) {
+        HF__VEC p[3], l;
+        int t, t1, lanes;
+        for (i = 0; i < HF__W; ++i) {
+            idx[i] = h->r[g + i < h->n ? g + i : h->n - 1];
+            if (g + i < h->n) sig[g + i][0] = 0;
+        }
+        p[0] = HF__VGATHER(ro->x + o0, idx);
+        p[1] = HF__VGATHER(ro->y + o0, idx);
+        p[2] = HF__VGATHER(ro->z + o0, idx);
+        l = HF__VGATHER(ro->rest_length + o0, idx);
+        t1 = (idx[HF__W - 1] - bp->a) / HF__BP_TILE;
+        for (t = (idx[0] - bp->a) / HF__BP_TILE; t <= t1; ++t) {
+            for (lanes = 0, i = 0; i < HF__W && g + i < h->n; ++i)
+                if ((idx[i] - bp->a) / HF__BP_TILE == t) lanes |= 1 << i;
+            if (!lanes) continue;
+            hf__bp_tile(bp, bp->a + t * HF__BP_TILE, &cl);
+            for (c = 0; c < cl.n; ++c) {
+                const hf__col_prep *kc = hf__cols_at(&cl, c, &spare);
+                HF__KN(hf__col) v;
+                int bits;
+                if (kc->row > j) continue;
+                HF__KN(hf__col_prep)(kc, &v);
+                bits = lanes & HF__VMASK(HF__KN(hf__ftl_relevant)(&v, p, l));
+                for (i = 0; bits; ++i, bits >>= 1) {
+                    int *sg = sig[g + i];
+                    if (!(bits & 1) || sg[0] < 0) continue;
+                    if (sg[0] == HF__FTL_NEAR)
+                        sg[0] = -1;
+                    else
+                        sg[1 + sg[0]++] = kc->id;
+                }
+            }
+        }
+    }
+    /* chain the points of each signature (nxt), through a hash table of
+       each one's first and last point */
+    for (i = 0; i < 2 * HF__FTL_HITS; ++i) first[i] = 0xffff;
+    for (i = 0; i < h->n; ++i) {
+        unsigned hash = 2166136261u;
+        done[i] = 0;
+        nxt[i] = 0xffff;
+        for (c = 0; c <= sig[i][0]; ++c)
+            hash = (hash ^ (unsigned)sig[i][c]) * 16777619u;
+        for (m = (int)(hash & (2 * HF__FTL_HITS - 1));;
+             m = (m + 1) & (2 * HF__FTL_HITS - 1)) {
+            if (first[m] == 0xffff) {
+                first[m] = last[m] = (unsigned short)i;
+                break;
+            }
+            n = sig[i][0];
+            for (c = 0; c <= n && sig[first[m]][c] == sig[i][c]; ++c) {
+            }
+            if (c > n) {
+                nxt[last[m]] = (unsigned short)i;
+                last[m] = (unsigned short)i;
+                break;
+            }
+        }
+    }
+    for (i = 0; i < h->n; ++i) {
+        if (done[i]) continue;
+        n = sig[i][0];
+        if (n <= 0) {
+            if (n < 0) {
+                HF__VZEROUPPER();
+                hf__bp_tile(bp, h->r[i], &cl);
+                hf__ftl_collide_one(ro, F, j, h->r[i], &cl);
+            }
+            continue;
+        }
+        for (g = 0, m = i; m != 0xffff && g < HF__W; m = nxt[m]) {
+            idx[g++] = h->r[m];
+            done[m] = 1;
+        }
+        for (m = g; m < HF__W; ++m) idx[m] = idx[g - 1]; /* repeats its last */
+        for (c = 0; c < n; ++c) {
+            kp = hf__collider_prep(bp->col, sig[i][1 + c], bp->margin);
+            HF__KN(hf__col_prep)(&kp, k + c);
+        }
+        if (n == 1)
+            HF__KN(hf__ftl_collide_in)(ro, F, j, idx, k, 1);
+        else if (n == 2)
+            HF__KN(hf__ftl_collide_in)(ro, F, j, idx, k, 2);
+        else
+            HF__KN(hf__ftl_collide_in)(ro, F, j, idx, k, n);
+    }
+
+    h->n = 0;
+}
+
+/* Row j's points r + i for the bits i of m, which some collider holds:
+   onto the list, flushed when full. */
+HF__VTARGET HF__INLINE void HF__KN(hf__ftl_list)(hf_ropes *ro, const float *F,
+                                                 int j, int r, int m,
+                                                 hf__ftl_hits *h,
+                                                 const hf__bp *bp)
+{
+    int i;
+    for (i = r; m; ++i, m >>= 1) {
+        if (!(m & 1)) continue;
+        h->r[h->n++] = i;
+        if (h->n == HF__FTL_HITS) HF__KN(hf__ftl_flush)(ro, F, j, h, bp);
+    }
+}
+
+/* The sub-step's row kernels (ropes [a, b), b - a a multiple of W, a rope
+   per lane), each with the operations of its scalar reference, written
+   once like the contact kernels, with the safety net's test of every
+   point row (hf__ropes_mark_far_v<W>, whole groups from a).
+   HF__VZEROUPPER() ends each (see HF__TARGET_AVX2). */
+/* The root pinned to the frame F (hf__ropes_integrate_ref's last loop). */
+HF__VTARGET HF__PRIVATE void
+HF__KN(hf__ropes_pin_root)(hf_ropes *ro, const float *F, int a, int b)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const float *f[12];
+    int r;
+    hf__frame_rows(F, R, f);
+    for (r = a; r < b; r += HF__W) {
+        const HF__VEC u = HF__VLD(ro->rest_u + r), v = HF__VLD(ro->rest_v + r),
+                      w = HF__VLD(ro->rest_w + r);
+        HF__VST(ro->px + r, HF__VLD(ro->x + r));
+        HF__VST(ro->py + r, HF__VLD(ro->y + r));
+        HF__VST(ro->pz + r, HF__VLD(ro->z + r));
+        HF__VST(ro->x + r,
+                HF__VPOSE(HF__VLD(f[0] + r), HF__VLD(f[3] + r),
+                          HF__VLD(f[6] + r), HF__VLD(f[9] + r), u, v, w));
+        HF__VST(ro->y + r,
+                HF__VPOSE(HF__VLD(f[1] + r), HF__VLD(f[4] + r),
+                          HF__VLD(f[7] + r), HF__VLD(f[10] + r), u, v, w));
+        HF__VST(ro->z + r,
+                HF__VPOSE(HF__VLD(f[2] + r), HF__VLD(f[5] + r),
+                          HF__VLD(f[8] + r), HF__VLD(f[11] + r), u, v, w));
+    }
+    HF__VZEROUPPER();
+}
+
+/* Row j: Verlet integration and the global pull toward the rest place. */
+HF__VTARGET HF__PRIVATE void
+HF__KN(hf__ropes_integrate_row)(hf_ropes *ro, const float *F, int j, int a,
+                                int b, const hf__rope_step *st)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const int P = ro->points;
+    const float *AX = HF__ROW(ro->scratch, HF__RS_A, R),
+                *AY = HF__ROW(ro->scratch, HF__RS_A + 1, R),
+                *AZ = HF__ROW(ro->scratch, HF__RS_A + 2, R),
+                *VF = HF__ROW(ro->scratch, HF__RS_VF, R);
+    const float *f[12];
+    float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
+          *Z = HF__ROW(ro->z, j, R);
+    float *PX = HF__ROW(ro->px, j, R), *PY = HF__ROW(ro->py, j, R),
+          *PZ = HF__ROW(ro->pz, j, R);
+    const float *u = HF__ROW(ro->rest_u, j, R),
+                *v = HF__ROW(ro->rest_v, j, R),
+                *w = HF__ROW(ro->rest_w, j, R);
+    const float kgj = st->ktab ? st->kg[j] : hf__rope_kg(st, j, P);
+    const int pull = (st->k_root > 0.0f || st->global_on) && !(kgj <= 0.0f);
+    const HF__VEC kg = HF__VSET1(kgj);
+    int r;
+    hf__frame_rows(F, R, f);
+    for (r = a; r < b; r += HF__W) {
+        const HF__VEC vf = HF__VLD(VF + r);
+        HF__VEC x = HF__VLD(X + r), y = HF__VLD(Y + r), z = HF__VLD(Z + r);
+        const HF__VEC vx = HF__VMUL(HF__VSUB(x, HF__VLD(PX + r)), vf),
+                      vy = HF__VMUL(HF__VSUB(y, HF__VLD(PY + r)), vf),
+                      vz = HF__VMUL(HF__VSUB(z, HF__VLD(PZ + r)), vf);
+        HF__VST(PX + r, x);
+        HF__VST(PY + r, y);
+        HF__VST(PZ + r, z);
+        x = HF__VADD(x, HF__VADD(vx, HF__VLD(AX + r)));
+        y = HF__VADD(y, HF__VADD(vy, HF__VLD(AY + r)));
+        z = HF__VADD(z, HF__VADD(vz, HF__VLD(AZ + r)));
+        if (pull) {
+            const HF__VEC uu = HF__VLD(u + r), vv = HF__VLD(v + r),
+                          ww = HF__VLD(w + r);
+            HF__VEC g;
+            g = HF__VPOSE(HF__VLD(f[0] + r), HF__VLD(f[3] + r),
+                          HF__VLD(f[6] + r), HF__VLD(f[9] + r), uu, vv, ww);
+            x = HF__VADD(x, HF__VMUL(kg, HF__VSUB(g, x)));
+            g = HF__VPOSE(HF__VLD(f[1] + r), HF__VLD(f[4] + r),
+                          HF__VLD(f[7] + r), HF__VLD(f[10] + r), uu, vv, ww);
+            y = HF__VADD(y, HF__VMUL(kg, HF__VSUB(g, y)));
+            g = HF__VPOSE(HF__VLD(f[2] + r), HF__VLD(f[5] + r),
+                          HF__VLD(f[8] + r), HF__VLD(f[11] + r), uu, vv, ww);
+            z = HF__VADD(z, HF__VMUL(kg, HF__VSUB(g, z)));
+        }
+        HF__VST(X + r, x);
+        HF__VST(Y + r, y);
+        HF__VST(Z + r, z);
+    }
+    HF__VZEROUPPER();
+}
+
+/* Row j's local shape: segment m = j - 1's world rest direction into the
+   scratch rows Q[m & 1] (the child direction q of point j + 1's turn, the
+   parent direction p of point j + 2's), then point j turned as in
+   hf__ropes_local_shape_ref at its j = m; the next row is prefetched. */
+HF__VTARGET HF__PRIVATE void
+HF__KN(hf__ropes_local_row)(hf_ropes *ro, const float *F, int j, int a, int b,
+                            const hf__rope_step *st, float *Q[2][3])
+{
+    const size_t R = (size_t)ro->rope_count;
+    const int P = ro->points;
+    const float *f[12];
+    const float *u = HF__ROW(ro->rest_u, j, R),
+                *v = HF__ROW(ro->rest_v, j, R),
+                *w = HF__ROW(ro->rest_w, j, R);
+    float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
+          *Z = HF__ROW(ro->z, j, R);
+    const HF__VEC one = HF__VSET1(1.0f);
+    const int m = j - 1;
+    const float klm = m < 1      ? 0.0f
+                      : st->ktab ? st->kl[m]
+                                 : hf__rope_kl(st, m, P);
+    int r;
+    hf__frame_rows(F, R, f);
+    {
+        /* q of segment m */
+        const float *u1 = HF__ROW(ro->rest_u, m, R),
+                    *v1 = HF__ROW(ro->rest_v, m, R),
+                    *w1 = HF__ROW(ro->rest_w, m, R);
+        float *QX = Q[m & 1][0], *QY = Q[m & 1][1], *QZ = Q[m & 1][2];
+        for (r = a; r < b; r += HF__W) {
+            const HF__VEC qu = HF__VSUB(HF__VLD(u + r), HF__VLD(u1 + r)),
+                          qv = HF__VSUB(HF__VLD(v + r), HF__VLD(v1 + r)),
+                          qw = HF__VSUB(HF__VLD(w + r), HF__VLD(w1 + r));
+            HF__VST(QX + r, HF__VDOT3(HF__VLD(f[3] + r), HF__VLD(f[6] + r),
+                                      HF__VLD(f[9] + r), qu, qv, qw));
+            HF__VST(QY + r, HF__VDOT3(HF__VLD(f[4] + r), HF__VLD(f[7] + r),
+                                      HF__VLD(f[10] + r), qu, qv, qw));
+            HF__VST(QZ + r, HF__VDOT3(HF__VLD(f[5] + r), HF__VLD(f[8] + r),
+                                      HF__VLD(f[11] + r), qu, qv, qw));
+        }
+    }
+    if (m >= 1 && !(klm <= 0.0f)) {
+        /* the local shape of hf__ropes_sim_run at its j = m */
+        const float *X0 = HF__ROW(ro->x, m - 1, R),
+                    *Y0 = HF__ROW(ro->y, m - 1, R),
+                    *Z0 = HF__ROW(ro->z, m - 1, R);
+        const float *X1 = HF__ROW(ro->x, m, R), *Y1 = HF__ROW(ro->y, m, R),
+                    *Z1 = HF__ROW(ro->z, m, R);
+        const float *L = HF__ROW(ro->rest_length, m - 1, R);
+        const float *QX = Q[m & 1][0], *QY = Q[m & 1][1], *QZ = Q[m & 1][2];
+        const float *PX_ = Q[(m + 1) & 1][0], *PY_ = Q[(m + 1) & 1][1],
+                    *PZ_ = Q[(m + 1) & 1][2];
+        const HF__VEC kl = HF__VSET1(klm);
+        const int pf = j + 1 < P;
+        for (r = a; r < b; r += HF__W) {
+            const HF__VEC x1 = HF__VLD(X1 + r), y1 = HF__VLD(Y1 + r),
+                          z1 = HF__VLD(Z1 + r), l = HF__VLD(L + r);
+            const HF__VEC qx = HF__VLD(QX + r), qy = HF__VLD(QY + r),
+                          qz = HF__VLD(QZ + r);
+            HF__VEC px_, py_, pz_, bx, by, bz, b2, ok, ia, ib, cc, kx, ky, kz,
+                kd, den, rx, ry, rz, x2, y2, z2;
+            int all_ok;
+            if (pf && ((r - a) & 15) == 0) /* the next row */
+                hf__ropes_prefetch_row(ro, j + 1, r);
+            bx = HF__VSUB(x1, HF__VLD(X0 + r));
+            by = HF__VSUB(y1, HF__VLD(Y0 + r));
+            bz = HF__VSUB(z1, HF__VLD(Z0 + r));
+            b2 = HF__VDOT3(bx, by, bz, bx, by, bz);
+            ok = HF__VAND(HF__VGT(l, HF__VSET1(1e-12f)),
+                          HF__VGT(b2, HF__VSET1(1e-24f)));
+            all_ok = HF__VMASK(ok) == (1 << HF__W) - 1;
+            ia = HF__VDIV(one, l);
+            ib = HF__VDIV(one, HF__VSQRT(b2));
+            if (!all_ok) { /* the scalar's 0 (lanes may divide by 0) */
+                ia = HF__VAND(ok, ia);
+                ib = HF__VAND(ok, ib);
+            }
+            px_ = HF__VMUL(HF__VLD(PX_ + r), ia);
+            py_ = HF__VMUL(HF__VLD(PY_ + r), ia);
+            pz_ = HF__VMUL(HF__VLD(PZ_ + r), ia);
+            bx = HF__VMUL(bx, ib);
+            by = HF__VMUL(by, ib);
+            bz = HF__VMUL(bz, ib);
+            cc = HF__VDOT3(px_, py_, pz_, bx, by, bz);
+            if (!all_ok) cc = HF__VSEL(ok, cc, one);
+            kx = HF__VSUB(HF__VMUL(py_, bz), HF__VMUL(pz_, by));
+            ky = HF__VSUB(HF__VMUL(pz_, bx), HF__VMUL(px_, bz));
+            kz = HF__VSUB(HF__VMUL(px_, by), HF__VMUL(py_, bx));
+            kd = HF__VDOT3(kx, ky, kz, qx, qy, qz);
+            /* maxps(a, b) is a > b ? a : b, NaN included: the scalar's */
+            den = HF__VDIV(kd, HF__VMAX(HF__VADD(one, cc), HF__VSET1(1e-6f)));
+            /* r = q cc + k x q + k den, turned q */
+            rx =
+                HF__VADD(HF__VADD(HF__VMUL(qx, cc),
+                                  HF__VSUB(HF__VMUL(ky, qz), HF__VMUL(kz, qy))),
+                         HF__VMUL(kx, den));
+            ry =
+                HF__VADD(HF__VADD(HF__VMUL(qy, cc),
+                                  HF__VSUB(HF__VMUL(kz, qx), HF__VMUL(kx, qz))),
+                         HF__VMUL(ky, den));
+            rz =
+                HF__VADD(HF__VADD(HF__VMUL(qz, cc),
+                                  HF__VSUB(HF__VMUL(kx, qy), HF__VMUL(ky, qx))),
+                         HF__VMUL(kz, den));
+            x2 = HF__VLD(X + r);
+            y2 = HF__VLD(Y + r);
+            z2 = HF__VLD(Z + r);
+            x2 = HF__VADD(x2, HF__VMUL(kl, HF__VSUB(HF__VADD(x1, rx), x2)));
+            y2 = HF__VADD(y2, HF__VMUL(kl, HF__VSUB(HF__VADD(y1, ry), y2)));
+            z2 = HF__VADD(z2, HF__VMUL(kl, HF__VSUB(HF__VADD(z1, rz), z2)));
+            HF__VST(X + r, x2);
+            HF__VST(Y + r, y2);
+            HF__VST(Z + r, z2);
+        }
+    }
+    HF__VZEROUPPER();
+}
+
+/* Row j's follow-the-leader placement (or, for the distance solver, the
+   root segment), then its collisions: the points some collider holds are
+   listed, and resolved W at a time by the contact kernel. */
+HF__VTARGET HF__PRIVATE void
+HF__KN(hf__ropes_ftl_row)(hf_ropes *ro, const float *F, int j, int a, int b,
+                          const hf__rope_step *st, const hf__bp *bp)
+{
+    const size_t R = (size_t)ro->rope_count;
+    const float *f[12];
+    float *X0 = HF__ROW(ro->x, j - 1, R), *Y0 = HF__ROW(ro->y, j - 1, R),
+          *Z0 = HF__ROW(ro->z, j - 1, R);
+    float *X1 = HF__ROW(ro->x, j, R), *Y1 = HF__ROW(ro->y, j, R),
+          *Z1 = HF__ROW(ro->z, j, R);
+    float *PX0 = HF__ROW(ro->px, j - 1, R), *PY0 = HF__ROW(ro->py, j - 1, R),
+          *PZ0 = HF__ROW(ro->pz, j - 1, R);
+    const float *L = HF__ROW(ro->rest_length, j - 1, R);
+    const HF__VEC one = HF__VSET1(1.0f);
+    const HF__VEC sd = HF__VSET1(j >= 2 ? st->ftl_damping : 0.0f);
+    hf__ftl_hits hits;
+    hf__cols cl;
+    int r;
+    hf__frame_rows(F, R, f);
+    hits.n = 0;
+    cl.n = 0;
+    for (r = a; r < b; r += HF__W) {
+        const HF__VEC x0 = HF__VLD(X0 + r), y0 = HF__VLD(Y0 + r),
+                      z0 = HF__VLD(Z0 + r);
+        const HF__VEC ox = HF__VLD(X1 + r), oy = HF__VLD(Y1 + r),
+                      oz = HF__VLD(Z1 + r);
+        HF__VEC dx = HF__VSUB(ox, x0), dy = HF__VSUB(oy, y0),
+                dz = HF__VSUB(oz, z0), d2, deg, sc, xyz[3];
+        d2 = HF__VDOT3(dx, dy, dz, dx, dy, dz);
+        /* coincident points: grow along the root normal */
+        deg = HF__VLT(d2, HF__VSET1(1e-24f));
+        if (HF__VMASK(deg)) { /* rare: the selects */
+            dx = HF__VSEL(deg, HF__VLD(f[6] + r), dx);
+            dy = HF__VSEL(deg, HF__VLD(f[7] + r), dy);
+            dz = HF__VSEL(deg, HF__VLD(f[8] + r), dz);
+            d2 = HF__VSEL(deg, one, d2);
+        }
+        sc = HF__VDIV(HF__VLD(L + r), HF__VSQRT(d2));
+        xyz[0] = HF__VADD(x0, HF__VMUL(dx, sc));
+        xyz[1] = HF__VADD(y0, HF__VMUL(dy, sc));
+        xyz[2] = HF__VADD(z0, HF__VMUL(dz, sc));
+        HF__VST(X1 + r, xyz[0]);
+        HF__VST(Y1 + r, xyz[1]);
+        HF__VST(Z1 + r, xyz[2]);
+        if (!st->ftl) continue;
+        HF__VST(PX0 + r,
+                HF__VADD(HF__VLD(PX0 + r), HF__VMUL(sd, HF__VSUB(xyz[0], ox))));
+        HF__VST(PY0 + r,
+                HF__VADD(HF__VLD(PY0 + r), HF__VMUL(sd, HF__VSUB(xyz[1], oy))));
+        HF__VST(PZ0 + r,
+                HF__VADD(HF__VLD(PZ0 + r), HF__VMUL(sd, HF__VSUB(xyz[2], oz))));
+        if (bp) {
+            int m;
+            if (((r - bp->a) & (HF__BP_TILE - 1)) == 0 || r == a)
+                hf__bp_tile(bp, r, &cl); /* a new tile */
+            m = HF__KN(hf__col_any)(&cl, j, xyz);
+            if (m) HF__KN(hf__ftl_list)(ro, F, j, r, m, &hits, bp);
+        }
+    }
+    if (st->ftl && bp) HF__KN(hf__ftl_flush)(ro, F, j, &hits, bp);
+    HF__VZEROUPPER();
+}
+
+/* Row j of a distance pass: half the error to each end (equal masses). */
+HF__VTARGET HF__PRIVATE void HF__KN(hf__ropes_distance_row)(hf_ropes *ro, int j,
+                                                            int a, int b)
+{
+    const size_t R = (size_t)ro->rope_count;
+    float *X0 = HF__ROW(ro->x, j - 1, R), *Y0 = HF__ROW(ro->y, j - 1, R),
+          *Z0 = HF__ROW(ro->z, j - 1, R);
+    float *X1 = HF__ROW(ro->x, j, R), *Y1 = HF__ROW(ro->y, j, R),
+          *Z1 = HF__ROW(ro->z, j, R);
+    const float *L = HF__ROW(ro->rest_length, j - 1, R);
+    const HF__VEC half = HF__VSET1(0.5f);
+    int r;
+    for (r = a; r < b; r += HF__W) {
+        const HF__VEC x0 = HF__VLD(X0 + r), y0 = HF__VLD(Y0 + r),
+                      z0 = HF__VLD(Z0 + r), x1 = HF__VLD(X1 + r),
+                      y1 = HF__VLD(Y1 + r), z1 = HF__VLD(Z1 + r);
+        const HF__VEC dx = HF__VSUB(x1, x0), dy = HF__VSUB(y1, y0),
+                      dz = HF__VSUB(z1, z0);
+        const HF__VEC d2 = HF__VDOT3(dx, dy, dz, dx, dy, dz);
+        const HF__VEC e =
+            HF__VAND(HF__VGT(d2, HF__VSET1(1e-24f)),
+                     HF__VSUB(half, HF__VDIV(HF__VMUL(half, HF__VLD(L + r)),
+                                             HF__VSQRT(d2))));
+        HF__VST(X0 + r, HF__VADD(x0, HF__VMUL(dx, e)));
+        HF__VST(Y0 + r, HF__VADD(y0, HF__VMUL(dy, e)));
+        HF__VST(Z0 + r, HF__VADD(z0, HF__VMUL(dz, e)));
+        HF__VST(X1 + r, HF__VSUB(x1, HF__VMUL(dx, e)));
+        HF__VST(Y1 + r, HF__VSUB(y1, HF__VMUL(dy, e)));
+        HF__VST(Z1 + r, HF__VSUB(z1, HF__VMUL(dz, e)));
+    }
+    HF__VZEROUPPER();
+}
+
+/* hf__ropes_mark_far_ref for every point row, on whole groups of W ropes
+   from a; returns where the groups end. */
+HF__VTARGET HF__PRIVATE int HF__KN(hf__ropes_mark_far)(const hf_ropes *ro,
+                                                       int a, int b,
+                                                       const float *KB,
+                                                       float *VF)
+{
+    const size_t R = (size_t)ro->rope_count;
+    int r = a, j;
+    for (; r + HF__W <= b; r += HF__W) {
+        const HF__VEC x0 = HF__VLD(ro->x + r), y0 = HF__VLD(ro->y + r),
+                      z0 = HF__VLD(ro->z + r), kb = HF__VLD(KB + r);
+        HF__VEC in =
+            HF__VEQ(kb, kb); /* each row's d2 <= KB: false for NaN too */
+        for (j = 1; j < ro->points; ++j) {
+            const size_t o = (size_t)j * R + (size_t)r;
+            const HF__VEC dx = HF__VSUB(HF__VLD(ro->x + o), x0),
+                          dy = HF__VSUB(HF__VLD(ro->y + o), y0),
+                          dz = HF__VSUB(HF__VLD(ro->z + o), z0);
+            in = HF__VAND(in, HF__VLE(HF__VDOT3(dx, dy, dz, dx, dy, dz), kb));
+        }
+        HF__VST(VF + r, HF__VSEL(in, HF__VLD(VF + r), HF__VSET1(1.0f)));
+    }
+    HF__VZEROUPPER();
+    return r;
+}
+#endif /* HF__PASS_ROPES */
+
+#ifndef HF__PASS
+#if HF__V4
+/* the rope kernels at four lanes (at eight and sixteen after
+   hf__ropes_collide) */
+#define HF__PASS HF__PASS_ROPES
+#define HF__W 4
+#include HF_HEADER_FILENAME
 
 /* The row kernels of one SIMD width (the four-lane ones, and the eight-
    and sixteen-lane ones below), for whole groups of `lanes` ropes at
@@ -8069,157 +8272,17 @@ HF__PRIVATE void hf__ropes_collide(hf_ropes *ro, const float *F, int a, int b,
     (void)level;
 }
 
-
 #if HF__AVX2
 /* The rope kernels at eight lanes (AVX2), then sixteen (AVX-512): the
-   contact kernels (HF__FTL_KERNELS) and the sub-step's rows
-   (HF__ROPE_ROWS), with the four-lane operations' names standing for
-   their AVX forms while they expand: the same operations per rope, so the
-   same bytes (the compares false on NaN and maxps's order, as SSE's). */
-#pragma push_macro("HF__LD")
-#pragma push_macro("HF__ST")
-#pragma push_macro("HF__SET1")
-#pragma push_macro("HF__ADD")
-#pragma push_macro("HF__SUB")
-#pragma push_macro("HF__MUL")
-#pragma push_macro("HF__DIV")
-#pragma push_macro("HF__SQRT")
-#pragma push_macro("HF__GT")
-#pragma push_macro("HF__LT")
-#pragma push_macro("HF__EQ")
-#pragma push_macro("HF__LE")
-#pragma push_macro("HF__AND")
-#pragma push_macro("HF__SEL")
-#pragma push_macro("HF__MASK")
-#pragma push_macro("HF__MAX")
-#undef HF__LD
-#undef HF__ST
-#undef HF__SET1
-#undef HF__ADD
-#undef HF__SUB
-#undef HF__MUL
-#undef HF__DIV
-#undef HF__SQRT
-#undef HF__GT
-#undef HF__LT
-#undef HF__EQ
-#undef HF__LE
-#undef HF__AND
-#undef HF__SEL
-#undef HF__MASK
-#undef HF__MAX
-#define HF__LD(p) _mm256_loadu_ps(p)
-#define HF__ST(p, v) _mm256_storeu_ps(p, v)
-#define HF__SET1(x) _mm256_set1_ps(x)
-#define HF__ADD(x, y) _mm256_add_ps(x, y)
-#define HF__SUB(x, y) _mm256_sub_ps(x, y)
-#define HF__MUL(x, y) _mm256_mul_ps(x, y)
-#define HF__DIV(x, y) _mm256_div_ps(x, y)
-#define HF__SQRT(x) _mm256_sqrt_ps(x)
-#define HF__GT(x, y) _mm256_cmp_ps(x, y, _CMP_GT_OQ)
-#define HF__LT(x, y) _mm256_cmp_ps(x, y, _CMP_LT_OQ)
-#define HF__EQ(x, y) _mm256_cmp_ps(x, y, _CMP_EQ_OQ)
-#define HF__LE(x, y) _mm256_cmp_ps(x, y, _CMP_LE_OQ)
-#define HF__AND(x, y) _mm256_and_ps(x, y)
-#define HF__SEL(m, a, b) _mm256_blendv_ps(b, a, m)
-#define HF__MASK(m) _mm256_movemask_ps(m)
-#define HF__MAX(x, y) _mm256_max_ps(x, y)
-#define HF__GATHER8(row, idx)                                                  \
-    _mm256_setr_ps((row)[(idx)[0]], (row)[(idx)[1]], (row)[(idx)[2]],         \
-                   (row)[(idx)[3]], (row)[(idx)[4]], (row)[(idx)[5]],         \
-                   (row)[(idx)[6]], (row)[(idx)[7]])
-HF__FTL_KERNELS(v8, __m256, 8, HF__TARGET_AVX2, HF__GATHER8,
-                _mm256_zeroupper())
-#undef HF__GATHER8
-HF__ROPE_ROWS(v8, __m256, 8, HF__TARGET_AVX2, _mm256_zeroupper())
+   same operations per rope, so the same bytes. */
+#define HF__PASS HF__PASS_ROPES
+#define HF__W 8
+#include HF_HEADER_FILENAME
 #if HF__AVX512
-/* At sixteen lanes (AVX-512), the same text again. A mask stays a
-   vector of all-set or all-clear lanes, as the text expects: a compare's
-   mask register is widened to one (hf__m16), and a select is a bitwise
-   one (vpternlogd). */
-HF__TARGET_AVX512 HF__INLINE __m512 hf__m16(__mmask16 k)
-{
-    return _mm512_castsi512_ps(_mm512_maskz_set1_epi32(k, -1));
-}
-HF__TARGET_AVX512 HF__INLINE __m512 hf__and16(__m512 x, __m512 y)
-{
-    return _mm512_castsi512_ps(
-        _mm512_and_si512(_mm512_castps_si512(x), _mm512_castps_si512(y)));
-}
-HF__TARGET_AVX512 HF__INLINE __m512 hf__sel16(__m512 m, __m512 a, __m512 b)
-{
-    /* 0xCA: m ? a : b, bit by bit */
-    return _mm512_castsi512_ps(_mm512_ternarylogic_epi32(
-        _mm512_castps_si512(m), _mm512_castps_si512(a),
-        _mm512_castps_si512(b), 0xCA));
-}
-HF__TARGET_AVX512 HF__INLINE int hf__mask16(__m512 m)
-{
-    /* the sign bits, as movemask */
-    return (int)_mm512_cmplt_epi32_mask(_mm512_castps_si512(m),
-                                        _mm512_setzero_si512());
-}
-#undef HF__LD
-#undef HF__ST
-#undef HF__SET1
-#undef HF__ADD
-#undef HF__SUB
-#undef HF__MUL
-#undef HF__DIV
-#undef HF__SQRT
-#undef HF__GT
-#undef HF__LT
-#undef HF__EQ
-#undef HF__LE
-#undef HF__AND
-#undef HF__SEL
-#undef HF__MASK
-#undef HF__MAX
-#define HF__LD(p) _mm512_loadu_ps(p)
-#define HF__ST(p, v) _mm512_storeu_ps(p, v)
-#define HF__SET1(x) _mm512_set1_ps(x)
-#define HF__ADD(x, y) _mm512_add_ps(x, y)
-#define HF__SUB(x, y) _mm512_sub_ps(x, y)
-#define HF__MUL(x, y) _mm512_mul_ps(x, y)
-#define HF__DIV(x, y) _mm512_div_ps(x, y)
-/* the masked forms: gcc's plain ones leave lanes "undefined", which its
-   C++ front end warns about */
-#define HF__SQRT(x) _mm512_maskz_sqrt_ps(0xffff, x)
-#define HF__GT(x, y) hf__m16(_mm512_cmp_ps_mask(x, y, _CMP_GT_OQ))
-#define HF__LT(x, y) hf__m16(_mm512_cmp_ps_mask(x, y, _CMP_LT_OQ))
-#define HF__EQ(x, y) hf__m16(_mm512_cmp_ps_mask(x, y, _CMP_EQ_OQ))
-#define HF__LE(x, y) hf__m16(_mm512_cmp_ps_mask(x, y, _CMP_LE_OQ))
-#define HF__AND(x, y) hf__and16(x, y)
-#define HF__SEL(m, a, b) hf__sel16(m, a, b)
-#define HF__MASK(m) hf__mask16(m)
-#define HF__MAX(x, y) _mm512_maskz_max_ps(0xffff, x, y)
-/* a hardware gather: steadier here than sixteen scalar loads (3 % faster,
-   where code placement made those 0.089-0.101 ms a step; at eight lanes
-   the scalar loads win); the masked form, as HF__SQRT */
-#define HF__GATHER16(row, idx)                                                 \
-    _mm512_mask_i32gather_ps(_mm512_setzero_ps(), 0xffff,                     \
-                             _mm512_loadu_si512((const void *)(idx)), (row), 4)
-HF__FTL_KERNELS(v16, __m512, 16, HF__TARGET_AVX512, HF__GATHER16,
-                _mm256_zeroupper())
-#undef HF__GATHER16
-HF__ROPE_ROWS(v16, __m512, 16, HF__TARGET_AVX512, _mm256_zeroupper())
+#define HF__PASS HF__PASS_ROPES
+#define HF__W 16
+#include HF_HEADER_FILENAME
 #endif
-#pragma pop_macro("HF__LD")
-#pragma pop_macro("HF__ST")
-#pragma pop_macro("HF__SET1")
-#pragma pop_macro("HF__ADD")
-#pragma pop_macro("HF__SUB")
-#pragma pop_macro("HF__MUL")
-#pragma pop_macro("HF__DIV")
-#pragma pop_macro("HF__SQRT")
-#pragma pop_macro("HF__GT")
-#pragma pop_macro("HF__LT")
-#pragma pop_macro("HF__EQ")
-#pragma pop_macro("HF__LE")
-#pragma pop_macro("HF__AND")
-#pragma pop_macro("HF__SEL")
-#pragma pop_macro("HF__MASK")
-#pragma pop_macro("HF__MAX")
 
 /* The rows eight (sixteen) ropes a vector, for hf__ropes_substep_rows.
    Each is a function of its own, so no SSE code runs between them with
@@ -8235,7 +8298,6 @@ static const hf__rope_rows hf__rope_rows_avx512 = {
     hf__ropes_distance_row_v16, hf__ropes_mark_far_v16};
 #endif
 #endif
-#undef HF__OR
 
 #if HF__V4
 /* The row kernels this build has, widest first: each takes whole groups
@@ -9563,91 +9625,27 @@ HF__INLINE int hf__stream_mode(int nt, const void *o, uintptr_t whole)
 #endif
 
 #if HF__AVX2
-/* One strand's inputs at eight lanes, straight from its binding (taken
-   through hf__istrand and a record of its vectors, the sixteen-lane
-   kernel ran 1.3x slower on 100,000 strands): its
-   guides (gn: the one it clumps to, NULL without clumping), weights,
-   scale, and (1 - sc) root in its phases at floats 0, 8, 16 (0, 2, 1;
-   it repeats every 3 floats; hf__roots8). The kernels pass the run's
-   fields in: their vector stores may alias anything, so fields read
-   through the run would be read again after each. */
-typedef struct hf__is8 {
-    const float *g0, *g1, *g2, *gn;
-    __m256 W0, W1, W2, SC, R[3];
-} hf__is8;
-/* one vector, in the texts built at eight and sixteen lanes */
-typedef __m256 hf__f8;
-HF__TARGET_AVX2 HF__INLINE __m256 hf__set1_8(float x)
-{
-    return _mm256_set1_ps(x);
-}
-HF__TARGET_AVX2 HF__INLINE __m256 hf__loadu_8(const float *p)
-{
-    return _mm256_loadu_ps(p);
-}
-
-HF__TARGET_AVX2 HF__INLINE void hf__strand8(const float *G, int clump,
-                                            const hf_strand_binding *b,
-                                            size_t n, hf__is8 *v)
-{
-    v->g0 = G + (size_t)b->guide[0] * n;
-    v->g1 = G + (size_t)b->guide[1] * n;
-    v->g2 = G + (size_t)b->guide[2] * n;
-    v->gn = clump ? G + hf__clump_guide(b) * n : NULL;
-    v->W0 = _mm256_set1_ps(b->weight[0]);
-    v->W1 = _mm256_set1_ps(b->weight[1]);
-    v->W2 = _mm256_set1_ps(b->weight[2]);
-    v->SC = _mm256_set1_ps(b->length_scale);
-}
-
-/* The weighted sum of the guides' floats [q, q + 8): the operations of
-   hf__interp_strand_ref in its order (no FMA), so the same bytes. */
-HF__TARGET_AVX2 HF__INLINE __m256 hf__sum8(const hf__is8 *v, size_t q)
-{
-    return _mm256_add_ps(
-        _mm256_add_ps(_mm256_mul_ps(v->W0, _mm256_loadu_ps(v->g0 + q)),
-                      _mm256_mul_ps(v->W1, _mm256_loadu_ps(v->g1 + q))),
-        _mm256_mul_ps(v->W2, _mm256_loadu_ps(v->g2 + q)));
-}
-
-/* The root phases from the sum of floats [0, 8) (s0: the root's sum in
-   lanes 0-2), so the root costs no loads of its own */
-HF__TARGET_AVX2 HF__INLINE void hf__roots8(hf__is8 *v, __m256 s0)
+/* A strand's root at eight lanes, (1 - sc) root in its phases at floats
+   0, 8, 16 (0, 2, 1: it repeats every 3 floats) into R[0 .. 3), from s0,
+   the sum of floats [0, 8) (the root's sum in lanes 0-2), so the root
+   costs no loads of its own. */
+HF__TARGET_AVX2 HF__INLINE void hf__roots_v8(__m256 sc, __m256 s0,
+                                             __m256 *R)
 {
     const __m256i x0 = _mm256_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1);
     const __m256i x2 = _mm256_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0);
     const __m256i x1 = _mm256_setr_epi32(1, 2, 0, 1, 2, 0, 1, 2);
-    const __m256 r = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(1.0f), v->SC),
+    const __m256 r = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(1.0f), sc),
                                    s0);
-    v->R[0] = _mm256_permutevar8x32_ps(r, x0);
-    v->R[1] = _mm256_permutevar8x32_ps(r, x2);
-    v->R[2] = _mm256_permutevar8x32_ps(r, x1);
-}
-
-/* Floats [q, q + 8) of the strand from their sum p, in root phase R[k] */
-HF__TARGET_AVX2 HF__INLINE __m256 hf__finish8(const hf__is8 *v,
-                                              const float *ctab, __m256 p,
-                                              size_t q, int k)
-{
-    p = _mm256_add_ps(_mm256_mul_ps(v->SC, p), v->R[k]);
-    if (v->gn)
-        p = _mm256_add_ps(
-            p, _mm256_mul_ps(_mm256_loadu_ps(ctab + q),
-                             _mm256_sub_ps(_mm256_loadu_ps(v->gn + q), p)));
-    return p;
-}
-
-HF__TARGET_AVX2 HF__INLINE __m256 hf__blend8(const hf__is8 *v,
-                                             const float *ctab, size_t q,
-                                             int k)
-{
-    return hf__finish8(v, ctab, hf__sum8(v, q), q, k);
+    R[0] = _mm256_permutevar8x32_ps(r, x0);
+    R[1] = _mm256_permutevar8x32_ps(r, x2);
+    R[2] = _mm256_permutevar8x32_ps(r, x1);
 }
 
 /* Eight floats at o, as hf__stream_mode says: a plain store (0), two
    streaming halves (1: 16-byte aligned) or one streaming store (2:
    32-byte aligned). */
-HF__TARGET_AVX2 HF__INLINE void hf__put8(float *o, __m256 q, int mode)
+HF__TARGET_AVX2 HF__INLINE void hf__put_v8(float *o, __m256 q, int mode)
 {
     if (mode == 2) {
         _mm256_stream_ps(o, q);
@@ -9682,160 +9680,194 @@ HF__INLINE void hf__stream_floats(float *o, const float *q, size_t r)
     size_t k;
     for (k = 0; k < r; k += 4) _mm_stream_ps(o + k, _mm_loadu_ps(q + k));
 }
-
-/* The strands of a range, W floats a vector, in one target function
-   (attribute T; no call per strand), as two kernels built from one text.
-   hf__interp_groups<W>: P a multiple of W, a strand whole groups of three
-   vectors: the stream mode once, since every strand's 12 P bytes keep the
-   first's alignment, and no tail (with one, the sixteen-lane loop
-   measured 1.1x slower). Its loop is inlined once for each clumping and
-   stream mode, passed as constants: tested in every vector, they took a
-   third of its instructions at AVX2. hf__interp_range<W>: any P, three
-   vectors a turn, then one or two, then the strand's last W floats over
-   the end of those (with fewer than W floats, the scalar tail): at P = 12
-   and 20, 7.5-12 ns a strand in L2 where the scalar tail took 18-32. */
-#define HF__INTERP_RANGES(W, T)                                                \
-T HF__INLINE void hf__interp_whole##W(const hf__irun *run, int first,          \
-                                      int count, int clump, int nt)            \
-{                                                                              \
-    const size_t n = 3u * (size_t)run->P;                                      \
-    const hf_strand_binding *b = run->bindings + first;                        \
-    const float *G = run->guides, *ctab = run->ctab;                           \
-    float *o = run->out + (size_t)(first - run->out_first) * n;                \
-    int s;                                                                     \
-    for (s = 0; s < count; ++s, ++b, o += n) {                                 \
-        hf__is##W v;                                                           \
-        hf__f##W sa;                                                           \
-        size_t i;                                                              \
-        if (nt) hf__page_ahead(o, 4u * n);                                     \
-        hf__strand##W(G, clump, b, n, &v);                                     \
-        sa = hf__sum##W(&v, 0); /* the root's sum, and the first vector's */   \
-        hf__roots##W(&v, sa);                                                  \
-        for (i = 0;; sa = hf__sum##W(&v, i)) {                                 \
-            hf__put##W(o + i, hf__finish##W(&v, ctab, sa, i, 0), nt);          \
-            hf__put##W(o + i + W, hf__blend##W(&v, ctab, i + W, 1), nt);       \
-            hf__put##W(o + i + 2 * W, hf__blend##W(&v, ctab, i + 2 * W, 2),    \
-                       nt);                                                    \
-            if ((i += 3 * W) >= n) break;                                      \
-        }                                                                      \
-    }                                                                          \
-}                                                                              \
-                                                                               \
-T HF__PRIVATE void hf__interp_groups##W(const hf__irun *run, int first,        \
-                                        int count)                             \
-{                                                                              \
-    const float *o = run->out + (size_t)(first - run->out_first) *             \
-                                    (3u * (size_t)run->P);                     \
-    const int nt = hf__stream_mode(run->nt, o, 4u * W - 1u);                   \
-    HF__CLUMP_MODE_CASES(run->clump, nt, hf__interp_whole##W, run, first,      \
-                         count);                                               \
-    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */                              \
-}                                                                              \
-                                                                               \
-T HF__PRIVATE void hf__interp_range##W(const hf__irun *run, int first,         \
-                                       int count)                              \
-{                                                                              \
-    const size_t n = 3u * (size_t)run->P;                                      \
-    const hf_strand_binding *b = run->bindings + first;                        \
-    const float *G = run->guides, *ctab = run->ctab;                           \
-    const int clump = run->clump;                                              \
-    float *o = run->out + (size_t)(first - run->out_first) * n;                \
-    int s;                                                                     \
-    if (n % (3 * W) == 0) {                                                    \
-        hf__interp_groups##W(run, first, count);                               \
-        return;                                                                \
-    }                                                                          \
-    for (s = first; s < first + count; ++s, ++b, o += n) {                     \
-        const int nt = hf__stream_mode(run->nt, o, 4u * W - 1u);               \
-        hf__is##W v;                                                           \
-        hf__f##W sa = hf__set1_##W(0.0f);                                      \
-        size_t i;                                                              \
-        if (nt) hf__page_ahead(o, 4u * n);                                     \
-        hf__strand##W(G, clump, b, n, &v);                                     \
-        /* the root's sum, and the first vector's (below W floats only the     \
-           scalar tail runs, with a root of its own) */                        \
-        if (n >= W) sa = hf__sum##W(&v, 0);                                    \
-        hf__roots##W(&v, sa);                                                  \
-        /* sa: the sum of floats [i, i + W) wherever i + W <= n; the phases    \
-           by constants, so v stays in registers */                            \
-        for (i = 0; i + 3 * W <= n;) {                                         \
-            hf__put##W(o + i, hf__finish##W(&v, ctab, sa, i, 0), nt);          \
-            hf__put##W(o + i + W, hf__blend##W(&v, ctab, i + W, 1), nt);       \
-            hf__put##W(o + i + 2 * W, hf__blend##W(&v, ctab, i + 2 * W, 2),    \
-                       nt);                                                    \
-            if ((i += 3 * W) + W <= n) sa = hf__sum##W(&v, i);                 \
-        }                                                                      \
-        if (i + W <= n) {                                                      \
-            hf__put##W(o + i, hf__finish##W(&v, ctab, sa, i, 0), nt);          \
-            i += W;                                                            \
-        }                                                                      \
-        if (i + W <= n) {                                                      \
-            hf__put##W(o + i, hf__blend##W(&v, ctab, i, 1), nt);               \
-            i += W;                                                            \
-        }                                                                      \
-        if (i < n && n >= W) {                                                 \
-            /* the last W floats (their phase 2, since n - W = 2 W mod 3):     \
-               over some already written (the same values), or streamed,       \
-               only those past i: a line streamed twice goes out twice */      \
-            float t[W];                                                        \
-            hf__put##W(nt ? t : o + n - W, hf__blend##W(&v, ctab, n - W, 2),   \
-                       0);                                                     \
-            if (nt) hf__stream_floats(o + i, t + W - (n - i), n - i);          \
-        } else if (i < n) {                                                    \
-            hf__istrand t;                                                     \
-            /* the tail is SSE code: with the upper halves dirty it would      \
-               run at half speed or worse */                                   \
-            _mm256_zeroupper();                                                \
-            hf__interp_setup(run, s, &t);                                      \
-            hf__interp_tail(run, &t, (int)i);                                  \
-        }                                                                      \
-    }                                                                          \
-    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */                              \
-}
-
-HF__INTERP_RANGES(8, HF__TARGET_AVX2)
 #endif
+#endif /* !HF__PASS */
 
-#if HF__AVX512
-/* hf__is8 at sixteen lanes: root phases 0, 1, 2 at floats 0, 16, 32. */
-typedef struct hf__is16 {
+#if defined(HF__PASS) && HF__PASS == HF__PASS_INTERP
+/* One strand's inputs at W lanes, straight from its binding (taken
+   through hf__istrand and a record of its vectors, the sixteen-lane
+   kernel ran 1.3x slower on 100,000 strands): its guides (gn: the one it
+   clumps to, NULL without clumping), weights, scale, and (1 - sc) root
+   in its three phases (hf__roots_v<W>). The kernels pass the run's
+   fields in: their vector stores may alias anything, so fields read
+   through the run would be read again after each. */
+typedef struct HF__KN(hf__is) {
     const float *g0, *g1, *g2, *gn;
-    __m512 W0, W1, W2, SC, R[3];
-} hf__is16;
-typedef __m512 hf__f16;
-HF__TARGET_AVX512 HF__INLINE __m512 hf__set1_16(float x)
-{
-    return _mm512_set1_ps(x);
-}
-HF__TARGET_AVX512 HF__INLINE __m512 hf__loadu_16(const float *p)
-{
-    return _mm512_loadu_ps(p);
-}
+    HF__VEC W0, W1, W2, SC, R[3];
+} HF__KN(hf__is);
 
-HF__TARGET_AVX512 HF__INLINE void hf__strand16(const float *G, int clump,
-                                              const hf_strand_binding *b,
-                                              size_t n, hf__is16 *v)
+HF__VTARGET HF__INLINE void HF__KN(hf__strand)(const float *G, int clump,
+                                               const hf_strand_binding *b,
+                                               size_t n, HF__KN(hf__is) *v)
 {
     v->g0 = G + (size_t)b->guide[0] * n;
     v->g1 = G + (size_t)b->guide[1] * n;
     v->g2 = G + (size_t)b->guide[2] * n;
     v->gn = clump ? G + hf__clump_guide(b) * n : NULL;
-    v->W0 = _mm512_set1_ps(b->weight[0]);
-    v->W1 = _mm512_set1_ps(b->weight[1]);
-    v->W2 = _mm512_set1_ps(b->weight[2]);
-    v->SC = _mm512_set1_ps(b->length_scale);
+    v->W0 = HF__VSET1(b->weight[0]);
+    v->W1 = HF__VSET1(b->weight[1]);
+    v->W2 = HF__VSET1(b->weight[2]);
+    v->SC = HF__VSET1(b->length_scale);
 }
 
-/* Sixteen floats a vector: hf__sum8, hf__roots8, hf__finish8, hf__blend8 */
-HF__TARGET_AVX512 HF__INLINE __m512 hf__sum16(const hf__is16 *v, size_t q)
+/* The weighted sum of the guides' floats [q, q + W): the operations of
+   hf__interp_strand_ref in its order (no FMA), so the same bytes. */
+HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__sum)(const HF__KN(hf__is) *v,
+                                               size_t q)
 {
-    return _mm512_add_ps(
-        _mm512_add_ps(_mm512_mul_ps(v->W0, _mm512_loadu_ps(v->g0 + q)),
-                      _mm512_mul_ps(v->W1, _mm512_loadu_ps(v->g1 + q))),
-        _mm512_mul_ps(v->W2, _mm512_loadu_ps(v->g2 + q)));
+    return HF__VDOT3(v->W0, v->W1, v->W2, HF__VLD(v->g0 + q),
+                     HF__VLD(v->g1 + q), HF__VLD(v->g2 + q));
 }
 
-HF__TARGET_AVX512 HF__INLINE void hf__roots16(hf__is16 *v, __m512 s0)
+/* Floats [q, q + W) of the strand from their sum p, in root phase R[k] */
+HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__finish)(const HF__KN(hf__is) *v,
+                                                  const float *ctab,
+                                                  HF__VEC p, size_t q, int k)
+{
+    p = HF__VADD(HF__VMUL(v->SC, p), v->R[k]);
+    if (v->gn)
+        p = HF__VADD(p, HF__VMUL(HF__VLD(ctab + q),
+                                 HF__VSUB(HF__VLD(v->gn + q), p)));
+    return p;
+}
+
+HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__blend)(const HF__KN(hf__is) *v,
+                                                 const float *ctab, size_t q,
+                                                 int k)
+{
+    return HF__KN(hf__finish)(v, ctab, HF__KN(hf__sum)(v, q), q, k);
+}
+
+/* The strands of a range, W floats a vector, in one target function
+   (HF__VTARGET; no call per strand), as two kernels built from one text.
+   hf__interp_groups_v<W>: P a multiple of W, a strand whole groups of three
+   vectors: the stream mode once, since every strand's 12 P bytes keep the
+   first's alignment, and no tail (with one, the sixteen-lane loop
+   measured 1.1x slower). Its loop is inlined once for each clumping and
+   stream mode, passed as constants: tested in every vector, they took a
+   third of its instructions at AVX2. hf__interp_range_v<W>: any P, three
+   vectors a turn, then one or two, then the strand's last W floats over
+   the end of those (with fewer than W floats, the scalar tail): at P = 12
+   and 20, 7.5-12 ns a strand in L2 where the scalar tail took 18-32. */
+/* Floats [i, i + 3 W) of the strand at o + i, from sa, the sum of the
+   first W: a turn of the loops below, the root phases by constants, so
+   v stays in registers */
+HF__VTARGET HF__INLINE void HF__KN(hf__turn)(float *o,
+                                             const HF__KN(hf__is) *v,
+                                             const float *ctab, HF__VEC sa,
+                                             size_t i, int nt)
+{
+    HF__KN(hf__put)(o + i, HF__KN(hf__finish)(v, ctab, sa, i, 0), nt);
+    HF__KN(hf__put)(o + i + HF__W, HF__KN(hf__blend)(v, ctab, i + HF__W, 1),
+                    nt);
+    HF__KN(hf__put)(o + i + 2 * HF__W,
+                    HF__KN(hf__blend)(v, ctab, i + 2 * HF__W, 2), nt);
+}
+
+HF__VTARGET HF__INLINE void HF__KN(hf__interp_whole)(const hf__irun *run,
+                                                     int first, int count,
+                                                     int clump, int nt)
+{
+    const size_t n = 3u * (size_t)run->P;
+    const hf_strand_binding *b = run->bindings + first;
+    const float *G = run->guides, *ctab = run->ctab;
+    float *o = run->out + (size_t)(first - run->out_first) * n;
+    int s;
+    for (s = 0; s < count; ++s, ++b, o += n) {
+        HF__KN(hf__is) v;
+        HF__VEC sa;
+        size_t i;
+        if (nt) hf__page_ahead(o, 4u * n);
+        HF__KN(hf__strand)(G, clump, b, n, &v);
+        sa = HF__KN(hf__sum)(&v, 0); /* the root's, and the first vector's */
+        HF__KN(hf__roots)(v.SC, sa, v.R);
+        for (i = 0;; sa = HF__KN(hf__sum)(&v, i)) {
+            HF__KN(hf__turn)(o, &v, ctab, sa, i, nt);
+            if ((i += 3 * HF__W) >= n) break;
+        }
+    }
+}
+
+HF__VTARGET HF__PRIVATE void HF__KN(hf__interp_groups)(const hf__irun *run,
+                                                       int first, int count)
+{
+    const float *o = run->out + (size_t)(first - run->out_first) *
+                                    (3u * (size_t)run->P);
+    const int nt = hf__stream_mode(run->nt, o, 4u * HF__W - 1u);
+    HF__CLUMP_MODE_CASES(run->clump, nt, HF__KN(hf__interp_whole), run, first,
+                         count);
+    HF__VZEROUPPER(); /* see HF__TARGET_AVX2 */
+}
+
+HF__VTARGET HF__PRIVATE void HF__KN(hf__interp_range)(const hf__irun *run,
+                                                      int first, int count)
+{
+    const size_t n = 3u * (size_t)run->P;
+    const hf_strand_binding *b = run->bindings + first;
+    const float *G = run->guides, *ctab = run->ctab;
+    const int clump = run->clump;
+    float *o = run->out + (size_t)(first - run->out_first) * n;
+    int s;
+    if (n % (3 * HF__W) == 0) {
+        HF__KN(hf__interp_groups)(run, first, count);
+        return;
+    }
+    for (s = first; s < first + count; ++s, ++b, o += n) {
+        const int nt = hf__stream_mode(run->nt, o, 4u * HF__W - 1u);
+        HF__KN(hf__is) v;
+        HF__VEC sa = HF__VSET1(0.0f);
+        size_t i;
+        if (nt) hf__page_ahead(o, 4u * n);
+        HF__KN(hf__strand)(G, clump, b, n, &v);
+        /* the root's sum, and the first vector's (below W floats only the
+           scalar tail runs, with a root of its own) */
+        if (n >= HF__W) sa = HF__KN(hf__sum)(&v, 0);
+        HF__KN(hf__roots)(v.SC, sa, v.R);
+        /* sa: the sum of floats [i, i + W) wherever i + W <= n */
+        for (i = 0; i + 3 * HF__W <= n;) {
+            HF__KN(hf__turn)(o, &v, ctab, sa, i, nt);
+            if ((i += 3 * HF__W) + HF__W <= n) sa = HF__KN(hf__sum)(&v, i);
+        }
+        if (i + HF__W <= n) {
+            HF__KN(hf__put)(o + i, HF__KN(hf__finish)(&v, ctab, sa, i, 0), nt);
+            i += HF__W;
+        }
+        if (i + HF__W <= n) {
+            HF__KN(hf__put)(o + i, HF__KN(hf__blend)(&v, ctab, i, 1), nt);
+            i += HF__W;
+        }
+        if (i < n && n >= HF__W) {
+            /* the last W floats (their phase 2, since n - W = 2 W mod 3):
+               over some already written (the same values), or streamed,
+               only those past i: a line streamed twice goes out twice */
+            float t[HF__W];
+            HF__KN(hf__put)(nt ? t : o + n - HF__W,
+                            HF__KN(hf__blend)(&v, ctab, n - HF__W, 2), 0);
+            if (nt) hf__stream_floats(o + i, t + HF__W - (n - i), n - i);
+        } else if (i < n) {
+            hf__istrand t;
+            /* the tail is SSE code: with the upper halves dirty it would
+               run at half speed or worse */
+            HF__VZEROUPPER();
+            hf__interp_setup(run, s, &t);
+            hf__interp_tail(run, &t, (int)i);
+        }
+    }
+    HF__VZEROUPPER(); /* see HF__TARGET_AVX2 */
+}
+#endif /* HF__PASS_INTERP */
+
+#ifndef HF__PASS
+#if HF__AVX2
+#define HF__PASS HF__PASS_INTERP
+#define HF__W 8
+#include HF_HEADER_FILENAME
+#endif
+
+#if HF__AVX512
+/* hf__roots_v8 at sixteen lanes: phases 0, 1, 2 at floats 0, 16, 32 */
+HF__TARGET_AVX512 HF__INLINE void hf__roots_v16(__m512 sc, __m512 s0,
+                                               __m512 *R)
 {
     const __m512i x0 = _mm512_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,
                                          0, 1, 2, 0);
@@ -9843,35 +9875,16 @@ HF__TARGET_AVX512 HF__INLINE void hf__roots16(hf__is16 *v, __m512 s0)
                                          1, 2, 0, 1);
     const __m512i x2 = _mm512_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1,
                                          2, 0, 1, 2);
-    const __m512 r = _mm512_mul_ps(_mm512_sub_ps(_mm512_set1_ps(1.0f), v->SC),
+    const __m512 r = _mm512_mul_ps(_mm512_sub_ps(_mm512_set1_ps(1.0f), sc),
                                    s0);
-    v->R[0] = _mm512_maskz_permutexvar_ps(0xffff, x0, r);
-    v->R[1] = _mm512_maskz_permutexvar_ps(0xffff, x1, r);
-    v->R[2] = _mm512_maskz_permutexvar_ps(0xffff, x2, r);
+    R[0] = _mm512_maskz_permutexvar_ps(0xffff, x0, r);
+    R[1] = _mm512_maskz_permutexvar_ps(0xffff, x1, r);
+    R[2] = _mm512_maskz_permutexvar_ps(0xffff, x2, r);
 }
 
-HF__TARGET_AVX512 HF__INLINE __m512 hf__finish16(const hf__is16 *v,
-                                                const float *ctab, __m512 p,
-                                                size_t q, int k)
-{
-    p = _mm512_add_ps(_mm512_mul_ps(v->SC, p), v->R[k]);
-    if (v->gn)
-        p = _mm512_add_ps(
-            p, _mm512_mul_ps(_mm512_loadu_ps(ctab + q),
-                             _mm512_sub_ps(_mm512_loadu_ps(v->gn + q), p)));
-    return p;
-}
-
-HF__TARGET_AVX512 HF__INLINE __m512 hf__blend16(const hf__is16 *v,
-                                               const float *ctab, size_t q,
-                                               int k)
-{
-    return hf__finish16(v, ctab, hf__sum16(v, q), q, k);
-}
-
-/* Sixteen floats at o, as hf__put8: a plain store, four streaming
+/* Sixteen floats at o, as hf__put_v8: a plain store, four streaming
    quarters (16-byte aligned) or one streaming store (64-byte aligned). */
-HF__TARGET_AVX512 HF__INLINE void hf__put16(float *o, __m512 p, int mode)
+HF__TARGET_AVX512 HF__INLINE void hf__put_v16(float *o, __m512 p, int mode)
 {
     if (!mode) {
         _mm512_storeu_ps(o, p);
@@ -9885,9 +9898,10 @@ HF__TARGET_AVX512 HF__INLINE void hf__put16(float *o, __m512 p, int mode)
     }
 }
 
-HF__INTERP_RANGES(16, HF__TARGET_AVX512)
+#define HF__PASS HF__PASS_INTERP
+#define HF__W 16
+#include HF_HEADER_FILENAME
 #endif
-#undef HF__INTERP_RANGES
 
 /* A run's fields; ctab (3 P floats) filled here */
 HF__PRIVATE void hf__irun_init(hf__irun *run, const float *guide_points,
@@ -9933,12 +9947,12 @@ HF__PRIVATE void hf__interpolate_run(const float *guide_points,
        P = 24 and 40 took 0.43 and 0.42 ns a point against sixteen lanes'
        0.48 and 0.45 (a group and a part of one, in L2) */
     if (level >= HF_SIMD_AVX512 && (P % 16 == 0 || P % 8 != 0))
-        hf__interp_range16(&run, first, count);
+        hf__interp_range_v16(&run, first, count);
     else
 #endif
 #if HF__AVX2
     if (level >= HF_SIMD_AVX2)
-        hf__interp_range8(&run, first, count);
+        hf__interp_range_v8(&run, first, count);
     else
 #endif
 #if HF__SSE
@@ -11337,41 +11351,43 @@ HF__PRIVATE void hf__rout_layout(hf__rout *ro)
 /* One stream's elements of points i < n at o + 2 i st (side 0, from
    table slot L + i ts) and a stride later (side 1, from R + i ts; R == L
    for the streams both sides share, read once): each in `wb` bytes
-   (hf__rout's wb) as a head of N0 bytes and a tail of N1, constants in
-   each loop. */
-#define HF__ELEMS_LOOP(N0, N1)                                                 \
-    for (i = 0; i < n; ++i, o += 2 * st, L += ts, R += ts) {                   \
-        uint64_t x0 = 0, y0 = 0, x1, y1;                                       \
-        HF_MEMCPY(&x0, L, N0);                                                 \
-        HF_MEMCPY(&y0, L + N0, N1);                                            \
-        x1 = x0;                                                               \
-        y1 = y0;                                                               \
-        if (R != L) {                                                          \
-            HF_MEMCPY(&x1, R, N0);                                             \
-            HF_MEMCPY(&y1, R + N0, N1);                                        \
-        }                                                                      \
-        HF_MEMCPY(o, &x0, N0);                                                 \
-        HF_MEMCPY(o + N0, &y0, N1);                                            \
-        HF_MEMCPY(o + st, &x1, N0);                                            \
-        HF_MEMCPY(o + st + N0, &y1, N1);                                       \
-    }                                                                          \
-    break
+   (hf__rout's wb) as a head of n0 bytes and a tail of n1, constants in
+   each copy hf__elems_put inlines. */
+HF__INLINE void hf__elems_run(unsigned char *o, size_t st, int n,
+                              const unsigned char *L, const unsigned char *R,
+                              size_t ts, size_t n0, size_t n1)
+{
+    int i;
+    for (i = 0; i < n; ++i, o += 2 * st, L += ts, R += ts) {
+        uint64_t x0 = 0, y0 = 0, x1, y1;
+        HF_MEMCPY(&x0, L, n0);
+        HF_MEMCPY(&y0, L + n0, n1);
+        x1 = x0;
+        y1 = y0;
+        if (R != L) {
+            HF_MEMCPY(&x1, R, n0);
+            HF_MEMCPY(&y1, R + n0, n1);
+        }
+        HF_MEMCPY(o, &x0, n0);
+        HF_MEMCPY(o + n0, &y0, n1);
+        HF_MEMCPY(o + st, &x1, n0);
+        HF_MEMCPY(o + st + n0, &y1, n1);
+    }
+}
 HF__INLINE void hf__elems_put(unsigned char *o, size_t st, int n,
                               const unsigned char *L, const unsigned char *R,
                               size_t ts, int wb)
 {
-    int i;
     switch (wb) {
-    case 2: HF__ELEMS_LOOP(2, 0);
-    case 3: HF__ELEMS_LOOP(2, 1);
-    case 4: HF__ELEMS_LOOP(4, 0);
-    case 6: HF__ELEMS_LOOP(4, 2);
-    case 8: HF__ELEMS_LOOP(8, 0);
-    case 12: HF__ELEMS_LOOP(8, 4);
-    default: HF__ELEMS_LOOP(8, 8);
+    case 2: hf__elems_run(o, st, n, L, R, ts, 2, 0); break;
+    case 3: hf__elems_run(o, st, n, L, R, ts, 2, 1); break;
+    case 4: hf__elems_run(o, st, n, L, R, ts, 4, 0); break;
+    case 6: hf__elems_run(o, st, n, L, R, ts, 4, 2); break;
+    case 8: hf__elems_run(o, st, n, L, R, ts, 8, 0); break;
+    case 12: hf__elems_run(o, st, n, L, R, ts, 8, 4); break;
+    default: hf__elems_run(o, st, n, L, R, ts, 8, 8); break;
     }
 }
-#undef HF__ELEMS_LOOP
 
 #if HF__SSE
 /* A float run (see hf__float_run) for points i < n of a group: left
@@ -11855,9 +11871,33 @@ HF__TARGET_AVX2 HF__INLINE __m128i hf__slot_avx2(const unsigned char *t,
         mask);
 }
 
+/* The or of the slots of the ns streams (0 to 4, a constant where it is
+   inlined) that both sides of point i share, in the table's order */
+HF__TARGET_AVX2 HF__INLINE __m128i
+hf__window_shared_avx2(const unsigned char *const *t, const size_t *ts,
+                       const __m128i *mk, int i, int ns)
+{
+    __m128i s01;
+    if (ns == 0) return _mm_setzero_si128();
+    if (ns == 1) return hf__slot_avx2(t[0], ts[0], i, mk[0]);
+    s01 = _mm_or_si128(hf__slot_avx2(t[0], ts[0], i, mk[0]),
+                       hf__slot_avx2(t[1], ts[1], i, mk[1]));
+    if (ns == 2) return s01;
+    if (ns == 3)
+        return _mm_or_si128(s01, hf__slot_avx2(t[2], ts[2], i, mk[2]));
+    return _mm_or_si128(s01,
+                        _mm_or_si128(hf__slot_avx2(t[2], ts[2], i, mk[2]),
+                                     hf__slot_avx2(t[3], ts[3], i, mk[3])));
+}
+
+/* hf__window_put_avx2 with t, ts and mk the slots, strides and masks of
+   the ns streams both sides share besides the position (ns a constant in
+   each copy it inlines) */
 HF__TARGET_AVX2 HF__INLINE void
-hf__window_put_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
-                    const size_t *tsq, size_t v, int n)
+hf__window_rows_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
+                     const size_t *tsq, size_t v, int n,
+                     const unsigned char *const *t, const size_t *ts,
+                     const __m128i *mk, int ns)
 {
     const int q0 = ro->wq[0], L = ro->wl;
     const size_t st = ro->stride[q0];
@@ -11866,46 +11906,44 @@ hf__window_put_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
     const __m128i mp =
         _mm_loadu_si128((const __m128i *)(const void *)ro->wm[HF__S_POS]);
     const size_t tp = tsq[HF__S_POS];
+    unsigned char *o = ro->base[q0] + v * st;
+    int i;
+    for (i = 0; i < n; ++i, o += 2 * st) {
+        __m128i a = hf__window_shared_avx2(t, ts, mk, i, ns), b = a;
+        if (pos) {
+            a = _mm_or_si128(a, hf__slot_avx2(tab[HF__S_POS], tp, i, mp));
+            b = _mm_or_si128(b, hf__slot_avx2(tab[5], tp, i, mp));
+        }
+        _mm_storel_epi64((__m128i *)(void *)o, a);
+        _mm_storel_epi64((__m128i *)(void *)(o + L - 8),
+                         _mm_shuffle_epi8(a, sh));
+        _mm_storel_epi64((__m128i *)(void *)(o + st), b);
+        _mm_storel_epi64((__m128i *)(void *)(o + st + L - 8),
+                         _mm_shuffle_epi8(b, sh));
+    }
+}
+
+HF__TARGET_AVX2 HF__INLINE void
+hf__window_put_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
+                    const size_t *tsq, size_t v, int n)
+{
     const unsigned char *t[4];
     __m128i mk[4];
     size_t ts[4];
-    unsigned char *o = ro->base[q0] + v * st;
-    int i, q, ns = 0;
+    int q, ns = 0;
     for (q = HF__S_TAN; q <= HF__S_C3D; ++q) {
         if (!ro->base[q]) continue;
         t[ns] = tab[q];
         ts[ns] = tsq[q];
         mk[ns++] = _mm_loadu_si128((const __m128i *)(const void *)ro->wm[q]);
     }
-#define HF__WIN_LOOP(SHARED)                                                   \
-    for (i = 0; i < n; ++i, o += 2 * st) {                                     \
-        __m128i a = SHARED, b = a;                                             \
-        if (pos) {                                                             \
-            a = _mm_or_si128(a, hf__slot_avx2(tab[HF__S_POS], tp, i, mp));     \
-            b = _mm_or_si128(b, hf__slot_avx2(tab[5], tp, i, mp));             \
-        }                                                                      \
-        _mm_storel_epi64((__m128i *)(void *)o, a);                             \
-        _mm_storel_epi64((__m128i *)(void *)(o + L - 8),                       \
-                         _mm_shuffle_epi8(a, sh));                             \
-        _mm_storel_epi64((__m128i *)(void *)(o + st), b);                      \
-        _mm_storel_epi64((__m128i *)(void *)(o + st + L - 8),                  \
-                         _mm_shuffle_epi8(b, sh));                             \
-    }                                                                          \
-    break
-#define HF__WIN_S(k) hf__slot_avx2(t[k], ts[k], i, mk[k])
     switch (ns) {
-    case 0: HF__WIN_LOOP(_mm_setzero_si128());
-    case 1: HF__WIN_LOOP(HF__WIN_S(0));
-    case 2: HF__WIN_LOOP(_mm_or_si128(HF__WIN_S(0), HF__WIN_S(1)));
-    case 3:
-        HF__WIN_LOOP(_mm_or_si128(_mm_or_si128(HF__WIN_S(0), HF__WIN_S(1)),
-                                  HF__WIN_S(2)));
-    default:
-        HF__WIN_LOOP(_mm_or_si128(_mm_or_si128(HF__WIN_S(0), HF__WIN_S(1)),
-                                  _mm_or_si128(HF__WIN_S(2), HF__WIN_S(3))));
+    case 0: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 0); break;
+    case 1: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 1); break;
+    case 2: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 2); break;
+    case 3: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 3); break;
+    default: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 4); break;
     }
-#undef HF__WIN_S
-#undef HF__WIN_LOOP
 }
 
 /* Every stream of a layout the table writer takes (hf__rout nw > 0), in
@@ -13531,7 +13569,7 @@ hf__points_strand_avx2_in(const float *p, const hf__pair_widths *pw, float ws,
             _mm256_permutevar8x32_ps(_mm256_loadu_ps(p + 3 * j), spread),
             _mm256_mul_ps(_mm256_loadu_ps(pw->v + 4 * j), W), 0x88);
         acc = _mm256_add_ps(acc, _mm256_mul_ps(q, zero));
-        hf__put8(o + 4 * j, q, mode);
+        hf__put_v8(o + 4 * j, q, mode);
     }
     if (j < P) { /* points P - 2 and P - 1: one or both still to write */
         q = _mm256_blend_ps(
@@ -13541,7 +13579,7 @@ hf__points_strand_avx2_in(const float *p, const hf__pair_widths *pw, float ws,
             0x88);
         acc = _mm256_add_ps(acc, _mm256_mul_ps(q, zero));
         if (j == P - 2) /* P even: at o + 32 (P / 2 - 1) bytes */
-            hf__put8(o + 4 * j, q, mode);
+            hf__put_v8(o + 4 * j, q, mode);
         else if (mode)
             _mm_stream_ps(o + 4 * j, _mm256_extractf128_ps(q, 1));
         else
@@ -13658,150 +13696,159 @@ HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
 #endif
 }
 
-/* hf__interp_range<W> and the GPU points kernel in one, for P at least
+#endif /* !HF__PASS */
+
+#if defined(HF__PASS) && HF__PASS == HF__PASS_POINTS
+/* hf__interp_range_v<W> and the GPU points kernel in one, for P at least
    W (8 at AVX2, 16 at AVX-512) and a multiple of W / 4 (a vector of
    points' worth), one text built at both widths: the strand's whole
    groups, then, where points are left, the group that ends at the tip,
    written from the first vector of points not yet written. Three
    vectors of a strand's floats (W points) stay in
-   registers and go out as four vectors of points (hf__points_out<W>),
+   registers and go out as four vectors of points (hf__points_out_v<W>),
    the same values in the same order as the two kernels write them. The
    finiteness test rides on the same vectors (x * 0 is NaN for NaN or
    infinity); a strand that is not finite is written again, collapsed,
-   as hf__points_run does. hf__points_groups<W>: the GPU points kernel
+   as hf__points_run does. hf__points_groups_v<W>: the GPU points kernel
    alone (P a multiple of W), the same text loading the strand's points. */
-#define HF__INTERP_POINTS(W, T)                                                \
-/* W points' floats a, b, c: their finiteness into acc, their points out      \
-   from output vector q on (0: all four) */                                    \
-T HF__INLINE void hf__points_abc##W(float *o, hf__f##W a, hf__f##W b,          \
-                                    hf__f##W c, const float *pw, hf__f##W WS,  \
-                                    hf__f##W *acc, int mode, int q)            \
-{                                                                              \
-    *acc = hf__nan_acc##W(*acc, a);                                            \
-    *acc = hf__nan_acc##W(*acc, b);                                            \
-    *acc = hf__nan_acc##W(*acc, c);                                            \
-    hf__points_out##W(o, a, b, c, pw, WS, mode, q);                            \
-}                                                                              \
-                                                                               \
-T HF__INLINE void hf__interp_points_whole##W(                                  \
-    const hf__irun *run, const hf__points_kit *k,                              \
-    const hf_ribbon_strands *st, int first, int count, int out_first,          \
-    float *out4, int clump, int mode)                                          \
-{                                                                              \
-    const int P = run->P;                                                      \
-    const size_t n = 3u * (size_t)P;                                           \
-    const float *G = run->guides, *ctab = run->ctab;                           \
-    /* read once: the stores may alias k, st and run */                       \
-    const float wcap = k->wcap, *wd = st->width;                               \
-    const hf_strand_binding *B = run->bindings;                                \
-    int s, i, j;                                                               \
-    for (s = first; s < first + count; ++s) {                                  \
-        float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;            \
-        const hf__f##W WS = hf__set1_##W(hf__width_at(wd, s, wcap));           \
-        hf__f##W acc = hf__set1_##W(0.0f), sa;                                 \
-        hf__is##W v;                                                           \
-        if (mode) hf__page_ahead(o, 16u * (size_t)P);                          \
-        hf__strand##W(G, clump, B + s, n, &v);                                 \
-        sa = hf__sum##W(&v, 0); /* the root's sum, and the first vector's */   \
-        hf__roots##W(&v, sa);                                                  \
-        for (i = 0, j = 0;; sa = hf__sum##W(&v, (size_t)i)) {                  \
-            const hf__f##W a = hf__finish##W(&v, ctab, sa, (size_t)i, 0);      \
-            const hf__f##W b = hf__blend##W(&v, ctab, (size_t)i + W, 1);       \
-            const hf__f##W c = hf__blend##W(&v, ctab, (size_t)i + 2 * W, 2);   \
-            hf__points_abc##W(o + 4 * j, a, b, c, hf__widths##W(k, j), WS,     \
-                              &acc, mode, 0);                                  \
-            i += 3 * W;                                                        \
-            if ((j += W) + W > P) break;                                       \
-        }                                                                      \
-        if (j < P) {                                                           \
-            /* the last points: the group of W that ends at the tip (its       \
-               first float's phase is 0 too), written from the output         \
-               vector that holds point j on, so no point is written twice;     \
-               apart from the loop, whose stores then take no test */          \
-            const int q = (j + W - P) / (W / 4);                               \
-            hf__f##W a, b, c;                                                  \
-            j = P - W;                                                         \
-            i = 3 * j;                                                         \
-            a = hf__blend##W(&v, ctab, (size_t)i, 0);                          \
-            b = hf__blend##W(&v, ctab, (size_t)i + W, 1);                      \
-            c = hf__blend##W(&v, ctab, (size_t)i + 2 * W, 2);                  \
-            hf__points_abc##W(o + 4 * j, a, b, c, hf__widths##W(k, j), WS,     \
-                              &acc, mode, q);                                  \
-        }                                                                      \
-        if (!hf__all_zero##W(acc)) hf__points_collapse_avx2(k, o);             \
-    }                                                                          \
-}                                                                              \
-                                                                               \
-/* every strand's 16 P bytes keep the first's alignment (a multiple of 4 W    \
-   bytes, P a multiple of W / 4), so the stream mode, like the clumping, is    \
-   one for the call: both passed to the loop as constants */                   \
-T HF__PRIVATE void hf__interp_points##W(                                       \
-    const hf__irun *run, const hf__points_kit *k,                              \
-    const hf_ribbon_strands *st, int first, int count, int out_first,          \
-    float *out4)                                                               \
-{                                                                              \
-    const int mode = hf__stream_mode(                                          \
-        k->nt, out4 + (size_t)(first - out_first) * (size_t)run->P * 4u,       \
-        4u * W - 1u);                                                          \
-    HF__CLUMP_MODE_CASES(run->clump, mode, hf__interp_points_whole##W, run, k, \
-                         st, first, count, out_first, out4);                   \
-    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */                              \
-}                                                                              \
-                                                                               \
-/* hf__points_run's kernel for P a multiple of W: the kernel above with        \
-   three loads of the strand's points where it interpolates them */            \
-T HF__INLINE void hf__points_whole##W(                                         \
-    const hf__points_kit *k, const hf_ribbon_strands *st, const float *pts,    \
-    int pts_first, int first, int count, int out_first, float *out4,           \
-    int mode)                                                                  \
-{                                                                              \
-    const int P = k->P;                                                        \
-    /* read once: the stores may alias k and st */                             \
-    const float wcap = k->wcap, *wd = st->width;                               \
-    int s, j;                                                                  \
-    for (s = first; s < first + count; ++s) {                                  \
-        const float *p = pts + (size_t)(s - pts_first) * (size_t)P * 3u;       \
-        float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;            \
-        const hf__f##W WS = hf__set1_##W(hf__width_at(wd, s, wcap));           \
-        hf__f##W acc = hf__set1_##W(0.0f);                                     \
-        if (mode) hf__page_ahead(o, 16u * (size_t)P);                          \
-        for (j = 0; j < P; j += W) {                                           \
-            const hf__f##W a = hf__loadu_##W(p + 3 * j);                       \
-            const hf__f##W b = hf__loadu_##W(p + 3 * j + W);                   \
-            const hf__f##W c = hf__loadu_##W(p + 3 * j + 2 * W);               \
-            hf__points_abc##W(o + 4 * j, a, b, c, hf__widths##W(k, j), WS,     \
-                              &acc, mode, 0);                                  \
-        }                                                                      \
-        if (!hf__all_zero##W(acc)) hf__points_collapse_avx2(k, o);             \
-    }                                                                          \
-}                                                                              \
-                                                                               \
-T HF__PRIVATE void hf__points_groups##W(                                       \
-    const hf__points_kit *k, const hf_ribbon_strands *st, const float *pts,    \
-    int pts_first, int first, int count, int out_first, float *out4)           \
-{                                                                              \
-    const int mode = hf__stream_mode(                                          \
-        k->nt, out4 + (size_t)(first - out_first) * (size_t)k->P * 4u,         \
-        4u * W - 1u);                                                          \
-    if (mode == 2) /* the mode a constant in each loop, as above */            \
-        hf__points_whole##W(k, st, pts, pts_first, first, count, out_first,    \
-                            out4, 2);                                          \
-    else if (mode)                                                             \
-        hf__points_whole##W(k, st, pts, pts_first, first, count, out_first,    \
-                            out4, 1);                                          \
-    else                                                                       \
-        hf__points_whole##W(k, st, pts, pts_first, first, count, out_first,    \
-                            out4, 0);                                          \
-    _mm256_zeroupper(); /* see HF__TARGET_AVX2 */                              \
+
+/* acc + q * 0: stays zero while every lane of q is finite */
+HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__nan_acc)(HF__VEC acc, HF__VEC q)
+{
+    return HF__VADD(acc, HF__VMUL(q, HF__VSET1(0.0f)));
 }
 
-#if HF__AVX2
-/* acc + q * 0: stays zero while every lane of q is finite */
-HF__TARGET_AVX2 HF__INLINE __m256 hf__nan_acc8(__m256 acc, __m256 q)
+/* W points' floats a, b, c: their finiteness into acc, their points out
+   from output vector q on (0: all four) */
+HF__VTARGET HF__INLINE void HF__KN(hf__points_abc)(float *o, HF__VEC a,
+                                                   HF__VEC b, HF__VEC c,
+                                                   const float *pw, HF__VEC WS,
+                                                   HF__VEC *acc, int mode,
+                                                   int q)
 {
-    return _mm256_add_ps(acc, _mm256_mul_ps(q, _mm256_setzero_ps()));
+    *acc = HF__KN(hf__nan_acc)(*acc, a);
+    *acc = HF__KN(hf__nan_acc)(*acc, b);
+    *acc = HF__KN(hf__nan_acc)(*acc, c);
+    HF__KN(hf__points_out)(o, a, b, c, pw, WS, mode, q);
 }
-HF__TARGET_AVX2 HF__INLINE int hf__all_zero8(__m256 acc)
+
+HF__VTARGET HF__INLINE void HF__KN(hf__interp_points_whole)(
+    const hf__irun *run, const hf__points_kit *k, const hf_ribbon_strands *st,
+    int first, int count, int out_first, float *out4, int clump, int mode)
+{
+    const int P = run->P;
+    const size_t n = 3u * (size_t)P;
+    const float *G = run->guides, *ctab = run->ctab;
+    /* read once: the stores may alias k, st and run */
+    const float wcap = k->wcap, *wd = st->width;
+    const hf_strand_binding *B = run->bindings;
+    int s, i, j;
+    for (s = first; s < first + count; ++s) {
+        float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
+        const HF__VEC WS = HF__VSET1(hf__width_at(wd, s, wcap));
+        HF__VEC acc = HF__VSET1(0.0f), sa;
+        HF__KN(hf__is) v;
+        if (mode) hf__page_ahead(o, 16u * (size_t)P);
+        HF__KN(hf__strand)(G, clump, B + s, n, &v);
+        sa = HF__KN(hf__sum)(&v, 0); /* the root's, and the first vector's */
+        HF__KN(hf__roots)(v.SC, sa, v.R);
+        for (i = 0, j = 0;; sa = HF__KN(hf__sum)(&v, (size_t)i)) {
+            const HF__VEC a = HF__KN(hf__finish)(&v, ctab, sa, (size_t)i, 0);
+            const HF__VEC b = HF__KN(hf__blend)(&v, ctab, (size_t)i + HF__W, 1);
+            const HF__VEC c =
+                HF__KN(hf__blend)(&v, ctab, (size_t)i + 2 * HF__W, 2);
+            HF__KN(hf__points_abc)(o + 4 * j, a, b, c, HF__KN(hf__widths)(k, j),
+                                   WS, &acc, mode, 0);
+            i += 3 * HF__W;
+            if ((j += HF__W) + HF__W > P) break;
+        }
+        if (j < P) {
+            /* the last points: the group of W that ends at the tip (its
+               first float's phase is 0 too), written from the output
+               vector that holds point j on, so no point is written twice;
+               apart from the loop, whose stores then take no test */
+            const int q = (j + HF__W - P) / (HF__W / 4);
+            HF__VEC a, b, c;
+            j = P - HF__W;
+            i = 3 * j;
+            a = HF__KN(hf__blend)(&v, ctab, (size_t)i, 0);
+            b = HF__KN(hf__blend)(&v, ctab, (size_t)i + HF__W, 1);
+            c = HF__KN(hf__blend)(&v, ctab, (size_t)i + 2 * HF__W, 2);
+            HF__KN(hf__points_abc)(o + 4 * j, a, b, c, HF__KN(hf__widths)(k, j),
+                                   WS, &acc, mode, q);
+        }
+        if (!HF__KN(hf__all_zero)(acc)) hf__points_collapse_avx2(k, o);
+    }
+}
+
+/* every strand's 16 P bytes keep the first's alignment (a multiple of 4 W
+   bytes, P a multiple of W / 4), so the stream mode, like the clumping, is
+   one for the call: both passed to the loop as constants */
+HF__VTARGET HF__PRIVATE void
+HF__KN(hf__interp_points)(const hf__irun *run, const hf__points_kit *k,
+                          const hf_ribbon_strands *st, int first, int count,
+                          int out_first, float *out4)
+{
+    const int mode = hf__stream_mode(
+        k->nt, out4 + (size_t)(first - out_first) * (size_t)run->P * 4u,
+        4u * HF__W - 1u);
+    HF__CLUMP_MODE_CASES(run->clump, mode, HF__KN(hf__interp_points_whole), run,
+                         k, st, first, count, out_first, out4);
+    HF__VZEROUPPER(); /* see HF__TARGET_AVX2 */
+}
+
+/* hf__points_run's kernel for P a multiple of W: the kernel above with
+   three loads of the strand's points where it interpolates them */
+HF__VTARGET HF__INLINE void
+HF__KN(hf__points_whole)(const hf__points_kit *k, const hf_ribbon_strands *st,
+                         const float *pts, int pts_first, int first, int count,
+                         int out_first, float *out4, int mode)
+{
+    const int P = k->P;
+    /* read once: the stores may alias k and st */
+    const float wcap = k->wcap, *wd = st->width;
+    int s, j;
+    for (s = first; s < first + count; ++s) {
+        const float *p = pts + (size_t)(s - pts_first) * (size_t)P * 3u;
+        float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
+        const HF__VEC WS = HF__VSET1(hf__width_at(wd, s, wcap));
+        HF__VEC acc = HF__VSET1(0.0f);
+        if (mode) hf__page_ahead(o, 16u * (size_t)P);
+        for (j = 0; j < P; j += HF__W) {
+            const HF__VEC a = HF__VLD(p + 3 * j);
+            const HF__VEC b = HF__VLD(p + 3 * j + HF__W);
+            const HF__VEC c = HF__VLD(p + 3 * j + 2 * HF__W);
+            HF__KN(hf__points_abc)(o + 4 * j, a, b, c, HF__KN(hf__widths)(k, j),
+                                   WS, &acc, mode, 0);
+        }
+        if (!HF__KN(hf__all_zero)(acc)) hf__points_collapse_avx2(k, o);
+    }
+}
+
+HF__VTARGET HF__PRIVATE void
+HF__KN(hf__points_groups)(const hf__points_kit *k, const hf_ribbon_strands *st,
+                          const float *pts, int pts_first, int first, int count,
+                          int out_first, float *out4)
+{
+    const int mode = hf__stream_mode(
+        k->nt, out4 + (size_t)(first - out_first) * (size_t)k->P * 4u,
+        4u * HF__W - 1u);
+    if (mode == 2) /* the mode a constant in each loop, as above */
+        HF__KN(hf__points_whole)(k, st, pts, pts_first, first, count,
+                                 out_first, out4, 2);
+    else if (mode)
+        HF__KN(hf__points_whole)(k, st, pts, pts_first, first, count,
+                                 out_first, out4, 1);
+    else
+        HF__KN(hf__points_whole)(k, st, pts, pts_first, first, count,
+                                 out_first, out4, 0);
+    HF__VZEROUPPER(); /* see HF__TARGET_AVX2 */
+}
+#endif /* HF__PASS_POINTS */
+
+#ifndef HF__PASS
+#if HF__AVX2
+HF__TARGET_AVX2 HF__INLINE int hf__all_zero_v8(__m256 acc)
 {
     return _mm256_movemask_ps(_mm256_cmp_ps(acc, _mm256_setzero_ps(),
                                             _CMP_EQ_OQ)) == 0xff;
@@ -13813,7 +13860,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__point_pair_w(float *o, __m256 q,
                                                  const float *pw, __m256 ws,
                                                  int mode)
 {
-    hf__put8(
+    hf__put_v8(
         o, _mm256_blend_ps(q, _mm256_mul_ps(_mm256_loadu_ps(pw), ws), 0x88),
         mode);
 }
@@ -13821,7 +13868,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__point_pair_w(float *o, __m256 q,
 /* Points j .. j + 7 out at o from a strand's floats 3 j .. 3 j + 24 in a,
    b, c, two a vector; pw: the pair widths from point j (written out, not
    looped: an array of the four would go through the stack) */
-HF__TARGET_AVX2 HF__INLINE void hf__points_out8(float *o, __m256 a, __m256 b,
+HF__TARGET_AVX2 HF__INLINE void hf__points_out_v8(float *o, __m256 a, __m256 b,
                                                 __m256 c, const float *pw,
                                                 __m256 ws, int mode, int q)
 {
@@ -13843,39 +13890,37 @@ HF__TARGET_AVX2 HF__INLINE void hf__points_out8(float *o, __m256 a, __m256 b,
                      mode);
 }
 
-/* the widths hf__points_out8 takes from point j: pair widths */
-HF__INLINE const float *hf__widths8(const hf__points_kit *k, int j)
+/* the widths hf__points_out_v8 takes from point j: pair widths */
+HF__INLINE const float *hf__widths_v8(const hf__points_kit *k, int j)
 {
     return k->pw.v + 4 * j;
 }
 
-HF__INTERP_POINTS(8, HF__TARGET_AVX2)
+#define HF__PASS HF__PASS_POINTS
+#define HF__W 8
+#include HF_HEADER_FILENAME
 #endif
 
 #if HF__AVX512
-HF__TARGET_AVX512 HF__INLINE __m512 hf__nan_acc16(__m512 acc, __m512 q)
-{
-    return _mm512_add_ps(acc, _mm512_mul_ps(q, _mm512_setzero_ps()));
-}
-HF__TARGET_AVX512 HF__INLINE int hf__all_zero16(__m512 acc)
+HF__TARGET_AVX512 HF__INLINE int hf__all_zero_v16(__m512 acc)
 {
     return _mm512_cmp_ps_mask(acc, _mm512_setzero_ps(), _CMP_EQ_OQ) == 0xffff;
 }
 
-/* the widths hf__points_out16 takes from point j: the half widths */
-HF__INLINE const float *hf__widths16(const hf__points_kit *k, int j)
+/* the widths hf__points_out_v16 takes from point j: the half widths */
+HF__INLINE const float *hf__widths_v16(const hf__points_kit *k, int j)
 {
     return k->hw + j;
 }
 
-/* hf__points_out8 at sixteen points: four vectors of four points, one
+/* hf__points_out_v8 at sixteen points: four vectors of four points, one
    64-byte line a store where the output is aligned so. The sixteen
    widths (hw times ws, one product a point as the pair widths give) go
    in as the second source of each two-source permute, so a point's width
    costs no blend or multiply of its own; the two middle vectors draw on
    three sources, so their third (four floats of a or c) is first moved
    into lanes of the widths the permute does not read. */
-HF__TARGET_AVX512 HF__INLINE void hf__points_out16(float *o, __m512 a,
+HF__TARGET_AVX512 HF__INLINE void hf__points_out_v16(float *o, __m512 a,
                                                    __m512 b, __m512 c,
                                                    const float *hw,
                                                    __m512 ws, int mode, int q)
@@ -13895,15 +13940,16 @@ HF__TARGET_AVX512 HF__INLINE void hf__points_out16(float *o, __m512 a,
     const __m512 w = _mm512_mul_ps(_mm512_loadu_ps(hw), ws);
     const __m512 x = _mm512_mask_mov_ps(w, 0xf000, a);
     const __m512 y = _mm512_mask_mov_ps(w, 0x000f, c);
-    if (q <= 0) hf__put16(o, _mm512_permutex2var_ps(a, i0, w), mode);
-    if (q <= 1) hf__put16(o + 16, _mm512_permutex2var_ps(x, i1, b), mode);
-    if (q <= 2) hf__put16(o + 32, _mm512_permutex2var_ps(b, i2, y), mode);
-    hf__put16(o + 48, _mm512_permutex2var_ps(c, i3, w), mode);
+    if (q <= 0) hf__put_v16(o, _mm512_permutex2var_ps(a, i0, w), mode);
+    if (q <= 1) hf__put_v16(o + 16, _mm512_permutex2var_ps(x, i1, b), mode);
+    if (q <= 2) hf__put_v16(o + 32, _mm512_permutex2var_ps(b, i2, y), mode);
+    hf__put_v16(o + 48, _mm512_permutex2var_ps(c, i3, w), mode);
 }
 
-HF__INTERP_POINTS(16, HF__TARGET_AVX512)
+#define HF__PASS HF__PASS_POINTS
+#define HF__W 16
+#include HF_HEADER_FILENAME
 #endif
-#undef HF__INTERP_POINTS
 #undef HF__CLUMP_MODE_CASES
 
 /* Compact points (HF_POINT_COMPACT) from float ones: n points (x, y, z,
@@ -14183,12 +14229,12 @@ HF__PRIVATE void hf__points_run(const hf__points_kit *k,
            pairs' 0.64-0.67), else two points a vector */
 #if HF__AVX512
         if (k->level >= HF_SIMD_AVX512 && P % 16 == 0)
-            hf__points_groups16(k, strands, pts, pts_first, first, count,
+            hf__points_groups_v16(k, strands, pts, pts_first, first, count,
                                 out_first, out4);
         else
 #endif
         if (P % 8 == 0)
-            hf__points_groups8(k, strands, pts, pts_first, first, count,
+            hf__points_groups_v8(k, strands, pts, pts_first, first, count,
                                out_first, out4);
         else
             hf__points_run_avx2(k, strands, pts, pts_first, first, count,
@@ -17542,11 +17588,11 @@ HFDEF hf_result hf_fur_interpolate_points(const hf_fur *f, int first,
                       ctab, out4, first, 0);
 #if HF__AVX512
         if (lv >= HF_SIMD_AVX512 && f->P % 4 == 0 && f->P >= 16)
-            hf__interp_points16(&run, &kit, &st, first, count,
+            hf__interp_points_v16(&run, &kit, &st, first, count,
                                 prm.out_first, out4);
         else
 #endif
-            hf__interp_points8(&run, &kit, &st, first, count,
+            hf__interp_points_v8(&run, &kit, &st, first, count,
                                prm.out_first, out4);
         count = 0;
     }
@@ -17668,6 +17714,35 @@ HFDEF hf_result hf_fur_max_stretch(const hf_fur *f, float *out_stretch)
 #elif defined(__GNUC__)
 #pragma GCC pop_options
 #endif
+#else /* HF__PASS: its end; its words go, for the next pass to set anew */
+#undef HF__KN
+#undef HF__VEC
+#undef HF__VTARGET
+#undef HF__VZEROUPPER
+#undef HF__VGATHER
+#undef HF__VLD
+#undef HF__VST
+#undef HF__VSET1
+#undef HF__VADD
+#undef HF__VSUB
+#undef HF__VMUL
+#undef HF__VDIV
+#undef HF__VSQRT
+#undef HF__VMAX
+#undef HF__VGT
+#undef HF__VLT
+#undef HF__VEQ
+#undef HF__VLE
+#undef HF__VAND
+#undef HF__VSEL
+#undef HF__VMASK
+#undef HF__VOR
+#undef HF__VDOT3
+#undef HF__VCROSS3
+#undef HF__VPOSE
+#undef HF__W
+#undef HF__PASS
+#endif /* HF__PASS */
 
 #endif /* HAIRFUR_IMPLEMENTATION */
 

@@ -11453,12 +11453,12 @@ static void test_interp_points_kernels(void)
                         hf__points_run(&kit, &st, mid, 0, 0, S, 0, ref + off);
                         if (wide) {
 #if HF__AVX512
-                            hf__interp_points16(&run, &kit, &st, 0, S, 0,
-                                                got + off);
+                            hf__interp_points_v16(&run, &kit, &st, 0, S, 0,
+                                                  got + off);
 #endif
                         } else {
-                            hf__interp_points8(&run, &kit, &st, 0, S, 0,
-                                               got + off);
+                            hf__interp_points_v8(&run, &kit, &st, 0, S, 0,
+                                                 got + off);
                         }
                         if (nt) _mm_sfence();
                         CHECK(memcmp(ref + off, got + off,
