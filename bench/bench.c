@@ -75,7 +75,7 @@
 #include "bench_time.h"
 #define P BENCH_P
 #define MAX_THREADS 2
-/* ropes handed out 256 at a time on two threads (struct job) */
+/* the ropes' grain on two threads (struct job) */
 #define BENCH_ROPE_GRAIN 256
 
 /* ---- counting allocator ------------------------------------------------ */
@@ -94,17 +94,22 @@ static void c_free(void *p, void *u) { (void)u; free(p); }
    with one).
    A worker that finds no stage after a while sleeps until the next. */
 
-/* A stage's work: equal shares, one per thread, or (grain > 0) ranges
-   of grain items that the threads take in turn, as a job system hands
-   them out: a rope's cost depends on its contacts, and hair resting on a
-   body's shoulders lies in one part of the guides' order. */
+/* A stage's work: equal shares, one per thread, or (grain > 0) shares
+   that balance themselves, as a job system's work stealing does: each
+   thread walks its own share grain by grain from the front, and one that
+   has finished takes grains from the back of a share still running. A
+   rope's cost depends on its contacts (hair resting on a body's
+   shoulders lies in one part of the guides' order), and shares walked
+   this way meet only at their ends: ranges dealt to the threads in turn
+   would meet at every grain, where the two cores trade the rows' cache
+   lines (docs/performance.md). */
 typedef struct job job;
 typedef void (*job_fn)(job *j, int first, int count);
 struct job {
     job_fn fn;
     int total;
     int grain;
-    int next; /* the next grain's first item (atomic) */
+    unsigned long long share[MAX_THREADS]; /* front | back << 32 (atomic) */
 };
 
 static job *volatile g_job;
@@ -125,20 +130,39 @@ static void cpu_relax(void)
 #endif
 }
 
+/* A grain of share s: from its front (own) or its back (stolen); 0 when
+   the share is used up. */
+static int take_grain(job *j, int s, int own, int *first, int *count)
+{
+    unsigned long long v = __atomic_load_n(&j->share[s], __ATOMIC_ACQUIRE), w;
+    for (;;) {
+        unsigned lo = (unsigned)v, hi = (unsigned)(v >> 32), a, b;
+        if (lo >= hi) return 0;
+        a = own ? lo : (hi - lo > (unsigned)j->grain ? hi - j->grain : lo);
+        b = own ? (hi - lo > (unsigned)j->grain ? lo + j->grain : hi) : hi;
+        w = own ? (unsigned long long)b | (v & 0xffffffff00000000ull)
+                : (unsigned long long)lo | (unsigned long long)a << 32;
+        if (__atomic_compare_exchange_n(&j->share[s], &v, w, 0,
+                                        __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
+            *first = (int)a;
+            *count = (int)(b - a);
+            return 1;
+        }
+    }
+}
+
 static void run_share(job *j, int t, int n)
 {
     int first = (int)((long long)j->total * t / n);
-    int end = (int)((long long)j->total * (t + 1) / n);
+    int end = (int)((long long)j->total * (t + 1) / n), count, k;
     if (n == 1 || j->grain <= 0) {
         j->fn(j, first, end - first);
         return;
     }
-    for (;;) {
-        first = __atomic_fetch_add(&j->next, j->grain, __ATOMIC_RELAXED);
-        if (first >= j->total) break;
-        end = j->total - first < j->grain ? j->total : first + j->grain;
-        j->fn(j, first, end - first);
-    }
+    while (take_grain(j, t, 1, &first, &count)) j->fn(j, first, count);
+    for (k = 1; k < n; ++k) /* then the others' backs */
+        while (take_grain(j, (t + k) % n, 0, &first, &count))
+            j->fn(j, first, count);
 }
 
 /* The next stage's number after `seen`: spin a while, then sleep. */
@@ -189,7 +213,12 @@ static void run_job(job *j)
         return;
     }
     g_job = j;
-    j->next = 0;
+    for (spins = 0; spins < g_threads; ++spins)
+        j->share[spins] =
+            (unsigned long long)((long long)j->total * spins / g_threads) |
+            (unsigned long long)((long long)j->total * (spins + 1) /
+                                 g_threads) << 32;
+    spins = 0;
     __atomic_store_n(&g_left, MAX_THREADS - 1, __ATOMIC_RELAXED);
     start_stage();
     run_share(j, 0, g_threads);
@@ -602,7 +631,6 @@ static void stage_jobs(const scene *s, job *jobs)
     for (k = 0; k < ST_N; ++k) {
         jobs[k].fn = k < ST_FRAME ? fn[k] : NULL;
         jobs[k].grain = k == ST_ROPES ? BENCH_ROPE_GRAIN : 0;
-        jobs[k].next = 0;
         jobs[k].total = k == ST_ROOTS || k == ST_ROPES ? s->info.guide_count
                         : k == ST_LODG                 ? s->info.lod_guide_count
                         : k < ST_FRAME                 ? s->info.strand_count
