@@ -1375,34 +1375,33 @@ static void glm_oit_init(glm_app *a)
     a->oit_ok = 1;
 }
 
-/* Returns 1, or 0 with a message. The GL context must be current. */
-static int glm_init(glm_app *a, const glm_options *o)
-{
-    hf_fur_desc desc;
-    hf_rope_params rp;
-    hf_diag diag;
-    hf_result r;
-    hf_lut_params lp;
-    float *lut;
-    unsigned char ramp[64 * 32 * 4];
-    uint32_t *idx;
-    long long n_idx;
-    size_t nv;
-    int i, S;
-    double t0 = glm_now_ms();
+/* The dual scattering tables' size a side (about 0.1 s to bake at 256). */
+#define GLM_DUAL_SIZE 64
 
-    memset(a, 0, sizeof *a);
-    a->o = *o;
-    a->draw_hair = !o->no_hair;
+/* glm_init's phases, in the order they run. Each returns 1, or 0 with a
+   message (those that cannot fail return nothing); a->o holds the options
+   (only its distance changes, in glm_init_curves). */
+
+/* The body (the mesh file or the built-in head) and its skinning,
+   collider and index-map arrays. */
+static int glm_init_body(glm_app *a)
+{
+    const glm_options *o = &a->o;
     if (!(o->mesh ? glm_load_mesh(a) : glm_load_head(a))) return 0;
     a->skin = (ch_vertex *)malloc(sizeof(ch_vertex) * (size_t)a->nv);
     a->col = (hf_collider *)calloc((size_t)a->max_col + 1, sizeof(hf_collider));
     a->index_px = (unsigned char *)malloc(128 * 128);
     if (!a->skin || !a->col || !a->index_px) return 0;
     memcpy(a->skin, a->rest, sizeof(ch_vertex) * (size_t)a->nv);
+    return 1;
+}
 
-    /* maps: from files, else the head's own, else none (density and
-       length 1) and one colour */
+/* The maps: from files, else the head's own, else none (density and
+   length 1) and one colour; the 3D-colour index map always. */
+static int glm_init_maps(glm_app *a)
+{
+    const glm_options *o = &a->o;
+    int i;
     if (o->density_path) {
         if (!glm_load_map(o->density_path, 1, &a->density_px, &a->density))
             return 0;
@@ -1446,6 +1445,14 @@ static int glm_init(glm_app *a, const glm_options *o)
     a->index.data = a->index_px;
     a->index.width = a->index.height = 128;
     a->index.channels = 1;
+    return 1;
+}
+
+/* The guide curves or the groom, when a file gives them, then the
+   measures (size, hair length, camera distance) that take them in. */
+static int glm_init_curves(glm_app *a)
+{
+    const glm_options *o = &a->o;
     if (o->guides_path && o->groom_path) {
         fprintf(stderr, "gl_marschner: give --guides or --groom, not both\n");
         return 0;
@@ -1464,18 +1471,50 @@ static int glm_init(glm_app *a, const glm_options *o)
     }
     glm_measure(a);
     if (a->o.distance <= 0.0f) a->o.distance = a->frame_dist;
+    return 1;
+}
 
-    /* grow on the grown vertex range, at rest */
-    memset(&desc, 0, sizeof desc);
-    desc.mesh.positions = a->rest[a->grow_first].pos;
-    desc.mesh.position_stride = (int)sizeof(ch_vertex);
-    desc.mesh.normals = a->rest[a->grow_first].normal;
-    desc.mesh.normal_stride = (int)sizeof(ch_vertex);
-    desc.mesh.uvs = a->rest[a->grow_first].uv;
-    desc.mesh.uv_stride = (int)sizeof(ch_vertex);
-    desc.mesh.vertex_count = a->grow_count;
-    desc.mesh.indices = a->grow_idx;
-    desc.mesh.triangle_count = a->nt_grown;
+/* --comb: each grown vertex's growth direction, the normal tilted towards
+   the comb's part along the surface, tan(tilt) = the comb's length, the
+   same everywhere; the normal where the comb is the normal. */
+static int glm_comb_directions(glm_app *a)
+{
+    const float *comb = a->o.comb;
+    float len = sqrtf(comb[0] * comb[0] + comb[1] * comb[1] +
+                      comb[2] * comb[2]);
+    int i;
+    a->comb_dir = (float *)malloc(sizeof(float) * 3u * (size_t)a->grow_count);
+    if (!a->comb_dir) return 0;
+    for (i = 0; i < a->grow_count; ++i) {
+        const float *n = a->rest[a->grow_first + i].normal;
+        float cn = comb[0] * n[0] + comb[1] * n[1] + comb[2] * n[2];
+        float t[3], tl;
+        int k;
+        for (k = 0; k < 3; ++k) t[k] = comb[k] - cn * n[k];
+        tl = sqrtf(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+        for (k = 0; k < 3; ++k)
+            a->comb_dir[3 * i + k] =
+                n[k] + (tl > 1e-6f * len ? len * t[k] / tl : 0.0f);
+    }
+    return 1;
+}
+
+/* The growth description: the grown vertex range at rest, the maps, the
+   comb, the guide curves, the strands' shape and the guide target. */
+static int glm_fur_desc(glm_app *a, hf_fur_desc *desc)
+{
+    const glm_options *o = &a->o;
+    int i;
+    memset(desc, 0, sizeof *desc);
+    desc->mesh.positions = a->rest[a->grow_first].pos;
+    desc->mesh.position_stride = (int)sizeof(ch_vertex);
+    desc->mesh.normals = a->rest[a->grow_first].normal;
+    desc->mesh.normal_stride = (int)sizeof(ch_vertex);
+    desc->mesh.uvs = a->rest[a->grow_first].uv;
+    desc->mesh.uv_stride = (int)sizeof(ch_vertex);
+    desc->mesh.vertex_count = a->grow_count;
+    desc->mesh.indices = a->grow_idx;
+    desc->mesh.triangle_count = a->nt_grown;
     for (i = 0; i < a->grow_count; ++i) { /* the library refuses them */
         const float *n = a->rest[a->grow_first + i].normal;
         if (!(n[0] * n[0] + n[1] * n[1] + n[2] * n[2] > 0.0f)) break;
@@ -1484,55 +1523,38 @@ static int glm_init(glm_app *a, const glm_options *o)
         printf("gl_marschner: %s: vertex %d has no normal; the library's "
                "area-weighted normals are used\n", o->mesh ? o->mesh : "mesh",
                i);
-        desc.mesh.normals = NULL;
-        desc.mesh.normal_stride = 0;
+        desc->mesh.normals = NULL;
+        desc->mesh.normal_stride = 0;
     }
-    desc.density_map = a->have_density ? &a->density : NULL;
-    desc.length_map = a->have_length ? &a->length : NULL;
-    desc.color_map = &a->color;
-    desc.color3d_index_map = &a->index;
+    desc->density_map = a->have_density ? &a->density : NULL;
+    desc->length_map = a->have_length ? &a->length : NULL;
+    desc->color_map = &a->color;
+    desc->color3d_index_map = &a->index;
     if (o->comb[0] != 0.0f || o->comb[1] != 0.0f || o->comb[2] != 0.0f) {
-        /* growth direction: the normal tilted towards the comb's part
-           along the surface, tan(tilt) = the comb's length, the same
-           everywhere; the normal where the comb is the normal */
-        float len = sqrtf(o->comb[0] * o->comb[0] + o->comb[1] * o->comb[1] +
-                          o->comb[2] * o->comb[2]);
-        a->comb_dir = (float *)malloc(sizeof(float) * 3u * (size_t)a->grow_count);
-        if (!a->comb_dir) return 0;
-        for (i = 0; i < a->grow_count; ++i) {
-            const float *n = a->rest[a->grow_first + i].normal;
-            float cn = o->comb[0] * n[0] + o->comb[1] * n[1] + o->comb[2] * n[2];
-            float t[3], tl;
-            int k;
-            for (k = 0; k < 3; ++k) t[k] = o->comb[k] - cn * n[k];
-            tl = sqrtf(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-            for (k = 0; k < 3; ++k)
-                a->comb_dir[3 * i + k] =
-                    n[k] + (tl > 1e-6f * len ? len * t[k] / tl : 0.0f);
-        }
-        desc.comb = a->comb_dir;
+        if (!glm_comb_directions(a)) return 0;
+        desc->comb = a->comb_dir;
     }
     if (o->guides_path) {
-        desc.guide_curves = a->curves.xyz;
-        desc.guide_curve_points = a->curves.points;
-        desc.guide_curve_count = a->curves.count;
+        desc->guide_curves = a->curves.xyz;
+        desc->guide_curve_points = a->curves.points;
+        desc->guide_curve_count = a->curves.count;
     }
-    desc.curl_radius = o->curl[0];
-    desc.curl_turns = o->curl[1];
-    desc.wave_amplitude = o->wave[0];
-    desc.wave_count = o->wave[1];
-    desc.frizz = o->frizz;
-    desc.color_variation = o->color_variation;
-    desc.width_variation = o->width_variation;
-    desc.points_per_strand = 16;
-    desc.max_length = a->hair_len;
-    desc.total_strands = o->strands;
-    desc.sampler = HF_SAMPLER_STRATIFIED;
-    desc.seed = 7;
-    desc.clump = o->clump[0];
-    desc.clump_size = o->clump[1];
+    desc->curl_radius = o->curl[0];
+    desc->curl_turns = o->curl[1];
+    desc->wave_amplitude = o->wave[0];
+    desc->wave_count = o->wave[1];
+    desc->frizz = o->frizz;
+    desc->color_variation = o->color_variation;
+    desc->width_variation = o->width_variation;
+    desc->points_per_strand = 16;
+    desc->max_length = a->hair_len;
+    desc->total_strands = o->strands;
+    desc->sampler = HF_SAMPLER_STRATIFIED;
+    desc->seed = 7;
+    desc->clump = o->clump[0];
+    desc->clump_size = o->clump[1];
     if (!o->mesh && !o->guides) {
-        desc.tess_factor = 25000.0f; /* about 2,000 guides on the head */
+        desc->tess_factor = 25000.0f; /* about 2,000 guides on the head */
     } else {
         /* LOD guides to make up the guide target: about one per 1 /
            tess_factor of (density-weighted) area; none when the mesh's
@@ -1540,26 +1562,49 @@ static int glm_init(glm_app *a, const glm_options *o)
         int target = o->guides > 0 ? o->guides : o->strands / 10;
         if (!o->guides && target > 2000) target = 2000;
         if (target > a->grow_count && a->hair_area > 0.0)
-            desc.tess_factor = (float)((target - a->grow_count) / a->hair_area);
+            desc->tess_factor =
+                (float)((target - a->grow_count) / a->hair_area);
     }
-    hf_rope_params_init(&rp);
+    return 1;
+}
+
+/* The ropes' parameters, and the grid of hair-hair interaction in desc. */
+static void glm_rope_params(const glm_app *a, hf_rope_params *rp,
+                            hf_fur_desc *desc)
+{
+    const glm_options *o = &a->o;
+    hf_rope_params_init(rp);
     /* some local stiffness keeps strands from folding, the root one lifts
        them off the scalp a little; the global (rest-pose) stiffness, 0 by
        default, holds fur up: hair with it looks like a helmet */
-    rp.local_stiffness_root = 0.3f;
-    rp.local_stiffness_tip = 0.05f;
-    rp.root_stiffness = 0.5f;
-    rp.global_stiffness_root = o->stiffness;
-    rp.global_stiffness_tip = 0.5f * o->stiffness;
+    rp->local_stiffness_root = 0.3f;
+    rp->local_stiffness_tip = 0.05f;
+    rp->root_stiffness = 0.5f;
+    rp->global_stiffness_root = o->stiffness;
+    rp->global_stiffness_tip = 0.5f * o->stiffness;
     /* hair-hair interaction; 0 on the command line is off */
-    rp.volume = o->volume;
-    rp.friction = o->friction;
-    rp.explicit_zero = (o->volume == 0.0f ? HF_ROPE_ZERO_VOLUME : 0) |
-                       (o->friction == 0.0f ? HF_ROPE_ZERO_FRICTION : 0);
-    desc.grid_resolution = o->volume > 0.0f || o->friction > 0.0f ? o->grid : 0;
-    desc.rope_params = &rp;
+    rp->volume = o->volume;
+    rp->friction = o->friction;
+    rp->explicit_zero = (o->volume == 0.0f ? HF_ROPE_ZERO_VOLUME : 0) |
+                        (o->friction == 0.0f ? HF_ROPE_ZERO_FRICTION : 0);
+    desc->grid_resolution =
+        o->volume > 0.0f || o->friction > 0.0f ? o->grid : 0;
+    desc->rope_params = rp;
+}
+
+/* The fur: grown on the mesh, or the groom's own strands (a fraction of
+   them simulated); then its info and the skinned mesh the roots follow. */
+static int glm_init_fur(glm_app *a)
+{
+    const glm_options *o = &a->o;
+    hf_fur_desc desc;
+    hf_rope_params rp;
+    hf_diag diag;
+    hf_result r;
+    int i;
+    if (!glm_fur_desc(a, &desc)) return 0;
+    glm_rope_params(a, &rp, &desc);
     if (a->groom) {
-        /* the groom's own strands, a fraction of them simulated */
         hf_groom_desc gd;
         a->groom_rgb = (float *)malloc(sizeof(float) * 3u * (size_t)a->curves.count);
         if (!a->groom_rgb) return 0;
@@ -1587,11 +1632,25 @@ static int glm_init(glm_app *a, const glm_options *o)
     }
     hf_fur_get_info(a->fur, &a->info);
     a->P = a->info.points_per_strand;
-    S = a->info.strand_count;
     a->skinned = desc.mesh;
     a->skinned.positions = a->skin[a->grow_first].pos;
     if (desc.mesh.normals) a->skinned.normals = a->skin[a->grow_first].normal;
-    /* each guide's length at rest, for the stretch figure */
+    return 1;
+}
+
+/* Two ribbon vertices per strand point, every strand. */
+static size_t glm_ribbon_vertices(const glm_app *a)
+{
+    return 2u * (size_t)a->info.strand_count * (size_t)a->P;
+}
+
+/* The CPU-side arrays: each guide's length and root at rest (for the
+   stretch figure) and the per-frame vertex and point arrays. */
+static int glm_init_arrays(glm_app *a)
+{
+    const int S = a->info.strand_count;
+    const size_t nv = glm_ribbon_vertices(a);
+    int i;
     a->rest_len = (float *)malloc(sizeof(float) * (size_t)a->info.guide_count);
     if (!a->rest_len) return 0;
     for (i = 0; i < a->info.guide_count; ++i)
@@ -1603,7 +1662,6 @@ static int glm_init(glm_app *a, const glm_options *o)
         memcpy(a->rest_root + 3 * i,
                a->info.guide_points + 3 * (size_t)i * (size_t)a->P,
                sizeof(float) * 3u);
-    nv = 2u * (size_t)S * (size_t)a->P;
     a->dyn = (glm_dyn *)malloc(sizeof(glm_dyn) * nv);
     /* zeroed: the pad bytes are uploaded too */
     a->cdyn = (glm_compact *)calloc(nv, sizeof(glm_compact));
@@ -1611,58 +1669,73 @@ static int glm_init(glm_app *a, const glm_options *o)
     a->line_buf = (float *)malloc(sizeof(float) * 6u * (size_t)(a->max_col + 1) *
                                   GLM_LINES_PER_COLLIDER);
     if (!a->dyn || !a->cdyn || !a->points4 || !a->line_buf) return 0;
+    return 1;
+}
 
-    /* programs */
-    {
-        char *gpu_src = NULL;
-        const char *path = o->expand_shader ? o->expand_shader
-                                            : "examples/ribbon_expand.glsl";
-        a->prog_cpu = glc_program(glm_vs_cpu, glm_fs_hair(), "hair (CPU ribbons)");
-        a->prog_cpu16 = glc_program(glm_vs_cpu16, glm_fs_hair(),
-                                    "hair (compact CPU ribbons)");
-        a->prog_head = glc_program(glm_vs_head, glm_fs_head, "head");
-        a->prog_line = glc_program(glm_vs_line, glm_fs_line, "lines");
-        a->depth_cpu = glc_program(glm_vs_cpu, glm_fs_depth, "shadow (CPU ribbons)");
-        a->depth_cpu16 = glc_program(glm_vs_cpu16, glm_fs_depth,
-                                     "shadow (compact CPU ribbons)");
-        a->depth_head = glc_program(glm_vs_head, glm_fs_depth, "shadow (body)");
-        a->opacity_cpu = glc_program(glm_vs_cpu, glm_fs_opacity_hair,
-                                     "deep opacity (CPU ribbons)");
-        a->opacity_cpu16 = glc_program(glm_vs_cpu16, glm_fs_opacity_hair,
-                                       "deep opacity (compact CPU ribbons)");
-        a->opacity_head = glc_program(glm_vs_head, glm_fs_opacity_body,
-                                      "deep opacity (body)");
-        if (!a->prog_cpu || !a->prog_cpu16 || !a->prog_head || !a->prog_line ||
-            !a->depth_cpu || !a->depth_cpu16 || !a->depth_head ||
-            !a->opacity_cpu || !a->opacity_cpu16 || !a->opacity_head)
-            return 0;
-        gpu_src = glm_gpu_vs_source(path, o->compact);
-        if (gpu_src) {
-            a->prog_gpu = glc_program(gpu_src, glm_fs_hair(), "hair (GPU expansion)");
-            a->depth_gpu = glc_program(gpu_src, glm_fs_depth,
-                                       "shadow (GPU expansion)");
-            a->opacity_gpu = glc_program(gpu_src, glm_fs_opacity_hair,
-                                         "deep opacity (GPU expansion)");
-            free(gpu_src);
-        }
-        if (!a->prog_gpu) {
-            fprintf(stderr, "gl_marschner: no GPU-expansion path (%s); run "
-                    "from the repository root or pass --expand-shader\n", path);
-            if (o->gpu_expand) return 0;
-        }
+/* The programs: hair, body and lines, their shadow and deep opacity
+   variants, and the GPU-expansion ones where its shader is found. */
+static int glm_init_programs(glm_app *a)
+{
+    const glm_options *o = &a->o;
+    char *gpu_src = NULL;
+    const char *path = o->expand_shader ? o->expand_shader
+                                        : "examples/ribbon_expand.glsl";
+    a->prog_cpu = glc_program(glm_vs_cpu, glm_fs_hair(), "hair (CPU ribbons)");
+    a->prog_cpu16 = glc_program(glm_vs_cpu16, glm_fs_hair(),
+                                "hair (compact CPU ribbons)");
+    a->prog_head = glc_program(glm_vs_head, glm_fs_head, "head");
+    a->prog_line = glc_program(glm_vs_line, glm_fs_line, "lines");
+    a->depth_cpu = glc_program(glm_vs_cpu, glm_fs_depth, "shadow (CPU ribbons)");
+    a->depth_cpu16 = glc_program(glm_vs_cpu16, glm_fs_depth,
+                                 "shadow (compact CPU ribbons)");
+    a->depth_head = glc_program(glm_vs_head, glm_fs_depth, "shadow (body)");
+    a->opacity_cpu = glc_program(glm_vs_cpu, glm_fs_opacity_hair,
+                                 "deep opacity (CPU ribbons)");
+    a->opacity_cpu16 = glc_program(glm_vs_cpu16, glm_fs_opacity_hair,
+                                   "deep opacity (compact CPU ribbons)");
+    a->opacity_head = glc_program(glm_vs_head, glm_fs_opacity_body,
+                                  "deep opacity (body)");
+    if (!a->prog_cpu || !a->prog_cpu16 || !a->prog_head || !a->prog_line ||
+        !a->depth_cpu || !a->depth_cpu16 || !a->depth_head ||
+        !a->opacity_cpu || !a->opacity_cpu16 || !a->opacity_head)
+        return 0;
+    gpu_src = glm_gpu_vs_source(path, o->compact);
+    if (gpu_src) {
+        a->prog_gpu = glc_program(gpu_src, glm_fs_hair(), "hair (GPU expansion)");
+        a->depth_gpu = glc_program(gpu_src, glm_fs_depth,
+                                   "shadow (GPU expansion)");
+        a->opacity_gpu = glc_program(gpu_src, glm_fs_opacity_hair,
+                                     "deep opacity (GPU expansion)");
+        free(gpu_src);
     }
+    if (!a->prog_gpu) {
+        fprintf(stderr, "gl_marschner: no GPU-expansion path (%s); run "
+                "from the repository root or pass --expand-shader\n", path);
+        if (o->gpu_expand) return 0;
+    }
+    return 1;
+}
 
-    /* the LUTs of the energy-conserving fibre, without absorption (the
-       shader absorbs per channel), and the dual scattering tables at 64
-       (about 0.1 s at 256) */
+/* The textures the shaders read: the LUTs of the energy-conserving
+   fibre, without absorption (the shader absorbs per channel), the dual
+   scattering tables, the colour ramp and the density map. */
+static int glm_init_textures(glm_app *a)
+{
+    static const unsigned char full = 255; /* no map: hair everywhere */
+    hf_lut_params lp;
+    hf_result r;
+    float *lut;
+    unsigned char ramp[64 * 32 * 4];
+    size_t side; /* the buffer holds the largest tables */
+    int k;
     hf_lut_params_init(&lp);
-    lp.size = o->lut_size;
+    lp.size = a->o.lut_size;
     lp.model = HF_LUT_ENERGY;
     lp.sigma_a = 0.0;
     lp.explicit_zero = HF_LUT_ZERO_SIGMA_A;
-    lut = (float *)malloc(sizeof(float) * 4u * HF_LUT_DUAL_PLANES *
-                          (size_t)(lp.size > 64 ? lp.size : 64) *
-                          (size_t)(lp.size > 64 ? lp.size : 64));
+    side = (size_t)(lp.size > GLM_DUAL_SIZE ? lp.size : GLM_DUAL_SIZE);
+    lut = (float *)malloc(sizeof(float) * 4u * HF_LUT_DUAL_PLANES * side *
+                          side);
     if (!lut) return 0;
     if ((r = hf_lut_bake_m(&lp, 0, lp.size, lut)) != HF_OK) {
         fprintf(stderr, "gl_marschner: LUT: %s\n", hf_result_string(r));
@@ -1674,29 +1747,31 @@ static int glm_init(glm_app *a, const glm_options *o)
     hf_lut_bake_n(&lp, 0, lp.size, lut);
     a->tex_n = glm_texture2d(GL_RGBA32F, lp.size, lp.size, GL_RGBA, GL_FLOAT,
                              lut, GL_CLAMP_TO_EDGE);
-    lp.size = 64;
+    lp.size = GLM_DUAL_SIZE;
     hf_lut_bake_dual(&lp, 0, lp.size, lut);
-    {
-        int k;
-        for (k = 0; k < HF_LUT_DUAL_PLANES; ++k)
-            a->tex_dual[k] = glm_texture2d(
-                GL_RGBA32F, lp.size, lp.size, GL_RGBA, GL_FLOAT,
-                lut + 4u * (size_t)lp.size * (size_t)lp.size * (size_t)k,
-                GL_CLAMP_TO_EDGE);
-    }
+    for (k = 0; k < HF_LUT_DUAL_PLANES; ++k)
+        a->tex_dual[k] = glm_texture2d(
+            GL_RGBA32F, lp.size, lp.size, GL_RGBA, GL_FLOAT,
+            lut + 4u * (size_t)lp.size * (size_t)lp.size * (size_t)k,
+            GL_CLAMP_TO_EDGE);
     free(lut);
     glm_ramp(ramp, 64, 32);
     a->tex_ramp = glm_texture2d(GL_RGBA8, 64, 32, GL_RGBA, GL_UNSIGNED_BYTE,
                                 ramp, GL_CLAMP_TO_EDGE);
-    {
-        static const unsigned char full = 255; /* no map: hair everywhere */
-        a->tex_density = a->have_density
-            ? glm_texture2d(GL_R8, a->density.width, a->density.height, GL_RED,
-                            GL_UNSIGNED_BYTE, a->density_px, GL_REPEAT)
-            : glm_texture2d(GL_R8, 1, 1, GL_RED, GL_UNSIGNED_BYTE, &full,
-                            GL_REPEAT);
-    }
-    /* the shadow map: a depth texture the shaders read as a float */
+    a->tex_density = a->have_density
+        ? glm_texture2d(GL_R8, a->density.width, a->density.height, GL_RED,
+                        GL_UNSIGNED_BYTE, a->density_px, GL_REPEAT)
+        : glm_texture2d(GL_R8, 1, 1, GL_RED, GL_UNSIGNED_BYTE, &full,
+                        GL_REPEAT);
+    return 1;
+}
+
+/* The light's targets: the shadow map (a depth texture the shaders read
+   as a float) and the deep opacity maps (three layers and the body's
+   depth, half floats, blended); then OIT's targets, and back to the
+   output's framebuffer. */
+static int glm_init_light_targets(glm_app *a)
+{
     a->tex_shadow = glm_texture2d(GL_DEPTH_COMPONENT24, GLM_SHADOW_SIZE,
                                   GLM_SHADOW_SIZE, GL_DEPTH_COMPONENT,
                                   GL_UNSIGNED_INT, NULL, GL_CLAMP_TO_EDGE);
@@ -1711,8 +1786,6 @@ static int glm_init(glm_app *a, const glm_options *o)
                 "incomplete; run with --no-shadows\n");
         return 0;
     }
-    /* the deep opacity maps: three layers and the body's depth, half
-       floats, blended */
     a->tex_opacity = glm_texture2d(GL_RGBA16F, GLM_SHADOW_SIZE, GLM_SHADOW_SIZE,
                                    GL_RGBA, GL_FLOAT, NULL, GL_CLAMP_TO_EDGE);
     glGenFramebuffers(1, &a->opacity_fbo);
@@ -1729,10 +1802,16 @@ static int glm_init(glm_app *a, const glm_options *o)
     a->layers[2] = GLM_LAYER_3 * a->hair_len;
     glm_oit_init(a);
     glc_begin_frame(); /* back to the output's framebuffer */
+    return 1;
+}
 
-    /* the index buffer: once, for every strand; a LOD draws a prefix */
-    n_idx = hf_ribbon_index_count(S, a->P, HF_TRIANGLES);
-    idx = (uint32_t *)malloc(sizeof(uint32_t) * (size_t)n_idx);
+/* The hair's index buffer: once, for every strand; a LOD draws a
+   prefix. */
+static int glm_init_hair_indices(glm_app *a)
+{
+    const int S = a->info.strand_count;
+    long long n_idx = hf_ribbon_index_count(S, a->P, HF_TRIANGLES);
+    uint32_t *idx = (uint32_t *)malloc(sizeof(uint32_t) * (size_t)n_idx);
     if (!idx || hf_ribbon_indices(S, a->P, HF_TRIANGLES, idx, n_idx) != HF_OK)
         return 0;
     glGenBuffers(1, &a->ibo_hair);
@@ -1740,8 +1819,22 @@ static int glm_init(glm_app *a, const glm_options *o)
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(4 * n_idx), idx,
                  GL_STATIC_DRAW);
     free(idx);
+    return 1;
+}
 
-    /* CPU path: a dynamic (position, tangent) buffer and a static one */
+/* The CPU path's vertex array: a dynamic (position, tangent) buffer and
+   a static one (texcoord, colour, 3D colour); the compact path's
+   texcoords are written here too, once. */
+static int glm_init_cpu_buffers(glm_app *a)
+{
+    const int S = a->info.strand_count;
+    const size_t nv = glm_ribbon_vertices(a);
+    /* the static streams need strand points only to be finite: the fur's
+       shape at creation serves */
+    glm_static *st;
+    hf_ribbon_params v;
+    hf_ribbon_output out;
+    hf_result r;
     glGenVertexArrays(1, &a->vao_cpu);
     glBindVertexArray(a->vao_cpu);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, a->ibo_hair);
@@ -1755,56 +1848,56 @@ static int glm_init(glm_app *a, const glm_options *o)
                           (void *)offsetof(glm_dyn, tan));
     glEnableVertexAttribArray(0);
     glEnableVertexAttribArray(1);
-    {
-        /* the static streams need strand points only to be finite: the
-           fur's shape at creation serves */
-        glm_static *st = (glm_static *)malloc(sizeof(glm_static) * nv);
-        hf_ribbon_params v;
-        hf_ribbon_output out;
-        if (!st) return 0;
-        glm_camera(a);
-        glm_ribbon_view(a, &v);
+    st = (glm_static *)malloc(sizeof(glm_static) * nv);
+    if (!st) return 0;
+    glm_camera(a);
+    glm_ribbon_view(a, &v);
+    memset(&out, 0, sizeof out);
+    out.texcoord.data = st[0].uv_t;
+    out.texcoord.stride = sizeof(glm_static);
+    out.color.data = st[0].rgba;
+    out.color.stride = sizeof(glm_static);
+    out.color3d.data = st[0].c3d;
+    out.color3d.stride = sizeof(glm_static);
+    if ((r = hf_fur_interpolate(a->fur, 0, S)) == HF_OK &&
+        (r = hf_fur_ribbons(a->fur, 0, S, &v, &out)) == HF_OK) {
+        /* --compact: the texcoords of the 16-byte vertices, once too */
         memset(&out, 0, sizeof out);
-        out.texcoord.data = st[0].uv_t;
-        out.texcoord.stride = sizeof(glm_static);
-        out.color.data = st[0].rgba;
-        out.color.stride = sizeof(glm_static);
-        out.color3d.data = st[0].c3d;
-        out.color3d.stride = sizeof(glm_static);
-        if ((r = hf_fur_interpolate(a->fur, 0, S)) == HF_OK &&
-            (r = hf_fur_ribbons(a->fur, 0, S, &v, &out)) == HF_OK) {
-            /* --compact: the texcoords of the 16-byte vertices, once too */
-            memset(&out, 0, sizeof out);
-            out.texcoord.data = a->cdyn[0].uv_t;
-            out.texcoord.stride = sizeof(glm_compact);
-            out.texcoord.format = HF_FORMAT_UNORM16;
-            r = hf_fur_ribbons(a->fur, 0, S, &v, &out);
-        }
-        if (r != HF_OK) {
-            fprintf(stderr, "gl_marschner: %s\n", hf_result_string(r));
-            free(st);
-            return 0;
-        }
-        glGenBuffers(1, &a->vbo_static);
-        glBindBuffer(GL_ARRAY_BUFFER, a->vbo_static);
-        glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(glm_static) * nv), st,
-                     GL_STATIC_DRAW);
-        free(st);
-        glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, sizeof(glm_static),
-                              (void *)0);
-        glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, sizeof(glm_static),
-                              (void *)offsetof(glm_static, rgba));
-        glVertexAttribPointer(4, 2, GL_FLOAT, GL_FALSE, sizeof(glm_static),
-                              (void *)offsetof(glm_static, c3d));
-        glEnableVertexAttribArray(2);
-        glEnableVertexAttribArray(3);
-        glEnableVertexAttribArray(4);
+        out.texcoord.data = a->cdyn[0].uv_t;
+        out.texcoord.stride = sizeof(glm_compact);
+        out.texcoord.format = HF_FORMAT_UNORM16;
+        r = hf_fur_ribbons(a->fur, 0, S, &v, &out);
     }
+    if (r != HF_OK) {
+        fprintf(stderr, "gl_marschner: %s\n", hf_result_string(r));
+        free(st);
+        return 0;
+    }
+    glGenBuffers(1, &a->vbo_static);
+    glBindBuffer(GL_ARRAY_BUFFER, a->vbo_static);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(glm_static) * nv), st,
+                 GL_STATIC_DRAW);
+    free(st);
+    glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, sizeof(glm_static),
+                          (void *)0);
+    glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, sizeof(glm_static),
+                          (void *)offsetof(glm_static, rgba));
+    glVertexAttribPointer(4, 2, GL_FLOAT, GL_FALSE, sizeof(glm_static),
+                          (void *)offsetof(glm_static, c3d));
+    glEnableVertexAttribArray(2);
+    glEnableVertexAttribArray(3);
+    glEnableVertexAttribArray(4);
+    return 1;
+}
 
-    /* --compact: position, texcoord and tangent from the 16-byte stream as
-       normalized integers (GL divides by 32767, 65535 and 127, the encoding
-       hf_ribbons uses; the shader undoes origin and scale), colour and 3D
-       colour from the static buffer as above */
+/* --compact's vertex array: position, texcoord and tangent from the
+   16-byte stream as normalized integers (GL divides by 32767, 65535 and
+   127, the encoding hf_ribbons uses; the shader undoes origin and
+   scale), colour and 3D colour from the static buffer as above. */
+static void glm_init_compact_buffers(glm_app *a)
+{
+    const size_t nv = glm_ribbon_vertices(a);
+    int i;
     glGenVertexArrays(1, &a->vao_cpu16);
     glBindVertexArray(a->vao_cpu16);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, a->ibo_hair);
@@ -1824,31 +1917,39 @@ static int glm_init(glm_app *a, const glm_options *o)
     glVertexAttribPointer(4, 2, GL_FLOAT, GL_FALSE, sizeof(glm_static),
                           (void *)offsetof(glm_static, c3d));
     for (i = 0; i < 5; ++i) glEnableVertexAttribArray((GLuint)i);
+}
 
-    /* the two dynamic buffers as texture buffers too, where they fit:
-       each ribbon vertex reads its pair's other side (the 1-pixel
-       clamp); glm_dyn is 3 RG32F texels, glm_compact 2 RGBA16I */
-    {
-        GLint most = 0;
-        glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &most);
-        a->min_width = (double)most >= 3.0 * (double)nv;
-        if (a->min_width) {
-            glGenTextures(1, &a->tbo_pair);
-            glBindTexture(GL_TEXTURE_BUFFER, a->tbo_pair);
-            glTexBuffer(GL_TEXTURE_BUFFER, GL_RG32F, a->vbo_dyn);
-            glGenTextures(1, &a->tbo_pair16);
-            glBindTexture(GL_TEXTURE_BUFFER, a->tbo_pair16);
-            glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA16I, a->vbo_dyn16);
-        } else {
-            printf("gl_marschner: %.0f ribbon vertices are more than a "
-                   "texture buffer holds here (%d texels): strands are not "
-                   "widened to a pixel\n", (double)nv, (int)most);
-        }
+/* The two dynamic buffers as texture buffers too, where they fit: each
+   ribbon vertex reads its pair's other side (the 1-pixel clamp); glm_dyn
+   is 3 RG32F texels, glm_compact 2 RGBA16I. */
+static void glm_init_pair_textures(glm_app *a)
+{
+    const size_t nv = glm_ribbon_vertices(a);
+    GLint most = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &most);
+    a->min_width = (double)most >= 3.0 * (double)nv;
+    if (a->min_width) {
+        glGenTextures(1, &a->tbo_pair);
+        glBindTexture(GL_TEXTURE_BUFFER, a->tbo_pair);
+        glTexBuffer(GL_TEXTURE_BUFFER, GL_RG32F, a->vbo_dyn);
+        glGenTextures(1, &a->tbo_pair16);
+        glBindTexture(GL_TEXTURE_BUFFER, a->tbo_pair16);
+        glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA16I, a->vbo_dyn16);
+    } else {
+        printf("gl_marschner: %.0f ribbon vertices are more than a "
+               "texture buffer holds here (%d texels): strands are not "
+               "widened to a pixel\n", (double)nv, (int)most);
     }
+}
 
-    /* GPU path: points (streamed), root UV, colour and 3D-colour x per
-       strand (static). hf_fur_info has no 3D-colour x, so it is computed
-       the way hf_fur_create does, from the strand's root UV. */
+/* The GPU path: points (streamed), root UV, colour and 3D-colour x per
+   strand (static). hf_fur_info has no 3D-colour x, so it is computed the
+   way hf_fur_create does, from the strand's root UV. */
+static int glm_init_gpu_buffers(glm_app *a)
+{
+    const int S = a->info.strand_count;
+    float *tmp, *c3x;
+    int i;
     glGenVertexArrays(1, &a->vao_gpu);
     glBindVertexArray(a->vao_gpu);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, a->ibo_hair);
@@ -1857,28 +1958,31 @@ static int glm_init(glm_app *a, const glm_options *o)
             a->o.compact ? GL_RGBA16I : GL_RGBA32F,
             (a->o.compact ? 8u : 16u) * (size_t)S * (size_t)a->P, NULL,
             GL_STREAM_DRAW);
-    {
-        float *tmp = (float *)malloc(sizeof(float) * 2u * (size_t)S);
-        float *c3x = (float *)malloc(sizeof(float) * (size_t)S);
-        if (!tmp || !c3x) return 0;
-        for (i = 0; i < S; ++i) {
-            float xy[2];
-            tmp[2 * i] = a->info.strands[i].uv[0];
-            tmp[2 * i + 1] = a->info.strands[i].uv[1];
-            hf_color3d_coord(&a->index, tmp[2 * i], tmp[2 * i + 1], 0.0f, xy);
-            c3x[i] = xy[0];
-        }
-        glm_tbo(&a->vbo_uv, &a->tbo_uv, GL_RG32F, sizeof(float) * 2u * (size_t)S,
-                tmp, GL_STATIC_DRAW);
-        glm_tbo(&a->vbo_c3x, &a->tbo_c3x, GL_R32F, sizeof(float) * (size_t)S,
-                c3x, GL_STATIC_DRAW);
-        free(tmp);
-        free(c3x);
+    tmp = (float *)malloc(sizeof(float) * 2u * (size_t)S);
+    c3x = (float *)malloc(sizeof(float) * (size_t)S);
+    if (!tmp || !c3x) return 0;
+    for (i = 0; i < S; ++i) {
+        float xy[2];
+        tmp[2 * i] = a->info.strands[i].uv[0];
+        tmp[2 * i + 1] = a->info.strands[i].uv[1];
+        hf_color3d_coord(&a->index, tmp[2 * i], tmp[2 * i + 1], 0.0f, xy);
+        c3x[i] = xy[0];
     }
+    glm_tbo(&a->vbo_uv, &a->tbo_uv, GL_RG32F, sizeof(float) * 2u * (size_t)S,
+            tmp, GL_STATIC_DRAW);
+    glm_tbo(&a->vbo_c3x, &a->tbo_c3x, GL_R32F, sizeof(float) * (size_t)S,
+            c3x, GL_STATIC_DRAW);
+    free(tmp);
+    free(c3x);
     glm_tbo(&a->vbo_scolor, &a->tbo_scolor, GL_RGBA32F,
             sizeof(float) * 4u * (size_t)S, a->info.strand_colors, GL_STATIC_DRAW);
+    return 1;
+}
 
-    /* the body: the skinned vertices, streamed */
+/* The body's vertex array: the skinned vertices, streamed, and its
+   triangles. */
+static void glm_init_body_buffers(glm_app *a)
+{
     glGenVertexArrays(1, &a->vao_head);
     glBindVertexArray(a->vao_head);
     glGenBuffers(1, &a->vbo_head);
@@ -1898,8 +2002,11 @@ static int glm_init(glm_app *a, const glm_options *o)
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, a->ibo_head);
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(12 * (size_t)a->nt),
                  a->body_idx, GL_STATIC_DRAW);
+}
 
-    /* collider lines */
+/* The collider lines' vertex array, streamed. */
+static void glm_init_line_buffers(glm_app *a)
+{
     glGenVertexArrays(1, &a->vao_line);
     glBindVertexArray(a->vao_line);
     glGenBuffers(1, &a->vbo_line);
@@ -1909,13 +2016,32 @@ static int glm_init(glm_app *a, const glm_options *o)
                  GL_STREAM_DRAW);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 12, (void *)0);
     glEnableVertexAttribArray(0);
+}
+
+/* Returns 1, or 0 with a message. The GL context must be current. */
+static int glm_init(glm_app *a, const glm_options *o)
+{
+    double t0 = glm_now_ms();
+    memset(a, 0, sizeof *a);
+    a->o = *o;
+    a->draw_hair = !o->no_hair;
+    if (!glm_init_body(a) || !glm_init_maps(a) || !glm_init_curves(a) ||
+        !glm_init_fur(a) || !glm_init_arrays(a) || !glm_init_programs(a) ||
+        !glm_init_textures(a) || !glm_init_light_targets(a) ||
+        !glm_init_hair_indices(a) || !glm_init_cpu_buffers(a))
+        return 0;
+    glm_init_compact_buffers(a);
+    glm_init_pair_textures(a);
+    if (!glm_init_gpu_buffers(a)) return 0;
+    glm_init_body_buffers(a);
+    glm_init_line_buffers(a);
     glBindVertexArray(0);
     if (!glc_check_gl("glm_init")) return 0;
     printf("gl_marschner: %s: %d strands of %d points, %d guides, hair "
            "%.3g m, %d colliders, size %.3g m; grown, LUTs baked (%d x %d) "
            "and buffers made in %.0f ms\n", o->mesh ? o->mesh : "built-in head",
-           S, a->P, a->info.guide_count, a->hair_len, a->ncol, a->size,
-           lp.size, lp.size, glm_now_ms() - t0);
+           a->info.strand_count, a->P, a->info.guide_count, a->hair_len,
+           a->ncol, a->size, GLM_DUAL_SIZE, GLM_DUAL_SIZE, glm_now_ms() - t0);
     return 1;
 }
 

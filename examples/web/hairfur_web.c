@@ -537,21 +537,12 @@ static void hw_ribbon_view(const hw_app *a, hf_ribbon_params *v)
     v->simd = a->simd;
 }
 
-/* Grow the fur, bake the LUTs, make the GL objects. Returns 1, or 0 with
-   the error in the status. */
-static int hw_init(hw_app *a)
-{
-    hf_fur_desc desc;
-    hf_diag diag;
-    hf_result r;
-    hf_lut_params lp;
-    float *lut;
-    uint32_t *idx;
-    long long n_idx;
-    size_t nv;
-    int S, i;
-    char msg[400];
+/* hw_init's phases, in the order they run. Those that can fail return 1,
+   or 0 with the error in the status. */
 
+/* The head (a sphere), its skinned copy and its maps. */
+static int hw_init_head(hw_app *a)
+{
     if (!hm_sphere(24, 32, HW_HEAD_R, &a->head)) {
         hw_error(a, "out of memory (head)");
         return 0;
@@ -580,7 +571,23 @@ static int hw_init(hw_app *a)
     a->color.width = a->color.height = 64;
     a->color.channels = 3;
     hw_measure(a);
+    return 1;
+}
 
+/* Two ribbon vertices per strand point, every strand. */
+static size_t hw_ribbon_vertices(const hw_app *a)
+{
+    return 2u * (size_t)a->info.strand_count * (size_t)a->P;
+}
+
+/* The fur, grown on the head at rest as gl_marschner grows it; its info,
+   the skinned mesh its roots follow and the per-frame vertex array. */
+static int hw_init_fur(hw_app *a)
+{
+    hf_fur_desc desc;
+    hf_diag diag;
+    hf_result r;
+    char msg[400];
     memset(&desc, 0, sizeof desc);
     desc.mesh.positions = a->head.vertices[0].pos;
     desc.mesh.position_stride = (int)sizeof(hm_vertex);
@@ -613,28 +620,38 @@ static int hw_init(hw_app *a)
     if (a->simd != 0) hf_fur_set_kernels(a->fur, a->simd, 0);
     hf_fur_get_info(a->fur, &a->info);
     a->P = a->info.points_per_strand;
-    S = a->info.strand_count;
     a->skinned = desc.mesh;
     a->skinned.positions = a->skin[0].pos;
     a->skinned.normals = a->skin[0].normal;
-    nv = 2u * (size_t)S * (size_t)a->P;
-    a->dyn = (hw_dyn *)malloc(sizeof(hw_dyn) * nv);
+    a->dyn = (hw_dyn *)malloc(sizeof(hw_dyn) * hw_ribbon_vertices(a));
     if (!a->dyn) {
         hw_error(a, "out of memory (vertices)");
         return 0;
     }
+    return 1;
+}
 
+/* The programs: hair and head, and their shadow variants. */
+static int hw_init_programs(hw_app *a)
+{
     a->prog_hair = hw_program(a, hw_vs_hair, hw_fs_hair(), "hair");
     a->prog_head = hw_program(a, hw_vs_head, hw_fs_head, "head");
     a->depth_hair = hw_program(a, hw_vs_hair, hw_fs_depth, "hair shadow");
     a->depth_head = hw_program(a, hw_vs_head, hw_fs_depth, "head shadow");
-    if (!a->prog_hair || !a->prog_head || !a->depth_hair || !a->depth_head)
-        return 0;
+    return a->prog_hair && a->prog_head && a->depth_hair && a->depth_head;
+}
 
-    /* the LUTs, baked here in wasm as gl_marschner bakes them (the
-       energy-conserving fibre without absorption, the dual scattering
-       tables at 64): RGBA32F where the browser filters float textures,
-       else RGBA16F (filtered everywhere in WebGL2) */
+/* The LUTs, baked here in wasm as gl_marschner bakes them (the
+   energy-conserving fibre without absorption, the dual scattering tables
+   at 64): RGBA32F where the browser filters float textures, else RGBA16F
+   (filtered everywhere in WebGL2). */
+static int hw_init_luts(hw_app *a)
+{
+    hf_lut_params lp;
+    hf_result r;
+    float *lut;
+    GLenum internal;
+    char msg[400];
     hf_lut_params_init(&lp);
     lp.size = 256;
     lp.model = HF_LUT_ENERGY;
@@ -646,34 +663,39 @@ static int hw_init(hw_app *a)
         hw_error(a, "out of memory (LUTs)");
         return 0;
     }
-    {
-        GLenum internal = emscripten_webgl_enable_extension(
-                              a->ctx, "OES_texture_float_linear")
-                              ? GL_RGBA32F
-                              : GL_RGBA16F;
-        if ((r = hf_lut_bake_m(&lp, 0, lp.size, lut)) != HF_OK) {
-            snprintf(msg, sizeof msg, "LUT: %s", hf_result_string(r));
-            hw_error(a, msg);
-            free(lut);
-            return 0;
-        }
-        a->tex_m = hw_texture(internal, lp.size, lp.size, GL_RGBA, GL_FLOAT,
-                              lut, GL_LINEAR, GL_CLAMP_TO_EDGE);
-        hf_lut_bake_n(&lp, 0, lp.size, lut);
-        a->tex_n = hw_texture(internal, lp.size, lp.size, GL_RGBA, GL_FLOAT,
-                              lut, GL_LINEAR, GL_CLAMP_TO_EDGE);
-        lp.size = 64; /* 3 planes of 64 x 64 fit in the 256 x 256 buffer */
-        hf_lut_bake_dual(&lp, 0, lp.size, lut);
-        a->tex_dual0 = hw_texture(internal, lp.size, lp.size, GL_RGBA,
-                                  GL_FLOAT, lut, GL_LINEAR, GL_CLAMP_TO_EDGE);
-        a->tex_dual2 = hw_texture(internal, lp.size, lp.size, GL_RGBA,
-                                  GL_FLOAT, lut + 2u * 4u * 64u * 64u,
-                                  GL_LINEAR, GL_CLAMP_TO_EDGE);
+    internal = emscripten_webgl_enable_extension(a->ctx,
+                                                 "OES_texture_float_linear")
+                   ? GL_RGBA32F
+                   : GL_RGBA16F;
+    if ((r = hf_lut_bake_m(&lp, 0, lp.size, lut)) != HF_OK) {
+        snprintf(msg, sizeof msg, "LUT: %s", hf_result_string(r));
+        hw_error(a, msg);
+        free(lut);
+        return 0;
     }
+    a->tex_m = hw_texture(internal, lp.size, lp.size, GL_RGBA, GL_FLOAT, lut,
+                          GL_LINEAR, GL_CLAMP_TO_EDGE);
+    hf_lut_bake_n(&lp, 0, lp.size, lut);
+    a->tex_n = hw_texture(internal, lp.size, lp.size, GL_RGBA, GL_FLOAT, lut,
+                          GL_LINEAR, GL_CLAMP_TO_EDGE);
+    lp.size = 64; /* 3 planes of 64 x 64 fit in the 256 x 256 buffer */
+    hf_lut_bake_dual(&lp, 0, lp.size, lut);
+    a->tex_dual0 = hw_texture(internal, lp.size, lp.size, GL_RGBA, GL_FLOAT,
+                              lut, GL_LINEAR, GL_CLAMP_TO_EDGE);
+    a->tex_dual2 = hw_texture(internal, lp.size, lp.size, GL_RGBA, GL_FLOAT,
+                              lut + 2u * 4u * 64u * 64u, GL_LINEAR,
+                              GL_CLAMP_TO_EDGE);
     free(lut);
+    return 1;
+}
+
+/* The density texture and the shadow map (WebGL2 filters no depth
+   texture, so NEAREST) with its framebuffer. */
+static int hw_init_shadow(hw_app *a)
+{
+    GLenum none = GL_NONE;
     a->tex_density = hw_texture(GL_R8, 256, 256, GL_RED, GL_UNSIGNED_BYTE,
                                 a->density_px, GL_LINEAR, GL_REPEAT);
-    /* the shadow map: WebGL2 filters no depth texture, so NEAREST */
     a->tex_shadow = hw_texture(GL_DEPTH_COMPONENT24, HW_SHADOW_SIZE,
                                HW_SHADOW_SIZE, GL_DEPTH_COMPONENT,
                                GL_UNSIGNED_INT, NULL, GL_NEAREST,
@@ -682,20 +704,23 @@ static int hw_init(hw_app *a)
     glBindFramebuffer(GL_FRAMEBUFFER, a->shadow_fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D,
                            a->tex_shadow, 0);
-    {
-        GLenum none = GL_NONE;
-        glDrawBuffers(1, &none);
-        glReadBuffer(GL_NONE);
-    }
+    glDrawBuffers(1, &none);
+    glReadBuffer(GL_NONE);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
         hw_error(a, "the shadow map framebuffer is incomplete");
         return 0;
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return 1;
+}
 
-    /* indices once, for every strand; a LOD draws a prefix */
-    n_idx = hf_ribbon_index_count(S, a->P, HF_TRIANGLES);
-    idx = (uint32_t *)malloc(sizeof(uint32_t) * (size_t)n_idx);
+/* The hair's vertex array: indices once, for every strand (a LOD draws a
+   prefix), and position and tangent, rewritten every frame. */
+static int hw_init_hair_buffers(hw_app *a)
+{
+    const int S = a->info.strand_count;
+    long long n_idx = hf_ribbon_index_count(S, a->P, HF_TRIANGLES);
+    uint32_t *idx = (uint32_t *)malloc(sizeof(uint32_t) * (size_t)n_idx);
     if (!idx || hf_ribbon_indices(S, a->P, HF_TRIANGLES, idx, n_idx) != HF_OK) {
         free(idx);
         hw_error(a, "ribbon indices");
@@ -708,8 +733,7 @@ static int hw_init(hw_app *a)
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(4 * n_idx), idx,
                  GL_STATIC_DRAW);
     free(idx);
-    /* position and tangent, rewritten every frame */
-    a->dyn_bytes = sizeof(hw_dyn) * nv;
+    a->dyn_bytes = sizeof(hw_dyn) * hw_ribbon_vertices(a);
     glGenBuffers(1, &a->vbo_dyn);
     glBindBuffer(GL_ARRAY_BUFFER, a->vbo_dyn);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)a->dyn_bytes, NULL,
@@ -719,46 +743,60 @@ static int hw_init(hw_app *a)
                           (void *)offsetof(hw_dyn, tan));
     glEnableVertexAttribArray(0);
     glEnableVertexAttribArray(1);
-    {
-        /* texcoord and colour depend only on the strand and the point:
-           written once, for every strand (the fur's shape at creation) */
-        hw_static *st = (hw_static *)malloc(sizeof(hw_static) * nv);
-        hf_ribbon_params v;
-        hf_ribbon_output out;
-        if (!st) {
-            hw_error(a, "out of memory (static vertices)");
-            return 0;
-        }
-        hw_camera(a);
-        hw_ribbon_view(a, &v);
-        memset(&out, 0, sizeof out);
-        out.texcoord.data = st[0].uv_t;
-        out.texcoord.stride = sizeof(hw_static);
-        out.color.data = st[0].rgba;
-        out.color.stride = sizeof(hw_static);
-        out.color3d.data = st[0].c3d;
-        out.color3d.stride = sizeof(hw_static);
-        if ((r = hf_fur_interpolate(a->fur, 0, S)) != HF_OK ||
-            (r = hf_fur_ribbons(a->fur, 0, S, &v, &out)) != HF_OK) {
-            snprintf(msg, sizeof msg, "static vertices: %s",
-                     hf_result_string(r));
-            hw_error(a, msg);
-            free(st);
-            return 0;
-        }
-        glGenBuffers(1, &a->vbo_static);
-        glBindBuffer(GL_ARRAY_BUFFER, a->vbo_static);
-        glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(hw_static) * nv), st,
-                     GL_STATIC_DRAW);
-        free(st);
-        glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, sizeof(hw_static),
-                              (void *)0);
-        glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, sizeof(hw_static),
-                              (void *)offsetof(hw_static, rgba));
-        glEnableVertexAttribArray(2);
-        glEnableVertexAttribArray(3);
+    return 1;
+}
+
+/* The hair's static streams, into its vertex array: texcoord and colour
+   depend only on the strand and the point, so they are written once, for
+   every strand (the fur's shape at creation). */
+static int hw_init_static_buffer(hw_app *a)
+{
+    const int S = a->info.strand_count;
+    const size_t nv = hw_ribbon_vertices(a);
+    hw_static *st = (hw_static *)malloc(sizeof(hw_static) * nv);
+    hf_ribbon_params v;
+    hf_ribbon_output out;
+    hf_result r;
+    char msg[400];
+    if (!st) {
+        hw_error(a, "out of memory (static vertices)");
+        return 0;
     }
-    /* the head: its vertices moved every frame */
+    hw_camera(a);
+    hw_ribbon_view(a, &v);
+    memset(&out, 0, sizeof out);
+    out.texcoord.data = st[0].uv_t;
+    out.texcoord.stride = sizeof(hw_static);
+    out.color.data = st[0].rgba;
+    out.color.stride = sizeof(hw_static);
+    out.color3d.data = st[0].c3d;
+    out.color3d.stride = sizeof(hw_static);
+    if ((r = hf_fur_interpolate(a->fur, 0, S)) != HF_OK ||
+        (r = hf_fur_ribbons(a->fur, 0, S, &v, &out)) != HF_OK) {
+        snprintf(msg, sizeof msg, "static vertices: %s", hf_result_string(r));
+        hw_error(a, msg);
+        free(st);
+        return 0;
+    }
+    glGenBuffers(1, &a->vbo_static);
+    glBindBuffer(GL_ARRAY_BUFFER, a->vbo_static);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(hw_static) * nv), st,
+                 GL_STATIC_DRAW);
+    free(st);
+    glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, sizeof(hw_static),
+                          (void *)0);
+    glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, sizeof(hw_static),
+                          (void *)offsetof(hw_static, rgba));
+    glEnableVertexAttribArray(2);
+    glEnableVertexAttribArray(3);
+    return 1;
+}
+
+/* The head's vertex array: its vertices moved every frame, its triangles
+   once. */
+static void hw_init_head_buffers(hw_app *a)
+{
+    int i;
     glGenVertexArrays(1, &a->vao_head);
     glBindVertexArray(a->vao_head);
     glGenBuffers(1, &a->vbo_head);
@@ -778,6 +816,17 @@ static int hw_init(hw_app *a)
     glBufferData(GL_ELEMENT_ARRAY_BUFFER,
                  (GLsizeiptr)(12 * (size_t)a->head.triangle_count),
                  a->head.indices, GL_STATIC_DRAW);
+}
+
+/* Grow the fur, bake the LUTs, make the GL objects. Returns 1, or 0 with
+   the error in the status. */
+static int hw_init(hw_app *a)
+{
+    if (!hw_init_head(a) || !hw_init_fur(a) || !hw_init_programs(a) ||
+        !hw_init_luts(a) || !hw_init_shadow(a) || !hw_init_hair_buffers(a) ||
+        !hw_init_static_buffer(a))
+        return 0;
+    hw_init_head_buffers(a);
     glBindVertexArray(0);
     return hw_gl_ok(a, "init");
 }
