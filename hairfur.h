@@ -212,22 +212,51 @@
 
    SECTIONS (in the order the data flows)
 
+       Every section and subsection opens with one anchor line, a
+       comment that reads "---- 6.5 the broadphase ----": grep for
+       "---- 6\." to list section 6, or "---- 6.5 " for one subsection.
+       A section's anchor stands twice, over its declarations and over
+       its implementation; a subsection's over its declarations too
+       where they split (5.1 to 5.6, 6.9, 8.9).
+
        1. configuration, result codes, version
+          1.1 defaults: what every zero field means, in one place
+          1.2 small vector helpers
        2. random numbers (hf_rng)
        3. maps (hf_map): validation, bilinear sampling, Gaussian blur
        4. meshes (hf_mesh): validation, normals, triangle area
-       5. grow: density tessellation, guides, strand placement, maps on
-          strands, strand-to-guide bindings
+       5. grow: tessellation, guides, placement, maps, bindings
+          5.1 density of a UV triangle      5.4 strand placement
+          5.2 density tessellation          5.5 maps on strands
+          5.3 guides                        5.6 binding strands to guides
        6. ropes: Verlet ropes with follow-the-leader constraints, shape
           stiffness, colliders, animation-only mode
+          6.1 memory                        6.6 the simulated rope step
+          6.2 frames                        6.7 the rope kernels (a text)
+          6.3 rest pose, roots, modes       6.8 the kernels per width,
+          6.4 the step                          their dispatch, the call
+          6.5 the broadphase                6.9 hair-hair interaction
        7. interpolation and LOD
+          7.1 interpolation at 8 and 16 lanes (a kernel text)
+          7.2 the interpolation kernels per width, hf_interpolate
+          7.3 level of detail
        8. ribbons: camera-facing vertices, the GPU point path, indices
+          8.1 inputs: checks, widths       8.6 the whole-call loops
+          8.2 the strand frame             8.7 hf_ribbons: the call
+          8.3 vertex formats: encoding     8.8 GPU points (with their
+          8.4 the writers                      kernel text)
+          8.5 streaming stores: the stage  8.9 indices
        9. LUT baking: the Marschner M and N textures
+          9.1 M: three Gaussians           9.4 white furnace
+          9.2 N: roots of Phi, Fresnel     9.5 dual scattering tables
+          9.3 the energy-conserving fibre  9.6 8-bit conversion
       10. the fur object (hf_fur): all of the above, per frame
+          10.1 grooms
 
-       The implementation follows the same order, after one prologue (the
-       overridable macros, the compiler words, the SIMD level and its
-       operations) and one place where every struct's zero fields get
+       The implementation follows the same order, after one prologue,
+       section 0 (0.1 the overridable macros, 0.2 the SIMD levels, 0.3
+       the compiler words, 0.4 the four-lane operations, 0.5 kernel
+       texts); 1.1 is the one place where every struct's zero fields get
        their defaults. Each SIMD kernel follows its scalar reference
        hf__<name>_ref and gives the same bytes; one dispatch function per
        stage picks between them by the level hf_simd_resolve gives. A
@@ -239,7 +268,7 @@
        named by its lanes: _v4 (SSE2 or NEON), _v8 (AVX2), _v16
        (AVX-512). Each copy is a function with the text's own lines, so a
        debugger stops in the AVX2 rope kernel at "break
-       hf__ropes_ftl_row_v8" (more under "Kernel texts" in the prologue).
+       hf__ropes_ftl_row_v8" (more in 0.5, "Kernel texts").
 
    VERSION HISTORY
 
@@ -345,9 +374,7 @@
 extern "C" {
 #endif
 
-/* ======================================================================== */
-/* 1. Configuration, result codes, version                                  */
-/* ======================================================================== */
+/* ---- 1. configuration, result codes, version ---------------------------- */
 
 /* Every result code with its message, in one table. 0 is success; errors are
    negative so that `if (r < 0)` also works. */
@@ -447,9 +474,7 @@ typedef enum hf_simd_level {
 HFDEF int hf_simd_resolve(int requested);
 
 
-/* ======================================================================== */
-/* 2. Random numbers                                                        */
-/* ======================================================================== */
+/* ---- 2. random numbers -------------------------------------------------- */
 
 /* PCG32 (O'Neill, pcg-random.org): 64-bit state, 32-bit output, period 2^64,
    independent streams. Plain value type: copy it to fork a sequence. */
@@ -468,9 +493,7 @@ HFDEF float hf_rng_float(hf_rng *rng);
 /* Uniform integer in [0, bound), without modulo bias; 0 when bound is 0. */
 HFDEF uint32_t hf_rng_below(hf_rng *rng, uint32_t bound);
 
-/* ======================================================================== */
-/* 3. Maps                                                                  */
-/* ======================================================================== */
+/* ---- 3. maps ------------------------------------------------------------ */
 
 typedef enum hf_map_format {
     HF_MAP_U8 = 0, /* 8-bit unorm: 0..255 reads as 0..1 (the default) */
@@ -536,9 +559,7 @@ HFDEF void hf_map_sample_fast(const hf_map *map, float u, float v,
 HFDEF hf_result hf_map_blur(const hf_map *map, float sigma, float *out,
                             const hf_allocator *alloc);
 
-/* ======================================================================== */
-/* 4. Meshes                                                                */
-/* ======================================================================== */
+/* ---- 4. meshes ---------------------------------------------------------- */
 
 /* A view of a triangle mesh the caller owns: nothing is copied. Strides are
    in bytes (0 = packed; otherwise a multiple of 4, with 4-byte aligned
@@ -580,9 +601,7 @@ HFDEF hf_result hf_mesh_compute_normals(const hf_mesh *mesh,
 HFDEF float hf_triangle_area(const float a[3], const float b[3],
                              const float c[3]);
 
-/* ======================================================================== */
-/* 5. Grow: density tessellation, guides, strand placement, maps on strands */
-/* ======================================================================== */
+/* ---- 5. grow: tessellation, guides, placement, maps, bindings ----------- */
 
 /* The growing stages run once, when a fur is created (or its maps change):
 
@@ -960,7 +979,7 @@ HFDEF hf_result hf_color3d_coord(const hf_map *index_map, float u, float v,
 HFDEF hf_result hf_color3d_sample(const hf_map *index_map, const hf_map *ramp,
                                   float u, float v, float t, float out[4]);
 
-/* ---- 5.6 binding strands to guides ------------------------------------- */
+/* ---- 5.6 binding strands to guides -------------------------------------- */
 
 /* How one strand follows three guides: indices into the guide array, the
    barycentric weights of its root in the guide triangle (summing to 1), and
@@ -993,9 +1012,7 @@ HFDEF hf_result hf_bind_strands(const hf_mesh *guide_mesh,
                                 const float *guide_lengths,
                                 hf_strand_binding *out);
 
-/* ======================================================================== */
-/* 6. Ropes: Verlet ropes for guide hairs, or any rope                      */
-/* ======================================================================== */
+/* ---- 6. ropes: Verlet ropes for guide hairs, or any rope ---------------- */
 
 /* A set of ropes that all have the same number of points (>= 2), simulated
    with position Verlet and position-based constraints. Per frame:
@@ -1322,7 +1339,7 @@ HFDEF hf_result hf_ropes_copy_range(const hf_ropes *ropes, int first,
 HFDEF hf_result hf_ropes_rest_from_pose(hf_ropes *ropes, int first,
                                         int count);
 
-/* ---- hair-hair interaction ---------------------------------------------- */
+/* ---- 6.9 hair-hair interaction: the grid -------------------------------- */
 
 /* A grid of resolution^3 nodes over the ropes' points, rebuilt every
    frame from where the points are (hf_grid_build) and read by
@@ -1393,9 +1410,7 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
                                     float dt, const hf_rope_params *params,
                                     const hf_grid *grid);
 
-/* ======================================================================== */
-/* 7. Interpolation and LOD                                                 */
-/* ======================================================================== */
+/* ---- 7. interpolation and LOD ------------------------------------------- */
 
 /* Every strand and every guide has the same number of points P, 2 <= P <=
    HF_MAX_POINTS, stored as packed x, y, z: point j of strand s is at floats
@@ -1469,9 +1484,7 @@ HFDEF float hf_lod_width_scale(int total, int drawn);
 HFDEF float hf_lod_from_distance(float distance, float full_detail_distance,
                                  float cull_distance);
 
-/* ======================================================================== */
-/* 8. Ribbons                                                               */
-/* ======================================================================== */
+/* ---- 8. ribbons --------------------------------------------------------- */
 
 /* How a stream stores each component. The compact formats halve or
    quarter the bytes a frame writes, which is most of a ribbon's cost; GL
@@ -1676,6 +1689,8 @@ typedef enum hf_topology {
                              draw with primitive restart on */
 } hf_topology;
 
+/* ---- 8.9 indices -------------------------------------------------------- */
+
 /* The number of indices for `strand_count` strands of P points, or -1 if
    it does not fit in an int (or P < 2, strand_count < 0, bad topology). */
 HFDEF long long hf_ribbon_index_count(int strand_count, int points_per_strand,
@@ -1708,9 +1723,7 @@ HFDEF hf_result hf_ribbon_indices16(int strand_count, int points_per_strand,
                                     int topology /* hf_topology */,
                                     uint16_t *out, long long capacity);
 
-/* ======================================================================== */
-/* 9. LUT baking                                                            */
-/* ======================================================================== */
+/* ---- 9. LUT baking ------------------------------------------------------ */
 /* Marschner M and N lookup textures. */
 
 /* Bakes, on the CPU, the two lookup textures of the Marschner hair shader
@@ -1956,9 +1969,7 @@ HFDEF hf_result hf_lut_furnace(const hf_lut_params *p, const float *m,
 HFDEF hf_result hf_lut_bake_dual(const hf_lut_params *p, int first_row,
                                  int row_count, float *out);
 
-/* ======================================================================== */
-/* 10. The fur object                                                      */
-/* ======================================================================== */
+/* ---- 10. the fur object ------------------------------------------------- */
 
 /* hf_fur composes every stage: created once from a zero-initialised
    description (it grows everything then), it owns the guides, strands and
@@ -2319,9 +2330,7 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 
 #endif /* HAIRFUR_H */
 
-/* ======================================================================== */
-/*                            IMPLEMENTATION                                */
-/* ======================================================================== */
+/* ---- 0. the implementation: its prologue -------------------------------- */
 
 /* The implementation, and its kernel passes: a kernel text, written once
    for any SIMD width, is built by including this file again once per
@@ -2337,6 +2346,8 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 #include <stdarg.h> /* diagnostics */
 #include <stdio.h>  /* vsnprintf for diagnostics */
 #include <string.h> /* memcpy, memset */
+
+/* ---- 0.1 overridable macros: allocator, assert, file name, libm --------- */
 
 #if defined(HF_MALLOC) && defined(HF_REALLOC) && defined(HF_FREE)
 /* all three given */
@@ -2406,6 +2417,8 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 #ifndef HF_MEMSET
 #define HF_MEMSET(d, v, n) memset(d, v, n)
 #endif
+
+/* ---- 0.2 SIMD levels ---------------------------------------------------- */
 
 /* SIMD levels. A kernel named hf__<name>_sse (or _neon, _avx2, _avx512;
    _v4 for one written once for SSE2 and NEON; _v4, _v8 or _v16 for a
@@ -2493,6 +2506,8 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 #define HF_STREAM_MIN_VERTEX_BYTES ((size_t)8 << 20)
 #endif
 
+/* ---- 0.3 FMA contraction and compiler words ----------------------------- */
+
 /* Every kernel gives its scalar reference's bytes only where no compiler
    fuses a * b + c into one FMA (one rounding instead of two), and a range
    split sends different strands through different kernels: contraction
@@ -2563,6 +2578,8 @@ HF__INLINE __m128 hf__sel_sse(__m128 m, __m128 a, __m128 b)
     return _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b));
 }
 #endif
+
+/* ---- 0.4 the four-lane operations --------------------------------------- */
 
 /* The four-lane operations, for SSE2 and NEON: hf__v4 holds four floats,
    a mask is a vector whose lanes have every bit set or clear, HF__MASK
@@ -2656,6 +2673,8 @@ HF__INLINE int hf__mask_neon(float32x4_t m)
 #define HF__POSE(o, a, b, c, x, y, z)                                          \
     HF__POSE_OF(HF__ADD, HF__MUL, o, a, b, c, x, y, z)
 #endif
+
+/* ---- 0.5 kernel texts: their words at each width ------------------------ */
 
 /* Kernel texts. The kernels written once for any SIMD width (the rope
    step's contacts and rows at 4, 8 and 16 lanes, interpolation into
@@ -2921,7 +2940,7 @@ HFDEF int hf_simd_resolve(int requested)
     return requested < best ? requested : best;
 }
 
-/* ---- defaults: what every zero field means, resolved in one place ------ */
+/* ---- 1.1 defaults: what every zero field means, in one place ------------ */
 
 /* Every public struct follows one rule: a zero field means the default
    documented beside it. Each entry point resolves its struct here into a
@@ -3127,7 +3146,7 @@ HF__PRIVATE int hf__mul_size(size_t a, size_t b, size_t *out)
     return 1;
 }
 
-/* ---- small vector helpers ----------------------------------------------- */
+/* ---- 1.2 small vector helpers ------------------------------------------- */
 
 HF__PRIVATE void hf__sub3(float *o, const float *a, const float *b)
 {
@@ -3607,7 +3626,7 @@ HFDEF hf_result hf_mesh_compute_normals(const hf_mesh *mesh,
     return HF_OK;
 }
 
-/* ---- 5. grow ----------------------------------------------------------- */
+/* ---- 5. grow: tessellation, guides, placement, maps, bindings ----------- */
 
 
 /* The record sizes the documentation promises. */
@@ -3693,6 +3712,8 @@ HF__PRIVATE float hf__clamp01(float x)
 {
     return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f;
 }
+
+/* ---- 5.1 density of a UV triangle --------------------------------------- */
 
 /* Channel 0 of texel (x, y), any integer x, y (the map's wrap applies),
    read as 0 when negative. */
@@ -4992,7 +5013,7 @@ HFDEF hf_result hf_color3d_sample(const hf_map *index_map, const hf_map *ramp,
     return HF_OK;
 }
 
-/* ---- 5.6 binding strands to guides ------------------------------------- */
+/* ---- 5.6 binding strands to guides -------------------------------------- */
 
 HFDEF hf_result hf_bind_strands(const hf_mesh *guide_mesh,
                                 const uint32_t *guide_of_vertex,
@@ -5044,7 +5065,7 @@ HFDEF hf_result hf_bind_strands(const hf_mesh *guide_mesh,
     return HF_OK;
 }
 
-/* ---- 6. ropes ----------------------------------------------------------- */
+/* ---- 6. ropes: Verlet ropes for guide hairs, or any rope ---------------- */
 
 
 /* Scratch rows (each rope_count floats), rewritten by every step. */
@@ -5195,7 +5216,7 @@ HFDEF hf_result hf_rope_params_validate(const hf_rope_params *params,
     return hf__rope_params_check(&p, diag);
 }
 
-/* ---- memory ------------------------------------------------------------- */
+/* ---- 6.1 memory --------------------------------------------------------- */
 
 /* Array sizes in bytes, in layout order: 10 point arrays (x, y, z, px, py,
    pz, rest_u, rest_v, rest_w, rest_length), frame, scratch, last_h, blend,
@@ -5331,7 +5352,7 @@ HFDEF void hf_ropes_destroy(hf_ropes *ropes)
     }
 }
 
-/* ---- frames ------------------------------------------------------------- */
+/* ---- 6.2 frames --------------------------------------------------------- */
 
 HF__PRIVATE int hf__ropes_range(const hf_ropes *ro, int first, int count)
 {
@@ -5613,7 +5634,7 @@ HF__PRIVATE void hf__rope_frame_at(const hf_ropes *ro, int r, float alpha,
     hf__rope_basis(pos, n, t, f);
 }
 
-/* ---- rest pose, roots, modes -------------------------------------------- */
+/* ---- 6.3 rest pose, roots, modes ---------------------------------------- */
 
 /* Particles of rope r at its rest pose in the current frame, at rest. */
 HF__PRIVATE void hf__rope_reset_one(hf_ropes *ro, int r)
@@ -5982,7 +6003,7 @@ HFDEF hf_result hf_ropes_copy_range(const hf_ropes *ropes, int first,
     return HF_OK;
 }
 
-/* ---- the step ----------------------------------------------------------- */
+/* ---- 6.4 the step ------------------------------------------------------- */
 
 /* Deterministic value noise in [-1, 1] of (rope, cell, axis): a hash, not
    a generator, so a rope's turbulence does not depend on which other ropes
@@ -6491,7 +6512,7 @@ HF__INLINE int hf__ftl_relevant(const hf__col_prep *k, const float *p, float l)
     return d2 < lim * lim;
 }
 
-/* ---- the broadphase ---- */
+/* ---- 6.5 the broadphase ------------------------------------------------- */
 
 /* Ropes are simulated in chunks of up to HF__BP_TILES tiles of
    HF__BP_TILE neighbouring ropes, each chunk taking every sub-step before
@@ -6925,7 +6946,7 @@ HF__PRIVATE void hf__ropes_glide_run(hf_ropes *ro, int a, int b,
     hf__ropes_safety_net(ro, a, b, st); /* never an output that is NaN */
 }
 
-/* ---- the simulated rope step: one driver, named steps ---- */
+/* ---- 6.6 the simulated rope step: one driver, named steps --------------- */
 
 /* Per rope, before sub-step s of n: the frame rows of the sub-step (at
    alpha 1 the current frame itself, what hf__rope_frame_at gives, bit for
@@ -7269,6 +7290,8 @@ HF__INLINE void hf__ropes_prefetch_row(const hf_ropes *ro, int j, int r)
     HF__PREFETCH(ro->rest_length + o - R);
 }
 #endif
+/* ---- 6.7 the rope kernels: a kernel text, at any width ------------------ */
+
 #endif /* !HF__PASS */
 
 #if defined(HF__PASS) && HF__PASS == HF__PASS_ROPES
@@ -8134,6 +8157,8 @@ HF__VTARGET HF__PRIVATE int HF__KN(hf__ropes_mark_far)(const hf_ropes *ro,
 #endif /* HF__PASS_ROPES */
 
 #ifndef HF__PASS
+
+/* ---- 6.8 the kernels per width, their dispatch, hf_ropes_step ----------- */
 #if HF__V4
 /* the rope kernels at four lanes (at eight and sixteen after
    hf__ropes_collide) */
@@ -8551,7 +8576,7 @@ HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
     return HF_OK;
 }
 
-/* ---- hair-hair interaction: the grid ------------------------------------ */
+/* ---- 6.9 hair-hair interaction: the grid -------------------------------- */
 
 /* Floats per z layer in hf_grid.slab: the cube (origin xyz, spacing), the
    point stride, then the layer's sums of the node weights and of their
@@ -9681,6 +9706,8 @@ HF__INLINE void hf__stream_floats(float *o, const float *q, size_t r)
     for (k = 0; k < r; k += 4) _mm_stream_ps(o + k, _mm_loadu_ps(q + k));
 }
 #endif
+/* ---- 7.1 interpolation at 8 and 16 lanes: a kernel text ----------------- */
+
 #endif /* !HF__PASS */
 
 #if defined(HF__PASS) && HF__PASS == HF__PASS_INTERP
@@ -9858,6 +9885,8 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__interp_range)(const hf__irun *run,
 #endif /* HF__PASS_INTERP */
 
 #ifndef HF__PASS
+
+/* ---- 7.2 the interpolation kernels per width, hf_interpolate ------------ */
 #if HF__AVX2
 #define HF__PASS HF__PASS_INTERP
 #define HF__W 8
@@ -10022,6 +10051,8 @@ HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
     return HF_OK;
 }
 
+/* ---- 7.3 level of detail ------------------------------------------------ */
+
 HFDEF int hf_lod_strand_count(int total, float lod)
 {
     /* round(lod * total) exactly, in integers: lod = m 2^-k with a 24-bit
@@ -10064,6 +10095,8 @@ HFDEF float hf_lod_from_distance(float distance, float full_detail_distance,
 }
 
 /* ---- 8. ribbons --------------------------------------------------------- */
+
+/* ---- 8.1 inputs: checks, widths, finite points -------------------------- */
 
 /* Resolve the defaults of `in` into *p and validate everything hf_ribbons
    and hf_ribbon_points share. */
@@ -10267,6 +10300,8 @@ HF__INLINE float hf__width_at(const float *width, int s, float cap)
     const float w = width ? hf__fin0(width[s]) : 1.0f;
     return w > 0.0f ? (w < cap ? w : cap) : 0.0f;
 }
+
+/* ---- 8.2 the strand frame: tangents and sides --------------------------- */
 
 /* One strand in structure-of-arrays rows, so that four points load as one
    vector: in every row, point j is at index 4 + j. The point rows repeat
@@ -10832,7 +10867,46 @@ hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
 }
 #endif
 
-/* ---- vertex formats ---- */
+/* A strand's frame by the reference, where a vector frame left it (or
+   none ran): finite says whether its points are (-1: not known yet); one
+   that is not is framed collapsed, wscale 0. */
+HF__PRIVATE void hf__strand_frame_rest(const float *pts, int P,
+                                       const hf_ribbon_params *params,
+                                       hf__rframe *fr, int finite,
+                                       float *wscale)
+{
+    if (finite < 0) finite = hf__points_finite(pts, 3 * P);
+    if (!finite) {
+        pts = hf__zero_points;
+        *wscale = 0.0f;
+    }
+    hf__strand_frame_ref(pts, P, params, fr);
+}
+
+/* The dispatch of the strand frame at SIMD level `level` (tangents and
+   sides; a strand with a non-finite point is framed collapsed, wscale
+   0). The AVX-512 level runs the AVX2 kernel. */
+HF__PRIVATE void hf__strand_frame(const float *pts, int P,
+                                  const hf_ribbon_params *params,
+                                  hf__rframe *fr, float *wscale, int level)
+{
+    int finite = -1;
+    *wscale = 1.0f;
+#if HF__AVX2
+    if (level >= HF_SIMD_AVX2) {
+        if (hf__strand_frame_avx2(pts, P, params, fr, &finite)) return;
+    } else
+#endif
+#if HF__V4
+    if (level >= HF_SIMD_SSE2) {
+        if (hf__strand_frame_v4(pts, P, params, fr, &finite)) return;
+    }
+#endif
+    (void)level;
+    hf__strand_frame_rest(pts, P, params, fr, finite, wscale);
+}
+
+/* ---- 8.3 vertex formats: encoding --------------------------------------- */
 
 HFDEF int hf_format_bytes(int format)
 {
@@ -11134,6 +11208,8 @@ HF__INLINE void hf__emit_pair_sse(unsigned char *o, size_t st, int n,
 }
 #endif
 
+
+/* ---- 8.4 the writers: one strand's vertices ----------------------------- */
 
 /* Where each stream goes, resolved once per call. */
 typedef struct hf__rout {
@@ -12340,46 +12416,8 @@ hf__ribbon_write_neon(const hf__rframe *fr, int P, const hf__rconst *K,
 }
 #endif
 
-/* The dispatch of the ribbon kernels at SIMD level `level`: one strand's
-   frame (tangents and sides; a strand with a non-finite point is framed
-   collapsed, wscale 0), then its vertices. The AVX-512 level runs the
-   AVX2 kernels. */
-/* A strand's frame by the reference, where a vector frame left it (or
-   none ran): finite says whether its points are (-1: not known yet); one
-   that is not is framed collapsed, wscale 0. */
-HF__PRIVATE void hf__strand_frame_rest(const float *pts, int P,
-                                       const hf_ribbon_params *params,
-                                       hf__rframe *fr, int finite,
-                                       float *wscale)
-{
-    if (finite < 0) finite = hf__points_finite(pts, 3 * P);
-    if (!finite) {
-        pts = hf__zero_points;
-        *wscale = 0.0f;
-    }
-    hf__strand_frame_ref(pts, P, params, fr);
-}
-
-HF__PRIVATE void hf__strand_frame(const float *pts, int P,
-                                  const hf_ribbon_params *params,
-                                  hf__rframe *fr, float *wscale, int level)
-{
-    int finite = -1;
-    *wscale = 1.0f;
-#if HF__AVX2
-    if (level >= HF_SIMD_AVX2) {
-        if (hf__strand_frame_avx2(pts, P, params, fr, &finite)) return;
-    } else
-#endif
-#if HF__V4
-    if (level >= HF_SIMD_SSE2) {
-        if (hf__strand_frame_v4(pts, P, params, fr, &finite)) return;
-    }
-#endif
-    (void)level;
-    hf__strand_frame_rest(pts, P, params, fr, finite, wscale);
-}
-
+/* The dispatch of the writers at SIMD level `level`: one strand's
+   vertices from its frame. The AVX-512 level runs the AVX2 kernels. */
 HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
                                   const hf__rconst *K, const hf__rstrand *str,
                                   const hf__rout *ro, size_t v0, int level)
@@ -12409,6 +12447,8 @@ HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
     (void)level;
     hf__ribbon_write_ref(fr, P, K, str, ro, v0);
 }
+
+/* ---- 8.5 streaming stores: the stage ------------------------------------ */
 
 /* Streaming stores for ribbons (hf_ribbon_params.nontemporal) go through
    a stage: a strand's vertices are written there by the usual kernels,
@@ -12520,6 +12560,8 @@ HF__TARGET_AVX2 HF__INLINE void hf__stream_copy_avx2(unsigned char *dst,
     if (m < n) hf__stream_copy(dst + m, src + m / 4, n - m);
 }
 #endif
+
+/* ---- 8.6 the whole-call loops (AVX2, AVX-512) --------------------------- */
 
 /* Strand s's width multiplier (times the frame's; at most cap), root
    UV, colour and 3D-colour x, non-finite inputs read as 0 */
@@ -13238,6 +13280,8 @@ hf__ribbons_c16_avx512(const hf_ribbon_strands *sv, int first, int count,
 }
 #endif
 
+/* ---- 8.7 hf_ribbons: the call ------------------------------------------- */
+
 /* floor(x / y) for y > 0 */
 HF__PRIVATE long long hf__floordiv(long long x, long long y)
 {
@@ -13462,6 +13506,8 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
 {
     return hf__ribbons(strands, first, count, view, out, count);
 }
+
+/* ---- 8.8 GPU points (hf_ribbon_points) ---------------------------------- */
 
 /* GPU points of one strand: (x, y, z, hw[j] * ws) for point j. */
 HF__PRIVATE void hf__points_strand_ref(const float *p, const float *hw,
@@ -14294,6 +14340,8 @@ HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
     return hf__ribbon_points(strands, first, count, view, out4, count);
 }
 
+/* ---- 8.9 indices -------------------------------------------------------- */
+
 HFDEF long long hf_ribbon_index_count(int strand_count, int points_per_strand,
                                       int topology)
 {
@@ -14393,8 +14441,10 @@ HFDEF hf_result hf_ribbon_indices16(int strand_count, int points_per_strand,
 }
 
 /* ---- 9. LUT baking ------------------------------------------------------ */
-/* Marschner M and N lookup textures; the contract is docs/marschner-spec.md. Every
-   quantity is double; each texel is rounded to float once. */
+/* Marschner M and N lookup textures; the contract is docs/marschner-spec.md,
+   whose sections the comments of section 9 cite by number ("section 6.3":
+   the spec's, not this header's). Every quantity is double; each texel is
+   rounded to float once. */
 
 #define HF__LUT_PI 3.14159265358979323846
 #define HF__LUT_HALF_PI (0.5 * HF__LUT_PI)
@@ -14522,7 +14572,7 @@ HF__PRIVATE float hf__lut_f(double x)
     return x > HF__LUT_FLT_MAX ? (float)HF__LUT_FLT_MAX : (float)x;
 }
 
-/* ---- M: three Gaussians in theta_h ---- */
+/* ---- 9.1 M: three Gaussians in theta_h ---------------------------------- */
 
 typedef struct hf__lut_m {
     double alpha[3]; /* shift per lobe, radians */
@@ -14611,7 +14661,7 @@ HFDEF hf_result hf_lut_bake_m(const hf_lut_params *params, int first_row,
     return HF_OK;
 }
 
-/* ---- N: roots of Phi(p, gamma) = phi, Fresnel, absorption ---- */
+/* ---- 9.2 N: roots of Phi(p, gamma) = phi, Fresnel, absorption ----------- */
 
 /* Everything that depends only on theta_d (one texture column). */
 typedef struct hf__lut_col {
@@ -14992,7 +15042,7 @@ HFDEF hf_result hf_lut_bake_n_rgb(const hf_lut_params *p, int first_row,
                               out_trt_rgb);
 }
 
-/* ---- the energy-conserving fibre (HF_LUT_ENERGY) ------------------------ */
+/* ---- 9.3 the energy-conserving fibre (HF_LUT_ENERGY) -------------------- */
 /* docs/marschner-spec.md sections 14 and 15. Along the outgoing axis (v)
    every texel holds its lobe's mean over the texel's cell, integrated by
    5-point Gauss-Legendre on pieces that follow the lobe. */
@@ -15370,7 +15420,7 @@ HF__PRIVATE void hf__lut_bake_n_energy(const hf_lut_params *p, int first_row,
     }
 }
 
-/* ---- white furnace ------------------------------------------------------ */
+/* ---- 9.4 white furnace -------------------------------------------------- */
 
 /* A texture read as GL_LINEAR with clamp-to-edge does it, in double. */
 HF__PRIVATE void hf__lut_tex(const float *t, int n, double u, double v,
@@ -15453,7 +15503,7 @@ HFDEF hf_result hf_lut_furnace(const hf_lut_params *params, const float *m,
     return HF_OK;
 }
 
-/* ---- dual scattering tables ---------------------------------------------- */
+/* ---- 9.5 dual scattering tables ----------------------------------------- */
 
 /* Round a value of either sign to float once, held to +-FLT_MAX. */
 HF__PRIVATE float hf__lut_fs(double x)
@@ -15587,7 +15637,7 @@ HFDEF hf_result hf_lut_bake_dual(const hf_lut_params *params, int first_row,
     return HF_OK;
 }
 
-/* ---- 8-bit conversion (section 9) ---- */
+/* ---- 9.6 8-bit conversion ----------------------------------------------- */
 
 HFDEF hf_result hf_lut_to_u8(const float *rgba, int n,
                              const float *scales_in,
@@ -15621,7 +15671,7 @@ HFDEF hf_result hf_lut_to_u8(const float *rgba, int n,
     return HF_OK;
 }
 
-/* ---- 10. the fur object ------------------------------------------------ */
+/* ---- 10. the fur object ------------------------------------------------- */
 
 struct hf_fur {
     hf_allocator alloc;
@@ -16718,7 +16768,7 @@ HFDEF hf_result hf_fur_create(const hf_fur_desc *desc, hf_fur **out_fur,
     return HF_OK;
 }
 
-/* ---- grooms ----------------------------------------------------------- */
+/* ---- 10.1 grooms -------------------------------------------------------- */
 
 /* Orthonormal frame (tangent, normal, binormal) as columns of o[9] (row
    major 3x3) from a normal and a tangent that need not be unit or
