@@ -2038,10 +2038,11 @@ static int glm_init(glm_app *a, const glm_options *o)
     glBindVertexArray(0);
     if (!glc_check_gl("glm_init")) return 0;
     printf("gl_marschner: %s: %d strands of %d points, %d guides, hair "
-           "%.3g m, %d colliders, size %.3g m; grown, LUTs baked (%d x %d) "
-           "and buffers made in %.0f ms\n", o->mesh ? o->mesh : "built-in head",
-           a->info.strand_count, a->P, a->info.guide_count, a->hair_len,
-           a->ncol, a->size, GLM_DUAL_SIZE, GLM_DUAL_SIZE, glm_now_ms() - t0);
+           "%.3g m, %d colliders, size %.3g m; grown, LUTs baked (%d x %d, "
+           "dual scattering %d x %d) and buffers made in %.0f ms\n",
+           o->mesh ? o->mesh : "built-in head", a->info.strand_count, a->P,
+           a->info.guide_count, a->hair_len, a->ncol, a->size, o->lut_size,
+           o->lut_size, GLM_DUAL_SIZE, GLM_DUAL_SIZE, glm_now_ms() - t0);
     return 1;
 }
 
