@@ -41,7 +41,9 @@
 
    Build: make build/gl_marschner (needs libglfw3-dev, libegl-dev,
    libstb-dev, libassimp-dev, python3-glad: make deps).
-   Run from the repo root (the GPU path reads examples/ribbon_expand.glsl):
+   Run from the repo root (the hair's shading is read from
+   examples/hair_shading.glsl, the GPU path's from
+   examples/ribbon_expand.glsl):
      build/gl_marschner                       the head, in a window
      build/gl_marschner --mesh /usr/share/assimp/models/X/Testwuson.X \
          --anim Wuson_Walk --hair-length 0.08 --stiffness 0.4
@@ -123,7 +125,7 @@ enum { GLM_MAPPED, GLM_COPY, GLM_STAGING };
 
 typedef struct glm_options {
     int width, height, headless, frames, strands, lut_size;
-    const char *out, *expand_shader;
+    const char *out, *expand_shader, *shading_shader;
     int kajiya, gpu_expand, color3d, colliders, still, a2c, draw_all;
     int compact;      /* CPU ribbons as glm_compact vertices */
     int upload;       /* how the strands reach the GL buffers: GLM_MAPPED,
@@ -456,204 +458,22 @@ static const char *glm_vs_gpu_tail =
     "    v_c3d = vec2(texelFetch(u_strand_c3x, s).r, t);\n"
     "}\n";
 
-/* Self-shadowing, shared by the hair and the body. u_shadow holds the
-   depth (from the light) of the nearest hair or skin, z0.
-   Deep opacity maps (the default; Yuksel and Keyser 2008): u_opacity's
-   R, G, B hold the opacity of the hair in three layers behind z0, ending
-   u_layers metres past it (the last takes everything further), and its
-   A the depth of the nearest skin. The hair's opacity in front of a point
-   is the layers' sum up to its depth, linear within a layer; the light
-   arriving unscattered is exp(-u_opacity_k * opacity), times the body's
-   own falloff exp(-u_shadow_k d) where the point is d behind the skin.
-   --shadows single: one depth map read as an approximate deep shadow map,
-   light falling off exponentially with the depth behind z0, u_shadow_k
-   per metre (set from the hair length).
-   hair_trans is the light that arrives unscattered, exp(-n) with n the
-   fibres crossed on average; hair_shadow holds it at 12 % at the least
-   (light that got through scattered, where dual scattering does not say
-   how much). 3 x 3 taps soften the edges (2 x 2 of the deep maps, whose
-   layers are smooth already: the read costs less). */
-#define GLM_SHADOW_GLSL                                                      \
-    "uniform sampler2D u_shadow, u_opacity;\n"                               \
-    "uniform mat4 u_light_view_proj;\n"                                      \
-    "uniform float u_shadow_on, u_shadow_k, u_shadow_depth, u_shadow_bias;\n" \
-    "uniform float u_deep, u_opacity_k;\n"                                   \
-    "uniform vec3 u_layers;\n"                                               \
-    "// the deep opacity maps' transmittance at d metres past z0\n"          \
-    "float deep_trans(vec2 t, float d, float z) {\n"                         \
-    "    vec4 o = texture(u_opacity, t);\n"                                  \
-    "    vec3 lo = vec3(0.0, u_layers.xy), w = u_layers - lo;\n"             \
-    "    float a = dot(o.rgb, clamp((vec3(d) - lo) / w, 0.0, 1.0));\n"       \
-    "    float b = (z - o.a) * u_shadow_depth - u_shadow_bias;\n"            \
-    "    return exp(-u_opacity_k * a - u_shadow_k * max(b, 0.0));\n"         \
-    "}\n"                                                                    \
-    "float hair_trans(vec3 p) {\n"                                           \
-    "    if (u_shadow_on == 0.0) return 1.0;\n"                              \
-    "    vec4 q = u_light_view_proj * vec4(p, 1.0);\n"                       \
-    "    vec3 s = q.xyz / q.w * 0.5 + 0.5;\n"                                \
-    "    if (any(lessThan(s, vec3(0.0))) || any(greaterThan(s, vec3(1.0))))\n" \
-    "        return 1.0;\n"                                                  \
-    "    // taps: 3 x 3, 1.5 texels apart (single); 2 x 2, 2 apart (deep)\n" \
-    "    int n = u_deep != 0.0 ? 2 : 3;\n"                                   \
-    "    vec2 texel = (u_deep != 0.0 ? 2.0 : 1.5)\n"                         \
-    "                 / vec2(textureSize(u_shadow, 0));\n"                   \
-    "    vec2 o0 = vec2(u_deep != 0.0 ? -0.5 : -1.0);\n"                     \
-    "    float sum = 0.0;\n"                                                 \
-    "    for (int y = 0; y < n; ++y)\n"                                      \
-    "        for (int x = 0; x < n; ++x) {\n"                                \
-    "            vec2 t = s.xy + (o0 + vec2(x, y)) * texel;\n"               \
-    "            float z0 = texture(u_shadow, t).r;\n"                       \
-    "            float d = (s.z - z0) * u_shadow_depth - u_shadow_bias;\n"   \
-    "            sum += u_deep != 0.0 ? deep_trans(t, d, s.z)\n"             \
-    "                                 : exp(-u_shadow_k * max(d, 0.0));\n"   \
-    "        }\n"                                                            \
-    "    return sum / float(n * n);\n"                                       \
-    "}\n"                                                                    \
-    "float hair_shadow(vec3 p) { return mix(0.12, 1.0, hair_trans(p)); }\n"
-
-/* The hair fragment shader: the energy-conserving Marschner fibre from
-   its two LUTs (hf_lut_bake_m / _n with HF_LUT_ENERGY, baked without
-   absorption; docs/luts.md), with the hair colour as an absorption per
-   channel, and Zinke et al.'s dual scattering from the tables of
-   hf_lut_bake_dual (u_dual; --no-dual: single scattering of the light
-   that arrives unscattered only); or Kajiya-Kay with its diffuse term;
-   ambient; self-shadowing. Lighting is done in linear space and written
-   with gamma 2.2. */
-static const char *const glm_fs_hair_parts[4] = {
-    /* C99 compilers need only take 4095 bytes a string: four parts */
-    "#version 330 core\n"
-    "in vec3 v_position, v_tangent, v_texcoord;\n"
-    "in vec4 v_color;\n"
-    "in vec2 v_c3d;\n"
-    "uniform sampler2D u_lut_m, u_lut_n, u_ramp;\n"
-    "uniform sampler2D u_dual0, u_dual2; // hf_lut_bake_dual planes 0, 2\n"
-    "uniform int u_kajiya, u_color3d;\n"
-    "uniform float u_spec;            // 0 = diffuse + ambient only\n"
-    "uniform float u_dual;            // 1 = dual scattering\n"
-    "uniform float u_dither;          // alpha dither (alpha to coverage)\n"
-    "uniform vec3 u_eye, u_light_dir, u_light_color, u_ambient;\n"
-    "uniform float u_oit;             // 1: weighted blended OIT\n"
-    "uniform float u_oit_ref, u_oit_scale; // its depth weight (metres)\n",
-    GLM_SHADOW_GLSL
-    GLM_ROOT_FADE_GLSL
-    "layout(location = 0) out vec4 o_color;\n"
-    "layout(location = 1) out vec4 o_weight; // OIT: the weights' sum\n"
-    "const float PI = 3.14159265;\n"
-    "const float cosMin = 1e-2;       // grazing theta_r guard\n"
-    "const float d_f = 0.7, d_b = 0.7; // Zinke's density factors\n"
-    "// a unit-area Gaussian of theta_h (x = theta_h - shift)\n"
-    "float g1(float x, float var) {\n"
-    "    return exp(-0.5 * x * x / var) * inversesqrt(2.0 * PI * var);\n"
-    "}\n",
-    "void main() {\n"
-    "    vec3 T = normalize(v_tangent);\n"
-    "    vec3 L = u_light_dir;\n"
-    "    vec3 V = normalize(u_eye - v_position);\n"
-    "    vec3 srgb = u_color3d != 0 ? texture(u_ramp, v_c3d).rgb : v_color.rgb;\n"
-    "    // per-strand brightness variation from a hash of the root UV (the\n"
-    "    // same for every fragment of a strand): strands read as strands\n"
-    "    float h = fract(sin(dot(v_texcoord.xy, vec2(12.9898, 78.233))) * 43758.5453);\n"
-    "    vec3 base = pow(srgb, vec3(2.2)) * (0.7 + 0.6 * h);\n"
-    "    float TL = dot(T, L), TV = dot(T, V);\n"
-    "    float sinTL = sqrt(max(0.0, 1.0 - TL * TL));   // cos(theta_i)\n"
-    "    float sinTV = sqrt(max(0.0, 1.0 - TV * TV));   // cos(theta_r)\n"
-    "    float fd = hair_trans(v_position); // light arriving unscattered\n"
-    "    float shadow = mix(0.12, 1.0, fd); // hair_shadow, read once\n"
-    "    vec3 lit;\n"
-    "    if (u_kajiya != 0) {\n"
-    "        // Kajiya-Kay: mirror cone, V pointing away (spec section 10)\n"
-    "        float c = max(0.0, sinTL * sinTV - TL * TV);\n"
-    "        vec3 spec = vec3(0.35 * pow(c, 80.0)) + 0.25 * base / max(base.r, 1e-3)\n"
-    "                    * pow(c, 12.0);\n"
-    "        lit = shadow * (0.8 * base * sinTL + u_spec * spec);\n"
-    "    } else if (u_spec == 0.0) {\n"
-    "        lit = shadow * 0.8 * base * sinTL;\n"
-    "    } else {\n"
-    "        vec4 M = texture(u_lut_m, vec2(TL, TV) * 0.5 + 0.5); // M_R, M_TT, M_TRT, M_p>=3\n"
-    "        vec3 Lp = L - TL * T, Vp = V - TV * T;\n"
-    "        float cosPhi = dot(Lp, Vp) * inversesqrt(max(dot(Lp, Lp) * dot(Vp, Vp), 1e-12));\n"
-    "        vec4 N = texture(u_lut_n, vec2(sinTL, cosPhi) * 0.5 + 0.5); // N_R .. N_p>=3\n"
-    "        // the hair colour as absorption per fibre radius (Chiang et al.\n"
-    "        // 2016, no azimuthal roughness): what multiple scattering turns\n"
-    "        // into that colour; a pass through the fibre is about 1.86\n"
-    "        // radii / cos(theta_t) long\n"
-    "        vec3 sigma = pow(log(clamp(base, 1e-3, 0.999)) / 5.969, vec3(2.0));\n"
-    "        vec3 Tr = exp(-sigma * 1.86 / sqrt(1.0 - TL * TL / (1.55 * 1.55)));\n"
-    "        float invCos = 1.0 / max(sinTV, cosMin);\n"
-    "        // S = sum_p M_p N_p / cos(theta_r); p = 1, 2, 3.. cross it p times\n"
-    "        vec3 single = (M.r * N.r + (M.g * N.g + (M.b * N.b + M.a * N.a * Tr) * Tr) * Tr) * invCos;\n"
-    "        vec3 S = fd * single;\n",
-    "        if (u_dual != 0.0) {\n"
-    "            // Zinke et al. 2008 from the tables at (sigma / (1 + sigma),\n"
-    "            // cos(theta_i)): the amounts per channel, the lobes' shifts\n"
-    "            // and widths at the mean absorption (per channel they part\n"
-    "            // into colour fringes); Zinke's Gaussians of theta_h halved,\n"
-    "            // as this fibre's M is per unit of theta_r\n"
-    "            vec3 u = sigma / (1.0 + sigma);\n"
-    "            float sm = dot(sigma, vec3(0.2126, 0.7152, 0.0722));\n"
-    "            vec2 um = vec2(sm / (1.0 + sm), sinTL);\n"
-    "            vec4 f = texture(u_dual0, um);  // a_f, alpha_f, beta_f\n"
-    "            vec4 m = texture(u_dual2, um);  // A_b, delta_b, sigma_b\n"
-    "            vec3 af = vec3(texture(u_dual0, vec2(u.r, sinTL)).x,\n"
-    "                           texture(u_dual0, vec2(u.g, sinTL)).x,\n"
-    "                           texture(u_dual0, vec2(u.b, sinTL)).x);\n"
-    "            vec3 Ab = vec3(texture(u_dual2, vec2(u.r, sinTL)).x,\n"
-    "                           texture(u_dual2, vec2(u.g, sinTL)).x,\n"
-    "                           texture(u_dual2, vec2(u.b, sinTL)).x);\n"
-    "            // fibres crossed on the way in: the shadow map's exp(-n)\n"
-    "            float n = -log(max(fd, 1e-4));\n"
-    "            vec3 Tf = pow(af, vec3(n));   // light that got here forward\n"
-    "            float vf = n * f.z * f.z;     // its spread, variance in theta_h\n"
-    "            float thH = 0.5 * (asin(clamp(TL, -1.0, 1.0)) + asin(clamp(TV, -1.0, 1.0)));\n"
-    "            float inv = 1.0 / (PI * max(sinTV * sinTV, cosMin));\n"
-    "            float gD = g1(thH - m.y, m.z * m.z) * inv;      // f_back / A_b\n"
-    "            float gS = g1(thH - m.y, m.z * m.z + vf) * inv; // spread\n"
-    "            // single scattering of the forward-scattered light: N_G =\n"
-    "            // a_f / pi, one lobe of the forward average shift, width\n"
-    "            float gF = 0.5 * g1(thH - f.y, f.z * f.z + vf) * inv;\n"
-    "            S = fd * (single + d_b * Ab * gD)\n"
-    "                + max(Tf - fd, 0.0) * d_f * (af * gF + PI * d_b * Ab * gS);\n"
-    "        }\n"
-    "        lit = 3.0 * S * sinTL;     // cos(theta_i); 3: artistic gain\n"
-    "    }\n"
-    "    // a cheap ambient occlusion that darkens hair near its root: inner\n"
-    "    // hair gets less\n"
-    "    float occ = mix(0.35, 1.0, smoothstep(0.0, 0.3, v_texcoord.z));\n"
-    "    vec3 c = u_ambient * base * occ + u_light_color * occ * lit;\n"
-    "    // dither the alpha per pixel: alpha to coverage alone quantises\n"
-    "    // the tip fade to 4 levels, which shows as concentric shells\n"
-    "    float n = fract(52.9829189 * fract(dot(gl_FragCoord.xy,\n"
-    "                                           vec2(0.06711056, 0.00583715))));\n"
-    "    float alpha = clamp(v_color.a * root_fade() + u_dither * (n - 0.5),\n"
-    "                        0.0, 1.0);\n"
-    "    o_color = vec4(pow(c, vec3(1.0 / 2.2)), alpha);\n"
-    "    o_weight = vec4(0.0);\n"
-    "    if (u_oit != 0.0) {\n"
-    "        // McGuire and Bavoil 2013: the colour premultiplied and\n"
-    "        // weighted, nearer fragments weighing more (e times per\n"
-    "        // u_oit_scale metres); alpha multiplies the revealage\n"
-    "        float d = length(u_eye - v_position);\n"
-    "        float wt = alpha * clamp(exp((u_oit_ref - d) / u_oit_scale),\n"
-    "                                 1e-6, 1e6);\n"
-    "        o_color = vec4(o_color.rgb * wt, alpha);\n"
-    "        o_weight = vec4(wt, 0.0, 0.0, 0.0);\n"
-    "    }\n"
-    "}\n"};
-
-/* The hair fragment shader, its parts joined (once). */
-static const char *glm_fs_hair(void)
+/* The hair's fragment shader and the self-shadowing it shares with the
+   body: examples/hair_shading.glsl (--shading-shader; the web page
+   builds the same file in), read at run time and put after a prelude,
+   "#version 330 core" for the hair; the body's with
+   HAIR_SHADING_SHADOW_ONLY defined, between its declarations and its
+   main(). Returns malloc'd pre + text + post, or NULL. */
+static char *glm_shading_source(const char *pre, const char *text,
+                                const char *post)
 {
-    static char src[16384];
-    if (!src[0]) {
-        size_t k, at = 0;
-        for (k = 0; k < 4; ++k) {
-            size_t len = strlen(glm_fs_hair_parts[k]);
-            if (at + len >= sizeof src) return "";
-            memcpy(src + at, glm_fs_hair_parts[k], len + 1);
-            at += len;
-        }
+    char *out = (char *)malloc(strlen(pre) + strlen(text) + strlen(post) + 1);
+    if (out) {
+        strcpy(out, pre);
+        strcat(out, text);
+        strcat(out, post);
     }
-    return src;
+    return out;
 }
 
 static const char *glm_vs_head =
@@ -671,15 +491,17 @@ static const char *glm_vs_head =
 
 /* Skin, with the scalp painted in a dark hair colour where the density
    map has hair (u_scalp_on: on the grown triangles), as games do, so gaps
-   between ribbons do not show skin; shadowed by the hair. */
-static const char *glm_fs_head =
+   between ribbons do not show skin; shadowed by the hair (hair_shadow:
+   examples/hair_shading.glsl between these two, glm_shading_source). */
+static const char *glm_fs_head_decls =
     "#version 330 core\n"
+    "#define HAIR_SHADING_SHADOW_ONLY\n"
     "in vec3 v_position, v_normal;\n"
     "in vec2 v_uv;\n"
     "uniform sampler2D u_density;\n"
     "uniform vec3 u_light_dir, u_light_color, u_ambient, u_scalp;\n"
-    "uniform float u_scalp_on;\n"
-    GLM_SHADOW_GLSL
+    "uniform float u_scalp_on;\n";
+static const char *glm_fs_head_main =
     "out vec4 o_color;\n"
     "void main() {\n"
     "    vec3 n = normalize(v_normal);\n"
@@ -1677,13 +1499,31 @@ static int glm_init_arrays(glm_app *a)
 static int glm_init_programs(glm_app *a)
 {
     const glm_options *o = &a->o;
-    char *gpu_src = NULL;
+    char *gpu_src = NULL, *text, *fs_hair, *fs_head;
     const char *path = o->expand_shader ? o->expand_shader
                                         : "examples/ribbon_expand.glsl";
-    a->prog_cpu = glc_program(glm_vs_cpu, glm_fs_hair(), "hair (CPU ribbons)");
-    a->prog_cpu16 = glc_program(glm_vs_cpu16, glm_fs_hair(),
+    const char *shading = o->shading_shader ? o->shading_shader
+                                            : "examples/hair_shading.glsl";
+    text = glc_read_text_file(shading);
+    if (!text) {
+        fprintf(stderr, "gl_marschner: cannot read the hair shader %s; run "
+                "from the repository root or pass --shading-shader\n",
+                shading);
+        return 0;
+    }
+    fs_hair = glm_shading_source("#version 330 core\n", text, "");
+    fs_head = glm_shading_source(glm_fs_head_decls, text, glm_fs_head_main);
+    free(text);
+    if (!fs_hair || !fs_head) {
+        free(fs_hair);
+        free(fs_head);
+        return 0;
+    }
+    a->prog_cpu = glc_program(glm_vs_cpu, fs_hair, "hair (CPU ribbons)");
+    a->prog_cpu16 = glc_program(glm_vs_cpu16, fs_hair,
                                 "hair (compact CPU ribbons)");
-    a->prog_head = glc_program(glm_vs_head, glm_fs_head, "head");
+    a->prog_head = glc_program(glm_vs_head, fs_head, "head");
+    free(fs_head);
     a->prog_line = glc_program(glm_vs_line, glm_fs_line, "lines");
     a->depth_cpu = glc_program(glm_vs_cpu, glm_fs_depth, "shadow (CPU ribbons)");
     a->depth_cpu16 = glc_program(glm_vs_cpu16, glm_fs_depth,
@@ -1697,17 +1537,20 @@ static int glm_init_programs(glm_app *a)
                                   "deep opacity (body)");
     if (!a->prog_cpu || !a->prog_cpu16 || !a->prog_head || !a->prog_line ||
         !a->depth_cpu || !a->depth_cpu16 || !a->depth_head ||
-        !a->opacity_cpu || !a->opacity_cpu16 || !a->opacity_head)
+        !a->opacity_cpu || !a->opacity_cpu16 || !a->opacity_head) {
+        free(fs_hair);
         return 0;
+    }
     gpu_src = glm_gpu_vs_source(path, o->compact);
     if (gpu_src) {
-        a->prog_gpu = glc_program(gpu_src, glm_fs_hair(), "hair (GPU expansion)");
+        a->prog_gpu = glc_program(gpu_src, fs_hair, "hair (GPU expansion)");
         a->depth_gpu = glc_program(gpu_src, glm_fs_depth,
                                    "shadow (GPU expansion)");
         a->opacity_gpu = glc_program(gpu_src, glm_fs_opacity_hair,
                                      "deep opacity (GPU expansion)");
         free(gpu_src);
     }
+    free(fs_hair);
     if (!a->prog_gpu) {
         fprintf(stderr, "gl_marschner: no GPU-expansion path (%s); run "
                 "from the repository root or pass --expand-shader\n", path);
@@ -2816,6 +2659,8 @@ static void glm_usage(FILE *fp)
 "                     width nearer the eye (default 8; 0: roots as built)\n"
 "  --lut-size N       Marschner LUT size (default 256)\n"
 "  --expand-shader F  the GPU expansion shader (examples/ribbon_expand.glsl)\n"
+"  --shading-shader F the hair's fragment shader and self-shadowing\n"
+"                     (examples/hair_shading.glsl)\n"
 "Camera (the default frames the grown mesh, whatever its size)\n"
 "  --distance D       metres from the target (default: 1.588 bounding-box\n"
 "                     diagonals of the grown mesh)\n"
@@ -2998,6 +2843,7 @@ static int glm_parse(int argc, char **argv, glm_options *o)
             else if (!strcmp(s, "--color-variation")) ok = glm_real(s, v, 0.0, 1.0, &o->color_variation);
             else if (!strcmp(s, "--width-variation")) ok = glm_real(s, v, 0.0, 1.0, &o->width_variation);
             else if (!strcmp(s, "--expand-shader")) o->expand_shader = v;
+            else if (!strcmp(s, "--shading-shader")) o->shading_shader = v;
             else if (!strcmp(s, "--mesh")) o->mesh = v;
             else if (!strcmp(s, "--anim")) o->anim = v;
             else if (!strcmp(s, "--grow-on")) o->grow_on = v;

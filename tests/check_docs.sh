@@ -29,6 +29,8 @@
 #       Makefile's test stack comment names are the header's.
 #   (f) links: every relative link names a file there, and a heading
 #       there when it names one.
+#   (g) the hair shader: docs/luts.md links examples/hair_shading.glsl,
+#       the one text gl_marschner reads and the web page is built with.
 # Exits 1 on any drift, 2 when a file is missing; 0 otherwise.
 # POSIX sh and awk, and a C compiler.
 
@@ -292,6 +294,18 @@ for f in README.md docs/*.md; do
     done
 done > "$tmp/link_drift"
 [ -s "$tmp/link_drift" ] && { sed 's/^/check_docs: /' "$tmp/link_drift"; drift=$((drift + 1)); }
+
+# ---- (g) the hair shader -----------------------------------------------------
+# docs/luts.md shows no copy of the examples' hair shader but points to it:
+# it links examples/hair_shading.glsl, which gl_marschner reads and the
+# web page's build (the Makefile) turns into a C array.
+SHADING=examples/hair_shading.glsl
+grep -q "](../$SHADING)" docs/luts.md ||
+    say "docs/luts.md: no link to $SHADING (the examples' hair shader)"
+grep -q "\"$SHADING\"" examples/gl_marschner.c ||
+    say "examples/gl_marschner.c does not read $SHADING"
+grep -q "^\$(WEB_DIR)/hair_shading_glsl.h: $SHADING" Makefile ||
+    say "Makefile: the web page is not built from $SHADING"
 
 if [ $drift -ne 0 ]; then
     echo "check_docs: drift between the docs and the code"

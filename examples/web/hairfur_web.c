@@ -4,9 +4,11 @@
 
    The scene is gl_marschner's built-in head (examples/gl_marschner.c,
    with no options): the same maps, fur description, rope parameters,
-   motion, colliders, camera, light, shadow map and shaders (here in GLSL
-   ES 3.00), so that make web-check can compare the page's picture with
-   gl_marschner's headless render. What differs is what WebGL2 lacks or
+   motion, colliders, camera, light, shadow map and shaders (in GLSL ES
+   3.00; the hair's shading and shadows are the same file,
+   examples/hair_shading.glsl, which make web builds in), so that make
+   web-check can compare the page's picture with gl_marschner's headless
+   render. What differs is what WebGL2 lacks or
    a page needs: the shadow map is read with NEAREST filtering (WebGL2
    filters no depth texture), the strands are copied into the GL buffer
    (no mapped buffers), and the controls (LOD, wind, stiffness, motion,
@@ -209,113 +211,35 @@ static const char *hw_vs_hair =
     "uniform mat4 u_view_proj;\n"
     "out vec3 v_position, v_tangent, v_texcoord;\n"
     "out vec4 v_color;\n"
+    "out vec2 v_c3d;   // hair_shading.glsl's, unused: no 3D colour\n"
+    "out float v_root; // ... and no root fade\n"
     "void main() {\n"
     "    v_position = a_pos; v_tangent = a_tangent; v_texcoord = a_texcoord;\n"
     "    v_color = a_color;\n"
+    "    v_c3d = vec2(0.0);\n"
+    "    v_root = 0.0;\n"
     "    gl_Position = u_view_proj * vec4(a_pos, 1.0);\n"
     "}\n";
 
-/* self-shadowing: an approximate deep shadow map (gl_marschner's) */
-#define HW_SHADOW_GLSL                                                       \
-    "uniform sampler2D u_shadow;\n"                                          \
-    "uniform mat4 u_light_view_proj;\n"                                      \
-    "uniform float u_shadow_k, u_shadow_depth, u_shadow_bias;\n"             \
-    "float hair_trans(vec3 p) {\n"                                           \
-    "    vec4 q = u_light_view_proj * vec4(p, 1.0);\n"                       \
-    "    vec3 s = q.xyz / q.w * 0.5 + 0.5;\n"                                \
-    "    if (any(lessThan(s, vec3(0.0))) || any(greaterThan(s, vec3(1.0))))\n" \
-    "        return 1.0;\n"                                                  \
-    "    vec2 texel = 1.5 / vec2(textureSize(u_shadow, 0));\n"               \
-    "    float sum = 0.0;\n"                                                 \
-    "    for (int y = -1; y <= 1; ++y)\n"                                    \
-    "        for (int x = -1; x <= 1; ++x) {\n"                              \
-    "            float z0 = texture(u_shadow, s.xy + vec2(x, y) * texel).r;\n" \
-    "            float d = (s.z - z0) * u_shadow_depth - u_shadow_bias;\n"   \
-    "            sum += exp(-u_shadow_k * max(d, 0.0));\n"                   \
-    "        }\n"                                                            \
-    "    return sum / 9.0;\n"                                                \
-    "}\n"                                                                    \
-    "float hair_shadow(vec3 p) { return mix(0.12, 1.0, hair_trans(p)); }\n"
+/* The hair's fragment shader and the self-shadowing the head shares:
+   gl_marschner's, examples/hair_shading.glsl, built in by make web as
+   hw_hair_shading_glsl (build/web/hair_shading_glsl.h) and put after
+   HW_GLSL_HEADER. Its settings are gl_marschner's defaults but for the
+   shadows (u_deep 0: one depth map, the approximate deep shadow map) and
+   the blending (no OIT). */
+#include "hair_shading_glsl.h"
 
-/* gl_marschner's hair shader at its defaults (Marschner, dual
-   scattering): the energy-conserving fibre from its two LUTs (baked
-   without absorption), the hair colour as an absorption per channel,
-   Zinke et al.'s dual scattering from the tables of hf_lut_bake_dual,
-   ambient and the shadow; linear light, gamma 2.2 out. In parts: C99
-   compilers need only take 4095 bytes a string. */
-static const char *const hw_fs_hair_parts[3] = {
-    HW_GLSL_HEADER
-    "in vec3 v_position, v_tangent, v_texcoord;\n"
-    "in vec4 v_color;\n"
-    "uniform sampler2D u_lut_m, u_lut_n, u_dual0, u_dual2;\n"
-    "uniform vec3 u_eye, u_light_dir, u_light_color, u_ambient;\n"
-    HW_SHADOW_GLSL
-    "out vec4 o_color;\n"
-    "const float PI = 3.14159265;\n"
-    "const float cosMin = 1e-2;       // grazing theta_r guard\n"
-    "const float d_f = 0.7, d_b = 0.7; // Zinke's density factors\n"
-    "float g1(float x, float var) {\n"
-    "    return exp(-0.5 * x * x / var) * inversesqrt(2.0 * PI * var);\n"
-    "}\n",
-    "void main() {\n"
-    "    vec3 T = normalize(v_tangent);\n"
-    "    vec3 L = u_light_dir;\n"
-    "    vec3 V = normalize(u_eye - v_position);\n"
-    "    float h = fract(sin(dot(v_texcoord.xy, vec2(12.9898, 78.233))) * 43758.5453);\n"
-    "    vec3 base = pow(v_color.rgb, vec3(2.2)) * (0.7 + 0.6 * h);\n"
-    "    float TL = dot(T, L), TV = dot(T, V);\n"
-    "    float sinTL = sqrt(max(0.0, 1.0 - TL * TL));\n"
-    "    float sinTV = sqrt(max(0.0, 1.0 - TV * TV));\n"
-    "    vec4 M = texture(u_lut_m, vec2(TL, TV) * 0.5 + 0.5);\n"
-    "    vec3 Lp = L - TL * T, Vp = V - TV * T;\n"
-    "    float cosPhi = dot(Lp, Vp) * inversesqrt(max(dot(Lp, Lp) * dot(Vp, Vp), 1e-12));\n"
-    "    vec4 N = texture(u_lut_n, vec2(sinTL, cosPhi) * 0.5 + 0.5);\n"
-    "    vec3 sigma = pow(log(clamp(base, 1e-3, 0.999)) / 5.969, vec3(2.0));\n"
-    "    vec3 Tr = exp(-sigma * 1.86 / sqrt(1.0 - TL * TL / (1.55 * 1.55)));\n"
-    "    float invCos = 1.0 / max(sinTV, cosMin);\n"
-    "    vec3 single = (M.r * N.r + (M.g * N.g + (M.b * N.b + M.a * N.a * Tr) * Tr) * Tr) * invCos;\n"
-    "    float fd = hair_trans(v_position);\n",
-    "    vec3 u = sigma / (1.0 + sigma);\n"
-    "    float sm = dot(sigma, vec3(0.2126, 0.7152, 0.0722));\n"
-    "    vec2 um = vec2(sm / (1.0 + sm), sinTL);\n"
-    "    vec4 f = texture(u_dual0, um);\n"
-    "    vec4 m = texture(u_dual2, um);\n"
-    "    vec3 af = vec3(texture(u_dual0, vec2(u.r, sinTL)).x,\n"
-    "                   texture(u_dual0, vec2(u.g, sinTL)).x,\n"
-    "                   texture(u_dual0, vec2(u.b, sinTL)).x);\n"
-    "    vec3 Ab = vec3(texture(u_dual2, vec2(u.r, sinTL)).x,\n"
-    "                   texture(u_dual2, vec2(u.g, sinTL)).x,\n"
-    "                   texture(u_dual2, vec2(u.b, sinTL)).x);\n"
-    "    float n = -log(max(fd, 1e-4));\n"
-    "    vec3 Tf = pow(af, vec3(n));\n"
-    "    float vf = n * f.z * f.z;\n"
-    "    float thH = 0.5 * (asin(clamp(TL, -1.0, 1.0)) + asin(clamp(TV, -1.0, 1.0)));\n"
-    "    float inv = 1.0 / (PI * max(sinTV * sinTV, cosMin));\n"
-    "    float gD = g1(thH - m.y, m.z * m.z) * inv;\n"
-    "    float gS = g1(thH - m.y, m.z * m.z + vf) * inv;\n"
-    "    float gF = 0.5 * g1(thH - f.y, f.z * f.z + vf) * inv;\n"
-    "    vec3 S = fd * (single + d_b * Ab * gD)\n"
-    "        + max(Tf - fd, 0.0) * d_f * (af * gF + PI * d_b * Ab * gS);\n"
-    "    vec3 lit = 3.0 * S * sinTL;\n"
-    "    float occ = mix(0.35, 1.0, smoothstep(0.0, 0.3, v_texcoord.z));\n"
-    "    vec3 c = u_ambient * base * occ + u_light_color * occ * lit;\n"
-    "    o_color = vec4(pow(c, vec3(1.0 / 2.2)), clamp(v_color.a, 0.0, 1.0));\n"
-    "}\n"};
-
-/* The hair fragment shader, its parts joined (once). */
-static const char *hw_fs_hair(void)
+/* pre, the shared text and post, joined; malloc'd (NULL: out of memory) */
+static char *hw_shading_source(const char *pre, const char *post)
 {
-    static char src[8192];
-    if (!src[0]) {
-        size_t k, at = 0;
-        for (k = 0; k < 3; ++k) {
-            size_t len = strlen(hw_fs_hair_parts[k]);
-            if (at + len >= sizeof src) return "";
-            memcpy(src + at, hw_fs_hair_parts[k], len + 1);
-            at += len;
-        }
+    const char *text = hw_hair_shading_glsl;
+    char *out = (char *)malloc(strlen(pre) + strlen(text) + strlen(post) + 1);
+    if (out) {
+        strcpy(out, pre);
+        strcat(out, text);
+        strcat(out, post);
     }
-    return src;
+    return out;
 }
 
 static const char *hw_vs_head =
@@ -331,14 +255,16 @@ static const char *hw_vs_head =
     "    gl_Position = u_view_proj * vec4(a_pos, 1.0);\n"
     "}\n";
 
-/* skin, the scalp painted dark where the density map has hair */
-static const char *hw_fs_head =
+/* skin, the scalp painted dark where the density map has hair; shadowed
+   by the hair (hair_shading.glsl between these two) */
+static const char *hw_fs_head_decls =
     HW_GLSL_HEADER
+    "#define HAIR_SHADING_SHADOW_ONLY\n"
     "in vec3 v_position, v_normal;\n"
     "in vec2 v_uv;\n"
     "uniform sampler2D u_density;\n"
-    "uniform vec3 u_light_dir, u_light_color, u_ambient, u_scalp;\n"
-    HW_SHADOW_GLSL
+    "uniform vec3 u_light_dir, u_light_color, u_ambient, u_scalp;\n";
+static const char *hw_fs_head_main =
     "out vec4 o_color;\n"
     "void main() {\n"
     "    vec3 n = normalize(v_normal);\n"
@@ -634,8 +560,18 @@ static int hw_init_fur(hw_app *a)
 /* The programs: hair and head, and their shadow variants. */
 static int hw_init_programs(hw_app *a)
 {
-    a->prog_hair = hw_program(a, hw_vs_hair, hw_fs_hair(), "hair");
-    a->prog_head = hw_program(a, hw_vs_head, hw_fs_head, "head");
+    char *fs_hair = hw_shading_source(HW_GLSL_HEADER, "");
+    char *fs_head = hw_shading_source(hw_fs_head_decls, hw_fs_head_main);
+    if (!fs_hair || !fs_head) {
+        free(fs_hair);
+        free(fs_head);
+        hw_error(a, "out of memory for the shaders");
+        return 0;
+    }
+    a->prog_hair = hw_program(a, hw_vs_hair, fs_hair, "hair");
+    a->prog_head = hw_program(a, hw_vs_head, fs_head, "head");
+    free(fs_hair);
+    free(fs_head);
     a->depth_hair = hw_program(a, hw_vs_hair, hw_fs_depth, "hair shadow");
     a->depth_head = hw_program(a, hw_vs_head, hw_fs_depth, "head shadow");
     return a->prog_hair && a->prog_head && a->depth_hair && a->depth_head;
@@ -935,6 +871,12 @@ static void hw_lights(hw_app *a, GLuint prog)
     glUniform3f(glGetUniformLocation(prog, "u_light_dir"), L[0], L[1], L[2]);
     glUniformMatrix4fv(glGetUniformLocation(prog, "u_light_view_proj"), 1,
                        GL_FALSE, a->light_view_proj);
+    /* hair_shading.glsl's settings: shadows from the one depth map;
+       Marschner with dual scattering (the hair's only) */
+    glUniform1f(glGetUniformLocation(prog, "u_shadow_on"), 1.0f);
+    glUniform1f(glGetUniformLocation(prog, "u_deep"), 0.0f);
+    glUniform1f(glGetUniformLocation(prog, "u_spec"), 1.0f);
+    glUniform1f(glGetUniformLocation(prog, "u_dual"), 1.0f);
     glUniform1f(glGetUniformLocation(prog, "u_shadow_k"), a->shadow_k);
     glUniform1f(glGetUniformLocation(prog, "u_shadow_depth"), a->shadow_depth);
     glUniform1f(glGetUniformLocation(prog, "u_shadow_bias"),
