@@ -236,6 +236,7 @@
           6.3 rest pose, roots, modes       6.8 the kernels per width,
           6.4 the step                          their dispatch, the call
           6.5 the broadphase                6.9 hair-hair interaction
+                                            6.10 the grid's push (a text)
        7. interpolation and LOD
           7.1 interpolation at 8 and 16 lanes (a kernel text)
           7.2 the interpolation kernels per width, hf_interpolate
@@ -2700,6 +2701,7 @@ HF__INLINE int hf__mask_neon(float32x4_t m)
 #define HF__PASS_ROPES 1  /* the rope step's contact kernels and rows */
 #define HF__PASS_INTERP 2 /* interpolation at 8 and 16 lanes */
 #define HF__PASS_POINTS 3 /* interpolation into GPU points, likewise */
+#define HF__PASS_GRID 4   /* the hair-hair grid's push at 4 and 8 lanes */
 #if HF__AVX512
 /* Sixteen lanes' words: a mask stays a vector of all-set or all-clear
    lanes, as the texts expect, so a compare's mask register is widened to
@@ -8930,165 +8932,11 @@ HF__INLINE hf__v4 hf__grid_lanes_v4(int mask)
 #endif
 }
 
-/* hf_ropes_apply_grid at point row j for ropes r .. r + 3 (the lanes of
-   `act` simulated), group j .. last - 1, in SSE2 or NEON: the scalar
-   code's operations lane by lane (hf__grid_read, the cap, the friction),
-   so its bytes. */
-HF__PRIVATE void hf__grid_apply_v4(hf_ropes *ro, const hf_grid *grid,
-                                   const float *sl, int j, int last, int r,
-                                   int act, float inv, float push,
-                                   float fric, float ref, float h)
-{
-    const size_t R = (size_t)ro->rope_count, i = (size_t)j * R + (size_t)r;
-    const int n = grid->resolution;
-    const size_t n2 = (size_t)n * (size_t)n;
-    const hf__v4 one = HF__SET1(1.0f), two = HF__SET1(2.0f);
-    const hf__v4 x = HF__LD(ro->x + i), y = HF__LD(ro->y + i);
-    const hf__v4 z = HF__LD(ro->z + i);
-    const hf__v4 lh = HF__LD(ro->last_h + r);
-    hf__v4 f[3], in, w[3], v[4], a[4], g[3], m8[8], hv, hl, lhm;
-    hf__v4 a0, a1, a2, a3;
-    hf__v4 wx0, wy0, wz0, wyz[4], wxz[4], wxy[4], sx, sy, sz, ms, gn, gs;
-    hf__v4 dv[3];
-    int kx[4], ky[4], kz[4], l, c, mask, p;
-    size_t at[4];
-    in = HF__AND(hf__grid_axis_v4(z, sl[2], inv, n, kz, &f[2]),
-                    HF__AND(hf__grid_axis_v4(x, sl[0], inv, n, kx, &f[0]),
-                               hf__grid_axis_v4(y, sl[1], inv, n, ky, &f[1])));
-    mask = HF__MASK(in) & act;
-    if (!mask) return;
-    for (l = 0; l < 4; ++l) /* lanes out of the cube read node 0 */
-        at[l] = mask >> l & 1 ? ((size_t)kz[l] * (size_t)n + (size_t)ky[l]) *
-                                        (size_t)n + (size_t)kx[l]
-                              : 0u;
-    /* hf__grid_hv and the step's sub-step */
-    lhm = HF__GT(lh, HF__SET1(0.0f));
-    hv = HF__SEL(
-        lhm, HF__DIV(one, HF__MAX(lh, HF__SET1(1e-6f))),
-        HF__SET1(0.0f));
-    hl = HF__SEL(lhm, lh, HF__SET1(h));
-    v[0] = HF__SET1((float)(last - j));
-    v[1] = HF__SUB(x, HF__LD(ro->px + i));
-    v[2] = HF__SUB(y, HF__LD(ro->py + i));
-    v[3] = HF__SUB(z, HF__LD(ro->pz + i));
-    for (p = 1; p < 4; ++p) v[p] = HF__MUL(v[0], HF__MUL(v[p], hv));
-    wx0 = HF__SUB(one, f[0]);
-    wy0 = HF__SUB(one, f[1]);
-    wz0 = HF__SUB(one, f[2]);
-    wyz[0] = HF__MUL(wy0, wz0);
-    wyz[1] = HF__MUL(f[1], wz0);
-    wyz[2] = HF__MUL(wy0, f[2]);
-    wyz[3] = HF__MUL(f[1], f[2]);
-    wxz[0] = HF__MUL(wx0, wz0);
-    wxz[1] = HF__MUL(f[0], wz0);
-    wxz[2] = HF__MUL(wx0, f[2]);
-    wxz[3] = HF__MUL(f[0], f[2]);
-    wxy[0] = HF__MUL(wx0, wy0);
-    wxy[1] = HF__MUL(f[0], wy0);
-    wxy[2] = HF__MUL(wx0, f[1]);
-    wxy[3] = HF__MUL(f[0], f[1]);
-    /* corner by corner, in the scalar order, the sums in registers */
-    a0 = a1 = a2 = a3 = HF__SET1(0.0f);
-    for (c = 0; c < 8; ++c) {
-        hf__v4 t[4], wc;
-        hf__grid_corner_v4(grid->node, at,
-                            (size_t)(c >> 2) * n2 +
-                                (size_t)((c >> 1) & 1) * (size_t)n +
-                                (size_t)(c & 1),
-                            t);
-        wc = HF__MUL(c & 1 ? f[0] : wx0, wyz[c >> 1]);
-        a0 = HF__ADD(a0, HF__MUL(wc, t[0]));
-        a1 = HF__ADD(a1, HF__MUL(wc, t[1]));
-        a2 = HF__ADD(a2, HF__MUL(wc, t[2]));
-        a3 = HF__ADD(a3, HF__MUL(wc, t[3]));
-        m8[c] = t[0];
-    }
-    a[0] = a0;
-    a[1] = a1;
-    a[2] = a2;
-    a[3] = a3;
-#define HF__GRID_D(e, hi, lo) HF__MUL(e, HF__SUB(m8[hi], m8[lo]))
-    g[0] = HF__ADD(HF__ADD(HF__ADD(HF__GRID_D(wyz[0], 1, 0),
-                                            HF__GRID_D(wyz[1], 3, 2)),
-                                 HF__GRID_D(wyz[2], 5, 4)),
-                      HF__GRID_D(wyz[3], 7, 6));
-    g[1] = HF__ADD(HF__ADD(HF__ADD(HF__GRID_D(wxz[0], 2, 0),
-                                            HF__GRID_D(wxz[1], 3, 1)),
-                                 HF__GRID_D(wxz[2], 6, 4)),
-                      HF__GRID_D(wxz[3], 7, 5));
-    g[2] = HF__ADD(HF__ADD(HF__ADD(HF__GRID_D(wxy[0], 4, 0),
-                                            HF__GRID_D(wxy[1], 5, 1)),
-                                 HF__GRID_D(wxy[2], 6, 2)),
-                      HF__GRID_D(wxy[3], 7, 3));
-#undef HF__GRID_D
-    sx = HF__ADD(HF__MUL(wx0, wx0), HF__MUL(f[0], f[0]));
-    sy = HF__ADD(HF__MUL(wy0, wy0), HF__MUL(f[1], f[1]));
-    sz = HF__ADD(HF__MUL(wz0, wz0), HF__MUL(f[2], f[2]));
-    ms = HF__MUL(sx, HF__MUL(sy, sz));
-    for (p = 0; p < 4; ++p) a[p] = HF__SUB(a[p], HF__MUL(ms, v[p]));
-    w[0] = HF__MUL(sy, sz);
-    w[1] = HF__MUL(sx, sz);
-    w[2] = HF__MUL(sx, sy);
-    for (p = 0; p < 3; ++p)
-        g[p] = HF__SUB(
-            g[p], HF__MUL(v[0], HF__MUL(HF__SUB(HF__MUL(two, f[p]),
-                                                         one),
-                                              w[p])));
-    gn = HF__ADD(HF__ADD(HF__MUL(g[0], g[0]), HF__MUL(g[1], g[1])),
-                    HF__MUL(g[2], g[2]));
-    gs = HF__GT(gn, HF__SET1(ref * ref));
-    gs = HF__MASK(gs) ? HF__SEL(gs, HF__DIV(HF__SET1(ref),
-                                                          HF__SQRT(gn)),
-                                           one)
-                             : one; /* no lane capped: skip the root */
-    for (p = 0; p < 3; ++p)
-        dv[p] = HF__MUL(HF__SET1(-push), HF__MUL(g[p], gs));
-    if (fric > 0.0f) {
-        const hf__v4 fm = HF__GT(a[0], HF__SET1(1e-6f * ref));
-        const hf__v4 ia = HF__DIV(one, a[0]);
-        const hf__v4 iw = HF__SET1(1.0f / (float)(last - j)); /* v[0] */
-        const hf__v4 b = HF__MUL(
-            HF__SET1(fric),
-            HF__SEL(HF__LT(a[0], HF__SET1(ref)),
-                        HF__DIV(a[0], HF__SET1(ref)), one));
-        for (p = 0; p < 3; ++p)
-            dv[p] = HF__SEL(
-                fm,
-                HF__ADD(dv[p],
-                           HF__MUL(b, HF__SUB(HF__MUL(a[p + 1], ia),
-                                                    HF__MUL(v[p + 1], iw)))),
-                dv[p]);
-    }
-    {
-        const hf__v4 m = hf__grid_lanes_v4(mask);
-        float *px = ro->px, *py = ro->py, *pz = ro->pz;
-        for (p = 0; p < 3; ++p) dv[p] = HF__MUL(dv[p], hl);
-        for (c = j > 0 ? j : 1; c < last; ++c) {
-            float *o[3];
-            o[0] = px + (size_t)c * R + (size_t)r;
-            o[1] = py + (size_t)c * R + (size_t)r;
-            o[2] = pz + (size_t)c * R + (size_t)r;
-            for (p = 0; p < 3; ++p) {
-                const hf__v4 was = HF__LD(o[p]);
-                HF__ST(o[p],
-                              HF__SEL(m, HF__SUB(was, dv[p]), was));
-            }
-        }
-    }
-}
 #endif
 
 #if HF__AVX2
-#define HF__GT8(x, y) _mm256_cmp_ps(x, y, _CMP_GT_OQ)
-#define HF__LT8(x, y) _mm256_cmp_ps(x, y, _CMP_LT_OQ)
-#define HF__GE8(x, y) _mm256_cmp_ps(x, y, _CMP_GE_OQ)
-HF__TARGET_AVX2 HF__INLINE __m256 hf__sel8(__m256 m, __m256 a, __m256 b)
-{
-    return _mm256_blendv_ps(b, a, m);
-}
-
 /* hf__grid_corner_v4 for eight lanes: two four-lane transposes, joined */
-HF__TARGET_AVX2 HF__INLINE void hf__grid_corner_avx2(const float *node,
+HF__TARGET_AVX2 HF__INLINE void hf__grid_corner_v8(const float *node,
                                                      const size_t *at,
                                                      size_t off, __m256 q[4])
 {
@@ -9101,7 +8949,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__grid_corner_avx2(const float *node,
 }
 
 /* hf__grid_axis_v4 for eight points */
-HF__TARGET_AVX2 HF__INLINE __m256 hf__grid_axis_avx2(__m256 c, float o,
+HF__TARGET_AVX2 HF__INLINE __m256 hf__grid_axis_v8(__m256 c, float o,
                                                      float inv, int n, int k[8],
                                                      __m256 *f)
 {
@@ -9110,174 +8958,191 @@ HF__TARGET_AVX2 HF__INLINE __m256 hf__grid_axis_avx2(__m256 c, float o,
     const __m256i ki = _mm256_cvttps_epi32(q);
     _mm256_storeu_si256((__m256i *)(void *)k, ki);
     *f = _mm256_sub_ps(q, _mm256_cvtepi32_ps(ki));
-    return _mm256_and_ps(HF__GE8(q, _mm256_setzero_ps()),
-                         HF__LT8(q, _mm256_set1_ps((float)(n - 1))));
+    return _mm256_and_ps(_mm256_cmp_ps(q, _mm256_setzero_ps(), _CMP_GE_OQ),
+                         _mm256_cmp_ps(q, _mm256_set1_ps((float)(n - 1)),
+                                       _CMP_LT_OQ));
 }
 
-/* hf__grid_apply_v4 for ropes r .. r + 7 (the lanes of `act`): the
-   same operations, eight lanes. */
-HF__TARGET_AVX2 HF__PRIVATE void
-hf__grid_apply_avx2(hf_ropes *ro, const hf_grid *grid, const float *sl, int j,
-                    int last, int r, int act, float inv, float push, float fric,
-                    float ref, float h)
+/* hf__grid_lanes_v4 for eight lanes */
+HF__TARGET_AVX2 HF__INLINE __m256 hf__grid_lanes_v8(int mask)
+{
+    return _mm256_castsi256_ps(
+        _mm256_setr_epi32(-(mask & 1), -(mask >> 1 & 1), -(mask >> 2 & 1),
+                          -(mask >> 3 & 1), -(mask >> 4 & 1),
+                          -(mask >> 5 & 1), -(mask >> 6 & 1),
+                          -(mask >> 7 & 1)));
+}
+#endif
+
+/* ---- 6.10 the grid's push: a kernel text, at four and eight lanes ----- */
+
+#endif /* !HF__PASS */
+
+#if defined(HF__PASS) && HF__PASS == HF__PASS_GRID
+/* hf_ropes_apply_grid at point row j for ropes r .. r + HF__W - 1 (the
+   lanes of `act` simulated), group j .. last - 1: the scalar code's
+   operations lane by lane (hf__grid_read, the cap, the friction), so its
+   bytes. */
+HF__VTARGET HF__PRIVATE void
+HF__KN(hf__grid_apply)(hf_ropes *ro, const hf_grid *grid, const float *sl,
+                       int j, int last, int r, int act, float inv, float push,
+                       float fric, float ref, float h)
 {
     const size_t R = (size_t)ro->rope_count, i = (size_t)j * R + (size_t)r;
     const int n = grid->resolution;
     const size_t n2 = (size_t)n * (size_t)n;
-    const __m256 one = _mm256_set1_ps(1.0f), two = _mm256_set1_ps(2.0f);
-    const __m256 x = _mm256_loadu_ps(ro->x + i), y = _mm256_loadu_ps(ro->y + i);
-    const __m256 z = _mm256_loadu_ps(ro->z + i);
-    const __m256 lh = _mm256_loadu_ps(ro->last_h + r);
-    __m256 f[3], in, w[3], v[4], a[4], g[3], m8[8], hv, hl, lhm;
-    __m256 a0, a1, a2, a3;
-    __m256 wx0, wy0, wz0, wyz[4], wxz[4], wxy[4], sx, sy, sz, ms, gn, gs;
-    __m256 dv[3];
-    int kx[8], ky[8], kz[8], l, c, mask, p;
-    size_t at[8];
-    in = _mm256_and_ps(
-        hf__grid_axis_avx2(z, sl[2], inv, n, kz, &f[2]),
-        _mm256_and_ps(hf__grid_axis_avx2(x, sl[0], inv, n, kx, &f[0]),
-                      hf__grid_axis_avx2(y, sl[1], inv, n, ky, &f[1])));
-    mask = _mm256_movemask_ps(in) & act;
+    const HF__VEC one = HF__VSET1(1.0f), two = HF__VSET1(2.0f);
+    const HF__VEC x = HF__VLD(ro->x + i), y = HF__VLD(ro->y + i);
+    const HF__VEC z = HF__VLD(ro->z + i);
+    const HF__VEC lh = HF__VLD(ro->last_h + r);
+    HF__VEC f[3], in, w[3], v[4], a[4], g[3], m8[8], hv, hl, lhm;
+    HF__VEC a0, a1, a2, a3;
+    HF__VEC wx0, wy0, wz0, wyz[4], wxz[4], wxy[4], sx, sy, sz, ms, gn, gs;
+    HF__VEC dv[3];
+    int kx[HF__W], ky[HF__W], kz[HF__W], l, c, mask, p;
+    size_t at[HF__W];
+    in = HF__VAND(HF__KN(hf__grid_axis)(z, sl[2], inv, n, kz, &f[2]),
+                    HF__VAND(HF__KN(hf__grid_axis)(x, sl[0], inv, n, kx, &f[0]),
+                               HF__KN(hf__grid_axis)(y, sl[1], inv, n, ky, &f[1])));
+    mask = HF__VMASK(in) & act;
     if (!mask) {
-        _mm256_zeroupper();
+        HF__VZEROUPPER();
         return;
     }
-    for (l = 0; l < 8; ++l) /* lanes out of the cube read node 0 */
-        at[l] = mask >> l & 1
-                    ? ((size_t)kz[l] * (size_t)n + (size_t)ky[l]) * (size_t)n +
-                          (size_t)kx[l]
-                    : 0u;
+    for (l = 0; l < HF__W; ++l) /* lanes out of the cube read node 0 */
+        at[l] = mask >> l & 1 ? ((size_t)kz[l] * (size_t)n + (size_t)ky[l]) *
+                                        (size_t)n + (size_t)kx[l]
+                              : 0u;
     /* hf__grid_hv and the step's sub-step */
-    lhm = HF__GT8(lh, _mm256_setzero_ps());
-    hv = hf__sel8(lhm,
-                  _mm256_div_ps(one, _mm256_max_ps(lh, _mm256_set1_ps(1e-6f))),
-                  _mm256_setzero_ps());
-    hl = hf__sel8(lhm, lh, _mm256_set1_ps(h));
-    v[0] = _mm256_set1_ps((float)(last - j));
-    v[1] = _mm256_sub_ps(x, _mm256_loadu_ps(ro->px + i));
-    v[2] = _mm256_sub_ps(y, _mm256_loadu_ps(ro->py + i));
-    v[3] = _mm256_sub_ps(z, _mm256_loadu_ps(ro->pz + i));
-    for (p = 1; p < 4; ++p) v[p] = _mm256_mul_ps(v[0], _mm256_mul_ps(v[p], hv));
-    wx0 = _mm256_sub_ps(one, f[0]);
-    wy0 = _mm256_sub_ps(one, f[1]);
-    wz0 = _mm256_sub_ps(one, f[2]);
-    wyz[0] = _mm256_mul_ps(wy0, wz0);
-    wyz[1] = _mm256_mul_ps(f[1], wz0);
-    wyz[2] = _mm256_mul_ps(wy0, f[2]);
-    wyz[3] = _mm256_mul_ps(f[1], f[2]);
-    wxz[0] = _mm256_mul_ps(wx0, wz0);
-    wxz[1] = _mm256_mul_ps(f[0], wz0);
-    wxz[2] = _mm256_mul_ps(wx0, f[2]);
-    wxz[3] = _mm256_mul_ps(f[0], f[2]);
-    wxy[0] = _mm256_mul_ps(wx0, wy0);
-    wxy[1] = _mm256_mul_ps(f[0], wy0);
-    wxy[2] = _mm256_mul_ps(wx0, f[1]);
-    wxy[3] = _mm256_mul_ps(f[0], f[1]);
+    lhm = HF__VGT(lh, HF__VSET1(0.0f));
+    hv = HF__VSEL(
+        lhm, HF__VDIV(one, HF__VMAX(lh, HF__VSET1(1e-6f))),
+        HF__VSET1(0.0f));
+    hl = HF__VSEL(lhm, lh, HF__VSET1(h));
+    v[0] = HF__VSET1((float)(last - j));
+    v[1] = HF__VSUB(x, HF__VLD(ro->px + i));
+    v[2] = HF__VSUB(y, HF__VLD(ro->py + i));
+    v[3] = HF__VSUB(z, HF__VLD(ro->pz + i));
+    for (p = 1; p < 4; ++p) v[p] = HF__VMUL(v[0], HF__VMUL(v[p], hv));
+    wx0 = HF__VSUB(one, f[0]);
+    wy0 = HF__VSUB(one, f[1]);
+    wz0 = HF__VSUB(one, f[2]);
+    wyz[0] = HF__VMUL(wy0, wz0);
+    wyz[1] = HF__VMUL(f[1], wz0);
+    wyz[2] = HF__VMUL(wy0, f[2]);
+    wyz[3] = HF__VMUL(f[1], f[2]);
+    wxz[0] = HF__VMUL(wx0, wz0);
+    wxz[1] = HF__VMUL(f[0], wz0);
+    wxz[2] = HF__VMUL(wx0, f[2]);
+    wxz[3] = HF__VMUL(f[0], f[2]);
+    wxy[0] = HF__VMUL(wx0, wy0);
+    wxy[1] = HF__VMUL(f[0], wy0);
+    wxy[2] = HF__VMUL(wx0, f[1]);
+    wxy[3] = HF__VMUL(f[0], f[1]);
     /* corner by corner, in the scalar order, the sums in registers */
-    a0 = a1 = a2 = a3 = _mm256_setzero_ps();
+    a0 = a1 = a2 = a3 = HF__VSET1(0.0f);
     for (c = 0; c < 8; ++c) {
-        __m256 t[4], wc;
-        hf__grid_corner_avx2(grid->node, at,
-                             (size_t)(c >> 2) * n2 +
-                                 (size_t)((c >> 1) & 1) * (size_t)n +
-                                 (size_t)(c & 1),
-                             t);
-        wc = _mm256_mul_ps(c & 1 ? f[0] : wx0, wyz[c >> 1]);
-        a0 = _mm256_add_ps(a0, _mm256_mul_ps(wc, t[0]));
-        a1 = _mm256_add_ps(a1, _mm256_mul_ps(wc, t[1]));
-        a2 = _mm256_add_ps(a2, _mm256_mul_ps(wc, t[2]));
-        a3 = _mm256_add_ps(a3, _mm256_mul_ps(wc, t[3]));
+        HF__VEC t[4], wc;
+        HF__KN(hf__grid_corner)(grid->node, at,
+                            (size_t)(c >> 2) * n2 +
+                                (size_t)((c >> 1) & 1) * (size_t)n +
+                                (size_t)(c & 1),
+                            t);
+        wc = HF__VMUL(c & 1 ? f[0] : wx0, wyz[c >> 1]);
+        a0 = HF__VADD(a0, HF__VMUL(wc, t[0]));
+        a1 = HF__VADD(a1, HF__VMUL(wc, t[1]));
+        a2 = HF__VADD(a2, HF__VMUL(wc, t[2]));
+        a3 = HF__VADD(a3, HF__VMUL(wc, t[3]));
         m8[c] = t[0];
     }
     a[0] = a0;
     a[1] = a1;
     a[2] = a2;
     a[3] = a3;
-#define HF__GRID_D(e, hi, lo) _mm256_mul_ps(e, _mm256_sub_ps(m8[hi], m8[lo]))
-    g[0] = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(HF__GRID_D(wyz[0], 1, 0),
-                                                     HF__GRID_D(wyz[1], 3, 2)),
-                                       HF__GRID_D(wyz[2], 5, 4)),
-                         HF__GRID_D(wyz[3], 7, 6));
-    g[1] = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(HF__GRID_D(wxz[0], 2, 0),
-                                                     HF__GRID_D(wxz[1], 3, 1)),
-                                       HF__GRID_D(wxz[2], 6, 4)),
-                         HF__GRID_D(wxz[3], 7, 5));
-    g[2] = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(HF__GRID_D(wxy[0], 4, 0),
-                                                     HF__GRID_D(wxy[1], 5, 1)),
-                                       HF__GRID_D(wxy[2], 6, 2)),
-                         HF__GRID_D(wxy[3], 7, 3));
+#define HF__GRID_D(e, hi, lo) HF__VMUL(e, HF__VSUB(m8[hi], m8[lo]))
+    g[0] = HF__VADD(HF__VADD(HF__VADD(HF__GRID_D(wyz[0], 1, 0),
+                                            HF__GRID_D(wyz[1], 3, 2)),
+                                 HF__GRID_D(wyz[2], 5, 4)),
+                      HF__GRID_D(wyz[3], 7, 6));
+    g[1] = HF__VADD(HF__VADD(HF__VADD(HF__GRID_D(wxz[0], 2, 0),
+                                            HF__GRID_D(wxz[1], 3, 1)),
+                                 HF__GRID_D(wxz[2], 6, 4)),
+                      HF__GRID_D(wxz[3], 7, 5));
+    g[2] = HF__VADD(HF__VADD(HF__VADD(HF__GRID_D(wxy[0], 4, 0),
+                                            HF__GRID_D(wxy[1], 5, 1)),
+                                 HF__GRID_D(wxy[2], 6, 2)),
+                      HF__GRID_D(wxy[3], 7, 3));
 #undef HF__GRID_D
-    sx = _mm256_add_ps(_mm256_mul_ps(wx0, wx0), _mm256_mul_ps(f[0], f[0]));
-    sy = _mm256_add_ps(_mm256_mul_ps(wy0, wy0), _mm256_mul_ps(f[1], f[1]));
-    sz = _mm256_add_ps(_mm256_mul_ps(wz0, wz0), _mm256_mul_ps(f[2], f[2]));
-    ms = _mm256_mul_ps(sx, _mm256_mul_ps(sy, sz));
-    for (p = 0; p < 4; ++p) a[p] = _mm256_sub_ps(a[p], _mm256_mul_ps(ms, v[p]));
-    w[0] = _mm256_mul_ps(sy, sz);
-    w[1] = _mm256_mul_ps(sx, sz);
-    w[2] = _mm256_mul_ps(sx, sy);
+    sx = HF__VADD(HF__VMUL(wx0, wx0), HF__VMUL(f[0], f[0]));
+    sy = HF__VADD(HF__VMUL(wy0, wy0), HF__VMUL(f[1], f[1]));
+    sz = HF__VADD(HF__VMUL(wz0, wz0), HF__VMUL(f[2], f[2]));
+    ms = HF__VMUL(sx, HF__VMUL(sy, sz));
+    for (p = 0; p < 4; ++p) a[p] = HF__VSUB(a[p], HF__VMUL(ms, v[p]));
+    w[0] = HF__VMUL(sy, sz);
+    w[1] = HF__VMUL(sx, sz);
+    w[2] = HF__VMUL(sx, sy);
     for (p = 0; p < 3; ++p)
-        g[p] = _mm256_sub_ps(
-            g[p],
-            _mm256_mul_ps(v[0],
-                          _mm256_mul_ps(_mm256_sub_ps(_mm256_mul_ps(two, f[p]),
-                                                      one),
-                                        w[p])));
-    gn = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(g[0], g[0]),
-                                     _mm256_mul_ps(g[1], g[1])),
-                       _mm256_mul_ps(g[2], g[2]));
-    gs = HF__GT8(gn, _mm256_set1_ps(ref * ref));
-    gs = _mm256_movemask_ps(gs)
-             ? hf__sel8(gs,
-                        _mm256_div_ps(_mm256_set1_ps(ref), _mm256_sqrt_ps(gn)),
-                        one)
-             : one; /* no lane capped: skip the root */
+        g[p] = HF__VSUB(
+            g[p], HF__VMUL(v[0], HF__VMUL(HF__VSUB(HF__VMUL(two, f[p]),
+                                                         one),
+                                              w[p])));
+    gn = HF__VADD(HF__VADD(HF__VMUL(g[0], g[0]), HF__VMUL(g[1], g[1])),
+                    HF__VMUL(g[2], g[2]));
+    gs = HF__VGT(gn, HF__VSET1(ref * ref));
+    gs = HF__VMASK(gs) ? HF__VSEL(gs, HF__VDIV(HF__VSET1(ref),
+                                                          HF__VSQRT(gn)),
+                                           one)
+                             : one; /* no lane capped: skip the root */
     for (p = 0; p < 3; ++p)
-        dv[p] = _mm256_mul_ps(_mm256_set1_ps(-push), _mm256_mul_ps(g[p], gs));
+        dv[p] = HF__VMUL(HF__VSET1(-push), HF__VMUL(g[p], gs));
     if (fric > 0.0f) {
-        const __m256 fm = HF__GT8(a[0], _mm256_set1_ps(1e-6f * ref));
-        const __m256 ia = _mm256_div_ps(one, a[0]);
-        const __m256 iw = _mm256_set1_ps(1.0f / (float)(last - j)); /* v[0] */
-        const __m256 b =
-            _mm256_mul_ps(_mm256_set1_ps(fric),
-                          hf__sel8(HF__LT8(a[0], _mm256_set1_ps(ref)),
-                                   _mm256_div_ps(a[0], _mm256_set1_ps(ref)),
-                                   one));
+        const HF__VEC fm = HF__VGT(a[0], HF__VSET1(1e-6f * ref));
+        const HF__VEC ia = HF__VDIV(one, a[0]);
+        const HF__VEC iw = HF__VSET1(1.0f / (float)(last - j)); /* v[0] */
+        const HF__VEC b = HF__VMUL(
+            HF__VSET1(fric),
+            HF__VSEL(HF__VLT(a[0], HF__VSET1(ref)),
+                        HF__VDIV(a[0], HF__VSET1(ref)), one));
         for (p = 0; p < 3; ++p)
-            dv[p] = hf__sel8(
+            dv[p] = HF__VSEL(
                 fm,
-                _mm256_add_ps(
-                    dv[p],
-                    _mm256_mul_ps(b,
-                                  _mm256_sub_ps(_mm256_mul_ps(a[p + 1], ia),
-                                                _mm256_mul_ps(v[p + 1], iw)))),
+                HF__VADD(dv[p],
+                           HF__VMUL(b, HF__VSUB(HF__VMUL(a[p + 1], ia),
+                                                    HF__VMUL(v[p + 1], iw)))),
                 dv[p]);
     }
     {
-        const __m256 m = _mm256_castsi256_ps(
-            _mm256_setr_epi32(-(mask & 1), -(mask >> 1 & 1), -(mask >> 2 & 1),
-                              -(mask >> 3 & 1), -(mask >> 4 & 1),
-                              -(mask >> 5 & 1), -(mask >> 6 & 1),
-                              -(mask >> 7 & 1)));
+        const HF__VEC m = HF__KN(hf__grid_lanes)(mask);
         float *px = ro->px, *py = ro->py, *pz = ro->pz;
-        for (p = 0; p < 3; ++p) dv[p] = _mm256_mul_ps(dv[p], hl);
+        for (p = 0; p < 3; ++p) dv[p] = HF__VMUL(dv[p], hl);
         for (c = j > 0 ? j : 1; c < last; ++c) {
             float *o[3];
             o[0] = px + (size_t)c * R + (size_t)r;
             o[1] = py + (size_t)c * R + (size_t)r;
             o[2] = pz + (size_t)c * R + (size_t)r;
             for (p = 0; p < 3; ++p) {
-                const __m256 was = _mm256_loadu_ps(o[p]);
-                _mm256_storeu_ps(o[p],
-                                 hf__sel8(m, _mm256_sub_ps(was, dv[p]), was));
+                const HF__VEC was = HF__VLD(o[p]);
+                HF__VST(o[p],
+                              HF__VSEL(m, HF__VSUB(was, dv[p]), was));
             }
         }
     }
-    _mm256_zeroupper();
+    HF__VZEROUPPER();
 }
-#undef HF__GT8
-#undef HF__LT8
-#undef HF__GE8
+#endif /* HF__PASS_GRID */
+
+#ifndef HF__PASS
+
+/* the grid's push at four lanes (SSE2, NEON) and eight (AVX2) */
+#if HF__V4
+#define HF__PASS HF__PASS_GRID
+#define HF__W 4
+#include HF_HEADER_FILENAME
+#endif
+#if HF__AVX2
+#define HF__PASS HF__PASS_GRID
+#define HF__W 8
+#include HF_HEADER_FILENAME
 #endif
 
 HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
@@ -9334,7 +9199,7 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
                 for (l = 0; l < 8; ++l)
                     act |= (hf__rope_kind(ropes, r + l) == 0) << l;
                 if (act)
-                    hf__grid_apply_avx2(ropes, grid, sl, j, last, r, act,
+                    hf__grid_apply_v8(ropes, grid, sl, j, last, r, act,
                                         inv, push, fric, ref, h);
             }
 #endif
