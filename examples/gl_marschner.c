@@ -2135,6 +2135,15 @@ static int glm_step(glm_app *a, double t, float dt, int build)
     return glm_simulate(a, t, dt) && (!build || glm_build(a));
 }
 
+/* Texture `tex` on unit `unit`, and the shader's sampler `name` on it. */
+static void glm_sampler(GLuint prog, int unit, GLenum target, GLuint tex,
+                        const char *name)
+{
+    glActiveTexture((GLenum)(GL_TEXTURE0 + unit));
+    glBindTexture(target, tex);
+    glUniform1i(glGetUniformLocation(prog, name), unit);
+}
+
 /* The key light, from the upper front right. */
 static void glm_light_dir(float L[3])
 {
@@ -2162,26 +2171,13 @@ static void glm_lights(GLuint prog, const glm_app *a)
                 a->o.single_shadow ? 0.0f : 1.0f);
     glUniform1f(glGetUniformLocation(prog, "u_opacity_k"), GLM_OPACITY_K);
     glUniform3fv(glGetUniformLocation(prog, "u_layers"), 1, a->layers);
-    glActiveTexture(GL_TEXTURE10);
-    glBindTexture(GL_TEXTURE_2D, a->tex_opacity);
-    glUniform1i(glGetUniformLocation(prog, "u_opacity"), 10);
-    glActiveTexture(GL_TEXTURE7);
-    glBindTexture(GL_TEXTURE_2D, a->tex_shadow);
-    glUniform1i(glGetUniformLocation(prog, "u_shadow"), 7);
+    glm_sampler(prog, 10, GL_TEXTURE_2D, a->tex_opacity, "u_opacity");
+    glm_sampler(prog, 7, GL_TEXTURE_2D, a->tex_shadow, "u_shadow");
     glActiveTexture(GL_TEXTURE0);
     glUniform3f(glGetUniformLocation(prog, "u_light_color"), 1.9f, 1.8f, 1.65f);
     glUniform3f(glGetUniformLocation(prog, "u_ambient"), 0.22f, 0.24f, 0.30f);
     glUniformMatrix4fv(glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE,
                        a->view_proj);
-}
-
-/* Texture `tex` on unit `unit`, and the shader's sampler `name` on it. */
-static void glm_sampler(GLuint prog, int unit, GLenum target, GLuint tex,
-                        const char *name)
-{
-    glActiveTexture((GLenum)(GL_TEXTURE0 + unit));
-    glBindTexture(target, tex);
-    glUniform1i(glGetUniformLocation(prog, name), unit);
 }
 
 /* The hair's draw call with `prog` (a hair or a shadow program of the
@@ -2302,9 +2298,7 @@ static void glm_shadow_pass(glm_app *a)
                 glUniform2f(glGetUniformLocation(prog, "u_alpha"),
                             v.alpha_root, v.alpha_tip);
             }
-            glActiveTexture(GL_TEXTURE7);
-            glBindTexture(GL_TEXTURE_2D, a->tex_shadow);
-            glUniform1i(glGetUniformLocation(prog, "u_shadow"), 7);
+            glm_sampler(prog, 7, GL_TEXTURE_2D, a->tex_shadow, "u_shadow");
             glActiveTexture(GL_TEXTURE0);
             glm_draw_hair(a, prog, eye, 1, dir);
         }
@@ -2335,9 +2329,7 @@ static void glm_draw_body(glm_app *a)
                                  2.2f);
         glUniform3fv(glGetUniformLocation(a->prog_head, "u_scalp"), 1, sc);
     }
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, a->tex_density);
-    glUniform1i(glGetUniformLocation(a->prog_head, "u_density"), 0);
+    glm_sampler(a->prog_head, 0, GL_TEXTURE_2D, a->tex_density, "u_density");
     glBindVertexArray(a->vao_head);
     /* a groom has no density map to say where the scalp is */
     glUniform1f(glGetUniformLocation(a->prog_head, "u_scalp_on"),

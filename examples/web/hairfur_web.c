@@ -816,6 +816,15 @@ static int hw_simulate(hw_app *a, double t, float dt)
     return 1;
 }
 
+/* 2D texture `tex` on unit `unit`, and the shader's sampler `name` on
+   it. */
+static void hw_sampler(GLuint prog, int unit, GLuint tex, const char *name)
+{
+    glActiveTexture((GLenum)(GL_TEXTURE0 + unit));
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glUniform1i(glGetUniformLocation(prog, name), unit);
+}
+
 /* The drawn strands: interpolation and ribbons into our memory, then
    copied into the GL buffer (WebGL2 maps no buffer). */
 static int hw_build(hw_app *a)
@@ -881,9 +890,7 @@ static void hw_lights(hw_app *a, GLuint prog)
     glUniform1f(glGetUniformLocation(prog, "u_shadow_depth"), a->shadow_depth);
     glUniform1f(glGetUniformLocation(prog, "u_shadow_bias"),
                 3.0f * a->shadow_depth / HW_SHADOW_SIZE);
-    glActiveTexture(GL_TEXTURE7);
-    glBindTexture(GL_TEXTURE_2D, a->tex_shadow);
-    glUniform1i(glGetUniformLocation(prog, "u_shadow"), 7);
+    hw_sampler(prog, 7, a->tex_shadow, "u_shadow");
     glActiveTexture(GL_TEXTURE0);
     glUniform3f(glGetUniformLocation(prog, "u_light_color"), 1.9f, 1.8f, 1.65f);
     glUniform3f(glGetUniformLocation(prog, "u_ambient"), 0.22f, 0.24f, 0.30f);
@@ -963,9 +970,7 @@ static void hw_draw(hw_app *a)
     sc[1] = 0.25f * powf(0.1f, 2.2f);
     sc[2] = 0.25f * powf(0.05f, 2.2f);
     glUniform3fv(glGetUniformLocation(a->prog_head, "u_scalp"), 1, sc);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, a->tex_density);
-    glUniform1i(glGetUniformLocation(a->prog_head, "u_density"), 0);
+    hw_sampler(a->prog_head, 0, a->tex_density, "u_density");
     glBindVertexArray(a->vao_head);
     glDrawElements(GL_TRIANGLES, 3 * a->head.triangle_count, GL_UNSIGNED_INT,
                    0);
@@ -973,18 +978,10 @@ static void hw_draw(hw_app *a)
     if (a->drawn > 0) {
         glUseProgram(a->prog_hair);
         hw_lights(a, a->prog_hair);
-        glActiveTexture(GL_TEXTURE0);
-        glBindTexture(GL_TEXTURE_2D, a->tex_m);
-        glUniform1i(glGetUniformLocation(a->prog_hair, "u_lut_m"), 0);
-        glActiveTexture(GL_TEXTURE1);
-        glBindTexture(GL_TEXTURE_2D, a->tex_n);
-        glUniform1i(glGetUniformLocation(a->prog_hair, "u_lut_n"), 1);
-        glActiveTexture(GL_TEXTURE4);
-        glBindTexture(GL_TEXTURE_2D, a->tex_dual0);
-        glUniform1i(glGetUniformLocation(a->prog_hair, "u_dual0"), 4);
-        glActiveTexture(GL_TEXTURE5);
-        glBindTexture(GL_TEXTURE_2D, a->tex_dual2);
-        glUniform1i(glGetUniformLocation(a->prog_hair, "u_dual2"), 5);
+        hw_sampler(a->prog_hair, 0, a->tex_m, "u_lut_m");
+        hw_sampler(a->prog_hair, 1, a->tex_n, "u_lut_n");
+        hw_sampler(a->prog_hair, 4, a->tex_dual0, "u_dual0");
+        hw_sampler(a->prog_hair, 5, a->tex_dual2, "u_dual2");
         glEnable(GL_BLEND);
         glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
