@@ -2701,7 +2701,7 @@ HF__INLINE int hf__mask_neon(float32x4_t m)
 #define HF__PASS_ROPES 1  /* the rope step's contact kernels and rows */
 #define HF__PASS_INTERP 2 /* interpolation at 8 and 16 lanes */
 #define HF__PASS_POINTS 3 /* interpolation into GPU points, likewise */
-#define HF__PASS_GRID 4   /* the hair-hair grid's push at 4 and 8 lanes */
+#define HF__PASS_GRID 4   /* the hair-hair grid's push at 4, 8 and 16 lanes */
 #if HF__AVX512
 /* Sixteen lanes' words: a mask stays a vector of all-set or all-clear
    lanes, as the texts expect, so a compare's mask register is widened to
@@ -8935,17 +8935,27 @@ HF__INLINE hf__v4 hf__grid_lanes_v4(int mask)
 #endif
 
 #if HF__AVX2
-/* hf__grid_corner_v4 for eight lanes: two four-lane transposes, joined */
+/* hf__grid_corner_v4 for eight lanes: lanes l and l + 4 loaded into the
+   two halves of one register (the load's insert is not a shuffle), then
+   one four-lane transpose within the halves: 8 shuffles, not 20. */
 HF__TARGET_AVX2 HF__INLINE void hf__grid_corner_v8(const float *node,
                                                      const size_t *at,
                                                      size_t off, __m256 q[4])
 {
-    __m128 lo[4], hi[4];
-    int k;
-    hf__grid_corner_v4(node, at, off, lo);
-    hf__grid_corner_v4(node, at + 4, off, hi);
-    for (k = 0; k < 4; ++k)
-        q[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(lo[k]), hi[k], 1);
+    __m256 r[4], t[4];
+    int l;
+    for (l = 0; l < 4; ++l)
+        r[l] = _mm256_insertf128_ps(
+            _mm256_castps128_ps256(_mm_loadu_ps(node + 4u * (at[l] + off))),
+            _mm_loadu_ps(node + 4u * (at[l + 4] + off)), 1);
+    t[0] = _mm256_unpacklo_ps(r[0], r[1]);
+    t[1] = _mm256_unpackhi_ps(r[0], r[1]);
+    t[2] = _mm256_unpacklo_ps(r[2], r[3]);
+    t[3] = _mm256_unpackhi_ps(r[2], r[3]);
+    q[0] = _mm256_shuffle_ps(t[0], t[2], _MM_SHUFFLE(1, 0, 1, 0));
+    q[1] = _mm256_shuffle_ps(t[0], t[2], _MM_SHUFFLE(3, 2, 3, 2));
+    q[2] = _mm256_shuffle_ps(t[1], t[3], _MM_SHUFFLE(1, 0, 1, 0));
+    q[3] = _mm256_shuffle_ps(t[1], t[3], _MM_SHUFFLE(3, 2, 3, 2));
 }
 
 /* hf__grid_axis_v4 for eight points */
@@ -8974,7 +8984,59 @@ HF__TARGET_AVX2 HF__INLINE __m256 hf__grid_lanes_v8(int mask)
 }
 #endif
 
-/* ---- 6.10 the grid's push: a kernel text, at four and eight lanes ----- */
+#if HF__AVX512
+/* hf__grid_corner_v8 for sixteen lanes: lanes l, l + 4, l + 8 and l + 12
+   in the four quarters of one register, the same transpose per quarter */
+HF__TARGET_AVX512 HF__INLINE void hf__grid_corner_v16(const float *node,
+                                                      const size_t *at,
+                                                      size_t off, __m512 q[4])
+{
+    __m512 r[4], t[4];
+    int l;
+    for (l = 0; l < 4; ++l) {
+        /* the masked forms: see HF__VSQRT */
+        r[l] = _mm512_maskz_broadcast_f32x4(
+            0xffff, _mm_loadu_ps(node + 4u * (at[l] + off)));
+        r[l] = _mm512_maskz_insertf32x4(
+            0xffff, r[l], _mm_loadu_ps(node + 4u * (at[l + 4] + off)), 1);
+        r[l] = _mm512_maskz_insertf32x4(
+            0xffff, r[l], _mm_loadu_ps(node + 4u * (at[l + 8] + off)), 2);
+        r[l] = _mm512_maskz_insertf32x4(
+            0xffff, r[l], _mm_loadu_ps(node + 4u * (at[l + 12] + off)), 3);
+    }
+    t[0] = _mm512_maskz_unpacklo_ps(0xffff, r[0], r[1]);
+    t[1] = _mm512_maskz_unpackhi_ps(0xffff, r[0], r[1]);
+    t[2] = _mm512_maskz_unpacklo_ps(0xffff, r[2], r[3]);
+    t[3] = _mm512_maskz_unpackhi_ps(0xffff, r[2], r[3]);
+    q[0] = _mm512_maskz_shuffle_ps(0xffff, t[0], t[2], _MM_SHUFFLE(1, 0, 1, 0));
+    q[1] = _mm512_maskz_shuffle_ps(0xffff, t[0], t[2], _MM_SHUFFLE(3, 2, 3, 2));
+    q[2] = _mm512_maskz_shuffle_ps(0xffff, t[1], t[3], _MM_SHUFFLE(1, 0, 1, 0));
+    q[3] = _mm512_maskz_shuffle_ps(0xffff, t[1], t[3], _MM_SHUFFLE(3, 2, 3, 2));
+}
+
+/* hf__grid_axis_v4 for sixteen points */
+HF__TARGET_AVX512 HF__INLINE __m512 hf__grid_axis_v16(__m512 c, float o,
+                                                      float inv, int n,
+                                                      int k[16], __m512 *f)
+{
+    const __m512 q = _mm512_mul_ps(_mm512_sub_ps(c, _mm512_set1_ps(o)),
+                                   _mm512_set1_ps(inv));
+    const __m512i ki = _mm512_maskz_cvttps_epi32(0xffff, q);
+    _mm512_storeu_si512((void *)k, ki);
+    *f = _mm512_sub_ps(q, _mm512_maskz_cvtepi32_ps(0xffff, ki));
+    return hf__m16(
+        _mm512_cmp_ps_mask(q, _mm512_setzero_ps(), _CMP_GE_OQ) &
+        _mm512_cmp_ps_mask(q, _mm512_set1_ps((float)(n - 1)), _CMP_LT_OQ));
+}
+
+/* hf__grid_lanes_v4 for sixteen lanes */
+HF__TARGET_AVX512 HF__INLINE __m512 hf__grid_lanes_v16(int mask)
+{
+    return hf__m16((__mmask16)mask);
+}
+#endif
+
+/* ---- 6.10 the grid's push: a kernel text, at 4, 8 and 16 lanes --------- */
 
 #endif /* !HF__PASS */
 
@@ -9133,7 +9195,8 @@ HF__KN(hf__grid_apply)(hf_ropes *ro, const hf_grid *grid, const float *sl,
 
 #ifndef HF__PASS
 
-/* the grid's push at four lanes (SSE2, NEON) and eight (AVX2) */
+/* the grid's push at four lanes (SSE2, NEON), eight (AVX2), sixteen
+   (AVX-512) */
 #if HF__V4
 #define HF__PASS HF__PASS_GRID
 #define HF__W 4
@@ -9142,6 +9205,11 @@ HF__KN(hf__grid_apply)(hf_ropes *ro, const hf_grid *grid, const float *sl,
 #if HF__AVX2
 #define HF__PASS HF__PASS_GRID
 #define HF__W 8
+#include HF_HEADER_FILENAME
+#endif
+#if HF__AVX512
+#define HF__PASS HF__PASS_GRID
+#define HF__W 16
 #include HF_HEADER_FILENAME
 #endif
 
@@ -9186,12 +9254,23 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
     inv = 1.0f / sl[3];
     k = (int)sl[4];
     level = hf_simd_resolve(prm.simd);
-    (void)level; /* eight lanes at AVX2 and up, four at SSE2 and NEON */
+    (void)level; /* 16 lanes at AVX-512, 8 at AVX2, 4 at SSE2 and NEON */
     /* point rows outermost, as the grid was built: neighbouring ropes
        read neighbouring nodes */
     for (j = 0; j < P; j += k) {
         const int last = j + k <= P ? j + k : P;
         r = first;
+#if HF__AVX512
+        if (level >= HF_SIMD_AVX512)
+            for (; r + 16 <= first + count; r += 16) {
+                int act = 0, l;
+                for (l = 0; l < 16; ++l)
+                    act |= (hf__rope_kind(ropes, r + l) == 0) << l;
+                if (act)
+                    hf__grid_apply_v16(ropes, grid, sl, j, last, r, act,
+                                       inv, push, fric, ref, h);
+            }
+#endif
 #if HF__AVX2
         if (level >= HF_SIMD_AVX2)
             for (; r + 8 <= first + count; r += 8) {
