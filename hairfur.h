@@ -236,7 +236,7 @@
           6.3 rest pose, roots, modes       6.8 the kernels per width,
           6.4 the step                          their dispatch, the call
           6.5 the broadphase                6.9 hair-hair interaction
-                                            6.10 the grid's push (a text)
+                                            6.10 the grid's splat and push
        7. interpolation and LOD
           7.1 interpolation at 8 and 16 lanes (a kernel text)
           7.2 the interpolation kernels per width, hf_interpolate
@@ -1359,6 +1359,8 @@ typedef struct hf_grid {
     float *node;     /* 4 floats a node (x fastest, then y, then z): the
                         points' weight, then their momentum (weight x
                         velocity, m/s) */
+    int simd;        /* hf_grid_build's kernels: HF_SIMD_* (0 = the best
+                        the CPU has); every level gives the same bytes */
     /* private */
     float *slab;     /* per z layer: the cube (origin, spacing) and the
                         sums of the weight and of its square */
@@ -1394,7 +1396,8 @@ HFDEF void hf_grid_destroy(hf_grid *grid);
    one call. Points outside the cube (a rope stretched beyond its length)
    are left out. Errors: HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE (the
    layers, or rope_count outside [0, ropes->rope_count]); nothing is
-   written then. No allocation. */
+   written then, as for HF_ERROR_BAD_PARAMETER (grid->simd not a level).
+   No allocation. */
 HFDEF hf_result hf_grid_build(hf_grid *grid, const hf_ropes *ropes,
                               int rope_count, int first, int count);
 
@@ -2701,7 +2704,7 @@ HF__INLINE int hf__mask_neon(float32x4_t m)
 #define HF__PASS_ROPES 1  /* the rope step's contact kernels and rows */
 #define HF__PASS_INTERP 2 /* interpolation at 8 and 16 lanes */
 #define HF__PASS_POINTS 3 /* interpolation into GPU points, likewise */
-#define HF__PASS_GRID 4   /* the hair-hair grid's push at 4, 8 and 16 lanes */
+#define HF__PASS_GRID 4   /* the hair-hair grid's splat and push, likewise */
 #if HF__AVX512
 /* Sixteen lanes' words: a mask stays a vector of all-set or all-clear
    lanes, as the texts expect, so a compare's mask register is widened to
@@ -8720,13 +8723,19 @@ HF__INLINE int hf__grid_locate(const hf_ropes *ro, size_t i, const float *cube,
     return 1;
 }
 
-/* o[0..3] += w * v[0..3]: the 4 floats of a node (weight, momentum). */
+/* o[0..3] += w * v[0..3]: the 4 floats of a node (weight, momentum), as
+   one four-lane operation where there is one (the same bytes; the build
+   is bound by its stores, four times fewer so). */
 HF__INLINE void hf__grid_add4(float *o, float w, const float *v)
 {
+#if HF__V4
+    HF__ST(o, HF__ADD(HF__LD(o), HF__MUL(HF__SET1(w), HF__LD(v))));
+#else
     o[0] += w * v[0];
     o[1] += w * v[1];
     o[2] += w * v[2];
     o[3] += w * v[3];
+#endif
 }
 
 /* 1 / the last sub-step (0 before the first): a step of 10^-6 s or less
@@ -8745,79 +8754,6 @@ HF__INLINE void hf__grid_velocity(const hf_ropes *ro, size_t i, float hv,
     v[1] = weight * ((ro->x[i] - ro->px[i]) * hv);
     v[2] = weight * ((ro->y[i] - ro->py[i]) * hv);
     v[3] = weight * ((ro->z[i] - ro->pz[i]) * hv);
-}
-
-HFDEF hf_result hf_grid_build(hf_grid *grid, const hf_ropes *ropes,
-                              int rope_count, int first, int count)
-{
-    size_t R, n2;
-    float cube[5], inv;
-    int n, end, j, r, s, k, P;
-    if (!grid || !grid->node || !hf__ropes_ok(ropes))
-        return HF_ERROR_NULL_POINTER;
-    n = grid->resolution;
-    if (!hf__range_ok(first, count) || first + count > n ||
-        rope_count < 0 || rope_count > ropes->rope_count)
-        return HF_ERROR_BAD_RANGE;
-    end = first + count;
-    R = (size_t)ropes->rope_count;
-    P = ropes->points;
-    n2 = (size_t)n * (size_t)n;
-    HF_MEMSET(grid->node + 4u * n2 * (size_t)first, 0,
-              4u * n2 * (size_t)count * sizeof(float));
-    hf__grid_cube(ropes, rope_count, n, cube);
-    inv = 1.0f / cube[3];
-    k = (int)cube[4];
-    for (j = 0; j < P; j += k) {
-        /* the points this one stands for: j .. j + k - 1 */
-        const float weight = (float)(j + k <= P ? k : P - j);
-        for (r = 0; r < rope_count; ++r) {
-            const size_t i = (size_t)j * R + (size_t)r;
-            float f[3], v[4], hv, wy[2], wz[2];
-            size_t node;
-            int kx, ky, kz, dz;
-            /* the layer first: a call for some layers skips the rest
-               of the points at once */
-            if (!hf__grid_axis(ropes->z[i], cube[2], inv, n, &kz, &f[2]) ||
-                kz + 1 < first || kz >= end ||
-                !hf__grid_axis(ropes->x[i], cube[0], inv, n, &kx, &f[0]) ||
-                !hf__grid_axis(ropes->y[i], cube[1], inv, n, &ky, &f[1]))
-                continue;
-            node = ((size_t)kz * (size_t)n + (size_t)ky) * (size_t)n +
-                   (size_t)kx;
-            hv = hf__grid_hv(ropes->last_h[r]);
-            hf__grid_velocity(ropes, i, hv, weight, v);
-            wy[0] = 1.0f - f[1];
-            wy[1] = f[1];
-            wz[0] = 1.0f - f[2];
-            wz[1] = f[2];
-            for (dz = 0; dz < 2; ++dz) {
-                float *o = grid->node + 4u * (node + (size_t)dz * n2);
-                int dy;
-                if (kz + dz < first || kz + dz >= end) continue;
-                for (dy = 0; dy < 2; ++dy) {
-                    float *q = o + 4u * (size_t)dy * (size_t)n;
-                    const float w = wy[dy] * wz[dz];
-                    hf__grid_add4(q, (1.0f - f[0]) * w, v);
-                    hf__grid_add4(q + 4, f[0] * w, v);
-                }
-            }
-        }
-    }
-    for (s = first; s < end; ++s) {
-        const float *o = grid->node + 4u * n2 * (size_t)s;
-        float *sl = grid->slab + HF__GRID_SLAB * s;
-        double w = 0.0, w2 = 0.0;
-        size_t c;
-        for (c = 0; c < n2; ++c) {
-            w += (double)o[4 * c];
-            w2 += (double)o[4 * c] * (double)o[4 * c];
-        }
-        for (k = 0; k < 5; ++k) sl[k] = cube[k];
-        sl[5] = (float)w;
-        sl[6] = (float)w2;
-    }
-    return HF_OK;
 }
 
 /* Sum of the two corner weights' squares along one axis: a point's own
@@ -8872,29 +8808,42 @@ HF__PRIVATE void hf__grid_read(const hf_grid *grid, size_t node,
 }
 
 #if HF__V4
+/* q[0..3] transposed: four lanes' four floats (a node's weight and
+   momentum, or a point's velocity) to each float across the lanes, or
+   back (the transpose is its own inverse). */
+HF__INLINE void hf__grid_t4_v4(hf__v4 q[4])
+{
+#if HF__SSE
+    _MM_TRANSPOSE4_PS(q[0], q[1], q[2], q[3]);
+#else
+    const float32x4x2_t t01 = vtrnq_f32(q[0], q[1]);
+    const float32x4x2_t t23 = vtrnq_f32(q[2], q[3]);
+    q[0] = vcombine_f32(vget_low_f32(t01.val[0]), vget_low_f32(t23.val[0]));
+    q[1] = vcombine_f32(vget_low_f32(t01.val[1]), vget_low_f32(t23.val[1]));
+    q[2] = vcombine_f32(vget_high_f32(t01.val[0]), vget_high_f32(t23.val[0]));
+    q[3] = vcombine_f32(vget_high_f32(t01.val[1]), vget_high_f32(t23.val[1]));
+#endif
+}
+
 /* Corner c of four lanes' cells: their nodes' four floats, transposed to
    weight and momentum x, y, z across the lanes. */
 HF__INLINE void hf__grid_corner_v4(const float *node, const size_t *at,
                                    size_t off, hf__v4 q[4])
 {
-    q[0] = HF__LD(node + 4u * (at[0] + off));
-    q[1] = HF__LD(node + 4u * (at[1] + off));
-    q[2] = HF__LD(node + 4u * (at[2] + off));
-    q[3] = HF__LD(node + 4u * (at[3] + off));
-#if HF__SSE
-    _MM_TRANSPOSE4_PS(q[0], q[1], q[2], q[3]);
-#else
-    {
-        const float32x4x2_t t01 = vtrnq_f32(q[0], q[1]);
-        const float32x4x2_t t23 = vtrnq_f32(q[2], q[3]);
-        q[0] = vcombine_f32(vget_low_f32(t01.val[0]), vget_low_f32(t23.val[0]));
-        q[1] = vcombine_f32(vget_low_f32(t01.val[1]), vget_low_f32(t23.val[1]));
-        q[2] = vcombine_f32(vget_high_f32(t01.val[0]),
-                            vget_high_f32(t23.val[0]));
-        q[3] = vcombine_f32(vget_high_f32(t01.val[1]),
-                            vget_high_f32(t23.val[1]));
-    }
-#endif
+    int l;
+    for (l = 0; l < 4; ++l) q[l] = HF__LD(node + 4u * (at[l] + off));
+    hf__grid_t4_v4(q);
+}
+
+/* Four lanes' velocities v[0..3] (weight, momentum) as each lane's four
+   floats: lane l's at out + 4 l. */
+HF__INLINE void hf__grid_aos_v4(const hf__v4 v[4], float *out)
+{
+    hf__v4 q[4];
+    int l;
+    for (l = 0; l < 4; ++l) q[l] = v[l];
+    hf__grid_t4_v4(q);
+    for (l = 0; l < 4; ++l) HF__ST(out + 4 * l, q[l]);
 }
 
 /* One axis of four points (hf__grid_axis): the fraction, the cell in
@@ -8935,6 +8884,19 @@ HF__INLINE hf__v4 hf__grid_lanes_v4(int mask)
 #endif
 
 #if HF__AVX2
+/* hf__grid_t4_v4 within each half of eight lanes */
+HF__TARGET_AVX2 HF__INLINE void hf__grid_t4_v8(__m256 q[4])
+{
+    const __m256 t0 = _mm256_unpacklo_ps(q[0], q[1]);
+    const __m256 t1 = _mm256_unpackhi_ps(q[0], q[1]);
+    const __m256 t2 = _mm256_unpacklo_ps(q[2], q[3]);
+    const __m256 t3 = _mm256_unpackhi_ps(q[2], q[3]);
+    q[0] = _mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(1, 0, 1, 0));
+    q[1] = _mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(3, 2, 3, 2));
+    q[2] = _mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(1, 0, 1, 0));
+    q[3] = _mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(3, 2, 3, 2));
+}
+
 /* hf__grid_corner_v4 for eight lanes: lanes l and l + 4 loaded into the
    two halves of one register (the load's insert is not a shuffle), then
    one four-lane transpose within the halves: 8 shuffles, not 20. */
@@ -8942,20 +8904,25 @@ HF__TARGET_AVX2 HF__INLINE void hf__grid_corner_v8(const float *node,
                                                      const size_t *at,
                                                      size_t off, __m256 q[4])
 {
-    __m256 r[4], t[4];
     int l;
     for (l = 0; l < 4; ++l)
-        r[l] = _mm256_insertf128_ps(
+        q[l] = _mm256_insertf128_ps(
             _mm256_castps128_ps256(_mm_loadu_ps(node + 4u * (at[l] + off))),
             _mm_loadu_ps(node + 4u * (at[l + 4] + off)), 1);
-    t[0] = _mm256_unpacklo_ps(r[0], r[1]);
-    t[1] = _mm256_unpackhi_ps(r[0], r[1]);
-    t[2] = _mm256_unpacklo_ps(r[2], r[3]);
-    t[3] = _mm256_unpackhi_ps(r[2], r[3]);
-    q[0] = _mm256_shuffle_ps(t[0], t[2], _MM_SHUFFLE(1, 0, 1, 0));
-    q[1] = _mm256_shuffle_ps(t[0], t[2], _MM_SHUFFLE(3, 2, 3, 2));
-    q[2] = _mm256_shuffle_ps(t[1], t[3], _MM_SHUFFLE(1, 0, 1, 0));
-    q[3] = _mm256_shuffle_ps(t[1], t[3], _MM_SHUFFLE(3, 2, 3, 2));
+    hf__grid_t4_v8(q);
+}
+
+/* hf__grid_aos_v4 for eight lanes */
+HF__TARGET_AVX2 HF__INLINE void hf__grid_aos_v8(const __m256 v[4], float *out)
+{
+    __m256 q[4];
+    int l;
+    for (l = 0; l < 4; ++l) q[l] = v[l];
+    hf__grid_t4_v8(q);
+    for (l = 0; l < 4; ++l) {
+        _mm_storeu_ps(out + 4 * l, _mm256_castps256_ps128(q[l]));
+        _mm_storeu_ps(out + 4 * (l + 4), _mm256_extractf128_ps(q[l], 1));
+    }
 }
 
 /* hf__grid_axis_v4 for eight points */
@@ -8985,33 +8952,57 @@ HF__TARGET_AVX2 HF__INLINE __m256 hf__grid_lanes_v8(int mask)
 #endif
 
 #if HF__AVX512
+/* hf__grid_t4_v4 within each quarter of sixteen lanes (the masked
+   forms: see HF__VSQRT) */
+HF__TARGET_AVX512 HF__INLINE void hf__grid_t4_v16(__m512 q[4])
+{
+    const __m512 t0 = _mm512_maskz_unpacklo_ps(0xffff, q[0], q[1]);
+    const __m512 t1 = _mm512_maskz_unpackhi_ps(0xffff, q[0], q[1]);
+    const __m512 t2 = _mm512_maskz_unpacklo_ps(0xffff, q[2], q[3]);
+    const __m512 t3 = _mm512_maskz_unpackhi_ps(0xffff, q[2], q[3]);
+    q[0] = _mm512_maskz_shuffle_ps(0xffff, t0, t2, _MM_SHUFFLE(1, 0, 1, 0));
+    q[1] = _mm512_maskz_shuffle_ps(0xffff, t0, t2, _MM_SHUFFLE(3, 2, 3, 2));
+    q[2] = _mm512_maskz_shuffle_ps(0xffff, t1, t3, _MM_SHUFFLE(1, 0, 1, 0));
+    q[3] = _mm512_maskz_shuffle_ps(0xffff, t1, t3, _MM_SHUFFLE(3, 2, 3, 2));
+}
+
 /* hf__grid_corner_v8 for sixteen lanes: lanes l, l + 4, l + 8 and l + 12
-   in the four quarters of one register, the same transpose per quarter */
+   in the four quarters of one register */
 HF__TARGET_AVX512 HF__INLINE void hf__grid_corner_v16(const float *node,
                                                       const size_t *at,
                                                       size_t off, __m512 q[4])
 {
-    __m512 r[4], t[4];
     int l;
     for (l = 0; l < 4; ++l) {
-        /* the masked forms: see HF__VSQRT */
-        r[l] = _mm512_maskz_broadcast_f32x4(
+        q[l] = _mm512_maskz_broadcast_f32x4(
             0xffff, _mm_loadu_ps(node + 4u * (at[l] + off)));
-        r[l] = _mm512_maskz_insertf32x4(
-            0xffff, r[l], _mm_loadu_ps(node + 4u * (at[l + 4] + off)), 1);
-        r[l] = _mm512_maskz_insertf32x4(
-            0xffff, r[l], _mm_loadu_ps(node + 4u * (at[l + 8] + off)), 2);
-        r[l] = _mm512_maskz_insertf32x4(
-            0xffff, r[l], _mm_loadu_ps(node + 4u * (at[l + 12] + off)), 3);
+        q[l] = _mm512_maskz_insertf32x4(
+            0xffff, q[l], _mm_loadu_ps(node + 4u * (at[l + 4] + off)), 1);
+        q[l] = _mm512_maskz_insertf32x4(
+            0xffff, q[l], _mm_loadu_ps(node + 4u * (at[l + 8] + off)), 2);
+        q[l] = _mm512_maskz_insertf32x4(
+            0xffff, q[l], _mm_loadu_ps(node + 4u * (at[l + 12] + off)), 3);
     }
-    t[0] = _mm512_maskz_unpacklo_ps(0xffff, r[0], r[1]);
-    t[1] = _mm512_maskz_unpackhi_ps(0xffff, r[0], r[1]);
-    t[2] = _mm512_maskz_unpacklo_ps(0xffff, r[2], r[3]);
-    t[3] = _mm512_maskz_unpackhi_ps(0xffff, r[2], r[3]);
-    q[0] = _mm512_maskz_shuffle_ps(0xffff, t[0], t[2], _MM_SHUFFLE(1, 0, 1, 0));
-    q[1] = _mm512_maskz_shuffle_ps(0xffff, t[0], t[2], _MM_SHUFFLE(3, 2, 3, 2));
-    q[2] = _mm512_maskz_shuffle_ps(0xffff, t[1], t[3], _MM_SHUFFLE(1, 0, 1, 0));
-    q[3] = _mm512_maskz_shuffle_ps(0xffff, t[1], t[3], _MM_SHUFFLE(3, 2, 3, 2));
+    hf__grid_t4_v16(q);
+}
+
+/* hf__grid_aos_v4 for sixteen lanes */
+HF__TARGET_AVX512 HF__INLINE void hf__grid_aos_v16(const __m512 v[4],
+                                                   float *out)
+{
+    __m512 q[4];
+    int l;
+    for (l = 0; l < 4; ++l) q[l] = v[l];
+    hf__grid_t4_v16(q);
+    for (l = 0; l < 4; ++l) {
+        _mm_storeu_ps(out + 4 * l, _mm512_maskz_extractf32x4_ps(0xf, q[l], 0));
+        _mm_storeu_ps(out + 4 * (l + 4),
+                      _mm512_maskz_extractf32x4_ps(0xf, q[l], 1));
+        _mm_storeu_ps(out + 4 * (l + 8),
+                      _mm512_maskz_extractf32x4_ps(0xf, q[l], 2));
+        _mm_storeu_ps(out + 4 * (l + 12),
+                      _mm512_maskz_extractf32x4_ps(0xf, q[l], 3));
+    }
 }
 
 /* hf__grid_axis_v4 for sixteen points */
@@ -9036,11 +9027,82 @@ HF__TARGET_AVX512 HF__INLINE __m512 hf__grid_lanes_v16(int mask)
 }
 #endif
 
-/* ---- 6.10 the grid's push: a kernel text, at 4, 8 and 16 lanes --------- */
+/* ---- 6.10 the grid's splat and push: kernel texts at 4, 8, 16 lanes ----- */
 
 #endif /* !HF__PASS */
 
 #if defined(HF__PASS) && HF__PASS == HF__PASS_GRID
+/* hf_grid_build at point row j for ropes r .. r + HF__W - 1 (the points
+   each standing for `weight`), layers [first, end): the positions, cells,
+   weights and velocities across the lanes, then each lane's eight nodes
+   in the scalar code's order and operations, so its bytes. */
+HF__VTARGET HF__PRIVATE void
+HF__KN(hf__grid_splat)(hf_grid *grid, const hf_ropes *ro, const float *cube,
+                       float inv, int j, int r, float weight, int first,
+                       int end)
+{
+    const size_t R = (size_t)ro->rope_count, i = (size_t)j * R + (size_t)r;
+    const int n = grid->resolution;
+    const size_t n2 = (size_t)n * (size_t)n;
+    const HF__VEC one = HF__VSET1(1.0f), wt = HF__VSET1(weight);
+    const HF__VEC x = HF__VLD(ro->x + i), y = HF__VLD(ro->y + i);
+    const HF__VEC z = HF__VLD(ro->z + i);
+    const HF__VEC lh = HF__VLD(ro->last_h + r);
+    HF__VEC f[3], v[4], hv, wx0, wy[2], wz[2];
+    float cw[8][HF__W], va[4 * HF__W];
+    int kx[HF__W], ky[HF__W], kz[HF__W], l, c, mask;
+    mask = HF__VMASK(
+        HF__VAND(HF__KN(hf__grid_axis)(z, cube[2], inv, n, kz, &f[2]),
+                 HF__VAND(HF__KN(hf__grid_axis)(x, cube[0], inv, n, kx, &f[0]),
+                          HF__KN(hf__grid_axis)(y, cube[1], inv, n, ky,
+                                                &f[1]))));
+    if (!mask) {
+        HF__VZEROUPPER();
+        return;
+    }
+    /* hf__grid_hv and hf__grid_velocity */
+    hv = HF__VSEL(HF__VGT(lh, HF__VSET1(0.0f)),
+                  HF__VDIV(one, HF__VMAX(lh, HF__VSET1(1e-6f))),
+                  HF__VSET1(0.0f));
+    v[0] = wt;
+    v[1] = HF__VMUL(wt, HF__VMUL(HF__VSUB(x, HF__VLD(ro->px + i)), hv));
+    v[2] = HF__VMUL(wt, HF__VMUL(HF__VSUB(y, HF__VLD(ro->py + i)), hv));
+    v[3] = HF__VMUL(wt, HF__VMUL(HF__VSUB(z, HF__VLD(ro->pz + i)), hv));
+    HF__KN(hf__grid_aos)(v, va);
+    /* corner c = dx + 2 dy + 4 dz: its weight (1 - fx or fx) (wy wz) */
+    wx0 = HF__VSUB(one, f[0]);
+    wy[0] = HF__VSUB(one, f[1]);
+    wy[1] = f[1];
+    wz[0] = HF__VSUB(one, f[2]);
+    wz[1] = f[2];
+    for (c = 0; c < 4; ++c) {
+        const HF__VEC w = HF__VMUL(wy[c & 1], wz[c >> 1]);
+        HF__VST(cw[2 * c], HF__VMUL(wx0, w));
+        HF__VST(cw[2 * c + 1], HF__VMUL(f[0], w));
+    }
+    for (l = 0; l < HF__W; ++l) {
+        const hf__v4 vl = HF__LD(va + 4 * l);
+        size_t node;
+        int dz, dy;
+        if (!(mask >> l & 1) || kz[l] + 1 < first || kz[l] >= end) continue;
+        node = ((size_t)kz[l] * (size_t)n + (size_t)ky[l]) * (size_t)n +
+               (size_t)kx[l];
+        for (dz = 0; dz < 2; ++dz) {
+            float *o = grid->node + 4u * (node + (size_t)dz * n2);
+            if (kz[l] + dz < first || kz[l] + dz >= end) continue;
+            for (dy = 0; dy < 2; ++dy) {
+                float *q = o + 4u * (size_t)dy * (size_t)n;
+                c = 2 * dy + 4 * dz;
+                HF__ST(q, HF__ADD(HF__LD(q),
+                                  HF__MUL(HF__SET1(cw[c][l]), vl)));
+                HF__ST(q + 4, HF__ADD(HF__LD(q + 4),
+                                      HF__MUL(HF__SET1(cw[c + 1][l]), vl)));
+            }
+        }
+    }
+    HF__VZEROUPPER();
+}
+
 /* hf_ropes_apply_grid at point row j for ropes r .. r + HF__W - 1 (the
    lanes of `act` simulated), group j .. last - 1: the scalar code's
    operations lane by lane (hf__grid_read, the cap, the friction), so its
@@ -9195,8 +9257,8 @@ HF__KN(hf__grid_apply)(hf_ropes *ro, const hf_grid *grid, const float *sl,
 
 #ifndef HF__PASS
 
-/* the grid's push at four lanes (SSE2, NEON), eight (AVX2), sixteen
-   (AVX-512) */
+/* the grid's splat and push at four lanes (SSE2, NEON), eight (AVX2),
+   sixteen (AVX-512) */
 #if HF__V4
 #define HF__PASS HF__PASS_GRID
 #define HF__W 4
@@ -9212,6 +9274,101 @@ HF__KN(hf__grid_apply)(hf_ropes *ro, const hf_grid *grid, const float *sl,
 #define HF__W 16
 #include HF_HEADER_FILENAME
 #endif
+
+HFDEF hf_result hf_grid_build(hf_grid *grid, const hf_ropes *ropes,
+                              int rope_count, int first, int count)
+{
+    size_t R, n2;
+    float cube[5], inv;
+    int n, end, j, r, s, k, P, level;
+    if (!grid || !grid->node || !hf__ropes_ok(ropes))
+        return HF_ERROR_NULL_POINTER;
+    n = grid->resolution;
+    if (!hf__range_ok(first, count) || first + count > n ||
+        rope_count < 0 || rope_count > ropes->rope_count)
+        return HF_ERROR_BAD_RANGE;
+    if (!hf__kernels_ok(grid->simd, 0)) return HF_ERROR_BAD_PARAMETER;
+    level = hf_simd_resolve(grid->simd);
+    (void)level; /* 16 lanes at AVX-512, 8 at AVX2, 4 at SSE2 and NEON */
+    end = first + count;
+    R = (size_t)ropes->rope_count;
+    P = ropes->points;
+    n2 = (size_t)n * (size_t)n;
+    HF_MEMSET(grid->node + 4u * n2 * (size_t)first, 0,
+              4u * n2 * (size_t)count * sizeof(float));
+    hf__grid_cube(ropes, rope_count, n, cube);
+    inv = 1.0f / cube[3];
+    k = (int)cube[4];
+    for (j = 0; j < P; j += k) {
+        /* the points this one stands for: j .. j + k - 1 */
+        const float weight = (float)(j + k <= P ? k : P - j);
+        r = 0;
+#if HF__AVX512
+        if (level >= HF_SIMD_AVX512)
+            for (; r + 16 <= rope_count; r += 16)
+                hf__grid_splat_v16(grid, ropes, cube, inv, j, r, weight,
+                                   first, end);
+#endif
+#if HF__AVX2
+        if (level >= HF_SIMD_AVX2)
+            for (; r + 8 <= rope_count; r += 8)
+                hf__grid_splat_v8(grid, ropes, cube, inv, j, r, weight, first,
+                                  end);
+#endif
+#if HF__V4
+        if (level >= HF_SIMD_SSE2)
+            for (; r + 4 <= rope_count; r += 4)
+                hf__grid_splat_v4(grid, ropes, cube, inv, j, r, weight, first,
+                                  end);
+#endif
+        for (; r < rope_count; ++r) {
+            const size_t i = (size_t)j * R + (size_t)r;
+            float f[3], v[4], hv, wy[2], wz[2];
+            size_t node;
+            int kx, ky, kz, dz;
+            /* the layer first: a call for some layers skips the rest
+               of the points at once */
+            if (!hf__grid_axis(ropes->z[i], cube[2], inv, n, &kz, &f[2]) ||
+                kz + 1 < first || kz >= end ||
+                !hf__grid_axis(ropes->x[i], cube[0], inv, n, &kx, &f[0]) ||
+                !hf__grid_axis(ropes->y[i], cube[1], inv, n, &ky, &f[1]))
+                continue;
+            node = ((size_t)kz * (size_t)n + (size_t)ky) * (size_t)n +
+                   (size_t)kx;
+            hv = hf__grid_hv(ropes->last_h[r]);
+            hf__grid_velocity(ropes, i, hv, weight, v);
+            wy[0] = 1.0f - f[1];
+            wy[1] = f[1];
+            wz[0] = 1.0f - f[2];
+            wz[1] = f[2];
+            for (dz = 0; dz < 2; ++dz) {
+                float *o = grid->node + 4u * (node + (size_t)dz * n2);
+                int dy;
+                if (kz + dz < first || kz + dz >= end) continue;
+                for (dy = 0; dy < 2; ++dy) {
+                    float *q = o + 4u * (size_t)dy * (size_t)n;
+                    const float w = wy[dy] * wz[dz];
+                    hf__grid_add4(q, (1.0f - f[0]) * w, v);
+                    hf__grid_add4(q + 4, f[0] * w, v);
+                }
+            }
+        }
+    }
+    for (s = first; s < end; ++s) {
+        const float *o = grid->node + 4u * n2 * (size_t)s;
+        float *sl = grid->slab + HF__GRID_SLAB * s;
+        double w = 0.0, w2 = 0.0;
+        size_t c;
+        for (c = 0; c < n2; ++c) {
+            w += (double)o[4 * c];
+            w2 += (double)o[4 * c] * (double)o[4 * c];
+        }
+        for (k = 0; k < 5; ++k) sl[k] = cube[k];
+        sl[5] = (float)w;
+        sl[6] = (float)w2;
+    }
+    return HF_OK;
+}
 
 HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
                                     float dt, const hf_rope_params *params,
@@ -17360,6 +17517,7 @@ HFDEF hf_result hf_fur_build_grid(hf_fur *f, int first, int count)
 {
     if (!f) return HF_ERROR_NULL_POINTER;
     if (!f->grid) return first == 0 && count == 0 ? HF_OK : HF_ERROR_BAD_RANGE;
+    f->grid->simd = f->simd; /* the fur's kernel level (hf_fur_set_kernels) */
     return hf_grid_build(f->grid, f->ropes,
                          f->lod_sim ? f->guide_count : f->pure_count, first,
                          count);

@@ -5932,6 +5932,7 @@ static void test_grid_splits_same_bytes(void)
             hf_rope_params_init(&p);
             p.friction = 0.5f;
             p.simd = k < 2 ? HF_SIMD_SCALAR : tr_levels[k - 2];
+            t[k].g.simd = p.simd; /* the splat's kernels too */
             hf_ropes_set_roots(&s[k].ro, 0, R, moved, nrm, tan, 0);
             if (k == 1) { /* in pieces, the middle first: a piece that
                              wrote past its layers would spoil it */
@@ -6009,6 +6010,11 @@ static void test_grid_bad_input(void)
     CHECK_EQ_INT(hf_grid_build(&t.g, &s.ro, R + 1, 0, 8), HF_ERROR_BAD_RANGE);
     CHECK_EQ_INT(hf_grid_build(&t.g, NULL, R, 0, 8), HF_ERROR_NULL_POINTER);
     CHECK_EQ_INT(hf_grid_build(NULL, &s.ro, R, 0, 8), HF_ERROR_NULL_POINTER);
+    t.g.simd = HF_SIMD_AVX512 + 1; /* not a level */
+    CHECK_EQ_INT(hf_grid_build(&t.g, &s.ro, R, 0, 8), HF_ERROR_BAD_PARAMETER);
+    t.g.simd = -1;
+    CHECK_EQ_INT(hf_grid_build(&t.g, &s.ro, R, 0, 8), HF_ERROR_BAD_PARAMETER);
+    t.g.simd = 0;
     for (k = 0; k < 4 * 8 * 8 * 8; ++k) CHECK(t.g.node[k] == 0.0f);
     CHECK_EQ_INT(hf_grid_build(&t.g, &s.ro, R, 0, 8), HF_OK);
     {
