@@ -9058,6 +9058,9 @@ HF__KN(hf__grid_splat)(hf_grid *grid, const hf_ropes *ro, const float *cube,
                  HF__VAND(HF__KN(hf__grid_axis)(x, cube[0], inv, n, kx, &f[0]),
                           HF__KN(hf__grid_axis)(y, cube[1], inv, n, ky,
                                                 &f[1]))));
+    if (first > 0 || end < n) /* some layers: the lanes that reach them */
+        for (l = 0; l < HF__W; ++l)
+            if (kz[l] + 1 < first || kz[l] >= end) mask &= ~(1 << l);
     if (!mask) {
         HF__VZEROUPPER();
         return;
@@ -9086,7 +9089,7 @@ HF__KN(hf__grid_splat)(hf_grid *grid, const hf_ropes *ro, const float *cube,
         const hf__v4 vl = HF__LD(va + 4 * l);
         size_t node;
         int dz, dy;
-        if (!(mask >> l & 1) || kz[l] + 1 < first || kz[l] >= end) continue;
+        if (!(mask >> l & 1)) continue;
         node = ((size_t)kz[l] * (size_t)n + (size_t)ky[l]) * (size_t)n +
                (size_t)kx[l];
         HF__UNROLL for (dz = 0; dz < 2; ++dz) {
