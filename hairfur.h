@@ -8827,13 +8827,14 @@ HF__INLINE void hf__grid_t4_v4(hf__v4 q[4])
 #endif
 }
 
-/* Corner c of four lanes' cells: their nodes' four floats, transposed to
-   weight and momentum x, y, z across the lanes. */
-HF__INLINE void hf__grid_corner_v4(const float *node, const size_t *at,
-                                   size_t off, hf__v4 q[4])
+/* A corner of four lanes' cells (node: the corner's offset from the low
+   one; at: each lane's low corner, in floats): their nodes' four floats,
+   transposed to weight and momentum x, y, z across the lanes. */
+HF__INLINE void hf__grid_corner_v4(const float *node, const int *at,
+                                   hf__v4 q[4])
 {
     int l;
-    for (l = 0; l < 4; ++l) q[l] = HF__LD(node + 4u * (at[l] + off));
+    HF__UNROLL for (l = 0; l < 4; ++l) q[l] = HF__LD(node + at[l]);
     hf__grid_t4_v4(q);
 }
 
@@ -8848,24 +8849,31 @@ HF__INLINE void hf__grid_aos_v4(const hf__v4 v[4], float *out)
     for (l = 0; l < 4; ++l) HF__ST(out + 4 * l, q[l]);
 }
 
-/* One axis of four points (hf__grid_axis): the fraction, the cell in
-   k[0..3] (truncated, as the scalar cast), and the lanes inside the
+/* One axis of four points (hf__grid_axis): the cell k (truncated, as the
+   scalar cast, as a float) and the fraction f, and the lanes inside the
    cube. */
 HF__INLINE hf__v4 hf__grid_axis_v4(hf__v4 c, float o, float inv, int n,
-                                   int k[4], hf__v4 *f)
+                                   hf__v4 *k, hf__v4 *f)
 {
     const hf__v4 q = HF__MUL(HF__SUB(c, HF__SET1(o)), HF__SET1(inv));
 #if HF__SSE
-    const __m128i ki = _mm_cvttps_epi32(q);
-    _mm_storeu_si128((__m128i *)(void *)k, ki);
-    *f = HF__SUB(q, _mm_cvtepi32_ps(ki));
+    *k = _mm_cvtepi32_ps(_mm_cvttps_epi32(q));
 #else
-    const int32x4_t ki = vcvtq_s32_f32(q);
-    vst1q_s32(k, ki);
-    *f = HF__SUB(q, vcvtq_f32_s32(ki));
+    *k = vcvtq_f32_s32(vcvtq_s32_f32(q));
 #endif
+    *f = HF__SUB(q, *k);
     return HF__AND(HF__LE(HF__SET1(0.0f), q),
                    HF__LT(q, HF__SET1((float)(n - 1))));
+}
+
+/* Four whole floats (node indices, cells) as ints in out[0..3]. */
+HF__INLINE void hf__grid_ints_v4(hf__v4 v, int *out)
+{
+#if HF__SSE
+    _mm_storeu_si128((__m128i *)(void *)out, _mm_cvttps_epi32(v));
+#else
+    vst1q_s32(out, vcvtq_s32_f32(v));
+#endif
 }
 
 /* All bits set in lane l where bit l of mask is. */
@@ -8903,14 +8911,14 @@ HF__TARGET_AVX2 HF__INLINE void hf__grid_t4_v8(__m256 q[4])
    two halves of one register (the load's insert is not a shuffle), then
    one four-lane transpose within the halves: 8 shuffles, not 20. */
 HF__TARGET_AVX2 HF__INLINE void hf__grid_corner_v8(const float *node,
-                                                     const size_t *at,
-                                                     size_t off, __m256 q[4])
+                                                     const int *at,
+                                                     __m256 q[4])
 {
     int l;
-    for (l = 0; l < 4; ++l)
+    HF__UNROLL for (l = 0; l < 4; ++l)
         q[l] = _mm256_insertf128_ps(
-            _mm256_castps128_ps256(_mm_loadu_ps(node + 4u * (at[l] + off))),
-            _mm_loadu_ps(node + 4u * (at[l + 4] + off)), 1);
+            _mm256_castps128_ps256(_mm_loadu_ps(node + at[l])),
+            _mm_loadu_ps(node + at[l + 4]), 1);
     hf__grid_t4_v8(q);
 }
 
@@ -8929,17 +8937,22 @@ HF__TARGET_AVX2 HF__INLINE void hf__grid_aos_v8(const __m256 v[4], float *out)
 
 /* hf__grid_axis_v4 for eight points */
 HF__TARGET_AVX2 HF__INLINE __m256 hf__grid_axis_v8(__m256 c, float o,
-                                                     float inv, int n, int k[8],
-                                                     __m256 *f)
+                                                     float inv, int n,
+                                                     __m256 *k, __m256 *f)
 {
     const __m256 q = _mm256_mul_ps(_mm256_sub_ps(c, _mm256_set1_ps(o)),
                                    _mm256_set1_ps(inv));
-    const __m256i ki = _mm256_cvttps_epi32(q);
-    _mm256_storeu_si256((__m256i *)(void *)k, ki);
-    *f = _mm256_sub_ps(q, _mm256_cvtepi32_ps(ki));
+    *k = _mm256_cvtepi32_ps(_mm256_cvttps_epi32(q));
+    *f = _mm256_sub_ps(q, *k);
     return _mm256_and_ps(_mm256_cmp_ps(q, _mm256_setzero_ps(), _CMP_GE_OQ),
                          _mm256_cmp_ps(q, _mm256_set1_ps((float)(n - 1)),
                                        _CMP_LT_OQ));
+}
+
+/* hf__grid_ints_v4 for eight */
+HF__TARGET_AVX2 HF__INLINE void hf__grid_ints_v8(__m256 v, int *out)
+{
+    _mm256_storeu_si256((__m256i *)(void *)out, _mm256_cvttps_epi32(v));
 }
 
 /* hf__grid_lanes_v4 for eight lanes */
@@ -8971,19 +8984,19 @@ HF__TARGET_AVX512 HF__INLINE void hf__grid_t4_v16(__m512 q[4])
 /* hf__grid_corner_v8 for sixteen lanes: lanes l, l + 4, l + 8 and l + 12
    in the four quarters of one register */
 HF__TARGET_AVX512 HF__INLINE void hf__grid_corner_v16(const float *node,
-                                                      const size_t *at,
-                                                      size_t off, __m512 q[4])
+                                                      const int *at,
+                                                      __m512 q[4])
 {
     int l;
-    for (l = 0; l < 4; ++l) {
-        q[l] = _mm512_maskz_broadcast_f32x4(
-            0xffff, _mm_loadu_ps(node + 4u * (at[l] + off)));
-        q[l] = _mm512_maskz_insertf32x4(
-            0xffff, q[l], _mm_loadu_ps(node + 4u * (at[l + 4] + off)), 1);
-        q[l] = _mm512_maskz_insertf32x4(
-            0xffff, q[l], _mm_loadu_ps(node + 4u * (at[l + 8] + off)), 2);
-        q[l] = _mm512_maskz_insertf32x4(
-            0xffff, q[l], _mm_loadu_ps(node + 4u * (at[l + 12] + off)), 3);
+    HF__UNROLL for (l = 0; l < 4; ++l) {
+        q[l] = _mm512_maskz_broadcast_f32x4(0xffff,
+                                            _mm_loadu_ps(node + at[l]));
+        q[l] = _mm512_maskz_insertf32x4(0xffff, q[l],
+                                        _mm_loadu_ps(node + at[l + 4]), 1);
+        q[l] = _mm512_maskz_insertf32x4(0xffff, q[l],
+                                        _mm_loadu_ps(node + at[l + 8]), 2);
+        q[l] = _mm512_maskz_insertf32x4(0xffff, q[l],
+                                        _mm_loadu_ps(node + at[l + 12]), 3);
     }
     hf__grid_t4_v16(q);
 }
@@ -9010,16 +9023,21 @@ HF__TARGET_AVX512 HF__INLINE void hf__grid_aos_v16(const __m512 v[4],
 /* hf__grid_axis_v4 for sixteen points */
 HF__TARGET_AVX512 HF__INLINE __m512 hf__grid_axis_v16(__m512 c, float o,
                                                       float inv, int n,
-                                                      int k[16], __m512 *f)
+                                                      __m512 *k, __m512 *f)
 {
     const __m512 q = _mm512_mul_ps(_mm512_sub_ps(c, _mm512_set1_ps(o)),
                                    _mm512_set1_ps(inv));
-    const __m512i ki = _mm512_maskz_cvttps_epi32(0xffff, q);
-    _mm512_storeu_si512((void *)k, ki);
-    *f = _mm512_sub_ps(q, _mm512_maskz_cvtepi32_ps(0xffff, ki));
+    *k = _mm512_maskz_cvtepi32_ps(0xffff, _mm512_maskz_cvttps_epi32(0xffff, q));
+    *f = _mm512_sub_ps(q, *k);
     return hf__m16(
         _mm512_cmp_ps_mask(q, _mm512_setzero_ps(), _CMP_GE_OQ) &
         _mm512_cmp_ps_mask(q, _mm512_set1_ps((float)(n - 1)), _CMP_LT_OQ));
+}
+
+/* hf__grid_ints_v4 for sixteen */
+HF__TARGET_AVX512 HF__INLINE void hf__grid_ints_v16(__m512 v, int *out)
+{
+    _mm512_storeu_si512((void *)out, _mm512_maskz_cvttps_epi32(0xffff, v));
 }
 
 /* hf__grid_lanes_v4 for sixteen lanes */
@@ -9034,6 +9052,14 @@ HF__TARGET_AVX512 HF__INLINE __m512 hf__grid_lanes_v16(int mask)
 #endif /* !HF__PASS */
 
 #if defined(HF__PASS) && HF__PASS == HF__PASS_GRID
+/* The node index of cells k[0..2] (whole floats): (kz n + ky) n + kx,
+   exact in a float for every grid (128^3 < 2^24). */
+HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__grid_node)(const HF__VEC *k, int n)
+{
+    const HF__VEC nn = HF__VSET1((float)n);
+    return HF__VADD(HF__VMUL(HF__VADD(HF__VMUL(k[2], nn), k[1]), nn), k[0]);
+}
+
 /* hf_grid_build at point row j for ropes r .. r + HF__W - 1 (the points
    each standing for `weight`), layers [first, end): the positions, cells,
    weights and velocities across the lanes, then each lane's eight nodes
@@ -9050,14 +9076,20 @@ HF__KN(hf__grid_splat)(hf_grid *grid, const hf_ropes *ro, const float *cube,
     const HF__VEC x = HF__VLD(ro->x + i), y = HF__VLD(ro->y + i);
     const HF__VEC z = HF__VLD(ro->z + i);
     const HF__VEC lh = HF__VLD(ro->last_h + r);
-    HF__VEC f[3], v[4], hv, wx0, wy[2], wz[2];
+    HF__VEC f[3], k[3], v[4], hv, wx0, wy[2], wz[2], in;
     float cw[8][HF__W], va[4 * HF__W];
-    int kx[HF__W], ky[HF__W], kz[HF__W], l, c, mask;
-    mask = HF__VMASK(
-        HF__VAND(HF__KN(hf__grid_axis)(z, cube[2], inv, n, kz, &f[2]),
-                 HF__VAND(HF__KN(hf__grid_axis)(x, cube[0], inv, n, kx, &f[0]),
-                          HF__KN(hf__grid_axis)(y, cube[1], inv, n, ky,
-                                                &f[1]))));
+    int at[HF__W], kz[HF__W], l, c, mask;
+    in = HF__VAND(HF__KN(hf__grid_axis)(z, cube[2], inv, n, &k[2], &f[2]),
+                  HF__VAND(HF__KN(hf__grid_axis)(x, cube[0], inv, n, &k[0],
+                                                 &f[0]),
+                           HF__KN(hf__grid_axis)(y, cube[1], inv, n, &k[1],
+                                                 &f[1])));
+    mask = HF__VMASK(in);
+    /* the cells' low corners' nodes (whole floats, exact below 2^24) */
+    HF__KN(hf__grid_ints)(HF__VSEL(in, HF__KN(hf__grid_node)(k, n),
+                                   HF__VSET1(0.0f)),
+                          at);
+    HF__KN(hf__grid_ints)(HF__VSEL(in, k[2], HF__VSET1(0.0f)), kz);
     if (first > 0 || end < n) /* some layers: the lanes that reach them */
         for (l = 0; l < HF__W; ++l)
             if (kz[l] + 1 < first || kz[l] >= end) mask &= ~(1 << l);
@@ -9087,13 +9119,10 @@ HF__KN(hf__grid_splat)(hf_grid *grid, const hf_ropes *ro, const float *cube,
     }
     for (l = 0; l < HF__W; ++l) {
         const hf__v4 vl = HF__LD(va + 4 * l);
-        size_t node;
         int dz, dy;
         if (!(mask >> l & 1)) continue;
-        node = ((size_t)kz[l] * (size_t)n + (size_t)ky[l]) * (size_t)n +
-               (size_t)kx[l];
         HF__UNROLL for (dz = 0; dz < 2; ++dz) {
-            float *o = grid->node + 4u * (node + (size_t)dz * n2);
+            float *o = grid->node + 4u * ((size_t)at[l] + (size_t)dz * n2);
             if (kz[l] + dz < first || kz[l] + dz >= end) continue;
             HF__UNROLL for (dy = 0; dy < 2; ++dy) {
                 float *q = o + 4u * (size_t)dy * (size_t)n;
@@ -9127,22 +9156,24 @@ HF__KN(hf__grid_apply)(hf_ropes *ro, const hf_grid *grid, const float *sl,
     HF__VEC f[3], in, w[3], v[4], a[4], g[3], m8[8], hv, hl, lhm;
     HF__VEC a0, a1, a2, a3;
     HF__VEC wx0, wy0, wz0, wyz[4], wxz[4], wxy[4], sx, sy, sz, ms, gn, gs;
-    HF__VEC dv[3];
-    int kx[HF__W], ky[HF__W], kz[HF__W], l, c, mask, p;
-    size_t at[HF__W];
-    in = HF__VAND(HF__KN(hf__grid_axis)(z, sl[2], inv, n, kz, &f[2]),
-                    HF__VAND(HF__KN(hf__grid_axis)(x, sl[0], inv, n, kx, &f[0]),
-                               HF__KN(hf__grid_axis)(y, sl[1], inv, n, ky, &f[1])));
+    HF__VEC dv[3], k[3];
+    int at[HF__W], c, mask, p;
+    in = HF__VAND(HF__KN(hf__grid_axis)(z, sl[2], inv, n, &k[2], &f[2]),
+                  HF__VAND(HF__KN(hf__grid_axis)(x, sl[0], inv, n, &k[0], &f[0]),
+                           HF__KN(hf__grid_axis)(y, sl[1], inv, n, &k[1],
+                                                 &f[1])));
     mask = HF__VMASK(in) & act;
     if (!mask) {
         HF__VZEROUPPER();
         return;
     }
-    /* lanes out of the cube read node 0 */
-    HF__UNROLL for (l = 0; l < HF__W; ++l)
-        at[l] = mask >> l & 1 ? ((size_t)kz[l] * (size_t)n + (size_t)ky[l]) *
-                                        (size_t)n + (size_t)kx[l]
-                              : 0u;
+    /* the low corners' first floats (4 a node: exact below 2^24, as
+       128^3 x 4 is); lanes out of the cube read node 0 */
+    HF__KN(hf__grid_ints)(HF__VSEL(in,
+                                   HF__VMUL(HF__KN(hf__grid_node)(k, n),
+                                            HF__VSET1(4.0f)),
+                                   HF__VSET1(0.0f)),
+                          at);
     /* hf__grid_hv and the step's sub-step */
     lhm = HF__VGT(lh, HF__VSET1(0.0f));
     hv = HF__VSEL(
@@ -9174,11 +9205,11 @@ HF__KN(hf__grid_apply)(hf_ropes *ro, const hf_grid *grid, const float *sl,
     a0 = a1 = a2 = a3 = HF__VSET1(0.0f);
     HF__UNROLL for (c = 0; c < 8; ++c) {
         HF__VEC t[4], wc;
-        HF__KN(hf__grid_corner)(grid->node, at,
-                            (size_t)(c >> 2) * n2 +
-                                (size_t)((c >> 1) & 1) * (size_t)n +
-                                (size_t)(c & 1),
-                            t);
+        HF__KN(hf__grid_corner)(grid->node +
+                                    4u * ((size_t)(c >> 2) * n2 +
+                                          (size_t)((c >> 1) & 1) * (size_t)n +
+                                          (size_t)(c & 1)),
+                                at, t);
         wc = HF__VMUL(c & 1 ? f[0] : wx0, wyz[c >> 1]);
         a0 = HF__VADD(a0, HF__VMUL(wc, t[0]));
         a1 = HF__VADD(a1, HF__VMUL(wc, t[1]));
