@@ -2317,9 +2317,9 @@ HFDEF hf_result hf_fur_set_rope_params_range(hf_fur *fur, int first,
    animated then. Errors:
    HF_ERROR_NULL_POINTER, HF_ERROR_BAD_RANGE, HF_ERROR_BAD_PARAMETER. */
 HFDEF hf_result hf_fur_set_mode(hf_fur *fur, int first, int count, int mode);
-/* The kernels of the fur's rope step and interpolation: the SIMD level
-   (hf_simd_level; 0 = the best the CPU runs; it replaces the simd of the
-   fur's rope parameters) and the stores of the interpolation
+/* The kernels of the fur's rope step, grid and interpolation: the SIMD
+   level (hf_simd_level; 0 = the best the CPU runs; it replaces the simd of
+   the fur's rope parameters and grid) and the stores of the interpolation
    (nontemporal: 0 by size, 1 streaming, 2 ordinary, as
    hf_fur_desc.nontemporal). Every choice gives the same bytes; for tests,
    benchmarks and tuning. Ribbons and points take theirs from
@@ -16836,10 +16836,12 @@ HF__PRIVATE hf_result hf__fur_ropes(hf_fur *f, hf__fur_build *b)
             HF_OK)
         return r;
     if ((r = hf__fur_keep_rest_frames(f)) != HF_OK) return r;
-    if (b->desc.grid_resolution > 0 &&
-        (r = hf_grid_create(b->desc.grid_resolution, &f->alloc, &f->grid)) !=
-            HF_OK)
-        return r;
+    if (b->desc.grid_resolution > 0) {
+        if ((r = hf_grid_create(b->desc.grid_resolution, &f->alloc,
+                                &f->grid)) != HF_OK)
+            return r;
+        f->grid->simd = f->simd; /* the fur's kernel level */
+    }
     f->lod = 1.0f;
     f->width_scale = 1.0f;
     f->lod_sim = 1;
@@ -17556,7 +17558,6 @@ HFDEF hf_result hf_fur_build_grid(hf_fur *f, int first, int count)
 {
     if (!f) return HF_ERROR_NULL_POINTER;
     if (!f->grid) return first == 0 && count == 0 ? HF_OK : HF_ERROR_BAD_RANGE;
-    f->grid->simd = f->simd; /* the fur's kernel level (hf_fur_set_kernels) */
     return hf_grid_build(f->grid, f->ropes,
                          f->lod_sim ? f->guide_count : f->pure_count, first,
                          count);
@@ -17875,6 +17876,7 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *f, int simd, int nontemporal)
         return HF_ERROR_BAD_PARAMETER;
     f->simd = simd;
     f->nontemporal = nontemporal;
+    if (f->grid) f->grid->simd = simd;
     return HF_OK;
 }
 
