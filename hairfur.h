@@ -2942,6 +2942,51 @@ HFDEF int hf_simd_resolve(int requested)
     return requested < best ? requested : best;
 }
 
+/* The dispatch, one shape for every stage. A stage's kernels stand in a
+   const array of descriptors beside them, hf__<stage>_widths, one a
+   width, widest first, ending with the scalar reference (width 1, which
+   every build has). Each descriptor opens with its hf__isa: the lanes,
+   the hf_simd_level it needs and the instruction set its kernels use (a
+   kernel is named by its width, hf__<name>_v1, _v4, _v8 or _v16, not by
+   its ISA: _v4 is SSE2 or NEON, whichever the build targets). A call
+   resolves its level once, hf__kernels_for(widths, level): the widest
+   descriptor whose level is at most the one asked for (0: the best) and
+   the CPU runs. From there a stage either calls one kernel for its whole
+   range, or walks down the array: a kernel does what its width can (whole
+   groups of its lanes, or the data shapes it is built for) and returns
+   where it stopped, the narrower ones take the rest, and the scalar one
+   finishes. */
+typedef struct hf__isa {
+    int lanes;        /* 1, 4, 8 or 16 */
+    int level;        /* the hf_simd_level its kernels need */
+    const char *name; /* the instruction set: "scalar", "SSE2", ... */
+} hf__isa;
+#define HF__ISA_V1 {1, HF_SIMD_SCALAR, "scalar"}
+#if HF__SSE
+#define HF__ISA_V4 {4, HF_SIMD_SSE2, "SSE2"}
+#else
+#define HF__ISA_V4 {4, HF_SIMD_NEON, "NEON"}
+#endif
+#define HF__ISA_V8 {8, HF_SIMD_AVX2, "AVX2"}
+#define HF__ISA_V16 {16, HF_SIMD_AVX512, "AVX-512"}
+
+/* The index in a stage's widths (first descriptor widest, `size` bytes
+   each) of the one hf__kernels_for picks for the requested level. */
+HF__PRIVATE int hf__kernels_index(const hf__isa *widest, size_t size,
+                                  int requested)
+{
+    const int level = hf_simd_resolve(requested);
+    const unsigned char *d = (const unsigned char *)widest;
+    int i = 0;
+    while (((const hf__isa *)(const void *)(d + (size_t)i * size))->level >
+           level)
+        ++i;
+    return i;
+}
+#define hf__kernels_for(widths, requested)                                     \
+    ((widths) + hf__kernels_index(&(widths)[0].isa, sizeof((widths)[0]),      \
+                                  (requested)))
+
 /* ---- 1.1 defaults: what every zero field means, in one place ------------ */
 
 /* Every public struct follows one rule: a zero field means the default
@@ -5104,6 +5149,9 @@ typedef struct hf__col_prep {
    walks them in batches of this many (hf__ftl_collide_one). */
 #define HF__FTL_NEAR 8
 
+struct hf__pose_kernels; /* the kernels per width: 6.4, 6.8 */
+struct hf__rope_rows;
+
 /* Resolved per-call constants. */
 typedef struct hf__rope_step {
     int n;             /* sub-steps */
@@ -5121,6 +5169,10 @@ typedef struct hf__rope_step {
     int global_on, local_on;
     int ktab; /* kg, kl hold hf__rope_kg, hf__rope_kl */
     int level; /* hf_simd_resolve(params->simd) */
+    /* its kernels (hf__kernels_for): the pose rows, the rows of a
+       sub-step */
+    const struct hf__pose_kernels *pose;
+    const struct hf__rope_rows *rows;
     float kg[HF__ROPE_KTAB], kl[HF__ROPE_KTAB];
 } hf__rope_step;
 
@@ -5522,12 +5574,12 @@ HF__PRIVATE hf__v4 hf__rope_unit_v4(const hf__v4 *v, hf__v4 *out)
     return HF__GT(m, HF__SET1(1e-30f));
 }
 
-/* hf__ropes_write_roots for ropes [r, r + 4): the same operations lane by
-   lane, so the same bytes; a degenerate tangent, rare, through
+/* hf__ropes_write_roots_v1 for ropes [r, r + 4): the same operations lane
+   by lane, so the same bytes; a degenerate tangent, rare, through
    hf__rope_perp lane by lane. */
-HF__PRIVATE void hf__ropes_write_roots_v4(hf_ropes *ro, int r,
-                                          const float *pos, const float *nrm,
-                                          const float *tan, int stride)
+HF__PRIVATE void hf__ropes_write_roots4(hf_ropes *ro, int r,
+                                        const float *pos, const float *nrm,
+                                        const float *tan, int stride)
 {
     const size_t R = (size_t)ro->rope_count;
     const hf__v4 zero = HF__SET1(0.0f);
@@ -5582,18 +5634,27 @@ HF__PRIVATE void hf__ropes_write_roots_v4(hf_ropes *ro, int r,
         HF__ST(ro->frame + (size_t)(9 + k) * R + (size_t)r, v[k]);
     }
 }
+
+/* The root frames of ropes [a, b), whole groups of four; returns where
+   they end. */
+HF__PRIVATE int hf__ropes_write_roots_v4(hf_ropes *ro, int a, int b,
+                                         const float *pos, const float *nrm,
+                                         const float *tan, int stride)
+{
+    for (; a + 4 <= b; a += 4)
+        hf__ropes_write_roots4(ro, a, pos, nrm, tan, stride);
+    return a;
+}
 #endif
 
-HF__PRIVATE void hf__ropes_write_roots(hf_ropes *ro, int first, int count,
-                                       const float *pos, const float *nrm,
-                                       const float *tan, int stride)
+/* The root frames of ropes [a, b) from their roots' positions, normals
+   and tangents: the reference. */
+HF__PRIVATE int hf__ropes_write_roots_v1(hf_ropes *ro, int a, int b,
+                                         const float *pos, const float *nrm,
+                                         const float *tan, int stride)
 {
-    int r = first;
-#if HF__V4
-    for (; r + 4 <= first + count; r += 4)
-        hf__ropes_write_roots_v4(ro, r, pos, nrm, tan, stride);
-#endif
-    for (; r < first + count; ++r) {
+    int r;
+    for (r = a; r < b; ++r) {
         float n[3], t[3], f[12];
         const float *tin = hf__rope_at(tan, stride, (size_t)r);
         hf__rope_unit(hf__rope_at(nrm, stride, (size_t)r), n);
@@ -5601,6 +5662,30 @@ HF__PRIVATE void hf__ropes_write_roots(hf_ropes *ro, int first, int count,
         hf__rope_basis(hf__rope_at(pos, stride, (size_t)r), n, t, f);
         hf__rope_put_frame(ro, 0, r, f);
     }
+    return b;
+}
+
+typedef struct hf__roots_kernels {
+    hf__isa isa;
+    int (*write)(hf_ropes *, int, int, const float *, const float *,
+                 const float *, int);
+} hf__roots_kernels;
+
+static const hf__roots_kernels hf__roots_widths[] = {
+#if HF__V4
+    {HF__ISA_V4, hf__ropes_write_roots_v4},
+#endif
+    {HF__ISA_V1, hf__ropes_write_roots_v1}};
+
+/* The dispatch of the root frames at SIMD level `simd` (hf__roots_widths). */
+HF__PRIVATE void hf__ropes_write_roots(hf_ropes *ro, int first, int count,
+                                       const float *pos, const float *nrm,
+                                       const float *tan, int stride, int simd)
+{
+    const hf__roots_kernels *k = hf__kernels_for(hf__roots_widths, simd);
+    int a = first;
+    for (; a < first + count; ++k)
+        a = k->write(ro, a, first + count, pos, nrm, tan, stride);
 }
 
 /* The root frame at fraction alpha of the way from the previous frame to
@@ -5660,11 +5745,15 @@ HF__PRIVATE void hf__rope_reset_one(hf_ropes *ro, int r)
     ro->blend[r] = ro->mode[r] == HF_ROPE_ANIMATED ? 1.0f : 0.0f;
 }
 
-HFDEF hf_result hf_ropes_set_rest(hf_ropes *ropes, int first, int count,
-                                  const float *positions, int position_stride,
-                                  const float *root_pos,
-                                  const float *root_normal,
-                                  const float *root_tangent, int root_stride)
+/* hf_ropes_set_rest with the root frames' kernels at SIMD level simd (the
+   fur's: hf_fur_set_kernels) */
+HF__PRIVATE hf_result hf__ropes_set_rest(hf_ropes *ropes, int first,
+                                         int count, const float *positions,
+                                         int position_stride,
+                                         const float *root_pos,
+                                         const float *root_normal,
+                                         const float *root_tangent,
+                                         int root_stride, int simd)
 {
     size_t P, R;
     hf_result res;
@@ -5687,7 +5776,7 @@ HFDEF hf_result hf_ropes_set_rest(hf_ropes *ropes, int first, int count,
             if (!hf__rope_coord_ok(q)) return HF_ERROR_BAD_PARAMETER;
         }
     hf__ropes_write_roots(ropes, first, count, root_pos, root_normal,
-                          root_tangent, root_stride);
+                          root_tangent, root_stride, simd);
     for (r = first; r < first + count; ++r) {
         float f[12], total = 0.0f;
         hf__rope_get_frame(ropes, 0, r, f);
@@ -5720,10 +5809,23 @@ HFDEF hf_result hf_ropes_set_rest(hf_ropes *ropes, int first, int count,
     return HF_OK;
 }
 
-HFDEF hf_result hf_ropes_set_roots(hf_ropes *ropes, int first, int count,
-                                   const float *root_pos,
-                                   const float *root_normal,
-                                   const float *root_tangent, int root_stride)
+HFDEF hf_result hf_ropes_set_rest(hf_ropes *ropes, int first, int count,
+                                  const float *positions, int position_stride,
+                                  const float *root_pos,
+                                  const float *root_normal,
+                                  const float *root_tangent, int root_stride)
+{
+    return hf__ropes_set_rest(ropes, first, count, positions, position_stride,
+                              root_pos, root_normal, root_tangent, root_stride,
+                              HF_SIMD_AUTO);
+}
+
+/* hf_ropes_set_roots at SIMD level simd (the fur's) */
+HF__PRIVATE hf_result hf__ropes_set_roots(hf_ropes *ropes, int first,
+                                          int count, const float *root_pos,
+                                          const float *root_normal,
+                                          const float *root_tangent,
+                                          int root_stride, int simd)
 {
     hf_result res;
     if (!hf__ropes_ok(ropes)) return HF_ERROR_NULL_POINTER;
@@ -5732,8 +5834,17 @@ HFDEF hf_result hf_ropes_set_roots(hf_ropes *ropes, int first, int count,
                                 root_tangent, root_stride);
     if (res != HF_OK) return res;
     hf__ropes_write_roots(ropes, first, count, root_pos, root_normal,
-                          root_tangent, root_stride);
+                          root_tangent, root_stride, simd);
     return HF_OK;
+}
+
+HFDEF hf_result hf_ropes_set_roots(hf_ropes *ropes, int first, int count,
+                                   const float *root_pos,
+                                   const float *root_normal,
+                                   const float *root_tangent, int root_stride)
+{
+    return hf__ropes_set_roots(ropes, first, count, root_pos, root_normal,
+                               root_tangent, root_stride, HF_SIMD_AUTO);
 }
 
 /* Rope r starts gliding to animation: its pose, in the coordinates of the
@@ -5849,7 +5960,7 @@ HFDEF hf_result hf_ropes_max_stretch(const hf_ropes *ropes, int first,
    starts at rope `base` (a for a buffer of exactly the range, 0 for
    absolute indexing), at any stride: the reference, and the kernels'
    tails where their blocks of points end. */
-HF__PRIVATE void hf__ropes_copy_ref(const hf_ropes *ro, int a, int b,
+HF__PRIVATE void hf__ropes_copy_points(const hf_ropes *ro, int a, int b,
                                     size_t j0, float *out, size_t stride,
                                     int base)
 {
@@ -5888,8 +5999,8 @@ HF__INLINE void hf__ropes_out_rows(const hf_ropes *ro, size_t j, int n,
 
 /* Ropes [r, r + 4) into packed output that starts at rope `base`: four
    points at a time, three 4 x 4 transposes (hf__ropes_out_rows). */
-HF__PRIVATE void hf__ropes_get_sse(const hf_ropes *ro, int r, float *out,
-                                   int base)
+HF__PRIVATE void hf__ropes_copy4(const hf_ropes *ro, int r, float *out,
+                                 int base)
 {
     const size_t P = (size_t)ro->points;
     size_t j, i;
@@ -5911,7 +6022,7 @@ HF__PRIVATE void hf__ropes_get_sse(const hf_ropes *ro, int r, float *out,
             _mm_storeu_ps(out + i + 9 * P, v3);
         }
     }
-    hf__ropes_copy_ref(ro, r, r + 4, j, out, 12, base);
+    hf__ropes_copy_points(ro, r, r + 4, j, out, 12, base);
 }
 #endif
 
@@ -5939,11 +6050,10 @@ HF__TARGET_AVX2 HF__INLINE void hf__ropes_t8x4(const float *const *q,
     _mm256_storeu_ps(o + 3 * step, _mm256_shuffle_ps(a1, a3, 0xee));
 }
 
-/* hf__ropes_get_sse for ropes [r, r + 8), eight points at a time: three
+/* hf__ropes_copy4 for ropes [r, r + 8), eight points at a time: three
    8 x 8 transposes (hf__ropes_out_rows). */
-HF__TARGET_AVX2 HF__PRIVATE void hf__ropes_get_avx2(const hf_ropes *ro,
-                                                   int r, float *out,
-                                                   int base)
+HF__TARGET_AVX2 HF__PRIVATE void hf__ropes_copy8(const hf_ropes *ro, int r,
+                                                float *out, int base)
 {
     const size_t P = (size_t)ro->points;
     size_t j;
@@ -5959,26 +6069,61 @@ HF__TARGET_AVX2 HF__PRIVATE void hf__ropes_get_avx2(const hf_ropes *ro,
         hf__ropes_t8x4(row + 16, 4, o + 16 + 12 * P, 3 * P);
     }
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
-    hf__ropes_copy_ref(ro, r, r + 8, j, out, 12, base);
+    hf__ropes_copy_points(ro, r, r + 8, j, out, 12, base);
+}
+
+/* Ropes [a, b), whole groups of eight, packed output only; returns where
+   they end. */
+HF__PRIVATE int hf__ropes_copy_v8(const hf_ropes *ro, int a, int b,
+                                  float *out, size_t stride, int base)
+{
+    if (stride == 12)
+        for (; a + 8 <= b; a += 8) hf__ropes_copy8(ro, a, out, base);
+    return a;
 }
 #endif
 
-/* The dispatch of the rope-major copies: the kernels above take packed
-   groups of eight and four ropes at `level` and above, the reference the
-   rest, at any stride. */
-HF__PRIVATE void hf__ropes_copy(const hf_ropes *ro, int a, int b, float *out,
-                                size_t stride, int base, int level)
+#if HF__SSE
+/* hf__ropes_copy_v8 in groups of four */
+HF__PRIVATE int hf__ropes_copy_v4(const hf_ropes *ro, int a, int b,
+                                  float *out, size_t stride, int base)
 {
+    if (stride == 12)
+        for (; a + 4 <= b; a += 4) hf__ropes_copy4(ro, a, out, base);
+    return a;
+}
+#endif
+
+/* Ropes [a, b) at any stride: the reference; returns b. */
+HF__PRIVATE int hf__ropes_copy_v1(const hf_ropes *ro, int a, int b,
+                                  float *out, size_t stride, int base)
+{
+    hf__ropes_copy_points(ro, a, b, 0, out, stride, base);
+    return b;
+}
+
+typedef struct hf__copy_kernels {
+    hf__isa isa;
+    int (*copy)(const hf_ropes *, int, int, float *, size_t, int);
+} hf__copy_kernels;
+
+static const hf__copy_kernels hf__copy_widths[] = {
 #if HF__AVX2
-    if (stride == 12 && level >= HF_SIMD_AVX2)
-        for (; a + 8 <= b; a += 8) hf__ropes_get_avx2(ro, a, out, base);
+    {HF__ISA_V8, hf__ropes_copy_v8},
 #endif
 #if HF__SSE
-    if (stride == 12 && level >= HF_SIMD_SSE2)
-        for (; a + 4 <= b; a += 4) hf__ropes_get_sse(ro, a, out, base);
+    {HF__ISA_V4, hf__ropes_copy_v4},
 #endif
-    (void)level;
-    hf__ropes_copy_ref(ro, a, b, 0, out, stride, base);
+    {HF__ISA_V1, hf__ropes_copy_v1}};
+
+/* The dispatch of the rope-major copies at SIMD level `simd`
+   (hf__copy_widths): the widest kernel the level runs takes what it can,
+   the narrower ones the rest. */
+HF__PRIVATE void hf__ropes_copy(const hf_ropes *ro, int a, int b, float *out,
+                                size_t stride, int base, int simd)
+{
+    const hf__copy_kernels *k = hf__kernels_for(hf__copy_widths, simd);
+    for (; a < b; ++k) a = k->copy(ro, a, b, out, stride, base);
 }
 
 HFDEF hf_result hf_ropes_get_positions(const hf_ropes *ropes, int first,
@@ -5988,8 +6133,7 @@ HFDEF hf_result hf_ropes_get_positions(const hf_ropes *ropes, int first,
     if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
     if (!hf__stride_ok(out, stride, 12)) return HF_ERROR_BAD_STRIDE;
     hf__ropes_copy(ropes, first, first + count, out,
-                   (size_t)(stride ? stride : 12), 0,
-                   hf_simd_resolve(HF_SIMD_AUTO));
+                   (size_t)(stride ? stride : 12), 0, HF_SIMD_AUTO);
     return HF_OK;
 }
 
@@ -6000,8 +6144,7 @@ HFDEF hf_result hf_ropes_copy_range(const hf_ropes *ropes, int first,
     if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
     if (!hf__stride_ok(out, stride, 12)) return HF_ERROR_BAD_STRIDE;
     hf__ropes_copy(ropes, first, first + count, out,
-                   (size_t)(stride ? stride : 12), first,
-                   hf_simd_resolve(HF_SIMD_AUTO));
+                   (size_t)(stride ? stride : 12), first, HF_SIMD_AUTO);
     return HF_OK;
 }
 
@@ -6073,13 +6216,12 @@ HF__PRIVATE void hf__frame_rows(const float *fr, size_t stride,
 }
 
 /* Point row j of ropes [a, b) at frame rows fr (12 rows) times rest:
-   the scalar reference, the four-lane kernel (whole groups from a,
-   returns where they end) and their dispatch. */
-HF__PRIVATE void hf__rope_pose_row_ref(const hf_ropes *ro, int j, int a,
-                                       int b, const float *fr,
-                                       float *HF__RESTRICT ox,
-                                       float *HF__RESTRICT oy,
-                                       float *HF__RESTRICT oz)
+   the scalar reference, the four-lane kernel (whole groups from a), each
+   returning where it stopped, and their dispatch. */
+HF__PRIVATE int hf__rope_pose_row_v1(const hf_ropes *ro, int j, int a, int b,
+                                     const float *fr, float *HF__RESTRICT ox,
+                                     float *HF__RESTRICT oy,
+                                     float *HF__RESTRICT oz)
 {
     const size_t R = (size_t)ro->rope_count;
     const float *u = HF__ROW(ro->rest_u, j, R), *v = HF__ROW(ro->rest_v, j, R),
@@ -6092,6 +6234,7 @@ HF__PRIVATE void hf__rope_pose_row_ref(const hf_ropes *ro, int j, int a,
         oy[r] = f[1][r] + f[4][r] * u[r] + f[7][r] * v[r] + f[10][r] * w[r];
         oz[r] = f[2][r] + f[5][r] * u[r] + f[8][r] * v[r] + f[11][r] * w[r];
     }
+    return b;
 }
 
 #if HF__V4
@@ -6122,15 +6265,28 @@ hf__rope_pose_row_v4(const hf_ropes *ro, int j, int a, int b, const float *fr,
 }
 #endif
 
+typedef struct hf__pose_kernels {
+    hf__isa isa;
+    int (*row)(const hf_ropes *, int, int, int, const float *, float *,
+               float *, float *);
+} hf__pose_kernels;
+
+static const hf__pose_kernels hf__pose_widths[] = {
+#if HF__V4
+    {HF__ISA_V4, hf__rope_pose_row_v4},
+#endif
+    {HF__ISA_V1, hf__rope_pose_row_v1}};
+
+/* The dispatch of a pose row with the kernels st->pose (hf__pose_widths,
+   resolved by hf__rope_step_setup). */
 HF__PRIVATE void hf__rope_pose_row(const hf_ropes *ro, int j, int a, int b,
                                    const float *fr, float *HF__RESTRICT ox,
                                    float *HF__RESTRICT oy,
-                                   float *HF__RESTRICT oz)
+                                   float *HF__RESTRICT oz,
+                                   const hf__rope_step *st)
 {
-#if HF__V4
-    a = hf__rope_pose_row_v4(ro, j, a, b, fr, ox, oy, oz);
-#endif
-    hf__rope_pose_row_ref(ro, j, a, b, fr, ox, oy, oz);
+    const hf__pose_kernels *k = st->pose;
+    for (; a < b; ++k) a = k->row(ro, j, a, b, fr, ox, oy, oz);
 }
 
 /* Animated ropes [a, b): rest pose carried by the current frame; previous
@@ -6154,9 +6310,9 @@ HF__PRIVATE void hf__ropes_animated_run(hf_ropes *ro, int a, int b,
     }
     for (j = 0; j < ro->points; ++j) {
         hf__rope_pose_row(ro, j, a, b, F, HF__ROW(ro->x, j, R),
-                          HF__ROW(ro->y, j, R), HF__ROW(ro->z, j, R));
+                          HF__ROW(ro->y, j, R), HF__ROW(ro->z, j, R), st);
         hf__rope_pose_row(ro, j, a, b, G, HF__ROW(ro->px, j, R),
-                          HF__ROW(ro->py, j, R), HF__ROW(ro->pz, j, R));
+                          HF__ROW(ro->py, j, R), HF__ROW(ro->pz, j, R), st);
     }
 }
 
@@ -7036,7 +7192,7 @@ HF__PRIVATE void hf__ropes_integrate_ref(hf_ropes *ro, const float *F, int a,
         ro->py[r] = ro->y[r];
         ro->pz[r] = ro->z[r];
     }
-    hf__rope_pose_row(ro, 0, a, b, F, ro->x, ro->y, ro->z);
+    hf__rope_pose_row_v1(ro, 0, a, b, F, ro->x, ro->y, ro->z);
 }
 
 /* Shape: the root segment and the global pose, each point pulled toward
@@ -7233,21 +7389,25 @@ HF__PRIVATE void hf__ropes_solve_ref(hf_ropes *ro, const float *F, int a,
     if (st->iterations == 0 && bp) hf__ropes_collide(ro, F, a, b, bp, 0);
 }
 
-/* One sub-step of simulated ropes [a, b), the scalar reference. */
-HF__PRIVATE void hf__ropes_substep_ref(hf_ropes *ro, const float *F, int a,
-                                       int b, const hf__rope_step *st,
-                                       const hf__bp *bp)
+/* One sub-step of simulated ropes [a, b), the scalar reference (the
+   width-1 entry of hf__rope_widths: k unused); returns b. */
+HF__PRIVATE int hf__ropes_substep_v1(hf_ropes *ro, const float *F, int a,
+                                     int b, const hf__rope_step *st,
+                                     const hf__bp *bp,
+                                     const struct hf__rope_rows *k)
 {
+    (void)k;
     hf__ropes_integrate_ref(ro, F, a, b);
     if (st->k_root > 0.0f || st->global_on)
         hf__ropes_global_shape_ref(ro, F, a, b, st);
     if (st->local_on) hf__ropes_local_shape_ref(ro, F, a, b, st);
     hf__ropes_solve_ref(ro, F, a, b, st, bp);
+    return b;
 }
 
 /* Marks (VF[r] = 1) the ropes of [a, b) whose point row j lies beyond the
    squared distance KB[r] from the root, or is NaN. */
-HF__PRIVATE void hf__ropes_mark_far_ref(const hf_ropes *ro, int j, int a,
+HF__PRIVATE void hf__ropes_mark_far_row(const hf_ropes *ro, int j, int a,
                                         int b, const float *KB, float *VF)
 {
     const size_t R = (size_t)ro->rope_count;
@@ -8130,7 +8290,7 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__ropes_distance_row)(hf_ropes *ro, int j,
     HF__VZEROUPPER();
 }
 
-/* hf__ropes_mark_far_ref for every point row, on whole groups of W ropes
+/* hf__ropes_mark_far_row for every point row, on whole groups of W ropes
    from a; returns where the groups end. */
 HF__VTARGET HF__PRIVATE int HF__KN(hf__ropes_mark_far)(const hf_ropes *ro,
                                                        int a, int b,
@@ -8161,18 +8321,17 @@ HF__VTARGET HF__PRIVATE int HF__KN(hf__ropes_mark_far)(const hf_ropes *ro,
 #ifndef HF__PASS
 
 /* ---- 6.8 the kernels per width, their dispatch, hf_ropes_step ----------- */
-#if HF__V4
-/* the rope kernels at four lanes (at eight and sixteen after
-   hf__ropes_collide) */
-#define HF__PASS HF__PASS_ROPES
-#define HF__W 4
-#include HF_HEADER_FILENAME
-
-/* The row kernels of one SIMD width (the four-lane ones, and the eight-
-   and sixteen-lane ones below), for whole groups of `lanes` ropes at
-   `level` and above. */
+/* The rope kernels of one SIMD width (hf__rope_widths): a sub-step of
+   ropes [a, b) (returns where it stopped: whole groups of its lanes, or
+   all of them at width 1) and the safety net's test (likewise), and the
+   row kernels that hf__ropes_substep_rows fuses into a sub-step (none at
+   width 1: the scalar reference, hf__ropes_substep_v1, is a sub-step of
+   its own). */
 typedef struct hf__rope_rows {
-    int lanes, level;
+    hf__isa isa;
+    int (*substep)(hf_ropes *, const float *, int, int, const hf__rope_step *,
+                   const hf__bp *, const struct hf__rope_rows *);
+    int (*mark_far)(const hf_ropes *, int, int, const float *, float *);
     void (*pin_root)(hf_ropes *, const float *, int, int);
     void (*integrate)(hf_ropes *, const float *, int, int, int,
                       const hf__rope_step *);
@@ -8181,11 +8340,17 @@ typedef struct hf__rope_rows {
     void (*ftl)(hf_ropes *, const float *, int, int, int,
                 const hf__rope_step *, const hf__bp *);
     void (*distance)(hf_ropes *, int, int, int);
-    int (*mark_far)(const hf_ropes *, int, int, const float *, float *);
 } hf__rope_rows;
 
+#if HF__V4
+/* the rope kernels at four lanes (at eight and sixteen after
+   hf__ropes_collide) */
+#define HF__PASS HF__PASS_ROPES
+#define HF__W 4
+#include HF_HEADER_FILENAME
+
 /* One sub-step with the row kernels k (ropes [a, b), whole groups of the
-   kernels' width): what hf__ropes_substep_ref does, with the same
+   kernels' width): what hf__ropes_substep_v1 does, with the same
    operations per rope. Loops still run across ropes (a chain of dependent
    square roots and divisions per rope, point after point, leaves no
    parallelism otherwise), but rows are fused where the order between them
@@ -8193,16 +8358,18 @@ typedef struct hf__rope_rows {
    the local shape); then per row, integration with the global pull, and
    the local shape of the point before, which reads rows up to j only;
    each FTL placement, then its collisions (the non-FTL ones through the
-   four-lane kernel at every width). */
-HF__PRIVATE void hf__ropes_substep_rows(hf_ropes *ro, const float *F, int a,
-                                        int b, const hf__rope_step *st,
-                                        const hf__bp *bp,
-                                        const hf__rope_rows *k)
+   four-lane kernel at every width). Returns where the whole groups end. */
+HF__PRIVATE int hf__ropes_substep_rows(hf_ropes *ro, const float *F, int a,
+                                       int b, const hf__rope_step *st,
+                                       const hf__bp *bp,
+                                       const hf__rope_rows *k)
 {
     const size_t R = (size_t)ro->rope_count;
     const int P = ro->points;
     float *Q[2][3];
     int j, it;
+    b = a + (b - a) / k->isa.lanes * k->isa.lanes;
+    if (b == a) return a;
     for (j = 0; j < 3; ++j) { /* scratch rows G: unused by simulated ropes */
         Q[0][j] = HF__ROW(ro->scratch, HF__RS_G + j, R);
         Q[1][j] = HF__ROW(ro->scratch, HF__RS_G + 3 + j, R);
@@ -8222,13 +8389,8 @@ HF__PRIVATE void hf__ropes_substep_rows(hf_ropes *ro, const float *F, int a,
     }
     if (st->iterations == 0 && bp)
         hf__ropes_collide(ro, F, a, b, bp, st->level);
+    return b;
 }
-
-static const hf__rope_rows hf__rope_rows_v4 = {
-    4, HF_SIMD_SSE2, hf__ropes_pin_root_v4, hf__ropes_integrate_row_v4,
-    hf__ropes_local_row_v4, hf__ropes_ftl_row_v4, hf__ropes_distance_row_v4,
-    hf__ropes_mark_far_v4};
-
 #endif
 
 /* The distance solver's collisions for ropes [a, b): per tile, the box
@@ -8311,65 +8473,55 @@ HF__PRIVATE void hf__ropes_collide(hf_ropes *ro, const float *F, int a, int b,
 #include HF_HEADER_FILENAME
 #endif
 
-/* The rows eight (sixteen) ropes a vector, for hf__ropes_substep_rows.
-   Each is a function of its own, so no SSE code runs between them with
-   the upper halves dirty. */
-static const hf__rope_rows hf__rope_rows_avx2 = {
-    8, HF_SIMD_AVX2, hf__ropes_pin_root_v8, hf__ropes_integrate_row_v8,
-    hf__ropes_local_row_v8, hf__ropes_ftl_row_v8, hf__ropes_distance_row_v8,
-    hf__ropes_mark_far_v8};
-#if HF__AVX512
-static const hf__rope_rows hf__rope_rows_avx512 = {
-    16, HF_SIMD_AVX512, hf__ropes_pin_root_v16, hf__ropes_integrate_row_v16,
-    hf__ropes_local_row_v16, hf__ropes_ftl_row_v16,
-    hf__ropes_distance_row_v16, hf__ropes_mark_far_v16};
-#endif
 #endif
 
-#if HF__V4
-/* The row kernels this build has, widest first: each takes whole groups
-   of its lanes from where the wider ones stopped, at its level and above;
-   the scalar reference takes the rest. */
-static const hf__rope_rows *const hf__rope_widths[] = {
+/* hf__ropes_mark_far_row for every point row of ropes [a, b): the
+   reference; returns b. */
+HF__PRIVATE int hf__ropes_mark_far_v1(const hf_ropes *ro, int a, int b,
+                                      const float *KB, float *VF)
+{
+    int j;
+    for (j = 1; j < ro->points; ++j)
+        hf__ropes_mark_far_row(ro, j, a, b, KB, VF);
+    return b;
+}
+
+/* The rope kernels per width, widest first. The rows eight (sixteen)
+   ropes a vector are each a function of its own, so no SSE code runs
+   between them with the upper halves dirty. */
+#define HF__ROPE_ROWS_AT(W)                                                        hf__ropes_substep_rows, hf__ropes_mark_far_v##W,                                  hf__ropes_pin_root_v##W, hf__ropes_integrate_row_v##W,                         hf__ropes_local_row_v##W, hf__ropes_ftl_row_v##W,                              hf__ropes_distance_row_v##W
+static const hf__rope_rows hf__rope_widths[] = {
 #if HF__AVX512
-    &hf__rope_rows_avx512,
+    {HF__ISA_V16, HF__ROPE_ROWS_AT(16)},
 #endif
 #if HF__AVX2
-    &hf__rope_rows_avx2,
+    {HF__ISA_V8, HF__ROPE_ROWS_AT(8)},
 #endif
-    &hf__rope_rows_v4, NULL};
+#if HF__V4
+    {HF__ISA_V4, HF__ROPE_ROWS_AT(4)},
 #endif
+    {HF__ISA_V1, hf__ropes_substep_v1, hf__ropes_mark_far_v1, NULL, NULL,
+     NULL, NULL, NULL}};
+#undef HF__ROPE_ROWS_AT
 
-/* The dispatch of the simulated rope kernels (hf__rope_widths). */
+/* The dispatch of a sub-step with the kernels st->rows (hf__rope_widths,
+   resolved by hf__rope_step_setup): each width takes whole groups of its
+   lanes from where the wider ones stopped, the scalar reference the
+   rest. */
 HF__PRIVATE void hf__ropes_substep(hf_ropes *ro, const float *F, int a, int b,
                                    const hf__rope_step *st, const hf__bp *bp)
 {
-#if HF__V4
-    const hf__rope_rows *const *k;
-    for (k = hf__rope_widths; *k; ++k) {
-        const int e = a + (b - a) / (*k)->lanes * (*k)->lanes;
-        if (st->level < (*k)->level) continue;
-        if (e > a) hf__ropes_substep_rows(ro, F, a, e, st, bp, *k);
-        a = e;
-    }
-#endif
-    hf__ropes_substep_ref(ro, F, a, b, st, bp);
+    const hf__rope_rows *k;
+    for (k = st->rows; a < b; ++k) a = k->substep(ro, F, a, b, st, bp, k);
 }
 
-
-/* hf__ropes_mark_far_ref for every point row of ropes [a, b). */
+/* The safety net's test of ropes [a, b), likewise. */
 HF__PRIVATE void hf__ropes_mark_far(const hf_ropes *ro, int a, int b,
-                                    const float *KB, float *VF, int level)
+                                    const float *KB, float *VF,
+                                    const hf__rope_step *st)
 {
-    int j;
-#if HF__V4
-    const hf__rope_rows *const *k;
-    for (k = hf__rope_widths; *k; ++k)
-        if (level >= (*k)->level) a = (*k)->mark_far(ro, a, b, KB, VF);
-#endif
-    (void)level;
-    for (j = 1; j < ro->points; ++j)
-        hf__ropes_mark_far_ref(ro, j, a, b, KB, VF);
+    const hf__rope_rows *k;
+    for (k = st->rows; a < b; ++k) a = k->mark_far(ro, a, b, KB, VF);
 }
 
 /* After the sub-steps: remember the sub-step length, and reset a rope
@@ -8389,7 +8541,7 @@ HF__PRIVATE void hf__ropes_safety_net(hf_ropes *ro, int a, int b,
         KB[r] = lim * lim; /* reuse the row: squared limit */
         VF[r] = 0.0f;      /* reuse: 1 if the rope went bad */
     }
-    hf__ropes_mark_far(ro, a, b, KB, VF, st->level);
+    hf__ropes_mark_far(ro, a, b, KB, VF, st);
     for (r = a; r < b; ++r)
         if (VF[r] != 0.0f) {
             float keep = ro->blend[r];
@@ -8513,6 +8665,8 @@ HF__PRIVATE void hf__rope_step_setup(hf__rope_step *st,
     st->global_on = st->gs_root > 0.0f || st->gs_tip > 0.0f;
     st->local_on = st->ls_root > 0.0f || st->ls_tip > 0.0f;
     st->level = hf_simd_resolve(params->simd);
+    st->pose = hf__kernels_for(hf__pose_widths, st->level);
+    st->rows = hf__kernels_for(hf__rope_widths, st->level);
     st->ktab = points <= HF__ROPE_KTAB;
     if (st->ktab)
         for (k = 1; k < points; ++k) {
@@ -16556,9 +16710,9 @@ HF__PRIVATE hf_result hf__fur_ropes(hf_fur *f, hf__fur_build *b)
     if ((r = hf_ropes_create(f->guide_count, f->P, &f->alloc, &f->ropes)) !=
             HF_OK ||
         (r = hf_fur_set_roots(f, &b->desc.mesh, 0, f->guide_count)) != HF_OK ||
-        (r = hf_ropes_set_rest(f->ropes, 0, f->guide_count, b->rest_points, 0,
-                               f->root_pos, f->root_nrm, f->root_tan, 0)) !=
-            HF_OK)
+        (r = hf__ropes_set_rest(f->ropes, 0, f->guide_count, b->rest_points,
+                                0, f->root_pos, f->root_nrm, f->root_tan, 0,
+                                f->simd)) != HF_OK)
         return r;
     if ((r = hf__fur_keep_rest_frames(f)) != HF_OK) return r;
     if (b->desc.grid_resolution > 0 &&
@@ -17018,8 +17172,9 @@ HF__PRIVATE hf_result hf__groom_build(hf_fur *f, const hf_groom_desc *d,
         }
     }
     if ((r = hf_ropes_create(G, P, &f->alloc, &f->ropes)) != HF_OK ||
-        (r = hf_ropes_set_rest(f->ropes, 0, G, f->guide_points, 0, f->root_pos,
-                               f->root_nrm, f->root_tan, 0)) != HF_OK ||
+        (r = hf__ropes_set_rest(f->ropes, 0, G, f->guide_points, 0,
+                                f->root_pos, f->root_nrm, f->root_tan, 0,
+                                f->simd)) != HF_OK ||
         (r = hf__fur_keep_rest_frames(f)) != HF_OK ||
         (d->scalp && (r = hf__groom_bind_scalp(f, d->scalp)) != HF_OK) ||
         (d->grid_resolution > 0 &&
@@ -17099,8 +17254,8 @@ HFDEF hf_result hf_fur_set_transform(hf_fur *f, const float m[12], int first,
                                      row[2] * rf[8];
         }
     }
-    return hf_ropes_set_roots(f->ropes, first, count, f->root_pos, f->root_nrm,
-                              f->root_tan, 0);
+    return hf__ropes_set_roots(f->ropes, first, count, f->root_pos,
+                               f->root_nrm, f->root_tan, 0, f->simd);
 }
 
 HFDEF hf_result hf_fur_get_info(const hf_fur *f, hf_fur_info *info)
@@ -17198,8 +17353,8 @@ HFDEF hf_result hf_fur_set_roots(hf_fur *f, const hf_mesh *m, int first,
         }
     if (f->groom) { /* roots bound to scalp triangles */
         hf__groom_roots_from_scalp(f, m, first, count);
-        return hf_ropes_set_roots(f->ropes, first, count, f->root_pos,
-                                  f->root_nrm, f->root_tan, 0);
+        return hf__ropes_set_roots(f->ropes, first, count, f->root_pos,
+                                   f->root_nrm, f->root_tan, 0, f->simd);
     }
     /* LOD guides: positions (and normals) blended on their base triangle */
     {
@@ -17242,8 +17397,8 @@ HFDEF hf_result hf_fur_set_roots(hf_fur *f, const hf_mesh *m, int first,
             }
         }
     }
-    return hf_ropes_set_roots(f->ropes, first, count, f->root_pos,
-                              f->root_nrm, f->root_tan, 0);
+    return hf__ropes_set_roots(f->ropes, first, count, f->root_pos,
+                               f->root_nrm, f->root_tan, 0, f->simd);
 }
 
 /* Step guides [first, end) in runs that share a rope parameter set (each
@@ -17332,8 +17487,7 @@ HFDEF hf_result hf_fur_settle_rest(hf_fur *f, float seconds,
     }
     hf__free(&f->alloc, mode);
     if (r != HF_OK) return r;
-    hf__ropes_copy(f->ropes, 0, G, f->guide_points, 12, 0,
-                   hf_simd_resolve(f->simd));
+    hf__ropes_copy(f->ropes, 0, G, f->guide_points, 12, 0, f->simd);
     return HF_OK;
 }
 
@@ -17358,8 +17512,7 @@ HFDEF hf_result hf_fur_simulate(hf_fur *f, int first, int count, float dt,
     if (end <= first) return HF_OK;
     r = hf__fur_step_runs(f, first, end, dt, colliders, collider_count);
     if (r != HF_OK) return r;
-    hf__ropes_copy(f->ropes, first, end, f->guide_points, 12, 0,
-                   hf_simd_resolve(f->simd));
+    hf__ropes_copy(f->ropes, first, end, f->guide_points, 12, 0, f->simd);
     return HF_OK;
 }
 
