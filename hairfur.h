@@ -9556,8 +9556,12 @@ HF__INLINE void hf__interp_root(hf__istrand *t)
     }
 }
 
-HF__PRIVATE void hf__interp_range_ref(const hf__irun *run, int first,
-                                      int count)
+/* Strands [first, first + count) of a run: the reference, and at four
+   lanes (SSE2 or NEON) below, at eight and sixteen in 7.1; each returns
+   1 (all written), the sixteen-lane entry 0 for a P it leaves to eight
+   lanes (hf__interp_widths). */
+HF__PRIVATE int hf__interp_range_v1(const hf__irun *run, int first,
+                                    int count)
 {
     hf__istrand t;
     int s;
@@ -9567,11 +9571,12 @@ HF__PRIVATE void hf__interp_range_ref(const hf__irun *run, int first,
         hf__interp_strand_ref(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, 0,
                               run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
     }
+    return 1;
 }
 
 #if HF__SSE
-HF__PRIVATE void hf__interp_range_sse(const hf__irun *run, int first,
-                                      int count)
+HF__PRIVATE int hf__interp_range_v4(const hf__irun *run, int first,
+                                    int count)
 {
     hf__istrand t;
     int s, i;
@@ -9587,6 +9592,7 @@ HF__PRIVATE void hf__interp_range_sse(const hf__irun *run, int first,
             hf__interp_strand_ref(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, i,
                                   run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
     }
+    return 1;
 }
 #endif
 
@@ -9618,8 +9624,8 @@ hf__interp_neon(const hf__istrand *t, const float *ctab, int i,
     vst1q_f32(t->o + i, p);
 }
 
-HF__PRIVATE void
-hf__interp_range_neon(const hf__irun *run, int first, int count)
+HF__PRIVATE int hf__interp_range_v4(const hf__irun *run, int first,
+                                    int count)
 {
     const int n = 3 * run->P;
     hf__istrand t;
@@ -9653,6 +9659,7 @@ hf__interp_range_neon(const hf__irun *run, int first, int count)
             hf__interp_strand_ref(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, i,
                                   run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
     }
+    return 1;
 }
 #endif
 
@@ -9845,8 +9852,8 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__interp_groups)(const hf__irun *run,
     HF__VZEROUPPER(); /* see HF__TARGET_AVX2 */
 }
 
-HF__VTARGET HF__PRIVATE void HF__KN(hf__interp_range)(const hf__irun *run,
-                                                      int first, int count)
+HF__VTARGET HF__PRIVATE int HF__KN(hf__interp_range)(const hf__irun *run,
+                                                     int first, int count)
 {
     const size_t n = 3u * (size_t)run->P;
     const hf_strand_binding *b = run->bindings + first;
@@ -9856,7 +9863,7 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__interp_range)(const hf__irun *run,
     int s;
     if (n % (3 * HF__W) == 0) {
         HF__KN(hf__interp_groups)(run, first, count);
-        return;
+        return 1;
     }
     for (s = first; s < first + count; ++s, ++b, o += n) {
         const int nt = hf__stream_mode(run->nt, o, 4u * HF__W - 1u);
@@ -9900,6 +9907,7 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__interp_range)(const hf__irun *run,
         }
     }
     HF__VZEROUPPER(); /* see HF__TARGET_AVX2 */
+    return 1;
 }
 #endif /* HF__PASS_INTERP */
 
@@ -9949,7 +9957,34 @@ HF__TARGET_AVX512 HF__INLINE void hf__put_v16(float *o, __m512 p, int mode)
 #define HF__PASS HF__PASS_INTERP
 #define HF__W 16
 #include HF_HEADER_FILENAME
+
+/* Sixteen lanes, but for P a multiple of 8 and not of 16: those go to
+   eight lanes in whole groups (returns 0): P = 24 and 40 took 0.43 and
+   0.42 ns a point against sixteen lanes' 0.48 and 0.45 (a group and a
+   part of one, in L2). */
+HF__PRIVATE int hf__interp_fit_v16(const hf__irun *run, int first, int count)
+{
+    if (run->P % 16 != 0 && run->P % 8 == 0) return 0;
+    return hf__interp_range_v16(run, first, count);
+}
 #endif
+
+typedef struct hf__interp_kernels {
+    hf__isa isa;
+    int (*range)(const hf__irun *, int, int);
+} hf__interp_kernels;
+
+static const hf__interp_kernels hf__interp_widths[] = {
+#if HF__AVX512
+    {HF__ISA_V16, hf__interp_fit_v16},
+#endif
+#if HF__AVX2
+    {HF__ISA_V8, hf__interp_range_v8},
+#endif
+#if HF__V4
+    {HF__ISA_V4, hf__interp_range_v4},
+#endif
+    {HF__ISA_V1, hf__interp_range_v1}};
 
 /* A run's fields; ctab (3 P floats) filled here */
 HF__PRIVATE void hf__irun_init(hf__irun *run, const float *guide_points,
@@ -9979,46 +10014,24 @@ HF__PRIVATE void hf__irun_init(hf__irun *run, const float *guide_points,
 }
 
 /* Strands [first, first + count) from inputs already checked: the loop of
-   hf_interpolate, at SIMD level `level`. */
+   hf_interpolate, at SIMD level `simd` (hf__interp_widths: the widest
+   kernel that takes the run). */
 HF__PRIVATE void hf__interpolate_run(const float *guide_points,
                                      const hf_strand_binding *bindings,
                                      int first, int count, int P, float clump,
                                      float *out_points, int out_first,
-                                     int level, int nt)
+                                     int simd, int nt)
 {
+    const hf__interp_kernels *k = hf__kernels_for(hf__interp_widths, simd);
     float ctab[3 * HF_MAX_POINTS];
     hf__irun run;
     hf__irun_init(&run, guide_points, bindings, P, clump, ctab, out_points,
                   out_first, nt);
-#if HF__AVX512
-    /* with P a multiple of 8 but not of 16, eight lanes in whole groups:
-       P = 24 and 40 took 0.43 and 0.42 ns a point against sixteen lanes'
-       0.48 and 0.45 (a group and a part of one, in L2) */
-    if (level >= HF_SIMD_AVX512 && (P % 16 == 0 || P % 8 != 0))
-        hf__interp_range_v16(&run, first, count);
-    else
-#endif
-#if HF__AVX2
-    if (level >= HF_SIMD_AVX2)
-        hf__interp_range_v8(&run, first, count);
-    else
-#endif
+    while (!k->range(&run, first, count)) ++k;
 #if HF__SSE
-    if (level >= HF_SIMD_SSE2)
-        hf__interp_range_sse(&run, first, count);
-    else
-#endif
-#if HF__NEON
-    if (level >= HF_SIMD_NEON)
-        hf__interp_range_neon(&run, first, count);
-    else
-#endif
-        hf__interp_range_ref(&run, first, count);
-#if HF__SSE
-    if (nt && level >= HF_SIMD_SSE2)
+    if (nt && k->isa.lanes > 1)
         _mm_sfence(); /* streamed stores visible before we return */
 #endif
-    (void)level;
 }
 
 HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
@@ -10062,8 +10075,7 @@ HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
         if (g > HF_MAX_ABS || g < -HF_MAX_ABS) return HF_ERROR_BAD_PARAMETER;
     }
     hf__interpolate_run(guide_points, bindings, first, count, P, clump,
-                        out_points, params->out_first,
-                        hf_simd_resolve(params->simd),
+                        out_points, params->out_first, params->simd,
                         hf__streaming(params->nontemporal,
                                       (size_t)count * (size_t)P * 12u,
                                       HF_STREAM_MIN_BYTES));
@@ -17529,7 +17541,7 @@ HFDEF hf_result hf_fur_interpolate_guides(hf_fur *f, int first, int count)
                         0.0f,
                         f->guide_points +
                             (size_t)f->pure_count * (size_t)f->P * 3u,
-                        0, hf_simd_resolve(f->simd), 0);
+                        0, f->simd, 0);
     return HF_OK;
 }
 
@@ -17547,8 +17559,8 @@ HF__PRIVATE void hf__fur_strands(const hf_fur *f, int first, int count,
 {
     const int pass = f->leader || f->strand_clump; /* clumps of their own */
     hf__interpolate_run(f->guide_points, f->bindings, first, count, f->P,
-                        pass ? 0.0f : f->clump, pts, pts_first,
-                        hf_simd_resolve(f->simd), nt);
+                        pass ? 0.0f : f->clump, pts, pts_first, f->simd,
+                        nt);
     if (pass) hf__fur_clump_pass(f, first, count, pts, pts_first);
     if (f->offsets) hf__groom_offsets(f, first, count, pts, pts_first);
 }
