@@ -10248,35 +10248,17 @@ HF__PRIVATE void hf__any_perp(const float *t, float *o)
     o[2] /= l;
 }
 
-/* inv[i] = 1 / sqrt(x[i]). SSE does four at once with the same IEEE
-   operations (sqrtps, divps) as the scalar tail, so the result does not
-   depend on the path or on where a range starts. */
-HF__PRIVATE int hf__inv_sqrt_n_ref(const float *x, float *inv, int i, int n)
-{
-    for (; i < n; ++i) inv[i] = 1.0f / HF_SQRTF(x[i]);
-    return i;
-}
-#if HF__SSE
-HF__PRIVATE int hf__inv_sqrt_n_sse(const float *x, float *inv, int i, int n)
-{
-    const __m128 one = _mm_set1_ps(1.0f);
-    for (; i + 4 <= n; i += 4)
-        _mm_storeu_ps(inv + i, _mm_div_ps(one, _mm_sqrt_ps(_mm_loadu_ps(x + i))));
-    return i;
-}
-#endif
+/* inv[i] = 1 / sqrt(x[i]), for the reference frame */
 HF__PRIVATE void hf__inv_sqrt_n(const float *x, float *inv, int n)
 {
-    int i = 0;
-#if HF__SSE
-    i = hf__inv_sqrt_n_sse(x, inv, i, n);
-#endif
-    hf__inv_sqrt_n_ref(x, inv, i, n);
+    int i;
+    for (i = 0; i < n; ++i) inv[i] = 1.0f / HF_SQRTF(x[i]);
 }
 
-/* 1 when every coordinate of a strand is finite: x * 0 is 0 for finite x
-   and NaN for NaN or infinity, and the sum keeps any NaN. */
-HF__PRIVATE int hf__points_finite_ref(const float *pts, int i, int n)
+/* 1 when the n coordinates from float i of a strand are finite: x * 0 is
+   0 for finite x and NaN for NaN or infinity, and the sum keeps any NaN.
+   The reference (i = 0), and the tail of hf__points_finite_v4. */
+HF__PRIVATE int hf__points_finite_from(const float *pts, int i, int n)
 {
     float acc0 = 0.0f, acc1 = 0.0f;
     for (; i + 2 <= n; i += 2) {
@@ -10286,11 +10268,15 @@ HF__PRIVATE int hf__points_finite_ref(const float *pts, int i, int n)
     if (i < n) acc0 += pts[i] * 0.0f;
     return acc0 + acc1 == 0.0f;
 }
+HF__PRIVATE int hf__points_finite_v1(const float *pts, int n)
+{
+    return hf__points_finite_from(pts, 0, n);
+}
 #if HF__SSE
-/* Floats [0, *end) of pts, whole groups of 8, with two independent vector
+/* The same test, whole groups of 8 floats with two independent vector
    sums (a single scalar chain of dependent adds cost a sixth of the
-   ribbon time). */
-HF__PRIVATE int hf__points_finite_sse(const float *pts, int n, int *end)
+   ribbon time), the rest by the reference. */
+HF__PRIVATE int hf__points_finite_v4(const float *pts, int n)
 {
     const __m128 z = _mm_setzero_ps();
     __m128 a0 = z, a1 = z;
@@ -10299,18 +10285,10 @@ HF__PRIVATE int hf__points_finite_sse(const float *pts, int n, int *end)
         a0 = _mm_add_ps(a0, _mm_mul_ps(_mm_loadu_ps(pts + i), z));
         a1 = _mm_add_ps(a1, _mm_mul_ps(_mm_loadu_ps(pts + i + 4), z));
     }
-    *end = i;
-    return _mm_movemask_ps(_mm_cmpeq_ps(_mm_add_ps(a0, a1), z)) == 0xf;
+    if (_mm_movemask_ps(_mm_cmpeq_ps(_mm_add_ps(a0, a1), z)) != 0xf) return 0;
+    return hf__points_finite_from(pts, i, n);
 }
 #endif
-HF__PRIVATE int hf__points_finite(const float *pts, int n)
-{
-    int i = 0;
-#if HF__SSE
-    if (!hf__points_finite_sse(pts, n, &i)) return 0;
-#endif
-    return hf__points_finite_ref(pts, i, n);
-}
 
 /* A strand whose points are not all finite is drawn collapsed: every
    point at the origin with zero width, so nothing shows and no NaN reaches
@@ -10885,8 +10863,8 @@ hf__strand_frame_avx2_in(const float *pts, int P, int ortho, const __m256 *e,
    bodies, *_avx2_in, leave the upper halves to the function they are
    inlined in: its calls and its return clear them) */
 HF__TARGET_AVX2 HF__PRIVATE int
-hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
-                      hf__rframe *fr, int *finite)
+hf__strand_frame_v8(const float *pts, int P, const hf_ribbon_params *params,
+                    hf__rframe *fr, int *finite)
 {
     __m256 e[3];
     int ok;
@@ -10898,43 +10876,48 @@ hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
 }
 #endif
 
-/* A strand's frame by the reference, where a vector frame left it (or
-   none ran): finite says whether its points are (-1: not known yet); one
-   that is not is framed collapsed, wscale 0. */
-HF__PRIVATE void hf__strand_frame_rest(const float *pts, int P,
-                                       const hf_ribbon_params *params,
-                                       hf__rframe *fr, int finite,
-                                       float *wscale)
+/* A strand's frame by the reference, also where a vector frame left it:
+   *finite says whether its points are (-1: not known yet); one that is
+   not is framed collapsed. Returns 1, done. */
+HF__PRIVATE int hf__strand_frame_v1(const float *pts, int P,
+                                    const hf_ribbon_params *params,
+                                    hf__rframe *fr, int *finite)
 {
-    if (finite < 0) finite = hf__points_finite(pts, 3 * P);
-    if (!finite) {
-        pts = hf__zero_points;
-        *wscale = 0.0f;
-    }
-    hf__strand_frame_ref(pts, P, params, fr);
+    if (*finite < 0) *finite = hf__points_finite_v1(pts, 3 * P);
+    hf__strand_frame_ref(*finite ? pts : hf__zero_points, P, params, fr);
+    return 1;
 }
 
-/* The dispatch of the strand frame at SIMD level `level` (tangents and
-   sides; a strand with a non-finite point is framed collapsed, wscale
-   0). The AVX-512 level runs the AVX2 kernel. */
-HF__PRIVATE void hf__strand_frame(const float *pts, int P,
-                                  const hf_ribbon_params *params,
-                                  hf__rframe *fr, float *wscale, int level)
-{
-    int finite = -1;
-    *wscale = 1.0f;
+typedef struct hf__frame_kernels {
+    hf__isa isa;
+    int (*frame)(const float *, int, const hf_ribbon_params *, hf__rframe *,
+                 int *);
+} hf__frame_kernels;
+
+/* The strand frames per width; the AVX-512 level runs the AVX2 kernel. */
+static const hf__frame_kernels hf__frame_widths[] = {
 #if HF__AVX2
-    if (level >= HF_SIMD_AVX2) {
-        if (hf__strand_frame_avx2(pts, P, params, fr, &finite)) return;
-    } else
+    {HF__ISA_V8, hf__strand_frame_v8},
 #endif
 #if HF__V4
-    if (level >= HF_SIMD_SSE2) {
-        if (hf__strand_frame_v4(pts, P, params, fr, &finite)) return;
-    }
+    {HF__ISA_V4, hf__strand_frame_v4},
 #endif
-    (void)level;
-    hf__strand_frame_rest(pts, P, params, fr, finite, wscale);
+    {HF__ISA_V1, hf__strand_frame_v1}};
+
+/* The dispatch of the strand frame with the kernels k (hf__frame_widths,
+   resolved once a call): tangents and sides, and *wscale 0 for a strand
+   with a non-finite point, which is framed collapsed. A vector kernel
+   declines the strands whose rules look along the strand or need double
+   precision: those go to the reference, not to the next width. */
+HF__PRIVATE void hf__strand_frame(const float *pts, int P,
+                                  const hf_ribbon_params *params,
+                                  hf__rframe *fr, float *wscale,
+                                  const hf__frame_kernels *k)
+{
+    int finite = -1;
+    if (!k->frame(pts, P, params, fr, &finite))
+        hf__strand_frame_v1(pts, P, params, fr, &finite);
+    *wscale = finite ? 1.0f : 0.0f;
 }
 
 /* ---- 8.3 vertex formats: encoding --------------------------------------- */
@@ -11318,7 +11301,7 @@ HF__PRIVATE void hf__emit2(const hf__rout *ro, int q, size_t v,
 /* Every stream's vertices of one strand from its frame, a point at a
    time: the reference for the SSE writer below. Vertex 2 j + k of the
    strand (k = 0: -side) starts at v0. */
-HF__PRIVATE void hf__ribbon_write_ref(const hf__rframe *fr, int P,
+HF__PRIVATE int hf__ribbon_write_v1(const hf__rframe *fr, int P,
                                       const hf__rconst *K,
                                       const hf__rstrand *str,
                                       const hf__rout *ro, size_t v0)
@@ -11359,6 +11342,7 @@ HF__PRIVATE void hf__ribbon_write_ref(const hf__rframe *fr, int P,
             hf__emit2(ro, q, v, a, a);
         }
     }
+    return 1;
 }
 
 /* 2 when position and tangent are floats side by side in one vertex, 3
@@ -11604,9 +11588,9 @@ HF__INLINE void hf__stream_sse(int q, int nc, const hf__rframe *fr, int P,
     }
 }
 
-/* hf__ribbon_write_ref four points at a time: the same values in the same
+/* hf__ribbon_write_v1 four points at a time: the same values in the same
    operations, so the same bytes. */
-HF__PRIVATE void hf__ribbon_write_sse(const hf__rframe *fr, int P,
+HF__PRIVATE int hf__ribbon_write_v4(const hf__rframe *fr, int P,
                                   const hf__rconst *K, const hf__rstrand *str,
                                   const hf__rout *ro, size_t v0)
 {
@@ -11650,6 +11634,7 @@ HF__PRIVATE void hf__ribbon_write_sse(const hf__rframe *fr, int P,
         hf__stream_sse(HF__S_TEX, 3, fr, P, K, str, ro, v0);
     if (ro->base[HF__S_COL]) hf__stream_sse(HF__S_COL, 4, fr, P, K, str, ro, v0);
     if (ro->base[HF__S_C3D]) hf__stream_sse(HF__S_C3D, 2, fr, P, K, str, ro, v0);
+    return 1;
 }
 #endif
 
@@ -11807,7 +11792,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__rout_vec_avx2(const hf__rout *ro,
         ov[1 + c] = _mm256_set1_ps(ro->origin[c]);
 }
 
-/* hf__ribbon_write_sse eight points at a time for the float runs
+/* hf__ribbon_write_v4 eight points at a time for the float runs
    (position, tangent and texcoord, the 36-byte vertex: hf__float_run 3;
    position and tangent: 2, the other streams as the SSE writer writes
    them); the dispatch gives other layouts to the table writer below or
@@ -12359,13 +12344,13 @@ HF__PRIVATE void hf__emit_pair_neon(unsigned char *o, size_t st, int n,
     }
 }
 
-/* hf__ribbon_write_sse in NEON, four points at a time: the float runs
+/* hf__ribbon_write_v4 in NEON, four points at a time: the float runs
    (see hf__float_run) by a 4 x 4 transpose, x y z tx and ty tz u v of
    each vertex, as hf__put_run_sse does; every other stream component by
    component in its format. */
-HF__PRIVATE void
-hf__ribbon_write_neon(const hf__rframe *fr, int P, const hf__rconst *K,
-                      const hf__rstrand *str, const hf__rout *ro, size_t v0)
+HF__PRIVATE int
+hf__ribbon_write_v4(const hf__rframe *fr, int P, const hf__rconst *K,
+                    const hf__rstrand *str, const hf__rout *ro, size_t v0)
 {
     const int run = ro->run;
     const float32x4_t ws = vdupq_n_f32(str->wscale);
@@ -12444,39 +12429,52 @@ hf__ribbon_write_neon(const hf__rframe *fr, int P, const hf__rconst *K,
                                n, V, V, hf__stream_nc[q], ro->fmt[q]);
         }
     }
+    return 1;
 }
 #endif
 
-/* The dispatch of the writers at SIMD level `level`: one strand's
-   vertices from its frame. The AVX-512 level runs the AVX2 kernels. */
+#if HF__AVX2
+/* One strand's vertices at eight lanes: the float run (ro->run) or the
+   windows (ro->nw) the layout has; other layouts are left to four lanes
+   (returns 0). */
+HF__PRIVATE int hf__ribbon_write_v8(const hf__rframe *fr, int P,
+                                    const hf__rconst *K,
+                                    const hf__rstrand *str,
+                                    const hf__rout *ro, size_t v0)
+{
+    if (ro->run)
+        hf__ribbon_write_avx2(fr, P, K, str, ro, v0);
+    else if (ro->nw)
+        hf__ribbon_write_table_avx2(fr, P, K, str, ro, v0);
+    return ro->run || ro->nw;
+}
+#endif
+
+typedef struct hf__write_kernels {
+    hf__isa isa;
+    int (*write)(const hf__rframe *, int, const hf__rconst *,
+                 const hf__rstrand *, const hf__rout *, size_t);
+} hf__write_kernels;
+
+/* The writers per width; the AVX-512 level runs the AVX2 ones. */
+static const hf__write_kernels hf__write_widths[] = {
+#if HF__AVX2
+    {HF__ISA_V8, hf__ribbon_write_v8},
+#endif
+#if HF__V4
+    {HF__ISA_V4, hf__ribbon_write_v4},
+#endif
+    {HF__ISA_V1, hf__ribbon_write_v1}};
+
+/* The dispatch of the writers with the kernels k (hf__write_widths,
+   resolved once a call): one strand's vertices from its frame, by the
+   widest kernel that takes the layout. */
 HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
                                   const hf__rconst *K, const hf__rstrand *str,
-                                  const hf__rout *ro, size_t v0, int level)
+                                  const hf__rout *ro, size_t v0,
+                                  const hf__write_kernels *k)
 {
-#if HF__AVX2
-    if (level >= HF_SIMD_AVX2 && ro->run) {
-        hf__ribbon_write_avx2(fr, P, K, str, ro, v0);
-        return;
-    }
-    if (level >= HF_SIMD_AVX2 && ro->nw) {
-        hf__ribbon_write_table_avx2(fr, P, K, str, ro, v0);
-        return;
-    }
-#endif
-#if HF__SSE
-    if (level >= HF_SIMD_SSE2) {
-        hf__ribbon_write_sse(fr, P, K, str, ro, v0);
-        return;
-    }
-#endif
-#if HF__NEON
-    if (level >= HF_SIMD_NEON) {
-        hf__ribbon_write_neon(fr, P, K, str, ro, v0);
-        return;
-    }
-#endif
-    (void)level;
-    hf__ribbon_write_ref(fr, P, K, str, ro, v0);
+    while (!k->write(fr, P, K, str, ro, v0)) ++k;
 }
 
 /* ---- 8.5 streaming stores: the stage ------------------------------------ */
@@ -12620,11 +12618,11 @@ hf__frame_strand_avx2(const float *pts, int P, int ortho, const __m256 *e,
                       float *wscale)
 {
     int finite;
-    *wscale = 1.0f;
     if (!hf__strand_frame_avx2_in(pts, P, ortho, e, fr, &finite)) {
         _mm256_zeroupper(); /* the reference is SSE code */
-        hf__strand_frame_rest(pts, P, params, fr, finite, wscale);
+        hf__strand_frame_v1(pts, P, params, fr, &finite);
     }
+    *wscale = finite ? 1.0f : 0.0f;
 }
 
 /* Strand s's frame (hf__frame_strand_avx2) where s < end: the runs make
@@ -13172,16 +13170,16 @@ hf__ribbon_fused_avx512(const float *pts, int P, int ortho, const __m512 *e,
 }
 #undef HF__SLL16
 
-/* Whether a streamed call goes out as lines (above) at `level`: the
-   stage's vertex (hf__ribbon_stage: block bytes, every stream inside it,
-   dst0 the first byte of vertex 0) is the float run alone, 4 F bytes, P
-   a multiple of 8 (so every strand's block keeps the first's alignment)
-   and strand `first`'s block starts a line */
-HF__PRIVATE int hf__lines_fit(const hf__rout *ro, int P, int level,
+/* Whether a streamed call goes out as lines (above): the stage's vertex
+   (hf__ribbon_stage: block bytes, every stream inside it, dst0 the first
+   byte of vertex 0) is the float run alone, 4 F bytes, P a multiple of 8
+   (so every strand's block keeps the first's alignment) and strand
+   `first`'s block starts a line */
+HF__PRIVATE int hf__lines_fit(const hf__rout *ro, int P,
                               const unsigned char *dst0, size_t block,
                               int first, int out_first)
 {
-    return level >= HF_SIMD_AVX512 && ro->run &&
+    return ro->run &&
            block == (ro->run == 3 ? 36u : 24u) && P % 8 == 0 &&
            (((uintptr_t)dst0 + (size_t)(first - out_first) * 2u *
                                    (size_t)P * block) & 63u) == 0;
@@ -13394,6 +13392,111 @@ HF__PRIVATE int hf__streams_cross(uintptr_t a, size_t sa, size_t ea,
     return 0;
 }
 
+/* A call of hf_ribbons, checked and laid out, for its whole-call loops */
+typedef struct hf__rcall {
+    const hf_ribbon_strands *sv; /* the inputs of the streams written */
+    const hf_ribbon_params *params;
+    const hf__rconst *K;
+    const hf__rout *ro;
+    int first, count, out_first, P;
+    hf__rframe *fr, *fr2;   /* a strand's frame rows, a second one */
+    int stage;              /* streamed through stage_buf: */
+    float *stage_buf;       /* (in fr2's room) */
+    unsigned char *dst0;    /* the first byte of vertex 0 */
+    size_t block;           /* a vertex's bytes in the stage */
+    const struct hf__frame_kernels *frame; /* the call's level's */
+    const struct hf__write_kernels *write;
+} hf__rcall;
+
+/* The whole-call loops, one a width, each returning 0 for a call it
+   leaves to the next (hf__ribbons_widths). */
+#if HF__AVX512
+/* sixteen lanes: a streamed call that fits lines (hf__lines_fit), or
+   the compact vertex with P a multiple of 16 */
+HF__PRIVATE int hf__ribbons_v16(const hf__rcall *c)
+{
+    if (c->stage && hf__lines_fit(c->ro, c->P, c->dst0, c->block, c->first,
+                                  c->out_first)) {
+        hf__ribbons_lines_avx512(c->sv, c->first, c->count, c->params, c->K,
+                                 c->ro, c->out_first, c->fr, c->fr2);
+        return 1;
+    }
+    if (!c->stage && c->ro->c16 && c->P % 16 == 0) {
+        hf__ribbons_c16_avx512(c->sv, c->first, c->count, c->params, c->K,
+                               c->ro, c->out_first, c->fr);
+        return 1;
+    }
+    return 0;
+}
+#endif
+
+#if HF__AVX2
+/* eight lanes: the layouts with a float run or windows */
+HF__PRIVATE int hf__ribbons_v8(const hf__rcall *c)
+{
+    if (!c->ro->run && !c->ro->nw) return 0;
+    hf__ribbons_run_avx2(c->sv, c->first, c->count, c->params, c->K, c->ro,
+                         c->out_first, c->fr, c->stage ? NULL : c->fr2,
+                         c->stage ? c->stage_buf : NULL, c->dst0, c->block);
+    return 1;
+}
+#endif
+
+/* four lanes and one: a strand at a time, its frame and its vertices by
+   the call's kernels (hf__strand_frame, hf__ribbon_write), through the
+   stage in a streamed call */
+HF__PRIVATE int hf__ribbons_each(const hf__rcall *c)
+{
+    /* the inputs in locals, read once: the kernels are calls whose
+       stores may alias anything reached through a pointer */
+    const hf_ribbon_strands sv = *c->sv;
+    const hf_ribbon_params *params = c->params;
+    const hf__frame_kernels *kf = c->frame;
+    const hf__write_kernels *kw = c->write;
+    const int P = c->P, out_first = c->out_first, stage = c->stage;
+    hf__rframe *const fr = c->fr;
+    hf__rout so;
+    int s;
+    if (stage) hf__rout_staged(c->ro, c->stage_buf, c->dst0, &so);
+    for (s = c->first; s < c->first + c->count; ++s) {
+        const float *pts = sv.points + (size_t)s * (size_t)P * 3u;
+        const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
+        hf__rstrand str;
+        hf__strand_frame(pts, P, params, fr, &str.wscale, kf);
+        hf__rstrand_fill(&sv, s, c->K->wcap, &str);
+        if (stage) {
+            /* the strand's vertices into the stage (in L1), then out to
+               its block with streaming stores */
+            hf__ribbon_write(fr, P, c->K, &str, &so, 0, kw);
+            hf__stream_copy(c->dst0 + v0 * c->block, c->stage_buf,
+                            2u * (size_t)P * c->block);
+        } else {
+            hf__ribbon_write(fr, P, c->K, &str, c->ro, v0, kw);
+        }
+    }
+#if HF__SSE
+    if (stage) _mm_sfence(); /* streamed stores visible before we return */
+#endif
+    return 1;
+}
+
+typedef struct hf__ribbons_kernels {
+    hf__isa isa;
+    int (*call)(const hf__rcall *);
+} hf__ribbons_kernels;
+
+static const hf__ribbons_kernels hf__ribbons_widths[] = {
+#if HF__AVX512
+    {HF__ISA_V16, hf__ribbons_v16},
+#endif
+#if HF__AVX2
+    {HF__ISA_V8, hf__ribbons_v8},
+#endif
+#if HF__V4
+    {HF__ISA_V4, hf__ribbons_each},
+#endif
+    {HF__ISA_V1, hf__ribbons_each}};
+
 /* hf_ribbons, with streaming stores by size (nontemporal 0) chosen as
    for `sized` strands: the call's count, or a fur's drawn strands */
 HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
@@ -13402,9 +13505,11 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
                                   const hf_ribbon_output *out, int sized)
 {
     hf__rconst K;
-    hf__rout ro, so;
+    hf__rout ro;
+    hf__rcall c;
     hf_ribbon_params prm;
     const hf_ribbon_params *params = &prm;
+    const hf__ribbons_kernels *kc;
     hf_ribbon_strands sv;
     const hf_stream *streams[5];
     /* a strand's frame rows from a page boundary, then a second frame
@@ -13416,7 +13521,7 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
     unsigned char *dst0 = NULL;
     size_t block = 0, elem[5];
     size_t nv, call_v0; /* vertices a strand; the call's first vertex */
-    int s, k, P, stage, level, out_first;
+    int k, P, stage;
     hf_result r = hf__ribbon_check(strands, first, count, view, &prm);
     if (r != HF_OK) return r;
     if (!out) return HF_ERROR_NULL_POINTER;
@@ -13470,7 +13575,6 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
     hf__rout_layout(&ro); /* the stage keeps the layout: the same */
 
     P = params->points_per_strand;
-    level = hf_simd_resolve(params->simd);
     hf__rconst_init(&K, params);
 
     stage = hf__streaming(params->nontemporal,
@@ -13481,53 +13585,30 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
     if (stage)
         stage_buf = hf__stage_in_page((float *)(void *)fr2,
                                       2u * (size_t)P * block);
-    /* the inputs in locals, read once: the kernels are calls whose
-       stores may alias anything reached through a pointer */
     sv = *strands;
     /* the inputs of the streams not written are not read */
     if (!ro.base[HF__S_TEX]) sv.root_uv = NULL;
     if (!ro.base[HF__S_COL]) sv.color = NULL;
     if (!ro.base[HF__S_C3D]) sv.color3d_x = NULL;
-    out_first = params->out_first;
-#if HF__AVX512
-    if (stage && hf__lines_fit(&ro, P, level, dst0, block, first, out_first)) {
-        hf__ribbons_lines_avx512(&sv, first, count, params, &K, &ro,
-                                 out_first, fr, fr2);
-        return HF_OK;
-    }
-    if (!stage && ro.c16 && level >= HF_SIMD_AVX512 && P % 16 == 0) {
-        hf__ribbons_c16_avx512(&sv, first, count, params, &K, &ro, out_first,
-                               fr);
-        return HF_OK;
-    }
-#endif
-#if HF__AVX2
-    if (level >= HF_SIMD_AVX2 && (ro.run || ro.nw)) {
-        hf__ribbons_run_avx2(&sv, first, count, params, &K, &ro, out_first,
-                             fr, stage ? NULL : fr2,
-                             stage ? stage_buf : NULL, dst0, block);
-        return HF_OK;
-    }
-#endif
-    if (stage) hf__rout_staged(&ro, stage_buf, dst0, &so);
-    for (s = first; s < first + count; ++s) {
-        const float *pts = sv.points + (size_t)s * (size_t)P * 3u;
-        const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
-        hf__rstrand str;
-        hf__strand_frame(pts, P, params, fr, &str.wscale, level);
-        hf__rstrand_fill(&sv, s, K.wcap, &str);
-        if (stage) {
-            /* the strand's vertices into the stage (in L1), then out to
-               its block with streaming stores */
-            hf__ribbon_write(fr, P, &K, &str, &so, 0, level);
-            hf__stream_copy(dst0 + v0 * block, stage_buf, 2u * (size_t)P * block);
-        } else {
-            hf__ribbon_write(fr, P, &K, &str, &ro, v0, level);
-        }
-    }
-#if HF__SSE
-    if (stage) _mm_sfence(); /* streamed stores visible before we return */
-#endif
+    c.sv = &sv;
+    c.params = params;
+    c.K = &K;
+    c.ro = &ro;
+    c.first = first;
+    c.count = count;
+    c.out_first = params->out_first;
+    c.P = P;
+    c.fr = fr;
+    c.fr2 = fr2;
+    c.stage = stage;
+    c.stage_buf = stage_buf;
+    c.dst0 = dst0;
+    c.block = block;
+    /* the call's kernels, once: its loop, the frames and writers */
+    c.frame = hf__kernels_for(hf__frame_widths, params->simd);
+    c.write = hf__kernels_for(hf__write_widths, params->simd);
+    kc = hf__kernels_for(hf__ribbons_widths, params->simd);
+    while (!kc->call(&c)) ++kc;
     return HF_OK;
 }
 
@@ -13540,11 +13621,13 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
 
 /* ---- 8.8 GPU points (hf_ribbon_points) ---------------------------------- */
 
-/* GPU points of one strand: (x, y, z, hw[j] * ws) for point j. */
-HF__PRIVATE void hf__points_strand_ref(const float *p, const float *hw,
-                                       float ws, float *o, int P)
+/* GPU points of one strand: (x, y, z, hw[j] * ws) for point j; nt asks
+   for streaming stores (the reference makes none). */
+HF__PRIVATE void hf__points_strand_v1(const float *p, const float *hw,
+                                      float ws, float *o, int P, int nt)
 {
     int j;
+    (void)nt;
     for (j = 0; j < P; ++j) {
         o[4 * j] = p[3 * j];
         o[4 * j + 1] = p[3 * j + 1];
@@ -13569,8 +13652,8 @@ HF__INLINE void hf__point_put_sse(float *o, __m128 v, float w, int nt)
         _mm_storeu_ps(o, v);
 }
 
-HF__PRIVATE void hf__points_strand_sse(const float *p, const float *hw,
-                                       float ws, float *o, int P, int nt)
+HF__PRIVATE void hf__points_strand_v4(const float *p, const float *hw,
+                                      float ws, float *o, int P, int nt)
 {
     int j;
     nt = nt && ((uintptr_t)o & 15u) == 0;
@@ -13587,12 +13670,12 @@ HF__PRIVATE void hf__points_strand_sse(const float *p, const float *hw,
 #endif
 
 #if HF__NEON
-/* hf__points_strand_sse on ARM64 (no streaming stores there). */
-HF__PRIVATE void
-hf__points_strand_neon(const float *p, const float *hw, float ws, float *o,
-                       int P)
+/* hf__points_strand_v4 on ARM64 (no streaming stores there). */
+HF__PRIVATE void hf__points_strand_v4(const float *p, const float *hw,
+                                      float ws, float *o, int P, int nt)
 {
     int j;
+    (void)nt;
     for (j = 0; j + 1 < P; ++j)
         vst1q_f32(o + 4 * j,
                   vsetq_lane_f32(hw[j] * ws, vld1q_f32(p + 3 * j), 3));
@@ -13689,6 +13772,9 @@ typedef struct hf__points_kit {
     int P, level, nt, wide;
     int compact;           /* HF_POINT_COMPACT: */
     float origin[3], inv;  /* its box: (p - origin) * inv */
+    /* the level's kernels (hf__kernels_for): points, compact encoders */
+    const struct hf__points_kernels *kernels;
+    const struct hf__encode_kernels *encode;
 } hf__points_kit;
 
 #if HF__AVX2
@@ -13729,7 +13815,7 @@ hf__points_loop_avx2(const hf__points_kit *k, const hf_ribbon_strands *strands,
 }
 
 HF__TARGET_AVX2 HF__PRIVATE void
-hf__points_run_avx2(const hf__points_kit *k, const hf_ribbon_strands *strands,
+hf__points_pairs_v8(const hf__points_kit *k, const hf_ribbon_strands *strands,
                     const float *pts, int pts_first, int first, int count,
                     int out_first, float *out4)
 {
@@ -13750,28 +13836,6 @@ hf__points_run_avx2(const hf__points_kit *k, const hf_ribbon_strands *strands,
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 #endif
-
-HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
-                                     const hf_ribbon_params *params,
-                                     int count)
-{
-    int c;
-    k->P = params->points_per_strand;
-    k->level = hf_simd_resolve(params->simd);
-    k->compact = params->point_format == HF_POINT_COMPACT;
-    for (c = 0; c < 3; ++c) k->origin[c] = params->point_origin[c];
-    k->inv = 1.0f / params->point_scale; /* resolved: not 0 */
-    k->nt = hf__streaming(params->nontemporal,
-                          (size_t)count * (size_t)k->P * (k->compact ? 8u : 16u),
-                          HF_STREAM_MIN_VERTEX_BYTES);
-    k->wcap = hf__half_widths(params, k->hw, NULL);
-    k->wide = 0;
-#if HF__AVX2
-    /* the AVX2 kernel needs P >= 3 */
-    k->wide = k->level >= HF_SIMD_AVX2 && k->P >= 3;
-    if (k->wide) hf__pair_widths_init(&k->pw, k->hw, k->P);
-#endif
-}
 
 #endif /* !HF__PASS */
 
@@ -14029,16 +14093,61 @@ HF__TARGET_AVX512 HF__INLINE void hf__points_out_v16(float *o, __m512 a,
 #endif
 #undef HF__CLUMP_MODE_CASES
 
+/* Interpolation into GPU points in one kernel (hf_fur_interpolate_points)
+   per width, each returning 0 for a P it leaves to the next: P even and
+   at least 8 at eight lanes, a multiple of 4 and at least 16 at sixteen;
+   none at four lanes and one (fused 0: the strands go through memory). */
+typedef struct hf__ipoints_kernels {
+    hf__isa isa;
+    int (*fused)(const hf__irun *, const hf__points_kit *,
+                 const hf_ribbon_strands *, int, int, int, float *);
+} hf__ipoints_kernels;
+
+#if HF__AVX2
+HF__PRIVATE int hf__interp_points_fit_v8(const hf__irun *run,
+                                         const hf__points_kit *k,
+                                         const hf_ribbon_strands *st,
+                                         int first, int count, int out_first,
+                                         float *out4)
+{
+    if (run->P % 2 != 0 || run->P < 8) return 0;
+    hf__interp_points_v8(run, k, st, first, count, out_first, out4);
+    return 1;
+}
+#endif
+#if HF__AVX512
+HF__PRIVATE int hf__interp_points_fit_v16(const hf__irun *run,
+                                          const hf__points_kit *k,
+                                          const hf_ribbon_strands *st,
+                                          int first, int count, int out_first,
+                                          float *out4)
+{
+    if (run->P % 4 != 0 || run->P < 16) return 0;
+    hf__interp_points_v16(run, k, st, first, count, out_first, out4);
+    return 1;
+}
+#endif
+
+static const hf__ipoints_kernels hf__ipoints_widths[] = {
+#if HF__AVX512
+    {HF__ISA_V16, hf__interp_points_fit_v16},
+#endif
+#if HF__AVX2
+    {HF__ISA_V8, hf__interp_points_fit_v8},
+#endif
+    {HF__ISA_V1, NULL}};
+
 /* Compact points (HF_POINT_COMPACT) from float ones: n points (x, y, z,
    half width) at in to 8 bytes each at o, native byte order; the vector
    encoders (hf__encode_sse, _avx2, _neon) perform hf__encode1's
    operations, so every level writes the same bytes. */
-HF__PRIVATE void hf__points_encode_ref(const hf__points_kit *k,
-                                       const float *in, size_t n,
-                                       unsigned char *o)
+HF__PRIVATE void hf__points_encode_v1(const hf__points_kit *k,
+                                      const float *in, size_t n,
+                                      unsigned char *o, int nt)
 {
     size_t i;
     int c;
+    (void)nt;
     for (i = 0; i < n; ++i, in += 4, o += 8) {
         uint16_t code[4];
         for (c = 0; c < 3; ++c)
@@ -14062,9 +14171,9 @@ HF__INLINE __m128i hf__point_codes_sse(__m128 v, __m128 o, __m128 inv)
     return _mm_srai_epi32(_mm_slli_epi32(c, 16), 16); /* for packs */
 }
 
-HF__PRIVATE void hf__points_encode_sse(const hf__points_kit *k,
-                                       const float *in, size_t n,
-                                       unsigned char *o, int nt)
+HF__PRIVATE void hf__points_encode_v4(const hf__points_kit *k,
+                                      const float *in, size_t n,
+                                      unsigned char *o, int nt)
 {
     const __m128 org = _mm_setr_ps(k->origin[0], k->origin[1], k->origin[2],
                                    0.0f),
@@ -14093,8 +14202,8 @@ HF__PRIVATE void hf__points_encode_sse(const hf__points_kit *k,
    a vector, the eight half widths gathered into one vector for a single
    half conversion, then put back into each point's fourth lane. */
 HF__TARGET_AVX2 HF__PRIVATE void
-hf__points_encode_avx2(const hf__points_kit *k, const float *in, size_t n,
-                       unsigned char *o, int nt)
+hf__points_encode_v8(const hf__points_kit *k, const float *in, size_t n,
+                     unsigned char *o, int nt)
 {
     const __m256 org = _mm256_setr_ps(k->origin[0], k->origin[1],
                                       k->origin[2], 0.0f, k->origin[0],
@@ -14146,7 +14255,7 @@ hf__points_encode_avx2(const hf__points_kit *k, const float *in, size_t n,
         }
     }
     _mm256_zeroupper();
-    if (i < n) hf__points_encode_sse(k, in, n - i, o, 0);
+    if (i < n) hf__points_encode_v4(k, in, n - i, o, 0);
 }
 #endif
 
@@ -14156,8 +14265,8 @@ hf__points_encode_avx2(const hf__points_kit *k, const float *in, size_t n,
    to nearest even as hf__encode1 does (after its clamp to the largest
    half, subnormals included); each a 32-bit lane, narrowed to 16. */
 HF__TARGET_AVX512 HF__PRIVATE void
-hf__points_encode_avx512(const hf__points_kit *k, const float *in, size_t n,
-                         unsigned char *o, int nt)
+hf__points_encode_v16(const hf__points_kit *k, const float *in, size_t n,
+                      unsigned char *o, int nt)
 {
     const __m512 org = _mm512_setr_ps(
         k->origin[0], k->origin[1], k->origin[2], 0.0f, k->origin[0],
@@ -14195,19 +14304,20 @@ hf__points_encode_avx512(const hf__points_kit *k, const float *in, size_t n,
             _mm256_storeu_si256((__m256i *)(void *)o, four);
     }
     _mm256_zeroupper();
-    if (i < n) hf__points_encode_sse(k, in, n - i, o, 0);
+    if (i < n) hf__points_encode_v4(k, in, n - i, o, 0);
 }
 #endif
 
 #if HF__NEON
-HF__PRIVATE void hf__points_encode_neon(const hf__points_kit *k,
-                                        const float *in, size_t n,
-                                        unsigned char *o)
+HF__PRIVATE void hf__points_encode_v4(const hf__points_kit *k,
+                                      const float *in, size_t n,
+                                      unsigned char *o, int nt)
 {
     const float32x4_t inv = {k->inv, k->inv, k->inv, 1.0f};
     const float32x4_t org = {k->origin[0], k->origin[1], k->origin[2], 0.0f};
     const uint32x4_t xyz = {0xffffffffu, 0xffffffffu, 0xffffffffu, 0u};
     size_t i;
+    (void)nt; /* no streaming stores on ARM64 */
     for (i = 0; i < n; ++i, in += 4, o += 8) {
         const float32x4_t v = vld1q_f32(in);
         const uint32x4_t c = vbslq_u32(
@@ -14220,40 +14330,95 @@ HF__PRIVATE void hf__points_encode_neon(const hf__points_kit *k,
 }
 #endif
 
+/* The points kernels of one width (hf__points_widths): at eight and
+   sixteen lanes a kernel for whole calls (run: 0 for a P it leaves to the
+   next width), finiteness found on the way (a strand that is not is
+   written again, collapsed, streamed stores ordered first); at four
+   lanes and one a strand at a time (strand, after finite). */
+typedef struct hf__points_kernels {
+    hf__isa isa;
+    int (*run)(const hf__points_kit *, const hf_ribbon_strands *,
+               const float *, int, int, int, int, float *);
+    int (*finite)(const float *, int);
+    void (*strand)(const float *, const float *, float, float *, int, int);
+} hf__points_kernels;
+
+#if HF__AVX2
+/* Whole groups of W points where P allows (with its input and output in
+   L2, 100,000 strands of 16 points took 0.41-0.48 ms against the pairs'
+   0.64-0.67), else two points a vector; P >= 3. */
+HF__PRIVATE int hf__points_run_v8(const hf__points_kit *k,
+                                  const hf_ribbon_strands *strands,
+                                  const float *pts, int pts_first, int first,
+                                  int count, int out_first, float *out4)
+{
+    if (k->P < 3) return 0;
+    if (k->P % 8 == 0)
+        hf__points_groups_v8(k, strands, pts, pts_first, first, count,
+                             out_first, out4);
+    else
+        hf__points_pairs_v8(k, strands, pts, pts_first, first, count,
+                            out_first, out4);
+    return 1;
+}
+#endif
+#if HF__AVX512
+/* P a multiple of 16 */
+HF__PRIVATE int hf__points_run_v16(const hf__points_kit *k,
+                                   const hf_ribbon_strands *strands,
+                                   const float *pts, int pts_first, int first,
+                                   int count, int out_first, float *out4)
+{
+    if (k->P % 16 != 0) return 0;
+    hf__points_groups_v16(k, strands, pts, pts_first, first, count,
+                          out_first, out4);
+    return 1;
+}
+#endif
+
+static const hf__points_kernels hf__points_widths[] = {
+#if HF__AVX512
+    {HF__ISA_V16, hf__points_run_v16, NULL, NULL},
+#endif
+#if HF__AVX2
+    {HF__ISA_V8, hf__points_run_v8, NULL, NULL},
+#endif
+#if HF__SSE
+    {HF__ISA_V4, NULL, hf__points_finite_v4, hf__points_strand_v4},
+#elif HF__NEON
+    {HF__ISA_V4, NULL, hf__points_finite_v1, hf__points_strand_v4},
+#endif
+    {HF__ISA_V1, NULL, hf__points_finite_v1, hf__points_strand_v1}};
+
 HF__PRIVATE void hf__points_run(const hf__points_kit *k,
                                 const hf_ribbon_strands *strands,
                                 const float *pts, int pts_first, int first,
                                 int count, int out_first, float *out4);
 
-/* The dispatch of the compact encoders: n points at in to o. */
+typedef struct hf__encode_kernels {
+    hf__isa isa;
+    void (*encode)(const hf__points_kit *, const float *, size_t,
+                   unsigned char *, int);
+} hf__encode_kernels;
+
+static const hf__encode_kernels hf__encode_widths[] = {
+#if HF__AVX512
+    {HF__ISA_V16, hf__points_encode_v16},
+#endif
+#if HF__AVX2
+    {HF__ISA_V8, hf__points_encode_v8},
+#endif
+#if HF__V4
+    {HF__ISA_V4, hf__points_encode_v4},
+#endif
+    {HF__ISA_V1, hf__points_encode_v1}};
+
+/* The dispatch of the compact encoders (hf__encode_widths, resolved by
+   hf__points_kit_init): n points at in to o. */
 HF__PRIVATE void hf__points_encode(const hf__points_kit *k, const float *in,
                                    size_t n, unsigned char *o)
 {
-#if HF__AVX512
-    if (k->level >= HF_SIMD_AVX512) {
-        hf__points_encode_avx512(k, in, n, o, k->nt);
-        return;
-    }
-#endif
-#if HF__AVX2
-    if (k->level >= HF_SIMD_AVX2) {
-        hf__points_encode_avx2(k, in, n, o, k->nt);
-        return;
-    }
-#endif
-#if HF__SSE
-    if (k->level >= HF_SIMD_SSE2) {
-        hf__points_encode_sse(k, in, n, o, k->nt);
-        return;
-    }
-#endif
-#if HF__NEON
-    if (k->level >= HF_SIMD_NEON) {
-        hf__points_encode_neon(k, in, n, o);
-        return;
-    }
-#endif
-    hf__points_encode_ref(k, in, n, o);
+    k->encode->encode(k, in, n, o, k->nt);
 }
 
 /* Compact points of strands [first, first + count): the float points of
@@ -14292,55 +14457,51 @@ HF__PRIVATE void hf__points_run(const hf__points_kit *k,
 {
     const int P = k->P;
     int s;
+    const hf__points_kernels *kr = k->kernels;
     if (k->compact) {
         hf__points_run_compact(k, strands, pts, pts_first, first, count,
                                out_first, (unsigned char *)out4);
         return;
     }
-#if HF__AVX2
-    if (k->wide) {
-        /* finiteness found on the way: a strand that is not is written
-           again, collapsed (streamed stores ordered first). Whole groups
-           of W points where P allows (with its input and output in L2,
-           100,000 strands of 16 points took 0.41-0.48 ms against the
-           pairs' 0.64-0.67), else two points a vector */
-#if HF__AVX512
-        if (k->level >= HF_SIMD_AVX512 && P % 16 == 0)
-            hf__points_groups_v16(k, strands, pts, pts_first, first, count,
-                                out_first, out4);
-        else
-#endif
-        if (P % 8 == 0)
-            hf__points_groups_v8(k, strands, pts, pts_first, first, count,
-                               out_first, out4);
-        else
-            hf__points_run_avx2(k, strands, pts, pts_first, first, count,
-                                out_first, out4);
-        return;
-    }
-#endif
+    for (; kr->run; ++kr)
+        if (kr->run(k, strands, pts, pts_first, first, count, out_first,
+                    out4))
+            return;
     for (s = first; s < first + count; ++s) {
         const float *p = pts + (size_t)(s - pts_first) * (size_t)P * 3u;
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
         float wscale = 0.0f;
-        if (hf__points_finite(p, 3 * P))
+        if (kr->finite(p, 3 * P))
             wscale = hf__width_at(strands->width, s, k->wcap);
         else
             p = hf__zero_points; /* collapsed, as hf_ribbons */
-#if HF__SSE
-        if (k->level >= HF_SIMD_SSE2) {
-            hf__points_strand_sse(p, k->hw, wscale, o, P, k->nt);
-            continue;
-        }
-#endif
-#if HF__NEON
-        if (k->level >= HF_SIMD_NEON) {
-            hf__points_strand_neon(p, k->hw, wscale, o, P);
-            continue;
-        }
-#endif
-        hf__points_strand_ref(p, k->hw, wscale, o, P);
+        kr->strand(p, k->hw, wscale, o, P, k->nt);
     }
+}
+
+/* A points call's kit from resolved params, for `count` strands */
+HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
+                                     const hf_ribbon_params *params,
+                                     int count)
+{
+    int c;
+    k->P = params->points_per_strand;
+    k->level = hf_simd_resolve(params->simd);
+    k->kernels = hf__kernels_for(hf__points_widths, k->level);
+    k->encode = hf__kernels_for(hf__encode_widths, k->level);
+    k->compact = params->point_format == HF_POINT_COMPACT;
+    for (c = 0; c < 3; ++c) k->origin[c] = params->point_origin[c];
+    k->inv = 1.0f / params->point_scale; /* resolved: not 0 */
+    k->nt = hf__streaming(params->nontemporal,
+                          (size_t)count * (size_t)k->P * (k->compact ? 8u : 16u),
+                          HF_STREAM_MIN_VERTEX_BYTES);
+    k->wcap = hf__half_widths(params, k->hw, NULL);
+    k->wide = 0;
+#if HF__AVX2
+    /* the AVX2 kernel needs P >= 3 */
+    k->wide = k->level >= HF_SIMD_AVX2 && k->P >= 3;
+    if (k->wide) hf__pair_widths_init(&k->pw, k->hw, k->P);
+#endif
 }
 
 /* hf_ribbon_points, with the stores chosen as for `sized` strands (as
@@ -17646,37 +17807,32 @@ HFDEF hf_result hf_fur_interpolate_points(const hf_fur *f, int first,
     hf__points_kit kit;
     hf_ribbon_params p, prm;
     hf_ribbon_strands st;
-    int s, n, per;
-#if HF__AVX2
-    int lv;
-#endif
+    const hf__ipoints_kernels *k;
+    int s, n, per, lv;
     hf_result r = hf__fur_view(f, first, count, view, &p, &st);
     if (r == HF_OK) r = hf__ribbon_check(&st, first, count, &p, &prm);
     if (r != HF_OK) return r;
     if (!out4) return HF_ERROR_NULL_POINTER;
     hf__points_kit_init(&kit, &prm, hf__fur_sized(f, count));
-#if HF__AVX2
+    /* interpolation and points in one kernel at the lower of the two
+       levels (the fur's and the params'); else the strands at the fur's,
+       through buf, and their points at the params' */
     lv = hf_simd_resolve(f->simd);
-    lv = lv < kit.level ? lv : kit.level;
-    if (kit.wide && !kit.compact && lv >= HF_SIMD_AVX2 && f->P % 2 == 0 &&
-        f->P >= 8 && hf__fur_blend_only(f)) {
+    k = hf__kernels_for(hf__ipoints_widths, lv < kit.level ? lv : kit.level);
+    if (k->fused && !kit.compact && hf__fur_blend_only(f)) {
         /* in registers, nothing through memory (the run's own output is
            not written: the kernels write points to out4) */
         float ctab[3 * HF_MAX_POINTS];
         hf__irun run;
         hf__irun_init(&run, f->guide_points, f->bindings, f->P, f->clump,
                       ctab, out4, first, 0);
-#if HF__AVX512
-        if (lv >= HF_SIMD_AVX512 && f->P % 4 == 0 && f->P >= 16)
-            hf__interp_points_v16(&run, &kit, &st, first, count,
-                                prm.out_first, out4);
-        else
-#endif
-            hf__interp_points_v8(&run, &kit, &st, first, count,
-                               prm.out_first, out4);
-        count = 0;
+        for (; k->fused; ++k)
+            if (k->fused(&run, &kit, &st, first, count, prm.out_first,
+                         out4)) {
+                count = 0;
+                break;
+            }
     }
-#endif
     per = HF__POINTS_BLOCK / (3 * f->P);
     for (s = first; s < first + count; s += n) {
         n = first + count - s < per ? first + count - s : per;

@@ -7213,7 +7213,7 @@ static void test_ribbons_every_level_matches_reference(void)
 #endif
 #if HF__AVX2
                     if (kind == 1 && hf_simd_resolve(HF_SIMD_AVX2) == HF_SIMD_AVX2)
-                        took = hf__strand_frame_avx2(q, P, &p, &b, &finite);
+                        took = hf__strand_frame_v8(q, P, &p, &b, &finite);
 #endif
                     if (took < 0) continue; /* not in this build or CPU */
                     if (!took) {
@@ -7265,7 +7265,7 @@ static void test_ribbons_every_level_matches_reference(void)
                     hf__rframe fr;
                     const float *qs = pts + (size_t)s * P * 3;
                     /* as hf_ribbons: a strand with a NaN is drawn collapsed */
-                    const int fin = hf__points_finite(qs, 3 * P);
+                    const int fin = hf__points_finite_v1(qs, 3 * P);
                     memset(&fr, 0, sizeof fr);
                     hf__strand_frame_ref(fin ? qs : hf__zero_points, P, &p, &fr);
                     S.uv[0] = hf_rng_float(&rng);
@@ -7283,13 +7283,13 @@ static void test_ribbons_every_level_matches_reference(void)
                     memset(va, 0xa5, sizeof va);
                     for (q = 0; q < 5; ++q) ro.base[q] = va + off[q];
                     hf__rout_layout(&ro);
-                    hf__ribbon_write_ref(&fr, P, &K, &S, &ro, 0);
+                    hf__ribbon_write_v1(&fr, P, &K, &S, &ro, 0);
                     for (level = HF_SIMD_SSE2; level <= HF_SIMD_AVX512; ++level) {
                         memset(vb, 0xa5, sizeof vb);
                         for (q = 0; q < 5; ++q) ro.base[q] = vb + off[q];
                         hf__rout_layout(&ro);
                         hf__ribbon_write(&fr, P, &K, &S, &ro, 0,
-                                         hf_simd_resolve(level));
+                                         hf__kernels_for(hf__write_widths, level));
                         CHECK(memcmp(va, vb, sizeof va) == 0);
                     }
                 }
@@ -7515,7 +7515,7 @@ static void test_ribbons_table_layouts(void)
                 hf__rframe fr;
                 hf__rstrand S;
                 /* as hf_ribbons: a strand with a NaN is drawn collapsed */
-                const int fin = hf__points_finite(qs, 3 * P);
+                const int fin = hf__points_finite_v1(qs, 3 * P);
                 memset(&fr, 0, sizeof fr);
                 hf__strand_frame_ref(fin ? qs : hf__zero_points, P, &p, &fr);
                 S.uv[0] = hf_rng_float(&rng);
@@ -7532,14 +7532,14 @@ static void test_ribbons_table_layouts(void)
                 for (q = 0; q < ro.nw; ++q)
                     widened += ro.wb[q] != hf_format_bytes(ro.fmt[ro.wq[q]]) *
                                                hf__stream_nc[ro.wq[q]];
-                hf__ribbon_write_ref(&fr, P, &K, &S, &ro, v0);
+                hf__ribbon_write_v1(&fr, P, &K, &S, &ro, v0);
                 for (level = HF_SIMD_SSE2; level <= HF_SIMD_AVX512; ++level) {
                     memset(vb, 0xa5, sizeof vb);
                     for (q = 0; q < 5; ++q)
                         ro.base[q] = lay[L][2 * q] < 0 ? NULL : vb + lay[L][2 * q];
                     hf__rout_layout(&ro);
                     hf__ribbon_write(&fr, P, &K, &S, &ro, v0,
-                                     hf_simd_resolve(level));
+                                     hf__kernels_for(hf__write_widths, level));
                     CHECK(memcmp(va, vb, sizeof va) == 0);
                 }
             }
@@ -7869,8 +7869,8 @@ static void test_points_compact(void)
         memset(&kit, 0, sizeof kit);
         kit.origin[1] = 0.1f;
         kit.inv = 2.0f;
-        hf__points_encode_ref(&kit, f4,
-                              (size_t)info.drawn_strand_count * 16u, e8);
+        hf__points_encode_v1(&kit, f4,
+                             (size_t)info.drawn_strand_count * 16u, e8, 0);
         CHECK_EQ_INT(hf_fur_points(f, 0, info.drawn_strand_count, &view,
                                    (float *)(void *)c8),
                      HF_OK);
@@ -8338,7 +8338,7 @@ static void test_ribbon_sides_never_twist(void)
             const int at = (int)hf_rng_below(&rng, TP);
             float ws;
             double t[3], a[3], v[3], len, sn = sins[q];
-            hf__strand_frame(pts, TP, &p, &fr, &ws, hf_simd_resolve(0)); /* tangents first */
+            hf__strand_frame(pts, TP, &p, &fr, &ws, hf__kernels_for(hf__frame_widths, 0)); /* tangents first */
             for (k = 0; k < 3; ++k) t[k] = fr.t[k][4 + at];
             /* a unit axis perpendicular to t */
             a[0] = t[1]; a[1] = -t[0]; a[2] = 0.0;
@@ -8351,7 +8351,7 @@ static void test_ribbon_sides_never_twist(void)
                               : 1.5 * (sqrt(1.0 - sn * sn) * t[k] + sn * a[k]);
                 p.eye[k] = (float)((double)pts[3 * at + k] + v[k]);
             }
-            hf__strand_frame(pts, TP, &p, &fr, &ws, hf_simd_resolve(0));
+            hf__strand_frame(pts, TP, &p, &fr, &ws, hf__kernels_for(hf__frame_widths, 0));
             for (j = 0; j < TP; ++j) {
                 float sj[3], tj[3];
                 double dv[3], dl, st, sv, n;
@@ -8397,7 +8397,7 @@ static void test_ribbon_sides_never_twist(void)
     p.view_dir[0] = 0.0f; p.view_dir[1] = -1.0f; p.view_dir[2] = 0.0f;
     {
         float ws;
-        hf__strand_frame(pts, TP, &p, &fr, &ws, hf_simd_resolve(0));
+        hf__strand_frame(pts, TP, &p, &fr, &ws, hf__kernels_for(hf__frame_widths, 0));
         for (j = 0; j < TP; ++j) {
             CHECK(fabsf(fr.s[1][4 + j]) <= 1e-6f);
             CHECK(fabsf(fr.s[0][4 + j] * fr.s[0][4 + j] +
