@@ -7156,7 +7156,7 @@ HF__PRIVATE const float *hf__ropes_substep_prep(hf_ropes *ro, int a, int b,
 
 /* Position Verlet for points 1.. of ropes [a, b), then the root pinned to
    the frame F. */
-HF__PRIVATE void hf__ropes_integrate_ref(hf_ropes *ro, const float *F, int a,
+HF__PRIVATE void hf__ropes_integrate_v1(hf_ropes *ro, const float *F, int a,
                                          int b)
 {
     const size_t R = (size_t)ro->rope_count;
@@ -7197,7 +7197,7 @@ HF__PRIVATE void hf__ropes_integrate_ref(hf_ropes *ro, const float *F, int a,
 
 /* Shape: the root segment and the global pose, each point pulled toward
    its rest place in the frame F. */
-HF__PRIVATE void hf__ropes_global_shape_ref(hf_ropes *ro, const float *F,
+HF__PRIVATE void hf__ropes_global_shape_v1(hf_ropes *ro, const float *F,
                                             int a, int b,
                                             const hf__rope_step *st)
 {
@@ -7232,7 +7232,7 @@ HF__PRIVATE void hf__ropes_global_shape_ref(hf_ropes *ro, const float *F,
 /* Local shape: each segment toward its rest direction relative to its
    parent segment (the rest offset turned by the smallest rotation that
    takes the parent's rest direction to its current one). */
-HF__PRIVATE void hf__ropes_local_shape_ref(hf_ropes *ro, const float *F,
+HF__PRIVATE void hf__ropes_local_shape_v1(hf_ropes *ro, const float *F,
                                            int a, int b,
                                            const hf__rope_step *st)
 {
@@ -7312,7 +7312,7 @@ HF__PRIVATE void hf__ropes_local_shape_ref(hf_ropes *ro, const float *F,
 }
 
 /* The solver passes, each a distance pass with its collisions. */
-HF__PRIVATE void hf__ropes_solve_ref(hf_ropes *ro, const float *F, int a,
+HF__PRIVATE void hf__ropes_solve_v1(hf_ropes *ro, const float *F, int a,
                                      int b, const hf__rope_step *st,
                                      const hf__bp *bp)
 {
@@ -7397,11 +7397,11 @@ HF__PRIVATE int hf__ropes_substep_v1(hf_ropes *ro, const float *F, int a,
                                      const struct hf__rope_rows *k)
 {
     (void)k;
-    hf__ropes_integrate_ref(ro, F, a, b);
+    hf__ropes_integrate_v1(ro, F, a, b);
     if (st->k_root > 0.0f || st->global_on)
-        hf__ropes_global_shape_ref(ro, F, a, b, st);
-    if (st->local_on) hf__ropes_local_shape_ref(ro, F, a, b, st);
-    hf__ropes_solve_ref(ro, F, a, b, st, bp);
+        hf__ropes_global_shape_v1(ro, F, a, b, st);
+    if (st->local_on) hf__ropes_local_shape_v1(ro, F, a, b, st);
+    hf__ropes_solve_v1(ro, F, a, b, st, bp);
     return b;
 }
 
@@ -7989,7 +7989,7 @@ HF__VTARGET HF__INLINE void HF__KN(hf__ftl_list)(hf_ropes *ro, const float *F,
    once like the contact kernels, with the safety net's test of every
    point row (hf__ropes_mark_far_v<W>, whole groups from a).
    HF__VZEROUPPER() ends each (see HF__TARGET_AVX2). */
-/* The root pinned to the frame F (hf__ropes_integrate_ref's last loop). */
+/* The root pinned to the frame F (hf__ropes_integrate_v1's last loop). */
 HF__VTARGET HF__PRIVATE void
 HF__KN(hf__ropes_pin_root)(hf_ropes *ro, const float *F, int a, int b)
 {
@@ -8076,7 +8076,7 @@ HF__KN(hf__ropes_integrate_row)(hf_ropes *ro, const float *F, int j, int a,
 /* Row j's local shape: segment m = j - 1's world rest direction into the
    scratch rows Q[m & 1] (the child direction q of point j + 1's turn, the
    parent direction p of point j + 2's), then point j turned as in
-   hf__ropes_local_shape_ref at its j = m; the next row is prefetched. */
+   hf__ropes_local_shape_v1 at its j = m; the next row is prefetched. */
 HF__VTARGET HF__PRIVATE void
 HF__KN(hf__ropes_local_row)(hf_ropes *ro, const float *F, int j, int a, int b,
                             const hf__rope_step *st, float *Q[2][3])
@@ -9431,7 +9431,7 @@ HF__INLINE void hf__page_ahead(const void *p, size_t bytes)
 
 /* Floats [i, i + 4) of a strand; R is (1 - sc) root in the phase of i. The
    operations and their order are the scalar loop's in hf_interpolate. */
-HF__INLINE void hf__interp_sse(const float *g0, const float *g1, const float *g2,
+HF__INLINE void hf__interp_v4(const float *g0, const float *g1, const float *g2,
                             const float *gn, const float *ctab, float *o,
                             int i, __m128 W0, __m128 W1, __m128 W2,
                             __m128 SC, __m128 R, int nt)
@@ -9453,7 +9453,7 @@ HF__INLINE void hf__interp_sse(const float *g0, const float *g1, const float *g2
 /* One strand's floats [i, 3 P) of hf__interpolate_run: p = the weighted
    guides, scaled about the root (rb = (1 - sc) root, twice), then pulled
    toward guide gn (NULL: no clumping) by ctab. */
-HF__PRIVATE void hf__interp_strand_ref(const float *g0, const float *g1,
+HF__PRIVATE void hf__interp_strand_v1(const float *g0, const float *g1,
                                        const float *g2, const float *gn,
                                        const float *ctab, float *o, int i,
                                        int P, float w0, float w1, float w2,
@@ -9467,9 +9467,9 @@ HF__PRIVATE void hf__interp_strand_ref(const float *g0, const float *g1,
 }
 
 #if HF__SSE
-/* hf__interp_strand_ref on whole vectors from float 0; returns where they
+/* hf__interp_strand_v1 on whole vectors from float 0; returns where they
    end. */
-HF__PRIVATE int hf__interp_strand_sse(const float *g0, const float *g1,
+HF__PRIVATE int hf__interp_strand_v4(const float *g0, const float *g1,
                                       const float *g2, const float *gn,
                                       const float *ctab, float *o, int P,
                                       float w0, float w1, float w2, float sc,
@@ -9486,16 +9486,16 @@ HF__PRIVATE int hf__interp_strand_sse(const float *g0, const float *g1,
     int i = 0;
     /* three vectors a turn, so each gets its phase without a test */
     for (; i + 12 <= 3 * P; i += 12) {
-        hf__interp_sse(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0, nt);
-        hf__interp_sse(g0, g1, g2, gn, ctab, o, i + 4, W0, W1, W2, SC, R1, nt);
-        hf__interp_sse(g0, g1, g2, gn, ctab, o, i + 8, W0, W1, W2, SC, R2, nt);
+        hf__interp_v4(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0, nt);
+        hf__interp_v4(g0, g1, g2, gn, ctab, o, i + 4, W0, W1, W2, SC, R1, nt);
+        hf__interp_v4(g0, g1, g2, gn, ctab, o, i + 8, W0, W1, W2, SC, R2, nt);
     }
     if (i + 4 <= 3 * P) {
-        hf__interp_sse(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0, nt);
+        hf__interp_v4(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0, nt);
         i += 4;
     }
     if (i + 4 <= 3 * P) {
-        hf__interp_sse(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R1, nt);
+        hf__interp_v4(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R1, nt);
         i += 4;
     }
     return i;
@@ -9568,7 +9568,7 @@ HF__PRIVATE int hf__interp_range_v1(const hf__irun *run, int first,
     for (s = first; s < first + count; ++s) {
         hf__interp_setup(run, s, &t);
         hf__interp_root(&t);
-        hf__interp_strand_ref(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, 0,
+        hf__interp_strand_v1(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, 0,
                               run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
     }
     return 1;
@@ -9586,10 +9586,10 @@ HF__PRIVATE int hf__interp_range_v4(const hf__irun *run, int first,
         hf__interp_root(&t);
         nt = run->nt && ((uintptr_t)t.o & 15u) == 0;
         if (nt) hf__page_ahead(t.o, 12u * (size_t)run->P);
-        i = hf__interp_strand_sse(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o,
+        i = hf__interp_strand_v4(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o,
                                   run->P, t.w0, t.w1, t.w2, t.sc, t.rb, nt);
         if (i < 3 * run->P)
-            hf__interp_strand_ref(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, i,
+            hf__interp_strand_v1(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, i,
                                   run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
     }
     return 1;
@@ -9602,15 +9602,15 @@ HF__NOINLINE HF__PRIVATE void hf__interp_tail(const hf__irun *run,
                                              hf__istrand *t, int i)
 {
     hf__interp_root(t);
-    hf__interp_strand_ref(t->g0, t->g1, t->g2, t->gn, run->ctab, t->o, i,
+    hf__interp_strand_v1(t->g0, t->g1, t->g2, t->gn, run->ctab, t->o, i,
                           run->P, t->w0, t->w1, t->w2, t->sc, t->rb);
 }
 
 #if HF__NEON
-/* hf__interp_strand_sse on ARM64: four floats a vector, the same
+/* hf__interp_strand_v4 on ARM64: four floats a vector, the same
    operations in the same order, so the same bytes. */
 HF__INLINE void
-hf__interp_neon(const hf__istrand *t, const float *ctab, int i,
+hf__interp_v4(const hf__istrand *t, const float *ctab, int i,
                 float32x4_t W0, float32x4_t W1, float32x4_t W2,
                 float32x4_t SC, float32x4_t R)
 {
@@ -9643,20 +9643,20 @@ HF__PRIVATE int hf__interp_range_v4(const hf__irun *run, int first,
         R1 = vld1q_f32(t.rb + 1);
         R2 = vld1q_f32(t.rb + 2);
         for (i = 0; i + 12 <= n; i += 12) {
-            hf__interp_neon(&t, run->ctab, i, W0, W1, W2, SC, R0);
-            hf__interp_neon(&t, run->ctab, i + 4, W0, W1, W2, SC, R1);
-            hf__interp_neon(&t, run->ctab, i + 8, W0, W1, W2, SC, R2);
+            hf__interp_v4(&t, run->ctab, i, W0, W1, W2, SC, R0);
+            hf__interp_v4(&t, run->ctab, i + 4, W0, W1, W2, SC, R1);
+            hf__interp_v4(&t, run->ctab, i + 8, W0, W1, W2, SC, R2);
         }
         if (i + 4 <= n) {
-            hf__interp_neon(&t, run->ctab, i, W0, W1, W2, SC, R0);
+            hf__interp_v4(&t, run->ctab, i, W0, W1, W2, SC, R0);
             i += 4;
         }
         if (i + 4 <= n) {
-            hf__interp_neon(&t, run->ctab, i, W0, W1, W2, SC, R1);
+            hf__interp_v4(&t, run->ctab, i, W0, W1, W2, SC, R1);
             i += 4;
         }
         if (i < n)
-            hf__interp_strand_ref(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, i,
+            hf__interp_strand_v1(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, i,
                                   run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
     }
     return 1;
@@ -9764,7 +9764,7 @@ HF__VTARGET HF__INLINE void HF__KN(hf__strand)(const float *G, int clump,
 }
 
 /* The weighted sum of the guides' floats [q, q + W): the operations of
-   hf__interp_strand_ref in its order (no FMA), so the same bytes. */
+   hf__interp_strand_v1 in its order (no FMA), so the same bytes. */
 HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__sum)(const HF__KN(hf__is) *v,
                                                size_t q)
 {
@@ -10381,7 +10381,7 @@ HF__PRIVATE void hf__side_borrow(hf__rframe *fr, int j, int from)
 /* The reference: unit tangents and sides of one strand, a point at a time
    (see hf_ribbons for the rules on degenerate points). The four-lane
    and AVX2 kernels below give the same bytes where they apply. */
-HF__PRIVATE void hf__strand_frame_ref(const float *pts, int P,
+HF__PRIVATE void hf__strand_frame_v1(const float *pts, int P,
                                       const hf_ribbon_params *params,
                                       hf__rframe *fr)
 {
@@ -10554,7 +10554,7 @@ HF__INLINE hf__v4 hf__row_put_v4(hf__rframe *fr, int k, hf__v4 X, hf__v4 Y,
                                 HF__ADD(HF__MUL(Y, zero), HF__MUL(Z, zero))));
 }
 
-/* hf__strand_frame_ref four points at a time (SSE2 or NEON), with the same
+/* hf__strand_frame_v1 four points at a time (SSE2 or NEON), with the same
    IEEE operations per point. Returns 0 and leaves the strand to the
    reference when a point is not finite (*finite = 0), has no tangent, or
    sees the view within HF__SIDE_SIN2 of its tangent: the rare cases whose
@@ -10647,13 +10647,13 @@ HF__PRIVATE int hf__strand_frame_v4(const float *pts, int P,
 #if HF__AVX2
 /* Lanes (p7, c0 .. c6) and (c1 .. c7, n0): each point's neighbours across
    two groups of eight. */
-HF__TARGET_AVX2 HF__INLINE __m256 hf__prev_avx2(__m256 p, __m256 c)
+HF__TARGET_AVX2 HF__INLINE __m256 hf__prev_v8(__m256 p, __m256 c)
 {
     const __m256 t = _mm256_permute2f128_ps(p, c, 0x21);
     return _mm256_castsi256_ps(_mm256_alignr_epi8(
         _mm256_castps_si256(c), _mm256_castps_si256(t), 12));
 }
-HF__TARGET_AVX2 HF__INLINE __m256 hf__next_avx2(__m256 c, __m256 n)
+HF__TARGET_AVX2 HF__INLINE __m256 hf__next_v8(__m256 c, __m256 n)
 {
     const __m256 t = _mm256_permute2f128_ps(c, n, 0x21);
     return _mm256_castsi256_ps(_mm256_alignr_epi8(
@@ -10663,14 +10663,14 @@ HF__TARGET_AVX2 HF__INLINE __m256 hf__next_avx2(__m256 c, __m256 n)
 /* One coordinate's central differences for the group whose values `cur`
    sit at row[0..8): the next group follows in the row, or the tip
    repeats after the last; *prev carries the group before. */
-HF__TARGET_AVX2 HF__INLINE __m256 hf__diff_avx2(const float *row, int last,
+HF__TARGET_AVX2 HF__INLINE __m256 hf__diff_v8(const float *row, int last,
                                                float tip, __m256 cur,
                                                __m256 *prev)
 {
     const __m256 next =
         last ? _mm256_set1_ps(tip) : _mm256_loadu_ps(row + 8);
     const __m256 d =
-        _mm256_sub_ps(hf__next_avx2(cur, next), hf__prev_avx2(*prev, cur));
+        _mm256_sub_ps(hf__next_v8(cur, next), hf__prev_v8(*prev, cur));
     *prev = cur;
     return d;
 }
@@ -10680,7 +10680,7 @@ HF__TARGET_AVX2 HF__INLINE __m256 hf__diff_avx2(const float *row, int last,
    reference. last: the tip repeats after it; ortho: e is the view
    direction (negated), else the eye. Inlined with both as constants. */
 HF__TARGET_AVX2 HF__INLINE int
-hf__frame_group_avx2(hf__rframe *fr, int k, int P, int last, int ortho,
+hf__frame_group_v8(hf__rframe *fr, int k, int P, int last, int ortho,
                      const float *tip, __m256 ex, __m256 ey, __m256 ez,
                      __m256 *px, __m256 *py, __m256 *pz)
 {
@@ -10698,9 +10698,9 @@ hf__frame_group_avx2(hf__rframe *fr, int k, int P, int last, int ortho,
     const __m256 cx = _mm256_loadu_ps(fr->p[0] + o),
                  cy = _mm256_loadu_ps(fr->p[1] + o),
                  cz = _mm256_loadu_ps(fr->p[2] + o);
-    const __m256 dx = hf__diff_avx2(fr->p[0] + o, last, tip[0], cx, px),
-                 dy = hf__diff_avx2(fr->p[1] + o, last, tip[1], cy, py),
-                 dz = hf__diff_avx2(fr->p[2] + o, last, tip[2], cz, pz);
+    const __m256 dx = hf__diff_v8(fr->p[0] + o, last, tip[0], cx, px),
+                 dy = hf__diff_v8(fr->p[1] + o, last, tip[1], cy, py),
+                 dz = hf__diff_v8(fr->p[2] + o, last, tip[2], cz, pz);
     const __m256 vx = ortho ? ex : _mm256_sub_ps(ex, cx),
                  vy = ortho ? ey : _mm256_sub_ps(ey, cy),
                  vz = ortho ? ez : _mm256_sub_ps(ez, cz);
@@ -10741,7 +10741,7 @@ hf__frame_group_avx2(hf__rframe *fr, int k, int P, int last, int ortho,
 
 /* One group's point rows into fr, their finiteness added to *acc (x * 0
    is NaN for NaN or infinity). */
-HF__TARGET_AVX2 HF__INLINE void hf__row_put_avx2(hf__rframe *fr, int k,
+HF__TARGET_AVX2 HF__INLINE void hf__row_put_v8(hf__rframe *fr, int k,
                                                  __m256 X, __m256 Y,
                                                  __m256 Z, __m256 *acc)
 {
@@ -10758,7 +10758,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__row_put_avx2(hf__rframe *fr, int k,
 /* The frame's e in every lane: the view direction, negated, for an
    orthographic view, else the eye; once per call. */
 HF__TARGET_AVX2 HF__INLINE void
-hf__frame_eye_avx2(const hf_ribbon_params *params, __m256 *e)
+hf__frame_eye_v8(const hf_ribbon_params *params, __m256 *e)
 {
     int c;
     HF__UNROLL for (c = 0; c < 3; ++c)
@@ -10768,7 +10768,7 @@ hf__frame_eye_avx2(const hf_ribbon_params *params, __m256 *e)
 
 /* Eight points' x, y and z (24 floats at q) in three vectors, by
    shuffles. */
-HF__TARGET_AVX2 HF__INLINE void hf__load8_avx2(const float *q, __m256 *xyz)
+HF__TARGET_AVX2 HF__INLINE void hf__load8_v8(const float *q, __m256 *xyz)
 {
 #define HF__LD2(a, b)                                                          \
     _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(q + (a))),      \
@@ -10787,9 +10787,9 @@ HF__TARGET_AVX2 HF__INLINE void hf__load8_avx2(const float *q, __m256 *xyz)
 
 /* hf__strand_frame_v4 eight points at a time, with the same IEEE
    operations per point, and the same cases left to the reference;
-   ortho and e as hf__frame_eye_avx2 gives them. */
+   ortho and e as hf__frame_eye_v8 gives them. */
 HF__TARGET_AVX2 HF__INLINE int
-hf__strand_frame_avx2_in(const float *pts, int P, int ortho, const __m256 *e,
+hf__strand_frame_v8_in(const float *pts, int P, int ortho, const __m256 *e,
                          hf__rframe *fr, int *finite)
 {
     const __m256 ex = e[0], ey = e[1], ez = e[2];
@@ -10802,8 +10802,8 @@ hf__strand_frame_avx2_in(const float *pts, int P, int ortho, const __m256 *e,
        whole groups in a loop of their own (no test for the last) */
     for (k = 0; 8 * k + 8 <= P; ++k) {
         __m256 xyz[3];
-        hf__load8_avx2(pts + 24 * k, xyz);
-        hf__row_put_avx2(fr, k, xyz[0], xyz[1], xyz[2], &acc);
+        hf__load8_v8(pts + 24 * k, xyz);
+        hf__row_put_v8(fr, k, xyz[0], xyz[1], xyz[2], &acc);
     }
     if (8 * k < P && P >= 8) {
         /* the last, partial group from the strand's last eight points,
@@ -10815,8 +10815,8 @@ hf__strand_frame_avx2_in(const float *pts, int P, int ortho, const __m256 *e,
                              _mm256_set1_epi32(8 - n)),
             _mm256_set1_epi32(7));
         __m256 xyz[3];
-        hf__load8_avx2(pts + 3 * (P - 8), xyz);
-        hf__row_put_avx2(fr, k, _mm256_permutevar8x32_ps(xyz[0], shift),
+        hf__load8_v8(pts + 3 * (P - 8), xyz);
+        hf__row_put_v8(fr, k, _mm256_permutevar8x32_ps(xyz[0], shift),
                          _mm256_permutevar8x32_ps(xyz[1], shift),
                          _mm256_permutevar8x32_ps(xyz[2], shift), &acc);
     } else if (8 * k < P) { /* P < 8: the only group repeats the tip */
@@ -10826,7 +10826,7 @@ hf__strand_frame_avx2_in(const float *pts, int P, int ortho, const __m256 *e,
         for (i = 0; i < 8; ++i)
             HF__UNROLL for (c = 0; c < 3; ++c)
                 r[c][i] = pts[3 * (8 * k + (i < n ? i : n - 1)) + c];
-        hf__row_put_avx2(fr, k, _mm256_loadu_ps(r[0]), _mm256_loadu_ps(r[1]),
+        hf__row_put_v8(fr, k, _mm256_loadu_ps(r[0]), _mm256_loadu_ps(r[1]),
                          _mm256_loadu_ps(r[2]), &acc);
     }
     if (_mm256_movemask_ps(_mm256_cmp_ps(acc, zero, _CMP_EQ_OQ)) != 0xff) {
@@ -10845,15 +10845,15 @@ hf__strand_frame_avx2_in(const float *pts, int P, int ortho, const __m256 *e,
        the perspective and orthographic bodies apart: no test per group */
     if (ortho) {
         for (k = 0; k + 1 < G; ++k)
-            bad |= hf__frame_group_avx2(fr, k, P, 0, 1, tip, ex, ey, ez, &px,
+            bad |= hf__frame_group_v8(fr, k, P, 0, 1, tip, ex, ey, ez, &px,
                                         &py, &pz);
-        bad |= hf__frame_group_avx2(fr, k, P, 1, 1, tip, ex, ey, ez, &px,
+        bad |= hf__frame_group_v8(fr, k, P, 1, 1, tip, ex, ey, ez, &px,
                                     &py, &pz);
     } else {
         for (k = 0; k + 1 < G; ++k)
-            bad |= hf__frame_group_avx2(fr, k, P, 0, 0, tip, ex, ey, ez, &px,
+            bad |= hf__frame_group_v8(fr, k, P, 0, 0, tip, ex, ey, ez, &px,
                                         &py, &pz);
-        bad |= hf__frame_group_avx2(fr, k, P, 1, 0, tip, ex, ey, ez, &px,
+        bad |= hf__frame_group_v8(fr, k, P, 1, 0, tip, ex, ey, ez, &px,
                                     &py, &pz);
     }
     return bad == 0;
@@ -10868,8 +10868,8 @@ hf__strand_frame_v8(const float *pts, int P, const hf_ribbon_params *params,
 {
     __m256 e[3];
     int ok;
-    hf__frame_eye_avx2(params, e);
-    ok = hf__strand_frame_avx2_in(pts, P, params->orthographic != 0, e, fr,
+    hf__frame_eye_v8(params, e);
+    ok = hf__strand_frame_v8_in(pts, P, params->orthographic != 0, e, fr,
                                   finite);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
     return ok;
@@ -10879,12 +10879,12 @@ hf__strand_frame_v8(const float *pts, int P, const hf_ribbon_params *params,
 /* A strand's frame by the reference, also where a vector frame left it:
    *finite says whether its points are (-1: not known yet); one that is
    not is framed collapsed. Returns 1, done. */
-HF__PRIVATE int hf__strand_frame_v1(const float *pts, int P,
+HF__PRIVATE int hf__strand_frame_rest(const float *pts, int P,
                                     const hf_ribbon_params *params,
                                     hf__rframe *fr, int *finite)
 {
     if (*finite < 0) *finite = hf__points_finite_v1(pts, 3 * P);
-    hf__strand_frame_ref(*finite ? pts : hf__zero_points, P, params, fr);
+    hf__strand_frame_v1(*finite ? pts : hf__zero_points, P, params, fr);
     return 1;
 }
 
@@ -10902,7 +10902,7 @@ static const hf__frame_kernels hf__frame_widths[] = {
 #if HF__V4
     {HF__ISA_V4, hf__strand_frame_v4},
 #endif
-    {HF__ISA_V1, hf__strand_frame_v1}};
+    {HF__ISA_V1, hf__strand_frame_rest}};
 
 /* The dispatch of the strand frame with the kernels k (hf__frame_widths,
    resolved once a call): tangents and sides, and *wscale 0 for a strand
@@ -10916,7 +10916,7 @@ HF__PRIVATE void hf__strand_frame(const float *pts, int P,
 {
     int finite = -1;
     if (!k->frame(pts, P, params, fr, &finite))
-        hf__strand_frame_v1(pts, P, params, fr, &finite);
+        hf__strand_frame_rest(pts, P, params, fr, &finite);
     *wscale = finite ? 1.0f : 0.0f;
 }
 
@@ -11020,7 +11020,7 @@ HF__INLINE float hf__norm_scale(int fmt, float *lo)
    conversion rounds to nearest even in the default rounding mode, as
    adding and taking away 1.5 * 2^23 does there (two operations fewer;
    every level's bytes are the same in that mode) */
-HF__INLINE __m128i hf__encode_sse(__m128 x, int fmt)
+HF__INLINE __m128i hf__encode_v4(__m128 x, int fmt)
 {
     float lo, scale;
     __m128 v;
@@ -11057,7 +11057,7 @@ HF__INLINE __m128i hf__encode_sse(__m128 x, int fmt)
 /* Floats x, y (and z) of lane i < n at o + i * step: the pairs straight
    from unpacked registers, z from its lane, so nothing goes through a
    stack copy. */
-HF__INLINE void hf__put_f32_sse(unsigned char *o, size_t step, int n,
+HF__INLINE void hf__put_f32_v4(unsigned char *o, size_t step, int n,
                               __m128 x, __m128 y, __m128 z, int nc)
 {
     const __m128 lo = _mm_unpacklo_ps(x, y), hi = _mm_unpackhi_ps(x, y);
@@ -11093,12 +11093,12 @@ HF__INLINE void hf__put_f32_sse(unsigned char *o, size_t step, int n,
 /* Components c[0, nc) of four vertices encoded and packed into the bytes
    of each vertex: lane i of *w0 holds its first 4 bytes, of *w1 the rest
    (x86 is little-endian, so byte order is component order). */
-HF__INLINE void hf__pack_sse(const __m128 *c, int nc, int fmt, __m128i *w0,
+HF__INLINE void hf__pack_v4(const __m128 *c, int nc, int fmt, __m128i *w0,
                           __m128i *w1)
 {
-    const __m128i e0 = hf__encode_sse(c[0], fmt), e1 = hf__encode_sse(c[1], fmt);
-    const __m128i e2 = nc > 2 ? hf__encode_sse(c[2], fmt) : _mm_setzero_si128();
-    const __m128i e3 = nc > 3 ? hf__encode_sse(c[3], fmt) : _mm_setzero_si128();
+    const __m128i e0 = hf__encode_v4(c[0], fmt), e1 = hf__encode_v4(c[1], fmt);
+    const __m128i e2 = nc > 2 ? hf__encode_v4(c[2], fmt) : _mm_setzero_si128();
+    const __m128i e3 = nc > 3 ? hf__encode_v4(c[3], fmt) : _mm_setzero_si128();
     if (hf_format_bytes(fmt) == 2) {
         *w0 = _mm_or_si128(e0, _mm_slli_epi32(e1, 16));
         *w1 = _mm_or_si128(e2, _mm_slli_epi32(e3, 16));
@@ -11112,7 +11112,7 @@ HF__INLINE void hf__pack_sse(const __m128 *c, int nc, int fmt, __m128i *w0,
 
 /* Lane i of v, taken in registers (a load from a just-stored copy would
    wait on the store). */
-HF__INLINE uint32_t hf__lane_sse(__m128i v, int i)
+HF__INLINE uint32_t hf__lane_v4(__m128i v, int i)
 {
     switch (i) {
     case 0: return (uint32_t)_mm_cvtsi128_si32(v);
@@ -11122,8 +11122,8 @@ HF__INLINE uint32_t hf__lane_sse(__m128i v, int i)
     }
 }
 
-/* One vertex's packed bytes (see hf__pack_sse) at o. */
-HF__INLINE void hf__put_packed_sse(unsigned char *o, uint32_t w0, uint32_t w1,
+/* One vertex's packed bytes (see hf__pack_v4) at o. */
+HF__INLINE void hf__put_packed_v4(unsigned char *o, uint32_t w0, uint32_t w1,
                                int nc, int size)
 {
     if (size == 2) {
@@ -11146,7 +11146,7 @@ HF__INLINE void hf__put_packed_sse(unsigned char *o, uint32_t w0, uint32_t w1,
 /* Both vertices of points i < n of a group of four: lane i of L at
    o + 2 i st, of R at o + (2 i + 1) st. R may be L (tangents, texcoords,
    colours): then it is encoded once. */
-HF__INLINE void hf__emit_pair_fmt_sse(unsigned char *o, size_t st, int n,
+HF__INLINE void hf__emit_pair_fmt_v4(unsigned char *o, size_t st, int n,
                               const __m128 *L, const __m128 *R, int nc,
                               int fmt)
 {
@@ -11156,7 +11156,7 @@ HF__INLINE void hf__emit_pair_fmt_sse(unsigned char *o, size_t st, int n,
             const __m128 *c = side ? R : L;
             unsigned char *b = o + (size_t)side * st;
             if (nc < 4) {
-                hf__put_f32_sse(b, 2 * st, n, c[0], c[1], nc > 2 ? c[2] : c[0],
+                hf__put_f32_v4(b, 2 * st, n, c[0], c[1], nc > 2 ? c[2] : c[0],
                              nc);
             } else {
                 __m128 v0 = c[0], v1 = c[1], v2 = c[2], v3 = c[3];
@@ -11170,53 +11170,53 @@ HF__INLINE void hf__emit_pair_fmt_sse(unsigned char *o, size_t st, int n,
     } else {
         const int size = hf_format_bytes(fmt);
         __m128i l0, l1, r0, r1;
-        hf__pack_sse(L, nc, fmt, &l0, &l1);
+        hf__pack_v4(L, nc, fmt, &l0, &l1);
         if (R != L) {
-            hf__pack_sse(R, nc, fmt, &r0, &r1);
+            hf__pack_v4(R, nc, fmt, &r0, &r1);
         } else {
             r0 = l0;
             r1 = l1;
         }
         if (n == 4) { /* whole groups: the lanes constants */
             HF__UNROLL for (i = 0; i < 4; ++i, o += 2 * st) {
-                hf__put_packed_sse(o, hf__lane_sse(l0, i), hf__lane_sse(l1, i),
+                hf__put_packed_v4(o, hf__lane_v4(l0, i), hf__lane_v4(l1, i),
                                    nc, size);
-                hf__put_packed_sse(o + st, hf__lane_sse(r0, i),
-                                   hf__lane_sse(r1, i), nc, size);
+                hf__put_packed_v4(o + st, hf__lane_v4(r0, i),
+                                   hf__lane_v4(r1, i), nc, size);
             }
             return;
         }
         for (i = 0; i < n; ++i, o += 2 * st) {
-            hf__put_packed_sse(o, hf__lane_sse(l0, i), hf__lane_sse(l1, i), nc, size);
-            hf__put_packed_sse(o + st, hf__lane_sse(r0, i), hf__lane_sse(r1, i), nc,
+            hf__put_packed_v4(o, hf__lane_v4(l0, i), hf__lane_v4(l1, i), nc, size);
+            hf__put_packed_v4(o + st, hf__lane_v4(r0, i), hf__lane_v4(r1, i), nc,
                            size);
         }
     }
 }
-/* hf__emit_pair_fmt_sse with the format a constant in each copy, so its
+/* hf__emit_pair_fmt_v4 with the format a constant in each copy, so its
    tests on the format fold away. */
-HF__INLINE void hf__emit_pair_sse(unsigned char *o, size_t st, int n,
+HF__INLINE void hf__emit_pair_v4(unsigned char *o, size_t st, int n,
                                   const __m128 *L, const __m128 *R, int nc,
                                   int fmt)
 {
     switch (fmt) {
     case HF_FORMAT_F32:
-        hf__emit_pair_fmt_sse(o, st, n, L, R, nc, HF_FORMAT_F32);
+        hf__emit_pair_fmt_v4(o, st, n, L, R, nc, HF_FORMAT_F32);
         break;
     case HF_FORMAT_F16:
-        hf__emit_pair_fmt_sse(o, st, n, L, R, nc, HF_FORMAT_F16);
+        hf__emit_pair_fmt_v4(o, st, n, L, R, nc, HF_FORMAT_F16);
         break;
     case HF_FORMAT_SNORM16:
-        hf__emit_pair_fmt_sse(o, st, n, L, R, nc, HF_FORMAT_SNORM16);
+        hf__emit_pair_fmt_v4(o, st, n, L, R, nc, HF_FORMAT_SNORM16);
         break;
     case HF_FORMAT_UNORM16:
-        hf__emit_pair_fmt_sse(o, st, n, L, R, nc, HF_FORMAT_UNORM16);
+        hf__emit_pair_fmt_v4(o, st, n, L, R, nc, HF_FORMAT_UNORM16);
         break;
     case HF_FORMAT_SNORM8:
-        hf__emit_pair_fmt_sse(o, st, n, L, R, nc, HF_FORMAT_SNORM8);
+        hf__emit_pair_fmt_v4(o, st, n, L, R, nc, HF_FORMAT_SNORM8);
         break;
     default:
-        hf__emit_pair_fmt_sse(o, st, n, L, R, nc, HF_FORMAT_UNORM8);
+        hf__emit_pair_fmt_v4(o, st, n, L, R, nc, HF_FORMAT_UNORM8);
         break;
     }
 }
@@ -11484,7 +11484,7 @@ HF__INLINE void hf__elems_put(unsigned char *o, size_t st, int n,
 /* A float run (see hf__float_run) for points i < n of a group: left
    position L, right position R, tangent T, and with uv the texcoord
    (uv, t). Each vertex takes two or three stores instead of six. */
-HF__INLINE void hf__put_run_sse(unsigned char *o, size_t st, int n,
+HF__INLINE void hf__put_run_v4(unsigned char *o, size_t st, int n,
                             const __m128 *L, const __m128 *R,
                             const __m128 *T, const float *uv,
                             const float *t)
@@ -11527,7 +11527,7 @@ HF__INLINE void hf__put_run_sse(unsigned char *o, size_t st, int n,
 
 /* The two vertex positions of four points (rows from o): L = p - s w,
    R = p + s w, relative to the origin and scale, as in the reference. */
-HF__INLINE void hf__ribbon_sides_sse(const hf__rframe *fr, int o, __m128 w,
+HF__INLINE void hf__ribbon_sides_v4(const hf__rframe *fr, int o, __m128 w,
                                   const hf__rout *ro, __m128 is, __m128 *L,
                                   __m128 *R)
 {
@@ -11543,7 +11543,7 @@ HF__INLINE void hf__ribbon_sides_sse(const hf__rframe *fr, int o, __m128 w,
 
 /* Stream q's values (tangent, texcoord, colour or 3D colour: the same on
    both sides of the ribbon) for the four points of group k. */
-HF__INLINE void hf__stream_values_sse(int q, const hf__rframe *fr,
+HF__INLINE void hf__stream_values_v4(int q, const hf__rframe *fr,
                                    const hf__rconst *K, const hf__rstrand *str,
                                    int k, __m128 *v)
 {
@@ -11573,7 +11573,7 @@ HF__INLINE void hf__stream_values_sse(int q, const hf__rframe *fr,
 
 /* All of stream q (nc = hf__stream_nc[q]) for one strand: both vertices
    of each point get the same values. */
-HF__INLINE void hf__stream_sse(int q, int nc, const hf__rframe *fr, int P,
+HF__INLINE void hf__stream_v4(int q, int nc, const hf__rframe *fr, int P,
                             const hf__rconst *K, const hf__rstrand *str,
                             const hf__rout *ro, size_t v0)
 {
@@ -11582,8 +11582,8 @@ HF__INLINE void hf__stream_sse(int q, int nc, const hf__rframe *fr, int P,
     __m128 v[4];
     int k;
     for (k = 0; 4 * k < P; ++k, b += 8 * st) {
-        hf__stream_values_sse(q, fr, K, str, k, v);
-        hf__emit_pair_sse(b, st, P - 4 * k < 4 ? P - 4 * k : 4, v, v, nc,
+        hf__stream_values_v4(q, fr, K, str, k, v);
+        hf__emit_pair_v4(b, st, P - 4 * k < 4 ? P - 4 * k : 4, v, v, nc,
                       ro->fmt[q]);
     }
 }
@@ -11610,10 +11610,10 @@ HF__PRIVATE int hf__ribbon_write_v4(const hf__rframe *fr, int P,
             const int o = 4 + 4 * k, n = P - 4 * k < 4 ? P - 4 * k : 4;
             const __m128 w = _mm_mul_ps(_mm_loadu_ps(K->hw + 4 * k), ws);
             __m128 T[3];
-            hf__ribbon_sides_sse(fr, o, w, ro, is, L, R);
+            hf__ribbon_sides_v4(fr, o, w, ro, is, L, R);
             HF__UNROLL for (c = 0; c < 3; ++c)
                 T[c] = _mm_loadu_ps(fr->t[c] + o);
-            hf__put_run_sse(b, st, n, L, R, T, run == 3 ? str->uv : NULL,
+            hf__put_run_v4(b, st, n, L, R, T, run == 3 ? str->uv : NULL,
                         K->tt + 4 * k);
         }
     } else if (ro->base[HF__S_POS]) {
@@ -11622,18 +11622,18 @@ HF__PRIVATE int hf__ribbon_write_v4(const hf__rframe *fr, int P,
         for (k = 0; k < G; ++k, b += 8 * st) {
             const int o = 4 + 4 * k, n = P - 4 * k < 4 ? P - 4 * k : 4;
             const __m128 w = _mm_mul_ps(_mm_loadu_ps(K->hw + 4 * k), ws);
-            hf__ribbon_sides_sse(fr, o, w, ro, is, L, R);
-            hf__emit_pair_sse(b, st, n, L, R, 3, ro->fmt[HF__S_POS]);
+            hf__ribbon_sides_v4(fr, o, w, ro, is, L, R);
+            hf__emit_pair_v4(b, st, n, L, R, 3, ro->fmt[HF__S_POS]);
         }
     }
     /* the other streams, unless written with the position run; a call
        each, so the component count is a constant in every inlined copy */
     if (ro->base[HF__S_TAN] && !run)
-        hf__stream_sse(HF__S_TAN, 3, fr, P, K, str, ro, v0);
+        hf__stream_v4(HF__S_TAN, 3, fr, P, K, str, ro, v0);
     if (ro->base[HF__S_TEX] && run < 3)
-        hf__stream_sse(HF__S_TEX, 3, fr, P, K, str, ro, v0);
-    if (ro->base[HF__S_COL]) hf__stream_sse(HF__S_COL, 4, fr, P, K, str, ro, v0);
-    if (ro->base[HF__S_C3D]) hf__stream_sse(HF__S_C3D, 2, fr, P, K, str, ro, v0);
+        hf__stream_v4(HF__S_TEX, 3, fr, P, K, str, ro, v0);
+    if (ro->base[HF__S_COL]) hf__stream_v4(HF__S_COL, 4, fr, P, K, str, ro, v0);
+    if (ro->base[HF__S_C3D]) hf__stream_v4(HF__S_C3D, 2, fr, P, K, str, ro, v0);
     return 1;
 }
 #endif
@@ -11641,7 +11641,7 @@ HF__PRIVATE int hf__ribbon_write_v4(const hf__rframe *fr, int P,
 #if HF__AVX2
 /* A group's x y z tx of points i and i + 4 (the two halves) in a[i],
    which joined to ty tz u v (B[i]) make a float run's vertex */
-HF__TARGET_AVX2 HF__INLINE void hf__side_rows_avx2(__m256 x, __m256 y,
+HF__TARGET_AVX2 HF__INLINE void hf__side_rows_v8(__m256 x, __m256 y,
                                                    __m256 z, __m256 tx,
                                                    __m256 *a)
 {
@@ -11660,13 +11660,13 @@ HF__TARGET_AVX2 HF__INLINE void hf__side_rows_avx2(__m256 x, __m256 y,
    every store), and the stores go through the output in order (a side
    at a time measured 5 % slower). */
 HF__TARGET_AVX2 HF__INLINE void
-hf__put_pair_avx2(unsigned char *o, size_t st, __m256 xl, __m256 yl,
+hf__put_pair_v8(unsigned char *o, size_t st, __m256 xl, __m256 yl,
                   __m256 zl, __m256 xr, __m256 yr, __m256 zr, __m256 tx,
                   const __m256 *B, const float *tt)
 {
     __m256 l[4], r[4];
-    hf__side_rows_avx2(xl, yl, zl, tx, l);
-    hf__side_rows_avx2(xr, yr, zr, tx, r);
+    hf__side_rows_v8(xl, yl, zl, tx, l);
+    hf__side_rows_v8(xr, yr, zr, tx, r);
     /* each vertex built just before its store (built all first, gcc
        spilled some) */
 #define HF__PUT_P(i, h)                                                        \
@@ -11695,12 +11695,12 @@ hf__put_pair_avx2(unsigned char *o, size_t st, __m256 xl, __m256 yl,
    of the 24-byte run (run 2: position and tangent, x y z tx in one store,
    ty tz in another), and the last, partial group of either run. */
 HF__TARGET_AVX2 HF__INLINE void
-hf__put_side_avx2(unsigned char *o, size_t st2, int n, int run, __m256 x,
+hf__put_side_v8(unsigned char *o, size_t st2, int n, int run, __m256 x,
                   __m256 y, __m256 z, __m256 tx, const __m256 *B,
                   const float *tt)
 {
     __m256 a[4];
-    hf__side_rows_avx2(x, y, z, tx, a);
+    hf__side_rows_v8(x, y, z, tx, a);
     if (n == 8) {
         int k;
         HF__UNROLL for (k = 0; k < 4; ++k) {
@@ -11733,8 +11733,8 @@ hf__put_side_avx2(unsigned char *o, size_t st2, int n, int run, __m256 x,
 
 /* A group's left and right positions from frame row offset o, w the
    half widths: L = p - s w, R = p + s w, relative to the origin and
-   scale (ov as hf__rout_vec_avx2) */
-HF__TARGET_AVX2 HF__INLINE void hf__sides_avx2(const hf__rframe *fr, int o,
+   scale (ov as hf__rout_vec_v8) */
+HF__TARGET_AVX2 HF__INLINE void hf__sides_v8(const hf__rframe *fr, int o,
                                                __m256 w, const __m256 *ov,
                                                __m256 *L, __m256 *R)
 {
@@ -11753,7 +11753,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__sides_avx2(const hf__rframe *fr, int o,
    point 8 k on at b: the writer's loop body, inlined with n and run as
    constants where it can (the common groups then take no branch) */
 HF__TARGET_AVX2 HF__INLINE void
-hf__ribbon_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k,
+hf__ribbon_group_v8(const hf__rframe *fr, const hf__rconst *K, int k,
                       int n, int run, unsigned char *b, size_t st,
                       __m256 ws, const __m256 *ov, __m256 uv)
 {
@@ -11770,20 +11770,20 @@ hf__ribbon_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k,
     B[1] = _mm256_shuffle_ps(lo, uv, _MM_SHUFFLE(1, 0, 3, 2));
     B[2] = _mm256_shuffle_ps(hi, uv, _MM_SHUFFLE(1, 0, 1, 0));
     B[3] = _mm256_shuffle_ps(hi, uv, _MM_SHUFFLE(1, 0, 3, 2));
-    hf__sides_avx2(fr, o, w, ov, L, R);
+    hf__sides_v8(fr, o, w, ov, L, R);
     if (n == 8 && run == 3) {
-        hf__put_pair_avx2(b, st, L[0], L[1], L[2], R[0], R[1], R[2], tx, B,
+        hf__put_pair_v8(b, st, L[0], L[1], L[2], R[0], R[1], R[2], tx, B,
                           K->tt + 8 * k);
         return;
     }
-    hf__put_side_avx2(b, 2 * st, n, run, L[0], L[1], L[2], tx, B,
+    hf__put_side_v8(b, 2 * st, n, run, L[0], L[1], L[2], tx, B,
                       K->tt + 8 * k);
-    hf__put_side_avx2(b + st, 2 * st, n, run, R[0], R[1], R[2], tx, B,
+    hf__put_side_v8(b + st, 2 * st, n, run, R[0], R[1], R[2], tx, B,
                       K->tt + 8 * k);
 }
 
 /* 1 / scale and the origin in every lane, once per call: ov[0..4) */
-HF__TARGET_AVX2 HF__INLINE void hf__rout_vec_avx2(const hf__rout *ro,
+HF__TARGET_AVX2 HF__INLINE void hf__rout_vec_v8(const hf__rout *ro,
                                                   __m256 *ov)
 {
     int c;
@@ -11799,7 +11799,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__rout_vec_avx2(const hf__rout *ro,
    the SSE one (calling the SSE writer from here would run SSE code with
    the upper halves of the registers dirty, at twice its time or more). */
 HF__TARGET_AVX2 HF__INLINE void
-hf__ribbon_write_avx2_in(const hf__rframe *fr, int P, const hf__rconst *K,
+hf__ribbon_write_v8_in(const hf__rframe *fr, int P, const hf__rconst *K,
                          const hf__rstrand *str, const hf__rout *ro,
                          size_t v0, const __m256 *ov)
 {
@@ -11815,37 +11815,37 @@ hf__ribbon_write_avx2_in(const hf__rframe *fr, int P, const hf__rconst *K,
     if (ro->run == 3 && st == 36) {
         /* the packed vertex: every store's offset a constant */
         for (k = 0; 8 * k + 8 <= P; ++k, b += 16 * 36)
-            hf__ribbon_group_avx2(fr, K, k, 8, 3, b, 36, ws, ov, uv);
+            hf__ribbon_group_v8(fr, K, k, 8, 3, b, 36, ws, ov, uv);
     } else if (ro->run == 3) {
         for (k = 0; 8 * k + 8 <= P; ++k, b += 16 * st)
-            hf__ribbon_group_avx2(fr, K, k, 8, 3, b, st, ws, ov, uv);
+            hf__ribbon_group_v8(fr, K, k, 8, 3, b, st, ws, ov, uv);
     } else {
         for (k = 0; 8 * k + 8 <= P; ++k, b += 16 * st)
-            hf__ribbon_group_avx2(fr, K, k, 8, 2, b, st, ws, ov, uv);
+            hf__ribbon_group_v8(fr, K, k, 8, 2, b, st, ws, ov, uv);
     }
     if (8 * k < P)
-        hf__ribbon_group_avx2(fr, K, k, P - 8 * k, ro->run, b, st, ws, ov,
+        hf__ribbon_group_v8(fr, K, k, P - 8 * k, ro->run, b, st, ws, ov,
                               uv);
     if (!ro->rest) return; /* one test a strand for the three below */
     if (ro->base[HF__S_TEX] && ro->run == 2)
-        hf__stream_sse(HF__S_TEX, 3, fr, P, K, str, ro, v0);
-    if (ro->base[HF__S_COL]) hf__stream_sse(HF__S_COL, 4, fr, P, K, str, ro, v0);
-    if (ro->base[HF__S_C3D]) hf__stream_sse(HF__S_C3D, 2, fr, P, K, str, ro, v0);
+        hf__stream_v4(HF__S_TEX, 3, fr, P, K, str, ro, v0);
+    if (ro->base[HF__S_COL]) hf__stream_v4(HF__S_COL, 4, fr, P, K, str, ro, v0);
+    if (ro->base[HF__S_C3D]) hf__stream_v4(HF__S_C3D, 2, fr, P, K, str, ro, v0);
 }
 
 /* the writer above as a call, for the dispatch of one strand */
 HF__TARGET_AVX2 HF__PRIVATE void
-hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
+hf__ribbon_write_run_v8(const hf__rframe *fr, int P, const hf__rconst *K,
                       const hf__rstrand *str, const hf__rout *ro, size_t v0)
 {
     __m256 ov[4];
-    hf__rout_vec_avx2(ro, ov);
-    hf__ribbon_write_avx2_in(fr, P, K, str, ro, v0, ov);
+    hf__rout_vec_v8(ro, ov);
+    hf__ribbon_write_v8_in(fr, P, K, str, ro, v0, ov);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 
-/* hf__encode_sse at eight lanes: the same operations. */
-HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_avx2(__m256 x, int fmt)
+/* hf__encode_v4 at eight lanes: the same operations. */
+HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_v8(__m256 x, int fmt)
 {
     float lo, scale;
     __m256 v;
@@ -11881,7 +11881,7 @@ HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_avx2(__m256 x, int fmt)
    of 16 (float), 8 (2-byte formats) or 4 bytes (1-byte) a point holding
    the point's element as the vertex stores it, then zeros or spare
    bytes. */
-HF__TARGET_AVX2 HF__INLINE void hf__table_fmt_avx2(unsigned char *t,
+HF__TARGET_AVX2 HF__INLINE void hf__table_fmt_v8(unsigned char *t,
                                                   const __m256 *c, int nc,
                                                   int fmt)
 {
@@ -11908,7 +11908,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__table_fmt_avx2(unsigned char *t,
         return;
     }
     HF__UNROLL for (i = 0; i < 4; ++i)
-        e[i] = i < nc ? hf__encode_avx2(c[i], fmt) : _mm256_setzero_si256();
+        e[i] = i < nc ? hf__encode_v8(c[i], fmt) : _mm256_setzero_si256();
     if (size == 2) {
         w0 = _mm256_or_si256(e[0], _mm256_slli_epi32(e[1], 16));
         w1 = _mm256_or_si256(e[2], _mm256_slli_epi32(e[3], 16));
@@ -11927,34 +11927,34 @@ HF__TARGET_AVX2 HF__INLINE void hf__table_fmt_avx2(unsigned char *t,
     }
 }
 
-/* hf__table_fmt_avx2 with the format a constant in each copy. */
-HF__TARGET_AVX2 HF__INLINE void hf__table_avx2(unsigned char *t,
+/* hf__table_fmt_v8 with the format a constant in each copy. */
+HF__TARGET_AVX2 HF__INLINE void hf__table_v8(unsigned char *t,
                                               const __m256 *c, int nc,
                                               int fmt)
 {
     switch (fmt) {
-    case HF_FORMAT_F32: hf__table_fmt_avx2(t, c, nc, HF_FORMAT_F32); break;
-    case HF_FORMAT_F16: hf__table_fmt_avx2(t, c, nc, HF_FORMAT_F16); break;
+    case HF_FORMAT_F32: hf__table_fmt_v8(t, c, nc, HF_FORMAT_F32); break;
+    case HF_FORMAT_F16: hf__table_fmt_v8(t, c, nc, HF_FORMAT_F16); break;
     case HF_FORMAT_SNORM16:
-        hf__table_fmt_avx2(t, c, nc, HF_FORMAT_SNORM16);
+        hf__table_fmt_v8(t, c, nc, HF_FORMAT_SNORM16);
         break;
     case HF_FORMAT_UNORM16:
-        hf__table_fmt_avx2(t, c, nc, HF_FORMAT_UNORM16);
+        hf__table_fmt_v8(t, c, nc, HF_FORMAT_UNORM16);
         break;
     case HF_FORMAT_SNORM8:
-        hf__table_fmt_avx2(t, c, nc, HF_FORMAT_SNORM8);
+        hf__table_fmt_v8(t, c, nc, HF_FORMAT_SNORM8);
         break;
-    default: hf__table_fmt_avx2(t, c, nc, HF_FORMAT_UNORM8); break;
+    default: hf__table_fmt_v8(t, c, nc, HF_FORMAT_UNORM8); break;
     }
 }
 
 #define HF__TB 32 /* points a block of the table writer's tables */
 
-/* Points i < n of a block from the tables (see hf__ribbon_write_table_avx2)
+/* Points i < n of a block from the tables (see hf__ribbon_write_table_v8)
    when every element abuts in one run (hf__rout wl): each vertex's run
    assembled by byte shuffles, the streams both sides share once a point,
    then two 8-byte stores (overlapping when the run is under 16 bytes). */
-HF__TARGET_AVX2 HF__INLINE __m128i hf__slot_avx2(const unsigned char *t,
+HF__TARGET_AVX2 HF__INLINE __m128i hf__slot_v8(const unsigned char *t,
                                                  size_t ts, int i,
                                                  __m128i mask)
 {
@@ -11966,27 +11966,27 @@ HF__TARGET_AVX2 HF__INLINE __m128i hf__slot_avx2(const unsigned char *t,
 /* The or of the slots of the ns streams (0 to 4, a constant where it is
    inlined) that both sides of point i share, in the table's order */
 HF__TARGET_AVX2 HF__INLINE __m128i
-hf__window_shared_avx2(const unsigned char *const *t, const size_t *ts,
+hf__window_shared_v8(const unsigned char *const *t, const size_t *ts,
                        const __m128i *mk, int i, int ns)
 {
     __m128i s01;
     if (ns == 0) return _mm_setzero_si128();
-    if (ns == 1) return hf__slot_avx2(t[0], ts[0], i, mk[0]);
-    s01 = _mm_or_si128(hf__slot_avx2(t[0], ts[0], i, mk[0]),
-                       hf__slot_avx2(t[1], ts[1], i, mk[1]));
+    if (ns == 1) return hf__slot_v8(t[0], ts[0], i, mk[0]);
+    s01 = _mm_or_si128(hf__slot_v8(t[0], ts[0], i, mk[0]),
+                       hf__slot_v8(t[1], ts[1], i, mk[1]));
     if (ns == 2) return s01;
     if (ns == 3)
-        return _mm_or_si128(s01, hf__slot_avx2(t[2], ts[2], i, mk[2]));
+        return _mm_or_si128(s01, hf__slot_v8(t[2], ts[2], i, mk[2]));
     return _mm_or_si128(s01,
-                        _mm_or_si128(hf__slot_avx2(t[2], ts[2], i, mk[2]),
-                                     hf__slot_avx2(t[3], ts[3], i, mk[3])));
+                        _mm_or_si128(hf__slot_v8(t[2], ts[2], i, mk[2]),
+                                     hf__slot_v8(t[3], ts[3], i, mk[3])));
 }
 
-/* hf__window_put_avx2 with t, ts and mk the slots, strides and masks of
+/* hf__window_put_v8 with t, ts and mk the slots, strides and masks of
    the ns streams both sides share besides the position (ns a constant in
    each copy it inlines) */
 HF__TARGET_AVX2 HF__INLINE void
-hf__window_rows_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
+hf__window_rows_v8(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
                      const size_t *tsq, size_t v, int n,
                      const unsigned char *const *t, const size_t *ts,
                      const __m128i *mk, int ns)
@@ -12001,10 +12001,10 @@ hf__window_rows_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
     unsigned char *o = ro->base[q0] + v * st;
     int i;
     for (i = 0; i < n; ++i, o += 2 * st) {
-        __m128i a = hf__window_shared_avx2(t, ts, mk, i, ns), b = a;
+        __m128i a = hf__window_shared_v8(t, ts, mk, i, ns), b = a;
         if (pos) {
-            a = _mm_or_si128(a, hf__slot_avx2(tab[HF__S_POS], tp, i, mp));
-            b = _mm_or_si128(b, hf__slot_avx2(tab[5], tp, i, mp));
+            a = _mm_or_si128(a, hf__slot_v8(tab[HF__S_POS], tp, i, mp));
+            b = _mm_or_si128(b, hf__slot_v8(tab[5], tp, i, mp));
         }
         _mm_storel_epi64((__m128i *)(void *)o, a);
         _mm_storel_epi64((__m128i *)(void *)(o + L - 8),
@@ -12016,7 +12016,7 @@ hf__window_rows_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
 }
 
 HF__TARGET_AVX2 HF__INLINE void
-hf__window_put_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
+hf__window_put_v8(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
                     const size_t *tsq, size_t v, int n)
 {
     const unsigned char *t[4];
@@ -12030,23 +12030,23 @@ hf__window_put_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
         mk[ns++] = _mm_loadu_si128((const __m128i *)(const void *)ro->wm[q]);
     }
     switch (ns) {
-    case 0: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 0); break;
-    case 1: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 1); break;
-    case 2: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 2); break;
-    case 3: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 3); break;
-    default: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 4); break;
+    case 0: hf__window_rows_v8(ro, tab, tsq, v, n, t, ts, mk, 0); break;
+    case 1: hf__window_rows_v8(ro, tab, tsq, v, n, t, ts, mk, 1); break;
+    case 2: hf__window_rows_v8(ro, tab, tsq, v, n, t, ts, mk, 2); break;
+    case 3: hf__window_rows_v8(ro, tab, tsq, v, n, t, ts, mk, 3); break;
+    default: hf__window_rows_v8(ro, tab, tsq, v, n, t, ts, mk, 4); break;
     }
 }
 
 /* Every stream of a layout the table writer takes (hf__rout nw > 0), in
    blocks of up to HF__TB points: each stream's values encoded into a
-   table eight points at a time (hf__table_avx2), then written out, as a
+   table eight points at a time (hf__table_v8), then written out, as a
    run assembled in a register a vertex where the elements abut
-   (hf__window_put_avx2), else stream by stream in address order, an
+   (hf__window_put_v8), else stream by stream in address order, an
    element in one or two scalar stores (hf__elems_put). Same values, same
    operations: the same bytes as the reference. */
 HF__TARGET_AVX2 HF__INLINE void
-hf__ribbon_write_table_avx2_in(const hf__rframe *fr, int P,
+hf__ribbon_write_table_v8_in(const hf__rframe *fr, int P,
                                const hf__rconst *K, const hf__rstrand *str,
                                const hf__rout *ro, size_t v0,
                                const __m256 *ov)
@@ -12083,22 +12083,22 @@ hf__ribbon_write_table_avx2_in(const hf__rframe *fr, int P,
                         _mm256_sub_ps(_mm256_add_ps(p, sw), ov[1 + c]),
                         ov[0]);
                 }
-                hf__table_avx2(tab[HF__S_POS] + g * ts[HF__S_POS], L, 3,
+                hf__table_v8(tab[HF__S_POS] + g * ts[HF__S_POS], L, 3,
                                ro->fmt[HF__S_POS]);
-                hf__table_avx2(tab[5] + g * ts[HF__S_POS], R, 3,
+                hf__table_v8(tab[5] + g * ts[HF__S_POS], R, 3,
                                ro->fmt[HF__S_POS]);
             }
             if (ro->base[HF__S_TAN]) {
                 HF__UNROLL for (c = 0; c < 3; ++c)
                     L[c] = _mm256_loadu_ps(fr->t[c] + o);
-                hf__table_avx2(tab[HF__S_TAN] + g * ts[HF__S_TAN], L, 3,
+                hf__table_v8(tab[HF__S_TAN] + g * ts[HF__S_TAN], L, 3,
                                ro->fmt[HF__S_TAN]);
             }
             if (ro->base[HF__S_TEX]) {
                 L[0] = u;
                 L[1] = v;
                 L[2] = tt;
-                hf__table_avx2(tab[HF__S_TEX] + g * ts[HF__S_TEX], L, 3,
+                hf__table_v8(tab[HF__S_TEX] + g * ts[HF__S_TEX], L, 3,
                                ro->fmt[HF__S_TEX]);
             }
             if (ro->base[HF__S_COL]) {
@@ -12106,18 +12106,18 @@ hf__ribbon_write_table_avx2_in(const hf__rframe *fr, int P,
                     L[c] = _mm256_set1_ps(str->rgba[c]);
                 L[3] = _mm256_mul_ps(_mm256_set1_ps(str->rgba[3]),
                                      _mm256_loadu_ps(K->fade + 8 * k));
-                hf__table_avx2(tab[HF__S_COL] + g * ts[HF__S_COL], L, 4,
+                hf__table_v8(tab[HF__S_COL] + g * ts[HF__S_COL], L, 4,
                                ro->fmt[HF__S_COL]);
             }
             if (ro->base[HF__S_C3D]) {
                 L[0] = _mm256_set1_ps(str->c3x);
                 L[1] = tt;
-                hf__table_avx2(tab[HF__S_C3D] + g * ts[HF__S_C3D], L, 2,
+                hf__table_v8(tab[HF__S_C3D] + g * ts[HF__S_C3D], L, 2,
                                ro->fmt[HF__S_C3D]);
             }
         }
         if (ro->wl) {
-            hf__window_put_avx2(ro, tab, ts, v0 + 2u * (size_t)j0, n);
+            hf__window_put_v8(ro, tab, ts, v0 + 2u * (size_t)j0, n);
             continue;
         }
         for (m = 0; m < ro->nw; ++m) {
@@ -12131,19 +12131,19 @@ hf__ribbon_write_table_avx2_in(const hf__rframe *fr, int P,
 
 /* the writer above as a call, for the dispatch of one strand */
 HF__TARGET_AVX2 HF__PRIVATE void
-hf__ribbon_write_table_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
+hf__ribbon_write_table_v8(const hf__rframe *fr, int P, const hf__rconst *K,
                             const hf__rstrand *str, const hf__rout *ro,
                             size_t v0)
 {
     __m256 ov[4];
-    hf__rout_vec_avx2(ro, ov);
-    hf__ribbon_write_table_avx2_in(fr, P, K, str, ro, v0, ov);
+    hf__rout_vec_v8(ro, ov);
+    hf__ribbon_write_table_v8_in(fr, P, K, str, ro, v0, ov);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 
 /* A normalized format's encoding as per-call vectors, for a kernel that
    meets the format at run time: the clamp's bounds, the scale and the
-   code's mask (hf__encode_avx2's operations with them in memory). */
+   code's mask (hf__encode_v8's operations with them in memory). */
 typedef struct hf__enc8 {
     __m256 lo, scale, one;
     __m256i mask;
@@ -12160,8 +12160,8 @@ HF__TARGET_AVX2 HF__INLINE void hf__enc8_init(hf__enc8 *e, int fmt)
     e->mask = _mm256_set1_epi32(hf_format_bytes(fmt) == 2 ? 0xffff : 0xff);
 }
 
-/* hf__encode_avx2's operations, the format from e */
-HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_var_avx2(__m256 x,
+/* hf__encode_v8's operations, the format from e */
+HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_var_v8(__m256 x,
                                                       const hf__enc8 *e)
 {
     const __m256 v = _mm256_min_ps(_mm256_max_ps(x, e->lo), e->one);
@@ -12174,7 +12174,7 @@ HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_var_avx2(__m256 x,
    share, v t and the tangent, already interleaved (s02: points 0 1 | 4 5,
    s13: 2 3 | 6 7). Two 8-byte stores a vertex, the second over bytes
    7..14: the pad byte is never written. */
-HF__TARGET_AVX2 HF__INLINE void hf__c16_put_avx2(unsigned char *o,
+HF__TARGET_AVX2 HF__INLINE void hf__c16_put_v8(unsigned char *o,
                                                  size_t st2, int n,
                                                  __m256i d0, __m256i d1,
                                                  __m256i s02, __m256i s13)
@@ -12217,7 +12217,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__c16_put_avx2(unsigned char *o,
 /* Group k of the compact vertex's writer below: n points (8 but for the
    last, a constant where inlined) at b. */
 HF__TARGET_AVX2 HF__INLINE void
-hf__c16_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k, int n,
+hf__c16_group_v8(const hf__rframe *fr, const hf__rconst *K, int k, int n,
                    unsigned char *b, size_t st, __m256 ws, __m256i eu,
                    __m256i ev, const __m256 *ov, const hf__enc8 *enc)
 {
@@ -12228,28 +12228,28 @@ hf__c16_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k, int n,
     HF__UNROLL for (c = 0; c < 3; ++c) {
         const __m256 p = _mm256_loadu_ps(fr->p[c] + o);
         const __m256 sw = _mm256_mul_ps(_mm256_loadu_ps(fr->s[c] + o), w);
-        eL[c] = hf__encode_var_avx2(
+        eL[c] = hf__encode_var_v8(
             _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(p, sw), ov[1 + c]),
                           ov[0]),
             &enc[0]);
-        eR[c] = hf__encode_var_avx2(
+        eR[c] = hf__encode_var_v8(
             _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(p, sw), ov[1 + c]),
                           ov[0]),
             &enc[0]);
-        et[c] = hf__encode_var_avx2(_mm256_loadu_ps(fr->t[c] + o), &enc[2]);
+        et[c] = hf__encode_var_v8(_mm256_loadu_ps(fr->t[c] + o), &enc[2]);
     }
     d2 = _mm256_or_si256(
         ev, _mm256_slli_epi32(
-                hf__encode_var_avx2(_mm256_loadu_ps(K->tt + 8 * k), &enc[1]),
+                hf__encode_var_v8(_mm256_loadu_ps(K->tt + 8 * k), &enc[1]),
                 16));
     d3 = _mm256_or_si256(_mm256_or_si256(et[0], _mm256_slli_epi32(et[1], 8)),
                          _mm256_slli_epi32(et[2], 16));
     s02 = _mm256_unpacklo_epi32(d2, d3);
     s13 = _mm256_unpackhi_epi32(d2, d3);
-    hf__c16_put_avx2(b, 2 * st, n,
+    hf__c16_put_v8(b, 2 * st, n,
                      _mm256_or_si256(eL[0], _mm256_slli_epi32(eL[1], 16)),
                      _mm256_or_si256(eL[2], eu), s02, s13);
-    hf__c16_put_avx2(b + st, 2 * st, n,
+    hf__c16_put_v8(b + st, 2 * st, n,
                      _mm256_or_si256(eR[0], _mm256_slli_epi32(eR[1], 16)),
                      _mm256_or_si256(eR[2], eu), s02, s13);
 }
@@ -12258,9 +12258,9 @@ hf__c16_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k, int n,
    tables: the table writer's values and encodings (so the same bytes),
    packed into four 32-bit words a vertex (x y | z u | v t | tangent),
    transposed in registers and stored. enc: the position's, texcoord's
-   and tangent's formats (hf__enc8_init); ov as hf__rout_vec_avx2. */
+   and tangent's formats (hf__enc8_init); ov as hf__rout_vec_v8. */
 HF__TARGET_AVX2 HF__INLINE void
-hf__ribbon_write_c16_avx2_in(const hf__rframe *fr, int P, const hf__rconst *K,
+hf__ribbon_write_c16_v8_in(const hf__rframe *fr, int P, const hf__rconst *K,
                              const hf__rstrand *str, const hf__rout *ro,
                              size_t v0, const __m256 *ov,
                              const hf__enc8 *enc)
@@ -12269,23 +12269,23 @@ hf__ribbon_write_c16_avx2_in(const hf__rframe *fr, int P, const hf__rconst *K,
     const __m256 ws = _mm256_set1_ps(str->wscale);
     /* u and v are the strand's: encoded once */
     const __m256i eu = _mm256_slli_epi32(
-        hf__encode_var_avx2(_mm256_set1_ps(str->uv[0]), &enc[1]), 16);
+        hf__encode_var_v8(_mm256_set1_ps(str->uv[0]), &enc[1]), 16);
     const __m256i ev =
-        hf__encode_var_avx2(_mm256_set1_ps(str->uv[1]), &enc[1]);
+        hf__encode_var_v8(_mm256_set1_ps(str->uv[1]), &enc[1]);
     unsigned char *b = ro->base[HF__S_POS] + v0 * st;
     int k;
     for (k = 0; 8 * k + 8 <= P; ++k, b += 16 * st)
-        hf__c16_group_avx2(fr, K, k, 8, b, st, ws, eu, ev, ov, enc);
+        hf__c16_group_v8(fr, K, k, 8, b, st, ws, eu, ev, ov, enc);
     if (8 * k < P)
-        hf__c16_group_avx2(fr, K, k, P - 8 * k, b, st, ws, eu, ev, ov, enc);
+        hf__c16_group_v8(fr, K, k, P - 8 * k, b, st, ws, eu, ev, ov, enc);
 }
 #endif
 
 #if HF__NEON
-/* hf__encode_sse in NEON: the same clamps and rounding (vcvt_f16_f32
+/* hf__encode_v4 in NEON: the same clamps and rounding (vcvt_f16_f32
    rounds to nearest even, subnormal halves included, as hf__encode1 does
    by hand), so the same codes. */
-HF__INLINE uint32x4_t hf__encode_neon(float32x4_t x, int fmt)
+HF__INLINE uint32x4_t hf__encode_v4(float32x4_t x, int fmt)
 {
     const float32x4_t m = vdupq_n_f32(12582912.0f);
     float lo, scale;
@@ -12302,7 +12302,7 @@ HF__INLINE uint32x4_t hf__encode_neon(float32x4_t x, int fmt)
                      vdupq_n_u32(hf_format_bytes(fmt) == 2 ? 0xffffu : 0xffu));
 }
 
-HF__INLINE void hf__transpose4_neon(float32x4_t *r)
+HF__INLINE void hf__transpose4_v4(float32x4_t *r)
 {
     const float32x4x2_t a = vtrnq_f32(r[0], r[1]), b = vtrnq_f32(r[2], r[3]);
     r[0] = vcombine_f32(vget_low_f32(a.val[0]), vget_low_f32(b.val[0]));
@@ -12315,7 +12315,7 @@ HF__INLINE void hf__transpose4_neon(float32x4_t *r)
    o + 2 i st, R a stride later; R may be L), in format fmt: floats as
    they are, other formats encoded four lanes at a time, then each
    vertex's bytes copied out in component order. */
-HF__PRIVATE void hf__emit_pair_neon(unsigned char *o, size_t st, int n,
+HF__PRIVATE void hf__emit_pair_v4(unsigned char *o, size_t st, int n,
                                     const float32x4_t *L,
                                     const float32x4_t *R, int nc, int fmt)
 {
@@ -12327,7 +12327,7 @@ HF__PRIVATE void hf__emit_pair_neon(unsigned char *o, size_t st, int n,
         for (c = 0; c < nc; ++c)
             vst1q_u32(lane[c], fmt == HF_FORMAT_F32
                                    ? vreinterpretq_u32_f32(v[c])
-                                   : hf__encode_neon(v[c], fmt));
+                                   : hf__encode_v4(v[c], fmt));
         for (i = 0; i < n; ++i) {
             unsigned char *q = o + (2u * (size_t)i + (size_t)side) * st;
             for (c = 0; c < nc; ++c, q += size) {
@@ -12346,7 +12346,7 @@ HF__PRIVATE void hf__emit_pair_neon(unsigned char *o, size_t st, int n,
 
 /* hf__ribbon_write_v4 in NEON, four points at a time: the float runs
    (see hf__float_run) by a 4 x 4 transpose, x y z tx and ty tz u v of
-   each vertex, as hf__put_run_sse does; every other stream component by
+   each vertex, as hf__put_run_v4 does; every other stream component by
    component in its format. */
 HF__PRIVATE int
 hf__ribbon_write_v4(const hf__rframe *fr, int P, const hf__rconst *K,
@@ -12378,9 +12378,9 @@ hf__ribbon_write_v4(const hf__rframe *fr, int P, const hf__rconst *K,
             V[1] = T[2];
             V[2] = vdupq_n_f32(str->uv[0]);
             V[3] = vdupq_n_f32(str->uv[1]);
-            hf__transpose4_neon(L); /* x y z tx of each left vertex */
-            hf__transpose4_neon(R);
-            hf__transpose4_neon(V); /* ty tz u v */
+            hf__transpose4_v4(L); /* x y z tx of each left vertex */
+            hf__transpose4_v4(R);
+            hf__transpose4_v4(V); /* ty tz u v */
             for (i = 0; i < n; ++i, b += 2 * st) {
                 vst1q_f32((float *)(void *)b, L[i]);
                 vst1q_f32((float *)(void *)(b + st), R[i]);
@@ -12395,7 +12395,7 @@ hf__ribbon_write_v4(const hf__rframe *fr, int P, const hf__rconst *K,
                 }
             }
         } else if (ro->base[HF__S_POS]) {
-            hf__emit_pair_neon(ro->base[HF__S_POS] + v * ro->stride[HF__S_POS],
+            hf__emit_pair_v4(ro->base[HF__S_POS] + v * ro->stride[HF__S_POS],
                                ro->stride[HF__S_POS], n, L, R, 3,
                                ro->fmt[HF__S_POS]);
         }
@@ -12425,7 +12425,7 @@ hf__ribbon_write_v4(const hf__rframe *fr, int P, const hf__rconst *K,
                 V[1] = tt;
                 break;
             }
-            hf__emit_pair_neon(ro->base[q] + v * ro->stride[q], ro->stride[q],
+            hf__emit_pair_v4(ro->base[q] + v * ro->stride[q], ro->stride[q],
                                n, V, V, hf__stream_nc[q], ro->fmt[q]);
         }
     }
@@ -12443,9 +12443,9 @@ HF__PRIVATE int hf__ribbon_write_v8(const hf__rframe *fr, int P,
                                     const hf__rout *ro, size_t v0)
 {
     if (ro->run)
-        hf__ribbon_write_avx2(fr, P, K, str, ro, v0);
+        hf__ribbon_write_run_v8(fr, P, K, str, ro, v0);
     else if (ro->nw)
-        hf__ribbon_write_table_avx2(fr, P, K, str, ro, v0);
+        hf__ribbon_write_table_v8(fr, P, K, str, ro, v0);
     return ro->run || ro->nw;
 }
 #endif
@@ -12576,7 +12576,7 @@ HF__PRIVATE void hf__stream_copy(unsigned char *dst, const float *src,
    them (a strand's block is, in a buffer aligned as a mapped one); the
    rest, and a block that is not aligned, by hf__stream_copy (each part's
    pages walked ahead once) */
-HF__TARGET_AVX2 HF__INLINE void hf__stream_copy_avx2(unsigned char *dst,
+HF__TARGET_AVX2 HF__INLINE void hf__stream_copy_v8(unsigned char *dst,
                                                      const float *src,
                                                      size_t n)
 {
@@ -12613,27 +12613,27 @@ HF__INLINE void hf__rstrand_fill(const hf_ribbon_strands *sv, int s,
    vector frame leaves it (as in hf__strand_frame); *wscale 0 for a strand
    framed collapsed */
 HF__TARGET_AVX2 HF__INLINE void
-hf__frame_strand_avx2(const float *pts, int P, int ortho, const __m256 *e,
+hf__frame_strand_v8(const float *pts, int P, int ortho, const __m256 *e,
                       const hf_ribbon_params *params, hf__rframe *fr,
                       float *wscale)
 {
     int finite;
-    if (!hf__strand_frame_avx2_in(pts, P, ortho, e, fr, &finite)) {
+    if (!hf__strand_frame_v8_in(pts, P, ortho, e, fr, &finite)) {
         _mm256_zeroupper(); /* the reference is SSE code */
-        hf__strand_frame_v1(pts, P, params, fr, &finite);
+        hf__strand_frame_rest(pts, P, params, fr, &finite);
     }
     *wscale = finite ? 1.0f : 0.0f;
 }
 
-/* Strand s's frame (hf__frame_strand_avx2) where s < end: the runs make
+/* Strand s's frame (hf__frame_strand_v8) where s < end: the runs make
    each strand's frame while the strand before is written */
 HF__TARGET_AVX2 HF__INLINE void
-hf__frame_at_avx2(const hf_ribbon_strands *sv, int s, int end, int P,
+hf__frame_at_v8(const hf_ribbon_strands *sv, int s, int end, int P,
                   int ortho, const __m256 *e, const hf_ribbon_params *params,
                   hf__rframe *fr, float *wscale)
 {
     if (s < end)
-        hf__frame_strand_avx2(sv->points + (size_t)s * (size_t)P * 3u, P,
+        hf__frame_strand_v8(sv->points + (size_t)s * (size_t)P * 3u, P,
                               ortho, e, params, fr, wscale);
 }
 
@@ -12648,9 +12648,9 @@ hf__frame_at_avx2(const hf_ribbon_strands *sv, int s, int end, int P,
    first byte dst0; NULL or not, a constant in each inlined copy) writes
    each strand into the stage, which takes fr2's place on the stack (one
    frame, made after the strand before is written), then out with
-   hf__stream_copy_avx2. */
+   hf__stream_copy_v8. */
 HF__TARGET_AVX2 HF__INLINE void
-hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
+hf__ribbons_loop_v8(const hf_ribbon_strands *sv, int first, int count,
                       const hf_ribbon_params *params, const hf__rconst *K,
                       const hf__rout *out, int out_first, hf__rframe *fr,
                       hf__rframe *fr2, int mode, float *stage,
@@ -12671,8 +12671,8 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
         hf__rout_staged(out, stage, dst0, &so);
         ro = &so;
     }
-    hf__frame_eye_avx2(params, e);
-    hf__rout_vec_avx2(ro, ov);
+    hf__frame_eye_v8(params, e);
+    hf__rout_vec_v8(ro, ov);
     if (mode == 2) {
         hf__enc8_init(&enc[0], ro->fmt[HF__S_POS]);
         hf__enc8_init(&enc[1], ro->fmt[HF__S_TEX]);
@@ -12680,33 +12680,33 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
     }
     F[0] = fr;
     F[1] = fr2;
-    hf__frame_at_avx2(&svl, first, end, P, ortho, e, params, F[0], &wsc[0]);
+    hf__frame_at_v8(&svl, first, end, P, ortho, e, params, F[0], &wsc[0]);
     for (s = first; s < end; ++s) {
         const int j = stage ? 0 : (s - first) & 1;
         const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u,
                      w0 = stage ? 0 : v0;
         hf__rstrand str;
         if (!stage)
-            hf__frame_at_avx2(&svl, s + 1, end, P, ortho, e, params,
+            hf__frame_at_v8(&svl, s + 1, end, P, ortho, e, params,
                               F[j ^ 1], &wsc[j ^ 1]);
         str.wscale = wsc[j];
         hf__rstrand_fill(&svl, s, K->wcap, &str);
         if (mode == 2)
-            hf__ribbon_write_c16_avx2_in(F[j], P, K, &str, ro, w0, ov, enc);
+            hf__ribbon_write_c16_v8_in(F[j], P, K, &str, ro, w0, ov, enc);
         else if (mode == 1)
-            hf__ribbon_write_table_avx2_in(F[j], P, K, &str, ro, w0, ov);
+            hf__ribbon_write_table_v8_in(F[j], P, K, &str, ro, w0, ov);
         else
-            hf__ribbon_write_avx2_in(F[j], P, K, &str, ro, w0, ov);
+            hf__ribbon_write_v8_in(F[j], P, K, &str, ro, w0, ov);
         if (stage) {
-            hf__stream_copy_avx2(dst0 + v0 * block, stage, sb);
-            hf__frame_at_avx2(&svl, s + 1, end, P, ortho, e, params, F[0],
+            hf__stream_copy_v8(dst0 + v0 * block, stage, sb);
+            hf__frame_at_v8(&svl, s + 1, end, P, ortho, e, params, F[0],
                               &wsc[0]);
         }
     }
 }
 
 HF__TARGET_AVX2 HF__PRIVATE void
-hf__ribbons_run_avx2(const hf_ribbon_strands *sv, int first, int count,
+hf__ribbons_run_v8(const hf_ribbon_strands *sv, int first, int count,
                      const hf_ribbon_params *params, const hf__rconst *K,
                      const hf__rout *ro, int out_first, hf__rframe *fr,
                      hf__rframe *fr2, float *stage, unsigned char *dst0,
@@ -12715,20 +12715,20 @@ hf__ribbons_run_avx2(const hf_ribbon_strands *sv, int first, int count,
     /* (the compact vertex leaves a byte of its stride: never staged) */
     if (stage) {
         if (ro->run)
-            hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first,
+            hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first,
                                   fr, NULL, 0, stage, dst0, block);
         else
-            hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first,
+            hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first,
                                   fr, NULL, 1, stage, dst0, block);
         _mm_sfence(); /* streamed stores visible before we return */
     } else if (ro->run)
-        hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
+        hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first, fr,
                               fr2, 0, NULL, NULL, 0);
     else if (ro->c16)
-        hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
+        hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first, fr,
                               fr2, 2, NULL, NULL, 0);
     else
-        hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
+        hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first, fr,
                               fr2, 1, NULL, NULL, 0);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
@@ -12743,9 +12743,9 @@ hf__ribbons_run_avx2(const hf_ribbon_strands *sv, int first, int count,
    z; tx ty; tz and t; u v) by three two-source permutes and two blends,
    and written with one 64-byte streaming store: no stage written and
    read back, no partial line. The same values in the same operations as
-   hf__ribbon_group_avx2, so the same bytes. Scene L's streamed ribbons:
+   hf__ribbon_group_v8, so the same bytes. Scene L's streamed ribbons:
    0.81-0.94x the staged AVX2 run's time, and 0.875-0.927x of that with
-   the frame in registers too (hf__ribbon_fused_avx512;
+   the frame in registers too (hf__ribbon_fused_v16;
    docs/performance.md). */
 typedef struct hf__lines {
     __m512i idx[9][3];   /* line c's lanes from source pair q */
@@ -12842,7 +12842,7 @@ HF__TARGET_AVX512 HF__INLINE void hf__lines_out(unsigned char *b,
 
 /* One strand's vertices at ro's position base + v0 vertices, as lines */
 HF__TARGET_AVX512 HF__INLINE void
-hf__ribbon_lines_avx512(const hf__rframe *fr, int P, const hf__rconst *K,
+hf__ribbon_lines_v16(const hf__rframe *fr, int P, const hf__rconst *K,
                         const hf__rstrand *str, const hf__rout *ro, size_t v0,
                         const __m256 *ov, const hf__lines *t)
 {
@@ -12856,7 +12856,7 @@ hf__ribbon_lines_avx512(const hf__rframe *fr, int P, const hf__rconst *K,
         const int o = 4 + 8 * k;
         __m256 L[3], R[3];
         __m512 S[5];
-        hf__sides_avx2(fr, o,
+        hf__sides_v8(fr, o,
                        _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws), ov,
                        L, R);
         HF__UNROLL for (c = 0; c < 3; ++c) S[c] = hf__join16(L[c], R[c]);
@@ -12916,7 +12916,7 @@ HF__TARGET_AVX512 HF__INLINE void hf__enc16_init(hf__enc16 *e,
    "undefined" operand, which g++ -O1 warns about. */
 #define HF__SLL16(x, n) _mm512_maskz_slli_epi32(0xffff, x, n)
 
-/* hf__encode_var_avx2 at sixteen lanes */
+/* hf__encode_var_v8 at sixteen lanes */
 HF__TARGET_AVX512 HF__INLINE __m512i hf__encode16(__m512 x,
                                                  const hf__enc16 *e)
 {
@@ -12949,7 +12949,7 @@ HF__TARGET_AVX512 HF__INLINE void hf__c16_lanes16(__m512i d0, __m512i d1,
     v[3] = _mm512_maskz_unpackhi_epi64(0xff, b, s13);
 }
 
-/* hf__c16_put_avx2 at sixteen points, all of them: one side's vertices
+/* hf__c16_put_v8 at sixteen points, all of them: one side's vertices
    (hf__c16_lanes16) at o, vertex i at o + i st2, two 8-byte stores a
    vertex, the pad byte never written */
 HF__TARGET_AVX512 HF__INLINE void hf__c16_put16(unsigned char *o, size_t st2,
@@ -13000,7 +13000,7 @@ HF__TARGET_AVX512 HF__INLINE void hf__c16_put16_tight(unsigned char *o,
     }
 }
 
-/* hf__c16_group_avx2 at sixteen points from registers: the left and
+/* hf__c16_group_v8 at sixteen points from registers: the left and
    right positions (relative to the origin and scale), the tangents and
    t, the strand's u and v already encoded (eu shifted) */
 HF__TARGET_AVX512 HF__INLINE void
@@ -13033,16 +13033,16 @@ hf__c16_group16(unsigned char *b, size_t st, const __m512 *L, const __m512 *R,
 }
 
 /* A strand's frame and vertices in registers, sixteen points a turn (P a
-   multiple of 16): hf__frame_group_avx2's operations on sixteen lanes (a
+   multiple of 16): hf__frame_group_v8's operations on sixteen lanes (a
    512-bit square root or division costs what a 256-bit one does on Zen
    5), no frame rows written and read back. The vertices go out as lines
-   (t; enc NULL) for hf__ribbons_lines_avx512, or as compact vertices
+   (t; enc NULL) for hf__ribbons_lines_v16, or as compact vertices
    (enc: hf__enc16 of position, texcoord and tangent) for
-   hf__ribbons_c16_avx512. Returns 0, with vertices perhaps written,
+   hf__ribbons_c16_v16. Returns 0, with vertices perhaps written,
    where a point is not finite or a lane is left to the reference: the
-   caller writes the strand again from hf__frame_strand_avx2's rows. */
+   caller writes the strand again from hf__frame_strand_v8's rows. */
 HF__TARGET_AVX512 HF__INLINE int
-hf__ribbon_fused_avx512(const float *pts, int P, int ortho, const __m512 *e,
+hf__ribbon_fused_v16(const float *pts, int P, int ortho, const __m512 *e,
                         const hf__rconst *K, const hf__rstrand *str,
                         const hf__rout *ro, size_t v0, const __m512 *ov,
                         const hf__lines *t, const hf__enc16 *enc)
@@ -13132,7 +13132,7 @@ hf__ribbon_fused_avx512(const float *pts, int P, int ortho, const __m512 *e,
             one, _mm512_maskz_sqrt_ps(0xffff,
                                       _mm512_mask_blend_ps(ok2, one, c2)));
         /* L = p - s w, R = p + s w, relative to the origin and scale, as
-           hf__ribbon_group_avx2 */
+           hf__ribbon_group_v8 */
         w = _mm512_mul_ps(_mm512_loadu_ps(K->hw + 16 * g), ws);
         {
             const __m512 cc[3] = {cx, cy, cz}, ss[3] = {sx, sy, sz};
@@ -13185,16 +13185,16 @@ HF__PRIVATE int hf__lines_fit(const hf__rout *ro, int P,
                                    (size_t)P * block) & 63u) == 0;
 }
 
-/* The eye (hf__frame_eye_avx2) and the output's scale and origin
-   (hf__rout_vec_avx2) as vectors of eight lanes and of sixteen, the
+/* The eye (hf__frame_eye_v8) and the output's scale and origin
+   (hf__rout_vec_v8) as vectors of eight lanes and of sixteen, the
    same in every lane */
 HF__TARGET_AVX512 HF__INLINE void
 hf__vecs16_init(const hf_ribbon_params *params, const hf__rout *ro, __m256 *e,
                 __m256 *ov, __m512 *e16, __m512 *ov16)
 {
     int c;
-    hf__frame_eye_avx2(params, e);
-    hf__rout_vec_avx2(ro, ov);
+    hf__frame_eye_v8(params, e);
+    hf__rout_vec_v8(ro, ov);
     HF__UNROLL for (c = 0; c < 4; ++c) {
         if (c < 3) e16[c] = hf__join16(e[c], e[c]);
         ov16[c] = hf__join16(ov[c], ov[c]);
@@ -13202,8 +13202,8 @@ hf__vecs16_init(const hf_ribbon_params *params, const hf__rout *ro, __m256 *e,
 }
 
 /* Strand s with P a multiple of 16: its frame and vertices in registers
-   (hf__ribbon_fused_avx512), or, where that leaves the strand, framed by
-   hf__frame_strand_avx2 into fr and written from the rows; as lines (t)
+   (hf__ribbon_fused_v16), or, where that leaves the strand, framed by
+   hf__frame_strand_v8 into fr and written from the rows; as lines (t)
    or as compact vertices (enc16 and enc, the AVX2 writer's). e, ov: the
    eye and output vectors at eight lanes, e16, ov16 at sixteen. */
 HF__TARGET_AVX512 HF__INLINE void
@@ -13221,25 +13221,25 @@ hf__ribbon_strand16(const hf_ribbon_strands *sv, int s, int end,
     float wsc;
     str.wscale = 1.0f;
     hf__rstrand_fill(sv, s, K->wcap, &str);
-    if (hf__ribbon_fused_avx512(sv->points + (size_t)s * (size_t)P * 3u, P,
+    if (hf__ribbon_fused_v16(sv->points + (size_t)s * (size_t)P * 3u, P,
                                 ortho, e16, K, &str, ro, v0, ov16, t, enc16))
         return;
-    hf__frame_at_avx2(sv, s, end, P, ortho, e, params, fr, &wsc);
+    hf__frame_at_v8(sv, s, end, P, ortho, e, params, fr, &wsc);
     str.wscale = wsc;
     hf__rstrand_fill(sv, s, K->wcap, &str);
     if (enc)
-        hf__ribbon_write_c16_avx2_in(fr, P, K, &str, ro, v0, ov, enc);
+        hf__ribbon_write_c16_v8_in(fr, P, K, &str, ro, v0, ov, enc);
     else
-        hf__ribbon_lines_avx512(fr, P, K, &str, ro, v0, ov, t);
+        hf__ribbon_lines_v16(fr, P, K, &str, ro, v0, ov, t);
 }
 
 /* The strands of a streamed call as lines (hf__lines_fit). P a multiple
-   of 16: each strand's frame in registers (hf__ribbon_fused_avx512), a
-   strand it leaves framed by hf__frame_strand_avx2 and written from the
-   rows. Else hf__ribbons_loop_avx2's plain path (each frame a strand
+   of 16: each strand's frame in registers (hf__ribbon_fused_v16), a
+   strand it leaves framed by hf__frame_strand_v8 and written from the
+   rows. Else hf__ribbons_loop_v8's plain path (each frame a strand
    ahead, in fr and fr2 by turns) with the lines for the writer. */
 HF__TARGET_AVX512 HF__PRIVATE void
-hf__ribbons_lines_avx512(const hf_ribbon_strands *sv, int first, int count,
+hf__ribbons_lines_v16(const hf_ribbon_strands *sv, int first, int count,
                          const hf_ribbon_params *params, const hf__rconst *K,
                          const hf__rout *ro, int out_first, hf__rframe *fr,
                          hf__rframe *fr2)
@@ -13262,16 +13262,16 @@ hf__ribbons_lines_avx512(const hf_ribbon_strands *sv, int first, int count,
             hf__ribbon_strand16(&svl, s, end, params, K, ro, out_first, e, ov,
                                 e16, ov16, fr, &t, NULL, NULL);
     } else {
-        hf__frame_at_avx2(&svl, first, end, P, ortho, e, params, F[0],
+        hf__frame_at_v8(&svl, first, end, P, ortho, e, params, F[0],
                           &wsc[0]);
         for (s = first; s < end; ++s) {
             const int j = (s - first) & 1;
             hf__rstrand str;
-            hf__frame_at_avx2(&svl, s + 1, end, P, ortho, e, params,
+            hf__frame_at_v8(&svl, s + 1, end, P, ortho, e, params,
                               F[j ^ 1], &wsc[j ^ 1]);
             str.wscale = wsc[j];
             hf__rstrand_fill(&svl, s, K->wcap, &str);
-            hf__ribbon_lines_avx512(F[j], P, K, &str, ro,
+            hf__ribbon_lines_v16(F[j], P, K, &str, ro,
                                     (size_t)(s - out_first) * (size_t)P * 2u,
                                     ov, &t);
         }
@@ -13282,10 +13282,10 @@ hf__ribbons_lines_avx512(const hf_ribbon_strands *sv, int first, int count,
 
 /* The compact vertex (hf__rout c16) of a call at AVX-512, P a multiple
    of 16: each strand's frame and vertices in registers
-   (hf__ribbon_fused_avx512); a strand it leaves, framed by
-   hf__frame_strand_avx2 and written from the rows by the AVX2 writer. */
+   (hf__ribbon_fused_v16); a strand it leaves, framed by
+   hf__frame_strand_v8 and written from the rows by the AVX2 writer. */
 HF__TARGET_AVX512 HF__PRIVATE void
-hf__ribbons_c16_avx512(const hf_ribbon_strands *sv, int first, int count,
+hf__ribbons_c16_v16(const hf_ribbon_strands *sv, int first, int count,
                        const hf_ribbon_params *params, const hf__rconst *K,
                        const hf__rout *ro, int out_first, hf__rframe *fr)
 {
@@ -13417,12 +13417,12 @@ HF__PRIVATE int hf__ribbons_v16(const hf__rcall *c)
 {
     if (c->stage && hf__lines_fit(c->ro, c->P, c->dst0, c->block, c->first,
                                   c->out_first)) {
-        hf__ribbons_lines_avx512(c->sv, c->first, c->count, c->params, c->K,
+        hf__ribbons_lines_v16(c->sv, c->first, c->count, c->params, c->K,
                                  c->ro, c->out_first, c->fr, c->fr2);
         return 1;
     }
     if (!c->stage && c->ro->c16 && c->P % 16 == 0) {
-        hf__ribbons_c16_avx512(c->sv, c->first, c->count, c->params, c->K,
+        hf__ribbons_c16_v16(c->sv, c->first, c->count, c->params, c->K,
                                c->ro, c->out_first, c->fr);
         return 1;
     }
@@ -13435,7 +13435,7 @@ HF__PRIVATE int hf__ribbons_v16(const hf__rcall *c)
 HF__PRIVATE int hf__ribbons_v8(const hf__rcall *c)
 {
     if (!c->ro->run && !c->ro->nw) return 0;
-    hf__ribbons_run_avx2(c->sv, c->first, c->count, c->params, c->K, c->ro,
+    hf__ribbons_run_v8(c->sv, c->first, c->count, c->params, c->K, c->ro,
                          c->out_first, c->fr, c->stage ? NULL : c->fr2,
                          c->stage ? c->stage_buf : NULL, c->dst0, c->block);
     return 1;
@@ -13642,7 +13642,7 @@ HF__PRIVATE void hf__points_strand_v1(const float *p, const float *hw,
    and shifts, so nothing past the strand is read and every point is
    written here (a scalar store into a line being streamed would stall).
    Streaming stores where asked and aligned. P >= 2. */
-HF__INLINE void hf__point_put_sse(float *o, __m128 v, float w, int nt)
+HF__INLINE void hf__point_put_v4(float *o, __m128 v, float w, int nt)
 {
     const __m128 xyz = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
     v = _mm_or_ps(_mm_and_ps(v, xyz), _mm_set_ps(w, 0.0f, 0.0f, 0.0f));
@@ -13659,10 +13659,10 @@ HF__PRIVATE void hf__points_strand_v4(const float *p, const float *hw,
     nt = nt && ((uintptr_t)o & 15u) == 0;
     if (nt) hf__page_ahead(o, 16u * (size_t)P);
     for (j = 0; j + 1 < P; ++j)
-        hf__point_put_sse(o + 4 * j, _mm_loadu_ps(p + 3 * j), hw[j] * ws, nt);
+        hf__point_put_v4(o + 4 * j, _mm_loadu_ps(p + 3 * j), hw[j] * ws, nt);
     if (j < P) { /* the last: (z', x, y, z) to (x, y, z, z') */
         const __m128 v = _mm_loadu_ps(p + 3 * j - 1);
-        hf__point_put_sse(o + 4 * j,
+        hf__point_put_v4(o + 4 * j,
                           _mm_shuffle_ps(v, v, _MM_SHUFFLE(0, 3, 2, 1)),
                           hw[j] * ws, nt);
     }
@@ -13716,7 +13716,7 @@ HF__PRIVATE void hf__pair_widths_init(hf__pair_widths *pw, const float *hw,
    returns 0 when a point is not finite, with the strand written from
    its points as they are (the caller writes it again, collapsed). P >= 3. */
 HF__TARGET_AVX2 HF__INLINE int
-hf__points_strand_avx2_in(const float *p, const hf__pair_widths *pw, float ws,
+hf__points_strand_v8_in(const float *p, const hf__pair_widths *pw, float ws,
                           float *o, int P, int mode)
 {
     const __m256i spread = _mm256_setr_epi32(0, 1, 2, 0, 3, 4, 5, 0);
@@ -13751,10 +13751,10 @@ hf__points_strand_avx2_in(const float *p, const hf__pair_widths *pw, float ws,
 
 /* the strand above as a call (mode: hf__stream_mode's) */
 HF__TARGET_AVX2 HF__PRIVATE int
-hf__points_strand_avx2(const float *p, const hf__pair_widths *pw, float ws,
+hf__points_strand_v8(const float *p, const hf__pair_widths *pw, float ws,
                        float *o, int P, int nt)
 {
-    const int ok = hf__points_strand_avx2_in(p, pw, ws, o, P,
+    const int ok = hf__points_strand_v8_in(p, pw, ws, o, P,
                                              hf__stream_mode(nt, o, 31u));
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
     return ok;
@@ -13781,10 +13781,10 @@ typedef struct hf__points_kit {
 /* A strand at o that is not finite, written again collapsed (every point
    at the origin, width 0) by the AVX2 points kernel, after the streamed
    stores already made; rare, so a call of its own. */
-HF__PRIVATE void hf__points_collapse_avx2(const hf__points_kit *k, float *o)
+HF__PRIVATE void hf__points_collapse_v8(const hf__points_kit *k, float *o)
 {
     if (k->nt) _mm_sfence();
-    hf__points_strand_avx2(hf__zero_points, &k->pw, 0.0f, o, k->P, k->nt);
+    hf__points_strand_v8(hf__zero_points, &k->pw, 0.0f, o, k->P, k->nt);
 }
 
 /* The strands of a points call at AVX2 in one target function, the
@@ -13793,7 +13793,7 @@ HF__PRIVATE void hf__points_collapse_avx2(const hf__points_kit *k, float *o)
    keep the first's alignment, so the mode is one for the call and a
    constant in the loop; with P odd it alternates, found per strand. */
 HF__TARGET_AVX2 HF__INLINE void
-hf__points_loop_avx2(const hf__points_kit *k, const hf_ribbon_strands *strands,
+hf__points_loop_v8(const hf__points_kit *k, const hf_ribbon_strands *strands,
                      const float *pts, int pts_first, int first, int count,
                      int out_first, float *out4, int mode)
 {
@@ -13806,10 +13806,10 @@ hf__points_loop_avx2(const hf__points_kit *k, const hf_ribbon_strands *strands,
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
         const int m = mode >= 0 ? mode : hf__stream_mode(k->nt, o, 31u);
         if (m) hf__page_ahead(o, 16u * (size_t)P);
-        if (!hf__points_strand_avx2_in(p, &k->pw, hf__width_at(wd, s, wcap),
+        if (!hf__points_strand_v8_in(p, &k->pw, hf__width_at(wd, s, wcap),
                                        o, P, m)) {
             _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
-            hf__points_collapse_avx2(k, o);
+            hf__points_collapse_v8(k, o);
         }
     }
 }
@@ -13822,16 +13822,16 @@ hf__points_pairs_v8(const hf__points_kit *k, const hf_ribbon_strands *strands,
     const int mode = hf__stream_mode(
         k->nt, out4 + (size_t)(first - out_first) * (size_t)k->P * 4u, 31u);
     if (k->P % 2)
-        hf__points_loop_avx2(k, strands, pts, pts_first, first, count,
+        hf__points_loop_v8(k, strands, pts, pts_first, first, count,
                              out_first, out4, -1);
     else if (mode == 2)
-        hf__points_loop_avx2(k, strands, pts, pts_first, first, count,
+        hf__points_loop_v8(k, strands, pts, pts_first, first, count,
                              out_first, out4, 2);
     else if (mode)
-        hf__points_loop_avx2(k, strands, pts, pts_first, first, count,
+        hf__points_loop_v8(k, strands, pts, pts_first, first, count,
                              out_first, out4, 1);
     else
-        hf__points_loop_avx2(k, strands, pts, pts_first, first, count,
+        hf__points_loop_v8(k, strands, pts, pts_first, first, count,
                              out_first, out4, 0);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
@@ -13918,7 +13918,7 @@ HF__VTARGET HF__INLINE void HF__KN(hf__interp_points_whole)(
             HF__KN(hf__points_abc)(o + 4 * j, a, b, c, HF__KN(hf__widths)(k, j),
                                    WS, &acc, mode, q);
         }
-        if (!HF__KN(hf__all_zero)(acc)) hf__points_collapse_avx2(k, o);
+        if (!HF__KN(hf__all_zero)(acc)) hf__points_collapse_v8(k, o);
     }
 }
 
@@ -13962,7 +13962,7 @@ HF__KN(hf__points_whole)(const hf__points_kit *k, const hf_ribbon_strands *st,
             HF__KN(hf__points_abc)(o + 4 * j, a, b, c, HF__KN(hf__widths)(k, j),
                                    WS, &acc, mode, 0);
         }
-        if (!HF__KN(hf__all_zero)(acc)) hf__points_collapse_avx2(k, o);
+        if (!HF__KN(hf__all_zero)(acc)) hf__points_collapse_v8(k, o);
     }
 }
 
@@ -14139,7 +14139,7 @@ static const hf__ipoints_kernels hf__ipoints_widths[] = {
 
 /* Compact points (HF_POINT_COMPACT) from float ones: n points (x, y, z,
    half width) at in to 8 bytes each at o, native byte order; the vector
-   encoders (hf__encode_sse, _avx2, _neon) perform hf__encode1's
+   encoders (hf__encode_v4, _avx2, _neon) perform hf__encode1's
    operations, so every level writes the same bytes. */
 HF__PRIVATE void hf__points_encode_v1(const hf__points_kit *k,
                                       const float *in, size_t n,
@@ -14160,12 +14160,12 @@ HF__PRIVATE void hf__points_encode_v1(const hf__points_kit *k,
 
 #if HF__SSE
 /* One point's four codes (x, y, z SNORM16, w F16) in 32-bit lanes. */
-HF__INLINE __m128i hf__point_codes_sse(__m128 v, __m128 o, __m128 inv)
+HF__INLINE __m128i hf__point_codes_v4(__m128 v, __m128 o, __m128 inv)
 {
     const __m128i xyz = _mm_setr_epi32(-1, -1, -1, 0);
-    const __m128i sn = hf__encode_sse(_mm_mul_ps(_mm_sub_ps(v, o), inv),
+    const __m128i sn = hf__encode_v4(_mm_mul_ps(_mm_sub_ps(v, o), inv),
                                       HF_FORMAT_SNORM16);
-    const __m128i h = hf__encode_sse(v, HF_FORMAT_F16);
+    const __m128i h = hf__encode_v4(v, HF_FORMAT_F16);
     const __m128i c = _mm_or_si128(_mm_and_si128(xyz, sn),
                                    _mm_andnot_si128(xyz, h));
     return _mm_srai_epi32(_mm_slli_epi32(c, 16), 16); /* for packs */
@@ -14182,8 +14182,8 @@ HF__PRIVATE void hf__points_encode_v4(const hf__points_kit *k,
     nt = nt && ((uintptr_t)o & 15u) == 0;
     for (; i + 2 <= n; i += 2, in += 8, o += 16) {
         const __m128i two = _mm_packs_epi32(
-            hf__point_codes_sse(_mm_loadu_ps(in), org, inv),
-            hf__point_codes_sse(_mm_loadu_ps(in + 4), org, inv));
+            hf__point_codes_v4(_mm_loadu_ps(in), org, inv),
+            hf__point_codes_v4(_mm_loadu_ps(in + 4), org, inv));
         if (nt)
             _mm_stream_si128((__m128i *)(void *)o, two);
         else
@@ -14191,14 +14191,14 @@ HF__PRIVATE void hf__points_encode_v4(const hf__points_kit *k,
     }
     if (i < n)
         _mm_storel_epi64((__m128i *)(void *)o,
-                         _mm_packs_epi32(hf__point_codes_sse(_mm_loadu_ps(in),
+                         _mm_packs_epi32(hf__point_codes_v4(_mm_loadu_ps(in),
                                                              org, inv),
                                          _mm_setzero_si128()));
 }
 #endif
 
 #if HF__AVX2
-/* hf__points_encode_sse eight points at a time: the positions two points
+/* hf__points_encode_v4 eight points at a time: the positions two points
    a vector, the eight half widths gathered into one vector for a single
    half conversion, then put back into each point's fourth lane. */
 HF__TARGET_AVX2 HF__PRIVATE void
@@ -14216,19 +14216,19 @@ hf__points_encode_v8(const hf__points_kit *k, const float *in, size_t n,
                      v2 = _mm256_loadu_ps(in + 16),
                      v3 = _mm256_loadu_ps(in + 24);
         /* w0 w2 w4 w6 | w1 w3 w5 w7 */
-        const __m256i w = hf__encode_avx2(
+        const __m256i w = hf__encode_v8(
             _mm256_shuffle_ps(
                 _mm256_shuffle_ps(v0, v1, _MM_SHUFFLE(3, 3, 3, 3)),
                 _mm256_shuffle_ps(v2, v3, _MM_SHUFFLE(3, 3, 3, 3)),
                 _MM_SHUFFLE(2, 0, 2, 0)),
             HF_FORMAT_F16);
-        __m256i c0 = hf__encode_avx2(
+        __m256i c0 = hf__encode_v8(
                     _mm256_mul_ps(_mm256_sub_ps(v0, org), inv), HF_FORMAT_SNORM16),
-                c1 = hf__encode_avx2(
+                c1 = hf__encode_v8(
                     _mm256_mul_ps(_mm256_sub_ps(v1, org), inv), HF_FORMAT_SNORM16),
-                c2 = hf__encode_avx2(
+                c2 = hf__encode_v8(
                     _mm256_mul_ps(_mm256_sub_ps(v2, org), inv), HF_FORMAT_SNORM16),
-                c3 = hf__encode_avx2(
+                c3 = hf__encode_v8(
                     _mm256_mul_ps(_mm256_sub_ps(v3, org), inv), HF_FORMAT_SNORM16),
                 out0, out1;
         /* each point's half width into its fourth lane, then the codes
@@ -14322,9 +14322,9 @@ HF__PRIVATE void hf__points_encode_v4(const hf__points_kit *k,
         const float32x4_t v = vld1q_f32(in);
         const uint32x4_t c = vbslq_u32(
             xyz,
-            hf__encode_neon(vmulq_f32(vsubq_f32(v, org), inv),
+            hf__encode_v4(vmulq_f32(vsubq_f32(v, org), inv),
                             HF_FORMAT_SNORM16),
-            hf__encode_neon(v, HF_FORMAT_F16));
+            hf__encode_v4(v, HF_FORMAT_F16));
         vst1_u16((uint16_t *)(void *)o, vmovn_u32(c));
     }
 }

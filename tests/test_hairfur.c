@@ -7207,7 +7207,7 @@ static void test_ribbons_every_level_matches_reference(void)
                     int finite = -1, c, j, took = -1;
                     memset(&a, 0, sizeof a);
                     memset(&b, 0, sizeof b);
-                    hf__strand_frame_ref(q, P, &p, &a);
+                    hf__strand_frame_v1(q, P, &p, &a);
 #if HF__V4
                     if (kind == 0) took = hf__strand_frame_v4(q, P, &p, &b, &finite);
 #endif
@@ -7267,7 +7267,7 @@ static void test_ribbons_every_level_matches_reference(void)
                     /* as hf_ribbons: a strand with a NaN is drawn collapsed */
                     const int fin = hf__points_finite_v1(qs, 3 * P);
                     memset(&fr, 0, sizeof fr);
-                    hf__strand_frame_ref(fin ? qs : hf__zero_points, P, &p, &fr);
+                    hf__strand_frame_v1(fin ? qs : hf__zero_points, P, &p, &fr);
                     S.uv[0] = hf_rng_float(&rng);
                     S.uv[1] = hf_rng_float(&rng) * 3.0f - 1.0f; /* out of range too */
                     for (j = 0; j < 4; ++j) S.rgba[j] = hf_rng_float(&rng);
@@ -7517,7 +7517,7 @@ static void test_ribbons_table_layouts(void)
                 /* as hf_ribbons: a strand with a NaN is drawn collapsed */
                 const int fin = hf__points_finite_v1(qs, 3 * P);
                 memset(&fr, 0, sizeof fr);
-                hf__strand_frame_ref(fin ? qs : hf__zero_points, P, &p, &fr);
+                hf__strand_frame_v1(fin ? qs : hf__zero_points, P, &p, &fr);
                 S.uv[0] = hf_rng_float(&rng);
                 S.uv[1] = hf_rng_float(&rng) * 3.0f - 1.0f;
                 for (j = 0; j < 4; ++j) S.rgba[j] = hf_rng_float(&rng) * 1.2f - 0.1f;
@@ -7607,7 +7607,7 @@ static void test_format_encoders(void)
             {
                 uint32_t lanes[4];
                 _mm_storeu_si128((__m128i *)(void *)lanes,
-                                 hf__encode_sse(_mm_set_ps(1.0f, x, -x, x), fmt));
+                                 hf__encode_v4(_mm_set_ps(1.0f, x, -x, x), fmt));
                 if (lanes[0] != code || lanes[2] != code) ++bad;
                 if (lanes[1] != hf__encode1(-x, fmt)) ++bad;
             }
@@ -7616,7 +7616,7 @@ static void test_format_encoders(void)
             {
                 const float in[4] = {x, -x, x, 1.0f};
                 uint32_t lanes[4];
-                vst1q_u32(lanes, hf__encode_neon(vld1q_f32(in), fmt));
+                vst1q_u32(lanes, hf__encode_v4(vld1q_f32(in), fmt));
                 if (lanes[0] != code || lanes[2] != code) ++bad;
                 if (lanes[1] != hf__encode1(-x, fmt)) ++bad;
             }
