@@ -2961,14 +2961,15 @@ typedef struct hf__isa {
     int level;        /* the hf_simd_level its kernels need */
     const char *name; /* the instruction set: "scalar", "SSE2", ... */
 } hf__isa;
-#define HF__ISA_V1 {1, HF_SIMD_SCALAR, "scalar"}
+/* a descriptor's hf__isa, between braces: {{HF__ISA_V4}, kernels...} */
+#define HF__ISA_V1 1, HF_SIMD_SCALAR, "scalar"
 #if HF__SSE
-#define HF__ISA_V4 {4, HF_SIMD_SSE2, "SSE2"}
+#define HF__ISA_V4 4, HF_SIMD_SSE2, "SSE2"
 #else
-#define HF__ISA_V4 {4, HF_SIMD_NEON, "NEON"}
+#define HF__ISA_V4 4, HF_SIMD_NEON, "NEON"
 #endif
-#define HF__ISA_V8 {8, HF_SIMD_AVX2, "AVX2"}
-#define HF__ISA_V16 {16, HF_SIMD_AVX512, "AVX-512"}
+#define HF__ISA_V8 8, HF_SIMD_AVX2, "AVX2"
+#define HF__ISA_V16 16, HF_SIMD_AVX512, "AVX-512"
 
 /* The index in a stage's widths (first descriptor widest, `size` bytes
    each) of the one hf__kernels_for picks for the requested level. */
@@ -2984,8 +2985,8 @@ HF__PRIVATE int hf__kernels_index(const hf__isa *widest, size_t size,
     return i;
 }
 #define hf__kernels_for(widths, requested)                                     \
-    ((widths) + hf__kernels_index(&(widths)[0].isa, sizeof((widths)[0]),      \
-                                  (requested)))
+    ((widths) +                                                                \
+     hf__kernels_index(&(widths)[0].isa, sizeof((widths)[0]), (requested)))
 
 /* ---- 1.1 defaults: what every zero field means, in one place ------------ */
 
@@ -5577,9 +5578,9 @@ HF__PRIVATE hf__v4 hf__rope_unit_v4(const hf__v4 *v, hf__v4 *out)
 /* hf__ropes_write_roots_v1 for ropes [r, r + 4): the same operations lane
    by lane, so the same bytes; a degenerate tangent, rare, through
    hf__rope_perp lane by lane. */
-HF__PRIVATE void hf__ropes_write_roots4(hf_ropes *ro, int r,
-                                        const float *pos, const float *nrm,
-                                        const float *tan, int stride)
+HF__PRIVATE void hf__ropes_write_roots4(hf_ropes *ro, int r, const float *pos,
+                                        const float *nrm, const float *tan,
+                                        int stride)
 {
     const size_t R = (size_t)ro->rope_count;
     const hf__v4 zero = HF__SET1(0.0f);
@@ -5673,9 +5674,9 @@ typedef struct hf__roots_kernels {
 
 static const hf__roots_kernels hf__roots_widths[] = {
 #if HF__V4
-    {HF__ISA_V4, hf__ropes_write_roots_v4},
+    {{HF__ISA_V4}, hf__ropes_write_roots_v4},
 #endif
-    {HF__ISA_V1, hf__ropes_write_roots_v1}};
+    {{HF__ISA_V1}, hf__ropes_write_roots_v1}};
 
 /* The dispatch of the root frames at SIMD level `simd` (hf__roots_widths). */
 HF__PRIVATE void hf__ropes_write_roots(hf_ropes *ro, int first, int count,
@@ -5747,13 +5748,10 @@ HF__PRIVATE void hf__rope_reset_one(hf_ropes *ro, int r)
 
 /* hf_ropes_set_rest with the root frames' kernels at SIMD level simd (the
    fur's: hf_fur_set_kernels) */
-HF__PRIVATE hf_result hf__ropes_set_rest(hf_ropes *ropes, int first,
-                                         int count, const float *positions,
-                                         int position_stride,
-                                         const float *root_pos,
-                                         const float *root_normal,
-                                         const float *root_tangent,
-                                         int root_stride, int simd)
+HF__PRIVATE hf_result hf__ropes_set_rest(
+    hf_ropes *ropes, int first, int count, const float *positions,
+    int position_stride, const float *root_pos, const float *root_normal,
+    const float *root_tangent, int root_stride, int simd)
 {
     size_t P, R;
     hf_result res;
@@ -5821,8 +5819,8 @@ HFDEF hf_result hf_ropes_set_rest(hf_ropes *ropes, int first, int count,
 }
 
 /* hf_ropes_set_roots at SIMD level simd (the fur's) */
-HF__PRIVATE hf_result hf__ropes_set_roots(hf_ropes *ropes, int first,
-                                          int count, const float *root_pos,
+HF__PRIVATE hf_result hf__ropes_set_roots(hf_ropes *ropes, int first, int count,
+                                          const float *root_pos,
                                           const float *root_normal,
                                           const float *root_tangent,
                                           int root_stride, int simd)
@@ -5961,8 +5959,8 @@ HFDEF hf_result hf_ropes_max_stretch(const hf_ropes *ropes, int first,
    absolute indexing), at any stride: the reference, and the kernels'
    tails where their blocks of points end. */
 HF__PRIVATE void hf__ropes_copy_points(const hf_ropes *ro, int a, int b,
-                                    size_t j0, float *out, size_t stride,
-                                    int base)
+                                       size_t j0, float *out, size_t stride,
+                                       int base)
 {
     const size_t R = (size_t)ro->rope_count, P = (size_t)ro->points;
     size_t j;
@@ -6053,7 +6051,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__ropes_t8x4(const float *const *q,
 /* hf__ropes_copy4 for ropes [r, r + 8), eight points at a time: three
    8 x 8 transposes (hf__ropes_out_rows). */
 HF__TARGET_AVX2 HF__PRIVATE void hf__ropes_copy8(const hf_ropes *ro, int r,
-                                                float *out, int base)
+                                                 float *out, int base)
 {
     const size_t P = (size_t)ro->points;
     size_t j;
@@ -6074,8 +6072,8 @@ HF__TARGET_AVX2 HF__PRIVATE void hf__ropes_copy8(const hf_ropes *ro, int r,
 
 /* Ropes [a, b), whole groups of eight, packed output only; returns where
    they end. */
-HF__PRIVATE int hf__ropes_copy_v8(const hf_ropes *ro, int a, int b,
-                                  float *out, size_t stride, int base)
+HF__PRIVATE int hf__ropes_copy_v8(const hf_ropes *ro, int a, int b, float *out,
+                                  size_t stride, int base)
 {
     if (stride == 12)
         for (; a + 8 <= b; a += 8) hf__ropes_copy8(ro, a, out, base);
@@ -6085,8 +6083,8 @@ HF__PRIVATE int hf__ropes_copy_v8(const hf_ropes *ro, int a, int b,
 
 #if HF__SSE
 /* hf__ropes_copy_v8 in groups of four */
-HF__PRIVATE int hf__ropes_copy_v4(const hf_ropes *ro, int a, int b,
-                                  float *out, size_t stride, int base)
+HF__PRIVATE int hf__ropes_copy_v4(const hf_ropes *ro, int a, int b, float *out,
+                                  size_t stride, int base)
 {
     if (stride == 12)
         for (; a + 4 <= b; a += 4) hf__ropes_copy4(ro, a, out, base);
@@ -6095,8 +6093,8 @@ HF__PRIVATE int hf__ropes_copy_v4(const hf_ropes *ro, int a, int b,
 #endif
 
 /* Ropes [a, b) at any stride: the reference; returns b. */
-HF__PRIVATE int hf__ropes_copy_v1(const hf_ropes *ro, int a, int b,
-                                  float *out, size_t stride, int base)
+HF__PRIVATE int hf__ropes_copy_v1(const hf_ropes *ro, int a, int b, float *out,
+                                  size_t stride, int base)
 {
     hf__ropes_copy_points(ro, a, b, 0, out, stride, base);
     return b;
@@ -6109,12 +6107,12 @@ typedef struct hf__copy_kernels {
 
 static const hf__copy_kernels hf__copy_widths[] = {
 #if HF__AVX2
-    {HF__ISA_V8, hf__ropes_copy_v8},
+    {{HF__ISA_V8}, hf__ropes_copy_v8},
 #endif
 #if HF__SSE
-    {HF__ISA_V4, hf__ropes_copy_v4},
+    {{HF__ISA_V4}, hf__ropes_copy_v4},
 #endif
-    {HF__ISA_V1, hf__ropes_copy_v1}};
+    {{HF__ISA_V1}, hf__ropes_copy_v1}};
 
 /* The dispatch of the rope-major copies at SIMD level `simd`
    (hf__copy_widths): the widest kernel the level runs takes what it can,
@@ -6267,15 +6265,15 @@ hf__rope_pose_row_v4(const hf_ropes *ro, int j, int a, int b, const float *fr,
 
 typedef struct hf__pose_kernels {
     hf__isa isa;
-    int (*row)(const hf_ropes *, int, int, int, const float *, float *,
-               float *, float *);
+    int (*row)(const hf_ropes *, int, int, int, const float *, float *, float *,
+               float *);
 } hf__pose_kernels;
 
 static const hf__pose_kernels hf__pose_widths[] = {
 #if HF__V4
-    {HF__ISA_V4, hf__rope_pose_row_v4},
+    {{HF__ISA_V4}, hf__rope_pose_row_v4},
 #endif
-    {HF__ISA_V1, hf__rope_pose_row_v1}};
+    {{HF__ISA_V1}, hf__rope_pose_row_v1}};
 
 /* The dispatch of a pose row with the kernels st->pose (hf__pose_widths,
    resolved by hf__rope_step_setup). */
@@ -7157,7 +7155,7 @@ HF__PRIVATE const float *hf__ropes_substep_prep(hf_ropes *ro, int a, int b,
 /* Position Verlet for points 1.. of ropes [a, b), then the root pinned to
    the frame F. */
 HF__PRIVATE void hf__ropes_integrate_v1(hf_ropes *ro, const float *F, int a,
-                                         int b)
+                                        int b)
 {
     const size_t R = (size_t)ro->rope_count;
     const int P = ro->points;
@@ -7197,9 +7195,8 @@ HF__PRIVATE void hf__ropes_integrate_v1(hf_ropes *ro, const float *F, int a,
 
 /* Shape: the root segment and the global pose, each point pulled toward
    its rest place in the frame F. */
-HF__PRIVATE void hf__ropes_global_shape_v1(hf_ropes *ro, const float *F,
-                                            int a, int b,
-                                            const hf__rope_step *st)
+HF__PRIVATE void hf__ropes_global_shape_v1(hf_ropes *ro, const float *F, int a,
+                                           int b, const hf__rope_step *st)
 {
     const size_t R = (size_t)ro->rope_count;
     const int P = ro->points;
@@ -7232,9 +7229,8 @@ HF__PRIVATE void hf__ropes_global_shape_v1(hf_ropes *ro, const float *F,
 /* Local shape: each segment toward its rest direction relative to its
    parent segment (the rest offset turned by the smallest rotation that
    takes the parent's rest direction to its current one). */
-HF__PRIVATE void hf__ropes_local_shape_v1(hf_ropes *ro, const float *F,
-                                           int a, int b,
-                                           const hf__rope_step *st)
+HF__PRIVATE void hf__ropes_local_shape_v1(hf_ropes *ro, const float *F, int a,
+                                          int b, const hf__rope_step *st)
 {
     const size_t R = (size_t)ro->rope_count;
     const int P = ro->points;
@@ -7312,9 +7308,8 @@ HF__PRIVATE void hf__ropes_local_shape_v1(hf_ropes *ro, const float *F,
 }
 
 /* The solver passes, each a distance pass with its collisions. */
-HF__PRIVATE void hf__ropes_solve_v1(hf_ropes *ro, const float *F, int a,
-                                     int b, const hf__rope_step *st,
-                                     const hf__bp *bp)
+HF__PRIVATE void hf__ropes_solve_v1(hf_ropes *ro, const float *F, int a, int b,
+                                    const hf__rope_step *st, const hf__bp *bp)
 {
     const size_t R = (size_t)ro->rope_count;
     const int P = ro->points;
@@ -7391,9 +7386,8 @@ HF__PRIVATE void hf__ropes_solve_v1(hf_ropes *ro, const float *F, int a,
 
 /* One sub-step of simulated ropes [a, b), the scalar reference (the
    width-1 entry of hf__rope_widths: k unused); returns b. */
-HF__PRIVATE int hf__ropes_substep_v1(hf_ropes *ro, const float *F, int a,
-                                     int b, const hf__rope_step *st,
-                                     const hf__bp *bp,
+HF__PRIVATE int hf__ropes_substep_v1(hf_ropes *ro, const float *F, int a, int b,
+                                     const hf__rope_step *st, const hf__bp *bp,
                                      const struct hf__rope_rows *k)
 {
     (void)k;
@@ -7407,8 +7401,8 @@ HF__PRIVATE int hf__ropes_substep_v1(hf_ropes *ro, const float *F, int a,
 
 /* Marks (VF[r] = 1) the ropes of [a, b) whose point row j lies beyond the
    squared distance KB[r] from the root, or is NaN. */
-HF__PRIVATE void hf__ropes_mark_far_row(const hf_ropes *ro, int j, int a,
-                                        int b, const float *KB, float *VF)
+HF__PRIVATE void hf__ropes_mark_far_row(const hf_ropes *ro, int j, int a, int b,
+                                        const float *KB, float *VF)
 {
     const size_t R = (size_t)ro->rope_count;
     const float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
@@ -8361,8 +8355,7 @@ typedef struct hf__rope_rows {
    four-lane kernel at every width). Returns where the whole groups end. */
 HF__PRIVATE int hf__ropes_substep_rows(hf_ropes *ro, const float *F, int a,
                                        int b, const hf__rope_step *st,
-                                       const hf__bp *bp,
-                                       const hf__rope_rows *k)
+                                       const hf__bp *bp, const hf__rope_rows *k)
 {
     const size_t R = (size_t)ro->rope_count;
     const int P = ro->points;
@@ -8489,19 +8482,22 @@ HF__PRIVATE int hf__ropes_mark_far_v1(const hf_ropes *ro, int a, int b,
 /* The rope kernels per width, widest first. The rows eight (sixteen)
    ropes a vector are each a function of its own, so no SSE code runs
    between them with the upper halves dirty. */
-#define HF__ROPE_ROWS_AT(W)                                                        hf__ropes_substep_rows, hf__ropes_mark_far_v##W,                                  hf__ropes_pin_root_v##W, hf__ropes_integrate_row_v##W,                         hf__ropes_local_row_v##W, hf__ropes_ftl_row_v##W,                              hf__ropes_distance_row_v##W
+#define HF__ROPE_ROWS_AT(W)                                                    \
+    hf__ropes_substep_rows, hf__ropes_mark_far_v##W, hf__ropes_pin_root_v##W,  \
+        hf__ropes_integrate_row_v##W, hf__ropes_local_row_v##W,                \
+        hf__ropes_ftl_row_v##W, hf__ropes_distance_row_v##W
 static const hf__rope_rows hf__rope_widths[] = {
 #if HF__AVX512
-    {HF__ISA_V16, HF__ROPE_ROWS_AT(16)},
+    {{HF__ISA_V16}, HF__ROPE_ROWS_AT(16)},
 #endif
 #if HF__AVX2
-    {HF__ISA_V8, HF__ROPE_ROWS_AT(8)},
+    {{HF__ISA_V8}, HF__ROPE_ROWS_AT(8)},
 #endif
 #if HF__V4
-    {HF__ISA_V4, HF__ROPE_ROWS_AT(4)},
+    {{HF__ISA_V4}, HF__ROPE_ROWS_AT(4)},
 #endif
-    {HF__ISA_V1, hf__ropes_substep_v1, hf__ropes_mark_far_v1, NULL, NULL,
-     NULL, NULL, NULL}};
+    {{HF__ISA_V1}, hf__ropes_substep_v1, hf__ropes_mark_far_v1, NULL, NULL, NULL,
+     NULL, NULL}};
 #undef HF__ROPE_ROWS_AT
 
 /* The dispatch of a sub-step with the kernels st->rows (hf__rope_widths,
@@ -9432,9 +9428,9 @@ HF__INLINE void hf__page_ahead(const void *p, size_t bytes)
 /* Floats [i, i + 4) of a strand; R is (1 - sc) root in the phase of i. The
    operations and their order are the scalar loop's in hf_interpolate. */
 HF__INLINE void hf__interp_v4(const float *g0, const float *g1, const float *g2,
-                            const float *gn, const float *ctab, float *o,
-                            int i, __m128 W0, __m128 W1, __m128 W2,
-                            __m128 SC, __m128 R, int nt)
+                              const float *gn, const float *ctab, float *o,
+                              int i, __m128 W0, __m128 W1, __m128 W2, __m128 SC,
+                              __m128 R, int nt)
 {
     __m128 p = _mm_add_ps(_mm_add_ps(_mm_mul_ps(W0, _mm_loadu_ps(g0 + i)),
                                      _mm_mul_ps(W1, _mm_loadu_ps(g1 + i))),
@@ -9454,10 +9450,10 @@ HF__INLINE void hf__interp_v4(const float *g0, const float *g1, const float *g2,
    guides, scaled about the root (rb = (1 - sc) root, twice), then pulled
    toward guide gn (NULL: no clumping) by ctab. */
 HF__PRIVATE void hf__interp_strand_v1(const float *g0, const float *g1,
-                                       const float *g2, const float *gn,
-                                       const float *ctab, float *o, int i,
-                                       int P, float w0, float w1, float w2,
-                                       float sc, const float *rb)
+                                      const float *g2, const float *gn,
+                                      const float *ctab, float *o, int i, int P,
+                                      float w0, float w1, float w2, float sc,
+                                      const float *rb)
 {
     for (; i < 3 * P; ++i) {
         float p = w0 * g0[i] + w1 * g1[i] + w2 * g2[i];
@@ -9470,10 +9466,10 @@ HF__PRIVATE void hf__interp_strand_v1(const float *g0, const float *g1,
 /* hf__interp_strand_v1 on whole vectors from float 0; returns where they
    end. */
 HF__PRIVATE int hf__interp_strand_v4(const float *g0, const float *g1,
-                                      const float *g2, const float *gn,
-                                      const float *ctab, float *o, int P,
-                                      float w0, float w1, float w2, float sc,
-                                      const float *rb, int nt)
+                                     const float *g2, const float *gn,
+                                     const float *ctab, float *o, int P,
+                                     float w0, float w1, float w2, float sc,
+                                     const float *rb, int nt)
 {
     const __m128 W0 = _mm_set1_ps(w0), W1 = _mm_set1_ps(w1);
     const __m128 W2 = _mm_set1_ps(w2), SC = _mm_set1_ps(sc);
@@ -9560,23 +9556,21 @@ HF__INLINE void hf__interp_root(hf__istrand *t)
    lanes (SSE2 or NEON) below, at eight and sixteen in 7.1; each returns
    1 (all written), the sixteen-lane entry 0 for a P it leaves to eight
    lanes (hf__interp_widths). */
-HF__PRIVATE int hf__interp_range_v1(const hf__irun *run, int first,
-                                    int count)
+HF__PRIVATE int hf__interp_range_v1(const hf__irun *run, int first, int count)
 {
     hf__istrand t;
     int s;
     for (s = first; s < first + count; ++s) {
         hf__interp_setup(run, s, &t);
         hf__interp_root(&t);
-        hf__interp_strand_v1(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, 0,
-                              run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
+        hf__interp_strand_v1(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, 0, run->P,
+                             t.w0, t.w1, t.w2, t.sc, t.rb);
     }
     return 1;
 }
 
 #if HF__SSE
-HF__PRIVATE int hf__interp_range_v4(const hf__irun *run, int first,
-                                    int count)
+HF__PRIVATE int hf__interp_range_v4(const hf__irun *run, int first, int count)
 {
     hf__istrand t;
     int s, i;
@@ -9586,11 +9580,11 @@ HF__PRIVATE int hf__interp_range_v4(const hf__irun *run, int first,
         hf__interp_root(&t);
         nt = run->nt && ((uintptr_t)t.o & 15u) == 0;
         if (nt) hf__page_ahead(t.o, 12u * (size_t)run->P);
-        i = hf__interp_strand_v4(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o,
-                                  run->P, t.w0, t.w1, t.w2, t.sc, t.rb, nt);
+        i = hf__interp_strand_v4(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, run->P,
+                                 t.w0, t.w1, t.w2, t.sc, t.rb, nt);
         if (i < 3 * run->P)
             hf__interp_strand_v1(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, i,
-                                  run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
+                                 run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
     }
     return 1;
 }
@@ -9602,17 +9596,16 @@ HF__NOINLINE HF__PRIVATE void hf__interp_tail(const hf__irun *run,
                                              hf__istrand *t, int i)
 {
     hf__interp_root(t);
-    hf__interp_strand_v1(t->g0, t->g1, t->g2, t->gn, run->ctab, t->o, i,
-                          run->P, t->w0, t->w1, t->w2, t->sc, t->rb);
+    hf__interp_strand_v1(t->g0, t->g1, t->g2, t->gn, run->ctab, t->o, i, run->P,
+                         t->w0, t->w1, t->w2, t->sc, t->rb);
 }
 
 #if HF__NEON
 /* hf__interp_strand_v4 on ARM64: four floats a vector, the same
    operations in the same order, so the same bytes. */
-HF__INLINE void
-hf__interp_v4(const hf__istrand *t, const float *ctab, int i,
-                float32x4_t W0, float32x4_t W1, float32x4_t W2,
-                float32x4_t SC, float32x4_t R)
+HF__INLINE void hf__interp_v4(const hf__istrand *t, const float *ctab, int i,
+                              float32x4_t W0, float32x4_t W1, float32x4_t W2,
+                              float32x4_t SC, float32x4_t R)
 {
     float32x4_t p = vaddq_f32(vaddq_f32(vmulq_f32(W0, vld1q_f32(t->g0 + i)),
                                         vmulq_f32(W1, vld1q_f32(t->g1 + i))),
@@ -9624,8 +9617,7 @@ hf__interp_v4(const hf__istrand *t, const float *ctab, int i,
     vst1q_f32(t->o + i, p);
 }
 
-HF__PRIVATE int hf__interp_range_v4(const hf__irun *run, int first,
-                                    int count)
+HF__PRIVATE int hf__interp_range_v4(const hf__irun *run, int first, int count)
 {
     const int n = 3 * run->P;
     hf__istrand t;
@@ -9657,7 +9649,7 @@ HF__PRIVATE int hf__interp_range_v4(const hf__irun *run, int first,
         }
         if (i < n)
             hf__interp_strand_v1(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, i,
-                                  run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
+                                 run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
     }
     return 1;
 }
@@ -9976,15 +9968,15 @@ typedef struct hf__interp_kernels {
 
 static const hf__interp_kernels hf__interp_widths[] = {
 #if HF__AVX512
-    {HF__ISA_V16, hf__interp_fit_v16},
+    {{HF__ISA_V16}, hf__interp_fit_v16},
 #endif
 #if HF__AVX2
-    {HF__ISA_V8, hf__interp_range_v8},
+    {{HF__ISA_V8}, hf__interp_range_v8},
 #endif
 #if HF__V4
-    {HF__ISA_V4, hf__interp_range_v4},
+    {{HF__ISA_V4}, hf__interp_range_v4},
 #endif
-    {HF__ISA_V1, hf__interp_range_v1}};
+    {{HF__ISA_V1}, hf__interp_range_v1}};
 
 /* A run's fields; ctab (3 P floats) filled here */
 HF__PRIVATE void hf__irun_init(hf__irun *run, const float *guide_points,
@@ -10019,8 +10011,8 @@ HF__PRIVATE void hf__irun_init(hf__irun *run, const float *guide_points,
 HF__PRIVATE void hf__interpolate_run(const float *guide_points,
                                      const hf_strand_binding *bindings,
                                      int first, int count, int P, float clump,
-                                     float *out_points, int out_first,
-                                     int simd, int nt)
+                                     float *out_points, int out_first, int simd,
+                                     int nt)
 {
     const hf__interp_kernels *k = hf__kernels_for(hf__interp_widths, simd);
     float ctab[3 * HF_MAX_POINTS];
@@ -10382,8 +10374,8 @@ HF__PRIVATE void hf__side_borrow(hf__rframe *fr, int j, int from)
    (see hf_ribbons for the rules on degenerate points). The four-lane
    and AVX2 kernels below give the same bytes where they apply. */
 HF__PRIVATE void hf__strand_frame_v1(const float *pts, int P,
-                                      const hf_ribbon_params *params,
-                                      hf__rframe *fr)
+                                     const hf_ribbon_params *params,
+                                     hf__rframe *fr)
 {
     float d[HF_MAX_POINTS * 3], l2[HF_MAX_POINTS], inv[HF_MAX_POINTS];
     float last[3] = {0.0f, 1.0f, 0.0f};
@@ -10664,8 +10656,8 @@ HF__TARGET_AVX2 HF__INLINE __m256 hf__next_v8(__m256 c, __m256 n)
    sit at row[0..8): the next group follows in the row, or the tip
    repeats after the last; *prev carries the group before. */
 HF__TARGET_AVX2 HF__INLINE __m256 hf__diff_v8(const float *row, int last,
-                                               float tip, __m256 cur,
-                                               __m256 *prev)
+                                              float tip, __m256 cur,
+                                              __m256 *prev)
 {
     const __m256 next =
         last ? _mm256_set1_ps(tip) : _mm256_loadu_ps(row + 8);
@@ -10681,8 +10673,8 @@ HF__TARGET_AVX2 HF__INLINE __m256 hf__diff_v8(const float *row, int last,
    direction (negated), else the eye. Inlined with both as constants. */
 HF__TARGET_AVX2 HF__INLINE int
 hf__frame_group_v8(hf__rframe *fr, int k, int P, int last, int ortho,
-                     const float *tip, __m256 ex, __m256 ey, __m256 ez,
-                     __m256 *px, __m256 *py, __m256 *pz)
+                   const float *tip, __m256 ex, __m256 ey, __m256 ez,
+                   __m256 *px, __m256 *py, __m256 *pz)
 {
     const __m256 one = _mm256_set1_ps(1.0f);
     const __m256 tiny = _mm256_set1_ps(1e-30f);
@@ -10741,9 +10733,8 @@ hf__frame_group_v8(hf__rframe *fr, int k, int P, int last, int ortho,
 
 /* One group's point rows into fr, their finiteness added to *acc (x * 0
    is NaN for NaN or infinity). */
-HF__TARGET_AVX2 HF__INLINE void hf__row_put_v8(hf__rframe *fr, int k,
-                                                 __m256 X, __m256 Y,
-                                                 __m256 Z, __m256 *acc)
+HF__TARGET_AVX2 HF__INLINE void hf__row_put_v8(hf__rframe *fr, int k, __m256 X,
+                                               __m256 Y, __m256 Z, __m256 *acc)
 {
     const __m256 zero = _mm256_setzero_ps();
     *acc = _mm256_add_ps(
@@ -10757,8 +10748,8 @@ HF__TARGET_AVX2 HF__INLINE void hf__row_put_v8(hf__rframe *fr, int k,
 
 /* The frame's e in every lane: the view direction, negated, for an
    orthographic view, else the eye; once per call. */
-HF__TARGET_AVX2 HF__INLINE void
-hf__frame_eye_v8(const hf_ribbon_params *params, __m256 *e)
+HF__TARGET_AVX2 HF__INLINE void hf__frame_eye_v8(const hf_ribbon_params *params,
+                                                 __m256 *e)
 {
     int c;
     HF__UNROLL for (c = 0; c < 3; ++c)
@@ -10790,7 +10781,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__load8_v8(const float *q, __m256 *xyz)
    ortho and e as hf__frame_eye_v8 gives them. */
 HF__TARGET_AVX2 HF__INLINE int
 hf__strand_frame_v8_in(const float *pts, int P, int ortho, const __m256 *e,
-                         hf__rframe *fr, int *finite)
+                       hf__rframe *fr, int *finite)
 {
     const __m256 ex = e[0], ey = e[1], ez = e[2];
     const int G = (P + 7) >> 3;
@@ -10817,8 +10808,8 @@ hf__strand_frame_v8_in(const float *pts, int P, int ortho, const __m256 *e,
         __m256 xyz[3];
         hf__load8_v8(pts + 3 * (P - 8), xyz);
         hf__row_put_v8(fr, k, _mm256_permutevar8x32_ps(xyz[0], shift),
-                         _mm256_permutevar8x32_ps(xyz[1], shift),
-                         _mm256_permutevar8x32_ps(xyz[2], shift), &acc);
+                       _mm256_permutevar8x32_ps(xyz[1], shift),
+                       _mm256_permutevar8x32_ps(xyz[2], shift), &acc);
     } else if (8 * k < P) { /* P < 8: the only group repeats the tip */
         const int n = P - 8 * k;
         float r[3][8];
@@ -10827,7 +10818,7 @@ hf__strand_frame_v8_in(const float *pts, int P, int ortho, const __m256 *e,
             HF__UNROLL for (c = 0; c < 3; ++c)
                 r[c][i] = pts[3 * (8 * k + (i < n ? i : n - 1)) + c];
         hf__row_put_v8(fr, k, _mm256_loadu_ps(r[0]), _mm256_loadu_ps(r[1]),
-                         _mm256_loadu_ps(r[2]), &acc);
+                       _mm256_loadu_ps(r[2]), &acc);
     }
     if (_mm256_movemask_ps(_mm256_cmp_ps(acc, zero, _CMP_EQ_OQ)) != 0xff) {
         *finite = 0;
@@ -10845,16 +10836,16 @@ hf__strand_frame_v8_in(const float *pts, int P, int ortho, const __m256 *e,
        the perspective and orthographic bodies apart: no test per group */
     if (ortho) {
         for (k = 0; k + 1 < G; ++k)
-            bad |= hf__frame_group_v8(fr, k, P, 0, 1, tip, ex, ey, ez, &px,
-                                        &py, &pz);
-        bad |= hf__frame_group_v8(fr, k, P, 1, 1, tip, ex, ey, ez, &px,
-                                    &py, &pz);
+            bad |= hf__frame_group_v8(fr, k, P, 0, 1, tip, ex, ey, ez, &px, &py,
+                                      &pz);
+        bad |=
+            hf__frame_group_v8(fr, k, P, 1, 1, tip, ex, ey, ez, &px, &py, &pz);
     } else {
         for (k = 0; k + 1 < G; ++k)
-            bad |= hf__frame_group_v8(fr, k, P, 0, 0, tip, ex, ey, ez, &px,
-                                        &py, &pz);
-        bad |= hf__frame_group_v8(fr, k, P, 1, 0, tip, ex, ey, ez, &px,
-                                    &py, &pz);
+            bad |= hf__frame_group_v8(fr, k, P, 0, 0, tip, ex, ey, ez, &px, &py,
+                                      &pz);
+        bad |=
+            hf__frame_group_v8(fr, k, P, 1, 0, tip, ex, ey, ez, &px, &py, &pz);
     }
     return bad == 0;
 }
@@ -10870,7 +10861,7 @@ hf__strand_frame_v8(const float *pts, int P, const hf_ribbon_params *params,
     int ok;
     hf__frame_eye_v8(params, e);
     ok = hf__strand_frame_v8_in(pts, P, params->orthographic != 0, e, fr,
-                                  finite);
+                                finite);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
     return ok;
 }
@@ -10880,8 +10871,8 @@ hf__strand_frame_v8(const float *pts, int P, const hf_ribbon_params *params,
    *finite says whether its points are (-1: not known yet); one that is
    not is framed collapsed. Returns 1, done. */
 HF__PRIVATE int hf__strand_frame_rest(const float *pts, int P,
-                                    const hf_ribbon_params *params,
-                                    hf__rframe *fr, int *finite)
+                                      const hf_ribbon_params *params,
+                                      hf__rframe *fr, int *finite)
 {
     if (*finite < 0) *finite = hf__points_finite_v1(pts, 3 * P);
     hf__strand_frame_v1(*finite ? pts : hf__zero_points, P, params, fr);
@@ -10897,12 +10888,12 @@ typedef struct hf__frame_kernels {
 /* The strand frames per width; the AVX-512 level runs the AVX2 kernel. */
 static const hf__frame_kernels hf__frame_widths[] = {
 #if HF__AVX2
-    {HF__ISA_V8, hf__strand_frame_v8},
+    {{HF__ISA_V8}, hf__strand_frame_v8},
 #endif
 #if HF__V4
-    {HF__ISA_V4, hf__strand_frame_v4},
+    {{HF__ISA_V4}, hf__strand_frame_v4},
 #endif
-    {HF__ISA_V1, hf__strand_frame_rest}};
+    {{HF__ISA_V1}, hf__strand_frame_rest}};
 
 /* The dispatch of the strand frame with the kernels k (hf__frame_widths,
    resolved once a call): tangents and sides, and *wscale 0 for a strand
@@ -11057,8 +11048,8 @@ HF__INLINE __m128i hf__encode_v4(__m128 x, int fmt)
 /* Floats x, y (and z) of lane i < n at o + i * step: the pairs straight
    from unpacked registers, z from its lane, so nothing goes through a
    stack copy. */
-HF__INLINE void hf__put_f32_v4(unsigned char *o, size_t step, int n,
-                              __m128 x, __m128 y, __m128 z, int nc)
+HF__INLINE void hf__put_f32_v4(unsigned char *o, size_t step, int n, __m128 x,
+                               __m128 y, __m128 z, int nc)
 {
     const __m128 lo = _mm_unpacklo_ps(x, y), hi = _mm_unpackhi_ps(x, y);
     float zz[4];
@@ -11094,7 +11085,7 @@ HF__INLINE void hf__put_f32_v4(unsigned char *o, size_t step, int n,
    of each vertex: lane i of *w0 holds its first 4 bytes, of *w1 the rest
    (x86 is little-endian, so byte order is component order). */
 HF__INLINE void hf__pack_v4(const __m128 *c, int nc, int fmt, __m128i *w0,
-                          __m128i *w1)
+                            __m128i *w1)
 {
     const __m128i e0 = hf__encode_v4(c[0], fmt), e1 = hf__encode_v4(c[1], fmt);
     const __m128i e2 = nc > 2 ? hf__encode_v4(c[2], fmt) : _mm_setzero_si128();
@@ -11124,7 +11115,7 @@ HF__INLINE uint32_t hf__lane_v4(__m128i v, int i)
 
 /* One vertex's packed bytes (see hf__pack_v4) at o. */
 HF__INLINE void hf__put_packed_v4(unsigned char *o, uint32_t w0, uint32_t w1,
-                               int nc, int size)
+                                  int nc, int size)
 {
     if (size == 2) {
         HF_MEMCPY(o, &w0, 4);
@@ -11147,8 +11138,8 @@ HF__INLINE void hf__put_packed_v4(unsigned char *o, uint32_t w0, uint32_t w1,
    o + 2 i st, of R at o + (2 i + 1) st. R may be L (tangents, texcoords,
    colours): then it is encoded once. */
 HF__INLINE void hf__emit_pair_fmt_v4(unsigned char *o, size_t st, int n,
-                              const __m128 *L, const __m128 *R, int nc,
-                              int fmt)
+                                     const __m128 *L, const __m128 *R, int nc,
+                                     int fmt)
 {
     int i, side;
     if (fmt == HF_FORMAT_F32) {
@@ -11157,7 +11148,7 @@ HF__INLINE void hf__emit_pair_fmt_v4(unsigned char *o, size_t st, int n,
             unsigned char *b = o + (size_t)side * st;
             if (nc < 4) {
                 hf__put_f32_v4(b, 2 * st, n, c[0], c[1], nc > 2 ? c[2] : c[0],
-                             nc);
+                               nc);
             } else {
                 __m128 v0 = c[0], v1 = c[1], v2 = c[2], v3 = c[3];
                 _MM_TRANSPOSE4_PS(v0, v1, v2, v3);
@@ -11179,25 +11170,26 @@ HF__INLINE void hf__emit_pair_fmt_v4(unsigned char *o, size_t st, int n,
         }
         if (n == 4) { /* whole groups: the lanes constants */
             HF__UNROLL for (i = 0; i < 4; ++i, o += 2 * st) {
-                hf__put_packed_v4(o, hf__lane_v4(l0, i), hf__lane_v4(l1, i),
-                                   nc, size);
+                hf__put_packed_v4(o, hf__lane_v4(l0, i), hf__lane_v4(l1, i), nc,
+                                  size);
                 hf__put_packed_v4(o + st, hf__lane_v4(r0, i),
-                                   hf__lane_v4(r1, i), nc, size);
+                                  hf__lane_v4(r1, i), nc, size);
             }
             return;
         }
         for (i = 0; i < n; ++i, o += 2 * st) {
-            hf__put_packed_v4(o, hf__lane_v4(l0, i), hf__lane_v4(l1, i), nc, size);
-            hf__put_packed_v4(o + st, hf__lane_v4(r0, i), hf__lane_v4(r1, i), nc,
-                           size);
+            hf__put_packed_v4(o, hf__lane_v4(l0, i), hf__lane_v4(l1, i), nc,
+                              size);
+            hf__put_packed_v4(o + st, hf__lane_v4(r0, i), hf__lane_v4(r1, i),
+                              nc, size);
         }
     }
 }
 /* hf__emit_pair_fmt_v4 with the format a constant in each copy, so its
    tests on the format fold away. */
 HF__INLINE void hf__emit_pair_v4(unsigned char *o, size_t st, int n,
-                                  const __m128 *L, const __m128 *R, int nc,
-                                  int fmt)
+                                 const __m128 *L, const __m128 *R, int nc,
+                                 int fmt)
 {
     switch (fmt) {
     case HF_FORMAT_F32:
@@ -11215,9 +11207,7 @@ HF__INLINE void hf__emit_pair_v4(unsigned char *o, size_t st, int n,
     case HF_FORMAT_SNORM8:
         hf__emit_pair_fmt_v4(o, st, n, L, R, nc, HF_FORMAT_SNORM8);
         break;
-    default:
-        hf__emit_pair_fmt_v4(o, st, n, L, R, nc, HF_FORMAT_UNORM8);
-        break;
+    default: hf__emit_pair_fmt_v4(o, st, n, L, R, nc, HF_FORMAT_UNORM8); break;
     }
 }
 #endif
@@ -11302,9 +11292,8 @@ HF__PRIVATE void hf__emit2(const hf__rout *ro, int q, size_t v,
    time: the reference for the SSE writer below. Vertex 2 j + k of the
    strand (k = 0: -side) starts at v0. */
 HF__PRIVATE int hf__ribbon_write_v1(const hf__rframe *fr, int P,
-                                      const hf__rconst *K,
-                                      const hf__rstrand *str,
-                                      const hf__rout *ro, size_t v0)
+                                    const hf__rconst *K, const hf__rstrand *str,
+                                    const hf__rout *ro, size_t v0)
 {
     int j, c, q;
     for (j = 0; j < P; ++j) {
@@ -11485,9 +11474,8 @@ HF__INLINE void hf__elems_put(unsigned char *o, size_t st, int n,
    position L, right position R, tangent T, and with uv the texcoord
    (uv, t). Each vertex takes two or three stores instead of six. */
 HF__INLINE void hf__put_run_v4(unsigned char *o, size_t st, int n,
-                            const __m128 *L, const __m128 *R,
-                            const __m128 *T, const float *uv,
-                            const float *t)
+                               const __m128 *L, const __m128 *R,
+                               const __m128 *T, const float *uv, const float *t)
 {
     __m128 l0 = L[0], l1 = L[1], l2 = L[2], l3 = T[0];
     __m128 r0 = R[0], r1 = R[1], r2 = R[2], r3 = T[0];
@@ -11528,8 +11516,8 @@ HF__INLINE void hf__put_run_v4(unsigned char *o, size_t st, int n,
 /* The two vertex positions of four points (rows from o): L = p - s w,
    R = p + s w, relative to the origin and scale, as in the reference. */
 HF__INLINE void hf__ribbon_sides_v4(const hf__rframe *fr, int o, __m128 w,
-                                  const hf__rout *ro, __m128 is, __m128 *L,
-                                  __m128 *R)
+                                    const hf__rout *ro, __m128 is, __m128 *L,
+                                    __m128 *R)
 {
     int c;
     HF__UNROLL for (c = 0; c < 3; ++c) {
@@ -11544,8 +11532,8 @@ HF__INLINE void hf__ribbon_sides_v4(const hf__rframe *fr, int o, __m128 w,
 /* Stream q's values (tangent, texcoord, colour or 3D colour: the same on
    both sides of the ribbon) for the four points of group k. */
 HF__INLINE void hf__stream_values_v4(int q, const hf__rframe *fr,
-                                   const hf__rconst *K, const hf__rstrand *str,
-                                   int k, __m128 *v)
+                                     const hf__rconst *K,
+                                     const hf__rstrand *str, int k, __m128 *v)
 {
     const __m128 tt = _mm_loadu_ps(K->tt + 4 * k);
     int c;
@@ -11574,8 +11562,8 @@ HF__INLINE void hf__stream_values_v4(int q, const hf__rframe *fr,
 /* All of stream q (nc = hf__stream_nc[q]) for one strand: both vertices
    of each point get the same values. */
 HF__INLINE void hf__stream_v4(int q, int nc, const hf__rframe *fr, int P,
-                            const hf__rconst *K, const hf__rstrand *str,
-                            const hf__rout *ro, size_t v0)
+                              const hf__rconst *K, const hf__rstrand *str,
+                              const hf__rout *ro, size_t v0)
 {
     const size_t st = ro->stride[q];
     unsigned char *b = ro->base[q] + v0 * st;
@@ -11584,15 +11572,15 @@ HF__INLINE void hf__stream_v4(int q, int nc, const hf__rframe *fr, int P,
     for (k = 0; 4 * k < P; ++k, b += 8 * st) {
         hf__stream_values_v4(q, fr, K, str, k, v);
         hf__emit_pair_v4(b, st, P - 4 * k < 4 ? P - 4 * k : 4, v, v, nc,
-                      ro->fmt[q]);
+                         ro->fmt[q]);
     }
 }
 
 /* hf__ribbon_write_v1 four points at a time: the same values in the same
    operations, so the same bytes. */
 HF__PRIVATE int hf__ribbon_write_v4(const hf__rframe *fr, int P,
-                                  const hf__rconst *K, const hf__rstrand *str,
-                                  const hf__rout *ro, size_t v0)
+                                    const hf__rconst *K, const hf__rstrand *str,
+                                    const hf__rout *ro, size_t v0)
 {
     /* stream by stream, as the scalar loop per point writes: the first
        stream touches every cache line of the strand with few stores, so
@@ -11614,7 +11602,7 @@ HF__PRIVATE int hf__ribbon_write_v4(const hf__rframe *fr, int P,
             HF__UNROLL for (c = 0; c < 3; ++c)
                 T[c] = _mm_loadu_ps(fr->t[c] + o);
             hf__put_run_v4(b, st, n, L, R, T, run == 3 ? str->uv : NULL,
-                        K->tt + 4 * k);
+                           K->tt + 4 * k);
         }
     } else if (ro->base[HF__S_POS]) {
         st = ro->stride[HF__S_POS];
@@ -11641,9 +11629,8 @@ HF__PRIVATE int hf__ribbon_write_v4(const hf__rframe *fr, int P,
 #if HF__AVX2
 /* A group's x y z tx of points i and i + 4 (the two halves) in a[i],
    which joined to ty tz u v (B[i]) make a float run's vertex */
-HF__TARGET_AVX2 HF__INLINE void hf__side_rows_v8(__m256 x, __m256 y,
-                                                   __m256 z, __m256 tx,
-                                                   __m256 *a)
+HF__TARGET_AVX2 HF__INLINE void hf__side_rows_v8(__m256 x, __m256 y, __m256 z,
+                                                 __m256 tx, __m256 *a)
 {
     const __m256 xy0 = _mm256_unpacklo_ps(x, y), xy1 = _mm256_unpackhi_ps(x, y),
                  zt0 = _mm256_unpacklo_ps(z, tx), zt1 = _mm256_unpackhi_ps(z, tx);
@@ -11659,10 +11646,11 @@ HF__TARGET_AVX2 HF__INLINE void hf__side_rows_v8(__m256 x, __m256 y,
    t is read once for both (read per side, gcc loaded it again after
    every store), and the stores go through the output in order (a side
    at a time measured 5 % slower). */
-HF__TARGET_AVX2 HF__INLINE void
-hf__put_pair_v8(unsigned char *o, size_t st, __m256 xl, __m256 yl,
-                  __m256 zl, __m256 xr, __m256 yr, __m256 zr, __m256 tx,
-                  const __m256 *B, const float *tt)
+HF__TARGET_AVX2 HF__INLINE void hf__put_pair_v8(unsigned char *o, size_t st,
+                                                __m256 xl, __m256 yl, __m256 zl,
+                                                __m256 xr, __m256 yr, __m256 zr,
+                                                __m256 tx, const __m256 *B,
+                                                const float *tt)
 {
     __m256 l[4], r[4];
     hf__side_rows_v8(xl, yl, zl, tx, l);
@@ -11696,8 +11684,7 @@ hf__put_pair_v8(unsigned char *o, size_t st, __m256 xl, __m256 yl,
    ty tz in another), and the last, partial group of either run. */
 HF__TARGET_AVX2 HF__INLINE void
 hf__put_side_v8(unsigned char *o, size_t st2, int n, int run, __m256 x,
-                  __m256 y, __m256 z, __m256 tx, const __m256 *B,
-                  const float *tt)
+                __m256 y, __m256 z, __m256 tx, const __m256 *B, const float *tt)
 {
     __m256 a[4];
     hf__side_rows_v8(x, y, z, tx, a);
@@ -11735,8 +11722,8 @@ hf__put_side_v8(unsigned char *o, size_t st2, int n, int run, __m256 x,
    half widths: L = p - s w, R = p + s w, relative to the origin and
    scale (ov as hf__rout_vec_v8) */
 HF__TARGET_AVX2 HF__INLINE void hf__sides_v8(const hf__rframe *fr, int o,
-                                               __m256 w, const __m256 *ov,
-                                               __m256 *L, __m256 *R)
+                                             __m256 w, const __m256 *ov,
+                                             __m256 *L, __m256 *R)
 {
     int c;
     HF__UNROLL for (c = 0; c < 3; ++c) {
@@ -11753,9 +11740,9 @@ HF__TARGET_AVX2 HF__INLINE void hf__sides_v8(const hf__rframe *fr, int o,
    point 8 k on at b: the writer's loop body, inlined with n and run as
    constants where it can (the common groups then take no branch) */
 HF__TARGET_AVX2 HF__INLINE void
-hf__ribbon_group_v8(const hf__rframe *fr, const hf__rconst *K, int k,
-                      int n, int run, unsigned char *b, size_t st,
-                      __m256 ws, const __m256 *ov, __m256 uv)
+hf__ribbon_group_v8(const hf__rframe *fr, const hf__rconst *K, int k, int n,
+                    int run, unsigned char *b, size_t st, __m256 ws,
+                    const __m256 *ov, __m256 uv)
 {
     const int o = 4 + 8 * k;
     const __m256 w = _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws);
@@ -11773,18 +11760,16 @@ hf__ribbon_group_v8(const hf__rframe *fr, const hf__rconst *K, int k,
     hf__sides_v8(fr, o, w, ov, L, R);
     if (n == 8 && run == 3) {
         hf__put_pair_v8(b, st, L[0], L[1], L[2], R[0], R[1], R[2], tx, B,
-                          K->tt + 8 * k);
+                        K->tt + 8 * k);
         return;
     }
-    hf__put_side_v8(b, 2 * st, n, run, L[0], L[1], L[2], tx, B,
-                      K->tt + 8 * k);
+    hf__put_side_v8(b, 2 * st, n, run, L[0], L[1], L[2], tx, B, K->tt + 8 * k);
     hf__put_side_v8(b + st, 2 * st, n, run, R[0], R[1], R[2], tx, B,
-                      K->tt + 8 * k);
+                    K->tt + 8 * k);
 }
 
 /* 1 / scale and the origin in every lane, once per call: ov[0..4) */
-HF__TARGET_AVX2 HF__INLINE void hf__rout_vec_v8(const hf__rout *ro,
-                                                  __m256 *ov)
+HF__TARGET_AVX2 HF__INLINE void hf__rout_vec_v8(const hf__rout *ro, __m256 *ov)
 {
     int c;
     ov[0] = _mm256_set1_ps(ro->inv_scale);
@@ -11800,8 +11785,8 @@ HF__TARGET_AVX2 HF__INLINE void hf__rout_vec_v8(const hf__rout *ro,
    the upper halves of the registers dirty, at twice its time or more). */
 HF__TARGET_AVX2 HF__INLINE void
 hf__ribbon_write_v8_in(const hf__rframe *fr, int P, const hf__rconst *K,
-                         const hf__rstrand *str, const hf__rout *ro,
-                         size_t v0, const __m256 *ov)
+                       const hf__rstrand *str, const hf__rout *ro, size_t v0,
+                       const __m256 *ov)
 {
     const size_t st = ro->stride[HF__S_POS];
     const __m256 ws = _mm256_set1_ps(str->wscale);
@@ -11824,8 +11809,7 @@ hf__ribbon_write_v8_in(const hf__rframe *fr, int P, const hf__rconst *K,
             hf__ribbon_group_v8(fr, K, k, 8, 2, b, st, ws, ov, uv);
     }
     if (8 * k < P)
-        hf__ribbon_group_v8(fr, K, k, P - 8 * k, ro->run, b, st, ws, ov,
-                              uv);
+        hf__ribbon_group_v8(fr, K, k, P - 8 * k, ro->run, b, st, ws, ov, uv);
     if (!ro->rest) return; /* one test a strand for the three below */
     if (ro->base[HF__S_TEX] && ro->run == 2)
         hf__stream_v4(HF__S_TEX, 3, fr, P, K, str, ro, v0);
@@ -11836,7 +11820,7 @@ hf__ribbon_write_v8_in(const hf__rframe *fr, int P, const hf__rconst *K,
 /* the writer above as a call, for the dispatch of one strand */
 HF__TARGET_AVX2 HF__PRIVATE void
 hf__ribbon_write_run_v8(const hf__rframe *fr, int P, const hf__rconst *K,
-                      const hf__rstrand *str, const hf__rout *ro, size_t v0)
+                        const hf__rstrand *str, const hf__rout *ro, size_t v0)
 {
     __m256 ov[4];
     hf__rout_vec_v8(ro, ov);
@@ -11881,9 +11865,8 @@ HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_v8(__m256 x, int fmt)
    of 16 (float), 8 (2-byte formats) or 4 bytes (1-byte) a point holding
    the point's element as the vertex stores it, then zeros or spare
    bytes. */
-HF__TARGET_AVX2 HF__INLINE void hf__table_fmt_v8(unsigned char *t,
-                                                  const __m256 *c, int nc,
-                                                  int fmt)
+HF__TARGET_AVX2 HF__INLINE void
+hf__table_fmt_v8(unsigned char *t, const __m256 *c, int nc, int fmt)
 {
     const int size = hf_format_bytes(fmt);
     __m256i e[4], w0, w1;
@@ -11907,8 +11890,8 @@ HF__TARGET_AVX2 HF__INLINE void hf__table_fmt_v8(unsigned char *t,
         _mm256_storeu_ps(f + 24, _mm256_permute2f128_ps(r2, r3, 0x31));
         return;
     }
-    HF__UNROLL for (i = 0; i < 4; ++i)
-        e[i] = i < nc ? hf__encode_v8(c[i], fmt) : _mm256_setzero_si256();
+    HF__UNROLL for (i = 0; i < 4; ++i) e[i] = i < nc ? hf__encode_v8(c[i], fmt)
+                                                     : _mm256_setzero_si256();
     if (size == 2) {
         w0 = _mm256_or_si256(e[0], _mm256_slli_epi32(e[1], 16));
         w1 = _mm256_or_si256(e[2], _mm256_slli_epi32(e[3], 16));
@@ -11928,9 +11911,8 @@ HF__TARGET_AVX2 HF__INLINE void hf__table_fmt_v8(unsigned char *t,
 }
 
 /* hf__table_fmt_v8 with the format a constant in each copy. */
-HF__TARGET_AVX2 HF__INLINE void hf__table_v8(unsigned char *t,
-                                              const __m256 *c, int nc,
-                                              int fmt)
+HF__TARGET_AVX2 HF__INLINE void hf__table_v8(unsigned char *t, const __m256 *c,
+                                             int nc, int fmt)
 {
     switch (fmt) {
     case HF_FORMAT_F32: hf__table_fmt_v8(t, c, nc, HF_FORMAT_F32); break;
@@ -11941,9 +11923,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__table_v8(unsigned char *t,
     case HF_FORMAT_UNORM16:
         hf__table_fmt_v8(t, c, nc, HF_FORMAT_UNORM16);
         break;
-    case HF_FORMAT_SNORM8:
-        hf__table_fmt_v8(t, c, nc, HF_FORMAT_SNORM8);
-        break;
+    case HF_FORMAT_SNORM8: hf__table_fmt_v8(t, c, nc, HF_FORMAT_SNORM8); break;
     default: hf__table_fmt_v8(t, c, nc, HF_FORMAT_UNORM8); break;
     }
 }
@@ -11955,8 +11935,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__table_v8(unsigned char *t,
    assembled by byte shuffles, the streams both sides share once a point,
    then two 8-byte stores (overlapping when the run is under 16 bytes). */
 HF__TARGET_AVX2 HF__INLINE __m128i hf__slot_v8(const unsigned char *t,
-                                                 size_t ts, int i,
-                                                 __m128i mask)
+                                               size_t ts, int i, __m128i mask)
 {
     return _mm_shuffle_epi8(
         _mm_loadu_si128((const __m128i *)(const void *)(t + (size_t)i * ts)),
@@ -11967,7 +11946,7 @@ HF__TARGET_AVX2 HF__INLINE __m128i hf__slot_v8(const unsigned char *t,
    inlined) that both sides of point i share, in the table's order */
 HF__TARGET_AVX2 HF__INLINE __m128i
 hf__window_shared_v8(const unsigned char *const *t, const size_t *ts,
-                       const __m128i *mk, int i, int ns)
+                     const __m128i *mk, int i, int ns)
 {
     __m128i s01;
     if (ns == 0) return _mm_setzero_si128();
@@ -11975,11 +11954,9 @@ hf__window_shared_v8(const unsigned char *const *t, const size_t *ts,
     s01 = _mm_or_si128(hf__slot_v8(t[0], ts[0], i, mk[0]),
                        hf__slot_v8(t[1], ts[1], i, mk[1]));
     if (ns == 2) return s01;
-    if (ns == 3)
-        return _mm_or_si128(s01, hf__slot_v8(t[2], ts[2], i, mk[2]));
-    return _mm_or_si128(s01,
-                        _mm_or_si128(hf__slot_v8(t[2], ts[2], i, mk[2]),
-                                     hf__slot_v8(t[3], ts[3], i, mk[3])));
+    if (ns == 3) return _mm_or_si128(s01, hf__slot_v8(t[2], ts[2], i, mk[2]));
+    return _mm_or_si128(s01, _mm_or_si128(hf__slot_v8(t[2], ts[2], i, mk[2]),
+                                          hf__slot_v8(t[3], ts[3], i, mk[3])));
 }
 
 /* hf__window_put_v8 with t, ts and mk the slots, strides and masks of
@@ -11987,9 +11964,9 @@ hf__window_shared_v8(const unsigned char *const *t, const size_t *ts,
    each copy it inlines) */
 HF__TARGET_AVX2 HF__INLINE void
 hf__window_rows_v8(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
-                     const size_t *tsq, size_t v, int n,
-                     const unsigned char *const *t, const size_t *ts,
-                     const __m128i *mk, int ns)
+                   const size_t *tsq, size_t v, int n,
+                   const unsigned char *const *t, const size_t *ts,
+                   const __m128i *mk, int ns)
 {
     const int q0 = ro->wq[0], L = ro->wl;
     const size_t st = ro->stride[q0];
@@ -12017,7 +11994,7 @@ hf__window_rows_v8(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
 
 HF__TARGET_AVX2 HF__INLINE void
 hf__window_put_v8(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
-                    const size_t *tsq, size_t v, int n)
+                  const size_t *tsq, size_t v, int n)
 {
     const unsigned char *t[4];
     __m128i mk[4];
@@ -12046,10 +12023,9 @@ hf__window_put_v8(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
    element in one or two scalar stores (hf__elems_put). Same values, same
    operations: the same bytes as the reference. */
 HF__TARGET_AVX2 HF__INLINE void
-hf__ribbon_write_table_v8_in(const hf__rframe *fr, int P,
-                               const hf__rconst *K, const hf__rstrand *str,
-                               const hf__rout *ro, size_t v0,
-                               const __m256 *ov)
+hf__ribbon_write_table_v8_in(const hf__rframe *fr, int P, const hf__rconst *K,
+                             const hf__rstrand *str, const hf__rout *ro,
+                             size_t v0, const __m256 *ov)
 {
     /* rows: the five streams, then the right side's positions; blocks of
        up to HF__TB points, so the copies' set-up is shared */
@@ -12084,22 +12060,22 @@ hf__ribbon_write_table_v8_in(const hf__rframe *fr, int P,
                         ov[0]);
                 }
                 hf__table_v8(tab[HF__S_POS] + g * ts[HF__S_POS], L, 3,
-                               ro->fmt[HF__S_POS]);
+                             ro->fmt[HF__S_POS]);
                 hf__table_v8(tab[5] + g * ts[HF__S_POS], R, 3,
-                               ro->fmt[HF__S_POS]);
+                             ro->fmt[HF__S_POS]);
             }
             if (ro->base[HF__S_TAN]) {
                 HF__UNROLL for (c = 0; c < 3; ++c)
                     L[c] = _mm256_loadu_ps(fr->t[c] + o);
                 hf__table_v8(tab[HF__S_TAN] + g * ts[HF__S_TAN], L, 3,
-                               ro->fmt[HF__S_TAN]);
+                             ro->fmt[HF__S_TAN]);
             }
             if (ro->base[HF__S_TEX]) {
                 L[0] = u;
                 L[1] = v;
                 L[2] = tt;
                 hf__table_v8(tab[HF__S_TEX] + g * ts[HF__S_TEX], L, 3,
-                               ro->fmt[HF__S_TEX]);
+                             ro->fmt[HF__S_TEX]);
             }
             if (ro->base[HF__S_COL]) {
                 HF__UNROLL for (c = 0; c < 3; ++c)
@@ -12107,13 +12083,13 @@ hf__ribbon_write_table_v8_in(const hf__rframe *fr, int P,
                 L[3] = _mm256_mul_ps(_mm256_set1_ps(str->rgba[3]),
                                      _mm256_loadu_ps(K->fade + 8 * k));
                 hf__table_v8(tab[HF__S_COL] + g * ts[HF__S_COL], L, 4,
-                               ro->fmt[HF__S_COL]);
+                             ro->fmt[HF__S_COL]);
             }
             if (ro->base[HF__S_C3D]) {
                 L[0] = _mm256_set1_ps(str->c3x);
                 L[1] = tt;
                 hf__table_v8(tab[HF__S_C3D] + g * ts[HF__S_C3D], L, 2,
-                               ro->fmt[HF__S_C3D]);
+                             ro->fmt[HF__S_C3D]);
             }
         }
         if (ro->wl) {
@@ -12132,8 +12108,7 @@ hf__ribbon_write_table_v8_in(const hf__rframe *fr, int P,
 /* the writer above as a call, for the dispatch of one strand */
 HF__TARGET_AVX2 HF__PRIVATE void
 hf__ribbon_write_table_v8(const hf__rframe *fr, int P, const hf__rconst *K,
-                            const hf__rstrand *str, const hf__rout *ro,
-                            size_t v0)
+                          const hf__rstrand *str, const hf__rout *ro, size_t v0)
 {
     __m256 ov[4];
     hf__rout_vec_v8(ro, ov);
@@ -12162,7 +12137,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__enc8_init(hf__enc8 *e, int fmt)
 
 /* hf__encode_v8's operations, the format from e */
 HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_var_v8(__m256 x,
-                                                      const hf__enc8 *e)
+                                                     const hf__enc8 *e)
 {
     const __m256 v = _mm256_min_ps(_mm256_max_ps(x, e->lo), e->one);
     return _mm256_and_si256(_mm256_cvtps_epi32(_mm256_mul_ps(v, e->scale)),
@@ -12174,10 +12149,9 @@ HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_var_v8(__m256 x,
    share, v t and the tangent, already interleaved (s02: points 0 1 | 4 5,
    s13: 2 3 | 6 7). Two 8-byte stores a vertex, the second over bytes
    7..14: the pad byte is never written. */
-HF__TARGET_AVX2 HF__INLINE void hf__c16_put_v8(unsigned char *o,
-                                                 size_t st2, int n,
-                                                 __m256i d0, __m256i d1,
-                                                 __m256i s02, __m256i s13)
+HF__TARGET_AVX2 HF__INLINE void hf__c16_put_v8(unsigned char *o, size_t st2,
+                                               int n, __m256i d0, __m256i d1,
+                                               __m256i s02, __m256i s13)
 {
     const __m256i a = _mm256_unpacklo_epi32(d0, d1),
                   b = _mm256_unpackhi_epi32(d0, d1);
@@ -12218,8 +12192,8 @@ HF__TARGET_AVX2 HF__INLINE void hf__c16_put_v8(unsigned char *o,
    last, a constant where inlined) at b. */
 HF__TARGET_AVX2 HF__INLINE void
 hf__c16_group_v8(const hf__rframe *fr, const hf__rconst *K, int k, int n,
-                   unsigned char *b, size_t st, __m256 ws, __m256i eu,
-                   __m256i ev, const __m256 *ov, const hf__enc8 *enc)
+                 unsigned char *b, size_t st, __m256 ws, __m256i eu, __m256i ev,
+                 const __m256 *ov, const hf__enc8 *enc)
 {
     const int o = 4 + 8 * k;
     const __m256 w = _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws);
@@ -12228,30 +12202,32 @@ hf__c16_group_v8(const hf__rframe *fr, const hf__rconst *K, int k, int n,
     HF__UNROLL for (c = 0; c < 3; ++c) {
         const __m256 p = _mm256_loadu_ps(fr->p[c] + o);
         const __m256 sw = _mm256_mul_ps(_mm256_loadu_ps(fr->s[c] + o), w);
-        eL[c] = hf__encode_var_v8(
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(p, sw), ov[1 + c]),
-                          ov[0]),
-            &enc[0]);
-        eR[c] = hf__encode_var_v8(
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(p, sw), ov[1 + c]),
-                          ov[0]),
-            &enc[0]);
+        eL[c] =
+            hf__encode_var_v8(_mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(p, sw),
+                                                          ov[1 + c]),
+                                            ov[0]),
+                              &enc[0]);
+        eR[c] =
+            hf__encode_var_v8(_mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(p, sw),
+                                                          ov[1 + c]),
+                                            ov[0]),
+                              &enc[0]);
         et[c] = hf__encode_var_v8(_mm256_loadu_ps(fr->t[c] + o), &enc[2]);
     }
     d2 = _mm256_or_si256(
-        ev, _mm256_slli_epi32(
-                hf__encode_var_v8(_mm256_loadu_ps(K->tt + 8 * k), &enc[1]),
-                16));
+        ev, _mm256_slli_epi32(hf__encode_var_v8(_mm256_loadu_ps(K->tt + 8 * k),
+                                                &enc[1]),
+                              16));
     d3 = _mm256_or_si256(_mm256_or_si256(et[0], _mm256_slli_epi32(et[1], 8)),
                          _mm256_slli_epi32(et[2], 16));
     s02 = _mm256_unpacklo_epi32(d2, d3);
     s13 = _mm256_unpackhi_epi32(d2, d3);
     hf__c16_put_v8(b, 2 * st, n,
-                     _mm256_or_si256(eL[0], _mm256_slli_epi32(eL[1], 16)),
-                     _mm256_or_si256(eL[2], eu), s02, s13);
+                   _mm256_or_si256(eL[0], _mm256_slli_epi32(eL[1], 16)),
+                   _mm256_or_si256(eL[2], eu), s02, s13);
     hf__c16_put_v8(b + st, 2 * st, n,
-                     _mm256_or_si256(eR[0], _mm256_slli_epi32(eR[1], 16)),
-                     _mm256_or_si256(eR[2], eu), s02, s13);
+                   _mm256_or_si256(eR[0], _mm256_slli_epi32(eR[1], 16)),
+                   _mm256_or_si256(eR[2], eu), s02, s13);
 }
 
 /* The compact vertex (hf__rout c16) eight points at a time without the
@@ -12261,17 +12237,15 @@ hf__c16_group_v8(const hf__rframe *fr, const hf__rconst *K, int k, int n,
    and tangent's formats (hf__enc8_init); ov as hf__rout_vec_v8. */
 HF__TARGET_AVX2 HF__INLINE void
 hf__ribbon_write_c16_v8_in(const hf__rframe *fr, int P, const hf__rconst *K,
-                             const hf__rstrand *str, const hf__rout *ro,
-                             size_t v0, const __m256 *ov,
-                             const hf__enc8 *enc)
+                           const hf__rstrand *str, const hf__rout *ro,
+                           size_t v0, const __m256 *ov, const hf__enc8 *enc)
 {
     const size_t st = ro->stride[HF__S_POS];
     const __m256 ws = _mm256_set1_ps(str->wscale);
     /* u and v are the strand's: encoded once */
     const __m256i eu = _mm256_slli_epi32(
         hf__encode_var_v8(_mm256_set1_ps(str->uv[0]), &enc[1]), 16);
-    const __m256i ev =
-        hf__encode_var_v8(_mm256_set1_ps(str->uv[1]), &enc[1]);
+    const __m256i ev = hf__encode_var_v8(_mm256_set1_ps(str->uv[1]), &enc[1]);
     unsigned char *b = ro->base[HF__S_POS] + v0 * st;
     int k;
     for (k = 0; 8 * k + 8 <= P; ++k, b += 16 * st)
@@ -12316,8 +12290,8 @@ HF__INLINE void hf__transpose4_v4(float32x4_t *r)
    they are, other formats encoded four lanes at a time, then each
    vertex's bytes copied out in component order. */
 HF__PRIVATE void hf__emit_pair_v4(unsigned char *o, size_t st, int n,
-                                    const float32x4_t *L,
-                                    const float32x4_t *R, int nc, int fmt)
+                                  const float32x4_t *L, const float32x4_t *R,
+                                  int nc, int fmt)
 {
     const int size = hf_format_bytes(fmt);
     int side, i, c;
@@ -12348,9 +12322,9 @@ HF__PRIVATE void hf__emit_pair_v4(unsigned char *o, size_t st, int n,
    (see hf__float_run) by a 4 x 4 transpose, x y z tx and ty tz u v of
    each vertex, as hf__put_run_v4 does; every other stream component by
    component in its format. */
-HF__PRIVATE int
-hf__ribbon_write_v4(const hf__rframe *fr, int P, const hf__rconst *K,
-                    const hf__rstrand *str, const hf__rout *ro, size_t v0)
+HF__PRIVATE int hf__ribbon_write_v4(const hf__rframe *fr, int P,
+                                    const hf__rconst *K, const hf__rstrand *str,
+                                    const hf__rout *ro, size_t v0)
 {
     const int run = ro->run;
     const float32x4_t ws = vdupq_n_f32(str->wscale);
@@ -12396,8 +12370,8 @@ hf__ribbon_write_v4(const hf__rframe *fr, int P, const hf__rconst *K,
             }
         } else if (ro->base[HF__S_POS]) {
             hf__emit_pair_v4(ro->base[HF__S_POS] + v * ro->stride[HF__S_POS],
-                               ro->stride[HF__S_POS], n, L, R, 3,
-                               ro->fmt[HF__S_POS]);
+                             ro->stride[HF__S_POS], n, L, R, 3,
+                             ro->fmt[HF__S_POS]);
         }
         for (q = HF__S_TAN; q <= HF__S_C3D; ++q) {
             if (!ro->base[q] || (q == HF__S_TAN && run) ||
@@ -12425,8 +12399,8 @@ hf__ribbon_write_v4(const hf__rframe *fr, int P, const hf__rconst *K,
                 V[1] = tt;
                 break;
             }
-            hf__emit_pair_v4(ro->base[q] + v * ro->stride[q], ro->stride[q],
-                               n, V, V, hf__stream_nc[q], ro->fmt[q]);
+            hf__emit_pair_v4(ro->base[q] + v * ro->stride[q], ro->stride[q], n,
+                             V, V, hf__stream_nc[q], ro->fmt[q]);
         }
     }
     return 1;
@@ -12438,8 +12412,7 @@ hf__ribbon_write_v4(const hf__rframe *fr, int P, const hf__rconst *K,
    windows (ro->nw) the layout has; other layouts are left to four lanes
    (returns 0). */
 HF__PRIVATE int hf__ribbon_write_v8(const hf__rframe *fr, int P,
-                                    const hf__rconst *K,
-                                    const hf__rstrand *str,
+                                    const hf__rconst *K, const hf__rstrand *str,
                                     const hf__rout *ro, size_t v0)
 {
     if (ro->run)
@@ -12459,12 +12432,12 @@ typedef struct hf__write_kernels {
 /* The writers per width; the AVX-512 level runs the AVX2 ones. */
 static const hf__write_kernels hf__write_widths[] = {
 #if HF__AVX2
-    {HF__ISA_V8, hf__ribbon_write_v8},
+    {{HF__ISA_V8}, hf__ribbon_write_v8},
 #endif
 #if HF__V4
-    {HF__ISA_V4, hf__ribbon_write_v4},
+    {{HF__ISA_V4}, hf__ribbon_write_v4},
 #endif
-    {HF__ISA_V1, hf__ribbon_write_v1}};
+    {{HF__ISA_V1}, hf__ribbon_write_v1}};
 
 /* The dispatch of the writers with the kernels k (hf__write_widths,
    resolved once a call): one strand's vertices from its frame, by the
@@ -12577,8 +12550,7 @@ HF__PRIVATE void hf__stream_copy(unsigned char *dst, const float *src,
    rest, and a block that is not aligned, by hf__stream_copy (each part's
    pages walked ahead once) */
 HF__TARGET_AVX2 HF__INLINE void hf__stream_copy_v8(unsigned char *dst,
-                                                     const float *src,
-                                                     size_t n)
+                                                   const float *src, size_t n)
 {
     const size_t m = ((uintptr_t)dst & 31u) == 0 ? n & ~(size_t)31u : 0;
     size_t i;
@@ -12614,8 +12586,8 @@ HF__INLINE void hf__rstrand_fill(const hf_ribbon_strands *sv, int s,
    framed collapsed */
 HF__TARGET_AVX2 HF__INLINE void
 hf__frame_strand_v8(const float *pts, int P, int ortho, const __m256 *e,
-                      const hf_ribbon_params *params, hf__rframe *fr,
-                      float *wscale)
+                    const hf_ribbon_params *params, hf__rframe *fr,
+                    float *wscale)
 {
     int finite;
     if (!hf__strand_frame_v8_in(pts, P, ortho, e, fr, &finite)) {
@@ -12627,14 +12599,15 @@ hf__frame_strand_v8(const float *pts, int P, int ortho, const __m256 *e,
 
 /* Strand s's frame (hf__frame_strand_v8) where s < end: the runs make
    each strand's frame while the strand before is written */
-HF__TARGET_AVX2 HF__INLINE void
-hf__frame_at_v8(const hf_ribbon_strands *sv, int s, int end, int P,
-                  int ortho, const __m256 *e, const hf_ribbon_params *params,
-                  hf__rframe *fr, float *wscale)
+HF__TARGET_AVX2 HF__INLINE void hf__frame_at_v8(const hf_ribbon_strands *sv,
+                                                int s, int end, int P,
+                                                int ortho, const __m256 *e,
+                                                const hf_ribbon_params *params,
+                                                hf__rframe *fr, float *wscale)
 {
     if (s < end)
-        hf__frame_strand_v8(sv->points + (size_t)s * (size_t)P * 3u, P,
-                              ortho, e, params, fr, wscale);
+        hf__frame_strand_v8(sv->points + (size_t)s * (size_t)P * 3u, P, ortho,
+                            e, params, fr, wscale);
 }
 
 /* hf_ribbons' strands at AVX2 in one target function, for the float runs
@@ -12651,10 +12624,10 @@ hf__frame_at_v8(const hf_ribbon_strands *sv, int s, int end, int P,
    hf__stream_copy_v8. */
 HF__TARGET_AVX2 HF__INLINE void
 hf__ribbons_loop_v8(const hf_ribbon_strands *sv, int first, int count,
-                      const hf_ribbon_params *params, const hf__rconst *K,
-                      const hf__rout *out, int out_first, hf__rframe *fr,
-                      hf__rframe *fr2, int mode, float *stage,
-                      unsigned char *dst0, size_t block)
+                    const hf_ribbon_params *params, const hf__rconst *K,
+                    const hf__rout *out, int out_first, hf__rframe *fr,
+                    hf__rframe *fr2, int mode, float *stage,
+                    unsigned char *dst0, size_t block)
 {
     const int P = params->points_per_strand,
               ortho = params->orthographic != 0, end = first + count;
@@ -12687,8 +12660,8 @@ hf__ribbons_loop_v8(const hf_ribbon_strands *sv, int first, int count,
                      w0 = stage ? 0 : v0;
         hf__rstrand str;
         if (!stage)
-            hf__frame_at_v8(&svl, s + 1, end, P, ortho, e, params,
-                              F[j ^ 1], &wsc[j ^ 1]);
+            hf__frame_at_v8(&svl, s + 1, end, P, ortho, e, params, F[j ^ 1],
+                            &wsc[j ^ 1]);
         str.wscale = wsc[j];
         hf__rstrand_fill(&svl, s, K->wcap, &str);
         if (mode == 2)
@@ -12700,36 +12673,36 @@ hf__ribbons_loop_v8(const hf_ribbon_strands *sv, int first, int count,
         if (stage) {
             hf__stream_copy_v8(dst0 + v0 * block, stage, sb);
             hf__frame_at_v8(&svl, s + 1, end, P, ortho, e, params, F[0],
-                              &wsc[0]);
+                            &wsc[0]);
         }
     }
 }
 
 HF__TARGET_AVX2 HF__PRIVATE void
 hf__ribbons_run_v8(const hf_ribbon_strands *sv, int first, int count,
-                     const hf_ribbon_params *params, const hf__rconst *K,
-                     const hf__rout *ro, int out_first, hf__rframe *fr,
-                     hf__rframe *fr2, float *stage, unsigned char *dst0,
-                     size_t block)
+                   const hf_ribbon_params *params, const hf__rconst *K,
+                   const hf__rout *ro, int out_first, hf__rframe *fr,
+                   hf__rframe *fr2, float *stage, unsigned char *dst0,
+                   size_t block)
 {
     /* (the compact vertex leaves a byte of its stride: never staged) */
     if (stage) {
         if (ro->run)
-            hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first,
-                                  fr, NULL, 0, stage, dst0, block);
+            hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first, fr,
+                                NULL, 0, stage, dst0, block);
         else
-            hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first,
-                                  fr, NULL, 1, stage, dst0, block);
+            hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first, fr,
+                                NULL, 1, stage, dst0, block);
         _mm_sfence(); /* streamed stores visible before we return */
     } else if (ro->run)
-        hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first, fr,
-                              fr2, 0, NULL, NULL, 0);
+        hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first, fr, fr2,
+                            0, NULL, NULL, 0);
     else if (ro->c16)
-        hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first, fr,
-                              fr2, 2, NULL, NULL, 0);
+        hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first, fr, fr2,
+                            2, NULL, NULL, 0);
     else
-        hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first, fr,
-                              fr2, 1, NULL, NULL, 0);
+        hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first, fr, fr2,
+                            1, NULL, NULL, 0);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 #endif
@@ -12843,8 +12816,8 @@ HF__TARGET_AVX512 HF__INLINE void hf__lines_out(unsigned char *b,
 /* One strand's vertices at ro's position base + v0 vertices, as lines */
 HF__TARGET_AVX512 HF__INLINE void
 hf__ribbon_lines_v16(const hf__rframe *fr, int P, const hf__rconst *K,
-                        const hf__rstrand *str, const hf__rout *ro, size_t v0,
-                        const __m256 *ov, const hf__lines *t)
+                     const hf__rstrand *str, const hf__rout *ro, size_t v0,
+                     const __m256 *ov, const hf__lines *t)
 {
     const int F = t->F;
     unsigned char *b = ro->base[HF__S_POS] + v0 * 4u * (size_t)F;
@@ -12856,9 +12829,8 @@ hf__ribbon_lines_v16(const hf__rframe *fr, int P, const hf__rconst *K,
         const int o = 4 + 8 * k;
         __m256 L[3], R[3];
         __m512 S[5];
-        hf__sides_v8(fr, o,
-                       _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws), ov,
-                       L, R);
+        hf__sides_v8(fr, o, _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws),
+                     ov, L, R);
         HF__UNROLL for (c = 0; c < 3; ++c) S[c] = hf__join16(L[c], R[c]);
         S[3] = hf__join16(_mm256_loadu_ps(fr->t[0] + o),
                           _mm256_loadu_ps(fr->t[1] + o));
@@ -13043,9 +13015,9 @@ hf__c16_group16(unsigned char *b, size_t st, const __m512 *L, const __m512 *R,
    caller writes the strand again from hf__frame_strand_v8's rows. */
 HF__TARGET_AVX512 HF__INLINE int
 hf__ribbon_fused_v16(const float *pts, int P, int ortho, const __m512 *e,
-                        const hf__rconst *K, const hf__rstrand *str,
-                        const hf__rout *ro, size_t v0, const __m512 *ov,
-                        const hf__lines *t, const hf__enc16 *enc)
+                     const hf__rconst *K, const hf__rstrand *str,
+                     const hf__rout *ro, size_t v0, const __m512 *ov,
+                     const hf__lines *t, const hf__enc16 *enc)
 {
     const int F = enc ? 0 : t->F;
     const size_t st = ro->stride[HF__S_POS];
@@ -13179,10 +13151,10 @@ HF__PRIVATE int hf__lines_fit(const hf__rout *ro, int P,
                               const unsigned char *dst0, size_t block,
                               int first, int out_first)
 {
-    return ro->run &&
-           block == (ro->run == 3 ? 36u : 24u) && P % 8 == 0 &&
-           (((uintptr_t)dst0 + (size_t)(first - out_first) * 2u *
-                                   (size_t)P * block) & 63u) == 0;
+    return ro->run && block == (ro->run == 3 ? 36u : 24u) && P % 8 == 0 &&
+           (((uintptr_t)dst0 +
+             (size_t)(first - out_first) * 2u * (size_t)P * block) &
+            63u) == 0;
 }
 
 /* The eye (hf__frame_eye_v8) and the output's scale and origin
@@ -13221,8 +13193,8 @@ hf__ribbon_strand16(const hf_ribbon_strands *sv, int s, int end,
     float wsc;
     str.wscale = 1.0f;
     hf__rstrand_fill(sv, s, K->wcap, &str);
-    if (hf__ribbon_fused_v16(sv->points + (size_t)s * (size_t)P * 3u, P,
-                                ortho, e16, K, &str, ro, v0, ov16, t, enc16))
+    if (hf__ribbon_fused_v16(sv->points + (size_t)s * (size_t)P * 3u, P, ortho,
+                             e16, K, &str, ro, v0, ov16, t, enc16))
         return;
     hf__frame_at_v8(sv, s, end, P, ortho, e, params, fr, &wsc);
     str.wscale = wsc;
@@ -13240,9 +13212,9 @@ hf__ribbon_strand16(const hf_ribbon_strands *sv, int s, int end,
    ahead, in fr and fr2 by turns) with the lines for the writer. */
 HF__TARGET_AVX512 HF__PRIVATE void
 hf__ribbons_lines_v16(const hf_ribbon_strands *sv, int first, int count,
-                         const hf_ribbon_params *params, const hf__rconst *K,
-                         const hf__rout *ro, int out_first, hf__rframe *fr,
-                         hf__rframe *fr2)
+                      const hf_ribbon_params *params, const hf__rconst *K,
+                      const hf__rout *ro, int out_first, hf__rframe *fr,
+                      hf__rframe *fr2)
 {
     const int P = params->points_per_strand,
               ortho = params->orthographic != 0, end = first + count;
@@ -13262,18 +13234,17 @@ hf__ribbons_lines_v16(const hf_ribbon_strands *sv, int first, int count,
             hf__ribbon_strand16(&svl, s, end, params, K, ro, out_first, e, ov,
                                 e16, ov16, fr, &t, NULL, NULL);
     } else {
-        hf__frame_at_v8(&svl, first, end, P, ortho, e, params, F[0],
-                          &wsc[0]);
+        hf__frame_at_v8(&svl, first, end, P, ortho, e, params, F[0], &wsc[0]);
         for (s = first; s < end; ++s) {
             const int j = (s - first) & 1;
             hf__rstrand str;
-            hf__frame_at_v8(&svl, s + 1, end, P, ortho, e, params,
-                              F[j ^ 1], &wsc[j ^ 1]);
+            hf__frame_at_v8(&svl, s + 1, end, P, ortho, e, params, F[j ^ 1],
+                            &wsc[j ^ 1]);
             str.wscale = wsc[j];
             hf__rstrand_fill(&svl, s, K->wcap, &str);
             hf__ribbon_lines_v16(F[j], P, K, &str, ro,
-                                    (size_t)(s - out_first) * (size_t)P * 2u,
-                                    ov, &t);
+                                 (size_t)(s - out_first) * (size_t)P * 2u, ov,
+                                 &t);
         }
     }
     _mm_sfence(); /* streamed stores visible before we return */
@@ -13286,8 +13257,8 @@ hf__ribbons_lines_v16(const hf_ribbon_strands *sv, int first, int count,
    hf__frame_strand_v8 and written from the rows by the AVX2 writer. */
 HF__TARGET_AVX512 HF__PRIVATE void
 hf__ribbons_c16_v16(const hf_ribbon_strands *sv, int first, int count,
-                       const hf_ribbon_params *params, const hf__rconst *K,
-                       const hf__rout *ro, int out_first, hf__rframe *fr)
+                    const hf_ribbon_params *params, const hf__rconst *K,
+                    const hf__rout *ro, int out_first, hf__rframe *fr)
 {
     static const int q[3] = {HF__S_POS, HF__S_TEX, HF__S_TAN};
     const int end = first + count;
@@ -13399,11 +13370,11 @@ typedef struct hf__rcall {
     const hf__rconst *K;
     const hf__rout *ro;
     int first, count, out_first, P;
-    hf__rframe *fr, *fr2;   /* a strand's frame rows, a second one */
-    int stage;              /* streamed through stage_buf: */
-    float *stage_buf;       /* (in fr2's room) */
-    unsigned char *dst0;    /* the first byte of vertex 0 */
-    size_t block;           /* a vertex's bytes in the stage */
+    hf__rframe *fr, *fr2; /* a strand's frame rows, a second one */
+    int stage;            /* streamed through stage_buf: */
+    float *stage_buf;     /* (in fr2's room) */
+    unsigned char *dst0;  /* the first byte of vertex 0 */
+    size_t block;         /* a vertex's bytes in the stage */
     const struct hf__frame_kernels *frame; /* the call's level's */
     const struct hf__write_kernels *write;
 } hf__rcall;
@@ -13415,15 +13386,15 @@ typedef struct hf__rcall {
    the compact vertex with P a multiple of 16 */
 HF__PRIVATE int hf__ribbons_v16(const hf__rcall *c)
 {
-    if (c->stage && hf__lines_fit(c->ro, c->P, c->dst0, c->block, c->first,
-                                  c->out_first)) {
-        hf__ribbons_lines_v16(c->sv, c->first, c->count, c->params, c->K,
-                                 c->ro, c->out_first, c->fr, c->fr2);
+    if (c->stage &&
+        hf__lines_fit(c->ro, c->P, c->dst0, c->block, c->first, c->out_first)) {
+        hf__ribbons_lines_v16(c->sv, c->first, c->count, c->params, c->K, c->ro,
+                              c->out_first, c->fr, c->fr2);
         return 1;
     }
     if (!c->stage && c->ro->c16 && c->P % 16 == 0) {
-        hf__ribbons_c16_v16(c->sv, c->first, c->count, c->params, c->K,
-                               c->ro, c->out_first, c->fr);
+        hf__ribbons_c16_v16(c->sv, c->first, c->count, c->params, c->K, c->ro,
+                            c->out_first, c->fr);
         return 1;
     }
     return 0;
@@ -13436,8 +13407,8 @@ HF__PRIVATE int hf__ribbons_v8(const hf__rcall *c)
 {
     if (!c->ro->run && !c->ro->nw) return 0;
     hf__ribbons_run_v8(c->sv, c->first, c->count, c->params, c->K, c->ro,
-                         c->out_first, c->fr, c->stage ? NULL : c->fr2,
-                         c->stage ? c->stage_buf : NULL, c->dst0, c->block);
+                       c->out_first, c->fr, c->stage ? NULL : c->fr2,
+                       c->stage ? c->stage_buf : NULL, c->dst0, c->block);
     return 1;
 }
 #endif
@@ -13487,15 +13458,15 @@ typedef struct hf__ribbons_kernels {
 
 static const hf__ribbons_kernels hf__ribbons_widths[] = {
 #if HF__AVX512
-    {HF__ISA_V16, hf__ribbons_v16},
+    {{HF__ISA_V16}, hf__ribbons_v16},
 #endif
 #if HF__AVX2
-    {HF__ISA_V8, hf__ribbons_v8},
+    {{HF__ISA_V8}, hf__ribbons_v8},
 #endif
 #if HF__V4
-    {HF__ISA_V4, hf__ribbons_each},
+    {{HF__ISA_V4}, hf__ribbons_each},
 #endif
-    {HF__ISA_V1, hf__ribbons_each}};
+    {{HF__ISA_V1}, hf__ribbons_each}};
 
 /* hf_ribbons, with streaming stores by size (nontemporal 0) chosen as
    for `sized` strands: the call's count, or a fur's drawn strands */
@@ -13583,8 +13554,8 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
                 ? hf__ribbon_stage(&ro, P, call_v0, &block, &dst0)
                 : 0;
     if (stage)
-        stage_buf = hf__stage_in_page((float *)(void *)fr2,
-                                      2u * (size_t)P * block);
+        stage_buf =
+            hf__stage_in_page((float *)(void *)fr2, 2u * (size_t)P * block);
     sv = *strands;
     /* the inputs of the streams not written are not read */
     if (!ro.base[HF__S_TEX]) sv.root_uv = NULL;
@@ -13623,8 +13594,8 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
 
 /* GPU points of one strand: (x, y, z, hw[j] * ws) for point j; nt asks
    for streaming stores (the reference makes none). */
-HF__PRIVATE void hf__points_strand_v1(const float *p, const float *hw,
-                                      float ws, float *o, int P, int nt)
+HF__PRIVATE void hf__points_strand_v1(const float *p, const float *hw, float ws,
+                                      float *o, int P, int nt)
 {
     int j;
     (void)nt;
@@ -13652,8 +13623,8 @@ HF__INLINE void hf__point_put_v4(float *o, __m128 v, float w, int nt)
         _mm_storeu_ps(o, v);
 }
 
-HF__PRIVATE void hf__points_strand_v4(const float *p, const float *hw,
-                                      float ws, float *o, int P, int nt)
+HF__PRIVATE void hf__points_strand_v4(const float *p, const float *hw, float ws,
+                                      float *o, int P, int nt)
 {
     int j;
     nt = nt && ((uintptr_t)o & 15u) == 0;
@@ -13663,16 +13634,16 @@ HF__PRIVATE void hf__points_strand_v4(const float *p, const float *hw,
     if (j < P) { /* the last: (z', x, y, z) to (x, y, z, z') */
         const __m128 v = _mm_loadu_ps(p + 3 * j - 1);
         hf__point_put_v4(o + 4 * j,
-                          _mm_shuffle_ps(v, v, _MM_SHUFFLE(0, 3, 2, 1)),
-                          hw[j] * ws, nt);
+                         _mm_shuffle_ps(v, v, _MM_SHUFFLE(0, 3, 2, 1)),
+                         hw[j] * ws, nt);
     }
 }
 #endif
 
 #if HF__NEON
 /* hf__points_strand_v4 on ARM64 (no streaming stores there). */
-HF__PRIVATE void hf__points_strand_v4(const float *p, const float *hw,
-                                      float ws, float *o, int P, int nt)
+HF__PRIVATE void hf__points_strand_v4(const float *p, const float *hw, float ws,
+                                      float *o, int P, int nt)
 {
     int j;
     (void)nt;
@@ -13717,7 +13688,7 @@ HF__PRIVATE void hf__pair_widths_init(hf__pair_widths *pw, const float *hw,
    its points as they are (the caller writes it again, collapsed). P >= 3. */
 HF__TARGET_AVX2 HF__INLINE int
 hf__points_strand_v8_in(const float *p, const hf__pair_widths *pw, float ws,
-                          float *o, int P, int mode)
+                        float *o, int P, int mode)
 {
     const __m256i spread = _mm256_setr_epi32(0, 1, 2, 0, 3, 4, 5, 0);
     const __m256i spread_last = _mm256_setr_epi32(2, 3, 4, 0, 5, 6, 7, 0);
@@ -13750,12 +13721,13 @@ hf__points_strand_v8_in(const float *p, const hf__pair_widths *pw, float ws,
 }
 
 /* the strand above as a call (mode: hf__stream_mode's) */
-HF__TARGET_AVX2 HF__PRIVATE int
-hf__points_strand_v8(const float *p, const hf__pair_widths *pw, float ws,
-                       float *o, int P, int nt)
+HF__TARGET_AVX2 HF__PRIVATE int hf__points_strand_v8(const float *p,
+                                                     const hf__pair_widths *pw,
+                                                     float ws, float *o, int P,
+                                                     int nt)
 {
-    const int ok = hf__points_strand_v8_in(p, pw, ws, o, P,
-                                             hf__stream_mode(nt, o, 31u));
+    const int ok =
+        hf__points_strand_v8_in(p, pw, ws, o, P, hf__stream_mode(nt, o, 31u));
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
     return ok;
 }
@@ -13794,8 +13766,8 @@ HF__PRIVATE void hf__points_collapse_v8(const hf__points_kit *k, float *o)
    constant in the loop; with P odd it alternates, found per strand. */
 HF__TARGET_AVX2 HF__INLINE void
 hf__points_loop_v8(const hf__points_kit *k, const hf_ribbon_strands *strands,
-                     const float *pts, int pts_first, int first, int count,
-                     int out_first, float *out4, int mode)
+                   const float *pts, int pts_first, int first, int count,
+                   int out_first, float *out4, int mode)
 {
     const int P = k->P;
     /* read once: the stores may alias k and strands */
@@ -13806,8 +13778,8 @@ hf__points_loop_v8(const hf__points_kit *k, const hf_ribbon_strands *strands,
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
         const int m = mode >= 0 ? mode : hf__stream_mode(k->nt, o, 31u);
         if (m) hf__page_ahead(o, 16u * (size_t)P);
-        if (!hf__points_strand_v8_in(p, &k->pw, hf__width_at(wd, s, wcap),
-                                       o, P, m)) {
+        if (!hf__points_strand_v8_in(p, &k->pw, hf__width_at(wd, s, wcap), o, P,
+                                     m)) {
             _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
             hf__points_collapse_v8(k, o);
         }
@@ -13822,17 +13794,17 @@ hf__points_pairs_v8(const hf__points_kit *k, const hf_ribbon_strands *strands,
     const int mode = hf__stream_mode(
         k->nt, out4 + (size_t)(first - out_first) * (size_t)k->P * 4u, 31u);
     if (k->P % 2)
-        hf__points_loop_v8(k, strands, pts, pts_first, first, count,
-                             out_first, out4, -1);
+        hf__points_loop_v8(k, strands, pts, pts_first, first, count, out_first,
+                           out4, -1);
     else if (mode == 2)
-        hf__points_loop_v8(k, strands, pts, pts_first, first, count,
-                             out_first, out4, 2);
+        hf__points_loop_v8(k, strands, pts, pts_first, first, count, out_first,
+                           out4, 2);
     else if (mode)
-        hf__points_loop_v8(k, strands, pts, pts_first, first, count,
-                             out_first, out4, 1);
+        hf__points_loop_v8(k, strands, pts, pts_first, first, count, out_first,
+                           out4, 1);
     else
-        hf__points_loop_v8(k, strands, pts, pts_first, first, count,
-                             out_first, out4, 0);
+        hf__points_loop_v8(k, strands, pts, pts_first, first, count, out_first,
+                           out4, 0);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 #endif
@@ -14106,9 +14078,8 @@ typedef struct hf__ipoints_kernels {
 #if HF__AVX2
 HF__PRIVATE int hf__interp_points_fit_v8(const hf__irun *run,
                                          const hf__points_kit *k,
-                                         const hf_ribbon_strands *st,
-                                         int first, int count, int out_first,
-                                         float *out4)
+                                         const hf_ribbon_strands *st, int first,
+                                         int count, int out_first, float *out4)
 {
     if (run->P % 2 != 0 || run->P < 8) return 0;
     hf__interp_points_v8(run, k, st, first, count, out_first, out4);
@@ -14130,20 +14101,19 @@ HF__PRIVATE int hf__interp_points_fit_v16(const hf__irun *run,
 
 static const hf__ipoints_kernels hf__ipoints_widths[] = {
 #if HF__AVX512
-    {HF__ISA_V16, hf__interp_points_fit_v16},
+    {{HF__ISA_V16}, hf__interp_points_fit_v16},
 #endif
 #if HF__AVX2
-    {HF__ISA_V8, hf__interp_points_fit_v8},
+    {{HF__ISA_V8}, hf__interp_points_fit_v8},
 #endif
-    {HF__ISA_V1, NULL}};
+    {{HF__ISA_V1}, NULL}};
 
 /* Compact points (HF_POINT_COMPACT) from float ones: n points (x, y, z,
    half width) at in to 8 bytes each at o, native byte order; the vector
    encoders (hf__encode_v4, _avx2, _neon) perform hf__encode1's
    operations, so every level writes the same bytes. */
-HF__PRIVATE void hf__points_encode_v1(const hf__points_kit *k,
-                                      const float *in, size_t n,
-                                      unsigned char *o, int nt)
+HF__PRIVATE void hf__points_encode_v1(const hf__points_kit *k, const float *in,
+                                      size_t n, unsigned char *o, int nt)
 {
     size_t i;
     int c;
@@ -14163,17 +14133,16 @@ HF__PRIVATE void hf__points_encode_v1(const hf__points_kit *k,
 HF__INLINE __m128i hf__point_codes_v4(__m128 v, __m128 o, __m128 inv)
 {
     const __m128i xyz = _mm_setr_epi32(-1, -1, -1, 0);
-    const __m128i sn = hf__encode_v4(_mm_mul_ps(_mm_sub_ps(v, o), inv),
-                                      HF_FORMAT_SNORM16);
+    const __m128i sn =
+        hf__encode_v4(_mm_mul_ps(_mm_sub_ps(v, o), inv), HF_FORMAT_SNORM16);
     const __m128i h = hf__encode_v4(v, HF_FORMAT_F16);
     const __m128i c = _mm_or_si128(_mm_and_si128(xyz, sn),
                                    _mm_andnot_si128(xyz, h));
     return _mm_srai_epi32(_mm_slli_epi32(c, 16), 16); /* for packs */
 }
 
-HF__PRIVATE void hf__points_encode_v4(const hf__points_kit *k,
-                                      const float *in, size_t n,
-                                      unsigned char *o, int nt)
+HF__PRIVATE void hf__points_encode_v4(const hf__points_kit *k, const float *in,
+                                      size_t n, unsigned char *o, int nt)
 {
     const __m128 org = _mm_setr_ps(k->origin[0], k->origin[1], k->origin[2],
                                    0.0f),
@@ -14181,9 +14150,9 @@ HF__PRIVATE void hf__points_encode_v4(const hf__points_kit *k,
     size_t i = 0;
     nt = nt && ((uintptr_t)o & 15u) == 0;
     for (; i + 2 <= n; i += 2, in += 8, o += 16) {
-        const __m128i two = _mm_packs_epi32(
-            hf__point_codes_v4(_mm_loadu_ps(in), org, inv),
-            hf__point_codes_v4(_mm_loadu_ps(in + 4), org, inv));
+        const __m128i two =
+            _mm_packs_epi32(hf__point_codes_v4(_mm_loadu_ps(in), org, inv),
+                            hf__point_codes_v4(_mm_loadu_ps(in + 4), org, inv));
         if (nt)
             _mm_stream_si128((__m128i *)(void *)o, two);
         else
@@ -14192,7 +14161,7 @@ HF__PRIVATE void hf__points_encode_v4(const hf__points_kit *k,
     if (i < n)
         _mm_storel_epi64((__m128i *)(void *)o,
                          _mm_packs_epi32(hf__point_codes_v4(_mm_loadu_ps(in),
-                                                             org, inv),
+                                                            org, inv),
                                          _mm_setzero_si128()));
 }
 #endif
@@ -14201,9 +14170,9 @@ HF__PRIVATE void hf__points_encode_v4(const hf__points_kit *k,
 /* hf__points_encode_v4 eight points at a time: the positions two points
    a vector, the eight half widths gathered into one vector for a single
    half conversion, then put back into each point's fourth lane. */
-HF__TARGET_AVX2 HF__PRIVATE void
-hf__points_encode_v8(const hf__points_kit *k, const float *in, size_t n,
-                     unsigned char *o, int nt)
+HF__TARGET_AVX2 HF__PRIVATE void hf__points_encode_v8(const hf__points_kit *k,
+                                                      const float *in, size_t n,
+                                                      unsigned char *o, int nt)
 {
     const __m256 org = _mm256_setr_ps(k->origin[0], k->origin[1],
                                       k->origin[2], 0.0f, k->origin[0],
@@ -14222,14 +14191,14 @@ hf__points_encode_v8(const hf__points_kit *k, const float *in, size_t n,
                 _mm256_shuffle_ps(v2, v3, _MM_SHUFFLE(3, 3, 3, 3)),
                 _MM_SHUFFLE(2, 0, 2, 0)),
             HF_FORMAT_F16);
-        __m256i c0 = hf__encode_v8(
-                    _mm256_mul_ps(_mm256_sub_ps(v0, org), inv), HF_FORMAT_SNORM16),
-                c1 = hf__encode_v8(
-                    _mm256_mul_ps(_mm256_sub_ps(v1, org), inv), HF_FORMAT_SNORM16),
-                c2 = hf__encode_v8(
-                    _mm256_mul_ps(_mm256_sub_ps(v2, org), inv), HF_FORMAT_SNORM16),
-                c3 = hf__encode_v8(
-                    _mm256_mul_ps(_mm256_sub_ps(v3, org), inv), HF_FORMAT_SNORM16),
+        __m256i c0 = hf__encode_v8(_mm256_mul_ps(_mm256_sub_ps(v0, org), inv),
+                                   HF_FORMAT_SNORM16),
+                c1 = hf__encode_v8(_mm256_mul_ps(_mm256_sub_ps(v1, org), inv),
+                                   HF_FORMAT_SNORM16),
+                c2 = hf__encode_v8(_mm256_mul_ps(_mm256_sub_ps(v2, org), inv),
+                                   HF_FORMAT_SNORM16),
+                c3 = hf__encode_v8(_mm256_mul_ps(_mm256_sub_ps(v3, org), inv),
+                                   HF_FORMAT_SNORM16),
                 out0, out1;
         /* each point's half width into its fourth lane, then the codes
            sign-extended for packs */
@@ -14309,9 +14278,8 @@ hf__points_encode_v16(const hf__points_kit *k, const float *in, size_t n,
 #endif
 
 #if HF__NEON
-HF__PRIVATE void hf__points_encode_v4(const hf__points_kit *k,
-                                      const float *in, size_t n,
-                                      unsigned char *o, int nt)
+HF__PRIVATE void hf__points_encode_v4(const hf__points_kit *k, const float *in,
+                                      size_t n, unsigned char *o, int nt)
 {
     const float32x4_t inv = {k->inv, k->inv, k->inv, 1.0f};
     const float32x4_t org = {k->origin[0], k->origin[1], k->origin[2], 0.0f};
@@ -14320,11 +14288,11 @@ HF__PRIVATE void hf__points_encode_v4(const hf__points_kit *k,
     (void)nt; /* no streaming stores on ARM64 */
     for (i = 0; i < n; ++i, in += 4, o += 8) {
         const float32x4_t v = vld1q_f32(in);
-        const uint32x4_t c = vbslq_u32(
-            xyz,
-            hf__encode_v4(vmulq_f32(vsubq_f32(v, org), inv),
-                            HF_FORMAT_SNORM16),
-            hf__encode_v4(v, HF_FORMAT_F16));
+        const uint32x4_t c =
+            vbslq_u32(xyz,
+                      hf__encode_v4(vmulq_f32(vsubq_f32(v, org), inv),
+                                    HF_FORMAT_SNORM16),
+                      hf__encode_v4(v, HF_FORMAT_F16));
         vst1_u16((uint16_t *)(void *)o, vmovn_u32(c));
     }
 }
@@ -14337,8 +14305,8 @@ HF__PRIVATE void hf__points_encode_v4(const hf__points_kit *k,
    lanes and one a strand at a time (strand, after finite). */
 typedef struct hf__points_kernels {
     hf__isa isa;
-    int (*run)(const hf__points_kit *, const hf_ribbon_strands *,
-               const float *, int, int, int, int, float *);
+    int (*run)(const hf__points_kit *, const hf_ribbon_strands *, const float *,
+               int, int, int, int, float *);
     int (*finite)(const float *, int);
     void (*strand)(const float *, const float *, float, float *, int, int);
 } hf__points_kernels;
@@ -14357,8 +14325,8 @@ HF__PRIVATE int hf__points_run_v8(const hf__points_kit *k,
         hf__points_groups_v8(k, strands, pts, pts_first, first, count,
                              out_first, out4);
     else
-        hf__points_pairs_v8(k, strands, pts, pts_first, first, count,
-                            out_first, out4);
+        hf__points_pairs_v8(k, strands, pts, pts_first, first, count, out_first,
+                            out4);
     return 1;
 }
 #endif
@@ -14370,25 +14338,25 @@ HF__PRIVATE int hf__points_run_v16(const hf__points_kit *k,
                                    int count, int out_first, float *out4)
 {
     if (k->P % 16 != 0) return 0;
-    hf__points_groups_v16(k, strands, pts, pts_first, first, count,
-                          out_first, out4);
+    hf__points_groups_v16(k, strands, pts, pts_first, first, count, out_first,
+                          out4);
     return 1;
 }
 #endif
 
 static const hf__points_kernels hf__points_widths[] = {
 #if HF__AVX512
-    {HF__ISA_V16, hf__points_run_v16, NULL, NULL},
+    {{HF__ISA_V16}, hf__points_run_v16, NULL, NULL},
 #endif
 #if HF__AVX2
-    {HF__ISA_V8, hf__points_run_v8, NULL, NULL},
+    {{HF__ISA_V8}, hf__points_run_v8, NULL, NULL},
 #endif
 #if HF__SSE
-    {HF__ISA_V4, NULL, hf__points_finite_v4, hf__points_strand_v4},
+    {{HF__ISA_V4}, NULL, hf__points_finite_v4, hf__points_strand_v4},
 #elif HF__NEON
-    {HF__ISA_V4, NULL, hf__points_finite_v1, hf__points_strand_v4},
+    {{HF__ISA_V4}, NULL, hf__points_finite_v1, hf__points_strand_v4},
 #endif
-    {HF__ISA_V1, NULL, hf__points_finite_v1, hf__points_strand_v1}};
+    {{HF__ISA_V1}, NULL, hf__points_finite_v1, hf__points_strand_v1}};
 
 HF__PRIVATE void hf__points_run(const hf__points_kit *k,
                                 const hf_ribbon_strands *strands,
@@ -14403,15 +14371,15 @@ typedef struct hf__encode_kernels {
 
 static const hf__encode_kernels hf__encode_widths[] = {
 #if HF__AVX512
-    {HF__ISA_V16, hf__points_encode_v16},
+    {{HF__ISA_V16}, hf__points_encode_v16},
 #endif
 #if HF__AVX2
-    {HF__ISA_V8, hf__points_encode_v8},
+    {{HF__ISA_V8}, hf__points_encode_v8},
 #endif
 #if HF__V4
-    {HF__ISA_V4, hf__points_encode_v4},
+    {{HF__ISA_V4}, hf__points_encode_v4},
 #endif
-    {HF__ISA_V1, hf__points_encode_v1}};
+    {{HF__ISA_V1}, hf__points_encode_v1}};
 
 /* The dispatch of the compact encoders (hf__encode_widths, resolved by
    hf__points_kit_init): n points at in to o. */
@@ -14464,8 +14432,7 @@ HF__PRIVATE void hf__points_run(const hf__points_kit *k,
         return;
     }
     for (; kr->run; ++kr)
-        if (kr->run(k, strands, pts, pts_first, first, count, out_first,
-                    out4))
+        if (kr->run(k, strands, pts, pts_first, first, count, out_first, out4))
             return;
     for (s = first; s < first + count; ++s) {
         const float *p = pts + (size_t)(s - pts_first) * (size_t)P * 3u;
@@ -14481,8 +14448,7 @@ HF__PRIVATE void hf__points_run(const hf__points_kit *k,
 
 /* A points call's kit from resolved params, for `count` strands */
 HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
-                                     const hf_ribbon_params *params,
-                                     int count)
+                                     const hf_ribbon_params *params, int count)
 {
     int c;
     k->P = params->points_per_strand;
@@ -14492,9 +14458,10 @@ HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
     k->compact = params->point_format == HF_POINT_COMPACT;
     for (c = 0; c < 3; ++c) k->origin[c] = params->point_origin[c];
     k->inv = 1.0f / params->point_scale; /* resolved: not 0 */
-    k->nt = hf__streaming(params->nontemporal,
-                          (size_t)count * (size_t)k->P * (k->compact ? 8u : 16u),
-                          HF_STREAM_MIN_VERTEX_BYTES);
+    k->nt =
+        hf__streaming(params->nontemporal,
+                      (size_t)count * (size_t)k->P * (k->compact ? 8u : 16u),
+                      HF_STREAM_MIN_VERTEX_BYTES);
     k->wcap = hf__half_widths(params, k->hw, NULL);
     k->wide = 0;
 #if HF__AVX2
@@ -16883,8 +16850,8 @@ HF__PRIVATE hf_result hf__fur_ropes(hf_fur *f, hf__fur_build *b)
     if ((r = hf_ropes_create(f->guide_count, f->P, &f->alloc, &f->ropes)) !=
             HF_OK ||
         (r = hf_fur_set_roots(f, &b->desc.mesh, 0, f->guide_count)) != HF_OK ||
-        (r = hf__ropes_set_rest(f->ropes, 0, f->guide_count, b->rest_points,
-                                0, f->root_pos, f->root_nrm, f->root_tan, 0,
+        (r = hf__ropes_set_rest(f->ropes, 0, f->guide_count, b->rest_points, 0,
+                                f->root_pos, f->root_nrm, f->root_tan, 0,
                                 f->simd)) != HF_OK)
         return r;
     if ((r = hf__fur_keep_rest_frames(f)) != HF_OK) return r;
@@ -17345,9 +17312,9 @@ HF__PRIVATE hf_result hf__groom_build(hf_fur *f, const hf_groom_desc *d,
         }
     }
     if ((r = hf_ropes_create(G, P, &f->alloc, &f->ropes)) != HF_OK ||
-        (r = hf__ropes_set_rest(f->ropes, 0, G, f->guide_points, 0,
-                                f->root_pos, f->root_nrm, f->root_tan, 0,
-                                f->simd)) != HF_OK ||
+        (r = hf__ropes_set_rest(f->ropes, 0, G, f->guide_points, 0, f->root_pos,
+                                f->root_nrm, f->root_tan, 0, f->simd)) !=
+            HF_OK ||
         (r = hf__fur_keep_rest_frames(f)) != HF_OK ||
         (d->scalp && (r = hf__groom_bind_scalp(f, d->scalp)) != HF_OK) ||
         (d->grid_resolution > 0 &&
@@ -17427,8 +17394,8 @@ HFDEF hf_result hf_fur_set_transform(hf_fur *f, const float m[12], int first,
                                      row[2] * rf[8];
         }
     }
-    return hf__ropes_set_roots(f->ropes, first, count, f->root_pos,
-                               f->root_nrm, f->root_tan, 0, f->simd);
+    return hf__ropes_set_roots(f->ropes, first, count, f->root_pos, f->root_nrm,
+                               f->root_tan, 0, f->simd);
 }
 
 HFDEF hf_result hf_fur_get_info(const hf_fur *f, hf_fur_info *info)
@@ -17570,8 +17537,8 @@ HFDEF hf_result hf_fur_set_roots(hf_fur *f, const hf_mesh *m, int first,
             }
         }
     }
-    return hf__ropes_set_roots(f->ropes, first, count, f->root_pos,
-                               f->root_nrm, f->root_tan, 0, f->simd);
+    return hf__ropes_set_roots(f->ropes, first, count, f->root_pos, f->root_nrm,
+                               f->root_tan, 0, f->simd);
 }
 
 /* Step guides [first, end) in runs that share a rope parameter set (each
@@ -17720,8 +17687,7 @@ HF__PRIVATE void hf__fur_strands(const hf_fur *f, int first, int count,
 {
     const int pass = f->leader || f->strand_clump; /* clumps of their own */
     hf__interpolate_run(f->guide_points, f->bindings, first, count, f->P,
-                        pass ? 0.0f : f->clump, pts, pts_first, f->simd,
-                        nt);
+                        pass ? 0.0f : f->clump, pts, pts_first, f->simd, nt);
     if (pass) hf__fur_clump_pass(f, first, count, pts, pts_first);
     if (f->offsets) hf__groom_offsets(f, first, count, pts, pts_first);
 }
@@ -17827,8 +17793,7 @@ HFDEF hf_result hf_fur_interpolate_points(const hf_fur *f, int first,
         hf__irun_init(&run, f->guide_points, f->bindings, f->P, f->clump,
                       ctab, out4, first, 0);
         for (; k->fused; ++k)
-            if (k->fused(&run, &kit, &st, first, count, prm.out_first,
-                         out4)) {
+            if (k->fused(&run, &kit, &st, first, count, prm.out_first, out4)) {
                 count = 0;
                 break;
             }
