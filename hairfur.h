@@ -258,18 +258,22 @@
        section 0 (0.1 the overridable macros, 0.2 the SIMD levels, 0.3
        the compiler words, 0.4 the four-lane operations, 0.5 kernel
        texts); 1.1 is the one place where every struct's zero fields get
-       their defaults. Each SIMD kernel follows its scalar reference
-       hf__<name>_ref and gives the same bytes; one dispatch function per
-       stage picks between them by the level hf_simd_resolve gives. A
-       kernel for one instruction set is named by it (_sse, _neon, _avx2,
-       _avx512), one for SSE2 and NEON alike _v4. One written once for
-       any width (the rope step's contacts and rows, interpolation into
+       their defaults. Every kernel is named by its width, whatever the
+       instruction set: hf__<name>_v1 the scalar reference, _v4 (SSE2 or
+       NEON), _v8 (AVX2), _v16 (AVX-512); each SIMD kernel gives its
+       reference's bytes. Every stage dispatches one way (1, "The
+       dispatch"): its kernels stand in a const array of descriptors,
+       hf__<stage>_widths, one a width, widest first down to the
+       reference, each naming its instruction set and the level it needs;
+       a call resolves its level once (hf__kernels_for: the widest the
+       level asked for and the CPU allow), and what a width does not take
+       goes to the next narrower one. One kernel written once for any
+       width (the rope step's contacts and rows, interpolation into
        strands and into GPU points) is a kernel text, compiled once per
-       width by the header including itself (HF_HEADER_FILENAME) and
-       named by its lanes: _v4 (SSE2 or NEON), _v8 (AVX2), _v16
-       (AVX-512). Each copy is a function with the text's own lines, so a
-       debugger stops in the AVX2 rope kernel at "break
-       hf__ropes_ftl_row_v8" (more in 0.5, "Kernel texts").
+       width by the header including itself (HF_HEADER_FILENAME). Each
+       copy is a function with the text's own lines, so a debugger stops
+       in the AVX2 rope kernel at "break hf__ropes_ftl_row_v8" (more in
+       0.5, "Kernel texts").
 
    VERSION HISTORY
 
@@ -2421,16 +2425,17 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 
 /* ---- 0.2 SIMD levels ---------------------------------------------------- */
 
-/* SIMD levels. A kernel named hf__<name>_sse (or _neon, _avx2, _avx512;
-   _v4 for one written once for SSE2 and NEON; _v4, _v8 or _v16 for a
-   kernel text built at four, eight or sixteen lanes, see "Kernel texts"
-   below) follows its scalar reference
-   hf__<name>_ref; every level uses the same IEEE operations in the same
-   order (no FMA), so all give the same bytes (in the default rounding
-   mode: the vector encoders of normalized formats convert by the mode,
-   the scalar one adds and takes away 1.5 * 2^23), and one function per
-   stage picks between them (the dispatch) with the level hf_simd_resolve
-   gives.
+/* SIMD levels. A kernel is named by its lanes: hf__<name>_v4 (SSE2 or
+   NEON), _v8 (AVX2) or _v16 (AVX-512), written for its instruction set
+   or built from a kernel text (see "Kernel texts" below); each follows
+   its scalar reference hf__<name>_v1 (an _in after the width: an inline
+   body of the kernel). Every level uses the same IEEE operations in the
+   same order (no FMA), so all give the same bytes (in the default
+   rounding mode: the vector encoders of normalized formats convert by
+   the mode, the scalar one adds and takes away 1.5 * 2^23). Each
+   stage's descriptors (one a width, with its instruction set) and the
+   one resolver that picks among them by the level hf_simd_resolve gives
+   are in 1, "The dispatch".
    SSE2 is the baseline wherever the compiler targets it, NEON on ARM64.
    AVX2 and AVX-512 kernels are compiled into any x86 build (target
    attributes on gcc and clang, none needed on MSVC) and picked at run
@@ -10851,7 +10856,7 @@ hf__strand_frame_v8_in(const float *pts, int P, int ortho, const __m256 *e,
 }
 
 /* the frame above as a call, for the dispatch of one strand (the inline
-   bodies, *_avx2_in, leave the upper halves to the function they are
+   bodies, *_v8_in, leave the upper halves to the function they are
    inlined in: its calls and its return clear them) */
 HF__TARGET_AVX2 HF__PRIVATE int
 hf__strand_frame_v8(const float *pts, int P, const hf_ribbon_params *params,
@@ -11784,7 +11789,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__rout_vec_v8(const hf__rout *ro, __m256 *ov)
    the SSE one (calling the SSE writer from here would run SSE code with
    the upper halves of the registers dirty, at twice its time or more). */
 HF__TARGET_AVX2 HF__INLINE void
-hf__ribbon_write_v8_in(const hf__rframe *fr, int P, const hf__rconst *K,
+hf__ribbon_write_run_v8_in(const hf__rframe *fr, int P, const hf__rconst *K,
                        const hf__rstrand *str, const hf__rout *ro, size_t v0,
                        const __m256 *ov)
 {
@@ -11824,7 +11829,7 @@ hf__ribbon_write_run_v8(const hf__rframe *fr, int P, const hf__rconst *K,
 {
     __m256 ov[4];
     hf__rout_vec_v8(ro, ov);
-    hf__ribbon_write_v8_in(fr, P, K, str, ro, v0, ov);
+    hf__ribbon_write_run_v8_in(fr, P, K, str, ro, v0, ov);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 
@@ -12669,7 +12674,7 @@ hf__ribbons_loop_v8(const hf_ribbon_strands *sv, int first, int count,
         else if (mode == 1)
             hf__ribbon_write_table_v8_in(F[j], P, K, &str, ro, w0, ov);
         else
-            hf__ribbon_write_v8_in(F[j], P, K, &str, ro, w0, ov);
+            hf__ribbon_write_run_v8_in(F[j], P, K, &str, ro, w0, ov);
         if (stage) {
             hf__stream_copy_v8(dst0 + v0 * block, stage, sb);
             hf__frame_at_v8(&svl, s + 1, end, P, ortho, e, params, F[0],
@@ -14110,7 +14115,7 @@ static const hf__ipoints_kernels hf__ipoints_widths[] = {
 
 /* Compact points (HF_POINT_COMPACT) from float ones: n points (x, y, z,
    half width) at in to 8 bytes each at o, native byte order; the vector
-   encoders (hf__encode_v4, _avx2, _neon) perform hf__encode1's
+   encoders (hf__encode_v4, hf__encode_v8) perform hf__encode1's
    operations, so every level writes the same bytes. */
 HF__PRIVATE void hf__points_encode_v1(const hf__points_kit *k, const float *in,
                                       size_t n, unsigned char *o, int nt)
