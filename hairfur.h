@@ -267,7 +267,7 @@
        reference, each naming its instruction set and the level it needs;
        a call resolves its level once (hf__kernels_for: the widest the
        level asked for and the CPU allow), and what a width does not take
-       goes to the next narrower one. One kernel written once for any
+       goes to a narrower one. One kernel written once for any
        width (the rope step's contacts and rows, interpolation into
        strands and into GPU points) is a kernel text, compiled once per
        width by the header including itself (HF_HEADER_FILENAME). Each

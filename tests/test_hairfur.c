@@ -1138,11 +1138,62 @@ static void test_simd_level_of_the_target(void)
           hf_simd_resolve(HF_SIMD_AUTO) == HF_SIMD_SCALAR);
 }
 
+/* Every stage's kernels per width (hf__<stage>_widths): widest first,
+   each narrower and at a lower level than the one before, ending with the
+   scalar reference; hf__kernels_for picks the widest the level allows
+   (the reference for HF_SIMD_SCALAR, whatever the build has). */
+#define T_WIDTHS_CHECK(widths)                                                 \
+    t_widths_check(&(widths)[0].isa, sizeof((widths)[0]),                      \
+                   (int)(sizeof(widths) / sizeof((widths)[0])))
+static void t_widths_check(const hf__isa *widest, size_t size, int n)
+{
+    const unsigned char *d = (const unsigned char *)widest;
+    int i, level;
+    for (i = 0; i < n; ++i) {
+        const hf__isa *e = (const hf__isa *)(const void *)(d + (size_t)i * size);
+        CHECK(e->name && e->name[0]);
+        if (i > 0) {
+            const hf__isa *w =
+                (const hf__isa *)(const void *)(d + (size_t)(i - 1) * size);
+            CHECK(e->lanes < w->lanes && e->level < w->level);
+        }
+        if (i == n - 1) {
+            CHECK_EQ_INT(e->lanes, 1);
+            CHECK_EQ_INT(e->level, HF_SIMD_SCALAR);
+        }
+    }
+    CHECK_EQ_INT(hf__kernels_index(widest, size, HF_SIMD_SCALAR), n - 1);
+    for (level = HF_SIMD_AUTO; level <= HF_SIMD_AVX512; ++level) {
+        const int k = hf__kernels_index(widest, size, level);
+        const hf__isa *e = (const hf__isa *)(const void *)(d + (size_t)k * size);
+        CHECK(e->level <= hf_simd_resolve(level));
+        if (k > 0)
+            CHECK(((const hf__isa *)(const void *)(d + (size_t)(k - 1) * size))
+                      ->level > hf_simd_resolve(level));
+    }
+}
+
+static void test_dispatch_widths(void)
+{
+    T_WIDTHS_CHECK(hf__roots_widths);
+    T_WIDTHS_CHECK(hf__copy_widths);
+    T_WIDTHS_CHECK(hf__pose_widths);
+    T_WIDTHS_CHECK(hf__rope_widths);
+    T_WIDTHS_CHECK(hf__interp_widths);
+    T_WIDTHS_CHECK(hf__frame_widths);
+    T_WIDTHS_CHECK(hf__write_widths);
+    T_WIDTHS_CHECK(hf__ribbons_widths);
+    T_WIDTHS_CHECK(hf__points_widths);
+    T_WIDTHS_CHECK(hf__encode_widths);
+    T_WIDTHS_CHECK(hf__ipoints_widths);
+}
+
 /* 1. configuration, result codes, version: its tests, in the order they run */
 #define T_CONFIG_TESTS(X)                                                      \
     X(test_result_strings_distinct)                                            \
     X(test_version)                                                            \
-    X(test_simd_level_of_the_target)
+    X(test_simd_level_of_the_target)                                           \
+    X(test_dispatch_widths)
 
 /* ==== 2. random numbers =================================================== */
 
