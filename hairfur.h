@@ -258,18 +258,22 @@
        section 0 (0.1 the overridable macros, 0.2 the SIMD levels, 0.3
        the compiler words, 0.4 the four-lane operations, 0.5 kernel
        texts); 1.1 is the one place where every struct's zero fields get
-       their defaults. Each SIMD kernel follows its scalar reference
-       hf__<name>_ref and gives the same bytes; one dispatch function per
-       stage picks between them by the level hf_simd_resolve gives. A
-       kernel for one instruction set is named by it (_sse, _neon, _avx2,
-       _avx512), one for SSE2 and NEON alike _v4. One written once for
-       any width (the rope step's contacts and rows, interpolation into
+       their defaults. Every kernel is named by its width, whatever the
+       instruction set: hf__<name>_v1 the scalar reference, _v4 (SSE2 or
+       NEON), _v8 (AVX2), _v16 (AVX-512); each SIMD kernel gives its
+       reference's bytes. Every stage dispatches one way (1, "The
+       dispatch"): its kernels stand in a const array of descriptors,
+       hf__<stage>_widths, one a width, widest first down to the
+       reference, each naming its instruction set and the level it needs;
+       a call resolves its level once (hf__kernels_for: the widest the
+       level asked for and the CPU allow), and what a width does not take
+       goes to a narrower one. One kernel written once for any
+       width (the rope step's contacts and rows, interpolation into
        strands and into GPU points) is a kernel text, compiled once per
-       width by the header including itself (HF_HEADER_FILENAME) and
-       named by its lanes: _v4 (SSE2 or NEON), _v8 (AVX2), _v16
-       (AVX-512). Each copy is a function with the text's own lines, so a
-       debugger stops in the AVX2 rope kernel at "break
-       hf__ropes_ftl_row_v8" (more in 0.5, "Kernel texts").
+       width by the header including itself (HF_HEADER_FILENAME). Each
+       copy is a function with the text's own lines, so a debugger stops
+       in the AVX2 rope kernel at "break hf__ropes_ftl_row_v8" (more in
+       0.5, "Kernel texts").
 
    VERSION HISTORY
 
@@ -2424,16 +2428,17 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 
 /* ---- 0.2 SIMD levels ---------------------------------------------------- */
 
-/* SIMD levels. A kernel named hf__<name>_sse (or _neon, _avx2, _avx512;
-   _v4 for one written once for SSE2 and NEON; _v4, _v8 or _v16 for a
-   kernel text built at four, eight or sixteen lanes, see "Kernel texts"
-   below) follows its scalar reference
-   hf__<name>_ref; every level uses the same IEEE operations in the same
-   order (no FMA), so all give the same bytes (in the default rounding
-   mode: the vector encoders of normalized formats convert by the mode,
-   the scalar one adds and takes away 1.5 * 2^23), and one function per
-   stage picks between them (the dispatch) with the level hf_simd_resolve
-   gives.
+/* SIMD levels. A kernel is named by its lanes: hf__<name>_v4 (SSE2 or
+   NEON), _v8 (AVX2) or _v16 (AVX-512), written for its instruction set
+   or built from a kernel text (see "Kernel texts" below); each follows
+   its scalar reference hf__<name>_v1 (an _in after the width: an inline
+   body of the kernel). Every level uses the same IEEE operations in the
+   same order (no FMA), so all give the same bytes (in the default
+   rounding mode: the vector encoders of normalized formats convert by
+   the mode, the scalar one adds and takes away 1.5 * 2^23). Each
+   stage's descriptors (one a width, with its instruction set) and the
+   one resolver that picks among them by the level hf_simd_resolve gives
+   are in 1, "The dispatch".
    SSE2 is the baseline wherever the compiler targets it, NEON on ARM64.
    AVX2 and AVX-512 kernels are compiled into any x86 build (target
    attributes on gcc and clang, none needed on MSVC) and picked at run
@@ -2946,6 +2951,52 @@ HFDEF int hf_simd_resolve(int requested)
         return best;
     return requested < best ? requested : best;
 }
+
+/* The dispatch, one shape for every stage. A stage's kernels stand in a
+   const array of descriptors beside them, hf__<stage>_widths, one a
+   width, widest first, ending with the scalar reference (width 1, which
+   every build has). Each descriptor opens with its hf__isa: the lanes,
+   the hf_simd_level it needs and the instruction set its kernels use (a
+   kernel is named by its width, hf__<name>_v1, _v4, _v8 or _v16, not by
+   its ISA: _v4 is SSE2 or NEON, whichever the build targets). A call
+   resolves its level once, hf__kernels_for(widths, level): the widest
+   descriptor whose level is at most the one asked for (0: the best) and
+   the CPU runs. From there a stage either calls one kernel for its whole
+   range, or walks down the array: a kernel does what its width can (whole
+   groups of its lanes, or the data shapes it is built for) and returns
+   where it stopped, the narrower ones take the rest, and the scalar one
+   finishes. */
+typedef struct hf__isa {
+    int lanes;        /* 1, 4, 8 or 16 */
+    int level;        /* the hf_simd_level its kernels need */
+    const char *name; /* the instruction set: "scalar", "SSE2", ... */
+} hf__isa;
+/* a descriptor's hf__isa, between braces: {{HF__ISA_V4}, kernels...} */
+#define HF__ISA_V1 1, HF_SIMD_SCALAR, "scalar"
+#if HF__SSE
+#define HF__ISA_V4 4, HF_SIMD_SSE2, "SSE2"
+#else
+#define HF__ISA_V4 4, HF_SIMD_NEON, "NEON"
+#endif
+#define HF__ISA_V8 8, HF_SIMD_AVX2, "AVX2"
+#define HF__ISA_V16 16, HF_SIMD_AVX512, "AVX-512"
+
+/* The index in a stage's widths (first descriptor widest, `size` bytes
+   each) of the one hf__kernels_for picks for the requested level. */
+HF__PRIVATE int hf__kernels_index(const hf__isa *widest, size_t size,
+                                  int requested)
+{
+    const int level = hf_simd_resolve(requested);
+    const unsigned char *d = (const unsigned char *)widest;
+    int i = 0;
+    while (((const hf__isa *)(const void *)(d + (size_t)i * size))->level >
+           level)
+        ++i;
+    return i;
+}
+#define hf__kernels_for(widths, requested)                                     \
+    ((widths) +                                                                \
+     hf__kernels_index(&(widths)[0].isa, sizeof((widths)[0]), (requested)))
 
 /* ---- 1.1 defaults: what every zero field means, in one place ------------ */
 
@@ -5109,6 +5160,9 @@ typedef struct hf__col_prep {
    walks them in batches of this many (hf__ftl_collide_one). */
 #define HF__FTL_NEAR 8
 
+struct hf__pose_kernels; /* the kernels per width: 6.4, 6.8 */
+struct hf__rope_rows;
+
 /* Resolved per-call constants. */
 typedef struct hf__rope_step {
     int n;             /* sub-steps */
@@ -5126,6 +5180,10 @@ typedef struct hf__rope_step {
     int global_on, local_on;
     int ktab; /* kg, kl hold hf__rope_kg, hf__rope_kl */
     int level; /* hf_simd_resolve(params->simd) */
+    /* its kernels (hf__kernels_for): the pose rows, the rows of a
+       sub-step */
+    const struct hf__pose_kernels *pose;
+    const struct hf__rope_rows *rows;
     float kg[HF__ROPE_KTAB], kl[HF__ROPE_KTAB];
 } hf__rope_step;
 
@@ -5527,12 +5585,12 @@ HF__PRIVATE hf__v4 hf__rope_unit_v4(const hf__v4 *v, hf__v4 *out)
     return HF__GT(m, HF__SET1(1e-30f));
 }
 
-/* hf__ropes_write_roots for ropes [r, r + 4): the same operations lane by
-   lane, so the same bytes; a degenerate tangent, rare, through
+/* hf__ropes_write_roots_v1 for ropes [r, r + 4): the same operations lane
+   by lane, so the same bytes; a degenerate tangent, rare, through
    hf__rope_perp lane by lane. */
-HF__PRIVATE void hf__ropes_write_roots_v4(hf_ropes *ro, int r,
-                                          const float *pos, const float *nrm,
-                                          const float *tan, int stride)
+HF__PRIVATE void hf__ropes_write_roots4(hf_ropes *ro, int r, const float *pos,
+                                        const float *nrm, const float *tan,
+                                        int stride)
 {
     const size_t R = (size_t)ro->rope_count;
     const hf__v4 zero = HF__SET1(0.0f);
@@ -5587,18 +5645,27 @@ HF__PRIVATE void hf__ropes_write_roots_v4(hf_ropes *ro, int r,
         HF__ST(ro->frame + (size_t)(9 + k) * R + (size_t)r, v[k]);
     }
 }
+
+/* The root frames of ropes [a, b), whole groups of four; returns where
+   they end. */
+HF__PRIVATE int hf__ropes_write_roots_v4(hf_ropes *ro, int a, int b,
+                                         const float *pos, const float *nrm,
+                                         const float *tan, int stride)
+{
+    for (; a + 4 <= b; a += 4)
+        hf__ropes_write_roots4(ro, a, pos, nrm, tan, stride);
+    return a;
+}
 #endif
 
-HF__PRIVATE void hf__ropes_write_roots(hf_ropes *ro, int first, int count,
-                                       const float *pos, const float *nrm,
-                                       const float *tan, int stride)
+/* The root frames of ropes [a, b) from their roots' positions, normals
+   and tangents: the reference. */
+HF__PRIVATE int hf__ropes_write_roots_v1(hf_ropes *ro, int a, int b,
+                                         const float *pos, const float *nrm,
+                                         const float *tan, int stride)
 {
-    int r = first;
-#if HF__V4
-    for (; r + 4 <= first + count; r += 4)
-        hf__ropes_write_roots_v4(ro, r, pos, nrm, tan, stride);
-#endif
-    for (; r < first + count; ++r) {
+    int r;
+    for (r = a; r < b; ++r) {
         float n[3], t[3], f[12];
         const float *tin = hf__rope_at(tan, stride, (size_t)r);
         hf__rope_unit(hf__rope_at(nrm, stride, (size_t)r), n);
@@ -5606,6 +5673,30 @@ HF__PRIVATE void hf__ropes_write_roots(hf_ropes *ro, int first, int count,
         hf__rope_basis(hf__rope_at(pos, stride, (size_t)r), n, t, f);
         hf__rope_put_frame(ro, 0, r, f);
     }
+    return b;
+}
+
+typedef struct hf__roots_kernels {
+    hf__isa isa;
+    int (*write)(hf_ropes *, int, int, const float *, const float *,
+                 const float *, int);
+} hf__roots_kernels;
+
+static const hf__roots_kernels hf__roots_widths[] = {
+#if HF__V4
+    {{HF__ISA_V4}, hf__ropes_write_roots_v4},
+#endif
+    {{HF__ISA_V1}, hf__ropes_write_roots_v1}};
+
+/* The dispatch of the root frames at SIMD level `simd` (hf__roots_widths). */
+HF__PRIVATE void hf__ropes_write_roots(hf_ropes *ro, int first, int count,
+                                       const float *pos, const float *nrm,
+                                       const float *tan, int stride, int simd)
+{
+    const hf__roots_kernels *k = hf__kernels_for(hf__roots_widths, simd);
+    int a = first;
+    for (; a < first + count; ++k)
+        a = k->write(ro, a, first + count, pos, nrm, tan, stride);
 }
 
 /* The root frame at fraction alpha of the way from the previous frame to
@@ -5665,11 +5756,12 @@ HF__PRIVATE void hf__rope_reset_one(hf_ropes *ro, int r)
     ro->blend[r] = ro->mode[r] == HF_ROPE_ANIMATED ? 1.0f : 0.0f;
 }
 
-HFDEF hf_result hf_ropes_set_rest(hf_ropes *ropes, int first, int count,
-                                  const float *positions, int position_stride,
-                                  const float *root_pos,
-                                  const float *root_normal,
-                                  const float *root_tangent, int root_stride)
+/* hf_ropes_set_rest with the root frames' kernels at SIMD level simd (the
+   fur's: hf_fur_set_kernels) */
+HF__PRIVATE hf_result hf__ropes_set_rest(
+    hf_ropes *ropes, int first, int count, const float *positions,
+    int position_stride, const float *root_pos, const float *root_normal,
+    const float *root_tangent, int root_stride, int simd)
 {
     size_t P, R;
     hf_result res;
@@ -5692,7 +5784,7 @@ HFDEF hf_result hf_ropes_set_rest(hf_ropes *ropes, int first, int count,
             if (!hf__rope_coord_ok(q)) return HF_ERROR_BAD_PARAMETER;
         }
     hf__ropes_write_roots(ropes, first, count, root_pos, root_normal,
-                          root_tangent, root_stride);
+                          root_tangent, root_stride, simd);
     for (r = first; r < first + count; ++r) {
         float f[12], total = 0.0f;
         hf__rope_get_frame(ropes, 0, r, f);
@@ -5725,10 +5817,23 @@ HFDEF hf_result hf_ropes_set_rest(hf_ropes *ropes, int first, int count,
     return HF_OK;
 }
 
-HFDEF hf_result hf_ropes_set_roots(hf_ropes *ropes, int first, int count,
-                                   const float *root_pos,
-                                   const float *root_normal,
-                                   const float *root_tangent, int root_stride)
+HFDEF hf_result hf_ropes_set_rest(hf_ropes *ropes, int first, int count,
+                                  const float *positions, int position_stride,
+                                  const float *root_pos,
+                                  const float *root_normal,
+                                  const float *root_tangent, int root_stride)
+{
+    return hf__ropes_set_rest(ropes, first, count, positions, position_stride,
+                              root_pos, root_normal, root_tangent, root_stride,
+                              HF_SIMD_AUTO);
+}
+
+/* hf_ropes_set_roots at SIMD level simd (the fur's) */
+HF__PRIVATE hf_result hf__ropes_set_roots(hf_ropes *ropes, int first, int count,
+                                          const float *root_pos,
+                                          const float *root_normal,
+                                          const float *root_tangent,
+                                          int root_stride, int simd)
 {
     hf_result res;
     if (!hf__ropes_ok(ropes)) return HF_ERROR_NULL_POINTER;
@@ -5737,8 +5842,17 @@ HFDEF hf_result hf_ropes_set_roots(hf_ropes *ropes, int first, int count,
                                 root_tangent, root_stride);
     if (res != HF_OK) return res;
     hf__ropes_write_roots(ropes, first, count, root_pos, root_normal,
-                          root_tangent, root_stride);
+                          root_tangent, root_stride, simd);
     return HF_OK;
+}
+
+HFDEF hf_result hf_ropes_set_roots(hf_ropes *ropes, int first, int count,
+                                   const float *root_pos,
+                                   const float *root_normal,
+                                   const float *root_tangent, int root_stride)
+{
+    return hf__ropes_set_roots(ropes, first, count, root_pos, root_normal,
+                               root_tangent, root_stride, HF_SIMD_AUTO);
 }
 
 /* Rope r starts gliding to animation: its pose, in the coordinates of the
@@ -5854,9 +5968,9 @@ HFDEF hf_result hf_ropes_max_stretch(const hf_ropes *ropes, int first,
    starts at rope `base` (a for a buffer of exactly the range, 0 for
    absolute indexing), at any stride: the reference, and the kernels'
    tails where their blocks of points end. */
-HF__PRIVATE void hf__ropes_copy_ref(const hf_ropes *ro, int a, int b,
-                                    size_t j0, float *out, size_t stride,
-                                    int base)
+HF__PRIVATE void hf__ropes_copy_points(const hf_ropes *ro, int a, int b,
+                                       size_t j0, float *out, size_t stride,
+                                       int base)
 {
     const size_t R = (size_t)ro->rope_count, P = (size_t)ro->points;
     size_t j;
@@ -5893,8 +6007,8 @@ HF__INLINE void hf__ropes_out_rows(const hf_ropes *ro, size_t j, int n,
 
 /* Ropes [r, r + 4) into packed output that starts at rope `base`: four
    points at a time, three 4 x 4 transposes (hf__ropes_out_rows). */
-HF__PRIVATE void hf__ropes_get_sse(const hf_ropes *ro, int r, float *out,
-                                   int base)
+HF__PRIVATE void hf__ropes_copy4(const hf_ropes *ro, int r, float *out,
+                                 int base)
 {
     const size_t P = (size_t)ro->points;
     size_t j, i;
@@ -5916,7 +6030,7 @@ HF__PRIVATE void hf__ropes_get_sse(const hf_ropes *ro, int r, float *out,
             _mm_storeu_ps(out + i + 9 * P, v3);
         }
     }
-    hf__ropes_copy_ref(ro, r, r + 4, j, out, 12, base);
+    hf__ropes_copy_points(ro, r, r + 4, j, out, 12, base);
 }
 #endif
 
@@ -5944,11 +6058,10 @@ HF__TARGET_AVX2 HF__INLINE void hf__ropes_t8x4(const float *const *q,
     _mm256_storeu_ps(o + 3 * step, _mm256_shuffle_ps(a1, a3, 0xee));
 }
 
-/* hf__ropes_get_sse for ropes [r, r + 8), eight points at a time: three
+/* hf__ropes_copy4 for ropes [r, r + 8), eight points at a time: three
    8 x 8 transposes (hf__ropes_out_rows). */
-HF__TARGET_AVX2 HF__PRIVATE void hf__ropes_get_avx2(const hf_ropes *ro,
-                                                   int r, float *out,
-                                                   int base)
+HF__TARGET_AVX2 HF__PRIVATE void hf__ropes_copy8(const hf_ropes *ro, int r,
+                                                 float *out, int base)
 {
     const size_t P = (size_t)ro->points;
     size_t j;
@@ -5964,26 +6077,61 @@ HF__TARGET_AVX2 HF__PRIVATE void hf__ropes_get_avx2(const hf_ropes *ro,
         hf__ropes_t8x4(row + 16, 4, o + 16 + 12 * P, 3 * P);
     }
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
-    hf__ropes_copy_ref(ro, r, r + 8, j, out, 12, base);
+    hf__ropes_copy_points(ro, r, r + 8, j, out, 12, base);
+}
+
+/* Ropes [a, b), whole groups of eight, packed output only; returns where
+   they end. */
+HF__PRIVATE int hf__ropes_copy_v8(const hf_ropes *ro, int a, int b, float *out,
+                                  size_t stride, int base)
+{
+    if (stride == 12)
+        for (; a + 8 <= b; a += 8) hf__ropes_copy8(ro, a, out, base);
+    return a;
 }
 #endif
 
-/* The dispatch of the rope-major copies: the kernels above take packed
-   groups of eight and four ropes at `level` and above, the reference the
-   rest, at any stride. */
-HF__PRIVATE void hf__ropes_copy(const hf_ropes *ro, int a, int b, float *out,
-                                size_t stride, int base, int level)
+#if HF__SSE
+/* hf__ropes_copy_v8 in groups of four */
+HF__PRIVATE int hf__ropes_copy_v4(const hf_ropes *ro, int a, int b, float *out,
+                                  size_t stride, int base)
 {
+    if (stride == 12)
+        for (; a + 4 <= b; a += 4) hf__ropes_copy4(ro, a, out, base);
+    return a;
+}
+#endif
+
+/* Ropes [a, b) at any stride: the reference; returns b. */
+HF__PRIVATE int hf__ropes_copy_v1(const hf_ropes *ro, int a, int b, float *out,
+                                  size_t stride, int base)
+{
+    hf__ropes_copy_points(ro, a, b, 0, out, stride, base);
+    return b;
+}
+
+typedef struct hf__copy_kernels {
+    hf__isa isa;
+    int (*copy)(const hf_ropes *, int, int, float *, size_t, int);
+} hf__copy_kernels;
+
+static const hf__copy_kernels hf__copy_widths[] = {
 #if HF__AVX2
-    if (stride == 12 && level >= HF_SIMD_AVX2)
-        for (; a + 8 <= b; a += 8) hf__ropes_get_avx2(ro, a, out, base);
+    {{HF__ISA_V8}, hf__ropes_copy_v8},
 #endif
 #if HF__SSE
-    if (stride == 12 && level >= HF_SIMD_SSE2)
-        for (; a + 4 <= b; a += 4) hf__ropes_get_sse(ro, a, out, base);
+    {{HF__ISA_V4}, hf__ropes_copy_v4},
 #endif
-    (void)level;
-    hf__ropes_copy_ref(ro, a, b, 0, out, stride, base);
+    {{HF__ISA_V1}, hf__ropes_copy_v1}};
+
+/* The dispatch of the rope-major copies at SIMD level `simd`
+   (hf__copy_widths): the widest kernel the level runs takes what it can,
+   the narrower ones the rest. */
+HF__PRIVATE void hf__ropes_copy(const hf_ropes *ro, int a, int b, float *out,
+                                size_t stride, int base, int simd)
+{
+    const hf__copy_kernels *k = hf__kernels_for(hf__copy_widths, simd);
+    for (; a < b; ++k) a = k->copy(ro, a, b, out, stride, base);
 }
 
 HFDEF hf_result hf_ropes_get_positions(const hf_ropes *ropes, int first,
@@ -5993,8 +6141,7 @@ HFDEF hf_result hf_ropes_get_positions(const hf_ropes *ropes, int first,
     if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
     if (!hf__stride_ok(out, stride, 12)) return HF_ERROR_BAD_STRIDE;
     hf__ropes_copy(ropes, first, first + count, out,
-                   (size_t)(stride ? stride : 12), 0,
-                   hf_simd_resolve(HF_SIMD_AUTO));
+                   (size_t)(stride ? stride : 12), 0, HF_SIMD_AUTO);
     return HF_OK;
 }
 
@@ -6005,8 +6152,7 @@ HFDEF hf_result hf_ropes_copy_range(const hf_ropes *ropes, int first,
     if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
     if (!hf__stride_ok(out, stride, 12)) return HF_ERROR_BAD_STRIDE;
     hf__ropes_copy(ropes, first, first + count, out,
-                   (size_t)(stride ? stride : 12), first,
-                   hf_simd_resolve(HF_SIMD_AUTO));
+                   (size_t)(stride ? stride : 12), first, HF_SIMD_AUTO);
     return HF_OK;
 }
 
@@ -6078,13 +6224,12 @@ HF__PRIVATE void hf__frame_rows(const float *fr, size_t stride,
 }
 
 /* Point row j of ropes [a, b) at frame rows fr (12 rows) times rest:
-   the scalar reference, the four-lane kernel (whole groups from a,
-   returns where they end) and their dispatch. */
-HF__PRIVATE void hf__rope_pose_row_ref(const hf_ropes *ro, int j, int a,
-                                       int b, const float *fr,
-                                       float *HF__RESTRICT ox,
-                                       float *HF__RESTRICT oy,
-                                       float *HF__RESTRICT oz)
+   the scalar reference, the four-lane kernel (whole groups from a), each
+   returning where it stopped, and their dispatch. */
+HF__PRIVATE int hf__rope_pose_row_v1(const hf_ropes *ro, int j, int a, int b,
+                                     const float *fr, float *HF__RESTRICT ox,
+                                     float *HF__RESTRICT oy,
+                                     float *HF__RESTRICT oz)
 {
     const size_t R = (size_t)ro->rope_count;
     const float *u = HF__ROW(ro->rest_u, j, R), *v = HF__ROW(ro->rest_v, j, R),
@@ -6097,6 +6242,7 @@ HF__PRIVATE void hf__rope_pose_row_ref(const hf_ropes *ro, int j, int a,
         oy[r] = f[1][r] + f[4][r] * u[r] + f[7][r] * v[r] + f[10][r] * w[r];
         oz[r] = f[2][r] + f[5][r] * u[r] + f[8][r] * v[r] + f[11][r] * w[r];
     }
+    return b;
 }
 
 #if HF__V4
@@ -6127,15 +6273,28 @@ hf__rope_pose_row_v4(const hf_ropes *ro, int j, int a, int b, const float *fr,
 }
 #endif
 
+typedef struct hf__pose_kernels {
+    hf__isa isa;
+    int (*row)(const hf_ropes *, int, int, int, const float *, float *, float *,
+               float *);
+} hf__pose_kernels;
+
+static const hf__pose_kernels hf__pose_widths[] = {
+#if HF__V4
+    {{HF__ISA_V4}, hf__rope_pose_row_v4},
+#endif
+    {{HF__ISA_V1}, hf__rope_pose_row_v1}};
+
+/* The dispatch of a pose row with the kernels st->pose (hf__pose_widths,
+   resolved by hf__rope_step_setup). */
 HF__PRIVATE void hf__rope_pose_row(const hf_ropes *ro, int j, int a, int b,
                                    const float *fr, float *HF__RESTRICT ox,
                                    float *HF__RESTRICT oy,
-                                   float *HF__RESTRICT oz)
+                                   float *HF__RESTRICT oz,
+                                   const hf__rope_step *st)
 {
-#if HF__V4
-    a = hf__rope_pose_row_v4(ro, j, a, b, fr, ox, oy, oz);
-#endif
-    hf__rope_pose_row_ref(ro, j, a, b, fr, ox, oy, oz);
+    const hf__pose_kernels *k = st->pose;
+    for (; a < b; ++k) a = k->row(ro, j, a, b, fr, ox, oy, oz);
 }
 
 /* Animated ropes [a, b): rest pose carried by the current frame; previous
@@ -6159,9 +6318,9 @@ HF__PRIVATE void hf__ropes_animated_run(hf_ropes *ro, int a, int b,
     }
     for (j = 0; j < ro->points; ++j) {
         hf__rope_pose_row(ro, j, a, b, F, HF__ROW(ro->x, j, R),
-                          HF__ROW(ro->y, j, R), HF__ROW(ro->z, j, R));
+                          HF__ROW(ro->y, j, R), HF__ROW(ro->z, j, R), st);
         hf__rope_pose_row(ro, j, a, b, G, HF__ROW(ro->px, j, R),
-                          HF__ROW(ro->py, j, R), HF__ROW(ro->pz, j, R));
+                          HF__ROW(ro->py, j, R), HF__ROW(ro->pz, j, R), st);
     }
 }
 
@@ -7005,8 +7164,8 @@ HF__PRIVATE const float *hf__ropes_substep_prep(hf_ropes *ro, int a, int b,
 
 /* Position Verlet for points 1.. of ropes [a, b), then the root pinned to
    the frame F. */
-HF__PRIVATE void hf__ropes_integrate_ref(hf_ropes *ro, const float *F, int a,
-                                         int b)
+HF__PRIVATE void hf__ropes_integrate_v1(hf_ropes *ro, const float *F, int a,
+                                        int b)
 {
     const size_t R = (size_t)ro->rope_count;
     const int P = ro->points;
@@ -7041,14 +7200,13 @@ HF__PRIVATE void hf__ropes_integrate_ref(hf_ropes *ro, const float *F, int a,
         ro->py[r] = ro->y[r];
         ro->pz[r] = ro->z[r];
     }
-    hf__rope_pose_row(ro, 0, a, b, F, ro->x, ro->y, ro->z);
+    hf__rope_pose_row_v1(ro, 0, a, b, F, ro->x, ro->y, ro->z);
 }
 
 /* Shape: the root segment and the global pose, each point pulled toward
    its rest place in the frame F. */
-HF__PRIVATE void hf__ropes_global_shape_ref(hf_ropes *ro, const float *F,
-                                            int a, int b,
-                                            const hf__rope_step *st)
+HF__PRIVATE void hf__ropes_global_shape_v1(hf_ropes *ro, const float *F, int a,
+                                           int b, const hf__rope_step *st)
 {
     const size_t R = (size_t)ro->rope_count;
     const int P = ro->points;
@@ -7081,9 +7239,8 @@ HF__PRIVATE void hf__ropes_global_shape_ref(hf_ropes *ro, const float *F,
 /* Local shape: each segment toward its rest direction relative to its
    parent segment (the rest offset turned by the smallest rotation that
    takes the parent's rest direction to its current one). */
-HF__PRIVATE void hf__ropes_local_shape_ref(hf_ropes *ro, const float *F,
-                                           int a, int b,
-                                           const hf__rope_step *st)
+HF__PRIVATE void hf__ropes_local_shape_v1(hf_ropes *ro, const float *F, int a,
+                                          int b, const hf__rope_step *st)
 {
     const size_t R = (size_t)ro->rope_count;
     const int P = ro->points;
@@ -7161,9 +7318,8 @@ HF__PRIVATE void hf__ropes_local_shape_ref(hf_ropes *ro, const float *F,
 }
 
 /* The solver passes, each a distance pass with its collisions. */
-HF__PRIVATE void hf__ropes_solve_ref(hf_ropes *ro, const float *F, int a,
-                                     int b, const hf__rope_step *st,
-                                     const hf__bp *bp)
+HF__PRIVATE void hf__ropes_solve_v1(hf_ropes *ro, const float *F, int a, int b,
+                                    const hf__rope_step *st, const hf__bp *bp)
 {
     const size_t R = (size_t)ro->rope_count;
     const int P = ro->points;
@@ -7238,22 +7394,25 @@ HF__PRIVATE void hf__ropes_solve_ref(hf_ropes *ro, const float *F, int a,
     if (st->iterations == 0 && bp) hf__ropes_collide(ro, F, a, b, bp, 0);
 }
 
-/* One sub-step of simulated ropes [a, b), the scalar reference. */
-HF__PRIVATE void hf__ropes_substep_ref(hf_ropes *ro, const float *F, int a,
-                                       int b, const hf__rope_step *st,
-                                       const hf__bp *bp)
+/* One sub-step of simulated ropes [a, b), the scalar reference (the
+   width-1 entry of hf__rope_widths: k unused); returns b. */
+HF__PRIVATE int hf__ropes_substep_v1(hf_ropes *ro, const float *F, int a, int b,
+                                     const hf__rope_step *st, const hf__bp *bp,
+                                     const struct hf__rope_rows *k)
 {
-    hf__ropes_integrate_ref(ro, F, a, b);
+    (void)k;
+    hf__ropes_integrate_v1(ro, F, a, b);
     if (st->k_root > 0.0f || st->global_on)
-        hf__ropes_global_shape_ref(ro, F, a, b, st);
-    if (st->local_on) hf__ropes_local_shape_ref(ro, F, a, b, st);
-    hf__ropes_solve_ref(ro, F, a, b, st, bp);
+        hf__ropes_global_shape_v1(ro, F, a, b, st);
+    if (st->local_on) hf__ropes_local_shape_v1(ro, F, a, b, st);
+    hf__ropes_solve_v1(ro, F, a, b, st, bp);
+    return b;
 }
 
 /* Marks (VF[r] = 1) the ropes of [a, b) whose point row j lies beyond the
    squared distance KB[r] from the root, or is NaN. */
-HF__PRIVATE void hf__ropes_mark_far_ref(const hf_ropes *ro, int j, int a,
-                                        int b, const float *KB, float *VF)
+HF__PRIVATE void hf__ropes_mark_far_row(const hf_ropes *ro, int j, int a, int b,
+                                        const float *KB, float *VF)
 {
     const size_t R = (size_t)ro->rope_count;
     const float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
@@ -7834,7 +7993,7 @@ HF__VTARGET HF__INLINE void HF__KN(hf__ftl_list)(hf_ropes *ro, const float *F,
    once like the contact kernels, with the safety net's test of every
    point row (hf__ropes_mark_far_v<W>, whole groups from a).
    HF__VZEROUPPER() ends each (see HF__TARGET_AVX2). */
-/* The root pinned to the frame F (hf__ropes_integrate_ref's last loop). */
+/* The root pinned to the frame F (hf__ropes_integrate_v1's last loop). */
 HF__VTARGET HF__PRIVATE void
 HF__KN(hf__ropes_pin_root)(hf_ropes *ro, const float *F, int a, int b)
 {
@@ -7921,7 +8080,7 @@ HF__KN(hf__ropes_integrate_row)(hf_ropes *ro, const float *F, int j, int a,
 /* Row j's local shape: segment m = j - 1's world rest direction into the
    scratch rows Q[m & 1] (the child direction q of point j + 1's turn, the
    parent direction p of point j + 2's), then point j turned as in
-   hf__ropes_local_shape_ref at its j = m; the next row is prefetched. */
+   hf__ropes_local_shape_v1 at its j = m; the next row is prefetched. */
 HF__VTARGET HF__PRIVATE void
 HF__KN(hf__ropes_local_row)(hf_ropes *ro, const float *F, int j, int a, int b,
                             const hf__rope_step *st, float *Q[2][3])
@@ -8135,7 +8294,7 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__ropes_distance_row)(hf_ropes *ro, int j,
     HF__VZEROUPPER();
 }
 
-/* hf__ropes_mark_far_ref for every point row, on whole groups of W ropes
+/* hf__ropes_mark_far_row for every point row, on whole groups of W ropes
    from a; returns where the groups end. */
 HF__VTARGET HF__PRIVATE int HF__KN(hf__ropes_mark_far)(const hf_ropes *ro,
                                                        int a, int b,
@@ -8166,18 +8325,17 @@ HF__VTARGET HF__PRIVATE int HF__KN(hf__ropes_mark_far)(const hf_ropes *ro,
 #ifndef HF__PASS
 
 /* ---- 6.8 the kernels per width, their dispatch, hf_ropes_step ----------- */
-#if HF__V4
-/* the rope kernels at four lanes (at eight and sixteen after
-   hf__ropes_collide) */
-#define HF__PASS HF__PASS_ROPES
-#define HF__W 4
-#include HF_HEADER_FILENAME
-
-/* The row kernels of one SIMD width (the four-lane ones, and the eight-
-   and sixteen-lane ones below), for whole groups of `lanes` ropes at
-   `level` and above. */
+/* The rope kernels of one SIMD width (hf__rope_widths): a sub-step of
+   ropes [a, b) (returns where it stopped: whole groups of its lanes, or
+   all of them at width 1) and the safety net's test (likewise), and the
+   row kernels that hf__ropes_substep_rows fuses into a sub-step (none at
+   width 1: the scalar reference, hf__ropes_substep_v1, is a sub-step of
+   its own). */
 typedef struct hf__rope_rows {
-    int lanes, level;
+    hf__isa isa;
+    int (*substep)(hf_ropes *, const float *, int, int, const hf__rope_step *,
+                   const hf__bp *, const struct hf__rope_rows *);
+    int (*mark_far)(const hf_ropes *, int, int, const float *, float *);
     void (*pin_root)(hf_ropes *, const float *, int, int);
     void (*integrate)(hf_ropes *, const float *, int, int, int,
                       const hf__rope_step *);
@@ -8186,11 +8344,17 @@ typedef struct hf__rope_rows {
     void (*ftl)(hf_ropes *, const float *, int, int, int,
                 const hf__rope_step *, const hf__bp *);
     void (*distance)(hf_ropes *, int, int, int);
-    int (*mark_far)(const hf_ropes *, int, int, const float *, float *);
 } hf__rope_rows;
 
+#if HF__V4
+/* the rope kernels at four lanes (at eight and sixteen after
+   hf__ropes_collide) */
+#define HF__PASS HF__PASS_ROPES
+#define HF__W 4
+#include HF_HEADER_FILENAME
+
 /* One sub-step with the row kernels k (ropes [a, b), whole groups of the
-   kernels' width): what hf__ropes_substep_ref does, with the same
+   kernels' width): what hf__ropes_substep_v1 does, with the same
    operations per rope. Loops still run across ropes (a chain of dependent
    square roots and divisions per rope, point after point, leaves no
    parallelism otherwise), but rows are fused where the order between them
@@ -8198,16 +8362,17 @@ typedef struct hf__rope_rows {
    the local shape); then per row, integration with the global pull, and
    the local shape of the point before, which reads rows up to j only;
    each FTL placement, then its collisions (the non-FTL ones through the
-   four-lane kernel at every width). */
-HF__PRIVATE void hf__ropes_substep_rows(hf_ropes *ro, const float *F, int a,
-                                        int b, const hf__rope_step *st,
-                                        const hf__bp *bp,
-                                        const hf__rope_rows *k)
+   four-lane kernel at every width). Returns where the whole groups end. */
+HF__PRIVATE int hf__ropes_substep_rows(hf_ropes *ro, const float *F, int a,
+                                       int b, const hf__rope_step *st,
+                                       const hf__bp *bp, const hf__rope_rows *k)
 {
     const size_t R = (size_t)ro->rope_count;
     const int P = ro->points;
     float *Q[2][3];
     int j, it;
+    b = a + (b - a) / k->isa.lanes * k->isa.lanes;
+    if (b == a) return a;
     for (j = 0; j < 3; ++j) { /* scratch rows G: unused by simulated ropes */
         Q[0][j] = HF__ROW(ro->scratch, HF__RS_G + j, R);
         Q[1][j] = HF__ROW(ro->scratch, HF__RS_G + 3 + j, R);
@@ -8227,13 +8392,8 @@ HF__PRIVATE void hf__ropes_substep_rows(hf_ropes *ro, const float *F, int a,
     }
     if (st->iterations == 0 && bp)
         hf__ropes_collide(ro, F, a, b, bp, st->level);
+    return b;
 }
-
-static const hf__rope_rows hf__rope_rows_v4 = {
-    4, HF_SIMD_SSE2, hf__ropes_pin_root_v4, hf__ropes_integrate_row_v4,
-    hf__ropes_local_row_v4, hf__ropes_ftl_row_v4, hf__ropes_distance_row_v4,
-    hf__ropes_mark_far_v4};
-
 #endif
 
 /* The distance solver's collisions for ropes [a, b): per tile, the box
@@ -8316,65 +8476,58 @@ HF__PRIVATE void hf__ropes_collide(hf_ropes *ro, const float *F, int a, int b,
 #include HF_HEADER_FILENAME
 #endif
 
-/* The rows eight (sixteen) ropes a vector, for hf__ropes_substep_rows.
-   Each is a function of its own, so no SSE code runs between them with
-   the upper halves dirty. */
-static const hf__rope_rows hf__rope_rows_avx2 = {
-    8, HF_SIMD_AVX2, hf__ropes_pin_root_v8, hf__ropes_integrate_row_v8,
-    hf__ropes_local_row_v8, hf__ropes_ftl_row_v8, hf__ropes_distance_row_v8,
-    hf__ropes_mark_far_v8};
-#if HF__AVX512
-static const hf__rope_rows hf__rope_rows_avx512 = {
-    16, HF_SIMD_AVX512, hf__ropes_pin_root_v16, hf__ropes_integrate_row_v16,
-    hf__ropes_local_row_v16, hf__ropes_ftl_row_v16,
-    hf__ropes_distance_row_v16, hf__ropes_mark_far_v16};
-#endif
 #endif
 
-#if HF__V4
-/* The row kernels this build has, widest first: each takes whole groups
-   of its lanes from where the wider ones stopped, at its level and above;
-   the scalar reference takes the rest. */
-static const hf__rope_rows *const hf__rope_widths[] = {
+/* hf__ropes_mark_far_row for every point row of ropes [a, b): the
+   reference; returns b. */
+HF__PRIVATE int hf__ropes_mark_far_v1(const hf_ropes *ro, int a, int b,
+                                      const float *KB, float *VF)
+{
+    int j;
+    for (j = 1; j < ro->points; ++j)
+        hf__ropes_mark_far_row(ro, j, a, b, KB, VF);
+    return b;
+}
+
+/* The rope kernels per width, widest first. The rows eight (sixteen)
+   ropes a vector are each a function of its own, so no SSE code runs
+   between them with the upper halves dirty. */
+#define HF__ROPE_ROWS_AT(W)                                                    \
+    hf__ropes_substep_rows, hf__ropes_mark_far_v##W, hf__ropes_pin_root_v##W,  \
+        hf__ropes_integrate_row_v##W, hf__ropes_local_row_v##W,                \
+        hf__ropes_ftl_row_v##W, hf__ropes_distance_row_v##W
+static const hf__rope_rows hf__rope_widths[] = {
 #if HF__AVX512
-    &hf__rope_rows_avx512,
+    {{HF__ISA_V16}, HF__ROPE_ROWS_AT(16)},
 #endif
 #if HF__AVX2
-    &hf__rope_rows_avx2,
+    {{HF__ISA_V8}, HF__ROPE_ROWS_AT(8)},
 #endif
-    &hf__rope_rows_v4, NULL};
+#if HF__V4
+    {{HF__ISA_V4}, HF__ROPE_ROWS_AT(4)},
 #endif
+    {{HF__ISA_V1}, hf__ropes_substep_v1, hf__ropes_mark_far_v1, NULL, NULL, NULL,
+     NULL, NULL}};
+#undef HF__ROPE_ROWS_AT
 
-/* The dispatch of the simulated rope kernels (hf__rope_widths). */
+/* The dispatch of a sub-step with the kernels st->rows (hf__rope_widths,
+   resolved by hf__rope_step_setup): each width takes whole groups of its
+   lanes from where the wider ones stopped, the scalar reference the
+   rest. */
 HF__PRIVATE void hf__ropes_substep(hf_ropes *ro, const float *F, int a, int b,
                                    const hf__rope_step *st, const hf__bp *bp)
 {
-#if HF__V4
-    const hf__rope_rows *const *k;
-    for (k = hf__rope_widths; *k; ++k) {
-        const int e = a + (b - a) / (*k)->lanes * (*k)->lanes;
-        if (st->level < (*k)->level) continue;
-        if (e > a) hf__ropes_substep_rows(ro, F, a, e, st, bp, *k);
-        a = e;
-    }
-#endif
-    hf__ropes_substep_ref(ro, F, a, b, st, bp);
+    const hf__rope_rows *k;
+    for (k = st->rows; a < b; ++k) a = k->substep(ro, F, a, b, st, bp, k);
 }
 
-
-/* hf__ropes_mark_far_ref for every point row of ropes [a, b). */
+/* The safety net's test of ropes [a, b), likewise. */
 HF__PRIVATE void hf__ropes_mark_far(const hf_ropes *ro, int a, int b,
-                                    const float *KB, float *VF, int level)
+                                    const float *KB, float *VF,
+                                    const hf__rope_step *st)
 {
-    int j;
-#if HF__V4
-    const hf__rope_rows *const *k;
-    for (k = hf__rope_widths; *k; ++k)
-        if (level >= (*k)->level) a = (*k)->mark_far(ro, a, b, KB, VF);
-#endif
-    (void)level;
-    for (j = 1; j < ro->points; ++j)
-        hf__ropes_mark_far_ref(ro, j, a, b, KB, VF);
+    const hf__rope_rows *k;
+    for (k = st->rows; a < b; ++k) a = k->mark_far(ro, a, b, KB, VF);
 }
 
 /* After the sub-steps: remember the sub-step length, and reset a rope
@@ -8394,7 +8547,7 @@ HF__PRIVATE void hf__ropes_safety_net(hf_ropes *ro, int a, int b,
         KB[r] = lim * lim; /* reuse the row: squared limit */
         VF[r] = 0.0f;      /* reuse: 1 if the rope went bad */
     }
-    hf__ropes_mark_far(ro, a, b, KB, VF, st->level);
+    hf__ropes_mark_far(ro, a, b, KB, VF, st);
     for (r = a; r < b; ++r)
         if (VF[r] != 0.0f) {
             float keep = ro->blend[r];
@@ -8518,6 +8671,8 @@ HF__PRIVATE void hf__rope_step_setup(hf__rope_step *st,
     st->global_on = st->gs_root > 0.0f || st->gs_tip > 0.0f;
     st->local_on = st->ls_root > 0.0f || st->ls_tip > 0.0f;
     st->level = hf_simd_resolve(params->simd);
+    st->pose = hf__kernels_for(hf__pose_widths, st->level);
+    st->rows = hf__kernels_for(hf__rope_widths, st->level);
     st->ktab = points <= HF__ROPE_KTAB;
     if (st->ktab)
         for (k = 1; k < points; ++k) {
@@ -9561,10 +9716,10 @@ HF__INLINE void hf__page_ahead(const void *p, size_t bytes)
 
 /* Floats [i, i + 4) of a strand; R is (1 - sc) root in the phase of i. The
    operations and their order are the scalar loop's in hf_interpolate. */
-HF__INLINE void hf__interp_sse(const float *g0, const float *g1, const float *g2,
-                            const float *gn, const float *ctab, float *o,
-                            int i, __m128 W0, __m128 W1, __m128 W2,
-                            __m128 SC, __m128 R, int nt)
+HF__INLINE void hf__interp_v4(const float *g0, const float *g1, const float *g2,
+                              const float *gn, const float *ctab, float *o,
+                              int i, __m128 W0, __m128 W1, __m128 W2, __m128 SC,
+                              __m128 R, int nt)
 {
     __m128 p = _mm_add_ps(_mm_add_ps(_mm_mul_ps(W0, _mm_loadu_ps(g0 + i)),
                                      _mm_mul_ps(W1, _mm_loadu_ps(g1 + i))),
@@ -9583,11 +9738,11 @@ HF__INLINE void hf__interp_sse(const float *g0, const float *g1, const float *g2
 /* One strand's floats [i, 3 P) of hf__interpolate_run: p = the weighted
    guides, scaled about the root (rb = (1 - sc) root, twice), then pulled
    toward guide gn (NULL: no clumping) by ctab. */
-HF__PRIVATE void hf__interp_strand_ref(const float *g0, const float *g1,
-                                       const float *g2, const float *gn,
-                                       const float *ctab, float *o, int i,
-                                       int P, float w0, float w1, float w2,
-                                       float sc, const float *rb)
+HF__PRIVATE void hf__interp_strand_v1(const float *g0, const float *g1,
+                                      const float *g2, const float *gn,
+                                      const float *ctab, float *o, int i, int P,
+                                      float w0, float w1, float w2, float sc,
+                                      const float *rb)
 {
     for (; i < 3 * P; ++i) {
         float p = w0 * g0[i] + w1 * g1[i] + w2 * g2[i];
@@ -9597,13 +9752,13 @@ HF__PRIVATE void hf__interp_strand_ref(const float *g0, const float *g1,
 }
 
 #if HF__SSE
-/* hf__interp_strand_ref on whole vectors from float 0; returns where they
+/* hf__interp_strand_v1 on whole vectors from float 0; returns where they
    end. */
-HF__PRIVATE int hf__interp_strand_sse(const float *g0, const float *g1,
-                                      const float *g2, const float *gn,
-                                      const float *ctab, float *o, int P,
-                                      float w0, float w1, float w2, float sc,
-                                      const float *rb, int nt)
+HF__PRIVATE int hf__interp_strand_v4(const float *g0, const float *g1,
+                                     const float *g2, const float *gn,
+                                     const float *ctab, float *o, int P,
+                                     float w0, float w1, float w2, float sc,
+                                     const float *rb, int nt)
 {
     const __m128 W0 = _mm_set1_ps(w0), W1 = _mm_set1_ps(w1);
     const __m128 W2 = _mm_set1_ps(w2), SC = _mm_set1_ps(sc);
@@ -9616,16 +9771,16 @@ HF__PRIVATE int hf__interp_strand_sse(const float *g0, const float *g1,
     int i = 0;
     /* three vectors a turn, so each gets its phase without a test */
     for (; i + 12 <= 3 * P; i += 12) {
-        hf__interp_sse(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0, nt);
-        hf__interp_sse(g0, g1, g2, gn, ctab, o, i + 4, W0, W1, W2, SC, R1, nt);
-        hf__interp_sse(g0, g1, g2, gn, ctab, o, i + 8, W0, W1, W2, SC, R2, nt);
+        hf__interp_v4(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0, nt);
+        hf__interp_v4(g0, g1, g2, gn, ctab, o, i + 4, W0, W1, W2, SC, R1, nt);
+        hf__interp_v4(g0, g1, g2, gn, ctab, o, i + 8, W0, W1, W2, SC, R2, nt);
     }
     if (i + 4 <= 3 * P) {
-        hf__interp_sse(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0, nt);
+        hf__interp_v4(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R0, nt);
         i += 4;
     }
     if (i + 4 <= 3 * P) {
-        hf__interp_sse(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R1, nt);
+        hf__interp_v4(g0, g1, g2, gn, ctab, o, i, W0, W1, W2, SC, R1, nt);
         i += 4;
     }
     return i;
@@ -9686,22 +9841,25 @@ HF__INLINE void hf__interp_root(hf__istrand *t)
     }
 }
 
-HF__PRIVATE void hf__interp_range_ref(const hf__irun *run, int first,
-                                      int count)
+/* Strands [first, first + count) of a run: the reference, and at four
+   lanes (SSE2 or NEON) below, at eight and sixteen in 7.1; each returns
+   1 (all written), the sixteen-lane entry 0 for a P it leaves to eight
+   lanes (hf__interp_widths). */
+HF__PRIVATE int hf__interp_range_v1(const hf__irun *run, int first, int count)
 {
     hf__istrand t;
     int s;
     for (s = first; s < first + count; ++s) {
         hf__interp_setup(run, s, &t);
         hf__interp_root(&t);
-        hf__interp_strand_ref(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, 0,
-                              run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
+        hf__interp_strand_v1(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, 0, run->P,
+                             t.w0, t.w1, t.w2, t.sc, t.rb);
     }
+    return 1;
 }
 
 #if HF__SSE
-HF__PRIVATE void hf__interp_range_sse(const hf__irun *run, int first,
-                                      int count)
+HF__PRIVATE int hf__interp_range_v4(const hf__irun *run, int first, int count)
 {
     hf__istrand t;
     int s, i;
@@ -9711,12 +9869,13 @@ HF__PRIVATE void hf__interp_range_sse(const hf__irun *run, int first,
         hf__interp_root(&t);
         nt = run->nt && ((uintptr_t)t.o & 15u) == 0;
         if (nt) hf__page_ahead(t.o, 12u * (size_t)run->P);
-        i = hf__interp_strand_sse(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o,
-                                  run->P, t.w0, t.w1, t.w2, t.sc, t.rb, nt);
+        i = hf__interp_strand_v4(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, run->P,
+                                 t.w0, t.w1, t.w2, t.sc, t.rb, nt);
         if (i < 3 * run->P)
-            hf__interp_strand_ref(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, i,
-                                  run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
+            hf__interp_strand_v1(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, i,
+                                 run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
     }
+    return 1;
 }
 #endif
 
@@ -9726,17 +9885,16 @@ HF__NOINLINE HF__PRIVATE void hf__interp_tail(const hf__irun *run,
                                              hf__istrand *t, int i)
 {
     hf__interp_root(t);
-    hf__interp_strand_ref(t->g0, t->g1, t->g2, t->gn, run->ctab, t->o, i,
-                          run->P, t->w0, t->w1, t->w2, t->sc, t->rb);
+    hf__interp_strand_v1(t->g0, t->g1, t->g2, t->gn, run->ctab, t->o, i, run->P,
+                         t->w0, t->w1, t->w2, t->sc, t->rb);
 }
 
 #if HF__NEON
-/* hf__interp_strand_sse on ARM64: four floats a vector, the same
+/* hf__interp_strand_v4 on ARM64: four floats a vector, the same
    operations in the same order, so the same bytes. */
-HF__INLINE void
-hf__interp_neon(const hf__istrand *t, const float *ctab, int i,
-                float32x4_t W0, float32x4_t W1, float32x4_t W2,
-                float32x4_t SC, float32x4_t R)
+HF__INLINE void hf__interp_v4(const hf__istrand *t, const float *ctab, int i,
+                              float32x4_t W0, float32x4_t W1, float32x4_t W2,
+                              float32x4_t SC, float32x4_t R)
 {
     float32x4_t p = vaddq_f32(vaddq_f32(vmulq_f32(W0, vld1q_f32(t->g0 + i)),
                                         vmulq_f32(W1, vld1q_f32(t->g1 + i))),
@@ -9748,8 +9906,7 @@ hf__interp_neon(const hf__istrand *t, const float *ctab, int i,
     vst1q_f32(t->o + i, p);
 }
 
-HF__PRIVATE void
-hf__interp_range_neon(const hf__irun *run, int first, int count)
+HF__PRIVATE int hf__interp_range_v4(const hf__irun *run, int first, int count)
 {
     const int n = 3 * run->P;
     hf__istrand t;
@@ -9767,22 +9924,23 @@ hf__interp_range_neon(const hf__irun *run, int first, int count)
         R1 = vld1q_f32(t.rb + 1);
         R2 = vld1q_f32(t.rb + 2);
         for (i = 0; i + 12 <= n; i += 12) {
-            hf__interp_neon(&t, run->ctab, i, W0, W1, W2, SC, R0);
-            hf__interp_neon(&t, run->ctab, i + 4, W0, W1, W2, SC, R1);
-            hf__interp_neon(&t, run->ctab, i + 8, W0, W1, W2, SC, R2);
+            hf__interp_v4(&t, run->ctab, i, W0, W1, W2, SC, R0);
+            hf__interp_v4(&t, run->ctab, i + 4, W0, W1, W2, SC, R1);
+            hf__interp_v4(&t, run->ctab, i + 8, W0, W1, W2, SC, R2);
         }
         if (i + 4 <= n) {
-            hf__interp_neon(&t, run->ctab, i, W0, W1, W2, SC, R0);
+            hf__interp_v4(&t, run->ctab, i, W0, W1, W2, SC, R0);
             i += 4;
         }
         if (i + 4 <= n) {
-            hf__interp_neon(&t, run->ctab, i, W0, W1, W2, SC, R1);
+            hf__interp_v4(&t, run->ctab, i, W0, W1, W2, SC, R1);
             i += 4;
         }
         if (i < n)
-            hf__interp_strand_ref(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, i,
-                                  run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
+            hf__interp_strand_v1(t.g0, t.g1, t.g2, t.gn, run->ctab, t.o, i,
+                                 run->P, t.w0, t.w1, t.w2, t.sc, t.rb);
     }
+    return 1;
 }
 #endif
 
@@ -9887,7 +10045,7 @@ HF__VTARGET HF__INLINE void HF__KN(hf__strand)(const float *G, int clump,
 }
 
 /* The weighted sum of the guides' floats [q, q + W): the operations of
-   hf__interp_strand_ref in its order (no FMA), so the same bytes. */
+   hf__interp_strand_v1 in its order (no FMA), so the same bytes. */
 HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__sum)(const HF__KN(hf__is) *v,
                                                size_t q)
 {
@@ -9975,8 +10133,8 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__interp_groups)(const hf__irun *run,
     HF__VZEROUPPER(); /* see HF__TARGET_AVX2 */
 }
 
-HF__VTARGET HF__PRIVATE void HF__KN(hf__interp_range)(const hf__irun *run,
-                                                      int first, int count)
+HF__VTARGET HF__PRIVATE int HF__KN(hf__interp_range)(const hf__irun *run,
+                                                     int first, int count)
 {
     const size_t n = 3u * (size_t)run->P;
     const hf_strand_binding *b = run->bindings + first;
@@ -9986,7 +10144,7 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__interp_range)(const hf__irun *run,
     int s;
     if (n % (3 * HF__W) == 0) {
         HF__KN(hf__interp_groups)(run, first, count);
-        return;
+        return 1;
     }
     for (s = first; s < first + count; ++s, ++b, o += n) {
         const int nt = hf__stream_mode(run->nt, o, 4u * HF__W - 1u);
@@ -10030,6 +10188,7 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__interp_range)(const hf__irun *run,
         }
     }
     HF__VZEROUPPER(); /* see HF__TARGET_AVX2 */
+    return 1;
 }
 #endif /* HF__PASS_INTERP */
 
@@ -10079,7 +10238,34 @@ HF__TARGET_AVX512 HF__INLINE void hf__put_v16(float *o, __m512 p, int mode)
 #define HF__PASS HF__PASS_INTERP
 #define HF__W 16
 #include HF_HEADER_FILENAME
+
+/* Sixteen lanes, but for P a multiple of 8 and not of 16: those go to
+   eight lanes in whole groups (returns 0): P = 24 and 40 took 0.43 and
+   0.42 ns a point against sixteen lanes' 0.48 and 0.45 (a group and a
+   part of one, in L2). */
+HF__PRIVATE int hf__interp_fit_v16(const hf__irun *run, int first, int count)
+{
+    if (run->P % 16 != 0 && run->P % 8 == 0) return 0;
+    return hf__interp_range_v16(run, first, count);
+}
 #endif
+
+typedef struct hf__interp_kernels {
+    hf__isa isa;
+    int (*range)(const hf__irun *, int, int);
+} hf__interp_kernels;
+
+static const hf__interp_kernels hf__interp_widths[] = {
+#if HF__AVX512
+    {{HF__ISA_V16}, hf__interp_fit_v16},
+#endif
+#if HF__AVX2
+    {{HF__ISA_V8}, hf__interp_range_v8},
+#endif
+#if HF__V4
+    {{HF__ISA_V4}, hf__interp_range_v4},
+#endif
+    {{HF__ISA_V1}, hf__interp_range_v1}};
 
 /* A run's fields; ctab (3 P floats) filled here */
 HF__PRIVATE void hf__irun_init(hf__irun *run, const float *guide_points,
@@ -10109,46 +10295,24 @@ HF__PRIVATE void hf__irun_init(hf__irun *run, const float *guide_points,
 }
 
 /* Strands [first, first + count) from inputs already checked: the loop of
-   hf_interpolate, at SIMD level `level`. */
+   hf_interpolate, at SIMD level `simd` (hf__interp_widths: the widest
+   kernel that takes the run). */
 HF__PRIVATE void hf__interpolate_run(const float *guide_points,
                                      const hf_strand_binding *bindings,
                                      int first, int count, int P, float clump,
-                                     float *out_points, int out_first,
-                                     int level, int nt)
+                                     float *out_points, int out_first, int simd,
+                                     int nt)
 {
+    const hf__interp_kernels *k = hf__kernels_for(hf__interp_widths, simd);
     float ctab[3 * HF_MAX_POINTS];
     hf__irun run;
     hf__irun_init(&run, guide_points, bindings, P, clump, ctab, out_points,
                   out_first, nt);
-#if HF__AVX512
-    /* with P a multiple of 8 but not of 16, eight lanes in whole groups:
-       P = 24 and 40 took 0.43 and 0.42 ns a point against sixteen lanes'
-       0.48 and 0.45 (a group and a part of one, in L2) */
-    if (level >= HF_SIMD_AVX512 && (P % 16 == 0 || P % 8 != 0))
-        hf__interp_range_v16(&run, first, count);
-    else
-#endif
-#if HF__AVX2
-    if (level >= HF_SIMD_AVX2)
-        hf__interp_range_v8(&run, first, count);
-    else
-#endif
+    while (!k->range(&run, first, count)) ++k;
 #if HF__SSE
-    if (level >= HF_SIMD_SSE2)
-        hf__interp_range_sse(&run, first, count);
-    else
-#endif
-#if HF__NEON
-    if (level >= HF_SIMD_NEON)
-        hf__interp_range_neon(&run, first, count);
-    else
-#endif
-        hf__interp_range_ref(&run, first, count);
-#if HF__SSE
-    if (nt && level >= HF_SIMD_SSE2)
+    if (nt && k->isa.lanes > 1)
         _mm_sfence(); /* streamed stores visible before we return */
 #endif
-    (void)level;
 }
 
 HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
@@ -10192,8 +10356,7 @@ HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
         if (g > HF_MAX_ABS || g < -HF_MAX_ABS) return HF_ERROR_BAD_PARAMETER;
     }
     hf__interpolate_run(guide_points, bindings, first, count, P, clump,
-                        out_points, params->out_first,
-                        hf_simd_resolve(params->simd),
+                        out_points, params->out_first, params->simd,
                         hf__streaming(params->nontemporal,
                                       (size_t)count * (size_t)P * 12u,
                                       HF_STREAM_MIN_BYTES));
@@ -10366,35 +10529,17 @@ HF__PRIVATE void hf__any_perp(const float *t, float *o)
     o[2] /= l;
 }
 
-/* inv[i] = 1 / sqrt(x[i]). SSE does four at once with the same IEEE
-   operations (sqrtps, divps) as the scalar tail, so the result does not
-   depend on the path or on where a range starts. */
-HF__PRIVATE int hf__inv_sqrt_n_ref(const float *x, float *inv, int i, int n)
-{
-    for (; i < n; ++i) inv[i] = 1.0f / HF_SQRTF(x[i]);
-    return i;
-}
-#if HF__SSE
-HF__PRIVATE int hf__inv_sqrt_n_sse(const float *x, float *inv, int i, int n)
-{
-    const __m128 one = _mm_set1_ps(1.0f);
-    for (; i + 4 <= n; i += 4)
-        _mm_storeu_ps(inv + i, _mm_div_ps(one, _mm_sqrt_ps(_mm_loadu_ps(x + i))));
-    return i;
-}
-#endif
+/* inv[i] = 1 / sqrt(x[i]), for the reference frame */
 HF__PRIVATE void hf__inv_sqrt_n(const float *x, float *inv, int n)
 {
-    int i = 0;
-#if HF__SSE
-    i = hf__inv_sqrt_n_sse(x, inv, i, n);
-#endif
-    hf__inv_sqrt_n_ref(x, inv, i, n);
+    int i;
+    for (i = 0; i < n; ++i) inv[i] = 1.0f / HF_SQRTF(x[i]);
 }
 
-/* 1 when every coordinate of a strand is finite: x * 0 is 0 for finite x
-   and NaN for NaN or infinity, and the sum keeps any NaN. */
-HF__PRIVATE int hf__points_finite_ref(const float *pts, int i, int n)
+/* 1 when the n coordinates from float i of a strand are finite: x * 0 is
+   0 for finite x and NaN for NaN or infinity, and the sum keeps any NaN.
+   The reference (i = 0), and the tail of hf__points_finite_v4. */
+HF__PRIVATE int hf__points_finite_from(const float *pts, int i, int n)
 {
     float acc0 = 0.0f, acc1 = 0.0f;
     for (; i + 2 <= n; i += 2) {
@@ -10404,11 +10549,15 @@ HF__PRIVATE int hf__points_finite_ref(const float *pts, int i, int n)
     if (i < n) acc0 += pts[i] * 0.0f;
     return acc0 + acc1 == 0.0f;
 }
+HF__PRIVATE int hf__points_finite_v1(const float *pts, int n)
+{
+    return hf__points_finite_from(pts, 0, n);
+}
 #if HF__SSE
-/* Floats [0, *end) of pts, whole groups of 8, with two independent vector
+/* The same test, whole groups of 8 floats with two independent vector
    sums (a single scalar chain of dependent adds cost a sixth of the
-   ribbon time). */
-HF__PRIVATE int hf__points_finite_sse(const float *pts, int n, int *end)
+   ribbon time), the rest by the reference. */
+HF__PRIVATE int hf__points_finite_v4(const float *pts, int n)
 {
     const __m128 z = _mm_setzero_ps();
     __m128 a0 = z, a1 = z;
@@ -10417,18 +10566,10 @@ HF__PRIVATE int hf__points_finite_sse(const float *pts, int n, int *end)
         a0 = _mm_add_ps(a0, _mm_mul_ps(_mm_loadu_ps(pts + i), z));
         a1 = _mm_add_ps(a1, _mm_mul_ps(_mm_loadu_ps(pts + i + 4), z));
     }
-    *end = i;
-    return _mm_movemask_ps(_mm_cmpeq_ps(_mm_add_ps(a0, a1), z)) == 0xf;
+    if (_mm_movemask_ps(_mm_cmpeq_ps(_mm_add_ps(a0, a1), z)) != 0xf) return 0;
+    return hf__points_finite_from(pts, i, n);
 }
 #endif
-HF__PRIVATE int hf__points_finite(const float *pts, int n)
-{
-    int i = 0;
-#if HF__SSE
-    if (!hf__points_finite_sse(pts, n, &i)) return 0;
-#endif
-    return hf__points_finite_ref(pts, i, n);
-}
 
 /* A strand whose points are not all finite is drawn collapsed: every
    point at the origin with zero width, so nothing shows and no NaN reaches
@@ -10521,9 +10662,9 @@ HF__PRIVATE void hf__side_borrow(hf__rframe *fr, int j, int from)
 /* The reference: unit tangents and sides of one strand, a point at a time
    (see hf_ribbons for the rules on degenerate points). The four-lane
    and AVX2 kernels below give the same bytes where they apply. */
-HF__PRIVATE void hf__strand_frame_ref(const float *pts, int P,
-                                      const hf_ribbon_params *params,
-                                      hf__rframe *fr)
+HF__PRIVATE void hf__strand_frame_v1(const float *pts, int P,
+                                     const hf_ribbon_params *params,
+                                     hf__rframe *fr)
 {
     float d[HF_MAX_POINTS * 3], l2[HF_MAX_POINTS], inv[HF_MAX_POINTS];
     float last[3] = {0.0f, 1.0f, 0.0f};
@@ -10694,7 +10835,7 @@ HF__INLINE hf__v4 hf__row_put_v4(hf__rframe *fr, int k, hf__v4 X, hf__v4 Y,
                                 HF__ADD(HF__MUL(Y, zero), HF__MUL(Z, zero))));
 }
 
-/* hf__strand_frame_ref four points at a time (SSE2 or NEON), with the same
+/* hf__strand_frame_v1 four points at a time (SSE2 or NEON), with the same
    IEEE operations per point. Returns 0 and leaves the strand to the
    reference when a point is not finite (*finite = 0), has no tangent, or
    sees the view within HF__SIDE_SIN2 of its tangent: the rare cases whose
@@ -10787,13 +10928,13 @@ HF__PRIVATE int hf__strand_frame_v4(const float *pts, int P,
 #if HF__AVX2
 /* Lanes (p7, c0 .. c6) and (c1 .. c7, n0): each point's neighbours across
    two groups of eight. */
-HF__TARGET_AVX2 HF__INLINE __m256 hf__prev_avx2(__m256 p, __m256 c)
+HF__TARGET_AVX2 HF__INLINE __m256 hf__prev_v8(__m256 p, __m256 c)
 {
     const __m256 t = _mm256_permute2f128_ps(p, c, 0x21);
     return _mm256_castsi256_ps(_mm256_alignr_epi8(
         _mm256_castps_si256(c), _mm256_castps_si256(t), 12));
 }
-HF__TARGET_AVX2 HF__INLINE __m256 hf__next_avx2(__m256 c, __m256 n)
+HF__TARGET_AVX2 HF__INLINE __m256 hf__next_v8(__m256 c, __m256 n)
 {
     const __m256 t = _mm256_permute2f128_ps(c, n, 0x21);
     return _mm256_castsi256_ps(_mm256_alignr_epi8(
@@ -10803,14 +10944,14 @@ HF__TARGET_AVX2 HF__INLINE __m256 hf__next_avx2(__m256 c, __m256 n)
 /* One coordinate's central differences for the group whose values `cur`
    sit at row[0..8): the next group follows in the row, or the tip
    repeats after the last; *prev carries the group before. */
-HF__TARGET_AVX2 HF__INLINE __m256 hf__diff_avx2(const float *row, int last,
-                                               float tip, __m256 cur,
-                                               __m256 *prev)
+HF__TARGET_AVX2 HF__INLINE __m256 hf__diff_v8(const float *row, int last,
+                                              float tip, __m256 cur,
+                                              __m256 *prev)
 {
     const __m256 next =
         last ? _mm256_set1_ps(tip) : _mm256_loadu_ps(row + 8);
     const __m256 d =
-        _mm256_sub_ps(hf__next_avx2(cur, next), hf__prev_avx2(*prev, cur));
+        _mm256_sub_ps(hf__next_v8(cur, next), hf__prev_v8(*prev, cur));
     *prev = cur;
     return d;
 }
@@ -10820,9 +10961,9 @@ HF__TARGET_AVX2 HF__INLINE __m256 hf__diff_avx2(const float *row, int last,
    reference. last: the tip repeats after it; ortho: e is the view
    direction (negated), else the eye. Inlined with both as constants. */
 HF__TARGET_AVX2 HF__INLINE int
-hf__frame_group_avx2(hf__rframe *fr, int k, int P, int last, int ortho,
-                     const float *tip, __m256 ex, __m256 ey, __m256 ez,
-                     __m256 *px, __m256 *py, __m256 *pz)
+hf__frame_group_v8(hf__rframe *fr, int k, int P, int last, int ortho,
+                   const float *tip, __m256 ex, __m256 ey, __m256 ez,
+                   __m256 *px, __m256 *py, __m256 *pz)
 {
     const __m256 one = _mm256_set1_ps(1.0f);
     const __m256 tiny = _mm256_set1_ps(1e-30f);
@@ -10838,9 +10979,9 @@ hf__frame_group_avx2(hf__rframe *fr, int k, int P, int last, int ortho,
     const __m256 cx = _mm256_loadu_ps(fr->p[0] + o),
                  cy = _mm256_loadu_ps(fr->p[1] + o),
                  cz = _mm256_loadu_ps(fr->p[2] + o);
-    const __m256 dx = hf__diff_avx2(fr->p[0] + o, last, tip[0], cx, px),
-                 dy = hf__diff_avx2(fr->p[1] + o, last, tip[1], cy, py),
-                 dz = hf__diff_avx2(fr->p[2] + o, last, tip[2], cz, pz);
+    const __m256 dx = hf__diff_v8(fr->p[0] + o, last, tip[0], cx, px),
+                 dy = hf__diff_v8(fr->p[1] + o, last, tip[1], cy, py),
+                 dz = hf__diff_v8(fr->p[2] + o, last, tip[2], cz, pz);
     const __m256 vx = ortho ? ex : _mm256_sub_ps(ex, cx),
                  vy = ortho ? ey : _mm256_sub_ps(ey, cy),
                  vz = ortho ? ez : _mm256_sub_ps(ez, cz);
@@ -10881,9 +11022,8 @@ hf__frame_group_avx2(hf__rframe *fr, int k, int P, int last, int ortho,
 
 /* One group's point rows into fr, their finiteness added to *acc (x * 0
    is NaN for NaN or infinity). */
-HF__TARGET_AVX2 HF__INLINE void hf__row_put_avx2(hf__rframe *fr, int k,
-                                                 __m256 X, __m256 Y,
-                                                 __m256 Z, __m256 *acc)
+HF__TARGET_AVX2 HF__INLINE void hf__row_put_v8(hf__rframe *fr, int k, __m256 X,
+                                               __m256 Y, __m256 Z, __m256 *acc)
 {
     const __m256 zero = _mm256_setzero_ps();
     *acc = _mm256_add_ps(
@@ -10897,8 +11037,8 @@ HF__TARGET_AVX2 HF__INLINE void hf__row_put_avx2(hf__rframe *fr, int k,
 
 /* The frame's e in every lane: the view direction, negated, for an
    orthographic view, else the eye; once per call. */
-HF__TARGET_AVX2 HF__INLINE void
-hf__frame_eye_avx2(const hf_ribbon_params *params, __m256 *e)
+HF__TARGET_AVX2 HF__INLINE void hf__frame_eye_v8(const hf_ribbon_params *params,
+                                                 __m256 *e)
 {
     int c;
     HF__UNROLL for (c = 0; c < 3; ++c)
@@ -10908,7 +11048,7 @@ hf__frame_eye_avx2(const hf_ribbon_params *params, __m256 *e)
 
 /* Eight points' x, y and z (24 floats at q) in three vectors, by
    shuffles. */
-HF__TARGET_AVX2 HF__INLINE void hf__load8_avx2(const float *q, __m256 *xyz)
+HF__TARGET_AVX2 HF__INLINE void hf__load8_v8(const float *q, __m256 *xyz)
 {
 #define HF__LD2(a, b)                                                          \
     _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(q + (a))),      \
@@ -10927,10 +11067,10 @@ HF__TARGET_AVX2 HF__INLINE void hf__load8_avx2(const float *q, __m256 *xyz)
 
 /* hf__strand_frame_v4 eight points at a time, with the same IEEE
    operations per point, and the same cases left to the reference;
-   ortho and e as hf__frame_eye_avx2 gives them. */
+   ortho and e as hf__frame_eye_v8 gives them. */
 HF__TARGET_AVX2 HF__INLINE int
-hf__strand_frame_avx2_in(const float *pts, int P, int ortho, const __m256 *e,
-                         hf__rframe *fr, int *finite)
+hf__strand_frame_v8_in(const float *pts, int P, int ortho, const __m256 *e,
+                       hf__rframe *fr, int *finite)
 {
     const __m256 ex = e[0], ey = e[1], ez = e[2];
     const int G = (P + 7) >> 3;
@@ -10942,8 +11082,8 @@ hf__strand_frame_avx2_in(const float *pts, int P, int ortho, const __m256 *e,
        whole groups in a loop of their own (no test for the last) */
     for (k = 0; 8 * k + 8 <= P; ++k) {
         __m256 xyz[3];
-        hf__load8_avx2(pts + 24 * k, xyz);
-        hf__row_put_avx2(fr, k, xyz[0], xyz[1], xyz[2], &acc);
+        hf__load8_v8(pts + 24 * k, xyz);
+        hf__row_put_v8(fr, k, xyz[0], xyz[1], xyz[2], &acc);
     }
     if (8 * k < P && P >= 8) {
         /* the last, partial group from the strand's last eight points,
@@ -10955,10 +11095,10 @@ hf__strand_frame_avx2_in(const float *pts, int P, int ortho, const __m256 *e,
                              _mm256_set1_epi32(8 - n)),
             _mm256_set1_epi32(7));
         __m256 xyz[3];
-        hf__load8_avx2(pts + 3 * (P - 8), xyz);
-        hf__row_put_avx2(fr, k, _mm256_permutevar8x32_ps(xyz[0], shift),
-                         _mm256_permutevar8x32_ps(xyz[1], shift),
-                         _mm256_permutevar8x32_ps(xyz[2], shift), &acc);
+        hf__load8_v8(pts + 3 * (P - 8), xyz);
+        hf__row_put_v8(fr, k, _mm256_permutevar8x32_ps(xyz[0], shift),
+                       _mm256_permutevar8x32_ps(xyz[1], shift),
+                       _mm256_permutevar8x32_ps(xyz[2], shift), &acc);
     } else if (8 * k < P) { /* P < 8: the only group repeats the tip */
         const int n = P - 8 * k;
         float r[3][8];
@@ -10966,8 +11106,8 @@ hf__strand_frame_avx2_in(const float *pts, int P, int ortho, const __m256 *e,
         for (i = 0; i < 8; ++i)
             HF__UNROLL for (c = 0; c < 3; ++c)
                 r[c][i] = pts[3 * (8 * k + (i < n ? i : n - 1)) + c];
-        hf__row_put_avx2(fr, k, _mm256_loadu_ps(r[0]), _mm256_loadu_ps(r[1]),
-                         _mm256_loadu_ps(r[2]), &acc);
+        hf__row_put_v8(fr, k, _mm256_loadu_ps(r[0]), _mm256_loadu_ps(r[1]),
+                       _mm256_loadu_ps(r[2]), &acc);
     }
     if (_mm256_movemask_ps(_mm256_cmp_ps(acc, zero, _CMP_EQ_OQ)) != 0xff) {
         *finite = 0;
@@ -10985,74 +11125,79 @@ hf__strand_frame_avx2_in(const float *pts, int P, int ortho, const __m256 *e,
        the perspective and orthographic bodies apart: no test per group */
     if (ortho) {
         for (k = 0; k + 1 < G; ++k)
-            bad |= hf__frame_group_avx2(fr, k, P, 0, 1, tip, ex, ey, ez, &px,
-                                        &py, &pz);
-        bad |= hf__frame_group_avx2(fr, k, P, 1, 1, tip, ex, ey, ez, &px,
-                                    &py, &pz);
+            bad |= hf__frame_group_v8(fr, k, P, 0, 1, tip, ex, ey, ez, &px, &py,
+                                      &pz);
+        bad |=
+            hf__frame_group_v8(fr, k, P, 1, 1, tip, ex, ey, ez, &px, &py, &pz);
     } else {
         for (k = 0; k + 1 < G; ++k)
-            bad |= hf__frame_group_avx2(fr, k, P, 0, 0, tip, ex, ey, ez, &px,
-                                        &py, &pz);
-        bad |= hf__frame_group_avx2(fr, k, P, 1, 0, tip, ex, ey, ez, &px,
-                                    &py, &pz);
+            bad |= hf__frame_group_v8(fr, k, P, 0, 0, tip, ex, ey, ez, &px, &py,
+                                      &pz);
+        bad |=
+            hf__frame_group_v8(fr, k, P, 1, 0, tip, ex, ey, ez, &px, &py, &pz);
     }
     return bad == 0;
 }
 
 /* the frame above as a call, for the dispatch of one strand (the inline
-   bodies, *_avx2_in, leave the upper halves to the function they are
+   bodies, *_v8_in, leave the upper halves to the function they are
    inlined in: its calls and its return clear them) */
 HF__TARGET_AVX2 HF__PRIVATE int
-hf__strand_frame_avx2(const float *pts, int P, const hf_ribbon_params *params,
-                      hf__rframe *fr, int *finite)
+hf__strand_frame_v8(const float *pts, int P, const hf_ribbon_params *params,
+                    hf__rframe *fr, int *finite)
 {
     __m256 e[3];
     int ok;
-    hf__frame_eye_avx2(params, e);
-    ok = hf__strand_frame_avx2_in(pts, P, params->orthographic != 0, e, fr,
-                                  finite);
+    hf__frame_eye_v8(params, e);
+    ok = hf__strand_frame_v8_in(pts, P, params->orthographic != 0, e, fr,
+                                finite);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
     return ok;
 }
 #endif
 
-/* A strand's frame by the reference, where a vector frame left it (or
-   none ran): finite says whether its points are (-1: not known yet); one
-   that is not is framed collapsed, wscale 0. */
-HF__PRIVATE void hf__strand_frame_rest(const float *pts, int P,
-                                       const hf_ribbon_params *params,
-                                       hf__rframe *fr, int finite,
-                                       float *wscale)
+/* A strand's frame by the reference, also where a vector frame left it:
+   *finite says whether its points are (-1: not known yet); one that is
+   not is framed collapsed. Returns 1, done. */
+HF__PRIVATE int hf__strand_frame_rest(const float *pts, int P,
+                                      const hf_ribbon_params *params,
+                                      hf__rframe *fr, int *finite)
 {
-    if (finite < 0) finite = hf__points_finite(pts, 3 * P);
-    if (!finite) {
-        pts = hf__zero_points;
-        *wscale = 0.0f;
-    }
-    hf__strand_frame_ref(pts, P, params, fr);
+    if (*finite < 0) *finite = hf__points_finite_v1(pts, 3 * P);
+    hf__strand_frame_v1(*finite ? pts : hf__zero_points, P, params, fr);
+    return 1;
 }
 
-/* The dispatch of the strand frame at SIMD level `level` (tangents and
-   sides; a strand with a non-finite point is framed collapsed, wscale
-   0). The AVX-512 level runs the AVX2 kernel. */
-HF__PRIVATE void hf__strand_frame(const float *pts, int P,
-                                  const hf_ribbon_params *params,
-                                  hf__rframe *fr, float *wscale, int level)
-{
-    int finite = -1;
-    *wscale = 1.0f;
+typedef struct hf__frame_kernels {
+    hf__isa isa;
+    int (*frame)(const float *, int, const hf_ribbon_params *, hf__rframe *,
+                 int *);
+} hf__frame_kernels;
+
+/* The strand frames per width; the AVX-512 level runs the AVX2 kernel. */
+static const hf__frame_kernels hf__frame_widths[] = {
 #if HF__AVX2
-    if (level >= HF_SIMD_AVX2) {
-        if (hf__strand_frame_avx2(pts, P, params, fr, &finite)) return;
-    } else
+    {{HF__ISA_V8}, hf__strand_frame_v8},
 #endif
 #if HF__V4
-    if (level >= HF_SIMD_SSE2) {
-        if (hf__strand_frame_v4(pts, P, params, fr, &finite)) return;
-    }
+    {{HF__ISA_V4}, hf__strand_frame_v4},
 #endif
-    (void)level;
-    hf__strand_frame_rest(pts, P, params, fr, finite, wscale);
+    {{HF__ISA_V1}, hf__strand_frame_rest}};
+
+/* The dispatch of the strand frame with the kernels k (hf__frame_widths,
+   resolved once a call): tangents and sides, and *wscale 0 for a strand
+   with a non-finite point, which is framed collapsed. A vector kernel
+   declines the strands whose rules look along the strand or need double
+   precision: those go to the reference, not to the next width. */
+HF__PRIVATE void hf__strand_frame(const float *pts, int P,
+                                  const hf_ribbon_params *params,
+                                  hf__rframe *fr, float *wscale,
+                                  const hf__frame_kernels *k)
+{
+    int finite = -1;
+    if (!k->frame(pts, P, params, fr, &finite))
+        hf__strand_frame_rest(pts, P, params, fr, &finite);
+    *wscale = finite ? 1.0f : 0.0f;
 }
 
 /* ---- 8.3 vertex formats: encoding --------------------------------------- */
@@ -11155,7 +11300,7 @@ HF__INLINE float hf__norm_scale(int fmt, float *lo)
    conversion rounds to nearest even in the default rounding mode, as
    adding and taking away 1.5 * 2^23 does there (two operations fewer;
    every level's bytes are the same in that mode) */
-HF__INLINE __m128i hf__encode_sse(__m128 x, int fmt)
+HF__INLINE __m128i hf__encode_v4(__m128 x, int fmt)
 {
     float lo, scale;
     __m128 v;
@@ -11192,8 +11337,8 @@ HF__INLINE __m128i hf__encode_sse(__m128 x, int fmt)
 /* Floats x, y (and z) of lane i < n at o + i * step: the pairs straight
    from unpacked registers, z from its lane, so nothing goes through a
    stack copy. */
-HF__INLINE void hf__put_f32_sse(unsigned char *o, size_t step, int n,
-                              __m128 x, __m128 y, __m128 z, int nc)
+HF__INLINE void hf__put_f32_v4(unsigned char *o, size_t step, int n, __m128 x,
+                               __m128 y, __m128 z, int nc)
 {
     const __m128 lo = _mm_unpacklo_ps(x, y), hi = _mm_unpackhi_ps(x, y);
     float zz[4];
@@ -11228,12 +11373,12 @@ HF__INLINE void hf__put_f32_sse(unsigned char *o, size_t step, int n,
 /* Components c[0, nc) of four vertices encoded and packed into the bytes
    of each vertex: lane i of *w0 holds its first 4 bytes, of *w1 the rest
    (x86 is little-endian, so byte order is component order). */
-HF__INLINE void hf__pack_sse(const __m128 *c, int nc, int fmt, __m128i *w0,
-                          __m128i *w1)
+HF__INLINE void hf__pack_v4(const __m128 *c, int nc, int fmt, __m128i *w0,
+                            __m128i *w1)
 {
-    const __m128i e0 = hf__encode_sse(c[0], fmt), e1 = hf__encode_sse(c[1], fmt);
-    const __m128i e2 = nc > 2 ? hf__encode_sse(c[2], fmt) : _mm_setzero_si128();
-    const __m128i e3 = nc > 3 ? hf__encode_sse(c[3], fmt) : _mm_setzero_si128();
+    const __m128i e0 = hf__encode_v4(c[0], fmt), e1 = hf__encode_v4(c[1], fmt);
+    const __m128i e2 = nc > 2 ? hf__encode_v4(c[2], fmt) : _mm_setzero_si128();
+    const __m128i e3 = nc > 3 ? hf__encode_v4(c[3], fmt) : _mm_setzero_si128();
     if (hf_format_bytes(fmt) == 2) {
         *w0 = _mm_or_si128(e0, _mm_slli_epi32(e1, 16));
         *w1 = _mm_or_si128(e2, _mm_slli_epi32(e3, 16));
@@ -11247,7 +11392,7 @@ HF__INLINE void hf__pack_sse(const __m128 *c, int nc, int fmt, __m128i *w0,
 
 /* Lane i of v, taken in registers (a load from a just-stored copy would
    wait on the store). */
-HF__INLINE uint32_t hf__lane_sse(__m128i v, int i)
+HF__INLINE uint32_t hf__lane_v4(__m128i v, int i)
 {
     switch (i) {
     case 0: return (uint32_t)_mm_cvtsi128_si32(v);
@@ -11257,9 +11402,9 @@ HF__INLINE uint32_t hf__lane_sse(__m128i v, int i)
     }
 }
 
-/* One vertex's packed bytes (see hf__pack_sse) at o. */
-HF__INLINE void hf__put_packed_sse(unsigned char *o, uint32_t w0, uint32_t w1,
-                               int nc, int size)
+/* One vertex's packed bytes (see hf__pack_v4) at o. */
+HF__INLINE void hf__put_packed_v4(unsigned char *o, uint32_t w0, uint32_t w1,
+                                  int nc, int size)
 {
     if (size == 2) {
         HF_MEMCPY(o, &w0, 4);
@@ -11281,9 +11426,9 @@ HF__INLINE void hf__put_packed_sse(unsigned char *o, uint32_t w0, uint32_t w1,
 /* Both vertices of points i < n of a group of four: lane i of L at
    o + 2 i st, of R at o + (2 i + 1) st. R may be L (tangents, texcoords,
    colours): then it is encoded once. */
-HF__INLINE void hf__emit_pair_fmt_sse(unsigned char *o, size_t st, int n,
-                              const __m128 *L, const __m128 *R, int nc,
-                              int fmt)
+HF__INLINE void hf__emit_pair_fmt_v4(unsigned char *o, size_t st, int n,
+                                     const __m128 *L, const __m128 *R, int nc,
+                                     int fmt)
 {
     int i, side;
     if (fmt == HF_FORMAT_F32) {
@@ -11291,8 +11436,8 @@ HF__INLINE void hf__emit_pair_fmt_sse(unsigned char *o, size_t st, int n,
             const __m128 *c = side ? R : L;
             unsigned char *b = o + (size_t)side * st;
             if (nc < 4) {
-                hf__put_f32_sse(b, 2 * st, n, c[0], c[1], nc > 2 ? c[2] : c[0],
-                             nc);
+                hf__put_f32_v4(b, 2 * st, n, c[0], c[1], nc > 2 ? c[2] : c[0],
+                               nc);
             } else {
                 __m128 v0 = c[0], v1 = c[1], v2 = c[2], v3 = c[3];
                 _MM_TRANSPOSE4_PS(v0, v1, v2, v3);
@@ -11305,54 +11450,53 @@ HF__INLINE void hf__emit_pair_fmt_sse(unsigned char *o, size_t st, int n,
     } else {
         const int size = hf_format_bytes(fmt);
         __m128i l0, l1, r0, r1;
-        hf__pack_sse(L, nc, fmt, &l0, &l1);
+        hf__pack_v4(L, nc, fmt, &l0, &l1);
         if (R != L) {
-            hf__pack_sse(R, nc, fmt, &r0, &r1);
+            hf__pack_v4(R, nc, fmt, &r0, &r1);
         } else {
             r0 = l0;
             r1 = l1;
         }
         if (n == 4) { /* whole groups: the lanes constants */
             HF__UNROLL for (i = 0; i < 4; ++i, o += 2 * st) {
-                hf__put_packed_sse(o, hf__lane_sse(l0, i), hf__lane_sse(l1, i),
-                                   nc, size);
-                hf__put_packed_sse(o + st, hf__lane_sse(r0, i),
-                                   hf__lane_sse(r1, i), nc, size);
+                hf__put_packed_v4(o, hf__lane_v4(l0, i), hf__lane_v4(l1, i), nc,
+                                  size);
+                hf__put_packed_v4(o + st, hf__lane_v4(r0, i),
+                                  hf__lane_v4(r1, i), nc, size);
             }
             return;
         }
         for (i = 0; i < n; ++i, o += 2 * st) {
-            hf__put_packed_sse(o, hf__lane_sse(l0, i), hf__lane_sse(l1, i), nc, size);
-            hf__put_packed_sse(o + st, hf__lane_sse(r0, i), hf__lane_sse(r1, i), nc,
-                           size);
+            hf__put_packed_v4(o, hf__lane_v4(l0, i), hf__lane_v4(l1, i), nc,
+                              size);
+            hf__put_packed_v4(o + st, hf__lane_v4(r0, i), hf__lane_v4(r1, i),
+                              nc, size);
         }
     }
 }
-/* hf__emit_pair_fmt_sse with the format a constant in each copy, so its
+/* hf__emit_pair_fmt_v4 with the format a constant in each copy, so its
    tests on the format fold away. */
-HF__INLINE void hf__emit_pair_sse(unsigned char *o, size_t st, int n,
-                                  const __m128 *L, const __m128 *R, int nc,
-                                  int fmt)
+HF__INLINE void hf__emit_pair_v4(unsigned char *o, size_t st, int n,
+                                 const __m128 *L, const __m128 *R, int nc,
+                                 int fmt)
 {
     switch (fmt) {
     case HF_FORMAT_F32:
-        hf__emit_pair_fmt_sse(o, st, n, L, R, nc, HF_FORMAT_F32);
+        hf__emit_pair_fmt_v4(o, st, n, L, R, nc, HF_FORMAT_F32);
         break;
     case HF_FORMAT_F16:
-        hf__emit_pair_fmt_sse(o, st, n, L, R, nc, HF_FORMAT_F16);
+        hf__emit_pair_fmt_v4(o, st, n, L, R, nc, HF_FORMAT_F16);
         break;
     case HF_FORMAT_SNORM16:
-        hf__emit_pair_fmt_sse(o, st, n, L, R, nc, HF_FORMAT_SNORM16);
+        hf__emit_pair_fmt_v4(o, st, n, L, R, nc, HF_FORMAT_SNORM16);
         break;
     case HF_FORMAT_UNORM16:
-        hf__emit_pair_fmt_sse(o, st, n, L, R, nc, HF_FORMAT_UNORM16);
+        hf__emit_pair_fmt_v4(o, st, n, L, R, nc, HF_FORMAT_UNORM16);
         break;
     case HF_FORMAT_SNORM8:
-        hf__emit_pair_fmt_sse(o, st, n, L, R, nc, HF_FORMAT_SNORM8);
+        hf__emit_pair_fmt_v4(o, st, n, L, R, nc, HF_FORMAT_SNORM8);
         break;
-    default:
-        hf__emit_pair_fmt_sse(o, st, n, L, R, nc, HF_FORMAT_UNORM8);
-        break;
+    default: hf__emit_pair_fmt_v4(o, st, n, L, R, nc, HF_FORMAT_UNORM8); break;
     }
 }
 #endif
@@ -11436,10 +11580,9 @@ HF__PRIVATE void hf__emit2(const hf__rout *ro, int q, size_t v,
 /* Every stream's vertices of one strand from its frame, a point at a
    time: the reference for the SSE writer below. Vertex 2 j + k of the
    strand (k = 0: -side) starts at v0. */
-HF__PRIVATE void hf__ribbon_write_ref(const hf__rframe *fr, int P,
-                                      const hf__rconst *K,
-                                      const hf__rstrand *str,
-                                      const hf__rout *ro, size_t v0)
+HF__PRIVATE int hf__ribbon_write_v1(const hf__rframe *fr, int P,
+                                    const hf__rconst *K, const hf__rstrand *str,
+                                    const hf__rout *ro, size_t v0)
 {
     int j, c, q;
     for (j = 0; j < P; ++j) {
@@ -11477,6 +11620,7 @@ HF__PRIVATE void hf__ribbon_write_ref(const hf__rframe *fr, int P,
             hf__emit2(ro, q, v, a, a);
         }
     }
+    return 1;
 }
 
 /* 2 when position and tangent are floats side by side in one vertex, 3
@@ -11618,10 +11762,9 @@ HF__INLINE void hf__elems_put(unsigned char *o, size_t st, int n,
 /* A float run (see hf__float_run) for points i < n of a group: left
    position L, right position R, tangent T, and with uv the texcoord
    (uv, t). Each vertex takes two or three stores instead of six. */
-HF__INLINE void hf__put_run_sse(unsigned char *o, size_t st, int n,
-                            const __m128 *L, const __m128 *R,
-                            const __m128 *T, const float *uv,
-                            const float *t)
+HF__INLINE void hf__put_run_v4(unsigned char *o, size_t st, int n,
+                               const __m128 *L, const __m128 *R,
+                               const __m128 *T, const float *uv, const float *t)
 {
     __m128 l0 = L[0], l1 = L[1], l2 = L[2], l3 = T[0];
     __m128 r0 = R[0], r1 = R[1], r2 = R[2], r3 = T[0];
@@ -11661,9 +11804,9 @@ HF__INLINE void hf__put_run_sse(unsigned char *o, size_t st, int n,
 
 /* The two vertex positions of four points (rows from o): L = p - s w,
    R = p + s w, relative to the origin and scale, as in the reference. */
-HF__INLINE void hf__ribbon_sides_sse(const hf__rframe *fr, int o, __m128 w,
-                                  const hf__rout *ro, __m128 is, __m128 *L,
-                                  __m128 *R)
+HF__INLINE void hf__ribbon_sides_v4(const hf__rframe *fr, int o, __m128 w,
+                                    const hf__rout *ro, __m128 is, __m128 *L,
+                                    __m128 *R)
 {
     int c;
     HF__UNROLL for (c = 0; c < 3; ++c) {
@@ -11677,9 +11820,9 @@ HF__INLINE void hf__ribbon_sides_sse(const hf__rframe *fr, int o, __m128 w,
 
 /* Stream q's values (tangent, texcoord, colour or 3D colour: the same on
    both sides of the ribbon) for the four points of group k. */
-HF__INLINE void hf__stream_values_sse(int q, const hf__rframe *fr,
-                                   const hf__rconst *K, const hf__rstrand *str,
-                                   int k, __m128 *v)
+HF__INLINE void hf__stream_values_v4(int q, const hf__rframe *fr,
+                                     const hf__rconst *K,
+                                     const hf__rstrand *str, int k, __m128 *v)
 {
     const __m128 tt = _mm_loadu_ps(K->tt + 4 * k);
     int c;
@@ -11707,26 +11850,26 @@ HF__INLINE void hf__stream_values_sse(int q, const hf__rframe *fr,
 
 /* All of stream q (nc = hf__stream_nc[q]) for one strand: both vertices
    of each point get the same values. */
-HF__INLINE void hf__stream_sse(int q, int nc, const hf__rframe *fr, int P,
-                            const hf__rconst *K, const hf__rstrand *str,
-                            const hf__rout *ro, size_t v0)
+HF__INLINE void hf__stream_v4(int q, int nc, const hf__rframe *fr, int P,
+                              const hf__rconst *K, const hf__rstrand *str,
+                              const hf__rout *ro, size_t v0)
 {
     const size_t st = ro->stride[q];
     unsigned char *b = ro->base[q] + v0 * st;
     __m128 v[4];
     int k;
     for (k = 0; 4 * k < P; ++k, b += 8 * st) {
-        hf__stream_values_sse(q, fr, K, str, k, v);
-        hf__emit_pair_sse(b, st, P - 4 * k < 4 ? P - 4 * k : 4, v, v, nc,
-                      ro->fmt[q]);
+        hf__stream_values_v4(q, fr, K, str, k, v);
+        hf__emit_pair_v4(b, st, P - 4 * k < 4 ? P - 4 * k : 4, v, v, nc,
+                         ro->fmt[q]);
     }
 }
 
-/* hf__ribbon_write_ref four points at a time: the same values in the same
+/* hf__ribbon_write_v1 four points at a time: the same values in the same
    operations, so the same bytes. */
-HF__PRIVATE void hf__ribbon_write_sse(const hf__rframe *fr, int P,
-                                  const hf__rconst *K, const hf__rstrand *str,
-                                  const hf__rout *ro, size_t v0)
+HF__PRIVATE int hf__ribbon_write_v4(const hf__rframe *fr, int P,
+                                    const hf__rconst *K, const hf__rstrand *str,
+                                    const hf__rout *ro, size_t v0)
 {
     /* stream by stream, as the scalar loop per point writes: the first
        stream touches every cache line of the strand with few stores, so
@@ -11744,11 +11887,11 @@ HF__PRIVATE void hf__ribbon_write_sse(const hf__rframe *fr, int P,
             const int o = 4 + 4 * k, n = P - 4 * k < 4 ? P - 4 * k : 4;
             const __m128 w = _mm_mul_ps(_mm_loadu_ps(K->hw + 4 * k), ws);
             __m128 T[3];
-            hf__ribbon_sides_sse(fr, o, w, ro, is, L, R);
+            hf__ribbon_sides_v4(fr, o, w, ro, is, L, R);
             HF__UNROLL for (c = 0; c < 3; ++c)
                 T[c] = _mm_loadu_ps(fr->t[c] + o);
-            hf__put_run_sse(b, st, n, L, R, T, run == 3 ? str->uv : NULL,
-                        K->tt + 4 * k);
+            hf__put_run_v4(b, st, n, L, R, T, run == 3 ? str->uv : NULL,
+                           K->tt + 4 * k);
         }
     } else if (ro->base[HF__S_POS]) {
         st = ro->stride[HF__S_POS];
@@ -11756,27 +11899,27 @@ HF__PRIVATE void hf__ribbon_write_sse(const hf__rframe *fr, int P,
         for (k = 0; k < G; ++k, b += 8 * st) {
             const int o = 4 + 4 * k, n = P - 4 * k < 4 ? P - 4 * k : 4;
             const __m128 w = _mm_mul_ps(_mm_loadu_ps(K->hw + 4 * k), ws);
-            hf__ribbon_sides_sse(fr, o, w, ro, is, L, R);
-            hf__emit_pair_sse(b, st, n, L, R, 3, ro->fmt[HF__S_POS]);
+            hf__ribbon_sides_v4(fr, o, w, ro, is, L, R);
+            hf__emit_pair_v4(b, st, n, L, R, 3, ro->fmt[HF__S_POS]);
         }
     }
     /* the other streams, unless written with the position run; a call
        each, so the component count is a constant in every inlined copy */
     if (ro->base[HF__S_TAN] && !run)
-        hf__stream_sse(HF__S_TAN, 3, fr, P, K, str, ro, v0);
+        hf__stream_v4(HF__S_TAN, 3, fr, P, K, str, ro, v0);
     if (ro->base[HF__S_TEX] && run < 3)
-        hf__stream_sse(HF__S_TEX, 3, fr, P, K, str, ro, v0);
-    if (ro->base[HF__S_COL]) hf__stream_sse(HF__S_COL, 4, fr, P, K, str, ro, v0);
-    if (ro->base[HF__S_C3D]) hf__stream_sse(HF__S_C3D, 2, fr, P, K, str, ro, v0);
+        hf__stream_v4(HF__S_TEX, 3, fr, P, K, str, ro, v0);
+    if (ro->base[HF__S_COL]) hf__stream_v4(HF__S_COL, 4, fr, P, K, str, ro, v0);
+    if (ro->base[HF__S_C3D]) hf__stream_v4(HF__S_C3D, 2, fr, P, K, str, ro, v0);
+    return 1;
 }
 #endif
 
 #if HF__AVX2
 /* A group's x y z tx of points i and i + 4 (the two halves) in a[i],
    which joined to ty tz u v (B[i]) make a float run's vertex */
-HF__TARGET_AVX2 HF__INLINE void hf__side_rows_avx2(__m256 x, __m256 y,
-                                                   __m256 z, __m256 tx,
-                                                   __m256 *a)
+HF__TARGET_AVX2 HF__INLINE void hf__side_rows_v8(__m256 x, __m256 y, __m256 z,
+                                                 __m256 tx, __m256 *a)
 {
     const __m256 xy0 = _mm256_unpacklo_ps(x, y), xy1 = _mm256_unpackhi_ps(x, y),
                  zt0 = _mm256_unpacklo_ps(z, tx), zt1 = _mm256_unpackhi_ps(z, tx);
@@ -11792,14 +11935,15 @@ HF__TARGET_AVX2 HF__INLINE void hf__side_rows_avx2(__m256 x, __m256 y,
    t is read once for both (read per side, gcc loaded it again after
    every store), and the stores go through the output in order (a side
    at a time measured 5 % slower). */
-HF__TARGET_AVX2 HF__INLINE void
-hf__put_pair_avx2(unsigned char *o, size_t st, __m256 xl, __m256 yl,
-                  __m256 zl, __m256 xr, __m256 yr, __m256 zr, __m256 tx,
-                  const __m256 *B, const float *tt)
+HF__TARGET_AVX2 HF__INLINE void hf__put_pair_v8(unsigned char *o, size_t st,
+                                                __m256 xl, __m256 yl, __m256 zl,
+                                                __m256 xr, __m256 yr, __m256 zr,
+                                                __m256 tx, const __m256 *B,
+                                                const float *tt)
 {
     __m256 l[4], r[4];
-    hf__side_rows_avx2(xl, yl, zl, tx, l);
-    hf__side_rows_avx2(xr, yr, zr, tx, r);
+    hf__side_rows_v8(xl, yl, zl, tx, l);
+    hf__side_rows_v8(xr, yr, zr, tx, r);
     /* each vertex built just before its store (built all first, gcc
        spilled some) */
 #define HF__PUT_P(i, h)                                                        \
@@ -11828,12 +11972,11 @@ hf__put_pair_avx2(unsigned char *o, size_t st, __m256 xl, __m256 yl,
    of the 24-byte run (run 2: position and tangent, x y z tx in one store,
    ty tz in another), and the last, partial group of either run. */
 HF__TARGET_AVX2 HF__INLINE void
-hf__put_side_avx2(unsigned char *o, size_t st2, int n, int run, __m256 x,
-                  __m256 y, __m256 z, __m256 tx, const __m256 *B,
-                  const float *tt)
+hf__put_side_v8(unsigned char *o, size_t st2, int n, int run, __m256 x,
+                __m256 y, __m256 z, __m256 tx, const __m256 *B, const float *tt)
 {
     __m256 a[4];
-    hf__side_rows_avx2(x, y, z, tx, a);
+    hf__side_rows_v8(x, y, z, tx, a);
     if (n == 8) {
         int k;
         HF__UNROLL for (k = 0; k < 4; ++k) {
@@ -11866,10 +12009,10 @@ hf__put_side_avx2(unsigned char *o, size_t st2, int n, int run, __m256 x,
 
 /* A group's left and right positions from frame row offset o, w the
    half widths: L = p - s w, R = p + s w, relative to the origin and
-   scale (ov as hf__rout_vec_avx2) */
-HF__TARGET_AVX2 HF__INLINE void hf__sides_avx2(const hf__rframe *fr, int o,
-                                               __m256 w, const __m256 *ov,
-                                               __m256 *L, __m256 *R)
+   scale (ov as hf__rout_vec_v8) */
+HF__TARGET_AVX2 HF__INLINE void hf__sides_v8(const hf__rframe *fr, int o,
+                                             __m256 w, const __m256 *ov,
+                                             __m256 *L, __m256 *R)
 {
     int c;
     HF__UNROLL for (c = 0; c < 3; ++c) {
@@ -11886,9 +12029,9 @@ HF__TARGET_AVX2 HF__INLINE void hf__sides_avx2(const hf__rframe *fr, int o,
    point 8 k on at b: the writer's loop body, inlined with n and run as
    constants where it can (the common groups then take no branch) */
 HF__TARGET_AVX2 HF__INLINE void
-hf__ribbon_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k,
-                      int n, int run, unsigned char *b, size_t st,
-                      __m256 ws, const __m256 *ov, __m256 uv)
+hf__ribbon_group_v8(const hf__rframe *fr, const hf__rconst *K, int k, int n,
+                    int run, unsigned char *b, size_t st, __m256 ws,
+                    const __m256 *ov, __m256 uv)
 {
     const int o = 4 + 8 * k;
     const __m256 w = _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws);
@@ -11903,21 +12046,19 @@ hf__ribbon_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k,
     B[1] = _mm256_shuffle_ps(lo, uv, _MM_SHUFFLE(1, 0, 3, 2));
     B[2] = _mm256_shuffle_ps(hi, uv, _MM_SHUFFLE(1, 0, 1, 0));
     B[3] = _mm256_shuffle_ps(hi, uv, _MM_SHUFFLE(1, 0, 3, 2));
-    hf__sides_avx2(fr, o, w, ov, L, R);
+    hf__sides_v8(fr, o, w, ov, L, R);
     if (n == 8 && run == 3) {
-        hf__put_pair_avx2(b, st, L[0], L[1], L[2], R[0], R[1], R[2], tx, B,
-                          K->tt + 8 * k);
+        hf__put_pair_v8(b, st, L[0], L[1], L[2], R[0], R[1], R[2], tx, B,
+                        K->tt + 8 * k);
         return;
     }
-    hf__put_side_avx2(b, 2 * st, n, run, L[0], L[1], L[2], tx, B,
-                      K->tt + 8 * k);
-    hf__put_side_avx2(b + st, 2 * st, n, run, R[0], R[1], R[2], tx, B,
-                      K->tt + 8 * k);
+    hf__put_side_v8(b, 2 * st, n, run, L[0], L[1], L[2], tx, B, K->tt + 8 * k);
+    hf__put_side_v8(b + st, 2 * st, n, run, R[0], R[1], R[2], tx, B,
+                    K->tt + 8 * k);
 }
 
 /* 1 / scale and the origin in every lane, once per call: ov[0..4) */
-HF__TARGET_AVX2 HF__INLINE void hf__rout_vec_avx2(const hf__rout *ro,
-                                                  __m256 *ov)
+HF__TARGET_AVX2 HF__INLINE void hf__rout_vec_v8(const hf__rout *ro, __m256 *ov)
 {
     int c;
     ov[0] = _mm256_set1_ps(ro->inv_scale);
@@ -11925,16 +12066,16 @@ HF__TARGET_AVX2 HF__INLINE void hf__rout_vec_avx2(const hf__rout *ro,
         ov[1 + c] = _mm256_set1_ps(ro->origin[c]);
 }
 
-/* hf__ribbon_write_sse eight points at a time for the float runs
+/* hf__ribbon_write_v4 eight points at a time for the float runs
    (position, tangent and texcoord, the 36-byte vertex: hf__float_run 3;
    position and tangent: 2, the other streams as the SSE writer writes
    them); the dispatch gives other layouts to the table writer below or
    the SSE one (calling the SSE writer from here would run SSE code with
    the upper halves of the registers dirty, at twice its time or more). */
 HF__TARGET_AVX2 HF__INLINE void
-hf__ribbon_write_avx2_in(const hf__rframe *fr, int P, const hf__rconst *K,
-                         const hf__rstrand *str, const hf__rout *ro,
-                         size_t v0, const __m256 *ov)
+hf__ribbon_write_run_v8_in(const hf__rframe *fr, int P, const hf__rconst *K,
+                       const hf__rstrand *str, const hf__rout *ro, size_t v0,
+                       const __m256 *ov)
 {
     const size_t st = ro->stride[HF__S_POS];
     const __m256 ws = _mm256_set1_ps(str->wscale);
@@ -11948,37 +12089,36 @@ hf__ribbon_write_avx2_in(const hf__rframe *fr, int P, const hf__rconst *K,
     if (ro->run == 3 && st == 36) {
         /* the packed vertex: every store's offset a constant */
         for (k = 0; 8 * k + 8 <= P; ++k, b += 16 * 36)
-            hf__ribbon_group_avx2(fr, K, k, 8, 3, b, 36, ws, ov, uv);
+            hf__ribbon_group_v8(fr, K, k, 8, 3, b, 36, ws, ov, uv);
     } else if (ro->run == 3) {
         for (k = 0; 8 * k + 8 <= P; ++k, b += 16 * st)
-            hf__ribbon_group_avx2(fr, K, k, 8, 3, b, st, ws, ov, uv);
+            hf__ribbon_group_v8(fr, K, k, 8, 3, b, st, ws, ov, uv);
     } else {
         for (k = 0; 8 * k + 8 <= P; ++k, b += 16 * st)
-            hf__ribbon_group_avx2(fr, K, k, 8, 2, b, st, ws, ov, uv);
+            hf__ribbon_group_v8(fr, K, k, 8, 2, b, st, ws, ov, uv);
     }
     if (8 * k < P)
-        hf__ribbon_group_avx2(fr, K, k, P - 8 * k, ro->run, b, st, ws, ov,
-                              uv);
+        hf__ribbon_group_v8(fr, K, k, P - 8 * k, ro->run, b, st, ws, ov, uv);
     if (!ro->rest) return; /* one test a strand for the three below */
     if (ro->base[HF__S_TEX] && ro->run == 2)
-        hf__stream_sse(HF__S_TEX, 3, fr, P, K, str, ro, v0);
-    if (ro->base[HF__S_COL]) hf__stream_sse(HF__S_COL, 4, fr, P, K, str, ro, v0);
-    if (ro->base[HF__S_C3D]) hf__stream_sse(HF__S_C3D, 2, fr, P, K, str, ro, v0);
+        hf__stream_v4(HF__S_TEX, 3, fr, P, K, str, ro, v0);
+    if (ro->base[HF__S_COL]) hf__stream_v4(HF__S_COL, 4, fr, P, K, str, ro, v0);
+    if (ro->base[HF__S_C3D]) hf__stream_v4(HF__S_C3D, 2, fr, P, K, str, ro, v0);
 }
 
 /* the writer above as a call, for the dispatch of one strand */
 HF__TARGET_AVX2 HF__PRIVATE void
-hf__ribbon_write_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
-                      const hf__rstrand *str, const hf__rout *ro, size_t v0)
+hf__ribbon_write_run_v8(const hf__rframe *fr, int P, const hf__rconst *K,
+                        const hf__rstrand *str, const hf__rout *ro, size_t v0)
 {
     __m256 ov[4];
-    hf__rout_vec_avx2(ro, ov);
-    hf__ribbon_write_avx2_in(fr, P, K, str, ro, v0, ov);
+    hf__rout_vec_v8(ro, ov);
+    hf__ribbon_write_run_v8_in(fr, P, K, str, ro, v0, ov);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 
-/* hf__encode_sse at eight lanes: the same operations. */
-HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_avx2(__m256 x, int fmt)
+/* hf__encode_v4 at eight lanes: the same operations. */
+HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_v8(__m256 x, int fmt)
 {
     float lo, scale;
     __m256 v;
@@ -12014,9 +12154,8 @@ HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_avx2(__m256 x, int fmt)
    of 16 (float), 8 (2-byte formats) or 4 bytes (1-byte) a point holding
    the point's element as the vertex stores it, then zeros or spare
    bytes. */
-HF__TARGET_AVX2 HF__INLINE void hf__table_fmt_avx2(unsigned char *t,
-                                                  const __m256 *c, int nc,
-                                                  int fmt)
+HF__TARGET_AVX2 HF__INLINE void
+hf__table_fmt_v8(unsigned char *t, const __m256 *c, int nc, int fmt)
 {
     const int size = hf_format_bytes(fmt);
     __m256i e[4], w0, w1;
@@ -12040,8 +12179,8 @@ HF__TARGET_AVX2 HF__INLINE void hf__table_fmt_avx2(unsigned char *t,
         _mm256_storeu_ps(f + 24, _mm256_permute2f128_ps(r2, r3, 0x31));
         return;
     }
-    HF__UNROLL for (i = 0; i < 4; ++i)
-        e[i] = i < nc ? hf__encode_avx2(c[i], fmt) : _mm256_setzero_si256();
+    HF__UNROLL for (i = 0; i < 4; ++i) e[i] = i < nc ? hf__encode_v8(c[i], fmt)
+                                                     : _mm256_setzero_si256();
     if (size == 2) {
         w0 = _mm256_or_si256(e[0], _mm256_slli_epi32(e[1], 16));
         w1 = _mm256_or_si256(e[2], _mm256_slli_epi32(e[3], 16));
@@ -12060,36 +12199,32 @@ HF__TARGET_AVX2 HF__INLINE void hf__table_fmt_avx2(unsigned char *t,
     }
 }
 
-/* hf__table_fmt_avx2 with the format a constant in each copy. */
-HF__TARGET_AVX2 HF__INLINE void hf__table_avx2(unsigned char *t,
-                                              const __m256 *c, int nc,
-                                              int fmt)
+/* hf__table_fmt_v8 with the format a constant in each copy. */
+HF__TARGET_AVX2 HF__INLINE void hf__table_v8(unsigned char *t, const __m256 *c,
+                                             int nc, int fmt)
 {
     switch (fmt) {
-    case HF_FORMAT_F32: hf__table_fmt_avx2(t, c, nc, HF_FORMAT_F32); break;
-    case HF_FORMAT_F16: hf__table_fmt_avx2(t, c, nc, HF_FORMAT_F16); break;
+    case HF_FORMAT_F32: hf__table_fmt_v8(t, c, nc, HF_FORMAT_F32); break;
+    case HF_FORMAT_F16: hf__table_fmt_v8(t, c, nc, HF_FORMAT_F16); break;
     case HF_FORMAT_SNORM16:
-        hf__table_fmt_avx2(t, c, nc, HF_FORMAT_SNORM16);
+        hf__table_fmt_v8(t, c, nc, HF_FORMAT_SNORM16);
         break;
     case HF_FORMAT_UNORM16:
-        hf__table_fmt_avx2(t, c, nc, HF_FORMAT_UNORM16);
+        hf__table_fmt_v8(t, c, nc, HF_FORMAT_UNORM16);
         break;
-    case HF_FORMAT_SNORM8:
-        hf__table_fmt_avx2(t, c, nc, HF_FORMAT_SNORM8);
-        break;
-    default: hf__table_fmt_avx2(t, c, nc, HF_FORMAT_UNORM8); break;
+    case HF_FORMAT_SNORM8: hf__table_fmt_v8(t, c, nc, HF_FORMAT_SNORM8); break;
+    default: hf__table_fmt_v8(t, c, nc, HF_FORMAT_UNORM8); break;
     }
 }
 
 #define HF__TB 32 /* points a block of the table writer's tables */
 
-/* Points i < n of a block from the tables (see hf__ribbon_write_table_avx2)
+/* Points i < n of a block from the tables (see hf__ribbon_write_table_v8)
    when every element abuts in one run (hf__rout wl): each vertex's run
    assembled by byte shuffles, the streams both sides share once a point,
    then two 8-byte stores (overlapping when the run is under 16 bytes). */
-HF__TARGET_AVX2 HF__INLINE __m128i hf__slot_avx2(const unsigned char *t,
-                                                 size_t ts, int i,
-                                                 __m128i mask)
+HF__TARGET_AVX2 HF__INLINE __m128i hf__slot_v8(const unsigned char *t,
+                                               size_t ts, int i, __m128i mask)
 {
     return _mm_shuffle_epi8(
         _mm_loadu_si128((const __m128i *)(const void *)(t + (size_t)i * ts)),
@@ -12099,30 +12234,28 @@ HF__TARGET_AVX2 HF__INLINE __m128i hf__slot_avx2(const unsigned char *t,
 /* The or of the slots of the ns streams (0 to 4, a constant where it is
    inlined) that both sides of point i share, in the table's order */
 HF__TARGET_AVX2 HF__INLINE __m128i
-hf__window_shared_avx2(const unsigned char *const *t, const size_t *ts,
-                       const __m128i *mk, int i, int ns)
+hf__window_shared_v8(const unsigned char *const *t, const size_t *ts,
+                     const __m128i *mk, int i, int ns)
 {
     __m128i s01;
     if (ns == 0) return _mm_setzero_si128();
-    if (ns == 1) return hf__slot_avx2(t[0], ts[0], i, mk[0]);
-    s01 = _mm_or_si128(hf__slot_avx2(t[0], ts[0], i, mk[0]),
-                       hf__slot_avx2(t[1], ts[1], i, mk[1]));
+    if (ns == 1) return hf__slot_v8(t[0], ts[0], i, mk[0]);
+    s01 = _mm_or_si128(hf__slot_v8(t[0], ts[0], i, mk[0]),
+                       hf__slot_v8(t[1], ts[1], i, mk[1]));
     if (ns == 2) return s01;
-    if (ns == 3)
-        return _mm_or_si128(s01, hf__slot_avx2(t[2], ts[2], i, mk[2]));
-    return _mm_or_si128(s01,
-                        _mm_or_si128(hf__slot_avx2(t[2], ts[2], i, mk[2]),
-                                     hf__slot_avx2(t[3], ts[3], i, mk[3])));
+    if (ns == 3) return _mm_or_si128(s01, hf__slot_v8(t[2], ts[2], i, mk[2]));
+    return _mm_or_si128(s01, _mm_or_si128(hf__slot_v8(t[2], ts[2], i, mk[2]),
+                                          hf__slot_v8(t[3], ts[3], i, mk[3])));
 }
 
-/* hf__window_put_avx2 with t, ts and mk the slots, strides and masks of
+/* hf__window_put_v8 with t, ts and mk the slots, strides and masks of
    the ns streams both sides share besides the position (ns a constant in
    each copy it inlines) */
 HF__TARGET_AVX2 HF__INLINE void
-hf__window_rows_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
-                     const size_t *tsq, size_t v, int n,
-                     const unsigned char *const *t, const size_t *ts,
-                     const __m128i *mk, int ns)
+hf__window_rows_v8(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
+                   const size_t *tsq, size_t v, int n,
+                   const unsigned char *const *t, const size_t *ts,
+                   const __m128i *mk, int ns)
 {
     const int q0 = ro->wq[0], L = ro->wl;
     const size_t st = ro->stride[q0];
@@ -12134,10 +12267,10 @@ hf__window_rows_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
     unsigned char *o = ro->base[q0] + v * st;
     int i;
     for (i = 0; i < n; ++i, o += 2 * st) {
-        __m128i a = hf__window_shared_avx2(t, ts, mk, i, ns), b = a;
+        __m128i a = hf__window_shared_v8(t, ts, mk, i, ns), b = a;
         if (pos) {
-            a = _mm_or_si128(a, hf__slot_avx2(tab[HF__S_POS], tp, i, mp));
-            b = _mm_or_si128(b, hf__slot_avx2(tab[5], tp, i, mp));
+            a = _mm_or_si128(a, hf__slot_v8(tab[HF__S_POS], tp, i, mp));
+            b = _mm_or_si128(b, hf__slot_v8(tab[5], tp, i, mp));
         }
         _mm_storel_epi64((__m128i *)(void *)o, a);
         _mm_storel_epi64((__m128i *)(void *)(o + L - 8),
@@ -12149,8 +12282,8 @@ hf__window_rows_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
 }
 
 HF__TARGET_AVX2 HF__INLINE void
-hf__window_put_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
-                    const size_t *tsq, size_t v, int n)
+hf__window_put_v8(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
+                  const size_t *tsq, size_t v, int n)
 {
     const unsigned char *t[4];
     __m128i mk[4];
@@ -12163,26 +12296,25 @@ hf__window_put_avx2(const hf__rout *ro, unsigned char tab[6][HF__TB * 16],
         mk[ns++] = _mm_loadu_si128((const __m128i *)(const void *)ro->wm[q]);
     }
     switch (ns) {
-    case 0: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 0); break;
-    case 1: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 1); break;
-    case 2: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 2); break;
-    case 3: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 3); break;
-    default: hf__window_rows_avx2(ro, tab, tsq, v, n, t, ts, mk, 4); break;
+    case 0: hf__window_rows_v8(ro, tab, tsq, v, n, t, ts, mk, 0); break;
+    case 1: hf__window_rows_v8(ro, tab, tsq, v, n, t, ts, mk, 1); break;
+    case 2: hf__window_rows_v8(ro, tab, tsq, v, n, t, ts, mk, 2); break;
+    case 3: hf__window_rows_v8(ro, tab, tsq, v, n, t, ts, mk, 3); break;
+    default: hf__window_rows_v8(ro, tab, tsq, v, n, t, ts, mk, 4); break;
     }
 }
 
 /* Every stream of a layout the table writer takes (hf__rout nw > 0), in
    blocks of up to HF__TB points: each stream's values encoded into a
-   table eight points at a time (hf__table_avx2), then written out, as a
+   table eight points at a time (hf__table_v8), then written out, as a
    run assembled in a register a vertex where the elements abut
-   (hf__window_put_avx2), else stream by stream in address order, an
+   (hf__window_put_v8), else stream by stream in address order, an
    element in one or two scalar stores (hf__elems_put). Same values, same
    operations: the same bytes as the reference. */
 HF__TARGET_AVX2 HF__INLINE void
-hf__ribbon_write_table_avx2_in(const hf__rframe *fr, int P,
-                               const hf__rconst *K, const hf__rstrand *str,
-                               const hf__rout *ro, size_t v0,
-                               const __m256 *ov)
+hf__ribbon_write_table_v8_in(const hf__rframe *fr, int P, const hf__rconst *K,
+                             const hf__rstrand *str, const hf__rout *ro,
+                             size_t v0, const __m256 *ov)
 {
     /* rows: the five streams, then the right side's positions; blocks of
        up to HF__TB points, so the copies' set-up is shared */
@@ -12216,41 +12348,41 @@ hf__ribbon_write_table_avx2_in(const hf__rframe *fr, int P,
                         _mm256_sub_ps(_mm256_add_ps(p, sw), ov[1 + c]),
                         ov[0]);
                 }
-                hf__table_avx2(tab[HF__S_POS] + g * ts[HF__S_POS], L, 3,
-                               ro->fmt[HF__S_POS]);
-                hf__table_avx2(tab[5] + g * ts[HF__S_POS], R, 3,
-                               ro->fmt[HF__S_POS]);
+                hf__table_v8(tab[HF__S_POS] + g * ts[HF__S_POS], L, 3,
+                             ro->fmt[HF__S_POS]);
+                hf__table_v8(tab[5] + g * ts[HF__S_POS], R, 3,
+                             ro->fmt[HF__S_POS]);
             }
             if (ro->base[HF__S_TAN]) {
                 HF__UNROLL for (c = 0; c < 3; ++c)
                     L[c] = _mm256_loadu_ps(fr->t[c] + o);
-                hf__table_avx2(tab[HF__S_TAN] + g * ts[HF__S_TAN], L, 3,
-                               ro->fmt[HF__S_TAN]);
+                hf__table_v8(tab[HF__S_TAN] + g * ts[HF__S_TAN], L, 3,
+                             ro->fmt[HF__S_TAN]);
             }
             if (ro->base[HF__S_TEX]) {
                 L[0] = u;
                 L[1] = v;
                 L[2] = tt;
-                hf__table_avx2(tab[HF__S_TEX] + g * ts[HF__S_TEX], L, 3,
-                               ro->fmt[HF__S_TEX]);
+                hf__table_v8(tab[HF__S_TEX] + g * ts[HF__S_TEX], L, 3,
+                             ro->fmt[HF__S_TEX]);
             }
             if (ro->base[HF__S_COL]) {
                 HF__UNROLL for (c = 0; c < 3; ++c)
                     L[c] = _mm256_set1_ps(str->rgba[c]);
                 L[3] = _mm256_mul_ps(_mm256_set1_ps(str->rgba[3]),
                                      _mm256_loadu_ps(K->fade + 8 * k));
-                hf__table_avx2(tab[HF__S_COL] + g * ts[HF__S_COL], L, 4,
-                               ro->fmt[HF__S_COL]);
+                hf__table_v8(tab[HF__S_COL] + g * ts[HF__S_COL], L, 4,
+                             ro->fmt[HF__S_COL]);
             }
             if (ro->base[HF__S_C3D]) {
                 L[0] = _mm256_set1_ps(str->c3x);
                 L[1] = tt;
-                hf__table_avx2(tab[HF__S_C3D] + g * ts[HF__S_C3D], L, 2,
-                               ro->fmt[HF__S_C3D]);
+                hf__table_v8(tab[HF__S_C3D] + g * ts[HF__S_C3D], L, 2,
+                             ro->fmt[HF__S_C3D]);
             }
         }
         if (ro->wl) {
-            hf__window_put_avx2(ro, tab, ts, v0 + 2u * (size_t)j0, n);
+            hf__window_put_v8(ro, tab, ts, v0 + 2u * (size_t)j0, n);
             continue;
         }
         for (m = 0; m < ro->nw; ++m) {
@@ -12264,19 +12396,18 @@ hf__ribbon_write_table_avx2_in(const hf__rframe *fr, int P,
 
 /* the writer above as a call, for the dispatch of one strand */
 HF__TARGET_AVX2 HF__PRIVATE void
-hf__ribbon_write_table_avx2(const hf__rframe *fr, int P, const hf__rconst *K,
-                            const hf__rstrand *str, const hf__rout *ro,
-                            size_t v0)
+hf__ribbon_write_table_v8(const hf__rframe *fr, int P, const hf__rconst *K,
+                          const hf__rstrand *str, const hf__rout *ro, size_t v0)
 {
     __m256 ov[4];
-    hf__rout_vec_avx2(ro, ov);
-    hf__ribbon_write_table_avx2_in(fr, P, K, str, ro, v0, ov);
+    hf__rout_vec_v8(ro, ov);
+    hf__ribbon_write_table_v8_in(fr, P, K, str, ro, v0, ov);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 
 /* A normalized format's encoding as per-call vectors, for a kernel that
    meets the format at run time: the clamp's bounds, the scale and the
-   code's mask (hf__encode_avx2's operations with them in memory). */
+   code's mask (hf__encode_v8's operations with them in memory). */
 typedef struct hf__enc8 {
     __m256 lo, scale, one;
     __m256i mask;
@@ -12293,9 +12424,9 @@ HF__TARGET_AVX2 HF__INLINE void hf__enc8_init(hf__enc8 *e, int fmt)
     e->mask = _mm256_set1_epi32(hf_format_bytes(fmt) == 2 ? 0xffff : 0xff);
 }
 
-/* hf__encode_avx2's operations, the format from e */
-HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_var_avx2(__m256 x,
-                                                      const hf__enc8 *e)
+/* hf__encode_v8's operations, the format from e */
+HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_var_v8(__m256 x,
+                                                     const hf__enc8 *e)
 {
     const __m256 v = _mm256_min_ps(_mm256_max_ps(x, e->lo), e->one);
     return _mm256_and_si256(_mm256_cvtps_epi32(_mm256_mul_ps(v, e->scale)),
@@ -12307,10 +12438,9 @@ HF__TARGET_AVX2 HF__INLINE __m256i hf__encode_var_avx2(__m256 x,
    share, v t and the tangent, already interleaved (s02: points 0 1 | 4 5,
    s13: 2 3 | 6 7). Two 8-byte stores a vertex, the second over bytes
    7..14: the pad byte is never written. */
-HF__TARGET_AVX2 HF__INLINE void hf__c16_put_avx2(unsigned char *o,
-                                                 size_t st2, int n,
-                                                 __m256i d0, __m256i d1,
-                                                 __m256i s02, __m256i s13)
+HF__TARGET_AVX2 HF__INLINE void hf__c16_put_v8(unsigned char *o, size_t st2,
+                                               int n, __m256i d0, __m256i d1,
+                                               __m256i s02, __m256i s13)
 {
     const __m256i a = _mm256_unpacklo_epi32(d0, d1),
                   b = _mm256_unpackhi_epi32(d0, d1);
@@ -12350,9 +12480,9 @@ HF__TARGET_AVX2 HF__INLINE void hf__c16_put_avx2(unsigned char *o,
 /* Group k of the compact vertex's writer below: n points (8 but for the
    last, a constant where inlined) at b. */
 HF__TARGET_AVX2 HF__INLINE void
-hf__c16_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k, int n,
-                   unsigned char *b, size_t st, __m256 ws, __m256i eu,
-                   __m256i ev, const __m256 *ov, const hf__enc8 *enc)
+hf__c16_group_v8(const hf__rframe *fr, const hf__rconst *K, int k, int n,
+                 unsigned char *b, size_t st, __m256 ws, __m256i eu, __m256i ev,
+                 const __m256 *ov, const hf__enc8 *enc)
 {
     const int o = 4 + 8 * k;
     const __m256 w = _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws);
@@ -12361,64 +12491,64 @@ hf__c16_group_avx2(const hf__rframe *fr, const hf__rconst *K, int k, int n,
     HF__UNROLL for (c = 0; c < 3; ++c) {
         const __m256 p = _mm256_loadu_ps(fr->p[c] + o);
         const __m256 sw = _mm256_mul_ps(_mm256_loadu_ps(fr->s[c] + o), w);
-        eL[c] = hf__encode_var_avx2(
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(p, sw), ov[1 + c]),
-                          ov[0]),
-            &enc[0]);
-        eR[c] = hf__encode_var_avx2(
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(p, sw), ov[1 + c]),
-                          ov[0]),
-            &enc[0]);
-        et[c] = hf__encode_var_avx2(_mm256_loadu_ps(fr->t[c] + o), &enc[2]);
+        eL[c] =
+            hf__encode_var_v8(_mm256_mul_ps(_mm256_sub_ps(_mm256_sub_ps(p, sw),
+                                                          ov[1 + c]),
+                                            ov[0]),
+                              &enc[0]);
+        eR[c] =
+            hf__encode_var_v8(_mm256_mul_ps(_mm256_sub_ps(_mm256_add_ps(p, sw),
+                                                          ov[1 + c]),
+                                            ov[0]),
+                              &enc[0]);
+        et[c] = hf__encode_var_v8(_mm256_loadu_ps(fr->t[c] + o), &enc[2]);
     }
     d2 = _mm256_or_si256(
-        ev, _mm256_slli_epi32(
-                hf__encode_var_avx2(_mm256_loadu_ps(K->tt + 8 * k), &enc[1]),
-                16));
+        ev, _mm256_slli_epi32(hf__encode_var_v8(_mm256_loadu_ps(K->tt + 8 * k),
+                                                &enc[1]),
+                              16));
     d3 = _mm256_or_si256(_mm256_or_si256(et[0], _mm256_slli_epi32(et[1], 8)),
                          _mm256_slli_epi32(et[2], 16));
     s02 = _mm256_unpacklo_epi32(d2, d3);
     s13 = _mm256_unpackhi_epi32(d2, d3);
-    hf__c16_put_avx2(b, 2 * st, n,
-                     _mm256_or_si256(eL[0], _mm256_slli_epi32(eL[1], 16)),
-                     _mm256_or_si256(eL[2], eu), s02, s13);
-    hf__c16_put_avx2(b + st, 2 * st, n,
-                     _mm256_or_si256(eR[0], _mm256_slli_epi32(eR[1], 16)),
-                     _mm256_or_si256(eR[2], eu), s02, s13);
+    hf__c16_put_v8(b, 2 * st, n,
+                   _mm256_or_si256(eL[0], _mm256_slli_epi32(eL[1], 16)),
+                   _mm256_or_si256(eL[2], eu), s02, s13);
+    hf__c16_put_v8(b + st, 2 * st, n,
+                   _mm256_or_si256(eR[0], _mm256_slli_epi32(eR[1], 16)),
+                   _mm256_or_si256(eR[2], eu), s02, s13);
 }
 
 /* The compact vertex (hf__rout c16) eight points at a time without the
    tables: the table writer's values and encodings (so the same bytes),
    packed into four 32-bit words a vertex (x y | z u | v t | tangent),
    transposed in registers and stored. enc: the position's, texcoord's
-   and tangent's formats (hf__enc8_init); ov as hf__rout_vec_avx2. */
+   and tangent's formats (hf__enc8_init); ov as hf__rout_vec_v8. */
 HF__TARGET_AVX2 HF__INLINE void
-hf__ribbon_write_c16_avx2_in(const hf__rframe *fr, int P, const hf__rconst *K,
-                             const hf__rstrand *str, const hf__rout *ro,
-                             size_t v0, const __m256 *ov,
-                             const hf__enc8 *enc)
+hf__ribbon_write_c16_v8_in(const hf__rframe *fr, int P, const hf__rconst *K,
+                           const hf__rstrand *str, const hf__rout *ro,
+                           size_t v0, const __m256 *ov, const hf__enc8 *enc)
 {
     const size_t st = ro->stride[HF__S_POS];
     const __m256 ws = _mm256_set1_ps(str->wscale);
     /* u and v are the strand's: encoded once */
     const __m256i eu = _mm256_slli_epi32(
-        hf__encode_var_avx2(_mm256_set1_ps(str->uv[0]), &enc[1]), 16);
-    const __m256i ev =
-        hf__encode_var_avx2(_mm256_set1_ps(str->uv[1]), &enc[1]);
+        hf__encode_var_v8(_mm256_set1_ps(str->uv[0]), &enc[1]), 16);
+    const __m256i ev = hf__encode_var_v8(_mm256_set1_ps(str->uv[1]), &enc[1]);
     unsigned char *b = ro->base[HF__S_POS] + v0 * st;
     int k;
     for (k = 0; 8 * k + 8 <= P; ++k, b += 16 * st)
-        hf__c16_group_avx2(fr, K, k, 8, b, st, ws, eu, ev, ov, enc);
+        hf__c16_group_v8(fr, K, k, 8, b, st, ws, eu, ev, ov, enc);
     if (8 * k < P)
-        hf__c16_group_avx2(fr, K, k, P - 8 * k, b, st, ws, eu, ev, ov, enc);
+        hf__c16_group_v8(fr, K, k, P - 8 * k, b, st, ws, eu, ev, ov, enc);
 }
 #endif
 
 #if HF__NEON
-/* hf__encode_sse in NEON: the same clamps and rounding (vcvt_f16_f32
+/* hf__encode_v4 in NEON: the same clamps and rounding (vcvt_f16_f32
    rounds to nearest even, subnormal halves included, as hf__encode1 does
    by hand), so the same codes. */
-HF__INLINE uint32x4_t hf__encode_neon(float32x4_t x, int fmt)
+HF__INLINE uint32x4_t hf__encode_v4(float32x4_t x, int fmt)
 {
     const float32x4_t m = vdupq_n_f32(12582912.0f);
     float lo, scale;
@@ -12435,7 +12565,7 @@ HF__INLINE uint32x4_t hf__encode_neon(float32x4_t x, int fmt)
                      vdupq_n_u32(hf_format_bytes(fmt) == 2 ? 0xffffu : 0xffu));
 }
 
-HF__INLINE void hf__transpose4_neon(float32x4_t *r)
+HF__INLINE void hf__transpose4_v4(float32x4_t *r)
 {
     const float32x4x2_t a = vtrnq_f32(r[0], r[1]), b = vtrnq_f32(r[2], r[3]);
     r[0] = vcombine_f32(vget_low_f32(a.val[0]), vget_low_f32(b.val[0]));
@@ -12448,9 +12578,9 @@ HF__INLINE void hf__transpose4_neon(float32x4_t *r)
    o + 2 i st, R a stride later; R may be L), in format fmt: floats as
    they are, other formats encoded four lanes at a time, then each
    vertex's bytes copied out in component order. */
-HF__PRIVATE void hf__emit_pair_neon(unsigned char *o, size_t st, int n,
-                                    const float32x4_t *L,
-                                    const float32x4_t *R, int nc, int fmt)
+HF__PRIVATE void hf__emit_pair_v4(unsigned char *o, size_t st, int n,
+                                  const float32x4_t *L, const float32x4_t *R,
+                                  int nc, int fmt)
 {
     const int size = hf_format_bytes(fmt);
     int side, i, c;
@@ -12460,7 +12590,7 @@ HF__PRIVATE void hf__emit_pair_neon(unsigned char *o, size_t st, int n,
         for (c = 0; c < nc; ++c)
             vst1q_u32(lane[c], fmt == HF_FORMAT_F32
                                    ? vreinterpretq_u32_f32(v[c])
-                                   : hf__encode_neon(v[c], fmt));
+                                   : hf__encode_v4(v[c], fmt));
         for (i = 0; i < n; ++i) {
             unsigned char *q = o + (2u * (size_t)i + (size_t)side) * st;
             for (c = 0; c < nc; ++c, q += size) {
@@ -12477,13 +12607,13 @@ HF__PRIVATE void hf__emit_pair_neon(unsigned char *o, size_t st, int n,
     }
 }
 
-/* hf__ribbon_write_sse in NEON, four points at a time: the float runs
+/* hf__ribbon_write_v4 in NEON, four points at a time: the float runs
    (see hf__float_run) by a 4 x 4 transpose, x y z tx and ty tz u v of
-   each vertex, as hf__put_run_sse does; every other stream component by
+   each vertex, as hf__put_run_v4 does; every other stream component by
    component in its format. */
-HF__PRIVATE void
-hf__ribbon_write_neon(const hf__rframe *fr, int P, const hf__rconst *K,
-                      const hf__rstrand *str, const hf__rout *ro, size_t v0)
+HF__PRIVATE int hf__ribbon_write_v4(const hf__rframe *fr, int P,
+                                    const hf__rconst *K, const hf__rstrand *str,
+                                    const hf__rout *ro, size_t v0)
 {
     const int run = ro->run;
     const float32x4_t ws = vdupq_n_f32(str->wscale);
@@ -12511,9 +12641,9 @@ hf__ribbon_write_neon(const hf__rframe *fr, int P, const hf__rconst *K,
             V[1] = T[2];
             V[2] = vdupq_n_f32(str->uv[0]);
             V[3] = vdupq_n_f32(str->uv[1]);
-            hf__transpose4_neon(L); /* x y z tx of each left vertex */
-            hf__transpose4_neon(R);
-            hf__transpose4_neon(V); /* ty tz u v */
+            hf__transpose4_v4(L); /* x y z tx of each left vertex */
+            hf__transpose4_v4(R);
+            hf__transpose4_v4(V); /* ty tz u v */
             for (i = 0; i < n; ++i, b += 2 * st) {
                 vst1q_f32((float *)(void *)b, L[i]);
                 vst1q_f32((float *)(void *)(b + st), R[i]);
@@ -12528,9 +12658,9 @@ hf__ribbon_write_neon(const hf__rframe *fr, int P, const hf__rconst *K,
                 }
             }
         } else if (ro->base[HF__S_POS]) {
-            hf__emit_pair_neon(ro->base[HF__S_POS] + v * ro->stride[HF__S_POS],
-                               ro->stride[HF__S_POS], n, L, R, 3,
-                               ro->fmt[HF__S_POS]);
+            hf__emit_pair_v4(ro->base[HF__S_POS] + v * ro->stride[HF__S_POS],
+                             ro->stride[HF__S_POS], n, L, R, 3,
+                             ro->fmt[HF__S_POS]);
         }
         for (q = HF__S_TAN; q <= HF__S_C3D; ++q) {
             if (!ro->base[q] || (q == HF__S_TAN && run) ||
@@ -12558,43 +12688,55 @@ hf__ribbon_write_neon(const hf__rframe *fr, int P, const hf__rconst *K,
                 V[1] = tt;
                 break;
             }
-            hf__emit_pair_neon(ro->base[q] + v * ro->stride[q], ro->stride[q],
-                               n, V, V, hf__stream_nc[q], ro->fmt[q]);
+            hf__emit_pair_v4(ro->base[q] + v * ro->stride[q], ro->stride[q], n,
+                             V, V, hf__stream_nc[q], ro->fmt[q]);
         }
     }
+    return 1;
 }
 #endif
 
-/* The dispatch of the writers at SIMD level `level`: one strand's
-   vertices from its frame. The AVX-512 level runs the AVX2 kernels. */
+#if HF__AVX2
+/* One strand's vertices at eight lanes: the float run (ro->run) or the
+   windows (ro->nw) the layout has; other layouts are left to four lanes
+   (returns 0). */
+HF__PRIVATE int hf__ribbon_write_v8(const hf__rframe *fr, int P,
+                                    const hf__rconst *K, const hf__rstrand *str,
+                                    const hf__rout *ro, size_t v0)
+{
+    if (ro->run)
+        hf__ribbon_write_run_v8(fr, P, K, str, ro, v0);
+    else if (ro->nw)
+        hf__ribbon_write_table_v8(fr, P, K, str, ro, v0);
+    return ro->run || ro->nw;
+}
+#endif
+
+typedef struct hf__write_kernels {
+    hf__isa isa;
+    int (*write)(const hf__rframe *, int, const hf__rconst *,
+                 const hf__rstrand *, const hf__rout *, size_t);
+} hf__write_kernels;
+
+/* The writers per width; the AVX-512 level runs the AVX2 ones. */
+static const hf__write_kernels hf__write_widths[] = {
+#if HF__AVX2
+    {{HF__ISA_V8}, hf__ribbon_write_v8},
+#endif
+#if HF__V4
+    {{HF__ISA_V4}, hf__ribbon_write_v4},
+#endif
+    {{HF__ISA_V1}, hf__ribbon_write_v1}};
+
+/* The dispatch of the writers with the kernels k (hf__write_widths,
+   resolved once a call): one strand's vertices from its frame, by the
+   widest kernel that takes the layout. */
 HF__PRIVATE void hf__ribbon_write(const hf__rframe *fr, int P,
                                   const hf__rconst *K, const hf__rstrand *str,
-                                  const hf__rout *ro, size_t v0, int level)
+                                  const hf__rout *ro, size_t v0,
+                                  const hf__write_kernels *k)
 {
-#if HF__AVX2
-    if (level >= HF_SIMD_AVX2 && ro->run) {
-        hf__ribbon_write_avx2(fr, P, K, str, ro, v0);
-        return;
-    }
-    if (level >= HF_SIMD_AVX2 && ro->nw) {
-        hf__ribbon_write_table_avx2(fr, P, K, str, ro, v0);
-        return;
-    }
-#endif
-#if HF__SSE
-    if (level >= HF_SIMD_SSE2) {
-        hf__ribbon_write_sse(fr, P, K, str, ro, v0);
-        return;
-    }
-#endif
-#if HF__NEON
-    if (level >= HF_SIMD_NEON) {
-        hf__ribbon_write_neon(fr, P, K, str, ro, v0);
-        return;
-    }
-#endif
-    (void)level;
-    hf__ribbon_write_ref(fr, P, K, str, ro, v0);
+    while (!k->write(fr, P, K, str, ro, v0)) ++k;
 }
 
 /* ---- 8.5 streaming stores: the stage ------------------------------------ */
@@ -12696,9 +12838,8 @@ HF__PRIVATE void hf__stream_copy(unsigned char *dst, const float *src,
    them (a strand's block is, in a buffer aligned as a mapped one); the
    rest, and a block that is not aligned, by hf__stream_copy (each part's
    pages walked ahead once) */
-HF__TARGET_AVX2 HF__INLINE void hf__stream_copy_avx2(unsigned char *dst,
-                                                     const float *src,
-                                                     size_t n)
+HF__TARGET_AVX2 HF__INLINE void hf__stream_copy_v8(unsigned char *dst,
+                                                   const float *src, size_t n)
 {
     const size_t m = ((uintptr_t)dst & 31u) == 0 ? n & ~(size_t)31u : 0;
     size_t i;
@@ -12733,28 +12874,29 @@ HF__INLINE void hf__rstrand_fill(const hf_ribbon_strands *sv, int s,
    vector frame leaves it (as in hf__strand_frame); *wscale 0 for a strand
    framed collapsed */
 HF__TARGET_AVX2 HF__INLINE void
-hf__frame_strand_avx2(const float *pts, int P, int ortho, const __m256 *e,
-                      const hf_ribbon_params *params, hf__rframe *fr,
-                      float *wscale)
+hf__frame_strand_v8(const float *pts, int P, int ortho, const __m256 *e,
+                    const hf_ribbon_params *params, hf__rframe *fr,
+                    float *wscale)
 {
     int finite;
-    *wscale = 1.0f;
-    if (!hf__strand_frame_avx2_in(pts, P, ortho, e, fr, &finite)) {
+    if (!hf__strand_frame_v8_in(pts, P, ortho, e, fr, &finite)) {
         _mm256_zeroupper(); /* the reference is SSE code */
-        hf__strand_frame_rest(pts, P, params, fr, finite, wscale);
+        hf__strand_frame_rest(pts, P, params, fr, &finite);
     }
+    *wscale = finite ? 1.0f : 0.0f;
 }
 
-/* Strand s's frame (hf__frame_strand_avx2) where s < end: the runs make
+/* Strand s's frame (hf__frame_strand_v8) where s < end: the runs make
    each strand's frame while the strand before is written */
-HF__TARGET_AVX2 HF__INLINE void
-hf__frame_at_avx2(const hf_ribbon_strands *sv, int s, int end, int P,
-                  int ortho, const __m256 *e, const hf_ribbon_params *params,
-                  hf__rframe *fr, float *wscale)
+HF__TARGET_AVX2 HF__INLINE void hf__frame_at_v8(const hf_ribbon_strands *sv,
+                                                int s, int end, int P,
+                                                int ortho, const __m256 *e,
+                                                const hf_ribbon_params *params,
+                                                hf__rframe *fr, float *wscale)
 {
     if (s < end)
-        hf__frame_strand_avx2(sv->points + (size_t)s * (size_t)P * 3u, P,
-                              ortho, e, params, fr, wscale);
+        hf__frame_strand_v8(sv->points + (size_t)s * (size_t)P * 3u, P, ortho,
+                            e, params, fr, wscale);
 }
 
 /* hf_ribbons' strands at AVX2 in one target function, for the float runs
@@ -12768,13 +12910,13 @@ hf__frame_at_avx2(const hf_ribbon_strands *sv, int s, int end, int P,
    first byte dst0; NULL or not, a constant in each inlined copy) writes
    each strand into the stage, which takes fr2's place on the stack (one
    frame, made after the strand before is written), then out with
-   hf__stream_copy_avx2. */
+   hf__stream_copy_v8. */
 HF__TARGET_AVX2 HF__INLINE void
-hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
-                      const hf_ribbon_params *params, const hf__rconst *K,
-                      const hf__rout *out, int out_first, hf__rframe *fr,
-                      hf__rframe *fr2, int mode, float *stage,
-                      unsigned char *dst0, size_t block)
+hf__ribbons_loop_v8(const hf_ribbon_strands *sv, int first, int count,
+                    const hf_ribbon_params *params, const hf__rconst *K,
+                    const hf__rout *out, int out_first, hf__rframe *fr,
+                    hf__rframe *fr2, int mode, float *stage,
+                    unsigned char *dst0, size_t block)
 {
     const int P = params->points_per_strand,
               ortho = params->orthographic != 0, end = first + count;
@@ -12791,8 +12933,8 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
         hf__rout_staged(out, stage, dst0, &so);
         ro = &so;
     }
-    hf__frame_eye_avx2(params, e);
-    hf__rout_vec_avx2(ro, ov);
+    hf__frame_eye_v8(params, e);
+    hf__rout_vec_v8(ro, ov);
     if (mode == 2) {
         hf__enc8_init(&enc[0], ro->fmt[HF__S_POS]);
         hf__enc8_init(&enc[1], ro->fmt[HF__S_TEX]);
@@ -12800,56 +12942,56 @@ hf__ribbons_loop_avx2(const hf_ribbon_strands *sv, int first, int count,
     }
     F[0] = fr;
     F[1] = fr2;
-    hf__frame_at_avx2(&svl, first, end, P, ortho, e, params, F[0], &wsc[0]);
+    hf__frame_at_v8(&svl, first, end, P, ortho, e, params, F[0], &wsc[0]);
     for (s = first; s < end; ++s) {
         const int j = stage ? 0 : (s - first) & 1;
         const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u,
                      w0 = stage ? 0 : v0;
         hf__rstrand str;
         if (!stage)
-            hf__frame_at_avx2(&svl, s + 1, end, P, ortho, e, params,
-                              F[j ^ 1], &wsc[j ^ 1]);
+            hf__frame_at_v8(&svl, s + 1, end, P, ortho, e, params, F[j ^ 1],
+                            &wsc[j ^ 1]);
         str.wscale = wsc[j];
         hf__rstrand_fill(&svl, s, K->wcap, &str);
         if (mode == 2)
-            hf__ribbon_write_c16_avx2_in(F[j], P, K, &str, ro, w0, ov, enc);
+            hf__ribbon_write_c16_v8_in(F[j], P, K, &str, ro, w0, ov, enc);
         else if (mode == 1)
-            hf__ribbon_write_table_avx2_in(F[j], P, K, &str, ro, w0, ov);
+            hf__ribbon_write_table_v8_in(F[j], P, K, &str, ro, w0, ov);
         else
-            hf__ribbon_write_avx2_in(F[j], P, K, &str, ro, w0, ov);
+            hf__ribbon_write_run_v8_in(F[j], P, K, &str, ro, w0, ov);
         if (stage) {
-            hf__stream_copy_avx2(dst0 + v0 * block, stage, sb);
-            hf__frame_at_avx2(&svl, s + 1, end, P, ortho, e, params, F[0],
-                              &wsc[0]);
+            hf__stream_copy_v8(dst0 + v0 * block, stage, sb);
+            hf__frame_at_v8(&svl, s + 1, end, P, ortho, e, params, F[0],
+                            &wsc[0]);
         }
     }
 }
 
 HF__TARGET_AVX2 HF__PRIVATE void
-hf__ribbons_run_avx2(const hf_ribbon_strands *sv, int first, int count,
-                     const hf_ribbon_params *params, const hf__rconst *K,
-                     const hf__rout *ro, int out_first, hf__rframe *fr,
-                     hf__rframe *fr2, float *stage, unsigned char *dst0,
-                     size_t block)
+hf__ribbons_run_v8(const hf_ribbon_strands *sv, int first, int count,
+                   const hf_ribbon_params *params, const hf__rconst *K,
+                   const hf__rout *ro, int out_first, hf__rframe *fr,
+                   hf__rframe *fr2, float *stage, unsigned char *dst0,
+                   size_t block)
 {
     /* (the compact vertex leaves a byte of its stride: never staged) */
     if (stage) {
         if (ro->run)
-            hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first,
-                                  fr, NULL, 0, stage, dst0, block);
+            hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first, fr,
+                                NULL, 0, stage, dst0, block);
         else
-            hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first,
-                                  fr, NULL, 1, stage, dst0, block);
+            hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first, fr,
+                                NULL, 1, stage, dst0, block);
         _mm_sfence(); /* streamed stores visible before we return */
     } else if (ro->run)
-        hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
-                              fr2, 0, NULL, NULL, 0);
+        hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first, fr, fr2,
+                            0, NULL, NULL, 0);
     else if (ro->c16)
-        hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
-                              fr2, 2, NULL, NULL, 0);
+        hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first, fr, fr2,
+                            2, NULL, NULL, 0);
     else
-        hf__ribbons_loop_avx2(sv, first, count, params, K, ro, out_first, fr,
-                              fr2, 1, NULL, NULL, 0);
+        hf__ribbons_loop_v8(sv, first, count, params, K, ro, out_first, fr, fr2,
+                            1, NULL, NULL, 0);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 #endif
@@ -12863,9 +13005,9 @@ hf__ribbons_run_avx2(const hf_ribbon_strands *sv, int first, int count,
    z; tx ty; tz and t; u v) by three two-source permutes and two blends,
    and written with one 64-byte streaming store: no stage written and
    read back, no partial line. The same values in the same operations as
-   hf__ribbon_group_avx2, so the same bytes. Scene L's streamed ribbons:
+   hf__ribbon_group_v8, so the same bytes. Scene L's streamed ribbons:
    0.81-0.94x the staged AVX2 run's time, and 0.875-0.927x of that with
-   the frame in registers too (hf__ribbon_fused_avx512;
+   the frame in registers too (hf__ribbon_fused_v16;
    docs/performance.md). */
 typedef struct hf__lines {
     __m512i idx[9][3];   /* line c's lanes from source pair q */
@@ -12962,9 +13104,9 @@ HF__TARGET_AVX512 HF__INLINE void hf__lines_out(unsigned char *b,
 
 /* One strand's vertices at ro's position base + v0 vertices, as lines */
 HF__TARGET_AVX512 HF__INLINE void
-hf__ribbon_lines_avx512(const hf__rframe *fr, int P, const hf__rconst *K,
-                        const hf__rstrand *str, const hf__rout *ro, size_t v0,
-                        const __m256 *ov, const hf__lines *t)
+hf__ribbon_lines_v16(const hf__rframe *fr, int P, const hf__rconst *K,
+                     const hf__rstrand *str, const hf__rout *ro, size_t v0,
+                     const __m256 *ov, const hf__lines *t)
 {
     const int F = t->F;
     unsigned char *b = ro->base[HF__S_POS] + v0 * 4u * (size_t)F;
@@ -12976,9 +13118,8 @@ hf__ribbon_lines_avx512(const hf__rframe *fr, int P, const hf__rconst *K,
         const int o = 4 + 8 * k;
         __m256 L[3], R[3];
         __m512 S[5];
-        hf__sides_avx2(fr, o,
-                       _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws), ov,
-                       L, R);
+        hf__sides_v8(fr, o, _mm256_mul_ps(_mm256_loadu_ps(K->hw + 8 * k), ws),
+                     ov, L, R);
         HF__UNROLL for (c = 0; c < 3; ++c) S[c] = hf__join16(L[c], R[c]);
         S[3] = hf__join16(_mm256_loadu_ps(fr->t[0] + o),
                           _mm256_loadu_ps(fr->t[1] + o));
@@ -13036,7 +13177,7 @@ HF__TARGET_AVX512 HF__INLINE void hf__enc16_init(hf__enc16 *e,
    "undefined" operand, which g++ -O1 warns about. */
 #define HF__SLL16(x, n) _mm512_maskz_slli_epi32(0xffff, x, n)
 
-/* hf__encode_var_avx2 at sixteen lanes */
+/* hf__encode_var_v8 at sixteen lanes */
 HF__TARGET_AVX512 HF__INLINE __m512i hf__encode16(__m512 x,
                                                  const hf__enc16 *e)
 {
@@ -13069,7 +13210,7 @@ HF__TARGET_AVX512 HF__INLINE void hf__c16_lanes16(__m512i d0, __m512i d1,
     v[3] = _mm512_maskz_unpackhi_epi64(0xff, b, s13);
 }
 
-/* hf__c16_put_avx2 at sixteen points, all of them: one side's vertices
+/* hf__c16_put_v8 at sixteen points, all of them: one side's vertices
    (hf__c16_lanes16) at o, vertex i at o + i st2, two 8-byte stores a
    vertex, the pad byte never written */
 HF__TARGET_AVX512 HF__INLINE void hf__c16_put16(unsigned char *o, size_t st2,
@@ -13120,7 +13261,7 @@ HF__TARGET_AVX512 HF__INLINE void hf__c16_put16_tight(unsigned char *o,
     }
 }
 
-/* hf__c16_group_avx2 at sixteen points from registers: the left and
+/* hf__c16_group_v8 at sixteen points from registers: the left and
    right positions (relative to the origin and scale), the tangents and
    t, the strand's u and v already encoded (eu shifted) */
 HF__TARGET_AVX512 HF__INLINE void
@@ -13153,19 +13294,19 @@ hf__c16_group16(unsigned char *b, size_t st, const __m512 *L, const __m512 *R,
 }
 
 /* A strand's frame and vertices in registers, sixteen points a turn (P a
-   multiple of 16): hf__frame_group_avx2's operations on sixteen lanes (a
+   multiple of 16): hf__frame_group_v8's operations on sixteen lanes (a
    512-bit square root or division costs what a 256-bit one does on Zen
    5), no frame rows written and read back. The vertices go out as lines
-   (t; enc NULL) for hf__ribbons_lines_avx512, or as compact vertices
+   (t; enc NULL) for hf__ribbons_lines_v16, or as compact vertices
    (enc: hf__enc16 of position, texcoord and tangent) for
-   hf__ribbons_c16_avx512. Returns 0, with vertices perhaps written,
+   hf__ribbons_c16_v16. Returns 0, with vertices perhaps written,
    where a point is not finite or a lane is left to the reference: the
-   caller writes the strand again from hf__frame_strand_avx2's rows. */
+   caller writes the strand again from hf__frame_strand_v8's rows. */
 HF__TARGET_AVX512 HF__INLINE int
-hf__ribbon_fused_avx512(const float *pts, int P, int ortho, const __m512 *e,
-                        const hf__rconst *K, const hf__rstrand *str,
-                        const hf__rout *ro, size_t v0, const __m512 *ov,
-                        const hf__lines *t, const hf__enc16 *enc)
+hf__ribbon_fused_v16(const float *pts, int P, int ortho, const __m512 *e,
+                     const hf__rconst *K, const hf__rstrand *str,
+                     const hf__rout *ro, size_t v0, const __m512 *ov,
+                     const hf__lines *t, const hf__enc16 *enc)
 {
     const int F = enc ? 0 : t->F;
     const size_t st = ro->stride[HF__S_POS];
@@ -13252,7 +13393,7 @@ hf__ribbon_fused_avx512(const float *pts, int P, int ortho, const __m512 *e,
             one, _mm512_maskz_sqrt_ps(0xffff,
                                       _mm512_mask_blend_ps(ok2, one, c2)));
         /* L = p - s w, R = p + s w, relative to the origin and scale, as
-           hf__ribbon_group_avx2 */
+           hf__ribbon_group_v8 */
         w = _mm512_mul_ps(_mm512_loadu_ps(K->hw + 16 * g), ws);
         {
             const __m512 cc[3] = {cx, cy, cz}, ss[3] = {sx, sy, sz};
@@ -13290,31 +13431,31 @@ hf__ribbon_fused_avx512(const float *pts, int P, int ortho, const __m512 *e,
 }
 #undef HF__SLL16
 
-/* Whether a streamed call goes out as lines (above) at `level`: the
-   stage's vertex (hf__ribbon_stage: block bytes, every stream inside it,
-   dst0 the first byte of vertex 0) is the float run alone, 4 F bytes, P
-   a multiple of 8 (so every strand's block keeps the first's alignment)
-   and strand `first`'s block starts a line */
-HF__PRIVATE int hf__lines_fit(const hf__rout *ro, int P, int level,
+/* Whether a streamed call goes out as lines (above): the stage's vertex
+   (hf__ribbon_stage: block bytes, every stream inside it, dst0 the first
+   byte of vertex 0) is the float run alone, 4 F bytes, P a multiple of 8
+   (so every strand's block keeps the first's alignment) and strand
+   `first`'s block starts a line */
+HF__PRIVATE int hf__lines_fit(const hf__rout *ro, int P,
                               const unsigned char *dst0, size_t block,
                               int first, int out_first)
 {
-    return level >= HF_SIMD_AVX512 && ro->run &&
-           block == (ro->run == 3 ? 36u : 24u) && P % 8 == 0 &&
-           (((uintptr_t)dst0 + (size_t)(first - out_first) * 2u *
-                                   (size_t)P * block) & 63u) == 0;
+    return ro->run && block == (ro->run == 3 ? 36u : 24u) && P % 8 == 0 &&
+           (((uintptr_t)dst0 +
+             (size_t)(first - out_first) * 2u * (size_t)P * block) &
+            63u) == 0;
 }
 
-/* The eye (hf__frame_eye_avx2) and the output's scale and origin
-   (hf__rout_vec_avx2) as vectors of eight lanes and of sixteen, the
+/* The eye (hf__frame_eye_v8) and the output's scale and origin
+   (hf__rout_vec_v8) as vectors of eight lanes and of sixteen, the
    same in every lane */
 HF__TARGET_AVX512 HF__INLINE void
 hf__vecs16_init(const hf_ribbon_params *params, const hf__rout *ro, __m256 *e,
                 __m256 *ov, __m512 *e16, __m512 *ov16)
 {
     int c;
-    hf__frame_eye_avx2(params, e);
-    hf__rout_vec_avx2(ro, ov);
+    hf__frame_eye_v8(params, e);
+    hf__rout_vec_v8(ro, ov);
     HF__UNROLL for (c = 0; c < 4; ++c) {
         if (c < 3) e16[c] = hf__join16(e[c], e[c]);
         ov16[c] = hf__join16(ov[c], ov[c]);
@@ -13322,8 +13463,8 @@ hf__vecs16_init(const hf_ribbon_params *params, const hf__rout *ro, __m256 *e,
 }
 
 /* Strand s with P a multiple of 16: its frame and vertices in registers
-   (hf__ribbon_fused_avx512), or, where that leaves the strand, framed by
-   hf__frame_strand_avx2 into fr and written from the rows; as lines (t)
+   (hf__ribbon_fused_v16), or, where that leaves the strand, framed by
+   hf__frame_strand_v8 into fr and written from the rows; as lines (t)
    or as compact vertices (enc16 and enc, the AVX2 writer's). e, ov: the
    eye and output vectors at eight lanes, e16, ov16 at sixteen. */
 HF__TARGET_AVX512 HF__INLINE void
@@ -13341,28 +13482,28 @@ hf__ribbon_strand16(const hf_ribbon_strands *sv, int s, int end,
     float wsc;
     str.wscale = 1.0f;
     hf__rstrand_fill(sv, s, K->wcap, &str);
-    if (hf__ribbon_fused_avx512(sv->points + (size_t)s * (size_t)P * 3u, P,
-                                ortho, e16, K, &str, ro, v0, ov16, t, enc16))
+    if (hf__ribbon_fused_v16(sv->points + (size_t)s * (size_t)P * 3u, P, ortho,
+                             e16, K, &str, ro, v0, ov16, t, enc16))
         return;
-    hf__frame_at_avx2(sv, s, end, P, ortho, e, params, fr, &wsc);
+    hf__frame_at_v8(sv, s, end, P, ortho, e, params, fr, &wsc);
     str.wscale = wsc;
     hf__rstrand_fill(sv, s, K->wcap, &str);
     if (enc)
-        hf__ribbon_write_c16_avx2_in(fr, P, K, &str, ro, v0, ov, enc);
+        hf__ribbon_write_c16_v8_in(fr, P, K, &str, ro, v0, ov, enc);
     else
-        hf__ribbon_lines_avx512(fr, P, K, &str, ro, v0, ov, t);
+        hf__ribbon_lines_v16(fr, P, K, &str, ro, v0, ov, t);
 }
 
 /* The strands of a streamed call as lines (hf__lines_fit). P a multiple
-   of 16: each strand's frame in registers (hf__ribbon_fused_avx512), a
-   strand it leaves framed by hf__frame_strand_avx2 and written from the
-   rows. Else hf__ribbons_loop_avx2's plain path (each frame a strand
+   of 16: each strand's frame in registers (hf__ribbon_fused_v16), a
+   strand it leaves framed by hf__frame_strand_v8 and written from the
+   rows. Else hf__ribbons_loop_v8's plain path (each frame a strand
    ahead, in fr and fr2 by turns) with the lines for the writer. */
 HF__TARGET_AVX512 HF__PRIVATE void
-hf__ribbons_lines_avx512(const hf_ribbon_strands *sv, int first, int count,
-                         const hf_ribbon_params *params, const hf__rconst *K,
-                         const hf__rout *ro, int out_first, hf__rframe *fr,
-                         hf__rframe *fr2)
+hf__ribbons_lines_v16(const hf_ribbon_strands *sv, int first, int count,
+                      const hf_ribbon_params *params, const hf__rconst *K,
+                      const hf__rout *ro, int out_first, hf__rframe *fr,
+                      hf__rframe *fr2)
 {
     const int P = params->points_per_strand,
               ortho = params->orthographic != 0, end = first + count;
@@ -13382,18 +13523,17 @@ hf__ribbons_lines_avx512(const hf_ribbon_strands *sv, int first, int count,
             hf__ribbon_strand16(&svl, s, end, params, K, ro, out_first, e, ov,
                                 e16, ov16, fr, &t, NULL, NULL);
     } else {
-        hf__frame_at_avx2(&svl, first, end, P, ortho, e, params, F[0],
-                          &wsc[0]);
+        hf__frame_at_v8(&svl, first, end, P, ortho, e, params, F[0], &wsc[0]);
         for (s = first; s < end; ++s) {
             const int j = (s - first) & 1;
             hf__rstrand str;
-            hf__frame_at_avx2(&svl, s + 1, end, P, ortho, e, params,
-                              F[j ^ 1], &wsc[j ^ 1]);
+            hf__frame_at_v8(&svl, s + 1, end, P, ortho, e, params, F[j ^ 1],
+                            &wsc[j ^ 1]);
             str.wscale = wsc[j];
             hf__rstrand_fill(&svl, s, K->wcap, &str);
-            hf__ribbon_lines_avx512(F[j], P, K, &str, ro,
-                                    (size_t)(s - out_first) * (size_t)P * 2u,
-                                    ov, &t);
+            hf__ribbon_lines_v16(F[j], P, K, &str, ro,
+                                 (size_t)(s - out_first) * (size_t)P * 2u, ov,
+                                 &t);
         }
     }
     _mm_sfence(); /* streamed stores visible before we return */
@@ -13402,12 +13542,12 @@ hf__ribbons_lines_avx512(const hf_ribbon_strands *sv, int first, int count,
 
 /* The compact vertex (hf__rout c16) of a call at AVX-512, P a multiple
    of 16: each strand's frame and vertices in registers
-   (hf__ribbon_fused_avx512); a strand it leaves, framed by
-   hf__frame_strand_avx2 and written from the rows by the AVX2 writer. */
+   (hf__ribbon_fused_v16); a strand it leaves, framed by
+   hf__frame_strand_v8 and written from the rows by the AVX2 writer. */
 HF__TARGET_AVX512 HF__PRIVATE void
-hf__ribbons_c16_avx512(const hf_ribbon_strands *sv, int first, int count,
-                       const hf_ribbon_params *params, const hf__rconst *K,
-                       const hf__rout *ro, int out_first, hf__rframe *fr)
+hf__ribbons_c16_v16(const hf_ribbon_strands *sv, int first, int count,
+                    const hf_ribbon_params *params, const hf__rconst *K,
+                    const hf__rout *ro, int out_first, hf__rframe *fr)
 {
     static const int q[3] = {HF__S_POS, HF__S_TEX, HF__S_TAN};
     const int end = first + count;
@@ -13512,6 +13652,111 @@ HF__PRIVATE int hf__streams_cross(uintptr_t a, size_t sa, size_t ea,
     return 0;
 }
 
+/* A call of hf_ribbons, checked and laid out, for its whole-call loops */
+typedef struct hf__rcall {
+    const hf_ribbon_strands *sv; /* the inputs of the streams written */
+    const hf_ribbon_params *params;
+    const hf__rconst *K;
+    const hf__rout *ro;
+    int first, count, out_first, P;
+    hf__rframe *fr, *fr2; /* a strand's frame rows, a second one */
+    int stage;            /* streamed through stage_buf: */
+    float *stage_buf;     /* (in fr2's room) */
+    unsigned char *dst0;  /* the first byte of vertex 0 */
+    size_t block;         /* a vertex's bytes in the stage */
+    const struct hf__frame_kernels *frame; /* the call's level's */
+    const struct hf__write_kernels *write;
+} hf__rcall;
+
+/* The whole-call loops, one a width, each returning 0 for a call it
+   leaves to the next (hf__ribbons_widths). */
+#if HF__AVX512
+/* sixteen lanes: a streamed call that fits lines (hf__lines_fit), or
+   the compact vertex with P a multiple of 16 */
+HF__PRIVATE int hf__ribbons_v16(const hf__rcall *c)
+{
+    if (c->stage &&
+        hf__lines_fit(c->ro, c->P, c->dst0, c->block, c->first, c->out_first)) {
+        hf__ribbons_lines_v16(c->sv, c->first, c->count, c->params, c->K, c->ro,
+                              c->out_first, c->fr, c->fr2);
+        return 1;
+    }
+    if (!c->stage && c->ro->c16 && c->P % 16 == 0) {
+        hf__ribbons_c16_v16(c->sv, c->first, c->count, c->params, c->K, c->ro,
+                            c->out_first, c->fr);
+        return 1;
+    }
+    return 0;
+}
+#endif
+
+#if HF__AVX2
+/* eight lanes: the layouts with a float run or windows */
+HF__PRIVATE int hf__ribbons_v8(const hf__rcall *c)
+{
+    if (!c->ro->run && !c->ro->nw) return 0;
+    hf__ribbons_run_v8(c->sv, c->first, c->count, c->params, c->K, c->ro,
+                       c->out_first, c->fr, c->stage ? NULL : c->fr2,
+                       c->stage ? c->stage_buf : NULL, c->dst0, c->block);
+    return 1;
+}
+#endif
+
+/* four lanes and one: a strand at a time, its frame and its vertices by
+   the call's kernels (hf__strand_frame, hf__ribbon_write), through the
+   stage in a streamed call */
+HF__PRIVATE int hf__ribbons_each(const hf__rcall *c)
+{
+    /* the inputs in locals, read once: the kernels are calls whose
+       stores may alias anything reached through a pointer */
+    const hf_ribbon_strands sv = *c->sv;
+    const hf_ribbon_params *params = c->params;
+    const hf__frame_kernels *kf = c->frame;
+    const hf__write_kernels *kw = c->write;
+    const int P = c->P, out_first = c->out_first, stage = c->stage;
+    hf__rframe *const fr = c->fr;
+    hf__rout so;
+    int s;
+    if (stage) hf__rout_staged(c->ro, c->stage_buf, c->dst0, &so);
+    for (s = c->first; s < c->first + c->count; ++s) {
+        const float *pts = sv.points + (size_t)s * (size_t)P * 3u;
+        const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
+        hf__rstrand str;
+        hf__strand_frame(pts, P, params, fr, &str.wscale, kf);
+        hf__rstrand_fill(&sv, s, c->K->wcap, &str);
+        if (stage) {
+            /* the strand's vertices into the stage (in L1), then out to
+               its block with streaming stores */
+            hf__ribbon_write(fr, P, c->K, &str, &so, 0, kw);
+            hf__stream_copy(c->dst0 + v0 * c->block, c->stage_buf,
+                            2u * (size_t)P * c->block);
+        } else {
+            hf__ribbon_write(fr, P, c->K, &str, c->ro, v0, kw);
+        }
+    }
+#if HF__SSE
+    if (stage) _mm_sfence(); /* streamed stores visible before we return */
+#endif
+    return 1;
+}
+
+typedef struct hf__ribbons_kernels {
+    hf__isa isa;
+    int (*call)(const hf__rcall *);
+} hf__ribbons_kernels;
+
+static const hf__ribbons_kernels hf__ribbons_widths[] = {
+#if HF__AVX512
+    {{HF__ISA_V16}, hf__ribbons_v16},
+#endif
+#if HF__AVX2
+    {{HF__ISA_V8}, hf__ribbons_v8},
+#endif
+#if HF__V4
+    {{HF__ISA_V4}, hf__ribbons_each},
+#endif
+    {{HF__ISA_V1}, hf__ribbons_each}};
+
 /* hf_ribbons, with streaming stores by size (nontemporal 0) chosen as
    for `sized` strands: the call's count, or a fur's drawn strands */
 HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
@@ -13520,9 +13765,11 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
                                   const hf_ribbon_output *out, int sized)
 {
     hf__rconst K;
-    hf__rout ro, so;
+    hf__rout ro;
+    hf__rcall c;
     hf_ribbon_params prm;
     const hf_ribbon_params *params = &prm;
+    const hf__ribbons_kernels *kc;
     hf_ribbon_strands sv;
     const hf_stream *streams[5];
     /* a strand's frame rows from a page boundary, then a second frame
@@ -13534,7 +13781,7 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
     unsigned char *dst0 = NULL;
     size_t block = 0, elem[5];
     size_t nv, call_v0; /* vertices a strand; the call's first vertex */
-    int s, k, P, stage, level, out_first;
+    int k, P, stage;
     hf_result r = hf__ribbon_check(strands, first, count, view, &prm);
     if (r != HF_OK) return r;
     if (!out) return HF_ERROR_NULL_POINTER;
@@ -13588,7 +13835,6 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
     hf__rout_layout(&ro); /* the stage keeps the layout: the same */
 
     P = params->points_per_strand;
-    level = hf_simd_resolve(params->simd);
     hf__rconst_init(&K, params);
 
     stage = hf__streaming(params->nontemporal,
@@ -13597,55 +13843,32 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
                 ? hf__ribbon_stage(&ro, P, call_v0, &block, &dst0)
                 : 0;
     if (stage)
-        stage_buf = hf__stage_in_page((float *)(void *)fr2,
-                                      2u * (size_t)P * block);
-    /* the inputs in locals, read once: the kernels are calls whose
-       stores may alias anything reached through a pointer */
+        stage_buf =
+            hf__stage_in_page((float *)(void *)fr2, 2u * (size_t)P * block);
     sv = *strands;
     /* the inputs of the streams not written are not read */
     if (!ro.base[HF__S_TEX]) sv.root_uv = NULL;
     if (!ro.base[HF__S_COL]) sv.color = NULL;
     if (!ro.base[HF__S_C3D]) sv.color3d_x = NULL;
-    out_first = params->out_first;
-#if HF__AVX512
-    if (stage && hf__lines_fit(&ro, P, level, dst0, block, first, out_first)) {
-        hf__ribbons_lines_avx512(&sv, first, count, params, &K, &ro,
-                                 out_first, fr, fr2);
-        return HF_OK;
-    }
-    if (!stage && ro.c16 && level >= HF_SIMD_AVX512 && P % 16 == 0) {
-        hf__ribbons_c16_avx512(&sv, first, count, params, &K, &ro, out_first,
-                               fr);
-        return HF_OK;
-    }
-#endif
-#if HF__AVX2
-    if (level >= HF_SIMD_AVX2 && (ro.run || ro.nw)) {
-        hf__ribbons_run_avx2(&sv, first, count, params, &K, &ro, out_first,
-                             fr, stage ? NULL : fr2,
-                             stage ? stage_buf : NULL, dst0, block);
-        return HF_OK;
-    }
-#endif
-    if (stage) hf__rout_staged(&ro, stage_buf, dst0, &so);
-    for (s = first; s < first + count; ++s) {
-        const float *pts = sv.points + (size_t)s * (size_t)P * 3u;
-        const size_t v0 = (size_t)(s - out_first) * (size_t)P * 2u;
-        hf__rstrand str;
-        hf__strand_frame(pts, P, params, fr, &str.wscale, level);
-        hf__rstrand_fill(&sv, s, K.wcap, &str);
-        if (stage) {
-            /* the strand's vertices into the stage (in L1), then out to
-               its block with streaming stores */
-            hf__ribbon_write(fr, P, &K, &str, &so, 0, level);
-            hf__stream_copy(dst0 + v0 * block, stage_buf, 2u * (size_t)P * block);
-        } else {
-            hf__ribbon_write(fr, P, &K, &str, &ro, v0, level);
-        }
-    }
-#if HF__SSE
-    if (stage) _mm_sfence(); /* streamed stores visible before we return */
-#endif
+    c.sv = &sv;
+    c.params = params;
+    c.K = &K;
+    c.ro = &ro;
+    c.first = first;
+    c.count = count;
+    c.out_first = params->out_first;
+    c.P = P;
+    c.fr = fr;
+    c.fr2 = fr2;
+    c.stage = stage;
+    c.stage_buf = stage_buf;
+    c.dst0 = dst0;
+    c.block = block;
+    /* the call's kernels, once: its loop, the frames and writers */
+    c.frame = hf__kernels_for(hf__frame_widths, params->simd);
+    c.write = hf__kernels_for(hf__write_widths, params->simd);
+    kc = hf__kernels_for(hf__ribbons_widths, params->simd);
+    while (!kc->call(&c)) ++kc;
     return HF_OK;
 }
 
@@ -13658,11 +13881,13 @@ HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
 
 /* ---- 8.8 GPU points (hf_ribbon_points) ---------------------------------- */
 
-/* GPU points of one strand: (x, y, z, hw[j] * ws) for point j. */
-HF__PRIVATE void hf__points_strand_ref(const float *p, const float *hw,
-                                       float ws, float *o, int P)
+/* GPU points of one strand: (x, y, z, hw[j] * ws) for point j; nt asks
+   for streaming stores (the reference makes none). */
+HF__PRIVATE void hf__points_strand_v1(const float *p, const float *hw, float ws,
+                                      float *o, int P, int nt)
 {
     int j;
+    (void)nt;
     for (j = 0; j < P; ++j) {
         o[4 * j] = p[3 * j];
         o[4 * j + 1] = p[3 * j + 1];
@@ -13677,7 +13902,7 @@ HF__PRIVATE void hf__points_strand_ref(const float *p, const float *hw,
    and shifts, so nothing past the strand is read and every point is
    written here (a scalar store into a line being streamed would stall).
    Streaming stores where asked and aligned. P >= 2. */
-HF__INLINE void hf__point_put_sse(float *o, __m128 v, float w, int nt)
+HF__INLINE void hf__point_put_v4(float *o, __m128 v, float w, int nt)
 {
     const __m128 xyz = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
     v = _mm_or_ps(_mm_and_ps(v, xyz), _mm_set_ps(w, 0.0f, 0.0f, 0.0f));
@@ -13687,30 +13912,30 @@ HF__INLINE void hf__point_put_sse(float *o, __m128 v, float w, int nt)
         _mm_storeu_ps(o, v);
 }
 
-HF__PRIVATE void hf__points_strand_sse(const float *p, const float *hw,
-                                       float ws, float *o, int P, int nt)
+HF__PRIVATE void hf__points_strand_v4(const float *p, const float *hw, float ws,
+                                      float *o, int P, int nt)
 {
     int j;
     nt = nt && ((uintptr_t)o & 15u) == 0;
     if (nt) hf__page_ahead(o, 16u * (size_t)P);
     for (j = 0; j + 1 < P; ++j)
-        hf__point_put_sse(o + 4 * j, _mm_loadu_ps(p + 3 * j), hw[j] * ws, nt);
+        hf__point_put_v4(o + 4 * j, _mm_loadu_ps(p + 3 * j), hw[j] * ws, nt);
     if (j < P) { /* the last: (z', x, y, z) to (x, y, z, z') */
         const __m128 v = _mm_loadu_ps(p + 3 * j - 1);
-        hf__point_put_sse(o + 4 * j,
-                          _mm_shuffle_ps(v, v, _MM_SHUFFLE(0, 3, 2, 1)),
-                          hw[j] * ws, nt);
+        hf__point_put_v4(o + 4 * j,
+                         _mm_shuffle_ps(v, v, _MM_SHUFFLE(0, 3, 2, 1)),
+                         hw[j] * ws, nt);
     }
 }
 #endif
 
 #if HF__NEON
-/* hf__points_strand_sse on ARM64 (no streaming stores there). */
-HF__PRIVATE void
-hf__points_strand_neon(const float *p, const float *hw, float ws, float *o,
-                       int P)
+/* hf__points_strand_v4 on ARM64 (no streaming stores there). */
+HF__PRIVATE void hf__points_strand_v4(const float *p, const float *hw, float ws,
+                                      float *o, int P, int nt)
 {
     int j;
+    (void)nt;
     for (j = 0; j + 1 < P; ++j)
         vst1q_f32(o + 4 * j,
                   vsetq_lane_f32(hw[j] * ws, vld1q_f32(p + 3 * j), 3));
@@ -13751,8 +13976,8 @@ HF__PRIVATE void hf__pair_widths_init(hf__pair_widths *pw, const float *hw,
    returns 0 when a point is not finite, with the strand written from
    its points as they are (the caller writes it again, collapsed). P >= 3. */
 HF__TARGET_AVX2 HF__INLINE int
-hf__points_strand_avx2_in(const float *p, const hf__pair_widths *pw, float ws,
-                          float *o, int P, int mode)
+hf__points_strand_v8_in(const float *p, const hf__pair_widths *pw, float ws,
+                        float *o, int P, int mode)
 {
     const __m256i spread = _mm256_setr_epi32(0, 1, 2, 0, 3, 4, 5, 0);
     const __m256i spread_last = _mm256_setr_epi32(2, 3, 4, 0, 5, 6, 7, 0);
@@ -13785,12 +14010,13 @@ hf__points_strand_avx2_in(const float *p, const hf__pair_widths *pw, float ws,
 }
 
 /* the strand above as a call (mode: hf__stream_mode's) */
-HF__TARGET_AVX2 HF__PRIVATE int
-hf__points_strand_avx2(const float *p, const hf__pair_widths *pw, float ws,
-                       float *o, int P, int nt)
+HF__TARGET_AVX2 HF__PRIVATE int hf__points_strand_v8(const float *p,
+                                                     const hf__pair_widths *pw,
+                                                     float ws, float *o, int P,
+                                                     int nt)
 {
-    const int ok = hf__points_strand_avx2_in(p, pw, ws, o, P,
-                                             hf__stream_mode(nt, o, 31u));
+    const int ok =
+        hf__points_strand_v8_in(p, pw, ws, o, P, hf__stream_mode(nt, o, 31u));
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
     return ok;
 }
@@ -13807,16 +14033,19 @@ typedef struct hf__points_kit {
     int P, level, nt, wide;
     int compact;           /* HF_POINT_COMPACT: */
     float origin[3], inv;  /* its box: (p - origin) * inv */
+    /* the level's kernels (hf__kernels_for): points, compact encoders */
+    const struct hf__points_kernels *kernels;
+    const struct hf__encode_kernels *encode;
 } hf__points_kit;
 
 #if HF__AVX2
 /* A strand at o that is not finite, written again collapsed (every point
    at the origin, width 0) by the AVX2 points kernel, after the streamed
    stores already made; rare, so a call of its own. */
-HF__PRIVATE void hf__points_collapse_avx2(const hf__points_kit *k, float *o)
+HF__PRIVATE void hf__points_collapse_v8(const hf__points_kit *k, float *o)
 {
     if (k->nt) _mm_sfence();
-    hf__points_strand_avx2(hf__zero_points, &k->pw, 0.0f, o, k->P, k->nt);
+    hf__points_strand_v8(hf__zero_points, &k->pw, 0.0f, o, k->P, k->nt);
 }
 
 /* The strands of a points call at AVX2 in one target function, the
@@ -13825,9 +14054,9 @@ HF__PRIVATE void hf__points_collapse_avx2(const hf__points_kit *k, float *o)
    keep the first's alignment, so the mode is one for the call and a
    constant in the loop; with P odd it alternates, found per strand. */
 HF__TARGET_AVX2 HF__INLINE void
-hf__points_loop_avx2(const hf__points_kit *k, const hf_ribbon_strands *strands,
-                     const float *pts, int pts_first, int first, int count,
-                     int out_first, float *out4, int mode)
+hf__points_loop_v8(const hf__points_kit *k, const hf_ribbon_strands *strands,
+                   const float *pts, int pts_first, int first, int count,
+                   int out_first, float *out4, int mode)
 {
     const int P = k->P;
     /* read once: the stores may alias k and strands */
@@ -13838,58 +14067,36 @@ hf__points_loop_avx2(const hf__points_kit *k, const hf_ribbon_strands *strands,
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
         const int m = mode >= 0 ? mode : hf__stream_mode(k->nt, o, 31u);
         if (m) hf__page_ahead(o, 16u * (size_t)P);
-        if (!hf__points_strand_avx2_in(p, &k->pw, hf__width_at(wd, s, wcap),
-                                       o, P, m)) {
+        if (!hf__points_strand_v8_in(p, &k->pw, hf__width_at(wd, s, wcap), o, P,
+                                     m)) {
             _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
-            hf__points_collapse_avx2(k, o);
+            hf__points_collapse_v8(k, o);
         }
     }
 }
 
 HF__TARGET_AVX2 HF__PRIVATE void
-hf__points_run_avx2(const hf__points_kit *k, const hf_ribbon_strands *strands,
+hf__points_pairs_v8(const hf__points_kit *k, const hf_ribbon_strands *strands,
                     const float *pts, int pts_first, int first, int count,
                     int out_first, float *out4)
 {
     const int mode = hf__stream_mode(
         k->nt, out4 + (size_t)(first - out_first) * (size_t)k->P * 4u, 31u);
     if (k->P % 2)
-        hf__points_loop_avx2(k, strands, pts, pts_first, first, count,
-                             out_first, out4, -1);
+        hf__points_loop_v8(k, strands, pts, pts_first, first, count, out_first,
+                           out4, -1);
     else if (mode == 2)
-        hf__points_loop_avx2(k, strands, pts, pts_first, first, count,
-                             out_first, out4, 2);
+        hf__points_loop_v8(k, strands, pts, pts_first, first, count, out_first,
+                           out4, 2);
     else if (mode)
-        hf__points_loop_avx2(k, strands, pts, pts_first, first, count,
-                             out_first, out4, 1);
+        hf__points_loop_v8(k, strands, pts, pts_first, first, count, out_first,
+                           out4, 1);
     else
-        hf__points_loop_avx2(k, strands, pts, pts_first, first, count,
-                             out_first, out4, 0);
+        hf__points_loop_v8(k, strands, pts, pts_first, first, count, out_first,
+                           out4, 0);
     _mm256_zeroupper(); /* see HF__TARGET_AVX2 */
 }
 #endif
-
-HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
-                                     const hf_ribbon_params *params,
-                                     int count)
-{
-    int c;
-    k->P = params->points_per_strand;
-    k->level = hf_simd_resolve(params->simd);
-    k->compact = params->point_format == HF_POINT_COMPACT;
-    for (c = 0; c < 3; ++c) k->origin[c] = params->point_origin[c];
-    k->inv = 1.0f / params->point_scale; /* resolved: not 0 */
-    k->nt = hf__streaming(params->nontemporal,
-                          (size_t)count * (size_t)k->P * (k->compact ? 8u : 16u),
-                          HF_STREAM_MIN_VERTEX_BYTES);
-    k->wcap = hf__half_widths(params, k->hw, NULL);
-    k->wide = 0;
-#if HF__AVX2
-    /* the AVX2 kernel needs P >= 3 */
-    k->wide = k->level >= HF_SIMD_AVX2 && k->P >= 3;
-    if (k->wide) hf__pair_widths_init(&k->pw, k->hw, k->P);
-#endif
-}
 
 #endif /* !HF__PASS */
 
@@ -13972,7 +14179,7 @@ HF__VTARGET HF__INLINE void HF__KN(hf__interp_points_whole)(
             HF__KN(hf__points_abc)(o + 4 * j, a, b, c, HF__KN(hf__widths)(k, j),
                                    WS, &acc, mode, q);
         }
-        if (!HF__KN(hf__all_zero)(acc)) hf__points_collapse_avx2(k, o);
+        if (!HF__KN(hf__all_zero)(acc)) hf__points_collapse_v8(k, o);
     }
 }
 
@@ -14016,7 +14223,7 @@ HF__KN(hf__points_whole)(const hf__points_kit *k, const hf_ribbon_strands *st,
             HF__KN(hf__points_abc)(o + 4 * j, a, b, c, HF__KN(hf__widths)(k, j),
                                    WS, &acc, mode, 0);
         }
-        if (!HF__KN(hf__all_zero)(acc)) hf__points_collapse_avx2(k, o);
+        if (!HF__KN(hf__all_zero)(acc)) hf__points_collapse_v8(k, o);
     }
 }
 
@@ -14147,16 +14354,59 @@ HF__TARGET_AVX512 HF__INLINE void hf__points_out_v16(float *o, __m512 a,
 #endif
 #undef HF__CLUMP_MODE_CASES
 
+/* Interpolation into GPU points in one kernel (hf_fur_interpolate_points)
+   per width, each returning 0 for a P it leaves to the next: P even and
+   at least 8 at eight lanes, a multiple of 4 and at least 16 at sixteen;
+   none at four lanes and one (fused 0: the strands go through memory). */
+typedef struct hf__ipoints_kernels {
+    hf__isa isa;
+    int (*fused)(const hf__irun *, const hf__points_kit *,
+                 const hf_ribbon_strands *, int, int, int, float *);
+} hf__ipoints_kernels;
+
+#if HF__AVX2
+HF__PRIVATE int hf__interp_points_fit_v8(const hf__irun *run,
+                                         const hf__points_kit *k,
+                                         const hf_ribbon_strands *st, int first,
+                                         int count, int out_first, float *out4)
+{
+    if (run->P % 2 != 0 || run->P < 8) return 0;
+    hf__interp_points_v8(run, k, st, first, count, out_first, out4);
+    return 1;
+}
+#endif
+#if HF__AVX512
+HF__PRIVATE int hf__interp_points_fit_v16(const hf__irun *run,
+                                          const hf__points_kit *k,
+                                          const hf_ribbon_strands *st,
+                                          int first, int count, int out_first,
+                                          float *out4)
+{
+    if (run->P % 4 != 0 || run->P < 16) return 0;
+    hf__interp_points_v16(run, k, st, first, count, out_first, out4);
+    return 1;
+}
+#endif
+
+static const hf__ipoints_kernels hf__ipoints_widths[] = {
+#if HF__AVX512
+    {{HF__ISA_V16}, hf__interp_points_fit_v16},
+#endif
+#if HF__AVX2
+    {{HF__ISA_V8}, hf__interp_points_fit_v8},
+#endif
+    {{HF__ISA_V1}, NULL}};
+
 /* Compact points (HF_POINT_COMPACT) from float ones: n points (x, y, z,
    half width) at in to 8 bytes each at o, native byte order; the vector
-   encoders (hf__encode_sse, _avx2, _neon) perform hf__encode1's
+   encoders (hf__encode_v4, hf__encode_v8) perform hf__encode1's
    operations, so every level writes the same bytes. */
-HF__PRIVATE void hf__points_encode_ref(const hf__points_kit *k,
-                                       const float *in, size_t n,
-                                       unsigned char *o)
+HF__PRIVATE void hf__points_encode_v1(const hf__points_kit *k, const float *in,
+                                      size_t n, unsigned char *o, int nt)
 {
     size_t i;
     int c;
+    (void)nt;
     for (i = 0; i < n; ++i, in += 4, o += 8) {
         uint16_t code[4];
         for (c = 0; c < 3; ++c)
@@ -14169,20 +14419,19 @@ HF__PRIVATE void hf__points_encode_ref(const hf__points_kit *k,
 
 #if HF__SSE
 /* One point's four codes (x, y, z SNORM16, w F16) in 32-bit lanes. */
-HF__INLINE __m128i hf__point_codes_sse(__m128 v, __m128 o, __m128 inv)
+HF__INLINE __m128i hf__point_codes_v4(__m128 v, __m128 o, __m128 inv)
 {
     const __m128i xyz = _mm_setr_epi32(-1, -1, -1, 0);
-    const __m128i sn = hf__encode_sse(_mm_mul_ps(_mm_sub_ps(v, o), inv),
-                                      HF_FORMAT_SNORM16);
-    const __m128i h = hf__encode_sse(v, HF_FORMAT_F16);
+    const __m128i sn =
+        hf__encode_v4(_mm_mul_ps(_mm_sub_ps(v, o), inv), HF_FORMAT_SNORM16);
+    const __m128i h = hf__encode_v4(v, HF_FORMAT_F16);
     const __m128i c = _mm_or_si128(_mm_and_si128(xyz, sn),
                                    _mm_andnot_si128(xyz, h));
     return _mm_srai_epi32(_mm_slli_epi32(c, 16), 16); /* for packs */
 }
 
-HF__PRIVATE void hf__points_encode_sse(const hf__points_kit *k,
-                                       const float *in, size_t n,
-                                       unsigned char *o, int nt)
+HF__PRIVATE void hf__points_encode_v4(const hf__points_kit *k, const float *in,
+                                      size_t n, unsigned char *o, int nt)
 {
     const __m128 org = _mm_setr_ps(k->origin[0], k->origin[1], k->origin[2],
                                    0.0f),
@@ -14190,9 +14439,9 @@ HF__PRIVATE void hf__points_encode_sse(const hf__points_kit *k,
     size_t i = 0;
     nt = nt && ((uintptr_t)o & 15u) == 0;
     for (; i + 2 <= n; i += 2, in += 8, o += 16) {
-        const __m128i two = _mm_packs_epi32(
-            hf__point_codes_sse(_mm_loadu_ps(in), org, inv),
-            hf__point_codes_sse(_mm_loadu_ps(in + 4), org, inv));
+        const __m128i two =
+            _mm_packs_epi32(hf__point_codes_v4(_mm_loadu_ps(in), org, inv),
+                            hf__point_codes_v4(_mm_loadu_ps(in + 4), org, inv));
         if (nt)
             _mm_stream_si128((__m128i *)(void *)o, two);
         else
@@ -14200,19 +14449,19 @@ HF__PRIVATE void hf__points_encode_sse(const hf__points_kit *k,
     }
     if (i < n)
         _mm_storel_epi64((__m128i *)(void *)o,
-                         _mm_packs_epi32(hf__point_codes_sse(_mm_loadu_ps(in),
-                                                             org, inv),
+                         _mm_packs_epi32(hf__point_codes_v4(_mm_loadu_ps(in),
+                                                            org, inv),
                                          _mm_setzero_si128()));
 }
 #endif
 
 #if HF__AVX2
-/* hf__points_encode_sse eight points at a time: the positions two points
+/* hf__points_encode_v4 eight points at a time: the positions two points
    a vector, the eight half widths gathered into one vector for a single
    half conversion, then put back into each point's fourth lane. */
-HF__TARGET_AVX2 HF__PRIVATE void
-hf__points_encode_avx2(const hf__points_kit *k, const float *in, size_t n,
-                       unsigned char *o, int nt)
+HF__TARGET_AVX2 HF__PRIVATE void hf__points_encode_v8(const hf__points_kit *k,
+                                                      const float *in, size_t n,
+                                                      unsigned char *o, int nt)
 {
     const __m256 org = _mm256_setr_ps(k->origin[0], k->origin[1],
                                       k->origin[2], 0.0f, k->origin[0],
@@ -14225,20 +14474,20 @@ hf__points_encode_avx2(const hf__points_kit *k, const float *in, size_t n,
                      v2 = _mm256_loadu_ps(in + 16),
                      v3 = _mm256_loadu_ps(in + 24);
         /* w0 w2 w4 w6 | w1 w3 w5 w7 */
-        const __m256i w = hf__encode_avx2(
+        const __m256i w = hf__encode_v8(
             _mm256_shuffle_ps(
                 _mm256_shuffle_ps(v0, v1, _MM_SHUFFLE(3, 3, 3, 3)),
                 _mm256_shuffle_ps(v2, v3, _MM_SHUFFLE(3, 3, 3, 3)),
                 _MM_SHUFFLE(2, 0, 2, 0)),
             HF_FORMAT_F16);
-        __m256i c0 = hf__encode_avx2(
-                    _mm256_mul_ps(_mm256_sub_ps(v0, org), inv), HF_FORMAT_SNORM16),
-                c1 = hf__encode_avx2(
-                    _mm256_mul_ps(_mm256_sub_ps(v1, org), inv), HF_FORMAT_SNORM16),
-                c2 = hf__encode_avx2(
-                    _mm256_mul_ps(_mm256_sub_ps(v2, org), inv), HF_FORMAT_SNORM16),
-                c3 = hf__encode_avx2(
-                    _mm256_mul_ps(_mm256_sub_ps(v3, org), inv), HF_FORMAT_SNORM16),
+        __m256i c0 = hf__encode_v8(_mm256_mul_ps(_mm256_sub_ps(v0, org), inv),
+                                   HF_FORMAT_SNORM16),
+                c1 = hf__encode_v8(_mm256_mul_ps(_mm256_sub_ps(v1, org), inv),
+                                   HF_FORMAT_SNORM16),
+                c2 = hf__encode_v8(_mm256_mul_ps(_mm256_sub_ps(v2, org), inv),
+                                   HF_FORMAT_SNORM16),
+                c3 = hf__encode_v8(_mm256_mul_ps(_mm256_sub_ps(v3, org), inv),
+                                   HF_FORMAT_SNORM16),
                 out0, out1;
         /* each point's half width into its fourth lane, then the codes
            sign-extended for packs */
@@ -14264,7 +14513,7 @@ hf__points_encode_avx2(const hf__points_kit *k, const float *in, size_t n,
         }
     }
     _mm256_zeroupper();
-    if (i < n) hf__points_encode_sse(k, in, n - i, o, 0);
+    if (i < n) hf__points_encode_v4(k, in, n - i, o, 0);
 }
 #endif
 
@@ -14274,8 +14523,8 @@ hf__points_encode_avx2(const hf__points_kit *k, const float *in, size_t n,
    to nearest even as hf__encode1 does (after its clamp to the largest
    half, subnormals included); each a 32-bit lane, narrowed to 16. */
 HF__TARGET_AVX512 HF__PRIVATE void
-hf__points_encode_avx512(const hf__points_kit *k, const float *in, size_t n,
-                         unsigned char *o, int nt)
+hf__points_encode_v16(const hf__points_kit *k, const float *in, size_t n,
+                      unsigned char *o, int nt)
 {
     const __m512 org = _mm512_setr_ps(
         k->origin[0], k->origin[1], k->origin[2], 0.0f, k->origin[0],
@@ -14313,65 +14562,120 @@ hf__points_encode_avx512(const hf__points_kit *k, const float *in, size_t n,
             _mm256_storeu_si256((__m256i *)(void *)o, four);
     }
     _mm256_zeroupper();
-    if (i < n) hf__points_encode_sse(k, in, n - i, o, 0);
+    if (i < n) hf__points_encode_v4(k, in, n - i, o, 0);
 }
 #endif
 
 #if HF__NEON
-HF__PRIVATE void hf__points_encode_neon(const hf__points_kit *k,
-                                        const float *in, size_t n,
-                                        unsigned char *o)
+HF__PRIVATE void hf__points_encode_v4(const hf__points_kit *k, const float *in,
+                                      size_t n, unsigned char *o, int nt)
 {
     const float32x4_t inv = {k->inv, k->inv, k->inv, 1.0f};
     const float32x4_t org = {k->origin[0], k->origin[1], k->origin[2], 0.0f};
     const uint32x4_t xyz = {0xffffffffu, 0xffffffffu, 0xffffffffu, 0u};
     size_t i;
+    (void)nt; /* no streaming stores on ARM64 */
     for (i = 0; i < n; ++i, in += 4, o += 8) {
         const float32x4_t v = vld1q_f32(in);
-        const uint32x4_t c = vbslq_u32(
-            xyz,
-            hf__encode_neon(vmulq_f32(vsubq_f32(v, org), inv),
-                            HF_FORMAT_SNORM16),
-            hf__encode_neon(v, HF_FORMAT_F16));
+        const uint32x4_t c =
+            vbslq_u32(xyz,
+                      hf__encode_v4(vmulq_f32(vsubq_f32(v, org), inv),
+                                    HF_FORMAT_SNORM16),
+                      hf__encode_v4(v, HF_FORMAT_F16));
         vst1_u16((uint16_t *)(void *)o, vmovn_u32(c));
     }
 }
 #endif
+
+/* The points kernels of one width (hf__points_widths): at eight and
+   sixteen lanes a kernel for whole calls (run: 0 for a P it leaves to the
+   next width), finiteness found on the way (a strand that is not is
+   written again, collapsed, streamed stores ordered first); at four
+   lanes and one a strand at a time (strand, after finite). */
+typedef struct hf__points_kernels {
+    hf__isa isa;
+    int (*run)(const hf__points_kit *, const hf_ribbon_strands *, const float *,
+               int, int, int, int, float *);
+    int (*finite)(const float *, int);
+    void (*strand)(const float *, const float *, float, float *, int, int);
+} hf__points_kernels;
+
+#if HF__AVX2
+/* Whole groups of W points where P allows (with its input and output in
+   L2, 100,000 strands of 16 points took 0.41-0.48 ms against the pairs'
+   0.64-0.67), else two points a vector; P >= 3. */
+HF__PRIVATE int hf__points_run_v8(const hf__points_kit *k,
+                                  const hf_ribbon_strands *strands,
+                                  const float *pts, int pts_first, int first,
+                                  int count, int out_first, float *out4)
+{
+    if (k->P < 3) return 0;
+    if (k->P % 8 == 0)
+        hf__points_groups_v8(k, strands, pts, pts_first, first, count,
+                             out_first, out4);
+    else
+        hf__points_pairs_v8(k, strands, pts, pts_first, first, count, out_first,
+                            out4);
+    return 1;
+}
+#endif
+#if HF__AVX512
+/* P a multiple of 16 */
+HF__PRIVATE int hf__points_run_v16(const hf__points_kit *k,
+                                   const hf_ribbon_strands *strands,
+                                   const float *pts, int pts_first, int first,
+                                   int count, int out_first, float *out4)
+{
+    if (k->P % 16 != 0) return 0;
+    hf__points_groups_v16(k, strands, pts, pts_first, first, count, out_first,
+                          out4);
+    return 1;
+}
+#endif
+
+static const hf__points_kernels hf__points_widths[] = {
+#if HF__AVX512
+    {{HF__ISA_V16}, hf__points_run_v16, NULL, NULL},
+#endif
+#if HF__AVX2
+    {{HF__ISA_V8}, hf__points_run_v8, NULL, NULL},
+#endif
+#if HF__SSE
+    {{HF__ISA_V4}, NULL, hf__points_finite_v4, hf__points_strand_v4},
+#elif HF__NEON
+    {{HF__ISA_V4}, NULL, hf__points_finite_v1, hf__points_strand_v4},
+#endif
+    {{HF__ISA_V1}, NULL, hf__points_finite_v1, hf__points_strand_v1}};
 
 HF__PRIVATE void hf__points_run(const hf__points_kit *k,
                                 const hf_ribbon_strands *strands,
                                 const float *pts, int pts_first, int first,
                                 int count, int out_first, float *out4);
 
-/* The dispatch of the compact encoders: n points at in to o. */
+typedef struct hf__encode_kernels {
+    hf__isa isa;
+    void (*encode)(const hf__points_kit *, const float *, size_t,
+                   unsigned char *, int);
+} hf__encode_kernels;
+
+static const hf__encode_kernels hf__encode_widths[] = {
+#if HF__AVX512
+    {{HF__ISA_V16}, hf__points_encode_v16},
+#endif
+#if HF__AVX2
+    {{HF__ISA_V8}, hf__points_encode_v8},
+#endif
+#if HF__V4
+    {{HF__ISA_V4}, hf__points_encode_v4},
+#endif
+    {{HF__ISA_V1}, hf__points_encode_v1}};
+
+/* The dispatch of the compact encoders (hf__encode_widths, resolved by
+   hf__points_kit_init): n points at in to o. */
 HF__PRIVATE void hf__points_encode(const hf__points_kit *k, const float *in,
                                    size_t n, unsigned char *o)
 {
-#if HF__AVX512
-    if (k->level >= HF_SIMD_AVX512) {
-        hf__points_encode_avx512(k, in, n, o, k->nt);
-        return;
-    }
-#endif
-#if HF__AVX2
-    if (k->level >= HF_SIMD_AVX2) {
-        hf__points_encode_avx2(k, in, n, o, k->nt);
-        return;
-    }
-#endif
-#if HF__SSE
-    if (k->level >= HF_SIMD_SSE2) {
-        hf__points_encode_sse(k, in, n, o, k->nt);
-        return;
-    }
-#endif
-#if HF__NEON
-    if (k->level >= HF_SIMD_NEON) {
-        hf__points_encode_neon(k, in, n, o);
-        return;
-    }
-#endif
-    hf__points_encode_ref(k, in, n, o);
+    k->encode->encode(k, in, n, o, k->nt);
 }
 
 /* Compact points of strands [first, first + count): the float points of
@@ -14410,55 +14714,50 @@ HF__PRIVATE void hf__points_run(const hf__points_kit *k,
 {
     const int P = k->P;
     int s;
+    const hf__points_kernels *kr = k->kernels;
     if (k->compact) {
         hf__points_run_compact(k, strands, pts, pts_first, first, count,
                                out_first, (unsigned char *)out4);
         return;
     }
-#if HF__AVX2
-    if (k->wide) {
-        /* finiteness found on the way: a strand that is not is written
-           again, collapsed (streamed stores ordered first). Whole groups
-           of W points where P allows (with its input and output in L2,
-           100,000 strands of 16 points took 0.41-0.48 ms against the
-           pairs' 0.64-0.67), else two points a vector */
-#if HF__AVX512
-        if (k->level >= HF_SIMD_AVX512 && P % 16 == 0)
-            hf__points_groups_v16(k, strands, pts, pts_first, first, count,
-                                out_first, out4);
-        else
-#endif
-        if (P % 8 == 0)
-            hf__points_groups_v8(k, strands, pts, pts_first, first, count,
-                               out_first, out4);
-        else
-            hf__points_run_avx2(k, strands, pts, pts_first, first, count,
-                                out_first, out4);
-        return;
-    }
-#endif
+    for (; kr->run; ++kr)
+        if (kr->run(k, strands, pts, pts_first, first, count, out_first, out4))
+            return;
     for (s = first; s < first + count; ++s) {
         const float *p = pts + (size_t)(s - pts_first) * (size_t)P * 3u;
         float *o = out4 + (size_t)(s - out_first) * (size_t)P * 4u;
         float wscale = 0.0f;
-        if (hf__points_finite(p, 3 * P))
+        if (kr->finite(p, 3 * P))
             wscale = hf__width_at(strands->width, s, k->wcap);
         else
             p = hf__zero_points; /* collapsed, as hf_ribbons */
-#if HF__SSE
-        if (k->level >= HF_SIMD_SSE2) {
-            hf__points_strand_sse(p, k->hw, wscale, o, P, k->nt);
-            continue;
-        }
-#endif
-#if HF__NEON
-        if (k->level >= HF_SIMD_NEON) {
-            hf__points_strand_neon(p, k->hw, wscale, o, P);
-            continue;
-        }
-#endif
-        hf__points_strand_ref(p, k->hw, wscale, o, P);
+        kr->strand(p, k->hw, wscale, o, P, k->nt);
     }
+}
+
+/* A points call's kit from resolved params, for `count` strands */
+HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
+                                     const hf_ribbon_params *params, int count)
+{
+    int c;
+    k->P = params->points_per_strand;
+    k->level = hf_simd_resolve(params->simd);
+    k->kernels = hf__kernels_for(hf__points_widths, k->level);
+    k->encode = hf__kernels_for(hf__encode_widths, k->level);
+    k->compact = params->point_format == HF_POINT_COMPACT;
+    for (c = 0; c < 3; ++c) k->origin[c] = params->point_origin[c];
+    k->inv = 1.0f / params->point_scale; /* resolved: not 0 */
+    k->nt =
+        hf__streaming(params->nontemporal,
+                      (size_t)count * (size_t)k->P * (k->compact ? 8u : 16u),
+                      HF_STREAM_MIN_VERTEX_BYTES);
+    k->wcap = hf__half_widths(params, k->hw, NULL);
+    k->wide = 0;
+#if HF__AVX2
+    /* the AVX2 kernel needs P >= 3 */
+    k->wide = k->level >= HF_SIMD_AVX2 && k->P >= 3;
+    if (k->wide) hf__pair_widths_init(&k->pw, k->hw, k->P);
+#endif
 }
 
 /* hf_ribbon_points, with the stores chosen as for `sized` strands (as
@@ -16840,9 +17139,9 @@ HF__PRIVATE hf_result hf__fur_ropes(hf_fur *f, hf__fur_build *b)
     if ((r = hf_ropes_create(f->guide_count, f->P, &f->alloc, &f->ropes)) !=
             HF_OK ||
         (r = hf_fur_set_roots(f, &b->desc.mesh, 0, f->guide_count)) != HF_OK ||
-        (r = hf_ropes_set_rest(f->ropes, 0, f->guide_count, b->rest_points, 0,
-                               f->root_pos, f->root_nrm, f->root_tan, 0)) !=
-            HF_OK)
+        (r = hf__ropes_set_rest(f->ropes, 0, f->guide_count, b->rest_points, 0,
+                                f->root_pos, f->root_nrm, f->root_tan, 0,
+                                f->simd)) != HF_OK)
         return r;
     if ((r = hf__fur_keep_rest_frames(f)) != HF_OK) return r;
     if (b->desc.grid_resolution > 0) {
@@ -17304,8 +17603,9 @@ HF__PRIVATE hf_result hf__groom_build(hf_fur *f, const hf_groom_desc *d,
         }
     }
     if ((r = hf_ropes_create(G, P, &f->alloc, &f->ropes)) != HF_OK ||
-        (r = hf_ropes_set_rest(f->ropes, 0, G, f->guide_points, 0, f->root_pos,
-                               f->root_nrm, f->root_tan, 0)) != HF_OK ||
+        (r = hf__ropes_set_rest(f->ropes, 0, G, f->guide_points, 0, f->root_pos,
+                                f->root_nrm, f->root_tan, 0, f->simd)) !=
+            HF_OK ||
         (r = hf__fur_keep_rest_frames(f)) != HF_OK ||
         (d->scalp && (r = hf__groom_bind_scalp(f, d->scalp)) != HF_OK) ||
         (d->grid_resolution > 0 &&
@@ -17385,8 +17685,8 @@ HFDEF hf_result hf_fur_set_transform(hf_fur *f, const float m[12], int first,
                                      row[2] * rf[8];
         }
     }
-    return hf_ropes_set_roots(f->ropes, first, count, f->root_pos, f->root_nrm,
-                              f->root_tan, 0);
+    return hf__ropes_set_roots(f->ropes, first, count, f->root_pos, f->root_nrm,
+                               f->root_tan, 0, f->simd);
 }
 
 HFDEF hf_result hf_fur_get_info(const hf_fur *f, hf_fur_info *info)
@@ -17484,8 +17784,8 @@ HFDEF hf_result hf_fur_set_roots(hf_fur *f, const hf_mesh *m, int first,
         }
     if (f->groom) { /* roots bound to scalp triangles */
         hf__groom_roots_from_scalp(f, m, first, count);
-        return hf_ropes_set_roots(f->ropes, first, count, f->root_pos,
-                                  f->root_nrm, f->root_tan, 0);
+        return hf__ropes_set_roots(f->ropes, first, count, f->root_pos,
+                                   f->root_nrm, f->root_tan, 0, f->simd);
     }
     /* LOD guides: positions (and normals) blended on their base triangle */
     {
@@ -17528,8 +17828,8 @@ HFDEF hf_result hf_fur_set_roots(hf_fur *f, const hf_mesh *m, int first,
             }
         }
     }
-    return hf_ropes_set_roots(f->ropes, first, count, f->root_pos,
-                              f->root_nrm, f->root_tan, 0);
+    return hf__ropes_set_roots(f->ropes, first, count, f->root_pos, f->root_nrm,
+                               f->root_tan, 0, f->simd);
 }
 
 /* Step guides [first, end) in runs that share a rope parameter set (each
@@ -17618,8 +17918,7 @@ HFDEF hf_result hf_fur_settle_rest(hf_fur *f, float seconds,
     }
     hf__free(&f->alloc, mode);
     if (r != HF_OK) return r;
-    hf__ropes_copy(f->ropes, 0, G, f->guide_points, 12, 0,
-                   hf_simd_resolve(f->simd));
+    hf__ropes_copy(f->ropes, 0, G, f->guide_points, 12, 0, f->simd);
     return HF_OK;
 }
 
@@ -17644,8 +17943,7 @@ HFDEF hf_result hf_fur_simulate(hf_fur *f, int first, int count, float dt,
     if (end <= first) return HF_OK;
     r = hf__fur_step_runs(f, first, end, dt, colliders, collider_count);
     if (r != HF_OK) return r;
-    hf__ropes_copy(f->ropes, first, end, f->guide_points, 12, 0,
-                   hf_simd_resolve(f->simd));
+    hf__ropes_copy(f->ropes, first, end, f->guide_points, 12, 0, f->simd);
     return HF_OK;
 }
 
@@ -17662,7 +17960,7 @@ HFDEF hf_result hf_fur_interpolate_guides(hf_fur *f, int first, int count)
                         0.0f,
                         f->guide_points +
                             (size_t)f->pure_count * (size_t)f->P * 3u,
-                        0, hf_simd_resolve(f->simd), 0);
+                        0, f->simd, 0);
     return HF_OK;
 }
 
@@ -17680,8 +17978,7 @@ HF__PRIVATE void hf__fur_strands(const hf_fur *f, int first, int count,
 {
     const int pass = f->leader || f->strand_clump; /* clumps of their own */
     hf__interpolate_run(f->guide_points, f->bindings, first, count, f->P,
-                        pass ? 0.0f : f->clump, pts, pts_first,
-                        hf_simd_resolve(f->simd), nt);
+                        pass ? 0.0f : f->clump, pts, pts_first, f->simd, nt);
     if (pass) hf__fur_clump_pass(f, first, count, pts, pts_first);
     if (f->offsets) hf__groom_offsets(f, first, count, pts, pts_first);
 }
@@ -17767,37 +18064,31 @@ HFDEF hf_result hf_fur_interpolate_points(const hf_fur *f, int first,
     hf__points_kit kit;
     hf_ribbon_params p, prm;
     hf_ribbon_strands st;
-    int s, n, per;
-#if HF__AVX2
-    int lv;
-#endif
+    const hf__ipoints_kernels *k;
+    int s, n, per, lv;
     hf_result r = hf__fur_view(f, first, count, view, &p, &st);
     if (r == HF_OK) r = hf__ribbon_check(&st, first, count, &p, &prm);
     if (r != HF_OK) return r;
     if (!out4) return HF_ERROR_NULL_POINTER;
     hf__points_kit_init(&kit, &prm, hf__fur_sized(f, count));
-#if HF__AVX2
+    /* interpolation and points in one kernel at the lower of the two
+       levels (the fur's and the params'); else the strands at the fur's,
+       through buf, and their points at the params' */
     lv = hf_simd_resolve(f->simd);
-    lv = lv < kit.level ? lv : kit.level;
-    if (kit.wide && !kit.compact && lv >= HF_SIMD_AVX2 && f->P % 2 == 0 &&
-        f->P >= 8 && hf__fur_blend_only(f)) {
+    k = hf__kernels_for(hf__ipoints_widths, lv < kit.level ? lv : kit.level);
+    if (k->fused && !kit.compact && hf__fur_blend_only(f)) {
         /* in registers, nothing through memory (the run's own output is
            not written: the kernels write points to out4) */
         float ctab[3 * HF_MAX_POINTS];
         hf__irun run;
         hf__irun_init(&run, f->guide_points, f->bindings, f->P, f->clump,
                       ctab, out4, first, 0);
-#if HF__AVX512
-        if (lv >= HF_SIMD_AVX512 && f->P % 4 == 0 && f->P >= 16)
-            hf__interp_points_v16(&run, &kit, &st, first, count,
-                                prm.out_first, out4);
-        else
-#endif
-            hf__interp_points_v8(&run, &kit, &st, first, count,
-                               prm.out_first, out4);
-        count = 0;
+        for (; k->fused; ++k)
+            if (k->fused(&run, &kit, &st, first, count, prm.out_first, out4)) {
+                count = 0;
+                break;
+            }
     }
-#endif
     per = HF__POINTS_BLOCK / (3 * f->P);
     for (s = first; s < first + count; s += n) {
         n = first + count - s < per ? first + count - s : per;

@@ -1138,11 +1138,62 @@ static void test_simd_level_of_the_target(void)
           hf_simd_resolve(HF_SIMD_AUTO) == HF_SIMD_SCALAR);
 }
 
+/* Every stage's kernels per width (hf__<stage>_widths): widest first,
+   each narrower and at a lower level than the one before, ending with the
+   scalar reference; hf__kernels_for picks the widest the level allows
+   (the reference for HF_SIMD_SCALAR, whatever the build has). */
+#define T_WIDTHS_CHECK(widths)                                                 \
+    t_widths_check(&(widths)[0].isa, sizeof((widths)[0]),                      \
+                   (int)(sizeof(widths) / sizeof((widths)[0])))
+static void t_widths_check(const hf__isa *widest, size_t size, int n)
+{
+    const unsigned char *d = (const unsigned char *)widest;
+    int i, level;
+    for (i = 0; i < n; ++i) {
+        const hf__isa *e = (const hf__isa *)(const void *)(d + (size_t)i * size);
+        CHECK(e->name && e->name[0]);
+        if (i > 0) {
+            const hf__isa *w =
+                (const hf__isa *)(const void *)(d + (size_t)(i - 1) * size);
+            CHECK(e->lanes < w->lanes && e->level < w->level);
+        }
+        if (i == n - 1) {
+            CHECK_EQ_INT(e->lanes, 1);
+            CHECK_EQ_INT(e->level, HF_SIMD_SCALAR);
+        }
+    }
+    CHECK_EQ_INT(hf__kernels_index(widest, size, HF_SIMD_SCALAR), n - 1);
+    for (level = HF_SIMD_AUTO; level <= HF_SIMD_AVX512; ++level) {
+        const int k = hf__kernels_index(widest, size, level);
+        const hf__isa *e = (const hf__isa *)(const void *)(d + (size_t)k * size);
+        CHECK(e->level <= hf_simd_resolve(level));
+        if (k > 0)
+            CHECK(((const hf__isa *)(const void *)(d + (size_t)(k - 1) * size))
+                      ->level > hf_simd_resolve(level));
+    }
+}
+
+static void test_dispatch_widths(void)
+{
+    T_WIDTHS_CHECK(hf__roots_widths);
+    T_WIDTHS_CHECK(hf__copy_widths);
+    T_WIDTHS_CHECK(hf__pose_widths);
+    T_WIDTHS_CHECK(hf__rope_widths);
+    T_WIDTHS_CHECK(hf__interp_widths);
+    T_WIDTHS_CHECK(hf__frame_widths);
+    T_WIDTHS_CHECK(hf__write_widths);
+    T_WIDTHS_CHECK(hf__ribbons_widths);
+    T_WIDTHS_CHECK(hf__points_widths);
+    T_WIDTHS_CHECK(hf__encode_widths);
+    T_WIDTHS_CHECK(hf__ipoints_widths);
+}
+
 /* 1. configuration, result codes, version: its tests, in the order they run */
 #define T_CONFIG_TESTS(X)                                                      \
     X(test_result_strings_distinct)                                            \
     X(test_version)                                                            \
-    X(test_simd_level_of_the_target)
+    X(test_simd_level_of_the_target)                                           \
+    X(test_dispatch_widths)
 
 /* ==== 2. random numbers =================================================== */
 
@@ -7213,13 +7264,13 @@ static void test_ribbons_every_level_matches_reference(void)
                     int finite = -1, c, j, took = -1;
                     memset(&a, 0, sizeof a);
                     memset(&b, 0, sizeof b);
-                    hf__strand_frame_ref(q, P, &p, &a);
+                    hf__strand_frame_v1(q, P, &p, &a);
 #if HF__V4
                     if (kind == 0) took = hf__strand_frame_v4(q, P, &p, &b, &finite);
 #endif
 #if HF__AVX2
                     if (kind == 1 && hf_simd_resolve(HF_SIMD_AVX2) == HF_SIMD_AVX2)
-                        took = hf__strand_frame_avx2(q, P, &p, &b, &finite);
+                        took = hf__strand_frame_v8(q, P, &p, &b, &finite);
 #endif
                     if (took < 0) continue; /* not in this build or CPU */
                     if (!took) {
@@ -7271,9 +7322,9 @@ static void test_ribbons_every_level_matches_reference(void)
                     hf__rframe fr;
                     const float *qs = pts + (size_t)s * P * 3;
                     /* as hf_ribbons: a strand with a NaN is drawn collapsed */
-                    const int fin = hf__points_finite(qs, 3 * P);
+                    const int fin = hf__points_finite_v1(qs, 3 * P);
                     memset(&fr, 0, sizeof fr);
-                    hf__strand_frame_ref(fin ? qs : hf__zero_points, P, &p, &fr);
+                    hf__strand_frame_v1(fin ? qs : hf__zero_points, P, &p, &fr);
                     S.uv[0] = hf_rng_float(&rng);
                     S.uv[1] = hf_rng_float(&rng) * 3.0f - 1.0f; /* out of range too */
                     for (j = 0; j < 4; ++j) S.rgba[j] = hf_rng_float(&rng);
@@ -7289,13 +7340,13 @@ static void test_ribbons_every_level_matches_reference(void)
                     memset(va, 0xa5, sizeof va);
                     for (q = 0; q < 5; ++q) ro.base[q] = va + off[q];
                     hf__rout_layout(&ro);
-                    hf__ribbon_write_ref(&fr, P, &K, &S, &ro, 0);
+                    hf__ribbon_write_v1(&fr, P, &K, &S, &ro, 0);
                     for (level = HF_SIMD_SSE2; level <= HF_SIMD_AVX512; ++level) {
                         memset(vb, 0xa5, sizeof vb);
                         for (q = 0; q < 5; ++q) ro.base[q] = vb + off[q];
                         hf__rout_layout(&ro);
                         hf__ribbon_write(&fr, P, &K, &S, &ro, 0,
-                                         hf_simd_resolve(level));
+                                         hf__kernels_for(hf__write_widths, level));
                         CHECK(memcmp(va, vb, sizeof va) == 0);
                     }
                 }
@@ -7521,9 +7572,9 @@ static void test_ribbons_table_layouts(void)
                 hf__rframe fr;
                 hf__rstrand S;
                 /* as hf_ribbons: a strand with a NaN is drawn collapsed */
-                const int fin = hf__points_finite(qs, 3 * P);
+                const int fin = hf__points_finite_v1(qs, 3 * P);
                 memset(&fr, 0, sizeof fr);
-                hf__strand_frame_ref(fin ? qs : hf__zero_points, P, &p, &fr);
+                hf__strand_frame_v1(fin ? qs : hf__zero_points, P, &p, &fr);
                 S.uv[0] = hf_rng_float(&rng);
                 S.uv[1] = hf_rng_float(&rng) * 3.0f - 1.0f;
                 for (j = 0; j < 4; ++j) S.rgba[j] = hf_rng_float(&rng) * 1.2f - 0.1f;
@@ -7538,14 +7589,14 @@ static void test_ribbons_table_layouts(void)
                 for (q = 0; q < ro.nw; ++q)
                     widened += ro.wb[q] != hf_format_bytes(ro.fmt[ro.wq[q]]) *
                                                hf__stream_nc[ro.wq[q]];
-                hf__ribbon_write_ref(&fr, P, &K, &S, &ro, v0);
+                hf__ribbon_write_v1(&fr, P, &K, &S, &ro, v0);
                 for (level = HF_SIMD_SSE2; level <= HF_SIMD_AVX512; ++level) {
                     memset(vb, 0xa5, sizeof vb);
                     for (q = 0; q < 5; ++q)
                         ro.base[q] = lay[L][2 * q] < 0 ? NULL : vb + lay[L][2 * q];
                     hf__rout_layout(&ro);
                     hf__ribbon_write(&fr, P, &K, &S, &ro, v0,
-                                     hf_simd_resolve(level));
+                                     hf__kernels_for(hf__write_widths, level));
                     CHECK(memcmp(va, vb, sizeof va) == 0);
                 }
             }
@@ -7613,7 +7664,7 @@ static void test_format_encoders(void)
             {
                 uint32_t lanes[4];
                 _mm_storeu_si128((__m128i *)(void *)lanes,
-                                 hf__encode_sse(_mm_set_ps(1.0f, x, -x, x), fmt));
+                                 hf__encode_v4(_mm_set_ps(1.0f, x, -x, x), fmt));
                 if (lanes[0] != code || lanes[2] != code) ++bad;
                 if (lanes[1] != hf__encode1(-x, fmt)) ++bad;
             }
@@ -7622,7 +7673,7 @@ static void test_format_encoders(void)
             {
                 const float in[4] = {x, -x, x, 1.0f};
                 uint32_t lanes[4];
-                vst1q_u32(lanes, hf__encode_neon(vld1q_f32(in), fmt));
+                vst1q_u32(lanes, hf__encode_v4(vld1q_f32(in), fmt));
                 if (lanes[0] != code || lanes[2] != code) ++bad;
                 if (lanes[1] != hf__encode1(-x, fmt)) ++bad;
             }
@@ -7875,8 +7926,8 @@ static void test_points_compact(void)
         memset(&kit, 0, sizeof kit);
         kit.origin[1] = 0.1f;
         kit.inv = 2.0f;
-        hf__points_encode_ref(&kit, f4,
-                              (size_t)info.drawn_strand_count * 16u, e8);
+        hf__points_encode_v1(&kit, f4,
+                             (size_t)info.drawn_strand_count * 16u, e8, 0);
         CHECK_EQ_INT(hf_fur_points(f, 0, info.drawn_strand_count, &view,
                                    (float *)(void *)c8),
                      HF_OK);
@@ -8344,7 +8395,7 @@ static void test_ribbon_sides_never_twist(void)
             const int at = (int)hf_rng_below(&rng, TP);
             float ws;
             double t[3], a[3], v[3], len, sn = sins[q];
-            hf__strand_frame(pts, TP, &p, &fr, &ws, hf_simd_resolve(0)); /* tangents first */
+            hf__strand_frame(pts, TP, &p, &fr, &ws, hf__kernels_for(hf__frame_widths, 0)); /* tangents first */
             for (k = 0; k < 3; ++k) t[k] = fr.t[k][4 + at];
             /* a unit axis perpendicular to t */
             a[0] = t[1]; a[1] = -t[0]; a[2] = 0.0;
@@ -8357,7 +8408,7 @@ static void test_ribbon_sides_never_twist(void)
                               : 1.5 * (sqrt(1.0 - sn * sn) * t[k] + sn * a[k]);
                 p.eye[k] = (float)((double)pts[3 * at + k] + v[k]);
             }
-            hf__strand_frame(pts, TP, &p, &fr, &ws, hf_simd_resolve(0));
+            hf__strand_frame(pts, TP, &p, &fr, &ws, hf__kernels_for(hf__frame_widths, 0));
             for (j = 0; j < TP; ++j) {
                 float sj[3], tj[3];
                 double dv[3], dl, st, sv, n;
@@ -8403,7 +8454,7 @@ static void test_ribbon_sides_never_twist(void)
     p.view_dir[0] = 0.0f; p.view_dir[1] = -1.0f; p.view_dir[2] = 0.0f;
     {
         float ws;
-        hf__strand_frame(pts, TP, &p, &fr, &ws, hf_simd_resolve(0));
+        hf__strand_frame(pts, TP, &p, &fr, &ws, hf__kernels_for(hf__frame_widths, 0));
         for (j = 0; j < TP; ++j) {
             CHECK(fabsf(fr.s[1][4 + j]) <= 1e-6f);
             CHECK(fabsf(fr.s[0][4 + j] * fr.s[0][4 + j] +
