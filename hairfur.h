@@ -9202,6 +9202,108 @@ HF__TARGET_AVX512 HF__INLINE __m512 hf__grid_lanes_v16(int mask)
 }
 #endif
 
+/* hf_grid_build's row j for ropes [r, e) (the points each standing for
+   `weight`), layers [first, end): the scalar reference, one point at a
+   time; returns e. */
+HF__PRIVATE int hf__grid_splat_v1(hf_grid *grid, const hf_ropes *ropes,
+                                  const float *cube, float inv, int j, int r,
+                                  int e, float weight, int first, int end)
+{
+    const size_t R = (size_t)ropes->rope_count;
+    const int n = grid->resolution;
+    const size_t n2 = (size_t)n * (size_t)n;
+    for (; r < e; ++r) {
+        const size_t i = (size_t)j * R + (size_t)r;
+        float f[3], v[4], hv, wy[2], wz[2];
+        size_t node;
+        int kx, ky, kz, dz;
+        /* the layer first: a call for some layers skips the rest
+           of the points at once */
+        if (!hf__grid_axis(ropes->z[i], cube[2], inv, n, &kz, &f[2]) ||
+            kz + 1 < first || kz >= end ||
+            !hf__grid_axis(ropes->x[i], cube[0], inv, n, &kx, &f[0]) ||
+            !hf__grid_axis(ropes->y[i], cube[1], inv, n, &ky, &f[1]))
+            continue;
+        node = ((size_t)kz * (size_t)n + (size_t)ky) * (size_t)n +
+               (size_t)kx;
+        hv = hf__grid_hv(ropes->last_h[r]);
+        hf__grid_velocity(ropes, i, hv, weight, v);
+        wy[0] = 1.0f - f[1];
+        wy[1] = f[1];
+        wz[0] = 1.0f - f[2];
+        wz[1] = f[2];
+        for (dz = 0; dz < 2; ++dz) {
+            float *o = grid->node + 4u * (node + (size_t)dz * n2);
+            int dy;
+            if (kz + dz < first || kz + dz >= end) continue;
+            for (dy = 0; dy < 2; ++dy) {
+                float *q = o + 4u * (size_t)dy * (size_t)n;
+                const float w = wy[dy] * wz[dz];
+                hf__grid_add4(q, (1.0f - f[0]) * w, v);
+                hf__grid_add4(q + 4, f[0] * w, v);
+            }
+        }
+    }
+    return e;
+}
+
+/* What hf_ropes_apply_grid's row j (standing for rows j .. last - 1)
+   needs besides the ropes: the grid, its layer 0's cube and stride, and
+   the push's constants. */
+typedef struct hf__grid_push {
+    const hf_grid *grid;
+    const float *sl;
+    float inv, push, fric, ref, h;
+} hf__grid_push;
+
+/* hf_ropes_apply_grid's row j for ropes [r, e): the scalar reference, one
+   rope at a time; returns e. */
+HF__PRIVATE int hf__grid_apply_v1(hf_ropes *ropes, const hf__grid_push *gp,
+                                  int j, int last, int r, int e)
+{
+    const size_t R = (size_t)ropes->rope_count;
+    const hf_grid *grid = gp->grid;
+    const float *sl = gp->sl;
+    const float inv = gp->inv, push = gp->push, fric = gp->fric,
+                ref = gp->ref, h = gp->h;
+    const int n = grid->resolution;
+    for (; r < e; ++r) {
+        const size_t i = (size_t)j * R + (size_t)r;
+        float f[3], v[4], a[4], g[3], dv[3], hl, hv, gn, gs;
+        size_t node;
+        int kz, q;
+        if (hf__rope_kind(ropes, r) != 0 ||
+            !hf__grid_locate(ropes, i, sl, inv, n, &node, &kz, f))
+            continue;
+        hl = ropes->last_h[r] > 0.0f ? ropes->last_h[r] : h;
+        hv = hf__grid_hv(ropes->last_h[r]);
+        hf__grid_velocity(ropes, i, hv, (float)(last - j), v);
+        hf__grid_read(grid, node, f, v, a, g);
+        /* at most volume x gravity: a density step of more than the
+           typical density across a cell pushes no harder, so a
+           crowd cannot throw hair (the push is one frame late) */
+        gn = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
+        gs = gn > ref * ref ? ref / HF_SQRTF(gn) : 1.0f;
+        for (q = 0; q < 3; ++q) dv[q] = -push * (g[q] * gs);
+        if (fric > 0.0f && a[0] > 1e-6f * ref) {
+            const float ia = 1.0f / a[0], iw = 1.0f / v[0];
+            float b = fric * (a[0] < ref ? a[0] / ref : 1.0f);
+            for (q = 0; q < 3; ++q)
+                dv[q] += b * (a[q + 1] * ia - v[q + 1] * iw);
+        }
+        for (q = 0; q < 3; ++q) dv[q] *= hl;
+        /* the change read at point j moves the points it stands for
+           (the root stays on the skin) */
+        for (q = j > 0 ? j : 1; q < last; ++q) {
+            const size_t iq = (size_t)q * R + (size_t)r;
+            ropes->px[iq] -= dv[0];
+            ropes->py[iq] -= dv[1];
+            ropes->pz[iq] -= dv[2];
+        }
+    }
+    return e;
+}
+
 /* ---- 6.10 the grid's splat and push: kernel texts at 4, 8, 16 lanes ----- */
 
 #endif /* !HF__PASS */
@@ -9447,6 +9549,37 @@ HF__KN(hf__grid_apply)(hf_ropes *ro, const hf_grid *grid, const float *sl,
     }
     HF__VZEROUPPER();
 }
+
+/* hf_grid_build's row j for ropes [r, e), whole groups of HF__W; returns
+   where it stopped */
+HF__VTARGET HF__PRIVATE int
+HF__KN(hf__grid_splat_rows)(hf_grid *grid, const hf_ropes *ro,
+                            const float *cube, float inv, int j, int r, int e,
+                            float weight, int first, int end)
+{
+    for (; r + HF__W <= e; r += HF__W)
+        HF__KN(hf__grid_splat)(grid, ro, cube, inv, j, r, weight, first, end);
+    return r;
+}
+
+/* hf_ropes_apply_grid's row j for ropes [r, e), whole groups of HF__W,
+   the simulated ones; returns where it stopped */
+HF__VTARGET HF__PRIVATE int HF__KN(hf__grid_apply_rows)(hf_ropes *ro,
+                                                      const hf__grid_push *gp,
+                                                      int j, int last, int r,
+                                                      int e)
+{
+    for (; r + HF__W <= e; r += HF__W) {
+        int act = 0, l;
+        HF__UNROLL for (l = 0; l < HF__W; ++l)
+            act |= (hf__rope_kind(ro, r + l) == 0) << l;
+        if (act)
+            HF__KN(hf__grid_apply)(ro, gp->grid, gp->sl, j, last, r, act,
+                                   gp->inv, gp->push, gp->fric, gp->ref,
+                                   gp->h);
+    }
+    return r;
+}
 #endif /* HF__PASS_GRID */
 
 #ifndef HF__PASS
@@ -9469,12 +9602,34 @@ HF__KN(hf__grid_apply)(hf_ropes *ro, const hf_grid *grid, const float *sl,
 #include HF_HEADER_FILENAME
 #endif
 
+/* The grid's kernels per width: a row's points from rope r on, whole
+   groups of the width's lanes; each returns where it stopped. */
+typedef struct hf__grid_kernels {
+    hf__isa isa;
+    int (*splat)(hf_grid *, const hf_ropes *, const float *, float, int, int,
+                 int, float, int, int);
+    int (*push)(hf_ropes *, const hf__grid_push *, int, int, int, int);
+} hf__grid_kernels;
+
+static const hf__grid_kernels hf__grid_widths[] = {
+#if HF__AVX512
+    {{HF__ISA_V16}, hf__grid_splat_rows_v16, hf__grid_apply_rows_v16},
+#endif
+#if HF__AVX2
+    {{HF__ISA_V8}, hf__grid_splat_rows_v8, hf__grid_apply_rows_v8},
+#endif
+#if HF__V4
+    {{HF__ISA_V4}, hf__grid_splat_rows_v4, hf__grid_apply_rows_v4},
+#endif
+    {{HF__ISA_V1}, hf__grid_splat_v1, hf__grid_apply_v1}};
+
 HFDEF hf_result hf_grid_build(hf_grid *grid, const hf_ropes *ropes,
                               int rope_count, int first, int count)
 {
-    size_t R, n2;
+    const hf__grid_kernels *kd;
+    size_t n2;
     float cube[5], inv;
-    int n, end, j, r, s, k, P, level;
+    int n, end, j, r, s, k, P;
     if (!grid || !grid->node || !hf__ropes_ok(ropes))
         return HF_ERROR_NULL_POINTER;
     n = grid->resolution;
@@ -9482,10 +9637,8 @@ HFDEF hf_result hf_grid_build(hf_grid *grid, const hf_ropes *ropes,
         rope_count < 0 || rope_count > ropes->rope_count)
         return HF_ERROR_BAD_RANGE;
     if (!hf__kernels_ok(grid->simd, 0)) return HF_ERROR_BAD_PARAMETER;
-    level = hf_simd_resolve(grid->simd);
-    (void)level; /* 16 lanes at AVX-512, 8 at AVX2, 4 at SSE2 and NEON */
+    kd = hf__kernels_for(hf__grid_widths, grid->simd);
     end = first + count;
-    R = (size_t)ropes->rope_count;
     P = ropes->points;
     n2 = (size_t)n * (size_t)n;
     HF_MEMSET(grid->node + 4u * n2 * (size_t)first, 0,
@@ -9496,57 +9649,10 @@ HFDEF hf_result hf_grid_build(hf_grid *grid, const hf_ropes *ropes,
     for (j = 0; j < P; j += k) {
         /* the points this one stands for: j .. j + k - 1 */
         const float weight = (float)(j + k <= P ? k : P - j);
-        r = 0;
-#if HF__AVX512
-        if (level >= HF_SIMD_AVX512)
-            for (; r + 16 <= rope_count; r += 16)
-                hf__grid_splat_v16(grid, ropes, cube, inv, j, r, weight,
-                                   first, end);
-#endif
-#if HF__AVX2
-        if (level >= HF_SIMD_AVX2)
-            for (; r + 8 <= rope_count; r += 8)
-                hf__grid_splat_v8(grid, ropes, cube, inv, j, r, weight, first,
-                                  end);
-#endif
-#if HF__V4
-        if (level >= HF_SIMD_SSE2)
-            for (; r + 4 <= rope_count; r += 4)
-                hf__grid_splat_v4(grid, ropes, cube, inv, j, r, weight, first,
-                                  end);
-#endif
-        for (; r < rope_count; ++r) {
-            const size_t i = (size_t)j * R + (size_t)r;
-            float f[3], v[4], hv, wy[2], wz[2];
-            size_t node;
-            int kx, ky, kz, dz;
-            /* the layer first: a call for some layers skips the rest
-               of the points at once */
-            if (!hf__grid_axis(ropes->z[i], cube[2], inv, n, &kz, &f[2]) ||
-                kz + 1 < first || kz >= end ||
-                !hf__grid_axis(ropes->x[i], cube[0], inv, n, &kx, &f[0]) ||
-                !hf__grid_axis(ropes->y[i], cube[1], inv, n, &ky, &f[1]))
-                continue;
-            node = ((size_t)kz * (size_t)n + (size_t)ky) * (size_t)n +
-                   (size_t)kx;
-            hv = hf__grid_hv(ropes->last_h[r]);
-            hf__grid_velocity(ropes, i, hv, weight, v);
-            wy[0] = 1.0f - f[1];
-            wy[1] = f[1];
-            wz[0] = 1.0f - f[2];
-            wz[1] = f[2];
-            for (dz = 0; dz < 2; ++dz) {
-                float *o = grid->node + 4u * (node + (size_t)dz * n2);
-                int dy;
-                if (kz + dz < first || kz + dz >= end) continue;
-                for (dy = 0; dy < 2; ++dy) {
-                    float *q = o + 4u * (size_t)dy * (size_t)n;
-                    const float w = wy[dy] * wz[dz];
-                    hf__grid_add4(q, (1.0f - f[0]) * w, v);
-                    hf__grid_add4(q + 4, f[0] * w, v);
-                }
-            }
-        }
+        const hf__grid_kernels *d = kd;
+        for (r = 0; r < rope_count; ++d)
+            r = d->splat(grid, ropes, cube, inv, j, r, rope_count, weight,
+                         first, end);
     }
     for (s = first; s < end; ++s) {
         const float *o = grid->node + 4u * n2 * (size_t)s;
@@ -9579,11 +9685,12 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
 {
     hf_rope_params prm;
     hf_result res;
+    hf__grid_push gp;
+    const hf__grid_kernels *kd;
     const float *sl;
     double w = 0.0, w2 = 0.0;
-    size_t R;
-    float inv, ref, push, fric, gmag, h;
-    int n, r, j, s, k, P, level, steps;
+    float ref, push, fric, gmag, h;
+    int n, r, j, s, k, P, steps;
     if (!hf__ropes_ok(ropes) || !params || !grid || !grid->node)
         return HF_ERROR_NULL_POINTER;
     if (!hf__ropes_range(ropes, first, count)) return HF_ERROR_BAD_RANGE;
@@ -9609,85 +9716,23 @@ HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
     push = prm.volume * gmag * (h * (float)steps) / ref;
     fric = hf__rope_k(prm.friction, h * (float)steps);
     if (!(push > 0.0f) && !(fric > 0.0f)) return HF_OK;
-    R = (size_t)ropes->rope_count;
     P = ropes->points;
-    inv = 1.0f / sl[3];
     k = (int)sl[4];
-    level = hf_simd_resolve(prm.simd);
-    (void)level; /* 16 lanes at AVX-512, 8 at AVX2, 4 at SSE2 and NEON */
+    kd = hf__kernels_for(hf__grid_widths, prm.simd);
+    gp.grid = grid;
+    gp.sl = sl;
+    gp.inv = 1.0f / sl[3];
+    gp.push = push;
+    gp.fric = fric;
+    gp.ref = ref;
+    gp.h = h;
     /* point rows outermost, as the grid was built: neighbouring ropes
        read neighbouring nodes */
     for (j = 0; j < P; j += k) {
         const int last = j + k <= P ? j + k : P;
-        r = first;
-#if HF__AVX512
-        if (level >= HF_SIMD_AVX512)
-            for (; r + 16 <= first + count; r += 16) {
-                int act = 0, l;
-                for (l = 0; l < 16; ++l)
-                    act |= (hf__rope_kind(ropes, r + l) == 0) << l;
-                if (act)
-                    hf__grid_apply_v16(ropes, grid, sl, j, last, r, act,
-                                       inv, push, fric, ref, h);
-            }
-#endif
-#if HF__AVX2
-        if (level >= HF_SIMD_AVX2)
-            for (; r + 8 <= first + count; r += 8) {
-                int act = 0, l;
-                for (l = 0; l < 8; ++l)
-                    act |= (hf__rope_kind(ropes, r + l) == 0) << l;
-                if (act)
-                    hf__grid_apply_v8(ropes, grid, sl, j, last, r, act,
-                                        inv, push, fric, ref, h);
-            }
-#endif
-#if HF__V4
-        if (level >= HF_SIMD_SSE2)
-            for (; r + 4 <= first + count; r += 4) {
-                const int act = (hf__rope_kind(ropes, r) == 0) |
-                                (hf__rope_kind(ropes, r + 1) == 0) << 1 |
-                                (hf__rope_kind(ropes, r + 2) == 0) << 2 |
-                                (hf__rope_kind(ropes, r + 3) == 0) << 3;
-                if (act)
-                    hf__grid_apply_v4(ropes, grid, sl, j, last, r, act, inv,
-                                      push, fric, ref, h);
-            }
-#endif
-        for (; r < first + count; ++r) {
-            const size_t i = (size_t)j * R + (size_t)r;
-            float f[3], v[4], a[4], g[3], dv[3], hl, hv, gn, gs;
-            size_t node;
-            int kz, q;
-            if (hf__rope_kind(ropes, r) != 0 ||
-                !hf__grid_locate(ropes, i, sl, inv, n, &node, &kz, f))
-                continue;
-            hl = ropes->last_h[r] > 0.0f ? ropes->last_h[r] : h;
-            hv = hf__grid_hv(ropes->last_h[r]);
-            hf__grid_velocity(ropes, i, hv, (float)(last - j), v);
-            hf__grid_read(grid, node, f, v, a, g);
-            /* at most volume x gravity: a density step of more than the
-               typical density across a cell pushes no harder, so a
-               crowd cannot throw hair (the push is one frame late) */
-            gn = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
-            gs = gn > ref * ref ? ref / HF_SQRTF(gn) : 1.0f;
-            for (q = 0; q < 3; ++q) dv[q] = -push * (g[q] * gs);
-            if (fric > 0.0f && a[0] > 1e-6f * ref) {
-                const float ia = 1.0f / a[0], iw = 1.0f / v[0];
-                float b = fric * (a[0] < ref ? a[0] / ref : 1.0f);
-                for (q = 0; q < 3; ++q)
-                    dv[q] += b * (a[q + 1] * ia - v[q + 1] * iw);
-            }
-            for (q = 0; q < 3; ++q) dv[q] *= hl;
-            /* the change read at point j moves the points it stands for
-               (the root stays on the skin) */
-            for (q = j > 0 ? j : 1; q < last; ++q) {
-                const size_t iq = (size_t)q * R + (size_t)r;
-                ropes->px[iq] -= dv[0];
-                ropes->py[iq] -= dv[1];
-                ropes->pz[iq] -= dv[2];
-            }
-        }
+        const hf__grid_kernels *d = kd;
+        for (r = first; r < first + count; ++d)
+            r = d->push(ropes, &gp, j, last, r, first + count);
     }
     return HF_OK;
 }
