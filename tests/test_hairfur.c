@@ -1179,6 +1179,7 @@ static void test_dispatch_widths(void)
     T_WIDTHS_CHECK(hf__copy_widths);
     T_WIDTHS_CHECK(hf__pose_widths);
     T_WIDTHS_CHECK(hf__rope_widths);
+    T_WIDTHS_CHECK(hf__grid_widths);
     T_WIDTHS_CHECK(hf__interp_widths);
     T_WIDTHS_CHECK(hf__frame_widths);
     T_WIDTHS_CHECK(hf__write_widths);
