@@ -6213,6 +6213,64 @@ HF__PRIVATE float hf__rope_kl(const hf__rope_step *st, int j, int P)
    row. */
 #define HF__ROW(base, row, stride) ((base) + (size_t)(row) * (stride))
 
+/* Follow-the-leader's velocity correction where segment j - 1 -> j
+   (j >= 2) of rope r was shorter than its rest length before its
+   placement. Where the segment was longer, FTL pulled the child back
+   toward its parent and Mueller's correction moves the parent's previous
+   position by s_damping times that (a pull on the parent, as a tension
+   would give). Where it was shorter, FTL pushed the child out, and the
+   same correction would push the parent back along the child's segment:
+   a compressive load that turns with the segment, which makes a rope
+   that its shape stiffness cannot hold up flutter for ever (it keeps
+   feeding the motion the energy the damping takes). There the parent is
+   left alone and the child's velocity relative to the rigid motion of
+   its parent segment (the child's previous offset turned by the smallest
+   rotation that takes the parent segment's previous direction to its
+   current one, as the local shape turns its rest offset) loses the
+   fraction cb: a bend damped, while a rope that swings or turns as a
+   whole keeps its motion. Reads rows j - 2 .. j after row j's placement
+   and writes row j's previous position; the SIMD kernels do the same
+   operations (hf__ftl_bend_damp_v<W>). */
+HF__PRIVATE void hf__ftl_bend_damp(hf_ropes *ro, int j, int r, float cb)
+{
+    const size_t R = (size_t)ro->rope_count, o = (size_t)j * R + (size_t)r,
+                 o1 = o - R, o2 = o1 - R;
+    float ax = ro->px[o1] - ro->px[o2], ay = ro->py[o1] - ro->py[o2],
+          az = ro->pz[o1] - ro->pz[o2];
+    float bx = ro->x[o1] - ro->x[o2], by = ro->y[o1] - ro->y[o2],
+          bz = ro->z[o1] - ro->z[o2];
+    const float qx = ro->px[o] - ro->px[o1], qy = ro->py[o] - ro->py[o1],
+                qz = ro->pz[o] - ro->pz[o1];
+    const float a2 = ax * ax + ay * ay + az * az,
+                b2 = bx * bx + by * by + bz * bz;
+    const int ok = a2 > 1e-24f && b2 > 1e-24f;
+    const float ia = ok ? 1.0f / HF_SQRTF(a2) : 0.0f,
+                ib = ok ? 1.0f / HF_SQRTF(b2) : 0.0f;
+    float cc, kx, ky, kz, kd, den, rx, ry, rz;
+    ax *= ia;
+    ay *= ia;
+    az *= ia;
+    bx *= ib;
+    by *= ib;
+    bz *= ib;
+    /* Rodrigues without trigonometry, as the local shape: the rotation
+       taking unit a to unit b, applied to q; identity where either is
+       undefined */
+    cc = ok ? ax * bx + ay * by + az * bz : 1.0f;
+    kx = ay * bz - az * by;
+    ky = az * bx - ax * bz;
+    kz = ax * by - ay * bx;
+    kd = kx * qx + ky * qy + kz * qz;
+    den = 1.0f + cc;
+    den = kd / (den > 1e-6f ? den : 1e-6f);
+    rx = qx * cc + (ky * qz - kz * qy) + kx * den;
+    ry = qy * cc + (kz * qx - kx * qz) + ky * den;
+    rz = qz * cc + (kx * qy - ky * qx) + kz * den;
+    ro->px[o] += cb * (ro->x[o] - ro->x[o1] - rx);
+    ro->py[o] += cb * (ro->y[o] - ro->y[o1] - ry);
+    ro->pz[o] += cb * (ro->z[o] - ro->z[o1] - rz);
+}
+
 
 /* The 12 rows of a frame block (position, tangent, normal, bitangent;
    x, y, z each), `stride` floats apart. */
@@ -7347,6 +7405,9 @@ HF__PRIVATE void hf__ropes_solve_v1(hf_ropes *ro, const float *F, int a, int b,
                           dz = Z1[r] - Z0[r];
                     float d2 = dx * dx + dy * dy + dz * dz, sc, ox, oy,
                           oz;
+                    /* shorter than its rest length: FTL pushes the child
+                       out (compression), see hf__ftl_bend_damp */
+                    const int comp = d2 < L[r] * L[r];
                     /* coincident points: grow along the root normal */
                     int deg = d2 < 1e-24f;
                     dx = deg ? nx[r] : dx;
@@ -7360,10 +7421,12 @@ HF__PRIVATE void hf__ropes_solve_v1(hf_ropes *ro, const float *F, int a, int b,
                     X1[r] = X0[r] + dx * sc;
                     Y1[r] = Y0[r] + dy * sc;
                     Z1[r] = Z0[r] + dz * sc;
-                    if (st->ftl) {
+                    if (st->ftl && (j < 2 || !comp)) {
                         PX0[r] += sd * (X1[r] - ox);
                         PY0[r] += sd * (Y1[r] - oy);
                         PZ0[r] += sd * (Z1[r] - oz);
+                    } else if (st->ftl) {
+                        hf__ftl_bend_damp(ro, j, r, 0.5f * sd);
                     }
                 }
                 /* FTL never moves a parent again, so colliding each
@@ -8195,6 +8258,78 @@ HF__KN(hf__ropes_local_row)(hf_ropes *ro, const float *F, int j, int a, int b,
     HF__VZEROUPPER();
 }
 
+/* hf__ftl_bend_damp on the W ropes from r (rows j - 2 .. j, j >= 2, row
+   j placed): the lanes of comp get the new previous positions of row j,
+   the others keep theirs. */
+HF__VTARGET HF__INLINE void HF__KN(hf__ftl_bend_damp)(hf_ropes *ro, int j,
+                                                      int r, HF__VEC cb,
+                                                      HF__VEC comp)
+{
+    const size_t R = (size_t)ro->rope_count, o = (size_t)j * R + (size_t)r,
+                 o1 = o - R, o2 = o1 - R;
+    const HF__VEC one = HF__VSET1(1.0f), tiny = HF__VSET1(1e-24f);
+    HF__VEC ax = HF__VSUB(HF__VLD(ro->px + o1), HF__VLD(ro->px + o2)),
+            ay = HF__VSUB(HF__VLD(ro->py + o1), HF__VLD(ro->py + o2)),
+            az = HF__VSUB(HF__VLD(ro->pz + o1), HF__VLD(ro->pz + o2));
+    HF__VEC bx = HF__VSUB(HF__VLD(ro->x + o1), HF__VLD(ro->x + o2)),
+            by = HF__VSUB(HF__VLD(ro->y + o1), HF__VLD(ro->y + o2)),
+            bz = HF__VSUB(HF__VLD(ro->z + o1), HF__VLD(ro->z + o2));
+    const HF__VEC pxj = HF__VLD(ro->px + o), pyj = HF__VLD(ro->py + o),
+                  pzj = HF__VLD(ro->pz + o);
+    const HF__VEC qx = HF__VSUB(pxj, HF__VLD(ro->px + o1)),
+                  qy = HF__VSUB(pyj, HF__VLD(ro->py + o1)),
+                  qz = HF__VSUB(pzj, HF__VLD(ro->pz + o1));
+    const HF__VEC a2 = HF__VDOT3(ax, ay, az, ax, ay, az),
+                  b2 = HF__VDOT3(bx, by, bz, bx, by, bz);
+    const HF__VEC ok = HF__VAND(HF__VGT(a2, tiny), HF__VGT(b2, tiny));
+    /* the scalar's 0 where not ok (lanes may divide by 0) */
+    const HF__VEC ia = HF__VAND(ok, HF__VDIV(one, HF__VSQRT(a2))),
+                  ib = HF__VAND(ok, HF__VDIV(one, HF__VSQRT(b2)));
+    HF__VEC cc, kx, ky, kz, kd, den, rx, ry, rz;
+    ax = HF__VMUL(ax, ia);
+    ay = HF__VMUL(ay, ia);
+    az = HF__VMUL(az, ia);
+    bx = HF__VMUL(bx, ib);
+    by = HF__VMUL(by, ib);
+    bz = HF__VMUL(bz, ib);
+    cc = HF__VSEL(ok, HF__VDOT3(ax, ay, az, bx, by, bz), one);
+    kx = HF__VSUB(HF__VMUL(ay, bz), HF__VMUL(az, by));
+    ky = HF__VSUB(HF__VMUL(az, bx), HF__VMUL(ax, bz));
+    kz = HF__VSUB(HF__VMUL(ax, by), HF__VMUL(ay, bx));
+    kd = HF__VDOT3(kx, ky, kz, qx, qy, qz);
+    den = HF__VDIV(kd, HF__VMAX(HF__VADD(one, cc), HF__VSET1(1e-6f)));
+    rx = HF__VADD(HF__VADD(HF__VMUL(qx, cc),
+                           HF__VSUB(HF__VMUL(ky, qz), HF__VMUL(kz, qy))),
+                  HF__VMUL(kx, den));
+    ry = HF__VADD(HF__VADD(HF__VMUL(qy, cc),
+                           HF__VSUB(HF__VMUL(kz, qx), HF__VMUL(kx, qz))),
+                  HF__VMUL(ky, den));
+    rz = HF__VADD(HF__VADD(HF__VMUL(qz, cc),
+                           HF__VSUB(HF__VMUL(kx, qy), HF__VMUL(ky, qx))),
+                  HF__VMUL(kz, den));
+    HF__VST(ro->px + o,
+            HF__VSEL(comp,
+                     HF__VADD(pxj, HF__VMUL(cb, HF__VSUB(HF__VSUB(
+                                                    HF__VLD(ro->x + o),
+                                                    HF__VLD(ro->x + o1)),
+                                                rx))),
+                     pxj));
+    HF__VST(ro->py + o,
+            HF__VSEL(comp,
+                     HF__VADD(pyj, HF__VMUL(cb, HF__VSUB(HF__VSUB(
+                                                    HF__VLD(ro->y + o),
+                                                    HF__VLD(ro->y + o1)),
+                                                ry))),
+                     pyj));
+    HF__VST(ro->pz + o,
+            HF__VSEL(comp,
+                     HF__VADD(pzj, HF__VMUL(cb, HF__VSUB(HF__VSUB(
+                                                    HF__VLD(ro->z + o),
+                                                    HF__VLD(ro->z + o1)),
+                                                rz))),
+                     pzj));
+}
+
 /* Row j's follow-the-leader placement (or, for the distance solver, the
    root segment), then its collisions: the points some collider holds are
    listed, and resolved W at a time by the contact kernel. */
@@ -8212,7 +8347,8 @@ HF__KN(hf__ropes_ftl_row)(hf_ropes *ro, const float *F, int j, int a, int b,
           *PZ0 = HF__ROW(ro->pz, j - 1, R);
     const float *L = HF__ROW(ro->rest_length, j - 1, R);
     const HF__VEC one = HF__VSET1(1.0f);
-    const HF__VEC sd = HF__VSET1(j >= 2 ? st->ftl_damping : 0.0f);
+    const HF__VEC sd = HF__VSET1(j >= 2 ? st->ftl_damping : 0.0f),
+                  cb = HF__VSET1(0.5f * (j >= 2 ? st->ftl_damping : 0.0f));
     hf__ftl_hits hits;
     hf__cols cl;
     int r;
@@ -8224,9 +8360,12 @@ HF__KN(hf__ropes_ftl_row)(hf_ropes *ro, const float *F, int j, int a, int b,
                       z0 = HF__VLD(Z0 + r);
         const HF__VEC ox = HF__VLD(X1 + r), oy = HF__VLD(Y1 + r),
                       oz = HF__VLD(Z1 + r);
+        const HF__VEC l = HF__VLD(L + r);
         HF__VEC dx = HF__VSUB(ox, x0), dy = HF__VSUB(oy, y0),
-                dz = HF__VSUB(oz, z0), d2, deg, sc, xyz[3];
+                dz = HF__VSUB(oz, z0), d2, deg, sc, comp, xyz[3];
         d2 = HF__VDOT3(dx, dy, dz, dx, dy, dz);
+        /* shorter than its rest length: FTL pushes the child out */
+        comp = HF__VLT(d2, HF__VMUL(l, l));
         /* coincident points: grow along the root normal */
         deg = HF__VLT(d2, HF__VSET1(1e-24f));
         if (HF__VMASK(deg)) { /* rare: the selects */
@@ -8235,7 +8374,7 @@ HF__KN(hf__ropes_ftl_row)(hf_ropes *ro, const float *F, int j, int a, int b,
             dz = HF__VSEL(deg, HF__VLD(f[8] + r), dz);
             d2 = HF__VSEL(deg, one, d2);
         }
-        sc = HF__VDIV(HF__VLD(L + r), HF__VSQRT(d2));
+        sc = HF__VDIV(l, HF__VSQRT(d2));
         xyz[0] = HF__VADD(x0, HF__VMUL(dx, sc));
         xyz[1] = HF__VADD(y0, HF__VMUL(dy, sc));
         xyz[2] = HF__VADD(z0, HF__VMUL(dz, sc));
@@ -8243,12 +8382,27 @@ HF__KN(hf__ropes_ftl_row)(hf_ropes *ro, const float *F, int j, int a, int b,
         HF__VST(Y1 + r, xyz[1]);
         HF__VST(Z1 + r, xyz[2]);
         if (!st->ftl) continue;
-        HF__VST(PX0 + r,
-                HF__VADD(HF__VLD(PX0 + r), HF__VMUL(sd, HF__VSUB(xyz[0], ox))));
-        HF__VST(PY0 + r,
-                HF__VADD(HF__VLD(PY0 + r), HF__VMUL(sd, HF__VSUB(xyz[1], oy))));
-        HF__VST(PZ0 + r,
-                HF__VADD(HF__VLD(PZ0 + r), HF__VMUL(sd, HF__VSUB(xyz[2], oz))));
+        {
+            /* Mueller's correction on the parent where the segment was
+               longer than its rest length; where it was shorter, the
+               child's bend damped instead (hf__ftl_bend_damp) */
+            HF__VEC p[3];
+            p[0] = HF__VADD(HF__VLD(PX0 + r),
+                            HF__VMUL(sd, HF__VSUB(xyz[0], ox)));
+            p[1] = HF__VADD(HF__VLD(PY0 + r),
+                            HF__VMUL(sd, HF__VSUB(xyz[1], oy)));
+            p[2] = HF__VADD(HF__VLD(PZ0 + r),
+                            HF__VMUL(sd, HF__VSUB(xyz[2], oz)));
+            if (j >= 2 && HF__VMASK(comp)) {
+                HF__KN(hf__ftl_bend_damp)(ro, j, r, cb, comp);
+                p[0] = HF__VSEL(comp, HF__VLD(PX0 + r), p[0]);
+                p[1] = HF__VSEL(comp, HF__VLD(PY0 + r), p[1]);
+                p[2] = HF__VSEL(comp, HF__VLD(PZ0 + r), p[2]);
+            }
+            HF__VST(PX0 + r, p[0]);
+            HF__VST(PY0 + r, p[1]);
+            HF__VST(PZ0 + r, p[2]);
+        }
         if (bp) {
             int m;
             if (((r - bp->a) & (HF__BP_TILE - 1)) == 0 || r == a)

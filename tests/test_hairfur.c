@@ -4469,6 +4469,76 @@ static void test_ropes_root_and_local_stiffness(void)
     CHECK(tip_err[2] < 1e-4);        /*   the whole strand stands */
 }
 
+/* Shape stiffness that cannot hold a rope up: released from its straight
+   rest pose, rising at an angle, the rope sags under gravity and comes to
+   rest within 5 s (every point under 1 mm/s over the last second), with
+   the bench's scene V settings (global 0.2, local 0.3, root 0.5; 0.3 m)
+   and the Wuson demo's (global 0.4 to 0.2, local 0.3 to 0.05, root 0.5;
+   0.3 m and 8 cm fur). Follow-the-leader's velocity correction used to
+   push each parent back along its compressed child segment, a load that
+   turns with the segment, and such ropes fluttered for ever at 0.05-0.6
+   m/s. */
+static void test_ropes_shape_stiffness_settles(void)
+{
+    static const struct {
+        float gr, gt, lr, lt, angle, length;
+        int points;
+    } cs[] = {{0.2f, 0.0f, 0.3f, 0.0f, 30.0f, 0.3f, 32},
+              {0.2f, 0.0f, 0.3f, 0.0f, 60.0f, 0.3f, 32},
+              {0.2f, 0.0f, 0.3f, 0.0f, 135.0f, 0.3f, 32},
+              {0.4f, 0.2f, 0.3f, 0.05f, 60.0f, 0.3f, 32},
+              {0.4f, 0.2f, 0.3f, 0.05f, 60.0f, 0.08f, 16},
+              {0.4f, 0.2f, 0.3f, 0.05f, 30.0f, 0.08f, 16}};
+    enum { FRAMES = 300, PMAX = 32 };
+    float rest[3 * PMAX], a[3 * PMAX], b[3 * PMAX], st;
+    const float root[3] = {0, 0, 0}, tan[3] = {0, 0, 1};
+    hf_rope_params p;
+    tr_set s;
+    size_t c;
+    for (c = 0; c < sizeof cs / sizeof cs[0]; ++c) {
+        const int P = cs[c].points;
+        const double ang = cs[c].angle * T_PI / 180.0;
+        float nrm[3], worst = 0.0f;
+        double peak = 0.0, last = 0.0;
+        int f;
+        nrm[0] = (float)cos(ang);
+        nrm[1] = (float)sin(ang);
+        nrm[2] = 0.0f;
+        if (!tr_open(&s, 1, P)) { CHECK(0); return; }
+        tr_straight(rest, 0, P, root, nrm, cs[c].length);
+        CHECK_EQ_INT(hf_ropes_set_rest(&s.ro, 0, 1, rest, 0, root, nrm, tan, 0),
+                     HF_OK);
+        hf_rope_params_init(&p);
+        p.root_stiffness = 0.5f;
+        p.global_stiffness_root = cs[c].gr;
+        p.global_stiffness_tip = cs[c].gt;
+        p.local_stiffness_root = cs[c].lr;
+        p.local_stiffness_tip = cs[c].lt;
+        tr_snapshot(&s.ro, a);
+        for (f = 0; f < FRAMES; ++f) {
+            double v;
+            memcpy(b, a, sizeof a);
+            CHECK_EQ_INT(hf_ropes_step(&s.ro, 0, 1, 1.0f / 60.0f, &p, NULL, 0),
+                         HF_OK);
+            tr_snapshot(&s.ro, a);
+            v = tr_max_move(a, b, (size_t)P) * 60.0;
+            if (v > peak) peak = v;
+            if (f >= FRAMES - 60 && v > last) last = v;
+            hf_ropes_max_stretch(&s.ro, 0, 1, &st);
+            if (st > worst) worst = st;
+        }
+        if (getenv("TR_VERBOSE"))
+            printf("  shape settles: case %d: peak %.3g m/s, last second "
+                   "%.3g m/s, stretch %.3g\n",
+                   (int)c, peak, last, (double)worst);
+        CHECK(peak > 0.05);  /* it sagged: the stiffness cannot hold it */
+        CHECK(last < 1e-3);  /* and came to rest */
+        CHECK(worst < 1e-4);
+        CHECK(tr_finite(&s.ro));
+        tr_close(&s);
+    }
+}
+
 /* A head (sphere, r = 0.1 m) swinging 0.2 m at 1 Hz with 16-segment 0.3 m
    ropes on it: stretch stays below 0.5 % and no point enters the head. */
 static void test_ropes_swinging_head(void)
@@ -5112,6 +5182,7 @@ static void test_defaults_explicit_zero(void)
     X(test_ropes_root_frames)                                                  \
     X(test_ropes_reset_teleport)                                               \
     X(test_ropes_root_and_local_stiffness)                                     \
+    X(test_ropes_shape_stiffness_settles)                                      \
     X(test_ropes_swinging_head)                                                \
     X(test_ropes_max_stretch_exact)                                            \
     X(test_ropes_wind_and_turbulence)                                          \
