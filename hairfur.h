@@ -13564,10 +13564,8 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
 {
     hf__rconst K;
     hf__rout ro;
-    hf__rcall c;
     hf_ribbon_params prm;
     const hf_ribbon_params *params = &prm;
-    const hf__ribbons_kernels *kc;
     hf_ribbon_strands sv;
     const hf_stream *streams[5];
     /* a strand's frame rows from a page boundary, then a second frame
@@ -13648,26 +13646,19 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
     if (!ro.base[HF__S_TEX]) sv.root_uv = NULL;
     if (!ro.base[HF__S_COL]) sv.color = NULL;
     if (!ro.base[HF__S_C3D]) sv.color3d_x = NULL;
-    c.sv = &sv;
-    c.params = params;
-    c.K = &K;
-    c.ro = &ro;
-    c.first = first;
-    c.count = count;
-    c.out_first = params->out_first;
-    c.P = P;
-    c.fr = fr;
-    c.fr2 = fr2;
-    c.stage = stage;
-    c.stage_buf = stage_buf;
-    c.dst0 = dst0;
-    c.block = block;
-    /* the call's kernels, once: its loop, the frames and writers */
-    c.frame = hf__kernels_for(hf__frame_widths, params->simd);
-    c.write = hf__kernels_for(hf__write_widths, params->simd);
-    c.stream = hf__kernels_for(hf__stream_widths, params->simd);
-    kc = hf__kernels_for(hf__ribbons_widths, params->simd);
-    while (!kc->call(&c)) ++kc;
+    {
+        /* the call, with its kernels resolved once: the frames, writers
+           and copies out of the stage, and the whole-call loop */
+        const hf__rcall c = {
+            &sv, params, &K, &ro, first, count, params->out_first, P, fr, fr2,
+            stage, stage_buf, dst0, block,
+            hf__kernels_for(hf__frame_widths, params->simd),
+            hf__kernels_for(hf__write_widths, params->simd),
+            hf__kernels_for(hf__stream_widths, params->simd)};
+        const hf__ribbons_kernels *kc =
+            hf__kernels_for(hf__ribbons_widths, params->simd);
+        while (!kc->call(&c)) ++kc;
+    }
     return HF_OK;
 }
 
