@@ -7070,9 +7070,11 @@ HF__PRIVATE void hf__ropes_collide_ftl_row(hf_ropes *ro, const float *F,
 }
 
 /* The distance solver's collisions (after each pass): every point of
-   ropes [a, b) pushed straight out of each collider in turn. */
+   ropes [a, b) pushed straight out of each collider in turn, with the
+   sub-step's kernels k (hf__rope_widths). */
 HF__PRIVATE void hf__ropes_collide(hf_ropes *ro, const float *F, int a, int b,
-                                   const hf__bp *bp, int level);
+                                   const hf__bp *bp,
+                                   const struct hf__rope_rows *k);
 
 /* Ropes [a, b) gliding from simulation to animation: kinematic, no
    constraints, no colliders. In root-frame coordinates each point follows
@@ -7375,9 +7377,11 @@ HF__PRIVATE void hf__ropes_local_shape_v1(hf_ropes *ro, const float *F, int a,
     }
 }
 
-/* The solver passes, each a distance pass with its collisions. */
+/* The solver passes, each a distance pass with its collisions (by the
+   kernels k: the scalar reference's). */
 HF__PRIVATE void hf__ropes_solve_v1(hf_ropes *ro, const float *F, int a, int b,
-                                    const hf__rope_step *st, const hf__bp *bp)
+                                    const hf__rope_step *st, const hf__bp *bp,
+                                    const struct hf__rope_rows *k)
 {
     const size_t R = (size_t)ro->rope_count;
     const int P = ro->points;
@@ -7452,23 +7456,22 @@ HF__PRIVATE void hf__ropes_solve_v1(hf_ropes *ro, const float *F, int a, int b,
                 }
             }
         }
-        if (!st->ftl && bp) hf__ropes_collide(ro, F, a, b, bp, 0);
+        if (!st->ftl && bp) hf__ropes_collide(ro, F, a, b, bp, k);
     }
-    if (st->iterations == 0 && bp) hf__ropes_collide(ro, F, a, b, bp, 0);
+    if (st->iterations == 0 && bp) hf__ropes_collide(ro, F, a, b, bp, k);
 }
 
-/* One sub-step of simulated ropes [a, b), the scalar reference (the
-   width-1 entry of hf__rope_widths: k unused); returns b. */
+/* One sub-step of simulated ropes [a, b), the scalar reference (k: the
+   width-1 entry of hf__rope_widths); returns b. */
 HF__PRIVATE int hf__ropes_substep_v1(hf_ropes *ro, const float *F, int a, int b,
                                      const hf__rope_step *st, const hf__bp *bp,
                                      const struct hf__rope_rows *k)
 {
-    (void)k;
     hf__ropes_integrate_v1(ro, F, a, b);
     if (st->k_root > 0.0f || st->global_on)
         hf__ropes_global_shape_v1(ro, F, a, b, st);
     if (st->local_on) hf__ropes_local_shape_v1(ro, F, a, b, st);
-    hf__ropes_solve_v1(ro, F, a, b, st, bp);
+    hf__ropes_solve_v1(ro, F, a, b, st, bp, k);
     return b;
 }
 
@@ -8490,6 +8493,11 @@ typedef struct hf__rope_rows {
     int (*substep)(hf_ropes *, const float *, int, int, const hf__rope_step *,
                    const hf__bp *, const struct hf__rope_rows *);
     int (*mark_far)(const hf_ropes *, int, int, const float *, float *);
+    /* the distance solver's pushes out of a collider (hf__ropes_collide):
+       row points [r, e) with their frame's normals; returns where it
+       stopped (four lanes at every width above one) */
+    int (*push)(const hf__col_prep *, float *, float *, float *, const float *,
+                const float *, const float *, int, int);
     void (*pin_root)(hf_ropes *, const float *, int, int);
     void (*integrate)(hf_ropes *, const float *, int, int, int,
                       const hf__rope_step *);
@@ -8542,22 +8550,58 @@ HF__PRIVATE int hf__ropes_substep_rows(hf_ropes *ro, const float *F, int a,
                 k->ftl(ro, F, j, a, b, st, bp);
             else
                 k->distance(ro, j, a, b);
-        if (!st->ftl && bp) hf__ropes_collide(ro, F, a, b, bp, st->level);
+        if (!st->ftl && bp) hf__ropes_collide(ro, F, a, b, bp, k);
     }
-    if (st->iterations == 0 && bp)
-        hf__ropes_collide(ro, F, a, b, bp, st->level);
+    if (st->iterations == 0 && bp) hf__ropes_collide(ro, F, a, b, bp, k);
     return b;
 }
 #endif
+
+#if HF__V4
+/* A collider's pushes on row points [r, e) (X, Y, Z, the frame's normals
+   nx, ny, nz), four lanes tested at once, each hit pushed by the scalar
+   code (the same bytes); returns where the whole groups end. */
+HF__PRIVATE int hf__ropes_push_v4(const hf__col_prep *kp, float *X, float *Y,
+                                  float *Z, const float *nx, const float *ny,
+                                  const float *nz, int r, int e)
+{
+    hf__col_v4 kv;
+    if (e - r < 4) return r;
+    hf__col_prep_v4(kp, &kv);
+    for (; r + 4 <= e; r += 4) {
+        hf__v4 xyz[3];
+        int m, i;
+        xyz[0] = HF__LD(X + r);
+        xyz[1] = HF__LD(Y + r);
+        xyz[2] = HF__LD(Z + r);
+        m = hf__col_hits_v4(&kv, xyz);
+        for (i = 0; m; ++i, m >>= 1)
+            if (m & 1)
+                hf__col_push_out(kp, X + r + i, Y + r + i, Z + r + i, nx[r + i],
+                                 ny[r + i], nz[r + i]);
+    }
+    return r;
+}
+#endif
+
+/* The same, point by point: the reference; returns e. */
+HF__PRIVATE int hf__ropes_push_v1(const hf__col_prep *kp, float *X, float *Y,
+                                  float *Z, const float *nx, const float *ny,
+                                  const float *nz, int r, int e)
+{
+    for (; r < e; ++r)
+        hf__col_push_out(kp, X + r, Y + r, Z + r, nx[r], ny[r], nz[r]);
+    return e;
+}
 
 /* The distance solver's collisions for ropes [a, b): per tile, the box
    of its points, and the colliders in order that meet it or the box of
    one kept before (a push leaves a point on the surface of the collider
    it left, inside that collider's box); each kept collider pushes every
-   point of the tile it holds straight out, four lanes tested at once
-   where the level has them (the push is the scalar one: same bytes). */
+   point of the tile it holds straight out, by the kernels kr and the
+   narrower ones (push). */
 HF__PRIVATE void hf__ropes_collide(hf_ropes *ro, const float *F, int a, int b,
-                                   const hf__bp *bp, int level)
+                                   const hf__bp *bp, const hf__rope_rows *kr)
 {
     const size_t R = (size_t)ro->rope_count;
     const float *nx = HF__ROW(F, 6, R), *ny = HF__ROW(F, 7, R),
@@ -8589,33 +8633,12 @@ HF__PRIVATE void hf__ropes_collide(hf_ropes *ro, const float *F, int a, int b,
             for (j = 1; j < ro->points; ++j) {
                 float *X = HF__ROW(ro->x, j, R), *Y = HF__ROW(ro->y, j, R),
                       *Z = HF__ROW(ro->z, j, R);
-                r = x;
-#if HF__V4
-                if (level >= HF_SIMD_SSE2) {
-                    hf__col_v4 kv;
-                    hf__col_prep_v4(&kp, &kv);
-                    for (; r + 4 <= e; r += 4) {
-                        hf__v4 xyz[3];
-                        int m, i;
-                        xyz[0] = HF__LD(X + r);
-                        xyz[1] = HF__LD(Y + r);
-                        xyz[2] = HF__LD(Z + r);
-                        m = hf__col_hits_v4(&kv, xyz);
-                        for (i = 0; m; ++i, m >>= 1)
-                            if (m & 1)
-                                hf__col_push_out(&kp, X + r + i, Y + r + i,
-                                                 Z + r + i, nx[r + i],
-                                                 ny[r + i], nz[r + i]);
-                    }
-                }
-#endif
-                for (; r < e; ++r)
-                    hf__col_push_out(&kp, X + r, Y + r, Z + r, nx[r], ny[r],
-                                     nz[r]);
+                const hf__rope_rows *kk;
+                for (r = x, kk = kr; r < e; ++kk)
+                    r = kk->push(&kp, X, Y, Z, nx, ny, nz, r, e);
             }
         }
     }
-    (void)level;
 }
 
 #if HF__AVX2
@@ -8647,9 +8670,10 @@ HF__PRIVATE int hf__ropes_mark_far_v1(const hf_ropes *ro, int a, int b,
    ropes a vector are each a function of its own, so no SSE code runs
    between them with the upper halves dirty. */
 #define HF__ROPE_ROWS_AT(W)                                                    \
-    hf__ropes_substep_rows, hf__ropes_mark_far_v##W, hf__ropes_pin_root_v##W,  \
-        hf__ropes_integrate_row_v##W, hf__ropes_local_row_v##W,                \
-        hf__ropes_ftl_row_v##W, hf__ropes_distance_row_v##W
+    hf__ropes_substep_rows, hf__ropes_mark_far_v##W, hf__ropes_push_v4,        \
+        hf__ropes_pin_root_v##W, hf__ropes_integrate_row_v##W,                 \
+        hf__ropes_local_row_v##W, hf__ropes_ftl_row_v##W,                      \
+        hf__ropes_distance_row_v##W
 static const hf__rope_rows hf__rope_widths[] = {
 #if HF__AVX512
     {{HF__ISA_V16}, HF__ROPE_ROWS_AT(16)},
@@ -8660,8 +8684,8 @@ static const hf__rope_rows hf__rope_widths[] = {
 #if HF__V4
     {{HF__ISA_V4}, HF__ROPE_ROWS_AT(4)},
 #endif
-    {{HF__ISA_V1}, hf__ropes_substep_v1, hf__ropes_mark_far_v1, NULL, NULL, NULL,
-     NULL, NULL}};
+    {{HF__ISA_V1}, hf__ropes_substep_v1, hf__ropes_mark_far_v1,
+     hf__ropes_push_v1, NULL, NULL, NULL, NULL, NULL}};
 #undef HF__ROPE_ROWS_AT
 
 /* The dispatch of a sub-step with the kernels st->rows (hf__rope_widths,
@@ -10665,28 +10689,43 @@ HF__PRIVATE hf_result hf__ribbon_check(const hf_ribbon_strands *strands,
     return HF_OK;
 }
 
-/* Half width at t = j / (P - 1), with the taper curve (resolved p), and
-   t itself where tt is not NULL. Returns the largest strand multiplier
-   for them: the product, a vertex's half width, stays within HF_MAX_ABS
-   (each factor may reach it: their product would overflow to infinity,
-   and a side's zero component times infinity is NaN). Every call pays
-   for this (P divisions), so the linear taper takes four points a
-   vector: the same operations, the same values. */
-HF__PRIVATE float hf__half_widths(const hf_ribbon_params *p, float *hw,
-                                  float *tt)
+/* Half widths at t = j / (P - 1) from point j on, with the taper curve
+   (resolved p), and t itself where tt is not NULL; *m: the largest so
+   far. The reference, any taper; returns P. */
+HF__PRIVATE int hf__half_widths_v1(const hf_ribbon_params *p, float *hw,
+                                   float *tt, int j, float *m)
 {
     const int P = p->points_per_strand;
     const float scale = p->width_scale;
     const float power = p->taper_power;
-    float m = 1.0f;
-    int j = 0;
+    for (; j < P; ++j) {
+        float t = (float)j / (float)(P - 1);
+        float f = power == 1.0f ? t : (float)HF_POW((double)t, (double)power);
+        if (j == P - 1) f = 1.0f; /* exact tip width whatever pow rounds */
+        /* this form gives root and tip widths exactly at f = 0 and 1 */
+        hw[j] = 0.5f * scale * ((1.0f - f) * p->root_width + f * p->tip_width);
+        if (tt) tt[j] = t;
+        *m = hw[j] > *m ? hw[j] : *m;
+    }
+    return P;
+}
+
 #if HF__SSE
-    if (power == 1.0f) {
+/* The linear taper four points a vector (the same operations, the same
+   values); returns where the whole groups end (j, any other taper). */
+HF__PRIVATE int hf__half_widths_v4(const hf_ribbon_params *p, float *hw,
+                                   float *tt, int j, float *m)
+{
+    const int P = p->points_per_strand;
+    const float scale = p->width_scale;
+    if (p->taper_power == 1.0f) {
         const __m128 d = _mm_set1_ps((float)(P - 1)),
                      hs = _mm_set1_ps(0.5f * scale), one = _mm_set1_ps(1.0f),
                      rw = _mm_set1_ps(p->root_width),
                      tw = _mm_set1_ps(p->tip_width);
-        __m128 jv = _mm_setr_ps(0.0f, 1.0f, 2.0f, 3.0f), mv = one;
+        __m128 jv = _mm_setr_ps((float)j, (float)j + 1.0f, (float)j + 2.0f,
+                                (float)j + 3.0f),
+               mv = _mm_set1_ps(*m);
         float mm[4];
         int i;
         for (; j + 4 <= P; j += 4, jv = _mm_add_ps(jv, _mm_set1_ps(4.0f))) {
@@ -10699,18 +10738,37 @@ HF__PRIVATE float hf__half_widths(const hf_ribbon_params *p, float *hw,
             mv = _mm_max_ps(mv, h);
         }
         _mm_storeu_ps(mm, mv);
-        for (i = 0; i < 4; ++i) m = mm[i] > m ? mm[i] : m;
+        for (i = 0; i < 4; ++i) *m = mm[i] > *m ? mm[i] : *m;
     }
+    return j;
+}
 #endif
-    for (; j < P; ++j) {
-        float t = (float)j / (float)(P - 1);
-        float f = power == 1.0f ? t : (float)HF_POW((double)t, (double)power);
-        if (j == P - 1) f = 1.0f; /* exact tip width whatever pow rounds */
-        /* this form gives root and tip widths exactly at f = 0 and 1 */
-        hw[j] = 0.5f * scale * ((1.0f - f) * p->root_width + f * p->tip_width);
-        if (tt) tt[j] = t;
-        m = hw[j] > m ? hw[j] : m;
-    }
+
+typedef struct hf__taper_kernels {
+    hf__isa isa;
+    int (*widths)(const hf_ribbon_params *, float *, float *, int, float *);
+} hf__taper_kernels;
+
+static const hf__taper_kernels hf__taper_widths[] = {
+#if HF__SSE
+    {{HF__ISA_V4}, hf__half_widths_v4},
+#endif
+    {{HF__ISA_V1}, hf__half_widths_v1}};
+
+/* Half width at t = j / (P - 1), with the taper curve (resolved p, at its
+   SIMD level: hf__taper_widths), and t itself where tt is not NULL.
+   Returns the largest strand multiplier for them: the product, a
+   vertex's half width, stays within HF_MAX_ABS (each factor may reach
+   it: their product would overflow to infinity, and a side's zero
+   component times infinity is NaN). Every call pays for this (P
+   divisions), so the linear taper takes four points a vector. */
+HF__PRIVATE float hf__half_widths(const hf_ribbon_params *p, float *hw,
+                                  float *tt)
+{
+    const hf__taper_kernels *k = hf__kernels_for(hf__taper_widths, p->simd);
+    float m = 1.0f;
+    int j = 0;
+    for (; j < p->points_per_strand; ++k) j = k->widths(p, hw, tt, j, &m);
     return HF_MAX_ABS / m;
 }
 
@@ -13013,30 +13071,53 @@ HF__PRIVATE void hf__rout_staged(const hf__rout *ro, float *stage,
             so->base[k] = (unsigned char *)stage + (ro->base[k] - dst0);
 }
 
-/* n bytes from src to dst: streaming 16-byte stores from dst's first
-   16-byte boundary, plain copies for the ends. */
-HF__PRIVATE void hf__stream_copy(unsigned char *dst, const float *src,
-                                 size_t n)
+/* n bytes from src to dst (a strand's vertices out of the stage): the
+   reference, a plain copy */
+HF__PRIVATE void hf__stream_copy_v1(unsigned char *dst, const float *src,
+                                    size_t n)
+{
+    HF_MEMCPY(dst, src, n);
+}
+
+#if HF__SSE
+/* streaming 16-byte stores from dst's first 16-byte boundary, plain
+   copies for the ends */
+HF__PRIVATE void hf__stream_copy_v4(unsigned char *dst, const float *src,
+                                    size_t n)
 {
     const unsigned char *from = (const unsigned char *)src;
     size_t head = (16u - ((uintptr_t)dst & 15u)) & 15u, i;
     if (head > n) head = n;
     HF_MEMCPY(dst, from, head);
     i = head;
-#if HF__SSE
     hf__page_ahead(dst, n);
     for (; i + 16 <= n; i += 16)
         _mm_stream_si128((__m128i *)(void *)(dst + i),
-                         _mm_loadu_si128((const __m128i *)(const void *)(from + i)));
-#endif
+                         _mm_loadu_si128(
+                             (const __m128i *)(const void *)(from + i)));
     HF_MEMCPY(dst + i, from + i, n - i);
 }
+#endif
+
+/* The copies out of the stage per width, for the loops a strand at a
+   time (hf__ribbons_each; the eight-lane loops stream by their own,
+   hf__stream_copy_v8) */
+typedef struct hf__stream_kernels {
+    hf__isa isa;
+    void (*copy)(unsigned char *, const float *, size_t);
+} hf__stream_kernels;
+
+static const hf__stream_kernels hf__stream_widths[] = {
+#if HF__SSE
+    {{HF__ISA_V4}, hf__stream_copy_v4},
+#endif
+    {{HF__ISA_V1}, hf__stream_copy_v1}};
 
 #if HF__AVX2
-/* hf__stream_copy in 32-byte streaming stores where dst is aligned to
+/* hf__stream_copy_v4 in 32-byte streaming stores where dst is aligned to
    them (a strand's block is, in a buffer aligned as a mapped one); the
-   rest, and a block that is not aligned, by hf__stream_copy (each part's
-   pages walked ahead once) */
+   rest, and a block that is not aligned, by hf__stream_copy_v4 (each
+   part's pages walked ahead once) */
 HF__TARGET_AVX2 HF__INLINE void hf__stream_copy_v8(unsigned char *dst,
                                                    const float *src, size_t n)
 {
@@ -13046,7 +13127,7 @@ HF__TARGET_AVX2 HF__INLINE void hf__stream_copy_v8(unsigned char *dst,
     for (i = 0; i < m; i += 32)
         _mm256_stream_ps((float *)(void *)(dst + i),
                          _mm256_loadu_ps(src + i / 4));
-    if (m < n) hf__stream_copy(dst + m, src + m / 4, n - m);
+    if (m < n) hf__stream_copy_v4(dst + m, src + m / 4, n - m);
 }
 #endif
 
@@ -13865,6 +13946,7 @@ typedef struct hf__rcall {
     size_t block;         /* a vertex's bytes in the stage */
     const struct hf__frame_kernels *frame; /* the call's level's */
     const struct hf__write_kernels *write;
+    const struct hf__stream_kernels *stream;
 } hf__rcall;
 
 /* The whole-call loops, one a width, each returning 0 for a call it
@@ -13927,7 +14009,7 @@ HF__PRIVATE int hf__ribbons_each(const hf__rcall *c)
             /* the strand's vertices into the stage (in L1), then out to
                its block with streaming stores */
             hf__ribbon_write(fr, P, c->K, &str, &so, 0, kw);
-            hf__stream_copy(c->dst0 + v0 * c->block, c->stage_buf,
+            c->stream->copy(c->dst0 + v0 * c->block, c->stage_buf,
                             2u * (size_t)P * c->block);
         } else {
             hf__ribbon_write(fr, P, c->K, &str, c->ro, v0, kw);
@@ -13965,10 +14047,8 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
 {
     hf__rconst K;
     hf__rout ro;
-    hf__rcall c;
     hf_ribbon_params prm;
     const hf_ribbon_params *params = &prm;
-    const hf__ribbons_kernels *kc;
     hf_ribbon_strands sv;
     const hf_stream *streams[5];
     /* a strand's frame rows from a page boundary, then a second frame
@@ -14049,25 +14129,19 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
     if (!ro.base[HF__S_TEX]) sv.root_uv = NULL;
     if (!ro.base[HF__S_COL]) sv.color = NULL;
     if (!ro.base[HF__S_C3D]) sv.color3d_x = NULL;
-    c.sv = &sv;
-    c.params = params;
-    c.K = &K;
-    c.ro = &ro;
-    c.first = first;
-    c.count = count;
-    c.out_first = params->out_first;
-    c.P = P;
-    c.fr = fr;
-    c.fr2 = fr2;
-    c.stage = stage;
-    c.stage_buf = stage_buf;
-    c.dst0 = dst0;
-    c.block = block;
-    /* the call's kernels, once: its loop, the frames and writers */
-    c.frame = hf__kernels_for(hf__frame_widths, params->simd);
-    c.write = hf__kernels_for(hf__write_widths, params->simd);
-    kc = hf__kernels_for(hf__ribbons_widths, params->simd);
-    while (!kc->call(&c)) ++kc;
+    {
+        /* the call, with its kernels resolved once: the frames, writers
+           and copies out of the stage, and the whole-call loop */
+        const hf__rcall c = {
+            &sv, params, &K, &ro, first, count, params->out_first, P, fr, fr2,
+            stage, stage_buf, dst0, block,
+            hf__kernels_for(hf__frame_widths, params->simd),
+            hf__kernels_for(hf__write_widths, params->simd),
+            hf__kernels_for(hf__stream_widths, params->simd)};
+        const hf__ribbons_kernels *kc =
+            hf__kernels_for(hf__ribbons_widths, params->simd);
+        while (!kc->call(&c)) ++kc;
+    }
     return HF_OK;
 }
 
@@ -14229,7 +14303,7 @@ typedef struct hf__points_kit {
     hf__pair_widths pw;
 #endif
     float wcap; /* the cap of the strand multiplier (hf__half_widths) */
-    int P, level, nt, wide;
+    int P, level, nt;
     int compact;           /* HF_POINT_COMPACT: */
     float origin[3], inv;  /* its box: (p - origin) * inv */
     /* the level's kernels (hf__kernels_for): points, compact encoders */
@@ -14951,11 +15025,10 @@ HF__PRIVATE void hf__points_kit_init(hf__points_kit *k,
                       (size_t)count * (size_t)k->P * (k->compact ? 8u : 16u),
                       HF_STREAM_MIN_VERTEX_BYTES);
     k->wcap = hf__half_widths(params, k->hw, NULL);
-    k->wide = 0;
 #if HF__AVX2
-    /* the AVX2 kernel needs P >= 3 */
-    k->wide = k->level >= HF_SIMD_AVX2 && k->P >= 3;
-    if (k->wide) hf__pair_widths_init(&k->pw, k->hw, k->P);
+    /* the pair widths of the kernels at eight lanes and more (P >= 3) */
+    if (k->kernels->isa.lanes >= 8 && k->P >= 3)
+        hf__pair_widths_init(&k->pw, k->hw, k->P);
 #endif
 }
 

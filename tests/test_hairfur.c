@@ -1187,6 +1187,8 @@ static void test_dispatch_widths(void)
     T_WIDTHS_CHECK(hf__points_widths);
     T_WIDTHS_CHECK(hf__encode_widths);
     T_WIDTHS_CHECK(hf__ipoints_widths);
+    T_WIDTHS_CHECK(hf__stream_widths);
+    T_WIDTHS_CHECK(hf__taper_widths);
 }
 
 /* 1. configuration, result codes, version: its tests, in the order they run */
