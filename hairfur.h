@@ -269,7 +269,8 @@
        level asked for and the CPU allow), and what a width does not take
        goes to a narrower one. One kernel written once for any
        width (the rope step's contacts and rows, interpolation into
-       strands and into GPU points) is a kernel text, compiled once per
+       strands and into GPU points, the grid's splat and push) is a
+       kernel text, compiled once per
        width by the header including itself (HF_HEADER_FILENAME). Each
        copy is a function with the text's own lines, so a debugger stops
        in the AVX2 rope kernel at "break hf__ropes_ftl_row_v8" (more in
@@ -289,9 +290,15 @@
                            hair-hair interaction on a grid (hf_grid,
                            hf_grid_build, hf_ropes_apply_grid,
                            hf_rope_params.volume and friction,
-                           hf_fur_desc.grid_resolution, hf_fur_build_grid);
+                           hf_fur_desc.grid_resolution, hf_fur_build_grid,
+                           hf_grid.simd);
                            gravity-settled rest shapes
-                           (hf_ropes_rest_from_pose, hf_fur_settle_rest).
+                           (hf_ropes_rest_from_pose, hf_fur_settle_rest);
+                           FTL's velocity correction damps a compressed
+                           segment's bend instead of pushing its parent
+                           (stiff ropes come to rest; bytes change where
+                           a segment is compressed); one dispatch shape
+                           (kernels named by width, hf__<stage>_widths).
        0.2.0 (2026-11-23)  one convention: every struct zero-initialised
                            means its defaults (hf_rope_params and
                            hf_lut_params too, with explicit_zero bits for a
