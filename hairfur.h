@@ -267,14 +267,13 @@
        reference, each naming its instruction set and the level it needs;
        a call resolves its level once (hf__kernels_for: the widest the
        level asked for and the CPU allow), and what a width does not take
-       goes to a narrower one. One kernel written once for any
-       width (the rope step's contacts and rows, interpolation into
-       strands and into GPU points, the grid's splat and push) is a
-       kernel text, compiled once per
-       width by the header including itself (HF_HEADER_FILENAME). Each
-       copy is a function with the text's own lines, so a debugger stops
-       in the AVX2 rope kernel at "break hf__ropes_ftl_row_v8" (more in
-       0.5, "Kernel texts").
+       goes to a narrower one. One kernel written once for any width
+       (the rope step's contacts and rows, interpolation into strands and
+       into GPU points, the grid's splat and push) is a kernel text,
+       compiled once per width by the header including itself
+       (HF_HEADER_FILENAME). Each copy is a function with the text's own
+       lines, so a debugger stops in the AVX2 rope kernel at "break
+       hf__ropes_ftl_row_v8" (more in 0.5, "Kernel texts").
 
    VERSION HISTORY
 
