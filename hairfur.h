@@ -2694,9 +2694,9 @@ HF__INLINE int hf__mask_neon(float32x4_t m)
 /* ---- 0.5 kernel texts: their words at each width ------------------------ */
 
 /* Kernel texts. The kernels written once for any SIMD width (the rope
-   step's contacts and rows at 4, 8 and 16 lanes, interpolation into
-   strands and into GPU points at 8 and 16) are ordinary lines of this
-   file, each where the data flow puts it, between
+   step's contacts and rows and the grid's splat and push at 4, 8 and 16
+   lanes, interpolation into strands and into GPU points at 8 and 16) are
+   ordinary lines of this file, each where the data flow puts it, between
        #if defined(HF__PASS) && HF__PASS == HF__PASS_<TEXT>
    and its #endif, which the implementation skips. After the text it
    includes this file once per width the build has, with HF__PASS and
