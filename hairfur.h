@@ -6612,16 +6612,23 @@ HF__PRIVATE float hf__ftl_penetration(const hf__col_prep *k, const float *rr,
    point so far (a capsule's from its axis point closest to that point),
    then tries every direction that can be nearest and clear: u turned
    onto each cap's edge, and the crossings of every two edges; the one
-   with the least penetration, then the nearest to u, wins. */
+   with the least penetration, then the nearest to u, wins. Two edges
+   cross either way along the crease of their colliders: the rounds
+   first try only the crossing on the side of the point's last place
+   (v: that place minus the parent; both where v is square to the
+   crease), and only where that leaves the point inside do they run
+   again with both. Where u points straight into a crease the two are
+   equally near it, and a choice made by rounding flipped the point
+   about its parent to the crease's other end, step after step. */
 HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
                                        const float *p, float l,
                                        const float *root, const float *n,
-                                       const float *t, const hf__col_prep *k,
-                                       int ncol)
+                                       const float *t, const float *v,
+                                       const hf__col_prep *k, int ncol)
 {
     float q[3], best[3], u[3], rr[HF__FTL_NEAR];
     float m[2 * HF__FTL_NEAR][3], cmin[2 * HF__FTL_NEAR], best_pen, best_dot;
-    int c, e, round, deepest, ncap, pass;
+    int c, e, round, deepest, ncap, pass, phase;
     q[0] = *x;
     q[1] = *y;
     q[2] = *z;
@@ -6665,6 +6672,7 @@ HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
             HF_MEMCPY(at, cand, sizeof cand);
         }
     }
+    for (phase = 0; phase < 2 && best_pen > 0.0f; ++phase)
     for (round = 0; round < HF__FTL_ROUNDS && best_pen > 0.0f; ++round) {
         float from[3];
         const float pen0 = best_pen;
@@ -6704,6 +6712,17 @@ HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
                     }
                 } else {
                     nd = hf__ftl_cap_pair(m[c], cmin[c], m[e], cmin[e], d);
+                    if (nd == 2 && phase == 0) { /* the last place's side */
+                        float dd[3], s;
+                        for (w = 0; w < 3; ++w) dd[w] = d[w] - d[3 + w];
+                        s = hf__dot3(dd, v);
+                        if (s < 0.0f) {
+                            for (w = 0; w < 3; ++w) d[w] = d[3 + w];
+                            nd = 1;
+                        } else if (s > 0.0f) {
+                            nd = 1;
+                        }
+                    }
                 }
                 for (i = 0; i < nd; ++i) {
                     float cand[3], pen, dot;
@@ -7036,6 +7055,7 @@ HF__PRIVATE void hf__ftl_collide_one(hf_ropes *ro, const float *F, int j,
     const float n[3] = {F[6 * R + r], F[7 * R + r], F[8 * R + r]};
     const float t[3] = {F[3 * R + r], F[4 * R + r], F[5 * R + r]};
     const float l = ro->rest_length[o0];
+    const float v[3] = {ro->px[o] - p[0], ro->py[o] - p[1], ro->pz[o] - p[2]};
     hf__col_prep near_[HF__FTL_NEAR], spare;
     int i, nn, walk, more;
     for (walk = 0; walk < HF__FTL_ROUNDS; ++walk) {
@@ -7046,7 +7066,7 @@ HF__PRIVATE void hf__ftl_collide_one(hf_ropes *ro, const float *F, int j,
             if (k->row > j || !hf__ftl_relevant(k, p, l)) continue;
             if (nn == HF__FTL_NEAR) {
                 hf__ftl_collide_point(ro->x + o, ro->y + o, ro->z + o, p, l,
-                                      root, n, t, near_, nn);
+                                      root, n, t, v, near_, nn);
                 nn = 0;
                 more = 1;
             }
@@ -7054,7 +7074,7 @@ HF__PRIVATE void hf__ftl_collide_one(hf_ropes *ro, const float *F, int j,
         }
         if (nn)
             hf__ftl_collide_point(ro->x + o, ro->y + o, ro->z + o, p, l, root,
-                                  n, t, near_, nn);
+                                  n, t, v, near_, nn);
         if (!more || (ro->x[o] == before[0] && ro->y[o] == before[1] &&
                       ro->z[o] == before[2]))
             break;
@@ -7798,10 +7818,11 @@ HF__KN(hf__ftl_collide_in)(hf_ropes *ro, const float *F, int j, const int *idx,
     const size_t R = (size_t)ro->rope_count, o0 = (size_t)(j - 1) * R;
     const HF__VEC zero = HF__VSET1(0.0f);
     float g[3][HF__W];
-    HF__VEC l, p[3], q[3], root[3], n[3], t[3], u[3], best[3], rr[HF__FTL_NEAR],
+    HF__VEC l, p[3], q[3], root[3], n[3], t[3], u[3], v[3], best[3],
+        rr[HF__FTL_NEAR],
         m[2 * HF__FTL_NEAR][3], cmin[2 * HF__FTL_NEAR], act, best_pen, best_dot,
-        bd, big, cw[3], rw;
-    int c, e, i, w, round, ncap, pass;
+        bd, big, cw[3], rw, act0;
+    int c, e, i, w, round, ncap, pass, phase;
     HF__UNROLL for (c = 0; c < 3; ++c) {
         const float *X = c == 0 ? ro->x : c == 1 ? ro->y : ro->z;
         p[c] = HF__VGATHER(X + o0, idx);
@@ -7809,6 +7830,12 @@ HF__KN(hf__ftl_collide_in)(hf_ropes *ro, const float *F, int j, const int *idx,
         root[c] = HF__VGATHER(X, idx);
         t[c] = HF__VGATHER(F + (size_t)(3 + c) * R, idx);
         n[c] = HF__VGATHER(F + (size_t)(6 + c) * R, idx);
+        v[c] = HF__VSUB(HF__VGATHER((c == 0   ? ro->px
+                                     : c == 1 ? ro->py
+                                              : ro->pz) +
+                                        o0 + R,
+                                    idx),
+                        p[c]);
     }
     l = HF__VGATHER(ro->rest_length + o0, idx);
     /* hf__col_radius_for */
@@ -7854,9 +7881,12 @@ HF__KN(hf__ftl_collide_in)(hf_ropes *ro, const float *F, int j, const int *idx,
             go = HF__VAND(go, HF__VGT(pen, zero));
         }
     }
+    act0 = act;
+    for (phase = 0; phase < 2; ++phase)
     for (round = 0; round < HF__FTL_ROUNDS; ++round) {
         HF__VEC from[3];
         const HF__VEC pen0 = best_pen;
+        if (phase == 1 && round == 0) act = act0; /* the lanes still in */
         act = HF__VAND(act, HF__VGT(best_pen, zero));
         if (!HF__VMASK(act)) break;
         HF__UNROLL for (i = 0; i < 3; ++i)
@@ -7881,8 +7911,9 @@ HF__KN(hf__ftl_collide_in)(hf_ropes *ro, const float *F, int j, const int *idx,
             }
             for (c = 0; c < ncap; ++c)
             for (e = pass ? c + 1 : c; e < (pass ? ncap : c + 1); ++e) {
-                HF__VEC d[6], valid = HF__VEQ(zero, zero);
+                HF__VEC d[6], valid = HF__VEQ(zero, zero), keep[2];
                 int nd;
+                keep[0] = keep[1] = valid;
                 if (e == c) {
                     HF__KN(hf__ftl_onto_cap)(from, m[c], cmin[c], t, d);
                     nd = 1;
@@ -7897,6 +7928,13 @@ HF__KN(hf__ftl_collide_in)(hf_ropes *ro, const float *F, int j, const int *idx,
                                                           cmin[e], d));
                     if (!HF__VMASK(HF__VAND(need, valid))) continue;
                     nd = 2;
+                    if (phase == 0) { /* the crease's side of the last place */
+                        const HF__VEC s = HF__VDOT3(
+                            HF__VSUB(d[0], d[3]), HF__VSUB(d[1], d[4]),
+                            HF__VSUB(d[2], d[5]), v[0], v[1], v[2]);
+                        keep[0] = HF__VSEL(HF__VLT(s, zero), zero, keep[0]);
+                        keep[1] = HF__VSEL(HF__VGT(s, zero), zero, keep[1]);
+                    }
                 }
                 for (i = 0; i < nd; ++i) {
                     const HF__VEC *di = d + 3 * i;
@@ -7909,7 +7947,8 @@ HF__KN(hf__ftl_collide_in)(hf_ropes *ro, const float *F, int j, const int *idx,
                     up = HF__VOR(HF__VLT(pen, best_pen),
                                  HF__VAND(HF__VEQ(pen, best_pen),
                                           HF__VGT(dot, best_dot)));
-                    up = HF__VAND(HF__VAND(need, valid), up);
+                    up = HF__VAND(HF__VAND(need, valid),
+                                  HF__VAND(keep[i], up));
                     best_pen = HF__VSEL(up, pen, best_pen);
                     best_dot = HF__VSEL(up, dot, best_dot);
                     HF__UNROLL for (w = 0; w < 3; ++w)

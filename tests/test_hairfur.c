@@ -5865,6 +5865,105 @@ static void test_ropes_crowded_colliders(void)
     for (k = 0; k < NSET; ++k) tr_close(&s[k]);
 }
 
+/* Ropes rooted inside a neck capsule, at the nape, where a shoulder's
+   capsule overlaps it below the head: the neck is shrunk for each rope
+   to its root's distance from the axis, and the rope hangs into the
+   crease that the shoulder's capsule makes with that thinner neck. At
+   rest (a static body, 5 s) no point moves more than 1 mm/s (a point
+   that chose between the two ends of the crease by rounding flipped
+   about its parent, 2 cm in a step, for ever: 1-14 m/s), the ropes keep
+   their lengths, no point is inside a collider as its rope sees it, and
+   the scalar kernels and the widest agree to the byte. */
+static void test_ropes_nape_crease(void)
+{
+    enum { R = 8, P = 32, NSET = 2 };
+    static const float xz[R][2] = {
+        {0.015f, -0.011f},  {0.0175f, -0.015f}, {0.02f, -0.011f},
+        {0.0225f, -0.015f}, {0.025f, -0.015f},  {0.015f, -0.015f},
+        {0.015f, -0.005f},  {0.02f, -0.015f}};
+    static float rest[3 * R * P], a[3 * R * P], b[3 * R * P];
+    float root[3 * R], nrm[3 * R], tan[3 * R], st;
+    hf_collider col[3];
+    hf_rope_params p;
+    tr_set s[NSET];
+    double vmax = 0.0, worst_in = 0.0;
+    int r, f, k, c, j, same = 1;
+    for (k = 0; k < NSET; ++k)
+        if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
+    memset(col, 0, sizeof col);
+    col[0].type = HF_COLLIDER_SPHERE; /* the head, just inside its skin */
+    col[0].radius = 0.097f;
+    col[1].type = col[2].type = HF_COLLIDER_CAPSULE;
+    col[1].a[1] = -0.09f; /* the neck */
+    col[1].b[1] = -0.17f;
+    col[1].a[2] = col[1].b[2] = -0.01f;
+    col[1].radius = 0.055f;
+    col[2].a[0] = 0.05f; /* a trapezius, deep into the neck */
+    col[2].a[1] = -0.19f;
+    col[2].b[0] = 0.17f;
+    col[2].b[1] = -0.23f;
+    col[2].a[2] = col[2].b[2] = -0.02f;
+    col[2].radius = 0.06f;
+    for (r = 0; r < R; ++r) {
+        const float x = xz[r][0], z = xz[r][1];
+        float *o = root + 3 * r, *n = nrm + 3 * r, *t = tan + 3 * r, d;
+        o[0] = x; /* on the 0.1 m head, under it */
+        o[1] = -sqrtf(0.01f - x * x - z * z);
+        o[2] = z;
+        for (k = 0; k < 3; ++k) n[k] = o[k] / 0.1f;
+        t[0] = 1.0f - n[0] * n[0];
+        t[1] = -n[0] * n[1];
+        t[2] = -n[0] * n[2];
+        d = sqrtf(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+        for (k = 0; k < 3; ++k) t[k] /= d;
+        tr_straight(rest, r, P, o, n, 0.3f);
+    }
+    for (k = 0; k < NSET; ++k)
+        CHECK_EQ_INT(hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm,
+                                       tan, 0),
+                     HF_OK);
+    hf_rope_params_init(&p); /* scene V's ropes */
+    p.global_stiffness_root = 0.2f;
+    p.local_stiffness_root = 0.3f;
+    p.root_stiffness = 0.5f;
+    for (f = 0; f < 360; ++f) {
+        for (k = 0; k < NSET; ++k) {
+            p.simd = k == 0 ? HF_SIMD_SCALAR : HF_SIMD_AUTO;
+            if (k == 0 && f >= 300) tr_snapshot(&s[0].ro, a);
+            CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, 1.0f / 60.0f, &p, col,
+                                       3),
+                         HF_OK);
+        }
+        same &= tr_same(&s[0].ro, &s[1].ro, 1);
+        tr_snapshot(&s[0].ro, b);
+        if (f >= 300) {
+            const double v = tr_max_move(a, b, (size_t)R * P) * 60.0;
+            vmax = v > vmax ? v : vmax;
+        }
+        for (r = 0; r < R; ++r) /* inside a collider as the rope sees it */
+            for (c = 0; c < 3; ++c) {
+                const double dr = tr_dist_seg(root + 3 * r, &col[c]);
+                const double rr = col[c].radius + 0.002;
+                const double eff =
+                    dr < col[c].radius * 0.9999 - 0.002 - 1e-6 ? dr : rr;
+                for (j = 1; j < P; ++j) {
+                    const double in =
+                        eff - tr_dist_seg(b + 3 * (r * P + j), &col[c]);
+                    worst_in = in > worst_in ? in : worst_in;
+                }
+            }
+    }
+    hf_ropes_max_stretch(&s[0].ro, 0, R, &st);
+    if (getenv("TR_VERBOSE"))
+        printf("nape crease: %g m/s, stretch %g, deepest %g m\n", vmax,
+               (double)st, worst_in);
+    CHECK(same);
+    CHECK(vmax < 1e-3);
+    CHECK(st <= 1e-4f);
+    CHECK(worst_in <= 1e-5);
+    for (k = 0; k < NSET; ++k) tr_close(&s[k]);
+}
+
 /* 6. ropes: collisions that never stretch: its tests, in the order they run */
 #define T_CONTACT_TESTS(X)                                                     \
     X(test_ropes_capsule_keeps_length)                                         \
@@ -5875,6 +5974,7 @@ static void test_ropes_crowded_colliders(void)
     X(test_ropes_far_colliders_same_bytes)                                     \
     X(test_ropes_body_proxies)                                                 \
     X(test_ropes_resting_on_joint)                                             \
+    X(test_ropes_nape_crease)                                                  \
     X(test_ropes_crowded_colliders)
 
 /* ---- ropes: hair-hair interaction on a grid ------------------------------ */
