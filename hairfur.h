@@ -6236,42 +6236,44 @@ HF__PRIVATE float hf__rope_kl(const hf__rope_step *st, int j, int P)
    fraction cb: a bend damped, while a rope that swings or turns as a
    whole keeps its motion. Reads rows j - 2 .. j after row j's placement
    and writes row j's previous position; the SIMD kernels do the same
-   operations (hf__ftl_bend_damp_v<W>). */
+   operations (hf__ftl_bend_turn_v<W>, then hf__ftl_bend_damp_v<W>).
+   Rodrigues without trigonometry, as the local shape: with a and b the
+   parent segment's previous and current offsets, n = |a| |b| (one square
+   root of a2 b2), c = a.b and k = a x b, the rotation taking a's
+   direction to b's turns q to
+       (q c + k x q) / n + k (k.q) / (n (n + c)),
+   both quotients from one division, t = 1 / (n m) with m = n + c
+   (clamped at 1e-6 n where a and b are nearly opposite): 1 / n = m t.
+   The identity where a or b is under 3e-8 m long (a2 or b2 <= 1e-15,
+   which also keeps n m a normal float). */
 HF__PRIVATE void hf__ftl_bend_damp(hf_ropes *ro, int j, int r, float cb)
 {
     const size_t R = (size_t)ro->rope_count, o = (size_t)j * R + (size_t)r,
                  o1 = o - R, o2 = o1 - R;
-    float ax = ro->px[o1] - ro->px[o2], ay = ro->py[o1] - ro->py[o2],
-          az = ro->pz[o1] - ro->pz[o2];
-    float bx = ro->x[o1] - ro->x[o2], by = ro->y[o1] - ro->y[o2],
-          bz = ro->z[o1] - ro->z[o2];
+    const float ax = ro->px[o1] - ro->px[o2], ay = ro->py[o1] - ro->py[o2],
+                az = ro->pz[o1] - ro->pz[o2];
+    const float bx = ro->x[o1] - ro->x[o2], by = ro->y[o1] - ro->y[o2],
+                bz = ro->z[o1] - ro->z[o2];
     const float qx = ro->px[o] - ro->px[o1], qy = ro->py[o] - ro->py[o1],
                 qz = ro->pz[o] - ro->pz[o1];
     const float a2 = ax * ax + ay * ay + az * az,
-                b2 = bx * bx + by * by + bz * bz;
-    const int ok = a2 > 1e-24f && b2 > 1e-24f;
-    const float ia = ok ? 1.0f / HF_SQRTF(a2) : 0.0f,
-                ib = ok ? 1.0f / HF_SQRTF(b2) : 0.0f;
-    float cc, kx, ky, kz, kd, den, rx, ry, rz;
-    ax *= ia;
-    ay *= ia;
-    az *= ia;
-    bx *= ib;
-    by *= ib;
-    bz *= ib;
-    /* Rodrigues without trigonometry, as the local shape: the rotation
-       taking unit a to unit b, applied to q; identity where either is
-       undefined */
-    cc = ok ? ax * bx + ay * by + az * bz : 1.0f;
-    kx = ay * bz - az * by;
-    ky = az * bx - ax * bz;
-    kz = ax * by - ay * bx;
-    kd = kx * qx + ky * qy + kz * qz;
-    den = 1.0f + cc;
-    den = kd / (den > 1e-6f ? den : 1e-6f);
-    rx = qx * cc + (ky * qz - kz * qy) + kx * den;
-    ry = qy * cc + (kz * qx - kx * qz) + ky * den;
-    rz = qz * cc + (kx * qy - ky * qx) + kz * den;
+                b2 = bx * bx + by * by + bz * bz,
+                c = ax * bx + ay * by + az * bz;
+    const float kx = ay * bz - az * by, ky = az * bx - ax * bz,
+                kz = ax * by - ay * bx;
+    const int ok = a2 > 1e-15f && b2 > 1e-15f;
+    const float n = HF_SQRTF(a2 * b2), e = 1e-6f * n;
+    float m = n + c, t, s, kd, rx, ry, rz;
+    m = m > e ? m : e;
+    t = 1.0f / (ok ? n * m : 1.0f);
+    s = m * t;
+    kd = (kx * qx + ky * qy + kz * qz) * t;
+    rx = (qx * c + (ky * qz - kz * qy)) * s + kx * kd;
+    ry = (qy * c + (kz * qx - kx * qz)) * s + ky * kd;
+    rz = (qz * c + (kx * qy - ky * qx)) * s + kz * kd;
+    rx = ok ? rx : qx;
+    ry = ok ? ry : qy;
+    rz = ok ? rz : qz;
     ro->px[o] += cb * (ro->x[o] - ro->x[o1] - rx);
     ro->py[o] += cb * (ro->y[o] - ro->y[o1] - ry);
     ro->pz[o] += cb * (ro->z[o] - ro->z[o1] - rz);
@@ -8306,76 +8308,92 @@ HF__KN(hf__ropes_local_row)(hf_ropes *ro, const float *F, int j, int a, int b,
     HF__VZEROUPPER();
 }
 
-/* hf__ftl_bend_damp on the W ropes from r (rows j - 2 .. j, j >= 2, row
-   j placed): the lanes of comp get the new previous positions of row j,
-   the others keep theirs. */
-HF__VTARGET HF__INLINE void HF__KN(hf__ftl_bend_damp)(hf_ropes *ro, int j,
-                                                      int r, HF__VEC cb,
-                                                      HF__VEC comp)
+/* hf__ftl_bend_damp on the W ropes from r (rows j - 2 .. j, j >= 2), in
+   two halves so that the row's placement runs between them: first
+   (before row j is placed, as it reads only rows j - 2 and j - 1 and row
+   j's previous positions) q turned by the parent segment's rotation, tq,
+   and row j's previous positions, pj; c1 and p1 are row j - 1's
+   positions and previous positions (before this row's correction), x,
+   y, z each. */
+HF__VTARGET HF__INLINE void HF__KN(hf__ftl_bend_turn)(const hf_ropes *ro,
+                                                      int j, int r,
+                                                      const HF__VEC *c1,
+                                                      const HF__VEC *p1,
+                                                      HF__VEC *tq, HF__VEC *pj)
 {
     const size_t R = (size_t)ro->rope_count, o = (size_t)j * R + (size_t)r,
-                 o1 = o - R, o2 = o1 - R;
-    const HF__VEC one = HF__VSET1(1.0f), tiny = HF__VSET1(1e-24f);
-    HF__VEC ax = HF__VSUB(HF__VLD(ro->px + o1), HF__VLD(ro->px + o2)),
-            ay = HF__VSUB(HF__VLD(ro->py + o1), HF__VLD(ro->py + o2)),
-            az = HF__VSUB(HF__VLD(ro->pz + o1), HF__VLD(ro->pz + o2));
-    HF__VEC bx = HF__VSUB(HF__VLD(ro->x + o1), HF__VLD(ro->x + o2)),
-            by = HF__VSUB(HF__VLD(ro->y + o1), HF__VLD(ro->y + o2)),
-            bz = HF__VSUB(HF__VLD(ro->z + o1), HF__VLD(ro->z + o2));
-    const HF__VEC pxj = HF__VLD(ro->px + o), pyj = HF__VLD(ro->py + o),
-                  pzj = HF__VLD(ro->pz + o);
-    const HF__VEC qx = HF__VSUB(pxj, HF__VLD(ro->px + o1)),
-                  qy = HF__VSUB(pyj, HF__VLD(ro->py + o1)),
-                  qz = HF__VSUB(pzj, HF__VLD(ro->pz + o1));
+                 o2 = o - 2 * R;
+    const HF__VEC one = HF__VSET1(1.0f), tiny = HF__VSET1(1e-15f);
+    const HF__VEC ax = HF__VSUB(p1[0], HF__VLD(ro->px + o2)),
+                  ay = HF__VSUB(p1[1], HF__VLD(ro->py + o2)),
+                  az = HF__VSUB(p1[2], HF__VLD(ro->pz + o2));
+    const HF__VEC bx = HF__VSUB(c1[0], HF__VLD(ro->x + o2)),
+                  by = HF__VSUB(c1[1], HF__VLD(ro->y + o2)),
+                  bz = HF__VSUB(c1[2], HF__VLD(ro->z + o2));
     const HF__VEC a2 = HF__VDOT3(ax, ay, az, ax, ay, az),
-                  b2 = HF__VDOT3(bx, by, bz, bx, by, bz);
+                  b2 = HF__VDOT3(bx, by, bz, bx, by, bz),
+                  c = HF__VDOT3(ax, ay, az, bx, by, bz);
     const HF__VEC ok = HF__VAND(HF__VGT(a2, tiny), HF__VGT(b2, tiny));
-    /* the scalar's 0 where not ok (lanes may divide by 0) */
-    const HF__VEC ia = HF__VAND(ok, HF__VDIV(one, HF__VSQRT(a2))),
-                  ib = HF__VAND(ok, HF__VDIV(one, HF__VSQRT(b2)));
-    HF__VEC cc, kx, ky, kz, kd, den, rx, ry, rz;
-    ax = HF__VMUL(ax, ia);
-    ay = HF__VMUL(ay, ia);
-    az = HF__VMUL(az, ia);
-    bx = HF__VMUL(bx, ib);
-    by = HF__VMUL(by, ib);
-    bz = HF__VMUL(bz, ib);
-    cc = HF__VSEL(ok, HF__VDOT3(ax, ay, az, bx, by, bz), one);
-    kx = HF__VSUB(HF__VMUL(ay, bz), HF__VMUL(az, by));
-    ky = HF__VSUB(HF__VMUL(az, bx), HF__VMUL(ax, bz));
-    kz = HF__VSUB(HF__VMUL(ax, by), HF__VMUL(ay, bx));
-    kd = HF__VDOT3(kx, ky, kz, qx, qy, qz);
-    den = HF__VDIV(kd, HF__VMAX(HF__VADD(one, cc), HF__VSET1(1e-6f)));
-    rx = HF__VADD(HF__VADD(HF__VMUL(qx, cc),
-                           HF__VSUB(HF__VMUL(ky, qz), HF__VMUL(kz, qy))),
-                  HF__VMUL(kx, den));
-    ry = HF__VADD(HF__VADD(HF__VMUL(qy, cc),
-                           HF__VSUB(HF__VMUL(kz, qx), HF__VMUL(kx, qz))),
-                  HF__VMUL(ky, den));
-    rz = HF__VADD(HF__VADD(HF__VMUL(qz, cc),
-                           HF__VSUB(HF__VMUL(kx, qy), HF__VMUL(ky, qx))),
-                  HF__VMUL(kz, den));
-    HF__VST(ro->px + o,
-            HF__VSEL(comp,
-                     HF__VADD(pxj, HF__VMUL(cb, HF__VSUB(HF__VSUB(
-                                                    HF__VLD(ro->x + o),
-                                                    HF__VLD(ro->x + o1)),
-                                                rx))),
-                     pxj));
-    HF__VST(ro->py + o,
-            HF__VSEL(comp,
-                     HF__VADD(pyj, HF__VMUL(cb, HF__VSUB(HF__VSUB(
-                                                    HF__VLD(ro->y + o),
-                                                    HF__VLD(ro->y + o1)),
-                                                ry))),
-                     pyj));
-    HF__VST(ro->pz + o,
-            HF__VSEL(comp,
-                     HF__VADD(pzj, HF__VMUL(cb, HF__VSUB(HF__VSUB(
-                                                    HF__VLD(ro->z + o),
-                                                    HF__VLD(ro->z + o1)),
-                                                rz))),
-                     pzj));
+    const HF__VEC n = HF__VSQRT(HF__VMUL(a2, b2)),
+                  m = HF__VMAX(HF__VADD(n, c),
+                               HF__VMUL(HF__VSET1(1e-6f), n));
+    const HF__VEC t = HF__VDIV(one, HF__VSEL(ok, HF__VMUL(n, m), one)),
+                  s = HF__VMUL(m, t);
+    const HF__VEC kx = HF__VSUB(HF__VMUL(ay, bz), HF__VMUL(az, by)),
+                  ky = HF__VSUB(HF__VMUL(az, bx), HF__VMUL(ax, bz)),
+                  kz = HF__VSUB(HF__VMUL(ax, by), HF__VMUL(ay, bx));
+    HF__VEC qx, qy, qz, kd;
+    pj[0] = HF__VLD(ro->px + o);
+    pj[1] = HF__VLD(ro->py + o);
+    pj[2] = HF__VLD(ro->pz + o);
+    qx = HF__VSUB(pj[0], p1[0]);
+    qy = HF__VSUB(pj[1], p1[1]);
+    qz = HF__VSUB(pj[2], p1[2]);
+    kd = HF__VMUL(HF__VDOT3(kx, ky, kz, qx, qy, qz), t);
+    tq[0] = HF__VSEL(ok,
+                     HF__VADD(HF__VMUL(HF__VADD(HF__VMUL(qx, c),
+                                                HF__VSUB(HF__VMUL(ky, qz),
+                                                         HF__VMUL(kz, qy))),
+                                       s),
+                              HF__VMUL(kx, kd)),
+                     qx);
+    tq[1] = HF__VSEL(ok,
+                     HF__VADD(HF__VMUL(HF__VADD(HF__VMUL(qy, c),
+                                                HF__VSUB(HF__VMUL(kz, qx),
+                                                         HF__VMUL(kx, qz))),
+                                       s),
+                              HF__VMUL(ky, kd)),
+                     qy);
+    tq[2] = HF__VSEL(ok,
+                     HF__VADD(HF__VMUL(HF__VADD(HF__VMUL(qz, c),
+                                                HF__VSUB(HF__VMUL(kx, qy),
+                                                         HF__VMUL(ky, qx))),
+                                       s),
+                              HF__VMUL(kz, kd)),
+                     qz);
+}
+
+/* The second half, once row j is placed at c2: the lanes of comp get the
+   new previous positions of row j, the others keep theirs. */
+HF__VTARGET HF__INLINE void HF__KN(hf__ftl_bend_damp)(hf_ropes *ro, int j,
+                                                      int r, HF__VEC cb,
+                                                      HF__VEC comp,
+                                                      const HF__VEC *c1,
+                                                      const HF__VEC *c2,
+                                                      const HF__VEC *tq,
+                                                      const HF__VEC *pj)
+{
+    const size_t R = (size_t)ro->rope_count, o = (size_t)j * R + (size_t)r;
+    float *const p[3] = {ro->px + o, ro->py + o, ro->pz + o};
+    int k;
+    HF__UNROLL
+    for (k = 0; k < 3; ++k)
+        HF__VST(p[k],
+                HF__VSEL(comp,
+                         HF__VADD(pj[k],
+                                  HF__VMUL(cb, HF__VSUB(HF__VSUB(c2[k], c1[k]),
+                                                        tq[k]))),
+                         pj[k]));
 }
 
 /* Row j's follow-the-leader placement (or, for the distance solver, the
@@ -8409,11 +8427,23 @@ HF__KN(hf__ropes_ftl_row)(hf_ropes *ro, const float *F, int j, int a, int b,
         const HF__VEC ox = HF__VLD(X1 + r), oy = HF__VLD(Y1 + r),
                       oz = HF__VLD(Z1 + r);
         const HF__VEC l = HF__VLD(L + r);
+        const HF__VEC p0[3] = {HF__VLD(PX0 + r), HF__VLD(PY0 + r),
+                               HF__VLD(PZ0 + r)};
         HF__VEC dx = HF__VSUB(ox, x0), dy = HF__VSUB(oy, y0),
                 dz = HF__VSUB(oz, z0), d2, deg, sc, comp, xyz[3];
+        HF__VEC c0[3], tq[3], pj[3];
+        int bend;
         d2 = HF__VDOT3(dx, dy, dz, dx, dy, dz);
-        /* shorter than its rest length: FTL pushes the child out */
+        /* shorter than its rest length: FTL pushes the child out, and
+           Mueller's correction is replaced by hf__ftl_bend_damp, whose
+           turn (its square root and division) goes before the
+           placement's own */
         comp = HF__VLT(d2, HF__VMUL(l, l));
+        bend = st->ftl && j >= 2 && HF__VMASK(comp);
+        c0[0] = x0;
+        c0[1] = y0;
+        c0[2] = z0;
+        if (bend) HF__KN(hf__ftl_bend_turn)(ro, j, r, c0, p0, tq, pj);
         /* coincident points: grow along the root normal */
         deg = HF__VLT(d2, HF__VSET1(1e-24f));
         if (HF__VMASK(deg)) { /* rare: the selects */
@@ -8433,19 +8463,17 @@ HF__KN(hf__ropes_ftl_row)(hf_ropes *ro, const float *F, int j, int a, int b,
         {
             /* Mueller's correction on the parent where the segment was
                longer than its rest length; where it was shorter, the
-               child's bend damped instead (hf__ftl_bend_damp) */
+               child's bend damped instead */
             HF__VEC p[3];
-            p[0] = HF__VADD(HF__VLD(PX0 + r),
-                            HF__VMUL(sd, HF__VSUB(xyz[0], ox)));
-            p[1] = HF__VADD(HF__VLD(PY0 + r),
-                            HF__VMUL(sd, HF__VSUB(xyz[1], oy)));
-            p[2] = HF__VADD(HF__VLD(PZ0 + r),
-                            HF__VMUL(sd, HF__VSUB(xyz[2], oz)));
-            if (j >= 2 && HF__VMASK(comp)) {
-                HF__KN(hf__ftl_bend_damp)(ro, j, r, cb, comp);
-                p[0] = HF__VSEL(comp, HF__VLD(PX0 + r), p[0]);
-                p[1] = HF__VSEL(comp, HF__VLD(PY0 + r), p[1]);
-                p[2] = HF__VSEL(comp, HF__VLD(PZ0 + r), p[2]);
+            p[0] = HF__VADD(p0[0], HF__VMUL(sd, HF__VSUB(xyz[0], ox)));
+            p[1] = HF__VADD(p0[1], HF__VMUL(sd, HF__VSUB(xyz[1], oy)));
+            p[2] = HF__VADD(p0[2], HF__VMUL(sd, HF__VSUB(xyz[2], oz)));
+            if (bend) {
+                HF__KN(hf__ftl_bend_damp)(ro, j, r, cb, comp, c0, xyz, tq,
+                                          pj);
+                p[0] = HF__VSEL(comp, p0[0], p[0]);
+                p[1] = HF__VSEL(comp, p0[1], p[1]);
+                p[2] = HF__VSEL(comp, p0[2], p[2]);
             }
             HF__VST(PX0 + r, p[0]);
             HF__VST(PY0 + r, p[1]);
