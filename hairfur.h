@@ -8324,53 +8324,34 @@ HF__VTARGET HF__INLINE void HF__KN(hf__ftl_bend_turn)(const hf_ropes *ro,
     const size_t R = (size_t)ro->rope_count, o = (size_t)j * R + (size_t)r,
                  o2 = o - 2 * R;
     const HF__VEC one = HF__VSET1(1.0f), tiny = HF__VSET1(1e-15f);
-    const HF__VEC ax = HF__VSUB(p1[0], HF__VLD(ro->px + o2)),
-                  ay = HF__VSUB(p1[1], HF__VLD(ro->py + o2)),
-                  az = HF__VSUB(p1[2], HF__VLD(ro->pz + o2));
-    const HF__VEC bx = HF__VSUB(c1[0], HF__VLD(ro->x + o2)),
-                  by = HF__VSUB(c1[1], HF__VLD(ro->y + o2)),
-                  bz = HF__VSUB(c1[2], HF__VLD(ro->z + o2));
-    const HF__VEC a2 = HF__VDOT3(ax, ay, az, ax, ay, az),
-                  b2 = HF__VDOT3(bx, by, bz, bx, by, bz),
-                  c = HF__VDOT3(ax, ay, az, bx, by, bz);
-    const HF__VEC ok = HF__VAND(HF__VGT(a2, tiny), HF__VGT(b2, tiny));
-    const HF__VEC n = HF__VSQRT(HF__VMUL(a2, b2)),
-                  m = HF__VMAX(HF__VADD(n, c),
-                               HF__VMUL(HF__VSET1(1e-6f), n));
-    const HF__VEC t = HF__VDIV(one, HF__VSEL(ok, HF__VMUL(n, m), one)),
-                  s = HF__VMUL(m, t);
-    const HF__VEC kx = HF__VSUB(HF__VMUL(ay, bz), HF__VMUL(az, by)),
-                  ky = HF__VSUB(HF__VMUL(az, bx), HF__VMUL(ax, bz)),
-                  kz = HF__VSUB(HF__VMUL(ax, by), HF__VMUL(ay, bx));
-    HF__VEC qx, qy, qz, kd;
-    pj[0] = HF__VLD(ro->px + o);
-    pj[1] = HF__VLD(ro->py + o);
-    pj[2] = HF__VLD(ro->pz + o);
-    qx = HF__VSUB(pj[0], p1[0]);
-    qy = HF__VSUB(pj[1], p1[1]);
-    qz = HF__VSUB(pj[2], p1[2]);
-    kd = HF__VMUL(HF__VDOT3(kx, ky, kz, qx, qy, qz), t);
-    tq[0] = HF__VSEL(ok,
-                     HF__VADD(HF__VMUL(HF__VADD(HF__VMUL(qx, c),
-                                                HF__VSUB(HF__VMUL(ky, qz),
-                                                         HF__VMUL(kz, qy))),
-                                       s),
-                              HF__VMUL(kx, kd)),
-                     qx);
-    tq[1] = HF__VSEL(ok,
-                     HF__VADD(HF__VMUL(HF__VADD(HF__VMUL(qy, c),
-                                                HF__VSUB(HF__VMUL(kz, qx),
-                                                         HF__VMUL(kx, qz))),
-                                       s),
-                              HF__VMUL(ky, kd)),
-                     qy);
-    tq[2] = HF__VSEL(ok,
-                     HF__VADD(HF__VMUL(HF__VADD(HF__VMUL(qz, c),
-                                                HF__VSUB(HF__VMUL(kx, qy),
-                                                         HF__VMUL(ky, qx))),
-                                       s),
-                              HF__VMUL(kz, kd)),
-                     qz);
+    HF__VEC a[3], b[3], k[3], q[3], kq[3], a2, b2, c, ok, n, m, t, s, kd;
+    int i;
+    HF__UNROLL for (i = 0; i < 3; ++i) {
+        const float *P = i == 0 ? ro->px : i == 1 ? ro->py : ro->pz;
+        const float *X = i == 0 ? ro->x : i == 1 ? ro->y : ro->z;
+        a[i] = HF__VSUB(p1[i], HF__VLD(P + o2));
+        b[i] = HF__VSUB(c1[i], HF__VLD(X + o2));
+        pj[i] = HF__VLD(P + o);
+        q[i] = HF__VSUB(pj[i], p1[i]);
+    }
+    a2 = HF__VDOT3(a[0], a[1], a[2], a[0], a[1], a[2]);
+    b2 = HF__VDOT3(b[0], b[1], b[2], b[0], b[1], b[2]);
+    c = HF__VDOT3(a[0], a[1], a[2], b[0], b[1], b[2]);
+    ok = HF__VAND(HF__VGT(a2, tiny), HF__VGT(b2, tiny));
+    n = HF__VSQRT(HF__VMUL(a2, b2));
+    m = HF__VMAX(HF__VADD(n, c), HF__VMUL(HF__VSET1(1e-6f), n));
+    t = HF__VDIV(one, HF__VSEL(ok, HF__VMUL(n, m), one));
+    s = HF__VMUL(m, t);
+    HF__VCROSS3(k, a, b);
+    HF__VCROSS3(kq, k, q);
+    kd = HF__VMUL(HF__VDOT3(k[0], k[1], k[2], q[0], q[1], q[2]), t);
+    /* (q c + k x q) s + k kd: the scalar reference's operations */
+    HF__UNROLL for (i = 0; i < 3; ++i)
+        tq[i] = HF__VSEL(ok,
+                         HF__VADD(HF__VMUL(HF__VADD(HF__VMUL(q[i], c), kq[i]),
+                                           s),
+                                  HF__VMUL(k[i], kd)),
+                         q[i]);
 }
 
 /* The second half, once row j is placed at c2: the lanes of comp get the
@@ -9650,10 +9631,13 @@ HF__KN(hf__grid_splat)(hf_grid *grid, const hf_ropes *ro, const float *cube,
    operations lane by lane (hf__grid_read, the cap, the friction), so its
    bytes. */
 HF__VTARGET HF__PRIVATE void
-HF__KN(hf__grid_apply)(hf_ropes *ro, const hf_grid *grid, const float *sl,
-                       int j, int last, int r, int act, float inv, float push,
-                       float fric, float ref, float h)
+HF__KN(hf__grid_apply)(hf_ropes *ro, const hf__grid_push *gp, int j, int last,
+                       int r, int act)
 {
+    const hf_grid *grid = gp->grid;
+    const float *sl = gp->sl;
+    const float inv = gp->inv, push = gp->push, fric = gp->fric,
+                ref = gp->ref, h = gp->h;
     const size_t R = (size_t)ro->rope_count, i = (size_t)j * R + (size_t)r;
     const int n = grid->resolution;
     const size_t n2 = (size_t)n * (size_t)n;
@@ -9824,10 +9808,7 @@ HF__VTARGET HF__PRIVATE int HF__KN(hf__grid_apply_rows)(hf_ropes *ro,
         int act = 0, l;
         HF__UNROLL for (l = 0; l < HF__W; ++l)
             act |= (hf__rope_kind(ro, r + l) == 0) << l;
-        if (act)
-            HF__KN(hf__grid_apply)(ro, gp->grid, gp->sl, j, last, r, act,
-                                   gp->inv, gp->push, gp->fric, gp->ref,
-                                   gp->h);
+        if (act) HF__KN(hf__grid_apply)(ro, gp, j, last, r, act);
     }
     return r;
 }
