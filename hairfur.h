@@ -6797,6 +6797,10 @@ typedef struct hf__bp {
     int start[HF__BP_TILES + 1]; /* tile t: k[start[t] .. start[t + 1]) */
     unsigned char all[HF__BP_TILES]; /* 1: the whole array, prepared on use */
     hf__col_prep k[HF__BP_SLOTS];
+    /* the union of the tiles' lists (hf__bp_union), in the array's order:
+       k[u[i]], reached from row urow[i] on; where all[0], the array */
+    int nu;
+    short u[HF__BP_SLOTS], urow[HF__BP_SLOTS];
 } hf__bp;
 
 /* The colliders a tile may touch: n prepared ones from k, or, where k is
@@ -6925,9 +6929,9 @@ HF__PRIVATE void hf__bp_reach(const hf_ropes *ro, int x, int e, float big,
     }
 }
 
-/* The broadphase of the chunk that starts at rope a (of a run that ends
+/* The tile lists of the chunk that starts at rope a (of a run that ends
    at b): fills bp, returns where the chunk ends. */
-HF__PRIVATE int hf__bp_build(const hf_ropes *ro, int a, int b,
+HF__PRIVATE int hf__bp_lists(const hf_ropes *ro, int a, int b,
                              const hf_collider *col, int ncol, float margin,
                              hf__bp *bp)
 {
@@ -7014,6 +7018,61 @@ HF__PRIVATE int hf__bp_build(const hf_ropes *ro, int a, int b,
         bp->start[t + 1] = n;
     }
     return b - a > bp->tiles * HF__BP_TILE ? a + bp->tiles * HF__BP_TILE : b;
+}
+
+/* The union of the chunk's tile lists, each in the array's order, by
+   merging them: every collider once, with the least row of its tiles.
+   A row's contacts (hf__ftl_flush) test it once for all their tiles. */
+HF__PRIVATE void hf__bp_union(hf__bp *bp)
+{
+    int pos[HF__BP_TILES], t, n = 0;
+    bp->nu = bp->ncol;
+    if (bp->all[0]) return;
+    for (t = 0; t < bp->tiles; ++t) pos[t] = bp->start[t];
+    for (;;) {
+        int id = -1, row = 0, at = 0;
+        for (t = 0; t < bp->tiles; ++t) {
+            const hf__col_prep *k = bp->k + pos[t];
+            if (pos[t] == bp->start[t + 1]) continue;
+            if (id < 0 || k->id < id) {
+                id = k->id;
+                row = k->row;
+                at = pos[t];
+            } else if (k->id == id && k->row < row) {
+                row = k->row;
+            }
+        }
+        if (id < 0) break;
+        for (t = 0; t < bp->tiles; ++t)
+            if (pos[t] < bp->start[t + 1] && bp->k[pos[t]].id == id) ++pos[t];
+        bp->u[n] = (short)at;
+        bp->urow[n++] = (short)row;
+    }
+    bp->nu = n;
+}
+
+/* Collider i of the chunk's union, with the least row of its tiles. */
+HF__INLINE const hf__col_prep *hf__bp_union_at(const hf__bp *bp, int i,
+                                               hf__col_prep *spare)
+{
+    if (bp->all[0]) {
+        *spare = hf__collider_prep(bp->col, i, bp->margin);
+        return spare;
+    }
+    *spare = bp->k[bp->u[i]];
+    spare->row = bp->urow[i];
+    return spare;
+}
+
+/* The broadphase of the chunk that starts at rope a (of a run that ends
+   at b): its tile lists and their union; returns where the chunk ends. */
+HF__PRIVATE int hf__bp_build(const hf_ropes *ro, int a, int b,
+                             const hf_collider *col, int ncol, float margin,
+                             hf__bp *bp)
+{
+    const int e = hf__bp_lists(ro, a, b, col, ncol, margin, bp);
+    hf__bp_union(bp);
+    return e;
 }
 
 /* root_inside of the chunk's ropes [a, b) after its step: whether the
@@ -7989,44 +8048,42 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__ftl_flush)(hf_ropes *ro, const float *F,
     unsigned short nxt[HF__FTL_HITS], first[2 * HF__FTL_HITS],
         last[2 * HF__FTL_HITS];
     HF__KN(hf__col) k[HF__FTL_NEAR];
-    hf__col_prep spare, kp;
+    hf__col_prep spare;
     hf__cols cl;
     int g, i, m, c, n, idx[HF__W];
-    /* the signatures, W points at a time, tile by tile (each point's
-       tile list holds every collider relevant to it, in the array's
-       order) */
+    /* the signatures, W points at a time: the colliders of the chunk's
+       union relevant to each point, in the array's order (as indices
+       into the union). A collider relevant to a point is in its tile's
+       list, at a row it reaches: the broadphase keeps every collider a
+       rope can reach. */
     for (g = 0; g < h->n; g += HF__W) {
         HF__VEC p[3], l;
-        int t, t1, lanes;
+        int lanes = 0;
         for (i = 0; i < HF__W; ++i) {
             idx[i] = h->r[g + i < h->n ? g + i : h->n - 1];
-            if (g + i < h->n) sig[g + i][0] = 0;
+            if (g + i < h->n) {
+                sig[g + i][0] = 0;
+                lanes |= 1 << i;
+            }
         }
         p[0] = HF__VGATHER(ro->x + o0, idx);
         p[1] = HF__VGATHER(ro->y + o0, idx);
         p[2] = HF__VGATHER(ro->z + o0, idx);
         l = HF__VGATHER(ro->rest_length + o0, idx);
-        t1 = (idx[HF__W - 1] - bp->a) / HF__BP_TILE;
-        for (t = (idx[0] - bp->a) / HF__BP_TILE; t <= t1; ++t) {
-            for (lanes = 0, i = 0; i < HF__W && g + i < h->n; ++i)
-                if ((idx[i] - bp->a) / HF__BP_TILE == t) lanes |= 1 << i;
-            if (!lanes) continue;
-            hf__bp_tile(bp, bp->a + t * HF__BP_TILE, &cl);
-            for (c = 0; c < cl.n; ++c) {
-                const hf__col_prep *kc = hf__cols_at(&cl, c, &spare);
-                HF__KN(hf__col) v;
-                int bits;
-                if (kc->row > j) continue;
-                HF__KN(hf__col_prep)(kc, &v);
-                bits = lanes & HF__VMASK(HF__KN(hf__ftl_relevant)(&v, p, l));
-                for (i = 0; bits; ++i, bits >>= 1) {
-                    int *sg = sig[g + i];
-                    if (!(bits & 1) || sg[0] < 0) continue;
-                    if (sg[0] == HF__FTL_NEAR)
-                        sg[0] = -1;
-                    else
-                        sg[1 + sg[0]++] = kc->id;
-                }
+        for (c = 0; c < bp->nu; ++c) {
+            const hf__col_prep *kc = hf__bp_union_at(bp, c, &spare);
+            HF__KN(hf__col) v;
+            int bits;
+            if (kc->row > j) continue;
+            HF__KN(hf__col_prep)(kc, &v);
+            bits = lanes & HF__VMASK(HF__KN(hf__ftl_relevant)(&v, p, l));
+            for (i = 0; bits; ++i, bits >>= 1) {
+                int *sg = sig[g + i];
+                if (!(bits & 1) || sg[0] < 0) continue;
+                if (sg[0] == HF__FTL_NEAR)
+                    sg[0] = -1;
+                else
+                    sg[1 + sg[0]++] = c;
             }
         }
     }
@@ -8066,21 +8123,23 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__ftl_flush)(hf_ropes *ro, const float *F,
             }
             continue;
         }
-        for (g = 0, m = i; m != 0xffff && g < HF__W; m = nxt[m]) {
-            idx[g++] = h->r[m];
-            done[m] = 1;
+        for (c = 0; c < n; ++c)
+            HF__KN(hf__col_prep)(hf__bp_union_at(bp, sig[i][1 + c], &spare),
+                                 k + c);
+        /* a signature's points, W at a time (the last lane repeated) */
+        for (m = i; m != 0xffff;) {
+            for (g = 0; m != 0xffff && g < HF__W; m = nxt[m]) {
+                idx[g++] = h->r[m];
+                done[m] = 1;
+            }
+            for (c = g; c < HF__W; ++c) idx[c] = idx[g - 1];
+            if (n == 1)
+                HF__KN(hf__ftl_collide_in)(ro, F, j, idx, k, 1);
+            else if (n == 2)
+                HF__KN(hf__ftl_collide_in)(ro, F, j, idx, k, 2);
+            else
+                HF__KN(hf__ftl_collide_in)(ro, F, j, idx, k, n);
         }
-        for (m = g; m < HF__W; ++m) idx[m] = idx[g - 1]; /* repeats its last */
-        for (c = 0; c < n; ++c) {
-            kp = hf__collider_prep(bp->col, sig[i][1 + c], bp->margin);
-            HF__KN(hf__col_prep)(&kp, k + c);
-        }
-        if (n == 1)
-            HF__KN(hf__ftl_collide_in)(ro, F, j, idx, k, 1);
-        else if (n == 2)
-            HF__KN(hf__ftl_collide_in)(ro, F, j, idx, k, 2);
-        else
-            HF__KN(hf__ftl_collide_in)(ro, F, j, idx, k, n);
     }
 
     h->n = 0;
