@@ -6915,17 +6915,28 @@ HF__PRIVATE void hf__bp_reach(const hf_ropes *ro, int x, int e, float big,
                               float *reach)
 {
     const size_t R = (size_t)ro->rope_count;
-    float cum[HF__BP_TILE];
-    int r, j;
+    float cum[HF__BP_TILE] = {0.0f}; /* past e: 0, which no maximum takes */
+    int r, j, k;
     for (r = x; r < e; ++r) cum[r - x] = hf__root_offset(ro, r);
     for (j = 0; j < ro->points; ++j) {
-        float m = 0.0f;
+        float m[4] = {0.0f, 0.0f, 0.0f, 0.0f};
         if (j > 0) {
-            const float *L = ro->rest_length + (size_t)(j - 1) * R;
-            for (r = x; r < e; ++r) cum[r - x] += L[r];
+            const float *L = ro->rest_length + (size_t)(j - 1) * R + x;
+            if (e - x == HF__BP_TILE) {
+                HF__UNROLL for (r = 0; r < HF__BP_TILE; ++r) cum[r] += L[r];
+            } else {
+                for (r = 0; r < e - x; ++r) cum[r] += L[r];
+            }
         }
-        for (r = x; r < e; ++r) m = cum[r - x] > m ? cum[r - x] : m;
-        reach[j] = m * 1.001f + 1e-4f * (1.0f + big + m);
+        /* the maximum in four chains (the same float, in any order) */
+        HF__UNROLL for (r = 0; r < HF__BP_TILE; r += 4) {
+            HF__UNROLL for (k = 0; k < 4; ++k)
+                m[k] = cum[r + k] > m[k] ? cum[r + k] : m[k];
+        }
+        m[0] = m[1] > m[0] ? m[1] : m[0];
+        m[2] = m[3] > m[2] ? m[3] : m[2];
+        m[0] = m[2] > m[0] ? m[2] : m[0];
+        reach[j] = m[0] * 1.001f + 1e-4f * (1.0f + big + m[0]);
     }
 }
 
