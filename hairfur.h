@@ -6655,9 +6655,16 @@ HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
            and the rounds are not needed (half the contacts end here).
            Where the point is still inside (a capsule's next ball along
            its axis, most often), the same again from there, at most
-           HF__FTL_QUICK times, before the rounds. */
+           HF__FTL_QUICK times, before the rounds; but only out of the
+           same collider. Where the way out of one ends inside another,
+           the point is in their crease: it goes where the edges of the
+           two balls cross, on the side of its last place (as in the
+           rounds), where that clears every collider, and to the rounds
+           where it does not. Ways out of each in turn had left it on
+           either side of the crease, one side a step, and a rope lying
+           along a crease zigzagged across it for ever. */
         float from[3], at[3], cc[3], dd[3], mq[3], cq, d[3], cand[3];
-        int w, it, dq = deepest;
+        int w, it, was, dq = deepest;
         HF_MEMCPY(from, u, sizeof from);
         HF_MEMCPY(at, q, sizeof at);
         for (it = 0; it < HF__FTL_QUICK; ++it) {
@@ -6665,9 +6672,36 @@ HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
             hf__ftl_cap(p, l, cc, rr[dq], n, mq, &cq);
             hf__ftl_onto_cap(from, mq, cq, t, d);
             for (w = 0; w < 3; ++w) cand[w] = p[w] + l * d[w];
+            was = dq;
             if (!(hf__ftl_penetration(k, rr, ncol, cand, &dq) > 0.0f)) {
                 HF_MEMCPY(best, cand, sizeof cand);
                 best_pen = 0.0f;
+                break;
+            }
+            if (dq != was) { /* a crease */
+                float m2[3], c2, d2[6], s;
+                int nd, i;
+                hf__col_closest(k + dq, cand[0], cand[1], cand[2], cc, dd);
+                hf__ftl_cap(p, l, cc, rr[dq], n, m2, &c2);
+                nd = hf__ftl_cap_pair(mq, cq, m2, c2, d2);
+                if (nd == 2) { /* the last place's side; both if square */
+                    for (w = 0; w < 3; ++w) dd[w] = d2[w] - d2[3 + w];
+                    s = hf__dot3(dd, v);
+                    if (s < 0.0f) {
+                        for (w = 0; w < 3; ++w) d2[w] = d2[3 + w];
+                        nd = 1;
+                    } else if (s > 0.0f) {
+                        nd = 1;
+                    }
+                }
+                for (i = 0; i < nd; ++i) {
+                    for (w = 0; w < 3; ++w) cand[w] = p[w] + l * d2[3 * i + w];
+                    if (!(hf__ftl_penetration(k, rr, ncol, cand, &dq) > 0.0f)) {
+                        HF_MEMCPY(best, cand, sizeof cand);
+                        best_pen = 0.0f;
+                        break;
+                    }
+                }
                 break;
             }
             HF_MEMCPY(from, d, sizeof d);
@@ -7733,11 +7767,11 @@ HF__KN(hf__ftl_relevant)(const HF__KN(hf__col) *k, const HF__VEC *p, HF__VEC l)
 }
 
 /* hf__ftl_penetration on W points; *any: the lanes some collider holds;
-   cw and rw (unless NULL): the deepest one's axis point nearest the
-   point, and its radius */
+   cw, rw and cn (unless cw is NULL): the deepest one's axis point nearest
+   the point, its radius and its index (as a float) */
 HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__ftl_penetration)(
     const HF__KN(hf__col) *k, const HF__VEC *rr, int ncol, const HF__VEC *q,
-    HF__VEC *any, HF__VEC *cw, HF__VEC *rw)
+    HF__VEC *any, HF__VEC *cw, HF__VEC *rw, HF__VEC *cn)
 {
     HF__VEC worst = HF__VSET1(0.0f), hit_any = HF__VLT(worst, worst), c3[3];
     int c, i;
@@ -7753,6 +7787,7 @@ HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__ftl_penetration)(
             HF__UNROLL for (i = 0; i < 3; ++i)
                 cw[i] = HF__VSEL(up, c3[i], cw[i]);
             *rw = HF__VSEL(up, rr[c], *rw);
+            *cn = HF__VSEL(up, HF__VSET1((float)c), *cn);
         }
     }
     *any = hit_any;
@@ -7893,7 +7928,7 @@ HF__KN(hf__ftl_collide_in)(hf_ropes *ro, const float *F, int j, const int *idx,
     HF__VEC l, p[3], q[3], root[3], n[3], t[3], u[3], v[3], best[3],
         rr[HF__FTL_NEAR],
         m[2 * HF__FTL_NEAR][3], cmin[2 * HF__FTL_NEAR], act, best_pen, best_dot,
-        bd, big, cw[3], rw, act0;
+        bd, big, cw[3], rw, cn, act0;
     int c, e, i, w, round, ncap, pass, phase;
     HF__UNROLL for (c = 0; c < 3; ++c) {
         const float *X = c == 0 ? ro->x : c == 1 ? ro->y : ro->z;
@@ -7919,8 +7954,9 @@ HF__KN(hf__ftl_collide_in)(hf_ropes *ro, const float *F, int j, const int *idx,
             rr[c] = HF__VSEL(HF__VLT(d2, HF__VMUL(k[c].inner, k[c].inner)),
                              HF__VSQRT(d2), rr[c]);
     }
-    rw = cw[0] = cw[1] = cw[2] = zero; /* set for ncol >= 1 */
-    best_pen = HF__KN(hf__ftl_penetration)(k, rr, ncol, q, &act, cw, &rw);
+    cn = rw = cw[0] = cw[1] = cw[2] = zero; /* set for ncol >= 1 */
+    best_pen =
+        HF__KN(hf__ftl_penetration)(k, rr, ncol, q, &act, cw, &rw, &cn);
     act = HF__VAND(act, HF__VGT(l, zero));
     if (!HF__VMASK(act)) return;
     HF__UNROLL for (i = 0; i < 3; ++i) u[i] = HF__VSUB(q[i], p[i]);
@@ -7933,17 +7969,18 @@ HF__KN(hf__ftl_collide_in)(hf_ropes *ro, const float *F, int j, const int *idx,
     }
     best_dot = HF__VSET1(-2.0f);
     { /* hf__ftl_collide_point's quick answer */
-        HF__VEC from[3], mq[3], cq, d[3], cand[3], hold, go = act;
+        HF__VEC from[3], mq[3], cq, d[3], cand[3], hold, crease, go = act;
         HF__UNROLL for (i = 0; i < 3; ++i) from[i] = u[i];
         for (round = 0; round < HF__FTL_QUICK && HF__VMASK(go); ++round) {
             HF__VEC pen, ok;
+            const HF__VEC was = cn;
             HF__KN(hf__ftl_cap)(p, l, cw, rw, n, mq, &cq);
             HF__KN(hf__ftl_onto_cap)(from, mq, cq, t, d);
             HF__UNROLL for (i = 0; i < 3; ++i)
                 cand[i] = HF__VADD(p[i], HF__VMUL(l, d[i]));
             /* cw, rw: the next ball, where the point is still inside */
-            pen =
-                HF__KN(hf__ftl_penetration)(k, rr, ncol, cand, &hold, cw, &rw);
+            pen = HF__KN(hf__ftl_penetration)(k, rr, ncol, cand, &hold, cw,
+                                              &rw, &cn);
             ok = HF__VAND(go, HF__VLE(pen, zero));
             HF__UNROLL for (i = 0; i < 3; ++i) {
                 best[i] = HF__VSEL(ok, cand[i], best[i]);
@@ -7951,6 +7988,34 @@ HF__KN(hf__ftl_collide_in)(hf_ropes *ro, const float *F, int j, const int *idx,
             }
             best_pen = HF__VSEL(ok, zero, best_pen);
             go = HF__VAND(go, HF__VGT(pen, zero));
+            crease = HF__VSEL(HF__VEQ(cn, was), zero, go);
+            if (HF__VMASK(crease)) { /* where the two balls' edges cross */
+                HF__VEC m2[3], c2, d2[6], s, c1[3], sq;
+                HF__KN(hf__ftl_cap)(p, l, cw, rw, n, m2, &c2);
+                crease = HF__VAND(crease, HF__KN(hf__ftl_cap_pair)(
+                                              mq, cq, m2, c2, d2));
+                s = HF__VDOT3(HF__VSUB(d2[0], d2[3]), HF__VSUB(d2[1], d2[4]),
+                              HF__VSUB(d2[2], d2[5]), v[0], v[1], v[2]);
+                sq = HF__VSEL(HF__VOR(HF__VLT(s, zero), HF__VGT(s, zero)),
+                              zero, crease); /* square: both, in order */
+                HF__UNROLL for (i = 0; i < 3; ++i)
+                    c1[i] = HF__VSEL(HF__VLT(s, zero), d2[3 + i], d2[i]);
+                for (e = 0; e < 2; ++e) {
+                    HF__VEC *dk = e ? d2 + 3 : c1;
+                    HF__UNROLL for (i = 0; i < 3; ++i)
+                        cand[i] = HF__VADD(p[i], HF__VMUL(l, dk[i]));
+                    pen = HF__KN(hf__ftl_penetration)(k, rr, ncol, cand, &hold,
+                                                      NULL, NULL, NULL);
+                    ok = HF__VAND(crease, HF__VLE(pen, zero));
+                    HF__UNROLL for (i = 0; i < 3; ++i)
+                        best[i] = HF__VSEL(ok, cand[i], best[i]);
+                    best_pen = HF__VSEL(ok, zero, best_pen);
+                    crease = HF__VSEL(ok, zero, HF__VAND(sq, crease));
+                    if (!HF__VMASK(crease)) break;
+                }
+            }
+            /* the lanes in a crease: done here or in the rounds */
+            go = HF__VAND(go, HF__VEQ(cn, was));
         }
     }
     act0 = act;
@@ -8014,7 +8079,7 @@ HF__KN(hf__ftl_collide_in)(hf_ropes *ro, const float *F, int j, const int *idx,
                     HF__UNROLL for (w = 0; w < 3; ++w)
                         cand[w] = HF__VADD(p[w], HF__VMUL(l, di[w]));
                     pen = HF__KN(hf__ftl_penetration)(k, rr, ncol, cand, &hold,
-                                                      NULL, NULL);
+                                                      NULL, NULL, NULL);
                     dot = HF__VDOT3(di[0], di[1], di[2], u[0], u[1], u[2]);
                     up = HF__VOR(HF__VLT(pen, best_pen),
                                  HF__VAND(HF__VEQ(pen, best_pen),

@@ -5964,6 +5964,99 @@ static void test_ropes_nape_crease(void)
     for (k = 0; k < NSET; ++k) tr_close(&s[k]);
 }
 
+/* Hair lying in the crease between two overlapping capsules, where
+   the ways out of each lead into the other: two capsules crossing, one
+   lower (an X), and two rising apart from where they meet (a V, as an
+   arm against the chest). Ropes fall into the crease from a grid of
+   roots above it and come to rest there: under 1 mm/s over the last
+   second of ten, the levels agree to the byte, no stretch, no point
+   inside either capsule. */
+static void test_ropes_resting_in_crease(void)
+{
+    enum { G = 7, R = G * G, P = 32, NSET = 2 };
+    static float rest[3 * R * P], a[3 * R * P], b[3 * R * P];
+    float root[3 * R], nrm[3 * R], tan[3 * R], st;
+    hf_collider col[2];
+    hf_rope_params p;
+    tr_set s[NSET];
+    int shape, r, f, k, c;
+    for (shape = 0; shape < 2; ++shape) {
+        double vmax = 0.0, worst_in = 0.0;
+        int same = 1;
+        for (k = 0; k < NSET; ++k)
+            if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
+        memset(col, 0, sizeof col);
+        col[0].type = col[1].type = HF_COLLIDER_CAPSULE;
+        if (shape == 0) { /* X */
+            col[0].a[0] = -0.2f;
+            col[0].b[0] = 0.2f;
+            col[1].a[2] = -0.2f;
+            col[1].b[2] = 0.2f;
+            col[1].a[1] = col[1].b[1] = -0.03f;
+            col[0].radius = col[1].radius = 0.05f;
+        } else { /* V */
+            col[0].a[0] = -0.15f;
+            col[1].a[0] = 0.15f;
+            col[0].a[1] = col[1].a[1] = 0.1f;
+            col[0].radius = col[1].radius = 0.04f;
+        }
+        for (r = 0; r < R; ++r) {
+            float *o = root + 3 * r, *n = nrm + 3 * r, *t = tan + 3 * r, d;
+            o[0] = -0.06f + 0.12f * (float)(r % G) / (float)(G - 1);
+            o[1] = 0.12f;
+            o[2] = -0.06f + 0.12f * (float)(r / G) / (float)(G - 1);
+            n[0] = 0.3f; /* leaning: the rope falls when let go */
+            n[1] = 1.0f;
+            n[2] = 0.2f;
+            d = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            for (k = 0; k < 3; ++k) n[k] /= d;
+            d = sqrtf(n[1] * n[1] + n[2] * n[2]);
+            t[0] = 0.0f;
+            t[1] = -n[2] / d;
+            t[2] = n[1] / d;
+            tr_straight(rest, r, P, o, n, 0.3f);
+        }
+        for (k = 0; k < NSET; ++k)
+            CHECK_EQ_INT(hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm,
+                                           tan, 0),
+                         HF_OK);
+        hf_rope_params_init(&p);
+        for (f = 0; f < 600; ++f) {
+            for (k = 0; k < NSET; ++k) {
+                p.simd = k == 0 ? HF_SIMD_SCALAR : HF_SIMD_AUTO;
+                if (k == 0 && f >= 540) tr_snapshot(&s[0].ro, a);
+                CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, 1.0f / 60.0f, &p,
+                                           col, 2),
+                             HF_OK);
+            }
+            same &= tr_same(&s[0].ro, &s[1].ro, 1);
+            if (f < 540) continue;
+            tr_snapshot(&s[0].ro, b);
+            {
+                const double v = tr_max_move(a, b, (size_t)R * P) * 60.0;
+                vmax = v > vmax ? v : vmax;
+            }
+            for (r = 0; r < R * P; ++r) {
+                if (r % P == 0) continue; /* the roots are outside */
+                for (c = 0; c < 2; ++c) {
+                    const double in = col[c].radius - tr_dist_seg(b + 3 * r,
+                                                                  &col[c]);
+                    worst_in = in > worst_in ? in : worst_in;
+                }
+            }
+        }
+        hf_ropes_max_stretch(&s[0].ro, 0, R, &st);
+        if (getenv("TR_VERBOSE"))
+            printf("crease %s: %g m/s, stretch %g, deepest %g m\n",
+                   shape ? "V" : "X", vmax, (double)st, worst_in);
+        CHECK(same);
+        CHECK(vmax < 1e-3);
+        CHECK(st <= 1e-4f);
+        CHECK(worst_in <= 0.0);
+        for (k = 0; k < NSET; ++k) tr_close(&s[k]);
+    }
+}
+
 /* 6. ropes: collisions that never stretch: its tests, in the order they run */
 #define T_CONTACT_TESTS(X)                                                     \
     X(test_ropes_capsule_keeps_length)                                         \
@@ -5975,6 +6068,7 @@ static void test_ropes_nape_crease(void)
     X(test_ropes_body_proxies)                                                 \
     X(test_ropes_resting_on_joint)                                             \
     X(test_ropes_nape_crease)                                                  \
+    X(test_ropes_resting_in_crease)                                            \
     X(test_ropes_crowded_colliders)
 
 /* ---- ropes: hair-hair interaction on a grid ------------------------------ */
