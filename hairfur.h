@@ -6659,10 +6659,13 @@ HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
            same collider. Where the way out of one ends inside another,
            the point is in their crease: it goes where the edges of the
            two balls cross, on the side of its last place (as in the
-           rounds), where that clears every collider, and to the rounds
-           where it does not. Ways out of each in turn had left it on
-           either side of the crease, one side a step, and a rope lying
-           along a crease zigzagged across it for ever. */
+           rounds); where that is inside one of the two further along,
+           the same from their balls nearest it (walking along the
+           crease), at most HF__FTL_QUICK times; where a third holds it,
+           or the edges do not cross, the rounds decide. Ways out of each
+           in turn had left it on either side of the crease, one side a
+           step, and a rope lying along a crease zigzagged across it for
+           ever. */
         float from[3], at[3], cc[3], dd[3], mq[3], cq, d[3], cand[3];
         int w, it, was, dq = deepest;
         HF_MEMCPY(from, u, sizeof from);
@@ -6678,13 +6681,16 @@ HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
                 best_pen = 0.0f;
                 break;
             }
-            if (dq != was) { /* a crease */
+            if (dq != was) { /* a crease: along it */
+                const int ca = was, cb = dq;
                 float m2[3], c2, d2[6], s;
-                int nd, i;
-                hf__col_closest(k + dq, cand[0], cand[1], cand[2], cc, dd);
-                hf__ftl_cap(p, l, cc, rr[dq], n, m2, &c2);
-                nd = hf__ftl_cap_pair(mq, cq, m2, c2, d2);
-                if (nd == 2) { /* the last place's side; both if square */
+                int nd, i, walk;
+                hf__col_closest(k + cb, cand[0], cand[1], cand[2], cc, dd);
+                hf__ftl_cap(p, l, cc, rr[cb], n, m2, &c2);
+                for (walk = 0; walk < HF__FTL_QUICK; ++walk) {
+                    nd = hf__ftl_cap_pair(mq, cq, m2, c2, d2);
+                    if (nd != 2) break;
+                    /* the last place's side; both where it is square */
                     for (w = 0; w < 3; ++w) dd[w] = d2[w] - d2[3 + w];
                     s = hf__dot3(dd, v);
                     if (s < 0.0f) {
@@ -6693,14 +6699,24 @@ HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
                     } else if (s > 0.0f) {
                         nd = 1;
                     }
-                }
-                for (i = 0; i < nd; ++i) {
-                    for (w = 0; w < 3; ++w) cand[w] = p[w] + l * d2[3 * i + w];
-                    if (!(hf__ftl_penetration(k, rr, ncol, cand, &dq) > 0.0f)) {
-                        HF_MEMCPY(best, cand, sizeof cand);
-                        best_pen = 0.0f;
-                        break;
+                    for (i = 0; i < nd; ++i) {
+                        for (w = 0; w < 3; ++w)
+                            cand[w] = p[w] + l * d2[3 * i + w];
+                        if (!(hf__ftl_penetration(k, rr, ncol, cand, &dq) >
+                              0.0f)) {
+                            HF_MEMCPY(best, cand, sizeof cand);
+                            best_pen = 0.0f;
+                            break;
+                        }
                     }
+                    /* done, both tried, or held by a third: the rounds */
+                    if (i < nd || nd == 2 || (dq != ca && dq != cb)) break;
+                    /* inside one of the two further along: their balls
+                       nearest the crossing */
+                    hf__col_closest(k + ca, cand[0], cand[1], cand[2], cc, dd);
+                    hf__ftl_cap(p, l, cc, rr[ca], n, mq, &cq);
+                    hf__col_closest(k + cb, cand[0], cand[1], cand[2], cc, dd);
+                    hf__ftl_cap(p, l, cc, rr[cb], n, m2, &c2);
                 }
                 break;
             }
@@ -7913,6 +7929,81 @@ HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__ftl_cap_pair)(const HF__VEC *m1,
     return ok;
 }
 
+/* hf__ftl_collide_point's crease, on the lanes of `go`: ca's cap (ma,
+   qa) and cb's ball nearest the point (cb, rb), where the way out of ca
+   ended inside cb; a lane that clears gets its point in best. */
+HF__VTARGET HF__INLINE void HF__KN(hf__ftl_crease)(
+    const HF__KN(hf__col) *k, const HF__VEC *rr, int ncol, const HF__VEC *p,
+    HF__VEC l, const HF__VEC *n, const HF__VEC *v, HF__VEC ca, HF__VEC cb,
+    const HF__VEC *ma, HF__VEC qa, const HF__VEC *cbw, HF__VEC rb,
+    HF__VEC go, HF__VEC *best, HF__VEC *best_pen)
+{
+    const HF__VEC zero = HF__VSET1(0.0f);
+    HF__VEC m1[3], c1, m2[3], c2, d2[6], s, sq, first[3], cand[3], pen, ok,
+        hold, held, cw[3], rw, pa[3], pb[3], ra, rb2, cc[3];
+    int i, c, walk;
+    HF__UNROLL for (i = 0; i < 3; ++i) {
+        m1[i] = ma[i];
+        cw[i] = zero;
+    }
+    c1 = qa;
+    rw = held = zero;
+    HF__KN(hf__ftl_cap)(p, l, cbw, rb, n, m2, &c2);
+    for (walk = 0; walk < HF__FTL_QUICK; ++walk) {
+        go = HF__VAND(go, HF__KN(hf__ftl_cap_pair)(m1, c1, m2, c2, d2));
+        /* the last place's side; both, in order, where it is square */
+        s = HF__VDOT3(HF__VSUB(d2[0], d2[3]), HF__VSUB(d2[1], d2[4]),
+                      HF__VSUB(d2[2], d2[5]), v[0], v[1], v[2]);
+        sq = HF__VSEL(HF__VOR(HF__VLT(s, zero), HF__VGT(s, zero)), zero, go);
+        HF__UNROLL for (i = 0; i < 3; ++i) {
+            first[i] = HF__VSEL(HF__VLT(s, zero), d2[3 + i], d2[i]);
+            cand[i] = HF__VADD(p[i], HF__VMUL(l, first[i]));
+        }
+        pen = HF__KN(hf__ftl_penetration)(k, rr, ncol, cand, &hold, cw, &rw,
+                                          &held);
+        ok = HF__VAND(go, HF__VLE(pen, zero));
+        HF__UNROLL for (i = 0; i < 3; ++i)
+            best[i] = HF__VSEL(ok, cand[i], best[i]);
+        *best_pen = HF__VSEL(ok, zero, *best_pen);
+        sq = HF__VSEL(ok, zero, sq);
+        if (HF__VMASK(sq)) {
+            HF__VEC cand2[3];
+            HF__UNROLL for (i = 0; i < 3; ++i)
+                cand2[i] = HF__VADD(p[i], HF__VMUL(l, d2[3 + i]));
+            pen = HF__KN(hf__ftl_penetration)(k, rr, ncol, cand2, &hold, NULL,
+                                              NULL, NULL);
+            sq = HF__VAND(sq, HF__VLE(pen, zero));
+            HF__UNROLL for (i = 0; i < 3; ++i)
+                best[i] = HF__VSEL(sq, cand2[i], best[i]);
+            *best_pen = HF__VSEL(sq, zero, *best_pen);
+        }
+        /* on: the lanes held by one of the two further along, not
+           square; the others are done or go to the rounds */
+        go = HF__VSEL(HF__VOR(ok, HF__VSEL(HF__VOR(HF__VLT(s, zero),
+                                                   HF__VGT(s, zero)),
+                                           zero, go)),
+                      zero, go);
+        go = HF__VAND(go, HF__VOR(HF__VEQ(held, ca), HF__VEQ(held, cb)));
+        if (!HF__VMASK(go)) break;
+        /* their balls nearest the crossing */
+        ra = rb2 = zero;
+        HF__UNROLL for (i = 0; i < 3; ++i) pa[i] = pb[i] = zero;
+        for (c = 0; c < ncol; ++c) {
+            const HF__VEC ci = HF__VSET1((float)c), ia = HF__VEQ(ca, ci),
+                          ib = HF__VEQ(cb, ci);
+            HF__KN(hf__col_closest)(k + c, cand, cc);
+            HF__UNROLL for (i = 0; i < 3; ++i) {
+                pa[i] = HF__VSEL(ia, cc[i], pa[i]);
+                pb[i] = HF__VSEL(ib, cc[i], pb[i]);
+            }
+            ra = HF__VSEL(ia, rr[c], ra);
+            rb2 = HF__VSEL(ib, rr[c], rb2);
+        }
+        HF__KN(hf__ftl_cap)(p, l, pa, ra, n, m1, &c1);
+        HF__KN(hf__ftl_cap)(p, l, pb, rb2, n, m2, &c2);
+    }
+}
+
 /* hf__ftl_collide_one for point row j of ropes idx[0 .. W) (any ropes:
    the points in contact, gathered) against colliders k[0 .. ncol), ncol
    <= HF__FTL_NEAR, in the order of the call's array: the colliders
@@ -7989,31 +8080,9 @@ HF__KN(hf__ftl_collide_in)(hf_ropes *ro, const float *F, int j, const int *idx,
             best_pen = HF__VSEL(ok, zero, best_pen);
             go = HF__VAND(go, HF__VGT(pen, zero));
             crease = HF__VSEL(HF__VEQ(cn, was), zero, go);
-            if (HF__VMASK(crease)) { /* where the two balls' edges cross */
-                HF__VEC m2[3], c2, d2[6], s, c1[3], sq;
-                HF__KN(hf__ftl_cap)(p, l, cw, rw, n, m2, &c2);
-                crease = HF__VAND(crease, HF__KN(hf__ftl_cap_pair)(
-                                              mq, cq, m2, c2, d2));
-                s = HF__VDOT3(HF__VSUB(d2[0], d2[3]), HF__VSUB(d2[1], d2[4]),
-                              HF__VSUB(d2[2], d2[5]), v[0], v[1], v[2]);
-                sq = HF__VSEL(HF__VOR(HF__VLT(s, zero), HF__VGT(s, zero)),
-                              zero, crease); /* square: both, in order */
-                HF__UNROLL for (i = 0; i < 3; ++i)
-                    c1[i] = HF__VSEL(HF__VLT(s, zero), d2[3 + i], d2[i]);
-                for (e = 0; e < 2; ++e) {
-                    HF__VEC *dk = e ? d2 + 3 : c1;
-                    HF__UNROLL for (i = 0; i < 3; ++i)
-                        cand[i] = HF__VADD(p[i], HF__VMUL(l, dk[i]));
-                    pen = HF__KN(hf__ftl_penetration)(k, rr, ncol, cand, &hold,
-                                                      NULL, NULL, NULL);
-                    ok = HF__VAND(crease, HF__VLE(pen, zero));
-                    HF__UNROLL for (i = 0; i < 3; ++i)
-                        best[i] = HF__VSEL(ok, cand[i], best[i]);
-                    best_pen = HF__VSEL(ok, zero, best_pen);
-                    crease = HF__VSEL(ok, zero, HF__VAND(sq, crease));
-                    if (!HF__VMASK(crease)) break;
-                }
-            }
+            if (HF__VMASK(crease)) /* along the crease */
+                HF__KN(hf__ftl_crease)(k, rr, ncol, p, l, n, v, was, cn, mq,
+                                       cq, cw, rw, crease, best, &best_pen);
             /* the lanes in a crease: done here or in the rounds */
             go = HF__VAND(go, HF__VEQ(cn, was));
         }
