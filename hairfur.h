@@ -5158,7 +5158,7 @@ enum {
    it (hf__bp_build). */
 typedef struct hf__col_prep {
     float a[3], e[3], inv, rr, inner;
-    float bound; /* the square of a radius about a + e / 2 that holds it */
+    float ball; /* a radius about a + e / 2 that holds it, and room */
     int id, row;
 } hf__col_prep;
 
@@ -6407,8 +6407,7 @@ HF__PRIVATE hf__col_prep hf__collider_prep(const hf_collider *col, int id,
     k.inv = l2 > 1e-20f ? 1.0f / l2 : 0.0f;
     k.rr = c->radius + margin;
     k.inner = c->radius * 0.9999f - margin - 1e-6f;
-    k.bound = (0.5f * HF_SQRTF(l2) + k.rr) * 1.001f + 1e-6f;
-    k.bound *= k.bound;
+    k.ball = (0.5f * HF_SQRTF(l2) + k.rr) * 1.001f + 1e-6f;
     k.id = id;
     k.row = 0; /* any row, the root's included: the broadphase narrows it */
     return k;
@@ -7775,7 +7774,7 @@ HF__VTARGET HF__INLINE int HF__KN(hf__col_any)(const hf__cols *cl, int j,
         HF__UNROLL for (w = 0; w < 3; ++w)
             d[w] = HF__VSUB(xyz[w], HF__VSET1(k->a[w] + 0.5f * k->e[w]));
         if (!HF__VMASK(HF__VLT(HF__VDOT3(d[0], d[1], d[2], d[0], d[1], d[2]),
-                               HF__VSET1(k->bound))))
+                               HF__VSET1(k->ball * k->ball))))
             continue;
         HF__KN(hf__col_prep)(k, &v);
         m |= HF__KN(hf__col_hits)(&v, xyz);
