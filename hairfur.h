@@ -7001,7 +7001,7 @@ HF__PRIVATE int hf__bp_lists(const hf_ropes *ro, int a, int b,
     float tlo[HF__BP_TILES][3], thi[HF__BP_TILES][3], tr[HF__BP_TILES][3];
     float big[HF__BP_TILES], reach[HF_MAX_POINTS];
     float clo[3], chi[3], box[HF__BP_CAND][6];
-    int cand[HF__BP_CAND], nc = 0, t, x, e, c, k, n = 0;
+    int cand[HF__BP_CAND], slot[HF__BP_CAND], nc = 0, t, x, e, c, k, n = 0;
     bp->a = a;
     bp->col = col;
     bp->ncol = ncol;
@@ -7027,6 +7027,7 @@ HF__PRIVATE int hf__bp_lists(const hf_ropes *ro, int a, int b,
         if (hf__box_gap(clo, chi, lo, hi) > 0.0f) continue;
         if (nc < HF__BP_CAND) {
             cand[nc] = c;
+            slot[nc] = -1; /* prepared in no tile yet */
             for (k = 0; k < 3; ++k) {
                 box[nc][k] = lo[k];
                 box[nc][3 + k] = hi[k];
@@ -7063,9 +7064,27 @@ HF__PRIVATE int hf__bp_lists(const hf_ropes *ro, int a, int b,
                     hf__bp_reach(ro, x, e, big[t], reach);
                     got = 1;
                 }
-                while (j < ro->points - 1 && !(gap < reach[j])) ++j;
+                /* the first row that reaches it: reach grows row by row */
+                {
+                    int hi = ro->points - 1;
+                    while (j < hi) {
+                        const int mid = j + (hi - j) / 2;
+                        if (gap < reach[mid])
+                            hi = mid;
+                        else
+                            j = mid + 1;
+                    }
+                }
             }
-            bp->k[n] = hf__collider_prep(col, c, margin);
+            if (nc > HF__BP_CAND) {
+                bp->k[n] = hf__collider_prep(col, c, margin);
+            } else { /* prepared once, copied to the next tiles */
+                if (slot[i] < 0)
+                    bp->k[n] = hf__collider_prep(col, c, margin);
+                else
+                    bp->k[n] = bp->k[slot[i]];
+                slot[i] = n;
+            }
             bp->k[n++].row = j;
         }
         if (i < m) { /* out of slots */
