@@ -7133,17 +7133,19 @@ HF__PRIVATE void hf__bp_union(hf__bp *bp)
     bp->nu = n;
 }
 
-/* Collider i of the chunk's union, with the least row of its tiles. */
+/* Collider i of the chunk's union (its row: hf__bp_union_row). */
 HF__INLINE const hf__col_prep *hf__bp_union_at(const hf__bp *bp, int i,
                                                hf__col_prep *spare)
 {
-    if (bp->all[0]) {
-        *spare = hf__collider_prep(bp->col, i, bp->margin);
-        return spare;
-    }
-    *spare = bp->k[bp->u[i]];
-    spare->row = bp->urow[i];
+    if (!bp->all[0]) return bp->k + bp->u[i];
+    *spare = hf__collider_prep(bp->col, i, bp->margin);
     return spare;
+}
+
+/* The first row that reaches collider i of the union: its tiles' least. */
+HF__INLINE int hf__bp_union_row(const hf__bp *bp, int i)
+{
+    return bp->all[0] ? 0 : bp->urow[i];
 }
 
 /* The broadphase of the chunk that starts at rope a (of a run that ends
@@ -8225,7 +8227,7 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__ftl_flush)(hf_ropes *ro, const float *F,
     HF__KN(hf__col) k[HF__FTL_NEAR];
     hf__col_prep spare;
     hf__cols cl;
-    int g, i, m, c, n, idx[HF__W];
+    int g, i, m, c, n, hm, idx[HF__W];
     /* the signatures, W points at a time: the colliders of the chunk's
        union relevant to each point, in the array's order (as indices
        into the union). A collider relevant to a point is in its tile's
@@ -8246,11 +8248,10 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__ftl_flush)(hf_ropes *ro, const float *F,
         p[2] = HF__VGATHER(ro->z + o0, idx);
         l = HF__VGATHER(ro->rest_length + o0, idx);
         for (c = 0; c < bp->nu; ++c) {
-            const hf__col_prep *kc = hf__bp_union_at(bp, c, &spare);
             HF__KN(hf__col) v;
             int bits;
-            if (kc->row > j) continue;
-            HF__KN(hf__col_prep)(kc, &v);
+            if (hf__bp_union_row(bp, c) > j) continue;
+            HF__KN(hf__col_prep)(hf__bp_union_at(bp, c, &spare), &v);
             bits = lanes & HF__VMASK(HF__KN(hf__ftl_relevant)(&v, p, l));
             for (i = 0; bits; ++i, bits >>= 1) {
                 int *sg = sig[g + i];
@@ -8263,16 +8264,18 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__ftl_flush)(hf_ropes *ro, const float *F,
         }
     }
     /* chain the points of each signature (nxt), through a hash table of
-       each one's first and last point */
-    for (i = 0; i < 2 * HF__FTL_HITS; ++i) first[i] = 0xffff;
+       each one's first and last point, of twice the points' count or
+       more (a power of two) */
+    for (hm = 2; hm < 2 * h->n; hm <<= 1) {
+    }
+    for (i = 0; i < hm; ++i) first[i] = 0xffff;
     for (i = 0; i < h->n; ++i) {
         unsigned hash = 2166136261u;
         done[i] = 0;
         nxt[i] = 0xffff;
         for (c = 0; c <= sig[i][0]; ++c)
             hash = (hash ^ (unsigned)sig[i][c]) * 16777619u;
-        for (m = (int)(hash & (2 * HF__FTL_HITS - 1));;
-             m = (m + 1) & (2 * HF__FTL_HITS - 1)) {
+        for (m = (int)(hash & (unsigned)(hm - 1));; m = (m + 1) & (hm - 1)) {
             if (first[m] == 0xffff) {
                 first[m] = last[m] = (unsigned short)i;
                 break;
