@@ -9604,6 +9604,11 @@ HF__PRIVATE int hf__grid_apply_v1(hf_ropes *ropes, const hf__grid_push *gp,
 
 /* ---- 6.10 the grid's splat and push: kernel texts at 4, 8, 16 lanes ----- */
 
+/* A prefetch of the bytes 1 KiB after p (an address, so no pointer
+   past an array is formed) */
+#define HF__GRID_AHEAD(p)                                                      \
+    HF__PREFETCH((const void *)((uintptr_t)(const void *)(p) + 1024u))
+
 #endif /* !HF__PASS */
 
 #if defined(HF__PASS) && HF__PASS == HF__PASS_GRID
@@ -9640,6 +9645,16 @@ HF__KN(hf__grid_prep)(const hf_ropes *ro, const float *cube, float inv,
     const HF__VEC lh = HF__VLD(ro->last_h + r);
     HF__VEC f[3], k[3], v[4], hv, wx0, wy[2], wz[2], in;
     int l, c, mask;
+    /* the rows 1 KiB ahead: the step has pushed them out of the
+       nearer caches, and the two streams of ropes are twelve rows for
+       the hardware's prefetcher (measured: 0.30 -> 0.26 ms on a cold
+       scene V); a prefetch past a row's end does not fault */
+    HF__GRID_AHEAD(ro->x + i);
+    HF__GRID_AHEAD(ro->y + i);
+    HF__GRID_AHEAD(ro->z + i);
+    HF__GRID_AHEAD(ro->px + i);
+    HF__GRID_AHEAD(ro->py + i);
+    HF__GRID_AHEAD(ro->pz + i);
     in = HF__VAND(HF__KN(hf__grid_axis)(z, cube[2], inv, n, &k[2], &f[2]),
                   HF__VAND(HF__KN(hf__grid_axis)(x, cube[0], inv, n, &k[0],
                                                  &f[0]),
@@ -9767,6 +9782,15 @@ HF__KN(hf__grid_apply)(hf_ropes *ro, const hf__grid_push *gp, int j, int last,
     HF__VEC wx0, wy0, wz0, wyz[4], sx, sy, sz, ms, gn, gs;
     HF__VEC dv[3], k[3];
     int at[HF__W], c, mask, p;
+    HF__GRID_AHEAD(ro->x + i); /* as hf__grid_prep */
+    HF__GRID_AHEAD(ro->y + i);
+    HF__GRID_AHEAD(ro->z + i);
+    for (c = j; c < last; ++c) {
+        const size_t ic = (size_t)c * R + (size_t)r;
+        HF__GRID_AHEAD(ro->px + ic);
+        HF__GRID_AHEAD(ro->py + ic);
+        HF__GRID_AHEAD(ro->pz + ic);
+    }
     in = HF__VAND(HF__KN(hf__grid_axis)(z, sl[2], inv, n, &k[2], &f[2]),
                   HF__VAND(HF__KN(hf__grid_axis)(x, sl[0], inv, n, &k[0], &f[0]),
                            HF__KN(hf__grid_axis)(y, sl[1], inv, n, &k[1],
