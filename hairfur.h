@@ -9059,21 +9059,29 @@ HF__PRIVATE void hf__grid_cube(const hf_ropes *ro, int rc, int n,
                                float cube[5])
 {
     const size_t R = (size_t)ro->rope_count;
+    const float *cx = ro->frame + 12u * R, *cy = cx + R, *cz = cy + R;
     float lo[3], hi[3], side = 0.0f, longest = 0.0f, k;
+    /* the bounds in six variables, not arrays: gcc kept the arrays in
+       memory, each rope's minimum waiting for the last one's store */
+    float lx = HF_ROPE_MAX_COORD * 16.0f, ly = lx, lz = lx;
+    float hx = -lx, hy = -lx, hz = -lx;
     int r, i;
-    for (i = 0; i < 3; ++i) {
-        lo[i] = HF_ROPE_MAX_COORD * 16.0f;
-        hi[i] = -lo[i];
-    }
     for (r = 0; r < rc; ++r) {
-        float L = ro->length[r] * 1.01f + 1e-4f;
+        const float L = ro->length[r] * 1.01f + 1e-4f;
         longest = ro->length[r] > longest ? ro->length[r] : longest;
-        for (i = 0; i < 3; ++i) {
-            float c = ro->frame[(size_t)(12 + i) * R + (size_t)r];
-            lo[i] = c - L < lo[i] ? c - L : lo[i];
-            hi[i] = c + L > hi[i] ? c + L : hi[i];
-        }
+        lx = cx[r] - L < lx ? cx[r] - L : lx;
+        hx = cx[r] + L > hx ? cx[r] + L : hx;
+        ly = cy[r] - L < ly ? cy[r] - L : ly;
+        hy = cy[r] + L > hy ? cy[r] + L : hy;
+        lz = cz[r] - L < lz ? cz[r] - L : lz;
+        hz = cz[r] + L > hz ? cz[r] + L : hz;
     }
+    lo[0] = lx;
+    lo[1] = ly;
+    lo[2] = lz;
+    hi[0] = hx;
+    hi[1] = hy;
+    hi[2] = hz;
     for (i = 0; i < 3; ++i) {
         cube[i] = lo[i];
         side = hi[i] - lo[i] > side ? hi[i] - lo[i] : side;
@@ -10046,8 +10054,28 @@ HFDEF hf_result hf_grid_build(hf_grid *grid, const hf_ropes *ropes,
            chains of additions, not one (n^2 is a multiple of 4 or 1
            more, the odd node in the first sum) */
         double w[4] = {0.0, 0.0, 0.0, 0.0}, w2[4] = {0.0, 0.0, 0.0, 0.0};
-        size_t c;
-        for (c = 0; c + 4 <= n2; c += 4)
+        size_t c = 0;
+#if HF__SSE
+        { /* the same four chains, two to a register (the same bytes) */
+            __m128d w01 = _mm_setzero_pd(), w23 = w01, s01 = w01, s23 = w01;
+            for (; c + 4 <= n2; c += 4) {
+                const float *q = o + 4 * c;
+                const __m128d a = _mm_cvtps_pd(
+                    _mm_unpacklo_ps(_mm_loadu_ps(q), _mm_loadu_ps(q + 4)));
+                const __m128d b = _mm_cvtps_pd(_mm_unpacklo_ps(
+                    _mm_loadu_ps(q + 8), _mm_loadu_ps(q + 12)));
+                w01 = _mm_add_pd(w01, a);
+                s01 = _mm_add_pd(s01, _mm_mul_pd(a, a));
+                w23 = _mm_add_pd(w23, b);
+                s23 = _mm_add_pd(s23, _mm_mul_pd(b, b));
+            }
+            _mm_storeu_pd(w, w01);
+            _mm_storeu_pd(w + 2, w23);
+            _mm_storeu_pd(w2, s01);
+            _mm_storeu_pd(w2 + 2, s23);
+        }
+#endif
+        for (; c + 4 <= n2; c += 4)
             HF__UNROLL for (k = 0; k < 4; ++k) {
                 const double q = (double)o[4 * (c + (size_t)k)];
                 w[k] += q;
