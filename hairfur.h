@@ -9347,21 +9347,29 @@ HF__PRIVATE void hf__grid_cube(const hf_ropes *ro, int rc, int n,
                                float cube[5])
 {
     const size_t R = (size_t)ro->rope_count;
+    const float *cx = ro->frame + 12u * R, *cy = cx + R, *cz = cy + R;
     float lo[3], hi[3], side = 0.0f, longest = 0.0f, k;
+    /* the bounds in six variables, not arrays: gcc kept the arrays in
+       memory, each rope's minimum waiting for the last one's store */
+    float lx = HF_ROPE_MAX_COORD * 16.0f, ly = lx, lz = lx;
+    float hx = -lx, hy = -lx, hz = -lx;
     int r, i;
-    for (i = 0; i < 3; ++i) {
-        lo[i] = HF_ROPE_MAX_COORD * 16.0f;
-        hi[i] = -lo[i];
-    }
     for (r = 0; r < rc; ++r) {
-        float L = ro->length[r] * 1.01f + 1e-4f;
+        const float L = ro->length[r] * 1.01f + 1e-4f;
         longest = ro->length[r] > longest ? ro->length[r] : longest;
-        for (i = 0; i < 3; ++i) {
-            float c = ro->frame[(size_t)(12 + i) * R + (size_t)r];
-            lo[i] = c - L < lo[i] ? c - L : lo[i];
-            hi[i] = c + L > hi[i] ? c + L : hi[i];
-        }
+        lx = cx[r] - L < lx ? cx[r] - L : lx;
+        hx = cx[r] + L > hx ? cx[r] + L : hx;
+        ly = cy[r] - L < ly ? cy[r] - L : ly;
+        hy = cy[r] + L > hy ? cy[r] + L : hy;
+        lz = cz[r] - L < lz ? cz[r] - L : lz;
+        hz = cz[r] + L > hz ? cz[r] + L : hz;
     }
+    lo[0] = lx;
+    lo[1] = ly;
+    lo[2] = lz;
+    hi[0] = hx;
+    hi[1] = hy;
+    hi[2] = hz;
     for (i = 0; i < 3; ++i) {
         cube[i] = lo[i];
         side = hi[i] - lo[i] > side ? hi[i] - lo[i] : side;
@@ -9513,6 +9521,15 @@ HF__INLINE void hf__grid_corner_v4(const float *node, const int *at,
     hf__grid_t4_v4(q);
 }
 
+/* Corners dx = 0 and 1 of one y-z edge (node: the low one's offset):
+   hf__grid_corner_v4 of each. */
+HF__INLINE void hf__grid_corner2_v4(const float *node, const int *at,
+                                    hf__v4 q0[4], hf__v4 q1[4])
+{
+    hf__grid_corner_v4(node, at, q0);
+    hf__grid_corner_v4(node + 4, at, q1);
+}
+
 /* Four lanes' velocities v[0..3] (weight, momentum) as each lane's four
    floats: lane l's at out + 4 l. */
 HF__INLINE void hf__grid_aos_v4(const hf__v4 v[4], float *out)
@@ -9597,6 +9614,16 @@ HF__TARGET_AVX2 HF__INLINE void hf__grid_corner_v8(const float *node,
     hf__grid_t4_v8(q);
 }
 
+/* hf__grid_corner2_v4 for eight lanes */
+HF__TARGET_AVX2 HF__INLINE void hf__grid_corner2_v8(const float *node,
+                                                      const int *at,
+                                                      __m256 q0[4],
+                                                      __m256 q1[4])
+{
+    hf__grid_corner_v8(node, at, q0);
+    hf__grid_corner_v8(node + 4, at, q1);
+}
+
 /* hf__grid_aos_v4 for eight lanes */
 HF__TARGET_AVX2 HF__INLINE void hf__grid_aos_v8(const __m256 v[4], float *out)
 {
@@ -9676,6 +9703,41 @@ HF__TARGET_AVX512 HF__INLINE void hf__grid_corner_v16(const float *node,
     hf__grid_t4_v16(q);
 }
 
+/* 32 bytes at a, then 32 at b (AVX-512F's forms: no DQ) */
+HF__TARGET_AVX512 HF__INLINE __m512 hf__grid_pair2_v16(const float *a,
+                                                       const float *b)
+{
+    const __m512d q = _mm512_maskz_broadcast_f64x4(
+        0xff, _mm256_castps_pd(_mm256_loadu_ps(a)));
+    return _mm512_castpd_ps(_mm512_maskz_insertf64x4(
+        0xff, q, _mm256_castps_pd(_mm256_loadu_ps(b)), 1));
+}
+
+/* hf__grid_corner2_v4 for sixteen lanes: a lane's two nodes (dx = 0,
+   1) are 32 bytes in a row, so one load each, two lanes a register
+   (lanes e and e + 4, or e + 8 and e + 12), then one shuffle of 128-bit
+   blocks per corner gives hf__grid_corner_v16's registers: for the two
+   corners 16 loads (8 of them inserts) and 8 shuffles instead of 32
+   loads (24 inserts) */
+HF__TARGET_AVX512 HF__INLINE void hf__grid_corner2_v16(const float *node,
+                                                       const int *at,
+                                                       __m512 q0[4],
+                                                       __m512 q1[4])
+{
+    int e;
+    HF__UNROLL for (e = 0; e < 4; ++e) {
+        const __m512 lo = hf__grid_pair2_v16(node + at[e], node + at[e + 4]);
+        const __m512 hi = hf__grid_pair2_v16(node + at[e + 8],
+                                             node + at[e + 12]);
+        q0[e] = _mm512_maskz_shuffle_f32x4(0xffff, lo, hi,
+                                           _MM_SHUFFLE(2, 0, 2, 0));
+        q1[e] = _mm512_maskz_shuffle_f32x4(0xffff, lo, hi,
+                                           _MM_SHUFFLE(3, 1, 3, 1));
+    }
+    hf__grid_t4_v16(q0);
+    hf__grid_t4_v16(q1);
+}
+
 /* hf__grid_aos_v4 for sixteen lanes */
 HF__TARGET_AVX512 HF__INLINE void hf__grid_aos_v16(const __m512 v[4],
                                                    float *out)
@@ -9722,47 +9784,60 @@ HF__TARGET_AVX512 HF__INLINE __m512 hf__grid_lanes_v16(int mask)
 }
 #endif
 
-/* hf_grid_build's row j for ropes [r, e) (the points each standing for
-   `weight`), layers [first, end): the scalar reference, one point at a
-   time; returns e. */
-HF__PRIVATE int hf__grid_splat_v1(hf_grid *grid, const hf_ropes *ropes,
-                                  const float *cube, float inv, int j, int r,
-                                  int e, float weight, int first, int end)
+/* Point i of rope r (standing for `weight` points) into the grid's
+   layers [first, end): the scalar reference. */
+HF__PRIVATE void hf__grid_splat1(hf_grid *grid, const hf_ropes *ropes,
+                                 const float *cube, float inv, size_t i,
+                                 int r, float weight, int first, int end)
 {
-    const size_t R = (size_t)ropes->rope_count;
     const int n = grid->resolution;
     const size_t n2 = (size_t)n * (size_t)n;
-    for (; r < e; ++r) {
-        const size_t i = (size_t)j * R + (size_t)r;
-        float f[3], v[4], hv, wy[2], wz[2];
-        size_t node;
-        int kx, ky, kz, dz;
-        /* the layer first: a call for some layers skips the rest
-           of the points at once */
-        if (!hf__grid_axis(ropes->z[i], cube[2], inv, n, &kz, &f[2]) ||
-            kz + 1 < first || kz >= end ||
-            !hf__grid_axis(ropes->x[i], cube[0], inv, n, &kx, &f[0]) ||
-            !hf__grid_axis(ropes->y[i], cube[1], inv, n, &ky, &f[1]))
-            continue;
-        node = ((size_t)kz * (size_t)n + (size_t)ky) * (size_t)n +
-               (size_t)kx;
-        hv = hf__grid_hv(ropes->last_h[r]);
-        hf__grid_velocity(ropes, i, hv, weight, v);
-        wy[0] = 1.0f - f[1];
-        wy[1] = f[1];
-        wz[0] = 1.0f - f[2];
-        wz[1] = f[2];
-        for (dz = 0; dz < 2; ++dz) {
-            float *o = grid->node + 4u * (node + (size_t)dz * n2);
-            int dy;
-            if (kz + dz < first || kz + dz >= end) continue;
-            for (dy = 0; dy < 2; ++dy) {
-                float *q = o + 4u * (size_t)dy * (size_t)n;
-                const float w = wy[dy] * wz[dz];
-                hf__grid_add4(q, (1.0f - f[0]) * w, v);
-                hf__grid_add4(q + 4, f[0] * w, v);
-            }
+    float f[3], v[4], hv, wy[2], wz[2];
+    size_t node;
+    int kx, ky, kz, dz;
+    /* the layer first: a call for some layers skips the rest of the
+       points at once */
+    if (!hf__grid_axis(ropes->z[i], cube[2], inv, n, &kz, &f[2]) ||
+        kz + 1 < first || kz >= end ||
+        !hf__grid_axis(ropes->x[i], cube[0], inv, n, &kx, &f[0]) ||
+        !hf__grid_axis(ropes->y[i], cube[1], inv, n, &ky, &f[1]))
+        return;
+    node = ((size_t)kz * (size_t)n + (size_t)ky) * (size_t)n + (size_t)kx;
+    hv = hf__grid_hv(ropes->last_h[r]);
+    hf__grid_velocity(ropes, i, hv, weight, v);
+    wy[0] = 1.0f - f[1];
+    wy[1] = f[1];
+    wz[0] = 1.0f - f[2];
+    wz[1] = f[2];
+    for (dz = 0; dz < 2; ++dz) {
+        float *o = grid->node + 4u * (node + (size_t)dz * n2);
+        int dy;
+        if (kz + dz < first || kz + dz >= end) continue;
+        for (dy = 0; dy < 2; ++dy) {
+            float *q = o + 4u * (size_t)dy * (size_t)n;
+            const float w = wy[dy] * wz[dz];
+            hf__grid_add4(q, (1.0f - f[0]) * w, v);
+            hf__grid_add4(q + 4, f[0] * w, v);
         }
+    }
+}
+
+/* hf_grid_build's row j for ropes [r, e) (the points each standing for
+   `weight`) and, where pair > 0, ropes [r + pair, e + pair), taken in
+   turn (r, r + pair, r + 1, ...), layers [first, end): the scalar
+   reference; returns e. */
+HF__PRIVATE int hf__grid_splat_v1(hf_grid *grid, const hf_ropes *ropes,
+                                  const float *cube, float inv, int j, int r,
+                                  int e, int pair, float weight, int first,
+                                  int end)
+{
+    const size_t row = (size_t)j * (size_t)ropes->rope_count;
+    for (; r < e; ++r) {
+        hf__grid_splat1(grid, ropes, cube, inv, row + (size_t)r, r, weight,
+                        first, end);
+        if (pair > 0)
+            hf__grid_splat1(grid, ropes, cube, inv, row + (size_t)(r + pair),
+                            r + pair, weight, first, end);
     }
     return e;
 }
@@ -9826,6 +9901,11 @@ HF__PRIVATE int hf__grid_apply_v1(hf_ropes *ropes, const hf__grid_push *gp,
 
 /* ---- 6.10 the grid's splat and push: kernel texts at 4, 8, 16 lanes ----- */
 
+/* A prefetch of the bytes 1 KiB after p (an address, so no pointer
+   past an array is formed) */
+#define HF__GRID_AHEAD(p)                                                      \
+    HF__PREFETCH((const void *)((uintptr_t)(const void *)(p) + 1024u))
+
 #endif /* !HF__PASS */
 
 #if defined(HF__PASS) && HF__PASS == HF__PASS_GRID
@@ -9837,43 +9917,59 @@ HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__grid_node)(const HF__VEC *k, int n)
     return HF__VADD(HF__VMUL(HF__VADD(HF__VMUL(k[2], nn), k[1]), nn), k[0]);
 }
 
+/* One group of HF__W lanes of hf_grid_build's row j, ready to scatter:
+   each lane's eight corner weights, its velocity (weight, momentum) as
+   four floats, its low corner's first float and its layer. */
+typedef struct HF__KN(hf__grid_group) {
+    float cw[8][HF__W], va[4 * HF__W];
+    int at[HF__W], kz[HF__W];
+} HF__KN(hf__grid_group);
+
 /* hf_grid_build at point row j for ropes r .. r + HF__W - 1 (the points
    each standing for `weight`), layers [first, end): the positions, cells,
-   weights and velocities across the lanes, then each lane's eight nodes
-   in the scalar code's order and operations, so its bytes. */
-HF__VTARGET HF__PRIVATE void
-HF__KN(hf__grid_splat)(hf_grid *grid, const hf_ropes *ro, const float *cube,
-                       float inv, int j, int r, float weight, int first,
-                       int end)
+   weights and velocities across the lanes, in the scalar code's
+   operations; returns the lanes to scatter. */
+HF__VTARGET HF__PRIVATE int
+HF__KN(hf__grid_prep)(const hf_ropes *ro, const float *cube, float inv,
+                      int n, int j, int r, float weight, int first, int end,
+                      HF__KN(hf__grid_group) *g)
 {
     const size_t R = (size_t)ro->rope_count, i = (size_t)j * R + (size_t)r;
-    const int n = grid->resolution;
-    const size_t n2 = (size_t)n * (size_t)n;
     const HF__VEC one = HF__VSET1(1.0f), wt = HF__VSET1(weight);
     const HF__VEC x = HF__VLD(ro->x + i), y = HF__VLD(ro->y + i);
     const HF__VEC z = HF__VLD(ro->z + i);
     const HF__VEC lh = HF__VLD(ro->last_h + r);
     HF__VEC f[3], k[3], v[4], hv, wx0, wy[2], wz[2], in;
-    float cw[8][HF__W], va[4 * HF__W];
-    int at[HF__W], kz[HF__W], l, c, mask;
+    int l, c, mask;
+    /* the rows 1 KiB ahead: the step has pushed them out of the
+       nearer caches, and the two streams of ropes are twelve rows for
+       the hardware's prefetcher (measured on scene V with 4 MiB read
+       between calls: 0.27-0.28 -> 0.25-0.26 ms); a prefetch past a
+       row's end does not fault */
+    HF__GRID_AHEAD(ro->x + i);
+    HF__GRID_AHEAD(ro->y + i);
+    HF__GRID_AHEAD(ro->z + i);
+    HF__GRID_AHEAD(ro->px + i);
+    HF__GRID_AHEAD(ro->py + i);
+    HF__GRID_AHEAD(ro->pz + i);
     in = HF__VAND(HF__KN(hf__grid_axis)(z, cube[2], inv, n, &k[2], &f[2]),
                   HF__VAND(HF__KN(hf__grid_axis)(x, cube[0], inv, n, &k[0],
                                                  &f[0]),
                            HF__KN(hf__grid_axis)(y, cube[1], inv, n, &k[1],
                                                  &f[1])));
     mask = HF__VMASK(in);
-    /* the cells' low corners' nodes (whole floats, exact below 2^24) */
-    HF__KN(hf__grid_ints)(HF__VSEL(in, HF__KN(hf__grid_node)(k, n),
+    /* the low corners' first floats (4 a node: exact below 2^24, as
+       128^3 x 4 is) */
+    HF__KN(hf__grid_ints)(HF__VSEL(in,
+                                   HF__VMUL(HF__KN(hf__grid_node)(k, n),
+                                            HF__VSET1(4.0f)),
                                    HF__VSET1(0.0f)),
-                          at);
-    HF__KN(hf__grid_ints)(HF__VSEL(in, k[2], HF__VSET1(0.0f)), kz);
+                          g->at);
+    HF__KN(hf__grid_ints)(HF__VSEL(in, k[2], HF__VSET1(0.0f)), g->kz);
     if (first > 0 || end < n) /* some layers: the lanes that reach them */
         for (l = 0; l < HF__W; ++l)
-            if (kz[l] + 1 < first || kz[l] >= end) mask &= ~(1 << l);
-    if (!mask) {
-        HF__VZEROUPPER();
-        return;
-    }
+            if (g->kz[l] + 1 < first || g->kz[l] >= end) mask &= ~(1 << l);
+    if (!mask) return 0;
     /* hf__grid_hv and hf__grid_velocity */
     hv = HF__VSEL(HF__VGT(lh, HF__VSET1(0.0f)),
                   HF__VDIV(one, HF__VMAX(lh, HF__VSET1(1e-6f))),
@@ -9882,7 +9978,7 @@ HF__KN(hf__grid_splat)(hf_grid *grid, const hf_ropes *ro, const float *cube,
     v[1] = HF__VMUL(wt, HF__VMUL(HF__VSUB(x, HF__VLD(ro->px + i)), hv));
     v[2] = HF__VMUL(wt, HF__VMUL(HF__VSUB(y, HF__VLD(ro->py + i)), hv));
     v[3] = HF__VMUL(wt, HF__VMUL(HF__VSUB(z, HF__VLD(ro->pz + i)), hv));
-    HF__KN(hf__grid_aos)(v, va);
+    HF__KN(hf__grid_aos)(v, g->va);
     /* corner c = dx + 2 dy + 4 dz: its weight (1 - fx or fx) (wy wz) */
     wx0 = HF__VSUB(one, f[0]);
     wy[0] = HF__VSUB(one, f[1]);
@@ -9891,25 +9987,69 @@ HF__KN(hf__grid_splat)(hf_grid *grid, const hf_ropes *ro, const float *cube,
     wz[1] = f[2];
     HF__UNROLL for (c = 0; c < 4; ++c) {
         const HF__VEC w = HF__VMUL(wy[c & 1], wz[c >> 1]);
-        HF__VST(cw[2 * c], HF__VMUL(wx0, w));
-        HF__VST(cw[2 * c + 1], HF__VMUL(f[0], w));
+        HF__VST(g->cw[2 * c], HF__VMUL(wx0, w));
+        HF__VST(g->cw[2 * c + 1], HF__VMUL(f[0], w));
     }
-    for (l = 0; l < HF__W; ++l) {
-        const hf__v4 vl = HF__LD(va + 4 * l);
-        int dz, dy;
-        if (!(mask >> l & 1)) continue;
-        HF__UNROLL for (dz = 0; dz < 2; ++dz) {
-            float *o = grid->node + 4u * ((size_t)at[l] + (size_t)dz * n2);
-            if (kz[l] + dz < first || kz[l] + dz >= end) continue;
-            HF__UNROLL for (dy = 0; dy < 2; ++dy) {
-                float *q = o + 4u * (size_t)dy * (size_t)n;
-                c = 2 * dy + 4 * dz;
-                HF__ST(q, HF__ADD(HF__LD(q),
-                                  HF__MUL(HF__SET1(cw[c][l]), vl)));
-                HF__ST(q + 4, HF__ADD(HF__LD(q + 4),
-                                      HF__MUL(HF__SET1(cw[c + 1][l]), vl)));
-            }
+    return mask;
+}
+
+/* Lane l of g into its eight nodes (dy1, dz1: the floats from a node to
+   the next along y and z), those in layers [first, end), in the scalar
+   code's order: four floats a read-modify-write. */
+HF__VTARGET HF__INLINE void
+HF__KN(hf__grid_scatter)(float *node, const HF__KN(hf__grid_group) *g,
+                         int l, size_t dy1, size_t dz1, int first, int end)
+{
+    const hf__v4 vl = HF__LD(g->va + 4 * l);
+    float *o = node + g->at[l];
+    int dz, dy, c;
+    if (g->kz[l] >= first && g->kz[l] + 1 < end) {
+        /* both layers: straight-line code (every lane of a whole grid's
+           call) */
+        HF__UNROLL for (c = 0; c < 8; c += 2) {
+            float *q = o + (c & 4 ? dz1 : 0u) + (c & 2 ? dy1 : 0u);
+            HF__ST(q, HF__ADD(HF__LD(q), HF__MUL(HF__SET1(g->cw[c][l]), vl)));
+            HF__ST(q + 4, HF__ADD(HF__LD(q + 4),
+                                  HF__MUL(HF__SET1(g->cw[c + 1][l]), vl)));
         }
+        return;
+    }
+    for (dz = 0; dz < 2; ++dz) {
+        if (g->kz[l] + dz < first || g->kz[l] + dz >= end) continue;
+        HF__UNROLL for (dy = 0; dy < 2; ++dy) {
+            float *q = o + (dz ? dz1 : 0u) + (dy ? dy1 : 0u);
+            c = 2 * dy + 4 * dz;
+            HF__ST(q, HF__ADD(HF__LD(q), HF__MUL(HF__SET1(g->cw[c][l]), vl)));
+            HF__ST(q + 4, HF__ADD(HF__LD(q + 4),
+                                  HF__MUL(HF__SET1(g->cw[c + 1][l]), vl)));
+        }
+    }
+}
+
+/* hf_grid_build at point row j for ropes r .. r + HF__W - 1 and, where
+   pair > 0, ropes r + pair .. r + pair + HF__W - 1, their lanes taken in
+   turn (r, r + pair, r + 1, r + pair + 1, ...: the order of
+   hf__grid_splat_v1) */
+HF__VTARGET HF__PRIVATE void
+HF__KN(hf__grid_splat)(hf_grid *grid, const hf_ropes *ro, const float *cube,
+                       float inv, int j, int r, int pair, float weight,
+                       int first, int end)
+{
+    const int n = grid->resolution;
+    const size_t dy1 = 4u * (size_t)n, dz1 = dy1 * (size_t)n;
+    float *const node = grid->node; /* not reloaded after each store */
+    HF__KN(hf__grid_group) g[2];
+    int l, ma, mb = 0;
+    ma = HF__KN(hf__grid_prep)(ro, cube, inv, n, j, r, weight, first, end,
+                               &g[0]);
+    if (pair > 0)
+        mb = HF__KN(hf__grid_prep)(ro, cube, inv, n, j, r + pair, weight,
+                                   first, end, &g[1]);
+    for (l = 0; l < HF__W; ++l) {
+        if (ma >> l & 1)
+            HF__KN(hf__grid_scatter)(node, &g[0], l, dy1, dz1, first, end);
+        if (mb >> l & 1)
+            HF__KN(hf__grid_scatter)(node, &g[1], l, dy1, dz1, first, end);
     }
     HF__VZEROUPPER();
 }
@@ -9935,9 +10075,18 @@ HF__KN(hf__grid_apply)(hf_ropes *ro, const hf__grid_push *gp, int j, int last,
     const HF__VEC lh = HF__VLD(ro->last_h + r);
     HF__VEC f[3], in, w[3], v[4], a[4], g[3], m8[8], hv, hl, lhm;
     HF__VEC a0, a1, a2, a3;
-    HF__VEC wx0, wy0, wz0, wyz[4], wxz[4], wxy[4], sx, sy, sz, ms, gn, gs;
+    HF__VEC wx0, wy0, wz0, wyz[4], sx, sy, sz, ms, gn, gs;
     HF__VEC dv[3], k[3];
     int at[HF__W], c, mask, p;
+    HF__GRID_AHEAD(ro->x + i); /* as hf__grid_prep */
+    HF__GRID_AHEAD(ro->y + i);
+    HF__GRID_AHEAD(ro->z + i);
+    for (c = j; c < last; ++c) {
+        const size_t ic = (size_t)c * R + (size_t)r;
+        HF__GRID_AHEAD(ro->px + ic);
+        HF__GRID_AHEAD(ro->py + ic);
+        HF__GRID_AHEAD(ro->pz + ic);
+    }
     in = HF__VAND(HF__KN(hf__grid_axis)(z, sl[2], inv, n, &k[2], &f[2]),
                   HF__VAND(HF__KN(hf__grid_axis)(x, sl[0], inv, n, &k[0], &f[0]),
                            HF__KN(hf__grid_axis)(y, sl[1], inv, n, &k[1],
@@ -9973,48 +10122,50 @@ HF__KN(hf__grid_apply)(hf_ropes *ro, const hf__grid_push *gp, int j, int last,
     wyz[1] = HF__VMUL(f[1], wz0);
     wyz[2] = HF__VMUL(wy0, f[2]);
     wyz[3] = HF__VMUL(f[1], f[2]);
-    wxz[0] = HF__VMUL(wx0, wz0);
-    wxz[1] = HF__VMUL(f[0], wz0);
-    wxz[2] = HF__VMUL(wx0, f[2]);
-    wxz[3] = HF__VMUL(f[0], f[2]);
-    wxy[0] = HF__VMUL(wx0, wy0);
-    wxy[1] = HF__VMUL(f[0], wy0);
-    wxy[2] = HF__VMUL(wx0, f[1]);
-    wxy[3] = HF__VMUL(f[0], f[1]);
-    /* corner by corner, in the scalar order, the sums in registers */
+    /* the y-z edges in the scalar order (corners 2 e, 2 e + 1), the sums
+       in registers; each gradient term as soon as its two corners are
+       read, in the scalar sums' order, so that few corners stay live */
     a0 = a1 = a2 = a3 = HF__VSET1(0.0f);
-    HF__UNROLL for (c = 0; c < 8; ++c) {
-        HF__VEC t[4], wc;
-        HF__KN(hf__grid_corner)(grid->node +
-                                    4u * ((size_t)(c >> 2) * n2 +
-                                          (size_t)((c >> 1) & 1) * (size_t)n +
-                                          (size_t)(c & 1)),
-                                at, t);
-        wc = HF__VMUL(c & 1 ? f[0] : wx0, wyz[c >> 1]);
-        a0 = HF__VADD(a0, HF__VMUL(wc, t[0]));
-        a1 = HF__VADD(a1, HF__VMUL(wc, t[1]));
-        a2 = HF__VADD(a2, HF__VMUL(wc, t[2]));
-        a3 = HF__VADD(a3, HF__VMUL(wc, t[3]));
-        m8[c] = t[0];
+#define HF__GRID_D(e, hi, lo) HF__VMUL(e, HF__VSUB(m8[hi], m8[lo]))
+    HF__UNROLL for (c = 0; c < 4; ++c) {
+        HF__VEC t0[4], t1[4], w0, w1;
+        HF__KN(hf__grid_corner2)(grid->node +
+                                     4u * ((size_t)(c >> 1) * n2 +
+                                           (size_t)(c & 1) * (size_t)n),
+                                 at, t0, t1);
+        w0 = HF__VMUL(wx0, wyz[c]);
+        w1 = HF__VMUL(f[0], wyz[c]);
+        a0 = HF__VADD(HF__VADD(a0, HF__VMUL(w0, t0[0])), HF__VMUL(w1, t1[0]));
+        a1 = HF__VADD(HF__VADD(a1, HF__VMUL(w0, t0[1])), HF__VMUL(w1, t1[1]));
+        a2 = HF__VADD(HF__VADD(a2, HF__VMUL(w0, t0[2])), HF__VMUL(w1, t1[2]));
+        a3 = HF__VADD(HF__VADD(a3, HF__VMUL(w0, t0[3])), HF__VMUL(w1, t1[3]));
+        m8[2 * c] = t0[0];
+        m8[2 * c + 1] = t1[0];
+        if (c == 0) {
+            g[0] = HF__GRID_D(wyz[0], 1, 0);
+        } else if (c == 1) {
+            g[0] = HF__VADD(g[0], HF__GRID_D(wyz[1], 3, 2));
+            g[1] = HF__VADD(HF__GRID_D(HF__VMUL(wx0, wz0), 2, 0),
+                            HF__GRID_D(HF__VMUL(f[0], wz0), 3, 1));
+        } else if (c == 2) {
+            g[0] = HF__VADD(g[0], HF__GRID_D(wyz[2], 5, 4));
+            g[2] = HF__VADD(HF__GRID_D(HF__VMUL(wx0, wy0), 4, 0),
+                            HF__GRID_D(HF__VMUL(f[0], wy0), 5, 1));
+        } else {
+            g[0] = HF__VADD(g[0], HF__GRID_D(wyz[3], 7, 6));
+            g[1] = HF__VADD(HF__VADD(g[1], HF__GRID_D(HF__VMUL(wx0, f[2]),
+                                                      6, 4)),
+                            HF__GRID_D(HF__VMUL(f[0], f[2]), 7, 5));
+            g[2] = HF__VADD(HF__VADD(g[2], HF__GRID_D(HF__VMUL(wx0, f[1]),
+                                                      6, 2)),
+                            HF__GRID_D(HF__VMUL(f[0], f[1]), 7, 3));
+        }
     }
+#undef HF__GRID_D
     a[0] = a0;
     a[1] = a1;
     a[2] = a2;
     a[3] = a3;
-#define HF__GRID_D(e, hi, lo) HF__VMUL(e, HF__VSUB(m8[hi], m8[lo]))
-    g[0] = HF__VADD(HF__VADD(HF__VADD(HF__GRID_D(wyz[0], 1, 0),
-                                            HF__GRID_D(wyz[1], 3, 2)),
-                                 HF__GRID_D(wyz[2], 5, 4)),
-                      HF__GRID_D(wyz[3], 7, 6));
-    g[1] = HF__VADD(HF__VADD(HF__VADD(HF__GRID_D(wxz[0], 2, 0),
-                                            HF__GRID_D(wxz[1], 3, 1)),
-                                 HF__GRID_D(wxz[2], 6, 4)),
-                      HF__GRID_D(wxz[3], 7, 5));
-    g[2] = HF__VADD(HF__VADD(HF__VADD(HF__GRID_D(wxy[0], 4, 0),
-                                            HF__GRID_D(wxy[1], 5, 1)),
-                                 HF__GRID_D(wxy[2], 6, 2)),
-                      HF__GRID_D(wxy[3], 7, 3));
-#undef HF__GRID_D
     sx = HF__VADD(HF__VMUL(wx0, wx0), HF__VMUL(f[0], f[0]));
     sy = HF__VADD(HF__VMUL(wy0, wy0), HF__VMUL(f[1], f[1]));
     sz = HF__VADD(HF__VMUL(wz0, wz0), HF__VMUL(f[2], f[2]));
@@ -10073,15 +10224,17 @@ HF__KN(hf__grid_apply)(hf_ropes *ro, const hf__grid_push *gp, int j, int last,
     HF__VZEROUPPER();
 }
 
-/* hf_grid_build's row j for ropes [r, e), whole groups of HF__W; returns
-   where it stopped */
+/* hf_grid_build's row j for ropes [r, e) (and [r + pair, e + pair) in
+   turn, where pair > 0), whole groups of HF__W; returns where it
+   stopped */
 HF__VTARGET HF__PRIVATE int
 HF__KN(hf__grid_splat_rows)(hf_grid *grid, const hf_ropes *ro,
                             const float *cube, float inv, int j, int r, int e,
-                            float weight, int first, int end)
+                            int pair, float weight, int first, int end)
 {
     for (; r + HF__W <= e; r += HF__W)
-        HF__KN(hf__grid_splat)(grid, ro, cube, inv, j, r, weight, first, end);
+        HF__KN(hf__grid_splat)(grid, ro, cube, inv, j, r, pair, weight,
+                               first, end);
     return r;
 }
 
@@ -10127,7 +10280,7 @@ HF__VTARGET HF__PRIVATE int HF__KN(hf__grid_apply_rows)(hf_ropes *ro,
 typedef struct hf__grid_kernels {
     hf__isa isa;
     int (*splat)(hf_grid *, const hf_ropes *, const float *, float, int, int,
-                 int, float, int, int);
+                 int, int, float, int, int);
     int (*push)(hf_ropes *, const hf__grid_push *, int, int, int, int);
 } hf__grid_kernels;
 
@@ -10149,7 +10302,7 @@ HF__PRIVATE hf_result hf__grid_build_body(hf_grid *grid, const hf_ropes *ropes,
     const hf__grid_kernels *kd;
     size_t n2;
     float cube[5], inv;
-    int n, end, j, r, s, k, P;
+    int n, end, j, r, s, k, P, half;
     if (!grid || !grid->node || !hf__ropes_ok(ropes))
         return HF_ERROR_NULL_POINTER;
     n = grid->resolution;
@@ -10166,12 +10319,20 @@ HF__PRIVATE hf_result hf__grid_build_body(hf_grid *grid, const hf_ropes *ropes,
     hf__grid_cube(ropes, rope_count, n, cube);
     inv = 1.0f / cube[3];
     k = (int)cube[4];
+    half = rope_count / 2;
     for (j = 0; j < P; j += k) {
         /* the points this one stands for: j .. j + k - 1 */
         const float weight = (float)(j + k <= P ? k : P - j);
         const hf__grid_kernels *d = kd;
-        for (r = 0; r < rope_count; ++d)
-            r = d->splat(grid, ropes, cube, inv, j, r, rope_count, weight,
+        /* ropes r and r + half in turn, then the odd one: neighbouring
+           ropes share nodes, and each read-modify-write of a node would
+           wait for the last one's store; ropes half the guides apart are
+           far apart, so the two streams' work overlaps */
+        for (r = 0; r < half; ++d)
+            r = d->splat(grid, ropes, cube, inv, j, r, half, half, weight,
+                         first, end);
+        for (r = 2 * half, d = kd; r < rope_count; ++d)
+            r = d->splat(grid, ropes, cube, inv, j, r, rope_count, 0, weight,
                          first, end);
     }
     for (s = first; s < end; ++s) {
@@ -10181,8 +10342,28 @@ HF__PRIVATE hf_result hf__grid_build_body(hf_grid *grid, const hf_ropes *ropes,
            chains of additions, not one (n^2 is a multiple of 4 or 1
            more, the odd node in the first sum) */
         double w[4] = {0.0, 0.0, 0.0, 0.0}, w2[4] = {0.0, 0.0, 0.0, 0.0};
-        size_t c;
-        for (c = 0; c + 4 <= n2; c += 4)
+        size_t c = 0;
+#if HF__SSE
+        { /* the same four chains, two to a register (the same bytes) */
+            __m128d w01 = _mm_setzero_pd(), w23 = w01, s01 = w01, s23 = w01;
+            for (; c + 4 <= n2; c += 4) {
+                const float *q = o + 4 * c;
+                const __m128d a = _mm_cvtps_pd(
+                    _mm_unpacklo_ps(_mm_loadu_ps(q), _mm_loadu_ps(q + 4)));
+                const __m128d b = _mm_cvtps_pd(_mm_unpacklo_ps(
+                    _mm_loadu_ps(q + 8), _mm_loadu_ps(q + 12)));
+                w01 = _mm_add_pd(w01, a);
+                s01 = _mm_add_pd(s01, _mm_mul_pd(a, a));
+                w23 = _mm_add_pd(w23, b);
+                s23 = _mm_add_pd(s23, _mm_mul_pd(b, b));
+            }
+            _mm_storeu_pd(w, w01);
+            _mm_storeu_pd(w + 2, w23);
+            _mm_storeu_pd(w2, s01);
+            _mm_storeu_pd(w2 + 2, s23);
+        }
+#endif
+        for (; c + 4 <= n2; c += 4)
             HF__UNROLL for (k = 0; k < 4; ++k) {
                 const double q = (double)o[4 * (c + (size_t)k)];
                 w[k] += q;

@@ -6276,10 +6276,12 @@ static void test_grid_friction_moves_hair_together(void)
 }
 
 /* The grid's layers built in pieces, the ropes pushed and stepped in
-   ranges, and every kernel level: the same bytes as one call. */
+   ranges, and every kernel level: the same bytes as one call. An odd
+   count of ropes: the splat takes ropes r and r + R / 2 in turn, at
+   every width, then the last one alone. */
 static void test_grid_splits_same_bytes(void)
 {
-    enum { R = 250, P = 12, FRAMES = 30, NSET = 5 };
+    enum { R = 251, P = 12, FRAMES = 30, NSET = 5 };
     static float rest[3 * R * P];
     float root[3 * R], nrm[3 * R], tan[3 * R];
     hf_collider head;
