@@ -7965,31 +7965,37 @@ HF__KN(hf__ftl_onto_cap)(const HF__VEC *u, const HF__VEC *m, HF__VEC cmin,
         d[k] = HF__VADD(HF__VMUL(m[k], cmin), HF__VMUL(v[k], s));
 }
 
-/* hf__ftl_cap_pair on W lanes: both crossings in d[0..5]; returns the
-   lanes where the scalar code returns 2 */
-HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__ftl_cap_pair)(const HF__VEC *m1,
-                                                        HF__VEC c1,
-                                                        const HF__VEC *m2,
-                                                        HF__VEC c2, HF__VEC *d)
+/* hf__ftl_cap_pair's crossings d = al m1 + be m2 +- g m1 x m2, where g^2
+   = (1 - h^2) / det is not negative (the lanes returned). Apart, as
+   hf__ftl_cap_pair_unit. */
+HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__ftl_cap_pair_d)(
+    const HF__VEC *m1, const HF__VEC *m2, HF__VEC mu, HF__VEC det, HF__VEC al,
+    HF__VEC be, HF__VEC *d)
 {
-    const HF__VEC one = HF__VSET1(1.0f);
-    const HF__VEC mu = HF__VDOT3(m1[0], m1[1], m1[2], m2[0], m2[1], m2[2]);
-    const HF__VEC det = HF__VSUB(one, HF__VMUL(mu, mu));
-    const HF__VEC al = HF__VDIV(HF__VSUB(c1, HF__VMUL(mu, c2)), det),
-                  be = HF__VDIV(HF__VSUB(c2, HF__VMUL(mu, c1)), det);
-    HF__VEC x[3], h2, g2, ok = HF__VGT(det, HF__VSET1(1e-8f));
+    HF__VEC x[3], h2, g2, ok;
     int k;
     HF__VCROSS3(x, m1, m2);
     h2 = HF__VADD(HF__VADD(HF__VMUL(al, al), HF__VMUL(be, be)),
                   HF__VMUL(HF__VMUL(HF__VMUL(HF__VSET1(2.0f), al), be), mu));
-    g2 = HF__VDIV(HF__VSUB(one, h2), det);
-    ok = HF__VAND(ok, HF__VLE(HF__VSET1(0.0f), g2));
+    g2 = HF__VDIV(HF__VSUB(HF__VSET1(1.0f), h2), det);
+    ok = HF__VLE(HF__VSET1(0.0f), g2);
     g2 = HF__VSQRT(g2);
     HF__UNROLL for (k = 0; k < 3; ++k) {
         const HF__VEC b = HF__VADD(HF__VMUL(al, m1[k]), HF__VMUL(be, m2[k]));
         d[k] = HF__VADD(b, HF__VMUL(g2, x[k]));
         d[3 + k] = HF__VSUB(b, HF__VMUL(g2, x[k]));
     }
+    return ok;
+}
+
+/* hf__ftl_cap_pair's last step: both crossings d[0..5] unit again, ok
+   where both were near unit. Apart, so that a debug build's stack (every
+   temporary its own slot) holds this step's or the crossings'. */
+HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__ftl_cap_pair_unit)(HF__VEC *d,
+                                                             HF__VEC ok)
+{
+    const HF__VEC one = HF__VSET1(1.0f);
+    int k;
     HF__UNROLL for (k = 0; k < 2; ++k) {
         HF__VEC *dk = d + 3 * k,
                 n2 = HF__VDOT3(dk[0], dk[1], dk[2], dk[0], dk[1], dk[2]);
@@ -8003,8 +8009,93 @@ HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__ftl_cap_pair)(const HF__VEC *m1,
     return ok;
 }
 
+/* hf__ftl_cap_pair on W lanes: both crossings in d[0..5]; returns the
+   lanes where the scalar code returns 2 */
+HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__ftl_cap_pair)(const HF__VEC *m1,
+                                                        HF__VEC c1,
+                                                        const HF__VEC *m2,
+                                                        HF__VEC c2, HF__VEC *d)
+{
+    const HF__VEC mu = HF__VDOT3(m1[0], m1[1], m1[2], m2[0], m2[1], m2[2]);
+    const HF__VEC det = HF__VSUB(HF__VSET1(1.0f), HF__VMUL(mu, mu));
+    const HF__VEC al = HF__VDIV(HF__VSUB(c1, HF__VMUL(mu, c2)), det),
+                  be = HF__VDIV(HF__VSUB(c2, HF__VMUL(mu, c1)), det);
+    const HF__VEC ok = HF__KN(hf__ftl_cap_pair_d)(m1, m2, mu, det, al, be, d);
+    return HF__KN(hf__ftl_cap_pair_unit)(
+        d, HF__VAND(ok, HF__VGT(det, HF__VSET1(1e-8f))));
+}
+
+/* A step of hf__ftl_crease: of the crossings d2 (both, on the lanes of
+   go), the one on the side of the last place, and where that is square
+   both in order; a lane that clears gets its point in best. Returns the
+   lanes to go on with: held further along by ca or cb (*held: which;
+   cand: where), not square. Apart from hf__ftl_crease, so that a debug
+   build's stack holds its temporaries or those of hf__ftl_cap_pair, not
+   both. */
+HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__ftl_crease_try)(
+    const HF__KN(hf__col) *k, const HF__VEC *rr, int ncol, const HF__VEC *p,
+    HF__VEC l, const HF__VEC *v, HF__VEC ca, HF__VEC cb, HF__VEC go,
+    const HF__VEC *d2, HF__VEC *cand, HF__VEC *best, HF__VEC *best_pen)
+{
+    const HF__VEC zero = HF__VSET1(0.0f);
+    HF__VEC s, side, sq, pen, ok, hold, held = zero, cw[3], rw = zero;
+    int i;
+    s = HF__VDOT3(HF__VSUB(d2[0], d2[3]), HF__VSUB(d2[1], d2[4]),
+                  HF__VSUB(d2[2], d2[5]), v[0], v[1], v[2]);
+    side = HF__VOR(HF__VLT(s, zero), HF__VGT(s, zero));
+    sq = HF__VSEL(side, zero, go);
+    HF__UNROLL for (i = 0; i < 3; ++i) {
+        cw[i] = zero;
+        cand[i] = HF__VADD(
+            p[i], HF__VMUL(l, HF__VSEL(HF__VLT(s, zero), d2[3 + i], d2[i])));
+    }
+    pen = HF__KN(hf__ftl_penetration)(k, rr, ncol, cand, &hold, cw, &rw,
+                                      &held);
+    ok = HF__VAND(go, HF__VLE(pen, zero));
+    HF__UNROLL for (i = 0; i < 3; ++i) best[i] = HF__VSEL(ok, cand[i], best[i]);
+    *best_pen = HF__VSEL(ok, zero, *best_pen);
+    sq = HF__VSEL(ok, zero, sq);
+    if (HF__VMASK(sq)) { /* square: the second crossing */
+        HF__VEC c2[3];
+        HF__UNROLL for (i = 0; i < 3; ++i)
+            c2[i] = HF__VADD(p[i], HF__VMUL(l, d2[3 + i]));
+        pen = HF__KN(hf__ftl_penetration)(k, rr, ncol, c2, &hold, NULL, NULL,
+                                          NULL);
+        sq = HF__VAND(sq, HF__VLE(pen, zero));
+        HF__UNROLL for (i = 0; i < 3; ++i) best[i] = HF__VSEL(sq, c2[i], best[i]);
+        *best_pen = HF__VSEL(sq, zero, *best_pen);
+    }
+    go = HF__VSEL(ok, zero, HF__VAND(go, side));
+    return HF__VAND(go, HF__VOR(HF__VEQ(held, ca), HF__VEQ(held, cb)));
+}
+
+/* The caps of ca and cb (per lane) at their balls nearest x. */
+HF__VTARGET HF__INLINE void HF__KN(hf__ftl_crease_caps)(
+    const HF__KN(hf__col) *k, const HF__VEC *rr, int ncol, const HF__VEC *p,
+    HF__VEC l, const HF__VEC *n, HF__VEC ca, HF__VEC cb, const HF__VEC *x,
+    HF__VEC *m1, HF__VEC *c1, HF__VEC *m2, HF__VEC *c2)
+{
+    const HF__VEC zero = HF__VSET1(0.0f);
+    HF__VEC pa[3], pb[3], ra = zero, rb = zero, cc[3];
+    int i, c;
+    HF__UNROLL for (i = 0; i < 3; ++i) pa[i] = pb[i] = zero;
+    for (c = 0; c < ncol; ++c) {
+        const HF__VEC ci = HF__VSET1((float)c), ia = HF__VEQ(ca, ci),
+                      ib = HF__VEQ(cb, ci);
+        HF__KN(hf__col_closest)(k + c, x, cc);
+        HF__UNROLL for (i = 0; i < 3; ++i) {
+            pa[i] = HF__VSEL(ia, cc[i], pa[i]);
+            pb[i] = HF__VSEL(ib, cc[i], pb[i]);
+        }
+        ra = HF__VSEL(ia, rr[c], ra);
+        rb = HF__VSEL(ib, rr[c], rb);
+    }
+    HF__KN(hf__ftl_cap)(p, l, pa, ra, n, m1, c1);
+    HF__KN(hf__ftl_cap)(p, l, pb, rb, n, m2, c2);
+}
+
 /* hf__ftl_collide_point's crease, on the lanes of `go`: ca's cap (ma,
-   qa) and cb's ball nearest the point (cb, rb), where the way out of ca
+   qa) and cb's ball nearest the point (cbw, rb), where the way out of ca
    ended inside cb; a lane that clears gets its point in best. */
 HF__VTARGET HF__INLINE void HF__KN(hf__ftl_crease)(
     const HF__KN(hf__col) *k, const HF__VEC *rr, int ncol, const HF__VEC *p,
@@ -8012,156 +8103,35 @@ HF__VTARGET HF__INLINE void HF__KN(hf__ftl_crease)(
     const HF__VEC *ma, HF__VEC qa, const HF__VEC *cbw, HF__VEC rb,
     HF__VEC go, HF__VEC *best, HF__VEC *best_pen)
 {
-    const HF__VEC zero = HF__VSET1(0.0f);
-    HF__VEC m1[3], c1, m2[3], c2, d2[6], s, sq, first[3], cand[3], pen, ok,
-        hold, held, cw[3], rw, pa[3], pb[3], ra, rb2, cc[3];
-    int i, c, walk;
-    HF__UNROLL for (i = 0; i < 3; ++i) {
-        m1[i] = ma[i];
-        cw[i] = zero;
-    }
+    HF__VEC m1[3], c1, m2[3], c2, d2[6], cand[3];
+    int i, walk;
+    HF__UNROLL for (i = 0; i < 3; ++i) m1[i] = ma[i];
     c1 = qa;
-    rw = held = zero;
     HF__KN(hf__ftl_cap)(p, l, cbw, rb, n, m2, &c2);
     for (walk = 0; walk < HF__FTL_QUICK; ++walk) {
         go = HF__VAND(go, HF__KN(hf__ftl_cap_pair)(m1, c1, m2, c2, d2));
-        /* the last place's side; both, in order, where it is square */
-        s = HF__VDOT3(HF__VSUB(d2[0], d2[3]), HF__VSUB(d2[1], d2[4]),
-                      HF__VSUB(d2[2], d2[5]), v[0], v[1], v[2]);
-        sq = HF__VSEL(HF__VOR(HF__VLT(s, zero), HF__VGT(s, zero)), zero, go);
-        HF__UNROLL for (i = 0; i < 3; ++i) {
-            first[i] = HF__VSEL(HF__VLT(s, zero), d2[3 + i], d2[i]);
-            cand[i] = HF__VADD(p[i], HF__VMUL(l, first[i]));
-        }
-        pen = HF__KN(hf__ftl_penetration)(k, rr, ncol, cand, &hold, cw, &rw,
-                                          &held);
-        ok = HF__VAND(go, HF__VLE(pen, zero));
-        HF__UNROLL for (i = 0; i < 3; ++i)
-            best[i] = HF__VSEL(ok, cand[i], best[i]);
-        *best_pen = HF__VSEL(ok, zero, *best_pen);
-        sq = HF__VSEL(ok, zero, sq);
-        if (HF__VMASK(sq)) {
-            HF__VEC cand2[3];
-            HF__UNROLL for (i = 0; i < 3; ++i)
-                cand2[i] = HF__VADD(p[i], HF__VMUL(l, d2[3 + i]));
-            pen = HF__KN(hf__ftl_penetration)(k, rr, ncol, cand2, &hold, NULL,
-                                              NULL, NULL);
-            sq = HF__VAND(sq, HF__VLE(pen, zero));
-            HF__UNROLL for (i = 0; i < 3; ++i)
-                best[i] = HF__VSEL(sq, cand2[i], best[i]);
-            *best_pen = HF__VSEL(sq, zero, *best_pen);
-        }
-        /* on: the lanes held by one of the two further along, not
-           square; the others are done or go to the rounds */
-        go = HF__VSEL(HF__VOR(ok, HF__VSEL(HF__VOR(HF__VLT(s, zero),
-                                                   HF__VGT(s, zero)),
-                                           zero, go)),
-                      zero, go);
-        go = HF__VAND(go, HF__VOR(HF__VEQ(held, ca), HF__VEQ(held, cb)));
+        go = HF__KN(hf__ftl_crease_try)(k, rr, ncol, p, l, v, ca, cb, go, d2,
+                                        cand, best, best_pen);
         if (!HF__VMASK(go)) break;
-        /* their balls nearest the crossing */
-        ra = rb2 = zero;
-        HF__UNROLL for (i = 0; i < 3; ++i) pa[i] = pb[i] = zero;
-        for (c = 0; c < ncol; ++c) {
-            const HF__VEC ci = HF__VSET1((float)c), ia = HF__VEQ(ca, ci),
-                          ib = HF__VEQ(cb, ci);
-            HF__KN(hf__col_closest)(k + c, cand, cc);
-            HF__UNROLL for (i = 0; i < 3; ++i) {
-                pa[i] = HF__VSEL(ia, cc[i], pa[i]);
-                pb[i] = HF__VSEL(ib, cc[i], pb[i]);
-            }
-            ra = HF__VSEL(ia, rr[c], ra);
-            rb2 = HF__VSEL(ib, rr[c], rb2);
-        }
-        HF__KN(hf__ftl_cap)(p, l, pa, ra, n, m1, &c1);
-        HF__KN(hf__ftl_cap)(p, l, pb, rb2, n, m2, &c2);
+        /* inside one of the two further along: their balls nearest it */
+        HF__KN(hf__ftl_crease_caps)(k, rr, ncol, p, l, n, ca, cb, cand, m1,
+                                    &c1, m2, &c2);
     }
 }
 
-/* hf__ftl_collide_one for point row j of ropes idx[0 .. W) (any ropes:
-   the points in contact, gathered) against colliders k[0 .. ncol), ncol
-   <= HF__FTL_NEAR, in the order of the call's array: the colliders
-   relevant to every lane's point (hf__ftl_flush groups the points so), so
-   each lane gets the bytes of its own point's scalar kernel. */
-HF__VTARGET HF__INLINE void
-HF__KN(hf__ftl_collide_in)(hf_ropes *ro, const float *F, int j, const int *idx,
-                           const HF__KN(hf__col) *k, int ncol)
+/* hf__ftl_collide_point's rounds on W lanes, for the lanes of act still
+   inside after the quick answer (best, best_pen: where it left them).
+   Apart from the quick answer, so that a debug build's stack (every
+   temporary its own slot) holds the rounds' or the crease's. */
+HF__VTARGET HF__INLINE void HF__KN(hf__ftl_rounds)(
+    const HF__KN(hf__col) *k, const HF__VEC *rr, int ncol, const HF__VEC *p,
+    HF__VEC l, const HF__VEC *n, const HF__VEC *t, const HF__VEC *u,
+    const HF__VEC *v, HF__VEC act, HF__VEC *best, HF__VEC *out_pen)
 {
-    const size_t R = (size_t)ro->rope_count, o0 = (size_t)(j - 1) * R;
-    const HF__VEC zero = HF__VSET1(0.0f);
-    float g[3][HF__W];
-    HF__VEC l, p[3], q[3], root[3], n[3], t[3], u[3], v[3], best[3],
-        rr[HF__FTL_NEAR],
-        m[2 * HF__FTL_NEAR][3], cmin[2 * HF__FTL_NEAR], act, best_pen, best_dot,
-        bd, big, cw[3], rw, cn, act0;
+    const HF__VEC zero = HF__VSET1(0.0f), act0 = act;
+    HF__VEC m[2 * HF__FTL_NEAR][3], cmin[2 * HF__FTL_NEAR],
+        best_pen = *out_pen, best_dot = HF__VSET1(-2.0f);
     int c, e, i, w, round, ncap, pass, phase;
-    HF__UNROLL for (c = 0; c < 3; ++c) {
-        const float *X = c == 0 ? ro->x : c == 1 ? ro->y : ro->z;
-        p[c] = HF__VGATHER(X + o0, idx);
-        q[c] = HF__VGATHER(X + o0 + R, idx);
-        root[c] = HF__VGATHER(X, idx);
-        t[c] = HF__VGATHER(F + (size_t)(3 + c) * R, idx);
-        n[c] = HF__VGATHER(F + (size_t)(6 + c) * R, idx);
-        v[c] = HF__VSUB(HF__VGATHER((c == 0   ? ro->px
-                                     : c == 1 ? ro->py
-                                              : ro->pz) +
-                                        o0 + R,
-                                    idx),
-                        p[c]);
-    }
-    l = HF__VGATHER(ro->rest_length + o0, idx);
-    /* hf__col_radius_for */
-    for (c = 0; c < ncol; ++c) {
-        HF__VEC cc[3];
-        const HF__VEC d2 = HF__KN(hf__col_closest)(k + c, root, cc);
-        rr[c] = k[c].rr;
-        if (k[c].shrink)
-            rr[c] = HF__VSEL(HF__VLT(d2, HF__VMUL(k[c].inner, k[c].inner)),
-                             HF__VSQRT(d2), rr[c]);
-    }
-    cn = rw = cw[0] = cw[1] = cw[2] = zero; /* set for ncol >= 1 */
-    best_pen =
-        HF__KN(hf__ftl_penetration)(k, rr, ncol, q, &act, cw, &rw, &cn);
-    act = HF__VAND(act, HF__VGT(l, zero));
-    if (!HF__VMASK(act)) return;
-    HF__UNROLL for (i = 0; i < 3; ++i) u[i] = HF__VSUB(q[i], p[i]);
-    bd = HF__VDOT3(u[0], u[1], u[2], u[0], u[1], u[2]);
-    big = HF__VGT(bd, HF__VSET1(1e-24f));
-    bd = HF__VDIV(HF__VSET1(1.0f), HF__VSQRT(bd));
-    HF__UNROLL for (i = 0; i < 3; ++i) {
-        u[i] = HF__VSEL(big, HF__VMUL(u[i], bd), n[i]);
-        best[i] = q[i];
-    }
-    best_dot = HF__VSET1(-2.0f);
-    { /* hf__ftl_collide_point's quick answer */
-        HF__VEC from[3], mq[3], cq, d[3], cand[3], hold, crease, go = act;
-        HF__UNROLL for (i = 0; i < 3; ++i) from[i] = u[i];
-        for (round = 0; round < HF__FTL_QUICK && HF__VMASK(go); ++round) {
-            HF__VEC pen, ok;
-            const HF__VEC was = cn;
-            HF__KN(hf__ftl_cap)(p, l, cw, rw, n, mq, &cq);
-            HF__KN(hf__ftl_onto_cap)(from, mq, cq, t, d);
-            HF__UNROLL for (i = 0; i < 3; ++i)
-                cand[i] = HF__VADD(p[i], HF__VMUL(l, d[i]));
-            /* cw, rw: the next ball, where the point is still inside */
-            pen = HF__KN(hf__ftl_penetration)(k, rr, ncol, cand, &hold, cw,
-                                              &rw, &cn);
-            ok = HF__VAND(go, HF__VLE(pen, zero));
-            HF__UNROLL for (i = 0; i < 3; ++i) {
-                best[i] = HF__VSEL(ok, cand[i], best[i]);
-                from[i] = d[i];
-            }
-            best_pen = HF__VSEL(ok, zero, best_pen);
-            go = HF__VAND(go, HF__VGT(pen, zero));
-            crease = HF__VSEL(HF__VEQ(cn, was), zero, go);
-            if (HF__VMASK(crease)) /* along the crease */
-                HF__KN(hf__ftl_crease)(k, rr, ncol, p, l, n, v, was, cn, mq,
-                                       cq, cw, rw, crease, best, &best_pen);
-            /* the lanes in a crease: done here or in the rounds */
-            go = HF__VAND(go, HF__VEQ(cn, was));
-        }
-    }
-    act0 = act;
     for (phase = 0; phase < 2; ++phase)
     for (round = 0; round < HF__FTL_ROUNDS; ++round) {
         HF__VEC from[3];
@@ -8238,6 +8208,92 @@ HF__KN(hf__ftl_collide_in)(hf_ropes *ro, const float *F, int j, const int *idx,
         }
         act = HF__VAND(act, HF__VLT(best_pen, pen0)); /* no progress: done */
     }
+    *out_pen = best_pen;
+}
+
+/* hf__ftl_collide_one for point row j of ropes idx[0 .. W) (any ropes:
+   the points in contact, gathered) against colliders k[0 .. ncol), ncol
+   <= HF__FTL_NEAR, in the order of the call's array: the colliders
+   relevant to every lane's point (hf__ftl_flush groups the points so), so
+   each lane gets the bytes of its own point's scalar kernel. */
+HF__VTARGET HF__INLINE void
+HF__KN(hf__ftl_collide_in)(hf_ropes *ro, const float *F, int j, const int *idx,
+                           const HF__KN(hf__col) *k, int ncol)
+{
+    const size_t R = (size_t)ro->rope_count, o0 = (size_t)(j - 1) * R;
+    const HF__VEC zero = HF__VSET1(0.0f);
+    float g[3][HF__W];
+    HF__VEC l, p[3], q[3], root[3], n[3], t[3], u[3], v[3], best[3],
+        rr[HF__FTL_NEAR], act, best_pen, bd, big, cw[3], rw, cn;
+    int c, i, round;
+    HF__UNROLL for (c = 0; c < 3; ++c) {
+        const float *X = c == 0 ? ro->x : c == 1 ? ro->y : ro->z;
+        p[c] = HF__VGATHER(X + o0, idx);
+        q[c] = HF__VGATHER(X + o0 + R, idx);
+        root[c] = HF__VGATHER(X, idx);
+        t[c] = HF__VGATHER(F + (size_t)(3 + c) * R, idx);
+        n[c] = HF__VGATHER(F + (size_t)(6 + c) * R, idx);
+        v[c] = HF__VSUB(HF__VGATHER((c == 0   ? ro->px
+                                     : c == 1 ? ro->py
+                                              : ro->pz) +
+                                        o0 + R,
+                                    idx),
+                        p[c]);
+    }
+    l = HF__VGATHER(ro->rest_length + o0, idx);
+    /* hf__col_radius_for */
+    for (c = 0; c < ncol; ++c) {
+        HF__VEC cc[3];
+        const HF__VEC d2 = HF__KN(hf__col_closest)(k + c, root, cc);
+        rr[c] = k[c].rr;
+        if (k[c].shrink)
+            rr[c] = HF__VSEL(HF__VLT(d2, HF__VMUL(k[c].inner, k[c].inner)),
+                             HF__VSQRT(d2), rr[c]);
+    }
+    cn = rw = cw[0] = cw[1] = cw[2] = zero; /* set for ncol >= 1 */
+    best_pen =
+        HF__KN(hf__ftl_penetration)(k, rr, ncol, q, &act, cw, &rw, &cn);
+    act = HF__VAND(act, HF__VGT(l, zero));
+    if (!HF__VMASK(act)) return;
+    HF__UNROLL for (i = 0; i < 3; ++i) u[i] = HF__VSUB(q[i], p[i]);
+    bd = HF__VDOT3(u[0], u[1], u[2], u[0], u[1], u[2]);
+    big = HF__VGT(bd, HF__VSET1(1e-24f));
+    bd = HF__VDIV(HF__VSET1(1.0f), HF__VSQRT(bd));
+    HF__UNROLL for (i = 0; i < 3; ++i) {
+        u[i] = HF__VSEL(big, HF__VMUL(u[i], bd), n[i]);
+        best[i] = q[i];
+    }
+    { /* hf__ftl_collide_point's quick answer */
+        HF__VEC from[3], mq[3], cq, d[3], cand[3], hold, crease, go = act;
+        HF__UNROLL for (i = 0; i < 3; ++i) from[i] = u[i];
+        for (round = 0; round < HF__FTL_QUICK && HF__VMASK(go); ++round) {
+            HF__VEC pen, ok;
+            const HF__VEC was = cn;
+            HF__KN(hf__ftl_cap)(p, l, cw, rw, n, mq, &cq);
+            HF__KN(hf__ftl_onto_cap)(from, mq, cq, t, d);
+            HF__UNROLL for (i = 0; i < 3; ++i)
+                cand[i] = HF__VADD(p[i], HF__VMUL(l, d[i]));
+            /* cw, rw: the next ball, where the point is still inside */
+            pen = HF__KN(hf__ftl_penetration)(k, rr, ncol, cand, &hold, cw,
+                                              &rw, &cn);
+            ok = HF__VAND(go, HF__VLE(pen, zero));
+            HF__UNROLL for (i = 0; i < 3; ++i) {
+                best[i] = HF__VSEL(ok, cand[i], best[i]);
+                from[i] = d[i];
+            }
+            best_pen = HF__VSEL(ok, zero, best_pen);
+            go = HF__VAND(go, HF__VGT(pen, zero));
+            crease = HF__VSEL(HF__VEQ(cn, was), zero, go);
+            if (HF__VMASK(crease)) /* along the crease */
+                HF__KN(hf__ftl_crease)(k, rr, ncol, p, l, n, v, was, cn, mq,
+                                       cq, cw, rw, crease, best, &best_pen);
+            /* the lanes in a crease: done here or in the rounds */
+            go = HF__VAND(go, HF__VEQ(cn, was));
+        }
+    }
+    if (HF__VMASK(HF__VAND(act, HF__VGT(best_pen, zero))))
+        HF__KN(hf__ftl_rounds)(k, rr, ncol, p, l, n, t, u, v, act, best,
+                               &best_pen);
     HF__UNROLL for (c = 0; c < 3; ++c) HF__VST(g[c], best[c]);
     for (i = 0; i < HF__W; ++i) {
         const size_t o = o0 + R + (size_t)idx[i];
