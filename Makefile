@@ -218,7 +218,7 @@ check-build: $(filter %clang_c99_san,$(TEST_BINS)) $(filter %_san,$(TEST_BINS)) 
 # $(1) = test binaries to run, $(2) = the target's name. Prints each
 # binary's last line (N passed, N failed), and the failures. Each runs on
 # a stack of TEST_STACK_KB, a small worker thread's: the header promises
-# its per-frame calls about 48 KiB at most (hf_fur_simulate at -O0).
+# its per-frame calls about 60 KiB at most (hf_fur_simulate at -O0).
 TEST_STACK_KB ?= 256
 define run_tests
 	@fail=0; for t in $(1); do \

@@ -203,8 +203,9 @@
          first at a page boundary), hf_fur_interpolate_points 18
          KiB (23 at -O0; 24 and 27 for compact points, through a 4 KiB
          stage), hf_ropes_step and hf_fur_simulate about 41 KiB with the
-         AVX-512 kernel (48 at -O0: a chunk's broadphase, 8 KiB, and a
-         row's contacts grouped by their colliders, 17 KiB), the other
+         AVX-512 kernel (60 at -O0: a chunk's broadphase, 8 KiB, a
+         row's contacts grouped by their colliders, 19 KiB, and the
+         contact kernel's rounds, 25 KiB), the other
          per-frame calls under 16 KiB: size worker and fiber stacks for
          it. Kernels are forced inline only
          where the compiler optimizes, so a debug build needs no more.
