@@ -8372,14 +8372,15 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__ftl_flush)(hf_ropes *ro, const float *F,
         unsigned hash = 2166136261u;
         done[i] = 0;
         nxt[i] = 0xffff;
-        for (c = 0; c <= sig[i][0]; ++c)
+        /* the count and the colliders (-1, too many: the count alone) */
+        n = sig[i][0] > 0 ? sig[i][0] : 0;
+        for (c = 0; c <= n; ++c)
             hash = (hash ^ (unsigned)sig[i][c]) * 16777619u;
         for (m = (int)(hash & (unsigned)(hm - 1));; m = (m + 1) & (hm - 1)) {
             if (first[m] == 0xffff) {
                 first[m] = last[m] = (unsigned short)i;
                 break;
             }
-            n = sig[i][0];
             for (c = 0; c <= n && sig[first[m]][c] == sig[i][c]; ++c) {
             }
             if (c > n) {
