@@ -2442,8 +2442,7 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
    body of the kernel). Every level uses the same IEEE operations in the
    same order (no FMA), so all give the same bytes (in the default
    rounding mode: the vector encoders of normalized formats convert by
-   the mode, the scalar one adds and takes away 1.5 * 2^23; on x86 the
-   per-frame calls set it, 0.3's float mode). Each
+   the mode, the scalar one adds and takes away 1.5 * 2^23). Each
    stage's descriptors (one a width, with its instruction set) and the
    one resolver that picks among them by the level hf_simd_resolve gives
    are in 1, "The dispatch".
@@ -2589,36 +2588,6 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
 #else
 #define HF__RESTRICT
 #endif
-
-/* The float mode of every per-frame call (HF__FP_CALL wraps each): on
-   x86, the SSE control word at round to nearest, flush-to-zero and
-   denormals-are-zero, every exception masked, and the caller's restored
-   on return. Near a coordinate plane the rope and strand arithmetic
-   multiplies small differences into subnormal floats, which cost x86
-   CPUs a hundred cycles and more an operation (scene V's ropes ran 15-25
-   % slower with them, the strands 10 %); and the bytes no longer depend
-   on the mode of the caller's thread. Elsewhere (ARM64, whose subnormals
-   are cheap; WebAssembly, which has no mode; HF_NO_SIMD) the mode is
-   the caller's. */
-#if HF__SSE && !defined(__EMSCRIPTEN__) && !defined(__wasm__)
-HF__INLINE unsigned hf__fp_enter(void)
-{
-    const unsigned m = _mm_getcsr();
-    _mm_setcsr(0x9fc0u); /* FTZ 0x8000, DAZ 0x40, the masks 0x1f80 */
-    return m;
-}
-HF__INLINE void hf__fp_leave(unsigned m) { _mm_setcsr(m); }
-#else
-HF__INLINE unsigned hf__fp_enter(void) { return 0u; }
-HF__INLINE void hf__fp_leave(unsigned m) { (void)m; }
-#endif
-#define HF__FP_CALL(call)                                                      \
-    do {                                                                       \
-        const unsigned hf__fp_mode = hf__fp_enter();                           \
-        const hf_result hf__fp_result = (call);                                \
-        hf__fp_leave(hf__fp_mode);                                             \
-        return hf__fp_result;                                                  \
-    } while (0)
 
 #if HF__SSE
 /* a where m is set, else b: how the SSE kernels take a branch per lane */
@@ -5885,24 +5854,13 @@ HF__PRIVATE hf_result hf__ropes_set_roots(hf_ropes *ropes, int first, int count,
     return HF_OK;
 }
 
-HF__PRIVATE hf_result hf__ropes_set_roots_body(hf_ropes *ropes, int first,
-                                               int count, const float *root_pos,
-                                               const float *root_normal,
-                                               const float *root_tangent,
-                                               int root_stride)
-{
-    return hf__ropes_set_roots(ropes, first, count, root_pos, root_normal,
-                               root_tangent, root_stride, HF_SIMD_AUTO);
-}
-
 HFDEF hf_result hf_ropes_set_roots(hf_ropes *ropes, int first, int count,
                                    const float *root_pos,
                                    const float *root_normal,
                                    const float *root_tangent, int root_stride)
 {
-    HF__FP_CALL(hf__ropes_set_roots_body(ropes, first, count, root_pos,
-                                         root_normal, root_tangent,
-                                         root_stride));
+    return hf__ropes_set_roots(ropes, first, count, root_pos, root_normal,
+                               root_tangent, root_stride, HF_SIMD_AUTO);
 }
 
 /* Rope r starts gliding to animation: its pose, in the coordinates of the
@@ -9261,11 +9219,10 @@ HFDEF hf_result hf_ropes_roots_inside(const hf_ropes *ropes, int first,
     return HF_OK;
 }
 
-HF__PRIVATE hf_result hf__ropes_step_body(hf_ropes *ropes, int first, int count,
-                                          float dt,
-                                          const hf_rope_params *params,
-                                          const hf_collider *colliders,
-                                          int collider_count)
+HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count,
+                              float dt, const hf_rope_params *params,
+                              const hf_collider *colliders,
+                              int collider_count)
 {
     hf__rope_step st;
     hf_rope_params prm;
@@ -9306,14 +9263,6 @@ HF__PRIVATE hf_result hf__ropes_step_body(hf_ropes *ropes, int first, int count,
                   ropes->frame + (size_t)k * (size_t)ropes->rope_count + first,
                   (size_t)count * sizeof(float));
     return HF_OK;
-}
-
-HFDEF hf_result hf_ropes_step(hf_ropes *ropes, int first, int count, float dt,
-                              const hf_rope_params *params,
-                              const hf_collider *colliders, int collider_count)
-{
-    HF__FP_CALL(hf__ropes_step_body(ropes, first, count, dt, params, colliders,
-                                    collider_count));
 }
 
 /* ---- 6.9 hair-hair interaction: the grid -------------------------------- */
@@ -10354,8 +10303,8 @@ static const hf__grid_kernels hf__grid_widths[] = {
 #endif
     {{HF__ISA_V1}, hf__grid_splat_v1, hf__grid_apply_v1}};
 
-HF__PRIVATE hf_result hf__grid_build_body(hf_grid *grid, const hf_ropes *ropes,
-                                          int rope_count, int first, int count)
+HFDEF hf_result hf_grid_build(hf_grid *grid, const hf_ropes *ropes,
+                              int rope_count, int first, int count)
 {
     const hf__grid_kernels *kd;
     size_t n2;
@@ -10438,16 +10387,9 @@ HF__PRIVATE hf_result hf__grid_build_body(hf_grid *grid, const hf_ropes *ropes,
     return HF_OK;
 }
 
-HFDEF hf_result hf_grid_build(hf_grid *grid, const hf_ropes *ropes,
-                              int rope_count, int first, int count)
-{
-    HF__FP_CALL(hf__grid_build_body(grid, ropes, rope_count, first, count));
-}
-
-HF__PRIVATE hf_result hf__ropes_apply_grid_body(hf_ropes *ropes, int first,
-                                                int count, float dt,
-                                                const hf_rope_params *params,
-                                                const hf_grid *grid)
+HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
+                                    float dt, const hf_rope_params *params,
+                                    const hf_grid *grid)
 {
     hf_rope_params prm;
     hf_result res;
@@ -10501,14 +10443,6 @@ HF__PRIVATE hf_result hf__ropes_apply_grid_body(hf_ropes *ropes, int first,
             r = d->push(ropes, &gp, j, last, r, first + count);
     }
     return HF_OK;
-}
-
-HFDEF hf_result hf_ropes_apply_grid(hf_ropes *ropes, int first, int count,
-                                    float dt, const hf_rope_params *params,
-                                    const hf_grid *grid)
-{
-    HF__FP_CALL(
-        hf__ropes_apply_grid_body(ropes, first, count, dt, params, grid));
 }
 
 #undef HF__ROW
@@ -11134,12 +11068,10 @@ HF__PRIVATE void hf__interpolate_run(const float *guide_points,
 #endif
 }
 
-HF__PRIVATE hf_result hf__interpolate_body(const float *guide_points,
-                                           int guide_count,
-                                           const hf_strand_binding *bindings,
-                                           int first, int count,
-                                           const hf_interp_params *params,
-                                           float *out_points)
+HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
+                               const hf_strand_binding *bindings, int first,
+                               int count, const hf_interp_params *params,
+                               float *out_points)
 {
     int s, i, k, P;
     float clump;
@@ -11182,15 +11114,6 @@ HF__PRIVATE hf_result hf__interpolate_body(const float *guide_points,
                                       (size_t)count * (size_t)P * 12u,
                                       HF_STREAM_MIN_BYTES));
     return HF_OK;
-}
-
-HFDEF hf_result hf_interpolate(const float *guide_points, int guide_count,
-                               const hf_strand_binding *bindings, int first,
-                               int count, const hf_interp_params *params,
-                               float *out_points)
-{
-    HF__FP_CALL(hf__interpolate_body(guide_points, guide_count, bindings, first,
-                                     count, params, out_points));
 }
 
 /* ---- 7.3 level of detail ------------------------------------------------ */
@@ -14752,19 +14675,11 @@ HF__PRIVATE hf_result hf__ribbons(const hf_ribbon_strands *strands,
     return HF_OK;
 }
 
-HF__PRIVATE hf_result hf__ribbons_body(const hf_ribbon_strands *strands,
-                                       int first, int count,
-                                       const hf_ribbon_params *view,
-                                       const hf_ribbon_output *out)
-{
-    return hf__ribbons(strands, first, count, view, out, count);
-}
-
 HFDEF hf_result hf_ribbons(const hf_ribbon_strands *strands, int first,
                            int count, const hf_ribbon_params *view,
                            const hf_ribbon_output *out)
 {
-    HF__FP_CALL(hf__ribbons_body(strands, first, count, view, out));
+    return hf__ribbons(strands, first, count, view, out, count);
 }
 
 /* ---- 8.8 GPU points (hf_ribbon_points) ---------------------------------- */
@@ -15668,19 +15583,11 @@ HF__PRIVATE hf_result hf__ribbon_points(const hf_ribbon_strands *strands,
     return HF_OK;
 }
 
-HF__PRIVATE hf_result hf__ribbon_points_body(const hf_ribbon_strands *strands,
-                                             int first, int count,
-                                             const hf_ribbon_params *view,
-                                             float *out4)
-{
-    return hf__ribbon_points(strands, first, count, view, out4, count);
-}
-
 HFDEF hf_result hf_ribbon_points(const hf_ribbon_strands *strands, int first,
                                  int count, const hf_ribbon_params *view,
                                  float *out4)
 {
-    HF__FP_CALL(hf__ribbon_points_body(strands, first, count, view, out4));
+    return hf__ribbon_points(strands, first, count, view, out4, count);
 }
 
 /* ---- 8.9 indices -------------------------------------------------------- */
@@ -18652,8 +18559,8 @@ HF__PRIVATE int hf__finite3(const float *p)
     return hf__finitef(p[0]) && hf__finitef(p[1]) && hf__finitef(p[2]);
 }
 
-HF__PRIVATE hf_result hf__fur_set_roots_body(hf_fur *f, const hf_mesh *m,
-                                             int first, int count)
+HFDEF hf_result hf_fur_set_roots(hf_fur *f, const hf_mesh *m, int first,
+                                 int count)
 {
     int g, k;
     hf_result r;
@@ -18727,12 +18634,6 @@ HF__PRIVATE hf_result hf__fur_set_roots_body(hf_fur *f, const hf_mesh *m,
                                f->root_tan, 0, f->simd);
 }
 
-HFDEF hf_result hf_fur_set_roots(hf_fur *f, const hf_mesh *m, int first,
-                                 int count)
-{
-    HF__FP_CALL(hf__fur_set_roots_body(f, m, first, count));
-}
-
 /* Step guides [first, end) in runs that share a rope parameter set (each
    rope is stepped on its own, so runs give the bytes one call would). */
 /* Step guides [first, end) run by run of one parameter set, each pushed
@@ -18764,7 +18665,7 @@ HF__PRIVATE hf_result hf__fur_step_runs(hf_fur *f, int first, int end,
     return HF_OK;
 }
 
-HF__PRIVATE hf_result hf__fur_build_grid_body(hf_fur *f, int first, int count)
+HFDEF hf_result hf_fur_build_grid(hf_fur *f, int first, int count)
 {
     if (!f) return HF_ERROR_NULL_POINTER;
     if (!f->grid) return first == 0 && count == 0 ? HF_OK : HF_ERROR_BAD_RANGE;
@@ -18773,14 +18674,9 @@ HF__PRIVATE hf_result hf__fur_build_grid_body(hf_fur *f, int first, int count)
                          count);
 }
 
-HFDEF hf_result hf_fur_build_grid(hf_fur *f, int first, int count)
-{
-    HF__FP_CALL(hf__fur_build_grid_body(f, first, count));
-}
-
-HF__PRIVATE hf_result hf__fur_settle_rest_body(hf_fur *f, float seconds,
-                                               const hf_collider *colliders,
-                                               int collider_count)
+HFDEF hf_result hf_fur_settle_rest(hf_fur *f, float seconds,
+                                   const hf_collider *colliders,
+                                   int collider_count)
 {
     hf_rope_params keep[HF_FUR_ROPE_SETS];
     unsigned char *mode;
@@ -18828,18 +18724,9 @@ HF__PRIVATE hf_result hf__fur_settle_rest_body(hf_fur *f, float seconds,
     return HF_OK;
 }
 
-HFDEF hf_result hf_fur_settle_rest(hf_fur *f, float seconds,
-                                   const hf_collider *colliders,
-                                   int collider_count)
-{
-    HF__FP_CALL(
-        hf__fur_settle_rest_body(f, seconds, colliders, collider_count));
-}
-
-HF__PRIVATE hf_result hf__fur_simulate_body(hf_fur *f, int first, int count,
-                                            float dt,
-                                            const hf_collider *colliders,
-                                            int collider_count)
+HFDEF hf_result hf_fur_simulate(hf_fur *f, int first, int count, float dt,
+                                const hf_collider *colliders,
+                                int collider_count)
 {
     hf_result r;
     int end;
@@ -18862,19 +18749,10 @@ HF__PRIVATE hf_result hf__fur_simulate_body(hf_fur *f, int first, int count,
     return HF_OK;
 }
 
-HFDEF hf_result hf_fur_simulate(hf_fur *f, int first, int count, float dt,
-                                const hf_collider *colliders,
-                                int collider_count)
-{
-    HF__FP_CALL(
-        hf__fur_simulate_body(f, first, count, dt, colliders, collider_count));
-}
-
 /* The fur's guides, bindings and parameters are valid by construction
    (guides come from the ropes, finite and within reach of their roots),
    so its calls skip hf_interpolate's per-call checks. */
-HF__PRIVATE hf_result hf__fur_interpolate_guides_body(hf_fur *f, int first,
-                                                      int count)
+HFDEF hf_result hf_fur_interpolate_guides(hf_fur *f, int first, int count)
 {
     if (!f) return HF_ERROR_NULL_POINTER;
     if (!hf__range_ok(first, count) || first + count > f->lod_count)
@@ -18886,11 +18764,6 @@ HF__PRIVATE hf_result hf__fur_interpolate_guides_body(hf_fur *f, int first,
                             (size_t)f->pure_count * (size_t)f->P * 3u,
                         0, f->simd, 0);
     return HF_OK;
-}
-
-HFDEF hf_result hf_fur_interpolate_guides(hf_fur *f, int first, int count)
-{
-    HF__FP_CALL(hf__fur_interpolate_guides_body(f, first, count));
 }
 
 /* Whether a fur's strands are the guides' blend alone (clumped to the
@@ -18920,7 +18793,7 @@ HF__PRIVATE int hf__fur_sized(const hf_fur *f, int count)
     return count > f->drawn ? count : f->drawn;
 }
 
-HF__PRIVATE hf_result hf__fur_interpolate_body(hf_fur *f, int first, int count)
+HFDEF hf_result hf_fur_interpolate(hf_fur *f, int first, int count)
 {
     if (!f) return HF_ERROR_NULL_POINTER;
     if (!hf__range_ok(first, count) || first + count > f->strand_count)
@@ -18931,11 +18804,6 @@ HF__PRIVATE hf_result hf__fur_interpolate_body(hf_fur *f, int first, int count)
                                       (size_t)f->P * 12u,
                                   HF_STREAM_MIN_BYTES));
     return HF_OK;
-}
-
-HFDEF hf_result hf_fur_interpolate(hf_fur *f, int first, int count)
-{
-    HF__FP_CALL(hf__fur_interpolate_body(f, first, count));
 }
 
 HF__PRIVATE hf_result hf__fur_view(const hf_fur *f, int first, int count,
@@ -18962,10 +18830,9 @@ HF__PRIVATE hf_result hf__fur_view(const hf_fur *f, int first, int count,
     return HF_OK;
 }
 
-HF__PRIVATE hf_result hf__fur_ribbons_body(const hf_fur *f, int first,
-                                           int count,
-                                           const hf_ribbon_params *view,
-                                           const hf_ribbon_output *out)
+HFDEF hf_result hf_fur_ribbons(const hf_fur *f, int first, int count,
+                               const hf_ribbon_params *view,
+                               const hf_ribbon_output *out)
 {
     hf_ribbon_params p;
     hf_ribbon_strands s;
@@ -18975,16 +18842,8 @@ HF__PRIVATE hf_result hf__fur_ribbons_body(const hf_fur *f, int first,
                                     hf__fur_sized(f, count));
 }
 
-HFDEF hf_result hf_fur_ribbons(const hf_fur *f, int first, int count,
-                               const hf_ribbon_params *view,
-                               const hf_ribbon_output *out)
-{
-    HF__FP_CALL(hf__fur_ribbons_body(f, first, count, view, out));
-}
-
-HF__PRIVATE hf_result hf__fur_points_body(const hf_fur *f, int first, int count,
-                                          const hf_ribbon_params *view,
-                                          float *out4)
+HFDEF hf_result hf_fur_points(const hf_fur *f, int first, int count,
+                              const hf_ribbon_params *view, float *out4)
 {
     hf_ribbon_params p;
     hf_ribbon_strands s;
@@ -18994,19 +18853,14 @@ HF__PRIVATE hf_result hf__fur_points_body(const hf_fur *f, int first, int count,
                                           hf__fur_sized(f, count));
 }
 
-HFDEF hf_result hf_fur_points(const hf_fur *f, int first, int count,
-                              const hf_ribbon_params *view, float *out4)
-{
-    HF__FP_CALL(hf__fur_points_body(f, first, count, view, out4));
-}
-
 /* hf_fur_interpolate_points' strands go through a buffer of this many
    floats (8 KiB, in L1 while it is read back), a block at a time */
 #define HF__POINTS_BLOCK (8 * HF_MAX_POINTS)
 
-HF__PRIVATE hf_result
-hf__fur_interpolate_points_body(const hf_fur *f, int first, int count,
-                                const hf_ribbon_params *view, float *out4)
+HFDEF hf_result hf_fur_interpolate_points(const hf_fur *f, int first,
+                                          int count,
+                                          const hf_ribbon_params *view,
+                                          float *out4)
 {
     float buf[HF__POINTS_BLOCK];
     hf__points_kit kit;
@@ -19047,13 +18901,6 @@ hf__fur_interpolate_points_body(const hf_fur *f, int first, int count,
     if (kit.nt) _mm_sfence(); /* streamed stores visible before we return */
 #endif
     return HF_OK;
-}
-
-HFDEF hf_result hf_fur_interpolate_points(const hf_fur *f, int first, int count,
-                                          const hf_ribbon_params *view,
-                                          float *out4)
-{
-    HF__FP_CALL(hf__fur_interpolate_points_body(f, first, count, view, out4));
 }
 
 HFDEF hf_result hf_fur_set_rope_params(hf_fur *f,

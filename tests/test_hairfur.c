@@ -5964,56 +5964,6 @@ static void test_ropes_nape_crease(void)
     for (k = 0; k < NSET; ++k) tr_close(&s[k]);
 }
 
-/* Every per-frame call sets its own float mode and gives the caller's
-   back (on x86: round to nearest, flush-to-zero, denormals-are-zero):
-   ropes stepped from a thread in another mode (rounding toward zero,
-   subnormals kept) give the same bytes, and the mode is as it was after
-   each call. Where the library leaves the mode alone (ARM64,
-   WebAssembly) there is nothing to check. */
-static void test_ropes_float_mode(void)
-{
-#if defined(__SSE2__) && !defined(__EMSCRIPTEN__) && !defined(HF_NO_SIMD)
-    enum { R = 64, P = 16, NSET = 2 };
-    static float rest[3 * R * P];
-    float root[3 * R], nrm[3 * R], tan[3 * R];
-    hf_collider col;
-    hf_rope_params p;
-    tr_set s[NSET];
-    const unsigned caller = _mm_getcsr(), odd = 0x1f80u | 0x6000u;
-    int k, f, same = 1, kept = 1;
-    for (k = 0; k < NSET; ++k)
-        if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
-    tr_scalp(R, P, 0.2f, 0.0f, rest, root, nrm, tan);
-    memset(&col, 0, sizeof col);
-    col.type = HF_COLLIDER_SPHERE;
-    col.radius = 0.1f;
-    hf_rope_params_init(&p);
-    p.global_stiffness_root = 0.2f;
-    p.local_stiffness_root = 0.3f;
-    for (k = 0; k < NSET; ++k)
-        CHECK_EQ_INT(hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm,
-                                       tan, 0),
-                     HF_OK);
-    for (f = 0; f < 60; ++f) {
-        for (k = 0; k < NSET; ++k) {
-            const unsigned mode = k ? odd : caller;
-            _mm_setcsr(mode);
-            CHECK_EQ_INT(hf_ropes_set_roots(&s[k].ro, 0, R, root, nrm, tan, 0),
-                         HF_OK);
-            CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, 1.0f / 60.0f, &p, &col,
-                                       1),
-                         HF_OK);
-            kept &= (_mm_getcsr() & ~0x3fu) == (mode & ~0x3fu);
-            _mm_setcsr(caller);
-        }
-        same &= tr_same(&s[0].ro, &s[1].ro, 1);
-    }
-    CHECK(kept);
-    CHECK(same);
-    for (k = 0; k < NSET; ++k) tr_close(&s[k]);
-#endif
-}
-
 /* Hair lying in the crease between two overlapping capsules, where
    the ways out of each lead into the other: two capsules crossing, one
    lower (an X), and two rising apart from where they meet (a V, as an
@@ -6119,7 +6069,6 @@ static void test_ropes_resting_in_crease(void)
     X(test_ropes_resting_on_joint)                                             \
     X(test_ropes_nape_crease)                                                  \
     X(test_ropes_resting_in_crease)                                            \
-    X(test_ropes_float_mode)                                                   \
     X(test_ropes_crowded_colliders)
 
 /* ---- ropes: hair-hair interaction on a grid ------------------------------ */
