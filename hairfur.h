@@ -6589,6 +6589,22 @@ HF__PRIVATE int hf__ftl_cap_pair(const float *m1, float c1, const float *m2,
     return 2;
 }
 
+/* Of two crossings d[0..5], the one on the side of the point's last
+   place (v: that place minus the parent) first in d, and how many to try:
+   1, or 2 where v is square to the crease (both, in order). */
+HF__PRIVATE int hf__ftl_last_side(float *d, const float *v)
+{
+    float dd[3], s;
+    int w;
+    for (w = 0; w < 3; ++w) dd[w] = d[w] - d[3 + w];
+    s = hf__dot3(dd, v);
+    if (s < 0.0f) {
+        for (w = 0; w < 3; ++w) d[w] = d[3 + w];
+        return 1;
+    }
+    return s > 0.0f ? 1 : 2;
+}
+
 /* The deepest penetration of q into the colliders (radii for this rope),
    0 when outside all; *deepest: that collider, -1 when none. */
 HF__PRIVATE float hf__ftl_penetration(const hf__col_prep *k, const float *rr,
@@ -6686,22 +6702,14 @@ HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
             }
             if (dq != was) { /* a crease: along it */
                 const int ca = was, cb = dq;
-                float m2[3], c2, d2[6], s;
+                float m2[3], c2, d2[6];
                 int nd, i, walk;
                 hf__col_closest(k + cb, cand[0], cand[1], cand[2], cc, dd);
                 hf__ftl_cap(p, l, cc, rr[cb], n, m2, &c2);
                 for (walk = 0; walk < HF__FTL_QUICK; ++walk) {
                     nd = hf__ftl_cap_pair(mq, cq, m2, c2, d2);
                     if (nd != 2) break;
-                    /* the last place's side; both where it is square */
-                    for (w = 0; w < 3; ++w) dd[w] = d2[w] - d2[3 + w];
-                    s = hf__dot3(dd, v);
-                    if (s < 0.0f) {
-                        for (w = 0; w < 3; ++w) d2[w] = d2[3 + w];
-                        nd = 1;
-                    } else if (s > 0.0f) {
-                        nd = 1;
-                    }
+                    nd = hf__ftl_last_side(d2, v);
                     for (i = 0; i < nd; ++i) {
                         for (w = 0; w < 3; ++w)
                             cand[w] = p[w] + l * d2[3 * i + w];
@@ -6767,17 +6775,7 @@ HF__PRIVATE void hf__ftl_collide_point(float *x, float *y, float *z,
                     }
                 } else {
                     nd = hf__ftl_cap_pair(m[c], cmin[c], m[e], cmin[e], d);
-                    if (nd == 2 && phase == 0) { /* the last place's side */
-                        float dd[3], s;
-                        for (w = 0; w < 3; ++w) dd[w] = d[w] - d[3 + w];
-                        s = hf__dot3(dd, v);
-                        if (s < 0.0f) {
-                            for (w = 0; w < 3; ++w) d[w] = d[3 + w];
-                            nd = 1;
-                        } else if (s > 0.0f) {
-                            nd = 1;
-                        }
-                    }
+                    if (nd == 2 && phase == 0) nd = hf__ftl_last_side(d, v);
                 }
                 for (i = 0; i < nd; ++i) {
                     float cand[3], pen, dot;
