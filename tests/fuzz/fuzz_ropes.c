@@ -28,7 +28,8 @@
 
 typedef struct fz_ropeset {
     hf_ropes ropes;
-    void *mem;
+    void *mem; /* 64-byte aligned in raw, so that A and B lay out alike */
+    void *raw;
     size_t bytes;
     /* snapshot for "nothing written" */
     hf_ropes ropes0;
@@ -158,9 +159,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             hf_ropes sentinel;
             memset(s, 0, sizeof *s);
             s->bytes = bytes;
-            s->mem = malloc(bytes);
+            /* the same alignment for both: hf_ropes_init aligns its
+               arrays within the memory, and the states are compared
+               byte for byte */
+            s->raw = malloc(bytes + 64u);
             s->mem0 = malloc(bytes);
-            if (!s->mem || !s->mem0) abort();
+            if (!s->raw || !s->mem0) abort();
+            s->mem = (unsigned char *)s->raw +
+                     (64u - (size_t)((uintptr_t)s->raw & 63u));
             memset(s->mem, 0x5A, bytes);
             /* too small: untouched */
             memset(&sentinel, FZ_SENTINEL, sizeof sentinel);
@@ -388,9 +394,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     free(rnrm);
     free(rtan);
     free(out);
-    free(A.mem);
+    free(A.raw);
     free(A.mem0);
-    free(B.mem);
+    free(B.raw);
     free(B.mem0);
     return 0;
 }
