@@ -2442,7 +2442,11 @@ HFDEF hf_result hf_fur_set_kernels(hf_fur *fur, int simd, int nontemporal);
    body of the kernel). Every level uses the same IEEE operations in the
    same order (no FMA), so all give the same bytes (in the default
    rounding mode: the vector encoders of normalized formats convert by
-   the mode, the scalar one adds and takes away 1.5 * 2^23). Each
+   the mode, the scalar one adds and takes away 1.5 * 2^23; and with
+   x86's flush-to-zero and denormals-are-zero clear: under either, a
+   subnormal that one kernel copies and another adds 0 to becomes two
+   values, and compilers fold such operations as the default mode
+   allows). Each
    stage's descriptors (one a width, with its instruction set) and the
    one resolver that picks among them by the level hf_simd_resolve gives
    are in 1, "The dispatch".
