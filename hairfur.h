@@ -9362,8 +9362,64 @@ HF__PRIVATE void hf__grid_cube(const hf_ropes *ro, int rc, int n,
        memory, each rope's minimum waiting for the last one's store */
     float lx = HF_ROPE_MAX_COORD * 16.0f, ly = lx, lz = lx;
     float hx = -lx, hy = -lx, hz = -lx;
-    int r, i;
-    for (r = 0; r < rc; ++r) {
+    int r = 0, i;
+#if HF__V4
+    /* four ropes a step, each lane's bounds as the scalar loop's, then
+       the lanes' (the smallest and largest of the same values: a minimum
+       is one of them whatever the order, the compares skip NaN as the
+       scalar ones do) */
+    if (rc >= 4) {
+        const hf__v4 s101 = HF__SET1(1.01f), s1e4 = HF__SET1(1e-4f);
+        hf__v4 vlx = HF__SET1(lx), vly = vlx, vlz = vlx;
+        hf__v4 vhx = HF__SET1(hx), vhy = vhx, vhz = vhx;
+        hf__v4 vlong = HF__SET1(0.0f);
+        float b[7][4];
+        int l;
+#if HF__SSE
+#define HF__GRID_MIN(x, y) _mm_min_ps(x, y) /* x < y ? x : y */
+#else
+#define HF__GRID_MIN(x, y) HF__SEL(HF__LT(x, y), x, y)
+#endif
+        for (; r + 4 <= rc; r += 4) {
+            const hf__v4 len = HF__LD(ro->length + r);
+            const hf__v4 L = HF__ADD(HF__MUL(len, s101), s1e4);
+            const hf__v4 x = HF__LD(cx + r), y = HF__LD(cy + r);
+            const hf__v4 z = HF__LD(cz + r);
+            hf__v4 t;
+            vlong = HF__MAX(len, vlong);
+            t = HF__SUB(x, L);
+            vlx = HF__GRID_MIN(t, vlx);
+            t = HF__ADD(x, L);
+            vhx = HF__MAX(t, vhx);
+            t = HF__SUB(y, L);
+            vly = HF__GRID_MIN(t, vly);
+            t = HF__ADD(y, L);
+            vhy = HF__MAX(t, vhy);
+            t = HF__SUB(z, L);
+            vlz = HF__GRID_MIN(t, vlz);
+            t = HF__ADD(z, L);
+            vhz = HF__MAX(t, vhz);
+        }
+#undef HF__GRID_MIN
+        HF__ST(b[0], vlx);
+        HF__ST(b[1], vhx);
+        HF__ST(b[2], vly);
+        HF__ST(b[3], vhy);
+        HF__ST(b[4], vlz);
+        HF__ST(b[5], vhz);
+        HF__ST(b[6], vlong);
+        for (l = 0; l < 4; ++l) {
+            lx = b[0][l] < lx ? b[0][l] : lx;
+            hx = b[1][l] > hx ? b[1][l] : hx;
+            ly = b[2][l] < ly ? b[2][l] : ly;
+            hy = b[3][l] > hy ? b[3][l] : hy;
+            lz = b[4][l] < lz ? b[4][l] : lz;
+            hz = b[5][l] > hz ? b[5][l] : hz;
+            longest = b[6][l] > longest ? b[6][l] : longest;
+        }
+    }
+#endif
+    for (; r < rc; ++r) {
         const float L = ro->length[r] * 1.01f + 1e-4f;
         longest = ro->length[r] > longest ? ro->length[r] : longest;
         lx = cx[r] - L < lx ? cx[r] - L : lx;
