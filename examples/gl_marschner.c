@@ -2588,10 +2588,15 @@ static void glm_usage(FILE *fp)
 "                     normal)\n"
 "  --settle S         seconds simulated at the first pose before frame 1, so\n"
 "                     hair starts hanging (default 0)\n"
+        );
+    fprintf(fp, /* in parts: C99 compilers need only take 4095 bytes */
 "  --rest-from-gravity S  seconds the hair hangs at the first pose (under\n"
 "                     gravity, the colliders and the grid) before the draped\n"
 "                     shape becomes the rest shape that --stiffness holds,\n"
-"                     [0, 600] (default 0: the grown shape)\n"
+"                     [0, 600] (default 0: the grown shape); give it (1 s\n"
+"                     is enough) when grown hair passes through a collider,\n"
+"                     as long hair does through a body's: the stiffness\n"
+"                     pulls such hair into it and it never rests\n"
 "  --volume F         hair-hair repulsion, so hair keeps a volume: F times\n"
 "                     gravity's pull where the density changes by the\n"
 "                     typical density across a grid cell, [0, 100]\n"
@@ -2614,7 +2619,7 @@ static void glm_usage(FILE *fp)
 "  --color-variation V  each strand's colour times [1 - V, 1 + V]\n"
 "  --width-variation V  each strand's width times [1 - V, 1 + V]\n"
         );
-    fprintf(fp, /* two strings: C99 compilers need only take 4095 bytes */
+    fprintf(fp,
 "Drawing\n"
 "  --kajiya           Kajiya-Kay instead of Marschner\n"
 "  --no-shadows       no self-shadowing (default: deep opacity maps)\n"
