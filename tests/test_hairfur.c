@@ -6057,6 +6057,91 @@ static void test_ropes_resting_in_crease(void)
     }
 }
 
+/* A rope grown straight through a capsule (from under a head through a
+   trapezius proxy, as on scene V's body) with global stiffness 0.3:
+   draped first (global stiffness off) and that pose taken as its rest
+   shape (hf_ropes_rest_from_pose), it comes to rest on the capsule. With
+   the grown rest shape it never does (docs/physics.md, "A rest shape
+   through a collider"). Scalar and SIMD give the same bytes. */
+static void test_ropes_rest_through_collider(void)
+{
+    enum { R = 4, P = 32, NSET = 2 };
+    static float rest[3 * R * P], a[3 * R * P], b[3 * R * P];
+    const float root0[3] = {-0.02539167f, -0.09609173f, -0.01102916f};
+    float root[3 * R], nrm[3 * R], tan[3 * R], st;
+    hf_collider col;
+    hf_rope_params p;
+    tr_set s[NSET];
+    double vmax = 0.0, worst_in = 0.0;
+    int r, f, k, same = 1;
+    for (k = 0; k < NSET; ++k)
+        if (!tr_open(&s[k], R, P)) { CHECK(0); return; }
+    memset(&col, 0, sizeof col);
+    col.type = HF_COLLIDER_CAPSULE;
+    col.a[0] = -0.05f;
+    col.a[1] = -0.19f;
+    col.a[2] = -0.02f;
+    col.b[0] = -0.17f;
+    col.b[1] = -0.23f;
+    col.b[2] = -0.02f;
+    col.radius = 0.06f;
+    for (r = 0; r < R; ++r) { /* four roots 2 mm apart, radial normals */
+        float *o = root + 3 * r, *n = nrm + 3 * r, *t = tan + 3 * r, d;
+        for (k = 0; k < 3; ++k) o[k] = root0[k];
+        o[2] -= 0.002f * (float)r;
+        d = sqrtf(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
+        for (k = 0; k < 3; ++k) n[k] = o[k] / d;
+        d = sqrtf(n[1] * n[1] + n[2] * n[2]);
+        t[0] = 0.0f;
+        t[1] = -n[2] / d;
+        t[2] = n[1] / d;
+        tr_straight(rest, r, P, o, n, 0.3f);
+    }
+    for (k = 0; k < NSET; ++k)
+        CHECK_EQ_INT(hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm,
+                                       tan, 0),
+                     HF_OK);
+    hf_rope_params_init(&p);
+    p.local_stiffness_root = 0.3f;
+    p.root_stiffness = 0.5f;
+    p.damping = 0.1f;
+    for (f = 0; f < 720; ++f) {
+        if (f == 120) { /* draped: the rest shape, then the stiffness */
+            for (k = 0; k < NSET; ++k)
+                CHECK_EQ_INT(hf_ropes_rest_from_pose(&s[k].ro, 0, R), HF_OK);
+            p.global_stiffness_root = 0.3f;
+            p.damping = 0.0f; /* the default */
+        }
+        for (k = 0; k < NSET; ++k) {
+            p.simd = k == 0 ? HF_SIMD_SCALAR : HF_SIMD_AUTO;
+            if (k == 0 && f >= 660) tr_snapshot(&s[0].ro, a);
+            CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, 1.0f / 60.0f, &p, &col,
+                                       1),
+                         HF_OK);
+        }
+        same &= tr_same(&s[0].ro, &s[1].ro, 1);
+        if (f < 660) continue;
+        tr_snapshot(&s[0].ro, b);
+        {
+            const double v = tr_max_move(a, b, (size_t)R * P) * 60.0;
+            vmax = v > vmax ? v : vmax;
+        }
+        for (r = 0; r < R * P; ++r) {
+            const double in = col.radius - tr_dist_seg(b + 3 * r, &col);
+            worst_in = in > worst_in ? in : worst_in;
+        }
+    }
+    hf_ropes_max_stretch(&s[0].ro, 0, R, &st);
+    if (getenv("TR_VERBOSE"))
+        printf("rest through a collider, draped: %g m/s, stretch %g, "
+               "deepest %g m\n", vmax, (double)st, worst_in);
+    CHECK(same);
+    CHECK(vmax < 1e-3);
+    CHECK(st <= 1e-4f);
+    CHECK(worst_in <= 0.0);
+    for (k = 0; k < NSET; ++k) tr_close(&s[k]);
+}
+
 /* 6. ropes: collisions that never stretch: its tests, in the order they run */
 #define T_CONTACT_TESTS(X)                                                     \
     X(test_ropes_capsule_keeps_length)                                         \
@@ -6069,6 +6154,7 @@ static void test_ropes_resting_in_crease(void)
     X(test_ropes_resting_on_joint)                                             \
     X(test_ropes_nape_crease)                                                  \
     X(test_ropes_resting_in_crease)                                            \
+    X(test_ropes_rest_through_collider)                                        \
     X(test_ropes_crowded_colliders)
 
 /* ---- ropes: hair-hair interaction on a grid ------------------------------ */
