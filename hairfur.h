@@ -7986,6 +7986,16 @@ HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__ftl_cap_pair)(const HF__VEC *m1,
         d, HF__VAND(ok, HF__VGT(det, HF__VSET1(1e-8f))));
 }
 
+/* hf__ftl_last_side's measure on W lanes: which of two crossings d[0..5]
+   lies on the side of the point's last motion v (s < 0: the second, s >
+   0: the first, 0: neither) */
+HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__ftl_side)(const HF__VEC *d,
+                                                    const HF__VEC *v)
+{
+    return HF__VDOT3(HF__VSUB(d[0], d[3]), HF__VSUB(d[1], d[4]),
+                     HF__VSUB(d[2], d[5]), v[0], v[1], v[2]);
+}
+
 /* A step of hf__ftl_crease: of the crossings d2 (both, on the lanes of
    go), the one on the side of the last place, and where that is square
    both in order; a lane that clears gets its point in best. Returns the
@@ -8001,8 +8011,7 @@ HF__VTARGET HF__INLINE HF__VEC HF__KN(hf__ftl_crease_try)(
     const HF__VEC zero = HF__VSET1(0.0f);
     HF__VEC s, side, sq, pen, ok, hold, held = zero, cw[3], rw = zero;
     int i;
-    s = HF__VDOT3(HF__VSUB(d2[0], d2[3]), HF__VSUB(d2[1], d2[4]),
-                  HF__VSUB(d2[2], d2[5]), v[0], v[1], v[2]);
+    s = HF__KN(hf__ftl_side)(d2, v);
     side = HF__VOR(HF__VLT(s, zero), HF__VGT(s, zero));
     sq = HF__VSEL(side, zero, go);
     HF__UNROLL for (i = 0; i < 3; ++i) {
@@ -8140,9 +8149,7 @@ HF__VTARGET HF__INLINE void HF__KN(hf__ftl_rounds)(
                     if (!HF__VMASK(HF__VAND(need, valid))) continue;
                     nd = 2;
                     if (phase == 0) { /* the crease's side of the last place */
-                        const HF__VEC s = HF__VDOT3(
-                            HF__VSUB(d[0], d[3]), HF__VSUB(d[1], d[4]),
-                            HF__VSUB(d[2], d[5]), v[0], v[1], v[2]);
+                        const HF__VEC s = HF__KN(hf__ftl_side)(d, v);
                         keep[0] = HF__VSEL(HF__VLT(s, zero), zero, keep[0]);
                         keep[1] = HF__VSEL(HF__VGT(s, zero), zero, keep[1]);
                     }
@@ -9369,44 +9376,32 @@ HF__PRIVATE void hf__grid_cube(const hf_ropes *ro, int rc, int n,
        is one of them whatever the order, the compares skip NaN as the
        scalar ones do) */
     if (rc >= 4) {
+        const float *c[3];
         const hf__v4 s101 = HF__SET1(1.01f), s1e4 = HF__SET1(1e-4f);
-        hf__v4 vlx = HF__SET1(lx), vly = vlx, vlz = vlx;
-        hf__v4 vhx = HF__SET1(hx), vhy = vhx, vhz = vhx;
-        hf__v4 vlong = HF__SET1(0.0f);
+        hf__v4 vlo[3], vhi[3], vlong = HF__SET1(0.0f);
         float b[7][4];
-        int l;
-#if HF__SSE
-#define HF__GRID_MIN(x, y) _mm_min_ps(x, y) /* x < y ? x : y */
-#else
-#define HF__GRID_MIN(x, y) HF__SEL(HF__LT(x, y), x, y)
-#endif
+        int l, q;
+        c[0] = cx;
+        c[1] = cy;
+        c[2] = cz;
+        for (q = 0; q < 3; ++q) {
+            vlo[q] = HF__SET1(lx);
+            vhi[q] = HF__SET1(hx);
+        }
         for (; r + 4 <= rc; r += 4) {
             const hf__v4 len = HF__LD(ro->length + r);
             const hf__v4 L = HF__ADD(HF__MUL(len, s101), s1e4);
-            const hf__v4 x = HF__LD(cx + r), y = HF__LD(cy + r);
-            const hf__v4 z = HF__LD(cz + r);
-            hf__v4 t;
             vlong = HF__MAX(len, vlong);
-            t = HF__SUB(x, L);
-            vlx = HF__GRID_MIN(t, vlx);
-            t = HF__ADD(x, L);
-            vhx = HF__MAX(t, vhx);
-            t = HF__SUB(y, L);
-            vly = HF__GRID_MIN(t, vly);
-            t = HF__ADD(y, L);
-            vhy = HF__MAX(t, vhy);
-            t = HF__SUB(z, L);
-            vlz = HF__GRID_MIN(t, vlz);
-            t = HF__ADD(z, L);
-            vhz = HF__MAX(t, vhz);
+            HF__UNROLL for (q = 0; q < 3; ++q) {
+                const hf__v4 x = HF__LD(c[q] + r), t = HF__SUB(x, L);
+                vlo[q] = HF__SEL(HF__LT(t, vlo[q]), t, vlo[q]);
+                vhi[q] = HF__MAX(HF__ADD(x, L), vhi[q]);
+            }
         }
-#undef HF__GRID_MIN
-        HF__ST(b[0], vlx);
-        HF__ST(b[1], vhx);
-        HF__ST(b[2], vly);
-        HF__ST(b[3], vhy);
-        HF__ST(b[4], vlz);
-        HF__ST(b[5], vhz);
+        for (q = 0; q < 3; ++q) {
+            HF__ST(b[2 * q], vlo[q]);
+            HF__ST(b[2 * q + 1], vhi[q]);
+        }
         HF__ST(b[6], vlong);
         for (l = 0; l < 4; ++l) {
             lx = b[0][l] < lx ? b[0][l] : lx;

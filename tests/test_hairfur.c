@@ -535,6 +535,49 @@ static double tr_dist_seg(const float *p, const hf_collider *c)
     return sqrt(dx * dx + dy * dy + dz * dz);
 }
 
+/* A tangent for root normal n: across it in the y-z plane (n not along
+   x). */
+static void tr_tangent_yz(const float *n, float *t)
+{
+    const float d = sqrtf(n[1] * n[1] + n[2] * n[2]);
+    t[0] = 0.0f;
+    t[1] = -n[2] / d;
+    t[2] = n[1] / d;
+}
+
+/* One 1/60 s step of the same ropes in s[0] (scalar) and s[1] (the best
+   level) against colliders col[0 .. ncol); from frame `watch` on, the
+   largest point speed of s[0] in the step (m/s) raises *vmax and the
+   deepest point inside a collider *deep (a, b: scratch for two
+   snapshots). Returns whether the two sets hold the same bytes. */
+static int tr_pair_step(tr_set *s, int f, int watch, hf_rope_params *p,
+                        const hf_collider *col, int ncol, float *a, float *b,
+                        double *vmax, double *deep)
+{
+    const int n = s[0].ro.rope_count * s[0].ro.points;
+    int k, i, c;
+    for (k = 0; k < 2; ++k) {
+        p->simd = k == 0 ? HF_SIMD_SCALAR : HF_SIMD_AUTO;
+        if (k == 0 && f >= watch) tr_snapshot(&s[0].ro, a);
+        CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, s[k].ro.rope_count,
+                                   1.0f / 60.0f, p, col, ncol),
+                     HF_OK);
+    }
+    if (f >= watch) {
+        double v;
+        tr_snapshot(&s[0].ro, b);
+        v = tr_max_move(a, b, (size_t)n) * 60.0;
+        *vmax = v > *vmax ? v : *vmax;
+        for (i = 0; i < n; ++i)
+            for (c = 0; c < ncol; ++c) {
+                const double in = col[c].radius - tr_dist_seg(b + 3 * i,
+                                                              &col[c]);
+                *deep = in > *deep ? in : *deep;
+            }
+    }
+    return tr_same(&s[0].ro, &s[1].ro, 1);
+}
+
 /* Rope r's root on the 0.1 m head sphere at polar angle el and azimuth az:
    its direction, normal (the same), tangent (+y) and root point. */
 static void tr_on_head(int r, double el, double az, float *dirs, float *nrm,
@@ -5979,7 +6022,7 @@ static void test_ropes_resting_in_crease(void)
     hf_collider col[2];
     hf_rope_params p;
     tr_set s[NSET];
-    int shape, r, f, k, c;
+    int shape, r, f, k;
     for (shape = 0; shape < 2; ++shape) {
         double vmax = 0.0, worst_in = 0.0;
         int same = 1;
@@ -6010,10 +6053,7 @@ static void test_ropes_resting_in_crease(void)
             n[2] = 0.2f;
             d = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
             for (k = 0; k < 3; ++k) n[k] /= d;
-            d = sqrtf(n[1] * n[1] + n[2] * n[2]);
-            t[0] = 0.0f;
-            t[1] = -n[2] / d;
-            t[2] = n[1] / d;
+            tr_tangent_yz(n, t);
             tr_straight(rest, r, P, o, n, 0.3f);
         }
         for (k = 0; k < NSET; ++k)
@@ -6021,30 +6061,9 @@ static void test_ropes_resting_in_crease(void)
                                            tan, 0),
                          HF_OK);
         hf_rope_params_init(&p);
-        for (f = 0; f < 600; ++f) {
-            for (k = 0; k < NSET; ++k) {
-                p.simd = k == 0 ? HF_SIMD_SCALAR : HF_SIMD_AUTO;
-                if (k == 0 && f >= 540) tr_snapshot(&s[0].ro, a);
-                CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, 1.0f / 60.0f, &p,
-                                           col, 2),
-                             HF_OK);
-            }
-            same &= tr_same(&s[0].ro, &s[1].ro, 1);
-            if (f < 540) continue;
-            tr_snapshot(&s[0].ro, b);
-            {
-                const double v = tr_max_move(a, b, (size_t)R * P) * 60.0;
-                vmax = v > vmax ? v : vmax;
-            }
-            for (r = 0; r < R * P; ++r) {
-                if (r % P == 0) continue; /* the roots are outside */
-                for (c = 0; c < 2; ++c) {
-                    const double in = col[c].radius - tr_dist_seg(b + 3 * r,
-                                                                  &col[c]);
-                    worst_in = in > worst_in ? in : worst_in;
-                }
-            }
-        }
+        for (f = 0; f < 600; ++f)
+            same &= tr_pair_step(s, f, 540, &p, col, 2, a, b, &vmax,
+                                 &worst_in);
         hf_ropes_max_stretch(&s[0].ro, 0, R, &st);
         if (getenv("TR_VERBOSE"))
             printf("crease %s: %g m/s, stretch %g, deepest %g m\n",
@@ -6091,10 +6110,7 @@ static void test_ropes_rest_through_collider(void)
         o[2] -= 0.002f * (float)r;
         d = sqrtf(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
         for (k = 0; k < 3; ++k) n[k] = o[k] / d;
-        d = sqrtf(n[1] * n[1] + n[2] * n[2]);
-        t[0] = 0.0f;
-        t[1] = -n[2] / d;
-        t[2] = n[1] / d;
+        tr_tangent_yz(n, t);
         tr_straight(rest, r, P, o, n, 0.3f);
     }
     for (k = 0; k < NSET; ++k)
@@ -6112,24 +6128,8 @@ static void test_ropes_rest_through_collider(void)
             p.global_stiffness_root = 0.3f;
             p.damping = 0.0f; /* the default */
         }
-        for (k = 0; k < NSET; ++k) {
-            p.simd = k == 0 ? HF_SIMD_SCALAR : HF_SIMD_AUTO;
-            if (k == 0 && f >= 660) tr_snapshot(&s[0].ro, a);
-            CHECK_EQ_INT(hf_ropes_step(&s[k].ro, 0, R, 1.0f / 60.0f, &p, &col,
-                                       1),
-                         HF_OK);
-        }
-        same &= tr_same(&s[0].ro, &s[1].ro, 1);
-        if (f < 660) continue;
-        tr_snapshot(&s[0].ro, b);
-        {
-            const double v = tr_max_move(a, b, (size_t)R * P) * 60.0;
-            vmax = v > vmax ? v : vmax;
-        }
-        for (r = 0; r < R * P; ++r) {
-            const double in = col.radius - tr_dist_seg(b + 3 * r, &col);
-            worst_in = in > worst_in ? in : worst_in;
-        }
+        same &= tr_pair_step(s, f, 660, &p, &col, 1, a, b, &vmax,
+                             &worst_in);
     }
     hf_ropes_max_stretch(&s[0].ro, 0, R, &st);
     if (getenv("TR_VERBOSE"))
