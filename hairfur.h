@@ -6926,7 +6926,8 @@ HF__INLINE float hf__root_offset(const hf_ropes *ro, int r)
 }
 
 /* Tile [x, e): the box of its roots over the call (the frame position
-   this frame and last, between which the sub-steps move it), and how far
+   this frame and last, between which the sub-steps move it, and where
+   the root is now), and how far
    a point can be from it: reach[0] for the root, reach[1] for row 1 and
    reach[2] for the tip (the root's rest offset plus the rest lengths
    before the row, the most of any rope of the tile, grown by 1e-3 and by
@@ -6948,6 +6949,14 @@ HF__PRIVATE void hf__bp_tile_box(const hf_ropes *ro, int x, int e, float *lo,
             hi[k] = c > hi[k] ? c : hi[k];
             lo[k] = p < lo[k] ? p : lo[k];
             hi[k] = p > hi[k] ? p : hi[k];
+        }
+        for (k = 0; k < 3; ++k) { /* where the root is: a rope that glides
+                                     or is animated need not be at its
+                                     frame, and hf__ropes_mark_roots
+                                     tests it there */
+            const float q = (k == 0 ? ro->x : k == 1 ? ro->y : ro->z)[r];
+            lo[k] = q < lo[k] ? q : lo[k];
+            hi[k] = q > hi[k] ? q : hi[k];
         }
         m0 = o > m0 ? o : m0;
         m1 = o + ro->rest_length[r] > m1 ? o + ro->rest_length[r] : m1;
