@@ -1241,9 +1241,11 @@ HFDEF void hf_ropes_destroy(hf_ropes *ropes);
    `positions` (world space, rope-major, 0 = 12); root r at byte
    r * root_stride (0 = 12) of root_pos, root_normal and root_tangent. Arrays
    are indexed by the absolute rope index, so pass the same pointers for
-   every range. Stores the rest pose in root-frame coordinates and the rest
-   segment lengths (zero-length segments are allowed), and puts the rope at
-   rest (as hf_ropes_reset). Errors: HF_ERROR_NULL_POINTER,
+   every range. Stores the rest pose in root-frame coordinates (a
+   coordinate below 2^-40 m as 0, as a root frame's components below 2^-40:
+   rounding noise whose products would be slow subnormal floats) and the
+   rest segment lengths (zero-length segments are allowed), and puts the
+   rope at rest (as hf_ropes_reset). Errors: HF_ERROR_NULL_POINTER,
    HF_ERROR_BAD_RANGE, HF_ERROR_BAD_STRIDE, HF_ERROR_NON_FINITE,
    HF_ERROR_BAD_PARAMETER (a coordinate beyond HF_ROPE_MAX_COORD),
    HF_ERROR_DEGENERATE (a zero normal); nothing is written then. */
@@ -5518,6 +5520,17 @@ HF__PRIVATE void hf__rope_basis(const float *p, const float *n,
     hf__cross3(f + 9, t, n);
 }
 
+/* Rounding noise below 2^-40 in a root frame or a rest offset (a root on
+   a mesh's plane of symmetry has components that should be 0), made 0:
+   products of two such values are subnormal, and every rope row that
+   multiplies them then runs many times slower. */
+#define HF__ROPE_TINY (1.0f / 1099511627776.0f)
+
+HF__PRIVATE float hf__rope_clean(float x)
+{
+    return HF_FABS(x) < HF__ROPE_TINY ? 0.0f : x;
+}
+
 HF__PRIVATE const float *hf__rope_at(const float *base, int stride, size_t i)
 {
     return (const float *)((const unsigned char *)base +
@@ -5558,13 +5571,15 @@ HF__PRIVATE hf_result hf__ropes_check_roots(int first, int count,
     return HF_OK;
 }
 
-/* Store frame f[12] in rows [row0, row0 + 12) of the frame array. */
+/* Store frame f[12] in rows [row0, row0 + 12) of the frame array (its
+   noise made 0: hf__rope_clean). */
 HF__PRIVATE void hf__rope_put_frame(hf_ropes *ro, int row0, int r,
                                     const float *f)
 {
     size_t R = (size_t)ro->rope_count;
     int k;
-    for (k = 0; k < 12; ++k) ro->frame[(size_t)(row0 + k) * R + r] = f[k];
+    for (k = 0; k < 12; ++k)
+        ro->frame[(size_t)(row0 + k) * R + r] = hf__rope_clean(f[k]);
 }
 
 HF__PRIVATE void hf__rope_get_frame(const hf_ropes *ro, int row0, int r,
@@ -5595,6 +5610,14 @@ HF__PRIVATE hf__v4 hf__rope_unit_v4(const hf__v4 *v, hf__v4 *out)
                                    out[2])));
     HF__UNROLL for (k = 0; k < 3; ++k) out[k] = HF__MUL(out[k], l2);
     return HF__GT(m, HF__SET1(1e-30f));
+}
+
+/* hf__rope_clean on four lanes */
+HF__PRIVATE hf__v4 hf__rope_clean_v4(hf__v4 x)
+{
+    const hf__v4 zero = HF__SET1(0.0f),
+                 a = HF__SEL(HF__LT(x, zero), HF__SUB(zero, x), x);
+    return HF__SEL(HF__LT(a, HF__SET1(HF__ROPE_TINY)), zero, x);
 }
 
 /* hf__ropes_write_roots_v1 for ropes [r, r + 4): the same operations lane
@@ -5651,10 +5674,13 @@ HF__PRIVATE void hf__ropes_write_roots4(hf_ropes *ro, int r, const float *pos,
     }
     HF__CROSS3(v, t, n); /* f = p, t, n, t x n */
     HF__UNROLL for (k = 0; k < 3; ++k) {
-        HF__ST(ro->frame + (size_t)k * R + (size_t)r, p[k]);
-        HF__ST(ro->frame + (size_t)(3 + k) * R + (size_t)r, t[k]);
-        HF__ST(ro->frame + (size_t)(6 + k) * R + (size_t)r, n[k]);
-        HF__ST(ro->frame + (size_t)(9 + k) * R + (size_t)r, v[k]);
+        HF__ST(ro->frame + (size_t)k * R + (size_t)r, hf__rope_clean_v4(p[k]));
+        HF__ST(ro->frame + (size_t)(3 + k) * R + (size_t)r,
+               hf__rope_clean_v4(t[k]));
+        HF__ST(ro->frame + (size_t)(6 + k) * R + (size_t)r,
+               hf__rope_clean_v4(n[k]));
+        HF__ST(ro->frame + (size_t)(9 + k) * R + (size_t)r,
+               hf__rope_clean_v4(v[k]));
     }
 }
 
@@ -5806,9 +5832,9 @@ HF__PRIVATE hf_result hf__ropes_set_rest(
             size_t i = (size_t)j * R + (size_t)r;
             float d[3];
             hf__sub3(d, q, f);
-            ropes->rest_u[i] = hf__dot3(d, f + 3);
-            ropes->rest_v[i] = hf__dot3(d, f + 6);
-            ropes->rest_w[i] = hf__dot3(d, f + 9);
+            ropes->rest_u[i] = hf__rope_clean(hf__dot3(d, f + 3));
+            ropes->rest_v[i] = hf__rope_clean(hf__dot3(d, f + 6));
+            ropes->rest_w[i] = hf__rope_clean(hf__dot3(d, f + 9));
             if (j + 1 < (int)P) {
                 const float *q1 = hf__rope_at(positions, position_stride,
                                               (size_t)r * P + j + 1);
@@ -5941,9 +5967,9 @@ HFDEF hf_result hf_ropes_rest_from_pose(hf_ropes *ropes, int first,
             d[0] = ropes->x[i] - f[0];
             d[1] = ropes->y[i] - f[1];
             d[2] = ropes->z[i] - f[2];
-            ropes->rest_u[i] = hf__dot3(d, f + 3);
-            ropes->rest_v[i] = hf__dot3(d, f + 6);
-            ropes->rest_w[i] = hf__dot3(d, f + 9);
+            ropes->rest_u[i] = hf__rope_clean(hf__dot3(d, f + 3));
+            ropes->rest_v[i] = hf__rope_clean(hf__dot3(d, f + 6));
+            ropes->rest_w[i] = hf__rope_clean(hf__dot3(d, f + 9));
         }
         hf__rope_reset_one(ropes, r);
     }
