@@ -1197,6 +1197,7 @@ typedef struct hf_ropes {
     float *frame;   /* 24 rows of rope_count: current frame, previous one */
     float *scratch; /* per-call temporaries, rows of rope_count */
     float *last_h, *blend, *length;
+    float *longest; /* each rope's longest rest segment */
     double *time;
     unsigned char *mode;
     float *glide; /* 6 point rows: a glide's start pose and velocity */
@@ -1206,7 +1207,7 @@ typedef struct hf_ropes {
 } hf_ropes;
 
 /* Bytes of memory hf_ropes_init needs for rope_count ropes of `points`
-   points (about 64 bytes per point plus 230 per rope). Errors:
+   points (about 64 bytes per point plus 234 per rope). Errors:
    HF_ERROR_NULL_POINTER, HF_ERROR_BAD_COUNT (rope_count < 1 or points < 2),
    HF_ERROR_OVERFLOW. */
 HFDEF hf_result hf_ropes_memory_size(int rope_count, int points,
@@ -5299,9 +5300,9 @@ HFDEF hf_result hf_rope_params_validate(const hf_rope_params *params,
 
 /* Array sizes in bytes, in layout order: 10 point arrays (x, y, z, px, py,
    pz, rest_u, rest_v, rest_w, rest_length), frame, scratch, last_h, blend,
-   length, time, mode, root_inside, glide (6 point rows). Each starts on a
-   64-byte boundary. */
-enum { HF__ROPE_ARRAYS = 19 };
+   length, time, mode, root_inside, glide (6 point rows), longest. Each
+   starts on a 64-byte boundary. */
+enum { HF__ROPE_ARRAYS = 20 };
 
 HF__PRIVATE hf_result hf__ropes_layout(int rope_count, int points,
                                        size_t sizes[HF__ROPE_ARRAYS],
@@ -5320,7 +5321,7 @@ HF__PRIVATE hf_result hf__ropes_layout(int rope_count, int points,
         !hf__mul_size(R, sizeof(double), &sizes[15]) ||
         !hf__mul_size(pt, 6, &sizes[18]))
         return HF_ERROR_OVERFLOW;
-    sizes[12] = sizes[13] = sizes[14] = R * sizeof(float);
+    sizes[12] = sizes[13] = sizes[14] = sizes[19] = R * sizeof(float);
     sizes[16] = sizes[17] = R;
     for (i = 0; i < HF__ROPE_ARRAYS; ++i) {
         size_t s = sizes[i] + 63u;
@@ -5383,6 +5384,7 @@ HFDEF hf_result hf_ropes_init(hf_ropes *ropes, int rope_count, int points,
     ropes->mode = (unsigned char *)arr[16];
     ropes->root_inside = (unsigned char *)arr[17];
     ropes->glide = (float *)arr[18];
+    ropes->longest = (float *)arr[19];
     /* identity frames (tangent x, normal y, bitangent cross(t, n) = z),
        current and previous */
     R = (size_t)rope_count;
@@ -5824,7 +5826,7 @@ HF__PRIVATE hf_result hf__ropes_set_rest(
     hf__ropes_write_roots(ropes, first, count, root_pos, root_normal,
                           root_tangent, root_stride, simd);
     for (r = first; r < first + count; ++r) {
-        float f[12], total = 0.0f;
+        float f[12], total = 0.0f, longest = 0.0f;
         hf__rope_get_frame(ropes, 0, r, f);
         for (j = 0; j < (int)P; ++j) {
             const float *q =
@@ -5845,11 +5847,13 @@ HF__PRIVATE hf_result hf__ropes_set_rest(
                             (double)e[2] * e[2]);
                 ropes->rest_length[i] = (float)l;
                 total += (float)l;
+                longest = (float)l > longest ? (float)l : longest;
             } else {
                 ropes->rest_length[i] = 0.0f;
             }
         }
         ropes->length[r] = total;
+        ropes->longest[r] = longest;
         hf__rope_reset_one(ropes, r);
     }
     return HF_OK;
@@ -6957,16 +6961,66 @@ HF__INLINE float hf__root_offset(const hf_ropes *ro, int r)
    a point can be from it: reach[0] for the root, reach[1] for row 1 and
    reach[2] for the tip (the root's rest offset plus the rest lengths
    before the row, the most of any rope of the tile, grown by 1e-3 and by
-   1e-4 of the coordinates, for rounding: hf__bp_reach). */
+   1e-4 of the coordinates, for rounding: hf__bp_reach); m: the largest
+   root offset, segment and rope (offset plus length), for the rows
+   between (hf__bp_reach). */
 HF__PRIVATE void hf__bp_tile_box(const hf_ropes *ro, int x, int e, float *lo,
-                                 float *hi, float *big, float *reach)
+                                 float *hi, float *big, float *reach, float *m)
 {
     const size_t R = (size_t)ro->rope_count;
-    float m0 = 0.0f, m1 = 0.0f, mt = 0.0f;
+    float m0 = 0.0f, m1 = 0.0f, mt = 0.0f, ms = 0.0f;
     int r, k;
     *big = 0.0f;
     for (k = 0; k < 3; ++k) lo[k] = hi[k] = ro->frame[(size_t)k * R + x];
-    for (r = x; r < e; ++r) {
+    r = x;
+#if HF__V4
+    if (e - x >= 4) { /* four ropes a lane: the same minima and maxima */
+        hf__v4 vlo[3], vhi[3], v0 = HF__SET1(0.0f), v1 = v0, vt = v0, vs = v0;
+        float g[4];
+        int i;
+        for (k = 0; k < 3; ++k) vlo[k] = vhi[k] = HF__SET1(lo[k]);
+        for (; r + 4 <= e; r += 4) {
+            const hf__v4 u = HF__LD(ro->rest_u + r), v = HF__LD(ro->rest_v + r),
+                         w = HF__LD(ro->rest_w + r),
+                         o = HF__SQRT(HF__ADD(
+                             HF__ADD(HF__MUL(u, u), HF__MUL(v, v)),
+                             HF__MUL(w, w)));
+            HF__UNROLL for (k = 0; k < 3; ++k) {
+                const hf__v4 c = HF__LD(ro->frame + (size_t)k * R + r),
+                             pv = HF__LD(ro->frame + (size_t)(12 + k) * R + r),
+                             q = HF__LD((k == 0   ? ro->x
+                                         : k == 1 ? ro->y
+                                                  : ro->z) +
+                                        r);
+                vlo[k] = HF__SEL(HF__LT(c, vlo[k]), c, vlo[k]);
+                vhi[k] = HF__SEL(HF__GT(c, vhi[k]), c, vhi[k]);
+                vlo[k] = HF__SEL(HF__LT(pv, vlo[k]), pv, vlo[k]);
+                vhi[k] = HF__SEL(HF__GT(pv, vhi[k]), pv, vhi[k]);
+                vlo[k] = HF__SEL(HF__LT(q, vlo[k]), q, vlo[k]);
+                vhi[k] = HF__SEL(HF__GT(q, vhi[k]), q, vhi[k]);
+            }
+            v0 = HF__MAX(o, v0);
+            v1 = HF__MAX(HF__ADD(o, HF__LD(ro->rest_length + r)), v1);
+            vt = HF__MAX(HF__ADD(o, HF__LD(ro->length + r)), vt);
+            vs = HF__MAX(HF__LD(ro->longest + r), vs);
+        }
+        for (k = 0; k < 3; ++k) {
+            HF__ST(g, vlo[k]);
+            for (i = 0; i < 4; ++i) lo[k] = g[i] < lo[k] ? g[i] : lo[k];
+            HF__ST(g, vhi[k]);
+            for (i = 0; i < 4; ++i) hi[k] = g[i] > hi[k] ? g[i] : hi[k];
+        }
+        HF__ST(g, v0);
+        for (i = 0; i < 4; ++i) m0 = g[i] > m0 ? g[i] : m0;
+        HF__ST(g, v1);
+        for (i = 0; i < 4; ++i) m1 = g[i] > m1 ? g[i] : m1;
+        HF__ST(g, vt);
+        for (i = 0; i < 4; ++i) mt = g[i] > mt ? g[i] : mt;
+        HF__ST(g, vs);
+        for (i = 0; i < 4; ++i) ms = g[i] > ms ? g[i] : ms;
+    }
+#endif
+    for (; r < e; ++r) {
         const float o = hf__root_offset(ro, r);
         for (k = 0; k < 3; ++k) {
             const float c = ro->frame[(size_t)k * R + r],
@@ -6987,6 +7041,7 @@ HF__PRIVATE void hf__bp_tile_box(const hf_ropes *ro, int x, int e, float *lo,
         m0 = o > m0 ? o : m0;
         m1 = o + ro->rest_length[r] > m1 ? o + ro->rest_length[r] : m1;
         mt = o + ro->length[r] > mt ? o + ro->length[r] : mt;
+        ms = ro->longest[r] > ms ? ro->longest[r] : ms;
     }
     for (k = 0; k < 3; ++k) {
         const float a = HF_FABS(lo[k]) > HF_FABS(hi[k]) ? HF_FABS(lo[k])
@@ -6998,35 +7053,24 @@ HF__PRIVATE void hf__bp_tile_box(const hf_ropes *ro, int x, int e, float *lo,
     reach[0] = m0 * 1.001f + 1e-4f * (1.0f + *big + m0);
     reach[1] = m1 * 1.001f + 1e-4f * (1.0f + *big + m1);
     reach[2] = mt * 1.001f + 1e-4f * (1.0f + *big + mt);
+    m[0] = m0;
+    m[1] = ms;
+    m[2] = mt;
 }
 
-/* reach[j] for every row j of tile [x, e), as hf__bp_tile_box's bounds. */
-HF__PRIVATE void hf__bp_reach(const hf_ropes *ro, int x, int e, float big,
+/* reach[j] for every row j of a tile: at most its largest root offset
+   plus j of its longest segments, and at most its longest rope (m, from
+   hf__bp_tile_box), grown as hf__bp_tile_box's bounds. A bound from three
+   numbers, where the rows' own sums would read every row of the tile's
+   rest lengths, a cache miss each. */
+HF__PRIVATE void hf__bp_reach(const float *m, int points, float big,
                               float *reach)
 {
-    const size_t R = (size_t)ro->rope_count;
-    float cum[HF__BP_TILE] = {0.0f}; /* past e: 0, which no maximum takes */
-    int r, j, k;
-    for (r = x; r < e; ++r) cum[r - x] = hf__root_offset(ro, r);
-    for (j = 0; j < ro->points; ++j) {
-        float m[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-        if (j > 0) {
-            const float *L = ro->rest_length + (size_t)(j - 1) * R + x;
-            if (e - x == HF__BP_TILE) {
-                HF__UNROLL for (r = 0; r < HF__BP_TILE; ++r) cum[r] += L[r];
-            } else {
-                for (r = 0; r < e - x; ++r) cum[r] += L[r];
-            }
-        }
-        /* the maximum in four chains (the same float, in any order) */
-        HF__UNROLL for (r = 0; r < HF__BP_TILE; r += 4) {
-            HF__UNROLL for (k = 0; k < 4; ++k)
-                m[k] = cum[r + k] > m[k] ? cum[r + k] : m[k];
-        }
-        m[0] = m[1] > m[0] ? m[1] : m[0];
-        m[2] = m[3] > m[2] ? m[3] : m[2];
-        m[0] = m[2] > m[0] ? m[2] : m[0];
-        reach[j] = m[0] * 1.001f + 1e-4f * (1.0f + big + m[0]);
+    int j;
+    for (j = 0; j < points; ++j) {
+        float c = m[0] + (float)j * m[1];
+        c = c < m[2] ? c : m[2];
+        reach[j] = c * 1.001f + 1e-4f * (1.0f + big + c);
     }
 }
 
@@ -7036,7 +7080,8 @@ HF__PRIVATE int hf__bp_lists(const hf_ropes *ro, int a, int b,
                              const hf_collider *col, int ncol, float margin,
                              hf__bp *bp)
 {
-    float tlo[HF__BP_TILES][3], thi[HF__BP_TILES][3], tr[HF__BP_TILES][3];
+    float tlo[HF__BP_TILES][3], thi[HF__BP_TILES][3], tr[HF__BP_TILES][3],
+        tm[HF__BP_TILES][3];
     float big[HF__BP_TILES], reach[HF_MAX_POINTS];
     float clo[3], chi[3], box[HF__BP_CAND][6];
     int cand[HF__BP_CAND], slot[HF__BP_CAND], nc = 0, t, x, e, c, k, n = 0;
@@ -7047,7 +7092,7 @@ HF__PRIVATE int hf__bp_lists(const hf_ropes *ro, int a, int b,
     /* the chunk's tiles and their reach, then the colliders near any */
     for (t = 0, x = a; t < HF__BP_TILES && x < b; ++t, x = e) {
         e = b - x > HF__BP_TILE ? x + HF__BP_TILE : b;
-        hf__bp_tile_box(ro, x, e, tlo[t], thi[t], &big[t], tr[t]);
+        hf__bp_tile_box(ro, x, e, tlo[t], thi[t], &big[t], tr[t], tm[t]);
         for (k = 0; k < 3; ++k) {
             clo[k] = t == 0 || tlo[t][k] - tr[t][2] < clo[k]
                          ? tlo[t][k] - tr[t][2]
@@ -7098,8 +7143,7 @@ HF__PRIVATE int hf__bp_lists(const hf_ropes *ro, int a, int b,
                 j = 0;
             else if (!(gap < tr[t][1])) { /* beyond row 1: which row */
                 if (!got) {
-                    e = b - x > HF__BP_TILE ? x + HF__BP_TILE : b;
-                    hf__bp_reach(ro, x, e, big[t], reach);
+                    hf__bp_reach(tm[t], ro->points, big[t], reach);
                     got = 1;
                 }
                 /* the first row that reaches it: reach grows row by row */
@@ -8322,6 +8366,7 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__ftl_flush)(hf_ropes *ro, const float *F,
 {
     const size_t R = (size_t)ro->rope_count, o0 = (size_t)(j - 1) * R;
     int sig[HF__FTL_HITS][HF__FTL_NEAR + 1]; /* [0]: count, -1: too many */
+    float pl[4][HF__FTL_HITS]; /* the points' parents x, y, z, segments */
     unsigned char done[HF__FTL_HITS];
     unsigned short nxt[HF__FTL_HITS], first[2 * HF__FTL_HITS],
         last[2 * HF__FTL_HITS];
@@ -8329,31 +8374,33 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__ftl_flush)(hf_ropes *ro, const float *F,
     hf__col_prep spare;
     hf__cols cl;
     int g, i, m, c, n, hm, idx[HF__W];
-    /* the signatures, W points at a time: the colliders of the chunk's
-       union relevant to each point, in the array's order (as indices
-       into the union). A collider relevant to a point is in its tile's
-       list, at a row it reaches: the broadphase keeps every collider a
-       rope can reach. */
+    /* the signatures: the colliders of the chunk's union relevant to
+       each point, in the array's order (as indices into the union). A
+       collider relevant to a point is in its tile's list, at a row it
+       reaches: the broadphase keeps every collider a rope can reach. The
+       points' parents and segments gathered once (the last lane
+       repeated), then each collider prepared once and tested against
+       them, W at a time. */
     for (g = 0; g < h->n; g += HF__W) {
-        HF__VEC p[3], l;
-        int lanes = 0;
         for (i = 0; i < HF__W; ++i) {
             idx[i] = h->r[g + i < h->n ? g + i : h->n - 1];
-            if (g + i < h->n) {
-                sig[g + i][0] = 0;
-                lanes |= 1 << i;
-            }
+            if (g + i < h->n) sig[g + i][0] = 0;
         }
-        p[0] = HF__VGATHER(ro->x + o0, idx);
-        p[1] = HF__VGATHER(ro->y + o0, idx);
-        p[2] = HF__VGATHER(ro->z + o0, idx);
-        l = HF__VGATHER(ro->rest_length + o0, idx);
-        for (c = 0; c < bp->nu; ++c) {
-            HF__KN(hf__col) v;
-            int bits;
-            if (hf__bp_union_row(bp, c) > j) continue;
-            HF__KN(hf__col_prep)(hf__bp_union_at(bp, c, &spare), &v);
-            bits = lanes & HF__VMASK(HF__KN(hf__ftl_relevant)(&v, p, l));
+        HF__VST(pl[0] + g, HF__VGATHER(ro->x + o0, idx));
+        HF__VST(pl[1] + g, HF__VGATHER(ro->y + o0, idx));
+        HF__VST(pl[2] + g, HF__VGATHER(ro->z + o0, idx));
+        HF__VST(pl[3] + g, HF__VGATHER(ro->rest_length + o0, idx));
+    }
+    for (c = 0; c < bp->nu; ++c) {
+        HF__KN(hf__col) v;
+        if (hf__bp_union_row(bp, c) > j) continue;
+        HF__KN(hf__col_prep)(hf__bp_union_at(bp, c, &spare), &v);
+        for (g = 0; g < h->n; g += HF__W) {
+            const HF__VEC p[3] = {HF__VLD(pl[0] + g), HF__VLD(pl[1] + g),
+                                  HF__VLD(pl[2] + g)};
+            int bits = HF__VMASK(
+                HF__KN(hf__ftl_relevant)(&v, p, HF__VLD(pl[3] + g)));
+            if (h->n - g < HF__W) bits &= (1 << (h->n - g)) - 1;
             for (i = 0; bits; ++i, bits >>= 1) {
                 int *sg = sig[g + i];
                 if (!(bits & 1) || sg[0] < 0) continue;

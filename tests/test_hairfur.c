@@ -3776,10 +3776,10 @@ static void test_ropes_memory_init_create(void)
         CHECK_EQ_INT(hf_ropes_memory_size(0x7fffffff, 0x7fffffff, &size),
                      HF_ERROR_OVERFLOW);
     CHECK_EQ_INT(hf_ropes_memory_size(1000, 16, &size), HF_OK);
-    /* 16 point rows (10 arrays and the glide's 6), 56 floats + 1 double +
+    /* 16 point rows (10 arrays and the glide's 6), 57 floats + 1 double +
        2 bytes per rope, padding */
-    CHECK(size >= 1000u * 16u * 64u + 1000u * (56u * 4u + 10u));
-    CHECK(size <= 1000u * 16u * 64u + 1000u * (56u * 4u + 10u) + 64u * 20u);
+    CHECK(size >= 1000u * 16u * 64u + 1000u * (57u * 4u + 10u));
+    CHECK(size <= 1000u * 16u * 64u + 1000u * (57u * 4u + 10u) + 64u * 21u);
     CHECK_EQ_INT(hf_ropes_memory_size(3, 5, &size2), HF_OK);
 
     mem = (unsigned char *)malloc(size2 + 1);
