@@ -6955,6 +6955,20 @@ HF__INLINE float hf__root_offset(const hf_ropes *ro, int r)
     return HF_SQRTF(u * u + v * v + w * w);
 }
 
+#if HF__V4
+/* The least of x and v's four lanes (greatest: the greatest), compared
+   as the scalar loops compare: the same float whatever the order */
+HF__INLINE float hf__v4_fold(hf__v4 v, float x, int greatest)
+{
+    float g[4];
+    int i;
+    HF__ST(g, v);
+    for (i = 0; i < 4; ++i)
+        x = greatest ? (g[i] > x ? g[i] : x) : (g[i] < x ? g[i] : x);
+    return x;
+}
+#endif
+
 /* Tile [x, e): the box of its roots over the call (the frame position
    this frame and last, between which the sub-steps move it, and where
    the root is now), and how far
@@ -6976,8 +6990,6 @@ HF__PRIVATE void hf__bp_tile_box(const hf_ropes *ro, int x, int e, float *lo,
 #if HF__V4
     if (e - x >= 4) { /* four ropes a lane: the same minima and maxima */
         hf__v4 vlo[3], vhi[3], v0 = HF__SET1(0.0f), v1 = v0, vt = v0, vs = v0;
-        float g[4];
-        int i;
         for (k = 0; k < 3; ++k) vlo[k] = vhi[k] = HF__SET1(lo[k]);
         for (; r + 4 <= e; r += 4) {
             const hf__v4 u = HF__LD(ro->rest_u + r), v = HF__LD(ro->rest_v + r),
@@ -7005,19 +7017,13 @@ HF__PRIVATE void hf__bp_tile_box(const hf_ropes *ro, int x, int e, float *lo,
             vs = HF__MAX(HF__LD(ro->longest + r), vs);
         }
         for (k = 0; k < 3; ++k) {
-            HF__ST(g, vlo[k]);
-            for (i = 0; i < 4; ++i) lo[k] = g[i] < lo[k] ? g[i] : lo[k];
-            HF__ST(g, vhi[k]);
-            for (i = 0; i < 4; ++i) hi[k] = g[i] > hi[k] ? g[i] : hi[k];
+            lo[k] = hf__v4_fold(vlo[k], lo[k], 0);
+            hi[k] = hf__v4_fold(vhi[k], hi[k], 1);
         }
-        HF__ST(g, v0);
-        for (i = 0; i < 4; ++i) m0 = g[i] > m0 ? g[i] : m0;
-        HF__ST(g, v1);
-        for (i = 0; i < 4; ++i) m1 = g[i] > m1 ? g[i] : m1;
-        HF__ST(g, vt);
-        for (i = 0; i < 4; ++i) mt = g[i] > mt ? g[i] : mt;
-        HF__ST(g, vs);
-        for (i = 0; i < 4; ++i) ms = g[i] > ms ? g[i] : ms;
+        m0 = hf__v4_fold(v0, m0, 1);
+        m1 = hf__v4_fold(v1, m1, 1);
+        mt = hf__v4_fold(vt, mt, 1);
+        ms = hf__v4_fold(vs, ms, 1);
     }
 #endif
     for (; r < e; ++r) {
