@@ -5593,16 +5593,20 @@ HF__PRIVATE void hf__rope_get_frame(const hf_ropes *ro, int row0, int r,
 }
 
 #if HF__V4
+/* |x| on four lanes (a -0 stays -0: only a compare sees it) */
+HF__PRIVATE hf__v4 hf__rope_abs_v4(hf__v4 x)
+{
+    const hf__v4 zero = HF__SET1(0.0f);
+    return HF__SEL(HF__LT(x, zero), HF__SUB(zero, x), x);
+}
+
 /* hf__rope_unit on four vectors; returns the lanes it returns 1 for (the
    others: anything in out) */
 HF__PRIVATE hf__v4 hf__rope_unit_v4(const hf__v4 *v, hf__v4 *out)
 {
-    const hf__v4 zero = HF__SET1(0.0f);
     hf__v4 a[3], m, l2;
     int k;
-    /* |v| (a -0 stays -0: only a zero m sees it) */
-    HF__UNROLL for (k = 0; k < 3; ++k)
-        a[k] = HF__SEL(HF__LT(v[k], zero), HF__SUB(zero, v[k]), v[k]);
+    HF__UNROLL for (k = 0; k < 3; ++k) a[k] = hf__rope_abs_v4(v[k]);
     m = a[0];
     m = HF__SEL(HF__GT(a[1], m), a[1], m);
     m = HF__SEL(HF__GT(a[2], m), a[2], m);
@@ -5617,9 +5621,8 @@ HF__PRIVATE hf__v4 hf__rope_unit_v4(const hf__v4 *v, hf__v4 *out)
 /* hf__rope_clean on four lanes */
 HF__PRIVATE hf__v4 hf__rope_clean_v4(hf__v4 x)
 {
-    const hf__v4 zero = HF__SET1(0.0f),
-                 a = HF__SEL(HF__LT(x, zero), HF__SUB(zero, x), x);
-    return HF__SEL(HF__LT(a, HF__SET1(HF__ROPE_TINY)), zero, x);
+    return HF__SEL(HF__LT(hf__rope_abs_v4(x), HF__SET1(HF__ROPE_TINY)),
+                   HF__SET1(0.0f), x);
 }
 
 /* hf__ropes_write_roots_v1 for ropes [r, r + 4): the same operations lane
@@ -9467,8 +9470,7 @@ HF__PRIVATE void hf__grid_cube(const hf_ropes *ro, int rc, int n,
         const float *c[3];
         const hf__v4 s101 = HF__SET1(1.01f), s1e4 = HF__SET1(1e-4f);
         hf__v4 vlo[3], vhi[3], vlong = HF__SET1(0.0f);
-        float b[7][4];
-        int l, q;
+        int q;
         c[0] = cx;
         c[1] = cy;
         c[2] = cz;
@@ -9486,20 +9488,13 @@ HF__PRIVATE void hf__grid_cube(const hf_ropes *ro, int rc, int n,
                 vhi[q] = HF__MAX(HF__ADD(x, L), vhi[q]);
             }
         }
-        for (q = 0; q < 3; ++q) {
-            HF__ST(b[2 * q], vlo[q]);
-            HF__ST(b[2 * q + 1], vhi[q]);
-        }
-        HF__ST(b[6], vlong);
-        for (l = 0; l < 4; ++l) {
-            lx = b[0][l] < lx ? b[0][l] : lx;
-            hx = b[1][l] > hx ? b[1][l] : hx;
-            ly = b[2][l] < ly ? b[2][l] : ly;
-            hy = b[3][l] > hy ? b[3][l] : hy;
-            lz = b[4][l] < lz ? b[4][l] : lz;
-            hz = b[5][l] > hz ? b[5][l] : hz;
-            longest = b[6][l] > longest ? b[6][l] : longest;
-        }
+        lx = hf__v4_fold(vlo[0], lx, 0);
+        hx = hf__v4_fold(vhi[0], hx, 1);
+        ly = hf__v4_fold(vlo[1], ly, 0);
+        hy = hf__v4_fold(vhi[1], hy, 1);
+        lz = hf__v4_fold(vlo[2], lz, 0);
+        hz = hf__v4_fold(vhi[2], hz, 1);
+        longest = hf__v4_fold(vlong, longest, 1);
     }
 #endif
     for (; r < rc; ++r) {

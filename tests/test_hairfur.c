@@ -546,6 +546,18 @@ static void tr_tangent_yz(const float *n, float *t)
     t[2] = n[1] / d;
 }
 
+/* The same rest shapes (rope-major, packed) and roots in the nset sets
+   of s, each holding all its ropes. */
+static void tr_rest_all(tr_set *s, int nset, const float *rest,
+                        const float *root, const float *nrm, const float *tan)
+{
+    int k;
+    for (k = 0; k < nset; ++k)
+        CHECK_EQ_INT(hf_ropes_set_rest(&s[k].ro, 0, s[k].ro.rope_count, rest,
+                                       0, root, nrm, tan, 0),
+                     HF_OK);
+}
+
 /* One 1/60 s step of the same ropes in s[0] (scalar) and s[1] (the best
    level) against colliders col[0 .. ncol); from frame `watch` on, the
    largest point speed of s[0] in the step (m/s) raises *vmax and the
@@ -5060,10 +5072,7 @@ static void test_ropes_contacts_match_scalar(void)
             }
         }
 #undef T_RND
-        for (k = 0; k < NSET; ++k)
-            CHECK_EQ_INT(hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root,
-                                           nrm, tan, 0),
-                         HF_OK);
+        tr_rest_all(s, NSET, rest, root, nrm, tan);
         for (f = 0; f < 4; ++f) {
             for (r = 0; r < R; ++r) root[3 * r] += 0.01f;
             for (k = 0; k < NSET; ++k) {
@@ -6011,10 +6020,7 @@ static void test_ropes_nape_crease(void)
         for (k = 0; k < 3; ++k) t[k] /= d;
         tr_straight(rest, r, P, o, n, 0.3f);
     }
-    for (k = 0; k < NSET; ++k)
-        CHECK_EQ_INT(hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm,
-                                       tan, 0),
-                     HF_OK);
+    tr_rest_all(s, NSET, rest, root, nrm, tan);
     hf_rope_params_init(&p); /* scene V's ropes */
     p.global_stiffness_root = 0.2f;
     p.local_stiffness_root = 0.3f;
@@ -6106,10 +6112,7 @@ static void test_ropes_resting_in_crease(void)
             tr_tangent_yz(n, t);
             tr_straight(rest, r, P, o, n, 0.3f);
         }
-        for (k = 0; k < NSET; ++k)
-            CHECK_EQ_INT(hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm,
-                                           tan, 0),
-                         HF_OK);
+        tr_rest_all(s, NSET, rest, root, nrm, tan);
         hf_rope_params_init(&p);
         for (f = 0; f < 600; ++f)
             same &= tr_pair_step(s, f, 540, &p, col, 2, a, b, &vmax,
@@ -6163,10 +6166,7 @@ static void test_ropes_rest_through_collider(void)
         tr_tangent_yz(n, t);
         tr_straight(rest, r, P, o, n, 0.3f);
     }
-    for (k = 0; k < NSET; ++k)
-        CHECK_EQ_INT(hf_ropes_set_rest(&s[k].ro, 0, R, rest, 0, root, nrm,
-                                       tan, 0),
-                     HF_OK);
+    tr_rest_all(s, NSET, rest, root, nrm, tan);
     hf_rope_params_init(&p);
     p.local_stiffness_root = 0.3f;
     p.root_stiffness = 0.5f;
