@@ -2697,6 +2697,20 @@ HF__INLINE int hf__mask_neon(float32x4_t m)
 #define HF__CROSS3(o, a, b) HF__CROSS3_OF(HF__SUB, HF__MUL, o, a, b)
 #define HF__POSE(o, a, b, c, x, y, z)                                          \
     HF__POSE_OF(HF__ADD, HF__MUL, o, a, b, c, x, y, z)
+/* All bits set in lane l where bit l of mask is. */
+HF__INLINE hf__v4 hf__lanes_v4(int mask)
+{
+#if HF__SSE
+    return _mm_castsi128_ps(_mm_setr_epi32(-(mask & 1), -(mask >> 1 & 1),
+                                           -(mask >> 2 & 1),
+                                           -(mask >> 3 & 1)));
+#else
+    const uint32_t b[4] = {(uint32_t)-(mask & 1), (uint32_t)-(mask >> 1 & 1),
+                           (uint32_t)-(mask >> 2 & 1),
+                           (uint32_t)-(mask >> 3 & 1)};
+    return vreinterpretq_f32_u32(vld1q_u32(b));
+#endif
+}
 #endif
 
 /* ---- 0.5 kernel texts: their words at each width ------------------------ */
@@ -2726,6 +2740,17 @@ HF__INLINE int hf__mask_neon(float32x4_t m)
 #define HF__PASS_INTERP 2 /* interpolation at 8 and 16 lanes */
 #define HF__PASS_POINTS 3 /* interpolation into GPU points, likewise */
 #define HF__PASS_GRID 4   /* the hair-hair grid's splat and push, likewise */
+#if HF__AVX2
+/* hf__lanes_v4 for eight lanes */
+HF__TARGET_AVX2 HF__INLINE __m256 hf__lanes_v8(int mask)
+{
+    return _mm256_castsi256_ps(
+        _mm256_setr_epi32(-(mask & 1), -(mask >> 1 & 1), -(mask >> 2 & 1),
+                          -(mask >> 3 & 1), -(mask >> 4 & 1),
+                          -(mask >> 5 & 1), -(mask >> 6 & 1),
+                          -(mask >> 7 & 1)));
+}
+#endif
 #if HF__AVX512
 /* Sixteen lanes' words: a mask stays a vector of all-set or all-clear
    lanes, as the texts expect, so a compare's mask register is widened to
@@ -2759,7 +2784,8 @@ HF__TARGET_AVX512 HF__INLINE int hf__mask16(__m512 m)
    HF__VTARGET: its functions' target attribute; HF__VZEROUPPER(): the
    registers readied for SSE or scalar code after AVX (see
    HF__TARGET_AVX2); HF__VGATHER(row, idx): row[idx[0 .. HF__W)] in a
-   vector. HF__VLD ... HF__VMASK mean what the four-lane operations
+   vector; HF__VLANES(m): every bit of lane l set where bit l of m is.
+   HF__VLD ... HF__VMASK mean what the four-lane operations
    without the V mean (HF__LD, ...), the same IEEE operation at every
    width, so every width gives the scalar code's bytes (the compares
    false on NaN, HF__VMAX maxps's order). */
@@ -2786,6 +2812,7 @@ HF__TARGET_AVX512 HF__INLINE int hf__mask16(__m512 m)
 #define HF__VAND HF__AND
 #define HF__VSEL HF__SEL
 #define HF__VMASK HF__MASK
+#define HF__VLANES(m) hf__lanes_v4(m)
 #elif HF__W == 8
 #define HF__KN(name) name##_v8
 #define HF__VEC __m256
@@ -2811,6 +2838,7 @@ HF__TARGET_AVX512 HF__INLINE int hf__mask16(__m512 m)
 #define HF__VAND(x, y) _mm256_and_ps(x, y)
 #define HF__VSEL(m, a, b) _mm256_blendv_ps(b, a, m)
 #define HF__VMASK(m) _mm256_movemask_ps(m)
+#define HF__VLANES(m) hf__lanes_v8(m)
 #elif HF__W == 16
 #define HF__KN(name) name##_v16
 #define HF__VEC __m512
@@ -2840,6 +2868,7 @@ HF__TARGET_AVX512 HF__INLINE int hf__mask16(__m512 m)
 #define HF__VAND(x, y) hf__and16(x, y)
 #define HF__VSEL(m, a, b) hf__sel16(m, a, b)
 #define HF__VMASK(m) hf__mask16(m)
+#define HF__VLANES(m) hf__m16((__mmask16)(m))
 #else
 #error "hairfur.h: a kernel pass is built at 4, 8 or 16 lanes (HF__W)"
 #endif
@@ -6853,6 +6882,18 @@ HF__INLINE int hf__ftl_relevant(const hf__col_prep *k, const float *p, float l)
 
 /* ---- 6.5 the broadphase ------------------------------------------------- */
 
+/* The index of x's lowest set bit (x != 0). */
+HF__INLINE int hf__lowest_bit(unsigned x)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    return __builtin_ctz(x);
+#else
+    int i = 0;
+    for (; !(x & 1u); x >>= 1) ++i;
+    return i;
+#endif
+}
+
 /* Ropes are simulated in chunks of up to HF__BP_TILES tiles of
    HF__BP_TILE neighbouring ropes, each chunk taking every sub-step before
    the next (which also keeps a chunk's rows in the core's own cache, and
@@ -7802,16 +7843,20 @@ HF__INLINE void hf__ropes_prefetch_row(const hf_ropes *ro, int j, int r)
    (AVX-512) after hf__ropes_collide; HF__VZEROUPPER() readies the
    registers for the scalar code of the rare paths. */
 
-/* A prepared collider in every lane, rr^2, and whether its axis is a point
-   (e == 0: a sphere or a zero-length capsule). */
+/* Prepared colliders, one a lane (the same in every lane, or each lane
+   its own: hf__col_lanes), rr^2, the lanes whose axis is a point (pm: e
+   == 0, a sphere or a zero-length capsule) and those that are capsules
+   (cm); point: every lane's axis a point; some_point, capsule, shrink:
+   some lane's, or a lane's collider that can shrink for a root. */
 typedef struct HF__KN(hf__col) {
-    HF__VEC a[3], e[3], inv, rr2, rr, inner;
-    int point, capsule, shrink;
+    HF__VEC a[3], e[3], inv, rr2, rr, inner, pm, cm;
+    int point, some_point, capsule, shrink;
 } HF__KN(hf__col);
 
 HF__VTARGET HF__INLINE void HF__KN(hf__col_prep)(const hf__col_prep *k,
                                                  HF__KN(hf__col) *v)
 {
+    const HF__VEC zero = HF__VSET1(0.0f), all = HF__VEQ(zero, zero);
     int i;
     for (i = 0; i < 3; ++i) {
         v->a[i] = HF__VSET1(k->a[i]);
@@ -7821,9 +7866,53 @@ HF__VTARGET HF__INLINE void HF__KN(hf__col_prep)(const hf__col_prep *k,
     v->rr2 = HF__VSET1(k->rr * k->rr);
     v->rr = HF__VSET1(k->rr);
     v->inner = HF__VSET1(k->inner);
-    v->point = k->e[0] == 0.0f && k->e[1] == 0.0f && k->e[2] == 0.0f;
+    v->point = v->some_point =
+        k->e[0] == 0.0f && k->e[1] == 0.0f && k->e[2] == 0.0f;
     v->capsule = k->inv > 0.0f;
     v->shrink = k->inner > 0.0f;
+    v->pm = v->point ? all : zero;
+    v->cm = v->capsule ? all : zero;
+}
+
+/* Lane l's own collider id[l] of the chunk's union, in each lane: each
+   collider prepared once, for the lanes that share it (neighbouring
+   ropes mostly do), taken where they are by selects. */
+HF__VTARGET HF__INLINE void HF__KN(hf__col_lanes)(const hf__bp *bp,
+                                                  const int *id,
+                                                  HF__KN(hf__col) *v)
+{
+    const int all = (1 << HF__W) - 1;
+    hf__col_prep spare;
+    HF__KN(hf__col) w;
+    int todo = all, pb = 0, cb = 0, l, i;
+    while (todo) {
+        const int f = hf__lowest_bit((unsigned)todo), c = id[f];
+        HF__KN(hf__col) *d = todo == all ? v : &w;
+        int bits = 0;
+        for (l = f; l < HF__W; ++l) bits |= (id[l] == c) << l;
+        HF__KN(hf__col_prep)(hf__bp_union_at(bp, c, &spare), d);
+        if (bits == all) return; /* one collider in every lane */
+        if (d == &w) {
+            const HF__VEC m = HF__VLANES(bits);
+            HF__UNROLL for (i = 0; i < 3; ++i) {
+                v->a[i] = HF__VSEL(m, w.a[i], v->a[i]);
+                v->e[i] = HF__VSEL(m, w.e[i], v->e[i]);
+            }
+            v->inv = HF__VSEL(m, w.inv, v->inv);
+            v->rr2 = HF__VSEL(m, w.rr2, v->rr2);
+            v->rr = HF__VSEL(m, w.rr, v->rr);
+            v->inner = HF__VSEL(m, w.inner, v->inner);
+            v->shrink |= w.shrink;
+        }
+        if (d->point) pb |= bits;
+        if (d->capsule) cb |= bits;
+        todo &= ~bits;
+    }
+    v->point = pb == all;
+    v->some_point = pb != 0;
+    v->capsule = cb != 0;
+    v->pm = HF__VLANES(pb);
+    v->cm = HF__VLANES(cb);
 }
 
 /* hf__col_closest on W points */
@@ -7844,6 +7933,9 @@ HF__KN(hf__col_closest)(const HF__KN(hf__col) *k, const HF__VEC *x, HF__VEC *c)
         t = HF__VSEL(HF__VLT(t, zero), zero, HF__VSEL(HF__VGT(t, one), one, t));
         HF__UNROLL for (i = 0; i < 3; ++i)
             c[i] = HF__VADD(k->a[i], HF__VMUL(k->e[i], t));
+        if (k->some_point) /* the point axes' lanes: the centre itself */
+            HF__UNROLL for (i = 0; i < 3; ++i)
+                c[i] = HF__VSEL(k->pm, k->a[i], c[i]);
     }
     HF__UNROLL for (i = 0; i < 3; ++i) d[i] = HF__VSUB(x[i], c[i]);
     return HF__VDOT3(d[0], d[1], d[2], d[0], d[1], d[2]);
@@ -8187,8 +8279,11 @@ HF__VTARGET HF__INLINE void HF__KN(hf__ftl_rounds)(
     const HF__VEC *v, HF__VEC act, HF__VEC *best, HF__VEC *out_pen)
 {
     const HF__VEC zero = HF__VSET1(0.0f), act0 = act;
+    /* cv: the lanes a cap is theirs (a capsule's second one, only the
+       lanes whose collider is one) */
     HF__VEC m[2 * HF__FTL_NEAR][3], cmin[2 * HF__FTL_NEAR],
-        best_pen = *out_pen, best_dot = HF__VSET1(-2.0f);
+        cv[2 * HF__FTL_NEAR], best_pen = *out_pen,
+        best_dot = HF__VSET1(-2.0f);
     int c, e, i, w, round, ncap, pass, phase;
     for (phase = 0; phase < 2; ++phase)
     for (round = 0; round < HF__FTL_ROUNDS; ++round) {
@@ -8204,11 +8299,11 @@ HF__VTARGET HF__INLINE void HF__KN(hf__ftl_rounds)(
             HF__VEC cc[3];
             HF__KN(hf__col_closest)(k + c, best, cc);
             HF__KN(hf__ftl_cap)(p, l, cc, rr[c], n, m[ncap], &cmin[ncap]);
-            ++ncap;
+            cv[ncap++] = HF__VEQ(zero, zero);
             if (k[c].capsule) {
                 HF__KN(hf__col_closest)(k + c, p, cc);
                 HF__KN(hf__ftl_cap)(p, l, cc, rr[c], n, m[ncap], &cmin[ncap]);
-                ++ncap;
+                cv[ncap++] = k[c].cm;
             }
         }
         for (pass = 0; pass < 2; ++pass) {
@@ -8219,7 +8314,7 @@ HF__VTARGET HF__INLINE void HF__KN(hf__ftl_rounds)(
             }
             for (c = 0; c < ncap; ++c)
             for (e = pass ? c + 1 : c; e < (pass ? ncap : c + 1); ++e) {
-                HF__VEC d[6], valid = HF__VEQ(zero, zero), keep[2];
+                HF__VEC d[6], valid = HF__VAND(cv[c], cv[e]), keep[2];
                 int nd;
                 keep[0] = keep[1] = valid;
                 if (e == c) {
@@ -8303,7 +8398,9 @@ HF__KN(hf__ftl_collide_in)(hf_ropes *ro, const float *F, int j, const int *idx,
         const HF__VEC d2 = HF__KN(hf__col_closest)(k + c, root, cc);
         rr[c] = k[c].rr;
         if (k[c].shrink)
-            rr[c] = HF__VSEL(HF__VLT(d2, HF__VMUL(k[c].inner, k[c].inner)),
+            rr[c] = HF__VSEL(HF__VAND(HF__VGT(k[c].inner, zero),
+                                      HF__VLT(d2, HF__VMUL(k[c].inner,
+                                                           k[c].inner))),
                              HF__VSQRT(d2), rr[c]);
     }
     cn = rw = cw[0] = cw[1] = cw[2] = zero; /* set for ncol >= 1 */
@@ -8361,114 +8458,100 @@ HF__KN(hf__ftl_collide_in)(hf_ropes *ro, const float *F, int j, const int *idx,
 
 /* The points of row j in contact, resolved when the list fills and when
    the row ends. Each point's relevant colliders (hf__ftl_relevant, in the
-   order of the call's array) are its signature; points of one signature
-   go W at a time through the contact kernel against just those, where a
-   group of points with different ones would pay for all of them (the
-   kernel's cost grows with the cube of its colliders). A point with more
-   than HF__FTL_NEAR goes alone through the scalar kernel, which walks
-   them in batches. One and two colliders, the common cases, as constants,
-   so the compiler unrolls the collider loops and keeps the caps in
-   registers. */
+   order of the call's array) are the ones it goes through the contact
+   kernel against, W points at a time, each lane with its own (the
+   kernel's cost grows with the cube of their count, so a group takes
+   points with as many as its own: most have one or two). A point with
+   more than HF__FTL_NEAR goes alone through the scalar kernel, which
+   walks them in batches. One and two colliders, the common cases, as
+   constants, so the compiler unrolls the collider loops. */
 HF__VTARGET HF__PRIVATE void HF__KN(hf__ftl_flush)(hf_ropes *ro, const float *F,
                                                    int j, hf__ftl_hits *h,
                                                    const hf__bp *bp)
 {
     const size_t R = (size_t)ro->rope_count, o0 = (size_t)(j - 1) * R;
-    int sig[HF__FTL_HITS][HF__FTL_NEAR + 1]; /* [0]: count, -1: too many */
-    float pl[4][HF__FTL_HITS]; /* the points' parents x, y, z, segments */
-    unsigned char done[HF__FTL_HITS];
-    unsigned short nxt[HF__FTL_HITS], first[2 * HF__FTL_HITS],
-        last[2 * HF__FTL_HITS];
+    const HF__VEC zero = HF__VSET1(0.0f), one = HF__VSET1(1.0f);
+    /* the points' parents x, y, z and segments; their relevant colliders
+       (indices into the union, as floats) and how many */
+    float pl[4][HF__FTL_HITS], sl[HF__FTL_NEAR][HF__FTL_HITS],
+        nl[HF__FTL_HITS];
+    int list[HF__FTL_HITS], top = 0;
     HF__KN(hf__col) k[HF__FTL_NEAR];
-    hf__col_prep spare;
     hf__cols cl;
-    int g, i, m, c, n, hm, idx[HF__W];
-    /* the signatures: the colliders of the chunk's union relevant to
-       each point, in the array's order (as indices into the union). A
-       collider relevant to a point is in its tile's list, at a row it
-       reaches: the broadphase keeps every collider a rope can reach. The
-       points' parents and segments gathered once (the last lane
-       repeated), then each collider prepared once and tested against
-       them, W at a time. */
+    int g, i, m, c, n, idx[HF__W], id[HF__W];
+    /* The relevant colliders: the points' parents and segments gathered
+       once (the last lane repeated), then each collider of the chunk's
+       union that the row reaches prepared once and tested against them,
+       W at a time, each lane keeping its first HF__FTL_NEAR in the
+       array's order by selects. A collider relevant to a point is in its
+       tile's list, at a row it reaches: the broadphase keeps every
+       collider a rope can reach. (A union too large for a float's whole
+       numbers, beyond any body, goes through the scalar kernel.) */
     for (g = 0; g < h->n; g += HF__W) {
-        for (i = 0; i < HF__W; ++i) {
+        for (i = 0; i < HF__W; ++i)
             idx[i] = h->r[g + i < h->n ? g + i : h->n - 1];
-            if (g + i < h->n) sig[g + i][0] = 0;
-        }
         HF__VST(pl[0] + g, HF__VGATHER(ro->x + o0, idx));
         HF__VST(pl[1] + g, HF__VGATHER(ro->y + o0, idx));
         HF__VST(pl[2] + g, HF__VGATHER(ro->z + o0, idx));
         HF__VST(pl[3] + g, HF__VGATHER(ro->rest_length + o0, idx));
+        HF__VST(nl + g, bp->nu < (1 << 24) ? zero
+                                           : HF__VSET1(HF__FTL_NEAR + 1));
+        for (i = 0; i < HF__FTL_NEAR; ++i) HF__VST(sl[i] + g, zero);
     }
-    for (c = 0; c < bp->nu; ++c) {
+    for (c = 0; c < bp->nu && bp->nu < (1 << 24); ++c) {
+        const HF__VEC cf = HF__VSET1((float)c);
         HF__KN(hf__col) v;
+        hf__col_prep spare;
         if (hf__bp_union_row(bp, c) > j) continue;
         HF__KN(hf__col_prep)(hf__bp_union_at(bp, c, &spare), &v);
         for (g = 0; g < h->n; g += HF__W) {
             const HF__VEC p[3] = {HF__VLD(pl[0] + g), HF__VLD(pl[1] + g),
                                   HF__VLD(pl[2] + g)};
-            int bits = HF__VMASK(
-                HF__KN(hf__ftl_relevant)(&v, p, HF__VLD(pl[3] + g)));
-            if (h->n - g < HF__W) bits &= (1 << (h->n - g)) - 1;
-            for (i = 0; bits; ++i, bits >>= 1) {
-                int *sg = sig[g + i];
-                if (!(bits & 1) || sg[0] < 0) continue;
-                if (sg[0] == HF__FTL_NEAR)
-                    sg[0] = -1;
-                else
-                    sg[1 + sg[0]++] = c;
+            const HF__VEC rel =
+                HF__KN(hf__ftl_relevant)(&v, p, HF__VLD(pl[3] + g));
+            HF__VEC cn;
+            int s;
+            if (!HF__VMASK(rel)) continue;
+            cn = HF__VLD(nl + g);
+            for (s = 0; s < HF__FTL_NEAR; ++s) {
+                const HF__VEC at = HF__VAND(rel, HF__VEQ(cn, HF__VSET1(s)));
+                if (HF__VMASK(at))
+                    HF__VST(sl[s] + g, HF__VSEL(at, cf, HF__VLD(sl[s] + g)));
             }
+            HF__VST(nl + g, HF__VADD(cn, HF__VAND(rel, one)));
         }
     }
-    /* chain the points of each signature (nxt), through a hash table of
-       each one's first and last point, of twice the points' count or
-       more (a power of two) */
-    for (hm = 2; hm < 2 * h->n; hm <<= 1) {
-    }
-    for (i = 0; i < hm; ++i) first[i] = 0xffff;
-    for (i = 0; i < h->n; ++i) {
-        unsigned hash = 2166136261u;
-        done[i] = 0;
-        nxt[i] = 0xffff;
-        /* the count and the colliders (-1, too many: the count alone) */
-        n = sig[i][0] > 0 ? sig[i][0] : 0;
-        for (c = 0; c <= n; ++c)
-            hash = (hash ^ (unsigned)sig[i][c]) * 16777619u;
-        for (m = (int)(hash & (unsigned)(hm - 1));; m = (m + 1) & (hm - 1)) {
-            if (first[m] == 0xffff) {
-                first[m] = last[m] = (unsigned short)i;
-                break;
-            }
-            for (c = 0; c <= n && sig[first[m]][c] == sig[i][c]; ++c) {
-            }
-            if (c > n) {
-                nxt[last[m]] = (unsigned short)i;
-                last[m] = (unsigned short)i;
-                break;
-            }
+    /* a point with more than HF__FTL_NEAR: the scalar kernel */
+    for (g = 0; g < h->n; g += HF__W) {
+        unsigned bits = (unsigned)HF__VMASK(
+            HF__VGT(HF__VLD(nl + g), HF__VSET1(HF__FTL_NEAR)));
+        if (h->n - g < HF__W) bits &= (1u << (h->n - g)) - 1u;
+        for (; bits; bits &= bits - 1u) {
+            const int r = h->r[g + hf__lowest_bit(bits)];
+            HF__VZEROUPPER();
+            hf__bp_tile(bp, r, &cl);
+            hf__ftl_collide_one(ro, F, j, r, &cl);
         }
     }
-    for (i = 0; i < h->n; ++i) {
-        if (done[i]) continue;
-        n = sig[i][0];
-        if (n <= 0) {
-            if (n < 0) {
-                HF__VZEROUPPER();
-                hf__bp_tile(bp, h->r[i], &cl);
-                hf__ftl_collide_one(ro, F, j, h->r[i], &cl);
-            }
-            continue;
+    /* the points of each count n, W at a time (the last lane repeated),
+       each lane with its own colliders */
+    for (n = 1; n <= HF__FTL_NEAR; ++n) {
+        const HF__VEC nv = HF__VSET1((float)n);
+        for (g = top = 0; g < h->n; g += HF__W) {
+            unsigned bits = (unsigned)HF__VMASK(HF__VEQ(HF__VLD(nl + g), nv));
+            if (h->n - g < HF__W) bits &= (1u << (h->n - g)) - 1u;
+            for (; bits; bits &= bits - 1u) list[top++] = g + hf__lowest_bit(bits);
         }
-        for (c = 0; c < n; ++c)
-            HF__KN(hf__col_prep)(hf__bp_union_at(bp, sig[i][1 + c], &spare),
-                                 k + c);
-        /* a signature's points, W at a time (the last lane repeated) */
-        for (m = i; m != 0xffff;) {
-            for (g = 0; m != 0xffff && g < HF__W; m = nxt[m]) {
-                idx[g++] = h->r[m];
-                done[m] = 1;
+        for (m = 0; m < top; m += HF__W) {
+            const int got = top - m < HF__W ? top - m : HF__W;
+            int e;
+            for (e = 0; e < HF__W; ++e)
+                idx[e] = list[m + (e < got ? e : got - 1)];
+            for (c = 0; c < n; ++c) {
+                for (e = 0; e < HF__W; ++e) id[e] = (int)sl[c][idx[e]];
+                HF__KN(hf__col_lanes)(bp, id, k + c);
             }
-            for (c = g; c < HF__W; ++c) idx[c] = idx[g - 1];
+            for (e = 0; e < HF__W; ++e) idx[e] = h->r[idx[e]];
             if (n == 1)
                 HF__KN(hf__ftl_collide_in)(ro, F, j, idx, k, 1);
             else if (n == 2)
@@ -8477,7 +8560,6 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__ftl_flush)(hf_ropes *ro, const float *F,
                 HF__KN(hf__ftl_collide_in)(ro, F, j, idx, k, n);
         }
     }
-
     h->n = 0;
 }
 
@@ -9711,21 +9793,6 @@ HF__INLINE void hf__grid_ints_v4(hf__v4 v, int *out)
 #endif
 }
 
-/* All bits set in lane l where bit l of mask is. */
-HF__INLINE hf__v4 hf__grid_lanes_v4(int mask)
-{
-#if HF__SSE
-    return _mm_castsi128_ps(_mm_setr_epi32(-(mask & 1), -(mask >> 1 & 1),
-                                           -(mask >> 2 & 1),
-                                           -(mask >> 3 & 1)));
-#else
-    const uint32_t b[4] = {(uint32_t)-(mask & 1), (uint32_t)-(mask >> 1 & 1),
-                           (uint32_t)-(mask >> 2 & 1),
-                           (uint32_t)-(mask >> 3 & 1)};
-    return vreinterpretq_f32_u32(vld1q_u32(b));
-#endif
-}
-
 #endif
 
 #if HF__AVX2
@@ -9800,15 +9867,6 @@ HF__TARGET_AVX2 HF__INLINE void hf__grid_ints_v8(__m256 v, int *out)
     _mm256_storeu_si256((__m256i *)(void *)out, _mm256_cvttps_epi32(v));
 }
 
-/* hf__grid_lanes_v4 for eight lanes */
-HF__TARGET_AVX2 HF__INLINE __m256 hf__grid_lanes_v8(int mask)
-{
-    return _mm256_castsi256_ps(
-        _mm256_setr_epi32(-(mask & 1), -(mask >> 1 & 1), -(mask >> 2 & 1),
-                          -(mask >> 3 & 1), -(mask >> 4 & 1),
-                          -(mask >> 5 & 1), -(mask >> 6 & 1),
-                          -(mask >> 7 & 1)));
-}
 #endif
 
 #if HF__AVX512
@@ -9918,12 +9976,6 @@ HF__TARGET_AVX512 HF__INLINE __m512 hf__grid_axis_v16(__m512 c, float o,
 HF__TARGET_AVX512 HF__INLINE void hf__grid_ints_v16(__m512 v, int *out)
 {
     _mm512_storeu_si512((void *)out, _mm512_maskz_cvttps_epi32(0xffff, v));
-}
-
-/* hf__grid_lanes_v4 for sixteen lanes */
-HF__TARGET_AVX512 HF__INLINE __m512 hf__grid_lanes_v16(int mask)
-{
-    return hf__m16((__mmask16)mask);
 }
 #endif
 
@@ -10349,7 +10401,7 @@ HF__KN(hf__grid_apply)(hf_ropes *ro, const hf__grid_push *gp, int j, int last,
                 dv[p]);
     }
     {
-        const HF__VEC m = HF__KN(hf__grid_lanes)(mask);
+        const HF__VEC m = HF__VLANES(mask);
         float *px = ro->px, *py = ro->py, *pz = ro->pz;
         HF__UNROLL for (p = 0; p < 3; ++p) dv[p] = HF__VMUL(dv[p], hl);
         for (c = j > 0 ? j : 1; c < last; ++c) {
@@ -19167,6 +19219,7 @@ HFDEF hf_result hf_fur_max_stretch(const hf_fur *f, float *out_stretch)
 #undef HF__VAND
 #undef HF__VSEL
 #undef HF__VMASK
+#undef HF__VLANES
 #undef HF__VOR
 #undef HF__VDOT3
 #undef HF__VCROSS3
