@@ -7874,26 +7874,28 @@ HF__VTARGET HF__INLINE void HF__KN(hf__col_prep)(const hf__col_prep *k,
     v->cm = v->capsule ? all : zero;
 }
 
-/* Lane l's own collider id[l] of the chunk's union, in each lane: each
-   collider prepared once, for the lanes that share it (neighbouring
-   ropes mostly do), taken where they are by selects. */
+/* Lane l's own collider id[l] of the chunk's union (a whole number, as
+   a float), in each lane: each collider prepared once, for the lanes
+   that share it (neighbouring ropes mostly do), taken where they are by
+   selects. */
 HF__VTARGET HF__INLINE void HF__KN(hf__col_lanes)(const hf__bp *bp,
-                                                  const int *id,
+                                                  HF__VEC id,
                                                   HF__KN(hf__col) *v)
 {
     const int all = (1 << HF__W) - 1;
+    float f[HF__W];
     hf__col_prep spare;
     HF__KN(hf__col) w;
-    int todo = all, pb = 0, cb = 0, l, i;
+    int todo = all, pb = 0, cb = 0, i;
+    HF__VST(f, id);
     while (todo) {
-        const int f = hf__lowest_bit((unsigned)todo), c = id[f];
+        const float c = f[hf__lowest_bit((unsigned)todo)];
+        const HF__VEC m = HF__VEQ(id, HF__VSET1(c));
+        const int bits = HF__VMASK(m);
         HF__KN(hf__col) *d = todo == all ? v : &w;
-        int bits = 0;
-        for (l = f; l < HF__W; ++l) bits |= (id[l] == c) << l;
-        HF__KN(hf__col_prep)(hf__bp_union_at(bp, c, &spare), d);
+        HF__KN(hf__col_prep)(hf__bp_union_at(bp, (int)c, &spare), d);
         if (bits == all) return; /* one collider in every lane */
         if (d == &w) {
-            const HF__VEC m = HF__VLANES(bits);
             HF__UNROLL for (i = 0; i < 3; ++i) {
                 v->a[i] = HF__VSEL(m, w.a[i], v->a[i]);
                 v->e[i] = HF__VSEL(m, w.e[i], v->e[i]);
@@ -8475,10 +8477,14 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__ftl_flush)(hf_ropes *ro, const float *F,
        (indices into the union, as floats) and how many */
     float pl[4][HF__FTL_HITS], sl[HF__FTL_NEAR][HF__FTL_HITS],
         nl[HF__FTL_HITS];
-    int list[HF__FTL_HITS], top = 0;
+    int list[HF__FTL_HITS], top;
     HF__KN(hf__col) k[HF__FTL_NEAR];
+    HF__VEC had[HF__FTL_NEAR]; /* the colliders k holds, as sl */
     hf__cols cl;
-    int g, i, m, c, n, idx[HF__W], id[HF__W];
+    /* each W's greatest count, and the greatest (HF__FTL_NEAR + 1: more) */
+    unsigned char most[HF__FTL_HITS / HF__W];
+    const int huge = bp->nu >= (1 << 24);
+    int g, i, m, c, n, hi, idx[HF__W];
     /* The relevant colliders: the points' parents and segments gathered
        once (the last lane repeated), then each collider of the chunk's
        union that the row reaches prepared once and tested against them,
@@ -8494,11 +8500,11 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__ftl_flush)(hf_ropes *ro, const float *F,
         HF__VST(pl[1] + g, HF__VGATHER(ro->y + o0, idx));
         HF__VST(pl[2] + g, HF__VGATHER(ro->z + o0, idx));
         HF__VST(pl[3] + g, HF__VGATHER(ro->rest_length + o0, idx));
-        HF__VST(nl + g, bp->nu < (1 << 24) ? zero
-                                           : HF__VSET1(HF__FTL_NEAR + 1));
+        HF__VST(nl + g, huge ? HF__VSET1(HF__FTL_NEAR + 1) : zero);
         for (i = 0; i < HF__FTL_NEAR; ++i) HF__VST(sl[i] + g, zero);
+        most[g / HF__W] = (unsigned char)(huge ? HF__FTL_NEAR + 1 : 0);
     }
-    for (c = 0; c < bp->nu && bp->nu < (1 << 24); ++c) {
+    for (c = 0; c < bp->nu && !huge; ++c) {
         const HF__VEC cf = HF__VSET1((float)c);
         HF__KN(hf__col) v;
         hf__col_prep spare;
@@ -8513,16 +8519,20 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__ftl_flush)(hf_ropes *ro, const float *F,
             int s;
             if (!HF__VMASK(rel)) continue;
             cn = HF__VLD(nl + g);
-            for (s = 0; s < HF__FTL_NEAR; ++s) {
+            for (s = 0; s <= most[g / HF__W] && s < HF__FTL_NEAR; ++s) {
                 const HF__VEC at = HF__VAND(rel, HF__VEQ(cn, HF__VSET1(s)));
                 if (HF__VMASK(at))
                     HF__VST(sl[s] + g, HF__VSEL(at, cf, HF__VLD(sl[s] + g)));
             }
+            if (most[g / HF__W] <= HF__FTL_NEAR) ++most[g / HF__W];
             HF__VST(nl + g, HF__VADD(cn, HF__VAND(rel, one)));
         }
     }
+    for (c = 0; c < HF__FTL_NEAR; ++c) had[c] = HF__VSET1(-1.0f);
+    for (g = hi = 0; g < h->n; g += HF__W)
+        hi = most[g / HF__W] > hi ? most[g / HF__W] : hi;
     /* a point with more than HF__FTL_NEAR: the scalar kernel */
-    for (g = 0; g < h->n; g += HF__W) {
+    for (g = 0; g < h->n && hi > HF__FTL_NEAR; g += HF__W) {
         unsigned bits = (unsigned)HF__VMASK(
             HF__VGT(HF__VLD(nl + g), HF__VSET1(HF__FTL_NEAR)));
         if (h->n - g < HF__W) bits &= (1u << (h->n - g)) - 1u;
@@ -8535,7 +8545,7 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__ftl_flush)(hf_ropes *ro, const float *F,
     }
     /* the points of each count n, W at a time (the last lane repeated),
        each lane with its own colliders */
-    for (n = 1; n <= HF__FTL_NEAR; ++n) {
+    for (n = 1; n <= HF__FTL_NEAR && n <= hi; ++n) {
         const HF__VEC nv = HF__VSET1((float)n);
         for (g = top = 0; g < h->n; g += HF__W) {
             unsigned bits = (unsigned)HF__VMASK(HF__VEQ(HF__VLD(nl + g), nv));
@@ -8547,9 +8557,11 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__ftl_flush)(hf_ropes *ro, const float *F,
             int e;
             for (e = 0; e < HF__W; ++e)
                 idx[e] = list[m + (e < got ? e : got - 1)];
-            for (c = 0; c < n; ++c) {
-                for (e = 0; e < HF__W; ++e) id[e] = (int)sl[c][idx[e]];
-                HF__KN(hf__col_lanes)(bp, id, k + c);
+            for (c = 0; c < n; ++c) { /* the last group's, where the same */
+                const HF__VEC id = HF__VGATHER(sl[c], idx);
+                if (HF__VMASK(HF__VEQ(id, had[c])) != (1 << HF__W) - 1)
+                    HF__KN(hf__col_lanes)(bp, id, k + c);
+                had[c] = id;
             }
             for (e = 0; e < HF__W; ++e) idx[e] = h->r[idx[e]];
             if (n == 1)
