@@ -2784,7 +2784,8 @@ HF__TARGET_AVX512 HF__INLINE int hf__mask16(__m512 m)
    HF__VTARGET: its functions' target attribute; HF__VZEROUPPER(): the
    registers readied for SSE or scalar code after AVX (see
    HF__TARGET_AVX2); HF__VGATHER(row, idx): row[idx[0 .. HF__W)] in a
-   vector; HF__VLANES(m): every bit of lane l set where bit l of m is.
+   vector; HF__VLANES(m): every bit of lane l set where bit l of m is;
+   HF__VALL: every lane's bit, as HF__VMASK gives them.
    HF__VLD ... HF__VMASK mean what the four-lane operations
    without the V mean (HF__LD, ...), the same IEEE operation at every
    width, so every width gives the scalar code's bytes (the compares
@@ -2872,6 +2873,7 @@ HF__TARGET_AVX512 HF__INLINE int hf__mask16(__m512 m)
 #else
 #error "hairfur.h: a kernel pass is built at 4, 8 or 16 lanes (HF__W)"
 #endif
+#define HF__VALL ((1 << HF__W) - 1)
 #define HF__VOR(a, b) HF__VSEL(a, a, b) /* masks only */
 #define HF__VDOT3(a, b, c, x, y, z)                                            \
     HF__DOT3_OF(HF__VADD, HF__VMUL, a, b, c, x, y, z)
@@ -6882,18 +6884,6 @@ HF__INLINE int hf__ftl_relevant(const hf__col_prep *k, const float *p, float l)
 
 /* ---- 6.5 the broadphase ------------------------------------------------- */
 
-/* The index of x's lowest set bit (x != 0). */
-HF__INLINE int hf__lowest_bit(unsigned x)
-{
-#if defined(__GNUC__) || defined(__clang__)
-    return __builtin_ctz(x);
-#else
-    int i = 0;
-    for (; !(x & 1u); x >>= 1) ++i;
-    return i;
-#endif
-}
-
 /* Ropes are simulated in chunks of up to HF__BP_TILES tiles of
    HF__BP_TILE neighbouring ropes, each chunk taking every sub-step before
    the next (which also keeps a chunk's rows in the core's own cache, and
@@ -6997,6 +6987,18 @@ HF__INLINE float hf__root_offset(const hf_ropes *ro, int r)
 {
     const float u = ro->rest_u[r], v = ro->rest_v[r], w = ro->rest_w[r];
     return HF_SQRTF(u * u + v * v + w * w);
+}
+
+/* The index of x's lowest set bit (x != 0). */
+HF__INLINE int hf__lowest_bit(unsigned x)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    return __builtin_ctz(x);
+#else
+    int i = 0;
+    for (; !(x & 1u); x >>= 1) ++i;
+    return i;
+#endif
 }
 
 #if HF__V4
@@ -7882,7 +7884,7 @@ HF__VTARGET HF__INLINE void HF__KN(hf__col_lanes)(const hf__bp *bp,
                                                   HF__VEC id,
                                                   HF__KN(hf__col) *v)
 {
-    const int all = (1 << HF__W) - 1;
+    const int all = HF__VALL;
     float f[HF__W];
     hf__col_prep spare;
     HF__KN(hf__col) w;
@@ -7972,7 +7974,7 @@ HF__VTARGET HF__INLINE int HF__KN(hf__col_any)(const hf__cols *cl, int j,
     hf__col_prep spare;
     HF__KN(hf__col) v;
     int i, m = 0;
-    for (i = 0; i < cl->n && m != (1 << HF__W) - 1; ++i) {
+    for (i = 0; i < cl->n && m != HF__VALL; ++i) {
         const hf__col_prep *k = hf__cols_at(cl, i, &spare);
         HF__VEC d[3];
         int w;
@@ -8559,7 +8561,7 @@ HF__VTARGET HF__PRIVATE void HF__KN(hf__ftl_flush)(hf_ropes *ro, const float *F,
                 idx[e] = list[m + (e < got ? e : got - 1)];
             for (c = 0; c < n; ++c) { /* the last group's, where the same */
                 const HF__VEC id = HF__VGATHER(sl[c], idx);
-                if (HF__VMASK(HF__VEQ(id, had[c])) != (1 << HF__W) - 1)
+                if (HF__VMASK(HF__VEQ(id, had[c])) != HF__VALL)
                     HF__KN(hf__col_lanes)(bp, id, k + c);
                 had[c] = id;
             }
@@ -8749,7 +8751,7 @@ HF__KN(hf__ropes_local_row)(hf_ropes *ro, const float *F, int j, int a, int b,
             b2 = HF__VDOT3(bx, by, bz, bx, by, bz);
             ok = HF__VAND(HF__VGT(l, HF__VSET1(1e-12f)),
                           HF__VGT(b2, HF__VSET1(1e-24f)));
-            all_ok = HF__VMASK(ok) == (1 << HF__W) - 1;
+            all_ok = HF__VMASK(ok) == HF__VALL;
             ia = HF__VDIV(one, l);
             ib = HF__VDIV(one, HF__VSQRT(b2));
             if (!all_ok) { /* the scalar's 0 (lanes may divide by 0) */
@@ -19232,6 +19234,7 @@ HFDEF hf_result hf_fur_max_stretch(const hf_fur *f, float *out_stretch)
 #undef HF__VSEL
 #undef HF__VMASK
 #undef HF__VLANES
+#undef HF__VALL
 #undef HF__VOR
 #undef HF__VDOT3
 #undef HF__VCROSS3
