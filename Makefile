@@ -53,6 +53,10 @@
 #   make wasm-test     the unit tests built with emscripten (WebAssembly
 #                      SIMD128, -O2) and run under node (part of make
 #                      test; skipped, with the reason, without emscripten)
+#   make msvc-check    the header's MSVC branches, parsed by clang as MSVC
+#   make cross-test    the test suite for ARM64 (qemu), Windows x64 (wine)
+#                      and 32-bit x86 (qemu-i386); each skipped, saying
+#                      why, without its tools (part of make test)
 #
 # Web (Debian's emscripten, chromium for the checks)
 #   make web           the page: build/web/index.html, index.js, index.wasm
@@ -70,10 +74,6 @@
 #                      and a screenshot of the page (build/web-check/page.png)
 #
 # GL (GLAD generated at build time, headless EGL, GLFW for windows)
-#   make msvc-check    the header's MSVC branches, parsed by clang as MSVC
-#   make cross-test    the test suite for ARM64 (qemu), Windows x64 (wine)
-#                      and 32-bit x86 (qemu-i386); each skipped, saying
-#                      why, without its tools (part of make test)
 #   make gl-check      say whether headless EGL + GL 3.3 core works here
 #   make gl-test       the GL checks (skipped, with the reason, without GL)
 #   make gl-fur-check  only the fur render check (gl_fur_check)

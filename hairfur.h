@@ -298,7 +298,11 @@
                            segment's bend instead of pushing its parent
                            (stiff ropes come to rest; bytes change where
                            a segment is compressed); one dispatch shape
-                           (kernels named by width, hf__<stage>_widths).
+                           (kernels named by width, hf__<stage>_widths);
+                           hf_place_strands refuses a negative or
+                           non-finite strands_per_area even beside a
+                           total_strands; hf_fur_create's diagnostics
+                           name each field alone.
        0.2.0 (2026-11-23)  one convention: every struct zero-initialised
                            means its defaults (hf_rope_params and
                            hf_lut_params too, with explicit_zero bits for a
@@ -893,11 +897,14 @@ typedef struct hf_strand {
 /* Zero-initialise, then set strands_per_area or total_strands. */
 typedef struct hf_place_params {
     float strands_per_area; /* 1/m^2: expected strands per square metre
-                               where the density is 1; > 0 and finite unless
-                               total_strands is set */
+                               where the density is 1; > 0 unless
+                               total_strands is set; negative or non-finite
+                               refused */
     int total_strands;      /* > 0: exactly this many strands, distributed
                                in proportion to density * area (then
-                               strands_per_area is ignored); 0: use
+                               strands_per_area is not used: total_strands
+                               wins here, the opposite of hf_fur_desc, where
+                               a strands_per_area > 0 wins); 0: use
                                strands_per_area */
     int estimator; /* hf_density_estimator; 0 = HF_DENSITY_CORNERS */
     int sampler;   /* hf_root_sampler; 0 = HF_SAMPLER_UNIFORM */
@@ -1716,9 +1723,12 @@ HFDEF long long hf_ribbon_index_count(int strand_count, int points_per_strand,
 /* Index buffer for strands [0, strand_count), matching the vertex numbering
    of hf_ribbons, counter-clockwise seen from the side the +side vector and
    the tangent span towards the camera. The topology does not change per
-   frame: call once. `capacity` is the size of out in indices; too small
-   gives HF_ERROR_BUFFER_TOO_SMALL. Vertex numbers must fit in 32 bits
-   (HF_ERROR_OVERFLOW otherwise). */
+   frame: call once. `capacity` is the size of out in indices. Errors
+   (nothing written): HF_ERROR_NULL_POINTER (out NULL, even for no
+   strands), HF_ERROR_BAD_COUNT (strand_count < 0 or P < 2),
+   HF_ERROR_BAD_PARAMETER (not an hf_topology), HF_ERROR_BUFFER_TOO_SMALL
+   (capacity below hf_ribbon_index_count), HF_ERROR_OVERFLOW (vertex
+   numbers beyond 32 bits). */
 HFDEF hf_result hf_ribbon_indices(int strand_count, int points_per_strand,
                                   int topology /* hf_topology */,
                                   uint32_t *out, long long capacity);
@@ -2071,7 +2081,9 @@ typedef struct hf_fur_desc {
     int tess_split;         /* hf_split_point; 0 = centroid */
     int tess_max_triangles; /* 0 = HF_TESS_DEFAULT_MAX_TRIANGLES */
     float strands_per_area; /* 1/m^2: expected strands per square metre at
-                               density 1; > 0 wins over total_strands; 0 = use
+                               density 1; > 0 wins over total_strands (the
+                               opposite of hf_place_params, where
+                               total_strands > 0 wins); 0 = use
                                total_strands; negative or NaN refused */
     int total_strands;      /* exact strand count when strands_per_area is
                                0; both 0 = 10000; negative refused */
@@ -2210,8 +2222,11 @@ HFDEF hf_result hf_fur_set_lod(hf_fur *fur, float lod);
    its base triangle (hf_tess_evaluate); without normals, the face normal
    of a triangle of the vertex. The tangent is the direction of a fixed
    mesh edge at the root. Errors: HF_ERROR_NULL_POINTER, HF_ERROR_BAD_COUNT
-   (vertex count differs), HF_ERROR_BAD_RANGE, HF_ERROR_BAD_STRIDE,
-   HF_ERROR_NON_FINITE (a position or normal read); nothing set then. */
+   (vertex or triangle count differs from the rest mesh's),
+   HF_ERROR_BAD_RANGE, HF_ERROR_BAD_STRIDE, HF_ERROR_NON_FINITE (a position
+   or normal read), HF_ERROR_BAD_PARAMETER (a root beyond
+   HF_ROPE_MAX_COORD, or a groom without a scalp: hf_fur_set_transform
+   moves those); nothing set then. */
 HFDEF hf_result hf_fur_set_roots(hf_fur *fur, const hf_mesh *skinned,
                                  int first, int count);
 
@@ -4936,9 +4951,11 @@ HFDEF hf_result hf_place_strands(const hf_mesh *mesh, const hf_map *density,
         params->sampler < 0 || params->sampler > 2 ||
         params->max_strands < 1 || params->max_strands > HF_MAX_STRANDS)
         return HF_ERROR_BAD_PARAMETER;
-    if (params->total_strands == 0 &&
-        (!hf__finitef(params->strands_per_area) ||
-         !(params->strands_per_area > 0.0f)))
+    /* a negative or non-finite density is refused even when
+       total_strands leaves it unused, as hf_fur_create does */
+    if (!hf__finitef(params->strands_per_area) ||
+        params->strands_per_area < 0.0f ||
+        (params->total_strands == 0 && !(params->strands_per_area > 0.0f)))
         return HF_ERROR_BAD_PARAMETER;
     c.mesh = mesh;
     c.density = density;
@@ -17345,26 +17362,35 @@ HF__PRIVATE hf_result hf__fur_desc_check(const hf_fur_desc *d, hf_diag *diag)
         return hf__fail(diag, HF_ERROR_BAD_COUNT, "points_per_strand", -1,
                         "points_per_strand %d is outside 2..%d", P,
                         HF_MAX_POINTS);
-    if (!hf__finitef(d->clump) || d->clump < 0.0f || d->clump > 1.0f ||
-        !hf__finitef(d->lod_simulate_threshold) ||
-        d->lod_simulate_threshold < 0.0f || d->lod_simulate_threshold > 1.0f ||
-        !hf__finitef(d->max_length) || d->max_length < 0.0f ||
-        !hf__finitef(d->tess_factor) || d->tess_factor < 0.0f)
-        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "desc", -1,
-                        "clump or lod_simulate_threshold outside [0, 1], "
-                        "or max_length or tess_factor negative or "
-                        "non-finite");
+    if (!hf__finitef(d->clump) || d->clump < 0.0f || d->clump > 1.0f)
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "clump", -1,
+                        "clump %g is outside [0, 1]", (double)d->clump);
+    if (!hf__finitef(d->lod_simulate_threshold) ||
+        d->lod_simulate_threshold < 0.0f || d->lod_simulate_threshold > 1.0f)
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER,
+                        "lod_simulate_threshold", -1,
+                        "lod_simulate_threshold %g is outside [0, 1]",
+                        (double)d->lod_simulate_threshold);
+    if (!hf__finitef(d->max_length) || d->max_length < 0.0f)
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "max_length", -1,
+                        "max_length %g is negative or non-finite",
+                        (double)d->max_length);
+    if (!hf__finitef(d->tess_factor) || d->tess_factor < 0.0f)
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "tess_factor", -1,
+                        "tess_factor %g is negative or non-finite",
+                        (double)d->tess_factor);
     if (d->grid_resolution != 0 &&
         (d->grid_resolution < 4 ||
          d->grid_resolution > HF_GRID_MAX_RESOLUTION))
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "grid_resolution", -1,
                         "grid_resolution %d is not 0 (no grid) or in "
                         "4..%d", d->grid_resolution, HF_GRID_MAX_RESOLUTION);
-    if (!hf__kernels_ok(d->simd, d->nontemporal))
+    if (!hf__kernels_ok(d->simd, 0))
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "simd", -1,
-                        "simd %d is not an hf_simd_level (0..4), or "
-                        "nontemporal %d is not 0, 1 or 2",
-                        d->simd, d->nontemporal);
+                        "simd %d is not an hf_simd_level (0..4)", d->simd);
+    if (!hf__kernels_ok(0, d->nontemporal))
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "nontemporal", -1,
+                        "nontemporal %d is not 0, 1 or 2", d->nontemporal);
     if (!hf__finitef(d->strands_per_area) || d->strands_per_area < 0.0f)
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "strands_per_area", -1,
                         "strands_per_area %g is negative or non-finite",

@@ -419,9 +419,10 @@ static int parse_args(int argc, char **argv, bl_options *o)
             usage();
             return 2;
         } else if (strcmp(a, "--size") == 0) {
-            if (!(d >= -2147483647.0 && d <= 2147483647.0) ||
+            if (!(d >= 1.0 && d <= (double)HF_LUT_MAX_SIZE) ||
                 d != (double)(int)d) {
-                usage();
+                fprintf(stderr, "bake_luts: --size %s is not a whole number "
+                                "in [1, %d]\n", v, HF_LUT_MAX_SIZE);
                 return 2;
             }
             o->p.size = (int)d;
@@ -470,10 +471,25 @@ int main(int argc, char **argv)
     rgb = o.rgb;
     channels = o.channels;
     dual = o.dual;
-    r = hf_lut_validate(&p, NULL);
-    if (r != HF_OK) {
-        fprintf(stderr, "bake_luts: %s\n", hf_result_string(r));
-        return 1;
+    {
+        /* the option behind each field hf_lut_validate can name */
+        static const char *const opt[][2] = {
+            {"eta", "--eta"},           {"alpha_r_deg", "--alpha-r"},
+            {"beta_r_deg", "--beta-r"}, {"sigma_a", "--absorption"},
+            {"sigma_a_rgb", "--absorption-rgb"}};
+        hf_diag dg;
+        size_t k;
+        r = hf_lut_validate(&p, &dg);
+        if (r != HF_OK) {
+            const char *o_name = NULL;
+            for (k = 0; k < sizeof opt / sizeof opt[0]; ++k)
+                if (dg.field &&
+                    !strncmp(dg.field, opt[k][0], strlen(opt[k][0])))
+                    o_name = opt[k][1];
+            fprintf(stderr, "bake_luts: %s%s%s (%s)\n", o_name ? o_name : "",
+                    o_name ? ": " : "", dg.message, hf_result_string(r));
+            return 1;
+        }
     }
     if (o.furn) return furnace(p, o.model_given, o.absorption);
     prefix = p.model == HF_LUT_ENERGY ? "energy" : "marschner";

@@ -250,13 +250,40 @@ int main(int argc, char **argv)
     gm_app *a = &app;
 
     for (i = 1; i < argc; ++i) {
-        if (!strcmp(argv[i], "--headless")) headless = 1;
-        else if (!strcmp(argv[i], "--frames") && i + 1 < argc) frames = atoi(argv[++i]);
-        else if (!strcmp(argv[i], "--out") && i + 1 < argc) out = argv[++i];
-        else {
-            fprintf(stderr, "usage: gl_minimal [--headless] [--frames N] [--out FILE.png]\n");
-            return 2;
+        if (!strcmp(argv[i], "--headless")) {
+            headless = 1;
+        } else if (!strcmp(argv[i], "--frames") && i + 1 < argc) {
+            char *end;
+            long v = strtol(argv[++i], &end, 10);
+            if (end == argv[i] || *end || v < 1 || v > 1000000) {
+                fprintf(stderr, "gl_minimal: --frames wants a whole number "
+                                "in [1, 1000000], not '%s'\n", argv[i]);
+                return 2;
+            }
+            frames = (int)v;
+        } else if (!strcmp(argv[i], "--out") && i + 1 < argc) {
+            out = argv[++i];
+        } else {
+            int help = !strcmp(argv[i], "--help") || !strcmp(argv[i], "-h");
+            fprintf(help ? stdout : stderr,
+                    "usage: gl_minimal [--headless] [--frames N] "
+                    "[--out FILE.png]\n"
+                    "  the built-in head's fur, simulated and drawn in flat "
+                    "colours (640 x 480)\n"
+                    "  --headless    no window: render through EGL "
+                    "(one frame unless --frames)\n"
+                    "  --frames N    stop after N frames (default: until "
+                    "the window closes)\n"
+                    "  --out F.png   write the last of the N frames to F.png "
+                    "(needs --frames\n"
+                    "                or --headless; default: no file)\n");
+            return help ? 0 : 2;
         }
+    }
+    if (out && !headless && frames < 1) {
+        fprintf(stderr, "gl_minimal: --out writes the last of --frames N; "
+                        "give --frames or --headless\n");
+        return 2;
     }
     if (headless ? !glc_open_headless(640, 480)
                  : !glc_open_window(640, 480, "hairfur gl_minimal"))

@@ -228,6 +228,19 @@ int main(int argc, char **argv)
                                base_edge[3] = {255, 255, 255},
                                root_c[3] = {250, 230, 140};
 
+    if (argc > 1 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+        printf("usage: grow_pictures [DIR]\n"
+               "  writes grow_tess_uv.png, grow_roots.png, grow_samplers.png "
+               "and grow_lod.png\n"
+               "  (the growing stages of docs/grow.md) into DIR, an existing "
+               "directory\n"
+               "  (default .)\n");
+        return 0;
+    }
+    if (argc > 2 || (argc > 1 && argv[1][0] == '-')) {
+        fprintf(stderr, "grow_pictures: unknown arguments (see --help)\n");
+        return 2;
+    }
     /* the mesh: positions = UVs, z = 0 */
     for (y = 0; y <= GRID; ++y)
         for (x = 0; x <= GRID; ++x) {

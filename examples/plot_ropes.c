@@ -281,10 +281,25 @@ int main(int argc, char **argv)
                                        "distance x4", "distance x8",
                                        "FTL (1 pass)"};
     const char *out = argc > 1 ? argv[1] : "ropes_stretch.png";
-    panel top = {90, 50, W - 30, 330, -7.0, 0.0};
+    panel top = {90, 50, W - 30, 330, -7.0, 1.0};
     panel bot = {90, 390, W - 30, 640, -6.0, 2.0};
     int c, f;
+    if (argc > 1 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+        printf("usage: plot_ropes [OUT.png]   stretch and kinetic energy of a "
+               "falling rope,\n"
+               "                               plotted into OUT.png "
+               "(default ropes_stretch.png)\n"
+               "       plot_ropes --decay     the half-life of a patch of "
+               "ropes' swing, per solver,\n"
+               "                               with and without hair-hair "
+               "interaction (printed)\n");
+        return 0;
+    }
     if (argc > 1 && !strcmp(argv[1], "--decay")) return decay();
+    if (argc > 2 || (argc > 1 && argv[1][0] == '-')) {
+        fprintf(stderr, "plot_ropes: unknown arguments (see --help)\n");
+        return 2;
+    }
     for (c = 0; c < 4; ++c) simulate(c, HF_ROPE_SOLVER_DISTANCE, 1 << c);
     simulate(4, HF_ROPE_SOLVER_FTL, 1);
     memset(img, 255, sizeof img);
@@ -299,9 +314,10 @@ int main(int argc, char **argv)
             line(x0, py(&bot, energy[c][f - 1]), x1, py(&bot, energy[c][f]),
                  col[c], c == 4 ? 6 : 0);
         }
-        box(top.x1 - 200, top.y0 + 10 + 22 * c, top.x1 - 184,
-            top.y0 + 26 + 22 * c, col[c]);
-        text(top.x1 - 176, top.y0 + 10 + 22 * c, name[c], col[4]);
+        /* the legend between the distance solver's curves and FTL's */
+        box(top.x1 - 200, top.y0 + 120 + 22 * c, top.x1 - 184,
+            top.y0 + 136 + 22 * c, col[c]);
+        text(top.x1 - 176, top.y0 + 120 + 22 * c, name[c], col[4]);
         printf("%-14s stretch after 1 frame %.3g, after 1 s %.3g; energy at 4 s %.3g "
                "J\n",
                name[c], stretch[c][0] > 0 ? stretch[c][0] : 0.0,

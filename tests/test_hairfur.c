@@ -3408,6 +3408,11 @@ static void test_bad_place_strands(void)
     TB_PLACE(p_.strands_per_area = TB_NAN, 64, HF_ERROR_BAD_PARAMETER);
     TB_PLACE(p_.strands_per_area = TB_INF, 64, HF_ERROR_BAD_PARAMETER);
     TB_PLACE(p_.total_strands = -1, 64, HF_ERROR_BAD_COUNT);
+    /* refused even where total_strands leaves it unused */
+    TB_PLACE((p_.total_strands = 10, p_.strands_per_area = -1.0f), 64,
+             HF_ERROR_BAD_PARAMETER);
+    TB_PLACE((p_.total_strands = 10, p_.strands_per_area = TB_NAN), 64,
+             HF_ERROR_BAD_PARAMETER);
     TB_PLACE(p_.estimator = 3, 64, HF_ERROR_BAD_PARAMETER);
     TB_PLACE(p_.sampler = 3, 64, HF_ERROR_BAD_PARAMETER);
     TB_PLACE(p_.max_strands = -1, 64, HF_ERROR_BAD_PARAMETER);
@@ -12115,8 +12120,25 @@ static void test_fur_bad_desc_and_out_of_memory(void)
     CHECK_EQ_INT(hf_fur_create(&b, &f, &d), HF_ERROR_BAD_COUNT);
     b = sc.desc; b.clump = -0.5f;
     CHECK_EQ_INT(hf_fur_create(&b, &f, &d), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_STR(d.field, "clump");
     b = sc.desc; b.max_length = (float)NAN;
     CHECK_EQ_INT(hf_fur_create(&b, &f, &d), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_STR(d.field, "max_length");
+    /* each field named alone */
+    b = sc.desc; b.lod_simulate_threshold = 2.0f;
+    CHECK_EQ_INT(hf_fur_create(&b, &f, &d), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_STR(d.field, "lod_simulate_threshold");
+    b = sc.desc; b.tess_factor = -5.0f;
+    CHECK_EQ_INT(hf_fur_create(&b, &f, &d), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_STR(d.field, "tess_factor");
+    CHECK(strstr(d.message, "-5") != NULL);
+    b = sc.desc; b.simd = 9;
+    CHECK_EQ_INT(hf_fur_create(&b, &f, &d), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_STR(d.field, "simd");
+    CHECK(strstr(d.message, "nontemporal") == NULL);
+    b = sc.desc; b.nontemporal = 3;
+    CHECK_EQ_INT(hf_fur_create(&b, &f, &d), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_STR(d.field, "nontemporal");
     b = sc.desc; b.tess_factor = 1e30f; /* billions of triangles */
     f = sentinel;
     CHECK(hf_fur_create(&b, &f, &d) < 0);
