@@ -569,7 +569,8 @@ int ch_load(ch_character *c, const char *path, const char *unit, char *err,
     c->unit = ch__unit(unit, diag, &ok);
     if (!ok || !(diag > 0.0) || !isfinite(diag)) {
         ch__err(err, err_size, path, !ok ? "bad --unit (auto, m, cm, mm or "
-                "metres per file unit)" : "the mesh has no extent");
+                "metres per file unit)" : "the mesh has no extent, or a "
+                "position that is not finite");
         free(nodes);
         free(tmp);
         ch_free(c);

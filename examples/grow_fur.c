@@ -20,9 +20,11 @@
 
    Without --mesh it grows on the built-in head (examples/head_mesh.h: a
    sphere of radius 0.1 with a procedural hairline density map and a bangs
-   length map). --mesh loads any format assimp reads (OBJ, glTF, FBX, ...);
-   all its meshes are merged, its smooth normals (from the file, or made by
-   assimp) are passed on, and the maps need its first UV channel (a map on
+   length map). --mesh loads any format assimp reads (OBJ, glTF, FBX, ...)
+   through examples/character.h: all its meshes are merged, posed at the
+   first frame of its animation (node transforms, skinned meshes by their
+   bones, as gl_marschner shows the file) in the file's units, its smooth
+   normals (from the file, or made by assimp) are passed on, and the maps need its first UV channel (a map on
    a mesh without UVs is refused). Maps are PNG (or anything stb_image
    reads): density and length use their first channel, colour its RGB; the
    PNG's top row is v = 1, as in OpenGL (rows are flipped on load, since
@@ -50,12 +52,12 @@
 #include <stb/stb_image.h>
 #define CURVES_IMPLEMENTATION
 #include "curves.h"
+#define CHARACTER_IMPLEMENTATION
+#include "character.h"
 
-#include <assimp/cimport.h>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 
 #include <ctype.h>
+#include <errno.h>
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
@@ -99,8 +101,10 @@ static void usage(FILE *fp)
 "Lengths are in metres; a --mesh file's coordinates are read as metres\n"
 "(\"mesh units\").\n"
 "  --mesh FILE        mesh to grow on, any format assimp reads, all its meshes\n"
-"                     merged (default: the built-in head, a sphere of radius\n"
-"                     0.1 m with its own density, length and colour maps)\n"
+"                     merged, posed at the first frame of its animation (or\n"
+"                     as its node tree has it) (default: the built-in head,\n"
+"                     a sphere of radius 0.1 m with its own density, length\n"
+"                     and colour maps)\n"
 "  --density PNG      density map, channel 0, 0..255 = 0..1 (default: none,\n"
 "                     density 1 everywhere; needs mesh UVs)\n"
 "  --length PNG       length map, channel 0: strand length = map x --length-max\n"
@@ -131,7 +135,7 @@ static void usage(FILE *fp)
 "  --points N         points per strand, 2..%d (default 16)\n"
 "  --length-max M     longest strand, metres (mesh units) (default 0.12)\n"
 "  --frames N         frames simulated, 1/60 s each (default 120)\n"
-"  --lod F            level of detail, 0..1 (hf_fur_set_lod; 1 = every\n"
+"  --lod F            level of detail, (0, 1] (hf_fur_set_lod; 1 = every\n"
 "                     strand drawn) (default 1)\n"
 "  --seed N           random seed, a count >= 0 (default 1)\n",
             GF_DEFAULT_STRANDS, GF_MAX_DEFAULT_GUIDES, HF_MAX_POINTS);
@@ -323,82 +327,83 @@ static int parse_collider(const char *v, hf_collider *c)
     return 1;
 }
 
-/* Every mesh of the scene merged into one interleaved buffer. *has_normals
-   and *has_uvs: every merged mesh had normals (assimp's smooth ones where
-   the file has none) / texture coordinates (channel 0); *uvless counts the
-   meshes without. */
+/* Every mesh of the scene merged into one interleaved buffer, posed at
+   the first frame of its first animation, or as the file's node tree has
+   it (examples/character.h: node transforms, skinned meshes by their
+   bones, as gl_marschner shows the file), in the file's units. *has_normals and *has_uvs: every merged mesh had
+   normals (assimp's smooth ones where the file has none) / texture
+   coordinates (channel 0); *uvless counts the meshes without. Refused,
+   saying why: no triangles, a position that is not finite, no area. */
 static int load_mesh(const char *path, vtx **out_v, uint32_t **out_i,
                      int *nv, int *nt, int *has_normals, int *has_uvs,
                      int *uvless, int *mesh_count)
 {
-    const struct aiScene *sc = aiImportFile(
-        path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                  aiProcess_GenSmoothNormals | aiProcess_SortByPType);
-    unsigned m, i;
-    size_t v_total = 0, t_total = 0, vo = 0, to = 0;
-    if (!sc) {
-        fprintf(stderr, "grow_fur: cannot load %s: %s\n", path,
-                aiGetErrorString());
+    ch_character c;
+    ch_vertex *posed;
+    char err[600];
+    double area = 0.0;
+    int i, k;
+    *out_v = NULL;
+    *out_i = NULL;
+    if (!ch_load(&c, path, "1", err, sizeof err)) { /* 1 m a file unit */
+        fprintf(stderr, "grow_fur: cannot load %s\n", err);
         return 0;
     }
-    *has_normals = *has_uvs = 1;
-    *uvless = *mesh_count = 0;
-    for (m = 0; m < sc->mNumMeshes; ++m) {
-        const struct aiMesh *me = sc->mMeshes[m];
-        if (!(me->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
-        if (!me->mNormals) *has_normals = 0;
-        if (!me->mTextureCoords[0]) {
+    posed = (ch_vertex *)malloc(sizeof(ch_vertex) * (size_t)c.vertex_count);
+    *out_v = (vtx *)malloc(sizeof(vtx) * (size_t)c.vertex_count);
+    *out_i = (uint32_t *)malloc(sizeof(uint32_t) * 3u *
+                                (size_t)c.triangle_count);
+    if (!posed || !*out_v || !*out_i) {
+        fprintf(stderr, "grow_fur: out of memory loading %s\n", path);
+        goto fail;
+    }
+    /* the first frame of the first animation, as make_hairstyle poses
+       the curves it writes (the file's pose without one) */
+    ch_pose(&c, ch_find_animation(&c, NULL), 0.0, posed, NULL);
+    for (i = 0; i < c.vertex_count; ++i) {
+        for (k = 0; k < 3; ++k) {
+            if (!isfinite(posed[i].pos[k])) {
+                fprintf(stderr, "grow_fur: %s: vertex %d's position is not "
+                                "finite\n", path, i);
+                goto fail;
+            }
+            (*out_v)[i].pos[k] = posed[i].pos[k];
+            (*out_v)[i].normal[k] = posed[i].normal[k];
+        }
+        (*out_v)[i].uv[0] = posed[i].uv[0];
+        (*out_v)[i].uv[1] = posed[i].uv[1];
+    }
+    memcpy(*out_i, c.indices, sizeof(uint32_t) * 3u * (size_t)c.triangle_count);
+    for (i = 0; i < c.triangle_count; ++i)
+        area += hf_triangle_area((*out_v)[(*out_i)[3 * i]].pos,
+                                 (*out_v)[(*out_i)[3 * i + 1]].pos,
+                                 (*out_v)[(*out_i)[3 * i + 2]].pos);
+    if (!(area > 0.0) || !isfinite(area)) {
+        fprintf(stderr, "grow_fur: %s has no usable triangles (their area is "
+                        "%g)\n", path, area);
+        goto fail;
+    }
+    *has_normals = *has_uvs = 1; /* assimp made the missing normals */
+    *uvless = 0;
+    for (i = 0; i < c.part_count; ++i)
+        if (!c.parts[i].has_uvs) {
             *has_uvs = 0;
             ++*uvless;
         }
-        ++*mesh_count;
-        v_total += me->mNumVertices;
-        t_total += me->mNumFaces;
-    }
-    if (v_total == 0 || t_total == 0 || v_total > 0x7fffffff ||
-        t_total > 0x7fffffff / 3) {
-        fprintf(stderr, "grow_fur: %s has no usable triangles\n", path);
-        aiReleaseImport(sc);
-        return 0;
-    }
-    *out_v = (vtx *)calloc(v_total, sizeof(vtx));
-    *out_i = (uint32_t *)calloc(t_total * 3, sizeof(uint32_t));
-    if (!*out_v || !*out_i) {
-        aiReleaseImport(sc);
-        return 0;
-    }
-    for (m = 0; m < sc->mNumMeshes; ++m) {
-        const struct aiMesh *me = sc->mMeshes[m];
-        if (!(me->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
-        for (i = 0; i < me->mNumVertices; ++i) {
-            vtx *v = &(*out_v)[vo + i];
-            v->pos[0] = me->mVertices[i].x;
-            v->pos[1] = me->mVertices[i].y;
-            v->pos[2] = me->mVertices[i].z;
-            if (me->mNormals) {
-                v->normal[0] = me->mNormals[i].x;
-                v->normal[1] = me->mNormals[i].y;
-                v->normal[2] = me->mNormals[i].z;
-            }
-            if (me->mTextureCoords[0]) {
-                v->uv[0] = me->mTextureCoords[0][i].x;
-                v->uv[1] = me->mTextureCoords[0][i].y;
-            }
-        }
-        for (i = 0; i < me->mNumFaces; ++i) {
-            const struct aiFace *f = &me->mFaces[i];
-            if (f->mNumIndices != 3) continue;
-            (*out_i)[3 * to] = (uint32_t)vo + f->mIndices[0];
-            (*out_i)[3 * to + 1] = (uint32_t)vo + f->mIndices[1];
-            (*out_i)[3 * to + 2] = (uint32_t)vo + f->mIndices[2];
-            ++to;
-        }
-        vo += me->mNumVertices;
-    }
-    *nv = (int)vo;
-    *nt = (int)to;
-    aiReleaseImport(sc);
+    *mesh_count = c.part_count;
+    *nv = c.vertex_count;
+    *nt = c.triangle_count;
+    free(posed);
+    ch_free(&c);
     return 1;
+fail:
+    free(posed);
+    free(*out_v);
+    free(*out_i);
+    *out_v = NULL;
+    *out_i = NULL;
+    ch_free(&c);
+    return 0;
 }
 
 static int load_map(const char *path, int channels, hf_map *map)
@@ -632,7 +637,8 @@ static int parse_option(gf_options *o, const char *a, const char *v)
     else if (!strcmp(a, "--lod"))
         ok = parse_real(a, v, 0.0, 1.0, &o->lod);
     else if (!strcmp(a, "--length-max"))
-        ok = parse_real(a, v, 1e-9, 1e6, &o->max_length);
+        /* tips within the library's coordinate range (+-1e6) */
+        ok = parse_real(a, v, 1e-9, 1e5, &o->max_length);
     else if (!strcmp(a, "--stiffness"))
         ok = parse_real(a, v, 0.0, 1.0, &o->stiffness);
     else if (!strcmp(a, "--volume"))
@@ -722,6 +728,35 @@ static int check_args(gf_options *o, cv_curves *curves)
           ends_with(out_path, ".hair"))) {
         fprintf(stderr, "grow_fur: --out '%s': the name must end in .obj, "
                         ".ply or .hair\n", out_path);
+        return 2;
+    }
+    {
+        const char *base = strrchr(out_path, '/');
+        base = base ? base + 1 : out_path;
+        if (!strcmp(base, ".obj") || !strcmp(base, ".ply") ||
+            !strcmp(base, ".hair")) {
+            fprintf(stderr, "grow_fur: --out '%s': the name needs a stem "
+                            "before its extension\n", out_path);
+            return 2;
+        }
+    }
+    { /* writable before the run, not after it: opened to append (an
+         existing file is not changed), a new one removed again */
+        FILE *fp = fopen(out_path, "rb");
+        const int existed = fp != NULL;
+        if (fp) fclose(fp);
+        fp = fopen(out_path, "ab");
+        if (!fp) {
+            fprintf(stderr, "grow_fur: --out '%s': cannot write it: %s\n",
+                    out_path, strerror(errno));
+            return 1;
+        }
+        fclose(fp);
+        if (!existed) remove(out_path);
+    }
+    if (!(o->lod > 0.0f)) {
+        fprintf(stderr, "grow_fur: --lod 0 draws no strand: give a level "
+                        "in (0, 1]\n");
         return 2;
     }
     if (o->curves_out && !ends_with(out_path, ".obj")) {
@@ -1185,7 +1220,11 @@ static int write_curves(const char *out_path, const hf_fur_info *info)
     o.points = (int *)malloc(sizeof(int) * (size_t)(S > 0 ? S : 1));
     o.xyz = (float *)malloc(sizeof(float) * 3u * (size_t)(S > 0 ? S * P : 1));
     o.rgb = (float *)malloc(sizeof(float) * 3u * (size_t)(S > 0 ? S * P : 1));
-    if (!o.points || !o.xyz || !o.rgb) return 0;
+    if (!o.points || !o.xyz || !o.rgb) {
+        fprintf(stderr, "grow_fur: out of memory writing %s\n", out_path);
+        cv_free(&o);
+        return 0;
+    }
     for (k = 0; k < S; ++k) o.points[k] = P;
     memcpy(o.xyz, info->strand_points, sizeof(float) * 3u * (size_t)S * (size_t)P);
     for (q = 0; q < (long)S * P; ++q)
@@ -1273,6 +1312,7 @@ static int export_last_frame(const gf_options *o, const hf_fur *fur,
     if (!ibuf ||
         hf_ribbon_indices(info.drawn_strand_count, info.points_per_strand,
                           HF_TRIANGLES, ibuf, n_idx) != HF_OK) {
+        fprintf(stderr, "grow_fur: out of memory writing %s\n", out_path);
         free(ibuf);
         return 0;
     }
@@ -1283,7 +1323,8 @@ static int export_last_frame(const gf_options *o, const hf_fur *fur,
     fp = fopen(out_path, "wb");
     nvert = 2LL * info.drawn_strand_count * info.points_per_strand;
     if (!fp) {
-        fprintf(stderr, "grow_fur: cannot write %s\n", out_path);
+        fprintf(stderr, "grow_fur: cannot write %s: %s\n", out_path,
+                strerror(errno));
         free(ibuf);
         return 0;
     }
@@ -1292,8 +1333,11 @@ static int export_last_frame(const gf_options *o, const hf_fur *fur,
     else
         write_ply(fp, &info, vbuf, nvert, ibuf, n_idx);
     free(ibuf);
-    if (fclose(fp) != 0) {
-        fprintf(stderr, "grow_fur: error writing %s\n", out_path);
+    /* a write that failed (a full disk) leaves no half file */
+    if (ferror(fp) | (fclose(fp) != 0)) {
+        fprintf(stderr, "grow_fur: error writing %s: %s (removed)\n",
+                out_path, strerror(errno));
+        remove(out_path);
         return 0;
     }
     printf("wrote %s: %lld vertices, %lld triangles\n", out_path, nvert,
@@ -1338,7 +1382,14 @@ int main(int argc, char **argv)
     vbuf = (float *)malloc(sizeof(float) * 12u * 2u * (size_t)info.strand_count *
                            (size_t)info.points_per_strand);
     t.roots = (double *)malloc(sizeof(double) * 6u * (size_t)o.frames);
-    if (!vbuf || !t.roots) return 1;
+    if (!vbuf || !t.roots) {
+        fprintf(stderr, "grow_fur: out of memory: the ribbons of %d strands "
+                        "of %d points take %.1f GB\n", info.strand_count,
+                info.points_per_strand,
+                48.0 * 2.0 * info.strand_count * info.points_per_strand /
+                    1e9);
+        return 1;
+    }
     t.sim = t.roots + o.frames;
     t.guides = t.sim + o.frames;
     t.interp = t.guides + o.frames;

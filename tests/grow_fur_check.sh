@@ -193,5 +193,51 @@ else
     echo "grow_fur_check: map convention: SKIP (no python3 to write the PNG)"
 fi
 
+# the file's node transforms: a glTF quad of 2 x 2 units whose node
+# scales it by 0.5 and moves it to x = 10 grows where the file puts it
+if command -v python3 >/dev/null 2>&1; then
+    python3 - "$tmp/node.gltf" <<'EOF'
+import base64, json, struct, sys
+pos = [-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0]
+uv = [0, 0, 1, 0, 1, 1, 0, 1]
+idx = [0, 1, 2, 0, 2, 3]
+blob = struct.pack("<12f", *pos) + struct.pack("<8f", *uv) + struct.pack("<6H", *idx)
+uri = "data:application/octet-stream;base64," + base64.b64encode(blob).decode()
+json.dump({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+    "nodes": [{"mesh": 0, "scale": [0.5, 0.5, 0.5], "translation": [10, 0, 0]}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2}]}],
+    "buffers": [{"byteLength": len(blob), "uri": uri}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                    {"buffer": 0, "byteOffset": 48, "byteLength": 32},
+                    {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                   "min": [-1, -1, 0], "max": [1, 1, 0]},
+                  {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
+                  {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]},
+    open(sys.argv[1], "w"))
+EOF
+    if "$BIN" --mesh "$tmp/node.gltf" --collider none --strands 500 --frames 1 \
+          --out "$tmp/node.obj" >"$tmp/out" 2>&1; then
+        box=$(grep "^bounding box" "$tmp/out")
+        case "$box" in
+        *"(9.5, -0.5, 0) .. (10.5, 0.5, 0)"*)
+            echo "grow_fur_check: node transforms: $box" ;;
+        *) bad "node transforms not applied: $box (want (9.5, -0.5, 0) .. (10.5, 0.5, 0))" ;;
+        esac
+    else
+        bad "node transforms: grow_fur failed: $(tail -n 2 "$tmp/out")"
+    fi
+fi
+
+# refused before the run, saying why: an output that cannot be written,
+# a name that is only an extension, no strand drawn
+"$BIN" --out "$tmp/no/such/dir/f.hair" >"$tmp/out" 2>&1; rc=$?
+{ [ $rc -eq 1 ] && grep -q "cannot write it" "$tmp/out"; } || bad "an unwritable --out: exit $rc, $(cat "$tmp/out")"
+! grep -q "frames at lod" "$tmp/out" || bad "an unwritable --out: the frames ran first"
+"$BIN" --out "$tmp/.hair" >"$tmp/out" 2>&1; rc=$?
+{ [ $rc -eq 2 ] && grep -q "needs a stem" "$tmp/out"; } || bad "--out .hair: exit $rc"
+"$BIN" --lod 0 --out "$tmp/f.obj" >"$tmp/out" 2>&1; rc=$?
+{ [ $rc -eq 2 ] && grep -q -- "--lod" "$tmp/out"; } || bad "--lod 0: exit $rc"
+
 if [ $fail -ne 0 ]; then echo "grow_fur_check: FAILED"; exit 1; fi
 echo "grow_fur_check: all passed"
