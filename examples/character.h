@@ -145,25 +145,30 @@ static void ch__copy_name(char *dst, const struct aiString *s)
     dst[n] = '\0';
 }
 
-/* Nodes in parent-first order. */
+/* Nodes in parent-first order. Some importers (RAW) leave NULL children
+   or no root: those are skipped. */
 static int ch__count_nodes(const struct aiNode *n)
 {
     unsigned i;
     int k = 1;
-    for (i = 0; i < n->mNumChildren; ++i) k += ch__count_nodes(n->mChildren[i]);
+    if (!n) return 0;
+    for (i = 0; i < n->mNumChildren; ++i)
+        if (n->mChildren) k += ch__count_nodes(n->mChildren[i]);
     return k;
 }
 
 static void ch__flatten(ch_character *c, const struct aiNode *n, int parent,
                         int *at, const struct aiNode **nodes)
 {
-    int me = (*at)++;
+    int me;
     unsigned i;
+    if (!n) return;
+    me = (*at)++;
     nodes[me] = n;
     ch__copy_name(c->node_name[me], &n->mName);
     c->node_parent[me] = parent;
     ch__from_ai(&n->mTransformation, c->node_local[me]);
-    for (i = 0; i < n->mNumChildren; ++i)
+    for (i = 0; i < n->mNumChildren && n->mChildren; ++i)
         ch__flatten(c, n->mChildren[i], me, at, nodes);
 }
 
@@ -382,7 +387,7 @@ static void ch__read_mesh(ch_character *c, const struct aiScene *sc,
     /* a mesh without bones follows the (first) node that holds it */
     for (k = 0; k < c->node_count; ++k) {
         unsigned j;
-        for (j = 0; j < nodes[k]->mNumMeshes; ++j)
+        for (j = 0; j < nodes[k]->mNumMeshes && nodes[k]->mMeshes; ++j)
             if (nodes[k]->mMeshes[j] == m) { owner = k; break; }
         if (owner) break;
     }
@@ -530,6 +535,11 @@ int ch_load(ch_character *c, const char *path, const char *unit, char *err,
         return 0;
     }
     c->node_count = ch__count_nodes(sc->mRootNode);
+    if (c->node_count < 1) {
+        ch__err(err, err_size, path, "no node tree in the file");
+        ch_free(c);
+        return 0;
+    }
     for (a = 0; a < sc->mNumAnimations; ++a)
         if ((int)sc->mAnimations[a]->mNumChannels > max_ch)
             max_ch = (int)sc->mAnimations[a]->mNumChannels;
