@@ -229,6 +229,13 @@ EOF
     fi
 fi
 
+# a node tree with empty children (assimp's RAW importer makes one)
+raw=/usr/share/assimp/models/RAW/WithColor.raw
+if [ -f "$raw" ]; then
+    "$BIN" --mesh "$raw" --strands 500 --frames 1 --out "$tmp/raw.hair" >"$tmp/out" 2>&1 ||
+        bad "$raw: exit $?: $(tail -n 2 "$tmp/out")"
+fi
+
 # refused before the run, saying why: an output that cannot be written,
 # a name that is only an extension, no strand drawn
 "$BIN" --out "$tmp/no/such/dir/f.hair" >"$tmp/out" 2>&1; rc=$?
