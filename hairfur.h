@@ -302,7 +302,9 @@
                            hf_place_strands refuses a negative or
                            non-finite strands_per_area even beside a
                            total_strands; hf_fur_create's diagnostics
-                           name each field alone.
+                           name each field alone; strands that keep
+                           their lengths (hf_fur_desc.keep_length,
+                           hf_groom_desc.keep_length).
        0.2.0 (2026-11-23)  one convention: every struct zero-initialised
                            means its defaults (hf_rope_params and
                            hf_lut_params too, with explicit_zero bits for a
@@ -2120,6 +2122,15 @@ typedef struct hf_fur_desc {
                                is a good start), rebuilt each frame by
                                hf_fur_build_grid, its strengths volume
                                and friction of hf_rope_params */
+    int keep_length;        /* 0 = off; 1 = the drawn strands keep the
+                               segment lengths of their shape at creation:
+                               a blend of guides that part shortens a
+                               strand, clumping to a far guide lengthens
+                               it, and after both (and a groom's offsets)
+                               each segment is scaled back to its rest
+                               length along its own direction (hf_fur_
+                               interpolate and the GPU points; (P - 1)
+                               floats a strand, and a pass a frame) */
     const hf_rope_params *rope_params; /* NULL = hf_rope_params_init */
     const hf_allocator *allocator;     /* NULL = default; copied */
 } hf_fur_desc;
@@ -2180,6 +2191,7 @@ typedef struct hf_groom_desc {
                                   point on it, and hf_fur_set_roots with the
                                   skinned scalp moves the roots */
     int grid_resolution;       /* as hf_fur_desc.grid_resolution */
+    int keep_length;           /* as hf_fur_desc.keep_length */
     const hf_rope_params *rope_params; /* NULL = hf_rope_params_init */
     const hf_allocator *allocator;     /* NULL = default; copied */
 } hf_groom_desc;
@@ -17176,6 +17188,8 @@ struct hf_fur {
                               point, normal and tangent (11 floats) */
     float *offsets;        /* groom: P * 3 per strand, its rest points
                               minus its guides' blend, in their rest frames */
+    float *rest_seg;       /* keep_length: P - 1 per strand, its segments'
+                              lengths at creation */
 };
 
 /* Allocation that remembers nothing: hf_fur_destroy frees each array by
@@ -17237,6 +17251,7 @@ HFDEF void hf_fur_destroy(hf_fur *f)
     hf__free(&a, f->strand_width);
     hf__free(&a, f->strand_clump);
     hf__free(&a, f->scalp_bind);
+    hf__free(&a, f->rest_seg);
     hf__free(&a, f);
 }
 
@@ -17391,6 +17406,9 @@ HF__PRIVATE hf_result hf__fur_desc_check(const hf_fur_desc *d, hf_diag *diag)
     if (!hf__kernels_ok(0, d->nontemporal))
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "nontemporal", -1,
                         "nontemporal %d is not 0, 1 or 2", d->nontemporal);
+    if (d->keep_length != 0 && d->keep_length != 1)
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "keep_length", -1,
+                        "keep_length %d is not 0 or 1", d->keep_length);
     if (!hf__finitef(d->strands_per_area) || d->strands_per_area < 0.0f)
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "strands_per_area", -1,
                         "strands_per_area %g is negative or non-finite",
@@ -18152,6 +18170,91 @@ HF__PRIVATE hf_result hf__fur_keep_rest_frames(hf_fur *f)
     return HF_OK;
 }
 
+/* keep_length: strands [first, first + count) at pts + (s - pts_first)
+   * 3 P, each segment scaled to its rest length along its own direction,
+   from the root out (the root stays; a segment of no length takes the
+   direction of the one before it). */
+HF__PRIVATE void hf__fur_keep_length(const hf_fur *f, int first, int count,
+                                     float *pts, int pts_first)
+{
+    const int P = f->P, n = P - 1;
+    /* the segments apart, then their reciprocal lengths four at a time
+       (square roots and divisions are what it costs), then the walk */
+    float dx[HF_MAX_POINTS], dy[HF_MAX_POINTS], dz[HF_MAX_POINTS];
+    float inv[HF_MAX_POINTS];
+    int s, j;
+    for (s = first; s < first + count; ++s) {
+        float *o = pts + (size_t)(s - pts_first) * (size_t)P * 3u;
+        const float *L = f->rest_seg + (size_t)s * (size_t)n;
+        float ax = o[0], ay = o[1], az = o[2];
+        float ux = 0.0f, uy = 0.0f, uz = 0.0f; /* the last direction */
+        for (j = 0; j < n; ++j) {
+            dx[j] = o[3 * j + 3] - o[3 * j];
+            dy[j] = o[3 * j + 4] - o[3 * j + 1];
+            dz[j] = o[3 * j + 5] - o[3 * j + 2];
+        }
+        j = 0;
+#if HF__V4
+        for (; j + 4 <= n; j += 4) {
+            const hf__v4 x = HF__LD(dx + j), y = HF__LD(dy + j),
+                         z = HF__LD(dz + j);
+            const hf__v4 d2 = HF__ADD(HF__ADD(HF__MUL(x, x), HF__MUL(y, y)),
+                                      HF__MUL(z, z));
+            HF__ST(inv + j, HF__SEL(HF__GT(d2, HF__SET1(1e-30f)),
+                                    HF__DIV(HF__SET1(1.0f), HF__SQRT(d2)),
+                                    HF__SET1(0.0f)));
+        }
+#endif
+        for (; j < n; ++j) {
+            const float d2 = (dx[j] * dx[j] + dy[j] * dy[j]) + dz[j] * dz[j];
+            inv[j] = d2 > 1e-30f ? 1.0f / HF_SQRTF(d2) : 0.0f;
+        }
+        /* each segment's step, then their sums: the walk's chain is one
+           addition a point, not a product and a sum */
+        for (j = 0; j < n; ++j) {
+            if (inv[j] > 0.0f) { /* else the direction before it */
+                ux = dx[j] * inv[j];
+                uy = dy[j] * inv[j];
+                uz = dz[j] * inv[j];
+            }
+            dx[j] = ux * L[j];
+            dy[j] = uy * L[j];
+            dz[j] = uz * L[j];
+        }
+        for (j = 0; j < n; ++j) {
+            ax += dx[j];
+            ay += dy[j];
+            az += dz[j];
+            o[3 * j + 3] = ax;
+            o[3 * j + 4] = ay;
+            o[3 * j + 5] = az;
+        }
+    }
+}
+
+/* keep_length: every strand's segment lengths as interpolated at
+   creation (the rest shape the pass keeps). */
+HF__PRIVATE hf_result hf__fur_rest_segments(hf_fur *f)
+{
+    const int P = f->P;
+    hf_result r = HF_OK;
+    int s, j;
+    f->rest_seg = (float *)hf__fur_array(
+        f, (size_t)f->strand_count * (size_t)(P - 1), sizeof(float), &r);
+    if (r != HF_OK) return r;
+    for (s = 0; s < f->strand_count; ++s) {
+        const float *o = f->strand_points + (size_t)s * (size_t)P * 3u;
+        for (j = 1; j < P; ++j) {
+            const float dx = o[3 * j] - o[3 * j - 3],
+                        dy = o[3 * j + 1] - o[3 * j - 2],
+                        dz = o[3 * j + 2] - o[3 * j - 1];
+            f->rest_seg[(size_t)s * (size_t)(P - 1) + (size_t)(j - 1)] =
+                HF_SQRTF(dx * dx + dy * dy + dz * dz);
+        }
+    }
+    return HF_OK;
+}
+
 /* Stage 4: the ropes at rest, roots from the rest mesh, and the strands
    interpolated once so the first frame has points to draw. */
 HF__PRIVATE hf_result hf__fur_ropes(hf_fur *f, hf__fur_build *b)
@@ -18183,7 +18286,8 @@ HF__PRIVATE hf_result hf__fur_ropes(hf_fur *f, hf__fur_build *b)
     f->lod = 1.0f;
     f->width_scale = 1.0f;
     f->lod_sim = 1;
-    return hf_fur_interpolate(f, 0, f->strand_count);
+    if ((r = hf_fur_interpolate(f, 0, f->strand_count)) != HF_OK) return r;
+    return b->desc.keep_length ? hf__fur_rest_segments(f) : HF_OK;
 }
 
 HFDEF hf_result hf_fur_create(const hf_fur_desc *desc, hf_fur **out_fur,
@@ -18468,6 +18572,9 @@ HF__PRIVATE hf_result hf__groom_check(const hf_groom_desc *d, int P,
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "grid_resolution", -1,
                         "grid_resolution %d is not 0 (no grid) or in "
                         "4..%d", d->grid_resolution, HF_GRID_MAX_RESOLUTION);
+    if (d->keep_length != 0 && d->keep_length != 1)
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "keep_length", -1,
+                        "keep_length %d is not 0 or 1", d->keep_length);
     for (i = 0; i < d->strand_count; ++i) {
         const int n = d->strand_points[i];
         const float *p;
@@ -18646,6 +18753,7 @@ HF__PRIVATE hf_result hf__groom_build(hf_fur *f, const hf_groom_desc *d,
     f->width_scale = 1.0f;
     f->lod_sim = 1;
     r = hf_fur_interpolate(f, 0, S);
+    if (r == HF_OK && d->keep_length) r = hf__fur_rest_segments(f);
 done:
     hf__free(&f->alloc, order);
     hf__free(&f->alloc, start);
@@ -18998,7 +19106,7 @@ HFDEF hf_result hf_fur_interpolate_guides(hf_fur *f, int first, int count)
    main guide at most): no clump pass or groom offsets follow it. */
 HF__PRIVATE int hf__fur_blend_only(const hf_fur *f)
 {
-    return !f->leader && !f->strand_clump && !f->offsets;
+    return !f->leader && !f->strand_clump && !f->offsets && !f->rest_seg;
 }
 
 /* Strands [first, first + count) blended from the guides, clumped and
@@ -19011,6 +19119,7 @@ HF__PRIVATE void hf__fur_strands(const hf_fur *f, int first, int count,
                         pass ? 0.0f : f->clump, pts, pts_first, f->simd, nt);
     if (pass) hf__fur_clump_pass(f, first, count, pts, pts_first);
     if (f->offsets) hf__groom_offsets(f, first, count, pts, pts_first);
+    if (f->rest_seg) hf__fur_keep_length(f, first, count, pts, pts_first);
 }
 
 /* The strands a fur call's streaming stores are chosen for

@@ -155,6 +155,10 @@ static void usage(FILE *fp)
 "  --grid N           nodes along each axis of the hair-hair grid, 4..%d\n"
 "                     (default 32; not made when --volume and --friction\n"
 "                     are both 0)\n"
+"  --keep-length N    1: every drawn strand keeps the segment lengths of its\n"
+"                     grown shape, which blending guides that part and\n"
+"                     clumping change (hf_fur_desc.keep_length); 0: the\n"
+"                     plain blend (default 1)\n"
 "  --rest-from-gravity S  seconds the hair hangs under gravity and the\n"
 "                     colliders (the grid too) before the first frame; the\n"
 "                     draped shape becomes the rest shape the stiffness\n"
@@ -552,6 +556,7 @@ typedef struct gf_options {
     /* the ropes: shape stiffness, hair-hair interaction, draping */
     float stiffness, volume, friction, settle;
     long long grid;
+    long long keep_length; /* --keep-length: 0 or 1 */
     /* --collider: the shapes at rest; the auto one is filled in once the
        mesh's box is known. No --collider at all means auto. */
     hf_collider cols[GF_MAX_COLLIDERS];
@@ -597,6 +602,7 @@ static void options_init(gf_options *o)
     o->volume = 1.0f;
     o->friction = 0.2f;
     o->grid = 32;
+    o->keep_length = 1;
     o->auto_col = -1;
     o->estimator = HF_DENSITY_AREA;
 }
@@ -647,6 +653,8 @@ static int parse_option(gf_options *o, const char *a, const char *v)
         ok = parse_real(a, v, 0.0, 1.0, &o->friction);
     else if (!strcmp(a, "--grid"))
         ok = parse_count(a, v, 4, HF_GRID_MAX_RESOLUTION, &o->grid);
+    else if (!strcmp(a, "--keep-length"))
+        ok = parse_count(a, v, 0, 1, &o->keep_length);
     else if (!strcmp(a, "--rest-from-gravity"))
         ok = parse_real(a, v, 0.0, 600.0, &o->settle);
     else if (!strcmp(a, "--collider")) {
@@ -1021,6 +1029,7 @@ static int fill_desc(const gf_options *o, const gf_mesh *g,
     desc->rope_params = rp;
     desc->grid_resolution =
         o->volume > 0.0f || o->friction > 0.0f ? (int)o->grid : 0;
+    desc->keep_length = (int)o->keep_length;
     return 1;
 }
 
@@ -1046,6 +1055,7 @@ static hf_fur *create_fur(const gf_options *o, const gf_mesh *g,
         gd.seed = (uint64_t)o->seed;
         gd.rope_params = desc->rope_params;
         gd.grid_resolution = desc->grid_resolution;
+        gd.keep_length = desc->keep_length;
         r = hf_fur_create_groom(&gd, &fur, &diag);
     } else {
         r = hf_fur_create(desc, &fur, &diag);

@@ -21,7 +21,7 @@ bad() { echo "grow_fur_check: FAIL: $*"; fail=1; }
 "$BIN" --help >"$tmp/help" 2>&1; rc=$?
 [ $rc -eq 0 ] || bad "--help exited $rc"
 for opt in --mesh --density --estimator --strands --guides --tess-factor --collider --eye --out \
-           --stiffness --volume --friction --grid --rest-from-gravity; do
+           --stiffness --volume --friction --grid --rest-from-gravity --keep-length; do
     grep -q -- "^  $opt " "$tmp/help" || bad "--help has no line for $opt"
 done
 grep -q "PNG top row = v 1" "$tmp/help" || bad "--help does not say which way maps are read"
@@ -29,7 +29,7 @@ grep -q "PNG top row = v 1" "$tmp/help" || bad "--help does not say which way ma
 # hair-hair interaction and draping: bad strengths refused (exit 2, the
 # option named); long hair draped with the grid runs and says so
 for pair in "--volume -1" "--volume 101" "--friction 1.5" "--grid 3" "--grid 129" \
-            "--rest-from-gravity -1" "--stiffness 2"; do
+            "--rest-from-gravity -1" "--stiffness 2" "--keep-length 2"; do
     set -- $pair
     "$BIN" "$1" "$2" --frames 1 --out "$tmp/f.obj" >"$tmp/out" 2>&1; rc=$?
     [ $rc -eq 2 ] || bad "$1 $2: exit $rc, expected 2"
@@ -234,6 +234,37 @@ raw=/usr/share/assimp/models/RAW/WithColor.raw
 if [ -f "$raw" ]; then
     "$BIN" --mesh "$raw" --strands 500 --frames 1 --out "$tmp/raw.hair" >"$tmp/out" 2>&1 ||
         bad "$raw: exit $?: $(tail -n 2 "$tmp/out")"
+fi
+
+# --keep-length (the default): the .hair output's strands keep their
+# segment lengths through the swing; the plain blend does not
+if command -v python3 >/dev/null 2>&1; then
+    for k in 1 0; do
+        for n in 1 60; do
+            "$BIN" --strands 3000 --points 24 --length-max 0.25 --keep-length $k \
+                --frames $n --out "$tmp/k${k}_$n.hair" >"$tmp/out" 2>&1 ||
+                bad "--keep-length $k --frames $n: $(tail -n 2 "$tmp/out")"
+        done
+    done
+    cat >"$tmp/seg.py" <<'EOF'
+import array, math, struct, sys
+def segs(path):
+    d = open(path, "rb").read()
+    s, t, flags, dseg = struct.unpack_from("<4I", d, 4)
+    off = 128 + (2 * s if flags & 1 else 0)
+    xyz = array.array("f"); xyz.frombytes(d[off:off + 12 * t])
+    return [math.dist(xyz[3 * i:3 * i + 3], xyz[3 * i + 3:3 * i + 6])
+            for i in range(t - 1) if (i + 1) % (dseg + 1)]
+a, b = segs(sys.argv[1]), segs(sys.argv[2])
+print("%.3g" % max(abs(x - y) / max(x, 1e-9) for x, y in zip(a, b)))
+EOF
+    kept=$(python3 "$tmp/seg.py" "$tmp/k1_1.hair" "$tmp/k1_60.hair")
+    plain=$(python3 "$tmp/seg.py" "$tmp/k0_1.hair" "$tmp/k0_60.hair")
+    if python3 -c "import sys; sys.exit(not ($kept < 1e-4 and $plain > 1e-2))"; then
+        echo "grow_fur_check: keep-length: segments change by at most $kept over 60 frames ($plain without)"
+    else
+        bad "keep-length: segments change by $kept over 60 frames (want < 1e-4), $plain without (want > 1e-2)"
+    fi
 fi
 
 # refused before the run, saying why: an output that cannot be written,

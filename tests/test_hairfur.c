@@ -12160,6 +12160,98 @@ static void test_fur_bad_desc_and_out_of_memory(void)
     }
 }
 
+/* Squared distance of two points, in double. */
+static double t_d2(const float *a, const float *b)
+{
+    const double x = (double)a[0] - b[0], y = (double)a[1] - b[1],
+                 z = (double)a[2] - b[2];
+    return x * x + y * y + z * z;
+}
+
+/* keep_length: after the roots turn and the guides swing apart (clumping
+   strong, so the plain blend changes lengths), every drawn strand keeps
+   the segment lengths it had at creation; without it they change. The
+   same bytes split into ranges, and from the GPU points path. */
+static double t_keep_length_worst(int keep, int check_paths)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_fur_info info;
+    float *rest, *again, *pts4;
+    double worst = 0.0;
+    int s, j, fr, P, S;
+    t_fur_scene_init(&sc, 1.0f);
+    sc.desc.clump = 0.8f;
+    sc.desc.keep_length = keep;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, NULL), HF_OK);
+    if (!f) return -1.0;
+    hf_fur_get_info(f, &info);
+    P = info.points_per_strand;
+    S = info.strand_count;
+    rest = (float *)malloc(sizeof(float) * 3u * (size_t)(S * P));
+    again = (float *)malloc(sizeof(float) * 3u * (size_t)(S * P));
+    pts4 = (float *)malloc(sizeof(float) * 4u * (size_t)(S * P));
+    if (!rest || !again || !pts4) { CHECK(0); return -1.0; }
+    memcpy(rest, info.strand_points, sizeof(float) * 3u * (size_t)(S * P));
+    for (fr = 0; fr < 40; ++fr) { /* turn about z and let it swing */
+        const float a = 0.04f * (float)fr, c = cosf(a), sn = sinf(a);
+        const float m[12] = {c, -sn, 0, 0, sn, c, 0, 0, 0, 0, 1, 0};
+        CHECK_EQ_INT(hf_fur_set_transform(f, m, 0, info.guide_count), HF_OK);
+        CHECK_EQ_INT(hf_fur_simulate(f, 0, info.guide_count, 1.0f / 60.0f,
+                                     NULL, 0), HF_OK);
+    }
+    CHECK_EQ_INT(hf_fur_interpolate_guides(f, 0, info.lod_guide_count), HF_OK);
+    CHECK_EQ_INT(hf_fur_interpolate(f, 0, S), HF_OK);
+    hf_fur_get_info(f, &info);
+    for (s = 0; s < S; ++s)
+        for (j = 1; j < P; ++j) {
+            const float *a = rest + 3 * ((size_t)s * P + j);
+            const float *b = info.strand_points + 3 * ((size_t)s * P + j);
+            double l0 = sqrt(t_d2(a, a - 3)), l1 = sqrt(t_d2(b, b - 3));
+            double e = fabs(l1 - l0) / (l0 > 1e-9 ? l0 : 1e-9);
+            if (e > worst) worst = e;
+        }
+    if (check_paths) {
+        hf_ribbon_params view;
+        memcpy(again, info.strand_points, sizeof(float) * 3u * (size_t)(S * P));
+        /* split into ranges: the same bytes */
+        CHECK_EQ_INT(hf_fur_interpolate(f, 0, 7), HF_OK);
+        CHECK_EQ_INT(hf_fur_interpolate(f, 7, S - 7), HF_OK);
+        CHECK(memcmp(again, info.strand_points,
+                     sizeof(float) * 3u * (size_t)(S * P)) == 0);
+        /* the GPU points: the same positions */
+        memset(&view, 0, sizeof view);
+        CHECK_EQ_INT(hf_fur_interpolate_points(f, 0, S, &view, pts4), HF_OK);
+        for (s = 0; s < S * P; ++s)
+            if (memcmp(pts4 + 4 * (size_t)s, again + 3 * (size_t)s,
+                       3 * sizeof(float)) != 0) {
+                CHECK(0);
+                break;
+            }
+    }
+    free(rest);
+    free(again);
+    free(pts4);
+    hf_fur_destroy(f);
+    return worst;
+}
+
+static void test_fur_keep_length(void)
+{
+    t_fur_scene sc;
+    hf_fur *f = NULL;
+    hf_diag d;
+    const double kept = t_keep_length_worst(1, 1);
+    const double plain = t_keep_length_worst(0, 0);
+    CHECK(kept >= 0.0 && kept < 2e-5);
+    CHECK(plain > 1e-2);
+    t_fur_scene_init(&sc, 1.0f);
+    sc.desc.keep_length = 2;
+    CHECK_EQ_INT(hf_fur_create(&sc.desc, &f, &d), HF_ERROR_BAD_PARAMETER);
+    CHECK_EQ_STR(d.field, "keep_length");
+    CHECK(f == NULL);
+}
+
 static void test_fur_same_seed_same_bytes(void)
 {
     t_fur_scene sc;
@@ -12934,6 +13026,7 @@ static void test_fur_kernels_same_bytes(void)
     X(test_fur_lod_guides_wake_without_jump)                                   \
     X(test_fur_bad_desc_and_out_of_memory)                                     \
     X(test_fur_same_seed_same_bytes)                                           \
+    X(test_fur_keep_length)                                                    \
     X(test_fur_errors_per_frame)                                               \
     X(test_bad_fur)                                                            \
     X(test_defaults_fur_strand_count_precedence)                               \

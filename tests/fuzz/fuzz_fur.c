@@ -129,6 +129,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     desc.grid_resolution = fz_chance(&r, 160) ? 0
                            : fz_chance(&r, 200) ? fz_int(&r, 4, 12)
                                                 : fz_int(&r, -5, 200);
+    /* strands that keep their lengths: mostly off, some bad values */
+    desc.keep_length = fz_chance(&r, 160) ? 0 : fz_int(&r, -1, 2);
     memset(&rope, 0, sizeof rope);
     if (fz_chance(&r, 128)) {
         rope.gravity[1] = fz_float(&r, 30.0f);
@@ -285,6 +287,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         gd.strand_points = curve_points;
         gd.strand_count = fz_chance(&r, 240) ? n : fz_int(&r, -2, n);
         gd.points_per_strand = fz_chance(&r, 200) ? 0 : fz_int(&r, 0, 40);
+        gd.keep_length = fz_chance(&r, 200) ? 0 : fz_int(&r, -1, 2);
         gd.guide_fraction = fz_chance(&r, 200) ? fz_float_in(&r, 0.0f, 1.0f)
                                                : fz_float(&r, 2.0f);
         gd.seed = fz_u32(&r);
