@@ -160,6 +160,7 @@ typedef struct glm_options {
     float rest_gravity; /* seconds draped before the rest shape is taken */
     float volume, friction; /* hair-hair: 0 = off */
     int grid;           /* nodes along each axis of the hair-hair grid */
+    int keep_length;    /* hf_fur_desc.keep_length */
     const char *guides_path; /* authored guide curves (.hair, .tfx, .obj) */
     const char *groom_path;  /* a groom: its strands drawn, some simulated */
     float guide_fraction;    /* of the groom's strands; 0 = 0.1 */
@@ -1411,6 +1412,7 @@ static void glm_rope_params(const glm_app *a, hf_rope_params *rp,
                         (o->friction == 0.0f ? HF_ROPE_ZERO_FRICTION : 0);
     desc->grid_resolution =
         o->volume > 0.0f || o->friction > 0.0f ? o->grid : 0;
+    desc->keep_length = o->keep_length;
     desc->rope_params = rp;
 }
 
@@ -1442,6 +1444,7 @@ static int glm_init_fur(glm_app *a)
         gd.seed = 7;
         gd.rope_params = &rp;
         gd.grid_resolution = desc.grid_resolution;
+        gd.keep_length = desc.keep_length;
         /* on a mesh, the roots follow the skinned grown part */
         gd.scalp = a->ch.vertex_count > 0 ? &desc.mesh : NULL;
         r = hf_fur_create_groom(&gd, &a->fur, &diag);
@@ -2607,6 +2610,10 @@ static void glm_usage(FILE *fp)
 "                     0 = off)\n"
 "  --grid N           nodes along each axis of the hair-hair grid, 4..128\n"
 "                     (default 32; none when --volume and --friction are 0)\n"
+"  --keep-length N    1: each drawn strand keeps the segment lengths of its\n"
+"                     grown shape, which blending guides that part and\n"
+"                     clumping change (hf_fur_desc.keep_length; about 2.4 ns\n"
+"                     a point a frame); 0: the plain blend (default 0)\n"
 "  --groom FILE       a groom (.hair, .tfx, .obj polylines): its own strands\n"
 "                     are drawn, a fraction of them simulated; its roots\n"
 "                     follow the skinned --grow-on meshes (or the head)\n"
@@ -2815,6 +2822,7 @@ static int glm_parse(int argc, char **argv, glm_options *o)
             else if (!strcmp(s, "--volume")) ok = glm_real(s, v, 0.0, 100.0, &o->volume);
             else if (!strcmp(s, "--friction")) ok = glm_real(s, v, 0.0, 1.0, &o->friction);
             else if (!strcmp(s, "--grid")) ok = glm_int(s, v, 4, HF_GRID_MAX_RESOLUTION, &o->grid);
+            else if (!strcmp(s, "--keep-length")) ok = glm_int(s, v, 0, 1, &o->keep_length);
             else if (!strcmp(s, "--hair-color")) ok = glm_real3(s, v, 0.0, 1.0, o->hair_color);
             else if (!strcmp(s, "--comb")) ok = glm_real3(s, v, -100.0, 100.0, o->comb);
             else if (!strcmp(s, "--guides")) {
