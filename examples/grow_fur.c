@@ -64,6 +64,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h> /* sysconf: the machine's memory */
 
 typedef struct vtx {
     float pos[3], normal[3], uv[2];
@@ -761,6 +762,22 @@ static int check_args(gf_options *o, cv_curves *curves)
         }
         fclose(fp);
         if (!existed) remove(out_path);
+    }
+    { /* what the frames hold a point: its strand point (12 bytes) and
+         the ribbon buffer's two vertices (96) */
+        const double gb = (double)o->strands * o->points * 108.0 / 1e9;
+#ifdef _SC_PHYS_PAGES
+        const double have = (double)sysconf(_SC_PHYS_PAGES) *
+                            (double)sysconf(_SC_PAGESIZE) / 1e9;
+        if (have > 0.0 && gb > have) {
+            fprintf(stderr, "grow_fur: --strands %d of --points %d need "
+                            "about %.1f GB, more than this machine's %.1f "
+                            "GB\n", o->strands, o->points, gb, have);
+            return 2;
+        }
+#else
+        (void)gb;
+#endif
     }
     if (!(o->lod > 0.0f)) {
         fprintf(stderr, "grow_fur: --lod 0 draws no strand: give a level "

@@ -274,6 +274,8 @@ fi
 ! grep -q "frames at lod" "$tmp/out" || bad "an unwritable --out: the frames ran first"
 "$BIN" --out "$tmp/.hair" >"$tmp/out" 2>&1; rc=$?
 { [ $rc -eq 2 ] && grep -q "needs a stem" "$tmp/out"; } || bad "--out .hair: exit $rc"
+"$BIN" --strands 268435456 --points 256 --out "$tmp/f.obj" >"$tmp/out" 2>&1; rc=$?
+{ [ $rc -eq 2 ] && grep -q "need about" "$tmp/out"; } || bad "7 TB of strands: exit $rc, $(cat "$tmp/out")"
 "$BIN" --lod 0 --out "$tmp/f.obj" >"$tmp/out" 2>&1; rc=$?
 { [ $rc -eq 2 ] && grep -q -- "--lod" "$tmp/out"; } || bad "--lod 0: exit $rc"
 
