@@ -321,8 +321,9 @@ static void *mapped_like(size_t bytes)
     return q;
 }
 
-/* the hair-hair grid of the next scene_init (0: none) */
-static int g_grid_resolution;
+/* the hair-hair grid of the next scene_init (0: none), and whether its
+   strands keep their lengths (hf_fur_desc.keep_length) */
+static int g_grid_resolution, g_keep_length;
 
 static void scene_init(scene *s, const char *name, int rings, int segments,
                        int strands, float tess_factor, int points,
@@ -343,6 +344,7 @@ static void scene_init(scene *s, const char *name, int rings, int segments,
     d.points_per_strand = points;
     d.max_length = length;
     d.grid_resolution = g_grid_resolution;
+    d.keep_length = g_keep_length;
     a.alloc = c_alloc;
     a.realloc = c_realloc;
     a.free = c_free;
@@ -946,6 +948,56 @@ static void bench_character(int frames)
 #define BENCH_GRID 32
 static double g_grid_cost = -1.0;
 
+/* Strands that keep their lengths (hf_fur_desc.keep_length) on scene V's
+   hair: hf_fur_interpolate of every strand, one thread, the fur built
+   with and without it, both swinging on the head's sphere. Machine line:
+     bench stage=keep_length scene=V threads=1 ms=.. plain_ms=.. */
+static void bench_keep_length(int frames)
+{
+    static scene v[2];
+    job jr, js, ji;
+    double *t = (double *)malloc(sizeof(double) * 2u * (size_t)frames);
+    figure fk[2];
+    int k, f;
+    memset(&jr, 0, sizeof jr);
+    memset(&js, 0, sizeof js);
+    memset(&ji, 0, sizeof ji);
+    g_threads = 1;
+    for (k = 0; k < 2; ++k) {
+        g_keep_length = k;
+        scene_init(&v[k], "V", BENCH_V_RINGS, BENCH_V_SEGMENTS,
+                   BENCH_V_STRANDS, 0.0f, BENCH_V_POINTS, BENCH_V_LENGTH);
+        v[k].ncol = 1;
+        g_sc = &v[k];
+        jr.fn = j_roots;
+        jr.total = js.total = v[k].info.guide_count;
+        js.fn = j_ropes;
+        ji.fn = j_interp;
+        ji.total = v[k].info.strand_count;
+        for (f = -10; f < frames; ++f) {
+            double t0;
+            scene_pose(&v[k], v[k].frame++);
+            run_job(&jr);
+            run_job(&js);
+            t0 = now_ms();
+            run_job(&ji);
+            if (f >= 0) t[(size_t)k * (size_t)frames + (size_t)f] = now_ms() - t0;
+        }
+        fk[k] = stats(t + (size_t)k * (size_t)frames, frames);
+    }
+    g_keep_length = 0;
+    printf("strands that keep their lengths on V (%d strands of %d points), "
+           "1T: %.3f ms, %.3f without (%.2f ns a point more)\n",
+           v[1].info.strand_count, v[1].info.points_per_strand, fk[1].med,
+           fk[0].med,
+           (fk[1].med - fk[0].med) * 1e6 /
+               ((double)v[1].info.strand_count * v[1].info.points_per_strand));
+    fprintf(stderr, "bench stage=keep_length scene=V threads=1 ms=%.4f "
+                    "plain_ms=%.4f\n", fk[1].med, fk[0].med);
+    for (k = 0; k < 2; ++k) scene_free(&v[k]);
+    free(t);
+}
+
 static void bench_hair_grid(int frames)
 {
     static scene v[2];
@@ -1330,6 +1382,7 @@ int main(int argc, char **argv)
     if (!only || !strcmp(only, "V")) bench_character(frames);
     if (!only || !strcmp(only, "V") || !strcmp(only, "Vg"))
         bench_hair_grid(frames);
+    if (!only || !strcmp(only, "V")) bench_keep_length(frames);
     bench_lut(9);
     print_targets(!only || !strcmp(only, "L") ? frame_ms[2] : NULL);
 
