@@ -264,12 +264,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                                   (size_t)info.points_per_strand * 4u,
                              n4 = (size_t)count * (size_t)info.points_per_strand * 4u;
                 FZ_REQUIRE(fz_all_finite(pbuf + at, n4));
-                /* the one-pass path: the same bytes, at any kernels */
+                /* the one-pass path: the same bytes, at any kernels,
+                   for the strands interpolated this frame (the drawn
+                   ones; hf_fur_points reads the others as they were
+                   last interpolated) */
                 view.nontemporal = fz_int(&r, 0, 2);
                 hf_fur_set_kernels(fur, fz_int(&r, 0, 4), fz_int(&r, 0, 2));
                 FZ_REQUIRE(hf_fur_interpolate_points(fur, first, count, &view,
                                                      pbuf2) == HF_OK);
-                FZ_REQUIRE(memcmp(pbuf + at, pbuf2 + at, sizeof(float) * n4) == 0);
+                if (first + count <= info.drawn_strand_count)
+                    FZ_REQUIRE(memcmp(pbuf + at, pbuf2 + at,
+                                      sizeof(float) * n4) == 0);
             }
             FZ_REQUIRE(hf_fur_get_info(fur, &info) == HF_OK);
             FZ_REQUIRE(info.roots_inside >= 0 && info.roots_inside <= info.guide_count);
