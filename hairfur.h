@@ -2131,7 +2131,7 @@ typedef struct hf_fur_desc {
                                length along its own direction, in
                                hf_fur_interpolate and the GPU points.
                                Costs (P - 1) floats a strand and a pass
-                               a frame, about 2.4 ns a point on one core
+                               a frame, about 2.5 ns a point on one core
                                (docs/hair.md) */
     const hf_rope_params *rope_params; /* NULL = hf_rope_params_init */
     const hf_allocator *allocator;     /* NULL = default; copied */

@@ -2612,7 +2612,7 @@ static void glm_usage(FILE *fp)
 "                     (default 32; none when --volume and --friction are 0)\n"
 "  --keep-length N    1: each drawn strand keeps the segment lengths of its\n"
 "                     grown shape, which blending guides that part and\n"
-"                     clumping change (hf_fur_desc.keep_length; about 2.4 ns\n"
+"                     clumping change (hf_fur_desc.keep_length; about 2.5 ns\n"
 "                     a point a frame); 0: the plain blend (default 0)\n"
 "  --groom FILE       a groom (.hair, .tfx, .obj polylines): its own strands\n"
 "                     are drawn, a fraction of them simulated; its roots\n"
