@@ -18211,22 +18211,15 @@ HF__PRIVATE void hf__fur_keep_length(const hf_fur *f, int first, int count,
             const float d2 = (dx[j] * dx[j] + dy[j] * dy[j]) + dz[j] * dz[j];
             inv[j] = d2 > 1e-30f ? 1.0f / HF_SQRTF(d2) : 0.0f;
         }
-        /* each segment's step, then their sums: the walk's chain is one
-           addition a point, not a product and a sum */
         for (j = 0; j < n; ++j) {
             if (inv[j] > 0.0f) { /* else the direction before it */
                 ux = dx[j] * inv[j];
                 uy = dy[j] * inv[j];
                 uz = dz[j] * inv[j];
             }
-            dx[j] = ux * L[j];
-            dy[j] = uy * L[j];
-            dz[j] = uz * L[j];
-        }
-        for (j = 0; j < n; ++j) {
-            ax += dx[j];
-            ay += dy[j];
-            az += dz[j];
+            ax += ux * L[j];
+            ay += uy * L[j];
+            az += uz * L[j];
             o[3 * j + 3] = ax;
             o[3 * j + 4] = ay;
             o[3 * j + 5] = az;
