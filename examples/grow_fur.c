@@ -24,8 +24,8 @@
    through examples/character.h: all its meshes are merged, posed at the
    first frame of its animation (node transforms, skinned meshes by their
    bones, as gl_marschner shows the file) in the file's units, its smooth
-   normals (from the file, or made by assimp) are passed on, and the maps need its first UV channel (a map on
-   a mesh without UVs is refused). Maps are PNG (or anything stb_image
+   normals (from the file, or made by assimp) are passed on, and the maps
+   need its first UV channel (a map on a mesh without UVs is refused). Maps are PNG (or anything stb_image
    reads): density and length use their first channel, colour its RGB; the
    PNG's top row is v = 1, as in OpenGL (rows are flipped on load, since
    hf_map's row 0 is v = 0). --guides sets the LOD guide density from the
@@ -54,7 +54,6 @@
 #include "curves.h"
 #define CHARACTER_IMPLEMENTATION
 #include "character.h"
-
 
 #include <ctype.h>
 #include <errno.h>
@@ -335,10 +334,11 @@ static int parse_collider(const char *v, hf_collider *c)
 /* Every mesh of the scene merged into one interleaved buffer, posed at
    the first frame of its first animation, or as the file's node tree has
    it (examples/character.h: node transforms, skinned meshes by their
-   bones, as gl_marschner shows the file), in the file's units. *has_normals and *has_uvs: every merged mesh had
-   normals (assimp's smooth ones where the file has none) / texture
-   coordinates (channel 0); *uvless counts the meshes without. Refused,
-   saying why: no triangles, a position that is not finite, no area. */
+   bones, as gl_marschner shows the file), in the file's units.
+   *has_normals and *has_uvs: every merged mesh had normals (assimp's
+   smooth ones where the file has none) / texture coordinates (channel
+   0); *uvless counts the meshes without. Refused, saying why: no
+   triangles, a position that is not finite, no area. */
 static int load_mesh(const char *path, vtx **out_v, uint32_t **out_i,
                      int *nv, int *nt, int *has_normals, int *has_uvs,
                      int *uvless, int *mesh_count)
