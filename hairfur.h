@@ -18510,34 +18510,51 @@ HF__PRIVATE hf_result hf__groom_bind_scalp(hf_fur *f, const hf_mesh *m)
     return HF_OK;
 }
 
-/* A groom's roots from the skinned scalp: each guide's rest root frame
-   turned and moved as its triangle's frame was. */
-HF__PRIVATE void hf__groom_roots_from_scalp(hf_fur *f, const hf_mesh *m,
-                                            int first, int count)
+/* A groom's root frame of guide g from the skinned scalp: its rest root
+   frame turned and moved as its triangle's frame was. */
+HF__PRIVATE void hf__groom_root_from_scalp(const hf_fur *f, const hf_mesh *m,
+                                           int g, float *pos, float *nrm,
+                                           float *tan)
 {
-    int g, i, j, c;
-    for (g = first; g < first + count; ++g) {
-        const float *sb = f->scalp_bind + 11 * g, *rf = f->rest_frame + 9 * g;
-        float pos[3], nrm[3], tan[3];
-        double cur[9], rest[9], R[9], d[3];
-        hf__scalp_frame(m, f->ref + 3 * g, sb[0], sb[1], pos, nrm, tan);
-        hf__groom_frame(nrm, tan, cur);
-        hf__groom_frame(sb + 5, sb + 8, rest);
-        for (i = 0; i < 3; ++i)
-            for (j = 0; j < 3; ++j) {
-                R[3 * i + j] = 0.0;
-                for (c = 0; c < 3; ++c) R[3 * i + j] += cur[3 * i + c] * rest[3 * j + c];
-            }
-        for (i = 0; i < 3; ++i) d[i] = (double)rf[i] - sb[2 + i];
-        for (i = 0; i < 3; ++i) {
-            f->root_pos[3 * g + i] = (float)(pos[i] + R[3 * i] * d[0] +
-                                             R[3 * i + 1] * d[1] + R[3 * i + 2] * d[2]);
-            f->root_nrm[3 * g + i] = (float)(R[3 * i] * rf[3] + R[3 * i + 1] * rf[4] +
-                                             R[3 * i + 2] * rf[5]);
-            f->root_tan[3 * g + i] = (float)(R[3 * i] * rf[6] + R[3 * i + 1] * rf[7] +
-                                             R[3 * i + 2] * rf[8]);
+    const float *sb = f->scalp_bind + 11 * g, *rf = f->rest_frame + 9 * g;
+    float at[3], n[3], t[3];
+    double cur[9], rest[9], R[9], d[3];
+    int i, j, c;
+    hf__scalp_frame(m, f->ref + 3 * g, sb[0], sb[1], at, n, t);
+    hf__groom_frame(n, t, cur);
+    hf__groom_frame(sb + 5, sb + 8, rest);
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 3; ++j) {
+            R[3 * i + j] = 0.0;
+            for (c = 0; c < 3; ++c) R[3 * i + j] += cur[3 * i + c] * rest[3 * j + c];
         }
+    for (i = 0; i < 3; ++i) d[i] = (double)rf[i] - sb[2 + i];
+    for (i = 0; i < 3; ++i) {
+        pos[i] = (float)(at[i] + R[3 * i] * d[0] + R[3 * i + 1] * d[1] +
+                         R[3 * i + 2] * d[2]);
+        nrm[i] = (float)(R[3 * i] * rf[3] + R[3 * i + 1] * rf[4] +
+                         R[3 * i + 2] * rf[5]);
+        tan[i] = (float)(R[3 * i] * rf[6] + R[3 * i + 1] * rf[7] +
+                         R[3 * i + 2] * rf[8]);
     }
+}
+
+/* Guides [first, first + count) of a groom: their root frames from the
+   skinned scalp, all computed and checked (within HF_ROPE_MAX_COORD)
+   before any is stored, so that a refused call sets nothing. */
+HF__PRIVATE hf_result hf__groom_roots_from_scalp(hf_fur *f, const hf_mesh *m,
+                                                 int first, int count)
+{
+    float pos[3], nrm[3], tan[3];
+    int g;
+    for (g = first; g < first + count; ++g) {
+        hf__groom_root_from_scalp(f, m, g, pos, nrm, tan);
+        if (!hf__rope_coord_ok(pos)) return HF_ERROR_BAD_PARAMETER;
+    }
+    for (g = first; g < first + count; ++g)
+        hf__groom_root_from_scalp(f, m, g, f->root_pos + 3 * g,
+                                  f->root_nrm + 3 * g, f->root_tan + 3 * g);
+    return HF_OK;
 }
 
 /* The groom's own fields (the ropes check their parameters). */
@@ -18916,7 +18933,8 @@ HFDEF hf_result hf_fur_set_roots(hf_fur *f, const hf_mesh *m, int first,
                 return HF_ERROR_NON_FINITE;
         }
     if (f->groom) { /* roots bound to scalp triangles */
-        hf__groom_roots_from_scalp(f, m, first, count);
+        if ((r = hf__groom_roots_from_scalp(f, m, first, count)) != HF_OK)
+            return r;
         return hf__ropes_set_roots(f->ropes, first, count, f->root_pos,
                                    f->root_nrm, f->root_tan, 0, f->simd);
     }

@@ -11550,6 +11550,21 @@ static void test_fur_groom_scalp(void)
         if (fabs(r - 1.1) > worst) worst = fabs(r - 1.1);
     }
     CHECK(worst < 0.01); /* roots sit on the flat triangles, not the sphere */
+    /* a scalp moved beyond HF_ROPE_MAX_COORD: refused, and nothing set
+       (the strands interpolated again are the same bytes) */
+    {
+        const size_t n = (size_t)TG_S * TG_P * 3u;
+        float *before = (float *)malloc(sizeof(float) * n);
+        if (!before) { CHECK(0); hf_fur_destroy(f); return; }
+        CHECK_EQ_INT(hf_fur_interpolate(f, 0, TG_S), HF_OK);
+        memcpy(before, info.strand_points, sizeof(float) * n);
+        for (i = 0; i < (FR + 1) * (FS + 1); ++i) moved[3 * i] = sc.pos[3 * i] + 2e6f;
+        CHECK_EQ_INT(hf_fur_set_roots(f, &skinned, 0, info.guide_count),
+                     HF_ERROR_BAD_PARAMETER);
+        CHECK_EQ_INT(hf_fur_interpolate(f, 0, TG_S), HF_OK);
+        CHECK(memcmp(before, info.strand_points, sizeof(float) * n) == 0);
+        free(before);
+    }
     /* a wrong scalp: counts checked */
     skinned.vertex_count -= 1;
     CHECK_EQ_INT(hf_fur_set_roots(f, &skinned, 0, 1), HF_ERROR_BAD_COUNT);
