@@ -547,8 +547,10 @@ $(STB_H):
 $(BUILD)/%: examples/%.c $(HDR) $(STB_H) | $(BUILD)
 	gcc $(EX_CFLAGS) $< -o $@ -lm
 
-# grow_fur loads meshes with assimp (Debian's libassimp-dev).
-$(BUILD)/grow_fur: examples/grow_fur.c examples/head_mesh.h examples/curves.h examples/character.h $(HDR) $(STB_H) | $(BUILD)
+# grow_fur loads meshes with assimp (Debian's libassimp-dev), through
+# examples/character.h.
+$(BUILD)/grow_fur: examples/grow_fur.c examples/head_mesh.h examples/curves.h \
+        examples/character.h $(HDR) $(STB_H) | $(BUILD)
 	@printf '#include <assimp/cimport.h>\n' | gcc -E -x c - >/dev/null 2>&1 || \
 	  { echo "grow_fur needs assimp: run 'make deps' (Debian package libassimp-dev)"; exit 1; }
 	gcc $(EX_CFLAGS) $< -o $@ -lassimp -lm

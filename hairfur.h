@@ -18175,7 +18175,8 @@ HF__PRIVATE hf_result hf__fur_keep_rest_frames(hf_fur *f)
 /* keep_length: strands [first, first + count) at pts + (s - pts_first)
    * 3 P, each segment scaled to its rest length along its own direction,
    from the root out (the root stays; a segment of no length takes the
-   direction of the one before it). */
+   direction of the one before it, or at the root of the first one with
+   a length; a strand of no length stays so). */
 HF__PRIVATE void hf__fur_keep_length(const hf_fur *f, int first, int count,
                                      float *pts, int pts_first)
 {
@@ -18210,6 +18211,14 @@ HF__PRIVATE void hf__fur_keep_length(const hf_fur *f, int first, int count,
         for (; j < n; ++j) {
             const float d2 = (dx[j] * dx[j] + dy[j] * dy[j]) + dz[j] * dz[j];
             inv[j] = d2 > 1e-30f ? 1.0f / HF_SQRTF(d2) : 0.0f;
+        }
+        /* segments of no length at the root take the first direction */
+        for (j = 0; j < n && !(inv[j] > 0.0f); ++j) {
+        }
+        if (j < n) {
+            ux = dx[j] * inv[j];
+            uy = dy[j] * inv[j];
+            uz = dz[j] * inv[j];
         }
         for (j = 0; j < n; ++j) {
             if (inv[j] > 0.0f) { /* else the direction before it */

@@ -25,8 +25,9 @@
    first frame of its animation (node transforms, skinned meshes by their
    bones, as gl_marschner shows the file) in the file's units, its smooth
    normals (from the file, or made by assimp) are passed on, and the maps
-   need its first UV channel (a map on a mesh without UVs is refused). Maps are PNG (or anything stb_image
-   reads): density and length use their first channel, colour its RGB; the
+   need its first UV channel (a map on a mesh without UVs is refused).
+   Maps are PNG (or anything stb_image reads): density and length use
+   their first channel, colour its RGB; the
    PNG's top row is v = 1, as in OpenGL (rows are flipped on load, since
    hf_map's row 0 is v = 0). --guides sets the LOD guide density from the
    mesh's area (see docs/grow.md). The head swings sideways (0.05 m at 1 Hz) and
@@ -63,6 +64,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <fcntl.h>  /* open: --out checked before the run */
 #include <unistd.h> /* sysconf: the machine's memory */
 
 typedef struct vtx {
@@ -749,36 +751,6 @@ static int check_args(gf_options *o, cv_curves *curves)
             return 2;
         }
     }
-    { /* writable before the run, not after it: opened to append (an
-         existing file is not changed), a new one removed again */
-        FILE *fp = fopen(out_path, "rb");
-        const int existed = fp != NULL;
-        if (fp) fclose(fp);
-        fp = fopen(out_path, "ab");
-        if (!fp) {
-            fprintf(stderr, "grow_fur: --out '%s': cannot write it: %s\n",
-                    out_path, strerror(errno));
-            return 1;
-        }
-        fclose(fp);
-        if (!existed) remove(out_path);
-    }
-    { /* what the frames hold a point: its strand point (12 bytes) and
-         the ribbon buffer's two vertices (96) */
-        const double gb = (double)o->strands * o->points * 108.0 / 1e9;
-#ifdef _SC_PHYS_PAGES
-        const double have = (double)sysconf(_SC_PHYS_PAGES) *
-                            (double)sysconf(_SC_PAGESIZE) / 1e9;
-        if (have > 0.0 && gb > have) {
-            fprintf(stderr, "grow_fur: --strands %d of --points %d need "
-                            "about %.1f GB, more than this machine's %.1f "
-                            "GB\n", o->strands, o->points, gb, have);
-            return 2;
-        }
-#else
-        (void)gb;
-#endif
-    }
     if (!(o->lod > 0.0f)) {
         fprintf(stderr, "grow_fur: --lod 0 draws no strand: give a level "
                         "in (0, 1]\n");
@@ -822,6 +794,36 @@ static int check_args(gf_options *o, cv_curves *curves)
         o->guides = o->strands / 10;
         if (o->guides > GF_MAX_DEFAULT_GUIDES) o->guides = GF_MAX_DEFAULT_GUIDES;
         if (o->guides < 1) o->guides = 1;
+    }
+    { /* what the frames hold a point: its strand point (12 bytes) and
+         the ribbon buffer's two vertices (96); a groom draws its own */
+        const int strands = o->groom_path ? curves->count : o->strands;
+        const double gb = (double)strands * o->points * 108.0 / 1e9;
+        const double have = (double)sysconf(_SC_PHYS_PAGES) *
+                            (double)sysconf(_SC_PAGESIZE) / 1e9;
+        if (have > 0.0 && gb > have) {
+            fprintf(stderr, "grow_fur: %d strands of --points %d need about "
+                            "%.1f GB, more than this machine's %.1f GB\n",
+                    strands, o->points, gb, have);
+            return 2;
+        }
+    }
+    { /* --out writable before the run, not after it, and nothing of the
+         user's changed: a new file made and removed again, an existing
+         one opened to append (a name that leads nowhere, such as a
+         dangling link, is refused) */
+        int fd = open(out_path, O_WRONLY | O_CREAT | O_EXCL, 0666);
+        if (fd >= 0) {
+            close(fd);
+            unlink(out_path);
+        } else if (errno != EEXIST ||
+                   (fd = open(out_path, O_WRONLY | O_APPEND)) < 0) {
+            fprintf(stderr, "grow_fur: --out '%s': cannot write it: %s\n",
+                    out_path, strerror(errno));
+            return 1;
+        } else {
+            close(fd);
+        }
     }
     return -1;
 }
@@ -1260,6 +1262,7 @@ static int write_curves(const char *out_path, const hf_fur_info *info)
               ? cv_write_hair(out_path, &o, "hairfur grow_fur", err, sizeof err)
               : cv_write_obj(out_path, &o, err, sizeof err))) {
         fprintf(stderr, "grow_fur: %s\n", err);
+        cv_free(&o);
         return 0;
     }
     printf("wrote %s: %d curves of %d points\n", out_path, S, P);
@@ -1332,20 +1335,30 @@ static int export_last_frame(const gf_options *o, const hf_fur *fur,
     uint32_t *ibuf;
     long long n_idx, nvert;
     FILE *fp;
+    hf_result r;
     hf_fur_get_info(fur, &info);
+    if (ends_with(out_path, ".hair") || o->curves_out)
+        return write_curves(out_path, &info); /* no index buffer */
     n_idx = hf_ribbon_index_count(info.drawn_strand_count,
                                   info.points_per_strand, HF_TRIANGLES);
-    ibuf = (uint32_t *)malloc(sizeof(uint32_t) * (size_t)n_idx);
-    if (!ibuf ||
-        hf_ribbon_indices(info.drawn_strand_count, info.points_per_strand,
-                          HF_TRIANGLES, ibuf, n_idx) != HF_OK) {
-        fprintf(stderr, "grow_fur: out of memory writing %s\n", out_path);
-        free(ibuf);
+    if (n_idx < 0) {
+        fprintf(stderr, "grow_fur: %s: %d strands of %d points have more "
+                        "indices than an int counts\n", out_path,
+                info.drawn_strand_count, info.points_per_strand);
         return 0;
     }
-    if (ends_with(out_path, ".hair") || o->curves_out) {
+    ibuf = (uint32_t *)malloc(sizeof(uint32_t) * (size_t)(n_idx ? n_idx : 1));
+    if (!ibuf) {
+        fprintf(stderr, "grow_fur: out of memory writing %s\n", out_path);
+        return 0;
+    }
+    if ((r = hf_ribbon_indices(info.drawn_strand_count,
+                               info.points_per_strand, HF_TRIANGLES, ibuf,
+                               n_idx)) != HF_OK) {
+        fprintf(stderr, "grow_fur: %s: hf_ribbon_indices: %s\n", out_path,
+                hf_result_string(r));
         free(ibuf);
-        return write_curves(out_path, &info);
+        return 0;
     }
     fp = fopen(out_path, "wb");
     nvert = 2LL * info.drawn_strand_count * info.points_per_strand;
@@ -1362,8 +1375,8 @@ static int export_last_frame(const gf_options *o, const hf_fur *fur,
     free(ibuf);
     /* a write that failed (a full disk) leaves no half file */
     if (ferror(fp) | (fclose(fp) != 0)) {
-        fprintf(stderr, "grow_fur: error writing %s: %s (removed)\n",
-                out_path, strerror(errno));
+        fprintf(stderr, "grow_fur: error writing %s (a full disk?): "
+                        "removed\n", out_path);
         remove(out_path);
         return 0;
     }

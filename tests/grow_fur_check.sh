@@ -234,6 +234,8 @@ raw=/usr/share/assimp/models/RAW/WithColor.raw
 if [ -f "$raw" ]; then
     "$BIN" --mesh "$raw" --strands 500 --frames 1 --out "$tmp/raw.hair" >"$tmp/out" 2>&1 ||
         bad "$raw: exit $?: $(tail -n 2 "$tmp/out")"
+else
+    echo "grow_fur_check: RAW node tree: SKIP ($raw missing: Debian's assimp-testmodels)"
 fi
 
 # --keep-length (the default): the .hair output's strands keep their
@@ -261,21 +263,29 @@ EOF
     kept=$(python3 "$tmp/seg.py" "$tmp/k1_1.hair" "$tmp/k1_60.hair")
     plain=$(python3 "$tmp/seg.py" "$tmp/k0_1.hair" "$tmp/k0_60.hair")
     if python3 -c "import sys; sys.exit(not ($kept < 1e-4 and $plain > 1e-2))"; then
-        echo "grow_fur_check: keep-length: segments change by at most $kept over 60 frames ($plain without)"
+        echo "grow_fur_check: keep-length: segments change by at most $kept" \
+             "over 60 frames ($plain without)"
     else
-        bad "keep-length: segments change by $kept over 60 frames (want < 1e-4), $plain without (want > 1e-2)"
+        bad "keep-length: segments change by $kept over 60 frames" \
+            "(want < 1e-4), $plain without (want > 1e-2)"
     fi
 fi
 
 # refused before the run, saying why: an output that cannot be written,
 # a name that is only an extension, no strand drawn
 "$BIN" --out "$tmp/no/such/dir/f.hair" >"$tmp/out" 2>&1; rc=$?
-{ [ $rc -eq 1 ] && grep -q "cannot write it" "$tmp/out"; } || bad "an unwritable --out: exit $rc, $(cat "$tmp/out")"
+{ [ $rc -eq 1 ] && grep -q "cannot write it" "$tmp/out"; } ||
+    bad "an unwritable --out: exit $rc, $(cat "$tmp/out")"
 ! grep -q "frames at lod" "$tmp/out" || bad "an unwritable --out: the frames ran first"
+echo keep >"$tmp/kept.hair"
+"$BIN" --mesh "$tmp/no-such-mesh.obj" --out "$tmp/kept.hair" >"$tmp/out" 2>&1; rc=$?
+{ [ $rc -eq 1 ] && [ "$(cat "$tmp/kept.hair")" = keep ]; } ||
+    bad "an existing --out changed by a refused run (exit $rc)"
 "$BIN" --out "$tmp/.hair" >"$tmp/out" 2>&1; rc=$?
 { [ $rc -eq 2 ] && grep -q "needs a stem" "$tmp/out"; } || bad "--out .hair: exit $rc"
 "$BIN" --strands 268435456 --points 256 --out "$tmp/f.obj" >"$tmp/out" 2>&1; rc=$?
-{ [ $rc -eq 2 ] && grep -q "need about" "$tmp/out"; } || bad "7 TB of strands: exit $rc, $(cat "$tmp/out")"
+{ [ $rc -eq 2 ] && grep -q "need about" "$tmp/out"; } ||
+    bad "7 TB of strands: exit $rc, $(cat "$tmp/out")"
 "$BIN" --lod 0 --out "$tmp/f.obj" >"$tmp/out" 2>&1; rc=$?
 { [ $rc -eq 2 ] && grep -q -- "--lod" "$tmp/out"; } || bad "--lod 0: exit $rc"
 
