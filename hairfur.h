@@ -1477,8 +1477,9 @@ typedef struct hf_interp_params {
    strand s is
        root + scale * (sum_k w_k g_k[j] - root),   root = sum_k w_k g_k[0]
    so the strand keeps its own root on the guide triangle (the surface) and
-   its own length (scale), and equals guide k exactly when w_k = 1 and
-   scale = 1; then clumping. Writes P * 3 floats per strand at
+   its own length (scale) while its guides stay alike (guides that part
+   make the blend shorter: hf_fur_desc.keep_length restores the lengths),
+   and equals guide k exactly when w_k = 1 and scale = 1; then clumping. Writes P * 3 floats per strand at
    out_points + (s - out_first) * P * 3 and nothing else, so ranges can run on separate
    threads. Use the same call for LOD guides that are not simulated: their
    bindings name pure guides, and out_points may be the guide array itself
