@@ -17372,6 +17372,22 @@ HF__PRIVATE hf_result hf__fur_style_check(const hf_fur_desc *d, hf_diag *diag)
     return HF_OK;
 }
 
+/* The options a fur and a groom share: the grid's resolution (0: none)
+   and keep_length. */
+HF__PRIVATE hf_result hf__fur_options_check(int grid_resolution,
+                                            int keep_length, hf_diag *diag)
+{
+    if (grid_resolution != 0 &&
+        (grid_resolution < 4 || grid_resolution > HF_GRID_MAX_RESOLUTION))
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "grid_resolution", -1,
+                        "grid_resolution %d is not 0 (no grid) or in "
+                        "4..%d", grid_resolution, HF_GRID_MAX_RESOLUTION);
+    if (keep_length != 0 && keep_length != 1)
+        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "keep_length", -1,
+                        "keep_length %d is not 0 or 1", keep_length);
+    return HF_OK;
+}
+
 HF__PRIVATE hf_result hf__fur_desc_check(const hf_fur_desc *d, hf_diag *diag)
 {
     const int P = d->points_per_strand;
@@ -17397,21 +17413,15 @@ HF__PRIVATE hf_result hf__fur_desc_check(const hf_fur_desc *d, hf_diag *diag)
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "tess_factor", -1,
                         "tess_factor %g is negative or non-finite",
                         (double)d->tess_factor);
-    if (d->grid_resolution != 0 &&
-        (d->grid_resolution < 4 ||
-         d->grid_resolution > HF_GRID_MAX_RESOLUTION))
-        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "grid_resolution", -1,
-                        "grid_resolution %d is not 0 (no grid) or in "
-                        "4..%d", d->grid_resolution, HF_GRID_MAX_RESOLUTION);
+    if ((r = hf__fur_options_check(d->grid_resolution, d->keep_length,
+                                   diag)) != HF_OK)
+        return r;
     if (!hf__kernels_ok(d->simd, 0))
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "simd", -1,
                         "simd %d is not an hf_simd_level (0..4)", d->simd);
     if (!hf__kernels_ok(0, d->nontemporal))
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "nontemporal", -1,
                         "nontemporal %d is not 0, 1 or 2", d->nontemporal);
-    if (d->keep_length != 0 && d->keep_length != 1)
-        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "keep_length", -1,
-                        "keep_length %d is not 0 or 1", d->keep_length);
     if (!hf__finitef(d->strands_per_area) || d->strands_per_area < 0.0f)
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "strands_per_area", -1,
                         "strands_per_area %g is negative or non-finite",
@@ -18572,6 +18582,7 @@ HF__PRIVATE hf_result hf__groom_check(const hf_groom_desc *d, int P,
                                       float fraction, hf_diag *diag)
 {
     long long total = 0;
+    hf_result r;
     int i, k;
     if (!d->points || !d->strand_points)
         return hf__fail(diag, HF_ERROR_NULL_POINTER, "points", -1,
@@ -18588,15 +18599,9 @@ HF__PRIVATE hf_result hf__groom_check(const hf_groom_desc *d, int P,
         return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "guide_fraction", -1,
                         "guide_fraction %g is outside (0, 1]",
                         (double)fraction);
-    if (d->grid_resolution != 0 &&
-        (d->grid_resolution < 4 ||
-         d->grid_resolution > HF_GRID_MAX_RESOLUTION))
-        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "grid_resolution", -1,
-                        "grid_resolution %d is not 0 (no grid) or in "
-                        "4..%d", d->grid_resolution, HF_GRID_MAX_RESOLUTION);
-    if (d->keep_length != 0 && d->keep_length != 1)
-        return hf__fail(diag, HF_ERROR_BAD_PARAMETER, "keep_length", -1,
-                        "keep_length %d is not 0 or 1", d->keep_length);
+    if ((r = hf__fur_options_check(d->grid_resolution, d->keep_length,
+                                   diag)) != HF_OK)
+        return r;
     for (i = 0; i < d->strand_count; ++i) {
         const int n = d->strand_points[i];
         const float *p;

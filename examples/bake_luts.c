@@ -472,20 +472,21 @@ int main(int argc, char **argv)
     channels = o.channels;
     dual = o.dual;
     {
-        /* the option behind each field hf_lut_validate can name */
+        /* the option behind each field hf_lut_validate can name (a
+           component of sigma_a_rgb is named with its index) */
         static const char *const opt[][2] = {
             {"eta", "--eta"},           {"alpha_r_deg", "--alpha-r"},
-            {"beta_r_deg", "--beta-r"}, {"sigma_a", "--absorption"},
-            {"sigma_a_rgb", "--absorption-rgb"}};
+            {"beta_r_deg", "--beta-r"}, {"sigma_a", "--absorption"}};
         hf_diag dg;
         size_t k;
         r = hf_lut_validate(&p, &dg);
         if (r != HF_OK) {
             const char *o_name = NULL;
-            for (k = 0; k < sizeof opt / sizeof opt[0]; ++k)
-                if (dg.field &&
-                    !strncmp(dg.field, opt[k][0], strlen(opt[k][0])))
-                    o_name = opt[k][1];
+            if (dg.field && !strncmp(dg.field, "sigma_a_rgb", 11))
+                o_name = "--absorption-rgb";
+            for (k = 0; !o_name && dg.field && k < sizeof opt / sizeof opt[0];
+                 ++k)
+                if (!strcmp(dg.field, opt[k][0])) o_name = opt[k][1];
             fprintf(stderr, "bake_luts: %s%s%s (%s)\n", o_name ? o_name : "",
                     o_name ? ": " : "", dg.message, hf_result_string(r));
             return 1;

@@ -67,9 +67,9 @@
 #include <fcntl.h>  /* open: --out checked before the run */
 #include <unistd.h> /* sysconf: the machine's memory */
 
-typedef struct vtx {
-    float pos[3], normal[3], uv[2];
-} vtx;
+/* a mesh vertex: position, normal, uv (examples/character.h's, which
+   poses a file's meshes straight into them) */
+typedef ch_vertex vtx;
 
 static double now_ms(void)
 {
@@ -94,6 +94,9 @@ static double median(double *v, int n)
 #define GF_MAX_DEFAULT_GUIDES 2000
 #define GF_MAX_COUNT (1 << 28)
 #define GF_MAX_COLLIDERS 64
+/* the ribbon buffer's floats a point: two vertices of position and
+   tangent (24 bytes each, as run_frames writes them) */
+#define GF_VBUF_FLOATS 12
 
 /* One line per option: its unit and default. */
 static void usage(FILE *fp)
@@ -346,7 +349,6 @@ static int load_mesh(const char *path, vtx **out_v, uint32_t **out_i,
                      int *uvless, int *mesh_count)
 {
     ch_character c;
-    ch_vertex *posed;
     char err[600];
     double area = 0.0;
     int i, k;
@@ -356,30 +358,23 @@ static int load_mesh(const char *path, vtx **out_v, uint32_t **out_i,
         fprintf(stderr, "grow_fur: cannot load %s\n", err);
         return 0;
     }
-    posed = (ch_vertex *)malloc(sizeof(ch_vertex) * (size_t)c.vertex_count);
     *out_v = (vtx *)malloc(sizeof(vtx) * (size_t)c.vertex_count);
     *out_i = (uint32_t *)malloc(sizeof(uint32_t) * 3u *
                                 (size_t)c.triangle_count);
-    if (!posed || !*out_v || !*out_i) {
+    if (!*out_v || !*out_i) {
         fprintf(stderr, "grow_fur: out of memory loading %s\n", path);
         goto fail;
     }
     /* the first frame of the first animation, as make_hairstyle poses
        the curves it writes (the file's pose without one) */
-    ch_pose(&c, ch_find_animation(&c, NULL), 0.0, posed, NULL);
-    for (i = 0; i < c.vertex_count; ++i) {
-        for (k = 0; k < 3; ++k) {
-            if (!isfinite(posed[i].pos[k])) {
+    ch_pose(&c, ch_find_animation(&c, NULL), 0.0, *out_v, NULL);
+    for (i = 0; i < c.vertex_count; ++i)
+        for (k = 0; k < 3; ++k)
+            if (!isfinite((*out_v)[i].pos[k])) {
                 fprintf(stderr, "grow_fur: %s: vertex %d's position is not "
                                 "finite\n", path, i);
                 goto fail;
             }
-            (*out_v)[i].pos[k] = posed[i].pos[k];
-            (*out_v)[i].normal[k] = posed[i].normal[k];
-        }
-        (*out_v)[i].uv[0] = posed[i].uv[0];
-        (*out_v)[i].uv[1] = posed[i].uv[1];
-    }
     memcpy(*out_i, c.indices, sizeof(uint32_t) * 3u * (size_t)c.triangle_count);
     for (i = 0; i < c.triangle_count; ++i)
         area += hf_triangle_area((*out_v)[(*out_i)[3 * i]].pos,
@@ -400,11 +395,9 @@ static int load_mesh(const char *path, vtx **out_v, uint32_t **out_i,
     *mesh_count = c.part_count;
     *nv = c.vertex_count;
     *nt = c.triangle_count;
-    free(posed);
     ch_free(&c);
     return 1;
 fail:
-    free(posed);
     free(*out_v);
     free(*out_i);
     *out_v = NULL;
@@ -795,10 +788,11 @@ static int check_args(gf_options *o, cv_curves *curves)
         if (o->guides > GF_MAX_DEFAULT_GUIDES) o->guides = GF_MAX_DEFAULT_GUIDES;
         if (o->guides < 1) o->guides = 1;
     }
-    { /* what the frames hold a point: its strand point (12 bytes) and
-         the ribbon buffer's two vertices (96); a groom draws its own */
+    { /* what the frames hold a point: its strand point and the ribbon
+         buffer's floats; a groom draws its own strands */
         const int strands = o->groom_path ? curves->count : o->strands;
-        const double gb = (double)strands * o->points * 108.0 / 1e9;
+        const double gb = (double)strands * o->points *
+                          (double)sizeof(float) * (3 + GF_VBUF_FLOATS) / 1e9;
         const double have = (double)sysconf(_SC_PHYS_PAGES) *
                             (double)sysconf(_SC_PAGESIZE) / 1e9;
         if (have > 0.0 && gb > have) {
@@ -1419,15 +1413,16 @@ int main(int argc, char **argv)
 
     /* per frame: measured apart from what is written afterwards */
     hf_fur_get_info(fur, &info);
-    vbuf = (float *)malloc(sizeof(float) * 12u * 2u * (size_t)info.strand_count *
+    vbuf = (float *)malloc(sizeof(float) * GF_VBUF_FLOATS *
+                           (size_t)info.strand_count *
                            (size_t)info.points_per_strand);
     t.roots = (double *)malloc(sizeof(double) * 6u * (size_t)o.frames);
     if (!vbuf || !t.roots) {
         fprintf(stderr, "grow_fur: out of memory: the ribbons of %d strands "
                         "of %d points take %.1f GB\n", info.strand_count,
                 info.points_per_strand,
-                48.0 * 2.0 * info.strand_count * info.points_per_strand /
-                    1e9);
+                (double)sizeof(float) * GF_VBUF_FLOATS *
+                    info.strand_count * info.points_per_strand / 1e9);
         return 1;
     }
     t.sim = t.roots + o.frames;
